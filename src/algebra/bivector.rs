@@ -1,0 +1,502 @@
+//! Bivectors of Euclidean ℝᴺ: planes, angular velocities and momenta.
+
+use super::error::{assert_same_dim, check_finite, check_same_dim};
+use super::vector::scaled_norm;
+use super::{AlgebraError, MAX_DIM};
+use nalgebra::DMatrix;
+use smallvec::SmallVec;
+
+/// Inline storage: the 28 components of a bivector in N = 8 fit without touching the heap.
+pub(crate) type BivStorage = SmallVec<[f64; 28]>;
+
+/// Dense scratch for an N×N skew matrix; stays on the stack up to N = 12.
+pub(crate) type DenseScratch = SmallVec<[f64; 144]>;
+
+/// A bivector of Euclidean ℝᴺ: B = Σ_{i<j} B_ij eᵢ∧eⱼ, the algebra's object for oriented planes,
+/// angular velocities, angular momenta and torques.
+///
+/// Components are stored in lexicographic order of the pairs (DESIGN.md): for N = 4,
+/// `[B12, B13, B14, B23, B24, B34]`. The skew matrix of B is \[B\] with \[B\]_ij = B_ij,
+/// \[B\]_ji = −B_ij. Indices in the API are 0-based (`get(0, 1)` is B₁₂); text is 1-based.
+///
+/// # Contents
+/// - Construction: [`Bivector::zero`], [`Bivector::from_components`],
+///   [`Bivector::from_plane`], [`Vector::wedge`](crate::algebra::Vector::wedge), [`Bivector::from_skew_matrix`].
+/// - Algebra: `+ − ×scalar`, [`Bivector::commutator`] (the so(N) bracket, O(N³)),
+///   [`Bivector::inner`], [`Vector::left_contract`](crate::algebra::Vector::left_contract) (x ⌋ B).
+/// - Invariants: [`Bivector::norm`], [`Bivector::square_scalar`],
+///   [`Bivector::characteristic_coefficients`], [`Bivector::pfaffian`],
+///   [`Bivector::decompose`] (the invariant decomposition).
+/// - Rotations: [`Bivector::exp`] gives the rotor e^B.
+///
+/// ```
+/// use rotorflow::algebra::Bivector;
+/// let a = Bivector::from_plane(3, 0, 1, 1.0)?; // e₁₂
+/// let b = Bivector::from_plane(3, 1, 2, 1.0)?; // e₂₃
+/// assert_eq!(a.commutator(&b), Bivector::from_plane(3, 0, 2, 1.0)?); // e₁₂ × e₂₃ = e₁₃
+/// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bivector {
+    dim: usize,
+    coeffs: BivStorage,
+}
+
+/// Returns the number of bivector components in dimension `n`, N(N−1)/2.
+#[inline]
+pub fn bivector_len(n: usize) -> usize {
+    n * n.saturating_sub(1) / 2
+}
+
+/// Returns the position of the pair (i, j), i < j (0-based), in the lexicographic component
+/// order of dimension `n`.
+#[inline]
+pub fn pair_index(n: usize, i: usize, j: usize) -> usize {
+    debug_assert!(i < j && j < n);
+    i * (2 * n - i - 1) / 2 + (j - i - 1)
+}
+
+/// Returns the pairs (i, j), i < j (0-based), in the lexicographic component order.
+pub fn pairs(n: usize) -> impl Iterator<Item = (usize, usize)> {
+    (0..n).flat_map(move |i| (i + 1..n).map(move |j| (i, j)))
+}
+
+impl Bivector {
+    /// Returns the zero bivector of ℝⁿ.
+    ///
+    /// # Panics
+    /// If `n > MAX_DIM`.
+    #[track_caller]
+    pub fn zero(n: usize) -> Self {
+        assert!(
+            n <= MAX_DIM,
+            "rotorflow: dimension {n} exceeds MAX_DIM = {MAX_DIM}"
+        );
+        Bivector {
+            dim: n,
+            coeffs: SmallVec::from_elem(0.0, bivector_len(n)),
+        }
+    }
+
+    /// Builds a bivector of ℝⁿ from its N(N−1)/2 components in lexicographic order
+    /// (12, 13, …, 1N, 23, …).
+    ///
+    /// # Errors
+    /// [`AlgebraError::WrongComponentCount`], [`AlgebraError::NonFinite`],
+    /// [`AlgebraError::DimensionTooLarge`].
+    pub fn from_components(n: usize, components: &[f64]) -> Result<Self, AlgebraError> {
+        if n > MAX_DIM {
+            return Err(AlgebraError::DimensionTooLarge {
+                what: "bivector",
+                dim: n,
+                max: MAX_DIM,
+            });
+        }
+        if components.len() != bivector_len(n) {
+            return Err(AlgebraError::WrongComponentCount {
+                what: "bivector",
+                expected: bivector_len(n),
+                found: components.len(),
+            });
+        }
+        check_finite(components, "bivector components")?;
+        Ok(Bivector {
+            dim: n,
+            coeffs: SmallVec::from_slice(components),
+        })
+    }
+
+    /// Returns `magnitude · eᵢ∧eⱼ` in ℝⁿ (0-based `i`, `j`; `i > j` flips the sign).
+    ///
+    /// # Errors
+    /// [`AlgebraError::IndexOutOfRange`], [`AlgebraError::RepeatedIndex`],
+    /// [`AlgebraError::NonFinite`].
+    pub fn from_plane(n: usize, i: usize, j: usize, magnitude: f64) -> Result<Self, AlgebraError> {
+        for &k in &[i, j] {
+            if k >= n {
+                return Err(AlgebraError::IndexOutOfRange { index: k, dim: n });
+            }
+        }
+        if i == j {
+            return Err(AlgebraError::RepeatedIndex { index: i });
+        }
+        check_finite(&[magnitude], "plane magnitude")?;
+        let mut b = Bivector::zero(n);
+        b.set(i, j, magnitude);
+        Ok(b)
+    }
+
+    pub(crate) fn from_storage(dim: usize, coeffs: BivStorage) -> Self {
+        debug_assert_eq!(coeffs.len(), bivector_len(dim));
+        Bivector { dim, coeffs }
+    }
+
+    /// Returns the dimension N of the space (not the number of components).
+    #[inline]
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// Returns the N(N−1)/2 components in lexicographic order.
+    #[inline]
+    pub fn as_slice(&self) -> &[f64] {
+        &self.coeffs
+    }
+
+    /// Returns the components mutably, in lexicographic order.
+    #[inline]
+    pub fn as_mut_slice(&mut self) -> &mut [f64] {
+        &mut self.coeffs
+    }
+
+    /// Returns B_ij = \[B\]_ij (0-based; antisymmetric, 0 on the diagonal).
+    ///
+    /// # Panics
+    /// If an index is out of range.
+    #[track_caller]
+    pub fn get(&self, i: usize, j: usize) -> f64 {
+        let n = self.dim;
+        assert!(i < n && j < n, "rotorflow: index out of range");
+        match i.cmp(&j) {
+            std::cmp::Ordering::Less => self.coeffs[pair_index(n, i, j)],
+            std::cmp::Ordering::Greater => -self.coeffs[pair_index(n, j, i)],
+            std::cmp::Ordering::Equal => 0.0,
+        }
+    }
+
+    /// Sets B_ij = value (and so B_ji = −value); 0-based.
+    ///
+    /// # Panics
+    /// If an index is out of range or `i == j`.
+    #[track_caller]
+    pub fn set(&mut self, i: usize, j: usize, value: f64) {
+        let n = self.dim;
+        assert!(
+            i < n && j < n && i != j,
+            "rotorflow: invalid plane ({i}, {j}) in dimension {n}"
+        );
+        if i < j {
+            self.coeffs[pair_index(n, i, j)] = value;
+        } else {
+            self.coeffs[pair_index(n, j, i)] = -value;
+        }
+    }
+
+    /// Returns the skew matrix \[B\] (N×N, \[B\]_ij = B_ij).
+    pub fn to_skew_matrix(&self) -> DMatrix<f64> {
+        let n = self.dim;
+        let mut m = DMatrix::zeros(n, n);
+        for ((i, j), &c) in pairs(n).zip(self.coeffs.iter()) {
+            m[(i, j)] = c;
+            m[(j, i)] = -c;
+        }
+        m
+    }
+
+    /// Builds the bivector of a skew matrix: B_ij = ½(A_ij − A_ji).
+    ///
+    /// # Errors
+    /// [`AlgebraError::NotSquare`]; [`AlgebraError::NotSkewSymmetric`] if
+    /// max |A_ij + A_ji| > 1e-12 · max |A_ij| (the antisymmetric part is taken otherwise);
+    /// [`AlgebraError::NonFinite`].
+    pub fn from_skew_matrix(a: &DMatrix<f64>) -> Result<Self, AlgebraError> {
+        Self::from_skew_entries(a.nrows(), a.ncols(), |i, j| a[(i, j)])
+    }
+
+    pub(crate) fn from_skew_entries(
+        rows: usize,
+        cols: usize,
+        entry: impl Fn(usize, usize) -> f64,
+    ) -> Result<Self, AlgebraError> {
+        if rows != cols {
+            return Err(AlgebraError::NotSquare { rows, cols });
+        }
+        let n = rows;
+        if n > MAX_DIM {
+            return Err(AlgebraError::DimensionTooLarge {
+                what: "bivector",
+                dim: n,
+                max: MAX_DIM,
+            });
+        }
+        let mut scale = 0.0f64;
+        let mut deviation = 0.0f64;
+        for i in 0..n {
+            for j in 0..n {
+                let x = entry(i, j);
+                if !x.is_finite() {
+                    return Err(AlgebraError::NonFinite {
+                        what: "skew matrix",
+                    });
+                }
+                scale = scale.max(x.abs());
+                deviation = deviation.max((x + entry(j, i)).abs());
+            }
+        }
+        let tolerance = 1e-12 * scale;
+        if deviation > tolerance {
+            return Err(AlgebraError::NotSkewSymmetric {
+                deviation,
+                tolerance,
+            });
+        }
+        let mut b = Bivector::zero(n);
+        for (k, (i, j)) in pairs(n).enumerate() {
+            b.coeffs[k] = 0.5 * (entry(i, j) - entry(j, i));
+        }
+        Ok(b)
+    }
+
+    /// Returns ⟨A, B⟩ = Σ_{i<j} A_ij B_ij (DESIGN.md's pairing; kinetic energy is ½⟨ω, L⟩).
+    ///
+    /// Note ⟨A, B⟩ = −⟨A B⟩₀: the geometric scalar product of two bivectors has the opposite
+    /// sign.
+    ///
+    /// # Panics
+    /// If the dimensions differ.
+    #[track_caller]
+    pub fn inner(&self, other: &Bivector) -> f64 {
+        assert_same_dim(self.dim, other.dim);
+        self.coeffs
+            .iter()
+            .zip(&other.coeffs)
+            .map(|(a, b)| a * b)
+            .sum()
+    }
+
+    /// Returns |B|² = Σ_{i<j} B_ij² (= ⟨B B̃⟩₀ = −⟨B²⟩₀).
+    #[inline]
+    pub fn norm_squared(&self) -> f64 {
+        self.coeffs.iter().map(|c| c * c).sum()
+    }
+
+    /// Returns |B|, without overflow or underflow for any finite components.
+    pub fn norm(&self) -> f64 {
+        scaled_norm(&self.coeffs)
+    }
+
+    /// Returns the largest absolute component.
+    pub fn max_abs(&self) -> f64 {
+        self.coeffs.iter().fold(0.0, |m, c| m.max(c.abs()))
+    }
+
+    /// Returns the scalar part of the geometric square, ⟨B²⟩₀ = −|B|² (a first invariant).
+    pub fn square_scalar(&self) -> f64 {
+        -self.norm_squared()
+    }
+
+    /// Returns the commutator product A × B = ½(AB − BA), which for bivectors is again a
+    /// bivector: the Lie bracket of so(N), \[A × B\] = \[A\]\[B\] − \[B\]\[A\].
+    ///
+    /// Computed from components in O(N³) without forming a multivector. Euler's equations
+    /// read dL/dt = ω × L (DESIGN.md).
+    ///
+    /// # Panics
+    /// If the dimensions differ (see [`Bivector::try_commutator`]).
+    #[track_caller]
+    pub fn commutator(&self, other: &Bivector) -> Bivector {
+        assert_same_dim(self.dim, other.dim);
+        let mut out = Bivector::zero(self.dim);
+        commutator_into(self, other, &mut out.coeffs);
+        out
+    }
+
+    /// Checked version of [`Bivector::commutator`].
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionMismatch`].
+    pub fn try_commutator(&self, other: &Bivector) -> Result<Bivector, AlgebraError> {
+        check_same_dim(self.dim, other.dim)?;
+        Ok(self.commutator(other))
+    }
+
+    /// Writes the contraction x ⌋ B (out_j = Σᵢ xᵢ B_ij) into `out`.
+    pub(crate) fn contract_into(&self, x: &[f64], out: &mut [f64]) {
+        let n = self.dim;
+        out.iter_mut().for_each(|o| *o = 0.0);
+        let mut k = 0;
+        for i in 0..n {
+            for j in i + 1..n {
+                let b = self.coeffs[k];
+                out[j] += x[i] * b;
+                out[i] -= x[j] * b;
+                k += 1;
+            }
+        }
+    }
+
+    /// Returns the coefficients c_k of the characteristic polynomial of the skew matrix,
+    /// det(λ − \[B\]) = Σ_k c_k λ^{N−2k}, for k = 0 … ⌊N/2⌋ (c₀ = 1; odd powers vanish).
+    ///
+    /// c_k is the k-th elementary symmetric polynomial of the squared plane magnitudes θᵢ² of
+    /// the invariant decomposition; equivalently c_k = |B^{∧k}/k!|². These are the Casimirs of
+    /// the free rigid body (c₁ = |B|²; in 4D c₂ = Pf(\[B\])²). Computed from the invariant
+    /// decomposition in O(N³).
+    pub fn characteristic_coefficients(&self) -> Vec<f64> {
+        let thetas = self.decompose().magnitudes();
+        let m = self.dim / 2;
+        let mut e = vec![0.0; m + 1];
+        e[0] = 1.0;
+        for t in thetas {
+            let t2 = t * t;
+            for k in (1..=m).rev() {
+                e[k] += e[k - 1] * t2;
+            }
+        }
+        e
+    }
+
+    /// Returns the Pfaffian Pf(\[B\]) of the skew matrix (0 in odd N).
+    ///
+    /// Pf² = det \[B\]; Pf(θ e₁₂) = θ, and in 4D Pf = B₁₂B₃₄ − B₁₃B₂₄ + B₁₄B₂₃. It is the
+    /// coefficient of B^{∧N/2}/(N/2)! on the unit pseudoscalar. Computed by the skew
+    /// Parlett–Reid elimination with pivoting (Wimmer, ACM TOMS 38 (2012), `pfaffian_LTL`),
+    /// O(N³).
+    pub fn pfaffian(&self) -> f64 {
+        let n = self.dim;
+        if n % 2 == 1 {
+            return 0.0;
+        }
+        if n == 0 {
+            return 1.0;
+        }
+        let mut a: DenseScratch = SmallVec::from_elem(0.0, n * n);
+        self.fill_dense(&mut a);
+        let at = |a: &DenseScratch, i: usize, j: usize| a[i * n + j];
+        let mut pf = 1.0;
+        let mut k = 0;
+        while k + 1 < n {
+            // Pivot: the largest entry in column k below the diagonal.
+            let mut kp = k + 1;
+            let mut best = at(&a, k + 1, k).abs();
+            for i in k + 2..n {
+                let v = at(&a, i, k).abs();
+                if v > best {
+                    best = v;
+                    kp = i;
+                }
+            }
+            if kp != k + 1 {
+                for c in 0..n {
+                    a.swap((k + 1) * n + c, kp * n + c);
+                }
+                for r in 0..n {
+                    a.swap(r * n + k + 1, r * n + kp);
+                }
+                pf = -pf;
+            }
+            let piv = at(&a, k, k + 1);
+            if piv == 0.0 {
+                return 0.0;
+            }
+            pf *= piv;
+            if k + 2 < n {
+                let tau: SmallVec<[f64; 16]> = (k + 2..n).map(|j| at(&a, k, j) / piv).collect();
+                let col: SmallVec<[f64; 16]> = (k + 2..n).map(|i| at(&a, i, k + 1)).collect();
+                for (ii, i) in (k + 2..n).enumerate() {
+                    for (jj, j) in (k + 2..n).enumerate() {
+                        a[i * n + j] += tau[ii] * col[jj] - col[ii] * tau[jj];
+                    }
+                }
+            }
+            k += 2;
+        }
+        pf
+    }
+
+    /// Writes the dense row-major skew matrix into `a` (length N²).
+    pub(crate) fn fill_dense(&self, a: &mut [f64]) {
+        let n = self.dim;
+        let mut k = 0;
+        for i in 0..n {
+            a[i * n + i] = 0.0;
+            for j in i + 1..n {
+                let c = self.coeffs[k];
+                a[i * n + j] = c;
+                a[j * n + i] = -c;
+                k += 1;
+            }
+        }
+    }
+}
+
+/// \[A × B\] = \[A\]\[B\] − \[B\]\[A\], upper triangle only: c_ij = Σ_k (B_ik A_jk − A_ik B_jk), where both
+/// sums run along contiguous rows of the dense skew matrices.
+pub(crate) fn commutator_into(a: &Bivector, b: &Bivector, out: &mut [f64]) {
+    let n = a.dim;
+    match n {
+        0..=2 => out.iter_mut().for_each(|o| *o = 0.0),
+        3 => {
+            // e12, e13, e23 ↔ cross product of the dual vectors; written out by hand.
+            let (a12, a13, a23) = (a.coeffs[0], a.coeffs[1], a.coeffs[2]);
+            let (b12, b13, b23) = (b.coeffs[0], b.coeffs[1], b.coeffs[2]);
+            out[0] = a23 * b13 - a13 * b23;
+            out[1] = a12 * b23 - a23 * b12;
+            out[2] = a13 * b12 - a12 * b13;
+        }
+        4 => commutator_fixed::<4>(&a.coeffs, &b.coeffs, out),
+        5 => commutator_fixed::<5>(&a.coeffs, &b.coeffs, out),
+        6 => commutator_fixed::<6>(&a.coeffs, &b.coeffs, out),
+        7 => commutator_fixed::<7>(&a.coeffs, &b.coeffs, out),
+        8 => commutator_fixed::<8>(&a.coeffs, &b.coeffs, out),
+        _ => {
+            // Dense rows on the stack up to N = 16, on the heap beyond.
+            let mut stack_a = [0.0f64; 256];
+            let mut stack_b = [0.0f64; 256];
+            let mut heap_a = Vec::new();
+            let mut heap_b = Vec::new();
+            let (da, db): (&mut [f64], &mut [f64]) = if n <= 16 {
+                (&mut stack_a[..n * n], &mut stack_b[..n * n])
+            } else {
+                heap_a.resize(n * n, 0.0);
+                heap_b.resize(n * n, 0.0);
+                (&mut heap_a[..], &mut heap_b[..])
+            };
+            a.fill_dense(da);
+            b.fill_dense(db);
+            let mut k = 0;
+            for i in 0..n {
+                let ai = &da[i * n..(i + 1) * n];
+                let bi = &db[i * n..(i + 1) * n];
+                for j in i + 1..n {
+                    let aj = &da[j * n..(j + 1) * n];
+                    let bj = &db[j * n..(j + 1) * n];
+                    let mut s = 0.0;
+                    for t in 0..n {
+                        s += bi[t] * aj[t] - ai[t] * bj[t];
+                    }
+                    out[k] = s;
+                    k += 1;
+                }
+            }
+        }
+    }
+}
+
+/// The commutator for a fixed N, on stack arrays the compiler can unroll.
+#[inline]
+fn commutator_fixed<const N: usize>(a: &[f64], b: &[f64], out: &mut [f64]) {
+    let mut da = [[0.0f64; N]; N];
+    let mut db = [[0.0f64; N]; N];
+    let mut k = 0;
+    for i in 0..N {
+        for j in i + 1..N {
+            da[i][j] = a[k];
+            da[j][i] = -a[k];
+            db[i][j] = b[k];
+            db[j][i] = -b[k];
+            k += 1;
+        }
+    }
+    let mut k = 0;
+    for i in 0..N {
+        for j in i + 1..N {
+            let mut s = 0.0;
+            for t in 0..N {
+                s += db[i][t] * da[j][t] - da[i][t] * db[j][t];
+            }
+            out[k] = s;
+            k += 1;
+        }
+    }
+}

@@ -1,0 +1,190 @@
+//! The error type of the algebra layer.
+
+use super::Signature;
+use thiserror::Error;
+
+/// Everything that can go wrong when building or combining elements of the algebra.
+///
+/// Every variant says what was wrong with the input and, in its documentation, how to fix it.
+/// Operations on well-formed values of equal dimension never fail; the errors come from
+/// constructors that take user data, from conversions, and from the checked (`try_`) variants
+/// of the operators.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum AlgebraError {
+    /// Two operands live in spaces of different dimension.
+    ///
+    /// How to fix: build both operands with the same `dim`, or embed the smaller one first.
+    #[error("dimension mismatch: left operand has dimension {left}, right operand has dimension {right}")]
+    DimensionMismatch {
+        /// Dimension of the left operand.
+        left: usize,
+        /// Dimension of the right operand.
+        right: usize,
+    },
+    /// Two multivectors belong to algebras with different signatures.
+    ///
+    /// How to fix: build both in the same [`Signature`].
+    #[error("signature mismatch: {left} vs {right}")]
+    SignatureMismatch {
+        /// Signature of the left operand.
+        left: Signature,
+        /// Signature of the right operand.
+        right: Signature,
+    },
+    /// A slice of components has the wrong length for the requested dimension.
+    ///
+    /// How to fix: a vector in N dimensions has N components, a bivector N(N−1)/2 (in the
+    /// lexicographic order 12, 13, …, 1N, 23, …), a rotor 2^(N−1), a multivector 2^N.
+    #[error("wrong number of components for a {what}: expected {expected}, found {found}")]
+    WrongComponentCount {
+        /// What was being built ("vector", "bivector", …).
+        what: &'static str,
+        /// The number of components the dimension requires.
+        expected: usize,
+        /// The number of components given.
+        found: usize,
+    },
+    /// The requested dimension exceeds what this type supports.
+    ///
+    /// How to fix: vectors and bivectors go up to [`super::MAX_DIM`]; types that store
+    /// 2^N (multivectors) or 2^(N−1) (rotors) coefficients go up to
+    /// [`super::MULTIVECTOR_MAX_DIM`].
+    #[error("dimension {dim} is too large for a {what} (at most {max})")]
+    DimensionTooLarge {
+        /// What was being built.
+        what: &'static str,
+        /// The requested dimension.
+        dim: usize,
+        /// The largest supported dimension.
+        max: usize,
+    },
+    /// A basis index is not below the dimension (indices in the API are 0-based).
+    ///
+    /// How to fix: use indices `0..dim`; user-facing text such as `e12` is 1-based.
+    #[error("basis index {index} is out of range for dimension {dim} (indices are 0-based)")]
+    IndexOutOfRange {
+        /// The offending index.
+        index: usize,
+        /// The dimension.
+        dim: usize,
+    },
+    /// A plane was named by the same index twice (e_i ∧ e_i = 0 is not a plane).
+    ///
+    /// How to fix: give two distinct indices.
+    #[error("a plane needs two distinct basis indices, got {index} twice")]
+    RepeatedIndex {
+        /// The repeated index.
+        index: usize,
+    },
+    /// An input number is NaN or infinite.
+    ///
+    /// How to fix: check the data for NaN or infinity before building the element.
+    #[error("non-finite value in {what}")]
+    NonFinite {
+        /// Which input contained the non-finite value.
+        what: &'static str,
+    },
+    /// The element has no inverse.
+    ///
+    /// How to fix: only elements whose left-multiplication map is non-singular are invertible
+    /// (for example non-null vectors and versors).
+    #[error("element is not invertible: {reason}")]
+    NotInvertible {
+        /// Why the inverse does not exist.
+        reason: &'static str,
+    },
+    /// A matrix that should be skew-symmetric is not.
+    ///
+    /// How to fix: a bivector's matrix satisfies Aᵀ = −A; pass `(A − Aᵀ)/2` if the asymmetry is
+    /// round-off.
+    #[error("matrix is not skew-symmetric: max |A + Aᵀ| = {deviation:e} exceeds the tolerance {tolerance:e}")]
+    NotSkewSymmetric {
+        /// max |A_ij + A_ji|.
+        deviation: f64,
+        /// The tolerance that was applied.
+        tolerance: f64,
+    },
+    /// A matrix is not square.
+    ///
+    /// How to fix: rotations and bivectors of ℝᴺ are N×N matrices.
+    #[error("matrix is not square: {rows}×{cols}")]
+    NotSquare {
+        /// Rows.
+        rows: usize,
+        /// Columns.
+        cols: usize,
+    },
+    /// A matrix is not a rotation (orthogonal with determinant +1).
+    ///
+    /// How to fix: orthonormalise it first (for example with
+    /// [`super::Rotor::from_matrix_projected`], which takes the nearest rotation), or check
+    /// that it is not a reflection (determinant −1).
+    #[error("matrix is not a rotation: max |QᵀQ − 1| = {orthogonality_error:e} (tolerance {tolerance:e}), det = {determinant}")]
+    NotARotation {
+        /// max |(QᵀQ − 1)_ij|.
+        orthogonality_error: f64,
+        /// The determinant (must be +1).
+        determinant: f64,
+        /// The tolerance that was applied to the orthogonality error.
+        tolerance: f64,
+    },
+    /// A multivector is not a rotor: not even, or not on Spin(N).
+    ///
+    /// How to fix: take `grade(0) + grade(2) + …` parts only, and normalise with
+    /// [`super::Rotor::normalize`] if the deviation is drift.
+    #[error("multivector is not a rotor: {reason} (deviation {deviation:e})")]
+    NotARotor {
+        /// What failed.
+        reason: &'static str,
+        /// Size of the failure.
+        deviation: f64,
+    },
+    /// A zero (or numerically zero) element where a direction was needed.
+    ///
+    /// How to fix: give a non-zero element.
+    #[error("{what} has zero length and cannot be normalised")]
+    ZeroLength {
+        /// What was being normalised.
+        what: &'static str,
+    },
+    /// The operation is defined here only for a Euclidean signature.
+    ///
+    /// How to fix: the graded types and rotors model ℝᴺ; use [`super::Multivector`] products
+    /// for other signatures.
+    #[error("{operation} needs a Euclidean signature, got {signature}")]
+    UnsupportedSignature {
+        /// The operation.
+        operation: &'static str,
+        /// The signature that was given.
+        signature: Signature,
+    },
+}
+
+/// Checks that every number in `values` is finite.
+pub(crate) fn check_finite(values: &[f64], what: &'static str) -> Result<(), AlgebraError> {
+    if values.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(AlgebraError::NonFinite { what })
+    }
+}
+
+/// Panics with a clear message when two dimensions differ; used by the operators.
+#[track_caller]
+#[inline]
+pub(crate) fn assert_same_dim(left: usize, right: usize) {
+    if left != right {
+        panic!("rotorflow: dimension mismatch: left operand has dimension {left}, right operand has dimension {right}");
+    }
+}
+
+/// Returns `Err(DimensionMismatch)` when two dimensions differ.
+#[inline]
+pub(crate) fn check_same_dim(left: usize, right: usize) -> Result<(), AlgebraError> {
+    if left == right {
+        Ok(())
+    } else {
+        Err(AlgebraError::DimensionMismatch { left, right })
+    }
+}

@@ -1,0 +1,174 @@
+//! The Clifford-algebra layer: vectors, bivectors, rotors and multivectors in any dimension
+//! chosen at run time.
+//!
+//! # Types
+//! | type | what it is | storage | dimensions |
+//! |---|---|---|---|
+//! | [`Vector`] | x = Σ xᵢ eᵢ in Euclidean ℝᴺ | N components, inline up to N = 8 | N ≤ [`MAX_DIM`] |
+//! | [`Bivector`] | B = Σ_{i<j} B_ij eᵢ∧eⱼ: planes, angular velocity, momentum | N(N−1)/2, inline up to N = 8 | N ≤ [`MAX_DIM`] |
+//! | [`Rotor`] | an element of Spin(N), turning by R x R̃ | 2^(N−1) even coefficients, inline up to N = 5 | N ≤ [`MULTIVECTOR_MAX_DIM`] |
+//! | [`Multivector`] | any element of Cl(p, q, r) | 2^N coefficients, inline up to N = 4 | N ≤ [`MULTIVECTOR_MAX_DIM`] |
+//! | [`Signature`] | the metric Cl(p, q, r) | three small integers | p + q + r ≤ [`MAX_DIM`] |
+//! | [`Decomposition`] | a bivector's orthogonal simple planes | planes with magnitudes | as `Bivector` |
+//!
+//! The graded types ([`Vector`], [`Bivector`], [`Rotor`]) model Euclidean ℝᴺ, the setting of
+//! rigid-body rotation: they carry no signature, so their kernels are tight and their API is
+//! infallible. Any signature Cl(p, q, r), projective and conformal algebras included, is
+//! available through [`Multivector`].
+//!
+//! # Conventions (DESIGN.md, part 1)
+//! - Basis blades are bit masks (see [`blade`]); bivector components are stored in
+//!   lexicographic order 12, 13, …, 1N, 23, …; indices in the API are 0-based, text is
+//!   1-based (`e12` is e₁∧e₂).
+//! - \[B\] is the skew matrix with \[B\]_ij = B_ij. The velocity of body point x under angular
+//!   velocity ω is x ⌋ ω = \[ω\]ᵀx ([`Vector::left_contract`]).
+//! - R = exp(−θ B̂/2) turns by θ in the plane B̂, from its first vector toward its second; its
+//!   rotation matrix is expm(\[θB̂\]ᵀ) ([`Rotor::from_rotation_bivector`], [`Rotor::to_matrix`]).
+//! - A × B = ½(AB − BA) is the commutator product ([`Bivector::commutator`]).
+//!
+//! # Operators
+//! Operators panic only on mismatched dimensions; each has a checked `try_` method.
+//!
+//! | expression | meaning | types |
+//! |---|---|---|
+//! | `a + b`, `a - b`, `-a` | sum, difference, negation | `Vector`, `Bivector`, `Multivector` |
+//! | `a * s`, `s * a`, `a / s` | scaling by an `f64` | `Vector`, `Bivector`, `Multivector` |
+//! | `a * b` | geometric product | `Multivector`; `Rotor * Rotor` composes |
+//! | `a ^ b` | outer product a ∧ b | `Multivector`; `&Vector ^ &Vector → Bivector` |
+//! | `a << b` | left contraction a ⌋ b | `Multivector`; `&Vector << &Bivector → Vector` |
+//! | `a >> b` | right contraction a ⌊ b | `Multivector` |
+//! | `a & b` | regressive product a ∨ b (meet) | `Multivector` |
+//! | `a += b`, `a -= b`, `a *= s` | in place | `Vector`, `Bivector`, `Multivector` |
+//!
+//! # Example
+//! ```
+//! use rotorflow::algebra::{Bivector, Rotor, Vector};
+//! // A non-simple 4D bivector: rotation by 0.3 in e12 and 1.1 in e34 at once.
+//! let theta = Bivector::from_components(4, &[0.3, 0.0, 0.0, 0.0, 0.0, 1.1])?;
+//! let r = Rotor::from_rotation_bivector(&theta);
+//! assert!(r.unit_error() < 1e-15);
+//! assert!((&r.rotation_bivector() - &theta).norm() < 1e-15);
+//! // The rotor turns e1 toward e2 by 0.3.
+//! let x = r.rotate_vector(&Vector::basis(4, 0));
+//! assert!((x[0] - 0.3f64.cos()).abs() < 1e-15 && (x[1] - 0.3f64.sin()).abs() < 1e-15);
+//! # Ok::<(), rotorflow::algebra::AlgebraError>(())
+//! ```
+
+mod approx_impls;
+mod bivector;
+pub mod blade;
+pub mod decompose;
+mod display;
+mod error;
+mod multivector;
+mod nalgebra;
+mod ops;
+mod rotor;
+#[cfg(feature = "serde")]
+mod serde_impls;
+mod signature;
+mod vector;
+
+pub use bivector::{bivector_len, pair_index, pairs, Bivector};
+pub use decompose::{Decomposition, SimplePlane};
+pub use error::AlgebraError;
+pub use multivector::{Multivector, Product};
+pub use rotor::{Rotor, ROTATION_TOLERANCE};
+pub use signature::Signature;
+pub use vector::Vector;
+
+/// The largest dimension for vectors, bivectors and signatures: a basis blade is a `u64` bit
+/// mask, so N ≤ 64 (wedged makes the same trade-off at 31). Vectors and bivectors store N and
+/// N(N−1)/2 numbers, so this ceiling costs nothing.
+pub const MAX_DIM: usize = 64;
+
+/// The largest dimension for types stored densely over blades: a [`Multivector`] holds 2^N
+/// coefficients (512 KiB at N = 16) and a [`Rotor`] 2^(N−1). Products of dense elements cost
+/// O(4^N), so this is also where they stop being practical.
+pub const MULTIVECTOR_MAX_DIM: usize = 16;
+
+impl From<&Vector> for Multivector {
+    /// The vector as a grade-1 multivector of Cl(N, 0, 0).
+    ///
+    /// # Panics
+    /// If N > [`MULTIVECTOR_MAX_DIM`].
+    #[track_caller]
+    fn from(v: &Vector) -> Self {
+        let mut m = Multivector::zero(Signature::euclidean(v.dim()));
+        for (i, &c) in v.as_slice().iter().enumerate() {
+            m.coefficients_mut()[1 << i] = c;
+        }
+        m
+    }
+}
+
+impl From<&Bivector> for Multivector {
+    /// The bivector as a grade-2 multivector of Cl(N, 0, 0).
+    ///
+    /// # Panics
+    /// If N > [`MULTIVECTOR_MAX_DIM`].
+    #[track_caller]
+    fn from(b: &Bivector) -> Self {
+        let mut m = Multivector::zero(Signature::euclidean(b.dim()));
+        for ((i, j), &c) in pairs(b.dim()).zip(b.as_slice()) {
+            m.coefficients_mut()[(1 << i) | (1 << j)] = c;
+        }
+        m
+    }
+}
+
+impl From<&Rotor> for Multivector {
+    /// The rotor as an even multivector of Cl(N, 0, 0).
+    fn from(r: &Rotor) -> Self {
+        r.to_multivector()
+    }
+}
+
+impl TryFrom<&Multivector> for Vector {
+    type Error = AlgebraError;
+    /// The grade-1 part, if the multivector is Euclidean and has no other grades.
+    ///
+    /// # Errors
+    /// [`AlgebraError::UnsupportedSignature`]; [`AlgebraError::WrongComponentCount`] (with
+    /// `what = "pure vector"`) when other grades are present.
+    fn try_from(m: &Multivector) -> Result<Self, AlgebraError> {
+        graded_check(m, 1, "pure vector")?;
+        let n = m.dim();
+        Vector::from_components(&(0..n).map(|i| m.coefficient(1 << i)).collect::<Vec<f64>>())
+    }
+}
+
+impl TryFrom<&Multivector> for Bivector {
+    type Error = AlgebraError;
+    /// The grade-2 part, if the multivector is Euclidean and has no other grades.
+    ///
+    /// # Errors
+    /// [`AlgebraError::UnsupportedSignature`]; [`AlgebraError::WrongComponentCount`] (with
+    /// `what = "pure bivector"`) when other grades are present.
+    fn try_from(m: &Multivector) -> Result<Self, AlgebraError> {
+        graded_check(m, 2, "pure bivector")?;
+        let n = m.dim();
+        let comps: Vec<f64> = pairs(n)
+            .map(|(i, j)| m.coefficient((1 << i) | (1 << j)))
+            .collect();
+        Bivector::from_components(n, &comps)
+    }
+}
+
+fn graded_check(m: &Multivector, k: usize, what: &'static str) -> Result<(), AlgebraError> {
+    if !m.signature().is_euclidean() {
+        return Err(AlgebraError::UnsupportedSignature {
+            operation: "conversion to a graded type",
+            signature: m.signature(),
+        });
+    }
+    let others = m.terms().filter(|(b, _)| blade::grade(*b) != k).count();
+    if others > 0 {
+        return Err(AlgebraError::WrongComponentCount {
+            what,
+            expected: 0,
+            found: others,
+        });
+    }
+    Ok(())
+}

@@ -1,0 +1,389 @@
+//! Rotors ↔ rotation matrices, and the projection of a drifted rotor back onto Spin(N).
+
+use super::exp_log::{get_4d, multiply_by_simple, set_4d};
+use super::{even_index, Rotor};
+use crate::algebra::bivector::{bivector_len, pairs};
+use crate::algebra::decompose::{decompose_components, RawPlane};
+use crate::algebra::{AlgebraError, MULTIVECTOR_MAX_DIM};
+use nalgebra::{DMatrix, DVector};
+use smallvec::SmallVec;
+
+/// Default tolerance on max |QᵀQ − 1| for [`Rotor::from_matrix`].
+pub const ROTATION_TOLERANCE: f64 = 1e-9;
+
+impl Rotor {
+    /// Returns the N×N rotation matrix Q of R: column j is R eⱼ R̃, so Q x = R x R̃.
+    ///
+    /// For R = exp(−θ B̂/2) this is expm(\[θB̂\]ᵀ) (DESIGN.md). Costs O(N²·2^N).
+    pub fn to_matrix(&self) -> DMatrix<f64> {
+        let n = self.dim;
+        let mut q = DMatrix::zeros(n, n);
+        match n {
+            0 => {}
+            1 => q[(0, 0)] = 1.0,
+            3 => {
+                // Quaternion formula with q = w − x e23 + y e13 − z e12 (see nalgebra.rs).
+                let w = self.coeffs[0];
+                let (e12, e13, e23) = (
+                    self.coeffs[even_index(3, 0b011)],
+                    self.coeffs[even_index(3, 0b101)],
+                    self.coeffs[even_index(3, 0b110)],
+                );
+                let (x, y, z) = (-e23, e13, -e12);
+                let m = [
+                    [
+                        w * w + x * x - y * y - z * z,
+                        2.0 * (x * y - w * z),
+                        2.0 * (x * z + w * y),
+                    ],
+                    [
+                        2.0 * (x * y + w * z),
+                        w * w - x * x + y * y - z * z,
+                        2.0 * (y * z - w * x),
+                    ],
+                    [
+                        2.0 * (x * z - w * y),
+                        2.0 * (y * z + w * x),
+                        w * w - x * x - y * y + z * z,
+                    ],
+                ];
+                for i in 0..3 {
+                    for j in 0..3 {
+                        q[(i, j)] = m[i][j];
+                    }
+                }
+            }
+            _ => {
+                let mut e = vec![0.0; n];
+                let mut col = vec![0.0; n];
+                for j in 0..n {
+                    e.iter_mut().for_each(|x| *x = 0.0);
+                    e[j] = 1.0;
+                    self.sandwich_vector_into(&e, &mut col);
+                    q.column_mut(j).copy_from_slice(&col);
+                }
+            }
+        }
+        q
+    }
+
+    /// Returns the rotor of a rotation matrix (either of ±R; the one with non-negative scalar
+    /// part), for any N ≤ [`MULTIVECTOR_MAX_DIM`].
+    ///
+    /// The matrix must be orthogonal to within [`ROTATION_TOLERANCE`] (max |QᵀQ − 1|) with
+    /// determinant +1; see [`Rotor::from_matrix_eps`] to choose the tolerance and
+    /// [`Rotor::from_matrix_projected`] to accept any matrix near a rotation.
+    ///
+    /// # Errors
+    /// [`AlgebraError::NotSquare`], [`AlgebraError::NonFinite`],
+    /// [`AlgebraError::NotARotation`], [`AlgebraError::DimensionTooLarge`].
+    pub fn from_matrix(q: &DMatrix<f64>) -> Result<Rotor, AlgebraError> {
+        Self::from_matrix_eps(q, ROTATION_TOLERANCE)
+    }
+
+    /// Like [`Rotor::from_matrix`] with an explicit tolerance on max |QᵀQ − 1|.
+    ///
+    /// # Errors
+    /// As [`Rotor::from_matrix`].
+    pub fn from_matrix_eps(q: &DMatrix<f64>, tolerance: f64) -> Result<Rotor, AlgebraError> {
+        check_matrix_shape(q)?;
+        let n = q.nrows();
+        let err = orthogonality_error(q);
+        let det = if n == 0 { 1.0 } else { q.determinant() };
+        if err.is_nan() || err > tolerance || det < 0.0 {
+            return Err(AlgebraError::NotARotation {
+                orthogonality_error: err,
+                determinant: det,
+                tolerance,
+            });
+        }
+        Ok(rotor_of_orthogonal(q))
+    }
+
+    /// Returns the rotor of the rotation nearest to `m` (the orthogonal polar factor U Vᵀ of
+    /// its SVD), for matrices that are rotations only approximately (drift, measurement).
+    ///
+    /// # Errors
+    /// [`AlgebraError::NotARotation`] if the nearest orthogonal matrix is a reflection
+    /// (det < 0) or `m` is singular; shape and finiteness errors as [`Rotor::from_matrix`].
+    pub fn from_matrix_projected(m: &DMatrix<f64>) -> Result<Rotor, AlgebraError> {
+        check_matrix_shape(m)?;
+        let q = nearest_orthogonal(m).ok_or(AlgebraError::NotARotation {
+            orthogonality_error: orthogonality_error(m),
+            determinant: m.determinant(),
+            tolerance: f64::INFINITY,
+        })?;
+        let det = q.determinant();
+        if det < 0.0 {
+            return Err(AlgebraError::NotARotation {
+                orthogonality_error: orthogonality_error(m),
+                determinant: m.determinant(),
+                tolerance: f64::INFINITY,
+            });
+        }
+        Ok(rotor_of_orthogonal(&q))
+    }
+
+    /// Returns the rotor projected back onto Spin(N), removing the drift of accumulated
+    /// round-off. Dividing by the norm is not enough for N ≥ 4 (R R̃ then has grade-4 parts).
+    ///
+    /// N ≤ 3: division by the norm (exact projection for quaternions). N = 4:
+    /// R R̃ = a + bI, and R ← R (a + bI)^(−1/2) in closed form through the idempotents
+    /// P± = (1 ± I)/2. N ≥ 5: the orthogonal polar factor of R's (drifted) linear map, lifted
+    /// back with the sign nearest to R.
+    ///
+    /// A rotor that is far from Spin(N) (for example 0) has no meaningful projection; the
+    /// result is then the identity's sign-nearest lift of whatever rotation remains.
+    pub fn normalize(&self) -> Rotor {
+        let n = self.dim;
+        match n {
+            0..=3 => {
+                let s = crate::algebra::vector::scaled_norm(&self.coeffs);
+                if s > 0.0 {
+                    self.clone().scaled(1.0 / s)
+                } else {
+                    Rotor::identity(n)
+                }
+            }
+            4 => {
+                let rr = self.compose(&self.reverse());
+                let (a, _, b) = get_4d(&rr);
+                let (p, m) = (a + b, a - b);
+                if p.is_nan() || m.is_nan() || p <= 0.0 || m <= 0.0 {
+                    return Rotor::identity(4);
+                }
+                let (ip, im) = (1.0 / p.sqrt(), 1.0 / m.sqrt());
+                let mut k = Rotor::identity(4);
+                set_4d(&mut k, 0.5 * (ip + im), [0.0; 6], 0.5 * (ip - im));
+                self.compose(&k)
+            }
+            _ => {
+                let q = self.to_matrix();
+                let Some(q) = nearest_orthogonal(&q) else {
+                    return Rotor::identity(n);
+                };
+                let r = rotor_of_orthogonal(&q);
+                let d: f64 = r.coeffs.iter().zip(&self.coeffs).map(|(a, b)| a * b).sum();
+                if d < 0.0 {
+                    r.scaled(-1.0)
+                } else {
+                    r
+                }
+            }
+        }
+    }
+}
+
+fn check_matrix_shape(q: &DMatrix<f64>) -> Result<(), AlgebraError> {
+    if q.nrows() != q.ncols() {
+        return Err(AlgebraError::NotSquare {
+            rows: q.nrows(),
+            cols: q.ncols(),
+        });
+    }
+    if q.nrows() > MULTIVECTOR_MAX_DIM {
+        return Err(AlgebraError::DimensionTooLarge {
+            what: "rotor",
+            dim: q.nrows(),
+            max: MULTIVECTOR_MAX_DIM,
+        });
+    }
+    if q.iter().any(|x| !x.is_finite()) {
+        return Err(AlgebraError::NonFinite { what: "matrix" });
+    }
+    Ok(())
+}
+
+/// max |(QᵀQ − 1)_ij|.
+pub(crate) fn orthogonality_error(q: &DMatrix<f64>) -> f64 {
+    let n = q.nrows();
+    let g = q.transpose() * q;
+    let mut err = 0.0f64;
+    for i in 0..n {
+        for j in 0..n {
+            let target = if i == j { 1.0 } else { 0.0 };
+            err = err.max((g[(i, j)] - target).abs());
+        }
+    }
+    err
+}
+
+/// The orthogonal polar factor U Vᵀ, or None if the SVD fails or the matrix is singular.
+fn nearest_orthogonal(m: &DMatrix<f64>) -> Option<DMatrix<f64>> {
+    let svd = m.clone().try_svd(true, true, f64::EPSILON, 200)?;
+    let smin = svd
+        .singular_values
+        .iter()
+        .fold(f64::INFINITY, |a, &b| a.min(b));
+    if smin.is_nan() || smin <= 0.0 {
+        return None;
+    }
+    Some(svd.u? * svd.v_t?)
+}
+
+/// The rotor of an orthogonal matrix with det +1 (non-negative scalar part).
+fn rotor_of_orthogonal(q: &DMatrix<f64>) -> Rotor {
+    let n = q.nrows();
+    match n {
+        0 | 1 => Rotor::identity(n),
+        2 => {
+            let mut r = Rotor::identity(2);
+            // Q = [[c, −s], [s, c]] turns e1 toward e2 by θ = atan2(s, c): R = cos θ/2 − sin θ/2 e12.
+            let theta = q[(1, 0)].atan2(q[(0, 0)]);
+            let (s, c) = (0.5 * theta).sin_cos();
+            r.coeffs[0] = c;
+            r.coeffs[1] = -s;
+            r
+        }
+        3 => rotor_of_matrix_3d(q),
+        _ => {
+            let mut r = Rotor::identity(n);
+            for p in planes_of_rotation(q) {
+                let (s, c) = (0.5 * p.theta).sin_cos();
+                multiply_by_simple(&mut r, c, s, &p.u, &p.v);
+            }
+            r
+        }
+    }
+}
+
+/// Shepperd's method: pick the largest of w², x², y², z² from the trace and diagonal, so no
+/// square root of a small number is taken (Shepperd, J. Guidance Control 1 (1978) 223).
+fn rotor_of_matrix_3d(q: &DMatrix<f64>) -> Rotor {
+    let (m00, m11, m22) = (q[(0, 0)], q[(1, 1)], q[(2, 2)]);
+    let tr = m00 + m11 + m22;
+    let (w, x, y, z);
+    if tr >= m00 && tr >= m11 && tr >= m22 {
+        let s = 2.0 * (1.0 + tr).max(0.0).sqrt();
+        w = 0.25 * s;
+        x = (q[(2, 1)] - q[(1, 2)]) / s;
+        y = (q[(0, 2)] - q[(2, 0)]) / s;
+        z = (q[(1, 0)] - q[(0, 1)]) / s;
+    } else if m00 >= m11 && m00 >= m22 {
+        let s = 2.0 * (1.0 + m00 - m11 - m22).max(0.0).sqrt();
+        w = (q[(2, 1)] - q[(1, 2)]) / s;
+        x = 0.25 * s;
+        y = (q[(0, 1)] + q[(1, 0)]) / s;
+        z = (q[(0, 2)] + q[(2, 0)]) / s;
+    } else if m11 >= m22 {
+        let s = 2.0 * (1.0 + m11 - m00 - m22).max(0.0).sqrt();
+        w = (q[(0, 2)] - q[(2, 0)]) / s;
+        x = (q[(0, 1)] + q[(1, 0)]) / s;
+        y = 0.25 * s;
+        z = (q[(1, 2)] + q[(2, 1)]) / s;
+    } else {
+        let s = 2.0 * (1.0 + m22 - m00 - m11).max(0.0).sqrt();
+        w = (q[(1, 0)] - q[(0, 1)]) / s;
+        x = (q[(0, 2)] + q[(2, 0)]) / s;
+        y = (q[(1, 2)] + q[(2, 1)]) / s;
+        z = 0.25 * s;
+    }
+    let sign = if w < 0.0 { -1.0 } else { 1.0 };
+    let norm = (w * w + x * x + y * y + z * z).sqrt();
+    let k = sign / norm;
+    let mut r = Rotor::identity(3);
+    r.coeffs[0] = k * w;
+    r.coeffs[even_index(3, 0b110)] = -k * x;
+    r.coeffs[even_index(3, 0b101)] = k * y;
+    r.coeffs[even_index(3, 0b011)] = -k * z;
+    r
+}
+
+/// Decomposes a rotation matrix into planes: each [`RawPlane`] turns `v` toward `u` by
+/// `theta` ∈ (0, π] (so its rotor is exp((θ/2) u∧v) = cos θ/2 + sin θ/2 · u v).
+///
+/// The space splits by the sign of cos θ (eigenvectors of the symmetric part). On the part
+/// turned by at most π/2 the planes come from the skew part of Q; on the part turned by more
+/// than π/2 they come from the skew part of −Q, which turns by π − θ < π/2. Either way the
+/// plane information is read from a well-conditioned rotation; directions left over in the
+/// second part are rotations by exactly π and are paired arbitrarily.
+pub(crate) fn planes_of_rotation(q: &DMatrix<f64>) -> Vec<RawPlane> {
+    let n = q.nrows();
+    let y = (q + q.transpose()) * 0.5;
+    let eig = nalgebra::SymmetricEigen::new(y);
+    let mut plus = Vec::new();
+    let mut minus = Vec::new();
+    for (k, &lambda) in eig.eigenvalues.iter().enumerate() {
+        let col: DVector<f64> = eig.eigenvectors.column(k).into_owned();
+        if lambda >= 0.0 {
+            plus.push(col);
+        } else {
+            minus.push(col);
+        }
+    }
+    let mut out = Vec::new();
+    for (basis, flip) in [(plus, false), (minus, true)] {
+        let m = basis.len();
+        if m < 2 {
+            continue;
+        }
+        let v = DMatrix::from_columns(&basis);
+        let mut qs = v.transpose() * q * &v;
+        if flip {
+            qs *= -1.0;
+        }
+        // Skew part → bivector components in the subspace basis.
+        let comps: SmallVec<[f64; 28]> = pairs(m)
+            .map(|(i, j)| 0.5 * (qs[(i, j)] - qs[(j, i)]))
+            .collect();
+        debug_assert_eq!(comps.len(), bivector_len(m));
+        let local = decompose_components(m, &comps);
+        let lift = |x: &[f64]| -> SmallVec<[f64; 8]> {
+            (0..n)
+                .map(|i| (0..m).map(|k| v[(i, k)] * x[k]).sum())
+                .collect()
+        };
+        let mut covered: Vec<DVector<f64>> = Vec::new();
+        for p in &local {
+            let uu = DVector::from_column_slice(&p.u);
+            let vv = DVector::from_column_slice(&p.v);
+            // qs turns v toward u by δ. sin δ is the plane's magnitude in the skew part (read
+            // there, not as uᵀ qs v − vᵀ qs u, where the unit diagonal swamps tiny angles);
+            // cos δ comes from the symmetric part.
+            let s = p.theta;
+            let c = 0.5 * (uu.dot(&(&qs * &uu)) + vv.dot(&(&qs * &vv)));
+            let delta = s.atan2(c);
+            let (theta, pu, pv) = if flip {
+                // Q = −qs turns v toward u by π + δ, i.e. u toward v by π − δ.
+                (std::f64::consts::PI - delta, p.v.clone(), p.u.clone())
+            } else {
+                (delta, p.u.clone(), p.v.clone())
+            };
+            covered.push(uu);
+            covered.push(vv);
+            out.push(RawPlane {
+                theta,
+                u: lift(&pu),
+                v: lift(&pv),
+            });
+        }
+        if flip {
+            // Directions of the −1 eigenspace not covered: rotations by exactly π.
+            let mut rest: Vec<DVector<f64>> = Vec::new();
+            for k in 0..m {
+                let mut x = DVector::<f64>::zeros(m);
+                x[k] = 1.0;
+                for b in covered.iter().chain(rest.iter()) {
+                    let d = b.dot(&x);
+                    x -= b * d;
+                }
+                for b in covered.iter().chain(rest.iter()) {
+                    let d = b.dot(&x);
+                    x -= b * d;
+                }
+                let nx = x.norm();
+                if nx > 0.5 {
+                    rest.push(x / nx);
+                }
+            }
+            for pair in rest.chunks_exact(2) {
+                out.push(RawPlane {
+                    theta: std::f64::consts::PI,
+                    u: lift(pair[0].as_slice()),
+                    v: lift(pair[1].as_slice()),
+                });
+            }
+        }
+    }
+    out
+}

@@ -1,0 +1,509 @@
+//! Rotors: the elements of Spin(N), which turn vectors, bivectors and every multivector by
+//! the sandwich R X R̃.
+//!
+//! Split by role: this file holds the type, composition and the sandwiches;
+//! [`exp_log`](self) the closed-form exponential and logarithm; `convert` the conversions to
+//! and from rotation matrices and the projection back onto Spin(N).
+
+mod convert;
+pub use convert::ROTATION_TOLERANCE;
+mod exp_log;
+
+use super::blade;
+use super::error::{assert_same_dim, check_finite, check_same_dim};
+use super::multivector::{Multivector, MvStorage};
+use super::{AlgebraError, Bivector, Signature, Vector, MULTIVECTOR_MAX_DIM};
+use smallvec::SmallVec;
+
+/// Inline storage for rotors: the 2^(N−1) = 16 even coefficients of N ≤ 5 stay off the heap.
+pub(crate) type RotorStorage = SmallVec<[f64; 16]>;
+
+/// A rotor of Euclidean ℝᴺ: an even, unit element R of the Clifford algebra with
+/// R R̃ = 1 and R x R̃ a vector for every vector x, i.e. an element of Spin(N).
+///
+/// R maps body to space, x_space = R x R̃ (DESIGN.md). `R = exp(−θ B̂/2)` turns by θ in the
+/// plane B̂, from its first vector toward its second; its rotation matrix is expm(\[θB̂\]ᵀ).
+/// Rotors compose by the geometric product: `r2 * r1` applies `r1` first.
+///
+/// The 2^(N−1) even coefficients are stored densely, so N ≤ [`MULTIVECTOR_MAX_DIM`].
+/// Rotors cannot be added (the sum of two rotors is not a rotor); the escape hatches are
+/// [`Rotor::to_multivector`] and [`Rotor::from_multivector_unchecked`].
+///
+/// # Contents
+/// - Construction: [`Rotor::identity`], [`Rotor::from_plane_angle`],
+///   [`Rotor::from_rotation_bivector`], [`Bivector::exp`], [`Rotor::from_matrix`]
+///   (`TryFrom<&DMatrix<f64>>`), [`Rotor::from_matrix_projected`],
+///   `From<UnitQuaternion<f64>>`, [`Rotor::from_multivector`].
+/// - Composition and action: `r1 * r2`, [`Rotor::reverse`], [`Rotor::rotate_vector`],
+///   [`Rotor::rotate_bivector`], [`Rotor::rotate_multivector`],
+///   [`Rotor::rotate_in_plane_mut`].
+/// - Logarithm and interpolation: [`Rotor::log`], [`Rotor::rotation_bivector`],
+///   [`Rotor::slerp`].
+/// - Matrices: [`Rotor::to_matrix`].
+/// - Drift: [`Rotor::unit_error`], [`Rotor::normalize`].
+///
+/// ```
+/// use rotorflow::algebra::{Rotor, Vector};
+/// use std::f64::consts::FRAC_PI_2;
+/// // A quarter turn in the e1e2 plane takes e1 to e2.
+/// let r = Rotor::from_plane_angle(3, 0, 1, FRAC_PI_2)?;
+/// let x = r.rotate_vector(&Vector::basis(3, 0));
+/// assert!((x[1] - 1.0).abs() < 1e-15 && x[0].abs() < 1e-15);
+/// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Rotor {
+    dim: usize,
+    coeffs: RotorStorage,
+}
+
+/// Number of even blades in dimension `n`: 2^(n−1) (1 for n = 0).
+#[inline]
+pub(crate) fn even_len(n: usize) -> usize {
+    if n == 0 {
+        1
+    } else {
+        1 << (n - 1)
+    }
+}
+
+/// The even blade stored at position `idx`: the low n−1 bits are `idx`, the top bit restores
+/// even parity.
+#[inline]
+pub(crate) fn even_blade(n: usize, idx: usize) -> u64 {
+    if n == 0 {
+        return 0;
+    }
+    let i = idx as u64;
+    i | (((i.count_ones() & 1) as u64) << (n - 1))
+}
+
+/// The storage position of even blade `b`.
+#[inline]
+pub(crate) fn even_index(n: usize, b: u64) -> usize {
+    if n == 0 {
+        0
+    } else {
+        (b & ((1u64 << (n - 1)) - 1)) as usize
+    }
+}
+
+/// The odd blade stored at position `idx` in an odd element (top bit makes the parity odd).
+#[inline]
+fn odd_blade(n: usize, idx: usize) -> u64 {
+    let i = idx as u64;
+    i | ((((i.count_ones() & 1) ^ 1) as u64) << (n - 1))
+}
+
+/// Sign of e_a e_i (moving e_i left past the vectors of `a` with larger index).
+#[inline]
+fn sign_blade_times_vector(a: u64, i: usize) -> f64 {
+    if (a >> (i + 1)).count_ones() & 1 == 0 {
+        1.0
+    } else {
+        -1.0
+    }
+}
+
+impl Rotor {
+    /// Returns the identity rotor 1 of ℝⁿ.
+    ///
+    /// # Panics
+    /// If `n > MULTIVECTOR_MAX_DIM` (rotors store 2^(N−1) coefficients).
+    #[track_caller]
+    pub fn identity(n: usize) -> Self {
+        assert!(
+            n <= MULTIVECTOR_MAX_DIM,
+            "rotorflow: rotors are stored densely up to N = {MULTIVECTOR_MAX_DIM}, got {n}"
+        );
+        let mut coeffs = SmallVec::from_elem(0.0, even_len(n));
+        coeffs[0] = 1.0;
+        Rotor { dim: n, coeffs }
+    }
+
+    /// Returns the rotor that turns by `angle` radians in the plane eᵢ∧eⱼ, from eᵢ toward eⱼ
+    /// (0-based indices): R = exp(−angle/2 · eᵢⱼ) = cos(angle/2) − sin(angle/2) eᵢⱼ.
+    ///
+    /// # Errors
+    /// [`AlgebraError::IndexOutOfRange`], [`AlgebraError::RepeatedIndex`],
+    /// [`AlgebraError::NonFinite`], [`AlgebraError::DimensionTooLarge`].
+    pub fn from_plane_angle(
+        n: usize,
+        i: usize,
+        j: usize,
+        angle: f64,
+    ) -> Result<Self, AlgebraError> {
+        if n > MULTIVECTOR_MAX_DIM {
+            return Err(AlgebraError::DimensionTooLarge {
+                what: "rotor",
+                dim: n,
+                max: MULTIVECTOR_MAX_DIM,
+            });
+        }
+        let b = Bivector::from_plane(n, i, j, angle)?;
+        Ok(Rotor::from_rotation_bivector(&b))
+    }
+
+    /// Builds a rotor from its 2^(N−1) even coefficients without any check (crate-internal).
+    pub(crate) fn from_storage(dim: usize, coeffs: RotorStorage) -> Self {
+        debug_assert_eq!(coeffs.len(), even_len(dim));
+        Rotor { dim, coeffs }
+    }
+
+    /// Returns the dimension N.
+    #[inline]
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// Returns the scalar part ⟨R⟩₀ (cos(θ/2) for a single-plane rotation by θ).
+    #[inline]
+    pub fn scalar(&self) -> f64 {
+        self.coeffs[0]
+    }
+
+    /// Returns the coefficient of the even basis blade with bit mask `blade` (0 for odd or
+    /// out-of-range masks).
+    pub fn coefficient(&self, blade: u64) -> f64 {
+        if blade::grade(blade) % 2 == 1 || (self.dim < 64 && blade >> self.dim != 0) {
+            return 0.0;
+        }
+        self.coeffs[even_index(self.dim, blade)]
+    }
+
+    /// Returns the bivector part ⟨R⟩₂.
+    pub fn bivector_part(&self) -> Bivector {
+        let n = self.dim;
+        let mut b = Bivector::zero(n);
+        for (k, (i, j)) in super::bivector::pairs(n).enumerate() {
+            b.as_mut_slice()[k] = self.coeffs[even_index(n, (1 << i) | (1 << j))];
+        }
+        b
+    }
+
+    /// Returns an iterator over the non-zero terms as (blade mask, coefficient).
+    pub fn terms(&self) -> impl Iterator<Item = (u64, f64)> + '_ {
+        let n = self.dim;
+        self.coeffs
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| **c != 0.0)
+            .map(move |(i, c)| (even_blade(n, i), *c))
+    }
+
+    /// Returns the rotor as a general multivector of Cl(N, 0, 0).
+    pub fn to_multivector(&self) -> Multivector {
+        let n = self.dim;
+        let mut m: MvStorage = SmallVec::from_elem(0.0, 1 << n);
+        for (b, c) in self.terms() {
+            m[b as usize] = c;
+        }
+        Multivector::from_storage(Signature::euclidean(n), m)
+    }
+
+    /// Returns the rotor held by a multivector, checking that it is one: Euclidean signature,
+    /// even, R R̃ = 1 and R x R̃ a vector for every basis vector x, each to within `1e-10`
+    /// relative.
+    ///
+    /// # Errors
+    /// [`AlgebraError::UnsupportedSignature`], [`AlgebraError::NotARotor`],
+    /// [`AlgebraError::NonFinite`].
+    pub fn from_multivector(m: &Multivector) -> Result<Self, AlgebraError> {
+        if !m.signature().is_euclidean() {
+            return Err(AlgebraError::UnsupportedSignature {
+                operation: "Rotor::from_multivector",
+                signature: m.signature(),
+            });
+        }
+        check_finite(m.coefficients(), "multivector coefficients")?;
+        let scale = m.max_abs().max(1.0);
+        let odd = m.odd().max_abs();
+        if odd > 1e-10 * scale {
+            return Err(AlgebraError::NotARotor {
+                reason: "it has odd-grade parts",
+                deviation: odd,
+            });
+        }
+        let r = Rotor::from_multivector_unchecked(m);
+        let unit = r.unit_error();
+        if unit > 1e-10 {
+            return Err(AlgebraError::NotARotor {
+                reason: "R R̃ ≠ 1",
+                deviation: unit,
+            });
+        }
+        let mv = r.to_multivector();
+        let rev = mv.reverse();
+        for i in 0..r.dim {
+            let x = Multivector::basis_blade(mv.signature(), 1 << i);
+            let y = mv.geometric(&x).geometric(&rev);
+            let non_vector = y
+                .terms()
+                .filter(|(b, _)| blade::grade(*b) != 1)
+                .fold(0.0f64, |s, (_, c)| s.max(c.abs()));
+            if non_vector > 1e-10 {
+                return Err(AlgebraError::NotARotor {
+                    reason: "R x R̃ is not a vector",
+                    deviation: non_vector,
+                });
+            }
+        }
+        Ok(r)
+    }
+
+    /// Returns the even part of `m` as a rotor without checking that it is one.
+    ///
+    /// Use this to rebuild a rotor from data you trust; the result is only meaningful if `m`
+    /// is in Spin(N) (see [`Rotor::from_multivector`] for the checked version).
+    pub fn from_multivector_unchecked(m: &Multivector) -> Self {
+        let n = m.dim();
+        let coeffs = (0..even_len(n))
+            .map(|i| m.coefficient(even_blade(n, i)))
+            .collect();
+        Rotor { dim: n, coeffs }
+    }
+
+    /// Returns the reverse R̃, which is also the inverse of a unit rotor.
+    pub fn reverse(&self) -> Self {
+        let n = self.dim;
+        let coeffs = self
+            .coeffs
+            .iter()
+            .enumerate()
+            .map(|(i, &c)| c * blade::reverse_sign(blade::grade(even_blade(n, i))))
+            .collect();
+        Rotor { dim: n, coeffs }
+    }
+
+    /// Returns the inverse R⁻¹ = R̃ (exact for unit rotors).
+    pub fn inverse(&self) -> Self {
+        self.reverse()
+    }
+
+    /// Returns the composition `self · other` (apply `other` first, then `self`).
+    ///
+    /// # Panics
+    /// If the dimensions differ (see [`Rotor::try_compose`]).
+    #[track_caller]
+    pub fn compose(&self, other: &Rotor) -> Rotor {
+        assert_same_dim(self.dim, other.dim);
+        let mut out = Rotor {
+            dim: self.dim,
+            coeffs: SmallVec::from_elem(0.0, self.coeffs.len()),
+        };
+        even_product_into(self.dim, &self.coeffs, &other.coeffs, &mut out.coeffs);
+        out
+    }
+
+    /// Checked version of [`Rotor::compose`].
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionMismatch`].
+    pub fn try_compose(&self, other: &Rotor) -> Result<Rotor, AlgebraError> {
+        check_same_dim(self.dim, other.dim)?;
+        Ok(self.compose(other))
+    }
+
+    /// Returns max |R R̃ − 1| over all coefficients: 0 for an exact rotor, the drift otherwise.
+    pub fn unit_error(&self) -> f64 {
+        let rr = self.compose(&self.reverse());
+        let mut err = (rr.coeffs[0] - 1.0).abs();
+        for &c in &rr.coeffs[1..] {
+            err = err.max(c.abs());
+        }
+        err
+    }
+
+    /// Returns the rotated vector R x R̃.
+    ///
+    /// Costs O(N·2^N); to turn many vectors, build [`Rotor::to_matrix`] once (O(N²) per
+    /// vector).
+    ///
+    /// # Panics
+    /// If the dimensions differ.
+    #[track_caller]
+    pub fn rotate_vector(&self, x: &Vector) -> Vector {
+        assert_same_dim(self.dim, x.dim());
+        let mut out = Vector::zeros(self.dim);
+        self.sandwich_vector_into(x.as_slice(), out.as_mut_slice());
+        out
+    }
+
+    /// Writes R x R̃ into `out` (both of length N).
+    pub(crate) fn sandwich_vector_into(&self, x: &[f64], out: &mut [f64]) {
+        let n = self.dim;
+        out.iter_mut().for_each(|o| *o = 0.0);
+        if n == 0 {
+            return;
+        }
+        // t = R x (odd), stored at the odd index of each blade.
+        let len = even_len(n);
+        let mut t: SmallVec<[f64; 32]> = SmallVec::from_elem(0.0, len);
+        for (ia, &ra) in self.coeffs.iter().enumerate() {
+            if ra == 0.0 {
+                continue;
+            }
+            let a = even_blade(n, ia);
+            for (i, &xi) in x.iter().enumerate() {
+                if xi == 0.0 {
+                    continue;
+                }
+                let c = a ^ (1 << i);
+                t[even_index(n, c)] += sign_blade_times_vector(a, i) * ra * xi;
+            }
+        }
+        // out_k = Σ_c t_c · R̃_d · sign(e_c e_d), d = c ^ e_k.
+        for (ic, &tc) in t.iter().enumerate() {
+            if tc == 0.0 {
+                continue;
+            }
+            let c = odd_blade(n, ic);
+            for (k, o) in out.iter_mut().enumerate() {
+                let d = c ^ (1 << k);
+                let rd = self.coeffs[even_index(n, d)];
+                if rd != 0.0 {
+                    let s = blade::reorder_sign(c, d) * blade::reverse_sign(blade::grade(d));
+                    *o += s * tc * rd;
+                }
+            }
+        }
+    }
+
+    /// Returns the rotated bivector R B R̃, computed as Q \[B\] Qᵀ with Q the rotation matrix.
+    ///
+    /// # Panics
+    /// If the dimensions differ.
+    #[track_caller]
+    pub fn rotate_bivector(&self, b: &Bivector) -> Bivector {
+        assert_same_dim(self.dim, b.dim());
+        let q = self.to_matrix();
+        let m = &q * b.to_skew_matrix() * q.transpose();
+        let n = self.dim;
+        let mut out = Bivector::zero(n);
+        for (k, (i, j)) in super::bivector::pairs(n).enumerate() {
+            out.as_mut_slice()[k] = 0.5 * (m[(i, j)] - m[(j, i)]);
+        }
+        out
+    }
+
+    /// Returns the rotated multivector R M R̃ (any grades; the general sandwich).
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionMismatch`], or [`AlgebraError::UnsupportedSignature`] when `m`
+    /// is not Euclidean.
+    pub fn rotate_multivector(&self, m: &Multivector) -> Result<Multivector, AlgebraError> {
+        check_same_dim(self.dim, m.dim())?;
+        if !m.signature().is_euclidean() {
+            return Err(AlgebraError::UnsupportedSignature {
+                operation: "Rotor::rotate_multivector",
+                signature: m.signature(),
+            });
+        }
+        let r = self.to_multivector();
+        Ok(r.geometric(m).geometric(&r.reverse()))
+    }
+
+    /// Multiplies in place on the right by the plane rotor exp(−angle/2 · eᵢⱼ) (0-based,
+    /// i ≠ j): R ← R exp(−angle/2 eᵢⱼ), a rotation by `angle` in the body-frame plane eᵢ∧eⱼ.
+    ///
+    /// Costs O(2^N) and never allocates: this is the building block of the splitting
+    /// integrators, where each sub-step turns the attitude in one principal plane.
+    ///
+    /// # Panics
+    /// If `i` or `j` is out of range or `i == j`.
+    #[track_caller]
+    pub fn rotate_in_plane_mut(&mut self, i: usize, j: usize, angle: f64) {
+        let n = self.dim;
+        assert!(
+            i < n && j < n && i != j,
+            "rotorflow: invalid plane ({i}, {j}) in dimension {n}"
+        );
+        let (lo, hi, sign) = if i < j { (i, j, 1.0) } else { (j, i, -1.0) };
+        let (s, c) = (0.5 * angle * sign).sin_cos();
+        let m: u64 = (1 << lo) | (1 << hi);
+        // new[b] = c R[b] − s · sign(e_{b^m} e_m) R[b^m]; pairs (b, b^m) update together.
+        for ib in 0..self.coeffs.len() {
+            let b = even_blade(n, ib);
+            let b2 = b ^ m;
+            let ib2 = even_index(n, b2);
+            if ib2 < ib {
+                continue;
+            }
+            let (rb, rb2) = (self.coeffs[ib], self.coeffs[ib2]);
+            self.coeffs[ib] = c * rb - s * blade::reorder_sign(b2, m) * rb2;
+            self.coeffs[ib2] = c * rb2 - s * blade::reorder_sign(b, m) * rb;
+        }
+    }
+
+    /// Returns the largest absolute coefficient.
+    pub fn max_abs(&self) -> f64 {
+        self.coeffs.iter().fold(0.0, |m, c| m.max(c.abs()))
+    }
+
+    /// Returns the 2^(N−1) even coefficients in storage order (crate-internal layout: position
+    /// `i` holds the even blade whose low N−1 bits are `i`).
+    pub fn raw_coefficients(&self) -> &[f64] {
+        &self.coeffs
+    }
+
+    /// Multiplies by a scalar (crate-internal: used by normalisation and sign flips).
+    pub(crate) fn scaled(mut self, s: f64) -> Self {
+        self.coeffs.iter_mut().for_each(|c| *c *= s);
+        self
+    }
+}
+
+/// out = a · b for even elements stored by even index (Euclidean signature). O(4^(N−1)):
+/// every pair of even blades meets once; the sign's suffix parity is computed once per row.
+pub(crate) fn even_product_into(n: usize, a: &[f64], b: &[f64], out: &mut [f64]) {
+    out.iter_mut().for_each(|o| *o = 0.0);
+    let mask = if n == 0 { 0 } else { (1u64 << (n - 1)) - 1 };
+    for (ia, &ca) in a.iter().enumerate() {
+        if ca == 0.0 {
+            continue;
+        }
+        let ba = even_blade(n, ia);
+        let pa = blade::suffix_parity(ba);
+        for (ib, &cb) in b.iter().enumerate() {
+            let bb = even_blade(n, ib);
+            let s = blade::parity_sign(pa & bb);
+            out[((ba ^ bb) & mask) as usize] += s * ca * cb;
+        }
+    }
+}
+
+impl std::ops::Mul<&Rotor> for &Rotor {
+    type Output = Rotor;
+    /// Composition: `a * b` applies `b` first, then `a`.
+    #[track_caller]
+    fn mul(self, rhs: &Rotor) -> Rotor {
+        self.compose(rhs)
+    }
+}
+
+impl std::ops::Mul<Rotor> for Rotor {
+    type Output = Rotor;
+    /// Composition: `a * b` applies `b` first, then `a`.
+    #[track_caller]
+    fn mul(self, rhs: Rotor) -> Rotor {
+        self.compose(&rhs)
+    }
+}
+
+impl std::ops::Mul<&Rotor> for Rotor {
+    type Output = Rotor;
+    /// Composition: `a * b` applies `b` first, then `a`.
+    #[track_caller]
+    fn mul(self, rhs: &Rotor) -> Rotor {
+        self.compose(rhs)
+    }
+}
+
+impl std::ops::Mul<Rotor> for &Rotor {
+    type Output = Rotor;
+    /// Composition: `a * b` applies `b` first, then `a`.
+    #[track_caller]
+    fn mul(self, rhs: Rotor) -> Rotor {
+        self.compose(&rhs)
+    }
+}

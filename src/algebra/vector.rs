@@ -1,0 +1,225 @@
+//! Vectors of Euclidean ℝᴺ.
+
+use super::error::{check_finite, check_same_dim};
+use super::{AlgebraError, Bivector, MAX_DIM};
+use smallvec::SmallVec;
+
+/// Inline storage: vectors up to N = 8 never touch the heap.
+pub(crate) type VecStorage = SmallVec<[f64; 8]>;
+
+/// A vector of Euclidean ℝᴺ: x = Σ xᵢ eᵢ, N ≤ [`MAX_DIM`] chosen at run time.
+///
+/// Components are 0-based in the API (`x\[0\]` is the e₁ component); text output is 1-based.
+///
+/// ```
+/// use rotorflow::algebra::Vector;
+/// let x = Vector::from_components(&[1.0, 2.0, 2.0])?;
+/// assert_eq!(x.norm(), 3.0);
+/// let plane = Vector::basis(3, 0).wedge(&Vector::basis(3, 1)); // e₁ ∧ e₂
+/// assert_eq!(plane.to_string(), "1e12");
+/// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Vector {
+    coords: VecStorage,
+}
+
+impl Vector {
+    /// Returns the zero vector of ℝⁿ.
+    ///
+    /// # Panics
+    /// If `n > MAX_DIM`.
+    #[track_caller]
+    pub fn zeros(n: usize) -> Self {
+        assert!(
+            n <= MAX_DIM,
+            "rotorflow: dimension {n} exceeds MAX_DIM = {MAX_DIM}"
+        );
+        Vector {
+            coords: SmallVec::from_elem(0.0, n),
+        }
+    }
+
+    /// Returns the basis vector e_{i+1} of ℝⁿ (`i` is 0-based).
+    ///
+    /// # Panics
+    /// If `i ≥ n` or `n > MAX_DIM`.
+    #[track_caller]
+    pub fn basis(n: usize, i: usize) -> Self {
+        assert!(
+            i < n,
+            "rotorflow: basis index {i} out of range for dimension {n}"
+        );
+        let mut v = Self::zeros(n);
+        v.coords[i] = 1.0;
+        v
+    }
+
+    /// Builds a vector from its components x₁ … x_N.
+    ///
+    /// # Errors
+    /// [`AlgebraError::NonFinite`] for NaN or infinite components,
+    /// [`AlgebraError::DimensionTooLarge`] for more than [`MAX_DIM`] components.
+    pub fn from_components(components: &[f64]) -> Result<Self, AlgebraError> {
+        if components.len() > MAX_DIM {
+            return Err(AlgebraError::DimensionTooLarge {
+                what: "vector",
+                dim: components.len(),
+                max: MAX_DIM,
+            });
+        }
+        check_finite(components, "vector components")?;
+        Ok(Vector {
+            coords: SmallVec::from_slice(components),
+        })
+    }
+
+    pub(crate) fn from_storage(coords: VecStorage) -> Self {
+        Vector { coords }
+    }
+
+    /// Returns the dimension N.
+    #[inline]
+    pub fn dim(&self) -> usize {
+        self.coords.len()
+    }
+
+    /// Returns the components as a slice (0-based).
+    #[inline]
+    pub fn as_slice(&self) -> &[f64] {
+        &self.coords
+    }
+
+    /// Returns the components as a mutable slice (0-based).
+    #[inline]
+    pub fn as_mut_slice(&mut self) -> &mut [f64] {
+        &mut self.coords
+    }
+
+    /// Returns the Euclidean inner product x · y.
+    ///
+    /// # Panics
+    /// If the dimensions differ.
+    #[track_caller]
+    pub fn dot(&self, other: &Vector) -> f64 {
+        super::error::assert_same_dim(self.dim(), other.dim());
+        self.coords
+            .iter()
+            .zip(&other.coords)
+            .map(|(a, b)| a * b)
+            .sum()
+    }
+
+    /// Returns |x|², the sum of squared components.
+    #[inline]
+    pub fn norm_squared(&self) -> f64 {
+        self.coords.iter().map(|a| a * a).sum()
+    }
+
+    /// Returns |x|, computed without overflow or underflow for any finite components.
+    pub fn norm(&self) -> f64 {
+        scaled_norm(&self.coords)
+    }
+
+    /// Returns x / |x|, or `None` for the zero vector.
+    ///
+    /// See also [`Vector::normalize`].
+    pub fn try_normalize(&self) -> Option<Vector> {
+        let n = self.norm();
+        if n > 0.0 && n.is_finite() {
+            Some(self * (1.0 / n))
+        } else {
+            None
+        }
+    }
+
+    /// Returns x / |x|.
+    ///
+    /// # Panics
+    /// For the zero vector (see [`Vector::try_normalize`]).
+    #[track_caller]
+    pub fn normalize(&self) -> Vector {
+        self.try_normalize()
+            .expect("rotorflow: cannot normalise the zero vector")
+    }
+
+    /// Returns the outer product x ∧ y as a bivector: (x∧y)_ij = xᵢyⱼ − xⱼyᵢ.
+    ///
+    /// # Panics
+    /// If the dimensions differ.
+    #[track_caller]
+    pub fn wedge(&self, other: &Vector) -> Bivector {
+        super::error::assert_same_dim(self.dim(), other.dim());
+        let n = self.dim();
+        let mut b = Bivector::zero(n);
+        let c = b.as_mut_slice();
+        let mut k = 0;
+        for i in 0..n {
+            for j in i + 1..n {
+                c[k] = self.coords[i] * other.coords[j] - self.coords[j] * other.coords[i];
+                k += 1;
+            }
+        }
+        b
+    }
+
+    /// Returns the contraction x ⌋ B of this vector onto a bivector: the vector
+    /// (x⌋B)ⱼ = Σᵢ xᵢ B_ij, i.e. \[B\]ᵀ x.
+    ///
+    /// This is how a bivector acts on a vector: with ω the angular velocity, x ⌋ ω is the
+    /// velocity of the body point x (DESIGN.md, "Angular velocity"), and e₁ ⌋ e₁₂ = e₂.
+    ///
+    /// # Panics
+    /// If the dimensions differ.
+    #[track_caller]
+    pub fn left_contract(&self, b: &Bivector) -> Vector {
+        super::error::assert_same_dim(self.dim(), b.dim());
+        let n = self.dim();
+        let mut out = Vector::zeros(n);
+        b.contract_into(&self.coords, &mut out.coords);
+        out
+    }
+
+    /// Checked version of [`Vector::left_contract`].
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionMismatch`].
+    pub fn try_left_contract(&self, b: &Bivector) -> Result<Vector, AlgebraError> {
+        check_same_dim(self.dim(), b.dim())?;
+        Ok(self.left_contract(b))
+    }
+
+    /// Returns the largest absolute component.
+    pub fn max_abs(&self) -> f64 {
+        self.coords.iter().fold(0.0, |m, c| m.max(c.abs()))
+    }
+}
+
+impl std::ops::Index<usize> for Vector {
+    type Output = f64;
+    #[track_caller]
+    fn index(&self, i: usize) -> &f64 {
+        &self.coords[i]
+    }
+}
+
+impl std::ops::IndexMut<usize> for Vector {
+    #[track_caller]
+    fn index_mut(&mut self, i: usize) -> &mut f64 {
+        &mut self.coords[i]
+    }
+}
+
+/// Euclidean norm of a slice that neither overflows nor underflows (scaled by the largest
+/// magnitude first, as LAPACK's `dnrm2`).
+pub(crate) fn scaled_norm(x: &[f64]) -> f64 {
+    let m = x.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+    if m == 0.0 || !m.is_finite() {
+        return m;
+    }
+    if (1e-150..1e150).contains(&m) {
+        return x.iter().map(|c| c * c).sum::<f64>().sqrt();
+    }
+    let s: f64 = x.iter().map(|c| (c / m) * (c / m)).sum();
+    m * s.sqrt()
+}

@@ -1,0 +1,69 @@
+//! # rotorflow
+//!
+//! Geometric algebra for rotating bodies in any number of dimensions.
+//!
+//! rotorflow says the physics of rigid rotation in ℝᴺ with the objects geometric algebra
+//! gives it: angular velocity and momentum are bivectors, attitude is a rotor, and inertia is
+//! a linear map on bivectors. The dimension is chosen at run time.
+//!
+//! This release contains the Clifford-algebra layer, [`algebra`]: vectors, bivectors, rotors
+//! and multivectors, every product, and a closed-form exponential and logarithm that stay
+//! exact where other libraries fail (non-simple and isoclinic bivectors, angles near π,
+//! N above 4).
+//!
+//! # Conventions
+//! DESIGN.md part 1 is the contract; [`algebra`] restates it. In short: bivector components
+//! are ordered 12, 13, …, 1N, 23, …; API indices are 0-based and text is 1-based; the
+//! velocity of body point x is x ⌋ ω; R = exp(−θB̂/2) turns by θ in the plane B̂; Euler's
+//! equations read dL/dt = ω × L with the commutator product.
+//!
+//! # Quick start
+//! ```
+//! use rotorflow::prelude::*;
+//!
+//! // The double rotation of 4D: 0.5 rad in the e1e2 plane and 1.2 rad in the e3e4 plane.
+//! let theta = Bivector::from_components(4, &[0.5, 0.0, 0.0, 0.0, 0.0, 1.2])?;
+//! let r = Rotor::from_rotation_bivector(&theta);
+//!
+//! // Its matrix is the exponential of the skew matrix (transposed), as in DESIGN.md.
+//! let q = r.to_matrix();
+//! assert!((q[(1, 0)] - 0.5f64.sin()).abs() < 1e-15);
+//!
+//! // The invariant decomposition recovers the two planes.
+//! let planes = theta.decompose();
+//! assert_eq!(planes.len(), 2);
+//! assert!((planes.magnitudes()[0] - 1.2).abs() < 1e-15);
+//!
+//! // And the logarithm gives the bivector back.
+//! assert!((&r.rotation_bivector() - &theta).norm() < 1e-14);
+//! # Ok::<(), rotorflow::algebra::AlgebraError>(())
+//! ```
+//!
+//! # Crate features
+//! - `serde`: `Serialize`/`Deserialize` for every algebra type; deserialisation validates
+//!   (lengths, finiteness, and that a rotor is on Spin(N)). Off by default.
+//!
+//! # Performance
+//! Vectors and bivectors up to N = 8 and rotors up to N = 5 live on the stack. The bivector
+//! commutator costs O(N³) without forming a multivector; exp and log are closed forms. The
+//! benches in `benches/algebra.rs` compare each kernel with nalgebra's matrix formulation.
+//!
+//! # When not to use rotorflow
+//! For fixed 3D graphics work with f32, glam or nalgebra's quaternions are smaller and faster.
+//! rotorflow is f64 and dimension-generic.
+#![deny(missing_docs)]
+#![forbid(unsafe_code)]
+
+pub mod algebra;
+
+/// The types most programs need: `use rotorflow::prelude::*;`.
+pub mod prelude {
+    pub use crate::algebra::{
+        AlgebraError, Bivector, Decomposition, Multivector, Product, Rotor, Signature, Vector,
+    };
+}
+
+/// The README's code blocks, compiled and run as doctests so that the README stays true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

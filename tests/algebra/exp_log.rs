@@ -1,0 +1,191 @@
+//! Closed-form exp and log: agreement with nalgebra's matrix exponential, round trips on
+//! every hard family, angles near π, with the error bounds of the issue asserted.
+
+use crate::support::*;
+use rotorflow::prelude::*;
+use std::f64::consts::PI;
+
+/// Rotor of the rotation bivector Θ, checked against expm([Θ]ᵀ).
+fn check_exp(theta: &Bivector) -> Rotor {
+    let r = Rotor::from_rotation_bivector(theta);
+    let q = r.to_matrix();
+    let expm = theta.to_skew_matrix().transpose().exp();
+    let scale = theta.max_abs().max(1.0);
+    let err = max_abs_diff(&q, &expm);
+    assert!(err < 1e-13 * scale, "|Q − expm| = {err:e} for {theta}");
+    assert!(r.unit_error() <= 1e-14, "|RR̃ − 1| = {:e}", r.unit_error());
+    assert!(
+        orthogonality(&q) <= 1e-14,
+        "orthogonality {:e}",
+        orthogonality(&q)
+    );
+    r
+}
+
+/// log(exp(Θ)) = Θ for rotation angles below π, to `tol` relative.
+fn check_round_trip(theta: &Bivector, tol: f64) {
+    let r = check_exp(theta);
+    let back = r.rotation_bivector();
+    let rel = (&back - theta).max_abs() / theta.max_abs().max(f64::MIN_POSITIVE);
+    assert!(rel <= tol, "log∘exp relative error {rel:e} for {theta}");
+    // and exp(log R) = R always
+    let again = Rotor::from_rotation_bivector(&back);
+    assert!(rotor_distance(&again, &r) <= 4e-15);
+}
+
+#[test]
+fn exp_matches_matrix_exponential_for_n_2_to_10() {
+    let mut r = rng(21);
+    for n in 2..=10 {
+        for _ in 0..10 {
+            check_exp(&random_bivector(&mut r, n, 2.0));
+        }
+    }
+}
+
+#[test]
+fn round_trip_on_random_bivectors_with_angles_below_pi() {
+    let mut r = rng(22);
+    for n in 2..=10 {
+        for _ in 0..10 {
+            let mags: Vec<f64> = (0..n / 2)
+                .map(|_| rand::Rng::gen_range(&mut r, 0.0..3.0))
+                .collect();
+            let b = bivector_with_planes(&mut r, n, &mags);
+            check_round_trip(&b, 1e-13);
+        }
+    }
+}
+
+#[test]
+fn round_trip_isoclinic_and_near_isoclinic() {
+    let mut r = rng(23);
+    for n in [4, 5, 6, 8, 10] {
+        check_round_trip(&bivector_with_planes(&mut r, n, &[1.4, 1.4]), 1e-13);
+        for gap in [1e-12, 1e-9, 1e-6, 1e-3] {
+            check_round_trip(&bivector_with_planes(&mut r, n, &[1.4 + gap, 1.4]), 1e-13);
+        }
+    }
+    // the issue's example, 0.7(e12 + e34), in 4D exactly
+    let b = Bivector::from_components(4, &[0.7, 0.0, 0.0, 0.0, 0.0, 0.7]).unwrap();
+    check_round_trip(&b, 1e-15);
+}
+
+#[test]
+fn round_trip_zero_tiny_and_rank_deficient() {
+    let mut r = rng(24);
+    for n in 2..=10 {
+        let id = Rotor::from_rotation_bivector(&Bivector::zero(n));
+        assert_eq!(id, Rotor::identity(n));
+        assert_eq!(Rotor::identity(n).log(), Bivector::zero(n));
+        let tiny = random_bivector(&mut r, n, 1e-300);
+        let rt = Rotor::from_rotation_bivector(&tiny);
+        assert_eq!(rt.scalar(), 1.0);
+        let back = rt.rotation_bivector();
+        assert!((&back - &tiny).max_abs() <= 1e-13 * tiny.max_abs(), "n={n}");
+        check_round_trip(&bivector_with_planes(&mut r, n, &[2.0]), 1e-13);
+    }
+}
+
+#[test]
+fn angles_at_pi_minus_1e_9() {
+    let mut r = rng(25);
+    let a = PI - 1e-9;
+    for n in 2..=10 {
+        // a single plane
+        check_round_trip(&bivector_with_planes(&mut r, n, &[a]), 1e-13);
+        // several planes at once, one of them near π
+        if n >= 4 {
+            check_round_trip(&bivector_with_planes(&mut r, n, &[a, 1.0]), 1e-13);
+        }
+        if n >= 6 {
+            check_round_trip(&bivector_with_planes(&mut r, n, &[a, 2.0, 0.5]), 1e-13);
+        }
+    }
+}
+
+#[test]
+fn isoclinic_rotation_by_nearly_pi_is_recovered_up_to_its_conditioning() {
+    // Two planes both at π − δ: the logarithm's condition number is ~1/δ (DESIGN of log), so
+    // only exp(log R) = R is asserted to round-off, and log(exp B) to eps/δ.
+    let mut r = rng(26);
+    for n in [4, 6, 8] {
+        for delta in [1e-9, 1e-6, 1e-3] {
+            let b = bivector_with_planes(&mut r, n, &[PI - delta, PI - delta]);
+            let rot = Rotor::from_rotation_bivector(&b);
+            let back = rot.rotation_bivector();
+            let again = Rotor::from_rotation_bivector(&back);
+            assert!(rotor_distance(&again, &rot) <= 4e-15, "n={n} δ={delta:e}");
+            let rel = (&back - &b).max_abs() / b.max_abs();
+            assert!(rel <= 1e-14 / delta, "n={n} δ={delta:e}: {rel:e}");
+        }
+    }
+}
+
+#[test]
+fn exact_rotation_by_pi_has_a_valid_logarithm() {
+    for n in 2..=8 {
+        let r = Rotor::from_plane_angle(n, 0, 1, PI).unwrap();
+        let l = r.log();
+        let back = l.exp();
+        assert!(rotor_distance(&back, &r) <= 1e-15, "n={n}");
+        // −1 (rotation by 2π) also has a logarithm
+        let minus_one = r.compose(&r);
+        let back = minus_one.log().exp();
+        assert!(rotor_distance(&back, &minus_one) <= 1e-15, "n={n}");
+    }
+}
+
+#[test]
+fn huge_angles_give_valid_rotors() {
+    let mut r = rng(27);
+    for n in [3, 4, 6] {
+        let b = random_bivector(&mut r, n, 1e150);
+        let rot = Rotor::from_rotation_bivector(&b);
+        assert!(rot.unit_error() < 1e-14, "n={n}");
+        assert!(rot.raw_coefficients().iter().all(|c| c.is_finite()));
+        assert!(orthogonality(&rot.to_matrix()) < 1e-14);
+    }
+}
+
+#[test]
+fn log_is_the_least_norm_branch() {
+    // Rotation by 3π/2 in one plane: the principal log turns by π/2 the other way.
+    let r = Rotor::from_plane_angle(4, 0, 1, 1.5 * PI).unwrap();
+    let l = r.rotation_bivector();
+    let d = l.decompose();
+    // −2 log R has rotation angle in (π, 2π) only if needed; here R = −exp(+π/4 e12)…
+    assert!(d.magnitudes()[0] <= 1.5 * PI + 1e-12);
+    assert!(rotor_distance(&Rotor::from_rotation_bivector(&l), &r) < 1e-15);
+    // half-angles of log: at most one beyond π/2
+    let mut rr = rng(28);
+    for n in 4..=9 {
+        for _ in 0..5 {
+            let rot = random_rotor(&mut rr, n);
+            let l = rot.log();
+            let mags = l.decompose().magnitudes();
+            assert!(
+                mags.iter().filter(|&&m| m > PI / 2.0 + 1e-12).count() <= 1,
+                "{mags:?}"
+            );
+            assert!(mags.iter().all(|&m| m <= PI + 1e-12));
+            assert!(rotor_distance(&l.exp(), &rot) <= 1e-14);
+        }
+    }
+}
+
+#[test]
+fn slerp_interpolates_along_the_geodesic() {
+    let mut r = rng(29);
+    for n in [3, 4, 6] {
+        let a = random_rotor(&mut r, n);
+        let b = random_rotor(&mut r, n);
+        assert!(rotor_distance(&a.slerp(&b, 0.0), &a) < 1e-14);
+        assert!(rotor_distance(&a.slerp(&b, 1.0), &b) < 1e-13);
+        // the midpoint is equidistant: a⁻¹m = m⁻¹b
+        let m = a.slerp(&b, 0.5);
+        let d1 = a.reverse().compose(&m);
+        let d2 = m.reverse().compose(&b);
+        assert!(rotor_distance(&d1, &d2) < 1e-13);
+    }
+}

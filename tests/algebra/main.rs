@@ -1,0 +1,11 @@
+//! Tests of the Clifford-algebra layer, one module per part of `src/algebra`.
+
+mod support;
+
+mod bivector;
+mod decompose;
+mod exp_log;
+mod multivector;
+mod nalgebra_interop;
+mod properties;
+mod rotor;

@@ -1,0 +1,237 @@
+//! Products, involutions, duals and inverses of general multivectors in several signatures.
+
+use crate::assert_close;
+use rotorflow::algebra::blade;
+use rotorflow::prelude::*;
+
+fn e(sig: Signature, mask: u64) -> Multivector {
+    Multivector::basis_blade(sig, mask)
+}
+
+#[test]
+fn basis_products_in_3d() {
+    let s = Signature::euclidean(3);
+    let (e1, e2, e3) = (e(s, 1), e(s, 2), e(s, 4));
+    assert_eq!(&e1 * &e2, e(s, 0b011));
+    assert_eq!(&e2 * &e1, -e(s, 0b011));
+    assert_eq!((&e1 * &e1).scalar_part(), 1.0);
+    // e12 e23 = e13
+    assert_eq!(&e(s, 0b011) * &e(s, 0b110), e(s, 0b101));
+    // pseudoscalar squares to −1 in 3D
+    let i = &(&e1 * &e2) * &e3;
+    assert_eq!((&i * &i).scalar_part(), -1.0);
+}
+
+#[test]
+fn signature_squares_follow_p_q_r() {
+    let sta = Signature::new(1, 3, 0).unwrap();
+    assert_eq!((&e(sta, 1) * &e(sta, 1)).scalar_part(), 1.0);
+    assert_eq!((&e(sta, 2) * &e(sta, 2)).scalar_part(), -1.0);
+    let pga = Signature::new(3, 0, 1).unwrap();
+    assert_eq!((&e(pga, 8) * &e(pga, 8)).scalar_part(), 0.0);
+    assert_eq!(pga.to_string(), "Cl(3,0,1)");
+    assert!(Signature::new(60, 4, 1).is_err());
+}
+
+#[test]
+fn graded_products_match_their_filters() {
+    let s = Signature::euclidean(4);
+    let a = e(s, 0b0001); // e1
+    let b = e(s, 0b0011); // e12
+    assert_eq!(a.left_contract(&b), e(s, 0b0010)); // e1 ⌋ e12 = e2
+    assert_eq!(b.right_contract(&a), -e(s, 0b0010)); // e12 ⌊ e1 = −e2
+    assert_eq!(a.wedge(&b), Multivector::zero(s));
+    assert_eq!(e(s, 0b0100).wedge(&b), e(s, 0b0111)); // e3 ∧ e12 = e123
+    assert_eq!(b.scalar_product(&b), -1.0);
+    // commutator of e12 and e23 is e13, anticommutator vanishes
+    assert_eq!(b.commutator(&e(s, 0b0110)), e(s, 0b0101));
+    assert_eq!(b.anticommutator(&e(s, 0b0110)), Multivector::zero(s));
+}
+
+#[test]
+fn regressive_product_meets_planes_in_a_line() {
+    let s = Signature::euclidean(3);
+    assert_eq!(e(s, 0b011).regressive(&e(s, 0b110)), e(s, 0b010));
+    // in PGA (degenerate metric) the meet is metric-free and still works
+    let pga = Signature::new(3, 0, 1).unwrap();
+    let m = e(pga, 0b0111).regressive(&e(pga, 0b1110));
+    assert_eq!(m.grades(), vec![2]);
+}
+
+#[test]
+fn involutions_have_the_right_signs() {
+    let s = Signature::euclidean(4);
+    let mut x = Multivector::zero(s);
+    for (b, c) in x.coefficients_mut().iter_mut().enumerate() {
+        *c = 1.0 + b as f64;
+    }
+    for (b, c) in x.reverse().terms() {
+        let k = blade::grade(b);
+        let expected = if k % 4 == 2 || k % 4 == 3 { -1.0 } else { 1.0 };
+        assert_eq!(c, expected * (1.0 + b as f64));
+    }
+    assert_eq!(x.grade_involution().grade_involution(), x);
+    assert_eq!(x.clifford_conjugate(), x.reverse().grade_involution());
+    assert_eq!(x.even() + x.odd(), x);
+}
+
+#[test]
+fn hodge_star_twice_is_plus_or_minus_one() {
+    for (p, q) in [(2, 0), (3, 0), (4, 0), (5, 0), (1, 3), (2, 2), (3, 1)] {
+        let s = Signature::new(p, q, 0).unwrap();
+        let n = p + q;
+        for b in 0..(1u64 << n) {
+            let k = blade::grade(b);
+            let x = e(s, b);
+            let twice = x.hodge().hodge();
+            let sign = if (k * (n - k) + q) % 2 == 0 {
+                1.0
+            } else {
+                -1.0
+            };
+            assert_eq!(twice, x.clone() * sign, "Cl({p},{q}) blade {b:b}");
+        }
+    }
+    // The Levi-Civita contraction Ω_k = ½ ε_ijk ω_ij is the Hodge star in 3D: ⋆e12 = e3.
+    let s3 = Signature::euclidean(3);
+    assert_eq!(e(s3, 0b011).hodge(), e(s3, 0b100));
+    assert_eq!(e(s3, 0b101).hodge(), -e(s3, 0b010));
+    assert_eq!(e(s3, 0b110).hodge(), e(s3, 0b001));
+}
+
+#[test]
+fn hodge_satisfies_its_definition() {
+    // B ∧ ⋆A = ⟨B, A⟩ I for blades of equal grade in Euclidean 4D.
+    let s = Signature::euclidean(4);
+    let i = e(s, 0b1111);
+    for a in 0..16u64 {
+        for b in 0..16u64 {
+            if blade::grade(a) != blade::grade(b) {
+                continue;
+            }
+            let lhs = e(s, b).wedge(&e(s, a).hodge());
+            let expected = if a == b {
+                i.clone()
+            } else {
+                Multivector::zero(s)
+            };
+            assert_eq!(lhs, expected);
+        }
+    }
+}
+
+#[test]
+fn dual_is_multiplication_by_inverse_pseudoscalar() {
+    let s = Signature::euclidean(3);
+    assert_eq!(e(s, 0b011).dual().unwrap(), e(s, 0b100));
+    let pga = Signature::new(3, 0, 1).unwrap();
+    assert!(matches!(
+        e(pga, 1).dual(),
+        Err(AlgebraError::NotInvertible { .. })
+    ));
+}
+
+#[test]
+fn inverse_of_versors_and_general_elements() {
+    let s = Signature::euclidean(3);
+    let v = Multivector::from_coefficients(s, &[0.0, 1.0, 2.0, 0.0, 3.0, 0.0, 0.0, 0.0]).unwrap();
+    let vi = v.inverse().unwrap();
+    let one = &v * &vi;
+    assert_close!(one.scalar_part(), 1.0, 1e-15);
+    assert!(one.grade(1).max_abs() < 1e-15);
+    // a general (non-versor) invertible element: 2 + e1 + e23
+    let g = Multivector::from_coefficients(s, &[2.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0]).unwrap();
+    let gi = g.inverse().unwrap();
+    let p = &g * &gi;
+    assert_close!(p.scalar_part(), 1.0, 1e-14);
+    assert!((p.clone() - Multivector::scalar(s, 1.0)).max_abs() < 1e-14);
+    // zero divisor 1 + e1 (since (1+e1)(1−e1) = 0) has no inverse
+    let z = Multivector::from_coefficients(s, &[1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]).unwrap();
+    assert!(matches!(
+        z.inverse(),
+        Err(AlgebraError::NotInvertible { .. })
+    ));
+    assert!(Multivector::zero(s).inverse().is_err());
+    // a null vector in PGA
+    let pga = Signature::new(3, 0, 1).unwrap();
+    assert!(e(pga, 8).inverse().is_err());
+}
+
+#[test]
+fn norm_squared_is_sum_of_squares_in_euclidean_space() {
+    let s = Signature::euclidean(4);
+    let mut x = Multivector::zero(s);
+    for (b, c) in x.coefficients_mut().iter_mut().enumerate() {
+        *c = (b as f64).sin();
+    }
+    let expected: f64 = x.coefficients().iter().map(|c| c * c).sum();
+    assert_close!(x.norm_squared(), expected, 1e-13);
+    assert_close!((&x * &x.reverse()).scalar_part(), expected, 1e-13);
+    // Minkowski: a timelike vector has positive, a spacelike one negative norm²
+    let sta = Signature::new(1, 3, 0).unwrap();
+    assert_eq!(e(sta, 1).norm_squared(), 1.0);
+    assert_eq!(e(sta, 2).norm_squared(), -1.0);
+}
+
+#[test]
+fn mismatched_signatures_are_errors_in_the_checked_api() {
+    let a = Multivector::scalar(Signature::euclidean(3), 1.0);
+    let b = Multivector::scalar(Signature::new(2, 1, 0).unwrap(), 1.0);
+    assert!(matches!(
+        a.try_product(&b, Product::Geometric),
+        Err(AlgebraError::SignatureMismatch { .. })
+    ));
+    let c = Multivector::scalar(Signature::euclidean(4), 1.0);
+    assert!(matches!(
+        a.try_product(&c, Product::Wedge),
+        Err(AlgebraError::DimensionMismatch { left: 3, right: 4 })
+    ));
+}
+
+#[test]
+#[should_panic(expected = "dimension mismatch")]
+fn operators_panic_on_mismatched_dimensions() {
+    let a = Multivector::scalar(Signature::euclidean(3), 1.0);
+    let c = Multivector::scalar(Signature::euclidean(4), 1.0);
+    let _ = &a * &c;
+}
+
+#[test]
+fn multivectors_up_to_n_12_work() {
+    let s = Signature::euclidean(12);
+    let mut a = Multivector::zero(s);
+    a.coefficients_mut()[0b11] = 1.0; // e12
+    a.coefficients_mut()[0b1100_0000_0000] = 2.0; // e11,12
+    let sq = &a * &a;
+    // (e12 + 2 e_{11,12})² = −1 − 4 + 4 e12∧e_{11,12}
+    assert_eq!(sq.scalar_part(), -5.0);
+    assert_eq!(sq.coefficient(0b1100_0000_0011), 4.0);
+    assert_eq!(a.to_string(), "1e1_2 + 2e11_12");
+    assert!(Multivector::try_zero(Signature::euclidean(17)).is_err());
+}
+
+#[test]
+fn display_is_readable() {
+    let s = Signature::euclidean(3);
+    let x = Multivector::from_coefficients(s, &[1.0, -2.0, 0.0, 0.5, 0.0, 0.0, 0.0, -1.0]).unwrap();
+    assert_eq!(x.to_string(), "1 - 2e1 + 0.5e12 - 1e123");
+    assert_eq!(format!("{x:.2}"), "1.00 - 2.00e1 + 0.50e12 - 1.00e123");
+    assert_eq!(Multivector::zero(s).to_string(), "0");
+}
+
+#[test]
+fn from_coefficients_rejects_bad_input() {
+    let s = Signature::euclidean(2);
+    assert!(matches!(
+        Multivector::from_coefficients(s, &[1.0, 2.0]),
+        Err(AlgebraError::WrongComponentCount {
+            expected: 4,
+            found: 2,
+            ..
+        })
+    ));
+    assert!(matches!(
+        Multivector::from_coefficients(s, &[1.0, f64::NAN, 0.0, 0.0]),
+        Err(AlgebraError::NonFinite { .. })
+    ));
+}
