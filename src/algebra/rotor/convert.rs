@@ -54,13 +54,29 @@ impl Rotor {
                 }
             }
             _ => {
-                let mut e = vec![0.0; n];
-                let mut col = vec![0.0; n];
-                for j in 0..n {
-                    e.iter_mut().for_each(|x| *x = 0.0);
-                    e[j] = 1.0;
-                    self.sandwich_vector_into(&e, &mut col);
-                    q.column_mut(j).copy_from_slice(&col);
+                // Q_ij = ⟨eᵢ R eⱼ R̃⟩₀ = Σ_a σ(i, j, a) R_a R_{a ⊕ eᵢ ⊕ eⱼ}: one pass over the
+                // even blades per entry, with the signs σ from a cached bit table.
+                let mask = (1u64 << (n - 1)) - 1;
+                let len = super::even_len(n);
+                let table = matrix_sign_table(n);
+                let blades = super::even_blades(n);
+                for i in 0..n {
+                    for j in 0..n {
+                        let m = (1u64 << i) ^ (1u64 << j);
+                        let mut acc = 0.0;
+                        for (ia, (&ra, &a)) in self.coeffs.iter().zip(blades).enumerate() {
+                            if ra == 0.0 {
+                                continue;
+                            }
+                            let rb = self.coeffs[((a ^ m) & mask) as usize];
+                            let negative = match &table {
+                                Some(t) => t[(i * n + j) * len + ia],
+                                None => matrix_sign_negative(a, i, j),
+                            };
+                            acc += if negative { -ra * rb } else { ra * rb };
+                        }
+                        q[(i, j)] = acc;
+                    }
                 }
             }
         }
@@ -172,6 +188,40 @@ impl Rotor {
             }
         }
     }
+}
+
+/// σ(i, j, a) < 0 for the matrix entry formula: σ = sign(eᵢ e_a) · sign(e_{i⊕a} eⱼ) (the
+/// reverse of the last factor and its square cancel in a Euclidean signature).
+fn matrix_sign_negative(a: u64, i: usize, j: usize) -> bool {
+    let s1 = crate::algebra::blade::reorder_sign(1 << i, a);
+    let s2 = crate::algebra::blade::reorder_sign((1 << i) ^ a, 1 << j);
+    s1 * s2 < 0.0
+}
+
+/// Largest N whose sign table is cached (N²·2^(N−1) booleans: 288 KiB at N = 12).
+const SIGN_TABLE_MAX_DIM: usize = 12;
+
+/// The cached sign table of dimension `n`, indexed by (i·N + j)·2^(N−1) + a.
+fn matrix_sign_table(n: usize) -> Option<&'static [bool]> {
+    use std::sync::OnceLock;
+    static TABLES: [OnceLock<Vec<bool>>; SIGN_TABLE_MAX_DIM + 1] =
+        [const { OnceLock::new() }; SIGN_TABLE_MAX_DIM + 1];
+    if n > SIGN_TABLE_MAX_DIM {
+        return None;
+    }
+    let table = TABLES[n].get_or_init(|| {
+        let len = super::even_len(n);
+        let mut t = Vec::with_capacity(n * n * len);
+        for i in 0..n {
+            for j in 0..n {
+                for ia in 0..len {
+                    t.push(matrix_sign_negative(super::even_blade(n, ia), i, j));
+                }
+            }
+        }
+        t
+    });
+    Some(table.as_slice())
 }
 
 fn check_matrix_shape(q: &DMatrix<f64>) -> Result<(), AlgebraError> {

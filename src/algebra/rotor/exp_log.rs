@@ -3,7 +3,7 @@
 use super::{even_index, even_len, Rotor};
 use crate::algebra::bivector::pairs;
 use crate::algebra::decompose::{decompose_components, RawPlane};
-use crate::algebra::{Bivector, Vector, MULTIVECTOR_MAX_DIM};
+use crate::algebra::{blade, Bivector, Vector, MULTIVECTOR_MAX_DIM};
 use smallvec::SmallVec;
 
 impl Bivector {
@@ -116,43 +116,35 @@ pub(super) fn get_4d(r: &Rotor) -> (f64, [f64; 6], f64) {
 }
 
 /// R ← R (c + s u v) for orthonormal u ⟂ v: two vector multiplications, O(N 2^N).
+///
+/// The sign of e_a eᵢ is bit i of `suffix_parity(a)`, computed once per blade.
 pub(crate) fn multiply_by_simple(r: &mut Rotor, c: f64, s: f64, u: &[f64], v: &[f64]) {
     let n = r.dim;
     let len = even_len(n);
+    let mask = (1u64 << (n - 1)) - 1;
     // t = R u (odd, indexed by low bits).
     let mut t: SmallVec<[f64; 32]> = SmallVec::from_elem(0.0, len);
-    for (ia, &ra) in r.coeffs.iter().enumerate() {
+    for (&ra, &a) in r.coeffs.iter().zip(super::even_blades(n)) {
         if ra == 0.0 {
             continue;
         }
-        let a = super::even_blade(n, ia);
+        let sp = blade::suffix_parity(a);
         for (i, &ui) in u.iter().enumerate() {
-            if ui != 0.0 {
-                let sign = if (a >> (i + 1)).count_ones() & 1 == 0 {
-                    1.0
-                } else {
-                    -1.0
-                };
-                t[even_index(n, a ^ (1 << i))] += sign * ra * ui;
-            }
+            let sign = if sp >> i & 1 == 0 { ra } else { -ra };
+            t[((a ^ (1 << i)) & mask) as usize] += sign * ui;
         }
     }
     // R ← c R + s (t v).
     r.coeffs.iter_mut().for_each(|x| *x *= c);
-    for (ib, &tb) in t.iter().enumerate() {
+    for (&tb, &b) in t.iter().zip(super::odd_blades(n)) {
         if tb == 0.0 {
             continue;
         }
-        let b = super::odd_blade(n, ib);
+        let sp = blade::suffix_parity(b);
+        let stb = s * tb;
         for (i, &vi) in v.iter().enumerate() {
-            if vi != 0.0 {
-                let sign = if (b >> (i + 1)).count_ones() & 1 == 0 {
-                    1.0
-                } else {
-                    -1.0
-                };
-                r.coeffs[even_index(n, b ^ (1 << i))] += s * sign * tb * vi;
-            }
+            let sign = if sp >> i & 1 == 0 { stb } else { -stb };
+            r.coeffs[((b ^ (1 << i)) & mask) as usize] += sign * vi;
         }
     }
 }

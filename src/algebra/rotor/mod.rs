@@ -95,14 +95,21 @@ fn odd_blade(n: usize, idx: usize) -> u64 {
     i | ((((i.count_ones() & 1) ^ 1) as u64) << (n - 1))
 }
 
-/// Sign of e_a e_i (moving e_i left past the vectors of `a` with larger index).
-#[inline]
-fn sign_blade_times_vector(a: u64, i: usize) -> f64 {
-    if (a >> (i + 1)).count_ones() & 1 == 0 {
-        1.0
-    } else {
-        -1.0
-    }
+/// The even blades of dimension `n` in storage order, cached (2^(N−1) masks, 256 KiB at
+/// N = 16), so that hot loops do not recompute parities.
+pub(crate) fn even_blades(n: usize) -> &'static [u64] {
+    use std::sync::OnceLock;
+    static LISTS: [OnceLock<Vec<u64>>; MULTIVECTOR_MAX_DIM + 1] =
+        [const { OnceLock::new() }; MULTIVECTOR_MAX_DIM + 1];
+    LISTS[n].get_or_init(|| (0..even_len(n)).map(|i| even_blade(n, i)).collect())
+}
+
+/// The odd blades of dimension `n ≥ 1` in storage order, cached like [`even_blades`].
+pub(crate) fn odd_blades(n: usize) -> &'static [u64] {
+    use std::sync::OnceLock;
+    static LISTS: [OnceLock<Vec<u64>>; MULTIVECTOR_MAX_DIM + 1] =
+        [const { OnceLock::new() }; MULTIVECTOR_MAX_DIM + 1];
+    LISTS[n].get_or_init(|| (0..even_len(n)).map(|i| odd_blade(n, i)).collect())
 }
 
 impl Rotor {
@@ -336,35 +343,41 @@ impl Rotor {
         if n == 0 {
             return;
         }
-        // t = R x (odd), stored at the odd index of each blade.
+        // t = R x (odd), stored at the odd index of each blade. The sign of e_a eᵢ is bit i
+        // of suffix_parity(a).
         let len = even_len(n);
+        let mask = (1u64 << (n - 1)) - 1;
         let mut t: SmallVec<[f64; 32]> = SmallVec::from_elem(0.0, len);
-        for (ia, &ra) in self.coeffs.iter().enumerate() {
+        for (&ra, &a) in self.coeffs.iter().zip(even_blades(n)) {
             if ra == 0.0 {
                 continue;
             }
-            let a = even_blade(n, ia);
+            let sp = blade::suffix_parity(a);
             for (i, &xi) in x.iter().enumerate() {
-                if xi == 0.0 {
-                    continue;
-                }
-                let c = a ^ (1 << i);
-                t[even_index(n, c)] += sign_blade_times_vector(a, i) * ra * xi;
+                let sign = if sp >> i & 1 == 0 { ra } else { -ra };
+                t[((a ^ (1 << i)) & mask) as usize] += sign * xi;
             }
         }
-        // out_k = Σ_c t_c · R̃_d · sign(e_c e_d), d = c ^ e_k.
-        for (ic, &tc) in t.iter().enumerate() {
+        // out_k = Σ_c t_c · R̃_d · sign(e_c e_d), d = c ^ e_k. With p = suffix_parity(c), the
+        // reorder parity of (c, c ^ e_k) is parity(p & c) ^ bit k of p; the reverse sign of d
+        // depends on whether e_k removes or adds a vector.
+        for (&tc, &c) in t.iter().zip(odd_blades(n)) {
             if tc == 0.0 {
                 continue;
             }
-            let c = odd_blade(n, ic);
+            let p = blade::suffix_parity(c);
+            let base = (p & c).count_ones() & 1;
+            let g = c.count_ones() as usize;
+            let (rev_down, rev_up) = (
+                blade::reverse_sign(g - 1) * tc,
+                blade::reverse_sign(g + 1) * tc,
+            );
             for (k, o) in out.iter_mut().enumerate() {
                 let d = c ^ (1 << k);
-                let rd = self.coeffs[even_index(n, d)];
-                if rd != 0.0 {
-                    let s = blade::reorder_sign(c, d) * blade::reverse_sign(blade::grade(d));
-                    *o += s * tc * rd;
-                }
+                let rd = self.coeffs[(d & mask) as usize];
+                let w = if c >> k & 1 == 1 { rev_down } else { rev_up };
+                let flip = base ^ ((p >> k) & 1) as u32;
+                *o += if flip == 0 { w * rd } else { -w * rd };
             }
         }
     }
@@ -458,14 +471,13 @@ impl Rotor {
 pub(crate) fn even_product_into(n: usize, a: &[f64], b: &[f64], out: &mut [f64]) {
     out.iter_mut().for_each(|o| *o = 0.0);
     let mask = if n == 0 { 0 } else { (1u64 << (n - 1)) - 1 };
-    for (ia, &ca) in a.iter().enumerate() {
+    let blades = even_blades(n);
+    for (&ca, &ba) in a.iter().zip(blades) {
         if ca == 0.0 {
             continue;
         }
-        let ba = even_blade(n, ia);
         let pa = blade::suffix_parity(ba);
-        for (ib, &cb) in b.iter().enumerate() {
-            let bb = even_blade(n, ib);
+        for (&cb, &bb) in b.iter().zip(blades) {
             let s = blade::parity_sign(pa & bb);
             out[((ba ^ bb) & mask) as usize] += s * ca * cb;
         }
