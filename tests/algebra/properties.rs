@@ -47,8 +47,17 @@ fn bounded_rotation() -> impl Strategy<Value = Bivector> {
         })
 }
 
+/// 64 cases per property by default; `PROPTEST_CASES=N` raises it for long runs.
+fn config() -> ProptestConfig {
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(64);
+    ProptestConfig::with_cases(cases)
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(config())]
 
     #[test]
     fn geometric_product_is_associative_and_distributive((a, b, c) in three_mvs()) {
@@ -97,7 +106,7 @@ proptest! {
         let r = Rotor::from_rotation_bivector(&b);
         let back = r.rotation_bivector();
         prop_assert!((&back - &b).max_abs() < 1e-13 * b.max_abs().max(1.0));
-        prop_assert!(rotor_distance(&Rotor::from_rotation_bivector(&back), &r) < 4e-15);
+        prop_assert!(rotor_distance(&Rotor::from_rotation_bivector(&back), &r) < 1e-14);
     }
 
     #[test]
