@@ -3,7 +3,7 @@
 //! commutator vs A·B − B·A on skew matrices, the sandwich vs matrix × vector, composition vs
 //! matrix × matrix. Run `cargo bench --bench algebra`; `BENCH_QUICK=1` shortens the run.
 
-use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
+use criterion::{BenchmarkId, Criterion, black_box, criterion_group, criterion_main};
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -28,6 +28,7 @@ fn configure(c: &mut Criterion) -> Criterion {
     let quick = std::env::var_os("BENCH_QUICK").is_some();
     let _ = c;
     Criterion::default()
+        .configure_from_args()
         .warm_up_time(Duration::from_millis(if quick { 200 } else { 500 }))
         .measurement_time(Duration::from_millis(if quick { 500 } else { 1500 }))
         .sample_size(if quick { 20 } else { 40 })

@@ -28,6 +28,8 @@ fn main() {
             }
             e3 = e3.max(r.unit_error());
         }
-        println!("n={n}: max|exp(log R) − R| = {e1:.2e}, max rel |log(exp B) − B| = {e2:.2e}, max |RR̃−1| = {e3:.2e}");
+        println!(
+            "n={n}: max|exp(log R) − R| = {e1:.2e}, max rel |log(exp B) − B| = {e2:.2e}, max |RR̃−1| = {e3:.2e}"
+        );
     }
 }

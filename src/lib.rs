@@ -6,10 +6,14 @@
 //! gives it: angular velocity and momentum are bivectors, attitude is a rotor, and inertia is
 //! a linear map on bivectors. The dimension is chosen at run time.
 //!
-//! This release contains the Clifford-algebra layer, [`algebra`]: vectors, bivectors, rotors
-//! and multivectors, every product, and a closed-form exponential and logarithm that stay
-//! exact where other libraries fail (non-simple and isoclinic bivectors, angles near π,
-//! N above 4).
+//! The layers, each building on the one before:
+//! - [`algebra`]: vectors, bivectors, rotors and multivectors, every product, and a
+//!   closed-form exponential and logarithm that stay exact where other libraries fail
+//!   (non-simple and isoclinic bivectors, angles near π, N above 4);
+//! - [`inertia`]: the inertia map as a linear operator on bivectors, built from a catalogue
+//!   of N-dimensional bodies (point clouds, the paper's tesseract and 5-cell, cuboids,
+//!   ellipsoids, balls, shells, simplices, simplicial meshes, composites), with the paper's
+//!   rank-4 and Levi-Civita-contracted tensors as views.
 //!
 //! # Conventions
 //! DESIGN.md part 1 is the contract; [`algebra`] restates it. In short: bivector components
@@ -39,6 +43,19 @@
 //! # Ok::<(), rotorflow::algebra::AlgebraError>(())
 //! ```
 //!
+//! The inertia of a 4D body, as a map from angular velocity to angular momentum:
+//! ```
+//! use rotorflow::prelude::*;
+//! let body = Body::solid_ellipsoid(&[1.0, 2.0, 3.0, 4.0], 1.0)?;
+//! let inertia = InertiaMap::from_body(&body)?;
+//! let omega = Bivector::from_plane(4, 0, 1, 1.0)?;  // spin in the e1e2 plane
+//! let l = inertia.apply(&omega);                    // L = I(ω) = (J₁ + J₂) e₁₂ here
+//! let j = body.mass_tensor();
+//! assert!((l.get(0, 1) - (j[(0, 0)] + j[(1, 1)])).abs() < 1e-12);
+//! assert!((&inertia.apply_inverse(&l) - &omega).norm() < 1e-14);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
 //! # Crate features
 //! - `serde`: `Serialize`/`Deserialize` for every algebra type; deserialisation validates
 //!   (lengths, finiteness, and that a rotor is on Spin(N)). Off by default.
@@ -55,12 +72,14 @@
 #![forbid(unsafe_code)]
 
 pub mod algebra;
+pub mod inertia;
 
 /// The types most programs need: `use rotorflow::prelude::*;`.
 pub mod prelude {
     pub use crate::algebra::{
         AlgebraError, Bivector, Decomposition, Multivector, Product, Rotor, Signature, Vector,
     };
+    pub use crate::inertia::{Body, BodyError, InertiaError, InertiaMap};
 }
 
 /// The README's code blocks, compiled and run as doctests so that the README stays true.

@@ -39,31 +39,19 @@ pub fn suffix_parity(a: u64) -> u64 {
 /// Returns +1 if `x` has an even number of set bits, −1 otherwise.
 #[inline]
 pub fn parity_sign(x: u64) -> f64 {
-    if x.count_ones() & 1 == 0 {
-        1.0
-    } else {
-        -1.0
-    }
+    if x.count_ones() & 1 == 0 { 1.0 } else { -1.0 }
 }
 
 /// Returns the sign (−1)^{k(k−1)/2} that the reverse puts on a blade of grade `k`.
 #[inline]
 pub fn reverse_sign(k: usize) -> f64 {
-    if (k / 2) % 2 == 0 {
-        1.0
-    } else {
-        -1.0
-    }
+    if (k / 2).is_multiple_of(2) { 1.0 } else { -1.0 }
 }
 
 /// Returns the sign (−1)^k that the grade involution puts on a blade of grade `k`.
 #[inline]
 pub fn involution_sign(k: usize) -> f64 {
-    if k % 2 == 0 {
-        1.0
-    } else {
-        -1.0
-    }
+    if k.is_multiple_of(2) { 1.0 } else { -1.0 }
 }
 
 /// Returns the sign (−1)^{k(k+1)/2} that the Clifford conjugate puts on a blade of grade `k`.
@@ -81,11 +69,7 @@ pub fn range_mask(lo: usize, hi: usize) -> u64 {
 /// Returns the mask with the lowest `n` bits set (the pseudoscalar of dimension `n`).
 #[inline]
 pub fn full_mask(n: usize) -> u64 {
-    if n >= 64 {
-        u64::MAX
-    } else {
-        (1u64 << n) - 1
-    }
+    if n >= 64 { u64::MAX } else { (1u64 << n) - 1 }
 }
 
 /// Returns the 0-based indices of the basis vectors in blade `a`, ascending.
@@ -171,11 +155,7 @@ mod tests {
                     swaps += a.checked_shr(j + 1).unwrap_or(0).count_ones();
                 }
             }
-            if swaps % 2 == 0 {
-                1.0
-            } else {
-                -1.0
-            }
+            if swaps.is_multiple_of(2) { 1.0 } else { -1.0 }
         }
         let mut x = 0x9E37_79B9_7F4A_7C15u64;
         for _ in 0..10_000 {

@@ -2,7 +2,7 @@
 //! zero terms omitted, the zero element printed as `0`. Precision flags (`{:.3}`) apply to
 //! every coefficient.
 
-use super::{blade, Bivector, Multivector, Rotor, Vector};
+use super::{Bivector, Multivector, Rotor, Vector, blade};
 use std::fmt;
 
 /// Writes Σ cₖ·nameₖ with signs folded into the separators.

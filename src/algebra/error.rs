@@ -15,7 +15,9 @@ pub enum AlgebraError {
     /// Two operands live in spaces of different dimension.
     ///
     /// How to fix: build both operands with the same `dim`, or embed the smaller one first.
-    #[error("dimension mismatch: left operand has dimension {left}, right operand has dimension {right}")]
+    #[error(
+        "dimension mismatch: left operand has dimension {left}, right operand has dimension {right}"
+    )]
     DimensionMismatch {
         /// Dimension of the left operand.
         left: usize,
@@ -98,7 +100,9 @@ pub enum AlgebraError {
     ///
     /// How to fix: a bivector's matrix satisfies Aᵀ = −A; pass `(A − Aᵀ)/2` if the asymmetry is
     /// round-off.
-    #[error("matrix is not skew-symmetric: max |A + Aᵀ| = {deviation:e} exceeds the tolerance {tolerance:e}")]
+    #[error(
+        "matrix is not skew-symmetric: max |A + Aᵀ| = {deviation:e} exceeds the tolerance {tolerance:e}"
+    )]
     NotSkewSymmetric {
         /// max |A_ij + A_ji|.
         deviation: f64,
@@ -120,7 +124,9 @@ pub enum AlgebraError {
     /// How to fix: orthonormalise it first (for example with
     /// [`super::Rotor::from_matrix_projected`], which takes the nearest rotation), or check
     /// that it is not a reflection (determinant −1).
-    #[error("matrix is not a rotation: max |QᵀQ − 1| = {orthogonality_error:e} (tolerance {tolerance:e}), det = {determinant}")]
+    #[error(
+        "matrix is not a rotation: max |QᵀQ − 1| = {orthogonality_error:e} (tolerance {tolerance:e}), det = {determinant}"
+    )]
     NotARotation {
         /// max |(QᵀQ − 1)_ij|.
         orthogonality_error: f64,
@@ -175,7 +181,9 @@ pub(crate) fn check_finite(values: &[f64], what: &'static str) -> Result<(), Alg
 #[inline]
 pub(crate) fn assert_same_dim(left: usize, right: usize) {
     if left != right {
-        panic!("rotorflow: dimension mismatch: left operand has dimension {left}, right operand has dimension {right}");
+        panic!(
+            "rotorflow: dimension mismatch: left operand has dimension {left}, right operand has dimension {right}"
+        );
     }
 }
 

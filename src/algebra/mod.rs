@@ -69,11 +69,11 @@ mod serde_impls;
 mod signature;
 mod vector;
 
-pub use bivector::{bivector_len, pair_index, pairs, Bivector};
+pub use bivector::{Bivector, bivector_len, pair_index, pairs};
 pub use decompose::{Decomposition, SimplePlane};
 pub use error::AlgebraError;
 pub use multivector::{Multivector, Product};
-pub use rotor::{Rotor, ROTATION_TOLERANCE};
+pub use rotor::{ROTATION_TOLERANCE, Rotor};
 pub use signature::Signature;
 pub use vector::Vector;
 

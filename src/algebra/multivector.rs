@@ -1,7 +1,7 @@
 //! General multivectors in any signature: one product kernel, many products.
 
 use super::error::{check_finite, check_same_dim};
-use super::{blade, AlgebraError, Signature, MULTIVECTOR_MAX_DIM};
+use super::{AlgebraError, MULTIVECTOR_MAX_DIM, Signature, blade};
 use smallvec::SmallVec;
 
 /// Inline storage for multivectors: 16 coefficients cover every multivector up to N = 4
@@ -322,7 +322,13 @@ impl Multivector {
 
     /// Returns the even part (grades 0, 2, 4, …).
     pub fn even(&self) -> Self {
-        self.map_blades(|b, c| if blade::grade(b) % 2 == 0 { c } else { 0.0 })
+        self.map_blades(|b, c| {
+            if blade::grade(b).is_multiple_of(2) {
+                c
+            } else {
+                0.0
+            }
+        })
     }
 
     /// Returns the odd part (grades 1, 3, 5, …).

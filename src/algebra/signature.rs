@@ -1,6 +1,6 @@
 //! Metric signatures Cl(p, q, r).
 
-use super::{blade, AlgebraError, MAX_DIM};
+use super::{AlgebraError, MAX_DIM, blade};
 use std::fmt;
 
 /// The signature Cl(p, q, r) of a Clifford algebra: `p` basis vectors square to +1, `q` to −1

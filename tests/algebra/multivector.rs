@@ -84,7 +84,7 @@ fn hodge_star_twice_is_plus_or_minus_one() {
             let k = blade::grade(b);
             let x = e(s, b);
             let twice = x.hodge().hodge();
-            let sign = if (k * (n - k) + q) % 2 == 0 {
+            let sign = if (k * (n - k) + q).is_multiple_of(2) {
                 1.0
             } else {
                 -1.0

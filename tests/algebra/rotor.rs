@@ -29,7 +29,7 @@ fn composition_applies_right_factor_first() {
     let n = 3;
     let a = Rotor::from_plane_angle(n, 0, 1, FRAC_PI_2).unwrap(); // e1 → e2
     let b = Rotor::from_plane_angle(n, 1, 2, FRAC_PI_2).unwrap(); // e2 → e3
-                                                                  // b·a: first e1 → e2, then e2 → e3
+    // b·a: first e1 → e2, then e2 → e3
     let x = (&b * &a).rotate_vector(&Vector::basis(n, 0));
     assert_close!(x[2], 1.0, 1e-15);
     // matrices compose the same way
@@ -200,7 +200,7 @@ fn normalize_projects_drifted_rotors_onto_spin_n() {
         let mut coeffs = rot.to_multivector();
         // perturb every even coefficient by 1e-6
         for (k, c) in coeffs.coefficients_mut().iter_mut().enumerate() {
-            if (k as u64).count_ones() % 2 == 0 {
+            if (k as u64).count_ones().is_multiple_of(2) {
                 *c += 1e-6 * ((k as f64) * 1.7).sin();
             }
         }

@@ -1,9 +1,9 @@
 //! Rotors ↔ rotation matrices, and the projection of a drifted rotor back onto Spin(N).
 
 use super::exp_log::{get_4d, multiply_by_simple, set_4d};
-use super::{even_index, Rotor};
+use super::{Rotor, even_index};
 use crate::algebra::bivector::{bivector_len, pairs};
-use crate::algebra::decompose::{decompose_components, RawPlane};
+use crate::algebra::decompose::{RawPlane, decompose_components};
 use crate::algebra::{AlgebraError, MULTIVECTOR_MAX_DIM};
 use nalgebra::{DMatrix, DVector};
 use smallvec::SmallVec;
@@ -180,11 +180,7 @@ impl Rotor {
                 };
                 let r = rotor_of_orthogonal(&q);
                 let d: f64 = r.coeffs.iter().zip(&self.coeffs).map(|(a, b)| a * b).sum();
-                if d < 0.0 {
-                    r.scaled(-1.0)
-                } else {
-                    r
-                }
+                if d < 0.0 { r.scaled(-1.0) } else { r }
             }
         }
     }

@@ -1,9 +1,9 @@
 //! Closed-form exponential and logarithm (never a truncated series).
 
-use super::{even_index, even_len, Rotor};
+use super::{Rotor, even_index, even_len};
 use crate::algebra::bivector::pairs;
-use crate::algebra::decompose::{decompose_components, RawPlane};
-use crate::algebra::{blade, Bivector, Vector, MULTIVECTOR_MAX_DIM};
+use crate::algebra::decompose::{RawPlane, decompose_components};
+use crate::algebra::{Bivector, MULTIVECTOR_MAX_DIM, Vector, blade};
 use smallvec::SmallVec;
 
 impl Bivector {

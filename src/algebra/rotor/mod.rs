@@ -12,7 +12,7 @@ mod exp_log;
 use super::blade;
 use super::error::{assert_same_dim, check_finite, check_same_dim};
 use super::multivector::{Multivector, MvStorage};
-use super::{AlgebraError, Bivector, Signature, Vector, MULTIVECTOR_MAX_DIM};
+use super::{AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Signature, Vector};
 use smallvec::SmallVec;
 
 /// Inline storage for rotors: the 2^(N−1) = 16 even coefficients of N ≤ 5 stay off the heap.
@@ -60,11 +60,7 @@ pub struct Rotor {
 /// Number of even blades in dimension `n`: 2^(n−1) (1 for n = 0).
 #[inline]
 pub(crate) fn even_len(n: usize) -> usize {
-    if n == 0 {
-        1
-    } else {
-        1 << (n - 1)
-    }
+    if n == 0 { 1 } else { 1 << (n - 1) }
 }
 
 /// The even blade stored at position `idx`: the low n−1 bits are `idx`, the top bit restores

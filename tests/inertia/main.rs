@@ -1,0 +1,14 @@
+//! Tests of the inertia layer: the body catalogue against independent integrations, the
+//! paper's tensor views and its stated values (errata), and the inertia map.
+
+#[macro_use]
+mod common;
+
+mod bad_input;
+mod catalogue;
+mod invariance;
+mod map;
+mod mesh;
+mod monte_carlo;
+mod paper_errata;
+mod tensor_views;
