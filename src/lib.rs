@@ -13,7 +13,10 @@
 //! - [`inertia`]: the inertia map as a linear operator on bivectors, built from a catalogue
 //!   of N-dimensional bodies (point clouds, the paper's tesseract and 5-cell, cuboids,
 //!   ellipsoids, balls, shells, simplices, simplicial meshes, composites), with the paper's
-//!   rank-4 and Levi-Civita-contracted tensors as views.
+//!   rank-4 and Levi-Civita-contracted tensors as views;
+//! - [`special`]: Carlson's symmetric elliptic integrals, the Legendre integrals of the
+//!   first, second and third kinds, and the Jacobi elliptic functions, accurate to a few ulp
+//!   (the building blocks of the exact free 3D rigid body).
 //!
 //! # Conventions
 //! DESIGN.md part 1 is the contract; [`algebra`] restates it. In short: bivector components
@@ -73,6 +76,7 @@
 
 pub mod algebra;
 pub mod inertia;
+pub mod special;
 
 /// The types most programs need: `use rotorflow::prelude::*;`.
 pub mod prelude {
