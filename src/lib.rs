@@ -75,6 +75,7 @@
 #![forbid(unsafe_code)]
 
 pub mod algebra;
+pub mod dynamics;
 pub mod inertia;
 pub mod special;
 

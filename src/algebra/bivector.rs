@@ -310,6 +310,43 @@ impl Bivector {
         Ok(self.commutator(other))
     }
 
+    /// Turns the bivector in place by `angle` in the plane eᵢ∧eⱼ (0-based, from eᵢ toward eⱼ):
+    /// B ← R B R̃ with R = exp(−angle/2 · eᵢⱼ), i.e. \[B\] ← Q\[B\]Qᵀ with Q a Givens rotation.
+    ///
+    /// Only the components with one index in {i, j} change, so this costs O(N) and never
+    /// allocates: the building block of the splitting integrators.
+    ///
+    /// # Panics
+    /// If `i` or `j` is out of range or `i == j`.
+    #[track_caller]
+    pub fn rotate_in_plane_mut(&mut self, i: usize, j: usize, angle: f64) {
+        let n = self.dim;
+        assert!(
+            i < n && j < n && i != j,
+            "rotorflow: invalid plane ({i}, {j}) in dimension {n}"
+        );
+        let (s, c) = angle.sin_cos();
+        // Signed packed position of B_ab (sign −1 when a > b).
+        let at = |a: usize, b: usize| -> (usize, f64) {
+            if a < b {
+                (pair_index(n, a, b), 1.0)
+            } else {
+                (pair_index(n, b, a), -1.0)
+            }
+        };
+        for k in 0..n {
+            if k == i || k == j {
+                continue;
+            }
+            let (pi, si) = at(i, k);
+            let (pj, sj) = at(j, k);
+            let (bi, bj) = (si * self.coeffs[pi], sj * self.coeffs[pj]);
+            // B'_ik = c B_ik − s B_jk,  B'_jk = s B_ik + c B_jk.
+            self.coeffs[pi] = si * (c * bi - s * bj);
+            self.coeffs[pj] = sj * (s * bi + c * bj);
+        }
+    }
+
     /// Writes the contraction x ⌋ B (out_j = Σᵢ xᵢ B_ij) into `out`.
     pub(crate) fn contract_into(&self, x: &[f64], out: &mut [f64]) {
         let n = self.dim;

@@ -316,6 +316,21 @@ impl InertiaMap {
         }
     }
 
+    /// Returns the plane moments when the map is diagonal on the basis planes of the body's
+    /// axes ([`InertiaMap::is_principal`]), in lexicographic order; `None` otherwise. This is
+    /// what the splitting integrators need: the energy is then a sum over planes.
+    pub fn diagonal_plane_moments(&self) -> Option<&[f64]> {
+        match &self.kind {
+            Kind::Physical {
+                diagonal: true,
+                plane_moments,
+                ..
+            } => Some(plane_moments),
+            Kind::Physical { .. } => None,
+            Kind::General { diagonal, .. } => diagonal.as_deref(),
+        }
+    }
+
     /// Returns the mass tensor J of a physical map (`None` for a general map).
     pub fn mass_tensor(&self) -> Option<&DMatrix<f64>> {
         match &self.kind {

@@ -1,0 +1,178 @@
+//! [`RigidBody`]: attitude rotor and body-frame angular momentum.
+
+use crate::algebra::{Bivector, Rotor};
+use crate::inertia::{InertiaError, InertiaMap};
+
+/// The state of a rotating rigid body in ℝᴺ: its inertia map (in the principal frame), its
+/// attitude rotor R (body → space, x_space = R x R̃) and its angular momentum L in the body
+/// frame.
+///
+/// The body frame is always the principal frame of the inertia: a map given in other axes is
+/// diagonalised on construction and the attitude absorbs the principal rotor, so every step
+/// applies I⁻¹ as one multiplication per plane. The body's own axes and the principal axes
+/// differ by [`InertiaMap::principal_rotor`]; [`RigidBody::principal_rotor`] keeps it.
+///
+/// ```
+/// use rotorflow::prelude::*;
+/// use rotorflow::dynamics::RigidBody;
+/// let inertia = InertiaMap::from_principal_moments(&[1.0, 2.0, 3.0, 4.0])?;
+/// let omega = Bivector::from_components(4, &[1.0, 0.0, 0.0, 0.0, 0.0, 0.5])?;
+/// let body = RigidBody::from_body_velocity(inertia, Rotor::identity(4), &omega)?;
+/// assert!((&body.omega() - &omega).norm() < 1e-15);
+/// assert!((body.energy() - 0.5 * (3.0 + 0.25 * 7.0)).abs() < 1e-15);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct RigidBody {
+    inertia: InertiaMap,
+    principal_rotor: Rotor,
+    attitude: Rotor,
+    momentum: Bivector,
+}
+
+impl RigidBody {
+    /// Returns the body with inertia `inertia`, attitude `attitude` (body's own axes → space)
+    /// and body-frame angular momentum `momentum` (in the body's own axes).
+    ///
+    /// # Errors
+    /// [`InertiaError::DimensionMismatch`]; [`InertiaError::Algebra`] if the inertia's
+    /// principal rotor cannot be formed (N above the rotor limit).
+    pub fn from_body_momentum(
+        inertia: InertiaMap,
+        attitude: Rotor,
+        momentum: &Bivector,
+    ) -> Result<Self, InertiaError> {
+        let n = inertia.dim();
+        for d in [attitude.dim(), momentum.dim()] {
+            if d != n {
+                return Err(InertiaError::DimensionMismatch {
+                    map: n,
+                    argument: d,
+                });
+            }
+        }
+        // Move to the principal frame: R_body = R_P · R_principal-frame.
+        let (inertia, principal_rotor) = if inertia.is_principal() || !inertia.is_physical() {
+            (inertia, Rotor::identity(n))
+        } else {
+            let rp = inertia
+                .principal_rotor()?
+                .expect("a physical map has a principal rotor");
+            let diag = InertiaMap::from_principal_moments(
+                inertia
+                    .principal_moments()
+                    .expect("a physical map has principal moments"),
+            )?;
+            (diag, rp)
+        };
+        let momentum = principal_rotor.reverse().rotate_bivector(momentum);
+        let attitude = attitude.compose(&principal_rotor);
+        Ok(RigidBody {
+            inertia,
+            principal_rotor,
+            attitude,
+            momentum,
+        })
+    }
+
+    /// Returns the body with body-frame angular velocity ω (in the body's own axes).
+    ///
+    /// # Errors
+    /// As [`RigidBody::from_body_momentum`].
+    pub fn from_body_velocity(
+        inertia: InertiaMap,
+        attitude: Rotor,
+        omega: &Bivector,
+    ) -> Result<Self, InertiaError> {
+        let l = inertia.try_apply(omega)?;
+        Self::from_body_momentum(inertia, attitude, &l)
+    }
+
+    /// Returns the body with space-frame angular momentum L_s: L = R̃ L_s R.
+    ///
+    /// # Errors
+    /// As [`RigidBody::from_body_momentum`].
+    pub fn from_space_momentum(
+        inertia: InertiaMap,
+        attitude: Rotor,
+        momentum: &Bivector,
+    ) -> Result<Self, InertiaError> {
+        let l = attitude.reverse().rotate_bivector(momentum);
+        Self::from_body_momentum(inertia, attitude, &l)
+    }
+
+    /// Returns the body with space-frame angular velocity ω_s: ω = R̃ ω_s R.
+    ///
+    /// # Errors
+    /// As [`RigidBody::from_body_momentum`].
+    pub fn from_space_velocity(
+        inertia: InertiaMap,
+        attitude: Rotor,
+        omega: &Bivector,
+    ) -> Result<Self, InertiaError> {
+        let w = attitude.reverse().rotate_bivector(omega);
+        Self::from_body_velocity(inertia, attitude, &w)
+    }
+
+    /// Returns the dimension N.
+    pub fn dim(&self) -> usize {
+        self.inertia.dim()
+    }
+
+    /// Returns the inertia map in the principal (body) frame.
+    pub fn inertia(&self) -> &InertiaMap {
+        &self.inertia
+    }
+
+    /// Returns the rotor R_P from the body's own axes to its principal axes (identity when the
+    /// inertia was given in its principal frame).
+    pub fn principal_rotor(&self) -> &Rotor {
+        &self.principal_rotor
+    }
+
+    /// Returns the attitude R: principal body frame → space.
+    pub fn attitude(&self) -> &Rotor {
+        &self.attitude
+    }
+
+    /// Returns the attitude of the body's own axes: R · R̃_P.
+    pub fn attitude_of_own_axes(&self) -> Rotor {
+        self.attitude.compose(&self.principal_rotor.reverse())
+    }
+
+    /// Returns the body-frame angular momentum L (principal frame).
+    pub fn momentum(&self) -> &Bivector {
+        &self.momentum
+    }
+
+    /// Returns the body-frame angular velocity ω = I⁻¹(L) (principal frame).
+    pub fn omega(&self) -> Bivector {
+        self.inertia.apply_inverse(&self.momentum)
+    }
+
+    /// Returns the space-frame angular momentum L_s = R L R̃ (constant without torque).
+    pub fn space_momentum(&self) -> Bivector {
+        self.attitude.rotate_bivector(&self.momentum)
+    }
+
+    /// Returns the space-frame angular velocity ω_s = R ω R̃.
+    pub fn space_omega(&self) -> Bivector {
+        self.attitude.rotate_bivector(&self.omega())
+    }
+
+    /// Returns the kinetic energy T = ½⟨ω, L⟩.
+    pub fn energy(&self) -> f64 {
+        0.5 * self.omega().inner(&self.momentum)
+    }
+
+    /// Returns mutable access to the state for integrators (attitude, momentum).
+    pub(crate) fn state_mut(&mut self) -> (&InertiaMap, &mut Rotor, &mut Bivector) {
+        (&self.inertia, &mut self.attitude, &mut self.momentum)
+    }
+
+    /// Replaces the state (integrators, exact solutions).
+    pub(crate) fn set_state(&mut self, attitude: Rotor, momentum: Bivector) {
+        self.attitude = attitude;
+        self.momentum = momentum;
+    }
+}

@@ -1,0 +1,67 @@
+//! Integrators of Euler's equations behind one trait.
+//!
+//! | integrator | order | what it conserves |
+//! |---|---|---|
+//! | [`Rkmk4`] | 4 | the rotor stays on Spin(N) (updates are rotor exponentials); energy and Casimirs drift like O(h⁴ t) |
+//! | [`Splitting`] Strang | 2 | every Casimir of L and the space-frame L to round-off; energy error bounded, O(h²), no drift (symplectic) |
+//! | [`Splitting`] Yoshida 4 | 4 | as Strang, energy error O(h⁴) |
+//!
+//! With a torque the splitting integrators use a kick–drift–kick composition (the kick is
+//! the torque's flow with the attitude frozen, taken by the midpoint rule), which keeps the
+//! order for torques that do not depend on L; the Casimirs are then no longer invariants of
+//! the motion.
+
+mod rkmk;
+mod splitting;
+
+pub use rkmk::Rkmk4;
+pub use splitting::{Splitting, SplittingOrder};
+
+use super::{RigidBody, Torque};
+use thiserror::Error;
+
+/// An integrator of the rigid-body equations: advances a [`RigidBody`] by one step.
+pub trait Integrator {
+    /// Returns the integrator's order of accuracy.
+    fn order(&self) -> u32;
+
+    /// Returns a short name ("rk4", "strang", …).
+    fn name(&self) -> &'static str;
+
+    /// Advances `body` from time `t` by a step `h` under `torque`.
+    ///
+    /// # Errors
+    /// [`DynamicsError`] when the step cannot be taken (unsupported inertia, non-finite state).
+    fn step(
+        &mut self,
+        body: &mut RigidBody,
+        t: f64,
+        h: f64,
+        torque: &dyn Torque,
+    ) -> Result<(), DynamicsError>;
+}
+
+/// Why a step could not be taken.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum DynamicsError {
+    /// The integrator needs an inertia map that is diagonal on the basis planes.
+    ///
+    /// How to fix: build the body from a physical inertia (it is moved to its principal
+    /// frame), or use [`Rkmk4`], which takes any map.
+    #[error(
+        "{integrator} needs an inertia diagonal on the basis planes (a general SPD map is not)"
+    )]
+    UnsupportedInertia {
+        /// The integrator.
+        integrator: &'static str,
+    },
+    /// The state became NaN or infinite.
+    ///
+    /// How to fix: reduce the step; check the torque for singularities.
+    #[error("the state is no longer finite at t = {time}")]
+    NonFinite {
+        /// The time of the step that failed.
+        time: f64,
+    },
+}

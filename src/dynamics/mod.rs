@@ -1,0 +1,26 @@
+//! Euler's equations as rotor/bivector flows in any dimension.
+//!
+//! The state of a rigid body is its attitude rotor R (body → space) and its body-frame angular
+//! momentum L, a bivector. With ω = I⁻¹(L) the body-frame angular velocity and τ the torque
+//! bivector in the body frame (DESIGN.md, "Euler's equations"):
+//!
+//! dL/dt = ω × L + τ,    dR/dt = −½ R ω,
+//!
+//! where × is the commutator product. For N = 3 this is exactly I₁Ω̇₁ = (I₂ − I₃)Ω₂Ω₃ and its
+//! cyclic permutations; the paper derives the component forms for N = 3, 4, 5 (its eqs. 43–46,
+//! 52–58, 68), which the book maps onto this one line.
+//!
+//! - [`RigidBody`]: the state, kept in the principal frame of the inertia.
+//! - [`Torque`]: external torques; closures implement it, and [`torques`] has the built-ins.
+//! - [`integrate`]: the integrators behind the [`Integrator`] trait.
+//! - [`invariants`]: energy, Casimirs, space-frame momentum, rotor drift.
+
+mod body;
+pub mod integrate;
+pub mod invariants;
+mod torque;
+
+pub use body::RigidBody;
+pub use integrate::{Integrator, Rkmk4, Splitting, SplittingOrder};
+pub use invariants::Invariants;
+pub use torque::{Torque, TorqueInput, torques};

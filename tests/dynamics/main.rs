@@ -1,0 +1,43 @@
+//! Tests of the dynamics layer: Euler's equations as rotor/bivector flows.
+
+mod conservation;
+mod equations;
+mod orders;
+mod torqued;
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rotorflow::dynamics::{Integrator, RigidBody, Torque};
+use rotorflow::prelude::*;
+
+pub fn rng(seed: u64) -> ChaCha8Rng {
+    ChaCha8Rng::seed_from_u64(seed)
+}
+
+pub fn random_bivector(r: &mut impl Rng, n: usize, scale: f64) -> Bivector {
+    let c: Vec<f64> = (0..n * (n - 1) / 2)
+        .map(|_| scale * r.gen_range(-1.0..1.0))
+        .collect();
+    Bivector::from_components(n, &c).unwrap()
+}
+
+/// A random free body in its principal frame: moments in [0.3, 2], random L and attitude.
+pub fn random_body(r: &mut impl Rng, n: usize) -> RigidBody {
+    let moments: Vec<f64> = (0..n).map(|_| r.gen_range(0.3..2.0)).collect();
+    let inertia = InertiaMap::from_principal_moments(&moments).unwrap();
+    let attitude = Rotor::from_rotation_bivector(&random_bivector(r, n, 1.0));
+    RigidBody::from_body_momentum(inertia, attitude, &random_bivector(r, n, 1.0)).unwrap()
+}
+
+/// Integrates `steps` steps of size `h` from t = 0.
+pub fn run(
+    body: &mut RigidBody,
+    integrator: &mut dyn Integrator,
+    torque: &dyn Torque,
+    h: f64,
+    steps: usize,
+) {
+    for k in 0..steps {
+        integrator.step(body, k as f64 * h, h, torque).unwrap();
+    }
+}
