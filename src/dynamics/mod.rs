@@ -14,13 +14,21 @@
 //! - [`Torque`]: external torques; closures implement it, and [`torques`] has the built-ins.
 //! - [`integrate`]: the integrators behind the [`Integrator`] trait.
 //! - [`invariants`]: energy, Casimirs, space-frame momentum, rotor drift.
+//! - [`trajectory`]: sampled runs ([`simulate`]) with a drift summary.
+//! - [`kinematics`]: point velocities, Coriolis and centrifugal accelerations (eqs. 18–21).
+//! - [`stability`]: growth rates of perturbed steady rotations.
 
 mod body;
 pub mod integrate;
 pub mod invariants;
+pub mod kinematics;
+pub mod stability;
 mod torque;
+pub mod trajectory;
 
 pub use body::RigidBody;
+pub use integrate::DynamicsError;
 pub use integrate::{Integrator, Rkmk4, Splitting, SplittingOrder};
-pub use invariants::Invariants;
+pub use invariants::{Drift, Invariants};
 pub use torque::{Torque, TorqueInput, torques};
+pub use trajectory::{Sample, Trajectory, simulate};

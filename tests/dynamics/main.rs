@@ -2,6 +2,7 @@
 
 mod conservation;
 mod equations;
+mod motion;
 mod orders;
 mod torqued;
 

@@ -56,6 +56,14 @@ pub enum DynamicsError {
         /// The integrator.
         integrator: &'static str,
     },
+    /// The requested sampling makes no sense.
+    ///
+    /// How to fix: a positive finite step, and sample times that increase from 0.
+    #[error("invalid sampling: {reason}")]
+    InvalidSampling {
+        /// What is wrong.
+        reason: &'static str,
+    },
     /// The state became NaN or infinite.
     ///
     /// How to fix: reduce the step; check the torque for singularities.

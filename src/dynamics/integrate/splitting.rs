@@ -71,8 +71,18 @@ fn strang_drift(body: &mut RigidBody, moments: &[f64], h: f64) {
     }
     let (i, j) = pairs(n).last().expect("k ≥ 1 planes");
     plane_flow(body, k - 1, i, j, moments[k - 1], h);
-    let all: Vec<(usize, usize)> = pairs(n).take(k - 1).collect();
-    for (p, &(i, j)) in all.iter().enumerate().rev() {
+    // The same planes backwards, without collecting the pairs (no allocation per step).
+    let (mut i, mut j) = (0, 1);
+    let mut planes_back: smallvec::SmallVec<[(usize, usize); 28]> = smallvec::SmallVec::new();
+    for _ in 0..k - 1 {
+        planes_back.push((i, j));
+        j += 1;
+        if j == n {
+            i += 1;
+            j = i + 1;
+        }
+    }
+    for (p, &(i, j)) in planes_back.iter().enumerate().rev() {
         plane_flow(body, p, i, j, moments[p], 0.5 * h);
     }
 }
