@@ -124,3 +124,45 @@ fn rotating_the_initial_attitude_rotates_the_trajectory() {
     assert!(d < 1e-13, "{d:e}");
     assert!((&b.space_momentum() - &q.rotate_bivector(&a.space_momentum())).max_abs() < 1e-12);
 }
+
+#[test]
+fn implicit_midpoint_conserves_quadratic_invariants_and_reports_its_solve() {
+    use rotorflow::dynamics::{DynamicsError, Integrator, Midpoint};
+    let mut r = rng(405);
+    for n in [3, 4, 5] {
+        let mut body = random_body(&mut r, n);
+        let start = Invariants::of(&body);
+        let mut m = Midpoint::default();
+        run(&mut body, &mut m, &Free, 0.01, 10_000);
+        let now = Invariants::of(&body);
+        let d = now.drift_from(&start);
+        assert!(d.energy < 1e-13, "n={n}: energy drift {:e}", d.energy);
+        // |L|² (the first Casimir) is quadratic: conserved
+        assert!((now.casimirs[0] - start.casimirs[0]).abs() < 1e-13 * start.casimirs[0]);
+        if n == 4 {
+            // in 4D both Casimirs are quadratic (|L|² and Pf)
+            assert!(d.casimirs < 1e-13, "n=4: Casimir drift {:e}", d.casimirs);
+        }
+        assert!(body.attitude().unit_error() < 1e-13);
+        assert!(
+            m.mean_iterations() > 1.0 && m.mean_iterations() < 30.0,
+            "{}",
+            m.mean_iterations()
+        );
+        assert!(m.last_iterations() <= m.max_iterations());
+    }
+    // the solve is bounded: with 3 iterations allowed where ~30 are needed, the step fails
+    // clearly after exactly 3 and leaves the body untouched
+    let mut body = random_body(&mut r, 4);
+    let before = body.clone();
+    let mut m = Midpoint::with_tolerance(1e-15, 3);
+    let err = m.step(&mut body, 0.0, 0.5, &Free).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            DynamicsError::SolverDidNotConverge { iterations: 3, .. }
+        ),
+        "{err}"
+    );
+    assert_eq!(body, before);
+}

@@ -68,3 +68,12 @@ fn yoshida_is_fourth_order() {
     let p = measured_order(&mut Splitting::yoshida4(), [0.04, 0.02, 0.01]);
     assert!((p - 4.0).abs() < 0.15, "measured order {p}");
 }
+
+#[test]
+fn implicit_midpoint_is_second_order() {
+    let p = measured_order(
+        &mut rotorflow::dynamics::Midpoint::default(),
+        [0.02, 0.01, 0.005],
+    );
+    assert!((p - 2.0).abs() < 0.1, "measured order {p}");
+}

@@ -5,15 +5,18 @@
 //! | [`Rkmk4`] | 4 | the rotor stays on Spin(N) (updates are rotor exponentials); energy and Casimirs drift like O(h⁴ t) |
 //! | [`Splitting`] Strang | 2 | every Casimir of L and the space-frame L to round-off; energy error bounded, O(h²), no drift (symplectic) |
 //! | [`Splitting`] Yoshida 4 | 4 | as Strang, energy error O(h⁴) |
+//! | [`Midpoint`] | 2 | energy and ‖L‖² exactly (solver tolerance); all Casimirs in N ≤ 4; implicit, bounded fixed-point solve |
 //!
 //! With a torque the splitting integrators use a kick–drift–kick composition (the kick is
 //! the torque's flow with the attitude frozen, taken by the midpoint rule), which keeps the
 //! order for torques that do not depend on L; the Casimirs are then no longer invariants of
 //! the motion.
 
+mod midpoint;
 mod rkmk;
 mod splitting;
 
+pub use midpoint::Midpoint;
 pub use rkmk::Rkmk4;
 pub use splitting::{Splitting, SplittingOrder};
 
@@ -63,6 +66,20 @@ pub enum DynamicsError {
     InvalidSampling {
         /// What is wrong.
         reason: &'static str,
+    },
+    /// The implicit solve did not converge within its iteration bound.
+    ///
+    /// How to fix: reduce the step (fixed-point iteration needs h·|ω| ≲ 1) or raise the bound.
+    #[error(
+        "implicit solve did not converge at t = {time}: {iterations} iterations, residual {residual:e}"
+    )]
+    SolverDidNotConverge {
+        /// The time of the step.
+        time: f64,
+        /// Iterations taken.
+        iterations: usize,
+        /// The last relative change of the momentum.
+        residual: f64,
     },
     /// The state became NaN or infinite.
     ///
