@@ -239,12 +239,32 @@ fn plane_3d(c: &[f64]) -> Vec<RawPlane> {
     vec![RawPlane { theta, u, v }]
 }
 
+/// Splits the components (12, 13, 14, 23, 24, 34) of a 4D bivector into its self-dual and
+/// anti-self-dual coordinates: B = Σ αₖ fₖ + Σ βₖ gₖ with f = (e12+e34, e13−e24, e14+e23) and
+/// g = (e12−e34, e13+e24, e14−e23), the two so(3) halves of so(4).
+pub(crate) fn self_dual_split(c: &[f64]) -> ([f64; 3], [f64; 3]) {
+    let (b12, b13, b14, b23, b24, b34) = (c[0], c[1], c[2], c[3], c[4], c[5]);
+    (
+        [0.5 * (b12 + b34), 0.5 * (b13 - b24), 0.5 * (b14 + b23)],
+        [0.5 * (b12 - b34), 0.5 * (b13 + b24), 0.5 * (b14 - b23)],
+    )
+}
+
+/// The inverse of [`self_dual_split`]: the components Σ αₖ fₖ + Σ βₖ gₖ.
+pub(crate) fn self_dual_join(a: [f64; 3], b: [f64; 3]) -> [f64; 6] {
+    [
+        a[0] + b[0],
+        a[1] + b[1],
+        a[2] + b[2],
+        a[2] - b[2],
+        -a[1] + b[1],
+        a[0] - b[0],
+    ]
+}
+
 /// The 4D closed form through the self-dual / anti-self-dual split.
 fn planes_4d(c: &[f64]) -> Vec<RawPlane> {
-    let (b12, b13, b14, b23, b24, b34) = (c[0], c[1], c[2], c[3], c[4], c[5]);
-    // B = Σ αₖ fₖ + Σ βₖ gₖ with f = (e12+e34, e13−e24, e14+e23), g = (e12−e34, e13+e24, e14−e23).
-    let alpha = [0.5 * (b12 + b34), 0.5 * (b13 - b24), 0.5 * (b14 + b23)];
-    let beta = [0.5 * (b12 - b34), 0.5 * (b13 + b24), 0.5 * (b14 - b23)];
+    let (alpha, beta) = self_dual_split(c);
     let na = (alpha[0] * alpha[0] + alpha[1] * alpha[1] + alpha[2] * alpha[2]).sqrt();
     let nb = (beta[0] * beta[0] + beta[1] * beta[1] + beta[2] * beta[2]).sqrt();
     // Unit directions; an exactly (anti-)self-dual B leaves the other direction free.
@@ -257,8 +277,8 @@ fn planes_4d(c: &[f64]) -> Vec<RawPlane> {
     };
     let a = unit(alpha, na);
     let g = unit(beta, nb);
-    let f_comp = [a[0], a[1], a[2], a[2], -a[1], a[0]];
-    let g_comp = [g[0], g[1], g[2], -g[2], g[1], -g[0]];
+    let f_comp = self_dual_join(a, [0.0; 3]);
+    let g_comp = self_dual_join([0.0; 3], g);
     let p1: [f64; 6] = std::array::from_fn(|k| 0.5 * (f_comp[k] + g_comp[k]));
     let mut p2: [f64; 6] = std::array::from_fn(|k| 0.5 * (f_comp[k] - g_comp[k]));
     let theta1 = na + nb;

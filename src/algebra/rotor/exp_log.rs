@@ -2,7 +2,7 @@
 
 use super::{Rotor, even_index, even_len};
 use crate::algebra::bivector::pairs;
-use crate::algebra::decompose::{RawPlane, decompose_components};
+use crate::algebra::decompose::{RawPlane, decompose_components, self_dual_join, self_dual_split};
 use crate::algebra::{Bivector, MULTIVECTOR_MAX_DIM, Vector, blade};
 use smallvec::SmallVec;
 
@@ -70,9 +70,7 @@ impl Bivector {
 /// directions (F̂² = −4P₋, Ĝ² = −4P₊, P± = (1 ± I)/2). No decomposition and no division by
 /// a − b.
 fn exp_4d(c: &[f64], r: &mut Rotor) {
-    let (b12, b13, b14, b23, b24, b34) = (c[0], c[1], c[2], c[3], c[4], c[5]);
-    let alpha = [0.5 * (b12 + b34), 0.5 * (b13 - b24), 0.5 * (b14 + b23)];
-    let beta = [0.5 * (b12 - b34), 0.5 * (b13 + b24), 0.5 * (b14 - b23)];
+    let (alpha, beta) = self_dual_split(c);
     let a = crate::algebra::vector::scaled_norm(&alpha);
     let b = crate::algebra::vector::scaled_norm(&beta);
     let (sa, ca) = (2.0 * a).sin_cos();
@@ -82,19 +80,7 @@ fn exp_4d(c: &[f64], r: &mut Rotor) {
     let kb = if b > 0.0 { 0.5 * sb / b } else { 1.0 };
     let f = [ka * alpha[0], ka * alpha[1], ka * alpha[2]];
     let g = [kb * beta[0], kb * beta[1], kb * beta[2]];
-    set_4d(
-        r,
-        0.5 * (ca + cb),
-        [
-            f[0] + g[0],
-            f[1] + g[1],
-            f[2] + g[2],
-            f[2] - g[2],
-            -f[1] + g[1],
-            f[0] - g[0],
-        ],
-        0.5 * (cb - ca),
-    );
+    set_4d(r, 0.5 * (ca + cb), self_dual_join(f, g), 0.5 * (cb - ca));
 }
 
 /// Writes scalar, bivector (lexicographic) and pseudoscalar parts into a 4D rotor.
@@ -224,9 +210,7 @@ impl Rotor {
 /// scalar parts s ∓ p and vector parts the (anti-)self-dual coordinates of b.
 fn log_4d(r: &Rotor) -> Bivector {
     let (s, b, p) = get_4d(r);
-    let (b12, b13, b14, b23, b24, b34) = (b[0], b[1], b[2], b[3], b[4], b[5]);
-    let alpha = [0.5 * (b12 + b34), 0.5 * (b13 - b24), 0.5 * (b14 + b23)];
-    let beta = [0.5 * (b12 - b34), 0.5 * (b13 + b24), 0.5 * (b14 - b23)];
+    let (alpha, beta) = self_dual_split(&b);
     let na = crate::algebra::vector::scaled_norm(&alpha);
     let nb = crate::algebra::vector::scaled_norm(&beta);
     // 2a = atan2(2|α|, s − p), 2b = atan2(2|β|, s + p); then B's halves are a α̂ and b β̂.
@@ -243,17 +227,7 @@ fn log_4d(r: &Rotor) -> Bivector {
     };
     let f = scale(alpha, na, a2);
     let g = scale(beta, nb, b2);
-    Bivector::from_storage(
-        4,
-        SmallVec::from_slice(&[
-            f[0] + g[0],
-            f[1] + g[1],
-            f[2] + g[2],
-            f[2] - g[2],
-            -f[1] + g[1],
-            f[0] - g[0],
-        ]),
-    )
+    Bivector::from_storage(4, SmallVec::from_slice(&self_dual_join(f, g)))
 }
 
 /// General logarithm through the planes of the rotation matrix.

@@ -20,8 +20,31 @@ pub use midpoint::Midpoint;
 pub use rkmk::Rkmk4;
 pub use splitting::{Splitting, SplittingOrder};
 
-use super::{RigidBody, Torque};
+use super::{RigidBody, Torque, TorqueInput};
+use crate::algebra::{Bivector, Rotor};
 use thiserror::Error;
+
+/// Returns (dL/dt, ω) = (ω × L + τ, I⁻¹(L)) at time `t` for the momentum `l` and attitude
+/// `attitude`: the right-hand side every integrator evaluates.
+pub(crate) fn momentum_rate(
+    body: &RigidBody,
+    t: f64,
+    attitude: &Rotor,
+    l: &Bivector,
+    torque: &dyn Torque,
+) -> (Bivector, Bivector) {
+    let omega = body.inertia().apply_inverse(l);
+    let mut dl = omega.commutator(l);
+    if !torque.is_zero() {
+        dl += &torque.torque(&TorqueInput {
+            time: t,
+            attitude,
+            momentum: l,
+            omega: &omega,
+        });
+    }
+    (dl, omega)
+}
 
 /// An integrator of the rigid-body equations: advances a [`RigidBody`] by one step.
 pub trait Integrator {

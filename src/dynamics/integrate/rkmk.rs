@@ -1,8 +1,8 @@
 //! Runge–Kutta–Munthe-Kaas of order 4: classical RK4 on L, the attitude on the group.
 
-use super::{DynamicsError, Integrator};
-use crate::algebra::{Bivector, Rotor};
-use crate::dynamics::{RigidBody, Torque, TorqueInput};
+use super::{DynamicsError, Integrator, momentum_rate as rates};
+use crate::algebra::Bivector;
+use crate::dynamics::{RigidBody, Torque};
 
 /// Classical RK4 on the momentum with the attitude advanced on Spin(N) by rotor exponentials
 /// (Munthe-Kaas, BIT 38 (1998) 92): never plain RK on rotor components, so R stays a rotor.
@@ -12,27 +12,6 @@ use crate::dynamics::{RigidBody, Torque, TorqueInput};
 /// Order 4; energy and Casimirs drift like O(h⁴ t). Works with any inertia map.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Rkmk4;
-
-/// The momentum rate ω × L + τ and ω at one stage.
-fn rates(
-    body: &RigidBody,
-    t: f64,
-    attitude: &Rotor,
-    l: &Bivector,
-    torque: &dyn Torque,
-) -> (Bivector, Bivector) {
-    let omega = body.inertia().apply_inverse(l);
-    let mut dl = omega.commutator(l);
-    if !torque.is_zero() {
-        dl += &torque.torque(&TorqueInput {
-            time: t,
-            attitude,
-            momentum: l,
-            omega: &omega,
-        });
-    }
-    (dl, omega)
-}
 
 /// dexp⁻¹₋Ω(a) to the order RK4 needs.
 fn dexp_inverse(omega_alg: &Bivector, a: &Bivector) -> Bivector {

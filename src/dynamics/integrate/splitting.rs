@@ -1,8 +1,8 @@
 //! Explicit Lie–Poisson splitting: each plane's flow is an exact rotation.
 
-use super::{DynamicsError, Integrator};
+use super::{DynamicsError, Integrator, momentum_rate};
 use crate::algebra::{Bivector, pairs};
-use crate::dynamics::{RigidBody, Torque, TorqueInput};
+use crate::dynamics::{RigidBody, Torque};
 
 /// The composition used by [`Splitting`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -92,14 +92,10 @@ fn kick(body: &mut RigidBody, torque: &dyn Torque, t: f64, h: f64) {
     if torque.is_zero() {
         return;
     }
+    // The torque alone (without ω × L): the rate minus the free part.
     let eval = |body: &RigidBody, l: &Bivector, time: f64| -> Bivector {
-        let omega = body.inertia().apply_inverse(l);
-        torque.torque(&TorqueInput {
-            time,
-            attitude: body.attitude(),
-            momentum: l,
-            omega: &omega,
-        })
+        let (dl, omega) = momentum_rate(body, time, body.attitude(), l, torque);
+        dl - omega.commutator(l)
     };
     let l0 = body.momentum().clone();
     let tau1 = eval(body, &l0, t);
