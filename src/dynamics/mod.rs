@@ -28,7 +28,7 @@ pub mod trajectory;
 
 pub use body::RigidBody;
 pub use integrate::DynamicsError;
-pub use integrate::{Integrator, Midpoint, Rkmk4, Splitting, SplittingOrder};
+pub use integrate::{Dopri5, Integrator, Midpoint, Rkmk4, Splitting, SplittingOrder};
 pub use invariants::{Drift, Invariants};
 pub use torque::{Torque, TorqueInput, torques};
 pub use trajectory::{Sample, Trajectory, simulate};

@@ -77,3 +77,95 @@ fn implicit_midpoint_is_second_order() {
     );
     assert!((p - 2.0).abs() < 0.1, "measured order {p}");
 }
+
+mod adaptive {
+    use crate::{random_body, rng, run};
+    use rotorflow::dynamics::torques::Free;
+    use rotorflow::dynamics::{Dopri5, DynamicsError, Integrator, Splitting};
+
+    fn reference(
+        start: &rotorflow::dynamics::RigidBody,
+        t_end: f64,
+    ) -> rotorflow::dynamics::RigidBody {
+        let mut b = start.clone();
+        let steps = (t_end / 2e-4).round() as usize;
+        run(
+            &mut b,
+            &mut Splitting::yoshida4(),
+            &Free,
+            t_end / steps as f64,
+            steps,
+        );
+        b
+    }
+
+    #[test]
+    fn dopri5_meets_its_tolerance_and_scales_like_order_5() {
+        let mut r = rng(311);
+        let start = random_body(&mut r, 4);
+        let t_end = 10.0;
+        let reference = reference(&start, t_end);
+        let mut counts = Vec::new();
+        for tol in [1e-6, 1e-8, 1e-10] {
+            let mut d = Dopri5::new(tol, tol);
+            let mut b = start.clone();
+            d.step(&mut b, 0.0, t_end, &Free).unwrap();
+            let err = (b.momentum() - reference.momentum()).max_abs();
+            assert!(err < 100.0 * tol, "tol {tol:e}: error {err:e}");
+            assert!(b.attitude().unit_error() < 1e-13);
+            counts.push(d.accepted_steps() as f64);
+        }
+        // N ∝ tol^(−1/5) for order 5: a factor 1e4 in tolerance is 10^(4/5) ≈ 6.3 in steps
+        let ratio = counts[2] / counts[0];
+        assert!(
+            (4.0..10.0).contains(&ratio),
+            "step ratio {ratio} ({counts:?})"
+        );
+    }
+
+    #[test]
+    fn dense_output_matches_landing_exactly() {
+        let mut r = rng(312);
+        let start = random_body(&mut r, 5);
+        let times = [0.0, 0.37, 1.0, 2.5, 4.0];
+        let mut d = Dopri5::new(1e-10, 1e-10);
+        let dense = d.dense_samples(&start, &Free, &times).unwrap();
+        assert_eq!(dense.len(), times.len());
+        let mut b = start.clone();
+        let mut t = 0.0;
+        let mut exact = Dopri5::new(1e-12, 1e-12);
+        for (k, &target) in times.iter().enumerate() {
+            if target > t {
+                exact.step(&mut b, t, target - t, &Free).unwrap();
+                t = target;
+            }
+            let (rot, l) = &dense[k];
+            assert!((l - b.momentum()).max_abs() < 1e-8, "t = {target}");
+            let dr = rot
+                .raw_coefficients()
+                .iter()
+                .zip(b.attitude().raw_coefficients())
+                .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+            assert!(dr < 1e-8, "t = {target}: attitude {dr:e}");
+            assert!(rot.unit_error() < 1e-13);
+        }
+    }
+
+    #[test]
+    fn a_stiff_case_errors_clearly_instead_of_looping() {
+        // ω ~ 1e6 with an inertia ratio of 1e4: the bound on internal steps ends the attempt.
+        let inertia =
+            rotorflow::prelude::InertiaMap::from_principal_moments(&[1e-4, 1.0, 1.0, 1.0]).unwrap();
+        let w = rotorflow::prelude::Bivector::from_components(4, &[1e6, 1e3, 0.0, 1e3, 0.0, 1e6])
+            .unwrap();
+        let mut body = rotorflow::dynamics::RigidBody::from_body_velocity(
+            inertia,
+            rotorflow::prelude::Rotor::identity(4),
+            &w,
+        )
+        .unwrap();
+        let mut d = Dopri5::new(1e-10, 1e-10).with_max_steps(1000);
+        let err = d.step(&mut body, 0.0, 1.0, &Free).unwrap_err();
+        assert!(matches!(err, DynamicsError::TooManySteps { .. }), "{err}");
+    }
+}

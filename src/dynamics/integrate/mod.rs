@@ -5,6 +5,7 @@
 //! | [`Rkmk4`] | 4 | the rotor stays on Spin(N) (updates are rotor exponentials); energy and Casimirs drift like O(h⁴ t) |
 //! | [`Splitting`] Strang | 2 | every Casimir of L and the space-frame L to round-off; energy error bounded, O(h²), no drift (symplectic) |
 //! | [`Splitting`] Yoshida 4 | 4 | as Strang, energy error O(h⁴) |
+//! | [`Dopri5`] | 5 (adaptive, error estimate of order 4) | the rotor stays on Spin(N); invariants drift within the tolerance |
 //! | [`Midpoint`] | 2 | energy and ‖L‖² exactly (solver tolerance); all Casimirs in N ≤ 4; implicit, bounded fixed-point solve |
 //!
 //! With a torque the splitting integrators use a kick–drift–kick composition (the kick is
@@ -12,10 +13,12 @@
 //! order for torques that do not depend on L; the Casimirs are then no longer invariants of
 //! the motion.
 
+mod dopri;
 mod midpoint;
 mod rkmk;
 mod splitting;
 
+pub use dopri::Dopri5;
 pub use midpoint::Midpoint;
 pub use rkmk::Rkmk4;
 pub use splitting::{Splitting, SplittingOrder};
@@ -103,6 +106,26 @@ pub enum DynamicsError {
         iterations: usize,
         /// The last relative change of the momentum.
         residual: f64,
+    },
+    /// The adaptive step size fell below what the arithmetic can resolve.
+    ///
+    /// How to fix: loosen the tolerances (a stiff problem needs an implicit method).
+    #[error("step size {step:e} too small at t = {time}: the tolerance cannot be met")]
+    StepTooSmall {
+        /// The time reached.
+        time: f64,
+        /// The step that would be needed.
+        step: f64,
+    },
+    /// The adaptive integrator needed more internal steps than allowed.
+    ///
+    /// How to fix: raise the bound ([`Dopri5::with_max_steps`]) or loosen the tolerances.
+    #[error("more than {steps} internal steps needed before t = {time}")]
+    TooManySteps {
+        /// The time reached.
+        time: f64,
+        /// The step count.
+        steps: usize,
     },
     /// The state became NaN or infinite.
     ///
