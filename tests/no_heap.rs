@@ -71,3 +71,42 @@ fn rotor_kernels_do_not_allocate_in_3d_and_4d() {
         assert_eq!(count, 0, "N = {n}: {count} heap allocations");
     }
 }
+
+#[test]
+fn integrator_steps_do_not_allocate() {
+    use rotorflow::dynamics::torques::Free;
+    use rotorflow::dynamics::{Integrator, Rkmk4, RigidBody, Splitting};
+    // Strang and Yoshida work in place on the attitude and momentum: no heap for N ≤ 8.
+    // RK4 forms rotor exponentials: heap-free up to N = 4 (inline rotors, closed-form exp).
+    for n in 2..=8 {
+        let moments: Vec<f64> = (0..n).map(|k| 1.0 + k as f64).collect();
+        let l: Vec<f64> = (0..n * (n - 1) / 2).map(|k| (k as f64).cos()).collect();
+        let inertia = InertiaMap::from_principal_moments(&moments).unwrap();
+        let mut body = RigidBody::from_body_momentum(
+            inertia,
+            Rotor::identity(n),
+            &Bivector::from_components(n, &l).unwrap(),
+        )
+        .unwrap();
+        let mut strang = Splitting::strang();
+        let mut yoshida = Splitting::yoshida4();
+        strang.step(&mut body, 0.0, 0.01, &Free).unwrap(); // warm-up (cached tables)
+        let count = allocations_in(|| {
+            for k in 0..100 {
+                strang.step(&mut body, k as f64 * 0.01, 0.01, &Free).unwrap();
+                yoshida.step(&mut body, k as f64 * 0.01, 0.01, &Free).unwrap();
+            }
+        });
+        assert_eq!(count, 0, "splitting, N = {n}: {count} heap allocations in 200 steps");
+        if n <= 4 {
+            let mut rk = Rkmk4;
+            rk.step(&mut body, 0.0, 0.01, &Free).unwrap();
+            let count = allocations_in(|| {
+                for k in 0..100 {
+                    rk.step(&mut body, k as f64 * 0.01, 0.01, &Free).unwrap();
+                }
+            });
+            assert_eq!(count, 0, "rk4, N = {n}: {count} heap allocations in 100 steps");
+        }
+    }
+}
