@@ -15,6 +15,7 @@ fn configure() -> Criterion {
     let quick = std::env::var_os("BENCH_QUICK").is_some();
     Criterion::default()
         .configure_from_args()
+        .without_plots()
         .warm_up_time(Duration::from_millis(if quick { 200 } else { 500 }))
         .measurement_time(Duration::from_millis(if quick { 500 } else { 1500 }))
         .sample_size(if quick { 20 } else { 40 })

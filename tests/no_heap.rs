@@ -75,7 +75,7 @@ fn rotor_kernels_do_not_allocate_in_3d_and_4d() {
 #[test]
 fn integrator_steps_do_not_allocate() {
     use rotorflow::dynamics::torques::Free;
-    use rotorflow::dynamics::{Integrator, Rkmk4, RigidBody, Splitting};
+    use rotorflow::dynamics::{Integrator, RigidBody, Rkmk4, Splitting};
     // Strang and Yoshida work in place on the attitude and momentum: no heap for N ≤ 8.
     // RK4 forms rotor exponentials: heap-free up to N = 4 (inline rotors, closed-form exp).
     for n in 2..=8 {
@@ -93,11 +93,18 @@ fn integrator_steps_do_not_allocate() {
         strang.step(&mut body, 0.0, 0.01, &Free).unwrap(); // warm-up (cached tables)
         let count = allocations_in(|| {
             for k in 0..100 {
-                strang.step(&mut body, k as f64 * 0.01, 0.01, &Free).unwrap();
-                yoshida.step(&mut body, k as f64 * 0.01, 0.01, &Free).unwrap();
+                strang
+                    .step(&mut body, k as f64 * 0.01, 0.01, &Free)
+                    .unwrap();
+                yoshida
+                    .step(&mut body, k as f64 * 0.01, 0.01, &Free)
+                    .unwrap();
             }
         });
-        assert_eq!(count, 0, "splitting, N = {n}: {count} heap allocations in 200 steps");
+        assert_eq!(
+            count, 0,
+            "splitting, N = {n}: {count} heap allocations in 200 steps"
+        );
         if n <= 4 {
             let mut rk = Rkmk4;
             rk.step(&mut body, 0.0, 0.01, &Free).unwrap();
@@ -106,7 +113,10 @@ fn integrator_steps_do_not_allocate() {
                     rk.step(&mut body, k as f64 * 0.01, 0.01, &Free).unwrap();
                 }
             });
-            assert_eq!(count, 0, "rk4, N = {n}: {count} heap allocations in 100 steps");
+            assert_eq!(
+                count, 0,
+                "rk4, N = {n}: {count} heap allocations in 100 steps"
+            );
         }
     }
 }

@@ -198,7 +198,12 @@ impl Dopri5 {
                     }
                 }
             }
-            let r_stage = r0.compose(&a_stage.exp());
+            // Stage attitudes only matter to a torque; free motion skips their exponentials.
+            let r_stage = if torque.is_zero() {
+                r0.clone()
+            } else {
+                r0.compose(&a_stage.exp())
+            };
             let (dl, omega) = momentum_rate(body, t + C[s] * h, &r_stage, &l_stage, torque);
             kl.push(dl);
             ka.push(dexp_inverse5(&a_stage, &(omega * -0.5)));

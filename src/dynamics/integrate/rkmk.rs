@@ -47,19 +47,27 @@ impl Integrator for Rkmk4 {
         let k1 = dexp_inverse(&zero, &(w1 * -0.5));
 
         let a2 = &k1 * (0.5 * h);
-        let r2 = r0.compose(&a2.exp());
+        // Stage attitudes only matter to a torque; free motion skips their exponentials.
+        let stage = |a: &Bivector| {
+            if torque.is_zero() {
+                r0.clone()
+            } else {
+                r0.compose(&a.exp())
+            }
+        };
+        let r2 = stage(&a2);
         let l2 = &l0 + &(&dl1 * (0.5 * h));
         let (dl2, w2) = rates(body, t + 0.5 * h, &r2, &l2, torque);
         let k2 = dexp_inverse(&a2, &(w2 * -0.5));
 
         let a3 = &k2 * (0.5 * h);
-        let r3 = r0.compose(&a3.exp());
+        let r3 = stage(&a3);
         let l3 = &l0 + &(&dl2 * (0.5 * h));
         let (dl3, w3) = rates(body, t + 0.5 * h, &r3, &l3, torque);
         let k3 = dexp_inverse(&a3, &(w3 * -0.5));
 
         let a4 = &k3 * h;
-        let r4 = r0.compose(&a4.exp());
+        let r4 = stage(&a4);
         let l4 = &l0 + &(&dl3 * h);
         let (dl4, w4) = rates(body, t + h, &r4, &l4, torque);
         let k4 = dexp_inverse(&a4, &(w4 * -0.5));
