@@ -166,8 +166,8 @@ impl RigidBody {
     }
 
     /// Returns mutable access to the state for integrators (attitude, momentum).
-    pub(crate) fn state_mut(&mut self) -> (&InertiaMap, &mut Rotor, &mut Bivector) {
-        (&self.inertia, &mut self.attitude, &mut self.momentum)
+    pub(crate) fn state_mut(&mut self) -> (&mut Rotor, &mut Bivector) {
+        (&mut self.attitude, &mut self.momentum)
     }
 
     /// Replaces the state (integrators, exact solutions).

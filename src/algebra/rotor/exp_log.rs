@@ -270,14 +270,6 @@ fn log_general(r: &Rotor) -> Bivector {
     out
 }
 
-impl Rotor {
-    /// Returns the coefficient at storage position `i` (test support).
-    #[doc(hidden)]
-    pub fn raw(&self, i: usize) -> f64 {
-        self.coeffs[i]
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -292,7 +284,7 @@ mod tests {
             multiply_by_simple(&mut g, c, s, &p.u, &p.v);
         }
         for i in 0..8 {
-            assert!((r.raw(i) - g.raw(i)).abs() < 1e-15, "{r:?} vs {g:?}");
+            assert!((r.coeffs[i] - g.coeffs[i]).abs() < 1e-15, "{r:?} vs {g:?}");
         }
     }
 }

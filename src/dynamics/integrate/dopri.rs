@@ -1,6 +1,6 @@
 //! Adaptive Dormand–Prince 5(4) on the group, with dense output.
 
-use super::{DynamicsError, Integrator, momentum_rate};
+use super::{DynamicsError, Integrator, dexp_inverse, momentum_rate};
 use crate::algebra::{Bivector, Rotor};
 use crate::dynamics::{RigidBody, Torque};
 
@@ -206,7 +206,7 @@ impl Dopri5 {
             };
             let (dl, omega) = momentum_rate(body, t + C[s] * h, &r_stage, &l_stage, torque);
             kl.push(dl);
-            ka.push(dexp_inverse5(&a_stage, &(omega * -0.5)));
+            ka.push(dexp_inverse(&a_stage, &(omega * -0.5), 5));
         }
         // Stage 7 was evaluated at the 5th-order solution (FSAL).
         let (a1, l1) = (a_stage, l_stage);
@@ -311,19 +311,6 @@ impl StepResult {
         let a = interp(&zero, &self.a1, &self.ka);
         (r0.compose(&a.exp()), l)
     }
-}
-
-/// dexp⁻¹₋Ω(a) = a + Ω×a + ⅓ Ω×(Ω×a) − (1/45)(Ω×)⁴a: the Bernoulli series (B₄ = −1/30,
-/// [X, Y] = 2 X×Y) through the term order 5 needs.
-fn dexp_inverse5(omega_alg: &Bivector, a: &Bivector) -> Bivector {
-    let c1 = omega_alg.commutator(a);
-    let c2 = omega_alg.commutator(&c1);
-    let c3 = omega_alg.commutator(&c2);
-    let c4 = omega_alg.commutator(&c3);
-    let mut out = a + &c1;
-    out += &(c2 * (1.0 / 3.0));
-    out += &(c4 * (-1.0 / 45.0));
-    out
 }
 
 impl Integrator for Dopri5 {

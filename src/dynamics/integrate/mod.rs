@@ -27,6 +27,22 @@ use super::{RigidBody, Torque, TorqueInput};
 use crate::algebra::{Bivector, Rotor};
 use thiserror::Error;
 
+/// Returns dexp⁻¹₋Ω(a), the Lie-algebra velocity of R = R₀ exp(Ω) under dR/dt = R a: the
+/// Bernoulli series a + Ω×a + ⅓ Ω×(Ω×a) − (1/45)(Ω×)⁴a + … ([X, Y] = 2 X×Y), truncated after
+/// the terms an integrator of the given order needs (B₃ = 0, so order 4 stops after the
+/// second term and order 5 adds the fourth).
+pub(crate) fn dexp_inverse(omega_alg: &Bivector, a: &Bivector, order: u32) -> Bivector {
+    let c1 = omega_alg.commutator(a);
+    let c2 = omega_alg.commutator(&c1);
+    let mut out = a + &c1;
+    out += &(&c2 * (1.0 / 3.0));
+    if order >= 5 {
+        let c4 = omega_alg.commutator(&omega_alg.commutator(&c2));
+        out += &(c4 * (-1.0 / 45.0));
+    }
+    out
+}
+
 /// Returns (dL/dt, ω) = (ω × L + τ, I⁻¹(L)) at time `t` for the momentum `l` and attitude
 /// `attitude`: the right-hand side every integrator evaluates.
 pub(crate) fn momentum_rate(

@@ -1,6 +1,6 @@
 //! Runge–Kutta–Munthe-Kaas of order 4: classical RK4 on L, the attitude on the group.
 
-use super::{DynamicsError, Integrator, momentum_rate as rates};
+use super::{DynamicsError, Integrator, dexp_inverse, momentum_rate as rates};
 use crate::algebra::Bivector;
 use crate::dynamics::{RigidBody, Torque};
 
@@ -12,15 +12,6 @@ use crate::dynamics::{RigidBody, Torque};
 /// Order 4; energy and Casimirs drift like O(h⁴ t). Works with any inertia map.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Rkmk4;
-
-/// dexp⁻¹₋Ω(a) to the order RK4 needs.
-fn dexp_inverse(omega_alg: &Bivector, a: &Bivector) -> Bivector {
-    let c = omega_alg.commutator(a);
-    let cc = omega_alg.commutator(&c);
-    let mut out = a + &c;
-    out += &(cc * (1.0 / 3.0));
-    out
-}
 
 impl Integrator for Rkmk4 {
     fn order(&self) -> u32 {
@@ -44,7 +35,7 @@ impl Integrator for Rkmk4 {
         let zero = Bivector::zero(n);
 
         let (dl1, w1) = rates(body, t, &r0, &l0, torque);
-        let k1 = dexp_inverse(&zero, &(w1 * -0.5));
+        let k1 = dexp_inverse(&zero, &(w1 * -0.5), 4);
 
         let a2 = &k1 * (0.5 * h);
         // Stage attitudes only matter to a torque; free motion skips their exponentials.
@@ -58,19 +49,19 @@ impl Integrator for Rkmk4 {
         let r2 = stage(&a2);
         let l2 = &l0 + &(&dl1 * (0.5 * h));
         let (dl2, w2) = rates(body, t + 0.5 * h, &r2, &l2, torque);
-        let k2 = dexp_inverse(&a2, &(w2 * -0.5));
+        let k2 = dexp_inverse(&a2, &(w2 * -0.5), 4);
 
         let a3 = &k2 * (0.5 * h);
         let r3 = stage(&a3);
         let l3 = &l0 + &(&dl2 * (0.5 * h));
         let (dl3, w3) = rates(body, t + 0.5 * h, &r3, &l3, torque);
-        let k3 = dexp_inverse(&a3, &(w3 * -0.5));
+        let k3 = dexp_inverse(&a3, &(w3 * -0.5), 4);
 
         let a4 = &k3 * h;
         let r4 = stage(&a4);
         let l4 = &l0 + &(&dl3 * h);
         let (dl4, w4) = rates(body, t + h, &r4, &l4, torque);
-        let k4 = dexp_inverse(&a4, &(w4 * -0.5));
+        let k4 = dexp_inverse(&a4, &(w4 * -0.5), 4);
 
         let mut a = k1 + &(k2 * 2.0);
         a += &(k3 * 2.0);

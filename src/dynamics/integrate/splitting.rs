@@ -53,7 +53,7 @@ impl Splitting {
 /// One plane's exact flow for time `tau`.
 #[inline]
 fn plane_flow(body: &mut RigidBody, plane: usize, i: usize, j: usize, moment: f64, tau: f64) {
-    let (_, attitude, momentum) = body.state_mut();
+    let (attitude, momentum) = body.state_mut();
     let theta = tau * momentum.as_slice()[plane] / moment;
     attitude.rotate_in_plane_mut(i, j, theta);
     momentum.rotate_in_plane_mut(i, j, -theta);
@@ -101,7 +101,7 @@ fn kick(body: &mut RigidBody, torque: &dyn Torque, t: f64, h: f64) {
     let tau1 = eval(body, &l0, t);
     let l_mid = &l0 + &(tau1 * (0.5 * h));
     let tau2 = eval(body, &l_mid, t + 0.5 * h);
-    let (_, _, momentum) = body.state_mut();
+    let (_, momentum) = body.state_mut();
     *momentum += &(tau2 * h);
 }
 
