@@ -60,6 +60,8 @@ pub mod blade;
 pub mod decompose;
 mod display;
 mod error;
+mod expm;
+pub(crate) use expm::{expm_skew, norm1 as expm_norm1};
 mod multivector;
 mod nalgebra;
 mod ops;
@@ -69,6 +71,7 @@ mod serde_impls;
 mod signature;
 mod vector;
 
+pub(crate) use bivector::commutator_packed;
 pub use bivector::{Bivector, bivector_len, pair_index, pairs};
 pub use decompose::{Decomposition, SimplePlane};
 pub use error::AlgebraError;

@@ -1,16 +1,17 @@
 //! [`RigidBody`]: attitude rotor and body-frame angular momentum.
 
-use crate::algebra::{Bivector, Rotor};
+use super::Attitude;
+use crate::algebra::Bivector;
 use crate::inertia::{InertiaError, InertiaMap};
 
 /// The state of a rotating rigid body in ℝᴺ: its inertia map (in the principal frame), its
-/// attitude rotor R (body → space, x_space = R x R̃) and its angular momentum L in the body
-/// frame.
+/// attitude R (body → space, x_space = R x R̃; a rotor for N ≤ 8, an SO(N) matrix above, see
+/// [`Attitude`]) and its angular momentum L in the body frame.
 ///
 /// The body frame is always the principal frame of the inertia: a map given in other axes is
 /// diagonalised on construction and the attitude absorbs the principal rotor, so every step
 /// applies I⁻¹ as one multiplication per plane. The body's own axes and the principal axes
-/// differ by [`InertiaMap::principal_rotor`]; [`RigidBody::principal_rotor`] keeps it.
+/// differ by [`InertiaMap::principal_rotor`]; [`RigidBody::principal_frame`] keeps it.
 ///
 /// ```
 /// use rotorflow::prelude::*;
@@ -25,8 +26,8 @@ use crate::inertia::{InertiaError, InertiaMap};
 #[derive(Clone, Debug, PartialEq)]
 pub struct RigidBody {
     inertia: InertiaMap,
-    principal_rotor: Rotor,
-    attitude: Rotor,
+    principal_frame: Attitude,
+    attitude: Attitude,
     momentum: Bivector,
 }
 
@@ -34,14 +35,17 @@ impl RigidBody {
     /// Returns the body with inertia `inertia`, attitude `attitude` (body's own axes → space)
     /// and body-frame angular momentum `momentum` (in the body's own axes).
     ///
+    /// The attitude is a [`Rotor`](crate::algebra::Rotor) or an [`Attitude`] (any N; e.g. [`Attitude::identity`]).
+    ///
     /// # Errors
-    /// [`InertiaError::DimensionMismatch`]; [`InertiaError::Algebra`] if the inertia's
-    /// principal rotor cannot be formed (N above the rotor limit).
+    /// [`InertiaError::DimensionMismatch`]; [`InertiaError::Algebra`] if the principal axes
+    /// do not form a rotation (not expected for a physical map).
     pub fn from_body_momentum(
         inertia: InertiaMap,
-        attitude: Rotor,
+        attitude: impl Into<Attitude>,
         momentum: &Bivector,
     ) -> Result<Self, InertiaError> {
+        let attitude = attitude.into();
         let n = inertia.dim();
         for d in [attitude.dim(), momentum.dim()] {
             if d != n {
@@ -52,12 +56,13 @@ impl RigidBody {
             }
         }
         // Move to the principal frame: R_body = R_P · R_principal-frame.
-        let (inertia, principal_rotor) = if inertia.is_principal() || !inertia.is_physical() {
-            (inertia, Rotor::identity(n))
+        let (inertia, principal_frame) = if inertia.is_principal() || !inertia.is_physical() {
+            (inertia, Attitude::identity(n))
         } else {
-            let rp = inertia
-                .principal_rotor()?
-                .expect("a physical map has a principal rotor");
+            let axes = inertia
+                .principal_axes()
+                .expect("a physical map has principal axes");
+            let rp = Attitude::from_matrix(axes).map_err(InertiaError::from)?;
             let diag = InertiaMap::from_principal_moments(
                 inertia
                     .principal_moments()
@@ -65,11 +70,11 @@ impl RigidBody {
             )?;
             (diag, rp)
         };
-        let momentum = principal_rotor.reverse().rotate_bivector(momentum);
-        let attitude = attitude.compose(&principal_rotor);
+        let momentum = principal_frame.inverse_rotate_bivector(momentum);
+        let attitude = attitude.compose(&principal_frame);
         Ok(RigidBody {
             inertia,
-            principal_rotor,
+            principal_frame,
             attitude,
             momentum,
         })
@@ -81,7 +86,7 @@ impl RigidBody {
     /// As [`RigidBody::from_body_momentum`].
     pub fn from_body_velocity(
         inertia: InertiaMap,
-        attitude: Rotor,
+        attitude: impl Into<Attitude>,
         omega: &Bivector,
     ) -> Result<Self, InertiaError> {
         let l = inertia.try_apply(omega)?;
@@ -94,10 +99,11 @@ impl RigidBody {
     /// As [`RigidBody::from_body_momentum`].
     pub fn from_space_momentum(
         inertia: InertiaMap,
-        attitude: Rotor,
+        attitude: impl Into<Attitude>,
         momentum: &Bivector,
     ) -> Result<Self, InertiaError> {
-        let l = attitude.reverse().rotate_bivector(momentum);
+        let attitude = attitude.into();
+        let l = attitude.inverse_rotate_bivector(momentum);
         Self::from_body_momentum(inertia, attitude, &l)
     }
 
@@ -107,10 +113,11 @@ impl RigidBody {
     /// As [`RigidBody::from_body_momentum`].
     pub fn from_space_velocity(
         inertia: InertiaMap,
-        attitude: Rotor,
+        attitude: impl Into<Attitude>,
         omega: &Bivector,
     ) -> Result<Self, InertiaError> {
-        let w = attitude.reverse().rotate_bivector(omega);
+        let attitude = attitude.into();
+        let w = attitude.inverse_rotate_bivector(omega);
         Self::from_body_velocity(inertia, attitude, &w)
     }
 
@@ -124,20 +131,21 @@ impl RigidBody {
         &self.inertia
     }
 
-    /// Returns the rotor R_P from the body's own axes to its principal axes (identity when the
-    /// inertia was given in its principal frame).
-    pub fn principal_rotor(&self) -> &Rotor {
-        &self.principal_rotor
+    /// Returns the rotation R_P from the body's own axes to its principal axes, R_P eᵢ R̃_P = pᵢ
+    /// (identity when the inertia was given in its principal frame): a vector or bivector in
+    /// the body's own axes is `principal_frame().rotate_*` of its principal-frame components.
+    pub fn principal_frame(&self) -> &Attitude {
+        &self.principal_frame
     }
 
     /// Returns the attitude R: principal body frame → space.
-    pub fn attitude(&self) -> &Rotor {
+    pub fn attitude(&self) -> &Attitude {
         &self.attitude
     }
 
     /// Returns the attitude of the body's own axes: R · R̃_P.
-    pub fn attitude_of_own_axes(&self) -> Rotor {
-        self.attitude.compose(&self.principal_rotor.reverse())
+    pub fn attitude_of_own_axes(&self) -> Attitude {
+        self.attitude.compose(&self.principal_frame.inverse())
     }
 
     /// Returns the body-frame angular momentum L (principal frame).
@@ -166,12 +174,12 @@ impl RigidBody {
     }
 
     /// Returns mutable access to the state for integrators (attitude, momentum).
-    pub(crate) fn state_mut(&mut self) -> (&mut Rotor, &mut Bivector) {
+    pub(crate) fn state_mut(&mut self) -> (&mut Attitude, &mut Bivector) {
         (&mut self.attitude, &mut self.momentum)
     }
 
     /// Replaces the state (integrators, exact solutions).
-    pub(crate) fn set_state(&mut self, attitude: Rotor, momentum: Bivector) {
+    pub(crate) fn set_state(&mut self, attitude: Attitude, momentum: Bivector) {
         self.attitude = attitude;
         self.momentum = momentum;
     }

@@ -17,7 +17,8 @@ pub struct Invariants {
     pub pfaffian: Option<f64>,
     /// L_s = R L R̃.
     pub space_momentum: Bivector,
-    /// max |R R̃ − 1|.
+    /// How far the attitude has left the group ([`crate::dynamics::Attitude::unit_error`]):
+    /// max |R R̃ − 1| for a rotor, max |QᵀQ − 1| for a matrix (N > 8).
     pub rotor_error: f64,
 }
 

@@ -11,6 +11,7 @@
 //! 52–58, 68), which the book maps onto this one line.
 //!
 //! - [`RigidBody`]: the state, kept in the principal frame of the inertia.
+//! - [`Attitude`]: the rotation body → space (a rotor for N ≤ 8, an SO(N) matrix above).
 //! - [`Torque`]: external torques; closures implement it, and [`torques`] has the built-ins.
 //! - [`integrate`]: the integrators behind the [`Integrator`] trait.
 //! - [`invariants`]: energy, Casimirs, space-frame momentum, rotor drift.
@@ -18,6 +19,7 @@
 //! - [`kinematics`]: point velocities, Coriolis and centrifugal accelerations (eqs. 18–21).
 //! - [`stability`]: growth rates of perturbed steady rotations.
 
+mod attitude;
 mod body;
 pub mod integrate;
 pub mod invariants;
@@ -26,6 +28,7 @@ pub mod stability;
 mod torque;
 pub mod trajectory;
 
+pub use attitude::Attitude;
 pub use body::RigidBody;
 pub use integrate::DynamicsError;
 pub use integrate::{Dopri5, Integrator, Midpoint, Rkmk4, Splitting, SplittingOrder};

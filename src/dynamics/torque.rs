@@ -1,6 +1,7 @@
 //! External torques.
 
-use crate::algebra::{Bivector, Rotor, Vector};
+use super::Attitude;
+use crate::algebra::{Bivector, Vector};
 
 /// What a torque may depend on at one instant: time, attitude (principal body frame → space),
 /// body-frame angular momentum and angular velocity.
@@ -9,7 +10,7 @@ pub struct TorqueInput<'a> {
     /// Time t.
     pub time: f64,
     /// Attitude R (body → space).
-    pub attitude: &'a Rotor,
+    pub attitude: &'a Attitude,
     /// Body-frame angular momentum L.
     pub momentum: &'a Bivector,
     /// Body-frame angular velocity ω = I⁻¹(L).
@@ -73,7 +74,7 @@ pub mod torques {
 
     impl Torque for SpaceFrame {
         fn torque(&self, input: &TorqueInput<'_>) -> Bivector {
-            input.attitude.reverse().rotate_bivector(&self.0)
+            input.attitude.inverse_rotate_bivector(&self.0)
         }
     }
 
@@ -92,14 +93,14 @@ pub mod torques {
 
     impl Torque for Gravity {
         fn torque(&self, input: &TorqueInput<'_>) -> Bivector {
-            let f_body = input.attitude.reverse().rotate_vector(&self.weight);
+            let f_body = input.attitude.inverse_rotate_vector(&self.weight);
             self.offset.wedge(&f_body)
         }
     }
 
     impl Gravity {
         /// Returns the potential energy V = −⟨m g, R r R̃⟩ (so that T + V is conserved).
-        pub fn potential_energy(&self, attitude: &Rotor) -> f64 {
+        pub fn potential_energy(&self, attitude: &Attitude) -> f64 {
             -self.weight.dot(&attitude.rotate_vector(&self.offset))
         }
     }

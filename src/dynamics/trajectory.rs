@@ -1,9 +1,10 @@
 //! Sampled trajectories and a driver that produces them.
 
+use super::Attitude;
 use super::integrate::{DynamicsError, Integrator};
 use super::invariants::{Drift, Invariants};
 use super::{RigidBody, Torque};
-use crate::algebra::{Bivector, Rotor};
+use crate::algebra::Bivector;
 
 /// The state of the body at one sampled time.
 #[derive(Clone, Debug, PartialEq)]
@@ -15,7 +16,7 @@ pub struct Sample {
     /// Body-frame angular momentum L (principal frame).
     pub momentum: Bivector,
     /// Attitude R (principal body frame → space).
-    pub attitude: Rotor,
+    pub attitude: Attitude,
     /// Kinetic energy T.
     pub energy: f64,
     /// Casimirs c₁ … c_⌊N/2⌋ of L (coefficients of det(λ − \[L\])).

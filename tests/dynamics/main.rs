@@ -2,13 +2,14 @@
 
 mod conservation;
 mod equations;
+mod large_n;
 mod motion;
 mod orders;
 mod torqued;
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rotorflow::dynamics::{Integrator, RigidBody, Torque};
+use rotorflow::dynamics::{Attitude, Integrator, RigidBody, Torque};
 use rotorflow::prelude::*;
 
 pub fn rng(seed: u64) -> ChaCha8Rng {
@@ -40,5 +41,18 @@ pub fn run(
 ) {
     for k in 0..steps {
         integrator.step(body, k as f64 * h, h, torque).unwrap();
+    }
+}
+
+/// Distance between two attitudes: the largest rotor-coefficient difference when both are
+/// rotors (N ≤ 4, sign included), the largest rotation-matrix entry difference otherwise.
+pub fn attitude_distance(a: &Attitude, b: &Attitude) -> f64 {
+    match (a.as_rotor(), b.as_rotor()) {
+        (Some(x), Some(y)) => x
+            .raw_coefficients()
+            .iter()
+            .zip(y.raw_coefficients())
+            .fold(0.0f64, |m, (p, q)| m.max((p - q).abs())),
+        _ => (a.to_matrix() - b.to_matrix()).amax(),
     }
 }

@@ -1,7 +1,8 @@
 //! Adaptive Dormand–Prince 5(4) on the group, with dense output.
 
 use super::{DynamicsError, Integrator, dexp_inverse, momentum_rate};
-use crate::algebra::{Bivector, Rotor};
+use crate::algebra::Bivector;
+use crate::dynamics::Attitude;
 use crate::dynamics::{RigidBody, Torque};
 
 // Dormand & Prince, J. Comput. Appl. Math. 6 (1980) 19; dense output of Hairer, Nørsett &
@@ -120,7 +121,7 @@ impl Dopri5 {
         body: &RigidBody,
         torque: &dyn Torque,
         times: &[f64],
-    ) -> Result<Vec<(Rotor, Bivector)>, DynamicsError> {
+    ) -> Result<Vec<(Attitude, Bivector)>, DynamicsError> {
         if times.iter().any(|t| !t.is_finite() || *t < 0.0)
             || times.windows(2).any(|w| w[1] <= w[0])
         {
@@ -202,7 +203,7 @@ impl Dopri5 {
             let r_stage = if torque.is_zero() {
                 r0.clone()
             } else {
-                r0.compose(&a_stage.exp())
+                r0.times_exp(&a_stage)
             };
             let (dl, omega) = momentum_rate(body, t + C[s] * h, &r_stage, &l_stage, torque);
             kl.push(dl);
@@ -258,7 +259,7 @@ impl Dopri5 {
         }
         self.accepted += 1;
         self.h_next = Some(h * factor);
-        let attitude = r0.compose(&a1.exp());
+        let attitude = r0.times_exp(&a1);
         Ok(Some(StepResult {
             h,
             l0: l0.clone(),
@@ -280,14 +281,14 @@ struct StepResult {
     a1: Bivector,
     kl: Vec<Bivector>,
     ka: Vec<Bivector>,
-    attitude: Rotor,
+    attitude: Attitude,
     momentum: Bivector,
 }
 
 impl StepResult {
     /// The state at t₀ + θh (θ ∈ [0, 1]) from Hairer's 4th-order continuous extension,
     /// applied to L and to the algebra increment A (A(0) = 0).
-    fn dense(&self, r0: &Rotor, theta: f64) -> (Rotor, Bivector) {
+    fn dense(&self, r0: &Attitude, theta: f64) -> (Attitude, Bivector) {
         let interp = |y0: &Bivector, y1: &Bivector, k: &[Bivector]| -> Bivector {
             let h = self.h;
             let r1 = y0.clone();
@@ -309,7 +310,7 @@ impl StepResult {
         let l = interp(&self.l0, &self.l1, &self.kl);
         let zero = Bivector::zero(self.l0.dim());
         let a = interp(&zero, &self.a1, &self.ka);
-        (r0.compose(&a.exp()), l)
+        (r0.times_exp(&a), l)
     }
 }
 

@@ -94,7 +94,7 @@ impl Integrator for Midpoint {
             let r_mid = if torque.is_zero() {
                 r0.clone()
             } else {
-                r0.compose(&(&omega * (-0.25 * h)).exp())
+                r0.times_exp(&(&omega * (-0.25 * h)))
             };
             momentum_rate(body, t + 0.5 * h, &r_mid, l_mid, torque)
         };
@@ -126,7 +126,11 @@ impl Integrator for Midpoint {
         }
         let mid = (&l0 + &l1) * 0.5;
         let omega_mid = body.inertia().apply_inverse(&mid);
-        let r1 = r0.compose(&(omega_mid * (-0.5 * h)).exp());
+        let r1 = r0.times_exp(&(omega_mid * (-0.5 * h)));
+        // The residual's max ignores NaN, so check the state itself.
+        if !l1.as_slice().iter().all(|x| x.is_finite()) || !r1.is_finite() {
+            return Err(DynamicsError::NonFinite { time: t });
+        }
         body.set_state(r1, l1);
         Ok(())
     }

@@ -23,8 +23,8 @@ pub use midpoint::Midpoint;
 pub use rkmk::Rkmk4;
 pub use splitting::{Splitting, SplittingOrder};
 
-use super::{RigidBody, Torque, TorqueInput};
-use crate::algebra::{Bivector, Rotor};
+use super::{Attitude, RigidBody, Torque, TorqueInput};
+use crate::algebra::Bivector;
 use thiserror::Error;
 
 /// Returns dexp⁻¹₋Ω(a), the Lie-algebra velocity of R = R₀ exp(Ω) under dR/dt = R a: the
@@ -48,7 +48,7 @@ pub(crate) fn dexp_inverse(omega_alg: &Bivector, a: &Bivector, order: u32) -> Bi
 pub(crate) fn momentum_rate(
     body: &RigidBody,
     t: f64,
-    attitude: &Rotor,
+    attitude: &Attitude,
     l: &Bivector,
     torque: &dyn Torque,
 ) -> (Bivector, Bivector) {

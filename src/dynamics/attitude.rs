@@ -1,0 +1,390 @@
+//! [`Attitude`]: the rotation body → space, a unit rotor for small N and an SO(N) matrix
+//! above.
+
+use crate::algebra::{AlgebraError, Bivector, Rotor, Vector, pairs};
+use nalgebra::{DMatrix, DMatrixView, SMatrix};
+use smallvec::SmallVec;
+
+/// Column-major N×N storage; inline (no heap) up to N = 8.
+type MatrixStorage = SmallVec<[f64; 64]>;
+
+/// The attitude of a rigid body: the rotation that takes body coordinates to space
+/// coordinates, x_space = R x R̃ = Q x.
+///
+/// Up to [`Attitude::ROTOR_MAX_DIM`] (N = 4) it is kept as a unit rotor R ∈ Spin(N): there
+/// the rotor exponential has a closed form (quaternion, self-dual split) and a rotor product
+/// is as cheap as a matrix product. Above, a rotor's 2^(N−1) coefficients cost more than
+/// the motion (2^31 at N = 32) and its exponential needs an eigen-decomposition, so the
+/// attitude is kept as its rotation matrix Q ∈ SO(N) (inline storage up to N = 8, so steps
+/// stay off the heap) and updated by the same exponentials in matrix form
+/// ([`Bivector::exp_skew_matrix`]), O(N³) per step, with monomorphised kernels for
+/// N = 5 … 8. The rotor is available on demand ([`Attitude::to_rotor`], N ≤ 16) up to its
+/// sign, which a matrix does not carry (the sign matters to spinors, not to the body).
+///
+/// Both forms are updated only by exact rotations (plane rotations and exponentials of
+/// bivectors), so neither needs renormalising; [`Attitude::unit_error`] monitors the drift.
+///
+/// ```
+/// use rotorflow::prelude::*;
+/// use rotorflow::dynamics::Attitude;
+/// let r = Rotor::from_plane_angle(4, 0, 1, std::f64::consts::FRAC_PI_2)?;
+/// let attitude = Attitude::from(r);
+/// let x = attitude.rotate_vector(&Vector::basis(4, 0));
+/// assert!((x.as_slice()[1] - 1.0).abs() < 1e-15); // e1 turned into e2
+/// let big = Attitude::identity(32); // a rotation matrix: no rotor needed
+/// assert!(big.as_rotor().is_none() && big.unit_error() == 0.0);
+/// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Attitude {
+    repr: Repr,
+}
+
+// The matrix variant is large on purpose: inline storage keeps N ≤ 8 steps off the heap.
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Debug, PartialEq)]
+enum Repr {
+    Rotor(Rotor),
+    /// Q with x_space = Q x_body (column j is the image of eⱼ), column-major.
+    Matrix(MatrixStorage),
+}
+
+impl Attitude {
+    /// The largest N whose attitude is kept as a rotor; above it is an SO(N) matrix.
+    pub const ROTOR_MAX_DIM: usize = 4;
+
+    /// Returns the identity attitude in dimension `n` (body axes = space axes).
+    ///
+    /// # Panics
+    /// If `n` exceeds the bivector limit ([`crate::algebra::MAX_DIM`]).
+    pub fn identity(n: usize) -> Self {
+        assert!(
+            n <= crate::algebra::MAX_DIM,
+            "rotorflow: attitudes exist up to N = {}, got {n}",
+            crate::algebra::MAX_DIM
+        );
+        if n <= Self::ROTOR_MAX_DIM {
+            Rotor::identity(n).into()
+        } else {
+            Self::matrix(&DMatrix::identity(n, n))
+        }
+    }
+
+    /// Returns the attitude of the rotation matrix `q` (x_space = Q x_body).
+    ///
+    /// # Errors
+    /// [`AlgebraError::NotSquare`], [`AlgebraError::NonFinite`],
+    /// [`AlgebraError::DimensionTooLarge`] (N above [`crate::algebra::MAX_DIM`]),
+    /// [`AlgebraError::NotARotation`] if max |QᵀQ − 1| > [`crate::algebra::ROTATION_TOLERANCE`]
+    /// or det Q < 0.
+    pub fn from_matrix(q: &DMatrix<f64>) -> Result<Self, AlgebraError> {
+        let n = q.nrows();
+        if n <= Self::ROTOR_MAX_DIM {
+            return Ok(Rotor::from_matrix(q)?.into());
+        }
+        if q.ncols() != n {
+            return Err(AlgebraError::NotSquare {
+                rows: n,
+                cols: q.ncols(),
+            });
+        }
+        if n > crate::algebra::MAX_DIM {
+            return Err(AlgebraError::DimensionTooLarge {
+                what: "attitude",
+                dim: n,
+                max: crate::algebra::MAX_DIM,
+            });
+        }
+        if q.iter().any(|x| !x.is_finite()) {
+            return Err(AlgebraError::NonFinite { what: "matrix" });
+        }
+        let err = matrix_orthogonality_error(q.as_view());
+        let det = q.determinant();
+        let tolerance = crate::algebra::ROTATION_TOLERANCE;
+        if err > tolerance || det < 0.0 {
+            return Err(AlgebraError::NotARotation {
+                orthogonality_error: err,
+                determinant: det,
+                tolerance,
+            });
+        }
+        Ok(Self::matrix(q))
+    }
+
+    /// Wraps a rotation matrix (unchecked).
+    fn matrix(q: &DMatrix<f64>) -> Self {
+        Attitude {
+            repr: Repr::Matrix(q.as_slice().iter().copied().collect()),
+        }
+    }
+
+    /// The stored matrix as a view.
+    fn view(q: &MatrixStorage) -> DMatrixView<'_, f64> {
+        let n = (q.len() as f64).sqrt().round() as usize;
+        DMatrixView::from_slice(q, n, n)
+    }
+
+    /// Returns the dimension N.
+    pub fn dim(&self) -> usize {
+        match &self.repr {
+            Repr::Rotor(r) => r.dim(),
+            Repr::Matrix(q) => (q.len() as f64).sqrt().round() as usize,
+        }
+    }
+
+    /// Returns the rotor when the attitude is kept as one (N ≤ [`Attitude::ROTOR_MAX_DIM`]).
+    pub fn as_rotor(&self) -> Option<&Rotor> {
+        match &self.repr {
+            Repr::Rotor(r) => Some(r),
+            Repr::Matrix(_) => None,
+        }
+    }
+
+    /// Returns the attitude as a rotor. For N ≤ [`Attitude::ROTOR_MAX_DIM`] this is the rotor
+    /// itself, with the sign it has carried continuously through the motion; above, it is
+    /// the rotor of the matrix with the sign [`Rotor::from_matrix`] chooses (a rotation
+    /// matrix does not determine the sign of its rotor).
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionTooLarge`] above the rotor limit (N = 16);
+    /// [`AlgebraError::NotARotation`] if the matrix drifted beyond the tolerance.
+    pub fn to_rotor(&self) -> Result<Rotor, AlgebraError> {
+        match &self.repr {
+            Repr::Rotor(r) => Ok(r.clone()),
+            Repr::Matrix(q) => Rotor::from_matrix(&Self::view(q).into_owned()),
+        }
+    }
+
+    /// Returns the rotation matrix Q (x_space = Q x_body; column j is the image of eⱼ).
+    pub fn to_matrix(&self) -> DMatrix<f64> {
+        match &self.repr {
+            Repr::Rotor(r) => r.to_matrix(),
+            Repr::Matrix(q) => Self::view(q).into_owned(),
+        }
+    }
+
+    /// Returns the inverse rotation (space → body): R̃, or Qᵀ.
+    pub fn inverse(&self) -> Attitude {
+        match &self.repr {
+            Repr::Rotor(r) => r.reverse().into(),
+            Repr::Matrix(q) => Self::matrix(&Self::view(q).transpose()),
+        }
+    }
+
+    /// Returns the composition `self` ∘ `other` (first `other`, then `self`): R₁R₂, or Q₁Q₂.
+    ///
+    /// # Panics
+    /// If the dimensions differ.
+    #[track_caller]
+    pub fn compose(&self, other: &Attitude) -> Attitude {
+        assert_eq!(self.dim(), other.dim(), "rotorflow: dimension mismatch");
+        match (&self.repr, &other.repr) {
+            (Repr::Rotor(a), Repr::Rotor(b)) => a.compose(b).into(),
+            _ => Self::matrix(&(self.to_matrix() * other.to_matrix())),
+        }
+    }
+
+    /// Returns the space image of the body vector `x`: R x R̃ = Q x.
+    ///
+    /// # Panics
+    /// If the dimensions differ.
+    #[track_caller]
+    pub fn rotate_vector(&self, x: &Vector) -> Vector {
+        match &self.repr {
+            Repr::Rotor(r) => r.rotate_vector(x),
+            Repr::Matrix(q) => {
+                let q = Self::view(q);
+                assert_eq!(q.nrows(), x.dim(), "rotorflow: dimension mismatch");
+                let y = q * nalgebra::DVector::from_column_slice(x.as_slice());
+                Vector::from_components(y.as_slice()).expect("dimension within the vector limit")
+            }
+        }
+    }
+
+    /// Returns the body image of the space vector `x`: R̃ x R = Qᵀ x.
+    ///
+    /// # Panics
+    /// If the dimensions differ.
+    #[track_caller]
+    pub fn inverse_rotate_vector(&self, x: &Vector) -> Vector {
+        match &self.repr {
+            Repr::Rotor(r) => r.reverse().rotate_vector(x),
+            Repr::Matrix(q) => {
+                let q = Self::view(q);
+                assert_eq!(q.nrows(), x.dim(), "rotorflow: dimension mismatch");
+                let y = q.tr_mul(&nalgebra::DVector::from_column_slice(x.as_slice()));
+                Vector::from_components(y.as_slice()).expect("dimension within the vector limit")
+            }
+        }
+    }
+
+    /// Returns the space image of the body bivector `b`: R B R̃, \[·\] = Q \[B\] Qᵀ.
+    ///
+    /// # Panics
+    /// If the dimensions differ.
+    #[track_caller]
+    pub fn rotate_bivector(&self, b: &Bivector) -> Bivector {
+        match &self.repr {
+            Repr::Rotor(r) => r.rotate_bivector(b),
+            Repr::Matrix(q) => conjugate(Self::view(q), b, false),
+        }
+    }
+
+    /// Returns the body image of the space bivector `b`: R̃ B R, \[·\] = Qᵀ \[B\] Q.
+    ///
+    /// # Panics
+    /// If the dimensions differ.
+    #[track_caller]
+    pub fn inverse_rotate_bivector(&self, b: &Bivector) -> Bivector {
+        match &self.repr {
+            Repr::Rotor(r) => r.reverse().rotate_bivector(b),
+            Repr::Matrix(q) => conjugate(Self::view(q), b, true),
+        }
+    }
+
+    /// Returns how far the attitude has left the group: |R R̃ − 1| for a rotor
+    /// ([`Rotor::unit_error`]), max |QᵀQ − 1| for a matrix.
+    pub fn unit_error(&self) -> f64 {
+        match &self.repr {
+            Repr::Rotor(r) => r.unit_error(),
+            Repr::Matrix(q) => matrix_orthogonality_error(Self::view(q)),
+        }
+    }
+
+    /// Returns true if every stored number is finite.
+    pub fn is_finite(&self) -> bool {
+        match &self.repr {
+            Repr::Rotor(r) => r.raw_coefficients().iter().all(|x| x.is_finite()),
+            Repr::Matrix(q) => q.iter().all(|x| x.is_finite()),
+        }
+    }
+
+    /// Returns R e^A for a bivector A (the rotor exponential; in matrix form Q expm(2\[A\])):
+    /// the attitude update of every Lie-group integrator.
+    pub(crate) fn times_exp(&self, a: &Bivector) -> Attitude {
+        let mut out = self.clone();
+        out.times_exp_mut(a);
+        out
+    }
+
+    /// R ← R e^A in place (no heap for N ≤ 8). A non-finite A poisons the attitude with NaN
+    /// (the integrators then report [`crate::dynamics::DynamicsError::NonFinite`]).
+    pub(crate) fn times_exp_mut(&mut self, a: &Bivector) {
+        if !a.as_slice().iter().all(|x| x.is_finite()) {
+            match &mut self.repr {
+                Repr::Rotor(r) => *r = r.clone().scaled(f64::NAN),
+                Repr::Matrix(q) => q.iter_mut().for_each(|x| *x = f64::NAN),
+            }
+            return;
+        }
+        match &mut self.repr {
+            Repr::Rotor(r) => *r = r.compose(&a.exp()),
+            Repr::Matrix(q) => match a.dim() {
+                5 => times_exp_fixed!(5, q, a),
+                6 => times_exp_fixed!(6, q, a),
+                7 => times_exp_fixed!(7, q, a),
+                8 => times_exp_fixed!(8, q, a),
+                n => {
+                    let product = Self::view(q) * (a * 2.0).exp_skew_matrix();
+                    debug_assert_eq!(product.nrows(), n);
+                    q.copy_from_slice(product.as_slice());
+                }
+            },
+        }
+    }
+
+    /// Turns in place by `angle` in the body plane eᵢ∧eⱼ: R ← R exp(−angle/2 eᵢⱼ), or Q ← Q G
+    /// with G the Givens rotation taking eᵢ toward eⱼ. O(2^N) as a rotor, O(N) as a matrix.
+    pub(crate) fn rotate_in_plane_mut(&mut self, i: usize, j: usize, angle: f64) {
+        match &mut self.repr {
+            Repr::Rotor(r) => r.rotate_in_plane_mut(i, j, angle),
+            Repr::Matrix(q) => {
+                let n = (q.len() as f64).sqrt().round() as usize;
+                let (s, c) = angle.sin_cos();
+                // Columns i and j are contiguous in column-major storage.
+                let (lo, hi) = (i.min(j), i.max(j));
+                let sign = if i < j { 1.0 } else { -1.0 };
+                let (head, tail) = q.split_at_mut(hi * n);
+                let col_lo = &mut head[lo * n..(lo + 1) * n];
+                let col_hi = &mut tail[..n];
+                for (a, b) in col_lo.iter_mut().zip(col_hi.iter_mut()) {
+                    let (x, y) = (*a, *b);
+                    *a = c * x + sign * s * y;
+                    *b = c * y - sign * s * x;
+                }
+            }
+        }
+    }
+}
+
+impl From<Rotor> for Attitude {
+    /// Keeps the rotor for N ≤ [`Attitude::ROTOR_MAX_DIM`], its matrix above.
+    fn from(r: Rotor) -> Self {
+        if r.dim() <= Attitude::ROTOR_MAX_DIM {
+            Attitude {
+                repr: Repr::Rotor(r),
+            }
+        } else {
+            Attitude::matrix(&r.to_matrix())
+        }
+    }
+}
+
+impl From<&Rotor> for Attitude {
+    fn from(r: &Rotor) -> Self {
+        r.clone().into()
+    }
+}
+
+/// Q \[B\] Qᵀ (or Qᵀ \[B\] Q when `transposed`) as a bivector.
+fn conjugate(q: DMatrixView<'_, f64>, b: &Bivector, transposed: bool) -> Bivector {
+    let n = q.nrows();
+    assert_eq!(n, b.dim(), "rotorflow: dimension mismatch");
+    let m = if transposed {
+        q.tr_mul(&(b.to_skew_matrix() * q))
+    } else {
+        q * b.to_skew_matrix() * q.transpose()
+    };
+    let mut out = Bivector::zero(n);
+    for (k, (i, j)) in pairs(n).enumerate() {
+        out.as_mut_slice()[k] = 0.5 * (m[(i, j)] - m[(j, i)]);
+    }
+    out
+}
+
+/// max |(QᵀQ − 1)_ij|.
+fn matrix_orthogonality_error(q: DMatrixView<'_, f64>) -> f64 {
+    let g = q.tr_mul(&q);
+    let n = g.nrows();
+    let mut err = 0.0f64;
+    for i in 0..n {
+        for j in 0..n {
+            let target = if i == j { 1.0 } else { 0.0 };
+            err = err.max((g[(i, j)] - target).abs());
+        }
+    }
+    err
+}
+
+/// Q ← Q expm(2\[A\]) for a literal N, on the stack (a macro rather than a const generic:
+/// nalgebra's LU needs the size as a type-level number).
+macro_rules! times_exp_fixed {
+    ($n:literal, $q:expr, $a:expr) => {{
+        let (q, a): (&mut [f64], &Bivector) = ($q, $a);
+        let mut s = SMatrix::<f64, $n, $n>::zeros();
+        for ((i, j), &c) in pairs($n).zip(a.as_slice()) {
+            s[(i, j)] = 2.0 * c;
+            s[(j, i)] = -2.0 * c;
+        }
+        let norm = crate::algebra::expm_norm1(&s);
+        if norm != 0.0 {
+            let e = match crate::algebra::expm_skew(&s, norm) {
+                Some(e) => e,
+                None => SMatrix::from_column_slice((a * 2.0).exp_skew_matrix().as_slice()),
+            };
+            let product = SMatrix::<f64, $n, $n>::from_column_slice(q) * e;
+            q.copy_from_slice(product.as_slice());
+        }
+    }};
+}
+use times_exp_fixed;
