@@ -396,15 +396,14 @@ fn planes_deflation(n: usize, comps: &[f64]) -> Vec<RawPlane> {
             break;
         }
         let s = a.transpose() * &a;
-        let eig = nalgebra::SymmetricEigen::new(s);
-        let top = eig
-            .eigenvalues
+        let (eigenvalues, eigenvectors) = super::symmetric_eigen(s);
+        let top = eigenvalues
             .iter()
             .enumerate()
             .max_by(|x, y| x.1.total_cmp(y.1))
             .map(|(i, _)| i)
             .unwrap_or(0);
-        let w: DVector<f64> = eig.eigenvectors.column(top).into_owned();
+        let w: DVector<f64> = eigenvectors.column(top).into_owned();
         let x = &a * &w;
         let theta = x.norm();
         if theta == 0.0 {

@@ -117,11 +117,10 @@ where
 /// expm(A) = V diag(cos θₖ) Vᵀ + A V diag(sin θₖ/θₖ) Vᵀ (the fallback of [`expm_skew`]; no
 /// eigenvector pairing is needed, since both terms are functions of θₖ²).
 pub(crate) fn expm_spectral(a: &DMatrix<f64>) -> DMatrix<f64> {
-    let eig = nalgebra::SymmetricEigen::new(a.transpose() * a);
-    let v = eig.eigenvectors;
+    let (eigenvalues, v) = super::symmetric_eigen(a.transpose() * a);
     let mut vc = v.clone();
     let mut vs = v.clone();
-    for (k, &lambda) in eig.eigenvalues.iter().enumerate() {
+    for (k, &lambda) in eigenvalues.iter().enumerate() {
         let lambda = lambda.max(0.0);
         let theta = lambda.sqrt();
         let sinc = if theta < 1e-4 {

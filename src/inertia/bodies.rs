@@ -40,7 +40,7 @@
 //! mass of one vertex. The simplex vertex formula is
 //! ∫ x xᵀ dV = Vol/((N+1)(N+2)) [Σ v_k v_kᵀ + (Σ v_k)(Σ v_k)ᵀ].
 
-use nalgebra::{DMatrix, DVector, SymmetricEigen};
+use nalgebra::{DMatrix, DVector};
 use smallvec::SmallVec;
 use thiserror::Error;
 
@@ -533,7 +533,7 @@ fn max_abs(m: &DMatrix<f64>) -> f64 {
 /// Sorted (ascending) eigen-decomposition of a symmetric matrix; eigenvectors as columns.
 fn sorted_eigen(m: &DMatrix<f64>) -> (DVector<f64>, DMatrix<f64>) {
     let n = m.nrows();
-    let eig = SymmetricEigen::new(m.clone());
+    let eig = crate::algebra::RobustEigen::new(m.clone());
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
     let values = DVector::from_iterator(n, order.iter().map(|&k| eig.eigenvalues[k]));

@@ -111,7 +111,7 @@ impl InertiaMap {
         let j = (j + j.transpose()) * 0.5;
         let off_diagonal = (0..n).any(|r| (0..n).any(|c| r != c && j[(r, c)] != 0.0));
         let (moments, axes) = if off_diagonal {
-            let eig = nalgebra::SymmetricEigen::new(j.clone());
+            let eig = crate::algebra::RobustEigen::new(j.clone());
             let mut order: Vec<usize> = (0..n).collect();
             order.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
             let moments: Vec<f64> = order.iter().map(|&k| eig.eigenvalues[k]).collect();
@@ -226,7 +226,7 @@ impl InertiaMap {
         }
         check_symmetric(matrix, "map on bivectors")?;
         let m = (matrix + matrix.transpose()) * 0.5;
-        let eig = nalgebra::SymmetricEigen::new(m.clone());
+        let eig = crate::algebra::RobustEigen::new(m.clone());
         let smallest = eig.eigenvalues.iter().fold(f64::INFINITY, |a, &b| a.min(b));
         let largest = eig.eigenvalues.iter().fold(0.0f64, |a, &b| a.max(b));
         if smallest.is_nan() || smallest <= SINGULAR_PLANE * largest || smallest <= 0.0 {
@@ -383,7 +383,7 @@ impl InertiaMap {
             } => match diagonal {
                 Some(d) => d.clone(),
                 None => {
-                    let mut v: Vec<f64> = nalgebra::SymmetricEigen::new(matrix.clone())
+                    let mut v: Vec<f64> = crate::algebra::RobustEigen::new(matrix.clone())
                         .eigenvalues
                         .iter()
                         .copied()

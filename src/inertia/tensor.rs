@@ -42,7 +42,7 @@
 //! The gyration radii (Poinsot half-axes) are 𝕀_α = μ L_α², L_α = √(𝕀_α/μ) (eq. 27) and the
 //! trace is 𝕀_0 = tr 𝕀 = μ Σ L_α² (eq. 29). They inherit the normalisation of 𝕀.
 
-use nalgebra::{DMatrix, DVector, SymmetricEigen};
+use nalgebra::{DMatrix, DVector};
 use thiserror::Error;
 
 /// Largest dimension for which [`RankFourTensor::levi_civita_contraction`] evaluates the
@@ -569,7 +569,7 @@ impl ContractedInertia {
 
     /// Returns the eigenvalues of 𝕀 in ascending order (eq. 25, frame-independent).
     pub fn principal_values(&self) -> DVector<f64> {
-        let eig = SymmetricEigen::new(self.matrix.clone());
+        let eig = crate::algebra::RobustEigen::new(self.matrix.clone());
         let mut values: Vec<f64> = eig.eigenvalues.iter().copied().collect();
         values.sort_by(f64::total_cmp);
         DVector::from_vec(values)

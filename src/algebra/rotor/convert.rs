@@ -346,11 +346,11 @@ fn rotor_of_matrix_3d(q: &DMatrix<f64>) -> Rotor {
 pub(crate) fn planes_of_rotation(q: &DMatrix<f64>) -> Vec<RawPlane> {
     let n = q.nrows();
     let y = (q + q.transpose()) * 0.5;
-    let eig = nalgebra::SymmetricEigen::new(y);
+    let (eigenvalues, eigenvectors) = crate::algebra::symmetric_eigen(y);
     let mut plus = Vec::new();
     let mut minus = Vec::new();
-    for (k, &lambda) in eig.eigenvalues.iter().enumerate() {
-        let col: DVector<f64> = eig.eigenvectors.column(k).into_owned();
+    for (k, &lambda) in eigenvalues.iter().enumerate() {
+        let col: DVector<f64> = eigenvectors.column(k).into_owned();
         if lambda >= 0.0 {
             plus.push(col);
         } else {

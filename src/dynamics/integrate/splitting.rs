@@ -151,7 +151,9 @@ impl Integrator for Splitting {
                 kdk(body, &moments, torque, t + (w1 + w0) * h, w1 * h);
             }
         }
-        if !body.momentum().as_slice().iter().all(|x| x.is_finite()) {
+        // An angle h L_p / I_p that overflows leaves L finite (N = 2) but not the attitude.
+        if !body.momentum().as_slice().iter().all(|x| x.is_finite()) || !body.attitude().is_finite()
+        {
             return Err(DynamicsError::NonFinite { time: t });
         }
         Ok(())

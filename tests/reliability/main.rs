@@ -1,0 +1,6 @@
+//! Reliability (issue #8): numerically hostile inputs with asserted bounds, adversarial
+//! magnitudes, and long runs (ignored by default; `.ci/run` runs them with a time bound).
+
+mod adversarial;
+mod hostile;
+mod long_runs;
