@@ -444,13 +444,15 @@ impl Bivector {
     /// Returns the matrix exponential expm(\[B\]) of the skew matrix of B: a rotation matrix,
     /// in O(N³) for any N (no rotor, so also above the rotor limit).
     ///
-    /// Scaling and squaring with the diagonal Padé approximant r_m(A) = q_m(A)⁻¹ p_m(A) of the
-    /// degree m ∈ {3, 5, 7, 9, 13} that Higham's bound selects from ‖A‖₁ (Higham, SIAM J.
-    /// Matrix Anal. Appl. 26 (2005) 1179, Algorithm 2.3; backward error below the unit
-    /// round-off). For skew A, q_m(A) = p_m(−A) = p_m(A)ᵀ, so r_m(A) is orthogonal in exact
-    /// arithmetic, and so are its squares: the result is a rotation to round-off, never a
-    /// truncated series that leaves the group. The rotation matrix of the rotor e^A is
-    /// expm(2\[A\]) (DESIGN.md: exp(−θB̂/2) ↔ expm(\[θB̂\]ᵀ)).
+    /// Up to ‖\[B\]‖₁ ≈ 5.37: the diagonal Padé approximant r_m(A) = q_m(A)⁻¹ p_m(A) of the
+    /// degree m ∈ {3, 5, 7, 9, 13} that Higham's bound selects (Higham, SIAM J. Matrix Anal.
+    /// Appl. 26 (2005) 1179; backward error below the unit round-off). For skew A,
+    /// q_m(A) = p_m(−A) = p_m(A)ᵀ, so r_m(A) is orthogonal in exact arithmetic: a rotation
+    /// to round-off, never a truncated series that leaves the group. Larger rotations use
+    /// the spectral form expm(A) = V diag(cos θₖ) Vᵀ + A V diag(sin θₖ/θₖ) Vᵀ from the
+    /// eigen-decomposition −A² = V diag(θₖ²) Vᵀ, which stays orthogonal to ε at any angle
+    /// (scaling and squaring would not). The rotation matrix of the rotor e^A is expm(2\[A\])
+    /// (DESIGN.md: exp(−θB̂/2) ↔ expm(\[θB̂\]ᵀ)).
     ///
     /// ```
     /// use rotorflow::algebra::Bivector;
@@ -470,7 +472,28 @@ impl Bivector {
         if !norm1.is_finite() {
             return DMatrix::from_element(n, n, f64::NAN);
         }
+        if norm1 > super::expm::PADE_MAX_NORM {
+            return self.exp_skew_matrix_by_planes();
+        }
         super::expm::expm_skew(&a, norm1).unwrap_or_else(|| super::expm::expm_spectral(&a))
+    }
+
+    /// expm(\[B\]) plane by plane from the invariant decomposition: on each plane θ u∧v
+    /// (\[B\] v = θ u) a rotation by θ, Q = 1 + Σ (cos θ − 1)(u uᵀ + v vᵀ) + sin θ (u vᵀ − v uᵀ).
+    /// Each angle is reduced on its own, so Q is orthogonal to ε at any angle.
+    fn exp_skew_matrix_by_planes(&self) -> DMatrix<f64> {
+        let n = self.dim;
+        let mut q = DMatrix::identity(n, n);
+        for p in super::decompose::decompose_components(n, &self.coeffs) {
+            let (s, c) = p.theta.sin_cos();
+            for i in 0..n {
+                for j in 0..n {
+                    q[(i, j)] += (c - 1.0) * (p.u[i] * p.u[j] + p.v[i] * p.v[j])
+                        + s * (p.u[i] * p.v[j] - p.v[i] * p.u[j]);
+                }
+            }
+        }
+        q
     }
 
     /// Writes the dense row-major skew matrix into `a` (length N²).

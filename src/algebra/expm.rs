@@ -48,11 +48,20 @@ const THETA: [(usize, f64); 4] = [
 ];
 const THETA_13: f64 = 5.371920351148152;
 
-/// Returns expm(A) for a skew matrix A with 1-norm `norm1` (> 0, finite), by scaling and
-/// squaring with the diagonal Padé approximant r_m = q_m(A)⁻¹ p_m(A) (Higham 2005,
-/// Algorithm 2.3). For skew A, q_m(A) = p_m(A)ᵀ, so r_m(A) and its squares are orthogonal in
-/// exact arithmetic. `None` if the denominator is numerically singular (not expected: its
-/// eigenvalues are q_m(iθ) ≠ 0).
+/// The largest ‖A‖₁ that [`expm_skew`] accepts (θ₁₃).
+pub(crate) const PADE_MAX_NORM: f64 = THETA_13;
+
+/// Returns expm(A) for a skew matrix A with 1-norm `norm1` (> 0, finite) by the diagonal
+/// Padé approximant r_m = q_m(A)⁻¹ p_m(A) of the lowest degree m ∈ {3, 5, 7, 9, 13} whose
+/// backward error is below the unit round-off at that norm (Higham 2005, Algorithm 2.3,
+/// without its scaling and squaring). For skew A, q_m(A) = p_m(A)ᵀ, so r_m(A) is orthogonal
+/// in exact arithmetic and to round-off in practice.
+///
+/// `None` above ‖A‖₁ = θ₁₃ ≈ 5.37: squaring would multiply the round-off (and the departure
+/// from orthogonality) by 2^s ~ ‖A‖, so large rotations go plane by plane through the
+/// invariant decomposition (`Bivector::exp_skew_matrix`), which reduces every plane's angle
+/// on its own and stays orthogonal to ε at any angle. Also `None` if the denominator is
+/// numerically singular (not expected).
 ///
 /// Generic over the size so that fixed sizes (N ≤ 8) run on the stack.
 pub(crate) fn expm_skew<D: Dim + DimMin<D, Output = D>>(
@@ -62,10 +71,13 @@ pub(crate) fn expm_skew<D: Dim + DimMin<D, Output = D>>(
 where
     DefaultAllocator: Allocator<D, D> + Allocator<D>,
 {
+    if norm1 > THETA_13 {
+        return None;
+    }
     let (rows, cols) = a.shape_generic();
     let id = OMatrix::<f64, D, D>::identity_generic(rows, cols);
     let a2 = a * a;
-    let (u, v, squarings) = if let Some(&(m, _)) = THETA.iter().find(|(_, t)| norm1 <= *t) {
+    let (u, v) = if let Some(&(m, _)) = THETA.iter().find(|(_, t)| norm1 <= *t) {
         let b: &[f64] = match m {
             3 => &PADE_3,
             5 => &PADE_5,
@@ -81,26 +93,18 @@ where
             v += &power * b[k];
             u_inner += &power * b[k + 1];
         }
-        (a * u_inner, v, 0)
+        (a * u_inner, v)
     } else {
-        let s = (norm1 / THETA_13).log2().ceil().max(0.0) as i32;
-        let scale = 2f64.powi(-s);
-        let a1 = a * scale;
-        let a2 = &a2 * (scale * scale);
         let a4 = &a2 * &a2;
         let a6 = &a4 * &a2;
         let b = &PADE_13;
         let u_high = &a6 * (&a6 * b[13] + &a4 * b[11] + &a2 * b[9]);
-        let u = &a1 * (u_high + &a6 * b[7] + &a4 * b[5] + &a2 * b[3] + &id * b[1]);
+        let u = a * (u_high + &a6 * b[7] + &a4 * b[5] + &a2 * b[3] + &id * b[1]);
         let v_high = &a6 * (&a6 * b[12] + &a4 * b[10] + &a2 * b[8]);
         let v = v_high + &a6 * b[6] + &a4 * b[4] + &a2 * b[2] + &id * b[0];
-        (u, v, s)
+        (u, v)
     };
-    let mut r = (&v - &u).lu().solve(&(&v + &u))?;
-    for _ in 0..squarings {
-        r = &r * &r;
-    }
-    Some(r)
+    (&v - &u).lu().solve(&(&v + &u))
 }
 
 /// Returns the 1-norm (largest column sum of |aᵢⱼ|).
@@ -114,8 +118,10 @@ where
 }
 
 /// expm(A) for skew A from the eigen-decomposition of S = −A² = AᵀA = V diag(θₖ²) Vᵀ:
-/// expm(A) = V diag(cos θₖ) Vᵀ + A V diag(sin θₖ/θₖ) Vᵀ (the fallback of [`expm_skew`]; no
-/// eigenvector pairing is needed, since both terms are functions of θₖ²).
+/// expm(A) = V diag(cos θₖ) Vᵀ + A V diag(sin θₖ/θₖ) Vᵀ (the fallback if the Padé
+/// denominator is singular; no eigenvector pairing is needed, since both terms are functions
+/// of θₖ²). Orthogonal to ε·max(1, θ): a pair of equal angles comes back as two eigenvalues
+/// θ² that differ by ε‖A‖², which is why large rotations go plane by plane instead.
 pub(crate) fn expm_spectral(a: &DMatrix<f64>) -> DMatrix<f64> {
     let (eigenvalues, v) = super::symmetric_eigen(a.transpose() * a);
     let mut vc = v.clone();
@@ -139,10 +145,11 @@ pub(crate) fn expm_spectral(a: &DMatrix<f64>) -> DMatrix<f64> {
 mod tests {
     use super::*;
 
-    /// The Padé path and the spectral fallback agree across every degree and with scaling.
+    /// The Padé path and the spectral form agree for every degree; beyond θ₁₃ the Padé path
+    /// declines.
     #[test]
     fn pade_matches_spectral_for_every_degree() {
-        for scale in [1e-3, 0.1, 0.5, 1.5, 4.0, 30.0] {
+        let skew = |scale: f64| {
             let n = 7;
             let mut a = DMatrix::<f64>::zeros(n, n);
             for i in 0..n {
@@ -152,15 +159,19 @@ mod tests {
                     a[(j, i)] = -x;
                 }
             }
-            let p = expm_skew(&a, norm1(&a)).unwrap();
+            a
+        };
+        let id = DMatrix::<f64>::identity(7, 7);
+        for scale in [1e-3, 0.01, 0.1, 0.5, 1.0, 2.0] {
+            let a = skew(scale);
+            let p = expm_skew(&a, norm1(&a)).expect("within θ₁₃");
             let s = expm_spectral(&a);
             let err = (&p - &s).amax();
-            assert!(err < 1e-13 * scale.max(1.0), "scale {scale}: {err:e}");
-            let orth = (p.transpose() * &p - DMatrix::<f64>::identity(n, n)).amax();
-            assert!(
-                orth < 1e-14 * scale.max(1.0),
-                "scale {scale}: |QᵀQ − 1| = {orth:e}"
-            );
+            assert!(err < 1e-14, "scale {scale}: {err:e}");
+            let orth = (p.transpose() * &p - &id).amax();
+            assert!(orth < 1e-14, "scale {scale}: |QᵀQ − 1| = {orth:e}");
         }
+        let big = skew(1e6);
+        assert!(expm_skew(&big, norm1(&big)).is_none());
     }
 }

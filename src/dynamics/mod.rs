@@ -21,6 +21,7 @@
 
 mod attitude;
 mod body;
+pub mod exact;
 pub mod integrate;
 pub mod invariants;
 pub mod kinematics;

@@ -224,3 +224,27 @@ fn overflowing_state_is_reported_not_propagated() {
         }
     }
 }
+
+/// Large rotations (angles up to 1e6): `exp_skew_matrix` goes plane by plane and stays
+/// orthogonal to round-off, and agrees with the rotor exponential.
+#[test]
+fn exp_skew_matrix_of_large_rotations_stays_orthogonal() {
+    let mut r = rng(96);
+    for n in [4usize, 7, 12] {
+        for scale in [10.0, 1e3, 1e6] {
+            let b = random_bivector(&mut r, n, scale);
+            let q = b.exp_skew_matrix();
+            let id = nalgebra::DMatrix::<f64>::identity(n, n);
+            let orth = (q.transpose() * &q - id).amax();
+            assert!(
+                orth < 1e-14,
+                "N = {n}, scale {scale:e}: |QᵀQ − 1| = {orth:e}"
+            );
+            if n <= 8 {
+                let expected = (&b * 0.5).exp().to_matrix();
+                let err = (&q - &expected).amax();
+                assert!(err < 1e-14 * scale, "N = {n}, scale {scale:e}: {err:e}");
+            }
+        }
+    }
+}

@@ -1,0 +1,68 @@
+//! Criterion benches of the closed-form free motions (issue #5): one evaluation of L(t) and
+//! of R(t) at a time, beside one Rkmk4 step of the same body. `BENCH_QUICK=1` shortens the
+//! run. Bench names start with `two_moments/` (the 3D top's benches live beside them).
+
+use criterion::{BenchmarkId, Criterion, black_box, criterion_group, criterion_main};
+use rotorflow::dynamics::exact::two_moments::TwoMomentSolution;
+use rotorflow::dynamics::torques::Free;
+use rotorflow::dynamics::{Integrator, RigidBody, Rkmk4};
+use rotorflow::prelude::*;
+use std::time::Duration;
+
+fn configure() -> Criterion {
+    let quick = std::env::var_os("BENCH_QUICK").is_some();
+    Criterion::default()
+        .configure_from_args()
+        .without_plots()
+        .warm_up_time(Duration::from_millis(if quick { 200 } else { 500 }))
+        .measurement_time(Duration::from_millis(if quick { 500 } else { 1500 }))
+        .sample_size(if quick { 20 } else { 40 })
+}
+
+/// A body with two principal values: 1 on the first ⌈N/2⌉ axes, 2.5 on the others.
+fn body(n: usize) -> RigidBody {
+    let j: Vec<f64> = (0..n)
+        .map(|i| if i < n.div_ceil(2) { 1.0 } else { 2.5 })
+        .collect();
+    let l: Vec<f64> = (0..n * (n - 1) / 2)
+        .map(|k| (0.7 * k as f64 + 0.3).sin())
+        .collect();
+    RigidBody::from_body_momentum(
+        InertiaMap::from_principal_moments(&j).unwrap(),
+        Rotor::from_rotation_bivector(&Bivector::from_components(n, &l).unwrap()),
+        &Bivector::from_components(n, &l).unwrap(),
+    )
+    .unwrap()
+}
+
+fn bench_two_moments(c: &mut Criterion) {
+    for n in [4usize, 5] {
+        let mut g = c.benchmark_group(format!("two_moments/N={n}"));
+        let start = body(n);
+        let exact = TwoMomentSolution::new(&start).unwrap();
+        let t = 12.345;
+        g.bench_function(BenchmarkId::new("momentum_at", n), |b| {
+            b.iter(|| exact.momentum_at(black_box(t)).unwrap())
+        });
+        g.bench_function(BenchmarkId::new("attitude_at", n), |b| {
+            b.iter(|| exact.attitude_at(black_box(t)).unwrap())
+        });
+        g.bench_function(BenchmarkId::new("new", n), |b| {
+            b.iter(|| TwoMomentSolution::new(black_box(&start)).unwrap())
+        });
+        let mut body = start.clone();
+        let mut rk = Rkmk4;
+        g.bench_function(BenchmarkId::new("rkmk4_step", n), |b| {
+            b.iter(|| rk.step(black_box(&mut body), 0.0, 0.01, &Free).unwrap())
+        });
+        g.finish();
+    }
+}
+
+fn benches(_: &mut Criterion) {
+    let mut c = configure();
+    bench_two_moments(&mut c);
+}
+
+criterion_group!(exact, benches);
+criterion_main!(exact);

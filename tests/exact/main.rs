@@ -1,0 +1,89 @@
+//! Tests of the closed-form free motions (issue #5): bodies with at most two distinct
+//! principal moments in any N, steady rotations, and the paper's §7 formulas.
+
+mod dispatch;
+mod paper_section7;
+mod top3d;
+mod two_moments;
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rotorflow::dynamics::torques::Free;
+use rotorflow::dynamics::{Attitude, Dopri5, Integrator, RigidBody};
+use rotorflow::prelude::*;
+
+pub fn rng(seed: u64) -> ChaCha8Rng {
+    ChaCha8Rng::seed_from_u64(seed)
+}
+
+pub fn random_bivector(r: &mut impl Rng, n: usize, scale: f64) -> Bivector {
+    let c: Vec<f64> = (0..n * (n - 1) / 2)
+        .map(|_| scale * r.gen_range(-1.0..1.0))
+        .collect();
+    Bivector::from_components(n, &c).unwrap()
+}
+
+pub fn random_rotor(r: &mut impl Rng, n: usize) -> Rotor {
+    Rotor::from_rotation_bivector(&random_bivector(r, n, 2.0))
+}
+
+/// The body with principal values `j`, attitude `attitude` and body angular velocity ω.
+pub fn body_with_omega(j: &[f64], attitude: Rotor, omega: &Bivector) -> RigidBody {
+    let inertia = InertiaMap::from_principal_moments(j).unwrap();
+    RigidBody::from_body_velocity(inertia, attitude, omega).unwrap()
+}
+
+/// The tolerance of the Dopri5 reference. At 1e-13 its own rotor error over 100 periods is
+/// 1e-11 … 1e-9 depending on the body (it scales 10× per decade of tolerance:
+/// `two_moments::dopri5_difference_scales_with_its_tolerance`), so the references use 1e-14,
+/// where it is 1e-12 … 1e-10 and round-off has not yet taken over.
+pub const REFERENCE_TOLERANCE: f64 = 1e-14;
+
+/// Anything that is an attitude: a rotor or an [`Attitude`].
+pub trait AsAttitude {
+    /// Returns it as an [`Attitude`].
+    fn as_attitude(&self) -> Attitude;
+}
+
+impl AsAttitude for Rotor {
+    fn as_attitude(&self) -> Attitude {
+        self.into()
+    }
+}
+
+impl AsAttitude for Attitude {
+    fn as_attitude(&self) -> Attitude {
+        self.clone()
+    }
+}
+
+/// Max |Δ| over the rotor coefficients when both are rotors (N ≤ 4, sign included), over
+/// the rotation-matrix entries otherwise.
+pub fn rotor_distance(a: &impl AsAttitude, b: &impl AsAttitude) -> f64 {
+    let (a, b) = (a.as_attitude(), b.as_attitude());
+    match (a.as_rotor(), b.as_rotor()) {
+        (Some(x), Some(y)) => x
+            .raw_coefficients()
+            .iter()
+            .zip(y.raw_coefficients())
+            .fold(0.0f64, |m, (p, q)| m.max((p - q).abs())),
+        _ => (a.to_matrix() - b.to_matrix()).amax(),
+    }
+}
+
+/// Integrates with Dopri5 (rtol = atol = [`REFERENCE_TOLERANCE`]), stepping exactly to each time, and returns
+/// the states (attitude, momentum).
+pub fn dopri_reference(body: &RigidBody, times: &[f64]) -> Vec<(Attitude, Bivector)> {
+    let mut d = Dopri5::new(REFERENCE_TOLERANCE, REFERENCE_TOLERANCE);
+    let mut b = body.clone();
+    let mut t = 0.0;
+    let mut out = Vec::with_capacity(times.len());
+    for &target in times {
+        if target > t {
+            d.step(&mut b, t, target - t, &Free).unwrap();
+            t = target;
+        }
+        out.push((b.attitude().clone(), b.momentum().clone()));
+    }
+    out
+}
