@@ -60,6 +60,10 @@
 //! ```
 //!
 //! # Crate features
+//! - `cli` (default): the `rotorflow` command ([`cli`], `cargo run --release -- demo`) and the
+//!   pictures it draws ([`viz`]: SVG plots with plotters, HTML animations). Turning it off
+//!   (`default-features = false`) drops clap, plotters, serde_json, indicatif, rayon and
+//!   tempfile; the library is the same.
 //! - `serde`: `Serialize`/`Deserialize` for every algebra type; deserialisation validates
 //!   (lengths, finiteness, and that a rotor is on Spin(N)). Off by default.
 //!
@@ -75,9 +79,13 @@
 #![forbid(unsafe_code)]
 
 pub mod algebra;
+#[cfg(feature = "cli")]
+pub mod cli;
 pub mod dynamics;
 pub mod inertia;
 pub mod special;
+#[cfg(feature = "cli")]
+pub mod viz;
 
 /// The types most programs need: `use rotorflow::prelude::*;`.
 pub mod prelude {

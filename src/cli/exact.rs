@@ -1,0 +1,71 @@
+//! `rotorflow exact`: the closed-form solution, in the same shape as `simulate`.
+//!
+//! The closed forms live in the dynamics layer; this file only parses the command line and
+//! formats the result through [`Report::from_states`], exactly as `simulate` does.
+
+use super::error::{CliError, CliResult};
+use super::motion::{InitialArgs, Report, State, initial_body};
+use super::simulate::{ReportArgs, TimeArgs};
+use super::spec::{GRAMMAR, parse_body};
+use crate::dynamics::RigidBody;
+use clap::Args;
+
+/// Arguments of `exact`.
+#[derive(Args, Debug, Clone)]
+#[command(after_long_help = GRAMMAR)]
+pub struct ExactArgs {
+    /// The body (see the grammar below). A closed form exists for N = 3 (any body) and for
+    /// any N with at most two distinct principal moments.
+    #[arg(long, value_name = "SPEC")]
+    pub body: String,
+    /// The initial condition.
+    #[command(flatten)]
+    pub initial: InitialArgs,
+    /// The sample times.
+    #[command(flatten)]
+    pub time: TimeArgs,
+    /// The output (same as `simulate`).
+    #[command(flatten)]
+    pub report: ReportArgs,
+}
+
+/// Runs `exact`.
+///
+/// # Errors
+/// [`CliError::Input`] for bad input or a body without a closed form.
+pub fn run(args: &ExactArgs) -> CliResult<()> {
+    args.report.check()?;
+    let parsed = parse_body(&args.body)?;
+    let start = initial_body(&parsed, &args.initial)?;
+    let times = args.time.resolve()?;
+    let report = exact_report(&start, &times)?;
+    args.report.write(&report, &format!("{} (closed form)", parsed.spec))
+}
+
+/// Returns the closed-form trajectory of `start` at `times` as a [`Report`].
+///
+/// The closed form is a map t ↦ (R(t), L(t)) (attitude principal frame → space, body-frame
+/// momentum in the principal frame); [`Report::from_states`] turns it into the same output as
+/// `simulate`.
+///
+/// # Errors
+/// [`CliError::Input`] when the body has no closed form. In this build the closed forms are
+/// not wired in yet, and every call says so.
+pub fn exact_report(start: &RigidBody, times: &[f64]) -> CliResult<Report> {
+    let solution = closed_form(start)?;
+    Report::from_states(start, times, times.iter().map(|&t| solution(t)))
+}
+
+/// Returns t ↦ (R(t), L(t)) for `start`.
+///
+/// TEMPORARY: the closed forms (`rotorflow::dynamics::exact`, `exact_solution(&body)` with
+/// `attitude_at(t)` and `momentum_at(t)`) are being written separately; until they are wired
+/// here, every body is reported as having none. Wiring:
+/// `let s = exact_solution(start).map_err(|e| CliError::input(format!("no closed-form solution: {e}")))?;`
+/// `Ok(Box::new(move |t| Ok((s.attitude_at(t).map_err(..)?, s.momentum_at(t).map_err(..)?))))`.
+#[allow(clippy::type_complexity)]
+fn closed_form(_start: &RigidBody) -> CliResult<Box<dyn Fn(f64) -> CliResult<State> + '_>> {
+    Err(CliError::input(
+        "closed-form solutions are not available in this build",
+    ))
+}

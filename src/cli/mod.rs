@@ -1,0 +1,140 @@
+//! The `rotorflow` command (feature `cli`): one file per subcommand, the body grammar in
+//! [`spec`], atomic writes, JSON and CSV in [`output`].
+//!
+//! | subcommand | what it does |
+//! |---|---|
+//! | `demo` | runs the paper's cases and writes plots, animations, a sweep and `summary.md` |
+//! | `inertia` | mass properties, plane moments, the inertia matrix, the paper's tensors |
+//! | `simulate` | integrates Euler's equations and reports ω, L, energy, Casimirs, attitude |
+//! | `exact` | the closed-form solution, in the same shape as `simulate` |
+//! | `render` | an HTML animation or an SVG strip of the body turning in N-D, projected to 3D |
+//! | `sweep` | a grid of simulations in parallel, with the observables of the 3D projection |
+//!
+//! Bad input (a malformed body SPEC, wrong component counts, non-finite numbers, an unknown
+//! integrator, times not increasing, a singular body) ends with one line on standard error
+//! naming the problem and the expected form, exit code 2 and no output file. A run that fails
+//! after good input exits with code 1.
+
+pub mod demo;
+pub mod error;
+pub mod exact;
+pub mod inertia;
+pub mod motion;
+pub mod output;
+pub mod render;
+pub mod simulate;
+pub mod spec;
+pub mod sweep;
+
+pub use error::{CliError, CliResult};
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// Geometric algebra for rotating rigid bodies in N dimensions.
+#[derive(Parser, Debug)]
+#[command(
+    name = "rotorflow",
+    version,
+    about = "Rotating rigid bodies in N dimensions: inertia, Euler's equations, closed forms, pictures.",
+    long_about = "Rotating rigid bodies in N dimensions: inertia, Euler's equations as rotor flows, \
+closed-form solutions, plots and animations of the 3D projections.\n\n\
+Bivector components (ω, L, torques) are given and printed in lexicographic order of the planes \
+12,13,...,1N,23,..., 1-based, in the body's own axes.",
+    after_long_help = spec::GRAMMAR,
+)]
+pub struct Cli {
+    /// No progress bar.
+    #[arg(long, short, global = true)]
+    pub quiet: bool,
+    /// The subcommand.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Run the paper's cases and write plots, animations, a sweep and summary.md.
+    Demo(demo::DemoArgs),
+    /// Mass properties, plane moments, inertia matrix and the paper's tensors of a body.
+    Inertia(inertia::InertiaArgs),
+    /// Integrate Euler's equations; report ω, L, energy, Casimirs, attitude and drifts.
+    Simulate(simulate::SimulateArgs),
+    /// The closed-form solution (N = 3, or at most two distinct principal moments).
+    Exact(exact::ExactArgs),
+    /// Animate the body turning in N-D, projected to 3D (HTML), or a strip of frames (SVG).
+    Render(render::RenderArgs),
+    /// Run a grid of simulations in parallel and report the observables of the 3D projection.
+    Sweep(sweep::SweepArgs),
+}
+
+/// Parses the command line, runs the command and returns the exit code: 0 on success, 2 for
+/// bad input (one line on standard error), 1 when a run fails.
+pub fn run() -> ExitCode {
+    // Never show a panic backtrace to a user: one line, exit code 101.
+    std::panic::set_hook(Box::new(|info| {
+        let message = info
+            .payload()
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| info.payload().downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "unknown".into());
+        eprintln!("rotorflow: internal error: {message} (please report it)");
+    }));
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(err) => return clap_error(err),
+    };
+    match dispatch(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(err) => {
+            eprintln!("rotorflow: error: {err}");
+            ExitCode::from(err.exit_code())
+        }
+    }
+}
+
+/// Runs a parsed command line.
+///
+/// # Errors
+/// The command's [`CliError`].
+pub fn dispatch(cli: Cli) -> CliResult<()> {
+    let quiet = cli.quiet;
+    match cli.command {
+        Command::Demo(a) => demo::run(&a, quiet),
+        Command::Inertia(a) => inertia::run(&a),
+        Command::Simulate(a) => simulate::run(&a, quiet),
+        Command::Exact(a) => exact::run(&a),
+        Command::Render(a) => render::run(&a, quiet),
+        Command::Sweep(a) => sweep::run(&a, quiet),
+    }
+}
+
+/// Prints help and version as clap does; squeezes a usage error into one line.
+fn clap_error(err: clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    match err.kind() {
+        ErrorKind::DisplayHelp
+        | ErrorKind::DisplayVersion
+        | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let _ = err.print();
+            if err.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+                ExitCode::from(2)
+            } else {
+                ExitCode::SUCCESS
+            }
+        }
+        _ => {
+            let text = err.render().to_string();
+            let parts: Vec<&str> = text
+                .lines()
+                .map(str::trim)
+                .filter(|l| !l.is_empty() && !l.starts_with("For more information"))
+                .collect();
+            let line = parts.join("; ").replace("error: ", "");
+            eprintln!("rotorflow: error: {line}; see --help");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -1,0 +1,543 @@
+//! What `simulate`, `exact`, `render` and `sweep` share: initial conditions, sample times,
+//! integrators, torques, and the trajectory report (JSON, CSV, text) built from states.
+
+use super::error::{CliError, CliResult};
+use super::output::{Progress, matrix_json, number, plane_names};
+use super::spec::{ParsedBody, parse_list, parse_number};
+use crate::algebra::{Bivector, Rotor, bivector_len};
+use crate::dynamics::torques::{BodyFrame, Free, LinearDamping, SpaceFrame};
+use crate::dynamics::trajectory::even_times;
+use crate::dynamics::{
+    Dopri5, Drift, Integrator, Invariants, Midpoint, RigidBody, Rkmk4, Splitting, Torque, simulate,
+};
+use clap::{Args, ValueEnum};
+use nalgebra::DMatrix;
+use serde_json::{Value, json};
+
+/// Parses a finite number for clap (rejects NaN and infinities).
+pub fn finite_number(text: &str) -> Result<f64, String> {
+    parse_number(text)
+}
+
+/// The initial condition: `--omega W` or `--momentum L`.
+#[derive(Args, Clone, Debug)]
+#[group(required = true, multiple = false)]
+pub struct InitialArgs {
+    /// Initial angular velocity ω: N(N−1)/2 bivector components in lexicographic order
+    /// 12,13,…,1N,23,… in the body's own axes, comma-separated (e.g. `--omega=1,0,0.1`).
+    #[arg(long, value_name = "W", allow_hyphen_values = true)]
+    pub omega: Option<String>,
+    /// Initial angular momentum L, in the same order and axes as `--omega`.
+    #[arg(long, value_name = "L", allow_hyphen_values = true)]
+    pub momentum: Option<String>,
+}
+
+/// Returns the rigid body at t = 0 in the identity attitude with the given ω or L.
+///
+/// # Errors
+/// [`CliError::Input`] for a malformed list or the wrong number of components.
+pub fn initial_body(parsed: &ParsedBody, initial: &InitialArgs) -> CliResult<RigidBody> {
+    let n = parsed.dim;
+    let (flag, text) = match (&initial.omega, &initial.momentum) {
+        (Some(w), _) => ("--omega", w),
+        (None, Some(l)) => ("--momentum", l),
+        (None, None) => {
+            return Err(CliError::input(
+                "give the initial condition: --omega W or --momentum L",
+            ));
+        }
+    };
+    let names = plane_names(n);
+    let expected = || {
+        format!(
+            "{} components {} (N = {n}, lexicographic, body's own axes)",
+            bivector_len(n),
+            names.join(",")
+        )
+    };
+    let values = parse_list(text)
+        .map_err(|e| CliError::input(format!("{flag}: {e}; expected {}", expected())))?;
+    if values.len() != bivector_len(n) {
+        return Err(CliError::input(format!(
+            "{flag}: {} components given; expected {}",
+            values.len(),
+            expected()
+        )));
+    }
+    let b = Bivector::from_components(n, &values)
+        .map_err(|e| CliError::input(format!("{flag}: {e}")))?;
+    let inertia = parsed.inertia.clone();
+    let body = if flag == "--omega" {
+        RigidBody::from_body_velocity(inertia, Rotor::identity(n), &b)
+    } else {
+        RigidBody::from_body_momentum(inertia, Rotor::identity(n), &b)
+    };
+    body.map_err(|e| CliError::input(format!("body `{}`: {e}", parsed.spec)))
+}
+
+/// Returns the sample times: `samples` even times from 0 to `t_end`, or the listed `times`.
+///
+/// # Errors
+/// [`CliError::Input`] for a missing or non-positive end time, fewer than 2 samples, or
+/// times that are negative, not increasing or beyond `t_end`.
+pub fn sample_times(
+    t_end: Option<f64>,
+    samples: Option<usize>,
+    times: Option<&str>,
+) -> CliResult<Vec<f64>> {
+    if let Some(t) = t_end
+        && t <= 0.0
+    {
+        return Err(CliError::input(format!(
+            "--t-end must be positive, got {t} (expected --t-end T with T > 0)"
+        )));
+    }
+    match (samples, times) {
+        (Some(_), Some(_)) => Err(CliError::input(
+            "give --samples K or --times t1,t2,..., not both",
+        )),
+        (Some(k), None) => {
+            let t = t_end.ok_or_else(|| {
+                CliError::input("--samples needs --t-end T (expected --t-end T --samples K)")
+            })?;
+            if !(2..=10_000_000).contains(&k) {
+                return Err(CliError::input(format!(
+                    "--samples must be between 2 and 10000000, got {k} (expected --samples K)"
+                )));
+            }
+            Ok(even_times(t, k))
+        }
+        (None, Some(list)) => {
+            let v = parse_list(list).map_err(|e| {
+                CliError::input(format!("--times: {e} (expected --times t1,t2,... increasing, >= 0)"))
+            })?;
+            if let Some(t) = v.iter().find(|t| **t < 0.0) {
+                return Err(CliError::input(format!(
+                    "--times: {t} is negative (expected --times t1,t2,... increasing, >= 0)"
+                )));
+            }
+            if let Some(w) = v.windows(2).find(|w| w[1] <= w[0]) {
+                return Err(CliError::input(format!(
+                    "--times not increasing: {} then {} (expected --times t1,t2,... strictly increasing, >= 0)",
+                    w[0], w[1]
+                )));
+            }
+            if let (Some(end), Some(last)) = (t_end, v.last())
+                && *last > end
+            {
+                return Err(CliError::input(format!(
+                    "--times: {last} is beyond --t-end {end}"
+                )));
+            }
+            Ok(v)
+        }
+        (None, None) => Err(CliError::input(
+            "give --samples K (with --t-end T) or --times t1,t2,...",
+        )),
+    }
+}
+
+/// The integrators the command offers.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IntegratorKind {
+    /// Runge–Kutta–Munthe-Kaas, order 4 (any inertia).
+    Rk4,
+    /// Adaptive Dormand–Prince 5(4) on the group (uses --rtol/--atol).
+    Dopri5,
+    /// Lie–Poisson splitting, Strang (order 2, conserves the Casimirs).
+    Strang,
+    /// Lie–Poisson splitting, Yoshida (order 4, conserves the Casimirs).
+    Yoshida4,
+    /// Implicit midpoint rule (order 2, conserves the energy).
+    Midpoint,
+}
+
+impl IntegratorKind {
+    /// Returns the name used on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            IntegratorKind::Rk4 => "rk4",
+            IntegratorKind::Dopri5 => "dopri5",
+            IntegratorKind::Strang => "strang",
+            IntegratorKind::Yoshida4 => "yoshida4",
+            IntegratorKind::Midpoint => "midpoint",
+        }
+    }
+}
+
+/// How to integrate: the integrator and its step or tolerances.
+#[derive(Args, Clone, Debug)]
+pub struct SteppingArgs {
+    /// The integrator.
+    #[arg(long, value_enum, default_value = "rk4", value_name = "NAME")]
+    pub integrator: IntegratorKind,
+    /// Largest step for the fixed-step integrators (default 0.01/max(1, |ω|)).
+    #[arg(long, value_name = "H", value_parser = finite_number)]
+    pub dt: Option<f64>,
+    /// Relative tolerance of dopri5 (default 1e-10).
+    #[arg(long, value_name = "R", value_parser = finite_number)]
+    pub rtol: Option<f64>,
+    /// Absolute tolerance of dopri5 (default 1e-12).
+    #[arg(long, value_name = "A", value_parser = finite_number)]
+    pub atol: Option<f64>,
+}
+
+impl Default for SteppingArgs {
+    fn default() -> Self {
+        SteppingArgs {
+            integrator: IntegratorKind::Rk4,
+            dt: None,
+            rtol: None,
+            atol: None,
+        }
+    }
+}
+
+/// A validated stepping choice.
+#[derive(Clone, Copy, Debug)]
+pub enum Stepping {
+    /// A fixed-step integrator with largest step `dt`.
+    Fixed {
+        /// The integrator.
+        kind: IntegratorKind,
+        /// The largest step.
+        dt: f64,
+    },
+    /// Adaptive Dormand–Prince.
+    Adaptive {
+        /// Relative tolerance.
+        rtol: f64,
+        /// Absolute tolerance.
+        atol: f64,
+    },
+}
+
+/// The most steps one run may take.
+pub const MAX_STEPS: f64 = 2e8;
+
+impl SteppingArgs {
+    /// Checks the flags against the integrator and returns the stepping for `body` up to
+    /// `t_end`.
+    ///
+    /// # Errors
+    /// [`CliError::Input`] for flags that do not apply, non-positive values, or more than
+    /// [`MAX_STEPS`] steps.
+    pub fn resolve(&self, body: &RigidBody, t_end: f64) -> CliResult<Stepping> {
+        let positive = |flag: &str, v: Option<f64>| -> CliResult<()> {
+            match v {
+                Some(x) if x <= 0.0 => Err(CliError::input(format!(
+                    "{flag} must be positive, got {x}"
+                ))),
+                _ => Ok(()),
+            }
+        };
+        positive("--dt", self.dt)?;
+        positive("--rtol", self.rtol)?;
+        positive("--atol", self.atol)?;
+        if self.integrator == IntegratorKind::Dopri5 {
+            if self.dt.is_some() {
+                return Err(CliError::input(
+                    "--dt applies to the fixed-step integrators; dopri5 takes --rtol R --atol A",
+                ));
+            }
+            let rtol = self.rtol.unwrap_or(1e-10);
+            let atol = self.atol.unwrap_or(1e-12);
+            if rtol < 1e-15 {
+                return Err(CliError::input(format!(
+                    "--rtol {rtol} is below what f64 arithmetic can meet (expected R >= 1e-15)"
+                )));
+            }
+            return Ok(Stepping::Adaptive { rtol, atol });
+        }
+        if self.rtol.is_some() || self.atol.is_some() {
+            return Err(CliError::input(format!(
+                "--rtol/--atol apply to dopri5; {} takes --dt H",
+                self.integrator.name()
+            )));
+        }
+        let dt = self
+            .dt
+            .unwrap_or_else(|| 0.01 / body.omega().max_abs().max(1.0));
+        if t_end / dt > MAX_STEPS {
+            return Err(CliError::input(format!(
+                "--t-end {t_end} with --dt {dt} needs more than {MAX_STEPS:e} steps; raise --dt or shorten --t-end"
+            )));
+        }
+        Ok(Stepping::Fixed {
+            kind: self.integrator,
+            dt,
+        })
+    }
+}
+
+/// The torque grammar, for help and errors.
+pub const TORQUE_FORMS: &str = "none | body:T12,T13,... (constant, body's own axes) | space:T12,T13,... (constant, space frame) | damping:C (tau = -C omega)";
+
+/// Parses `--torque SPEC` for a body of dimension `n` with principal rotor `principal`.
+///
+/// # Errors
+/// [`CliError::Input`] naming the problem and the expected forms.
+pub fn parse_torque(text: Option<&str>, body: &RigidBody) -> CliResult<Box<dyn Torque + Sync>> {
+    let n = body.dim();
+    let Some(text) = text else {
+        return Ok(Box::new(Free));
+    };
+    let bad = |m: String| CliError::input(format!("--torque `{text}`: {m} (expected {TORQUE_FORMS})"));
+    let (kind, args) = text.split_once(':').unwrap_or((text, ""));
+    let bivector = |args: &str| -> CliResult<Bivector> {
+        let v = parse_list(args).map_err(bad)?;
+        if v.len() != bivector_len(n) {
+            return Err(bad(format!(
+                "{} components given, N = {n} needs {}",
+                v.len(),
+                bivector_len(n)
+            )));
+        }
+        Bivector::from_components(n, &v).map_err(|e| bad(e.to_string()))
+    };
+    match kind.trim() {
+        "none" if args.is_empty() => Ok(Box::new(Free)),
+        // The integrators work in the principal frame: rotate the user's body-axes torque in.
+        "body" => Ok(Box::new(BodyFrame(
+            body.principal_rotor().reverse().rotate_bivector(&bivector(args)?),
+        ))),
+        "space" => Ok(Box::new(SpaceFrame(bivector(args)?))),
+        "damping" => {
+            let c = parse_number(args).map_err(bad)?;
+            if c < 0.0 {
+                return Err(bad(format!("the damping must not be negative, got {c}")));
+            }
+            Ok(Box::new(LinearDamping(c)))
+        }
+        other => Err(bad(format!("unknown torque `{other}`"))),
+    }
+}
+
+/// One state: attitude (principal frame → space) and body-frame momentum (principal frame).
+pub type State = (Rotor, Bivector);
+
+/// Integrates `body` under `torque` and returns the state at every time in `times`, with the
+/// number of steps taken.
+///
+/// # Errors
+/// [`CliError::Runtime`] when the integrator fails.
+pub fn integrate(
+    body: &RigidBody,
+    torque: &dyn Torque,
+    stepping: Stepping,
+    times: &[f64],
+    progress: &mut Progress,
+) -> CliResult<(Vec<State>, usize)> {
+    let fail = |e: crate::dynamics::DynamicsError| CliError::runtime(format!("integration failed: {e}"));
+    let mut states: Vec<State> = Vec::with_capacity(times.len());
+    let mut steps = 0;
+    // Chunks of samples, so that the progress bar moves; each chunk restarts from the last
+    // state with times relative to it (the torques offered here do not depend on time).
+    let chunk = times.len().div_ceil(100).max(1);
+    let mut current = body.clone();
+    let mut t0 = 0.0;
+    let mut fixed: Option<Box<dyn Integrator>> = None;
+    let mut adaptive = None;
+    match stepping {
+        Stepping::Fixed { kind, .. } => {
+            fixed = Some(match kind {
+                IntegratorKind::Rk4 => Box::new(Rkmk4),
+                IntegratorKind::Strang => Box::new(Splitting::strang()),
+                IntegratorKind::Yoshida4 => Box::new(Splitting::yoshida4()),
+                IntegratorKind::Midpoint => Box::new(Midpoint::default()),
+                IntegratorKind::Dopri5 => unreachable!("dopri5 is adaptive"),
+            });
+        }
+        Stepping::Adaptive { rtol, atol } => adaptive = Some(Dopri5::new(rtol, atol)),
+    }
+    for block in times.chunks(chunk) {
+        let relative: Vec<f64> = block.iter().map(|t| t - t0).collect();
+        let block_states: Vec<State> = match (&mut fixed, &mut adaptive, stepping) {
+            (Some(integrator), _, Stepping::Fixed { dt, .. }) => {
+                let traj = simulate(&current, integrator.as_mut(), torque, dt, &relative)
+                    .map_err(fail)?;
+                steps += traj.steps();
+                traj.samples()
+                    .iter()
+                    .map(|s| (s.attitude.clone(), s.momentum.clone()))
+                    .collect()
+            }
+            (_, Some(dopri), _) => {
+                let before = dopri.accepted_steps() + dopri.rejected_steps();
+                let out = dopri
+                    .dense_samples(&current, torque, &relative)
+                    .map_err(fail)?;
+                steps += dopri.accepted_steps() + dopri.rejected_steps() - before;
+                out
+            }
+            _ => unreachable!("one integrator is set"),
+        };
+        if let Some((r, l)) = block_states.last() {
+            current.set_state(r.clone(), l.clone());
+            t0 = *block.last().expect("chunks are not empty");
+        }
+        states.extend(block_states);
+        progress.advance(block.len() as u64);
+    }
+    if states.iter().any(|(r, l)| {
+        l.as_slice().iter().any(|x| !x.is_finite()) || !r.max_abs().is_finite()
+    }) {
+        return Err(CliError::runtime(
+            "integration failed: the state is no longer finite; reduce --dt",
+        ));
+    }
+    Ok((states, steps))
+}
+
+/// A trajectory as reported: everything in the body's own axes.
+#[derive(Clone, Debug)]
+pub struct Report {
+    /// The dimension N.
+    pub dim: usize,
+    /// Sample times.
+    pub times: Vec<f64>,
+    /// Body-frame angular velocity in the body's own axes.
+    pub omega: Vec<Bivector>,
+    /// Body-frame angular momentum in the body's own axes.
+    pub momentum: Vec<Bivector>,
+    /// Kinetic energy.
+    pub energy: Vec<f64>,
+    /// Casimirs c₁ … c_⌊N/2⌋ (coefficients of det(λ − \[L\])).
+    pub casimirs: Vec<Vec<f64>>,
+    /// Rotation matrix of the body's own axes → space.
+    pub attitude: Vec<DMatrix<f64>>,
+    /// Relative drift of the energy from t = 0, per sample.
+    pub energy_drift: Vec<f64>,
+    /// Relative drift of the Casimirs from t = 0 (largest), per sample.
+    pub casimir_drift: Vec<f64>,
+    /// Largest drifts over all samples.
+    pub drift: Drift,
+}
+
+impl Report {
+    /// Builds the report from the states (principal frame) at `times` of the motion that
+    /// starts as `start`; `states` may fail (an exact solution that cannot be evaluated).
+    ///
+    /// # Errors
+    /// The first error of `states`.
+    pub fn from_states(
+        start: &RigidBody,
+        times: &[f64],
+        states: impl IntoIterator<Item = CliResult<State>>,
+    ) -> CliResult<Report> {
+        let n = start.dim();
+        let reference = Invariants::of(start);
+        let rp = start.principal_rotor().clone();
+        let rp_rev = rp.reverse();
+        let mut report = Report {
+            dim: n,
+            times: times.to_vec(),
+            omega: Vec::with_capacity(times.len()),
+            momentum: Vec::with_capacity(times.len()),
+            energy: Vec::with_capacity(times.len()),
+            casimirs: Vec::with_capacity(times.len()),
+            attitude: Vec::with_capacity(times.len()),
+            energy_drift: Vec::with_capacity(times.len()),
+            casimir_drift: Vec::with_capacity(times.len()),
+            drift: Drift::default(),
+        };
+        let mut b = start.clone();
+        for state in states {
+            let (r, l) = state?;
+            b.set_state(r, l);
+            let inv = Invariants::of(&b);
+            let d = inv.drift_from(&reference);
+            report.drift.energy = report.drift.energy.max(d.energy);
+            report.drift.casimirs = report.drift.casimirs.max(d.casimirs);
+            report.drift.space_momentum = report.drift.space_momentum.max(d.space_momentum);
+            report.drift.rotor = report.drift.rotor.max(d.rotor);
+            report.energy_drift.push(d.energy);
+            report.casimir_drift.push(d.casimirs);
+            report.omega.push(rp.rotate_bivector(&b.omega()));
+            report.momentum.push(rp.rotate_bivector(b.momentum()));
+            report.energy.push(inv.energy);
+            report.casimirs.push(inv.casimirs);
+            report
+                .attitude
+                .push(b.attitude().compose(&rp_rev).to_matrix());
+        }
+        if report.omega.len() != times.len() {
+            return Err(CliError::runtime("fewer states than sample times"));
+        }
+        Ok(report)
+    }
+
+    /// Returns the JSON object with keys `dim`, `times`, `omega`, `momentum`, `energy`,
+    /// `casimirs`, `attitude`, `drift` (plus `planes`, the component names).
+    pub fn to_json(&self) -> Value {
+        let bv = |v: &[Bivector]| -> Vec<Vec<f64>> { v.iter().map(|b| b.as_slice().to_vec()).collect() };
+        json!({
+            "dim": self.dim,
+            "planes": plane_names(self.dim),
+            "times": self.times,
+            "omega": bv(&self.omega),
+            "momentum": bv(&self.momentum),
+            "energy": self.energy,
+            "casimirs": self.casimirs,
+            "attitude": self.attitude.iter().map(matrix_json).collect::<Vec<_>>(),
+            "drift": {
+                "energy": self.drift.energy,
+                "casimirs": self.drift.casimirs,
+                "space_momentum": self.drift.space_momentum,
+            },
+        })
+    }
+
+    /// Returns the CSV: one row per time with t, ω_ij, L_ij, energy, the Casimirs and the
+    /// attitude matrix row-major (R_r_c).
+    pub fn to_csv(&self) -> String {
+        let n = self.dim;
+        let names = plane_names(n);
+        let mut header = vec!["t".to_string()];
+        header.extend(names.iter().map(|p| format!("omega_{p}")));
+        header.extend(names.iter().map(|p| format!("momentum_{p}")));
+        header.push("energy".into());
+        header.extend((1..=n / 2).map(|k| format!("casimir_{k}")));
+        for r in 1..=n {
+            header.extend((1..=n).map(|c| format!("R_{r}_{c}")));
+        }
+        let mut out = header.join(",");
+        out.push('\n');
+        for k in 0..self.times.len() {
+            let mut row = vec![number(self.times[k])];
+            row.extend(self.omega[k].as_slice().iter().map(|x| number(*x)));
+            row.extend(self.momentum[k].as_slice().iter().map(|x| number(*x)));
+            row.push(number(self.energy[k]));
+            row.extend(self.casimirs[k].iter().map(|x| number(*x)));
+            let m = &self.attitude[k];
+            for r in 0..n {
+                row.extend((0..n).map(|c| number(m[(r, c)])));
+            }
+            out.push_str(&row.join(","));
+            out.push('\n');
+        }
+        out
+    }
+
+    /// Returns a readable table of t, ω and energy, and a drift line.
+    pub fn to_text(&self) -> String {
+        let names = plane_names(self.dim);
+        let mut out = format!("{:>12}", "t");
+        for p in &names {
+            out.push_str(&format!(" {:>12}", format!("ω{p}")));
+        }
+        out.push_str(&format!(" {:>14}\n", "energy"));
+        for k in 0..self.times.len() {
+            out.push_str(&format!("{:>12.6}", self.times[k]));
+            for x in self.omega[k].as_slice() {
+                out.push_str(&format!(" {x:>12.6}"));
+            }
+            out.push_str(&format!(" {:>14.8}\n", self.energy[k]));
+        }
+        out.push_str(&format!(
+            "largest relative drift: energy {:.3e}, Casimirs {:.3e}, space momentum {:.3e}\n",
+            self.drift.energy, self.drift.casimirs, self.drift.space_momentum
+        ));
+        out
+    }
+}

@@ -1,0 +1,185 @@
+//! Output: atomic file writes, JSON and CSV helpers, and the progress bar.
+
+use super::error::{CliError, CliResult};
+use indicatif::{ProgressBar, ProgressStyle};
+use nalgebra::{DMatrix, DVector};
+use serde_json::{Value, json};
+use std::io::{IsTerminal, Write};
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+/// Writes `bytes` to `path` whole or not at all: into a temporary file in the same folder,
+/// then renamed over the target.
+///
+/// # Errors
+/// [`CliError::Runtime`] if the folder cannot be written.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> CliResult<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let fail = |err: &dyn std::fmt::Display| {
+        CliError::runtime(format!("cannot write `{}`: {err}", path.display()))
+    };
+    let mut tmp = tempfile::Builder::new()
+        .prefix(".rotorflow-")
+        .tempfile_in(dir)
+        .map_err(|e| fail(&e))?;
+    tmp.write_all(bytes).map_err(|e| fail(&e))?;
+    tmp.flush().map_err(|e| fail(&e))?;
+    tmp.persist(path).map_err(|e| fail(&e.error))?;
+    Ok(())
+}
+
+/// Writes `text` to `path` atomically, or to standard output when `path` is `None`.
+///
+/// # Errors
+/// As [`write_atomic`].
+pub fn emit(path: Option<&Path>, text: &str) -> CliResult<()> {
+    match path {
+        Some(p) => write_atomic(p, text.as_bytes()),
+        None => {
+            let mut out = std::io::stdout().lock();
+            // A closed pipe (`| head`) is not an error worth a message.
+            let _ = out.write_all(text.as_bytes());
+            let _ = out.flush();
+            Ok(())
+        }
+    }
+}
+
+/// Checks that an output file name ends in one of `extensions` (bad input otherwise).
+///
+/// # Errors
+/// [`CliError::Input`] naming the flag and the expected extensions.
+pub fn check_extension(flag: &str, path: &Path, extensions: &[&str]) -> CliResult<()> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    if ext.as_deref().is_some_and(|e| extensions.contains(&e)) {
+        Ok(())
+    } else {
+        Err(CliError::input(format!(
+            "{flag} `{}`: expected a file name ending in .{}",
+            path.display(),
+            extensions.join(" or .")
+        )))
+    }
+}
+
+/// Returns the JSON array of a vector.
+pub fn vector_json(v: &DVector<f64>) -> Value {
+    json!(v.iter().copied().collect::<Vec<f64>>())
+}
+
+/// Returns the JSON array of rows of a matrix.
+pub fn matrix_json(m: &DMatrix<f64>) -> Value {
+    json!(
+        (0..m.nrows())
+            .map(|r| (0..m.ncols()).map(|c| m[(r, c)]).collect::<Vec<f64>>())
+            .collect::<Vec<_>>()
+    )
+}
+
+/// Serialises `value` as JSON (indented when `pretty`), refusing non-finite numbers
+/// (serde_json would print them as `null`).
+///
+/// # Errors
+/// [`CliError::Runtime`] if a number is not finite.
+pub fn to_json_text(value: &Value, pretty: bool) -> CliResult<String> {
+    fn finite(v: &Value) -> bool {
+        match v {
+            Value::Number(n) => n.as_f64().is_none_or(f64::is_finite),
+            Value::Array(a) => a.iter().all(finite),
+            Value::Object(o) => o.values().all(finite),
+            _ => true,
+        }
+    }
+    if !finite(value) {
+        return Err(CliError::runtime("a result is not finite"));
+    }
+    let text = if pretty {
+        serde_json::to_string_pretty(value)
+    } else {
+        serde_json::to_string(value)
+    };
+    let mut text = text.map_err(|e| CliError::runtime(format!("cannot serialise JSON: {e}")))?;
+    text.push('\n');
+    Ok(text)
+}
+
+/// Formats a number for CSV and text output: shortest round-trip representation.
+pub fn number(x: f64) -> String {
+    format!("{x}")
+}
+
+/// Returns the 1-based plane names of dimension `n` in lexicographic order ("12", "13", …).
+pub fn plane_names(n: usize) -> Vec<String> {
+    crate::algebra::pairs(n)
+        .map(|(i, j)| plane_name(n, i, j))
+        .collect()
+}
+
+/// Returns the 1-based name of the plane (i, j) (0-based) in dimension `n`: "12", or "1_10"
+/// when N ≥ 10.
+pub fn plane_name(n: usize, i: usize, j: usize) -> String {
+    if n < 10 {
+        format!("{}{}", i + 1, j + 1)
+    } else {
+        format!("{}_{}", i + 1, j + 1)
+    }
+}
+
+/// A progress bar on standard error that appears only when the run has taken longer than a
+/// second, standard error is a terminal, and `--quiet` was not given.
+pub struct Progress {
+    total: u64,
+    done: u64,
+    start: Instant,
+    enabled: bool,
+    bar: Option<ProgressBar>,
+    message: String,
+}
+
+impl Progress {
+    /// Returns a progress tracker for `total` units of work labelled `message`.
+    pub fn new(total: u64, quiet: bool, message: &str) -> Self {
+        Progress {
+            total,
+            done: 0,
+            start: Instant::now(),
+            enabled: !quiet && std::io::stderr().is_terminal(),
+            bar: None,
+            message: message.to_string(),
+        }
+    }
+
+    /// Records `units` more units of work done.
+    pub fn advance(&mut self, units: u64) {
+        self.done += units;
+        if !self.enabled {
+            return;
+        }
+        if self.bar.is_none() && self.start.elapsed() >= Duration::from_secs(1) {
+            let bar = ProgressBar::new(self.total);
+            if let Ok(style) =
+                ProgressStyle::with_template("{msg} [{elapsed_precise}] {wide_bar} {pos}/{len} (eta {eta})")
+            {
+                bar.set_style(style);
+            }
+            bar.set_message(self.message.clone());
+            self.bar = Some(bar);
+        }
+        if let Some(bar) = &self.bar {
+            bar.set_position(self.done);
+        }
+    }
+
+    /// Removes the bar, if one was shown.
+    pub fn finish(self) {
+        if let Some(bar) = self.bar {
+            bar.finish_and_clear();
+        }
+    }
+}

@@ -1,0 +1,206 @@
+//! `rotorflow simulate`: integrate Euler's equations and report the trajectory.
+
+use super::error::{CliError, CliResult};
+use super::motion::{
+    InitialArgs, Report, SteppingArgs, finite_number, initial_body, integrate,
+    parse_torque, sample_times,
+};
+use super::output::{Progress, check_extension, emit, plane_names, to_json_text, write_atomic};
+use super::spec::{GRAMMAR, parse_body};
+use crate::viz::plot::{PlotSpec, Series, line_plot, subscript};
+use clap::Args;
+use std::path::{Path, PathBuf};
+
+/// Sample times: `--t-end T` with `--samples K`, or `--times t1,t2,…`.
+#[derive(Args, Debug, Clone)]
+pub struct TimeArgs {
+    /// End time T (the samples run from 0 to T).
+    #[arg(long, value_name = "T", value_parser = finite_number)]
+    pub t_end: Option<f64>,
+    /// Number of evenly spaced samples from 0 to T inclusive (K ≥ 2).
+    #[arg(long, value_name = "K")]
+    pub samples: Option<usize>,
+    /// Explicit sample times, comma-separated, strictly increasing, ≥ 0.
+    #[arg(long, value_name = "t1,t2,...")]
+    pub times: Option<String>,
+}
+
+impl TimeArgs {
+    /// Returns the sample times.
+    ///
+    /// # Errors
+    /// As [`sample_times`].
+    pub fn resolve(&self) -> CliResult<Vec<f64>> {
+        sample_times(self.t_end, self.samples, self.times.as_deref())
+    }
+}
+
+/// How a trajectory is written: `--json`, `--csv` or a text table; to FILE or standard
+/// output; and an optional plot of ω.
+#[derive(Args, Debug, Clone)]
+pub struct ReportArgs {
+    /// Print JSON with keys dim, times, omega, momentum, energy, casimirs, attitude, drift.
+    #[arg(long, conflicts_with = "csv")]
+    pub json: bool,
+    /// Print CSV: t, ω, L, energy, Casimirs, attitude matrix (row-major).
+    #[arg(long)]
+    pub csv: bool,
+    /// Write to FILE (whole or not at all) instead of standard output.
+    #[arg(long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+    /// Also draw the ω components over time as an SVG plot.
+    #[arg(long, value_name = "FILE.svg")]
+    pub plot: Option<PathBuf>,
+}
+
+impl ReportArgs {
+    /// Checks the output file names before any work is done.
+    ///
+    /// # Errors
+    /// [`CliError::Input`] for a plot file that is not `.svg`.
+    pub fn check(&self) -> CliResult<()> {
+        if let Some(p) = &self.plot {
+            check_extension("--plot", p, &["svg"])?;
+        }
+        Ok(())
+    }
+
+    /// Writes the report and the plot.
+    ///
+    /// # Errors
+    /// [`CliError::Runtime`] when a file cannot be written.
+    pub fn write(&self, report: &Report, title: &str) -> CliResult<()> {
+        let text = if self.json {
+            to_json_text(&report.to_json(), false)?
+        } else if self.csv {
+            report.to_csv()
+        } else {
+            report.to_text()
+        };
+        if let Some(p) = &self.plot {
+            write_omega_plot(p, report, title)?;
+        }
+        emit(self.output.as_deref(), &text)
+    }
+}
+
+/// Arguments of `simulate`.
+#[derive(Args, Debug, Clone)]
+#[command(after_long_help = GRAMMAR)]
+pub struct SimulateArgs {
+    /// The body (see the grammar below).
+    #[arg(long, value_name = "SPEC")]
+    pub body: String,
+    /// The initial condition.
+    #[command(flatten)]
+    pub initial: InitialArgs,
+    /// External torque: none | body:T12,... | space:T12,... | damping:C.
+    #[arg(long, value_name = "SPEC", allow_hyphen_values = true)]
+    pub torque: Option<String>,
+    /// The sample times.
+    #[command(flatten)]
+    pub time: TimeArgs,
+    /// The integrator and its step.
+    #[command(flatten)]
+    pub stepping: SteppingArgs,
+    /// The output.
+    #[command(flatten)]
+    pub report: ReportArgs,
+}
+
+/// Runs `simulate`.
+///
+/// # Errors
+/// [`CliError::Input`] for bad input, [`CliError::Runtime`] if the integration fails.
+pub fn run(args: &SimulateArgs, quiet: bool) -> CliResult<()> {
+    args.report.check()?;
+    let parsed = parse_body(&args.body)?;
+    let start = initial_body(&parsed, &args.initial)?;
+    let times = args.time.resolve()?;
+    let torque = parse_torque(args.torque.as_deref(), &start)?;
+    let t_end = times.last().copied().unwrap_or(0.0);
+    let stepping = args.stepping.resolve(&start, t_end)?;
+    let mut progress = Progress::new(times.len() as u64, quiet, "simulate");
+    let (states, _steps) = integrate(&start, torque.as_ref(), stepping, &times, &mut progress)?;
+    progress.finish();
+    let report = Report::from_states(&start, &times, states.into_iter().map(Ok))?;
+    args.report.write(&report, &parsed.spec)
+}
+
+/// Writes the plot of the ω components of `report` to `path`.
+///
+/// # Errors
+/// [`CliError::Runtime`] when the plot cannot be drawn or written.
+pub fn write_omega_plot(path: &Path, report: &Report, title: &str) -> CliResult<()> {
+    let svg = omega_plot(report, title)?;
+    write_atomic(path, svg.as_bytes())
+}
+
+/// Returns the SVG plot of the ω components of `report`.
+///
+/// # Errors
+/// [`CliError::Runtime`] when the plot cannot be drawn.
+pub fn omega_plot(report: &Report, title: &str) -> CliResult<String> {
+    let series: Vec<Series> = plane_names(report.dim)
+        .iter()
+        .enumerate()
+        .map(|(k, p)| Series {
+            name: format!("ω{}", subscript(p)),
+            points: report
+                .times
+                .iter()
+                .zip(&report.omega)
+                .map(|(t, w)| (*t, w.as_slice()[k]))
+                .collect(),
+        })
+        .collect();
+    line_plot(
+        &PlotSpec {
+            title: &format!("angular velocity (body's own axes): {title}"),
+            x_label: "time t",
+            y_label: "ω_ij (rad per unit time)",
+            log_y: false,
+            markers: false,
+        },
+        &series,
+    )
+    .map_err(|e| CliError::runtime(format!("cannot draw the plot: {e}")))
+}
+
+/// Returns the SVG plot of the relative drift of the energy and the Casimirs over time.
+///
+/// # Errors
+/// [`CliError::Runtime`] when the plot cannot be drawn.
+pub fn drift_plot(report: &Report, title: &str) -> CliResult<String> {
+    let series = vec![
+        Series {
+            name: "|ΔT|/T (energy)".into(),
+            points: report
+                .times
+                .iter()
+                .copied()
+                .zip(report.energy_drift.iter().copied())
+                .collect(),
+        },
+        Series {
+            name: "max_k |Δc_k|/|L|^2k (Casimirs)".into(),
+            points: report
+                .times
+                .iter()
+                .copied()
+                .zip(report.casimir_drift.iter().copied())
+                .collect(),
+        },
+    ];
+    line_plot(
+        &PlotSpec {
+            title: &format!("drift of the invariants: {title}"),
+            x_label: "time t",
+            y_label: "relative drift",
+            log_y: true,
+            markers: false,
+        },
+        &series,
+    )
+    .map_err(|e| CliError::runtime(format!("cannot draw the plot: {e}")))
+}

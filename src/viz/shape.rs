@@ -1,0 +1,192 @@
+//! What is drawn of a body: points in its own axes about the centre of mass, and edges.
+
+use nalgebra::DMatrix;
+
+/// Geometry to draw for a body: points in the body's own axes, relative to its centre of mass,
+/// and edges between them (none for a point cloud).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Shape {
+    /// The dimension N.
+    pub dim: usize,
+    /// The points, N coordinates each.
+    pub points: Vec<Vec<f64>>,
+    /// Edges as pairs of indices into `points`.
+    pub edges: Vec<[usize; 2]>,
+    /// True for a sampled solid or shell (draw small dots), false for a wireframe or a set of
+    /// point masses (draw vertex markers).
+    pub cloud: bool,
+}
+
+/// The largest number of points a shape keeps; bigger point sets are thinned evenly.
+pub const MAX_POINTS: usize = 4096;
+
+/// The largest number of edges a shape keeps; beyond it only the points are drawn.
+pub const MAX_EDGES: usize = 20_000;
+
+impl Shape {
+    /// Returns the vertices (±a₁, …, ±a_N) of a hyper-cuboid with its N·2^(N−1) edges (vertices
+    /// that differ in one sign), or a thinned vertex cloud when N is too large to draw.
+    pub fn cuboid(half_edges: &[f64]) -> Shape {
+        let n = half_edges.len();
+        if n > 12 {
+            // 2^N vertices are too many to draw: keep an even sample of them.
+            let count = MAX_POINTS;
+            let total = 1u64 << n;
+            let points = (0..count as u64)
+                .map(|k| cuboid_vertex(half_edges, k * (total / count as u64)))
+                .collect();
+            return Shape::cloud(n, points);
+        }
+        let total = 1usize << n;
+        let points = (0..total as u64)
+            .map(|k| cuboid_vertex(half_edges, k))
+            .collect();
+        let mut edges = Vec::new();
+        for v in 0..total {
+            for bit in 0..n {
+                let w = v ^ (1 << bit);
+                if v < w {
+                    edges.push([v, w]);
+                }
+            }
+        }
+        Shape::wireframe(n, points, edges)
+    }
+
+    /// Returns the points with every pair joined (a simplex's edges).
+    pub fn complete_graph(points: Vec<Vec<f64>>) -> Shape {
+        let dim = points.first().map_or(0, Vec::len);
+        let mut edges = Vec::new();
+        for a in 0..points.len() {
+            for b in a + 1..points.len() {
+                edges.push([a, b]);
+            }
+        }
+        Shape::wireframe(dim, points, edges)
+    }
+
+    /// Returns a wireframe (edges beyond [`MAX_EDGES`] are dropped and only points drawn).
+    pub fn wireframe(dim: usize, points: Vec<Vec<f64>>, edges: Vec<[usize; 2]>) -> Shape {
+        if edges.len() > MAX_EDGES || points.len() > MAX_POINTS {
+            return Shape::cloud(dim, points);
+        }
+        Shape {
+            dim,
+            points,
+            edges,
+            cloud: false,
+        }
+    }
+
+    /// Returns isolated points (thinned evenly to at most [`MAX_POINTS`]).
+    pub fn cloud(dim: usize, points: Vec<Vec<f64>>) -> Shape {
+        let points = if points.len() > MAX_POINTS {
+            let stride = points.len().div_ceil(MAX_POINTS);
+            points.into_iter().step_by(stride).collect()
+        } else {
+            points
+        };
+        Shape {
+            dim,
+            points,
+            edges: Vec::new(),
+            cloud: true,
+        }
+    }
+
+    /// Returns `count` deterministic points filling the ellipsoid Σ (x_i/a_i)² ≤ 1 (or on its
+    /// surface when `surface`), with the semi-axes along the columns of `axes` (the body's own
+    /// axes when `None`).
+    pub fn ellipsoid(
+        semi_axes: &[f64],
+        axes: Option<&DMatrix<f64>>,
+        surface: bool,
+        count: usize,
+    ) -> Shape {
+        let n = semi_axes.len();
+        let mut rng = SplitMix(0x5eed_1234_abcd_0001);
+        let points = (0..count)
+            .map(|_| {
+                // A Gaussian direction (Box–Muller), then radius U^(1/N) for a uniform ball.
+                let mut g: Vec<f64> = (0..n).map(|_| rng.normal()).collect();
+                let norm = g.iter().map(|x| x * x).sum::<f64>().sqrt().max(1e-300);
+                let r = if surface {
+                    1.0
+                } else {
+                    rng.uniform().powf(1.0 / n as f64)
+                };
+                for (x, a) in g.iter_mut().zip(semi_axes) {
+                    *x = *x / norm * r * a;
+                }
+                match axes {
+                    Some(p) => (0..n)
+                        .map(|row| (0..n).map(|col| p[(row, col)] * g[col]).sum())
+                        .collect(),
+                    None => g,
+                }
+            })
+            .collect();
+        Shape::cloud(n, points)
+    }
+
+    /// Returns the 2N points ±r e_i joined like a cross-polytope (every pair but antipodes).
+    pub fn cross(dim: usize, radius: f64) -> Shape {
+        let mut points = Vec::with_capacity(2 * dim);
+        for i in 0..dim {
+            for sign in [1.0, -1.0] {
+                let mut p = vec![0.0; dim];
+                p[i] = sign * radius;
+                points.push(p);
+            }
+        }
+        let mut edges = Vec::new();
+        for a in 0..points.len() {
+            for b in a + 1..points.len() {
+                if a / 2 != b / 2 {
+                    edges.push([a, b]);
+                }
+            }
+        }
+        Shape::wireframe(dim, points, edges)
+    }
+
+    /// Returns the largest distance of a point from the origin (1 for an empty shape).
+    pub fn radius(&self) -> f64 {
+        let r = self
+            .points
+            .iter()
+            .map(|p| p.iter().map(|x| x * x).sum::<f64>().sqrt())
+            .fold(0.0, f64::max);
+        if r > 0.0 && r.is_finite() { r } else { 1.0 }
+    }
+}
+
+fn cuboid_vertex(half_edges: &[f64], k: u64) -> Vec<f64> {
+    half_edges
+        .iter()
+        .enumerate()
+        .map(|(i, a)| if k >> i & 1 == 1 { *a } else { -*a })
+        .collect()
+}
+
+/// A small deterministic generator (SplitMix64) so that drawings are reproducible.
+struct SplitMix(u64);
+
+impl SplitMix {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    fn uniform(&mut self) -> f64 {
+        ((self.next() >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+    }
+
+    fn normal(&mut self) -> f64 {
+        let (u, v) = (self.uniform(), self.uniform());
+        (-2.0 * u.ln()).sqrt() * (2.0 * std::f64::consts::PI * v).cos()
+    }
+}
