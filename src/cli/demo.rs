@@ -12,9 +12,7 @@
 
 use super::error::{CliError, CliResult};
 use super::exact::exact_report;
-use super::motion::{
-    InitialArgs, IntegratorKind, Report, Stepping, initial_body, integrate,
-};
+use super::motion::{InitialArgs, IntegratorKind, Report, Stepping, initial_body, integrate};
 use super::output::{Progress, number, plane_names, write_atomic};
 use super::render::picture;
 use super::simulate::{drift_plot, omega_plot};
@@ -141,9 +139,14 @@ pub fn promised_files() -> Vec<String> {
         })
         .collect();
     files.extend(
-        ["tesseract_frames.svg", "sweep.svg", "sweep.csv", "summary.md"]
-            .iter()
-            .map(|s| s.to_string()),
+        [
+            "tesseract_frames.svg",
+            "sweep.svg",
+            "sweep.csv",
+            "summary.md",
+        ]
+        .iter()
+        .map(|s| s.to_string()),
     );
     files
 }
@@ -302,11 +305,41 @@ fn integrator_table() -> CliResult<String> {
     let (_, start) = parse_case(case)?;
     let times = even_times(case.t_end, 121);
     let choices = [
-        ("rk4", Stepping::Fixed { kind: IntegratorKind::Rk4, dt: DT }),
-        ("strang", Stepping::Fixed { kind: IntegratorKind::Strang, dt: DT }),
-        ("yoshida4", Stepping::Fixed { kind: IntegratorKind::Yoshida4, dt: DT }),
-        ("midpoint", Stepping::Fixed { kind: IntegratorKind::Midpoint, dt: DT }),
-        ("dopri5 (rtol 1e-10, atol 1e-12)", Stepping::Adaptive { rtol: 1e-10, atol: 1e-12 }),
+        (
+            "rk4",
+            Stepping::Fixed {
+                kind: IntegratorKind::Rk4,
+                dt: DT,
+            },
+        ),
+        (
+            "strang",
+            Stepping::Fixed {
+                kind: IntegratorKind::Strang,
+                dt: DT,
+            },
+        ),
+        (
+            "yoshida4",
+            Stepping::Fixed {
+                kind: IntegratorKind::Yoshida4,
+                dt: DT,
+            },
+        ),
+        (
+            "midpoint",
+            Stepping::Fixed {
+                kind: IntegratorKind::Midpoint,
+                dt: DT,
+            },
+        ),
+        (
+            "dopri5 (rtol 1e-10, atol 1e-12)",
+            Stepping::Adaptive {
+                rtol: 1e-10,
+                atol: 1e-12,
+            },
+        ),
     ];
     let rows: Vec<String> = choices
         .par_iter()
@@ -339,7 +372,11 @@ fn integrator_table() -> CliResult<String> {
 /// Ω = (κ² − 1)/(κ² + 1) · √(c₁² + c₂² + c₃²) (ω₁₂, ω₁₃, ω₂₃ stay constant).
 fn sweep(dir: &Path) -> CliResult<String> {
     let omega = [0.3, 0.4, 0.2, 0.5, 0.1, 0.3];
-    let omega_text = omega.iter().map(|x| number(*x)).collect::<Vec<_>>().join(",");
+    let omega_text = omega
+        .iter()
+        .map(|x| number(*x))
+        .collect::<Vec<_>>()
+        .join(",");
     let kappas: Vec<f64> = (0..=24).map(|k| 1.2 + 0.1 * k as f64).collect();
     let times = even_times(120.0, 2401);
     let axes = [1, 2, 3];
@@ -375,12 +412,23 @@ fn sweep(dir: &Path) -> CliResult<String> {
     let names = ["23", "24", "34"];
     let mut csv = String::from("kappa,freq_23,freq_24,freq_34,paper_eq119\n");
     for (k, f, p) in &rows {
-        let _ = writeln!(csv, "{},{},{},{},{}", number(*k), number(f[0]), number(f[1]), number(f[2]), number(*p));
+        let _ = writeln!(
+            csv,
+            "{},{},{},{},{}",
+            number(*k),
+            number(f[0]),
+            number(f[1]),
+            number(f[2]),
+            number(*p)
+        );
     }
     write_atomic(&dir.join("sweep.csv"), csv.as_bytes())?;
     let mut series: Vec<Series> = (1..3)
         .map(|k| Series {
-            name: format!("observed frequency of ω{} (2-3-4 projection)", subscript(names[k])),
+            name: format!(
+                "observed frequency of ω{} (2-3-4 projection)",
+                subscript(names[k])
+            ),
             points: rows.iter().map(|(kappa, f, _)| (*kappa, f[k])).collect(),
         })
         .collect();

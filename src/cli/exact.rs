@@ -39,7 +39,8 @@ pub fn run(args: &ExactArgs) -> CliResult<()> {
     let start = initial_body(&parsed, &args.initial)?;
     let times = args.time.resolve()?;
     let report = exact_report(&start, &times)?;
-    args.report.write(&report, &format!("{} (closed form)", parsed.spec))
+    args.report
+        .write(&report, &format!("{} (closed form)", parsed.spec))
 }
 
 /// Returns the closed-form trajectory of `start` at `times` as a [`Report`].

@@ -126,7 +126,10 @@ fn inertia_text(parsed: &ParsedBody, report: &Value) -> String {
         }
     };
     out.push_str(&format!("mass                 {}\n", line(&report["mass"])));
-    out.push_str(&format!("volume               {}\n", line(&report["volume"])));
+    out.push_str(&format!(
+        "volume               {}\n",
+        line(&report["volume"])
+    ));
     out.push_str(&format!(
         "centre of mass       {}\n",
         line(&report["center_of_mass"])

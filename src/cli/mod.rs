@@ -132,7 +132,7 @@ fn clap_error(err: clap::Error) -> ExitCode {
                 .map(str::trim)
                 .filter(|l| !l.is_empty() && !l.starts_with("For more information"))
                 .collect();
-            let line = parts.join("; ").replace("error: ", "");
+            let line = parts.join("; ").replace("error: ", "").replace(":; ", ": ");
             eprintln!("rotorflow: error: {line}; see --help");
             ExitCode::from(2)
         }

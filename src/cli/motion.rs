@@ -109,7 +109,9 @@ pub fn sample_times(
         }
         (None, Some(list)) => {
             let v = parse_list(list).map_err(|e| {
-                CliError::input(format!("--times: {e} (expected --times t1,t2,... increasing, >= 0)"))
+                CliError::input(format!(
+                    "--times: {e} (expected --times t1,t2,... increasing, >= 0)"
+                ))
             })?;
             if let Some(t) = v.iter().find(|t| **t < 0.0) {
                 return Err(CliError::input(format!(
@@ -172,13 +174,13 @@ pub struct SteppingArgs {
     #[arg(long, value_enum, default_value = "rk4", value_name = "NAME")]
     pub integrator: IntegratorKind,
     /// Largest step for the fixed-step integrators (default 0.01/max(1, |ω|)).
-    #[arg(long, value_name = "H", value_parser = finite_number)]
+    #[arg(long, value_name = "H", value_parser = finite_number, allow_hyphen_values = true)]
     pub dt: Option<f64>,
     /// Relative tolerance of dopri5 (default 1e-10).
-    #[arg(long, value_name = "R", value_parser = finite_number)]
+    #[arg(long, value_name = "R", value_parser = finite_number, allow_hyphen_values = true)]
     pub rtol: Option<f64>,
     /// Absolute tolerance of dopri5 (default 1e-12).
-    #[arg(long, value_name = "A", value_parser = finite_number)]
+    #[arg(long, value_name = "A", value_parser = finite_number, allow_hyphen_values = true)]
     pub atol: Option<f64>,
 }
 
@@ -225,9 +227,9 @@ impl SteppingArgs {
     pub fn resolve(&self, body: &RigidBody, t_end: f64) -> CliResult<Stepping> {
         let positive = |flag: &str, v: Option<f64>| -> CliResult<()> {
             match v {
-                Some(x) if x <= 0.0 => Err(CliError::input(format!(
-                    "{flag} must be positive, got {x}"
-                ))),
+                Some(x) if x <= 0.0 => {
+                    Err(CliError::input(format!("{flag} must be positive, got {x}")))
+                }
                 _ => Ok(()),
             }
         };
@@ -282,7 +284,8 @@ pub fn parse_torque(text: Option<&str>, body: &RigidBody) -> CliResult<Box<dyn T
     let Some(text) = text else {
         return Ok(Box::new(Free));
     };
-    let bad = |m: String| CliError::input(format!("--torque `{text}`: {m} (expected {TORQUE_FORMS})"));
+    let bad =
+        |m: String| CliError::input(format!("--torque `{text}`: {m} (expected {TORQUE_FORMS})"));
     let (kind, args) = text.split_once(':').unwrap_or((text, ""));
     let bivector = |args: &str| -> CliResult<Bivector> {
         let v = parse_list(args).map_err(bad)?;
@@ -299,7 +302,9 @@ pub fn parse_torque(text: Option<&str>, body: &RigidBody) -> CliResult<Box<dyn T
         "none" if args.is_empty() => Ok(Box::new(Free)),
         // The integrators work in the principal frame: rotate the user's body-axes torque in.
         "body" => Ok(Box::new(BodyFrame(
-            body.principal_rotor().reverse().rotate_bivector(&bivector(args)?),
+            body.principal_rotor()
+                .reverse()
+                .rotate_bivector(&bivector(args)?),
         ))),
         "space" => Ok(Box::new(SpaceFrame(bivector(args)?))),
         "damping" => {
@@ -328,7 +333,8 @@ pub fn integrate(
     times: &[f64],
     progress: &mut Progress,
 ) -> CliResult<(Vec<State>, usize)> {
-    let fail = |e: crate::dynamics::DynamicsError| CliError::runtime(format!("integration failed: {e}"));
+    let fail =
+        |e: crate::dynamics::DynamicsError| CliError::runtime(format!("integration failed: {e}"));
     let mut states: Vec<State> = Vec::with_capacity(times.len());
     let mut steps = 0;
     // Chunks of samples, so that the progress bar moves; each chunk restarts from the last
@@ -354,8 +360,8 @@ pub fn integrate(
         let relative: Vec<f64> = block.iter().map(|t| t - t0).collect();
         let block_states: Vec<State> = match (&mut fixed, &mut adaptive, stepping) {
             (Some(integrator), _, Stepping::Fixed { dt, .. }) => {
-                let traj = simulate(&current, integrator.as_mut(), torque, dt, &relative)
-                    .map_err(fail)?;
+                let traj =
+                    simulate(&current, integrator.as_mut(), torque, dt, &relative).map_err(fail)?;
                 steps += traj.steps();
                 traj.samples()
                     .iter()
@@ -379,9 +385,10 @@ pub fn integrate(
         states.extend(block_states);
         progress.advance(block.len() as u64);
     }
-    if states.iter().any(|(r, l)| {
-        l.as_slice().iter().any(|x| !x.is_finite()) || !r.max_abs().is_finite()
-    }) {
+    if states
+        .iter()
+        .any(|(r, l)| l.as_slice().iter().any(|x| !x.is_finite()) || !r.max_abs().is_finite())
+    {
         return Err(CliError::runtime(
             "integration failed: the state is no longer finite; reduce --dt",
         ));
@@ -470,7 +477,8 @@ impl Report {
     /// Returns the JSON object with keys `dim`, `times`, `omega`, `momentum`, `energy`,
     /// `casimirs`, `attitude`, `drift` (plus `planes`, the component names).
     pub fn to_json(&self) -> Value {
-        let bv = |v: &[Bivector]| -> Vec<Vec<f64>> { v.iter().map(|b| b.as_slice().to_vec()).collect() };
+        let bv =
+            |v: &[Bivector]| -> Vec<Vec<f64>> { v.iter().map(|b| b.as_slice().to_vec()).collect() };
         json!({
             "dim": self.dim,
             "planes": plane_names(self.dim),

@@ -21,10 +21,15 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> CliResult<()> {
     let fail = |err: &dyn std::fmt::Display| {
         CliError::runtime(format!("cannot write `{}`: {err}", path.display()))
     };
-    let mut tmp = tempfile::Builder::new()
-        .prefix(".rotorflow-")
-        .tempfile_in(dir)
-        .map_err(|e| fail(&e))?;
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".rotorflow-");
+    // Temporary files are private (0600); the result is an ordinary file (0644 on Unix).
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o644));
+    }
+    let mut tmp = builder.tempfile_in(dir).map_err(|e| fail(&e))?;
     tmp.write_all(bytes).map_err(|e| fail(&e))?;
     tmp.flush().map_err(|e| fail(&e))?;
     tmp.persist(path).map_err(|e| fail(&e.error))?;
@@ -163,9 +168,9 @@ impl Progress {
         }
         if self.bar.is_none() && self.start.elapsed() >= Duration::from_secs(1) {
             let bar = ProgressBar::new(self.total);
-            if let Ok(style) =
-                ProgressStyle::with_template("{msg} [{elapsed_precise}] {wide_bar} {pos}/{len} (eta {eta})")
-            {
+            if let Ok(style) = ProgressStyle::with_template(
+                "{msg} [{elapsed_precise}] {wide_bar} {pos}/{len} (eta {eta})",
+            ) {
                 bar.set_style(style);
             }
             bar.set_message(self.message.clone());

@@ -43,7 +43,7 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub initial: InitialArgs,
     /// End time T of the animation.
-    #[arg(long, value_name = "T", value_parser = finite_number)]
+    #[arg(long, value_name = "T", value_parser = finite_number, allow_hyphen_values = true)]
     pub t_end: f64,
     /// The output: FILE.html (animation) or FILE.svg (a strip of frames).
     #[arg(long, value_name = "FILE")]
@@ -163,11 +163,7 @@ fn embed_3d(shape: Shape, matrices: &[DMatrix<f64>]) -> (Shape, Vec<DMatrix<f64>
     if shape.dim >= 3 {
         return (shape, matrices.to_vec());
     }
-    let points = shape
-        .points
-        .iter()
-        .map(|p| vec![p[0], p[1], 0.0])
-        .collect();
+    let points = shape.points.iter().map(|p| vec![p[0], p[1], 0.0]).collect();
     let shape = Shape {
         dim: 3,
         points,

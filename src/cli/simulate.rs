@@ -2,8 +2,8 @@
 
 use super::error::{CliError, CliResult};
 use super::motion::{
-    InitialArgs, Report, SteppingArgs, finite_number, initial_body, integrate,
-    parse_torque, sample_times,
+    InitialArgs, Report, SteppingArgs, finite_number, initial_body, integrate, parse_torque,
+    sample_times,
 };
 use super::output::{Progress, check_extension, emit, plane_names, to_json_text, write_atomic};
 use super::spec::{GRAMMAR, parse_body};
@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 #[derive(Args, Debug, Clone)]
 pub struct TimeArgs {
     /// End time T (the samples run from 0 to T).
-    #[arg(long, value_name = "T", value_parser = finite_number)]
+    #[arg(long, value_name = "T", value_parser = finite_number, allow_hyphen_values = true)]
     pub t_end: Option<f64>,
     /// Number of evenly spaced samples from 0 to T inclusive (K ≥ 2).
     #[arg(long, value_name = "K")]

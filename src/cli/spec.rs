@@ -69,8 +69,14 @@ enum Kind {
     Planes,
     Cuboid(Vec<f64>),
     Points(Vec<Vec<f64>>),
-    Solid { semi_axes: Vec<f64>, surface: bool },
-    Mesh { vertices: Vec<Vec<f64>>, edges: Vec<[usize; 2]> },
+    Solid {
+        semi_axes: Vec<f64>,
+        surface: bool,
+    },
+    Mesh {
+        vertices: Vec<Vec<f64>>,
+        edges: Vec<[usize; 2]>,
+    },
     SolidCuboid(Vec<f64>),
 }
 
@@ -220,7 +226,9 @@ pub fn parse_body(spec: &str) -> CliResult<ParsedBody> {
             let j = parse_list(args).map_err(e)?;
             check_dim(j.len()).map_err(e)?;
             if let Some(x) = j.iter().find(|x| **x < 0.0) {
-                return Err(e(format!("principal moments must not be negative, got {x}")));
+                return Err(e(format!(
+                    "principal moments must not be negative, got {x}"
+                )));
             }
             let m = mass.unwrap_or(1.0);
             let n = j.len();
@@ -245,9 +253,8 @@ pub fn parse_body(spec: &str) -> CliResult<ParsedBody> {
             }
             check_dim(n).map_err(e)?;
             let j = DMatrix::from_row_slice(n, n, &v);
-            let body =
-                Body::from_mass_properties(mass.unwrap_or(1.0), DVector::zeros(n), j, None)
-                    .map_err(|err| e(err.to_string()))?;
+            let body = Body::from_mass_properties(mass.unwrap_or(1.0), DVector::zeros(n), j, None)
+                .map_err(|err| e(err.to_string()))?;
             (Some(body), Kind::Moments)
         }
         "planes" => {
@@ -282,8 +289,8 @@ pub fn parse_body(spec: &str) -> CliResult<ParsedBody> {
             }
             let points = crate::inertia::bodies::pentachoron_eq73_positions(a[0], a[1], a[2], a[3])
                 .map_err(|err| e(err.to_string()))?;
-            let body = Body::pentachoron_eq73(a[0], a[1], a[2], a[3])
-                .map_err(|err| e(err.to_string()))?;
+            let body =
+                Body::pentachoron_eq73(a[0], a[1], a[2], a[3]).map_err(|err| e(err.to_string()))?;
             (
                 Some(body),
                 Kind::Points(points.iter().map(|p| p.iter().copied().collect()).collect()),
@@ -461,8 +468,8 @@ fn read_points(path: &Path) -> Result<(Vec<f64>, Vec<DVector<f64>>), String> {
         if line.is_empty() {
             continue;
         }
-        let row = parse_list(line)
-            .map_err(|err| format!("{}:{}: {err}", path.display(), line_no + 1))?;
+        let row =
+            parse_list(line).map_err(|err| format!("{}:{}: {err}", path.display(), line_no + 1))?;
         if row.len() < 3 || width.is_some_and(|w| w != row.len()) {
             return Err(format!(
                 "{}:{}: a row has {} values; every row must be m,x1,...,xN with the same N >= 2",
@@ -507,7 +514,10 @@ fn read_mesh(path: &Path) -> Result<Mesh, String> {
                     .collect::<Result<Vec<f64>, String>>()
                     .map_err(|err| format!("{}: {err}", at()))?;
                 if vertices.first().is_some_and(|f| f.len() != v.len()) || v.is_empty() {
-                    return Err(format!("{}: every vertex needs the same N coordinates", at()));
+                    return Err(format!(
+                        "{}: every vertex needs the same N coordinates",
+                        at()
+                    ));
                 }
                 vertices.push(DVector::from_vec(v));
             }

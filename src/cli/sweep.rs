@@ -24,7 +24,12 @@ pub struct SweepArgs {
     pub body: String,
     /// A parameter and its values START, START+STEP, … up to STOP inclusive; repeat for a
     /// grid (the first parameter varies slowest).
-    #[arg(long = "param", value_name = "NAME=START:STOP:STEP", required = true, allow_hyphen_values = true)]
+    #[arg(
+        long = "param",
+        value_name = "NAME=START:STOP:STEP",
+        required = true,
+        allow_hyphen_values = true
+    )]
     pub params: Vec<String>,
     /// The initial condition (templates too: `{NAME}` is replaced).
     #[command(flatten)]
@@ -70,7 +75,9 @@ pub fn parse_param(text: &str) -> CliResult<Param> {
             "--param `{text}`: {m} (expected NAME=START:STOP:STEP, e.g. d=1:2:0.25)"
         ))
     };
-    let (name, range) = text.split_once('=').ok_or_else(|| bad("missing `=`".into()))?;
+    let (name, range) = text
+        .split_once('=')
+        .ok_or_else(|| bad("missing `=`".into()))?;
     let name = name.trim();
     if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
         return Err(bad("the name must be letters, digits or _".into()));
@@ -85,7 +92,9 @@ pub fn parse_param(text: &str) -> CliResult<Param> {
         .collect::<CliResult<_>>()?;
     let (start, stop, step) = (v[0], v[1], v[2]);
     if step == 0.0 || (stop - start) * step < 0.0 {
-        return Err(bad("STEP must be non-zero and lead from START to STOP".into()));
+        return Err(bad(
+            "STEP must be non-zero and lead from START to STOP".into()
+        ));
     }
     let count = ((stop - start) / step * (1.0 + 1e-12) + 1e-9).floor() as u64 + 1;
     if count > 100_000 {
@@ -96,7 +105,11 @@ pub fn parse_param(text: &str) -> CliResult<Param> {
             let x = start + k as f64 * step;
             // Keep 12 significant digits so that 0.1 steps print as 0.3, not 0.30000000000000004.
             let scale = 10f64.powi(11 - x.abs().max(1e-300).log10().floor() as i32);
-            if scale.is_finite() { (x * scale).round() / scale } else { x }
+            if scale.is_finite() {
+                (x * scale).round() / scale
+            } else {
+                x
+            }
         })
         .collect();
     Ok(Param {
@@ -192,7 +205,9 @@ pub fn observables(report: &Report, axes: [usize; 3]) -> Observables {
         let mean = x.iter().sum::<f64>() / x.len().max(1) as f64;
         let (lo, hi) = x
             .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(*v), b.max(*v)));
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                (a.min(*v), b.max(*v))
+            });
         let amplitude = 0.5 * (hi - lo);
         let crossings = crossings(t, x, mean, 1e-9 * (amplitude + mean.abs()));
         let frequency = if crossings.len() >= 2 && amplitude > 1e-12 * (1.0 + mean.abs()) {
@@ -201,7 +216,11 @@ pub fn observables(report: &Report, axes: [usize; 3]) -> Observables {
         } else {
             0.0
         };
-        obs.frequency.push(if frequency.is_finite() { frequency } else { 0.0 });
+        obs.frequency.push(if frequency.is_finite() {
+            frequency
+        } else {
+            0.0
+        });
         obs.amplitude.push(amplitude);
         obs.mean.push(mean);
     }
@@ -262,7 +281,11 @@ pub fn run(args: &SweepArgs, quiet: bool) -> CliResult<()> {
         .map(|p| parse_param(p))
         .collect::<CliResult<_>>()?;
     let names: Vec<String> = params.iter().map(|p| p.name.clone()).collect();
-    if let Some(dup) = names.iter().enumerate().find(|(i, n)| names[..*i].contains(n)) {
+    if let Some(dup) = names
+        .iter()
+        .enumerate()
+        .find(|(i, n)| names[..*i].contains(n))
+    {
         return Err(CliError::input(format!(
             "--param `{}` is given twice",
             dup.1
@@ -321,11 +344,11 @@ pub fn run(args: &SweepArgs, quiet: bool) -> CliResult<()> {
             .map_err(in_run)?;
         runs.push((run, values, start, stepping));
     }
-    let axes = parse_axes(
-        &args.axes,
-        runs.first().map_or(3, |r| r.2.dim()),
-    )?;
-    if let Some(r) = runs.iter().find(|r| r.2.dim() < 3 || axes.iter().any(|&a| a >= r.2.dim())) {
+    let axes = parse_axes(&args.axes, runs.first().map_or(3, |r| r.2.dim()))?;
+    if let Some(r) = runs
+        .iter()
+        .find(|r| r.2.dim() < 3 || axes.iter().any(|&a| a >= r.2.dim()))
+    {
         return Err(CliError::input(format!(
             "run {}: the body has N = {}, too few for --axes {}",
             r.0,

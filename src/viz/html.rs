@@ -115,7 +115,8 @@ removed by a perspective from each of them in turn (the paper's figures 1–3) o
   const D = JSON.parse(document.getElementById("data").textContent);
   const n = D.dim;
   const canvas = document.getElementById("view");
-  const ctx = canvas.getContext("2d");
+  const selftest = window.location.hash === "#selftest";
+  const ctx = canvas.getContext("2d", { willReadFrequently: selftest });
   const slider = document.getElementById("slider");
   const timeLabel = document.getElementById("time");
   const playButton = document.getElementById("play");
@@ -230,7 +231,7 @@ removed by a perspective from each of them in turn (the paper's figures 1–3) o
     for (let i = 0; i < d.length; i += 4) if (d[i] < 250 || d[i + 1] < 250 || d[i + 2] < 250) count++;
     return count;
   }
-  if (window.location.hash === "#selftest") {
+  if (selftest) {
     state.playing = false;
     state.frame = 0; draw();
     const first = pixels();

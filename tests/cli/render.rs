@@ -1,0 +1,206 @@
+//! `rotorflow render`: a self-contained HTML animation (checked in headless Chromium) and an
+//! SVG strip of frames.
+
+use super::rotorflow;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn render(dir: &Path, name: &str, extra: &[&str]) -> PathBuf {
+    let out = dir.join(name);
+    let mut cmd = rotorflow();
+    cmd.args([
+        "render",
+        "--body",
+        "tesseract:1,1.2,1.5,2",
+        "--omega",
+        "1,0.05,0.02,0.03,0.04,0.7",
+        "--t-end",
+        "20",
+        "--out",
+    ])
+    .arg(&out)
+    .args(extra);
+    cmd.assert().success();
+    out
+}
+
+#[test]
+fn render_html_is_self_contained_with_controls() {
+    let dir = tempfile::tempdir().unwrap();
+    let page = std::fs::read_to_string(render(dir.path(), "a.html", &[])).unwrap();
+    assert!(page.starts_with("<!DOCTYPE html>"));
+    for needle in [
+        "<canvas",
+        "id=\"play\"",
+        "type=\"range\"",
+        "id=\"axes\"",
+        "id=\"projection\"",
+        "pointermove",
+    ] {
+        assert!(page.contains(needle), "page lacks {needle}");
+    }
+    // Nothing is loaded from the network.
+    for needle in ["http://", "https://", "<link", "src="] {
+        assert!(!page.contains(needle), "page refers to {needle}");
+    }
+}
+
+#[test]
+fn render_svg_is_a_strip_of_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    let svg = std::fs::read_to_string(render(
+        dir.path(),
+        "a.svg",
+        &[
+            "--frames",
+            "5",
+            "--projection",
+            "orthographic",
+            "--axes",
+            "2,3,4",
+        ],
+    ))
+    .unwrap();
+    assert!(svg.starts_with("<svg"));
+    assert_eq!(svg.matches("t = ").count(), 5);
+    // 16 vertices and 32 edges per frame.
+    assert_eq!(svg.matches("<circle").count(), 5 * 16);
+    assert_eq!(svg.matches("<line").count(), 5 * 32);
+    assert!(svg.contains("axes 2,3,4 (orthographic)"));
+}
+
+#[test]
+fn render_solids_and_2d_bodies() {
+    let dir = tempfile::tempdir().unwrap();
+    for (i, (body, omega)) in [
+        ("ellipsoid:1,2,3,4", "1,0,0,0,0,1"),
+        ("sphere:3,1", "0,0,1"),
+        ("cuboid:1,2", "1"),
+        ("planes:1,2,3", "1,0,0"),
+    ]
+    .iter()
+    .enumerate()
+    {
+        let out = dir.path().join(format!("{i}.html"));
+        rotorflow()
+            .args([
+                "render", "--body", body, "--omega", omega, "--t-end", "3", "--frames", "20",
+                "--out",
+            ])
+            .arg(&out)
+            .assert()
+            .success();
+        assert!(std::fs::metadata(&out).unwrap().len() > 1000);
+    }
+}
+
+/// Returns a Chromium that runs, or None (with a loud message) when there is none.
+fn chromium() -> Option<String> {
+    let candidates = [
+        std::env::var("ROTORFLOW_CHROMIUM").unwrap_or_default(),
+        "chromium".into(),
+        "chromium-browser".into(),
+        "google-chrome".into(),
+    ];
+    for c in candidates.iter().filter(|c| !c.is_empty()) {
+        if Command::new(c)
+            .arg("--version")
+            .output()
+            .is_ok_and(|o| o.status.success())
+        {
+            return Some(c.clone());
+        }
+    }
+    eprintln!(
+        "\n!!!!!!!! SKIPPED: no runnable Chromium (install Debian's `chromium`; .ci/run does) — \
+         the HTML animation was NOT checked in a browser !!!!!!!!\n"
+    );
+    None
+}
+
+fn chromium_command(browser: &str, profile: &Path) -> Command {
+    let mut cmd = Command::new(browser);
+    cmd.args([
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--hide-scrollbars",
+        "--no-first-run",
+        "--window-size=800,760",
+        "--virtual-time-budget=3000",
+    ])
+    .arg(format!("--user-data-dir={}", profile.display()));
+    cmd
+}
+
+#[test]
+fn render_html_draws_and_animates_in_headless_chromium() {
+    let Some(browser) = chromium() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let page = render(dir.path(), "tesseract.html", &[]);
+    let url = format!("file://{}", page.display());
+    let out = chromium_command(&browser, &dir.path().join("profile-dom"))
+        .args(["--enable-logging=stderr", "--v=0", "--dump-dom"])
+        .arg(format!("{url}#selftest"))
+        .output()
+        .expect("chromium runs");
+    let dom = String::from_utf8_lossy(&out.stdout);
+    let log = String::from_utf8_lossy(&out.stderr);
+    let start = dom
+        .find("<pre id=\"selftest\"")
+        .unwrap_or_else(|| panic!("no selftest in DOM:\n{dom}\n{log}"));
+    let json_start = start + dom[start..].find('>').unwrap() + 1;
+    let json_end = json_start + dom[json_start..].find("</pre>").unwrap();
+    let report: serde_json::Value = serde_json::from_str(&dom[json_start..json_end])
+        .unwrap_or_else(|e| {
+            panic!(
+                "selftest did not run ({e}):\n{}\n{log}",
+                &dom[start..json_end]
+            )
+        });
+    assert_eq!(report["frames"].as_u64(), Some(300));
+    assert!(
+        report["nonblank_first"].as_u64().unwrap() > 1000,
+        "{report}"
+    );
+    assert!(
+        report["nonblank_later"].as_u64().unwrap() > 1000,
+        "{report}"
+    );
+    assert!(
+        report["changed"].as_u64().unwrap() > 100,
+        "frames do not differ: {report}"
+    );
+    assert_eq!(
+        report["errors"].as_array().map(Vec::len),
+        Some(0),
+        "{report}"
+    );
+    for line in log.lines() {
+        assert!(!line.contains("Uncaught"), "script error: {line}");
+        assert!(
+            !(line.contains("CONSOLE") && (line.contains("ERROR") || line.contains("WARNING"))),
+            "console message: {line}"
+        );
+    }
+    // A screenshot of the running animation, kept as a CI artefact.
+    let artefacts = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/cli-artifacts");
+    std::fs::create_dir_all(&artefacts).unwrap();
+    let shot = artefacts.join("animation.png");
+    let _ = std::fs::remove_file(&shot);
+    let status = chromium_command(&browser, &dir.path().join("profile-shot"))
+        .arg(format!("--screenshot={}", shot.display()))
+        .arg(&url)
+        .output()
+        .expect("chromium runs");
+    assert!(
+        status.status.success(),
+        "{}",
+        String::from_utf8_lossy(&status.stderr)
+    );
+    let png = std::fs::read(&shot).expect("screenshot written");
+    assert!(
+        png.len() > 5000 && png.starts_with(b"\x89PNG"),
+        "bad screenshot"
+    );
+}
