@@ -26,6 +26,7 @@ use clap::Args;
 use rayon::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 use std::time::Instant;
 
 /// Arguments of `demo`.
@@ -155,7 +156,8 @@ struct CaseResult {
     report: Report,
     steps: usize,
     seconds: f64,
-    exact: String,
+    /// max |ω − ω_exact| over the samples, or why there is no closed form.
+    exact: Result<f64, String>,
 }
 
 /// Runs `demo`.
@@ -167,17 +169,29 @@ pub fn run(args: &DemoArgs, quiet: bool) -> CliResult<()> {
     let dir = &args.out;
     std::fs::create_dir_all(dir)
         .map_err(|e| CliError::runtime(format!("cannot create `{}`: {e}", dir.display())))?;
-    let mut progress = Progress::new((CASES.len() + 2) as u64, quiet, "demo");
+    let progress = Mutex::new(Progress::new((CASES.len() + 2) as u64, quiet, "demo"));
+    let step = || {
+        if let Ok(mut p) = progress.lock() {
+            p.advance(1);
+        }
+    };
     let results: Vec<CaseResult> = CASES
         .par_iter()
-        .map(|case| run_case(case, dir))
+        .map(|case| {
+            let r = run_case(case, dir);
+            step();
+            r
+        })
         .collect::<CliResult<_>>()?;
-    progress.advance(CASES.len() as u64);
     let integrators = integrator_table()?;
-    progress.advance(1);
+    step();
     let sweep_text = sweep(dir)?;
-    progress.advance(1);
-    progress.finish();
+    step();
+    if let Ok(p) = progress.into_inner() {
+        p.finish();
+    }
+    // Reasons why a case has no exact comparison, as numbered footnotes.
+    let mut reasons: Vec<String> = Vec::new();
     let mut md = String::new();
     let _ = writeln!(md, "# rotorflow demo\n");
     let _ = writeln!(
@@ -193,6 +207,19 @@ pub fn run(args: &DemoArgs, quiet: bool) -> CliResult<()> {
     );
     let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|");
     for (case, r) in CASES.iter().zip(&results) {
+        let exact = match &r.exact {
+            Ok(deviation) => format!("{deviation:.2e}"),
+            Err(reason) => {
+                let k = match reasons.iter().position(|x| x == reason) {
+                    Some(k) => k,
+                    None => {
+                        reasons.push(reason.clone());
+                        reasons.len() - 1
+                    }
+                };
+                format!("n/a [{}]", k + 1)
+            }
+        };
         let _ = writeln!(
             md,
             "| {} | `{}` | {} | ({}) | {} | {} | {:.2e} | {:.2e} | {:.3} | {} | [ω](omega_{n}.svg), [drift](drift_{n}.svg), [animation]({n}.html) |",
@@ -205,9 +232,13 @@ pub fn run(args: &DemoArgs, quiet: bool) -> CliResult<()> {
             r.report.drift.energy,
             r.report.drift.casimirs,
             r.seconds,
-            r.exact,
+            exact,
             n = case.name
         );
+    }
+    md.push('\n');
+    for (k, reason) in reasons.iter().enumerate() {
+        let _ = writeln!(md, "\\[{}\\] {reason}  ", k + 1);
     }
     let _ = writeln!(md, "\n## Integrators on the tesseract\n");
     md.push_str(&integrators);
@@ -215,7 +246,7 @@ pub fn run(args: &DemoArgs, quiet: bool) -> CliResult<()> {
     md.push_str(&sweep_text);
     let _ = writeln!(
         md,
-        "\nAlso: [tesseract_frames.svg](tesseract_frames.svg), a strip of frames of the tumbling tesseract.\n\nTotal time: {:.1} s.",
+        "\nAlso: [tesseract_frames.svg](tesseract_frames.svg), a strip of frames of the tumbling tesseract.\n\nTotal time: {:.1} s.\n",
         clock.elapsed().as_secs_f64()
     );
     write_atomic(&dir.join("summary.md"), md.as_bytes())?;
@@ -278,18 +309,16 @@ fn run_case(case: &Case, dir: &Path) -> CliResult<CaseResult> {
     // HOOK (closed forms): the "numeric vs exact" column. `exact_report` gives the closed-form
     // trajectory once `rotorflow::dynamics::exact` is wired into `cli::exact`; until then it
     // explains that none is available and the column says so.
-    let exact = match exact_report(&start, &times) {
-        Ok(exact) => {
-            let worst = exact
+    let exact = exact_report(&start, &times)
+        .map(|exact| {
+            exact
                 .omega
                 .iter()
                 .zip(&report.omega)
                 .map(|(a, b)| (a - b).max_abs())
-                .fold(0.0f64, f64::max);
-            format!("{worst:.2e}")
-        }
-        Err(e) => format!("n/a ({e})"),
-    };
+                .fold(0.0f64, f64::max)
+        })
+        .map_err(|e| e.to_string());
     Ok(CaseResult {
         report,
         steps,

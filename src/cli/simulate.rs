@@ -21,7 +21,7 @@ pub struct TimeArgs {
     #[arg(long, value_name = "K")]
     pub samples: Option<usize>,
     /// Explicit sample times, comma-separated, strictly increasing, ≥ 0.
-    #[arg(long, value_name = "t1,t2,...")]
+    #[arg(long, value_name = "t1,t2,...", allow_hyphen_values = true)]
     pub times: Option<String>,
 }
 

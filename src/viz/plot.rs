@@ -79,7 +79,9 @@ pub fn line_plot(spec: &PlotSpec<'_>, series: &[Series]) -> Result<String, Strin
             .x_label_area_size(48)
             .y_label_area_size(84);
         if spec.log_y {
-            let (y0, y1) = range(all().map(|p| p.1.max(LOG_FLOOR))).unwrap_or((LOG_FLOOR, 1.0));
+            // The range of the positive values; zeros are drawn on the bottom edge.
+            let (y0, y1) = range(all().map(|p| p.1).filter(|y| *y >= LOG_FLOOR))
+                .unwrap_or((LOG_FLOOR, 1.0));
             let (y0, y1) = (y0 / 3.0, (y1 * 3.0).max(y0 * 10.0));
             let mut chart = builder
                 .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
@@ -97,7 +99,7 @@ pub fn line_plot(spec: &PlotSpec<'_>, series: &[Series]) -> Result<String, Strin
                     .points
                     .iter()
                     .filter(|p| p.0.is_finite() && p.1.is_finite())
-                    .map(|p| (p.0, p.1.max(LOG_FLOOR)))
+                    .map(|p| (p.0, p.1.max(y0)))
                     .collect();
                 chart
                     .draw_series(LineSeries::new(pts, color.stroke_width(2)))

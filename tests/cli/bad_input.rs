@@ -29,23 +29,19 @@ fn refuses(args: &[&str], needle: &str) {
     assert!(left.is_empty(), "output files written: {left:?}");
 }
 
+/// Runs `simulate` with `extra` flags and defaults for the flags `extra` does not give.
 fn simulate(body: &str, omega: &str, extra: &[&str], needle: &str) {
-    let mut args = vec![
-        "simulate",
-        "--body",
-        body,
-        "--omega",
-        omega,
-        "--t-end",
-        "1",
-        "--samples",
-        "3",
-        "--json",
-        "--output",
-        "out.json",
-        "--plot",
-        "out.svg",
-    ];
+    let mut args = vec!["simulate", "--body", body, "--omega", omega, "--json"];
+    for (flag, default) in [
+        ("--t-end", "1"),
+        ("--samples", "3"),
+        ("--output", "out.json"),
+        ("--plot", "out.svg"),
+    ] {
+        if !extra.contains(&flag) {
+            args.extend([flag, default]);
+        }
+    }
     args.extend(extra);
     refuses(&args, needle);
 }
