@@ -80,8 +80,8 @@ pub fn line_plot(spec: &PlotSpec<'_>, series: &[Series]) -> Result<String, Strin
             .y_label_area_size(84);
         if spec.log_y {
             // The range of the positive values; zeros are drawn on the bottom edge.
-            let (y0, y1) = range(all().map(|p| p.1).filter(|y| *y >= LOG_FLOOR))
-                .unwrap_or((LOG_FLOOR, 1.0));
+            let (y0, y1) =
+                range(all().map(|p| p.1).filter(|y| *y >= LOG_FLOOR)).unwrap_or((LOG_FLOOR, 1.0));
             let (y0, y1) = (y0 / 3.0, (y1 * 3.0).max(y0 * 10.0));
             let mut chart = builder
                 .build_cartesian_2d(x0..x1, (y0..y1).log_scale())

@@ -1,6 +1,6 @@
 //! `rotorflow inertia`: every JSON key, and the numbers match the library.
 
-use super::{assert_close, floats, matrix, rotorflow, run_json};
+use super::{assert_close, assert_matrix_close, floats, matrix, rotorflow, run_json};
 use nalgebra::{DMatrix, DVector};
 use rotorflow::inertia::tensor::{ContractedInertia, ContractionNormalization, RankFourTensor};
 use rotorflow::inertia::{Body, InertiaMap};
@@ -39,14 +39,7 @@ fn check_against_library(spec: &str, body: &Body) {
         1e-12,
     );
     let j = body.mass_tensor();
-    let rows = matrix(&v["mass_tensor"]);
-    for r in 0..n {
-        assert_close(
-            &rows[r],
-            &j.row(r).iter().copied().collect::<Vec<_>>(),
-            1e-12,
-        );
-    }
+    assert_matrix_close(&matrix(&v["mass_tensor"]), j, 1e-12);
     assert_close(
         &floats(&v["principal_moments"]),
         body.principal_moments().as_slice(),
@@ -58,14 +51,7 @@ fn check_against_library(spec: &str, body: &Body) {
         1e-12,
     );
     let map = InertiaMap::from_body(body).unwrap().to_matrix();
-    let rows = matrix(&v["inertia_matrix"]);
-    for r in 0..map.nrows() {
-        assert_close(
-            &rows[r],
-            &map.row(r).iter().copied().collect::<Vec<_>>(),
-            1e-12,
-        );
-    }
+    assert_matrix_close(&matrix(&v["inertia_matrix"]), &map, 1e-12);
     let rank4 = RankFourTensor::from_mass_tensor(j).unwrap();
     for (i, a) in v["rank4"].as_array().unwrap().iter().enumerate() {
         for (k, b) in a.as_array().unwrap().iter().enumerate() {
@@ -77,19 +63,7 @@ fn check_against_library(spec: &str, body: &Body) {
     }
     let contracted =
         ContractedInertia::from_mass_tensor(j, ContractionNormalization::LeviCivita).unwrap();
-    let rows = matrix(&v["contracted"]);
-    for r in 0..n {
-        assert_close(
-            &rows[r],
-            &contracted
-                .matrix()
-                .row(r)
-                .iter()
-                .copied()
-                .collect::<Vec<_>>(),
-            1e-12,
-        );
-    }
+    assert_matrix_close(&matrix(&v["contracted"]), contracted.matrix(), 1e-12);
     assert_close(
         &floats(&v["gyration_radii"]),
         contracted.gyration_radii(body.mass()).unwrap().as_slice(),

@@ -59,3 +59,12 @@ pub fn assert_close(a: &[f64], b: &[f64], tol: f64) {
         );
     }
 }
+
+/// Asserts that the JSON rows `rows` equal the matrix `m` within `tol` (relative to max(1, |m|)).
+#[track_caller]
+pub fn assert_matrix_close(rows: &[Vec<f64>], m: &nalgebra::DMatrix<f64>, tol: f64) {
+    assert_eq!(rows.len(), m.nrows(), "row counts differ");
+    for (r, row) in rows.iter().enumerate() {
+        assert_close(row, &m.row(r).iter().copied().collect::<Vec<_>>(), tol);
+    }
+}

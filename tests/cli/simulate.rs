@@ -1,6 +1,6 @@
 //! `rotorflow simulate`: JSON shape, agreement with the library, integrators, CSV, files.
 
-use super::{assert_close, floats, matrix, rotorflow, run_json};
+use super::{assert_close, assert_matrix_close, floats, matrix, rotorflow, run_json};
 use nalgebra::DMatrix;
 use rotorflow::algebra::{Bivector, Rotor};
 use rotorflow::dynamics::{RigidBody, Rkmk4, simulate, torques::Free};
@@ -98,14 +98,7 @@ fn simulate_matches_library_in_the_bodys_own_axes() {
             1e-9,
         );
         let q = s.attitude.compose(&rp.reverse()).to_matrix();
-        let rows = matrix(&v["attitude"][k]);
-        for r in 0..3 {
-            assert_close(
-                &rows[r],
-                &q.row(r).iter().copied().collect::<Vec<_>>(),
-                1e-9,
-            );
-        }
+        assert_matrix_close(&matrix(&v["attitude"][k]), &q, 1e-9);
     }
     assert_close(&omega[0], &[0.3, -1.0, 0.2], 1e-13);
 }
