@@ -306,9 +306,7 @@ fn run_case(case: &Case, dir: &Path) -> CliResult<CaseResult> {
         let svg = picture(&parsed, &sub, case.axes, Projection::Perspective, false);
         write_atomic(&dir.join("tesseract_frames.svg"), svg.as_bytes())?;
     }
-    // HOOK (closed forms): the "numeric vs exact" column. `exact_report` gives the closed-form
-    // trajectory once `rotorflow::dynamics::exact` is wired into `cli::exact`; until then it
-    // explains that none is available and the column says so.
+    // The "numeric vs exact" column: the closed form when the body has one, or why not.
     let exact = exact_report(&start, &times)
         .map(|exact| {
             exact

@@ -45,28 +45,28 @@ pub fn run(args: &ExactArgs) -> CliResult<()> {
 
 /// Returns the closed-form trajectory of `start` at `times` as a [`Report`].
 ///
-/// The closed form is a map t ↦ (R(t), L(t)) (attitude principal frame → space, body-frame
-/// momentum in the principal frame); [`Report::from_states`] turns it into the same output as
-/// `simulate`.
+/// The closed form ([`RigidBody::exact_solution`]) is a map t ↦ (R(t), L(t)) (attitude
+/// principal frame → space, body-frame momentum in the principal frame);
+/// [`Report::from_states`] turns it into the same output as `simulate`.
 ///
 /// # Errors
-/// [`CliError::Input`] when the body has no closed form. In this build the closed forms are
-/// not wired in yet, and every call says so.
+/// [`CliError::Input`] when the body has no closed form (the message says why);
+/// [`CliError::Runtime`] if the closed form cannot be evaluated at a time.
 pub fn exact_report(start: &RigidBody, times: &[f64]) -> CliResult<Report> {
-    let solution = closed_form(start)?;
-    Report::from_states(start, times, times.iter().map(|&t| solution(t)))
-}
-
-/// Returns t ↦ (R(t), L(t)) for `start`.
-///
-/// TEMPORARY: the closed forms (`rotorflow::dynamics::exact`, `exact_solution(&body)` with
-/// `attitude_at(t)` and `momentum_at(t)`) are being written separately; until they are wired
-/// here, every body is reported as having none. Wiring:
-/// `let s = exact_solution(start).map_err(|e| CliError::input(format!("no closed-form solution: {e}")))?;`
-/// `Ok(Box::new(move |t| Ok((s.attitude_at(t).map_err(..)?, s.momentum_at(t).map_err(..)?))))`.
-#[allow(clippy::type_complexity)]
-fn closed_form(_start: &RigidBody) -> CliResult<Box<dyn Fn(f64) -> CliResult<State> + '_>> {
-    Err(CliError::input(
-        "closed-form solutions are not available in this build",
-    ))
+    let solution = start.exact_solution().map_err(|e| match e {
+        crate::dynamics::exact::ExactError::NoClosedForm(why) => {
+            CliError::input(format!("no closed-form solution for this body: {why}"))
+        }
+        e => CliError::input(format!("no closed-form solution for this body: {e}")),
+    })?;
+    let state = |t: f64| -> CliResult<State> {
+        let fail = |e: crate::dynamics::exact::ExactError| {
+            CliError::runtime(format!("closed form at t = {t}: {e}"))
+        };
+        Ok((
+            solution.attitude_at(t).map_err(fail)?,
+            solution.momentum_at(t).map_err(fail)?,
+        ))
+    };
+    Report::from_states(start, times, times.iter().map(|&t| state(t)))
 }

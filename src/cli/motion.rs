@@ -4,11 +4,12 @@
 use super::error::{CliError, CliResult};
 use super::output::{Progress, matrix_json, number, plane_names};
 use super::spec::{ParsedBody, parse_list, parse_number};
-use crate::algebra::{Bivector, Rotor, bivector_len};
+use crate::algebra::{Bivector, bivector_len};
 use crate::dynamics::torques::{BodyFrame, Free, LinearDamping, SpaceFrame};
 use crate::dynamics::trajectory::even_times;
 use crate::dynamics::{
-    Dopri5, Drift, Integrator, Invariants, Midpoint, RigidBody, Rkmk4, Splitting, Torque, simulate,
+    Attitude, Dopri5, Drift, Integrator, Invariants, Midpoint, RigidBody, Rkmk4, Splitting, Torque,
+    simulate,
 };
 use clap::{Args, ValueEnum};
 use nalgebra::DMatrix;
@@ -68,9 +69,9 @@ pub fn initial_body(parsed: &ParsedBody, initial: &InitialArgs) -> CliResult<Rig
         .map_err(|e| CliError::input(format!("{flag}: {e}")))?;
     let inertia = parsed.inertia.clone();
     let body = if flag == "--omega" {
-        RigidBody::from_body_velocity(inertia, Rotor::identity(n), &b)
+        RigidBody::from_body_velocity(inertia, Attitude::identity(n), &b)
     } else {
-        RigidBody::from_body_momentum(inertia, Rotor::identity(n), &b)
+        RigidBody::from_body_momentum(inertia, Attitude::identity(n), &b)
     };
     body.map_err(|e| CliError::input(format!("body `{}`: {e}", parsed.spec)))
 }
@@ -302,9 +303,8 @@ pub fn parse_torque(text: Option<&str>, body: &RigidBody) -> CliResult<Box<dyn T
         "none" if args.is_empty() => Ok(Box::new(Free)),
         // The integrators work in the principal frame: rotate the user's body-axes torque in.
         "body" => Ok(Box::new(BodyFrame(
-            body.principal_rotor()
-                .reverse()
-                .rotate_bivector(&bivector(args)?),
+            body.principal_frame()
+                .inverse_rotate_bivector(&bivector(args)?),
         ))),
         "space" => Ok(Box::new(SpaceFrame(bivector(args)?))),
         "damping" => {
@@ -319,7 +319,7 @@ pub fn parse_torque(text: Option<&str>, body: &RigidBody) -> CliResult<Box<dyn T
 }
 
 /// One state: attitude (principal frame → space) and body-frame momentum (principal frame).
-pub type State = (Rotor, Bivector);
+pub type State = (Attitude, Bivector);
 
 /// Integrates `body` under `torque` and returns the state at every time in `times`, with the
 /// number of steps taken.
@@ -387,7 +387,7 @@ pub fn integrate(
     }
     if states
         .iter()
-        .any(|(r, l)| l.as_slice().iter().any(|x| !x.is_finite()) || !r.max_abs().is_finite())
+        .any(|(r, l)| l.as_slice().iter().any(|x| !x.is_finite()) || !r.is_finite())
     {
         return Err(CliError::runtime(
             "integration failed: the state is no longer finite; reduce --dt",
@@ -434,8 +434,8 @@ impl Report {
     ) -> CliResult<Report> {
         let n = start.dim();
         let reference = Invariants::of(start);
-        let rp = start.principal_rotor().clone();
-        let rp_rev = rp.reverse();
+        let rp = start.principal_frame().clone();
+        let rp_rev = rp.inverse();
         let mut report = Report {
             dim: n,
             times: times.to_vec(),

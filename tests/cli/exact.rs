@@ -16,35 +16,8 @@ const CASES: [(&str, &str); 5] = [
     ),
 ];
 
-/// True when this build reports that the closed forms are not wired in yet.
-fn closed_forms_missing() -> bool {
-    let out = rotorflow()
-        .args([
-            "exact",
-            "--body",
-            "ellipsoid:1,2,3",
-            "--omega",
-            "0,1,0",
-            "--t-end",
-            "1",
-            "--samples",
-            "2",
-            "--json",
-        ])
-        .output()
-        .unwrap();
-    let missing = String::from_utf8_lossy(&out.stderr).contains("not available in this build");
-    if missing {
-        eprintln!(
-            "\n!!!!!!!! rotorflow exact: closed-form solutions are not available in this build; \
-             the comparison with simulate is SKIPPED until they are wired in !!!!!!!!\n"
-        );
-    }
-    missing
-}
-
 #[test]
-fn exact_has_the_simulate_shape_or_says_why_not() {
+fn exact_has_the_simulate_shape() {
     let out = rotorflow()
         .args([
             "exact",
@@ -60,20 +33,18 @@ fn exact_has_the_simulate_shape_or_says_why_not() {
         ])
         .output()
         .unwrap();
-    if out.status.success() {
-        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-        for k in [
-            "dim", "times", "omega", "momentum", "energy", "casimirs", "attitude", "drift",
-        ] {
-            assert!(v.get(k).is_some(), "key {k} missing");
-        }
-        assert_eq!(floats(&v["times"]).len(), 3);
-    } else {
-        assert_eq!(out.status.code(), Some(2));
-        let err = String::from_utf8(out.stderr).unwrap();
-        assert_eq!(err.lines().count(), 1, "{err}");
-        assert!(out.stdout.is_empty());
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for k in [
+        "dim", "times", "omega", "momentum", "energy", "casimirs", "attitude", "drift",
+    ] {
+        assert!(v.get(k).is_some(), "key {k} missing");
     }
+    assert_eq!(floats(&v["times"]).len(), 3);
 }
 
 #[test]
@@ -84,7 +55,7 @@ fn exact_refuses_a_body_without_closed_form() {
             "--body",
             "tesseract:1,1.2,1.5,2",
             "--omega",
-            "1,0,0,0,0,1",
+            "1,0.5,0,0,0.3,1",
             "--t-end",
             "1",
             "--samples",
@@ -95,14 +66,12 @@ fn exact_refuses_a_body_without_closed_form() {
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8(out.stderr).unwrap();
     assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("no closed-form solution"), "{err}");
     assert!(out.stdout.is_empty());
 }
 
 #[test]
 fn exact_agrees_with_simulate_on_closed_form_cases() {
-    if closed_forms_missing() {
-        return;
-    }
     for (body, omega) in CASES {
         let common = [
             "--body",

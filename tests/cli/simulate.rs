@@ -84,7 +84,7 @@ fn simulate_matches_library_in_the_bodys_own_axes() {
     ]);
     let omega = matrix(&v["omega"]);
     let momentum = matrix(&v["momentum"]);
-    let rp = start.principal_rotor();
+    let rp = start.principal_frame();
     for (k, s) in traj.samples().iter().enumerate() {
         let w_own = rp.rotate_bivector(&s.omega);
         let l_own = rp.rotate_bivector(&s.momentum);
@@ -97,7 +97,7 @@ fn simulate_matches_library_in_the_bodys_own_axes() {
                 .as_slice(),
             1e-9,
         );
-        let q = s.attitude.compose(&rp.reverse()).to_matrix();
+        let q = s.attitude.compose(&rp.inverse()).to_matrix();
         assert_matrix_close(&matrix(&v["attitude"][k]), &q, 1e-9);
     }
     assert_close(&omega[0], &[0.3, -1.0, 0.2], 1e-13);
