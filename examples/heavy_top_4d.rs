@@ -9,7 +9,7 @@ use rotorflow::dynamics::torques::Gravity;
 use rotorflow::dynamics::{Integrator, RigidBody, Splitting};
 use rotorflow::prelude::*;
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+pub fn main() -> Result<(), Box<dyn std::error::Error>> {
     let ellipsoid = Body::solid_ellipsoid(&[0.5, 0.6, 0.7, 1.2], 1.0)?;
     // Inertia about the pivot, 1.0 below the centre of mass along the body's e4.
     let offset = Vector::from_components(&[0.0, 0.0, 0.0, 1.0])?;

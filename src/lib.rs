@@ -59,6 +59,22 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
+//! # The book
+//! The rotorflow book (`book/` in the repository, built with `mdbook build book`) explains
+//! the crate chapter by chapter:
+//! - `book/src/getting-started.md`: install, the two commands, a first simulation;
+//! - `book/src/geometric-algebra.md`: blades, bivectors as planes, rotors, the invariant
+//!   decomposition ([`algebra`]);
+//! - `book/src/mapping.md`: every equation of the paper, its geometric-algebra counterpart
+//!   and the function that computes it;
+//! - `book/src/inertia.md`: the body catalogue and the paper's sections 4–6 recomputed
+//!   ([`inertia`]);
+//! - `book/src/dynamics.md`: the integrators, what each conserves, error against cost
+//!   ([`dynamics`]);
+//! - `book/src/errata/index.md`: the paper's errata, each with the test that proves it;
+//! - `book/src/extending.md`: torques, a 4D heavy top, bodies from meshes, new integrators;
+//! - `book/src/performance.md`: rotorflow beside nalgebra's matrix formulation.
+//!
 //! # Crate features
 //! - `cli` (default): the `rotorflow` command ([`cli`], `cargo run --release -- demo`) and the
 //!   pictures it draws ([`viz`]: SVG plots with plotters, HTML animations). Turning it off

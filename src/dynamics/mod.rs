@@ -18,6 +18,9 @@
 //! - [`trajectory`]: sampled runs ([`simulate`]) with a drift summary.
 //! - [`kinematics`]: point velocities, Coriolis and centrifugal accelerations (eqs. 18–21).
 //! - [`stability`]: growth rates of perturbed steady rotations.
+//!
+//! Book chapters: `book/src/dynamics.md` (the integrators compared) and `book/src/mapping.md`
+//! (the paper's eqs. 14–68 in these terms).
 
 mod attitude;
 mod body;

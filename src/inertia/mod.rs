@@ -12,6 +12,9 @@
 //! In the principal frame of J the map is diagonal on the basis planes,
 //! I(eᵢ∧eⱼ) = (Jᵢ + Jⱼ) eᵢ∧eⱼ: the plane moment of eᵢ∧eⱼ is ∫(xᵢ² + xⱼ²) dm. In 3D the classical
 //! principal moments are I₁ = J₂ + J₃, I₂ = J₁ + J₃, I₃ = J₁ + J₂.
+//!
+//! Book chapters: `book/src/inertia.md` (the catalogue and the paper's sections 4–6
+//! recomputed) and `book/src/errata/inertia.md`.
 
 pub mod bodies;
 mod error;

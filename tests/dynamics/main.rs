@@ -5,6 +5,7 @@ mod equations;
 mod large_n;
 mod motion;
 mod orders;
+mod paper_errata;
 mod torqued;
 
 use rand::{Rng, SeedableRng};

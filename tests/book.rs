@@ -1,0 +1,386 @@
+//! Mechanical checks of the book (`book/`), run by `cargo test`:
+//!
+//! - every `{{#include}}` resolves to a file; an included example is one that this test
+//!   compiles (through `#[path]`, so it is always the current source) and runs; an included
+//!   generated file is one whose generator this test re-runs;
+//! - the generated tables and plots equal their generators' output;
+//! - every errata entry names a test, `path::fn_name` or a bare name in the page's default
+//!   test file, and every test named anywhere in the book exists as a `#[test] fn` that is
+//!   not ignored, in a file that belongs to a test target (so `cargo test` runs it, and the
+//!   run passes only if it passes).
+//!
+//! `mdbook build` and the link check of the built HTML run in `.ci/run`.
+
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+
+// The examples the book includes or whose output it includes. Each is compiled into this
+// test from its source file and run below.
+#[allow(dead_code)]
+#[path = "../examples/bench_table.rs"]
+mod bench_table;
+#[allow(dead_code)]
+#[path = "../examples/book_inertia_tables.rs"]
+mod book_inertia_tables;
+#[allow(dead_code)]
+#[path = "../examples/book_integrators.rs"]
+mod book_integrators;
+#[allow(dead_code)]
+#[path = "../examples/custom_integrator.rs"]
+mod custom_integrator;
+#[allow(dead_code)]
+#[path = "../examples/first_simulation.rs"]
+mod first_simulation;
+#[allow(dead_code)]
+#[path = "../examples/heavy_top_4d.rs"]
+mod heavy_top_4d;
+#[allow(dead_code)]
+#[path = "../examples/mesh_body.rs"]
+mod mesh_body;
+#[allow(dead_code)]
+#[path = "../examples/torque_closure.rs"]
+mod torque_closure;
+
+/// The examples run by [`included_examples_run`]; the book may include only these.
+const RUN_EXAMPLES: &[&str] = &[
+    "bench_table",
+    "book_inertia_tables",
+    "book_integrators",
+    "custom_integrator",
+    "first_simulation",
+    "heavy_top_4d",
+    "mesh_body",
+    "torque_closure",
+];
+
+/// The generated files checked against their generators below; the book may include only
+/// these from `generated/`.
+const GENERATED: &[&str] = &[
+    "bench_table.md",
+    "inertia_tables.md",
+    "integrators.md",
+    "integrators_error.svg",
+];
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn read(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// Every markdown file under book/src.
+fn book_pages() -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut stack = vec![root().join("book/src")];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).expect("book/src") {
+            let path = entry.expect("entry").path();
+            if path.is_dir() {
+                stack.push(path);
+            } else if path.extension().is_some_and(|e| e == "md") {
+                out.push(path);
+            }
+        }
+    }
+    out.sort();
+    assert!(out.len() > 5, "book pages not found");
+    out
+}
+
+/// The targets of `{{#include …}}`-style directives in a page (path part, before any `:`).
+fn includes(text: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    for directive in ["{{#include ", "{{#rustdoc_include ", "{{#playground "] {
+        let mut rest = text;
+        while let Some(at) = rest.find(directive) {
+            rest = &rest[at + directive.len()..];
+            let end = rest.find("}}").expect("unterminated include");
+            let target = rest[..end].trim();
+            out.push(target.split(':').next().unwrap_or(target).to_string());
+        }
+    }
+    out
+}
+
+#[test]
+fn every_include_is_an_example_or_generated_file_that_tests_check() {
+    let mut count = 0;
+    for page in book_pages() {
+        let text = read(&page);
+        for target in includes(&text) {
+            count += 1;
+            let path = page.parent().unwrap().join(&target);
+            assert!(
+                path.is_file(),
+                "{}: include of missing file {target}",
+                page.display()
+            );
+            let canon = path.canonicalize().unwrap();
+            let name = canon.file_name().unwrap().to_string_lossy().to_string();
+            if canon.starts_with(root().join("examples")) {
+                let stem = name.trim_end_matches(".rs");
+                assert!(
+                    RUN_EXAMPLES.contains(&stem),
+                    "{}: includes example {stem}, which tests/book.rs does not run",
+                    page.display()
+                );
+            } else if canon.starts_with(root().join("book/src/generated")) {
+                assert!(
+                    GENERATED.contains(&name.as_str()),
+                    "{}: includes generated/{name}, which tests/book.rs does not check",
+                    page.display()
+                );
+            } else {
+                panic!(
+                    "{}: include of {target}: only examples/ and book/src/generated/ may be \
+                     included (code and numbers come from the code)",
+                    page.display()
+                );
+            }
+        }
+    }
+    assert!(count >= 5, "expected the book to include examples, found {count}");
+}
+
+#[test]
+fn included_examples_run() {
+    first_simulation::main().expect("first_simulation");
+    heavy_top_4d::main().expect("heavy_top_4d");
+    torque_closure::main().expect("torque_closure");
+    mesh_body::main().expect("mesh_body");
+    custom_integrator::main().expect("custom_integrator");
+    book_inertia_tables::render().expect("book_inertia_tables");
+}
+
+fn assert_current(file: &str, generated: &str, command: &str) {
+    let path = root().join("book/src/generated").join(file);
+    let committed = read(&path);
+    assert!(
+        committed == generated,
+        "book/src/generated/{file} is stale: regenerate it with `{command}`"
+    );
+}
+
+#[test]
+fn generated_inertia_tables_are_current() {
+    let text = book_inertia_tables::render().expect("render");
+    assert_current(
+        "inertia_tables.md",
+        &text,
+        "cargo run --example book_inertia_tables -- --write",
+    );
+}
+
+#[test]
+fn generated_integrator_survey_is_current() {
+    let (md, svg) = book_integrators::render().expect("render");
+    let command = "cargo run --example book_integrators -- --write";
+    assert_current("integrators.md", &md, command);
+    assert_current("integrators_error.svg", &svg, command);
+}
+
+#[test]
+fn generated_bench_table_is_rendered_from_its_data() {
+    let data = read(&root().join("book/src/generated/bench_data.tsv"));
+    let table = bench_table::render(&data).expect("render");
+    assert_current(
+        "bench_table.md",
+        &table,
+        "cargo run --release --example bench_table -- --write (after cargo bench)",
+    );
+    for key in ["# date: ", "# machine: ", "# compiler: "] {
+        assert!(data.contains(key), "bench_data.tsv lacks `{key}`");
+    }
+}
+
+/// A reference to a test: the file (relative to the repository) and the function name.
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
+struct TestRef {
+    file: String,
+    name: String,
+}
+
+/// The backticked tokens of a string.
+fn backticked(text: &str) -> Vec<String> {
+    text.split('`')
+        .enumerate()
+        .filter(|(k, _)| k % 2 == 1)
+        .map(|(_, s)| s.to_string())
+        .collect()
+}
+
+fn is_fn_name(s: &str) -> bool {
+    s.contains('_')
+        && s.chars().next().is_some_and(|c| c.is_ascii_lowercase())
+        && s.chars()
+            .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
+}
+
+/// A `tests/…/file.rs::fn_name` token.
+fn full_ref(token: &str) -> Option<TestRef> {
+    let (file, name) = token.split_once("::")?;
+    (file.starts_with("tests/") && file.ends_with(".rs") && is_fn_name(name)).then(|| TestRef {
+        file: file.into(),
+        name: name.into(),
+    })
+}
+
+/// Test references in one table cell; `default` resolves bare names.
+fn refs_in_cell(cell: &str, default: Option<&str>) -> Vec<TestRef> {
+    backticked(cell)
+        .iter()
+        .filter_map(|t| {
+            full_ref(t).or_else(|| {
+                is_fn_name(t)
+                    .then(|| TestRef {
+                        file: default
+                            .unwrap_or_else(|| panic!("bare test name `{t}` but no default file"))
+                            .into(),
+                        name: t.clone(),
+                    })
+            })
+        })
+        .collect()
+}
+
+/// Checks that `name` is a `#[test] fn` in `file`, not ignored, in a test target.
+fn check_test_exists(r: &TestRef) -> Result<(), String> {
+    let path = root().join(&r.file);
+    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", r.file))?;
+    let needle = format!("fn {}(", r.name);
+    let at = text
+        .find(&needle)
+        .ok_or_else(|| format!("{}: no fn {}", r.file, r.name))?;
+    // The attributes directly above the function.
+    let before: Vec<&str> = text[..at].lines().rev().skip(1).collect();
+    let mut attrs = Vec::new();
+    for line in before {
+        let l = line.trim();
+        if l.starts_with("#[") || l.starts_with("///") || l.starts_with("//") {
+            attrs.push(l);
+        } else {
+            break;
+        }
+    }
+    let line = text[..at].lines().last().unwrap_or("").trim();
+    if !attrs.iter().any(|a| *a == "#[test]") && !line.starts_with("#[test]") {
+        return Err(format!("{}::{} is not a #[test] fn", r.file, r.name));
+    }
+    if attrs.iter().any(|a| a.starts_with("#[ignore")) {
+        return Err(format!("{}::{} is #[ignore]d", r.file, r.name));
+    }
+    // The file must belong to a test target.
+    let rel = Path::new(&r.file);
+    let parts: Vec<_> = rel.components().collect();
+    if parts.len() == 3 {
+        let dir = root().join("tests").join(parts[1].as_os_str());
+        let main = std::fs::read_to_string(dir.join("main.rs"))
+            .map_err(|_| format!("{}: no tests/{:?}/main.rs", r.file, parts[1]))?;
+        let module = rel.file_stem().unwrap().to_string_lossy();
+        if !main.contains(&format!("mod {module};")) {
+            return Err(format!("{}: not a module of its test target", r.file));
+        }
+    } else if parts.len() != 2 {
+        return Err(format!("{}: not a test target file", r.file));
+    }
+    Ok(())
+}
+
+#[test]
+fn every_errata_entry_names_a_passing_test() {
+    let dir = root().join("book/src/errata");
+    let mut pages: Vec<_> = std::fs::read_dir(&dir)
+        .expect("book/src/errata")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "md") && !p.ends_with("index.md"))
+        .collect();
+    pages.sort();
+    assert!(!pages.is_empty());
+    let mut failures = Vec::new();
+    let mut entries = 0;
+    for page in &pages {
+        let text = read(page);
+        let default = text.find("All tests live in").and_then(|at| {
+            backticked(&text[at..])
+                .into_iter()
+                .find(|t| t.starts_with("tests/") && t.ends_with(".rs"))
+        });
+        let mut columns: Option<(usize, Option<usize>)> = None;
+        let mut previous: Vec<TestRef> = Vec::new();
+        for line in text.lines() {
+            if !line.starts_with('|') {
+                columns = None;
+                continue;
+            }
+            let cells: Vec<&str> = split_row(line);
+            if cells.iter().all(|c| c.chars().all(|ch| ch == '-' || ch == ':' || ch == ' ')) {
+                continue;
+            }
+            let Some((test_col, verdict_col)) = columns else {
+                let test_col = cells.iter().position(|c| c.trim() == "test");
+                let verdict_col = cells.iter().position(|c| c.trim() == "verdict");
+                columns = test_col.map(|t| (t, verdict_col));
+                continue;
+            };
+            entries += 1;
+            let cell = cells.get(test_col).copied().unwrap_or("").trim();
+            let verdict = verdict_col.and_then(|v| cells.get(v)).copied().unwrap_or("");
+            let refs = if cell == "same test" || cell == "same" {
+                previous.clone()
+            } else if cell == "—" && verdict.contains("not checkable") {
+                Vec::new()
+            } else {
+                refs_in_cell(cell, default.as_deref())
+            };
+            if refs.is_empty() && !verdict.contains("not checkable") {
+                failures.push(format!("{}: entry names no test: {line}", page.display()));
+            }
+            for r in &refs {
+                if let Err(e) = check_test_exists(r) {
+                    failures.push(format!("{}: {e}", page.display()));
+                }
+            }
+            previous = refs;
+        }
+    }
+    assert!(entries >= 40, "only {entries} errata entries found");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Splits a markdown table row into cells, honouring `\|` escapes and backticks.
+fn split_row(line: &str) -> Vec<&str> {
+    let mut cells = Vec::new();
+    let bytes = line.as_bytes();
+    let (mut start, mut in_code) = (1, false);
+    for (k, &b) in bytes.iter().enumerate().skip(1) {
+        match b {
+            b'`' => in_code = !in_code,
+            b'|' if !in_code && bytes[k - 1] != b'\\' => {
+                cells.push(&line[start..k]);
+                start = k + 1;
+            }
+            _ => {}
+        }
+    }
+    cells
+}
+
+#[test]
+fn every_test_named_in_the_book_exists() {
+    let mut named = BTreeSet::new();
+    for page in book_pages() {
+        for token in backticked(&read(&page)) {
+            if let Some(r) = full_ref(&token) {
+                named.insert(r);
+            }
+        }
+    }
+    assert!(named.len() >= 10, "only {} test references found", named.len());
+    let failures: Vec<String> = named
+        .iter()
+        .filter_map(|r| check_test_exists(r).err())
+        .collect();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
