@@ -74,7 +74,7 @@ pub fn render(tsv: &str) -> Res<String> {
     )?;
     writeln!(out, "|---|---|---|---|---|")?;
     let mut groups: Vec<_> = rows.into_iter().collect();
-    groups.sort_by(|a, b| group_key(&a.0).cmp(&group_key(&b.0)));
+    groups.sort_by_key(|g| group_key(&g.0));
     for (group, mut ms) in groups {
         ms.sort_by(|a, b| a.mean_ns.total_cmp(&b.mean_ns));
         let fastest = ms[0].mean_ns;
@@ -185,10 +185,16 @@ pub fn main() -> Res<()> {
     if std::env::args().any(|a| a == "--write") {
         let ms = collect(&root.join("target/criterion"))?;
         if ms.is_empty() {
-            return Err("no criterion results under target/criterion: run `cargo bench` first".into());
+            return Err(
+                "no criterion results under target/criterion: run `cargo bench` first".into(),
+            );
         }
         let mut tsv = String::new();
-        writeln!(tsv, "# date: {}", command_output("date", &["-u", "+%Y-%m-%d"]))?;
+        writeln!(
+            tsv,
+            "# date: {}",
+            command_output("date", &["-u", "+%Y-%m-%d"])
+        )?;
         writeln!(tsv, "# machine: {}", machine())?;
         writeln!(tsv, "# compiler: {}", command_output("rustc", &["-V"]))?;
         writeln!(

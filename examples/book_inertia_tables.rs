@@ -37,7 +37,10 @@ pub fn render() -> Res<String> {
     // The book includes the two parts by these anchors.
     writeln!(out, "<!-- ANCHOR: catalogue -->")?;
     catalogue(&mut out)?;
-    writeln!(out, "<!-- ANCHOR_END: catalogue -->\n<!-- ANCHOR: paper -->")?;
+    writeln!(
+        out,
+        "<!-- ANCHOR_END: catalogue -->\n<!-- ANCHOR: paper -->"
+    )?;
     paper_values(&mut out)?;
     writeln!(out, "<!-- ANCHOR_END: paper -->")?;
     Ok(out)
@@ -151,7 +154,9 @@ fn catalogue(out: &mut String) -> Res<()> {
         for n in 2..=6 {
             let (body, a) = make(n)?;
             let j = body.mass_tensor();
-            let spread = (0..n).map(|i| (j[(i, i)] - j[(0, 0)]).abs()).fold(0.0, f64::max);
+            let spread = (0..n)
+                .map(|i| (j[(i, i)] - j[(0, 0)]).abs())
+                .fold(0.0, f64::max);
             assert!(spread <= 1e-12 * j[(0, 0)], "{name}: J not isotropic");
             write!(out, " {} |", fraction(j[(0, 0)] / (body.mass() * a * a)))?;
         }
@@ -243,7 +248,12 @@ fn paper_values(out: &mut String) -> Res<()> {
             continue; // eq. 74 omits I^{2323}
         }
         let quantity = format!("I^{{{0}{0}}}", names[k]);
-        t.row("74", &quantity, 5.0 / 8.0 * (sq[p] + sq[q]), rank4.get(p, q, p, q))?;
+        t.row(
+            "74",
+            &quantity,
+            5.0 / 8.0 * (sq[p] + sq[q]),
+            rank4.get(p, q, p, q),
+        )?;
     }
     let lc = contracted(&j, ContractionNormalization::LeviCivita)?;
     for p in 0..4 {
@@ -266,17 +276,32 @@ fn paper_values(out: &mut String) -> Res<()> {
     let rank4 = RankFourTensor::from_mass_tensor(&j)?;
     for (k, &(p, q)) in PLANES_4D.iter().enumerate() {
         let quantity = format!("I^{{{0}{0}}}", names[k]);
-        t.row("78", &quantity, v4 / 3.0 * (sq[p] + sq[q]), rank4.get(p, q, p, q))?;
+        t.row(
+            "78",
+            &quantity,
+            v4 / 3.0 * (sq[p] + sq[q]),
+            rank4.get(p, q, p, q),
+        )?;
     }
     let lc = contracted(&j, ContractionNormalization::LeviCivita)?;
     let ax = contracted(&j, ContractionNormalization::AxisMoment)?;
     t.row("79", "𝕀_I", v4 / 3.0 * others(0), lc.axis_values()[0])?;
-    t.row("79", "𝕀_I (`AxisMoment`)", v4 / 3.0 * others(0), ax.axis_values()[0])?;
+    t.row(
+        "79",
+        "𝕀_I (`AxisMoment`)",
+        v4 / 3.0 * others(0),
+        ax.axis_values()[0],
+    )?;
     t.row("80", "μ", v4, body.mass())?;
     let radii = lc.gyration_radii(body.mass())?;
     let radii_ax = ax.gyration_radii(body.mass())?;
     t.row("80", "L_I²", others(0) / 3.0, radii[0].powi(2))?;
-    t.row("80", "L_I² (`AxisMoment`)", others(0) / 3.0, radii_ax[0].powi(2))?;
+    t.row(
+        "80",
+        "L_I² (`AxisMoment`)",
+        others(0) / 3.0,
+        radii_ax[0].powi(2),
+    )?;
     let axes5 = [A, B, C, D, E];
     let body5 = Body::solid_cuboid(&axes5, 1.0)?;
     let v5 = body5.volume().ok_or("no volume")?;
@@ -302,14 +327,34 @@ fn paper_values(out: &mut String) -> Res<()> {
     let v3 = body.volume().ok_or("no volume")?;
     t.row("83", "V₍₃₎", 4.0 * PI / 3.0 * A * B * C, v3)?;
     let j = body.mass_tensor().clone();
-    t.row("84", "∫x² dV", 4.0 * PI / 15.0 * A.powi(3) * B * C, j[(0, 0)])?;
-    t.row("85", "∫y² dV", 4.0 * PI / 15.0 * B.powi(3) * A * C, j[(1, 1)])?;
-    t.row("86", "∫z² dV", 4.0 * PI / 15.0 * C.powi(3) * A * B, j[(2, 2)])?;
+    t.row(
+        "84",
+        "∫x² dV",
+        4.0 * PI / 15.0 * A.powi(3) * B * C,
+        j[(0, 0)],
+    )?;
+    t.row(
+        "85",
+        "∫y² dV",
+        4.0 * PI / 15.0 * B.powi(3) * A * C,
+        j[(1, 1)],
+    )?;
+    t.row(
+        "86",
+        "∫z² dV",
+        4.0 * PI / 15.0 * C.powi(3) * A * B,
+        j[(2, 2)],
+    )?;
     let lc = contracted(&j, ContractionNormalization::LeviCivita)?;
     let ax = contracted(&j, ContractionNormalization::AxisMoment)?;
     let paper87 = v3 / 5.0 * (B * B + C * C);
     t.row("87", "𝕀_I", paper87, lc.axis_values()[0])?;
-    t.row("87", "𝕀_I (`AxisMoment`, classical)", paper87, ax.axis_values()[0])?;
+    t.row(
+        "87",
+        "𝕀_I (`AxisMoment`, classical)",
+        paper87,
+        ax.axis_values()[0],
+    )?;
     let radii_ax = ax.gyration_radii(body.mass())?;
     t.row(
         "88",
@@ -338,7 +383,12 @@ fn paper_values(out: &mut String) -> Res<()> {
     let k = PI * PI / 12.0;
     t.row("91", "∫x² dV", k * A.powi(3) * B * C * D, j[(0, 0)])?;
     t.row("92", "∫y² dV", k * B.powi(3) * A * C * D, j[(1, 1)])?;
-    t.row("93", "∫z² dV (printed c³acd)", k * C.powi(3) * A * C * D, j[(2, 2)])?;
+    t.row(
+        "93",
+        "∫z² dV (printed c³acd)",
+        k * C.powi(3) * A * C * D,
+        j[(2, 2)],
+    )?;
     t.row("94", "∫w² dV", k * D.powi(3) * A * B * C, j[(3, 3)])?;
     let lc = contracted(&j, ContractionNormalization::LeviCivita)?;
     let ax = contracted(&j, ContractionNormalization::AxisMoment)?;
@@ -378,8 +428,8 @@ fn paper_values(out: &mut String) -> Res<()> {
         let ball = Body::solid_ball(n, R, 1.0)?;
         let j = ball.mass_tensor();
         let trace = j.trace();
-        let polar = nf * PI.powf(nf / 2.0) / gamma(nf / 2.0 + 1.0) * R.powi(n as i32 + 2)
-            / (nf + 2.0);
+        let polar =
+            nf * PI.powf(nf / 2.0) / gamma(nf / 2.0 + 1.0) * R.powi(n as i32 + 2) / (nf + 2.0);
         t.row("101", &format!("I^P₍{n},2₎ (= tr J)"), polar, trace)?;
         t.row(
             "102",

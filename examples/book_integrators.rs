@@ -11,9 +11,7 @@
 
 use rotorflow::dynamics::torques::Free;
 use rotorflow::dynamics::trajectory::even_times;
-use rotorflow::dynamics::{
-    Dopri5, Integrator, Midpoint, RigidBody, Rkmk4, Splitting, simulate,
-};
+use rotorflow::dynamics::{Dopri5, Integrator, Midpoint, RigidBody, Rkmk4, Splitting, simulate};
 use rotorflow::prelude::*;
 use std::error::Error;
 use std::fmt::Write as _;
@@ -85,12 +83,26 @@ fn runs() -> Res<Vec<Run>> {
     let mut out = Vec::new();
     for &h in &STEPS {
         let work = "4 ω×L".to_string();
-        out.push(measure(&body, &reference, "RKMK4 (`Rkmk4`)", h, &mut Rkmk4, work)?);
+        out.push(measure(
+            &body,
+            &reference,
+            "RKMK4 (`Rkmk4`)",
+            h,
+            &mut Rkmk4,
+            work,
+        )?);
     }
     for &h in &STEPS {
         let work = format!("{} plane rotations", 2 * PLANES - 1);
         let mut integ = Splitting::strang();
-        out.push(measure(&body, &reference, "Strang (`Splitting::strang`)", h, &mut integ, work)?);
+        out.push(measure(
+            &body,
+            &reference,
+            "Strang (`Splitting::strang`)",
+            h,
+            &mut integ,
+            work,
+        )?);
     }
     for &h in &STEPS {
         let work = format!("{} plane rotations", 3 * (2 * PLANES - 1));

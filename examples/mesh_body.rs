@@ -70,7 +70,9 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
     let box_only = Body::simplicial_mesh(&vertices, &box_simplices, 1.0, unsigned)?;
     let half: Vec<f64> = edges.iter().map(|e| e / 2.0).collect();
     let reference = Body::solid_cuboid(&half, 1.0)?;
-    let difference = (box_only.mass_tensor() - reference.mass_tensor()).abs().max();
+    let difference = (box_only.mass_tensor() - reference.mass_tensor())
+        .abs()
+        .max();
     println!(
         "box from {} simplices: mass {:.6}, |J − J_cuboid| = {difference:.1e}",
         box_simplices.len(),
@@ -95,7 +97,13 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
     let inertia = InertiaMap::from_body(&house)?;
     let omega = Bivector::from_components(4, &[0.0, 0.0, 1.0, 0.0, 0.2, 0.0])?;
     let body = RigidBody::from_body_velocity(inertia, Rotor::identity(4), &omega)?;
-    let run = simulate(&body, &mut Splitting::yoshida4(), &Free, 0.01, &even_times(10.0, 3))?;
+    let run = simulate(
+        &body,
+        &mut Splitting::yoshida4(),
+        &Free,
+        0.01,
+        &even_times(10.0, 3),
+    )?;
     println!(
         "tumbling for t = 10: energy drift {:.1e}, Casimir drift {:.1e}",
         run.drift().energy,

@@ -141,7 +141,10 @@ fn every_include_is_an_example_or_generated_file_that_tests_check() {
             }
         }
     }
-    assert!(count >= 5, "expected the book to include examples, found {count}");
+    assert!(
+        count >= 5,
+        "expected the book to include examples, found {count}"
+    );
 }
 
 #[test]
@@ -227,22 +230,23 @@ fn full_ref(token: &str) -> Option<TestRef> {
     })
 }
 
-/// Test references in one table cell; `default` resolves bare names.
+/// Test references in one table cell. A bare name resolves to the file of the last full
+/// reference before it in the same cell, else to `default` (the page's default test file).
 fn refs_in_cell(cell: &str, default: Option<&str>) -> Vec<TestRef> {
-    backticked(cell)
-        .iter()
-        .filter_map(|t| {
-            full_ref(t).or_else(|| {
-                is_fn_name(t)
-                    .then(|| TestRef {
-                        file: default
-                            .unwrap_or_else(|| panic!("bare test name `{t}` but no default file"))
-                            .into(),
-                        name: t.clone(),
-                    })
-            })
-        })
-        .collect()
+    let mut file = default.map(str::to_string);
+    let mut out = Vec::new();
+    for token in backticked(cell) {
+        if let Some(r) = full_ref(&token) {
+            file = Some(r.file.clone());
+            out.push(r);
+        } else if is_fn_name(&token) {
+            let file = file
+                .clone()
+                .unwrap_or_else(|| panic!("bare test name `{token}` but no default file"));
+            out.push(TestRef { file, name: token });
+        }
+    }
+    out
 }
 
 /// Checks that `name` is a `#[test] fn` in `file`, not ignored, in a test target.
@@ -265,7 +269,7 @@ fn check_test_exists(r: &TestRef) -> Result<(), String> {
         }
     }
     let line = text[..at].lines().last().unwrap_or("").trim();
-    if !attrs.iter().any(|a| *a == "#[test]") && !line.starts_with("#[test]") {
+    if !attrs.contains(&"#[test]") && !line.starts_with("#[test]") {
         return Err(format!("{}::{} is not a #[test] fn", r.file, r.name));
     }
     if attrs.iter().any(|a| a.starts_with("#[ignore")) {
@@ -315,7 +319,10 @@ fn every_errata_entry_names_a_passing_test() {
                 continue;
             }
             let cells: Vec<&str> = split_row(line);
-            if cells.iter().all(|c| c.chars().all(|ch| ch == '-' || ch == ':' || ch == ' ')) {
+            if cells
+                .iter()
+                .all(|c| c.chars().all(|ch| ch == '-' || ch == ':' || ch == ' '))
+            {
                 continue;
             }
             let Some((test_col, verdict_col)) = columns else {
@@ -326,7 +333,10 @@ fn every_errata_entry_names_a_passing_test() {
             };
             entries += 1;
             let cell = cells.get(test_col).copied().unwrap_or("").trim();
-            let verdict = verdict_col.and_then(|v| cells.get(v)).copied().unwrap_or("");
+            let verdict = verdict_col
+                .and_then(|v| cells.get(v))
+                .copied()
+                .unwrap_or("");
             let refs = if cell == "same test" || cell == "same" {
                 previous.clone()
             } else if cell == "—" && verdict.contains("not checkable") {
@@ -377,7 +387,11 @@ fn every_test_named_in_the_book_exists() {
             }
         }
     }
-    assert!(named.len() >= 10, "only {} test references found", named.len());
+    assert!(
+        named.len() >= 10,
+        "only {} test references found",
+        named.len()
+    );
     let failures: Vec<String> = named
         .iter()
         .filter_map(|r| check_test_exists(r).err())

@@ -129,9 +129,12 @@ fn paper_eq_36_47_65_matrix_is_a_checkerboard_automorphism() {
     for n in 3..=5 {
         let j: Vec<f64> = (0..n).map(|_| r.gen_range(0.3..2.0)).collect();
         let w = random_bivector(&mut r, n, 1.0);
-        let d = DMatrix::from_diagonal(&DVector::from_fn(n, |i, _| {
-            if i % 2 == 0 { -1.0 } else { 1.0 }
-        }));
+        let d = DMatrix::from_diagonal(&DVector::from_fn(
+            n,
+            |i, _| {
+                if i % 2 == 0 { -1.0 } else { 1.0 }
+            },
+        ));
         let printed = DMatrix::from_fn(n, n, |a, b| {
             let (i, k) = (a + 1, b + 1);
             let sign = if (i + k) % 2 == 0 { 1.0 } else { -1.0 };
@@ -194,7 +197,10 @@ fn paper_eqs_36_to_38_give_three_different_angular_velocity_vectors() {
         assert!((eq37[k] + design[k]).abs() < 1e-15, "eq. 37 = −Ω");
         assert!((eq38[k] - 0.5 * eq37[k]).abs() < 1e-15, "eq. 38 = ½ eq. 37");
     }
-    assert!((omega36[1] - design[1]).abs() > 1.0, "Ω_36 differs from Ω in the 13 sign");
+    assert!(
+        (omega36[1] - design[1]).abs() > 1.0,
+        "Ω_36 differs from Ω in the 13 sign"
+    );
 }
 
 #[test]
@@ -245,10 +251,18 @@ fn paper_eqs_44_to_46_are_eulers_equations_with_omega13_reversed_and_half_torque
             let dw = signed(&crate_rate(&j, &w, Some(&tau)), &s);
             let p = signed(&w, &s);
             let m = signed(&tau, &s);
-            let half = [0.5 * m.as_slice()[0], 0.5 * m.as_slice()[1], 0.5 * m.as_slice()[2]];
-            let pr = paper_3d_rate(&j, &[p.as_slice()[0], p.as_slice()[1], p.as_slice()[2]], &half);
-            for k in 0..3 {
-                assert!((pr[k] - dw.as_slice()[k]).abs() < 1e-13, "{s:?} {k}");
+            let half = [
+                0.5 * m.as_slice()[0],
+                0.5 * m.as_slice()[1],
+                0.5 * m.as_slice()[2],
+            ];
+            let pr = paper_3d_rate(
+                &j,
+                &[p.as_slice()[0], p.as_slice()[1], p.as_slice()[2]],
+                &half,
+            );
+            for (k, (a, b)) in pr.iter().zip(dw.as_slice()).enumerate() {
+                assert!((a - b).abs() < 1e-13, "{s:?} {k}");
             }
         }
     }
@@ -281,7 +295,7 @@ fn paper_eqs_53_to_58_hold_only_for_cyclically_relabelled_moments() {
     let mut r = rng(5358);
     let j: Vec<f64> = (0..4).map(|_| r.gen_range(0.3..2.0)).collect();
     let w = random_bivector(&mut r, 4, 1.0);
-    let paper_identity = paper_4d_rate(&j, &signed(&w, &[-1.0; 6]).as_slice().to_vec());
+    let paper_identity = paper_4d_rate(&j, signed(&w, &[-1.0; 6]).as_slice());
     let crate_identity = signed(&crate_rate(&j, &w, None), &[-1.0; 6]);
     let mismatch = paper_identity
         .iter()
@@ -309,8 +323,14 @@ fn paper_eqs_53_to_58_hold_only_for_cyclically_relabelled_moments() {
         }
     }
     assert!(!found.is_empty());
-    assert!(found.iter().all(|(perm, _)| perm == &vec![3, 0, 1, 2]), "{found:?}");
-    assert!(found.iter().any(|(_, bits)| *bits == 63), "p = −ω is among the solutions");
+    assert!(
+        found.iter().all(|(perm, _)| perm == &vec![3, 0, 1, 2]),
+        "{found:?}"
+    );
+    assert!(
+        found.iter().any(|(_, bits)| *bits == 63),
+        "p = −ω is among the solutions"
+    );
 }
 
 #[test]
@@ -359,7 +379,10 @@ fn paper_eqs_59_to_64_reduced_systems_use_the_wrong_moments() {
     let p = signed(&w, &[-1.0; 6]);
     let pa = paper_4d_rate(&j, p.as_slice());
     let pb = paper_4d_rate(&j2, p.as_slice());
-    assert!((pa[0] - pb[0]).abs() > 1e-3, "the printed eq. (59) depends on J4");
+    assert!(
+        (pa[0] - pb[0]).abs() > 1e-3,
+        "the printed eq. (59) depends on J4"
+    );
 }
 
 #[test]
@@ -395,9 +418,14 @@ fn paper_eqs_49_to_51_polynomial_lacks_lambda4_and_its_coefficients_are_not_the_
     // Same Casimirs, different energy.
     let inertia = InertiaMap::from_principal_moments(&j).unwrap();
     let l = inertia.apply(&w);
-    let turned = Rotor::from_plane_angle(4, 0, 3, 0.9).unwrap().rotate_bivector(&l);
+    let turned = Rotor::from_plane_angle(4, 0, 3, 0.9)
+        .unwrap()
+        .rotate_bivector(&l);
     let energy = |l: &Bivector| 0.5 * inertia.apply_inverse(l).inner(l);
-    let (c1, c2) = (l.characteristic_coefficients(), turned.characteristic_coefficients());
+    let (c1, c2) = (
+        l.characteristic_coefficients(),
+        turned.characteristic_coefficients(),
+    );
     for k in 0..3 {
         assert!((c1[k] - c2[k]).abs() < 1e-12 * c1[k].abs().max(1.0));
     }
@@ -526,6 +554,9 @@ fn paper_eqs_19_to_21_use_the_inertial_velocity_where_the_rotating_one_belongs()
     let crate_acc = &coriolis_acceleration(&w, &vel) + &centrifugal_acceleration(&w, &y(0.0));
     assert!((&acc - &crate_acc).norm() < 1e-6, "{acc} vs {crate_acc}");
     let paper20 = centrifugal_acceleration(&w, &y(0.0)); // a = 0, v = 0
-    assert!((&acc + &paper20).norm() < 1e-6, "the true acceleration is −(eq. 20)");
+    assert!(
+        (&acc + &paper20).norm() < 1e-6,
+        "the true acceleration is −(eq. 20)"
+    );
     assert!(paper20.norm() > 0.1);
 }
