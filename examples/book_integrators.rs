@@ -11,7 +11,9 @@
 
 use rotorflow::dynamics::torques::Free;
 use rotorflow::dynamics::trajectory::even_times;
-use rotorflow::dynamics::{Dopri5, Integrator, Midpoint, RigidBody, Rkmk4, Splitting, simulate};
+use rotorflow::dynamics::{
+    Attitude, Dopri5, Integrator, Midpoint, RigidBody, Rkmk4, Splitting, simulate,
+};
 use rotorflow::prelude::*;
 use std::error::Error;
 use std::fmt::Write as _;
@@ -50,7 +52,7 @@ fn start() -> Res<RigidBody> {
 
 fn measure(
     body: &RigidBody,
-    reference: &(Rotor, Bivector),
+    reference: &(Attitude, Bivector),
     name: &'static str,
     h: f64,
     integ: &mut dyn Integrator,

@@ -41,16 +41,10 @@ impl Integrator for LieEuler {
         }
         let momentum = l + &(&rate * h);
         // dR/dt = −½ R ω: the exact update for constant ω is R exp(−hω/2).
-        let attitude = body
-            .attitude()
-            .compose(&Rotor::from_rotation_bivector(&(&omega * h)));
-        if !momentum.max_abs().is_finite() {
-            return Err(DynamicsError::NonFinite { time: t + h });
-        }
-        // The public way to set a state: a body with the same (principal) inertia.
-        *body = RigidBody::from_body_momentum(body.inertia().clone(), attitude, &momentum)
-            .map_err(|_| DynamicsError::NonFinite { time: t + h })?;
-        Ok(())
+        let attitude = body.attitude().times_exp(&(&omega * (-0.5 * h)));
+        // set_state checks dimensions and finiteness, and leaves the body unchanged on error.
+        body.set_state(attitude, momentum)
+            .map_err(|_| DynamicsError::NonFinite { time: t + h })
     }
 }
 

@@ -379,7 +379,7 @@ pub fn integrate(
             _ => unreachable!("one integrator is set"),
         };
         if let Some((r, l)) = block_states.last() {
-            current.set_state(r.clone(), l.clone());
+            current.replace_state(r.clone(), l.clone());
             t0 = *block.last().expect("chunks are not empty");
         }
         states.extend(block_states);
@@ -451,7 +451,7 @@ impl Report {
         let mut b = start.clone();
         for state in states {
             let (r, l) = state?;
-            b.set_state(r, l);
+            b.replace_state(r, l);
             let inv = Invariants::of(&b);
             let d = inv.drift_from(&reference);
             report.drift.energy = report.drift.energy.max(d.energy);

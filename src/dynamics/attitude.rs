@@ -260,8 +260,9 @@ impl Attitude {
     }
 
     /// Returns R e^A for a bivector A (the rotor exponential; in matrix form Q expm(2\[A\])):
-    /// the attitude update of every Lie-group integrator.
-    pub(crate) fn times_exp(&self, a: &Bivector) -> Attitude {
+    /// the attitude update of every Lie-group integrator. With A = −½hω this is the exact
+    /// flow of dR/dt = −½Rω for a constant ω over a step h.
+    pub fn times_exp(&self, a: &Bivector) -> Attitude {
         let mut out = self.clone();
         out.times_exp_mut(a);
         out

@@ -178,8 +178,36 @@ impl RigidBody {
         (&mut self.attitude, &mut self.momentum)
     }
 
-    /// Replaces the state (integrators, exact solutions).
-    pub(crate) fn set_state(&mut self, attitude: Attitude, momentum: Bivector) {
+    /// Replaces the state: the attitude (principal frame → space) and the body-frame momentum
+    /// in the principal frame, as an integrator written outside the crate produces them.
+    ///
+    /// # Errors
+    /// [`InertiaError::DimensionMismatch`]; [`InertiaError::NonFinite`] if the momentum or
+    /// the attitude is not finite (the state is then left unchanged).
+    pub fn set_state(
+        &mut self,
+        attitude: impl Into<Attitude>,
+        momentum: Bivector,
+    ) -> Result<(), InertiaError> {
+        let attitude = attitude.into();
+        let n = self.dim();
+        for d in [attitude.dim(), momentum.dim()] {
+            if d != n {
+                return Err(InertiaError::DimensionMismatch {
+                    map: n,
+                    argument: d,
+                });
+            }
+        }
+        if !attitude.is_finite() || !momentum.as_slice().iter().all(|x| x.is_finite()) {
+            return Err(InertiaError::NonFinite { what: "state" });
+        }
+        self.replace_state(attitude, momentum);
+        Ok(())
+    }
+
+    /// Replaces the state without checks (integrators, exact solutions).
+    pub(crate) fn replace_state(&mut self, attitude: Attitude, momentum: Bivector) {
         self.attitude = attitude;
         self.momentum = momentum;
     }

@@ -413,7 +413,7 @@ impl AsymmetricTop {
     pub fn body_at(&self, t: f64) -> Result<RigidBody, ExactError> {
         let (r, l) = self.state_at(t)?;
         let mut b = self.body.clone();
-        b.set_state(r.into(), l);
+        b.replace_state(r.into(), l);
         Ok(b)
     }
 
@@ -560,7 +560,7 @@ impl EmbeddedTop {
     pub fn body_at(&self, t: f64) -> Result<RigidBody, ExactError> {
         let (u, l) = self.top.state_at(t)?;
         let mut b = self.body.clone();
-        b.set_state(self.embed_rotor(&u)?, self.embed_bivector(&l));
+        b.replace_state(self.embed_rotor(&u)?, self.embed_bivector(&l));
         Ok(b)
     }
 

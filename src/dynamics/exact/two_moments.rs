@@ -321,7 +321,7 @@ impl TwoMomentSolution {
         let l = self.momentum_at(t)?;
         let r = self.attitude_at(t)?;
         let mut body = self.body.clone();
-        body.set_state(r, l);
+        body.replace_state(r, l);
         Ok(body)
     }
 }

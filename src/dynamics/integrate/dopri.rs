@@ -159,7 +159,7 @@ impl Dopri5 {
                 out.push(step.dense(b.attitude(), theta));
                 next += 1;
             }
-            b.set_state(step.attitude.clone(), step.momentum.clone());
+            b.replace_state(step.attitude.clone(), step.momentum.clone());
             t = t_new;
         }
         Ok(out)
@@ -347,7 +347,7 @@ impl Integrator for Dopri5 {
             }
             let saved = self.h_next;
             if let Some(step) = self.try_step(body, time, try_h, torque)? {
-                body.set_state(step.attitude, step.momentum);
+                body.replace_state(step.attitude, step.momentum);
                 time += try_h;
                 if try_h == remaining {
                     // Do not let the shortened last step shrink the next call's first step.

@@ -131,7 +131,7 @@ impl Integrator for Midpoint {
         if !l1.as_slice().iter().all(|x| x.is_finite()) || !r1.is_finite() {
             return Err(DynamicsError::NonFinite { time: t });
         }
-        body.set_state(r1, l1);
+        body.replace_state(r1, l1);
         Ok(())
     }
 }

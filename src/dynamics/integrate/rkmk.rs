@@ -93,7 +93,7 @@ impl Integrator for Rkmk4 {
         if !l.as_slice().iter().all(|x| x.is_finite()) || !r.is_finite() {
             return Err(DynamicsError::NonFinite { time: t });
         }
-        body.set_state(r, l);
+        body.replace_state(r, l);
         Ok(())
     }
 }
