@@ -68,13 +68,21 @@ pub fn render(tsv: &str) -> Res<String> {
     for m in &meta {
         writeln!(out, "- {m}")?;
     }
+    let mut groups: Vec<_> = rows.into_iter().collect();
+    groups.sort_by_key(|g| group_key(&g.0));
+    let mean = |group: &str, function: &str| -> Option<f64> {
+        groups
+            .iter()
+            .find(|(g, _)| g == group)
+            .and_then(|(_, ms)| ms.iter().find(|m| m.function == function))
+            .map(|m| m.mean_ns)
+    };
+    write_step_summary(&mut out, &mean)?;
     writeln!(
         out,
         "\n| benchmark group | implementation | mean time | 95 % interval | × fastest in group |"
     )?;
     writeln!(out, "|---|---|---|---|---|")?;
-    let mut groups: Vec<_> = rows.into_iter().collect();
-    groups.sort_by_key(|g| group_key(&g.0));
     for (group, mut ms) in groups {
         ms.sort_by(|a, b| a.mean_ns.total_cmp(&b.mean_ns));
         let fastest = ms[0].mean_ns;
@@ -91,6 +99,83 @@ pub fn render(tsv: &str) -> Res<String> {
         }
     }
     Ok(out)
+}
+
+/// The integrator-step comparisons of issue #4 (ratios measured in the same run) and the
+/// growth of each step's cost with N, fitted over N = 8 … 32.
+fn write_step_summary(out: &mut String, mean: &dyn Fn(&str, &str) -> Option<f64>) -> Res<()> {
+    let dims = [3usize, 4, 5, 8, 16, 32];
+    if mean("step/N=4", "rotorflow_rk4").is_none() {
+        return Ok(());
+    }
+    writeln!(
+        out,
+        "\n**One RK4 step (with attitude), rotorflow against the baselines** (ratio < 1: rotorflow is faster)\n"
+    )?;
+    writeln!(
+        out,
+        "| N | rotorflow RK4 | nalgebra DMatrix RK4 | ratio | nalgebra SMatrix RK4 | ratio | hand-written RK4 | ratio | Strang / RK4 |"
+    )?;
+    writeln!(out, "|---|---|---|---|---|---|---|---|---|")?;
+    let cell = |x: Option<f64>| x.map_or("—".to_string(), time);
+    let ratio = |a: Option<f64>, b: Option<f64>| match (a, b) {
+        (Some(a), Some(b)) => format!("{:.2}", a / b),
+        _ => "—".to_string(),
+    };
+    for n in dims {
+        let g = format!("step/N={n}");
+        let rk = mean(&g, "rotorflow_rk4");
+        let dm = mean(&g, "nalgebra_dmatrix_rk4");
+        let sm = mean(&g, "nalgebra_smatrix_rk4");
+        let hand = mean(&g, "hand_written_rk4");
+        let strang = mean(&g, "rotorflow_strang");
+        writeln!(
+            out,
+            "| {n} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            cell(rk),
+            cell(dm),
+            ratio(rk, dm),
+            cell(sm),
+            ratio(rk, sm),
+            cell(hand),
+            ratio(rk, hand),
+            ratio(strang, rk)
+        )?;
+    }
+    writeln!(
+        out,
+        "\n**Growth of the cost of one step with N**: the least-squares slope of ln(time) against ln(N) over N = 8, 16, 32 (3 means O(N³))\n"
+    )?;
+    writeln!(out, "| implementation | fitted exponent |")?;
+    writeln!(out, "|---|---|")?;
+    for function in [
+        "rotorflow_rk4",
+        "rotorflow_strang",
+        "rotorflow_yoshida4",
+        "rotorflow_midpoint",
+        "rotorflow_dopri5",
+        "nalgebra_dmatrix_rk4",
+    ] {
+        let points: Vec<(f64, f64)> = [8usize, 16, 32]
+            .iter()
+            .filter_map(|&n| {
+                mean(&format!("step/N={n}"), function).map(|t| ((n as f64).ln(), t.ln()))
+            })
+            .collect();
+        if points.len() < 2 {
+            continue;
+        }
+        let k = points.len() as f64;
+        let (mx, my) = (
+            points.iter().map(|p| p.0).sum::<f64>() / k,
+            points.iter().map(|p| p.1).sum::<f64>() / k,
+        );
+        let num: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+        let den: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
+        writeln!(out, "| {function} | {:.2} |", num / den)?;
+    }
+    writeln!(out, "\n**All measurements**")?;
+    Ok(())
 }
 
 /// Sorts `name/N=10` after `name/N=8`.
