@@ -429,6 +429,16 @@ impl Rotor {
         );
         let (lo, hi, sign) = if i < j { (i, j, 1.0) } else { (j, i, -1.0) };
         let (s, c) = (0.5 * angle * sign).sin_cos();
+        if n <= PLANE_TABLE_MAX_DIM {
+            // Small N: the coefficient pairs and their signs come from a table.
+            let table = &plane_tables(n)[super::bivector::pair_index(n, lo, hi)];
+            for &(ib, ib2, s1, s2) in table {
+                let (rb, rb2) = (self.coeffs[ib as usize], self.coeffs[ib2 as usize]);
+                self.coeffs[ib as usize] = c * rb - s * s1 * rb2;
+                self.coeffs[ib2 as usize] = c * rb2 - s * s2 * rb;
+            }
+            return;
+        }
         let m: u64 = (1 << lo) | (1 << hi);
         // new[b] = c R[b] − s · sign(e_{b^m} e_m) R[b^m]; pairs (b, b^m) update together.
         for ib in 0..self.coeffs.len() {
@@ -460,6 +470,41 @@ impl Rotor {
         self.coeffs.iter_mut().for_each(|c| *c *= s);
         self
     }
+}
+
+/// Up to this N, [`Rotor::rotate_in_plane_mut`] reads its coefficient pairs from a table.
+const PLANE_TABLE_MAX_DIM: usize = 6;
+
+/// For each plane (lo, hi) in lexicographic order, the pairs (ib, ib2, s1, s2) of even
+/// indices that the right product by exp(−θ/2 e_lo,hi) mixes: new[ib] = c R[ib] − s s1 R[ib2],
+/// new[ib2] = c R[ib2] − s s2 R[ib] (the same formula as the general loop, tabulated).
+#[allow(clippy::type_complexity)]
+fn plane_tables(n: usize) -> &'static [Vec<(u8, u8, f64, f64)>] {
+    use std::sync::OnceLock;
+    static TABLES: [OnceLock<Vec<Vec<(u8, u8, f64, f64)>>>; PLANE_TABLE_MAX_DIM + 1] =
+        [const { OnceLock::new() }; PLANE_TABLE_MAX_DIM + 1];
+    TABLES[n].get_or_init(|| {
+        super::bivector::pairs(n)
+            .map(|(lo, hi)| {
+                let m: u64 = (1 << lo) | (1 << hi);
+                (0..even_len(n))
+                    .filter_map(|ib| {
+                        let b = even_blade(n, ib);
+                        let b2 = b ^ m;
+                        let ib2 = even_index(n, b2);
+                        (ib2 > ib).then(|| {
+                            (
+                                ib as u8,
+                                ib2 as u8,
+                                blade::reorder_sign(b2, m),
+                                blade::reorder_sign(b, m),
+                            )
+                        })
+                    })
+                    .collect()
+            })
+            .collect()
+    })
 }
 
 /// out = a · b for even elements stored by even index (Euclidean signature). O(4^(N−1)):
