@@ -60,6 +60,8 @@ fn rotor_kernels_do_not_allocate_in_3d_and_4d() {
         let x = Vector::basis(n, 0);
         // The first use in each dimension builds cached blade tables once; warm them up.
         let _ = b.exp().compose(&b.exp()).rotate_vector(&x);
+        // Warm-up: the per-plane table of the plane rotation is built once per N.
+        Rotor::identity(n).rotate_in_plane_mut(0, 1, 0.1);
         let count = allocations_in(|| {
             let r = b.exp();
             let mut s = r.compose(&r);
