@@ -20,6 +20,13 @@ use std::path::{Path, PathBuf};
 #[path = "../examples/bench_table.rs"]
 mod bench_table;
 #[allow(dead_code)]
+#[cfg(feature = "cli")]
+#[path = "../examples/book_cli_help.rs"]
+mod book_cli_help;
+#[allow(dead_code)]
+#[path = "../examples/book_closed_form.rs"]
+mod book_closed_form;
+#[allow(dead_code)]
 #[path = "../examples/book_inertia_tables.rs"]
 mod book_inertia_tables;
 #[allow(dead_code)]
@@ -44,6 +51,8 @@ mod torque_closure;
 /// The examples run by [`included_examples_run`]; the book may include only these.
 const RUN_EXAMPLES: &[&str] = &[
     "bench_table",
+    "book_cli_help",
+    "book_closed_form",
     "book_inertia_tables",
     "book_integrators",
     "custom_integrator",
@@ -57,6 +66,9 @@ const RUN_EXAMPLES: &[&str] = &[
 /// these from `generated/`.
 const GENERATED: &[&str] = &[
     "bench_table.md",
+    "cli_help.md",
+    "closed_form.md",
+    "closed_form_error.svg",
     "inertia_tables.md",
     "integrators.md",
     "integrators_error.svg",
@@ -182,6 +194,28 @@ fn generated_integrator_survey_is_current() {
     let command = "cargo run --example book_integrators -- --write";
     assert_current("integrators.md", &md, command);
     assert_current("integrators_error.svg", &svg, command);
+}
+
+#[test]
+fn generated_closed_form_comparison_is_current() {
+    let (md, svg) = book_closed_form::render().expect("render");
+    let command = "cargo run --example book_closed_form -- --write";
+    assert_current("closed_form.md", &md, command);
+    assert_current("closed_form_error.svg", &svg, command);
+}
+
+/// The command-line reference: the help of every subcommand as the binary prints it, the
+/// example command lines (each parsed by clap, its body SPEC by the grammar) and the files
+/// of `demo`. Needs the `cli` feature (on by default and in `--all-features`).
+#[cfg(feature = "cli")]
+#[test]
+fn generated_cli_reference_is_current() {
+    let md = book_cli_help::render().expect("render");
+    assert_current(
+        "cli_help.md",
+        &md,
+        "cargo run --example book_cli_help -- --write",
+    );
 }
 
 #[test]

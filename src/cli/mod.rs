@@ -61,12 +61,26 @@ pub enum Command {
     Inertia(inertia::InertiaArgs),
     /// Integrate Euler's equations; report ω, L, energy, Casimirs, attitude and drifts.
     Simulate(simulate::SimulateArgs),
-    /// The closed-form solution (N = 3, or at most two distinct principal moments).
+    /// The closed-form solution (N = 3; two distinct principal moments; steady or 3D motions).
     Exact(exact::ExactArgs),
     /// Animate the body turning in N-D, projected to 3D (HTML), or a strip of frames (SVG).
     Render(render::RenderArgs),
     /// Run a grid of simulations in parallel and report the observables of the 3D projection.
     Sweep(sweep::SweepArgs),
+}
+
+/// Returns the clap description of the `rotorflow` command: every subcommand with its flags,
+/// help texts and the body grammar. Render it with clap (e.g.
+/// `command().render_long_help()`, or `try_get_matches_from(["rotorflow", "simulate",
+/// "--help"])` for a subcommand's help exactly as the binary prints it); the book's
+/// command-line reference is generated this way (`examples/book_cli_help.rs`).
+///
+/// ```
+/// let help = rotorflow::cli::command().render_long_help().to_string();
+/// assert!(help.contains("simulate") && help.contains("Body SPEC grammar"));
+/// ```
+pub fn command() -> clap::Command {
+    <Cli as clap::CommandFactory>::command()
 }
 
 /// Parses the command line, runs the command and returns the exit code: 0 on success, 2 for

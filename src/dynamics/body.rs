@@ -1,11 +1,11 @@
-//! [`RigidBody`]: attitude rotor and body-frame angular momentum.
+//! [`RigidBody`]: attitude (rotor or rotation matrix) and body-frame angular momentum.
 
 use super::Attitude;
 use crate::algebra::Bivector;
 use crate::inertia::{InertiaError, InertiaMap};
 
 /// The state of a rotating rigid body in ℝᴺ: its inertia map (in the principal frame), its
-/// attitude R (body → space, x_space = R x R̃; a rotor for N ≤ 8, an SO(N) matrix above, see
+/// attitude R (body → space, x_space = R x R̃; a rotor for N ≤ 4, an SO(N) matrix above, see
 /// [`Attitude`]) and its angular momentum L in the body frame.
 ///
 /// The body frame is always the principal frame of the inertia: a map given in other axes is

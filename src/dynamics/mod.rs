@@ -11,7 +11,7 @@
 //! 52–58, 68), which the book maps onto this one line.
 //!
 //! - [`RigidBody`]: the state, kept in the principal frame of the inertia.
-//! - [`Attitude`]: the rotation body → space (a rotor for N ≤ 8, an SO(N) matrix above).
+//! - [`Attitude`]: the rotation body → space (a rotor for N ≤ 4, an SO(N) matrix above).
 //! - [`Torque`]: external torques; closures implement it, and [`torques`] has the built-ins.
 //! - [`integrate`]: the integrators behind the [`Integrator`] trait.
 //! - [`invariants`]: energy, Casimirs, space-frame momentum, rotor drift.

@@ -6,7 +6,7 @@ use crate::dynamics::{RigidBody, Torque};
 
 /// Classical RK4 on the momentum with the attitude advanced on Spin(N) by one exponential
 /// per step (Runge–Kutta–Munthe-Kaas, Munthe-Kaas, BIT 38 (1998) 92): never plain RK on
-/// rotor components, so R stays a rotor (or, for N > 8, an orthogonal matrix).
+/// rotor components, so R stays a rotor (or, for N > 4, an orthogonal matrix).
 ///
 /// The attitude obeys dR/dt = R a with a = −½ω. Writing R(t₀ + h) = R₀ exp(Ω), the
 /// classical RK4 tableau with the commutators reduced to their minimum (Munthe-Kaas and
