@@ -5,8 +5,9 @@
 //!   generated file is one whose generator this test re-runs;
 //! - the generated tables and plots equal their generators' output (byte for byte: the
 //!   generators print no timings — the bench table is rendered from its recorded data file —
-//!   and round their numbers to two significant digits, with round-off-level values shown as
-//!   bounds, so that the files do not depend on the last bits of the platform's libm);
+//!   and print their numbers with two or three significant digits; `book_closed_form` also
+//!   shows round-off-level differences as a bound, "< 1e-13", so that its files do not
+//!   depend on the last bits of the platform's libm);
 //! - every errata entry names a test, `path::fn_name` or a bare name in the page's default
 //!   test file, and every test named anywhere in the book exists as a `#[test] fn` that is
 //!   not ignored, in a file that belongs to a test target (so `cargo test` runs it, and the
