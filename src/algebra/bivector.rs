@@ -325,25 +325,43 @@ impl Bivector {
             i < n && j < n && i != j,
             "rotorflow: invalid plane ({i}, {j}) in dimension {n}"
         );
+        // Turning by θ in eⱼ∧eᵢ is turning by −θ in eᵢ∧eⱼ: work with lo < hi.
+        let (lo, hi, angle) = if i < j { (i, j, angle) } else { (j, i, -angle) };
         let (s, c) = angle.sin_cos();
-        // Signed packed position of B_ab (sign −1 when a > b).
-        let at = |a: usize, b: usize| -> (usize, f64) {
-            if a < b {
-                (pair_index(n, a, b), 1.0)
-            } else {
-                (pair_index(n, b, a), -1.0)
-            }
-        };
-        for k in 0..n {
-            if k == i || k == j {
-                continue;
-            }
-            let (pi, si) = at(i, k);
-            let (pj, sj) = at(j, k);
-            let (bi, bj) = (si * self.coeffs[pi], sj * self.coeffs[pj]);
-            // B'_ik = c B_ik − s B_jk,  B'_jk = s B_ik + c B_jk.
-            self.coeffs[pi] = si * (c * bi - s * bj);
-            self.coeffs[pj] = sj * (s * bi + c * bj);
+        // B'_lo,k = c B_lo,k − s B_hi,k and B'_hi,k = s B_lo,k + c B_hi,k for every other k,
+        // read from the packed storage where B_lo,k = ±x and B_hi,k = ±y. Row a holds
+        // B_a,k for k > a contiguously from row_start(a); for k < a, B_a,k = −B_k,a sits in
+        // row k. The three ranges of k give three sign patterns (derived from
+        // x' = c x − s σ y, y' = s σ x + c y with σ the product of the two storage signs).
+        let row_start = |a: usize| a * (2 * n - a - 1) / 2;
+        let coeffs = &mut self.coeffs[..];
+        let mut start_k = 0;
+        for k in 0..lo {
+            // both stored as B_k,lo and B_k,hi (signs −1, −1: σ = +1)
+            let (p, q) = (start_k + lo - k - 1, start_k + hi - k - 1);
+            let (x, y) = (coeffs[p], coeffs[q]);
+            coeffs[p] = c * x - s * y;
+            coeffs[q] = s * x + c * y;
+            start_k += n - k - 1;
+        }
+        let lo_row = row_start(lo);
+        for k in lo + 1..hi {
+            // B_lo,k stored in row lo (sign +1), B_hi,k as B_k,hi in row k (sign −1): σ = −1
+            let p = lo_row + k - lo - 1;
+            let q = row_start(k) + hi - k - 1;
+            let (x, y) = (coeffs[p], coeffs[q]);
+            coeffs[p] = c * x + s * y;
+            coeffs[q] = c * y - s * x;
+        }
+        // k > hi: both rows contiguous (signs +1, +1: σ = +1).
+        let count = n - hi - 1;
+        let p0 = lo_row + hi - lo;
+        let q0 = row_start(hi);
+        let (head, tail) = coeffs.split_at_mut(q0);
+        for (x, y) in head[p0..p0 + count].iter_mut().zip(&mut tail[..count]) {
+            let (a, b) = (*x, *y);
+            *x = c * a - s * b;
+            *y = s * a + c * b;
         }
     }
 
