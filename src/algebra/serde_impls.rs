@@ -1,6 +1,11 @@
 //! `serde` support (feature `serde`). Every type serialises as its dimension (or signature)
 //! and its components in the documented order; deserialisation validates the lengths and
 //! finiteness through the checked constructors, so malformed data is an error, not a value.
+//!
+//! Serialisation writes each component's shortest round-trip decimal. To read it back bit
+//! for bit with `serde_json`, enable that crate's `float_roundtrip` feature (rotorflow's own
+//! `cli` feature does): its default float parser can be one ulp off for long literals
+//! (found by the `json_algebra` fuzz target; see `fuzz/README.md`).
 
 use super::{AlgebraError, Bivector, Multivector, Rotor, Signature, Vector};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};

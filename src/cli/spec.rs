@@ -158,11 +158,24 @@ fn positive_list(text: &str, what: &str) -> Result<Vec<f64>, String> {
     Ok(v)
 }
 
-/// Parses a body SPEC.
+/// Parses a body SPEC, reading `points:` and `mesh:` files from the file system.
 ///
 /// # Errors
 /// [`CliError::Input`] naming the problem and the expected form.
 pub fn parse_body(spec: &str) -> CliResult<ParsedBody> {
+    parse_body_with(spec, &read_text)
+}
+
+/// Parses a body SPEC, reading the text of `points:` and `mesh:` files with `read_file`
+/// (which returns the file's text or a one-line message). [`parse_body`] passes the file
+/// system; tests and fuzz targets pass text held in memory.
+///
+/// # Errors
+/// [`CliError::Input`] naming the problem and the expected form.
+pub fn parse_body_with(
+    spec: &str,
+    read_file: &dyn Fn(&Path) -> Result<String, String>,
+) -> CliResult<ParsedBody> {
     let mut parts = spec.split(';');
     let head = parts.next().unwrap_or("").trim();
     let Some((kind, args)) = head.split_once(':') else {
@@ -350,7 +363,10 @@ pub fn parse_body(spec: &str) -> CliResult<ParsedBody> {
         }
         "points" => {
             no_density("point masses")?;
-            let (masses, positions) = read_points(Path::new(args.trim())).map_err(e)?;
+            let path = Path::new(args.trim());
+            let PointMasses { masses, positions } =
+                parse_points_text(&read_file(path).map_err(e)?, &path.display().to_string())
+                    .map_err(e)?;
             let body = Body::point_masses(&masses, &positions).map_err(|err| e(err.to_string()))?;
             let c = body.center_of_mass().clone();
             let points = positions
@@ -360,7 +376,9 @@ pub fn parse_body(spec: &str) -> CliResult<ParsedBody> {
             (Some(body), Kind::Points(points))
         }
         "mesh" => {
-            let mesh = read_mesh(Path::new(args.trim())).map_err(e)?;
+            let path = Path::new(args.trim());
+            let mesh = parse_mesh_text(&read_file(path).map_err(e)?, &path.display().to_string())
+                .map_err(e)?;
             let body = if mesh.facets {
                 Body::closed_boundary_mesh(&mesh.vertices, &mesh.cells, rho)
             } else {
@@ -457,9 +475,22 @@ fn read_text(path: &Path) -> Result<String, String> {
     std::fs::read_to_string(path).map_err(|err| format!("cannot read `{}`: {err}", path.display()))
 }
 
-/// Reads a CSV of point masses, rows `m,x1,…,xN`.
-fn read_points(path: &Path) -> Result<(Vec<f64>, Vec<DVector<f64>>), String> {
-    let text = read_text(path)?;
+/// The point masses of a `points:` file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PointMasses {
+    /// The masses, one per row.
+    pub masses: Vec<f64>,
+    /// The positions x1 … xN, one per row, all of the same dimension N ≥ 2.
+    pub positions: Vec<DVector<f64>>,
+}
+
+/// Parses the text of a `points:` CSV: rows `m,x1,…,xN` with the same N ≥ 2, `#` comments
+/// and blank lines ignored. `source` names the file in error messages (`source:line: …`).
+/// The numbers are only checked to be finite here; [`Body::point_masses`] checks the rest.
+///
+/// # Errors
+/// A one-line message naming the line and the problem.
+pub fn parse_points_text(text: &str, source: &str) -> Result<PointMasses, String> {
     let mut masses = Vec::new();
     let mut positions = Vec::new();
     let mut width = None;
@@ -468,12 +499,10 @@ fn read_points(path: &Path) -> Result<(Vec<f64>, Vec<DVector<f64>>), String> {
         if line.is_empty() {
             continue;
         }
-        let row =
-            parse_list(line).map_err(|err| format!("{}:{}: {err}", path.display(), line_no + 1))?;
+        let row = parse_list(line).map_err(|err| format!("{source}:{}: {err}", line_no + 1))?;
         if row.len() < 3 || width.is_some_and(|w| w != row.len()) {
             return Err(format!(
-                "{}:{}: a row has {} values; every row must be m,x1,...,xN with the same N >= 2",
-                path.display(),
+                "{source}:{}: a row has {} values; every row must be m,x1,...,xN with the same N >= 2",
                 line_no + 1,
                 row.len()
             ));
@@ -483,25 +512,35 @@ fn read_points(path: &Path) -> Result<(Vec<f64>, Vec<DVector<f64>>), String> {
         positions.push(DVector::from_column_slice(&row[1..]));
     }
     if masses.is_empty() {
-        return Err(format!("{} has no rows m,x1,...,xN", path.display()));
+        return Err(format!("{source} has no rows m,x1,...,xN"));
     }
-    Ok((masses, positions))
+    Ok(PointMasses { masses, positions })
 }
 
-struct Mesh {
-    vertices: Vec<DVector<f64>>,
-    cells: Vec<Vec<usize>>,
-    facets: bool,
+/// The records of a `mesh:` file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MeshRecords {
+    /// The vertices (`v` records), all of the same dimension.
+    pub vertices: Vec<DVector<f64>>,
+    /// The cells, 0-based vertex numbers: N-simplices (`s`) or boundary facets (`f`).
+    pub cells: Vec<Vec<usize>>,
+    /// Whether the cells are boundary facets (`f`) rather than simplices (`s`).
+    pub facets: bool,
 }
 
-/// Reads the mesh format documented in the module docs.
-fn read_mesh(path: &Path) -> Result<Mesh, String> {
-    let text = read_text(path)?;
+/// Parses the text of a `mesh:` file (the format of the module docs). `source` names the
+/// file in error messages (`source:line: …`). Only the records are checked here (numbers
+/// finite, vertex numbers whole and ≥ 1, one record kind); the body constructors check
+/// the geometry and that vertex numbers exist.
+///
+/// # Errors
+/// A one-line message naming the line and the problem.
+pub fn parse_mesh_text(text: &str, source: &str) -> Result<MeshRecords, String> {
     let mut vertices: Vec<DVector<f64>> = Vec::new();
     let mut cells = Vec::new();
     let mut tags = (false, false);
     for (line_no, line) in text.lines().enumerate() {
-        let at = || format!("{}:{}", path.display(), line_no + 1);
+        let at = || format!("{source}:{}", line_no + 1);
         let line = line.split('#').next().unwrap_or("").trim();
         let mut words = line.split_whitespace();
         let Some(tag) = words.next() else { continue };
@@ -548,18 +587,12 @@ fn read_mesh(path: &Path) -> Result<Mesh, String> {
         }
     }
     if tags.0 && tags.1 {
-        return Err(format!(
-            "{} mixes `s` and `f` records; use one kind",
-            path.display()
-        ));
+        return Err(format!("{source} mixes `s` and `f` records; use one kind"));
     }
     if vertices.is_empty() || cells.is_empty() {
-        return Err(format!(
-            "{} needs `v` and `s` (or `f`) records",
-            path.display()
-        ));
+        return Err(format!("{source} needs `v` and `s` (or `f`) records"));
     }
-    Ok(Mesh {
+    Ok(MeshRecords {
         vertices,
         cells,
         facets: tags.1,

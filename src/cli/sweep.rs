@@ -96,10 +96,20 @@ pub fn parse_param(text: &str) -> CliResult<Param> {
             "STEP must be non-zero and lead from START to STOP".into()
         ));
     }
-    let count = ((stop - start) / step * (1.0 + 1e-12) + 1e-9).floor() as u64 + 1;
-    if count > 100_000 {
-        return Err(bad(format!("{count} values are too many (at most 100000)")));
+    // Count in floating point first: a tiny STEP makes the quotient huge (or infinite), and
+    // a cast to an integer would saturate and overflow (found by the fuzz target times_list).
+    let span = ((stop - start) / step * (1.0 + 1e-12) + 1e-9).floor();
+    if span.is_nan() || span >= 100_000.0 {
+        return Err(bad(format!(
+            "{} values are too many (at most 100000)",
+            if span < 1e15 {
+                format!("{}", span + 1.0)
+            } else {
+                format!("{:e}", span + 1.0)
+            }
+        )));
     }
+    let count = span as u64 + 1;
     let values = (0..count)
         .map(|k| {
             let x = start + k as f64 * step;
