@@ -24,8 +24,16 @@ fuzz_target!(|data: &[u8]| {
     let Ok(parsed) = parse_body_with(spec, &|_| Ok(file.clone())) else {
         return;
     };
-    assert!((2..=MULTIVECTOR_MAX_DIM).contains(&parsed.dim), "N = {}", parsed.dim);
-    assert!(parsed.mass.is_finite() && parsed.mass > 0.0, "mass {}", parsed.mass);
+    assert!(
+        (2..=MULTIVECTOR_MAX_DIM).contains(&parsed.dim),
+        "N = {}",
+        parsed.dim
+    );
+    assert!(
+        parsed.mass.is_finite() && parsed.mass > 0.0,
+        "mass {}",
+        parsed.mass
+    );
     let matrix = parsed.inertia.to_matrix();
     assert!(matrix.iter().all(|x| x.is_finite()), "inertia {matrix}");
     let _ = parsed.shape();

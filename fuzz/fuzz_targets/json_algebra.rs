@@ -33,7 +33,10 @@ fuzz_target!(|data: &[u8]| {
         let _ = v.norm();
         let _ = v.try_normalize();
         let w = v.wedge(&v);
-        assert!(w.as_slice().iter().all(|x| !x.is_nan()), "{v:?} ∧ itself = {w:?}");
+        assert!(
+            w.as_slice().iter().all(|x| !x.is_nan()),
+            "{v:?} ∧ itself = {w:?}"
+        );
     }
     if let Ok(b) = serde_json::from_slice::<Bivector>(data) {
         round_trip(&b);
@@ -57,7 +60,10 @@ fuzz_target!(|data: &[u8]| {
         assert!(finite(log.as_slice()), "log {r:?} = {log:?}");
         if r.dim() >= 1 {
             let x = r.rotate_vector(&Vector::basis(r.dim(), 0));
-            assert!(x.as_slice().iter().all(|c| !c.is_nan()), "{r:?} rotates e1 to {x:?}");
+            assert!(
+                x.as_slice().iter().all(|c| !c.is_nan()),
+                "{r:?} rotates e1 to {x:?}"
+            );
         }
     }
     if let Ok(m) = serde_json::from_slice::<Multivector>(data) {

@@ -16,7 +16,11 @@ fuzz_target!(|data: &[u8]| {
         assert!(!mesh.vertices.is_empty() && !mesh.cells.is_empty());
         let n = mesh.vertices[0].len();
         assert!(mesh.vertices.iter().all(|v| v.len() == n));
-        assert!(mesh.vertices.iter().all(|v| v.iter().all(|x| x.is_finite())));
+        assert!(
+            mesh.vertices
+                .iter()
+                .all(|v| v.iter().all(|x| x.is_finite()))
+        );
     }
     for spec in ["mesh:fuzz.mesh", "mesh:fuzz.mesh;density=2"] {
         if let Ok(parsed) = parse_body_with(spec, &|_| Ok(text.to_string())) {

@@ -19,7 +19,12 @@ fuzz_target!(|data: &[u8]| {
         assert!(n >= 2);
         assert!(points.positions.iter().all(|p| p.len() == n));
         assert!(points.masses.iter().all(|m| m.is_finite()));
-        assert!(points.positions.iter().all(|p| p.iter().all(|x| x.is_finite())));
+        assert!(
+            points
+                .positions
+                .iter()
+                .all(|p| p.iter().all(|x| x.is_finite()))
+        );
     }
     for spec in ["points:fuzz.csv", "points:fuzz.csv;mass=2"] {
         if let Ok(parsed) = parse_body_with(spec, &|_| Ok(text.to_string())) {

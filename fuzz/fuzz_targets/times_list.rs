@@ -15,7 +15,10 @@ use rotorflow::cli::sweep::{parse_param, shard_range};
 
 fn check_times(times: &[f64], t_end: Option<f64>) {
     assert!(!times.is_empty());
-    assert!(times.iter().all(|t| t.is_finite() && *t >= 0.0), "{times:?}");
+    assert!(
+        times.iter().all(|t| t.is_finite() && *t >= 0.0),
+        "{times:?}"
+    );
     assert!(times.windows(2).all(|w| w[0] < w[1]), "{times:?}");
     if let Some(end) = t_end {
         assert!(*times.last().unwrap() <= end, "{times:?} beyond {end}");

@@ -9,7 +9,8 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 /// Writes `bytes` to `path` whole or not at all: into a temporary file in the same folder,
-/// then renamed over the target.
+/// synced to disk, then renamed over the target. A process killed meanwhile leaves the old
+/// file (or none) and a stray `.rotorflow-*` temporary file, never a partial target.
 ///
 /// # Errors
 /// [`CliError::Runtime`] if the folder cannot be written.
@@ -32,6 +33,8 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> CliResult<()> {
     let mut tmp = builder.tempfile_in(dir).map_err(|e| fail(&e))?;
     tmp.write_all(bytes).map_err(|e| fail(&e))?;
     tmp.flush().map_err(|e| fail(&e))?;
+    // On disk before the rename, so that a crash of the machine cannot leave an empty file.
+    tmp.as_file().sync_all().map_err(|e| fail(&e))?;
     tmp.persist(path).map_err(|e| fail(&e.error))?;
     Ok(())
 }

@@ -11,7 +11,9 @@ use crate::dynamics::torques::Free;
 use crate::viz::plot::{PlotSpec, Series, line_plot, subscript};
 use clap::Args;
 use rayon::prelude::*;
-use std::path::PathBuf;
+use std::collections::BTreeMap;
+use std::io::Write;
+use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
 /// Arguments of `sweep`.
@@ -48,9 +50,19 @@ pub struct SweepArgs {
     /// header).
     #[arg(long, value_name = "I/N")]
     pub shard: Option<String>,
-    /// Write the table as CSV to FILE (standard output otherwise).
+    /// Write the table as CSV to FILE (standard output otherwise). FILE appears whole or
+    /// not at all; while the sweep runs, each finished run is also appended to the progress
+    /// file FILE.partial, which `--resume` reads and which is removed once FILE is written.
     #[arg(long, value_name = "FILE")]
     pub csv: Option<PathBuf>,
+    /// Continue an interrupted sweep: the runs recorded in FILE.partial (of `--csv FILE`) are
+    /// not run again, and FILE comes out byte for byte as an uninterrupted run writes it.
+    /// The progress file carries a fingerprint of the sweep (body, grid, initial condition,
+    /// times, integrator, axes, shard); one from a different sweep is refused. Without a
+    /// progress file every run is done. (Without `--resume` an old progress file is
+    /// replaced.)
+    #[arg(long, requires = "csv")]
+    pub resume: bool,
     /// Plot the observed frequencies against the first parameter (SVG).
     #[arg(long, value_name = "FILE.svg")]
     pub plot: Option<PathBuf>,
@@ -366,29 +378,72 @@ pub fn run(args: &SweepArgs, quiet: bool) -> CliResult<()> {
             args.axes
         )));
     }
+    let planes = projection_planes(axes);
+    let fingerprint = sweep_fingerprint(args, &names, &times, axes, (begin, end, total), &runs);
+    let log_path = args.csv.as_deref().map(progress_path);
+    let mut finished: BTreeMap<usize, Row> = BTreeMap::new();
+    if args.resume
+        && let Some(path) = &log_path
+    {
+        finished = read_progress(path, &fingerprint, &runs, planes)?;
+        if !quiet {
+            eprintln!(
+                "rotorflow: resuming: {} of {} runs read from {}",
+                finished.len(),
+                runs.len(),
+                path.display()
+            );
+        }
+    }
+    // (Re)start the progress file with the finished rows (dropping a torn last line), then
+    // append each run as it finishes: one complete line per write.
+    let log = match &log_path {
+        Some(path) => Some(Mutex::new(ProgressLog::start(
+            path,
+            &fingerprint,
+            finished.values(),
+        )?)),
+        None => None,
+    };
+    let todo: Vec<_> = runs
+        .iter()
+        .filter(|r| !finished.contains_key(&r.0))
+        .collect();
     let progress = Mutex::new(Progress::new(runs.len() as u64, quiet, "sweep"));
-    let rows: Vec<Row> = runs
+    if let Ok(mut p) = progress.lock() {
+        p.advance(finished.len() as u64);
+    }
+    let new_rows: Vec<Row> = todo
         .par_iter()
         .map(|(run, values, start, stepping)| {
             let mut silent = Progress::new(0, true, "");
             let (states, _) = integrate(start, &Free, *stepping, &times, &mut silent)
                 .map_err(|e| CliError::runtime(format!("run {run}: {e}")))?;
             let report = Report::from_states(start, &times, states.into_iter().map(Ok))?;
-            if let Ok(mut p) = progress.lock() {
-                p.advance(1);
-            }
-            Ok(Row {
+            let row = Row {
                 run: *run,
                 values: values.clone(),
                 observables: observables(&report, axes),
                 energy_drift: report.drift.energy,
                 casimir_drift: report.drift.casimirs,
-            })
+            };
+            if let Some(log) = &log {
+                log.lock()
+                    .map_err(|_| CliError::runtime("the progress file is unusable"))?
+                    .append(&row)?;
+            }
+            if let Ok(mut p) = progress.lock() {
+                p.advance(1);
+            }
+            Ok(row)
         })
         .collect::<CliResult<_>>()?;
     if let Ok(p) = progress.into_inner() {
         p.finish();
     }
+    drop(log);
+    let mut rows: Vec<Row> = finished.into_values().chain(new_rows).collect();
+    rows.sort_by_key(|r| r.run);
     let header = shard_index == 1;
     let dim = runs.first().map_or(3, |r| r.2.dim());
     let csv = table_csv(&names, dim, axes, &rows, header);
@@ -396,7 +451,234 @@ pub fn run(args: &SweepArgs, quiet: bool) -> CliResult<()> {
         let svg = sweep_plot(&names, runs.first().map_or(3, |r| r.2.dim()), &rows)?;
         write_atomic(p, svg.as_bytes())?;
     }
-    emit(args.csv.as_deref(), &csv)
+    emit(args.csv.as_deref(), &csv)?;
+    if let Some(path) = &log_path {
+        match std::fs::remove_file(path) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                return Err(CliError::runtime(format!(
+                    "cannot remove the progress file `{}`: {e}",
+                    path.display()
+                )));
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// The three planes (a, b) of the projection along `axes`, 0-based, in the table's order.
+fn projection_planes(axes: [usize; 3]) -> [(usize, usize); 3] {
+    let mut sorted = axes;
+    sorted.sort_unstable();
+    [
+        (sorted[0], sorted[1]),
+        (sorted[0], sorted[2]),
+        (sorted[1], sorted[2]),
+    ]
+}
+
+/// Returns the progress file of `--csv FILE`: FILE.partial beside it.
+pub fn progress_path(csv: &Path) -> PathBuf {
+    let mut name = csv.as_os_str().to_owned();
+    name.push(".partial");
+    PathBuf::from(name)
+}
+
+/// The first line of a progress file: what it is, and the fingerprint of the sweep.
+fn progress_header(fingerprint: &str) -> String {
+    format!(
+        "# rotorflow {} sweep progress, fingerprint {fingerprint}: finished rows in completion order; delete this file to start over",
+        env!("CARGO_PKG_VERSION")
+    )
+}
+
+/// FNV-1a, 64 bits: a hash that is the same on every platform and every Rust version.
+struct Fnv(u64);
+
+impl Fnv {
+    fn new() -> Self {
+        Fnv(0xcbf2_9ce4_8422_2325)
+    }
+
+    /// Hashes `bytes` and a separator that no UTF-8 text contains.
+    fn field(&mut self, bytes: &[u8]) {
+        for &b in bytes.iter().chain(&[0xff]) {
+            self.0 ^= u64::from(b);
+            self.0 = self.0.wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+}
+
+/// A run of the grid, checked and ready: index, parameter values, body, stepping.
+type GridRun = (
+    usize,
+    Vec<f64>,
+    crate::dynamics::RigidBody,
+    super::motion::Stepping,
+);
+
+/// Returns the fingerprint of everything that determines the rows of this sweep: the
+/// template, each run's parameter values, initial state and stepping, the sample times, the
+/// axes, the shard and the version.
+fn sweep_fingerprint(
+    args: &SweepArgs,
+    names: &[String],
+    times: &[f64],
+    axes: [usize; 3],
+    (begin, end, total): (usize, usize, usize),
+    runs: &[GridRun],
+) -> String {
+    let mut h = Fnv::new();
+    h.field(env!("CARGO_PKG_VERSION").as_bytes());
+    h.field(args.body.as_bytes());
+    h.field(format!("{:?}", args.initial).as_bytes());
+    for name in names {
+        h.field(name.as_bytes());
+    }
+    h.field(format!("{axes:?} {begin} {end} {total} {}", times.len()).as_bytes());
+    let mut bits = Vec::with_capacity(8 * times.len());
+    for t in times {
+        bits.extend_from_slice(&t.to_bits().to_le_bytes());
+    }
+    h.field(&bits);
+    for (run, values, start, stepping) in runs {
+        h.field(
+            format!(
+                "{run} {values:?} {:?} {:?} {stepping:?}",
+                start.momentum().as_slice(),
+                start.inertia().to_matrix().as_slice()
+            )
+            .as_bytes(),
+        );
+    }
+    format!("{:016x}", h.0)
+}
+
+/// The progress file of a running sweep, appended one finished row at a time.
+struct ProgressLog {
+    file: std::fs::File,
+    path: PathBuf,
+}
+
+impl ProgressLog {
+    /// Writes the header and the rows already finished (atomically), then opens the file
+    /// for appending.
+    fn start<'a>(
+        path: &Path,
+        fingerprint: &str,
+        finished: impl Iterator<Item = &'a Row>,
+    ) -> CliResult<Self> {
+        let mut text = progress_header(fingerprint);
+        text.push('\n');
+        for row in finished {
+            text.push_str(&row_line(row));
+            text.push('\n');
+        }
+        write_atomic(path, text.as_bytes())?;
+        let file = std::fs::OpenOptions::new()
+            .append(true)
+            .open(path)
+            .map_err(|e| CliError::runtime(format!("cannot open `{}`: {e}", path.display())))?;
+        Ok(ProgressLog {
+            file,
+            path: path.to_path_buf(),
+        })
+    }
+
+    /// Appends one complete line (a single write) and hands it to the operating system.
+    fn append(&mut self, row: &Row) -> CliResult<()> {
+        let mut line = row_line(row);
+        line.push('\n');
+        self.file
+            .write_all(line.as_bytes())
+            .and_then(|()| self.file.flush())
+            .map_err(|e| CliError::runtime(format!("cannot write `{}`: {e}", self.path.display())))
+    }
+}
+
+/// Reads the finished rows of a progress file for `--resume`. A missing file gives no rows;
+/// a torn last line (no newline: the sweep was killed while writing it) is ignored.
+///
+/// # Errors
+/// [`CliError::Input`] if the file belongs to a different sweep (fingerprint) or a complete
+/// line is not a row of this one.
+fn read_progress(
+    path: &Path,
+    fingerprint: &str,
+    runs: &[GridRun],
+    planes: [(usize, usize); 3],
+) -> CliResult<BTreeMap<usize, Row>> {
+    let bytes = match std::fs::read(path) {
+        Ok(b) => b,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(BTreeMap::new()),
+        Err(e) => {
+            return Err(CliError::runtime(format!(
+                "cannot read `{}`: {e}",
+                path.display()
+            )));
+        }
+    };
+    let refuse = |why: String| {
+        CliError::input(format!(
+            "--resume: `{}` {why}; delete it to start over, or give the same sweep",
+            path.display()
+        ))
+    };
+    // Only complete lines count: cut after the last newline.
+    let complete = bytes
+        .iter()
+        .rposition(|&b| b == b'\n')
+        .map_or(&bytes[..0], |k| &bytes[..=k]);
+    let text = std::str::from_utf8(complete)
+        .map_err(|_| refuse("is not a progress file of rotorflow sweep".into()))?;
+    let mut lines = text.lines();
+    if lines.next() != Some(progress_header(fingerprint).as_str()) {
+        return Err(refuse(
+            "was written by a different sweep (body, grid, initial condition, times, integrator, axes or shard differ)"
+                .into(),
+        ));
+    }
+    let index: BTreeMap<usize, &Vec<f64>> = runs.iter().map(|r| (r.0, &r.1)).collect();
+    let mut rows = BTreeMap::new();
+    for (k, line) in lines.enumerate() {
+        let row = parse_row(line, planes)
+            .filter(|row| index.get(&row.run).is_some_and(|v| **v == row.values))
+            .ok_or_else(|| refuse(format!("line {} is not a row of this sweep", k + 2)))?;
+        rows.insert(row.run, row);
+    }
+    Ok(rows)
+}
+
+/// Parses a table row written by [`row_line`]; `None` unless writing it back gives the same
+/// text (numbers are written as their shortest round-trip form, so this is exact).
+fn parse_row(line: &str, planes: [(usize, usize); 3]) -> Option<Row> {
+    let fields: Vec<&str> = line.split(',').collect();
+    let n_values = fields.len().checked_sub(1 + 9 + 4)?;
+    let float = |s: &str| s.parse::<f64>().ok();
+    let at = |k: usize| float(fields[1 + n_values + k]);
+    let tail = &fields[1 + n_values + 9..];
+    let row = Row {
+        run: fields[0].parse().ok()?,
+        values: fields[1..=n_values]
+            .iter()
+            .map(|s| float(s))
+            .collect::<Option<_>>()?,
+        observables: Observables {
+            planes: planes.to_vec(),
+            frequency: vec![at(0)?, at(3)?, at(6)?],
+            amplitude: vec![at(1)?, at(4)?, at(7)?],
+            mean: vec![at(2)?, at(5)?, at(8)?],
+            flips: tail[0].parse().ok()?,
+            first_flip: if tail[1].is_empty() {
+                None
+            } else {
+                Some(float(tail[1])?)
+            },
+        },
+        energy_drift: float(tail[2])?,
+        casimir_drift: float(tail[3])?,
+    };
+    (row_line(&row) == line).then_some(row)
 }
 
 fn table_csv(names: &[String], dim: usize, axes: [usize; 3], rows: &[Row], header: bool) -> String {
@@ -426,22 +708,27 @@ fn table_csv(names: &[String], dim: usize, axes: [usize; 3], rows: &[Row], heade
         out.push('\n');
     }
     for r in rows {
-        let mut row = vec![r.run.to_string()];
-        row.extend(r.values.iter().map(|v| number(*v)));
-        let o = &r.observables;
-        for k in 0..3 {
-            row.push(number(o.frequency[k]));
-            row.push(number(o.amplitude[k]));
-            row.push(number(o.mean[k]));
-        }
-        row.push(o.flips.to_string());
-        row.push(o.first_flip.map(number).unwrap_or_default());
-        row.push(number(r.energy_drift));
-        row.push(number(r.casimir_drift));
-        out.push_str(&row.join(","));
+        out.push_str(&row_line(r));
         out.push('\n');
     }
     out
+}
+
+/// One row of the table, without the newline.
+fn row_line(r: &Row) -> String {
+    let mut row = vec![r.run.to_string()];
+    row.extend(r.values.iter().map(|v| number(*v)));
+    let o = &r.observables;
+    for k in 0..3 {
+        row.push(number(o.frequency[k]));
+        row.push(number(o.amplitude[k]));
+        row.push(number(o.mean[k]));
+    }
+    row.push(o.flips.to_string());
+    row.push(o.first_flip.map(number).unwrap_or_default());
+    row.push(number(r.energy_drift));
+    row.push(number(r.casimir_drift));
+    row.join(",")
 }
 
 fn sweep_plot(names: &[String], dim: usize, rows: &[Row]) -> CliResult<String> {

@@ -162,6 +162,17 @@ cases! {
         refuses(&["exact", "--body", "cuboid:1,-2,3", "--omega", "1,0,0", "--t-end", "1", "--samples", "3", "--output", "o.json"], "must be positive")
     }
     unknown_subcommand => { refuses(&["integrate"], "unrecognized subcommand") }
+    // Fuzz finding (target times_list): a STEP so small that the count of values overflowed
+    // an integer (a panic in debug builds, an empty grid and a division by zero in release).
+    fuzz_sweep_param_tiny_step => {
+        refuses(&["sweep", "--body", "cuboid:1,2,{a}", "--param", "a=1:2:0.0000000000000000000000000000000000000000000000000000000000025", "--omega", "1,0,0", "--t-end", "1", "--samples", "3", "--csv", "o.csv"], "values are too many (at most 100000)")
+    }
+    fuzz_sweep_param_step_below_the_smallest_double => {
+        refuses(&["sweep", "--body", "cuboid:1,2,{a}", "--param", "a=-1e308:1e308:5e-324", "--omega", "1,0,0", "--t-end", "1", "--samples", "3", "--csv", "o.csv"], "values are too many")
+    }
+    sweep_resume_without_csv => {
+        refuses(&["sweep", "--body", "cuboid:1,2,{a}", "--param", "a=1:2:1", "--omega", "1,0,0", "--t-end", "1", "--samples", "3", "--resume"], "--csv")
+    }
 }
 
 #[test]
@@ -213,7 +224,9 @@ fn help_documents_every_option_and_the_grammar() {
         ),
         (
             "sweep",
-            &["--body", "--param", "--shard", "--csv", "--plot"][..],
+            &[
+                "--body", "--param", "--shard", "--csv", "--plot", "--resume",
+            ][..],
         ),
         ("demo", &["--out"][..]),
     ] {

@@ -5,6 +5,7 @@ mod bad_input;
 mod demo;
 mod exact;
 mod inertia;
+mod no_lost_output;
 mod render;
 mod simulate;
 mod sweep;

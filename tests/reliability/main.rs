@@ -2,5 +2,6 @@
 //! magnitudes, and long runs (ignored by default; `.ci/run` runs them with a time bound).
 
 mod adversarial;
+mod fuzz_regressions;
 mod hostile;
 mod long_runs;
