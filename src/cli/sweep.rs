@@ -156,7 +156,10 @@ pub fn shard_range(text: &str, total: usize) -> CliResult<(usize, usize, usize)>
     if n == 0 || i == 0 || i > n {
         return Err(bad());
     }
-    Ok((total * (i - 1) / n, total * i / n, i))
+    // In 128 bits: total · I overflows a usize for huge I/N (found by the fuzz target
+    // times_list); the quotients are at most `total`.
+    let at = |k: usize| (total as u128 * k as u128 / n as u128) as usize;
+    Ok((at(i - 1), at(i), i))
 }
 
 /// Replaces every `{NAME}` in `template`.

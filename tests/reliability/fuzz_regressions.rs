@@ -50,3 +50,50 @@ fn fuzz_decomposition_of_a_subnormal_bivector() {
     assert!(err <= 1e-9 * b.max_abs() + f64::MIN_POSITIVE, "{err:e}");
     assert!(back.as_slice().iter().all(|x| x.is_finite()));
 }
+
+/// json_algebra: x ∧ x of a finite vector with huge components was NaN in two planes
+/// (xᵢxⱼ overflowed to ∞, and ∞ − ∞ = NaN). `Vector::wedge` now recomputes from scaled
+/// vectors when a product overflows: x ∧ x = 0, and a truly overflowing component is ±∞.
+#[test]
+fn fuzz_wedge_of_huge_vectors_has_no_nan() {
+    use rotorflow::algebra::Vector;
+    let x = Vector::from_components(&[
+        1.6666466666677668e-49,
+        6.666666666666662e294,
+        6.666666666773778e16,
+        6.666666666666666e22,
+    ])
+    .unwrap();
+    let w = x.wedge(&x);
+    assert!(w.as_slice().iter().all(|c| *c == 0.0), "{w:?}");
+    let y = Vector::from_components(&[1.0, -1e300, 1e300, 2.0]).unwrap();
+    let w = x.wedge(&y);
+    assert!(w.as_slice().iter().all(|c| !c.is_nan()), "{w:?}");
+    // (x∧y)_23 = x₂y₃ − x₃y₂ ≈ 6.7e594: beyond f64, so +∞; (x∧y)_12 = x₁y₂ − x₂y₁ ≈ −6.7e294.
+    assert_eq!(w.get(1, 2), f64::INFINITY);
+    assert!((w.get(0, 1) / -6.666666666666662e294 - 1.0).abs() < 1e-15);
+    // Ordinary input is untouched by the fallback.
+    let a = Vector::from_components(&[1.0, 2.0, 3.0]).unwrap();
+    let b = Vector::from_components(&[-0.5, 4.0, 0.25]).unwrap();
+    assert_eq!(a.wedge(&b).as_slice(), &[5.0, 1.75, -11.5]);
+}
+
+/// times_list: `--shard 8000000000000000026/8000000000000000026` overflowed total · I (a
+/// panic with overflow checks, a wrong block in release). The block is now computed in 128
+/// bits: the last shard of N ends at the grid's end whatever N is.
+#[cfg(feature = "cli")]
+#[test]
+fn fuzz_shard_with_huge_numbers() {
+    use rotorflow::cli::sweep::shard_range;
+    let big = "8000000000000000026/8000000000000000026";
+    assert_eq!(shard_range(big, 10).unwrap(), (9, 10, 8000000000000000026));
+    assert_eq!(
+        shard_range("18446744073709551615/18446744073709551615", 10_000_000).unwrap(),
+        (9_999_999, 10_000_000, usize::MAX)
+    );
+    assert_eq!(
+        shard_range("1/18446744073709551615", 10).unwrap(),
+        (0, 0, 1)
+    );
+    assert_eq!(shard_range("2/8", 100).unwrap(), (12, 25, 2));
+}
