@@ -319,3 +319,65 @@ fn resume_without_progress_runs_everything() {
         .collect();
     assert_eq!(names.len(), 2, "{names:?}");
 }
+
+/// `sweep --csv` killed around the moment it writes the table (right after its last run),
+/// and at delays over its run: the CSV is absent or equal to an uninterrupted run's.
+#[test]
+fn killed_sweep_leaves_its_table_whole_or_absent() {
+    const SMALL: &str = "k=1.2:2:0.2"; // 5 runs
+    let dir = tempfile::tempdir().unwrap();
+    let start = Instant::now();
+    let out = rotorflow()
+        .current_dir(dir.path())
+        .args(sweep_args(SMALL, "full.csv"))
+        .output()
+        .unwrap();
+    let run = start.elapsed();
+    assert!(out.status.success());
+    let full = std::fs::read(dir.path().join("full.csv")).unwrap();
+    let check = |dir: &Path, when: &str| -> bool {
+        let csv = dir.join("s.csv");
+        if csv.exists() {
+            assert!(
+                std::fs::read(&csv).unwrap() == full,
+                "{when}: s.csv is not whole"
+            );
+            true
+        } else {
+            false
+        }
+    };
+    let mut args = vec!["--quiet"];
+    args.extend(sweep_args(SMALL, "s.csv"));
+    let mut outcomes = Vec::new();
+    for fraction in [0.1, 0.5, 0.9, 1.0, 1.1] {
+        let dir = tempfile::tempdir().unwrap();
+        let child = spawn(dir.path(), &args, None);
+        std::thread::sleep(run.mul_f64(fraction));
+        kill(child);
+        outcomes.push(check(
+            dir.path(),
+            &format!("killed after {fraction} of a run"),
+        ));
+    }
+    // Around the final write: kill as soon as the last run is recorded (the table is written
+    // within the next moments; the kill lands before, during or after it).
+    for attempt in 0..4 {
+        let dir = tempfile::tempdir().unwrap();
+        let partial = dir.path().join("s.csv.partial");
+        let csv = dir.path().join("s.csv");
+        let child = spawn(dir.path(), &args, None);
+        let seen = wait_until(|| finished_rows(&partial) == 5 || csv.exists());
+        kill(child);
+        assert!(seen, "the sweep did not finish its runs");
+        let there = check(
+            dir.path(),
+            &format!("killed at the final write ({attempt})"),
+        );
+        // The progress file goes only after the table is there.
+        assert!(there || finished_rows(&partial) == 5);
+        outcomes.push(there);
+    }
+    eprintln!("kill outcomes (s.csv there): {outcomes:?}");
+    assert!(!outcomes[0]);
+}
