@@ -97,3 +97,34 @@ fn fuzz_shard_with_huge_numbers() {
     );
     assert_eq!(shard_range("2/8", 100).unwrap(), (12, 25, 2));
 }
+
+/// exp_log_bits: `Rotor::from_matrix_projected` on a finite 6×6 matrix with entries from
+/// 1e-319 to 5e226 panicked inside nalgebra's SVD ("Singular value was NaN": its sums of
+/// squares overflowed). The polar factor is scale-invariant, so the SVD now runs on the
+/// matrix divided by its largest entry. This matrix is singular after scaling: an error.
+#[test]
+fn fuzz_projected_matrix_with_huge_entries_does_not_panic() {
+    use nalgebra::DMatrix;
+    use rotorflow::algebra::Rotor;
+    use rotorflow::dynamics::Attitude;
+    #[rustfmt::skip]
+    let entries = [
+        4.2538176706755e-310, 3.6215392674e-313, 0.0, 0.0, 0.0, 0.0,
+        7.46014145e-316, 8.814425663402488e-280, 0.0, 8.442542515286355e-227, 1.30784e-319, 1.6340899438724717e+69,
+        1.6340899438724717e+69, 1.6340899438724717e+69, 1.6340899438724717e+69, 1.6340899438724717e+69, 1.634089121120193e+69, 4.2538176706755e-310,
+        3.6215392674e-313, 0.0, 0.0, 0.0, 0.0, 7.46014145e-316,
+        8.814425663402488e-280, 0.0, 8.442542515286355e-227, 1.8010757365944223e-226, 8.4e-323, -4.737945364604956e+226,
+        2.7583420934678692e+20, 0.0, 0.0, 0.0, 0.0, 0.0,
+    ];
+    let m = DMatrix::from_row_slice(6, 6, &entries);
+    assert!(Rotor::from_matrix_projected(&m).is_err());
+    assert!(Rotor::from_matrix(&m).is_err());
+    assert!(Attitude::from_matrix(&m).is_err());
+    // A rotation scaled by 1e250 (and by 1e-250) still projects onto that rotation.
+    let q = Rotor::from_plane_angle(6, 1, 4, 0.7).unwrap().to_matrix();
+    for scale in [1e250, 1e-250] {
+        let r = Rotor::from_matrix_projected(&(&q * scale)).unwrap();
+        let err = (r.to_matrix() - &q).abs().max();
+        assert!(err < 1e-14, "scale {scale:e}: {err:e}");
+    }
+}
