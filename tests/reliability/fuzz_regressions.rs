@@ -128,3 +128,28 @@ fn fuzz_projected_matrix_with_huge_entries_does_not_panic() {
         assert!(err < 1e-14, "scale {scale:e}: {err:e}");
     }
 }
+
+/// exp_log_bits: e^B of a finite bivector whose magnitude |B| overflows f64 (components near
+/// f64::MAX) is NaN: its plane angles overflow to ∞, and an infinite angle has no value
+/// mod 2π. This is the documented contract (as for `exp_skew_matrix`); the test pins it and
+/// that nothing panics, and that just below the overflow exp is a finite unit rotor.
+#[test]
+fn fuzz_exp_of_a_bivector_beyond_f64_range() {
+    use rotorflow::algebra::Bivector;
+    for n in [3usize, 4, 5, 10] {
+        let len = n * (n - 1) / 2;
+        let huge = Bivector::from_components(n, &vec![-1.7941682463625418e308; len]).unwrap();
+        assert!(huge.norm().is_infinite());
+        let r = huge.exp();
+        assert!(r.raw_coefficients().iter().all(|c| c.is_nan()), "N = {n}");
+        let _ = huge.decompose().reconstruct();
+        let _ = huge.exp_skew_matrix();
+        let large = Bivector::from_components(n, &vec![1e306; len]).unwrap();
+        let r = large.exp();
+        assert!(
+            r.raw_coefficients().iter().all(|c| c.is_finite()),
+            "N = {n}"
+        );
+        assert!(r.unit_error() < 1e-12, "N = {n}: {:e}", r.unit_error());
+    }
+}
