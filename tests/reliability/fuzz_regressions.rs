@@ -100,8 +100,9 @@ fn fuzz_shard_with_huge_numbers() {
 
 /// exp_log_bits: `Rotor::from_matrix_projected` on a finite 6×6 matrix with entries from
 /// 1e-319 to 5e226 panicked inside nalgebra's SVD ("Singular value was NaN": its sums of
-/// squares overflowed). The polar factor is scale-invariant, so the SVD now runs on the
-/// matrix divided by its largest entry. This matrix is singular after scaling: an error.
+/// squares overflowed). Now the SVD is nalgebra's unordered one (no sort, NaN checked by
+/// rotorflow), on the matrix divided by its largest entry with entries below 1e-150 of it
+/// flushed to 0 (the polar factor is scale-invariant). Errors or unit rotors, no panic.
 #[test]
 fn fuzz_projected_matrix_with_huge_entries_does_not_panic() {
     use nalgebra::DMatrix;
@@ -120,6 +121,21 @@ fn fuzz_projected_matrix_with_huge_entries_does_not_panic() {
     assert!(Rotor::from_matrix_projected(&m).is_err());
     assert!(Rotor::from_matrix(&m).is_err());
     assert!(Attitude::from_matrix(&m).is_err());
+    // A second input (run 4 of the target) that still broke the scaled, ordered SVD.
+    #[rustfmt::skip]
+    let entries = [
+        0.0, 0.0, 0.0, 1.6340255175293333e+69, 1.6340899438724717e+69, 1.6340899438724717e+69,
+        3.3716413291262062e-307, 6.490810653e-315, 0.0, 0.0, 0.0, 0.0,
+        0.0, 0.0, 1.801075629241943e-226, -1.5072363146086049e+231, 1.801077138516078e-226, 1.8010757365944223e-226,
+        1.8010757365944223e-226, 1.8010757365944223e-226, 1.8010757365944223e-226, -9.6810996645689e+279, 3.789544964995231e-308, 1.0680576073799139e-307,
+        2.3859816086377504e+64, 9.487706e-318, -2.0463720203452854e-249, 1.5528485696447474e-167, 3.345027700620766e-307, -8.371157724125714e+298,
+        1.694536874451959e-214, 5.471527236359153e-145, 1.0680361263461963e-307, -1.549473936663678e+231, -1.5494739391785507e+231, -1.5494739391785505e+231,
+    ];
+    let m = DMatrix::from_row_slice(6, 6, &entries);
+    if let Ok(r) = Rotor::from_matrix_projected(&m) {
+        assert!(r.raw_coefficients().iter().all(|c| c.is_finite()));
+        assert!(r.unit_error() < 1e-9);
+    }
     // A rotation scaled by 1e250 (and by 1e-250) still projects onto that rotation.
     let q = Rotor::from_plane_angle(6, 1, 4, 0.7).unwrap().to_matrix();
     for scale in [1e250, 1e-250] {

@@ -256,11 +256,12 @@ pub(crate) fn orthogonality_error(q: &DMatrix<f64>) -> f64 {
 
 /// The orthogonal polar factor U Vᵀ, or None if the SVD fails or the matrix is singular.
 ///
-/// nalgebra's SVD turns to NaN, and then panics while sorting the singular values, when
-/// the entries' squares overflow or fall into the subnormal range (found by the
-/// exp_log_bits fuzz target on finite entries from 1e-319 to 5e226). The factor does not
-/// change when `m` is scaled, so the SVD runs on m / max |m_ij|, with entries below 1e-150
-/// of the largest set to 0: a change far below round-off, which leaves every square normal.
+/// nalgebra's SVD can turn to NaN on finite entries of extreme range, and its ordered form
+/// then panics while sorting the singular values (found by the exp_log_bits fuzz target on
+/// entries from 1e-319 to 5e226). So: the unordered SVD (U Vᵀ needs no order), NaN checked
+/// here; and, since the factor does not change when `m` is scaled, on m / max |m_ij| with
+/// entries below 1e-150 of the largest set to 0 (far below round-off), so that no square
+/// overflows or falls into the subnormal range.
 fn nearest_orthogonal(m: &DMatrix<f64>) -> Option<DMatrix<f64>> {
     let scale = m.iter().fold(0.0f64, |a, x| a.max(x.abs()));
     if !scale.is_finite() || scale <= 0.0 {
@@ -270,15 +271,15 @@ fn nearest_orthogonal(m: &DMatrix<f64>) -> Option<DMatrix<f64>> {
         let y = x / scale;
         if y.abs() < 1e-150 { 0.0 } else { y }
     });
-    let svd = scaled.try_svd(true, true, f64::EPSILON, 200)?;
-    let smin = svd
-        .singular_values
-        .iter()
-        .fold(f64::INFINITY, |a, &b| a.min(b));
-    if smin.is_nan() || smin <= 0.0 {
+    // Unordered: the ordered SVD sorts with `partial_cmp(..).expect(..)`, a panic on NaN.
+    let svd = scaled.try_svd_unordered(true, true, f64::EPSILON, 200)?;
+    // (f64::min skips NaN, so NaN is looked for on its own.)
+    let values = &svd.singular_values;
+    if values.iter().any(|s| s.is_nan()) || values.iter().any(|&s| s <= 0.0) {
         return None;
     }
-    Some(svd.u? * svd.v_t?)
+    let q = svd.u? * svd.v_t?;
+    q.iter().all(|x| x.is_finite()).then_some(q)
 }
 
 /// The rotor of an orthogonal matrix with det +1 (non-negative scalar part).
