@@ -15,10 +15,10 @@ impl Bivector {
     /// deflation of [`Bivector::decompose`]. The rotor that turns by angle θ in the plane B̂
     /// is `(B̂ * (-θ / 2.0)).exp()`, or [`Rotor::from_rotation_bivector`].
     ///
-    /// The result is a unit rotor for every B whose magnitude |B| is a finite f64. Beyond
-    /// (components within a factor √(N(N−1)/2) of `f64::MAX`) a plane angle overflows and
-    /// the coefficients are NaN for N ≥ 3, as [`Bivector::exp_skew_matrix`] returns a NaN
-    /// matrix: such an angle has no value mod 2π (found by the exp_log_bits fuzz target).
+    /// The result is a unit rotor whenever |B| ≤ `f64::MAX`/2. Beyond, a plane angle (or a
+    /// sum in the 4D split) may overflow, and the coefficients are then NaN for N ≥ 3, as
+    /// [`Bivector::exp_skew_matrix`]'s entries: an infinite angle has no value mod 2π
+    /// (found by the exp_log_bits fuzz target).
     ///
     /// # Panics
     /// If N > [`MULTIVECTOR_MAX_DIM`] (rotors store 2^(N−1) coefficients).
