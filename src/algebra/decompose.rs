@@ -265,8 +265,11 @@ pub(crate) fn self_dual_join(a: [f64; 3], b: [f64; 3]) -> [f64; 6] {
 /// The 4D closed form through the self-dual / anti-self-dual split.
 fn planes_4d(c: &[f64]) -> Vec<RawPlane> {
     let (alpha, beta) = self_dual_split(c);
-    let na = (alpha[0] * alpha[0] + alpha[1] * alpha[1] + alpha[2] * alpha[2]).sqrt();
-    let nb = (beta[0] * beta[0] + beta[1] * beta[1] + beta[2] * beta[2]).sqrt();
+    // Scaled norms: squaring a part of size ~1e-162 lands in the subnormals, where the norm
+    // (and the unit direction built from it) loses most of its bits (fuzz finding F9: a rotor
+    // off by 1e-3 from an isoclinic pair with a 1e-161 perturbation).
+    let na = scaled_norm3(alpha);
+    let nb = scaled_norm3(beta);
     // Unit directions; an exactly (anti-)self-dual B leaves the other direction free.
     let unit = |x: [f64; 3], n: f64| {
         if n > 0.0 {
@@ -322,8 +325,22 @@ fn planes_4d(c: &[f64]) -> Vec<RawPlane> {
     out
 }
 
+/// |x| for a 3-vector without underflow or overflow in the squares.
+fn scaled_norm3(x: [f64; 3]) -> f64 {
+    let m = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if m == 0.0 || !m.is_finite() {
+        return m;
+    }
+    m * ((x[0] / m).powi(2) + (x[1] / m).powi(2) + (x[2] / m).powi(2)).sqrt()
+}
+
 fn normalize_in_place(x: &mut [f64]) -> f64 {
-    let n = x.iter().map(|a| a * a).sum::<f64>().sqrt();
+    let m = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let n = if m == 0.0 || !m.is_finite() {
+        m
+    } else {
+        m * x.iter().map(|a| (a / m) * (a / m)).sum::<f64>().sqrt()
+    };
     if n > 0.0 {
         x.iter_mut().for_each(|a| *a /= n);
     }
