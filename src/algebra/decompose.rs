@@ -270,10 +270,17 @@ fn planes_4d(c: &[f64]) -> Vec<RawPlane> {
     // off by 1e-3 from an isoclinic pair with a 1e-161 perturbation).
     let na = scaled_norm3(alpha);
     let nb = scaled_norm3(beta);
-    // Unit directions; an exactly (anti-)self-dual B leaves the other direction free.
+    // Unit directions; an exactly (anti-)self-dual B leaves the other direction free. Divide
+    // by the largest component first: a subnormal norm has too few bits to divide by.
     let unit = |x: [f64; 3], n: f64| {
         if n > 0.0 {
-            [x[0] / n, x[1] / n, x[2] / n]
+            if (1e-150..=1e150).contains(&n) {
+                return [x[0] / n, x[1] / n, x[2] / n];
+            }
+            let m = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let y = [x[0] / m, x[1] / m, x[2] / m];
+            let k = (y[0] * y[0] + y[1] * y[1] + y[2] * y[2]).sqrt();
+            [y[0] / k, y[1] / k, y[2] / k]
         } else {
             [1.0, 0.0, 0.0]
         }
@@ -335,16 +342,22 @@ fn scaled_norm3(x: [f64; 3]) -> f64 {
 }
 
 fn normalize_in_place(x: &mut [f64]) -> f64 {
+    // Scale by the largest component first: squares of tiny components underflow, and a
+    // subnormal norm has too few bits to divide by.
     let m = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let n = if m == 0.0 || !m.is_finite() {
-        m
-    } else {
-        m * x.iter().map(|a| (a / m) * (a / m)).sum::<f64>().sqrt()
-    };
-    if n > 0.0 {
-        x.iter_mut().for_each(|a| *a /= n);
+    if m == 0.0 || !m.is_finite() {
+        return m;
     }
-    n
+    if (1e-150..=1e150).contains(&m) {
+        // The common case: one rounding per component.
+        let n = x.iter().map(|a| a * a).sum::<f64>().sqrt();
+        x.iter_mut().for_each(|a| *a /= n);
+        return n;
+    }
+    x.iter_mut().for_each(|a| *a /= m);
+    let k = x.iter().map(|a| a * a).sum::<f64>().sqrt();
+    x.iter_mut().for_each(|a| *a /= k);
+    m * k
 }
 
 /// Returns an orthonormal pair (u, v) with P = u∧v for a unit simple bivector P: u is the

@@ -218,3 +218,27 @@ fn fuzz_from_matrix_of_an_isoclinic_pair_with_a_subnormal_perturbation() {
     let d = (r.to_matrix() - &q).abs().max();
     assert!(d < 1e-9, "from_matrix round trip off by {d:e}");
 }
+
+/// exp_log_bits (F10, found by CI's 30 s run after the F9 fix): the isoclinic π(e12 + e34)
+/// with subnormal 7e-322 e13 and 2e-319 e23 decomposed with a reconstruction error of 9.5e-6:
+/// the unit direction of the subnormal anti-self-dual part was divided by its subnormal norm,
+/// which carries ~14 bits. Fixed by dividing by the largest component first.
+#[test]
+fn fuzz_decomposition_of_an_isoclinic_bivector_with_a_subnormal_part() {
+    use rotorflow::algebra::Bivector;
+    let c = [
+        std::f64::consts::PI,
+        7.16e-322,
+        0.0,
+        2.049e-319,
+        0.0,
+        std::f64::consts::PI,
+    ];
+    let b = Bivector::from_components(4, &c).unwrap();
+    let err = (&b.decompose().reconstruct() - &b).max_abs();
+    assert!(err < 1e-15, "reconstruction off by {err:e}");
+    let r = b.exp();
+    assert!(r.unit_error() < 1e-15);
+    let back = r.log().exp();
+    assert!((back.to_matrix() - r.to_matrix()).amax() < 1e-14);
+}
