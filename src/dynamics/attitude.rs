@@ -120,7 +120,7 @@ impl Attitude {
 
     /// The stored matrix as a view.
     fn view(q: &MatrixStorage) -> DMatrixView<'_, f64> {
-        let n = (q.len() as f64).sqrt().round() as usize;
+        let n = side(q);
         DMatrixView::from_slice(q, n, n)
     }
 
@@ -128,7 +128,7 @@ impl Attitude {
     pub fn dim(&self) -> usize {
         match &self.repr {
             Repr::Rotor(r) => r.dim(),
-            Repr::Matrix(q) => (q.len() as f64).sqrt().round() as usize,
+            Repr::Matrix(q) => side(q),
         }
     }
 
@@ -300,7 +300,7 @@ impl Attitude {
         match &mut self.repr {
             Repr::Rotor(r) => r.rotate_in_plane_mut(i, j, angle),
             Repr::Matrix(q) => {
-                let n = (q.len() as f64).sqrt().round() as usize;
+                let n = side(q);
                 let (s, c) = angle.sin_cos();
                 // Columns i and j are contiguous in column-major storage.
                 let (lo, hi) = (i.min(j), i.max(j));
@@ -335,6 +335,11 @@ impl From<&Rotor> for Attitude {
     fn from(r: &Rotor) -> Self {
         r.clone().into()
     }
+}
+
+/// The side N of the stored N×N matrix.
+fn side(q: &MatrixStorage) -> usize {
+    (q.len() as f64).sqrt().round() as usize
 }
 
 /// Q \[B\] Qᵀ (or Qᵀ \[B\] Q when `transposed`) as a bivector.
