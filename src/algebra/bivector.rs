@@ -325,13 +325,26 @@ impl Bivector {
             i < n && j < n && i != j,
             "rotorflow: invalid plane ({i}, {j}) in dimension {n}"
         );
+        let (s, m) = crate::algebra::sin_cos_minus_one(angle);
+        self.rotate_in_plane_sin_cm1(i, j, s, m);
+    }
+
+    /// [`Bivector::rotate_in_plane_mut`] given s = sin θ and m = cos θ − 1 (crate-internal:
+    /// the splitting shares one evaluation between the momentum and the attitude). `i`, `j`
+    /// must be valid and distinct.
+    ///
+    /// Each pair is updated as x + (m x − s y) rather than c x − s y: with s and m accurate
+    /// relative to themselves the rotation is orthogonal to O(εθ²) instead of ε, so millions
+    /// of small rotations do not random-walk the Casimirs through c² + s² − 1.
+    pub(crate) fn rotate_in_plane_sin_cm1(&mut self, i: usize, j: usize, s: f64, m: f64) {
+        let n = self.dim;
+        debug_assert!(i < n && j < n && i != j);
         // Turning by θ in eⱼ∧eᵢ is turning by −θ in eᵢ∧eⱼ: work with lo < hi.
-        let (lo, hi, angle) = if i < j { (i, j, angle) } else { (j, i, -angle) };
-        let (s, c) = angle.sin_cos();
-        // B'_lo,k = c B_lo,k − s B_hi,k and B'_hi,k = s B_lo,k + c B_hi,k for every other k,
-        // read from the packed storage where B_lo,k = ±x and B_hi,k = ±y. Row a holds
-        // B_a,k for k > a contiguously from row_start(a); for k < a, B_a,k = −B_k,a sits in
-        // row k. The three ranges of k give three sign patterns (derived from
+        let (lo, hi, s) = if i < j { (i, j, s) } else { (j, i, -s) };
+        // B'_lo,k = c B_lo,k − s B_hi,k and B'_hi,k = s B_lo,k + c B_hi,k for every other k
+        // (c = 1 + m), read from the packed storage where B_lo,k = ±x and B_hi,k = ±y. Row a
+        // holds B_a,k for k > a contiguously from row_start(a); for k < a, B_a,k = −B_k,a
+        // sits in row k. The three ranges of k give three sign patterns (derived from
         // x' = c x − s σ y, y' = s σ x + c y with σ the product of the two storage signs).
         let row_start = |a: usize| a * (2 * n - a - 1) / 2;
         let coeffs = &mut self.coeffs[..];
@@ -340,8 +353,8 @@ impl Bivector {
             // both stored as B_k,lo and B_k,hi (signs −1, −1: σ = +1)
             let (p, q) = (start_k + lo - k - 1, start_k + hi - k - 1);
             let (x, y) = (coeffs[p], coeffs[q]);
-            coeffs[p] = c * x - s * y;
-            coeffs[q] = s * x + c * y;
+            coeffs[p] = x + (m * x - s * y);
+            coeffs[q] = y + (s * x + m * y);
             start_k += n - k - 1;
         }
         let lo_row = row_start(lo);
@@ -350,8 +363,8 @@ impl Bivector {
             let p = lo_row + k - lo - 1;
             let q = row_start(k) + hi - k - 1;
             let (x, y) = (coeffs[p], coeffs[q]);
-            coeffs[p] = c * x + s * y;
-            coeffs[q] = c * y - s * x;
+            coeffs[p] = x + (m * x + s * y);
+            coeffs[q] = y + (m * y - s * x);
         }
         // k > hi: both rows contiguous (signs +1, +1: σ = +1).
         let count = n - hi - 1;
@@ -360,8 +373,8 @@ impl Bivector {
         let (head, tail) = coeffs.split_at_mut(q0);
         for (x, y) in head[p0..p0 + count].iter_mut().zip(&mut tail[..count]) {
             let (a, b) = (*x, *y);
-            *x = c * a - s * b;
-            *y = s * a + c * b;
+            *x = a + (m * a - s * b);
+            *y = b + (s * a + m * b);
         }
     }
 

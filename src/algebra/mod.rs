@@ -71,13 +71,17 @@ mod rotor;
 #[cfg(feature = "serde")]
 mod serde_impls;
 mod signature;
+mod trig;
 mod vector;
+
+pub(crate) use trig::sin_cos_minus_one;
 
 pub(crate) use bivector::commutator_packed;
 pub use bivector::{Bivector, bivector_len, pair_index, pairs};
 pub use decompose::{Decomposition, SimplePlane};
 pub use error::AlgebraError;
 pub use multivector::{Multivector, Product};
+pub(crate) use rotor::accumulate_plane_rotor;
 pub use rotor::{ROTATION_TOLERANCE, Rotor};
 pub use signature::Signature;
 pub use vector::Vector;

@@ -1,7 +1,9 @@
 //! [`Attitude`]: the rotation body → space, a unit rotor for small N and an SO(N) matrix
 //! above.
 
-use crate::algebra::{AlgebraError, Bivector, Rotor, Vector, pairs};
+use crate::algebra::{
+    AlgebraError, Bivector, Rotor, Vector, accumulate_plane_rotor, pairs, sin_cos_minus_one,
+};
 use nalgebra::{DMatrix, DMatrixView, SMatrix};
 use smallvec::SmallVec;
 
@@ -279,7 +281,7 @@ impl Attitude {
             return;
         }
         match &mut self.repr {
-            Repr::Rotor(r) => *r = r.compose(&a.exp()),
+            Repr::Rotor(r) => *r *= &a.exp(),
             Repr::Matrix(q) => match a.dim() {
                 5 => times_exp_fixed!(5, q, a),
                 6 => times_exp_fixed!(6, q, a),
@@ -293,25 +295,94 @@ impl Attitude {
             },
         }
     }
+}
 
-    /// Turns in place by `angle` in the body plane eᵢ∧eⱼ: R ← R exp(−angle/2 eᵢⱼ), or Q ← Q G
-    /// with G the Givens rotation taking eᵢ toward eⱼ. O(2^N) as a rotor, O(N) as a matrix.
-    pub(crate) fn rotate_in_plane_mut(&mut self, i: usize, j: usize, angle: f64) {
-        match &mut self.repr {
-            Repr::Rotor(r) => r.rotate_in_plane_mut(i, j, angle),
+/// The product P = G₁G₂⋯ of one drift's plane rotations, kept as its difference from the
+/// identity, D = P − 1, and applied to the attitude once: R ← R + R D (or Q ← Q + Q D).
+///
+/// Why not turn the attitude plane by plane: every plane rotation rounds every stored
+/// coefficient, a Strang step makes 2K − 1 of them (K = N(N−1)/2 planes), and |R R̃ − 1|
+/// random-walks with the number of roundings (measured before this type: 1.6e-12 after 10⁷
+/// 4D steps, 1.6e-13 after 10⁵ 5D steps). Here D is O(h|ω|), so its updates round relative
+/// to that small size, and the attitude is rounded once per drift. Each factor's cos − 1 is
+/// evaluated directly (no cancellation), so the factor is orthogonal to O(εθ²) rather than ε.
+pub(crate) struct PlaneProduct {
+    dim: usize,
+    /// Even coefficients (rotor attitude) or column-major N×N (matrix attitude) of P − 1.
+    d: SmallVec<[f64; 64]>,
+    rotor: bool,
+}
+
+impl PlaneProduct {
+    /// The empty product (D = 0) in the representation of `attitude`. No heap for N ≤ 8.
+    #[inline]
+    pub(crate) fn identity_for(attitude: &Attitude) -> Self {
+        let dim = attitude.dim();
+        let (len, rotor) = match &attitude.repr {
+            Repr::Rotor(r) => (r.raw_coefficients().len(), true),
+            Repr::Matrix(q) => (q.len(), false),
+        };
+        PlaneProduct {
+            dim,
+            d: SmallVec::from_elem(0.0, len),
+            rotor,
+        }
+    }
+
+    /// P ← P G with G the turn by θ in the body plane eᵢ∧eⱼ (from eᵢ toward eⱼ): the rotor
+    /// exp(−θ/2 eᵢⱼ), or the Givens rotation on columns i and j. `(s, m)` are sin θ and
+    /// cos θ − 1 from [`crate::algebra::sin_cos_minus_one`]; a rotor evaluates its half angle
+    /// the same way, so each factor is orthogonal to O(εθ²).
+    #[inline]
+    pub(crate) fn rotate_in_plane(&mut self, i: usize, j: usize, theta: f64, (s, m): (f64, f64)) {
+        let n = self.dim;
+        let sign = if i < j { 1.0 } else { -1.0 };
+        let (lo, hi) = (i.min(j), i.max(j));
+        if self.rotor {
+            let (s_half, m_half) = sin_cos_minus_one(0.5 * theta);
+            let s_half = sign * s_half;
+            accumulate_plane_rotor(n, &mut self.d, lo, hi, (1.0 + m_half, m_half, s_half));
+            return;
+        }
+        let (s, c) = (sign * s, 1.0 + m);
+        // D G: columns lo and hi are contiguous in column-major storage.
+        let (head, tail) = self.d.split_at_mut(hi * n);
+        let col_lo = &mut head[lo * n..(lo + 1) * n];
+        let col_hi = &mut tail[..n];
+        for (a, b) in col_lo.iter_mut().zip(col_hi.iter_mut()) {
+            let (x, y) = (*a, *b);
+            *a = c * x + s * y;
+            *b = c * y - s * x;
+        }
+        // + (G − 1): cos − 1 on the diagonal, ± sin off it.
+        self.d[lo * n + lo] += m;
+        self.d[hi * n + hi] += m;
+        self.d[lo * n + hi] += s;
+        self.d[hi * n + lo] -= s;
+    }
+
+    /// R ← R P = R + R D (or Q ← Q + Q D): one rounding of each stored coefficient.
+    pub(crate) fn apply_to(&self, attitude: &mut Attitude) {
+        debug_assert_eq!(attitude.dim(), self.dim);
+        match &mut attitude.repr {
+            Repr::Rotor(r) => r.times_one_plus(&self.d),
             Repr::Matrix(q) => {
-                let n = side(q);
-                let (s, c) = angle.sin_cos();
-                // Columns i and j are contiguous in column-major storage.
-                let (lo, hi) = (i.min(j), i.max(j));
-                let sign = if i < j { 1.0 } else { -1.0 };
-                let (head, tail) = q.split_at_mut(hi * n);
-                let col_lo = &mut head[lo * n..(lo + 1) * n];
-                let col_hi = &mut tail[..n];
-                for (a, b) in col_lo.iter_mut().zip(col_hi.iter_mut()) {
-                    let (x, y) = (*a, *b);
-                    *a = c * x + sign * s * y;
-                    *b = c * y - sign * s * x;
+                let n = self.dim;
+                if n > 8 {
+                    let q0 = DMatrix::from_column_slice(n, n, q);
+                    let mut out = q0.clone();
+                    out.gemm(1.0, &q0, &DMatrixView::from_slice(&self.d, n, n), 1.0);
+                    q.copy_from_slice(out.as_slice());
+                    return;
+                }
+                let q0: MatrixStorage = q.clone();
+                for (k, out) in q.chunks_exact_mut(n).enumerate() {
+                    for (l, &dlk) in self.d[k * n..(k + 1) * n].iter().enumerate() {
+                        if dlk != 0.0 {
+                            let col = &q0[l * n..(l + 1) * n];
+                            out.iter_mut().zip(col).for_each(|(o, x)| *o += x * dlk);
+                        }
+                    }
                 }
             }
         }
