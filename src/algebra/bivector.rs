@@ -475,9 +475,14 @@ impl Bivector {
     /// Returns the matrix exponential expm(\[B\]) of the skew matrix of B: a rotation matrix,
     /// in O(N³) for any N (no rotor, so also above the rotor limit).
     ///
-    /// Up to ‖\[B\]‖₁ ≈ 5.37: the diagonal Padé approximant r_m(A) = q_m(A)⁻¹ p_m(A) of the
-    /// degree m ∈ {3, 5, 7, 9, 13} that Higham's bound selects (Higham, SIAM J. Matrix Anal.
-    /// Appl. 26 (2005) 1179; backward error below the unit round-off). For skew A,
+    /// Small rotations (‖\[B\]‖₂ ≤ 0.82 by the bound min(‖A‖₁, ‖A²‖₁^½), every integrator
+    /// step): the Taylor polynomial of the lowest degree m ∈ {6, 9, 12, 16} whose truncation
+    /// error is below the unit round-off, by Paterson–Stockmeyer (3 to 6 products, no solve;
+    /// Higham, *Functions of Matrices*, 2008, §4.4.3), a rotation to round-off because the
+    /// truncation is. Up to ‖\[B\]‖₁ ≈ 5.37: the diagonal Padé approximant
+    /// r_m(A) = q_m(A)⁻¹ p_m(A) of the degree m ∈ {3, 5, 7, 9, 13} that Higham's bound
+    /// selects (Higham, SIAM J. Matrix Anal. Appl. 26 (2005) 1179; backward error below the
+    /// unit round-off). For skew A,
     /// q_m(A) = p_m(−A) = p_m(A)ᵀ, so r_m(A) is orthogonal in exact arithmetic: a rotation
     /// to round-off, never a truncated series that leaves the group. Larger rotations use
     /// the spectral form expm(A) = V diag(cos θₖ) Vᵀ + A V diag(sin θₖ/θₖ) Vᵀ from the
@@ -507,6 +512,10 @@ impl Bivector {
         // exp_log_bits fuzz target): the plane-by-plane form scales, so it takes that case too.
         if !norm1.is_finite() || norm1 > super::expm::PADE_MAX_NORM {
             return self.exp_skew_matrix_by_planes();
+        }
+        // Small rotations (integrator steps): the Taylor form needs no solve.
+        if let Some(q) = super::expm::expm_skew_taylor(&a, norm1) {
+            return q;
         }
         super::expm::expm_skew(&a, norm1).unwrap_or_else(|| super::expm::expm_spectral(&a))
     }
@@ -576,21 +585,8 @@ pub(crate) fn commutator_packed(n: usize, a: &[f64], b: &[f64], out: &mut [f64])
         7 => commutator_fixed::<7>(a, b, out),
         8 => commutator_fixed::<8>(a, b, out),
         _ if n > COMMUTATOR_GEMM_MIN_DIM => {
-            // One blocked matrix product: for skew A, B, BA = (AB)ᵀ, so [A × B] = C − Cᵀ with
-            // C = AB. nalgebra's gemm (matrixmultiply) vectorises where the row loop below
-            // cannot (an f64 reduction is not reassociated), 5–7× faster at N = 32.
-            let skew = |x: &[f64]| {
-                let mut m = DMatrix::zeros(n, n);
-                for ((i, j), &c) in pairs(n).zip(x) {
-                    m[(i, j)] = c;
-                    m[(j, i)] = -c;
-                }
-                m
-            };
-            let c = skew(a) * skew(b);
-            for ((i, j), o) in pairs(n).zip(out.iter_mut()) {
-                *o = c[(i, j)] - c[(j, i)];
-            }
+            let mut scratch = vec![0.0; 3 * n * n];
+            commutator_gemm(n, a, b, out, &mut scratch);
         }
         _ => {
             // Dense rows on the stack up to N = 16, on the heap beyond.
@@ -622,6 +618,33 @@ pub(crate) fn commutator_packed(n: usize, a: &[f64], b: &[f64], out: &mut [f64])
                     k += 1;
                 }
             }
+        }
+    }
+}
+
+/// [`commutator_packed`] as one dense matrix product, with a scratch of 3N². For skew A, B, BA = (AB)ᵀ, so
+/// \[A × B\] = C − Cᵀ with C = AB; nalgebra's gemm (matrixmultiply) vectorises where a row
+/// loop cannot (an f64 reduction is not reassociated), 5–7× faster at N = 32.
+fn commutator_gemm(n: usize, a: &[f64], b: &[f64], out: &mut [f64], scratch: &mut [f64]) {
+    let (da, rest) = scratch.split_at_mut(n * n);
+    let (db, dc) = rest.split_at_mut(n * n);
+    fill_dense_packed(n, a, da);
+    fill_dense_packed(n, b, db);
+    // Row-major buffers read as column-major are the transposes −A and −B, whose product is
+    // AB again.
+    let mut c = nalgebra::DMatrixViewMut::from_slice(&mut dc[..n * n], n, n);
+    c.gemm(
+        1.0,
+        &nalgebra::DMatrixView::from_slice(da, n, n),
+        &nalgebra::DMatrixView::from_slice(db, n, n),
+        0.0,
+    );
+    // Column-major: C(i, j) = dc[j n + i].
+    let mut k = 0;
+    for i in 0..n {
+        for j in i + 1..n {
+            out[k] = dc[j * n + i] - dc[i * n + j];
+            k += 1;
         }
     }
 }

@@ -63,7 +63,7 @@ mod eigen;
 mod error;
 mod expm;
 pub(crate) use eigen::{RobustEigen, symmetric_eigen};
-pub(crate) use expm::{expm_skew, norm1 as expm_norm1};
+pub(crate) use expm::{expm_skew, expm_skew_taylor, norm1 as expm_norm1};
 mod multivector;
 mod nalgebra;
 mod ops;

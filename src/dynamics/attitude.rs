@@ -4,7 +4,7 @@
 use crate::algebra::{
     AlgebraError, Bivector, Rotor, Vector, accumulate_plane_rotor, pairs, sin_cos_minus_one,
 };
-use nalgebra::{DMatrix, DMatrixView, SMatrix};
+use nalgebra::{DMatrix, DMatrixView, DMatrixViewMut, SMatrix};
 use smallvec::SmallVec;
 
 /// Column-major N×N storage; inline (no heap) up to N = 8.
@@ -295,6 +295,36 @@ impl Attitude {
             },
         }
     }
+
+    /// Q ← Q expm(S) for a dense skew S = 2\[A\] (N×N): [`Attitude::times_exp_mut`] for
+    /// integrators that keep their generator dense (RK4 above N = 8). Small S (every
+    /// integrator step) takes the Taylor form and one product into Q's own storage; anything
+    /// else goes through the bivector path (Padé, plane by plane, NaN poisoning).
+    pub(crate) fn times_expm_dense(&mut self, s: &DMatrix<f64>) {
+        let n = s.nrows();
+        let norm = crate::algebra::expm_norm1(s);
+        if let (Repr::Matrix(q), true) = (&mut self.repr, norm.is_finite()) {
+            if norm == 0.0 {
+                return;
+            }
+            if let Some(e) = crate::algebra::expm_skew_taylor(s, norm) {
+                let q0 = DMatrix::from_column_slice(n, n, q);
+                // Views (not owned matrices) take nalgebra's fast gemm path.
+                DMatrixViewMut::from_slice(q, n, n).gemm(
+                    1.0,
+                    &DMatrixView::from_slice(q0.as_slice(), n, n),
+                    &DMatrixView::from_slice(e.as_slice(), n, n),
+                    0.0,
+                );
+                return;
+            }
+        }
+        let mut a = Bivector::zero(n);
+        for ((i, j), c) in pairs(n).zip(a.as_mut_slice()) {
+            *c = 0.5 * s[(i, j)];
+        }
+        self.times_exp_mut(&a);
+    }
 }
 
 /// The product P = G₁G₂⋯ of one drift's plane rotations, kept as its difference from the
@@ -455,7 +485,9 @@ macro_rules! times_exp_fixed {
         }
         let norm = crate::algebra::expm_norm1(&s);
         if norm != 0.0 {
-            let e = match crate::algebra::expm_skew(&s, norm) {
+            let e = match crate::algebra::expm_skew_taylor(&s, norm)
+                .or_else(|| crate::algebra::expm_skew(&s, norm))
+            {
                 Some(e) => e,
                 None => SMatrix::from_column_slice((a * 2.0).exp_skew_matrix().as_slice()),
             };

@@ -85,6 +85,8 @@ enum Kind {
         inverse: DMatrix<f64>,
         /// The diagonal, if the matrix is diagonal (fast path).
         diagonal: Option<Vec<f64>>,
+        /// Its reciprocals (the integrators' per-step I⁻¹ without divisions).
+        inverse_diagonal: Option<Vec<f64>>,
     },
 }
 
@@ -238,13 +240,17 @@ impl InertiaMap {
             .ok_or(InertiaError::NotPositiveDefinite { smallest })?
             .inverse();
         let is_diag = (0..k).all(|r| (0..k).all(|c| r == c || m[(r, c)] == 0.0));
-        let diagonal = is_diag.then(|| (0..k).map(|i| m[(i, i)]).collect());
+        let diagonal: Option<Vec<f64>> = is_diag.then(|| (0..k).map(|i| m[(i, i)]).collect());
+        let inverse_diagonal = diagonal
+            .as_ref()
+            .map(|d| d.iter().map(|x| 1.0 / x).collect());
         Ok(InertiaMap {
             dim: n,
             kind: Kind::General {
                 matrix: m,
                 inverse,
                 diagonal,
+                inverse_diagonal,
             },
         })
     }
@@ -328,6 +334,21 @@ impl InertiaMap {
             } => Some(plane_moments),
             Kind::Physical { .. } => None,
             Kind::General { diagonal, .. } => diagonal.as_deref(),
+        }
+    }
+
+    /// The reciprocals of [`InertiaMap::diagonal_plane_moments`], cached at construction.
+    pub(crate) fn diagonal_inverse_plane_moments(&self) -> Option<&[f64]> {
+        match &self.kind {
+            Kind::Physical {
+                diagonal: true,
+                inverse_plane_moments,
+                ..
+            } => Some(inverse_plane_moments),
+            Kind::Physical { .. } => None,
+            Kind::General {
+                inverse_diagonal, ..
+            } => inverse_diagonal.as_deref(),
         }
     }
 

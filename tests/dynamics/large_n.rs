@@ -1,10 +1,10 @@
 //! Large N: the attitude kept as an SO(N) matrix above N = 8 (issue #4).
 
-use super::{random_bivector, rng, run};
+use super::{attitude_distance, random_bivector, rng, run};
 use rand::Rng;
 use rotorflow::dynamics::torques::{Free, Gravity};
 use rotorflow::dynamics::{
-    Attitude, Dopri5, Integrator, Invariants, Midpoint, RigidBody, Rkmk4, Splitting,
+    Attitude, Dopri5, Integrator, Invariants, Midpoint, RigidBody, Rkmk4, Splitting, TorqueInput,
 };
 use rotorflow::prelude::*;
 
@@ -245,6 +245,45 @@ fn exp_skew_matrix_of_large_rotations_stays_orthogonal() {
                 let err = (&q - &expected).amax();
                 assert!(err < 1e-14 * scale, "N = {n}, scale {scale:e}: {err:e}");
             }
+        }
+    }
+}
+
+/// Above N = 8 a free RK4 step runs on dense matrices: ω × L as (ω²)ᵢⱼ(Jⱼ − Jᵢ) for a
+/// physical body, C − Cᵀ (C = ωL) for a general diagonal map, the exponential by its Taylor
+/// polynomial. It must agree with the bivector path of the same formulas, which a torque
+/// that is zero without saying so (`is_zero() == false`) takes, and keep Q orthogonal.
+#[test]
+fn dense_free_rk4_matches_the_bivector_path() {
+    let silent_zero = |input: &TorqueInput<'_>| Bivector::zero(input.momentum.dim());
+    let mut r = rng(95);
+    for n in [9usize, 12, 16, 24] {
+        let moments: Vec<f64> = (0..n).map(|_| r.gen_range(0.3..2.0)).collect();
+        let physical = InertiaMap::from_principal_moments(&moments).unwrap();
+        // A diagonal map that is not of the form Jᵢ + Jⱼ.
+        let k = n * (n - 1) / 2;
+        let planes: Vec<f64> = (0..k).map(|_| r.gen_range(0.5..3.0)).collect();
+        let general = InertiaMap::from_plane_moments(&planes).unwrap();
+        for inertia in [physical, general] {
+            let attitude =
+                Attitude::from_matrix(&random_bivector(&mut r, n, 0.3).exp_skew_matrix()).unwrap();
+            let l = random_bivector(&mut r, n, 2.0);
+            let start = RigidBody::from_body_momentum(inertia, attitude, &l).unwrap();
+            let (mut dense, mut general_path) = (start.clone(), start.clone());
+            run(&mut dense, &mut Rkmk4, &Free, 0.02, 50);
+            run(&mut general_path, &mut Rkmk4, &silent_zero, 0.02, 50);
+            let dl = (dense.momentum() - general_path.momentum()).max_abs();
+            let dq = attitude_distance(dense.attitude(), general_path.attitude());
+            assert!(
+                dl < 1e-13 && dq < 1e-13,
+                "N = {n}: |ΔL| = {dl:e}, |ΔQ| = {dq:e}"
+            );
+            // And the step moved: the comparison is not between two unchanged states.
+            assert!(
+                (dense.momentum() - start.momentum()).max_abs() > 1e-3,
+                "N = {n}"
+            );
+            assert!(dense.attitude().unit_error() < 1e-14, "N = {n}");
         }
     }
 }
