@@ -161,22 +161,28 @@ where
             n * n,
         )
     } else {
-        // Run-time sizes: a scratch reused between calls (each step of an integrator takes one
-        // exponential), its parts spaced off multiples of 4096 bytes (4K aliasing).
-        thread_local! {
-            static SCRATCH: std::cell::RefCell<Vec<f64>> = const { std::cell::RefCell::new(Vec::new()) };
-        }
-        let stride = n * n + 24;
-        let mut run = |scratch: &mut Vec<f64>| {
-            scratch.resize(4 * stride, 0.0);
-            taylor_into::<D>(n, a.as_slice(), norm1, out.as_mut_slice(), scratch, stride)
-        };
-        SCRATCH.with(|cell| match cell.try_borrow_mut() {
-            Ok(mut scratch) => run(&mut scratch),
-            Err(_) => run(&mut Vec::new()),
-        })
+        expm_skew_taylor_dense(n, a.as_slice(), norm1, out.as_mut_slice())
     };
     done.then_some(out)
+}
+
+/// [`expm_skew_taylor`] for a run-time size on column-major slices: writes expm(A) into `out`
+/// and returns true, or returns false (`out` unspecified) when ‖A‖₂ may exceed θ₁₆. The
+/// scratch is reused between calls (an integrator takes one exponential per step), its parts
+/// spaced off multiples of 4096 bytes (4K aliasing).
+pub(crate) fn expm_skew_taylor_dense(n: usize, a: &[f64], norm1: f64, out: &mut [f64]) -> bool {
+    thread_local! {
+        static SCRATCH: std::cell::RefCell<Vec<f64>> = const { std::cell::RefCell::new(Vec::new()) };
+    }
+    let stride = n * n + 24;
+    let mut run = |scratch: &mut Vec<f64>| {
+        scratch.resize(4 * stride, 0.0);
+        taylor_into::<nalgebra::Dyn>(n, a, norm1, out, scratch, stride)
+    };
+    SCRATCH.with(|cell| match cell.try_borrow_mut() {
+        Ok(mut scratch) => run(&mut scratch),
+        Err(_) => run(&mut Vec::new()),
+    })
 }
 
 /// The body of [`expm_skew_taylor`] on column-major slices: writes T_m(A) into `out` and
@@ -261,7 +267,7 @@ where
 }
 
 /// The 1-norm of a column-major N×N slice.
-fn norm1_slice(n: usize, x: &[f64]) -> f64 {
+pub(crate) fn norm1_slice(n: usize, x: &[f64]) -> f64 {
     x.chunks_exact(n.max(1))
         .map(|c| c.iter().map(|v| v.abs()).sum::<f64>())
         .fold(0.0, f64::max)

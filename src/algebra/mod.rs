@@ -63,7 +63,9 @@ mod eigen;
 mod error;
 mod expm;
 pub(crate) use eigen::{RobustEigen, symmetric_eigen};
-pub(crate) use expm::{expm_skew, expm_skew_taylor, norm1 as expm_norm1};
+pub(crate) use expm::{
+    expm_skew, expm_skew_taylor, expm_skew_taylor_dense, norm1 as expm_norm1, norm1_slice,
+};
 mod multivector;
 mod nalgebra;
 mod ops;

@@ -296,24 +296,26 @@ impl Attitude {
         }
     }
 
-    /// Q ← Q expm(S) for a dense skew S = 2\[A\] (N×N): [`Attitude::times_exp_mut`] for
-    /// integrators that keep their generator dense (RK4 above N = 8). Small S (every
-    /// integrator step) takes the Taylor form and one product into Q's own storage; anything
-    /// else goes through the bivector path (Padé, plane by plane, NaN poisoning).
-    pub(crate) fn times_expm_dense(&mut self, s: &DMatrix<f64>) {
-        let n = s.nrows();
-        let norm = crate::algebra::expm_norm1(s);
+    /// Q ← Q expm(S) for a dense skew S = 2\[A\] (column-major N×N): [`Attitude::times_exp_mut`]
+    /// for integrators that keep their generator dense (RK4 above N = 8). Small S (every
+    /// integrator step) takes the Taylor form and one product, with `work` (2N²) as scratch;
+    /// anything else goes through the bivector path (Padé, plane by plane, NaN poisoning).
+    pub(crate) fn times_expm_dense(&mut self, s: &[f64], work: &mut [f64]) {
+        let n = self.dim();
+        let nn = n * n;
+        let norm = crate::algebra::norm1_slice(n, s);
         if let (Repr::Matrix(q), true) = (&mut self.repr, norm.is_finite()) {
             if norm == 0.0 {
                 return;
             }
-            if let Some(e) = crate::algebra::expm_skew_taylor(s, norm) {
-                let q0 = DMatrix::from_column_slice(n, n, q);
-                // Views (not owned matrices) take nalgebra's fast gemm path.
+            let (e, q0) = work.split_at_mut(nn);
+            if crate::algebra::expm_skew_taylor_dense(n, s, norm, e) {
+                let q0 = &mut q0[..nn];
+                q0.copy_from_slice(q);
                 DMatrixViewMut::from_slice(q, n, n).gemm(
                     1.0,
-                    &DMatrixView::from_slice(q0.as_slice(), n, n),
-                    &DMatrixView::from_slice(e.as_slice(), n, n),
+                    &DMatrixView::from_slice(q0, n, n),
+                    &DMatrixView::from_slice(e, n, n),
                     0.0,
                 );
                 return;
@@ -321,7 +323,7 @@ impl Attitude {
         }
         let mut a = Bivector::zero(n);
         for ((i, j), c) in pairs(n).zip(a.as_mut_slice()) {
-            *c = 0.5 * s[(i, j)];
+            *c = 0.5 * s[j * n + i];
         }
         self.times_exp_mut(&a);
     }

@@ -3,7 +3,7 @@
 use super::{DynamicsError, Integrator, momentum_rate as rates};
 use crate::algebra::{Bivector, commutator_packed, pairs};
 use crate::dynamics::{RigidBody, Torque};
-use nalgebra::{DMatrix, DMatrixView, DMatrixViewMut};
+use nalgebra::{DMatrixView, DMatrixViewMut};
 
 /// Classical RK4 on the momentum with the attitude advanced on Spin(N) by one exponential
 /// per step (Runge–Kutta–Munthe-Kaas, Munthe-Kaas, BIT 38 (1998) 92): never plain RK on
@@ -160,11 +160,12 @@ fn free_step_dense_in(body: &mut RigidBody, h: f64, scratch: &mut Vec<f64>) -> b
     // Buffers spaced nn + 24 apart: at N = 32 a spacing of nn puts every buffer at the same
     // address modulo 4096, and the fused passes below stall on 4K aliasing (measured 3×).
     let stride = nn + 24;
-    scratch.resize(10 * stride, 0.0);
+    scratch.resize(13 * stride, 0.0);
+    let (scratch, work) = scratch.split_at_mut(11 * stride);
     let mut parts = scratch.chunks_exact_mut(stride).map(|part| &mut part[..nn]);
-    let mut next = || parts.next().expect("ten parts");
+    let mut next = || parts.next().expect("eleven parts");
     let (l0, mask, spread, stage, d) = (next(), next(), next(), next(), next());
-    let (w, w1, c, sum_a, sum_b) = (next(), next(), next(), next(), next());
+    let (w, w1, c, sum_a, sum_b, generator) = (next(), next(), next(), next(), next(), next());
     // Every entry is written below before it is read, except the sums and diagonals.
     for x in [&mut *sum_a, &mut *sum_b] {
         x.fill(0.0);
@@ -264,9 +265,7 @@ fn free_step_dense_in(body: &mut RigidBody, h: f64, scratch: &mut Vec<f64>) -> b
     // Σ bᵢωᵢ = I⁻¹(Σ bᵢLᵢ) = I⁻¹(6L₀ + h A); `w` holds ω₄.
     product(w1, w, c);
     skew_part(n, c, d);
-    let mut generator = DMatrix::zeros(n, n);
     for ((((g, &m), &l), &a), &d) in generator
-        .as_mut_slice()
         .iter_mut()
         .zip(&*mask)
         .zip(&*l0)
@@ -280,7 +279,7 @@ fn free_step_dense_in(body: &mut RigidBody, h: f64, scratch: &mut Vec<f64>) -> b
         let e = j * n + i;
         *l = l0[e] + h / 6.0 * sum_b[e];
     }
-    attitude.times_expm_dense(&generator);
+    attitude.times_expm_dense(generator, work);
     true
 }
 
