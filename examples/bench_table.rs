@@ -17,16 +17,17 @@ use std::path::{Path, PathBuf};
 
 type Res<T> = Result<T, Box<dyn Error>>;
 
-/// One measurement: criterion group, function, parameter and the mean time in ns with its
-/// 95 % confidence interval.
+/// One measurement: criterion group, function, parameter and the median time in ns with its
+/// 95 % confidence interval (the median, not the mean: on a shared machine a few slow samples
+/// from other jobs move the mean by tens of percent).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Measurement {
     /// Criterion group id, e.g. `exp/N=4`.
     pub group: String,
     /// Function id, e.g. `rotorflow_exp`.
     pub function: String,
-    /// Mean time per iteration, ns.
-    pub mean_ns: f64,
+    /// Median time per iteration, ns.
+    pub time_ns: f64,
     /// Lower bound of the confidence interval, ns.
     pub lower_ns: f64,
     /// Upper bound of the confidence interval, ns.
@@ -34,7 +35,7 @@ pub struct Measurement {
 }
 
 /// Renders the markdown table from the data file's text (`# key: value` header lines, then
-/// tab-separated group, function, mean, lower, upper).
+/// tab-separated group, function, median, lower, upper).
 pub fn render(tsv: &str) -> Res<String> {
     let mut meta = Vec::new();
     let mut rows: BTreeMap<String, Vec<Measurement>> = BTreeMap::new();
@@ -53,7 +54,7 @@ pub fn render(tsv: &str) -> Res<String> {
         let m = Measurement {
             group: f[0].into(),
             function: f[1].into(),
-            mean_ns: f[2].parse()?,
+            time_ns: f[2].parse()?,
             lower_ns: f[3].parse()?,
             upper_ns: f[4].parse()?,
         };
@@ -70,31 +71,31 @@ pub fn render(tsv: &str) -> Res<String> {
     }
     let mut groups: Vec<_> = rows.into_iter().collect();
     groups.sort_by_key(|g| group_key(&g.0));
-    let mean = |group: &str, function: &str| -> Option<f64> {
+    let median = |group: &str, function: &str| -> Option<f64> {
         groups
             .iter()
             .find(|(g, _)| g == group)
             .and_then(|(_, ms)| ms.iter().find(|m| m.function == function))
-            .map(|m| m.mean_ns)
+            .map(|m| m.time_ns)
     };
-    write_step_summary(&mut out, &mean)?;
+    write_step_summary(&mut out, &median)?;
     writeln!(
         out,
-        "\n| benchmark group | implementation | mean time | 95 % interval | × fastest in group |"
+        "\n| benchmark group | implementation | median time | 95 % interval | × fastest in group |"
     )?;
     writeln!(out, "|---|---|---|---|---|")?;
     for (group, mut ms) in groups {
-        ms.sort_by(|a, b| a.mean_ns.total_cmp(&b.mean_ns));
-        let fastest = ms[0].mean_ns;
+        ms.sort_by(|a, b| a.time_ns.total_cmp(&b.time_ns));
+        let fastest = ms[0].time_ns;
         for m in &ms {
             writeln!(
                 out,
                 "| {group} | {} | {} | {} – {} | {:.2} |",
                 m.function,
-                time(m.mean_ns),
+                time(m.time_ns),
                 time(m.lower_ns),
                 time(m.upper_ns),
-                m.mean_ns / fastest
+                m.time_ns / fastest
             )?;
         }
     }
@@ -103,9 +104,9 @@ pub fn render(tsv: &str) -> Res<String> {
 
 /// The integrator-step comparisons of issue #4 (ratios measured in the same run) and the
 /// growth of each step's cost with N, fitted over N = 8 … 32.
-fn write_step_summary(out: &mut String, mean: &dyn Fn(&str, &str) -> Option<f64>) -> Res<()> {
+fn write_step_summary(out: &mut String, median: &dyn Fn(&str, &str) -> Option<f64>) -> Res<()> {
     let dims = [3usize, 4, 5, 8, 16, 32];
-    if mean("step/N=4", "rotorflow_rk4").is_none() {
+    if median("step/N=4", "rotorflow_rk4").is_none() {
         return Ok(());
     }
     writeln!(
@@ -124,11 +125,11 @@ fn write_step_summary(out: &mut String, mean: &dyn Fn(&str, &str) -> Option<f64>
     };
     for n in dims {
         let g = format!("step/N={n}");
-        let rk = mean(&g, "rotorflow_rk4");
-        let dm = mean(&g, "nalgebra_dmatrix_rk4");
-        let sm = mean(&g, "nalgebra_smatrix_rk4");
-        let hand = mean(&g, "hand_written_rk4");
-        let strang = mean(&g, "rotorflow_strang");
+        let rk = median(&g, "rotorflow_rk4");
+        let dm = median(&g, "nalgebra_dmatrix_rk4");
+        let sm = median(&g, "nalgebra_smatrix_rk4");
+        let hand = median(&g, "hand_written_rk4");
+        let strang = median(&g, "rotorflow_strang");
         writeln!(
             out,
             "| {n} | {} | {} | {} | {} | {} | {} | {} | {} |",
@@ -159,7 +160,7 @@ fn write_step_summary(out: &mut String, mean: &dyn Fn(&str, &str) -> Option<f64>
         let points: Vec<(f64, f64)> = [8usize, 16, 32]
             .iter()
             .filter_map(|&n| {
-                mean(&format!("step/N={n}"), function).map(|t| ((n as f64).ln(), t.ln()))
+                median(&format!("step/N={n}"), function).map(|t| ((n as f64).ln(), t.ln()))
             })
             .collect();
         if points.len() < 2 {
@@ -224,14 +225,14 @@ pub fn collect(dir: &Path) -> Res<Vec<Measurement>> {
                 function = format!("{function} ({v})");
             }
         }
-        let mean = &est["mean"];
+        let median = &est["median"];
         let num = |v: &serde_json::Value| v.as_f64().ok_or("number");
         out.push(Measurement {
             group,
             function,
-            mean_ns: num(&mean["point_estimate"])?,
-            lower_ns: num(&mean["confidence_interval"]["lower_bound"])?,
-            upper_ns: num(&mean["confidence_interval"]["upper_bound"])?,
+            time_ns: num(&median["point_estimate"])?,
+            lower_ns: num(&median["confidence_interval"]["lower_bound"])?,
+            upper_ns: num(&median["confidence_interval"]["upper_bound"])?,
         });
     }
     out.sort_by(|a, b| (&a.group, &a.function).cmp(&(&b.group, &b.function)));
@@ -284,15 +285,15 @@ pub fn main() -> Res<()> {
         writeln!(tsv, "# compiler: {}", command_output("rustc", &["-V"]))?;
         writeln!(
             tsv,
-            "# command: `BENCH_QUICK={}` cargo bench (criterion, mean of the samples)",
+            "# command: `BENCH_QUICK={}` cargo bench (criterion, median of the samples)",
             std::env::var("BENCH_QUICK").map_or("unset".into(), |v| v)
         )?;
-        writeln!(tsv, "group\tfunction\tmean_ns\tlower_ns\tupper_ns")?;
+        writeln!(tsv, "group\tfunction\ttime_ns\tlower_ns\tupper_ns")?;
         for m in &ms {
             writeln!(
                 tsv,
                 "{}\t{}\t{:.3}\t{:.3}\t{:.3}",
-                m.group, m.function, m.mean_ns, m.lower_ns, m.upper_ns
+                m.group, m.function, m.time_ns, m.lower_ns, m.upper_ns
             )?;
         }
         std::fs::write(&data, &tsv)?;

@@ -166,10 +166,7 @@ fn free_step_dense_in(body: &mut RigidBody, h: f64, scratch: &mut Vec<f64>) -> b
     let mut next = || parts.next().expect("eleven parts");
     let (l0, mask, spread, stage, d) = (next(), next(), next(), next(), next());
     let (w, w1, c, sum_a, sum_b, generator) = (next(), next(), next(), next(), next(), next());
-    // Every entry is written below before it is read, except the sums and diagonals.
-    for x in [&mut *sum_a, &mut *sum_b] {
-        x.fill(0.0);
-    }
+    // Every entry is written below before it is read, except the diagonals.
     for (((i, j), &x), &inv) in pairs(n).zip(body.momentum().as_slice()).zip(inverse) {
         // Entry (i, j) at j n + i.
         l0[j * n + i] = x;
@@ -205,61 +202,61 @@ fn free_step_dense_in(body: &mut RigidBody, h: f64, scratch: &mut Vec<f64>) -> b
     }
     w.copy_from_slice(w1);
     stage.copy_from_slice(l0);
-    // Stages: the product; then one pass adds the stage's term to the sums A = Σ₁³ and
-    // B = Σ bₛ (of dLₛ, or of Cₛ for a physical body) and forms the next stage's L and ω
-    // (slices zipped, so that the pass vectorises).
-    for (bs, next_c) in [(1.0, 0.5), (2.0, 0.5), (2.0, 1.0), (1.0, 0.0)] {
-        let last = next_c == 0.0;
+    // Stages: the product; then one pass adds the stage's term to A = Σ₁³ (of dLₛ, or of Cₛ
+    // for a physical body) and forms the next stage's ω (slices zipped, so that the pass
+    // vectorises). B = Σ bₛ(·)ₛ = 2A − (·)₁ + (·)₄ needs no pass of its own: `sum_b` keeps
+    // the first term until the end.
+    for (s, step) in [0.5 * h, 0.5 * h, h, 0.0].into_iter().enumerate() {
+        let last = s == 3;
         if physical {
-            product(w, w, c);
             // ω_next = ω₁ + c h (C ∘ spread ∘ I⁻¹); `d` holds spread ∘ I⁻¹.
-            let step = next_c * h;
+            let c = if s == 0 { &mut *sum_b } else { &mut *c };
+            product(w, w, c);
             if last {
-                sum_b.iter_mut().zip(&*c).for_each(|(b, &c)| *b += c);
-                continue;
+                break;
             }
-            for (((((&c, a), b), &w1), w), &f) in c
+            for ((((&c, a), &w1), w), &f) in c
                 .iter()
                 .zip(sum_a.iter_mut())
-                .zip(sum_b.iter_mut())
                 .zip(&*w1)
                 .zip(w.iter_mut())
                 .zip(&*d)
             {
-                *a += c;
-                *b += bs * c;
+                *a = if s == 0 { c } else { *a + c };
                 *w = w1 + step * c * f;
             }
         } else {
             product(w, stage, c);
-            skew_part(n, c, d);
-            let step = next_c * h;
+            let dl = if s == 0 { &mut *sum_b } else { &mut *d };
+            skew_part(n, c, dl);
             if last {
-                sum_b.iter_mut().zip(&*d).for_each(|(b, &d)| *b += d);
-                continue;
+                break;
             }
-            for ((((((&d, a), b), &l), x), w), &m) in d
+            for (((((&d, a), &l), x), w), &m) in dl
                 .iter()
                 .zip(sum_a.iter_mut())
-                .zip(sum_b.iter_mut())
                 .zip(&*l0)
                 .zip(stage.iter_mut())
                 .zip(w.iter_mut())
                 .zip(&*mask)
             {
-                *a += d;
-                *b += bs * d;
+                *a = if s == 0 { d } else { *a + d };
                 *x = l + step * d;
                 *w = *x * m;
             }
         }
     }
-    if physical {
-        // The sums of Cₛ become sums of dLₛ.
-        for ((a, b), &s) in sum_a.iter_mut().zip(sum_b.iter_mut()).zip(&*spread) {
-            *a *= s;
-            *b *= s;
-        }
+    // A and B = 2A − (·)₁ + (·)₄ as sums of dLₛ (a physical body's Cₛ scaled by Jⱼ − Jᵢ).
+    let last_term: &[f64] = if physical { c } else { d };
+    for (((a, b), &t4), &s) in sum_a
+        .iter_mut()
+        .zip(sum_b.iter_mut())
+        .zip(last_term)
+        .zip(&*spread)
+    {
+        let scale = if physical { s } else { 1.0 };
+        *b = scale * (2.0 * *a - *b + t4);
+        *a *= scale;
     }
     // S = 2Ω = −h/6 Σ bᵢωᵢ + h²/12 [ω₁, ω₄] (see free_step_fixed), with
     // Σ bᵢωᵢ = I⁻¹(Σ bᵢLᵢ) = I⁻¹(6L₀ + h A); `w` holds ω₄.
