@@ -10,6 +10,10 @@ use rotorflow::dynamics::{Attitude, Dopri5, Integrator, Midpoint, RigidBody, Rkm
 use rotorflow::prelude::*;
 use std::time::Duration;
 
+#[path = "common/dmatrix_rk4.rs"]
+mod dmatrix_baseline;
+use dmatrix_baseline::dmatrix_rk4;
+
 fn configure() -> Criterion {
     let quick = std::env::var_os("BENCH_QUICK").is_some();
     Criterion::default()
@@ -34,20 +38,6 @@ fn body(n: usize) -> RigidBody {
         &Bivector::from_components(n, &l).unwrap(),
     )
     .unwrap()
-}
-
-/// RK4 on (M, Q) with nalgebra dynamic matrices: Ω = M ⊘ (Jᵢ + Jⱼ), dM = ΩM − MΩ, dQ = QΩᵀ.
-fn dmatrix_rk4(m: &mut DMatrix<f64>, q: &mut DMatrix<f64>, inv: &DMatrix<f64>, h: f64) {
-    let f = |m: &DMatrix<f64>, q: &DMatrix<f64>| {
-        let w = m.component_mul(inv);
-        (&w * m - m * &w, q * w.transpose())
-    };
-    let (k1m, k1q) = f(m, q);
-    let (k2m, k2q) = f(&(&*m + &k1m * (0.5 * h)), &(&*q + &k1q * (0.5 * h)));
-    let (k3m, k3q) = f(&(&*m + &k2m * (0.5 * h)), &(&*q + &k2q * (0.5 * h)));
-    let (k4m, k4q) = f(&(&*m + &k3m * h), &(&*q + &k3q * h));
-    *m += (k1m + k2m * 2.0 + k3m * 2.0 + k4m) * (h / 6.0);
-    *q += (k1q + k2q * 2.0 + k3q * 2.0 + k4q) * (h / 6.0);
 }
 
 /// The same with fixed-size nalgebra matrices.
@@ -123,8 +113,7 @@ fn hand_rk4<const D: usize>(
 }
 
 fn inverse_plane_moments(n: usize) -> DMatrix<f64> {
-    let j = moments(n);
-    DMatrix::from_fn(n, n, |a, b| if a == b { 0.0 } else { 1.0 / (j[a] + j[b]) })
+    dmatrix_baseline::inverse_plane_moments(&moments(n))
 }
 
 fn bench_steps(c: &mut Criterion) {

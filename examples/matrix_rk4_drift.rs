@@ -8,19 +8,10 @@ use rotorflow::dynamics::torques::Free;
 use rotorflow::dynamics::{Attitude, Integrator, Invariants, RigidBody, Rkmk4};
 use rotorflow::prelude::*;
 
-/// The bench's baseline: RK4 on (M, Q) with Ω = M ⊘ (Jᵢ + Jⱼ), dM = ΩM − MΩ, dQ = QΩᵀ.
-fn dmatrix_rk4(m: &mut DMatrix<f64>, q: &mut DMatrix<f64>, inv: &DMatrix<f64>, h: f64) {
-    let f = |m: &DMatrix<f64>, q: &DMatrix<f64>| {
-        let w = m.component_mul(inv);
-        (&w * m - m * &w, q * w.transpose())
-    };
-    let (k1m, k1q) = f(m, q);
-    let (k2m, k2q) = f(&(&*m + &k1m * (0.5 * h)), &(&*q + &k1q * (0.5 * h)));
-    let (k3m, k3q) = f(&(&*m + &k2m * (0.5 * h)), &(&*q + &k2q * (0.5 * h)));
-    let (k4m, k4q) = f(&(&*m + &k3m * h), &(&*q + &k3q * h));
-    *m += (k1m + k2m * 2.0 + k3m * 2.0 + k4m) * (h / 6.0);
-    *q += (k1q + k2q * 2.0 + k3q * 2.0 + k4q) * (h / 6.0);
-}
+/// The bench's baseline (RK4 on the matrix equations).
+#[path = "../benches/common/dmatrix_rk4.rs"]
+mod dmatrix_baseline;
+use dmatrix_baseline::{dmatrix_rk4, inverse_plane_moments};
 
 pub fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (h, steps) = (0.01, 10_000);
@@ -32,7 +23,7 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
             .map(|k| (0.7 * k as f64 + 0.3).sin())
             .collect();
         let l = Bivector::from_components(n, &l)?;
-        let inv = DMatrix::from_fn(n, n, |a, b| if a == b { 0.0 } else { 1.0 / (j[a] + j[b]) });
+        let inv = inverse_plane_moments(&j);
         let (mut m, mut q) = (l.to_skew_matrix(), DMatrix::<f64>::identity(n, n));
         let ls0 = &q * &m * q.transpose();
         for _ in 0..steps {

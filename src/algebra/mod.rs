@@ -83,8 +83,8 @@ pub use bivector::{Bivector, bivector_len, pair_index, pairs};
 pub use decompose::{Decomposition, SimplePlane};
 pub use error::AlgebraError;
 pub use multivector::{Multivector, Product};
-pub(crate) use rotor::accumulate_plane_rotor;
 pub use rotor::{ROTATION_TOLERANCE, Rotor};
+pub(crate) use rotor::{accumulate_plane_rotor, plane_tables};
 pub use signature::Signature;
 pub use vector::Vector;
 

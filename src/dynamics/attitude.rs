@@ -361,6 +361,12 @@ impl PlaneProduct {
         }
     }
 
+    /// The even coefficients of D = P − 1 for a rotor attitude (the splitting's unrolled
+    /// kernels for N = 3, 4 update them directly); `None` for a matrix attitude.
+    pub(crate) fn rotor_increment_mut(&mut self) -> Option<&mut [f64]> {
+        self.rotor.then_some(&mut self.d[..])
+    }
+
     /// P ← P G with G the turn by θ in the body plane eᵢ∧eⱼ (from eᵢ toward eⱼ): the rotor
     /// exp(−θ/2 eᵢⱼ), or the Givens rotation on columns i and j. `(s, m)` are sin θ and
     /// cos θ − 1 from [`crate::algebra::sin_cos_minus_one`]; a rotor evaluates its half angle

@@ -513,7 +513,7 @@ const PLANE_TABLE_MAX_DIM: usize = 6;
 /// indices that the right product by exp(−θ/2 e_lo,hi) mixes: new[ib] = c R[ib] − s s1 R[ib2],
 /// new[ib2] = c R[ib2] − s s2 R[ib] (the same formula as the general loop, tabulated).
 #[allow(clippy::type_complexity)]
-fn plane_tables(n: usize) -> &'static [Vec<(u8, u8, f64, f64)>] {
+pub(crate) fn plane_tables(n: usize) -> &'static [Vec<(u8, u8, f64, f64)>] {
     use std::sync::OnceLock;
     static TABLES: [OnceLock<Vec<Vec<(u8, u8, f64, f64)>>>; PLANE_TABLE_MAX_DIM + 1] =
         [const { OnceLock::new() }; PLANE_TABLE_MAX_DIM + 1];
