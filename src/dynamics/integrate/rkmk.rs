@@ -201,7 +201,10 @@ fn free_step_dense_in(body: &mut RigidBody, h: f64, scratch: &mut Vec<f64>) -> b
         *x = l * m;
     }
     w.copy_from_slice(w1);
-    stage.copy_from_slice(l0);
+    if !physical {
+        // Only the general path multiplies by the stage L.
+        stage.copy_from_slice(l0);
+    }
     // Stages: the product; then one pass adds the stage's term to A = Σ₁³ (of dLₛ, or of Cₛ
     // for a physical body) and forms the next stage's ω (slices zipped, so that the pass
     // vectorises). B = Σ bₛ(·)ₛ = 2A − (·)₁ + (·)₄ needs no pass of its own: `sum_b` keeps
