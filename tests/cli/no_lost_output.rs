@@ -244,15 +244,7 @@ fn resume_refuses_the_progress_of_another_sweep() {
         ("k=1.2:3:0.1", "different sweep"),
         ("k=1.2:3.05:0.05", "different sweep"),
     ] {
-        let out = rotorflow()
-            .current_dir(dir.path())
-            .args(sweep_args(range, "sweep.csv"))
-            .arg("--resume")
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{err}");
-        assert_eq!(err.lines().count(), 1, "{err}");
+        let err = refused_resume(dir.path(), &sweep_args(range, "sweep.csv"));
         assert!(
             err.contains(why) && err.contains("sweep.csv.partial"),
             "{err}"
@@ -266,35 +258,28 @@ fn resume_refuses_the_progress_of_another_sweep() {
     let altered = lines[1].replacen(',', ",9", 2);
     lines[1] = &altered;
     std::fs::write(&partial, lines.join("\n") + "\n").unwrap();
-    let out = rotorflow()
-        .current_dir(dir.path())
-        .args(sweep_args(GRID, "sweep.csv"))
-        .arg("--resume")
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
-    assert_eq!(err.lines().count(), 1, "{err}");
+    let err = refused_resume(dir.path(), &sweep_args(GRID, "sweep.csv"));
     assert!(err.contains("line 2 is not a row of this sweep"), "{err}");
     // Something that is not a progress file at all.
     std::fs::write(&partial, "run,k\n1,2\n").unwrap();
-    let out = rotorflow()
-        .current_dir(dir.path())
-        .args(sweep_args(GRID, "sweep.csv"))
-        .arg("--resume")
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2));
-    assert_eq!(String::from_utf8_lossy(&out.stderr).lines().count(), 1);
+    refused_resume(dir.path(), &sweep_args(GRID, "sweep.csv"));
     // --resume needs --csv.
+    refused_resume(dir.path(), &sweep_args(GRID, "x.csv")[..17]);
+}
+
+/// Runs `rotorflow ARGS --resume` in `dir`, asserts the refusal (exit 2, exactly one stderr
+/// line) and returns that line.
+fn refused_resume<S: AsRef<std::ffi::OsStr>>(dir: &std::path::Path, args: &[S]) -> String {
     let out = rotorflow()
-        .current_dir(dir.path())
-        .args(&sweep_args(GRID, "x.csv")[..17])
+        .current_dir(dir)
+        .args(args)
         .arg("--resume")
         .output()
         .unwrap();
-    assert_eq!(out.status.code(), Some(2));
-    assert_eq!(String::from_utf8_lossy(&out.stderr).lines().count(), 1);
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    err
 }
 
 /// `--resume` without a progress file runs everything, and a sweep that finishes removes
