@@ -36,7 +36,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             d.accepted_steps(),
             d.rejected_steps(),
             drift.energy,
-            drift.rotor
+            drift.attitude
         );
     }
     Ok(())

@@ -72,7 +72,7 @@ fn measure(
         energy: d.energy,
         casimirs: d.casimirs,
         space: d.space_momentum,
-        rotor: d.rotor,
+        rotor: d.attitude,
     })
 }
 

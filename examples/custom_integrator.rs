@@ -34,14 +34,16 @@ impl Integrator for LieEuler {
         if !torque.is_zero() {
             rate += &torque.torque(&TorqueInput {
                 time: t,
-                attitude: body.attitude(),
+                attitude: body.principal_frame_attitude(),
                 momentum: l,
                 omega: &omega,
             });
         }
         let momentum = l + &(&rate * h);
         // dR/dt = −½ R ω: the exact update for constant ω is R exp(−hω/2).
-        let attitude = body.attitude().times_exp(&(&omega * (-0.5 * h)));
+        let attitude = body
+            .principal_frame_attitude()
+            .times_exp(&(&omega * (-0.5 * h)));
         // set_state checks dimensions and finiteness, and leaves the body unchanged on error.
         body.set_state(attitude, momentum)
             .map_err(|_| DynamicsError::NonFinite { time: t + h })

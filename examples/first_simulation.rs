@@ -34,7 +34,7 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
         d.energy,
         d.casimirs,
         d.space_momentum,
-        d.rotor
+        d.attitude
     );
     Ok(())
 }

@@ -22,7 +22,7 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
     let tilt = Rotor::from_plane_angle(4, 0, 3, 0.3)?;
     let spin = Bivector::from_components(4, &[8.0, 0.0, 0.0, 0.5, 0.0, 0.0])?;
     let mut body = RigidBody::from_body_velocity(inertia, tilt, &spin)?;
-    let total = |b: &RigidBody| b.energy() + gravity.potential_energy(b.attitude());
+    let total = |b: &RigidBody| b.energy() + gravity.potential_energy(b.principal_frame_attitude());
     let horizontal = |b: &RigidBody| {
         let l = b.space_momentum();
         [l.get(0, 1), l.get(0, 2), l.get(1, 2)]
@@ -37,7 +37,9 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
         let h = horizontal(&body);
         dh = dh.max((0..3).map(|i| (h[i] - h0[i]).abs()).fold(0.0, f64::max));
         if k % 4000 == 3999 {
-            let up = body.attitude().rotate_vector(&Vector::basis(4, 3));
+            let up = body
+                .principal_frame_attitude()
+                .rotate_vector(&Vector::basis(4, 3));
             println!(
                 "t = {:5.2}  body axis e4 in space = {:.4}  T + V = {:.10}",
                 (k + 1) as f64 * dt,

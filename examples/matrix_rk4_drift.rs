@@ -45,7 +45,7 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
         let now = Invariants::of(&body);
         println!(
             "{n:4} | {orth:22.2e} {matrix_drift:14.2e} | {:25.2e} {:14.2e}",
-            now.rotor_error,
+            now.attitude_error,
             now.drift_from(&start).space_momentum
         );
     }

@@ -28,7 +28,7 @@ fn main() {
                 s.step(&mut body, k as f64 * 0.01, 0.01, &Free).unwrap();
             }
             let d = Invariants::of(&body).drift_from(&start);
-            worst_rotor = worst_rotor.max(d.rotor);
+            worst_rotor = worst_rotor.max(d.attitude);
             worst_casimir = worst_casimir.max(d.casimirs);
         }
         println!(

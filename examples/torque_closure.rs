@@ -28,7 +28,7 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
         let omega = b.omega();
         let input = TorqueInput {
             time: t,
-            attitude: b.attitude(),
+            attitude: b.principal_frame_attitude(),
             momentum: b.momentum(),
             omega: &omega,
         };

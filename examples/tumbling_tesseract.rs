@@ -39,7 +39,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let d = traj.drift();
         println!(
             "  max drift: energy {:.2e}, Casimirs {:.2e}, space L {:.2e}, |RR̃ − 1| {:.2e}",
-            d.energy, d.casimirs, d.space_momentum, d.rotor
+            d.energy, d.casimirs, d.space_momentum, d.attitude
         );
     }
     Ok(())

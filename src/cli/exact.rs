@@ -55,13 +55,17 @@ pub fn run(args: &ExactArgs) -> CliResult<()> {
 /// [`CliError::Runtime`] if the closed form cannot be evaluated at a time.
 pub fn exact_report(start: &RigidBody, times: &[f64]) -> CliResult<Report> {
     let solution = start.exact_solution().map_err(|e| match e {
-        crate::dynamics::exact::ExactError::NoClosedForm(why) => {
-            CliError::input(format!("no closed-form solution for this body: {why}"))
+        crate::dynamics::DynamicsError::NoClosedForm { reasons } => {
+            let why: Vec<String> = reasons.iter().map(ToString::to_string).collect();
+            CliError::input(format!(
+                "no closed-form solution for this body: {}",
+                why.join("; ")
+            ))
         }
         e => CliError::input(format!("no closed-form solution for this body: {e}")),
     })?;
     let state = |t: f64| -> CliResult<State> {
-        let fail = |e: crate::dynamics::exact::ExactError| {
+        let fail = |e: crate::dynamics::DynamicsError| {
             CliError::runtime(format!("closed form at t = {t}: {e}"))
         };
         Ok((

@@ -454,10 +454,7 @@ impl Report {
             b.replace_state(r, l);
             let inv = Invariants::of(&b);
             let d = inv.drift_from(&reference);
-            report.drift.energy = report.drift.energy.max(d.energy);
-            report.drift.casimirs = report.drift.casimirs.max(d.casimirs);
-            report.drift.space_momentum = report.drift.space_momentum.max(d.space_momentum);
-            report.drift.rotor = report.drift.rotor.max(d.rotor);
+            report.drift = report.drift.max(d);
             report.energy_drift.push(d.energy);
             report.casimir_drift.push(d.casimirs);
             report.omega.push(rp.rotate_bivector(&b.omega()));
@@ -466,7 +463,7 @@ impl Report {
             report.casimirs.push(inv.casimirs);
             report
                 .attitude
-                .push(b.attitude().compose(&rp_rev).to_matrix());
+                .push(b.principal_frame_attitude().compose(&rp_rev).to_matrix());
         }
         if report.omega.len() != times.len() {
             return Err(CliError::runtime("fewer states than sample times"));

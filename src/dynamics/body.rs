@@ -138,14 +138,58 @@ impl RigidBody {
         &self.principal_frame
     }
 
-    /// Returns the attitude R: principal body frame → space.
-    pub fn attitude(&self) -> &Attitude {
+    /// Returns the attitude of the principal frame, R: principal axes → space. This is the
+    /// rotation the integrators advance, and the one that takes the principal-frame
+    /// quantities of this type ([`RigidBody::momentum`], [`RigidBody::omega`]) to space,
+    /// e.g. L_s = R L R̃.
+    ///
+    /// To place the body itself (its vertices or mesh, given in the body's own axes), use
+    /// [`RigidBody::body_axes_attitude`]; the two agree when the inertia was given in its
+    /// principal frame.
+    pub fn principal_frame_attitude(&self) -> &Attitude {
         &self.attitude
     }
 
-    /// Returns the attitude of the body's own axes: R · R̃_P.
-    pub fn attitude_of_own_axes(&self) -> Attitude {
+    /// Returns the attitude of the body's own axes (the axes its shape, vertices and inertia
+    /// were given in): R · R̃_P, with R the [principal frame's
+    /// attitude](RigidBody::principal_frame_attitude) and R_P the [`principal
+    /// frame`](RigidBody::principal_frame).
+    ///
+    /// This is the rotation to render the body with: a vertex with body-axis coordinates x
+    /// is at `body_axes_attitude().rotate_vector(&x)` in space (plus the position of the
+    /// centre of mass).
+    ///
+    /// ```
+    /// use rotorflow::prelude::*;
+    /// // A cuboid whose inertia is given in axes that are not its principal axes.
+    /// let turn = Rotor::from_plane_angle(3, 0, 1, 0.3)?;
+    /// let tilted = InertiaMap::from_plane_moments(&[2.0, 3.0, 4.0])?.rotated(&turn)?;
+    /// let omega = Bivector::from_components(3, &[0.0, 0.0, 1.0])?;
+    /// let body = RigidBody::from_body_velocity(tilted, Rotor::identity(3), &omega)?;
+    /// // At t = 0 the body's own axes coincide with space; its principal axes do not.
+    /// let vertex = Vector::from_components(&[1.0, 2.0, 3.0])?;
+    /// let placed = body.body_axes_attitude().rotate_vector(&vertex);
+    /// let gap = |v: &Vector| v.as_slice().iter().zip(vertex.as_slice()).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+    /// assert!(gap(&placed) < 1e-14);
+    /// assert!(gap(&body.principal_frame_attitude().rotate_vector(&vertex)) > 0.1);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn body_axes_attitude(&self) -> Attitude {
         self.attitude.compose(&self.principal_frame.inverse())
+    }
+
+    /// Returns the attitude of the principal frame (principal axes → space).
+    #[deprecated(
+        note = "use `principal_frame_attitude` (principal axes → space) or `body_axes_attitude` (the body's own axes → space, to render it)"
+    )]
+    pub fn attitude(&self) -> &Attitude {
+        self.principal_frame_attitude()
+    }
+
+    /// Returns the attitude of the body's own axes.
+    #[deprecated(note = "use `body_axes_attitude`")]
+    pub fn attitude_of_own_axes(&self) -> Attitude {
+        self.body_axes_attitude()
     }
 
     /// Returns the body-frame angular momentum L (principal frame).

@@ -2,7 +2,7 @@
 //!
 //! The state of a rigid body is its attitude rotor R (body → space) and its body-frame angular
 //! momentum L, a bivector. With ω = I⁻¹(L) the body-frame angular velocity and τ the torque
-//! bivector in the body frame (DESIGN.md, "Euler's equations"):
+//! bivector in the body frame (signs as in the Conventions chapter of the rotorflow book):
 //!
 //! dL/dt = ω × L + τ,    dR/dt = −½ R ω,
 //!
@@ -24,6 +24,7 @@
 
 mod attitude;
 mod body;
+mod error;
 pub mod exact;
 pub mod integrate;
 pub mod invariants;
@@ -34,7 +35,7 @@ pub mod trajectory;
 
 pub use attitude::Attitude;
 pub use body::RigidBody;
-pub use integrate::DynamicsError;
+pub use error::{DynamicsError, NoClosedFormReason};
 pub use integrate::{Dopri5, Integrator, Midpoint, Rkmk4, Splitting, SplittingOrder};
 pub use invariants::{Drift, Invariants};
 pub use torque::{Torque, TorqueInput, torques};

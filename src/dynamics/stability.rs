@@ -12,7 +12,8 @@ pub struct Mode {
 }
 
 /// Returns the transverse modes of the steady rotation with angular velocity ω_pq in the
-/// principal plane (p, q) of a body with principal moments J (REFERENCES §3):
+/// principal plane (p, q) of a body with principal moments J (derived by linearising Euler's
+/// equations about the steady rotation; the 3D case is the intermediate-axis theorem):
 ///
 /// λ_r² = ω_pq² (J_p − J_r)(J_r − J_q) / ((J_p + J_r)(J_q + J_r)).
 ///

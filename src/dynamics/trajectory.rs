@@ -93,15 +93,12 @@ pub fn simulate(
         t = target;
         let inv = Invariants::of(&b);
         let d = inv.drift_from(&reference);
-        drift.energy = drift.energy.max(d.energy);
-        drift.casimirs = drift.casimirs.max(d.casimirs);
-        drift.space_momentum = drift.space_momentum.max(d.space_momentum);
-        drift.rotor = drift.rotor.max(d.rotor);
+        drift = drift.max(d);
         samples.push(Sample {
             time: t,
             omega: b.omega(),
             momentum: b.momentum().clone(),
-            attitude: b.attitude().clone(),
+            attitude: b.principal_frame_attitude().clone(),
             energy: inv.energy,
             casimirs: inv.casimirs,
         });

@@ -31,7 +31,7 @@ fn splitting_keeps_casimirs_over_1e5_steps() {
         // examples/rotor_drift_survey.rs measures at most 3.4e-14 (rotors, N = 3, 4) and
         // 8.6e-14 (matrices, N = 5, 6) over 8 seeds.
         // The bound, with no renormalisation at all:
-        assert!(d.rotor <= 1e-13, "n={n}: |RR̃ − 1| = {:e}", d.rotor);
+        assert!(d.attitude <= 1e-13, "n={n}: |RR̃ − 1| = {:e}", d.attitude);
         // Energy error is O(h²) and bounded (no drift): compare the last and worst values.
         assert!(worst_energy < 1e-3, "n={n}: energy error {worst_energy:e}");
         if let (Some(a), Some(b)) = (Invariants::of(&body).pfaffian, start.pfaffian) {
@@ -54,7 +54,10 @@ fn rk4_keeps_the_rotor_on_spin_n_without_renormalising() {
     for n in 3..=6 {
         let mut body = random_body(&mut r, n);
         run(&mut body, &mut Rkmk4, &Free, 0.01, 10_000);
-        assert!(body.attitude().unit_error() < 1e-13, "n={n}");
+        assert!(
+            body.principal_frame_attitude().unit_error() < 1e-13,
+            "n={n}"
+        );
     }
 }
 
@@ -74,7 +77,7 @@ fn steady_rotation_in_a_principal_plane_stays_steady() {
             assert!((&body.omega() - &w).max_abs() < 1e-13, "n={n}");
             // the attitude is the rotation by ω t = 20 rad in e12
             let expected = Rotor::from_plane_angle(n, 0, 1, 20.0).unwrap();
-            let d = crate::attitude_distance(body.attitude(), &expected.into());
+            let d = crate::attitude_distance(body.principal_frame_attitude(), &expected.into());
             assert!(d < 1e-11, "n={n}: {d:e}");
         }
     }
@@ -93,7 +96,10 @@ fn strang_is_time_reversible() {
             (body.momentum() - start.momentum()).max_abs() < 1e-12,
             "n={n}"
         );
-        let d = crate::attitude_distance(body.attitude(), start.attitude());
+        let d = crate::attitude_distance(
+            body.principal_frame_attitude(),
+            start.principal_frame_attitude(),
+        );
         assert!(d < 1e-12, "n={n}: {d:e}");
     }
 }
@@ -106,7 +112,7 @@ fn rotating_the_initial_attitude_rotates_the_trajectory() {
     let q = Rotor::from_rotation_bivector(&random_bivector(&mut r, n, 1.0));
     let turned = RigidBody::from_body_momentum(
         start.inertia().clone(),
-        q.compose(start.attitude().as_rotor().unwrap()),
+        q.compose(start.principal_frame_attitude().as_rotor().unwrap()),
         start.momentum(),
     )
     .unwrap();
@@ -114,8 +120,8 @@ fn rotating_the_initial_attitude_rotates_the_trajectory() {
     run(&mut a, &mut Splitting::yoshida4(), &Free, 0.01, 500);
     run(&mut b, &mut Splitting::yoshida4(), &Free, 0.01, 500);
     assert!((a.momentum() - b.momentum()).max_abs() < 1e-13);
-    let expected = q.compose(a.attitude().as_rotor().unwrap());
-    let d = crate::attitude_distance(b.attitude(), &expected.into());
+    let expected = q.compose(a.principal_frame_attitude().as_rotor().unwrap());
+    let d = crate::attitude_distance(b.principal_frame_attitude(), &expected.into());
     assert!(d < 1e-13, "{d:e}");
     assert!((&b.space_momentum() - &q.rotate_bivector(&a.space_momentum())).max_abs() < 1e-12);
 }
@@ -138,7 +144,7 @@ fn implicit_midpoint_conserves_quadratic_invariants_and_reports_its_solve() {
             // in 4D both Casimirs are quadratic (|L|² and Pf)
             assert!(d.casimirs < 1e-13, "n=4: Casimir drift {:e}", d.casimirs);
         }
-        assert!(body.attitude().unit_error() < 1e-13);
+        assert!(body.principal_frame_attitude().unit_error() < 1e-13);
         assert!(
             m.mean_iterations() > 1.0 && m.mean_iterations() < 30.0,
             "{}",

@@ -71,7 +71,7 @@ fn bodies_in_general_axes_move_to_their_principal_frame() {
     let l_own = inertia.apply(&w);
     assert!((&body.space_momentum() - &l_own).max_abs() < 1e-12);
     assert!((body.energy() - inertia.kinetic_energy(&w)).abs() < 1e-12);
-    let own = body.attitude_of_own_axes();
+    let own = body.body_axes_attitude();
     assert!(own.unit_error() < 1e-14);
     assert!((&own.rotate_bivector(&w) - &body.space_omega()).max_abs() < 1e-12);
 }

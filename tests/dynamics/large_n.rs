@@ -79,11 +79,14 @@ fn matrix_attitude_reproduces_rotor_attitude_of_embedded_motion() {
     ];
     for make_integ in &integrators {
         let (mut small, mut big) = (make(4, &l4), make(10, &l10));
-        assert!(small.attitude().as_rotor().is_some() && big.attitude().as_rotor().is_none());
+        assert!(
+            small.principal_frame_attitude().as_rotor().is_some()
+                && big.principal_frame_attitude().as_rotor().is_none()
+        );
         run(&mut small, make_integ().as_mut(), &Free, 0.01, 200);
         run(&mut big, make_integ().as_mut(), &Free, 0.01, 200);
-        let qs = small.attitude().to_matrix();
-        let qb = big.attitude().to_matrix();
+        let qs = small.principal_frame_attitude().to_matrix();
+        let qb = big.principal_frame_attitude().to_matrix();
         let name = make_integ().name();
         let err = (qb.view((0, 0), (4, 4)) - &qs).amax();
         assert!(err < 1e-12, "{name}: attitude block differs by {err:e}");
@@ -126,14 +129,14 @@ fn large_n_free_body_keeps_invariants() {
         );
         assert!(drift.energy < 1e-3, "N = {n}: energy {:e}", drift.energy);
         assert!(
-            now.rotor_error < 1e-13,
+            now.attitude_error < 1e-13,
             "N = {n}: |QᵀQ − 1| = {:e}",
-            now.rotor_error
+            now.attitude_error
         );
-        let rotor = body.attitude().to_rotor();
+        let rotor = body.principal_frame_attitude().to_rotor();
         assert_eq!(rotor.is_ok(), n <= 16, "N = {n}");
         if let Ok(rotor) = rotor {
-            let err = (rotor.to_matrix() - body.attitude().to_matrix()).amax();
+            let err = (rotor.to_matrix() - body.principal_frame_attitude().to_matrix()).amax();
             assert!(err < 1e-12, "N = {n}: rotor on demand differs by {err:e}");
         }
     }
@@ -156,7 +159,7 @@ fn heavy_top_at_n10_conserves_energy_and_horizontal_momentum() {
         weight: Vector::basis(n, n - 1) * -1.0,
         offset: Vector::basis(n, 0) * 0.5,
     };
-    let total = |b: &RigidBody| b.energy() + gravity.potential_energy(b.attitude());
+    let total = |b: &RigidBody| b.energy() + gravity.potential_energy(b.principal_frame_attitude());
     let e0 = total(&body);
     let ls0 = body.space_momentum();
     run(&mut body, &mut Rkmk4, &gravity, 1e-3, 2000);
@@ -202,7 +205,7 @@ fn overflowing_state_is_reported_not_propagated() {
                 // The splitting only rotates: huge but finite states stay finite.
                 Ok(()) => assert!(
                     b.momentum().as_slice().iter().all(|x| x.is_finite())
-                        && b.attitude().is_finite(),
+                        && b.principal_frame_attitude().is_finite(),
                     "N = {n}, {}: Ok with a non-finite state",
                     integ.name()
                 ),
@@ -273,7 +276,10 @@ fn dense_free_rk4_matches_the_bivector_path() {
             run(&mut dense, &mut Rkmk4, &Free, 0.02, 50);
             run(&mut general_path, &mut Rkmk4, &silent_zero, 0.02, 50);
             let dl = (dense.momentum() - general_path.momentum()).max_abs();
-            let dq = attitude_distance(dense.attitude(), general_path.attitude());
+            let dq = attitude_distance(
+                dense.principal_frame_attitude(),
+                general_path.principal_frame_attitude(),
+            );
             assert!(
                 dl < 1e-13 && dq < 1e-13,
                 "N = {n}: |ΔL| = {dl:e}, |ΔQ| = {dq:e}"
@@ -283,7 +289,10 @@ fn dense_free_rk4_matches_the_bivector_path() {
                 (dense.momentum() - start.momentum()).max_abs() > 1e-3,
                 "N = {n}"
             );
-            assert!(dense.attitude().unit_error() < 1e-14, "N = {n}");
+            assert!(
+                dense.principal_frame_attitude().unit_error() < 1e-14,
+                "N = {n}"
+            );
         }
     }
 }

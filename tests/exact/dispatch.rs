@@ -1,9 +1,9 @@
 //! `RigidBody::exact_solution` picks the right closed form, and says why there is none.
 
-use crate::{REFERENCE_TOLERANCE, rotor_distance};
-use rotorflow::dynamics::exact::{ExactError, ExactSolution};
+use crate::{REFERENCE_TOLERANCE, no_closed_form_reasons, rotor_distance};
+use rotorflow::dynamics::exact::ExactSolution;
 use rotorflow::dynamics::torques::Free;
-use rotorflow::dynamics::{Attitude, Dopri5, Integrator, RigidBody};
+use rotorflow::dynamics::{Attitude, Dopri5, Integrator, NoClosedFormReason, RigidBody};
 use rotorflow::prelude::*;
 
 fn body(j: &[f64], l: &[f64]) -> RigidBody {
@@ -26,7 +26,10 @@ fn check(b: &RigidBody, name: &str) {
         .unwrap();
     let l = exact.momentum_at(7.0).unwrap();
     let dl = (&l - numeric.momentum()).max_abs() / b.momentum().max_abs();
-    let dr = rotor_distance(&exact.attitude_at(7.0).unwrap(), numeric.attitude());
+    let dr = rotor_distance(
+        &exact.attitude_at(7.0).unwrap(),
+        numeric.principal_frame_attitude(),
+    );
     assert!(dl < 1e-11 && dr < 1e-10, "{name}: ΔL {dl:e}, ΔR {dr:e}");
     let w = exact.omega_at(7.0).unwrap();
     assert!((&w - &b.inertia().apply_inverse(&l)).max_abs() < 1e-13);
@@ -55,11 +58,21 @@ fn each_body_gets_its_closed_form() {
 #[test]
 fn a_general_body_has_no_closed_form_and_says_why() {
     let b = body(&[0.4, 0.9, 1.3, 1.7], &[0.3, -0.5, 0.8, 0.4, 0.2, -0.6]);
-    match ExactSolution::new(&b) {
-        Err(ExactError::NoClosedForm(why)) => {
-            assert!(why.contains("distinct"), "{why}");
-            assert!(why.contains("three principal axes"), "{why}");
-        }
-        other => panic!("expected NoClosedForm, got {other:?}"),
-    }
+    let err = ExactSolution::new(&b).unwrap_err();
+    let why = err.to_string();
+    assert!(why.contains("distinct"), "{why}");
+    assert!(why.contains("three principal axes"), "{why}");
+    assert!(!why.contains('\n'), "{why}");
+    let reasons = no_closed_form_reasons::<ExactSolution>(Err(err));
+    assert!(
+        matches!(
+            &reasons[..],
+            [
+                NoClosedFormReason::TooManyDistinctValues { .. },
+                NoClosedFormReason::NotSteady { .. },
+                NoClosedFormReason::MomentumSpansMoreThanThreeAxes,
+            ]
+        ),
+        "{reasons:?}"
+    );
 }

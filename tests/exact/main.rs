@@ -1,5 +1,6 @@
-//! Tests of the closed-form free motions (issue #5): bodies with at most two distinct
-//! principal moments in any N, steady rotations, and the paper's §7 formulas.
+//! Tests of the closed-form free motions: bodies with at most two distinct principal moments
+//! in any N, steady rotations, the 3D asymmetric top and its embeddings, and the paper's §7
+//! formulas.
 
 mod dispatch;
 mod paper_section7;
@@ -9,7 +10,9 @@ mod two_moments;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rotorflow::dynamics::torques::Free;
-use rotorflow::dynamics::{Attitude, Dopri5, Integrator, RigidBody};
+use rotorflow::dynamics::{
+    Attitude, Dopri5, DynamicsError, Integrator, NoClosedFormReason, RigidBody,
+};
 use rotorflow::prelude::*;
 
 pub fn rng(seed: u64) -> ChaCha8Rng {
@@ -25,6 +28,19 @@ pub fn random_bivector(r: &mut impl Rng, n: usize, scale: f64) -> Bivector {
 
 pub fn random_rotor(r: &mut impl Rng, n: usize) -> Rotor {
     Rotor::from_rotation_bivector(&random_bivector(r, n, 2.0))
+}
+
+/// The reasons of a [`DynamicsError::NoClosedForm`], or a panic naming what came instead.
+pub fn no_closed_form_reasons<T: std::fmt::Debug>(
+    result: Result<T, DynamicsError>,
+) -> Vec<NoClosedFormReason> {
+    match result {
+        Err(DynamicsError::NoClosedForm { reasons }) => {
+            assert!(!reasons.is_empty(), "NoClosedForm without a reason");
+            reasons
+        }
+        other => panic!("expected NoClosedForm, got {other:?}"),
+    }
 }
 
 /// The body with principal values `j`, attitude `attitude` and body angular velocity ω.
@@ -83,7 +99,7 @@ pub fn dopri_reference(body: &RigidBody, times: &[f64]) -> Vec<(Attitude, Bivect
             d.step(&mut b, t, target - t, &Free).unwrap();
             t = target;
         }
-        out.push((b.attitude().clone(), b.momentum().clone()));
+        out.push((b.principal_frame_attitude().clone(), b.momentum().clone()));
     }
     out
 }

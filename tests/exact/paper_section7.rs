@@ -515,30 +515,34 @@ fn paper_section73_corrected_solution_matches_dopri5() {
 
 #[test]
 fn paper_closed_forms_reject_bad_input() {
-    use rotorflow::dynamics::exact::ExactError;
+    use rotorflow::dynamics::{DynamicsError, NoClosedFormReason};
     let w = biv(&OMEGA_72);
     assert!(matches!(
         ThreeEqualMoments::new(f64::NAN, &w),
-        Err(ExactError::NonFinite { .. })
+        Err(DynamicsError::NonFiniteArgument { .. })
     ));
-    assert!(matches!(
-        TwoEqualPairs::new(0.0, &w),
-        Err(ExactError::NoClosedForm(_))
-    ));
+    assert_eq!(
+        crate::no_closed_form_reasons(TwoEqualPairs::new(0.0, &w)),
+        [NoClosedFormReason::NonPositiveKappa { kappa: 0.0 }]
+    );
     let w3 = Bivector::from_components(3, &[1.0, 2.0, 3.0]).unwrap();
     assert!(matches!(
-        TwoEqualPairs::new(2.0, &w3),
-        Err(ExactError::NoClosedForm(_))
+        crate::no_closed_form_reasons(TwoEqualPairs::new(2.0, &w3))[..],
+        [NoClosedFormReason::WrongDimension {
+            expected: 4,
+            found: 3,
+            ..
+        }]
     ));
     let p = ThreeEqualMoments::new(2.0, &w).unwrap();
     assert!(matches!(
         p.omega_at(f64::INFINITY),
-        Err(ExactError::NonFinite { .. })
+        Err(DynamicsError::NonFiniteArgument { .. })
     ));
     let p = TwoEqualPairs::new(2.0, &w).unwrap();
     assert!(matches!(
         p.omega_at(f64::NAN),
-        Err(ExactError::NonFinite { .. })
+        Err(DynamicsError::NonFiniteArgument { .. })
     ));
     // A huge but finite t · ω₁ is still finite: no NaN.
     let huge = p.omega_at(f64::MAX).unwrap();

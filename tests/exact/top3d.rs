@@ -5,10 +5,10 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rotorflow::dynamics::exact::ExactError;
-use rotorflow::dynamics::exact::top3d::{AsymmetricTop, EmbeddedTop, TopRegime};
+use rotorflow::dynamics::exact::embedded::EmbeddedTop;
+use rotorflow::dynamics::exact::top3d::{AsymmetricTop, TopRegime};
 use rotorflow::dynamics::torques::Free;
-use rotorflow::dynamics::{Dopri5, RigidBody, simulate};
+use rotorflow::dynamics::{Dopri5, DynamicsError, NoClosedFormReason, RigidBody, simulate};
 use rotorflow::prelude::*;
 
 /// A 3D body from classical moments (I₁, I₂, I₃), the classical momentum vector ℓ and a
@@ -26,7 +26,7 @@ const BODY: [f64; 3] = [1.8, 1.4, 1.0];
 const HLW: [f64; 3] = [2.0, 1.0, 2.0 / 3.0];
 const TILT: [f64; 3] = [0.3, -0.5, 0.9];
 
-use crate::rotor_distance;
+use crate::{no_closed_form_reasons, rotor_distance};
 
 fn top(body: &RigidBody) -> AsymmetricTop {
     AsymmetricTop::new(body).unwrap()
@@ -250,7 +250,7 @@ fn isotropic_body_and_steady_rotations() {
     let omega = body.omega();
     for t in [0.0, 0.7, 123.4] {
         let expected = body
-            .attitude()
+            .principal_frame_attitude()
             .compose(&Rotor::from_rotation_bivector(&(&omega * t)).into());
         assert!(rotor_distance(&exact.attitude_at(t).unwrap(), &expected) < 1e-13);
         assert_eq!(exact.momentum_at(t).unwrap(), *body.momentum());
@@ -267,7 +267,7 @@ fn isotropic_body_and_steady_rotations() {
         for t in [1.0, 1e3, 1e6] {
             assert_eq!(exact.momentum_at(t).unwrap(), *body.momentum());
             let expected = body
-                .attitude()
+                .principal_frame_attitude()
                 .compose(&Rotor::from_rotation_bivector(&(&omega * t)).into());
             let err = rotor_distance(&exact.attitude_at(t).unwrap(), &expected);
             assert!(
@@ -282,7 +282,7 @@ fn isotropic_body_and_steady_rotations() {
     assert_eq!(exact.regime(), TopRegime::Rest);
     assert_eq!(
         exact.attitude_at(5.0).unwrap(),
-        body.attitude().to_rotor().unwrap()
+        body.principal_frame_attitude().to_rotor().unwrap()
     );
 }
 
@@ -327,7 +327,7 @@ fn the_closed_form_conserves_energy_casimir_and_space_momentum() {
             de = de.max(e);
             dc = dc.max(c);
             ds = ds.max(s);
-            du = du.max(b.attitude().unit_error());
+            du = du.max(b.principal_frame_attitude().unit_error());
         }
     }
     println!("conservation: energy {de:.1e}, |L|² {dc:.1e}, L_space {ds:.1e}, |RR̃−1| {du:.1e}");
@@ -341,7 +341,10 @@ fn the_initial_state_is_reproduced() {
         let exact = top(&body);
         let dl =
             (&exact.momentum_at(0.0).unwrap() - body.momentum()).norm() / body.momentum().norm();
-        let dr = rotor_distance(&exact.attitude_at(0.0).unwrap(), body.attitude());
+        let dr = rotor_distance(
+            &exact.attitude_at(0.0).unwrap(),
+            body.principal_frame_attitude(),
+        );
         assert!(dl < 1e-15 && dr < 1e-15, "{name}: {dl:e} {dr:e}");
         worst = (worst.0.max(dl), worst.1.max(dr));
         // state_at agrees exactly with attitude_at and momentum_at.
@@ -471,32 +474,36 @@ fn bad_input_gives_errors() {
     let l = Bivector::from_components(4, &[1.0, 0.0, 0.2, 0.5, 0.0, 0.0]).unwrap();
     let body4 = RigidBody::from_body_momentum(inertia, Rotor::identity(4), &l).unwrap();
     assert!(matches!(
-        AsymmetricTop::new(&body4),
-        Err(ExactError::NoClosedForm(_))
+        no_closed_form_reasons(AsymmetricTop::new(&body4))[..],
+        [NoClosedFormReason::WrongDimension {
+            expected: 3,
+            found: 4,
+            ..
+        }]
     ));
     // A general 3D map with off-diagonal terms is not supported.
     let m = nalgebra::DMatrix::from_row_slice(3, 3, &[2.0, 0.3, 0.0, 0.3, 1.5, 0.0, 0.0, 0.0, 1.0]);
     let general = InertiaMap::from_matrix(3, &m).unwrap();
     let l3 = Bivector::from_components(3, &[0.1, 0.2, 0.3]).unwrap();
     let body = RigidBody::from_body_momentum(general, Rotor::identity(3), &l3).unwrap();
-    assert!(matches!(
-        AsymmetricTop::new(&body),
-        Err(ExactError::NoClosedForm(_))
-    ));
+    assert_eq!(
+        no_closed_form_reasons(AsymmetricTop::new(&body)),
+        [NoClosedFormReason::NotDiagonalOnPlanes]
+    );
     // Non-finite times.
     let exact = top(&body3(BODY, [0.3, 0.2, 1.0], TILT));
     for t in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
         assert!(matches!(
             exact.momentum_at(t),
-            Err(ExactError::NonFinite { name: "t", .. })
+            Err(DynamicsError::NonFiniteArgument { name: "t", .. })
         ));
         assert!(matches!(
             exact.attitude_at(t),
-            Err(ExactError::NonFinite { name: "t", .. })
+            Err(DynamicsError::NonFiniteArgument { name: "t", .. })
         ));
         assert!(matches!(
             exact.omega_at(t),
-            Err(ExactError::NonFinite { .. })
+            Err(DynamicsError::NonFiniteArgument { .. })
         ));
     }
     // Extreme but finite times never give NaN.
@@ -522,18 +529,28 @@ fn bad_input_gives_errors() {
         assert!(r.unit_error() < 1e-14);
     }
     // Embedding: L outside the subspace, repeated axes, axes out of range.
-    assert!(matches!(
-        AsymmetricTop::embedded(&body4, [0, 1, 2]),
-        Err(ExactError::NoClosedForm(_))
-    ));
-    assert!(matches!(
-        AsymmetricTop::embedded(&body4, [0, 1, 1]),
-        Err(ExactError::NoClosedForm(_))
-    ));
-    assert!(matches!(
-        AsymmetricTop::embedded(&body4, [0, 1, 4]),
-        Err(ExactError::NoClosedForm(_))
-    ));
+    assert_eq!(
+        no_closed_form_reasons(AsymmetricTop::embedded(&body4, [0, 1, 2])),
+        [NoClosedFormReason::MomentumOutsideSubspace {
+            plane: (0, 3),
+            component: 0.2,
+            axes: [0, 1, 2]
+        }]
+    );
+    assert_eq!(
+        no_closed_form_reasons(AsymmetricTop::embedded(&body4, [0, 1, 1])),
+        [NoClosedFormReason::InvalidAxes {
+            axes: [0, 1, 1],
+            dim: 4
+        }]
+    );
+    assert_eq!(
+        no_closed_form_reasons(AsymmetricTop::embedded(&body4, [0, 1, 4])),
+        [NoClosedFormReason::InvalidAxes {
+            axes: [0, 1, 4],
+            dim: 4
+        }]
+    );
 }
 
 /// A 4D body with mass tensor diag(J) and L in the planes of `axes`.
@@ -591,7 +608,12 @@ fn embedded_in_4d_matches_dopri5() {
         println!("4D, axes {axes:?}, 20 periods: |ΔL|/|L| = {el:.2e}, |ΔR| = {er:.2e}");
         assert!(el < 1e-10 && er < 1e-10, "axes {axes:?}: {el:e} {er:e}");
         // R(0) and the space-frame momentum.
-        assert!(rotor_distance(&emb.attitude_at(0.0).unwrap(), body.attitude()) < 1e-15);
+        assert!(
+            rotor_distance(
+                &emb.attitude_at(0.0).unwrap(),
+                body.principal_frame_attitude()
+            ) < 1e-15
+        );
         let b = emb.body_at(7.7).unwrap();
         assert!((&b.space_momentum() - &body.space_momentum()).norm() < 1e-13);
     }

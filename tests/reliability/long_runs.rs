@@ -46,14 +46,14 @@ fn long_strang(moments: &[f64], steps: usize, h: f64, attitude_bound: f64) {
         drift.casimirs,
         drift.space_momentum,
         worst_energy.max(drift.energy),
-        now.rotor_error
+        now.attitude_error
     );
     assert!(b.momentum().as_slice().iter().all(|x| x.is_finite()));
     assert!(drift.casimirs < 1e-11, "Casimirs {:e}", drift.casimirs);
     assert!(
-        now.rotor_error < attitude_bound,
+        now.attitude_error < attitude_bound,
         "attitude {:e}",
-        now.rotor_error
+        now.attitude_error
     );
     assert!(worst_energy.max(drift.energy) < 1e-3, "energy not bounded");
 }

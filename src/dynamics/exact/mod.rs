@@ -5,47 +5,29 @@
 //! | any N, at most two distinct principal values Jᵢ (isotropic; the paper's §7.1, §7.2, §7.3; the symmetric top) | [`two_moments`] | L(t) = S L₀ S̃, R(t) = R₀ exp(−½αtL₀) exp(−½tΩ): conjugations and products of exponentials of constant bivectors |
 //! | any body in a steady rotation (ω × L = 0: disjoint principal planes, the 4D double rotation, isoclinic or not) | [`two_moments`] | R(t) = R₀ exp(−½tω) |
 //! | N = 3, any body (the free asymmetric top) | [`top3d`] | L(t) by Jacobi sn, cn, dn on both sides of the separatrix and on it; R(t) through Π(n; am u \| m) |
-//! | N ≥ 4, L in the span of three principal axes (the paper's S sets, eqs. 59–64) | [`top3d::EmbeddedTop`] | the 3D top with the body's plane moments |
+//! | N ≥ 4, L in the span of three principal axes (the paper's S sets, eqs. 59–64) | [`embedded::EmbeddedTop`] | the 3D top with the body's plane moments |
 //! | the paper's printed §7 formulas (eqs. 107–134) | [`paper`] | checked against the above; errata in `book/src/errata/section7.md` |
 //!
 //! [`ExactSolution::new`] (or [`RigidBody::exact_solution`]) picks the right one, or says why
 //! there is none.
 
-use crate::algebra::{AlgebraError, Bivector};
-use crate::dynamics::{Attitude, RigidBody};
-use crate::special::EllipticError;
+use crate::algebra::Bivector;
+use crate::dynamics::{Attitude, DynamicsError, NoClosedFormReason, RigidBody};
 
+pub mod embedded;
 pub mod paper;
 pub mod top3d;
 pub mod two_moments;
 
-use top3d::{AsymmetricTop, EmbeddedTop};
+use embedded::EmbeddedTop;
+use top3d::AsymmetricTop;
 use two_moments::TwoMomentSolution;
 
-/// Why a closed form could not be built or evaluated.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[non_exhaustive]
-pub enum ExactError {
-    /// The body has no closed form in rotorflow (the reason says which condition fails).
-    ///
-    /// How to fix: integrate numerically ([`crate::dynamics::Dopri5`] at a tight tolerance).
-    #[error("no closed form: {0}")]
-    NoClosedForm(String),
-    /// A time or parameter is not finite.
-    #[error("non-finite {name}: {value}")]
-    NonFinite {
-        /// Which argument.
-        name: &'static str,
-        /// Its value.
-        value: f64,
-    },
-    /// A special function failed (not expected for valid bodies).
-    #[error(transparent)]
-    Special(#[from] EllipticError),
-    /// An algebra operation failed (e.g. N above the rotor limit).
-    #[error(transparent)]
-    Algebra(#[from] AlgebraError),
-}
+/// The former error type of the closed forms, now the layer's one error type.
+#[deprecated(
+    note = "use `rotorflow::dynamics::DynamicsError` (one error type for the dynamics layer)"
+)]
+pub type ExactError = DynamicsError;
 
 /// The closed-form free motion of a body, whichever form applies.
 ///
@@ -81,35 +63,32 @@ impl ExactSolution {
     /// axes (exact zeros elsewhere) → the embedded 3D top.
     ///
     /// # Errors
-    /// [`ExactError::NoClosedForm`] with the reasons of every form tried.
-    pub fn new(body: &RigidBody) -> Result<Self, ExactError> {
+    /// [`DynamicsError::NoClosedForm`] with the reasons of every form tried.
+    pub fn new(body: &RigidBody) -> Result<Self, DynamicsError> {
         let mut reasons = Vec::new();
         if body.dim() == 3 {
             match AsymmetricTop::new(body) {
                 Ok(top) => return Ok(ExactSolution::AsymmetricTop(Box::new(top))),
-                Err(ExactError::NoClosedForm(why)) => reasons.push(why),
+                Err(DynamicsError::NoClosedForm { reasons: why }) => reasons.extend(why),
                 Err(e) => return Err(e),
             }
         }
         match TwoMomentSolution::new(body) {
             Ok(s) => return Ok(ExactSolution::TwoMoments(Box::new(s))),
-            Err(ExactError::NoClosedForm(why)) => reasons.push(why),
+            Err(DynamicsError::NoClosedForm { reasons: why }) => reasons.extend(why),
             Err(e) => return Err(e),
         }
         if body.dim() > 3 {
             match support_axes(body.momentum()) {
                 Some(axes) => match AsymmetricTop::embedded(body, axes) {
                     Ok(top) => return Ok(ExactSolution::Embedded(Box::new(top))),
-                    Err(ExactError::NoClosedForm(why)) => reasons.push(why),
+                    Err(DynamicsError::NoClosedForm { reasons: why }) => reasons.extend(why),
                     Err(e) => return Err(e),
                 },
-                None => reasons.push(
-                    "the momentum spans more than three principal axes (no 3D embedding)"
-                        .to_string(),
-                ),
+                None => reasons.push(NoClosedFormReason::MomentumSpansMoreThanThreeAxes),
             }
         }
-        Err(ExactError::NoClosedForm(reasons.join("; ")))
+        Err(DynamicsError::NoClosedForm { reasons })
     }
 
     /// Returns the name of the form used ("two moments", "asymmetric top", "embedded 3D top").
@@ -124,9 +103,9 @@ impl ExactSolution {
     /// Returns the body-frame angular momentum L(t) (principal frame).
     ///
     /// # Errors
-    /// [`ExactError::NonFinite`] for a non-finite t (or one so large that the phase
+    /// [`DynamicsError::NonFiniteArgument`] for a non-finite t (or one so large that the phase
     /// overflows).
-    pub fn momentum_at(&self, t: f64) -> Result<Bivector, ExactError> {
+    pub fn momentum_at(&self, t: f64) -> Result<Bivector, DynamicsError> {
         match self {
             ExactSolution::TwoMoments(s) => s.momentum_at(t),
             ExactSolution::AsymmetricTop(s) => s.momentum_at(t),
@@ -138,7 +117,7 @@ impl ExactSolution {
     ///
     /// # Errors
     /// As [`ExactSolution::momentum_at`].
-    pub fn omega_at(&self, t: f64) -> Result<Bivector, ExactError> {
+    pub fn omega_at(&self, t: f64) -> Result<Bivector, DynamicsError> {
         match self {
             ExactSolution::TwoMoments(s) => s.omega_at(t),
             ExactSolution::AsymmetricTop(s) => s.omega_at(t),
@@ -150,7 +129,7 @@ impl ExactSolution {
     ///
     /// # Errors
     /// As [`ExactSolution::momentum_at`].
-    pub fn attitude_at(&self, t: f64) -> Result<Attitude, ExactError> {
+    pub fn attitude_at(&self, t: f64) -> Result<Attitude, DynamicsError> {
         match self {
             ExactSolution::TwoMoments(s) => s.attitude_at(t),
             ExactSolution::AsymmetricTop(s) => Ok(s.attitude_at(t)?.into()),
@@ -162,7 +141,7 @@ impl ExactSolution {
     ///
     /// # Errors
     /// As [`ExactSolution::momentum_at`].
-    pub fn body_at(&self, t: f64) -> Result<RigidBody, ExactError> {
+    pub fn body_at(&self, t: f64) -> Result<RigidBody, DynamicsError> {
         match self {
             ExactSolution::TwoMoments(s) => s.body_at(t),
             ExactSolution::AsymmetricTop(s) => s.body_at(t),
@@ -176,8 +155,8 @@ impl RigidBody {
     /// [`ExactSolution::new`]).
     ///
     /// # Errors
-    /// [`ExactError::NoClosedForm`] saying why none exists.
-    pub fn exact_solution(&self) -> Result<ExactSolution, ExactError> {
+    /// [`DynamicsError::NoClosedForm`] saying why none exists.
+    pub fn exact_solution(&self) -> Result<ExactSolution, DynamicsError> {
         ExactSolution::new(self)
     }
 }

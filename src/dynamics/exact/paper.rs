@@ -12,7 +12,7 @@
 //!
 //! - eq. 109: J ∝ (1, 1, 1, κ²), eq. 121: J ∝ (1, 1, κ², κ²);
 //! - the common factor (V/3 for the cuboid, V/6 for the ellipsoid) drops out: Euler's
-//!   equations in ω, (Jᵢ + Jⱼ) dωᵢⱼ/dt = (Jⱼ − Jᵢ)(\[ω\]²)ᵢⱼ (DESIGN.md), are homogeneous
+//!   equations in ω, (Jᵢ + Jⱼ) dωᵢⱼ/dt = (Jⱼ − Jᵢ)(\[ω\]²)ᵢⱼ (the crate's Euler equations), are homogeneous
 //!   of degree one in J, so ω(t) does not depend on it.
 //!
 //! Reading a…d as the principal values of J itself, as the axis moments 𝕀_α of eqs. 24/79,
@@ -21,10 +21,10 @@
 //!
 //! In the closed form of [`super::two_moments`] (A = the axes with Jᵢ = 1, B the others):
 //! ν = (b − a)/(a + b) = (κ² − 1)/(κ² + 1) is the paper's factor, and the body-frame
-//! generator is Ω = ν(ω_AA − ω_BB). The paper's ωᵢⱼ are read as DESIGN.md's components: its
-//! matrix (47) is \[ω\] conjugated by diag(−1, 1, −1, 1), a rotation that commutes with J, so
-//! the component equations are the same; its own 4D equations (53)–(58) carry the sign of
-//! DESIGN.md.
+//! generator is Ω = ν(ω_AA − ω_BB). The paper's ωᵢⱼ are read as the crate's components (the
+//! Conventions chapter of the rotorflow book): its matrix (47) is \[ω\] conjugated by
+//! diag(−1, 1, −1, 1), a rotation that commutes with J, so the component equations are the
+//! same; its own 4D equations (53)–(58) carry the crate's sign.
 //!
 //! # The constants
 //! - §7.2: c₁ = ω₂₃, c₂ = ω₁₃, c₃ = ω₁₂ (eqs. 110–112, constant). With v = (ω₁₄, ω₂₄, ω₃₄)
@@ -46,33 +46,36 @@
 //! paper's forms at −t, written without divisions. The book's `errata/section7.md` lists
 //! each entry with its test.
 
-use super::ExactError;
 use crate::algebra::Bivector;
+use crate::dynamics::{DynamicsError, NoClosedFormReason};
 
-fn finite(name: &'static str, value: f64) -> Result<f64, ExactError> {
+fn finite(name: &'static str, value: f64) -> Result<f64, DynamicsError> {
     if value.is_finite() {
         Ok(value)
     } else {
-        Err(ExactError::NonFinite { name, value })
+        Err(DynamicsError::NonFiniteArgument { name, value })
     }
 }
 
-fn check_kappa(kappa: f64) -> Result<f64, ExactError> {
+fn check_kappa(kappa: f64) -> Result<f64, DynamicsError> {
     finite("kappa", kappa)?;
     if kappa <= 0.0 {
-        return Err(ExactError::NoClosedForm(format!(
-            "κ = {kappa} must be a positive half-axis"
-        )));
+        return Err(DynamicsError::no_closed_form(
+            NoClosedFormReason::NonPositiveKappa { kappa },
+        ));
     }
     Ok(kappa)
 }
 
-fn check_omega(omega: &Bivector) -> Result<[f64; 6], ExactError> {
+fn check_omega(omega: &Bivector) -> Result<[f64; 6], DynamicsError> {
     if omega.dim() != 4 {
-        return Err(ExactError::NoClosedForm(format!(
-            "the paper's §7 is 4D; got N = {}",
-            omega.dim()
-        )));
+        return Err(DynamicsError::no_closed_form(
+            NoClosedFormReason::WrongDimension {
+                form: "the paper's §7",
+                expected: 4,
+                found: omega.dim(),
+            },
+        ));
     }
     let mut c = [0.0; 6];
     for (out, &x) in c.iter_mut().zip(omega.as_slice()) {
@@ -81,17 +84,17 @@ fn check_omega(omega: &Bivector) -> Result<[f64; 6], ExactError> {
     Ok(c)
 }
 
-fn check_t(t: f64) -> Result<f64, ExactError> {
+fn check_t(t: f64) -> Result<f64, DynamicsError> {
     finite("t", t)
 }
 
 /// Returns the principal values of the mass tensor of a body with half-axes aᵢ, up to the
 /// common factor that drops out of ω(t): Jᵢ = aᵢ² (eq. 78 for the cuboid, where
-/// I^{ijij} ∝ aᵢ² + aⱼ²; eqs. 91–94 for the ellipsoid).
+/// Iⁱʲⁱʲ ∝ aᵢ² + aⱼ²; eqs. 91–94 for the ellipsoid).
 ///
 /// # Errors
-/// [`ExactError::NonFinite`] for a non-finite half-axis.
-pub fn principal_moments_from_half_axes(half_axes: &[f64]) -> Result<Vec<f64>, ExactError> {
+/// [`DynamicsError::NonFiniteArgument`] for a non-finite half-axis.
+pub fn principal_moments_from_half_axes(half_axes: &[f64]) -> Result<Vec<f64>, DynamicsError> {
     half_axes
         .iter()
         .map(|&a| finite("half_axes", a).map(|a| a * a))
@@ -101,8 +104,8 @@ pub fn principal_moments_from_half_axes(half_axes: &[f64]) -> Result<Vec<f64>, E
 /// Eq. (109), "a = b = c = 1, d = κ": the principal values J = (1, 1, 1, κ²).
 ///
 /// # Errors
-/// [`ExactError::NonFinite`]; [`ExactError::NoClosedForm`] for κ ≤ 0.
-pub fn eq_109_principal_moments(kappa: f64) -> Result<[f64; 4], ExactError> {
+/// [`DynamicsError::NonFiniteArgument`]; [`DynamicsError::NoClosedForm`] for κ ≤ 0.
+pub fn eq_109_principal_moments(kappa: f64) -> Result<[f64; 4], DynamicsError> {
     let k = check_kappa(kappa)?;
     Ok([1.0, 1.0, 1.0, k * k])
 }
@@ -110,8 +113,8 @@ pub fn eq_109_principal_moments(kappa: f64) -> Result<[f64; 4], ExactError> {
 /// Eq. (121), "a = b = 1, c = d = κ": the principal values J = (1, 1, κ², κ²).
 ///
 /// # Errors
-/// [`ExactError::NonFinite`]; [`ExactError::NoClosedForm`] for κ ≤ 0.
-pub fn eq_121_principal_moments(kappa: f64) -> Result<[f64; 4], ExactError> {
+/// [`DynamicsError::NonFiniteArgument`]; [`DynamicsError::NoClosedForm`] for κ ≤ 0.
+pub fn eq_121_principal_moments(kappa: f64) -> Result<[f64; 4], DynamicsError> {
     let k = check_kappa(kappa)?;
     Ok([1.0, 1.0, k * k, k * k])
 }
@@ -121,7 +124,7 @@ pub fn eq_121_principal_moments(kappa: f64) -> Result<[f64; 4], ExactError> {
 ///
 /// # Errors
 /// As [`eq_109_principal_moments`].
-pub fn eq_119_factor(kappa: f64) -> Result<f64, ExactError> {
+pub fn eq_119_factor(kappa: f64) -> Result<f64, DynamicsError> {
     let k2 = check_kappa(kappa)?.powi(2);
     Ok((k2 - 1.0) / (k2 + 1.0))
 }
@@ -130,8 +133,8 @@ pub fn eq_119_factor(kappa: f64) -> Result<f64, ExactError> {
 /// frame never moves relative to L).
 ///
 /// # Errors
-/// [`ExactError::NonFinite`] for a non-finite t or ω.
-pub fn eq_108_omega(omega0: &Bivector, t: f64) -> Result<Bivector, ExactError> {
+/// [`DynamicsError::NonFiniteArgument`] for a non-finite t or ω.
+pub fn eq_108_omega(omega0: &Bivector, t: f64) -> Result<Bivector, DynamicsError> {
     check_t(t)?;
     for &x in omega0.as_slice() {
         finite("omega", x)?;
@@ -165,8 +168,8 @@ impl ThreeEqualMoments {
     /// angular velocity ω(0) (4D, principal frame).
     ///
     /// # Errors
-    /// [`ExactError::NonFinite`]; [`ExactError::NoClosedForm`] for κ ≤ 0 or N ≠ 4.
-    pub fn new(kappa: f64, omega0: &Bivector) -> Result<Self, ExactError> {
+    /// [`DynamicsError::NonFiniteArgument`]; [`DynamicsError::NoClosedForm`] for κ ≤ 0 or N ≠ 4.
+    pub fn new(kappa: f64, omega0: &Bivector) -> Result<Self, DynamicsError> {
         let nu = eq_119_factor(kappa)?;
         let omega0 = check_omega(omega0)?;
         Ok(ThreeEqualMoments { kappa, nu, omega0 })
@@ -195,14 +198,14 @@ impl ThreeEqualMoments {
     /// initial conditions").
     ///
     /// # Errors
-    /// [`ExactError::NoClosedForm`] when s = 0 (ω_AA = 0: then every component is constant
+    /// [`DynamicsError::NoClosedForm`] when s = 0 (ω_AA = 0: then every component is constant
     /// and c₅ is undefined).
-    pub fn eq_116_to_118_constants(&self) -> Result<[f64; 3], ExactError> {
+    pub fn eq_116_to_118_constants(&self) -> Result<[f64; 3], DynamicsError> {
         let [c1, c2, c3] = self.eq_110_to_112_constants();
         let s = self.s();
         if s == 0.0 {
-            return Err(ExactError::NoClosedForm(
-                "c₁ = c₂ = c₃ = 0: eqs. 116–118 do not define c₄ … c₆ (ω is constant)".into(),
+            return Err(DynamicsError::no_closed_form(
+                NoClosedFormReason::PaperConstantsUndefined,
             ));
         }
         let w = &self.omega0;
@@ -227,8 +230,8 @@ impl ThreeEqualMoments {
     /// **−t** (the printed solution runs backwards) and has no division by c₁ or c₂² + c₃².
     ///
     /// # Errors
-    /// [`ExactError::NonFinite`] for a non-finite t.
-    pub fn omega_at(&self, t: f64) -> Result<Bivector, ExactError> {
+    /// [`DynamicsError::NonFiniteArgument`] for a non-finite t.
+    pub fn omega_at(&self, t: f64) -> Result<Bivector, DynamicsError> {
         check_t(t)?;
         let w = &self.omega0;
         // W = [ω_AA] on axes 1, 2, 3: W₁₂ = ω₁₂, W₁₃ = ω₁₃, W₂₃ = ω₂₃.
@@ -252,7 +255,7 @@ impl ThreeEqualMoments {
             ((tau * s).sin() / s, 2.0 * (h / s) * h / s)
         };
         if !(k1.is_finite() && k2.is_finite()) {
-            return Err(ExactError::NonFinite {
+            return Err(DynamicsError::NonFiniteArgument {
                 name: "t",
                 value: t,
             });
@@ -288,8 +291,8 @@ impl TwoEqualPairs {
     /// angular velocity ω(0) (4D, principal frame).
     ///
     /// # Errors
-    /// [`ExactError::NonFinite`]; [`ExactError::NoClosedForm`] for κ ≤ 0 or N ≠ 4.
-    pub fn new(kappa: f64, omega0: &Bivector) -> Result<Self, ExactError> {
+    /// [`DynamicsError::NonFiniteArgument`]; [`DynamicsError::NoClosedForm`] for κ ≤ 0 or N ≠ 4.
+    pub fn new(kappa: f64, omega0: &Bivector) -> Result<Self, DynamicsError> {
         let nu = eq_119_factor(kappa)?;
         let omega0 = check_omega(omega0)?;
         Ok(TwoEqualPairs { kappa, nu, omega0 })
@@ -337,15 +340,15 @@ impl TwoEqualPairs {
     /// and ω₁₂ = c₁, ω₃₄ = c₂.
     ///
     /// # Errors
-    /// [`ExactError::NonFinite`] for a non-finite t (or t·ωₖ overflowing).
-    pub fn omega_at(&self, t: f64) -> Result<Bivector, ExactError> {
+    /// [`DynamicsError::NonFiniteArgument`] for a non-finite t (or t·ωₖ overflowing).
+    pub fn omega_at(&self, t: f64) -> Result<Bivector, DynamicsError> {
         check_t(t)?;
         let [c1, c2] = self.eq_122_123_constants();
         let [c3, c4, c5, c6] = self.eq_128_to_131_constants();
         let [o1, o2] = self.eq_134_frequencies();
         let (a1, a2) = (o1 * t, o2 * t);
         if !(a1.is_finite() && a2.is_finite()) {
-            return Err(ExactError::NonFinite {
+            return Err(DynamicsError::NonFiniteArgument {
                 name: "t",
                 value: t,
             });

@@ -1,12 +1,12 @@
-//! The exact torque-free motion of a 3D rigid body with any positive plane moments
-//! (issue #5, items 3 and 4): [`AsymmetricTop`], and [`EmbeddedTop`] for a 3D motion inside a
-//! body of higher dimension (the paper's sets S₁ … S₄, eqs. 59–64).
+//! The exact torque-free motion of a 3D rigid body with any positive plane moments:
+//! [`AsymmetricTop`], and [`EmbeddedTop`](super::embedded::EmbeddedTop) for a 3D motion inside
+//! a body of higher dimension (the paper's sets S₁ … S₄, eqs. 59–64).
 //!
 //! # Notation
 //! The body frame is the principal frame, so the plane moments I₁₂, I₁₃, I₂₃ are the
 //! diagonal of the inertia map. The construction below is written with the classical
 //! angular-momentum vector ℓ = (L₂₃, −L₁₃, L₁₂) and the classical moments
-//! (I₁, I₂, I₃) = (I₂₃, I₁₃, I₁₂) (DESIGN.md, "Angular velocity"); gᵢ = 1/Iᵢ. Euler's
+//! (I₁, I₂, I₃) = (I₂₃, I₁₃, I₁₂) (the Conventions chapter of the rotorflow book); gᵢ = 1/Iᵢ. Euler's
 //! equations dL/dt = ω × L then read dℓ/dt = ℓ × Ω, e.g. ℓ̇₁ = ℓ₂ℓ₃(g₃ − g₂) and cyclic.
 //! Name the axes by their moments: *a* the smallest (largest g), *c* the largest, *b* the
 //! middle one, and write, with ℓ = |L| and n = ℓ/|L|,
@@ -47,9 +47,9 @@
 //!   to P. Here p·n = α_k dn(u) > 0, so A never degenerates.
 //! - E(ψ) = exp(−ψ P/2): the turn by ψ about p (in the plane P), which leaves P fixed.
 //! - R_L = R(0) Ã(0): the constant rotor from this "invariable" frame (L along p) to
-//!   space; R_L P R̃_L = L̂_space, so R L R̃ = L_space for all t, and R(0) = body.attitude().
+//!   space; R_L P R̃_L = L̂_space, so R L R̃ = L_space for all t, and R(0) = body.principal_frame_attitude().
 //!
-//! Substituting into dR/dt = −½ R ω (DESIGN.md) gives, with ω the body angular velocity,
+//! Substituting into dR/dt = −½ R ω gives, with ω the body angular velocity,
 //!
 //! ψ̇ = (2T/|L| + ⟨ω, P⟩) / (1 + ⟨L̂, P⟩) = |L| g_k − |L| α_j² (g_k − g_j) / (1 + α_k dn u),
 //!
@@ -79,21 +79,20 @@
 //!   detected exactly: ℓ_a = ℓ_c = 0) and the isotropic body: ω is constant and
 //!   R(t) = R(0) exp(−ωt/2).
 //! - Two equal plane moments I_⊥ and a third I_s in the plane P_s (symmetric top, exact
-//!   precession; REFERENCES.md §7 T3): ω = L/I_⊥ + G with G = (1/I_s − 1/I_⊥) L_s P_s constant,
+//!   precession): ω = L/I_⊥ + G with G = (1/I_s − 1/I_⊥) L_s P_s constant,
 //!   L(t) = exp(Gt/2) L(0) exp(−Gt/2), R(t) = exp(−L_space t/(2I_⊥)) R(0) exp(−Gt/2).
 //!
 //! Moments that are close but not equal take the elliptic path, where m → 0 (or, for the
 //! thin set of states with ℓ almost in the plane of the two close axes, q → ∞), both of
 //! which the special functions handle.
 
-use super::ExactError;
-use crate::algebra::{Bivector, Multivector, Rotor, Signature, pair_index, pairs};
-use crate::dynamics::Attitude;
+use super::embedded::EmbeddedTop;
+use crate::algebra::{Bivector, Multivector, Rotor, Signature, pairs};
 use crate::dynamics::RigidBody;
+use crate::dynamics::{DynamicsError, NoClosedFormReason};
 use crate::special::{
     Jacobi, elliptic_f_complement, elliptic_pi_complement, elliptic_pi_inc_complement,
 };
-use nalgebra::DMatrix;
 use std::f64::consts::{PI, TAU};
 
 /// 4π: the period of a rotor exp(−ψP/2) in its angle ψ.
@@ -173,7 +172,7 @@ enum Motion {
     Separatrix(Box<Separatrix>),
 }
 
-/// Regular precession of a body with two equal plane moments (REFERENCES.md §7 T3).
+/// Regular precession of a body with two equal plane moments.
 #[derive(Clone, Debug)]
 struct Symmetric {
     /// Unit space-frame momentum plane L̂_space and the rate |L|/I_⊥ of the turn in it.
@@ -253,30 +252,32 @@ impl AsymmetricTop {
     /// any attitude.
     ///
     /// # Errors
-    /// [`ExactError::NoClosedForm`] for N ≠ 3 (see [`AsymmetricTop::embedded`] for a 3D
+    /// [`DynamicsError::NoClosedForm`] for N ≠ 3 (see [`AsymmetricTop::embedded`] for a 3D
     /// motion inside a larger body) or a general map that is not diagonal on the basis
-    /// planes; [`ExactError::NonFinite`] for a non-finite momentum; [`ExactError::Special`]
+    /// planes; [`DynamicsError::NonFiniteArgument`] for a non-finite momentum; [`DynamicsError::Special`]
     /// if an elliptic function fails (not expected for valid input).
-    pub fn new(body: &RigidBody) -> Result<Self, ExactError> {
+    pub fn new(body: &RigidBody) -> Result<Self, DynamicsError> {
         if body.dim() != 3 {
-            return Err(ExactError::NoClosedForm(format!(
-                "AsymmetricTop needs N = 3, got N = {} (AsymmetricTop::embedded handles a \
-                 3D motion inside a larger body)",
-                body.dim()
-            )));
+            return Err(DynamicsError::no_closed_form(
+                NoClosedFormReason::WrongDimension {
+                    form: "the asymmetric top",
+                    expected: 3,
+                    found: body.dim(),
+                },
+            ));
         }
         let moments = plane_moments_3d(body)?;
         let l0 = body.momentum();
         for &v in l0.as_slice() {
             if !v.is_finite() {
-                return Err(ExactError::NonFinite {
+                return Err(DynamicsError::NonFiniteArgument {
                     name: "momentum",
                     value: v,
                 });
             }
         }
         // N = 3: the attitude is a rotor.
-        let r0 = body.attitude().to_rotor()?;
+        let r0 = body.principal_frame_attitude().to_rotor()?;
         let motion = build_motion(&moments, &r0, l0)?;
         Ok(AsymmetricTop {
             r0,
@@ -290,14 +291,14 @@ impl AsymmetricTop {
     /// momentum lies in the 3-space spanned by the principal axes `axes` (0-based, distinct;
     /// the paper's S sets: S₄ = `[0, 1, 2]`, S₁ = `[1, 2, 3]`, eqs. 59–64). With an inertia
     /// diagonal on the basis planes that subspace is invariant: ω × L never leaves it, and
-    /// the motion is the 3D one with the plane moments (I_{a₀a₁}, I_{a₀a₂}, I_{a₁a₂}).
+    /// the motion is the 3D one with the plane moments (I(a₀a₁), I(a₀a₂), I(a₁a₂)).
     ///
     /// # Errors
-    /// [`ExactError::NoClosedForm`] if N < 3, the axes are out of range or repeated, the
+    /// [`DynamicsError::NoClosedForm`] if N < 3, the axes are out of range or repeated, the
     /// inertia map is not diagonal on the basis planes, or L has a non-zero component in a
     /// plane outside the subspace (exact zeros are required); the errors of
     /// [`AsymmetricTop::new`].
-    pub fn embedded(body: &RigidBody, axes: [usize; 3]) -> Result<EmbeddedTop, ExactError> {
+    pub fn embedded(body: &RigidBody, axes: [usize; 3]) -> Result<EmbeddedTop, DynamicsError> {
         EmbeddedTop::new(body, axes)
     }
 
@@ -329,9 +330,9 @@ impl AsymmetricTop {
     /// Returns the body-frame angular momentum L(t), in the principal frame of the body.
     ///
     /// # Errors
-    /// [`ExactError::NonFinite`] for a non-finite `t` (or a result that overflows);
-    /// [`ExactError::Special`] if an elliptic function fails.
-    pub fn momentum_at(&self, t: f64) -> Result<Bivector, ExactError> {
+    /// [`DynamicsError::NonFiniteArgument`] for a non-finite `t` (or a result that overflows);
+    /// [`DynamicsError::Special`] if an elliptic function fails.
+    pub fn momentum_at(&self, t: f64) -> Result<Bivector, DynamicsError> {
         check_time(t)?;
         let l0 = self.body.momentum();
         let l = match &self.motion {
@@ -349,7 +350,7 @@ impl AsymmetricTop {
     ///
     /// # Errors
     /// As [`AsymmetricTop::momentum_at`].
-    pub fn omega_at(&self, t: f64) -> Result<Bivector, ExactError> {
+    pub fn omega_at(&self, t: f64) -> Result<Bivector, DynamicsError> {
         let mut l = self.momentum_at(t)?;
         for (x, m) in l.as_mut_slice().iter_mut().zip(self.moments) {
             *x /= m;
@@ -357,12 +358,12 @@ impl AsymmetricTop {
         Ok(l)
     }
 
-    /// Returns the attitude R(t) (principal body frame → space): R(0) = `body.attitude()`,
+    /// Returns the attitude R(t) (principal body frame → space): R(0) = `body.principal_frame_attitude()`,
     /// continuous in t (the sign of the rotor included), and R(t) L(t) R̃(t) = L_space.
     ///
     /// # Errors
     /// As [`AsymmetricTop::momentum_at`].
-    pub fn attitude_at(&self, t: f64) -> Result<Rotor, ExactError> {
+    pub fn attitude_at(&self, t: f64) -> Result<Rotor, DynamicsError> {
         Ok(self.state_at(t)?.0)
     }
 
@@ -372,7 +373,7 @@ impl AsymmetricTop {
     ///
     /// # Errors
     /// As [`AsymmetricTop::momentum_at`].
-    pub fn state_at(&self, t: f64) -> Result<(Rotor, Bivector), ExactError> {
+    pub fn state_at(&self, t: f64) -> Result<(Rotor, Bivector), DynamicsError> {
         check_time(t)?;
         let r0 = &self.r0;
         let (r, l) = match &self.motion {
@@ -399,7 +400,7 @@ impl AsymmetricTop {
         if r.raw_coefficients().iter().all(|c| c.is_finite()) {
             Ok((r, finite(l, t)?))
         } else {
-            Err(ExactError::NonFinite {
+            Err(DynamicsError::NonFiniteArgument {
                 name: "t",
                 value: t,
             })
@@ -410,7 +411,7 @@ impl AsymmetricTop {
     ///
     /// # Errors
     /// As [`AsymmetricTop::momentum_at`].
-    pub fn body_at(&self, t: f64) -> Result<RigidBody, ExactError> {
+    pub fn body_at(&self, t: f64) -> Result<RigidBody, DynamicsError> {
         let (r, l) = self.state_at(t)?;
         let mut b = self.body.clone();
         b.replace_state(r.into(), l);
@@ -429,180 +430,24 @@ impl AsymmetricTop {
     }
 }
 
-/// A 3D exact motion inside a body of dimension N ≥ 3 (see [`AsymmetricTop::embedded`]).
-///
-/// L(t) is the embedded 3D momentum, and R(t) = R(0) · U(t) with U(t) ∈ Spin(3) the 3D
-/// attitude (started at the identity) mapped into the subalgebra of the three axes.
-#[derive(Clone, Debug)]
-pub struct EmbeddedTop {
-    top: AsymmetricTop,
-    axes: [usize; 3],
-    body: RigidBody,
-}
-
-impl EmbeddedTop {
-    fn new(body: &RigidBody, axes: [usize; 3]) -> Result<Self, ExactError> {
-        let n = body.dim();
-        if n < 3 {
-            return Err(ExactError::NoClosedForm(format!(
-                "a 3D subspace needs N ≥ 3, got N = {n}"
-            )));
-        }
-        if axes.iter().any(|&a| a >= n)
-            || axes[0] == axes[1]
-            || axes[0] == axes[2]
-            || axes[1] == axes[2]
-        {
-            return Err(ExactError::NoClosedForm(format!(
-                "axes {axes:?} must be three distinct indices below N = {n}"
-            )));
-        }
-        let diag = body.inertia().diagonal_plane_moments().ok_or_else(|| {
-            ExactError::NoClosedForm(
-                "the inertia map is not diagonal on the basis planes, so the subspace is not \
-                 invariant"
-                    .to_string(),
-            )
-        })?;
-        let l = body.momentum();
-        let inside = |i: usize, j: usize| axes.contains(&i) && axes.contains(&j);
-        for (k, (i, j)) in pairs(n).enumerate() {
-            let v = l.as_slice()[k];
-            if !inside(i, j) && v != 0.0 {
-                return Err(ExactError::NoClosedForm(format!(
-                    "L has the component {v} in the plane e{}e{}, outside the subspace of \
-                     axes {axes:?}",
-                    i + 1,
-                    j + 1
-                )));
-            }
-        }
-        let sub = [(0, 1), (0, 2), (1, 2)];
-        let mut moments = [0.0; 3];
-        let mut l3 = [0.0; 3];
-        for (slot, &(p, q)) in sub.iter().enumerate() {
-            let (a, b) = (axes[p], axes[q]);
-            moments[slot] = diag[pair_index(n, a.min(b), a.max(b))];
-            l3[slot] = l.get(a, b);
-        }
-        let inertia = crate::inertia::InertiaMap::from_plane_moments(&moments)
-            .map_err(|e| ExactError::NoClosedForm(format!("3D plane moments: {e}")))?;
-        let l3 = Bivector::from_components(3, &l3)?;
-        let body3 = RigidBody::from_body_momentum(inertia, Rotor::identity(3), &l3)
-            .map_err(|e| ExactError::NoClosedForm(format!("3D body: {e}")))?;
-        Ok(EmbeddedTop {
-            top: AsymmetricTop::new(&body3)?,
-            axes,
-            body: body.clone(),
-        })
-    }
-
-    /// Returns the 3D solution (plane moments (I_{a₀a₁}, I_{a₀a₂}, I_{a₁a₂}), identity
-    /// attitude at t = 0).
-    pub fn top3d(&self) -> &AsymmetricTop {
-        &self.top
-    }
-
-    /// Returns the axes of the subspace.
-    pub fn axes(&self) -> [usize; 3] {
-        self.axes
-    }
-
-    /// Returns the N-dimensional body-frame momentum L(t) (zero outside the subspace).
-    ///
-    /// # Errors
-    /// As [`AsymmetricTop::momentum_at`].
-    pub fn momentum_at(&self, t: f64) -> Result<Bivector, ExactError> {
-        Ok(self.embed_bivector(&self.top.momentum_at(t)?))
-    }
-
-    /// Returns the N-dimensional body-frame angular velocity ω(t).
-    ///
-    /// # Errors
-    /// As [`AsymmetricTop::momentum_at`].
-    pub fn omega_at(&self, t: f64) -> Result<Bivector, ExactError> {
-        Ok(self.embed_bivector(&self.top.omega_at(t)?))
-    }
-
-    /// Returns the attitude R(t) = R(0) · U(t), continuous in t, with R(0) the body's (a
-    /// rotor for N ≤ 4, an SO(N) matrix above; see [`Attitude`]).
-    ///
-    /// # Errors
-    /// As [`AsymmetricTop::attitude_at`].
-    pub fn attitude_at(&self, t: f64) -> Result<Attitude, ExactError> {
-        self.embed_rotor(&self.top.attitude_at(t)?)
-    }
-
-    /// R(0) · U with the 3D rotor U mapped into the subalgebra (or, for N > 4, the matrix
-    /// block) of the axes.
-    fn embed_rotor(&self, u: &Rotor) -> Result<Attitude, ExactError> {
-        let n = self.body.dim();
-        let factor = if n <= Attitude::ROTOR_MAX_DIM {
-            let b = self.embed_bivector(&u.bivector_part());
-            Attitude::from(rotor_from_parts(u.scalar(), &b)?)
-        } else {
-            let q3 = u.to_matrix();
-            let mut q = DMatrix::identity(n, n);
-            for (r, &ar) in self.axes.iter().enumerate() {
-                for (c, &ac) in self.axes.iter().enumerate() {
-                    q[(ar, ac)] = q3[(r, c)];
-                }
-            }
-            Attitude::from_matrix(&q)?
-        };
-        Ok(self.body.attitude().compose(&factor))
-    }
-
-    /// Returns the N-dimensional body at time t.
-    ///
-    /// # Errors
-    /// As [`EmbeddedTop::attitude_at`].
-    pub fn body_at(&self, t: f64) -> Result<RigidBody, ExactError> {
-        let (u, l) = self.top.state_at(t)?;
-        let mut b = self.body.clone();
-        b.replace_state(self.embed_rotor(&u)?, self.embed_bivector(&l));
-        Ok(b)
-    }
-
-    /// Returns the period of L(t), as [`AsymmetricTop::period`].
-    pub fn period(&self) -> Option<f64> {
-        self.top.period()
-    }
-
-    /// Maps a 3D bivector (12, 13, 23) onto the planes of the axes.
-    fn embed_bivector(&self, b3: &Bivector) -> Bivector {
-        let n = self.body.dim();
-        let mut out = Bivector::zero(n);
-        let [a0, a1, a2] = self.axes;
-        let c = b3.as_slice();
-        out.set(a0, a1, c[0]);
-        out.set(a0, a2, c[1]);
-        out.set(a1, a2, c[2]);
-        out
-    }
-}
-
 // ---------------------------------------------------------------------------------------
 // Construction.
 
-fn plane_moments_3d(body: &RigidBody) -> Result<[f64; 3], ExactError> {
-    let d = body.inertia().diagonal_plane_moments().ok_or_else(|| {
-        ExactError::NoClosedForm(
-            "the inertia map is not diagonal on the basis planes (a general map with \
-             off-diagonal terms); give it in its principal planes"
-                .to_string(),
-        )
-    })?;
+fn plane_moments_3d(body: &RigidBody) -> Result<[f64; 3], DynamicsError> {
+    let d = body
+        .inertia()
+        .diagonal_plane_moments()
+        .ok_or_else(|| DynamicsError::no_closed_form(NoClosedFormReason::NotDiagonalOnPlanes))?;
     let m = [d[0], d[1], d[2]];
     if m.iter().any(|x| !(x.is_finite() && *x > 0.0)) {
-        return Err(ExactError::NoClosedForm(format!(
-            "plane moments {m:?} must be positive and finite"
-        )));
+        return Err(DynamicsError::no_closed_form(
+            NoClosedFormReason::NonPositivePlaneMoments { moments: m },
+        ));
     }
     Ok(m)
 }
 
-fn build_motion(moments: &[f64; 3], r0: &Rotor, l0: &Bivector) -> Result<Motion, ExactError> {
+fn build_motion(moments: &[f64; 3], r0: &Rotor, l0: &Bivector) -> Result<Motion, DynamicsError> {
     let ell = classical(l0);
     let norm = scaled_norm(&ell);
     if norm == 0.0 {
@@ -820,7 +665,10 @@ impl Elliptic {
     }
 
     /// ℓ(τ) and the Jacobi values at u = Bτ + u₀.
-    fn momentum(&self, tau: f64) -> Result<([f64; 3], crate::special::JacobiElliptic), ExactError> {
+    fn momentum(
+        &self,
+        tau: f64,
+    ) -> Result<([f64; 3], crate::special::JacobiElliptic), DynamicsError> {
         let u = self.pole.rate.mul_add(tau, self.u0);
         let je = self.jacobi.eval(u)?;
         let p = &self.pole;
@@ -832,7 +680,7 @@ impl Elliptic {
     }
 
     /// ℓ(t) and R(t).
-    fn state(&self, t: f64) -> Result<([f64; 3], Rotor), ExactError> {
+    fn state(&self, t: f64) -> Result<([f64; 3], Rotor), DynamicsError> {
         let (cycles, tau) = self.reduce(t);
         let (ell, je) = self.momentum(tau)?;
         // Π(n; jπ + θ) = 2jΠ(n) + Π(n; θ) with |θ| ≤ π/2 (the integrand has period π in φ);
@@ -885,22 +733,22 @@ fn phi_r(r: f64, phi: f64, s: f64, c: f64) -> f64 {
 // ---------------------------------------------------------------------------------------
 // Helpers.
 
-fn check_time(t: f64) -> Result<(), ExactError> {
+fn check_time(t: f64) -> Result<(), DynamicsError> {
     if t.is_finite() {
         Ok(())
     } else {
-        Err(ExactError::NonFinite {
+        Err(DynamicsError::NonFiniteArgument {
             name: "t",
             value: t,
         })
     }
 }
 
-fn finite(b: Bivector, t: f64) -> Result<Bivector, ExactError> {
+fn finite(b: Bivector, t: f64) -> Result<Bivector, DynamicsError> {
     if b.as_slice().iter().all(|x| x.is_finite()) {
         Ok(b)
     } else {
-        Err(ExactError::NonFinite {
+        Err(DynamicsError::NonFiniteArgument {
             name: "t",
             value: t,
         })
@@ -956,7 +804,7 @@ fn rotor3(c: [f64; 4]) -> Rotor {
 }
 
 /// The even element s + B as a rotor (no check that it is one).
-fn rotor_from_parts(scalar: f64, b: &Bivector) -> Result<Rotor, ExactError> {
+pub(super) fn rotor_from_parts(scalar: f64, b: &Bivector) -> Result<Rotor, DynamicsError> {
     let n = b.dim();
     let mut m = Multivector::try_zero(Signature::euclidean(n))?;
     let c = m.coefficients_mut();

@@ -4,7 +4,7 @@
 //! # The body
 //! In the principal frame J = diag(J₁, …, J_N). Split the axes into two sets: A, where
 //! Jᵢ = a, and B, where Jᵢ = b (B may be empty: the isotropic body). The plane moments
-//! I(eᵢ∧eⱼ) = Jᵢ + Jⱼ (DESIGN.md, "Inertia") take three values: 2a on planes inside A, 2b
+//! I(eᵢ∧eⱼ) = Jᵢ + Jⱼ take three values: 2a on planes inside A, 2b
 //! inside B, a + b on the mixed planes. This covers the paper's §7.1 (a = b, eqs. 107–108),
 //! §7.2 (three equal, one different, eqs. 109–120), §7.3 (two equal pairs, eqs. 121–134),
 //! the symmetric top of 3D and all their analogues in any N.
@@ -28,10 +28,10 @@
 //!
 //! dL/dt = Ω × L   ⟹   L(t) = S(t) L(0) S̃(t),   S(t) = exp(½ t Ω),
 //!
-//! because d/dt (e^{tB} X e^{−tB}) = BX − XB = 2 B × X. The angular velocity follows as
+//! because d/dt (exp(tB) X exp(−tB)) = BX − XB = 2 B × X. The angular velocity follows as
 //! ω(t) = α L(t) + Ω = S(t) ω(0) S̃(t).
 //!
-//! For the attitude, dR/dt = −½ R ω (DESIGN.md, "Attitude"). Put Q = R S. Then
+//! For the attitude, dR/dt = −½ R ω (the Conventions chapter of the rotorflow book). Put Q = R S. Then
 //! dQ/dt = −½ R ω S + ½ R S Ω = −½ Q (S̃ ω S − Ω) = −½ Q (α L(0) + Ω − Ω) = −½ α Q L(0), a
 //! constant generator again, so Q(t) = R(0) exp(−½ α t L(0)) and
 //!
@@ -70,10 +70,10 @@
 //! - A rotation is steady when |ω × L| ≤ [`STEADY_TOLERANCE`] (64ε ≈ 1.4e-14) · |ω| |L|;
 //!   the neglected drift of L is then of the order of that bound times t.
 
-use super::ExactError;
 use crate::algebra::Bivector;
 use crate::dynamics::Attitude;
 use crate::dynamics::RigidBody;
+use crate::dynamics::{DynamicsError, NoClosedFormReason};
 
 /// Relative tolerance for two principal values Jᵢ, Jⱼ to count as equal, and for a diagonal
 /// map to count as having plane moments Jᵢ + Jⱼ (relative to the largest |Jᵢ|, resp. the
@@ -141,13 +141,13 @@ impl TwoMomentSolution {
     /// body in a steady rotation (|ω × L| ≤ [`STEADY_TOLERANCE`] |ω| |L|).
     ///
     /// # Errors
-    /// [`ExactError::NonFinite`] for a non-finite state; [`ExactError::NoClosedForm`] with
+    /// [`DynamicsError::NonFiniteArgument`] for a non-finite state; [`DynamicsError::NoClosedForm`] with
     /// the reason otherwise (more than two distinct principal values, plane moments not of
     /// the Jᵢ + Jⱼ form, a map not diagonal on the basis planes), unless steady.
-    pub fn new(body: &RigidBody) -> Result<Self, ExactError> {
+    pub fn new(body: &RigidBody) -> Result<Self, DynamicsError> {
         let l = body.momentum();
         if let Some(&x) = l.as_slice().iter().find(|x| !x.is_finite()) {
-            return Err(ExactError::NonFinite {
+            return Err(DynamicsError::NonFiniteArgument {
                 name: "momentum",
                 value: x,
             });
@@ -174,10 +174,15 @@ impl TwoMomentSolution {
                 rate,
             });
         }
-        Err(ExactError::NoClosedForm(format!(
-            "{reason}, and the rotation is not steady (|ω × L| = {:.3e} > {STEADY_TOLERANCE:.1e} |ω| |L|)",
-            omega.commutator(l).norm()
-        )))
+        Err(DynamicsError::NoClosedForm {
+            reasons: vec![
+                reason,
+                NoClosedFormReason::NotSteady {
+                    commutator: omega.commutator(l).norm(),
+                    tolerance: STEADY_TOLERANCE,
+                },
+            ],
+        })
     }
 
     fn two_moments(body: &RigidBody, a: f64, b: f64, in_b: Vec<bool>) -> Self {
@@ -248,15 +253,15 @@ impl TwoMomentSolution {
         &self.generator
     }
 
-    fn check(&self, t: f64) -> Result<(), ExactError> {
+    fn check(&self, t: f64) -> Result<(), DynamicsError> {
         if !t.is_finite() {
-            return Err(ExactError::NonFinite {
+            return Err(DynamicsError::NonFiniteArgument {
                 name: "t",
                 value: t,
             });
         }
         if !(t * self.rate).is_finite() {
-            return Err(ExactError::NonFinite {
+            return Err(DynamicsError::NonFiniteArgument {
                 name: "t · rate",
                 value: t * self.rate,
             });
@@ -274,9 +279,9 @@ impl TwoMomentSolution {
     /// Returns the body-frame angular momentum L(t) = S L(0) S̃, S = exp(½ t Ω).
     ///
     /// # Errors
-    /// [`ExactError::NonFinite`] for a non-finite t (or t so large that t times the rate
+    /// [`DynamicsError::NonFiniteArgument`] for a non-finite t (or t so large that t times the rate
     /// overflows).
-    pub fn momentum_at(&self, t: f64) -> Result<Bivector, ExactError> {
+    pub fn momentum_at(&self, t: f64) -> Result<Bivector, DynamicsError> {
         self.check(t)?;
         if self.kind != TwoMomentKind::TwoMoments || self.generator.max_abs() == 0.0 {
             return Ok(self.body.momentum().clone());
@@ -289,7 +294,7 @@ impl TwoMomentSolution {
     ///
     /// # Errors
     /// As [`TwoMomentSolution::momentum_at`].
-    pub fn omega_at(&self, t: f64) -> Result<Bivector, ExactError> {
+    pub fn omega_at(&self, t: f64) -> Result<Bivector, DynamicsError> {
         let l = self.momentum_at(t)?;
         Ok(match self.kind {
             TwoMomentKind::Steady => self.generator.clone(),
@@ -298,14 +303,14 @@ impl TwoMomentSolution {
     }
 
     /// Returns the attitude R(t) = R(0) exp(−½ α t L(0)) exp(−½ t Ω) (principal frame →
-    /// space; R(0) = `body.attitude()`; a rotor for N ≤ 4, an SO(N) matrix above, see
+    /// space; R(0) = `body.principal_frame_attitude()`; a rotor for N ≤ 4, an SO(N) matrix above, see
     /// [`Attitude`]).
     ///
     /// # Errors
     /// As [`TwoMomentSolution::momentum_at`].
-    pub fn attitude_at(&self, t: f64) -> Result<Attitude, ExactError> {
+    pub fn attitude_at(&self, t: f64) -> Result<Attitude, DynamicsError> {
         self.check(t)?;
-        let mut r = self.body.attitude().clone();
+        let mut r = self.body.principal_frame_attitude().clone();
         if self.alpha != 0.0 {
             r.times_exp_mut(&(self.body.momentum() * (-0.5 * self.alpha * t)));
         }
@@ -317,7 +322,7 @@ impl TwoMomentSolution {
     ///
     /// # Errors
     /// As [`TwoMomentSolution::momentum_at`].
-    pub fn body_at(&self, t: f64) -> Result<RigidBody, ExactError> {
+    pub fn body_at(&self, t: f64) -> Result<RigidBody, DynamicsError> {
         let l = self.momentum_at(t)?;
         let r = self.attitude_at(t)?;
         let mut body = self.body.clone();
@@ -328,19 +333,17 @@ impl TwoMomentSolution {
 
 /// The principal values Jᵢ of a map diagonal on the basis planes, recovered from its plane
 /// moments, or the reason why there are none.
-fn principal_values(body: &RigidBody) -> Result<Vec<f64>, String> {
+fn principal_values(body: &RigidBody) -> Result<Vec<f64>, NoClosedFormReason> {
     let n = body.dim();
     let Some(p) = body.inertia().diagonal_plane_moments() else {
-        return Err("the inertia map is not diagonal on the basis planes".into());
+        return Err(NoClosedFormReason::NotDiagonalOnPlanes);
     };
     let moment = |i: usize, j: usize| {
         let (i, j) = if i < j { (i, j) } else { (j, i) };
         p[crate::algebra::pair_index(n, i, j)]
     };
     if n < 3 {
-        return Err(format!(
-            "N = {n}: the split of I₁₂ into J₁ + J₂ is not unique"
-        ));
+        return Err(NoClosedFormReason::AmbiguousSplit);
     }
     let j: Vec<f64> = (0..n)
         .map(|i| {
@@ -354,13 +357,11 @@ fn principal_values(body: &RigidBody) -> Result<Vec<f64>, String> {
         for k in i + 1..n {
             let err = (moment(i, k) - (j[i] + j[k])).abs();
             if err > MOMENT_TOLERANCE * max {
-                return Err(format!(
-                    "the plane moments are not of the form Jᵢ + Jⱼ (plane {}{}: {} vs {})",
-                    i + 1,
-                    k + 1,
-                    moment(i, k),
-                    j[i] + j[k]
-                ));
+                return Err(NoClosedFormReason::NotPairSums {
+                    plane: (i, k),
+                    moment: moment(i, k),
+                    pair_sum: j[i] + j[k],
+                });
             }
         }
     }
@@ -368,7 +369,7 @@ fn principal_values(body: &RigidBody) -> Result<Vec<f64>, String> {
 }
 
 /// Groups the principal values into at most two clusters (values a and b, membership of B).
-fn two_groups(j: &[f64]) -> Result<(f64, f64, Vec<bool>), String> {
+fn two_groups(j: &[f64]) -> Result<(f64, f64, Vec<bool>), NoClosedFormReason> {
     let max = j.iter().fold(0.0f64, |m, &x| m.max(x.abs()));
     let tol = MOMENT_TOLERANCE * max;
     let first = j[0];
@@ -382,9 +383,10 @@ fn two_groups(j: &[f64]) -> Result<(f64, f64, Vec<bool>), String> {
             None => second = Some(x),
             Some(s) if (x - s).abs() <= tol => {}
             Some(_) => {
-                return Err(format!(
-                    "more than two distinct principal values J = {j:?} (relative tolerance {MOMENT_TOLERANCE:e})"
-                ));
+                return Err(NoClosedFormReason::TooManyDistinctValues {
+                    values: j.to_vec(),
+                    tolerance: MOMENT_TOLERANCE,
+                });
             }
         }
         in_b[k] = true;

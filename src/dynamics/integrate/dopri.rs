@@ -134,7 +134,7 @@ impl Dopri5 {
         let mut t = 0.0;
         let mut next = 0;
         while next < times.len() && times[next] == 0.0 {
-            out.push((b.attitude().clone(), b.momentum().clone()));
+            out.push((b.principal_frame_attitude().clone(), b.momentum().clone()));
             next += 1;
         }
         let t_end = times.last().copied().unwrap_or(0.0);
@@ -156,7 +156,7 @@ impl Dopri5 {
             let t_new = t + step.h;
             while next < times.len() && times[next] <= t_new {
                 let theta = (times[next] - t) / step.h;
-                out.push(step.dense(b.attitude(), theta));
+                out.push(step.dense(b.principal_frame_attitude(), theta));
                 next += 1;
             }
             b.replace_state(step.attitude.clone(), step.momentum.clone());
@@ -181,7 +181,7 @@ impl Dopri5 {
         h: f64,
         torque: &dyn Torque,
     ) -> Result<Option<StepResult>, DynamicsError> {
-        let r0 = body.attitude();
+        let r0 = body.principal_frame_attitude();
         let l0 = body.momentum();
         let n = body.dim();
         let mut kl: Vec<Bivector> = Vec::with_capacity(7);

@@ -9,7 +9,8 @@ use crate::dynamics::{RigidBody, Torque};
 ///
 /// Order 2 and symmetric. It conserves every quadratic first integral of the free body
 /// exactly (up to the solver tolerance): the energy and |L|², and in 4D also the Pfaffian,
-/// hence all Casimirs; in N ≥ 5 the quartic Casimir tr L⁴ is not conserved (REFERENCES §4.3).
+/// hence all Casimirs; in N ≥ 5 the quartic Casimir tr L⁴ is not conserved (Austin,
+/// Krishnaprasad and Wang, *Almost Poisson integration of rigid body systems*, 1993).
 ///
 /// The nonlinear equation is solved by fixed-point iteration, which converges when
 /// h·|ω| ≲ 1; the number of iterations is bounded by [`Midpoint::max_iterations`] and
@@ -86,7 +87,7 @@ impl Integrator for Midpoint {
         torque: &dyn Torque,
     ) -> Result<(), DynamicsError> {
         let l0 = body.momentum().clone();
-        let r0 = body.attitude().clone();
+        let r0 = body.principal_frame_attitude().clone();
         let scale = l0.max_abs().max(f64::MIN_POSITIVE);
         // The torque sees the attitude at the half step, R₀ exp(−¼ h ω_mid).
         let rate = |l_mid: &Bivector| -> (Bivector, Bivector) {

@@ -25,7 +25,8 @@ pub use splitting::{Splitting, SplittingOrder};
 
 use super::{Attitude, RigidBody, Torque, TorqueInput};
 use crate::algebra::Bivector;
-use thiserror::Error;
+#[doc(no_inline)]
+pub use crate::dynamics::DynamicsError;
 
 /// Returns dexp⁻¹₋Ω(a), the Lie-algebra velocity of R = R₀ exp(Ω) under dR/dt = R a: the
 /// Bernoulli series a + Ω×a + ⅓ Ω×(Ω×a) − (1/45)(Ω×)⁴a + … ([X, Y] = 2 X×Y), truncated after
@@ -84,71 +85,4 @@ pub trait Integrator {
         h: f64,
         torque: &dyn Torque,
     ) -> Result<(), DynamicsError>;
-}
-
-/// Why a step could not be taken.
-#[derive(Debug, Clone, PartialEq, Error)]
-#[non_exhaustive]
-pub enum DynamicsError {
-    /// The integrator needs an inertia map that is diagonal on the basis planes.
-    ///
-    /// How to fix: build the body from a physical inertia (it is moved to its principal
-    /// frame), or use [`Rkmk4`], which takes any map.
-    #[error(
-        "{integrator} needs an inertia diagonal on the basis planes (a general SPD map is not)"
-    )]
-    UnsupportedInertia {
-        /// The integrator.
-        integrator: &'static str,
-    },
-    /// The requested sampling makes no sense.
-    ///
-    /// How to fix: a positive finite step, and sample times that increase from 0.
-    #[error("invalid sampling: {reason}")]
-    InvalidSampling {
-        /// What is wrong.
-        reason: &'static str,
-    },
-    /// The implicit solve did not converge within its iteration bound.
-    ///
-    /// How to fix: reduce the step (fixed-point iteration needs h·|ω| ≲ 1) or raise the bound.
-    #[error(
-        "implicit solve did not converge at t = {time}: {iterations} iterations, residual {residual:e}"
-    )]
-    SolverDidNotConverge {
-        /// The time of the step.
-        time: f64,
-        /// Iterations taken.
-        iterations: usize,
-        /// The last relative change of the momentum.
-        residual: f64,
-    },
-    /// The adaptive step size fell below what the arithmetic can resolve.
-    ///
-    /// How to fix: loosen the tolerances (a stiff problem needs an implicit method).
-    #[error("step size {step:e} too small at t = {time}: the tolerance cannot be met")]
-    StepTooSmall {
-        /// The time reached.
-        time: f64,
-        /// The step that would be needed.
-        step: f64,
-    },
-    /// The adaptive integrator needed more internal steps than allowed.
-    ///
-    /// How to fix: raise the bound ([`Dopri5::with_max_steps`]) or loosen the tolerances.
-    #[error("more than {steps} internal steps needed before t = {time}")]
-    TooManySteps {
-        /// The time reached.
-        time: f64,
-        /// The step count.
-        steps: usize,
-    },
-    /// The state became NaN or infinite.
-    ///
-    /// How to fix: reduce the step; check the torque for singularities.
-    #[error("the state is no longer finite at t = {time}")]
-    NonFinite {
-        /// The time of the step that failed.
-        time: f64,
-    },
 }

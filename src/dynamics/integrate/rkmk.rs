@@ -46,7 +46,7 @@ impl Integrator for Rkmk4 {
         if torque.is_zero() && free_step_packed(body, h) {
             return finish(body, t);
         }
-        let r0 = body.attitude().clone();
+        let r0 = body.principal_frame_attitude().clone();
         let l0 = body.momentum().clone();
         // Stage attitudes only matter to a torque; free motion skips their exponentials.
         let attitude_dependent = !torque.is_zero();
@@ -103,7 +103,9 @@ impl Integrator for Rkmk4 {
 
 /// Fails with [`DynamicsError::NonFinite`] if the state is no longer finite.
 fn finish(body: &RigidBody, t: f64) -> Result<(), DynamicsError> {
-    if body.momentum().as_slice().iter().all(|x| x.is_finite()) && body.attitude().is_finite() {
+    if body.momentum().as_slice().iter().all(|x| x.is_finite())
+        && body.principal_frame_attitude().is_finite()
+    {
         Ok(())
     } else {
         Err(DynamicsError::NonFinite { time: t })
