@@ -1,4 +1,4 @@
-//! Criterion benches of one integrator step (with attitude), per N (issue #4), beside
+//! Criterion benches of one integrator step (with attitude), per N, beside
 //! (a) a hand-written fixed-size RK4 for N = 3 and 4, the speed limit, and (b) the same RK4 on
 //! nalgebra matrices (SMatrix for N ≤ 8, DMatrix for all): L as a skew matrix, the attitude
 //! as a rotation matrix. `BENCH_QUICK=1` shortens the run.

@@ -1,4 +1,4 @@
-//! Criterion benches of the closed-form free motions (issue #5): one evaluation of L(t) and
+//! Criterion benches of the closed-form free motions: one evaluation of L(t) and
 //! of R(t) at a time, beside one Rkmk4 step of the same body. `BENCH_QUICK=1` shortens the
 //! run. Groups: `two_moments/N=4`, `two_moments/N=5` and `top3d/N=3`.
 

@@ -10,14 +10,20 @@
 //! cyclic permutations; the paper derives the component forms for N = 3, 4, 5 (its eqs. 43–46,
 //! 52–58, 68), which the book maps onto this one line.
 //!
-//! - [`RigidBody`]: the state, kept in the principal frame of the inertia.
+//! - [`RigidBody`]: the state, kept in the principal frame of the inertia
+//!   ([`RigidBody::principal_frame_attitude`]; [`RigidBody::body_axes_attitude`] places the
+//!   body's own axes, to render it).
 //! - [`Attitude`]: the rotation body → space (a rotor for N ≤ 4, an SO(N) matrix above).
 //! - [`Torque`]: external torques; closures implement it, and [`torques`] has the built-ins.
 //! - [`integrate`]: the integrators behind the [`Integrator`] trait.
-//! - [`invariants`]: energy, Casimirs, space-frame momentum, rotor drift.
+//! - [`invariants`]: energy, Casimirs, space-frame momentum, the attitude's drift from its
+//!   group.
 //! - [`trajectory`]: sampled runs ([`simulate`]) with a drift summary.
 //! - [`kinematics`]: point velocities, Coriolis and centrifugal accelerations (eqs. 18–21).
 //! - [`stability`]: growth rates of perturbed steady rotations.
+//! - [`exact`]: closed-form free motions, the references the integrators are measured against.
+//! - [`DynamicsError`]: the one error type of the layer ([`NoClosedFormReason`] says why a
+//!   body has no closed form).
 //!
 //! Book chapters: `book/src/dynamics.md` (the integrators compared) and `book/src/mapping.md`
 //! (the paper's eqs. 14–68 in these terms).

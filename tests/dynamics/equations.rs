@@ -8,7 +8,7 @@ use rotorflow::prelude::*;
 
 #[test]
 fn euler_3d_matches_classical() {
-    // DESIGN.md: Ω = (ω23, −ω13, ω12), I₁ = J₂ + J₃ (and cyclic); the classical equations
+    // The Conventions chapter of the book: Ω = (ω23, −ω13, ω12), I₁ = J₂ + J₃ (and cyclic); the classical equations
     // I₁ dΩ₁/dt = (I₂ − I₃) Ω₂ Ω₃ and cyclic must equal dω/dt = I⁻¹(ω × L).
     let j = [0.7, 1.1, 1.9];
     let inertia = InertiaMap::from_principal_moments(&j).unwrap();

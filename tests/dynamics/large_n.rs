@@ -1,4 +1,5 @@
-//! Large N: the attitude kept as an SO(N) matrix above N = 8 (issue #4).
+//! Large N: the attitude kept as an SO(N) matrix above N = 4 (fixed-size storage up to
+//! N = 8, dense above).
 
 use super::{attitude_distance, random_bivector, rng, run};
 use rand::Rng;
@@ -8,7 +9,7 @@ use rotorflow::dynamics::{
 };
 use rotorflow::prelude::*;
 
-/// `exp_skew_matrix` is the matrix of the rotor exponential, e^{B/2} ↔ expm([B]), including
+/// `exp_skew_matrix` is the matrix of the rotor exponential, exp(B/2) ↔ expm([B]), including
 /// isoclinic (degenerate) and rank-deficient bivectors.
 #[test]
 fn exp_skew_matrix_matches_rotor_exponential() {

@@ -1,8 +1,8 @@
 //! The paper's kinematics and Euler equations (eqs. 14–68) checked against the crate.
 //!
 //! Each test pins one entry of the book's errata page `book/src/errata/dynamics.md` and one
-//! row of the mapping chapter. Conventions: DESIGN.md (v = x⌋ω = [ω]ᵀx, dL/dt = ω×L + τ,
-//! I^{ijij} = ½(J_i + J_j) from eq. 22 read literally). Indices in comments are 1-based as in
+//! row of the mapping chapter. Conventions: the book's Conventions chapter (v = x⌋ω = [ω]ᵀx,
+//! dL/dt = ω×L + τ, Iⁱʲⁱʲ = ½(Jᵢ + Jⱼ) from eq. 22 read literally). Indices in comments are 1-based as in
 //! the paper; code is 0-based.
 
 use crate::{random_bivector, rng};
@@ -39,7 +39,7 @@ fn crate_rate(j: &[f64], w: &Bivector, tau: Option<&Bivector>) -> Bivector {
     inertia.apply_inverse(&dl)
 }
 
-/// I^{abab} = ½(J_a + J_b), 1-based.
+/// Iᵃᵇᵃᵇ = ½(J_a + J_b), 1-based.
 fn i4(j: &[f64], a: usize, b: usize) -> f64 {
     0.5 * (j[a - 1] + j[b - 1])
 }
@@ -156,8 +156,8 @@ fn paper_eq_36_47_65_matrix_is_a_checkerboard_automorphism() {
 #[test]
 fn paper_eqs_36_to_38_give_three_different_angular_velocity_vectors() {
     // Eq. (36) is the cross-product matrix of Ω_36 = (ω23, ω13, ω12); eq. (37) read with
-    // ω_jk, Ω^i = −½ Σ ε^{ijk} ω_jk, gives (−ω23, ω13, −ω12) = −Ω_DESIGN; eq. (38) gives half
-    // of eq. (37). DESIGN.md: Ω = (ω23, −ω13, ω12), with v = x⌋ω = Ω × x.
+    // ω_jk, Ω^i = −½ Σ ε^{ijk} ω_jk, gives (−ω23, ω13, −ω12) = −Ω_crate; eq. (38) gives half
+    // of eq. (37). The crate (Conventions chapter): Ω = (ω23, −ω13, ω12), with v = x⌋ω = Ω × x.
     let w = Bivector::from_components(3, &[0.7, -1.1, 0.4]).unwrap(); // 12, 13, 23
     let (w12, w13, w23) = (w.get(0, 1), w.get(0, 2), w.get(1, 2));
     let cross = |a: [f64; 3], b: [f64; 3]| {
@@ -168,7 +168,7 @@ fn paper_eqs_36_to_38_give_three_different_angular_velocity_vectors() {
         ]
     };
     let x = [0.3, -0.8, 1.2];
-    // The crate's velocity is Ω_DESIGN × x.
+    // The crate's velocity is Ω_crate × x.
     let v = point_velocity(&w, &Vector::from_components(&x).unwrap());
     let design = [w23, -w13, w12];
     let c = cross(design, x);

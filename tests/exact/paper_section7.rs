@@ -2,7 +2,7 @@
 //! `two_moments` (itself checked against Dopri5) and against Dopri5 directly.
 //!
 //! Reading (see `rotorflow::dynamics::exact::paper`): a, b, c, d are half-axes, J ∝ (a², b²,
-//! c², d²); the paper's ωᵢⱼ are DESIGN.md's components. The printed forms are typed in here
+//! c², d²); the paper's ωᵢⱼ are the crate's components (the book's Conventions chapter). The printed forms are typed in here
 //! literally (`printed_*`); the crate holds only the correct ones.
 //!
 //! Example states: §7.2 κ = 2, ω(0) = (0.3, −0.5, 0.8, 0.4, 0.2, −0.6); §7.3 κ = 1.5,
@@ -13,8 +13,9 @@
 use crate::{dopri_reference, rotor_distance};
 use rotorflow::dynamics::RigidBody;
 use rotorflow::dynamics::exact::paper::{
-    ThreeEqualMoments, TwoEqualPairs, eq_108_omega, eq_109_principal_moments, eq_119_factor,
-    eq_121_principal_moments, principal_moments_from_half_axes,
+    ThreeEqualMoments, TwoEqualPairs, frequency_factor, isotropic_omega,
+    principal_moments_from_half_axes, three_equal_principal_moments,
+    two_equal_pairs_principal_moments,
 };
 use rotorflow::dynamics::exact::two_moments::{TwoMomentKind, TwoMomentSolution};
 use rotorflow::prelude::*;
@@ -38,7 +39,7 @@ fn body(j: &[f64], omega: &Bivector) -> RigidBody {
     .unwrap()
 }
 
-/// The correct dω/dt = I⁻¹(ω × I(ω)) from the crate (DESIGN.md's Euler equations).
+/// The correct dω/dt = I⁻¹(ω × I(ω)) from the crate's Euler equations.
 fn omega_rate(j: &[f64], omega: &Bivector) -> Bivector {
     let b = body(j, omega);
     b.inertia()
@@ -117,14 +118,14 @@ fn printed_124_to_127(kappa: f64, w: &[f64; 6]) -> [f64; 4] {
 }
 
 fn constants_72(p: &ThreeEqualMoments) -> [f64; 6] {
-    let [c1, c2, c3] = p.eq_110_to_112_constants();
-    let [c4, c5, c6] = p.eq_116_to_118_constants().unwrap();
+    let [c1, c2, c3] = p.constants_c1_to_c3();
+    let [c4, c5, c6] = p.constants_c4_to_c6().unwrap();
     [c1, c2, c3, c4, c5, c6]
 }
 
 fn constants_73(p: &TwoEqualPairs) -> [f64; 6] {
-    let [c1, c2] = p.eq_122_123_constants();
-    let [c3, c4, c5, c6] = p.eq_128_to_131_constants();
+    let [c1, c2] = p.constants_c1_c2();
+    let [c3, c4, c5, c6] = p.constants_c3_to_c6();
     [c1, c2, c3, c4, c5, c6]
 }
 
@@ -137,7 +138,7 @@ fn paper_eq_109_parameters_are_half_axes() {
     // The paper's factor ν = (κ² − 1)/(κ² + 1) must be the crate's (J₄ − J₁)/(J₄ + J₁),
     // the ratio of the generator Ω = ν ω_AA to ω_AA. κ = 2: ν = 0.6.
     let k = KAPPA_72;
-    let nu_paper = eq_119_factor(k).unwrap();
+    let nu_paper = frequency_factor(k).unwrap();
     assert!(close(nu_paper, 0.6, 1e-15));
     let w = biv(&OMEGA_72);
     let nu_of = |j: &[f64]| {
@@ -146,7 +147,7 @@ fn paper_eq_109_parameters_are_half_axes() {
     };
     // Half-axes: J = (a², b², c², d²) = (1, 1, 1, κ²).
     let j_half = principal_moments_from_half_axes(&[1.0, 1.0, 1.0, k]).unwrap();
-    assert_eq!(j_half, eq_109_principal_moments(k).unwrap().to_vec());
+    assert_eq!(j_half, three_equal_principal_moments(k).unwrap().to_vec());
     assert!(close(nu_of(&j_half), nu_paper, 1e-15));
     // a…d as the principal values of J: ν = (κ − 1)/(κ + 1) = 1/3.
     assert!(close(nu_of(&[1.0, 1.0, 1.0, k]), 1.0 / 3.0, 1e-15));
@@ -179,7 +180,9 @@ fn paper_eq_109_parameters_are_half_axes() {
     // §7.3: J = (1, 1, κ², κ²) from "a = b = 1, c = d = κ".
     assert_eq!(
         principal_moments_from_half_axes(&[1.0, 1.0, KAPPA_73, KAPPA_73]).unwrap(),
-        eq_121_principal_moments(KAPPA_73).unwrap().to_vec()
+        two_equal_pairs_principal_moments(KAPPA_73)
+            .unwrap()
+            .to_vec()
     );
 }
 
@@ -206,7 +209,7 @@ fn paper_eq_108_isotropic_omega_is_constant_in_every_dimension() {
         let times: Vec<f64> = (1..=4).map(|k| 25.0 * period * k as f64).collect();
         let reference = dopri_reference(&b, &times);
         for (&t, (_, l)) in times.iter().zip(&reference) {
-            assert_eq!(eq_108_omega(&w, t).unwrap(), w);
+            assert_eq!(isotropic_omega(&w, t).unwrap(), w);
             assert!((&s.omega_at(t).unwrap() - &w).norm() <= 1e-15 * w.norm());
             let dopri = b.inertia().apply_inverse(l);
             assert!((&dopri - &w).norm() <= 1e-12 * w.norm(), "N = {n}");
@@ -221,10 +224,10 @@ fn paper_eq_108_isotropic_omega_is_constant_in_every_dimension() {
 #[test]
 fn paper_eqs_110_to_112_omega_12_13_23_are_constant() {
     let w = biv(&OMEGA_72);
-    let j = eq_109_principal_moments(KAPPA_72).unwrap();
+    let j = three_equal_principal_moments(KAPPA_72).unwrap();
     let s = TwoMomentSolution::new(&body(&j, &w)).unwrap();
     let p = ThreeEqualMoments::new(KAPPA_72, &w).unwrap();
-    assert_eq!(p.eq_110_to_112_constants(), [0.4, -0.5, 0.3]); // (ω₂₃, ω₁₃, ω₁₂)
+    assert_eq!(p.constants_c1_to_c3(), [0.4, -0.5, 0.3]); // (ω₂₃, ω₁₃, ω₁₂)
     let rate = omega_rate(&j, &w);
     for (i, k) in [(0, 1), (0, 2), (1, 2)] {
         assert!(rate.get(i, k).abs() < 1e-16);
@@ -240,7 +243,7 @@ fn paper_eqs_113_to_115_have_the_coupling_sign_reversed() {
     // κ = 2, ω(0) as above: the crate's (dω₁₄, dω₂₄, dω₃₄)/dt = (0.216, −0.288, 0.192); the
     // printed right-hand sides are exactly their negatives.
     let w = biv(&OMEGA_72);
-    let j = eq_109_principal_moments(KAPPA_72).unwrap();
+    let j = three_equal_principal_moments(KAPPA_72).unwrap();
     let rate = omega_rate(&j, &w);
     let correct = [rate.get(0, 3), rate.get(1, 3), rate.get(2, 3)];
     let printed = printed_113_to_115(KAPPA_72, &OMEGA_72);
@@ -272,7 +275,7 @@ fn paper_eqs_116_to_118_run_backwards_in_time() {
     // −t. At t = 1 (κ = 2, ω(0) as above) the printed (ω₁₄, ω₂₄, ω₃₄) is
     // (0.5365, 0.4830, −0.7203), the correct (0.9557, −0.0759, −0.3477).
     let w = biv(&OMEGA_72);
-    let j = eq_109_principal_moments(KAPPA_72).unwrap();
+    let j = three_equal_principal_moments(KAPPA_72).unwrap();
     let s = TwoMomentSolution::new(&body(&j, &w)).unwrap();
     let p = ThreeEqualMoments::new(KAPPA_72, &w).unwrap();
     let c = constants_72(&p);
@@ -300,7 +303,7 @@ const CORRECT_116_T1: f64 = 0.955_673_961_679_076_5;
 fn paper_eqs_117_118_divide_by_c1_and_by_c2_c3() {
     // c₁ = ω₂₃ = 0 or c₂ = c₃ = 0 make the printed ω₂₄, ω₃₄ 0/0; the corrected form stays
     // finite and matches the crate's closed form.
-    let j = eq_109_principal_moments(KAPPA_72).unwrap();
+    let j = three_equal_principal_moments(KAPPA_72).unwrap();
     for w0 in [
         [0.3, -0.5, 0.8, 0.0, 0.2, -0.6], // c₁ = 0
         [0.0, 0.0, 0.8, 0.4, 0.2, -0.6],  // c₂ = c₃ = 0
@@ -322,10 +325,10 @@ fn paper_eqs_117_118_divide_by_c1_and_by_c2_c3() {
 fn paper_eqs_119_120_frequency_is_the_body_frame_rate() {
     // ν s = |Ω| (the crate's generator): after 2π/(ν s) the motion is back.
     let w = biv(&OMEGA_72);
-    let j = eq_109_principal_moments(KAPPA_72).unwrap();
+    let j = three_equal_principal_moments(KAPPA_72).unwrap();
     let s = TwoMomentSolution::new(&body(&j, &w)).unwrap();
     let p = ThreeEqualMoments::new(KAPPA_72, &w).unwrap();
-    let f = p.eq_119_frequency();
+    let f = p.frequency();
     assert!(close(f, 0.6 * (0.16f64 + 0.25 + 0.09).sqrt(), 1e-15));
     assert!(close(f.abs(), s.generator().norm(), 1e-15));
     let period = 2.0 * PI / f.abs();
@@ -336,14 +339,11 @@ fn paper_eqs_119_120_frequency_is_the_body_frame_rate() {
 #[test]
 fn paper_section72_corrected_solution_matches_dopri5() {
     let w = biv(&OMEGA_72);
-    let j = eq_109_principal_moments(KAPPA_72).unwrap();
+    let j = three_equal_principal_moments(KAPPA_72).unwrap();
     let b = body(&j, &w);
     let p = ThreeEqualMoments::new(KAPPA_72, &w).unwrap();
     let s = TwoMomentSolution::new(&b).unwrap();
-    let rate = p
-        .eq_119_frequency()
-        .abs()
-        .max(s.alpha() * b.momentum().norm());
+    let rate = p.frequency().abs().max(s.alpha() * b.momentum().norm());
     let times: Vec<f64> = (1..=8)
         .map(|k| 100.0 * 2.0 * PI / rate * k as f64 / 8.0)
         .collect();
@@ -370,11 +370,11 @@ fn paper_section72_corrected_solution_matches_dopri5() {
 #[test]
 fn paper_eqs_122_123_omega_12_34_are_constant() {
     let w = biv(&OMEGA_73);
-    let j = eq_121_principal_moments(KAPPA_73).unwrap();
+    let j = two_equal_pairs_principal_moments(KAPPA_73).unwrap();
     let rate = omega_rate(&j, &w);
     assert!(rate.get(0, 1).abs() < 1e-16 && rate.get(2, 3).abs() < 1e-16);
     let p = TwoEqualPairs::new(KAPPA_73, &w).unwrap();
-    assert_eq!(p.eq_122_123_constants(), [0.9, 0.4]);
+    assert_eq!(p.constants_c1_c2(), [0.9, 0.4]);
     let s = TwoMomentSolution::new(&body(&j, &w)).unwrap();
     for t in [1.0, 50.0, 777.0] {
         let o = s.omega_at(t).unwrap();
@@ -385,7 +385,7 @@ fn paper_eqs_122_123_omega_12_34_are_constant() {
 #[test]
 fn paper_eqs_124_to_126_have_the_coupling_sign_reversed_and_127_is_right() {
     let w = biv(&OMEGA_73);
-    let j = eq_121_principal_moments(KAPPA_73).unwrap();
+    let j = two_equal_pairs_principal_moments(KAPPA_73).unwrap();
     let rate = omega_rate(&j, &w);
     let printed = printed_124_to_127(KAPPA_73, &OMEGA_73);
     let correct = [
@@ -409,7 +409,7 @@ fn paper_eq_126_names_omega_34_for_omega_23() {
     // ω₃₄ is constant (eq. 123), yet (126) gives it a nonzero rate; its right-hand side is
     // (minus) that of ω₂₃.
     let w = biv(&OMEGA_73);
-    let j = eq_121_principal_moments(KAPPA_73).unwrap();
+    let j = two_equal_pairs_principal_moments(KAPPA_73).unwrap();
     let rate = omega_rate(&j, &w);
     let printed = printed_124_to_127(KAPPA_73, &OMEGA_73)[2];
     assert!(rate.get(2, 3).abs() < 1e-16);
@@ -433,7 +433,7 @@ fn paper_eqs_128_to_131_constants_from_the_initial_state() {
 #[test]
 fn paper_eqs_128_to_131_run_backwards_in_time() {
     let w = biv(&OMEGA_73);
-    let j = eq_121_principal_moments(KAPPA_73).unwrap();
+    let j = two_equal_pairs_principal_moments(KAPPA_73).unwrap();
     let s = TwoMomentSolution::new(&body(&j, &w)).unwrap();
     let p = TwoEqualPairs::new(KAPPA_73, &w).unwrap();
     let c = constants_73(&p);
@@ -470,13 +470,13 @@ fn paper_eqs_132_to_134_frequencies_are_right_in_magnitude() {
     // frequencies |ν(c₁ − c₂)| and |ν(c₁ + c₂)|: the corrected form built on (134) matches
     // the crate's closed form over 100 periods.
     let w = biv(&OMEGA_73);
-    let j = eq_121_principal_moments(KAPPA_73).unwrap();
+    let j = two_equal_pairs_principal_moments(KAPPA_73).unwrap();
     let s = TwoMomentSolution::new(&body(&j, &w)).unwrap();
     let p = TwoEqualPairs::new(KAPPA_73, &w).unwrap();
-    let nu = eq_119_factor(KAPPA_73).unwrap();
+    let nu = frequency_factor(KAPPA_73).unwrap();
     let g = s.generator();
     assert!(close(g.get(0, 1), nu * 0.9, 1e-15) && close(g.get(2, 3), -nu * 0.4, 1e-15));
-    let [o1, o2] = p.eq_134_frequencies();
+    let [o1, o2] = p.frequencies();
     assert!(close(o1, nu * 0.5, 1e-15) && close(o2, nu * 1.3, 1e-15));
     let period = 2.0 * PI / o2.abs();
     for k in 1..=10 {
@@ -488,11 +488,11 @@ fn paper_eqs_132_to_134_frequencies_are_right_in_magnitude() {
 #[test]
 fn paper_section73_corrected_solution_matches_dopri5() {
     let w = biv(&OMEGA_73);
-    let j = eq_121_principal_moments(KAPPA_73).unwrap();
+    let j = two_equal_pairs_principal_moments(KAPPA_73).unwrap();
     let b = body(&j, &w);
     let p = TwoEqualPairs::new(KAPPA_73, &w).unwrap();
     let s = TwoMomentSolution::new(&b).unwrap();
-    let [o1, o2] = p.eq_134_frequencies();
+    let [o1, o2] = p.frequencies();
     let rate = o1.abs().max(o2.abs()).max(s.alpha() * b.momentum().norm());
     let times: Vec<f64> = (1..=8)
         .map(|k| 100.0 * 2.0 * PI / rate * k as f64 / 8.0)
@@ -549,7 +549,7 @@ fn paper_closed_forms_reject_bad_input() {
     assert!(huge.as_slice().iter().all(|x| x.is_finite()));
     // ω_AA = 0: c₄ … c₆ undefined, the motion constant.
     let p = ThreeEqualMoments::new(2.0, &biv(&[0.0, 0.0, 0.8, 0.0, 0.2, -0.6])).unwrap();
-    assert!(p.eq_116_to_118_constants().is_err());
+    assert!(p.constants_c4_to_c6().is_err());
     assert_eq!(
         p.omega_at(3.0).unwrap(),
         biv(&[0.0, 0.0, 0.8, 0.0, 0.2, -0.6])
@@ -563,7 +563,7 @@ fn paper_eq_110_does_not_follow_from_the_printed_eq_53() {
     // (κ = 2, ω(0) as above). The §7 systems follow from the correct Euler equations
     // (up to the sign errors above), not from the printed (53)–(58).
     let w = OMEGA_72;
-    let j = eq_109_principal_moments(KAPPA_72).unwrap();
+    let j = three_equal_principal_moments(KAPPA_72).unwrap();
     let i = |a: usize, b: usize| 0.5 * (j[a] + j[b]);
     let (w12, w13, w14, w23, w24, w34) = (w[0], w[1], w[2], w[3], w[4], w[5]);
     let _ = (w12, w34);

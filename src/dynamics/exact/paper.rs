@@ -105,7 +105,7 @@ pub fn principal_moments_from_half_axes(half_axes: &[f64]) -> Result<Vec<f64>, D
 ///
 /// # Errors
 /// [`DynamicsError::NonFiniteArgument`]; [`DynamicsError::NoClosedForm`] for κ ≤ 0.
-pub fn eq_109_principal_moments(kappa: f64) -> Result<[f64; 4], DynamicsError> {
+pub fn three_equal_principal_moments(kappa: f64) -> Result<[f64; 4], DynamicsError> {
     let k = check_kappa(kappa)?;
     Ok([1.0, 1.0, 1.0, k * k])
 }
@@ -114,7 +114,7 @@ pub fn eq_109_principal_moments(kappa: f64) -> Result<[f64; 4], DynamicsError> {
 ///
 /// # Errors
 /// [`DynamicsError::NonFiniteArgument`]; [`DynamicsError::NoClosedForm`] for κ ≤ 0.
-pub fn eq_121_principal_moments(kappa: f64) -> Result<[f64; 4], DynamicsError> {
+pub fn two_equal_pairs_principal_moments(kappa: f64) -> Result<[f64; 4], DynamicsError> {
     let k = check_kappa(kappa)?;
     Ok([1.0, 1.0, k * k, k * k])
 }
@@ -123,8 +123,8 @@ pub fn eq_121_principal_moments(kappa: f64) -> Result<[f64; 4], DynamicsError> {
 /// (b − a)/(a + b) for a = 1, b = κ².
 ///
 /// # Errors
-/// As [`eq_109_principal_moments`].
-pub fn eq_119_factor(kappa: f64) -> Result<f64, DynamicsError> {
+/// As [`three_equal_principal_moments`].
+pub fn frequency_factor(kappa: f64) -> Result<f64, DynamicsError> {
     let k2 = check_kappa(kappa)?.powi(2);
     Ok((k2 - 1.0) / (k2 + 1.0))
 }
@@ -134,7 +134,7 @@ pub fn eq_119_factor(kappa: f64) -> Result<f64, DynamicsError> {
 ///
 /// # Errors
 /// [`DynamicsError::NonFiniteArgument`] for a non-finite t or ω.
-pub fn eq_108_omega(omega0: &Bivector, t: f64) -> Result<Bivector, DynamicsError> {
+pub fn isotropic_omega(omega0: &Bivector, t: f64) -> Result<Bivector, DynamicsError> {
     check_t(t)?;
     for &x in omega0.as_slice() {
         finite("omega", x)?;
@@ -151,7 +151,7 @@ pub fn eq_108_omega(omega0: &Bivector, t: f64) -> Result<Bivector, DynamicsError
 /// let w0 = Bivector::from_components(4, &[0.3, -0.5, 0.8, 0.4, 0.2, -0.6])?;
 /// let p = ThreeEqualMoments::new(2.0, &w0)?;
 /// // c₁ = ω₂₃, c₂ = ω₁₃, c₃ = ω₁₂ (eqs. 110–112) stay constant.
-/// assert_eq!(p.eq_110_to_112_constants(), [0.4, -0.5, 0.3]);
+/// assert_eq!(p.constants_c1_to_c3(), [0.4, -0.5, 0.3]);
 /// let w = p.omega_at(3.0)?;
 /// assert_eq!(w.get(1, 2), 0.4);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
@@ -170,7 +170,7 @@ impl ThreeEqualMoments {
     /// # Errors
     /// [`DynamicsError::NonFiniteArgument`]; [`DynamicsError::NoClosedForm`] for κ ≤ 0 or N ≠ 4.
     pub fn new(kappa: f64, omega0: &Bivector) -> Result<Self, DynamicsError> {
-        let nu = eq_119_factor(kappa)?;
+        let nu = frequency_factor(kappa)?;
         let omega0 = check_omega(omega0)?;
         Ok(ThreeEqualMoments { kappa, nu, omega0 })
     }
@@ -181,14 +181,14 @@ impl ThreeEqualMoments {
     }
 
     /// Eqs. (110)–(112): (c₁, c₂, c₃) = (ω₂₃, ω₁₃, ω₁₂), constant in time (right).
-    pub fn eq_110_to_112_constants(&self) -> [f64; 3] {
+    pub fn constants_c1_to_c3(&self) -> [f64; 3] {
         let w = &self.omega0;
         [w[3], w[1], w[0]]
     }
 
     /// Returns s = √(c₁² + c₂² + c₃²) = |ω_AA|.
     fn s(&self) -> f64 {
-        let [c1, c2, c3] = self.eq_110_to_112_constants();
+        let [c1, c2, c3] = self.constants_c1_to_c3();
         c1.hypot(c2).hypot(c3)
     }
 
@@ -200,8 +200,8 @@ impl ThreeEqualMoments {
     /// # Errors
     /// [`DynamicsError::NoClosedForm`] when s = 0 (ω_AA = 0: then every component is constant
     /// and c₅ is undefined).
-    pub fn eq_116_to_118_constants(&self) -> Result<[f64; 3], DynamicsError> {
-        let [c1, c2, c3] = self.eq_110_to_112_constants();
+    pub fn constants_c4_to_c6(&self) -> Result<[f64; 3], DynamicsError> {
+        let [c1, c2, c3] = self.constants_c1_to_c3();
         let s = self.s();
         if s == 0.0 {
             return Err(DynamicsError::no_closed_form(
@@ -217,7 +217,7 @@ impl ThreeEqualMoments {
 
     /// Eqs. (119)–(120): the frequency ν s of ℂ(t) = cos(ν s t) and 𝕊(t) = sin(ν s t),
     /// ν = (κ² − 1)/(κ² + 1) (right: |ν| s = |Ω| is the rate of the body-frame rotation).
-    pub fn eq_119_frequency(&self) -> f64 {
+    pub fn frequency(&self) -> f64 {
         self.nu * self.s()
     }
 
@@ -274,7 +274,7 @@ impl ThreeEqualMoments {
 /// use rotorflow::dynamics::exact::paper::TwoEqualPairs;
 /// let w0 = Bivector::from_components(4, &[0.9, 0.1, -0.3, 0.2, 0.5, 0.4])?;
 /// let p = TwoEqualPairs::new(1.5, &w0)?;
-/// assert_eq!(p.eq_122_123_constants(), [0.9, 0.4]); // c₁ = ω₁₂, c₂ = ω₃₄
+/// assert_eq!(p.constants_c1_c2(), [0.9, 0.4]); // c₁ = ω₁₂, c₂ = ω₃₄
 /// let w = p.omega_at(0.0)?;
 /// assert!((&w - &w0).norm() < 1e-15);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
@@ -293,7 +293,7 @@ impl TwoEqualPairs {
     /// # Errors
     /// [`DynamicsError::NonFiniteArgument`]; [`DynamicsError::NoClosedForm`] for κ ≤ 0 or N ≠ 4.
     pub fn new(kappa: f64, omega0: &Bivector) -> Result<Self, DynamicsError> {
-        let nu = eq_119_factor(kappa)?;
+        let nu = frequency_factor(kappa)?;
         let omega0 = check_omega(omega0)?;
         Ok(TwoEqualPairs { kappa, nu, omega0 })
     }
@@ -304,14 +304,14 @@ impl TwoEqualPairs {
     }
 
     /// Eqs. (122)–(123): (c₁, c₂) = (ω₁₂, ω₃₄), constant in time (right).
-    pub fn eq_122_123_constants(&self) -> [f64; 2] {
+    pub fn constants_c1_c2(&self) -> [f64; 2] {
         [self.omega0[0], self.omega0[5]]
     }
 
     /// The constants (c₃, c₄, c₅, c₆) of eqs. (128)–(131), from their values at t = 0:
     /// c₃ = −(ω₁₄ + ω₂₃)/2, c₄ = (ω₁₃ − ω₂₄)/2, c₅ = (ω₁₄ − ω₂₃)/2, c₆ = (ω₁₃ + ω₂₄)/2
     /// (right; always defined).
-    pub fn eq_128_to_131_constants(&self) -> [f64; 4] {
+    pub fn constants_c3_to_c6(&self) -> [f64; 4] {
         let w = &self.omega0;
         let (w13, w14, w23, w24) = (w[1], w[2], w[3], w[4]);
         [
@@ -325,8 +325,8 @@ impl TwoEqualPairs {
     /// Eqs. (132)–(134): (ω₁, ω₂) = (ν(c₁ − c₂), ν(c₁ + c₂)), ν = (κ² − 1)/(κ² + 1), the
     /// frequencies of 𝔽₁ … 𝔽₄. Right as the angular frequencies of the motion (|ω₁|, |ω₂|);
     /// the correct motion is (128)–(131) with (ω₁, ω₂) → (−ω₁, −ω₂).
-    pub fn eq_134_frequencies(&self) -> [f64; 2] {
-        let [c1, c2] = self.eq_122_123_constants();
+    pub fn frequencies(&self) -> [f64; 2] {
+        let [c1, c2] = self.constants_c1_c2();
         [self.nu * (c1 - c2), self.nu * (c1 + c2)]
     }
 
@@ -343,9 +343,9 @@ impl TwoEqualPairs {
     /// [`DynamicsError::NonFiniteArgument`] for a non-finite t (or t·ωₖ overflowing).
     pub fn omega_at(&self, t: f64) -> Result<Bivector, DynamicsError> {
         check_t(t)?;
-        let [c1, c2] = self.eq_122_123_constants();
-        let [c3, c4, c5, c6] = self.eq_128_to_131_constants();
-        let [o1, o2] = self.eq_134_frequencies();
+        let [c1, c2] = self.constants_c1_c2();
+        let [c3, c4, c5, c6] = self.constants_c3_to_c6();
+        let [o1, o2] = self.frequencies();
         let (a1, a2) = (o1 * t, o2 * t);
         if !(a1.is_finite() && a2.is_finite()) {
             return Err(DynamicsError::NonFiniteArgument {
@@ -361,5 +361,69 @@ impl TwoEqualPairs {
         let w23 = c4 * f1 - c3 * f2 + c6 * f3 - c5 * f4;
         let w24 = -c3 * f1 - c4 * f2 + c5 * f3 + c6 * f4;
         Ok(Bivector::from_components(4, &[c1, w13, w14, w23, w24, c2])?)
+    }
+}
+
+/// Former name of [`three_equal_principal_moments`].
+#[deprecated(note = "use `three_equal_principal_moments` (no equation number in names)")]
+pub fn eq_109_principal_moments(kappa: f64) -> Result<[f64; 4], DynamicsError> {
+    three_equal_principal_moments(kappa)
+}
+
+/// Former name of [`two_equal_pairs_principal_moments`].
+#[deprecated(note = "use `two_equal_pairs_principal_moments` (no equation number in names)")]
+pub fn eq_121_principal_moments(kappa: f64) -> Result<[f64; 4], DynamicsError> {
+    two_equal_pairs_principal_moments(kappa)
+}
+
+/// Former name of [`frequency_factor`].
+#[deprecated(note = "use `frequency_factor` (no equation number in names)")]
+pub fn eq_119_factor(kappa: f64) -> Result<f64, DynamicsError> {
+    frequency_factor(kappa)
+}
+
+/// Former name of [`isotropic_omega`].
+#[deprecated(note = "use `isotropic_omega` (no equation number in names)")]
+pub fn eq_108_omega(omega0: &Bivector, t: f64) -> Result<Bivector, DynamicsError> {
+    isotropic_omega(omega0, t)
+}
+
+impl ThreeEqualMoments {
+    /// Former name of [`ThreeEqualMoments::constants_c1_to_c3`].
+    #[deprecated(note = "use `constants_c1_to_c3` (no equation number in names)")]
+    pub fn eq_110_to_112_constants(&self) -> [f64; 3] {
+        self.constants_c1_to_c3()
+    }
+
+    /// Former name of [`ThreeEqualMoments::constants_c4_to_c6`].
+    #[deprecated(note = "use `constants_c4_to_c6` (no equation number in names)")]
+    pub fn eq_116_to_118_constants(&self) -> Result<[f64; 3], DynamicsError> {
+        self.constants_c4_to_c6()
+    }
+
+    /// Former name of [`ThreeEqualMoments::frequency`].
+    #[deprecated(note = "use `frequency` (no equation number in names)")]
+    pub fn eq_119_frequency(&self) -> f64 {
+        self.frequency()
+    }
+}
+
+impl TwoEqualPairs {
+    /// Former name of [`TwoEqualPairs::constants_c1_c2`].
+    #[deprecated(note = "use `constants_c1_c2` (no equation number in names)")]
+    pub fn eq_122_123_constants(&self) -> [f64; 2] {
+        self.constants_c1_c2()
+    }
+
+    /// Former name of [`TwoEqualPairs::constants_c3_to_c6`].
+    #[deprecated(note = "use `constants_c3_to_c6` (no equation number in names)")]
+    pub fn eq_128_to_131_constants(&self) -> [f64; 4] {
+        self.constants_c3_to_c6()
+    }
+
+    /// Former name of [`TwoEqualPairs::frequencies`].
+    #[deprecated(note = "use `frequencies` (no equation number in names)")]
+    pub fn eq_134_frequencies(&self) -> [f64; 2] {
+        self.frequencies()
     }
 }

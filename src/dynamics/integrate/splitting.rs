@@ -114,7 +114,8 @@ fn strang_drift_planes(body: &mut RigidBody, moments: &[f64], h: f64) {
 
 /// The Strang drift of a rotor attitude in 3D and 4D with its index tables in arrays of fixed
 /// length, so that the compiler unrolls the planes: the same updates as [`plane_flow`] and
-/// [`PlaneProduct`], without their loops over index ranges (the 4D step was 2× RK4's).
+/// [`PlaneProduct`], without their loops over index ranges (the loops, not the arithmetic,
+/// dominate a 4D step).
 struct RotorDrift<const K: usize, const LP: usize, const RP: usize> {
     /// For each plane: the pairs (a, b, σ) of L components it mixes,
     /// x ← x + (m x − σ s y), y ← y + (σ s x + m y).
