@@ -5,13 +5,20 @@ use crate::algebra::Bivector;
 use crate::inertia::{InertiaError, InertiaMap};
 
 /// The state of a rotating rigid body in ℝᴺ: its inertia map (in the principal frame), its
-/// attitude R (body → space, x_space = R x R̃; a rotor for N ≤ 4, an SO(N) matrix above, see
-/// [`Attitude`]) and its angular momentum L in the body frame.
+/// attitude R (principal frame → space, x_space = R x R̃; a rotor for N ≤ 4, an SO(N) matrix
+/// above, see [`Attitude`]) and its angular momentum L in the principal frame.
 ///
 /// The body frame is always the principal frame of the inertia: a map given in other axes is
 /// diagonalised on construction and the attitude absorbs the principal rotor, so every step
 /// applies I⁻¹ as one multiplication per plane. The body's own axes and the principal axes
 /// differ by [`InertiaMap::principal_rotor`]; [`RigidBody::principal_frame`] keeps it.
+///
+/// Two attitudes, so that neither is misread:
+/// - [`RigidBody::principal_frame_attitude`] (principal axes → space) is the state the
+///   integrators advance, and the frame of [`RigidBody::momentum`] and [`RigidBody::omega`];
+/// - [`RigidBody::body_axes_attitude`] (the body's own axes → space) is the one to render the
+///   body with: a vertex with body-axis coordinates x is at
+///   `body.body_axes_attitude().rotate_vector(&x)`.
 ///
 /// ```
 /// use rotorflow::prelude::*;
