@@ -168,9 +168,10 @@ impl RigidBody {
     ///
     /// ```
     /// use rotorflow::prelude::*;
-    /// // A cuboid whose inertia is given in axes that are not its principal axes.
+    /// // An ellipsoid whose inertia is given in axes that are not its principal axes.
     /// let turn = Rotor::from_plane_angle(3, 0, 1, 0.3)?;
-    /// let tilted = InertiaMap::from_plane_moments(&[2.0, 3.0, 4.0])?.rotated(&turn)?;
+    /// let shape = Body::solid_ellipsoid(&[1.0, 2.0, 3.0], 1.0)?.rotated(&turn.to_matrix())?;
+    /// let tilted = InertiaMap::from_body(&shape)?;
     /// let omega = Bivector::from_components(3, &[0.0, 0.0, 1.0])?;
     /// let body = RigidBody::from_body_velocity(tilted, Rotor::identity(3), &omega)?;
     /// // At t = 0 the body's own axes coincide with space; its principal axes do not.
