@@ -334,9 +334,10 @@ impl Attitude {
 ///
 /// Why not turn the attitude plane by plane: every plane rotation rounds every stored
 /// coefficient, a Strang step makes 2K − 1 of them (K = N(N−1)/2 planes), and |R R̃ − 1|
-/// random-walks with the number of roundings (like ε √(steps · K)). Here D is O(h|ω|), so its updates round relative
-/// to that small size, and the attitude is rounded once per drift. Each factor's cos − 1 is
-/// evaluated directly (no cancellation), so the factor is orthogonal to O(εθ²) rather than ε.
+/// random-walks with the number of roundings (like ε √(steps · K)). Here D is O(h|ω|), so
+/// its updates round relative to that small size, and the attitude is rounded once per
+/// drift. Each factor's cos − 1 is evaluated directly (no cancellation), so the factor is
+/// orthogonal to O(εθ²) rather than ε.
 pub(crate) struct PlaneProduct {
     dim: usize,
     /// Even coefficients (rotor attitude) or column-major N×N (matrix attitude) of P − 1.

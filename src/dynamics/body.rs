@@ -177,9 +177,14 @@ impl RigidBody {
     /// // At t = 0 the body's own axes coincide with space; its principal axes do not.
     /// let vertex = Vector::from_components(&[1.0, 2.0, 3.0])?;
     /// let placed = body.body_axes_attitude().rotate_vector(&vertex);
-    /// let gap = |v: &Vector| v.as_slice().iter().zip(vertex.as_slice()).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
-    /// assert!(gap(&placed) < 1e-14);
-    /// assert!(gap(&body.principal_frame_attitude().rotate_vector(&vertex)) > 0.1);
+    /// let distance = |v: &Vector| {
+    ///     let d: Vec<f64> = v.as_slice().iter().zip(vertex.as_slice()).map(|(a, b)| a - b).collect();
+    ///     Vector::from_components(&d).map(|d| d.norm())
+    /// };
+    /// assert!(distance(&placed)? < 1e-14);
+    /// // The principal frame's attitude would put the vertex elsewhere.
+    /// let misplaced = body.principal_frame_attitude().rotate_vector(&vertex);
+    /// assert!(distance(&misplaced)? > 0.1);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn body_axes_attitude(&self) -> Attitude {

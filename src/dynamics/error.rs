@@ -58,8 +58,9 @@ pub enum DynamicsError {
     },
     /// The adaptive integrator needed more internal steps than allowed.
     ///
-    /// How to fix: raise the bound ([`Dopri5::with_max_steps`](crate::dynamics::Dopri5::with_max_steps))
-    /// or loosen the tolerances.
+    /// How to fix: raise the bound
+    /// ([`Dopri5::with_max_steps`](crate::dynamics::Dopri5::with_max_steps)) or loosen the
+    /// tolerances.
     #[error("more than {steps} internal steps needed before t = {time}")]
     TooManySteps {
         /// The time reached.

@@ -9,7 +9,8 @@ use crate::algebra::{Bivector, Vector};
 pub struct TorqueInput<'a> {
     /// Time t.
     pub time: f64,
-    /// Attitude R (principal body frame → space, as [`RigidBody::principal_frame_attitude`](super::RigidBody::principal_frame_attitude)).
+    /// Attitude R: principal body frame → space, as
+    /// [`RigidBody::principal_frame_attitude`](super::RigidBody::principal_frame_attitude).
     pub attitude: &'a Attitude,
     /// Body-frame angular momentum L.
     pub momentum: &'a Bivector,

@@ -23,7 +23,8 @@ use embedded::EmbeddedTop;
 use top3d::AsymmetricTop;
 use two_moments::TwoMomentSolution;
 
-/// The former error type of the closed forms, now the layer's one error type.
+/// The closed forms' error type under its former name: an alias of [`DynamicsError`], the
+/// one error type of the dynamics layer.
 #[deprecated(
     note = "use `rotorflow::dynamics::DynamicsError` (one error type for the dynamics layer)"
 )]
