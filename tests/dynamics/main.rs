@@ -4,6 +4,7 @@ mod conservation;
 mod equations;
 mod large_n;
 mod motion;
+mod names;
 mod orders;
 mod paper_errata;
 mod torqued;
