@@ -1,6 +1,6 @@
 //! The exact torque-free motion of a 3D rigid body with any positive plane moments:
-//! [`AsymmetricTop`], and [`EmbeddedTop`](super::embedded::EmbeddedTop) for a 3D motion inside
-//! a body of higher dimension (the paper's sets S₁ … S₄, eqs. 59–64).
+//! [`AsymmetricTop`], and [`EmbeddedTop`] for a 3D motion inside a body of higher dimension
+//! (the paper's sets S₁ … S₄, eqs. 59–64).
 //!
 //! # Notation
 //! The body frame is the principal frame, so the plane moments I₁₂, I₁₃, I₂₃ are the
