@@ -240,7 +240,7 @@ fn paper_values(out: &mut String) -> Res<()> {
 
     // §4.2 the 5-cell of eq. (73).
     t.header("§4.2 The 5-cell of eq. (73) (eqs. 74–76)")?;
-    let body = Body::pentachoron_eq73(A, B, C, D)?;
+    let body = Body::pentachoron(A, B, C, D)?;
     let j = body.mass_tensor().clone();
     let rank4 = RankFourTensor::from_mass_tensor(&j)?;
     for (k, &(p, q)) in PLANES_4D.iter().enumerate() {

@@ -108,7 +108,7 @@ pub mod prelude {
     pub use crate::algebra::{
         AlgebraError, Bivector, Decomposition, Multivector, Product, Rotor, Signature, Vector,
     };
-    pub use crate::inertia::{Body, BodyError, InertiaError, InertiaMap};
+    pub use crate::inertia::{Body, InertiaError, InertiaMap};
 }
 
 /// The README's code blocks, compiled and run as doctests so that the README stays true.

@@ -29,7 +29,7 @@ pub fn random_rotor(r: &mut impl Rng, n: usize) -> Rotor {
 
 /// The body with principal values `j`, attitude `attitude` and body angular velocity ω.
 pub fn body_with_omega(j: &[f64], attitude: Rotor, omega: &Bivector) -> RigidBody {
-    let inertia = InertiaMap::from_principal_moments(j).unwrap();
+    let inertia = InertiaMap::from_principal_second_moments(j).unwrap();
     RigidBody::from_body_velocity(inertia, attitude, omega).unwrap()
 }
 

@@ -3,7 +3,7 @@
 use nalgebra::{DMatrix, DVector};
 use rotorflow::inertia::bodies::{
     Body, BodyError, FLATNESS_TOLERANCE, MassTensorDefect, SimplexOrientation,
-    pentachoron_eq73_positions, regular_simplex_positions,
+    pentachoron_vertices, regular_simplex_positions,
 };
 
 fn v(x: &[f64]) -> DVector<f64> {
@@ -115,11 +115,11 @@ fn closed_form_bodies_reject_bad_numbers() {
             "vertex_mass",
         );
         assert_bad_number(
-            Body::pentachoron_eq73(1.0, 1.0, bad, 1.0),
+            Body::pentachoron(1.0, 1.0, bad, 1.0),
             bad,
             "pentachoron parameters (a, b, c, d)",
         );
-        assert!(pentachoron_eq73_positions(bad, 1.0, 1.0, 1.0).is_err());
+        assert!(pentachoron_vertices(bad, 1.0, 1.0, 1.0).is_err());
         assert!(regular_simplex_positions(2, bad).is_err());
     }
     assert_eq!(

@@ -55,7 +55,7 @@ fn rank4_has_the_symmetries_stated_under_eq22() {
 
 #[test]
 fn rank4_principal_components_are_half_plane_moments() {
-    // In the principal frame I^{ijij} = ½ (J_i + J_j) (paper eqs. 40–42, DESIGN.md).
+    // In the principal frame I^{ijij} = ½ (J_i + J_j) (paper eqs. 40–42).
     let j = DMatrix::from_diagonal(&DVector::from_vec(vec![1.0, 2.5, 4.0, 7.0]));
     let t = RankFourTensor::from_mass_tensor(&j).unwrap();
     for a in 0..4 {

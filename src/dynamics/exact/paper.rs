@@ -91,11 +91,20 @@ fn check_t(t: f64) -> Result<f64, ExactError> {
 ///
 /// # Errors
 /// [`ExactError::NonFinite`] for a non-finite half-axis.
-pub fn principal_moments_from_half_axes(half_axes: &[f64]) -> Result<Vec<f64>, ExactError> {
+pub fn principal_second_moments_from_half_axes(half_axes: &[f64]) -> Result<Vec<f64>, ExactError> {
     half_axes
         .iter()
         .map(|&a| finite("half_axes", a).map(|a| a * a))
         .collect()
+}
+
+/// The principal second moments Jᵢ = aᵢ² of a body with half-axes aᵢ.
+///
+/// # Errors
+/// As [`principal_second_moments_from_half_axes`].
+#[deprecated(note = "use principal_second_moments_from_half_axes (the values are the Jᵢ)")]
+pub fn principal_moments_from_half_axes(half_axes: &[f64]) -> Result<Vec<f64>, ExactError> {
+    principal_second_moments_from_half_axes(half_axes)
 }
 
 /// Eq. (109), "a = b = c = 1, d = κ": the principal values J = (1, 1, 1, κ²).
