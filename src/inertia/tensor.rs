@@ -52,6 +52,9 @@ use nalgebra::{DMatrix, DVector};
 pub const MAX_LITERAL_CONTRACTION_DIM: usize = 8;
 
 pub use super::tolerance::SYMMETRY_TOLERANCE;
+/// The former name of [`InertiaError`] for the tensor views.
+#[allow(deprecated)]
+pub use super::error::TensorError;
 
 fn check_square(quantity: &'static str, m: &DMatrix<f64>) -> Result<usize, InertiaError> {
     if m.nrows() != m.ncols() {

@@ -223,7 +223,7 @@ fn bad_input_gives_clear_errors() {
     ));
     assert!(matches!(
         InertiaMap::from_plane_moments(&[1.0, 2.0]),
-        Err(InertiaError::WrongLength { .. })
+        Err(InertiaError::LengthMismatch { .. })
     ));
     assert!(matches!(
         InertiaMap::from_plane_moments(&[1.0, 0.0, 2.0]),
@@ -237,8 +237,9 @@ fn bad_input_gives_clear_errors() {
     assert!(matches!(
         map.try_apply(&Bivector::zero(4)),
         Err(InertiaError::DimensionMismatch {
-            map: 3,
-            argument: 4
+            expected: 3,
+            found: 4,
+            ..
         })
     ));
     // a flat body from the catalogue: the error names the degenerate plane

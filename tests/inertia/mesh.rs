@@ -3,7 +3,7 @@
 //! ball under refinement.
 use crate::common::{EPS, kuhn_triangulation, max_abs, max_abs_diff};
 use nalgebra::{DMatrix, DVector};
-use rotorflow::inertia::bodies::{Body, BodyError, SimplexOrientation};
+use rotorflow::inertia::bodies::{Body, InertiaError, SimplexOrientation};
 
 fn half_edges(n: usize) -> Vec<f64> {
     (0..n).map(|i| 0.75 + 0.5 * i as f64).collect()
@@ -63,7 +63,7 @@ fn kuhn_triangulation_signed_needs_consistent_orientation() {
         let err = Body::simplicial_mesh(&vertices, &simplices, 1.0, SimplexOrientation::Signed)
             .unwrap_err();
         assert!(
-            matches!(err, BodyError::ZeroMeshVolume { .. }),
+            matches!(err, InertiaError::ZeroMeshVolume { .. }),
             "N={n}: {err:?}"
         );
         // Reoriented (swap the last two vertices of each odd simplex): a consistently
