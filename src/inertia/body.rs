@@ -472,10 +472,10 @@ impl Body {
     /// [`InertiaError::DimensionMismatch`] if R is not of the body's dimension.
     ///
     /// ```
-    /// use rotorflow::algebra::{Bivector, Rotor, Vector};
+    /// use rotorflow::algebra::{Bivector, Vector};
     /// use rotorflow::inertia::Body;
     /// let body = Body::solid_cuboid(&[1.0, 2.0, 3.0], 1.0)?;
-    /// let quarter = Rotor::exp(&Bivector::from_plane(3, 0, 1, std::f64::consts::FRAC_PI_4)?);
+    /// let quarter = Bivector::from_plane(3, 0, 1, std::f64::consts::FRAC_PI_4)?.exp();
     /// let turned = body.rotated_by(&quarter)?.translated_by(&Vector::basis(3, 2))?;
     /// assert!((turned.mass_tensor()[(0, 0)] - body.mass_tensor()[(1, 1)]).abs() < 1e-12);
     /// assert!((turned.center_of_mass_vector().as_slice()[2] - 1.0).abs() < 1e-15);

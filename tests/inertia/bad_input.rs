@@ -428,11 +428,11 @@ fn from_mass_properties_checks_the_tensor() {
     assert!(Body::from_mass_properties(1.0, c.clone(), DMatrix::identity(2, 2), None).is_ok());
     assert!(matches!(
         Body::from_mass_properties(1.0, c.clone(), DMatrix::identity(3, 3), None),
-        Err(InertiaError::LengthMismatch {
+        Err(InertiaError::WrongShape {
             quantity: "mass_tensor",
             expected: 2,
-            found: 3,
-            ..
+            rows: 3,
+            cols: 3,
         })
     ));
     let asym = DMatrix::from_row_slice(2, 2, &[1.0, 0.5, 0.0, 1.0]);

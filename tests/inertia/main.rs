@@ -5,6 +5,7 @@
 mod common;
 
 mod bad_input;
+mod api;
 mod catalogue;
 mod invariance;
 mod map;
