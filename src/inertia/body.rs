@@ -78,7 +78,7 @@ impl Body {
 
     /// Returns the body made of point masses `masses[k]` at `positions[k]`.
     ///
-    /// The centre of mass is c = Σ m_k x_k / Σ m_k and J = Σ m_k (x_k − c)(x_k − c)ᵀ
+    /// The centre of mass is c = Σ mₖ xₖ / Σ mₖ and J = Σ mₖ (xₖ − c)(xₖ − c)ᵀ
     /// (see the Conventions chapter of the rotorflow book). The volume is `None`.
     ///
     /// # Errors
@@ -133,8 +133,8 @@ impl Body {
     /// Returns the union of `parts`, which must not overlap, each already placed (see
     /// [`Body::placed`]).
     ///
-    /// Mass Σ m_k, centre c = Σ m_k c_k / M, and J = Σ_k (J_k + m_k d_k d_kᵀ) with
-    /// d_k = c_k − c (parallel-axis theorem). The volume is the sum of the
+    /// Mass Σ mₖ, centre c = Σ mₖ cₖ / M, and J = Σₖ (Jₖ + mₖ dₖ dₖᵀ) with
+    /// dₖ = cₖ − c (parallel-axis theorem). The volume is the sum of the
     /// parts' volumes if every part has one, else `None`. Overlaps are not detected: they
     /// count twice.
     ///
@@ -312,12 +312,12 @@ impl Body {
         (values, axes)
     }
 
-    /// Returns the plane moments J_ii + J_jj in the body's own axes, one per plane (i, j),
+    /// Returns the plane moments Jᵢᵢ + Jⱼⱼ in the body's own axes, one per plane (i, j),
     /// i < j, in lexicographic order 12, 13, …, 1N, 23, … ([`plane_index_pairs`]).
     ///
     /// In the principal frame these are the eigenvalues of the inertia map on bivectors,
-    /// I(e_i ∧ e_j) = (J_i + J_j) e_i ∧ e_j (see the Conventions chapter of the rotorflow book). In a general frame they
-    /// are its diagonal entries ⟨e_i∧e_j, I(e_i∧e_j)⟩. Empty for N = 1.
+    /// I(eᵢ ∧ eⱼ) = (Jᵢ + Jⱼ) eᵢ ∧ eⱼ (see the Conventions chapter of the rotorflow book). In a general frame they
+    /// are its diagonal entries ⟨eᵢ∧eⱼ, I(eᵢ∧eⱼ)⟩. Empty for N = 1.
     pub fn plane_moments(&self) -> DVector<f64> {
         let pairs = plane_index_pairs(self.dim);
         DVector::from_iterator(
@@ -328,10 +328,10 @@ impl Body {
         )
     }
 
-    /// Returns the principal plane moments J_i + J_j (principal moments ascending, planes in
+    /// Returns the principal plane moments Jᵢ + Jⱼ (principal moments ascending, planes in
     /// lexicographic order), the eigenvalues of the inertia map.
     ///
-    /// In 4D they satisfy I_12 + I_34 = I_13 + I_24 = I_14 + I_23 = tr J.
+    /// In 4D they satisfy I₁₂ + I₃₄ = I₁₃ + I₂₄ = I₁₄ + I₂₃ = tr J.
     pub fn principal_plane_moments(&self) -> DVector<f64> {
         let moments = self.principal_second_moments();
         let pairs = plane_index_pairs(self.dim);
@@ -375,7 +375,7 @@ impl Body {
     }
 
     /// Checks that the inertia map I(ω) = J\[ω\] + \[ω\]J is invertible, i.e. every principal
-    /// plane moment Jₐ + J_b exceeds `rel_tol` times the largest plane moment. This fails
+    /// plane moment Jₖ + Jₗ exceeds `rel_tol` times the largest plane moment. This fails
     /// exactly when the body is flat in at least two directions (or N ≥ 2 and the body is a
     /// point).
     ///

@@ -5,18 +5,18 @@
 //!
 //! | body | volume | J (principal) |
 //! |---|---|---|
-//! | solid cuboid, half-edges a_i | Π 2a_i | m a_i²/3 |
-//! | solid ellipsoid, semi-axes a_i | V_N Π a_i | m a_i²/(N+2) |
-//! | solid ball, radius R | V_N R^N | m R²/(N+2) |
-//! | shell S^{N−1}, radius R | — (area N V_N R^{N−1}) | m R²/N |
-//! | solid simplex, vertices v_k | \|det\|/N! | vertex formula below |
-//! | 2^N vertices (±a_i) | — | 2^N μ a_i² |
-//! | 2N vertices ±r e_i | — | 2 μ r² |
+//! | solid cuboid, half-edges aᵢ | Π 2aᵢ | m aᵢ²/3 |
+//! | solid ellipsoid, semi-axes aᵢ | V_N Π aᵢ | m aᵢ²/(N+2) |
+//! | solid ball, radius R | V_N Rᴺ | m R²/(N+2) |
+//! | shell Sᴺ⁻¹, radius R | — (area N V_N Rᴺ⁻¹) | m R²/N |
+//! | solid simplex, vertices vₖ | \|det\|/N! | vertex formula below |
+//! | 2ᴺ vertices (±aᵢ) | — | 2ᴺ μ aᵢ² |
+//! | 2N vertices ±r eᵢ | — | 2 μ r² |
 //! | regular simplex, circumradius r | — | (N+1) μ r²/N |
 //!
-//! Here V_N = π^{N/2}/Γ(N/2 + 1) is the volume of the unit N-ball (paper eq. 99) and μ is the
+//! Here V_N = π^(N/2)/Γ(N/2 + 1) is the volume of the unit N-ball (paper eq. 99) and μ is the
 //! mass of one vertex. The simplex vertex formula is
-//! ∫ x xᵀ dV = Vol/((N+1)(N+2)) [Σ v_k v_kᵀ + (Σ v_k)(Σ v_k)ᵀ].
+//! ∫ x xᵀ dV = Vol/((N+1)(N+2)) [Σ vₖ vₖᵀ + (Σ vₖ)(Σ vₖ)ᵀ].
 
 use super::body::Body;
 use super::InertiaError;
@@ -25,11 +25,11 @@ use super::tolerance::DEGENERACY_TOLERANCE;
 use super::validate::{check_dim, check_points, check_positive, check_positive_list};
 use nalgebra::{DMatrix, DVector};
 
-/// Returns the volume V_N = π^{N/2}/Γ(N/2 + 1) of the unit ball in N dimensions (paper
+/// Returns the volume V_N = π^(N/2)/Γ(N/2 + 1) of the unit ball in N dimensions (paper
 /// eq. 99).
 ///
-/// Computed by the recurrence V_0 = 1, V_1 = 2, V_N = (2π/N) V_{N−2}, which avoids the gamma
-/// function. V_2 = π, V_3 = 4π/3, V_4 = π²/2.
+/// Computed by the recurrence V₀ = 1, V₁ = 2, V_N = (2π/N) V_(N−2), which avoids the gamma
+/// function. V₂ = π, V₃ = 4π/3, V₄ = π²/2.
 pub fn unit_ball_volume(dim: usize) -> f64 {
     let mut v = if dim.is_multiple_of(2) { 1.0 } else { 2.0 };
     let mut k = if dim.is_multiple_of(2) { 2 } else { 3 };
@@ -40,7 +40,7 @@ pub fn unit_ball_volume(dim: usize) -> f64 {
     v
 }
 
-/// Returns the (N−1)-dimensional area of the unit sphere S^{N−1} ⊂ ℝ^N, which is N V_N
+/// Returns the (N−1)-dimensional area of the unit sphere Sᴺ⁻¹ ⊂ ℝᴺ, which is N V_N
 /// (paper eq. 99, ∂V_(N) at R = 1).
 ///
 /// For N = 1 the "sphere" is the two points ±1 and the area is their count, 2.
@@ -51,10 +51,10 @@ pub fn unit_sphere_area(dim: usize) -> f64 {
 /// Returns the N+1 vertices of a regular N-simplex centred at the origin with circumradius
 /// `circumradius`.
 ///
-/// Vertex k has coordinates r √((N+1)/N) h_j\[k\], where h_j (j = 1…N) are the rows of the
-/// Helmert matrix: h_j = (1, …, 1, −j, 0, …, 0)/√(j(j+1)) with j ones. The rows are
+/// Vertex k has coordinates r √((N+1)/N) hⱼ\[k\], where hⱼ (j = 1…N) are the rows of the
+/// Helmert matrix: hⱼ = (1, …, 1, −j, 0, …, 0)/√(j(j+1)) with j ones. The rows are
 /// orthonormal and orthogonal to (1, …, 1), so the vertices are the images of the standard
-/// basis e_0…e_N of ℝ^{N+1}, centred and scaled. The edge is r √(2(N+1)/N).
+/// basis e₀…e_N of ℝᴺ⁺¹, centred and scaled. The edge is r √(2(N+1)/N).
 ///
 /// # Errors
 /// [`InertiaError::DimensionTooSmall`] for N = 0; [`InertiaError::NonFinite`] or
@@ -120,12 +120,12 @@ pub fn pentachoron_vertices(
 }
 
 impl Body {
-    /// Returns 2^N equal point masses `vertex_mass` at the vertices (±a_1, …, ±a_N) of the
-    /// hyper-cuboid with half-edges `half_edges` = (a_1, …, a_N), centred at the origin.
+    /// Returns 2ᴺ equal point masses `vertex_mass` at the vertices (±a₁, …, ±a_N) of the
+    /// hyper-cuboid with half-edges `half_edges` = (a₁, …, a_N), centred at the origin.
     ///
     /// With `vertex_mass = 1` and N = 4 this is the paper's tesseract of unit masses (eq. 69,
-    /// with half-edges a, b, c, d as in the paper's §5). Mass 2^N μ and
-    /// J = diag(2^N μ a_i²) exactly (each coordinate is ±a_i at every vertex, and the
+    /// with half-edges a, b, c, d as in the paper's §5). Mass 2ᴺ μ and
+    /// J = diag(2ᴺ μ aᵢ²) exactly (each coordinate is ±aᵢ at every vertex, and the
     /// off-diagonal sums cancel by symmetry).
     ///
     /// # Errors
@@ -148,7 +148,7 @@ impl Body {
     /// [`regular_simplex_positions`]).
     ///
     /// Mass (N+1) μ and J = (N+1) μ r²/N · 1: J is isotropic because the symmetry group of
-    /// the simplex acts irreducibly, and tr J = Σ |x_k|² = (N+1) r².
+    /// the simplex acts irreducibly, and tr J = Σ |xₖ|² = (N+1) r².
     ///
     /// # Errors
     /// [`InertiaError::DimensionTooSmall`] for N = 0; [`InertiaError::NonFinite`],
@@ -197,10 +197,10 @@ impl Body {
         Body::pentachoron(a, b, c, d)
     }
 
-    /// Returns 2N equal point masses `vertex_mass` at the vertices ±r e_i of the
+    /// Returns 2N equal point masses `vertex_mass` at the vertices ±r eᵢ of the
     /// cross-polytope (orthoplex) centred at the origin.
     ///
-    /// Mass 2N μ and J = 2 μ r² · 1 (only the two vertices on axis i contribute to J_ii).
+    /// Mass 2N μ and J = 2 μ r² · 1 (only the two vertices on axis i contribute to Jᵢᵢ).
     ///
     /// # Errors
     /// [`InertiaError::DimensionTooSmall`] for N = 0; [`InertiaError::NonFinite`],
@@ -218,11 +218,11 @@ impl Body {
         Body::new_checked(mass, DVector::zeros(dim), j, None)
     }
 
-    /// Returns the solid hyper-cuboid [−a_1, a_1] × … × [−a_N, a_N] of uniform `density`.
+    /// Returns the solid hyper-cuboid [−a₁, a₁] × … × [−a_N, a_N] of uniform `density`.
     ///
-    /// Volume Π 2a_i (paper eqs. 77 and 81 for N = 4, 5), mass ρ·Volume, and
-    /// J = diag(m a_i²/3), since (1/2a)∫_{−a}^{a} x² dx = a²/3 (with edge
-    /// 2a_i: m (2a_i)²/12).
+    /// Volume Π 2aᵢ (paper eqs. 77 and 81 for N = 4, 5), mass ρ·Volume, and
+    /// J = diag(m aᵢ²/3), since (1/2a)∫₋ₐᵃ x² dx = a²/3 (with edge
+    /// 2aᵢ: m (2aᵢ)²/12).
     ///
     /// # Errors
     /// [`InertiaError::Empty`], [`InertiaError::NonFinite`], [`InertiaError::NotPositive`],
@@ -240,11 +240,11 @@ impl Body {
         Body::new_checked(mass, DVector::zeros(dim), j, Some(volume))
     }
 
-    /// Returns the solid ellipsoid Σ (x_i/a_i)² ≤ 1 of uniform `density`.
+    /// Returns the solid ellipsoid Σ (xᵢ/aᵢ)² ≤ 1 of uniform `density`.
     ///
-    /// Volume V_N Π a_i with V_N = π^{N/2}/Γ(N/2 + 1) ([`unit_ball_volume`], paper eq. 99),
-    /// mass ρ·Volume, and J = diag(m a_i²/(N+2)) (the ellipsoid is the
-    /// image of the unit ball under diag(a_i), and the unit ball has ∫x_i² dV/V = 1/(N+2)).
+    /// Volume V_N Π aᵢ with V_N = π^(N/2)/Γ(N/2 + 1) ([`unit_ball_volume`], paper eq. 99),
+    /// mass ρ·Volume, and J = diag(m aᵢ²/(N+2)) (the ellipsoid is the
+    /// image of the unit ball under diag(aᵢ), and the unit ball has ∫xᵢ² dV/V = 1/(N+2)).
     ///
     /// # Errors
     /// [`InertiaError::Empty`], [`InertiaError::NonFinite`], [`InertiaError::NotPositive`],
@@ -265,7 +265,7 @@ impl Body {
 
     /// Returns the solid N-ball of radius R and uniform `density`, centred at the origin.
     ///
-    /// Volume V_N R^N (paper eq. 99), J = m R²/(N+2) · 1. The paper's
+    /// Volume V_N Rᴺ (paper eq. 99), J = m R²/(N+2) · 1. The paper's
     /// polar moment tr J/m = N R²/(N+2) is its eq. (102).
     ///
     /// # Errors
@@ -277,10 +277,10 @@ impl Body {
         Body::solid_ellipsoid(&vec![radius; dim], density)
     }
 
-    /// Returns the hollow hypersphere S^{N−1} of radius R with uniform `surface_density` σ.
+    /// Returns the hollow hypersphere Sᴺ⁻¹ of radius R with uniform `surface_density` σ.
     ///
-    /// Mass σ · N V_N R^{N−1} (the area ∂V_(N) of paper eq. 99) and J = m R²/N · 1, since
-    /// Σ_i x_i² = R² on the sphere and all axes are equivalent. The
+    /// Mass σ · N V_N Rᴺ⁻¹ (the area ∂V_(N) of paper eq. 99) and J = m R²/N · 1, since
+    /// Σᵢ xᵢ² = R² on the sphere and all axes are equivalent. The
     /// volume is `None`. For N = 1 the "sphere" is the two points ±R, each of mass σ.
     ///
     /// # Errors
@@ -300,16 +300,16 @@ impl Body {
         Body::new_checked(mass, DVector::zeros(dim), j, None)
     }
 
-    /// Returns the solid N-simplex with the given N+1 vertices in ℝ^N and uniform `density`.
+    /// Returns the solid N-simplex with the given N+1 vertices in ℝᴺ and uniform `density`.
     ///
-    /// Volume |det[v_1 − v_0, …, v_N − v_0]|/N!, centre of mass the vertex mean c, and, with
-    /// w_k = v_k − c (so Σ w_k = 0), J = m/((N+1)(N+2)) Σ_k w_k w_kᵀ. This is the vertex
-    /// formula ∫ x xᵀ dV = Vol/((N+1)(N+2)) [Σ v_k v_kᵀ + (Σ v_k)(Σ v_k)ᵀ]
+    /// Volume |det[v₁ − v₀, …, v_N − v₀]|/N!, centre of mass the vertex mean c, and, with
+    /// wₖ = vₖ − c (so Σ wₖ = 0), J = m/((N+1)(N+2)) Σₖ wₖ wₖᵀ. This is the vertex
+    /// formula ∫ x xᵀ dV = Vol/((N+1)(N+2)) [Σ vₖ vₖᵀ + (Σ vₖ)(Σ vₖ)ᵀ]
     /// applied about the centroid.
     ///
     /// # Errors
     /// [`InertiaError::Empty`], [`InertiaError::LengthMismatch`] (the number of vertices must be
-    /// N+1 for points in ℝ^N), [`InertiaError::NonFinite`], [`InertiaError::NotPositive`],
+    /// N+1 for points in ℝᴺ), [`InertiaError::NonFinite`], [`InertiaError::NotPositive`],
     /// [`InertiaError::DegenerateSimplex`] when the vertices are affinely dependent.
     pub fn solid_simplex(vertices: &[DVector<f64>], density: f64) -> Result<Body, InertiaError> {
         let dim = check_points("vertices", vertices)?;

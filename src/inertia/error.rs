@@ -222,7 +222,7 @@ pub enum InertiaError {
         first: DVector<f64>,
         /// Second unit vector spanning the degenerate plane.
         second: DVector<f64>,
-        /// Its plane moment Jₐ + J_b.
+        /// Its plane moment Jₖ + Jₗ.
         plane_moment: f64,
         /// The largest plane moment, for scale.
         largest: f64,

@@ -712,7 +712,7 @@ fn packed_to_dense(n: usize, packed: &[f64]) -> DMatrix<f64> {
     m
 }
 
-/// out = packed([J][ω] + [ω][J]) for i < j: Σ_k J_ik ω_kj + ω_ik J_kj, from dense rows on the
+/// out = packed([J][ω] + [ω][J]) for i < j: Σₖ Jᵢₖ ωₖⱼ + ωᵢₖ Jₖⱼ, from dense rows on the
 /// stack (N ≤ 16).
 fn jw_plus_wj(n: usize, j: &DMatrix<f64>, omega: &[f64], out: &mut [f64]) {
     let mut stack = [0.0f64; 256];

@@ -11,7 +11,7 @@ use smallvec::SmallVec;
 /// How the simplices of a mesh are combined by [`Body::simplicial_mesh`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SimplexOrientation {
-    /// Each simplex contributes with the sign of det[v_1 − v_0, …, v_N − v_0].
+    /// Each simplex contributes with the sign of det[v₁ − v₀, …, v_N − v₀].
     ///
     /// Use this for consistently oriented meshes: a tiling whose simplices all have the same
     /// orientation, or cones over a closed, consistently oriented boundary, which may be
@@ -29,10 +29,10 @@ impl Body {
     /// Returns the uniform-density body filling a mesh of N-simplices.
     ///
     /// # Accepted format
-    /// - `vertices`: points in ℝ^N, all of the same length N ≥ 1.
+    /// - `vertices`: points in ℝᴺ, all of the same length N ≥ 1.
     /// - `simplices`: one entry per N-simplex, each listing N+1 distinct 0-based indices into
     ///   `vertices`. The order of the indices fixes the orientation sign of
-    ///   det[v_1 − v_0, …, v_N − v_0].
+    ///   det[v₁ − v₀, …, v_N − v₀].
     /// - `orientation`: [`SimplexOrientation::Signed`] sums signed contributions (a tiling
     ///   with one orientation, or cones over a closed consistently oriented boundary, as in
     ///   ten Bosch 2020; a negative total is flipped); [`SimplexOrientation::Unsigned`] sums
@@ -159,10 +159,10 @@ fn factorial(n: usize) -> f64 {
 
 /// Signed volume, first moment ∫ x dV and second moment ∫ x xᵀ dV of the simplex with the
 /// given vertices (already relative to the reference point), all with the sign of
-/// det[w_1 − w_0, …, w_N − w_0]. Also returns the relative volume |det| / Π|edges|.
+/// det[w₁ − w₀, …, w_N − w₀]. Also returns the relative volume |det| / Π|edges|.
 ///
 /// Formulas: Vol = det/N!, ∫x dV = Vol s/(N+1), ∫ x xᵀ dV = Vol/((N+1)(N+2)) (Σ w wᵀ + s sᵀ)
-/// with s = Σ w_k.
+/// with s = Σ wₖ.
 pub(super) fn simplex_moments(w: &[&DVector<f64>]) -> (f64, DVector<f64>, DMatrix<f64>, f64) {
     let n = w.len() - 1;
     let mut edges = DMatrix::zeros(n, n);
@@ -274,7 +274,7 @@ fn finish_mesh(
 /// per simplex (stack scratch for N ≤ 16): the hot loop of mesh inertia.
 ///
 /// Per simplex with vertices w₀ … w_N (relative to the reference point): Vol = det/N!,
-/// ∫x dV = Vol s/(N+1), ∫x xᵀ dV = Vol/((N+1)(N+2)) (Σ w wᵀ + s sᵀ), s = Σ w_k
+/// ∫x dV = Vol s/(N+1), ∫x xᵀ dV = Vol/((N+1)(N+2)) (Σ w wᵀ + s sᵀ), s = Σ wₖ
 /// (the vertex formula); only the upper triangle is accumulated.
 struct MeshAccumulator {
     n: usize,
@@ -526,7 +526,7 @@ fn determinant_in_place(a: &mut [f64], n: usize) -> f64 {
 /// Checks that facets sharing an (N−2)-face (by vertex index) induce opposite orientations on
 /// it, and names a flipped facet otherwise.
 ///
-/// Removing vertex k from a facet (v₀, …, v_{N−1}) leaves a face with induced orientation
+/// Removing vertex k from a facet (v₀, …, v_(N−1)) leaves a face with induced orientation
 /// (−1)ᵏ; written with sorted indices, it gains the sign of the sorting permutation. Two
 /// facets agree across a face when these signs are opposite. Walking the facet adjacency
 /// from each unvisited facet assigns every facet "kept" or "flipped" relative to the first

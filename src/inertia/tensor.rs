@@ -8,40 +8,40 @@
 //!
 //! # The rank-4 tensor (eq. 22, the crate's normalisation)
 //!
-//! I^{ijkl} = ½ (δ_ik J_jl − δ_il J_jk − δ_jk J_il + δ_jl J_ik), so I^{ijij} = ½ (J_i + J_j)
-//! for i ≠ j in the principal frame, and L_ij = Σ_{k,l} I^{ijkl} ω_kl (sum over all k, l)
+//! Iⁱʲᵏˡ = ½ (δᵢₖ Jⱼₗ − δᵢₗ Jⱼₖ − δⱼₖ Jᵢₗ + δⱼₗ Jᵢₖ), so Iⁱʲⁱʲ = ½ (Jᵢ + Jⱼ)
+//! for i ≠ j in the principal frame, and Lᵢⱼ = Σₖₗ Iⁱʲᵏˡ ωₖₗ (sum over all k, l)
 //! gives \[L\] = J\[ω\] + \[ω\]J. It has the symmetries stated under eq. (22):
-//! I^{ijkl} = −I^{jikl} = −I^{ijlk} = I^{klij} and I^{ijkl} + I^{iklj} + I^{iljk} = 0.
+//! Iⁱʲᵏˡ = −Iʲⁱᵏˡ = −Iⁱʲˡᵏ = Iᵏˡⁱʲ and Iⁱʲᵏˡ + Iⁱᵏˡʲ + Iⁱˡʲᵏ = 0.
 //! This is half of Parker's (2024) Kulkarni–Nomizu normalisation (Parker, Int. J. Theor. Phys. 63, 2024, doi:10.1007/s10773-023-05505-7).
 //!
 //! # The contracted matrix 𝕀 (eqs. 23, 24, 30, 31)
 //!
-//! Read literally, eq. (31) is 𝕀^{pm} = Σ ε_{p s t r…n} ε_{m r…n k l} I^{stkl}, summed over
+//! Read literally, eq. (31) is 𝕀ᵖᵐ = Σ εₚₛₜᵣ…ₙ εₘᵣ…ₙₖₗ Iˢᵗᵏˡ, summed over
 //! s, t, k, l and the N − 3 extra indices r…n (eq. 30); for N = 3 this is eq. (23) and for
 //! N = 4 eq. (24). Moving k, l past the N − 3 extra indices is an even permutation, and
-//! Σ_{r…n} ε_{p s t r…n} ε_{m k l r…n} = (N − 3)! δ^{pst}_{mkl}, which with eq. (22) gives
+//! Σᵣ…ₙ εₚₛₜᵣ…ₙ εₘₖₗᵣ…ₙ = (N − 3)! δᵖˢᵗₘₖₗ, which with eq. (22) gives
 //!
-//! **𝕀 = 2 (N − 2)! (tr J · 1 − J)**, i.e. 𝕀^{pp} = 2 (N − 2)! Σ_{q ≠ p} J_q in the
+//! **𝕀 = 2 (N − 2)! (tr J · 1 − J)**, i.e. 𝕀ᵖᵖ = 2 (N − 2)! Σ Jᵣ (sum over r ≠ p) in the
 //! principal frame.
 //!
 //! tr J · 1 − J is the N-dimensional axis-moment tensor: its entry (p, p) is
-//! ∫ (|x|² − x_p²) dm, the second moment about the axis e_p; in 3D it is the classical
-//! inertia tensor. In terms of plane moments, Σ_{q≠p} J_q = (1/(N−2)) Σ_{planes (s,t) ∌ p}
-//! (J_s + J_t), so 𝕀^{pp} = 2 (N − 3)! × (sum of the plane moments of the planes orthogonal
-//! to e_p). In 3D the literal eq. (23) is therefore twice the classical inertia tensor, and
+//! ∫ (|x|² − xₚ²) dm, the second moment about the axis eₚ; in 3D it is the classical
+//! inertia tensor. In terms of plane moments, Σ Jᵣ (r ≠ p) = (1/(N−2)) Σ (Jₛ + Jₜ) over the planes (s, t) ∌ p,
+//! so 𝕀ᵖᵖ = 2 (N − 3)! × (sum of the plane moments of the planes orthogonal
+//! to eₚ). In 3D the literal eq. (23) is therefore twice the classical inertia tensor, and
 //! in 4D eq. (24) is four times the axis-moment tensor.
 //!
 //! The paper itself uses three different normalisations of 𝕀 (tested in
 //! `tests/paper_errata.rs`); [`ContractionNormalization`] offers all three, and the crate's
 //! choice is the literal one, [`ContractionNormalization::LeviCivita`]:
-//! - eq. (26) (4D) writes −𝕀_I as a sum of six components I^{stts}, which gives
-//!   (N − 2)(tr J − J_p) = half of the literal eq. (24): [`ContractionNormalization::PlaneSum`];
+//! - eq. (26) (4D) writes −𝕀_I as a sum of six components Iˢᵗᵗˢ, which gives
+//!   (N − 2)(tr J − Jₚ) = half of the literal eq. (24): [`ContractionNormalization::PlaneSum`];
 //! - the examples in eqs. (79), (80), (87)–(89), (95), (98) and (106) use tr J · 1 − J:
 //!   [`ContractionNormalization::AxisMoment`];
 //! - eqs. (75), (76) match the literal eq. (24), and eq. (71) matches eq. (26).
 //!
 //! The gyration radii (Poinsot half-axes) are 𝕀_α = μ L_α², L_α = √(𝕀_α/μ) (eq. 27) and the
-//! trace is 𝕀_0 = tr 𝕀 = μ Σ L_α² (eq. 29). They inherit the normalisation of 𝕀.
+//! trace is 𝕀₀ = tr 𝕀 = μ Σ L_α² (eq. 29). They inherit the normalisation of 𝕀.
 
 use super::InertiaError;
 use super::validate::{check_finite_matrix, check_positive, check_symmetric, max_abs};
@@ -137,14 +137,14 @@ fn for_each_permutation(items: &mut [usize], mut f: impl FnMut(&[usize])) {
     }
 }
 
-/// The rank-4 inertia tensor I^{ijkl} of the paper's eq. (22), with the crate's
-/// normalisation I^{ijkl} = ½ (δ_ik J_jl − δ_il J_jk − δ_jk J_il + δ_jl J_ik).
+/// The rank-4 inertia tensor Iⁱʲᵏˡ of the paper's eq. (22), with the crate's
+/// normalisation Iⁱʲᵏˡ = ½ (δᵢₖ Jⱼₗ − δᵢₗ Jⱼₖ − δⱼₖ Jᵢₗ + δⱼₗ Jᵢₖ).
 ///
 /// Stored densely as N⁴ numbers. Indices are 0-based; component (i, j, k, l) lives at
 /// `components()[((i·N + j)·N + k)·N + l]`.
 ///
 /// # Example
-/// In the principal frame I^{ijij} is half the plane moment:
+/// In the principal frame Iⁱʲⁱʲ is half the plane moment:
 /// ```
 /// use rotorflow::inertia::tensor::RankFourTensor;
 /// use nalgebra::{DMatrix, DVector};
@@ -197,7 +197,7 @@ impl RankFourTensor {
         &self.components
     }
 
-    /// Returns I^{ijkl} (0-based indices), or `None` if an index is ≥ N.
+    /// Returns Iⁱʲᵏˡ (0-based indices), or `None` if an index is ≥ N.
     ///
     /// See also [`RankFourTensor::get`], which panics instead.
     pub fn try_get(&self, i: usize, j: usize, k: usize, l: usize) -> Option<f64> {
@@ -209,7 +209,7 @@ impl RankFourTensor {
         }
     }
 
-    /// Returns I^{ijkl} (0-based indices).
+    /// Returns Iⁱʲᵏˡ (0-based indices).
     ///
     /// # Panics
     /// If an index is ≥ N. See [`RankFourTensor::try_get`] for the non-panicking form.
@@ -224,7 +224,7 @@ impl RankFourTensor {
         }
     }
 
-    /// Returns the angular momentum \[L\] with L_ij = Σ_{k,l} I^{ijkl} ω_kl, summed over all k
+    /// Returns the angular momentum \[L\] with Lᵢⱼ = Σₖₗ Iⁱʲᵏˡ ωₖₗ, summed over all k
     /// and l (paper eq. 32; see the Conventions chapter of the rotorflow book). It equals J\[ω\] + \[ω\]J.
     ///
     /// # Errors
@@ -248,11 +248,11 @@ impl RankFourTensor {
         Ok(l)
     }
 
-    /// Returns the paper's rotational energy W = ½ Σ_{i,j,k,l} ω_ij I^{ijkl} ω_kl of eq. (34),
+    /// Returns the paper's rotational energy W = ½ Σᵢⱼₖₗ ωᵢⱼ Iⁱʲᵏˡ ωₖₗ of eq. (34),
     /// read literally (all index sums over 1…N).
     ///
     /// With the eq. (22) normalisation this is **twice** the kinetic energy
-    /// T = ½ ⟨ω, L⟩ = ½ Σ_{i<j} ω_ij L_ij of the crate (see the Conventions chapter of the rotorflow book), because the double sum over i, j
+    /// T = ½ ⟨ω, L⟩ = ½ Σ ωᵢⱼ Lᵢⱼ (sum over i < j) of the crate (see the Conventions chapter of the rotorflow book), because the double sum over i, j
     /// counts every plane twice. See `paper_eq_34_energy_is_twice_kinetic_energy`.
     ///
     /// # Errors
@@ -262,7 +262,7 @@ impl RankFourTensor {
         Ok(0.5 * omega.component_mul(&l).sum())
     }
 
-    /// Returns the matrix 𝕀^{pm} = Σ ε_{p s t r…n} ε_{m r…n k l} I^{stkl} of eqs. (23), (24),
+    /// Returns the matrix 𝕀ᵖᵐ = Σ εₚₛₜᵣ…ₙ εₘᵣ…ₙₖₗ Iˢᵗᵏˡ of eqs. (23), (24),
     /// (30) and (31), evaluated literally as a sum over all index values.
     ///
     /// Only index tuples where both Levi-Civita symbols are non-zero are visited: (p, s, t,
@@ -331,7 +331,7 @@ pub enum ContractionNormalization {
     /// it in 4D: c_N = N − 2 (1 in 3D, 2 in 4D). Equals the literal contraction divided by
     /// 2 (N − 3)!.
     PlaneSum,
-    /// The axis-moment tensor tr J · 1 − J, whose entry (p, p) is ∫ (|x|² − x_p²) dm, the
+    /// The axis-moment tensor tr J · 1 − J, whose entry (p, p) is ∫ (|x|² − xₚ²) dm, the
     /// classical inertia tensor in 3D: c_N = 1. The normalisation of the paper's examples
     /// in eqs. (79), (80), (87)–(89), (95), (98), (106).
     AxisMoment,
@@ -354,7 +354,7 @@ impl ContractionNormalization {
 /// values (eq. 25), gyration radii (eq. 27) and trace (eq. 29).
 ///
 /// 𝕀 = c_N (tr J · 1 − J) with c_N from [`ContractionNormalization::factor`]. Its
-/// eigenvectors are those of J; in the principal frame 𝕀_α = c_N Σ_{q≠α} J_q.
+/// eigenvectors are those of J; in the principal frame 𝕀_α = c_N Σ Jᵣ (sum over r ≠ α).
 ///
 /// # Example
 /// The paper's 5-cell (eq. 73) with a = b = c = d = 1 has J = 5/4 · 1, so the literal
@@ -414,12 +414,12 @@ impl ContractedInertia {
         self.matrix.nrows()
     }
 
-    /// Returns the matrix 𝕀^{pm}.
+    /// Returns the matrix 𝕀ᵖᵐ.
     pub fn matrix(&self) -> &DMatrix<f64> {
         &self.matrix
     }
 
-    /// Returns the diagonal 𝕀^{pp} in the frame of J. When J is given in its principal frame
+    /// Returns the diagonal 𝕀ᵖᵖ in the frame of J. When J is given in its principal frame
     /// (as for every catalogue body) these are the 𝕀_I, 𝕀_II, … of eq. (25), in axis order.
     pub fn axis_values(&self) -> DVector<f64> {
         self.matrix.diagonal()
@@ -433,12 +433,12 @@ impl ContractedInertia {
         DVector::from_vec(values)
     }
 
-    /// Returns the trace 𝕀_0 = tr 𝕀 = c_N (N − 1) tr J (eq. 29).
+    /// Returns the trace 𝕀₀ = tr 𝕀 = c_N (N − 1) tr J (eq. 29).
     pub fn trace(&self) -> f64 {
         self.matrix.trace()
     }
 
-    /// Returns the gyration radii L_α = √(𝕀^{αα}/μ) of eq. (27) from [`axis_values`]
+    /// Returns the gyration radii L_α = √(𝕀^(αα)/μ) of eq. (27) from [`axis_values`]
     /// (axis order; the Poinsot half-axes when J is principal).
     ///
     /// [`axis_values`]: ContractedInertia::axis_values

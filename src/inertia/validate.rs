@@ -146,7 +146,7 @@ pub(super) fn check_moments_nonnegative(moments: &[f64]) -> Result<(), InertiaEr
     Ok(())
 }
 
-/// The principal plane (a, b) with the smallest plane moment Jₐ + J_b, its moment and the
+/// The principal plane (k, l) with the smallest plane moment Jₖ + Jₗ, its moment and the
 /// largest plane moment, when that smallest moment is at most `rel_tol` times the largest
 /// (the map is singular); `None` otherwise. `moments` are the principal second moments.
 pub(super) fn singular_plane(moments: &[f64], rel_tol: f64) -> Option<((usize, usize), f64, f64)> {
