@@ -4,11 +4,11 @@
 
 use super::InertiaError;
 use super::tolerance::{ORTHOGONALITY_TOLERANCE, SINGULAR_PLANE_TOLERANCE};
-use crate::algebra::{Rotor, Vector};
 use super::validate::{
     check_dim, check_finite_matrix, check_moments_nonnegative, check_point, check_points,
     check_positive, check_symmetric, max_abs, singular_plane, sorted_eigen, symmetrize,
 };
+use crate::algebra::{Rotor, Vector};
 use nalgebra::{DMatrix, DVector};
 
 /// A rigid body in N dimensions: mass, centre of mass, mass tensor about the centre of mass,
@@ -211,8 +211,6 @@ impl Body {
         Body::new_checked(mass, center_of_mass, j, volume)
     }
 
-
-
     /// Returns the dimension N of the space the body lives in.
     pub fn dim(&self) -> usize {
         self.dim
@@ -346,7 +344,7 @@ impl Body {
     ///
     /// A body with k flat directions lies in an (N−k)-dimensional affine subspace through its
     /// centre of mass. A single point is flat in every direction. Use
-    /// [`FLATNESS_TOLERANCE`] unless you have a reason not to.
+    /// [`FLATNESS_TOLERANCE`](super::tolerance::FLATNESS_TOLERANCE) unless you have a reason not to.
     pub fn flat_directions(&self, rel_tol: f64) -> Vec<DVector<f64>> {
         let (values, vectors) = sorted_eigen(&self.mass_tensor);
         let largest = values[self.dim - 1].max(0.0);

@@ -18,8 +18,8 @@
 //! mass of one vertex. The simplex vertex formula is
 //! ∫ x xᵀ dV = Vol/((N+1)(N+2)) [Σ vₖ vₖᵀ + (Σ vₖ)(Σ vₖ)ᵀ].
 
-use super::body::Body;
 use super::InertiaError;
+use super::body::Body;
 use super::mesh::simplex_moments;
 use super::tolerance::DEGENERACY_TOLERANCE;
 use super::validate::{check_dim, check_points, check_positive, check_positive_list};

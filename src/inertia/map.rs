@@ -207,10 +207,10 @@ impl InertiaMap {
     /// ```
     ///
     /// # Errors
-    /// [`InertiaError::NonFinite`], [`InertiaError::NotPositive`] for Iᵢ ≤ 0,
-    /// [`InertiaError::NotPhysical3d`] when a triangle inequality fails beyond round-off
-    /// ([`MASS_TENSOR_TOLERANCE`](super::tolerance::MASS_TENSOR_TOLERANCE) relative), and
-    /// [`InertiaError::DegeneratePlane`] for a rod (one Iᵢ = 0).
+    /// [`InertiaError::NonFinite`], [`InertiaError::NotPositive`] for Iᵢ ≤ 0 (a rod, whose
+    /// map is singular), [`InertiaError::NotPhysical3d`] when a triangle inequality fails
+    /// beyond round-off ([`MASS_TENSOR_TOLERANCE`](super::tolerance::MASS_TENSOR_TOLERANCE)
+    /// relative to the largest Iᵢ).
     pub fn from_principal_moments_of_inertia_3d(moments: [f64; 3]) -> Result<Self, InertiaError> {
         for (i, &x) in moments.iter().enumerate() {
             check_finite("moments_of_inertia", Some(i), x)?;
@@ -253,7 +253,7 @@ impl InertiaMap {
     /// physical or not.
     ///
     /// # Errors
-    /// [`InertiaError::WrongLength`] unless there are N(N−1)/2 moments for some N ≥ 2,
+    /// [`InertiaError::LengthMismatch`] unless there are N(N−1)/2 moments for some N ≥ 2,
     /// [`InertiaError::NonFinite`], [`InertiaError::NotPositiveDefinite`] for a moment ≤ 0.
     pub fn from_plane_moments(plane_moments: &[f64]) -> Result<Self, InertiaError> {
         let k = plane_moments.len();
@@ -353,7 +353,8 @@ impl InertiaMap {
     ) -> Result<Self, InertiaError> {
         let n = moments.len();
         check_moments_nonnegative(&moments)?;
-        if let Some((plane, plane_moment, largest)) = singular_plane(&moments, SINGULAR_PLANE_TOLERANCE)
+        if let Some((plane, plane_moment, largest)) =
+            singular_plane(&moments, SINGULAR_PLANE_TOLERANCE)
         {
             return Err(InertiaError::DegeneratePlane {
                 plane,

@@ -1,8 +1,8 @@
 //! Bodies from simplicial meshes: the volume, first and second moments of each simplex from
 //! the vertex formula, summed without allocating per simplex.
 
-use super::body::Body;
 use super::InertiaError;
+use super::body::Body;
 use super::tolerance::{DEGENERACY_TOLERANCE, MASS_TENSOR_TOLERANCE};
 use super::validate::{check_dim, check_points, check_positive, sorted_eigen, symmetrize};
 use nalgebra::{DMatrix, DVector};

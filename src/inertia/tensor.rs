@@ -51,10 +51,10 @@ use nalgebra::{DMatrix, DVector};
 /// literal Levi-Civita sum (cost grows like 6 N! N²; N = 8 takes about 2·10⁷ steps).
 pub const MAX_LITERAL_CONTRACTION_DIM: usize = 8;
 
-pub use super::tolerance::SYMMETRY_TOLERANCE;
 /// The former name of [`InertiaError`] for the tensor views.
 #[allow(deprecated)]
 pub use super::error::TensorError;
+pub use super::tolerance::SYMMETRY_TOLERANCE;
 
 fn check_square(quantity: &'static str, m: &DMatrix<f64>) -> Result<usize, InertiaError> {
     if m.nrows() != m.ncols() {

@@ -12,7 +12,11 @@ pub(super) fn check_dim(dim: usize, min: usize) -> Result<(), InertiaError> {
     }
 }
 
-pub(super) fn check_finite(quantity: &'static str, index: Option<usize>, value: f64) -> Result<(), InertiaError> {
+pub(super) fn check_finite(
+    quantity: &'static str,
+    index: Option<usize>,
+    value: f64,
+) -> Result<(), InertiaError> {
     if value.is_finite() {
         Ok(())
     } else {
@@ -41,7 +45,10 @@ pub(super) fn check_positive(
     }
 }
 
-pub(super) fn check_positive_list(quantity: &'static str, values: &[f64]) -> Result<(), InertiaError> {
+pub(super) fn check_positive_list(
+    quantity: &'static str,
+    values: &[f64],
+) -> Result<(), InertiaError> {
     if values.is_empty() {
         return Err(InertiaError::Empty { quantity });
     }
@@ -72,7 +79,10 @@ pub(super) fn check_point(
     Ok(())
 }
 
-pub(super) fn check_points(quantity: &'static str, points: &[DVector<f64>]) -> Result<usize, InertiaError> {
+pub(super) fn check_points(
+    quantity: &'static str,
+    points: &[DVector<f64>],
+) -> Result<usize, InertiaError> {
     let first = points.first().ok_or(InertiaError::Empty { quantity })?;
     let dim = first.len();
     check_dim(dim, 1)?;
@@ -119,7 +129,10 @@ pub(super) fn check_finite_matrix(
 
 /// Checks that `m` (square, finite) is symmetric within [`SYMMETRY_TOLERANCE`], relative to
 /// its largest entry.
-pub(super) fn check_symmetric(quantity: &'static str, m: &DMatrix<f64>) -> Result<(), InertiaError> {
+pub(super) fn check_symmetric(
+    quantity: &'static str,
+    m: &DMatrix<f64>,
+) -> Result<(), InertiaError> {
     let scale = max_abs(m);
     if scale == 0.0 {
         return Ok(());
@@ -163,5 +176,6 @@ pub(super) fn singular_plane(moments: &[f64], rel_tol: f64) -> Option<((usize, u
         }
     }
     let (plane, moment) = smallest?;
-    (moment <= rel_tol * largest || moment <= 0.0 || moment.is_nan()).then_some((plane, moment, largest))
+    (moment <= rel_tol * largest || moment <= 0.0 || moment.is_nan())
+        .then_some((plane, moment, largest))
 }

@@ -146,7 +146,8 @@ mod adaptive {
     fn a_stiff_case_errors_clearly_instead_of_looping() {
         // ω ~ 1e6 with an inertia ratio of 1e4: the bound on internal steps ends the attempt.
         let inertia =
-            rotorflow::prelude::InertiaMap::from_principal_second_moments(&[1e-4, 1.0, 1.0, 1.0]).unwrap();
+            rotorflow::prelude::InertiaMap::from_principal_second_moments(&[1e-4, 1.0, 1.0, 1.0])
+                .unwrap();
         let w = rotorflow::prelude::Bivector::from_components(4, &[1e6, 1e3, 0.0, 1e3, 0.0, 1e6])
             .unwrap();
         let mut body = rotorflow::dynamics::RigidBody::from_body_velocity(

@@ -99,14 +99,18 @@ fn moments_of_inertia_3d_refuse_what_no_body_has() {
     // The equality case is a flat plate (J₃ = 0): physical, invertible.
     let plate = InertiaMap::from_principal_moments_of_inertia_3d([1.0, 2.0, 3.0]).unwrap();
     assert_eq!(plate.principal_second_moments().unwrap(), &[2.0, 1.0, 0.0]);
-    // A rod (J₂ = J₃ = 0) has a singular map.
+    // A rod (I₁ = 0, J₂ = J₃ = 0) has a singular map: refused by its zero moment.
     assert!(matches!(
-        InertiaMap::from_principal_moments_of_inertia_3d([0.5, 0.5, 1.0]),
-        Ok(_)
+        InertiaMap::from_principal_moments_of_inertia_3d([0.0, 1.0, 1.0]),
+        Err(InertiaError::NotPositive { index: Some(0), .. })
     ));
+    // Just inside the triangle inequality: a thin plate, J₃ = 5e-4.
+    let thin = InertiaMap::from_principal_moments_of_inertia_3d([1.0, 1.0, 2.0 - 1e-3]).unwrap();
+    assert!((thin.principal_second_moments().unwrap()[2] - 5e-4).abs() < 1e-15);
+    // Just outside: refused, naming I₃.
     assert!(matches!(
-        InertiaMap::from_principal_moments_of_inertia_3d([1.0, 1.0, 2.0 - 1e-3]),
-        Ok(_)
+        InertiaMap::from_principal_moments_of_inertia_3d([1.0, 1.0, 2.0 + 1e-6]),
+        Err(InertiaError::NotPhysical3d { index: 2, .. })
     ));
 }
 
@@ -140,7 +144,9 @@ fn body_takes_rotors_and_vectors_like_matrices() {
         .unwrap()
         .translated(&v(&[0.3, -0.2, 0.5]))
         .unwrap();
-    let rotor = Bivector::from_components(3, &[0.3, -0.7, 1.1]).unwrap().exp();
+    let rotor = Bivector::from_components(3, &[0.3, -0.7, 1.1])
+        .unwrap()
+        .exp();
     let offset = Vector::from_components(&[1.0, 2.0, -3.0]).unwrap();
     let by_rotor = body.placed_by(&rotor, &offset).unwrap();
     let by_matrix = body
@@ -160,12 +166,7 @@ fn body_takes_rotors_and_vectors_like_matrices() {
     let (moments, axes) = turned.principal_frame();
     assert!(max_abs_diff(&rp.to_matrix(), &axes) < 1e-12);
     let back = turned.rotated_by(&rp.reverse()).unwrap();
-    assert!(
-        max_abs_diff(
-            back.mass_tensor(),
-            &DMatrix::from_diagonal(&moments)
-        ) < 1e-12
-    );
+    assert!(max_abs_diff(back.mass_tensor(), &DMatrix::from_diagonal(&moments)) < 1e-12);
     assert!(matches!(
         body.rotated_by(&Rotor::identity(4)),
         Err(InertiaError::DimensionMismatch {
@@ -321,10 +322,17 @@ fn a_flipped_facet_is_refused_by_name() {
         let mut bad = facets.clone();
         bad[flipped].swap(1, 2);
         match Body::closed_boundary_mesh(&vertices, &bad, 1.0) {
-            Err(e @ InertiaError::InconsistentOrientation { facet, neighbour, .. }) => {
+            Err(
+                e @ InertiaError::InconsistentOrientation {
+                    facet, neighbour, ..
+                },
+            ) => {
                 assert_eq!(facet, flipped);
                 assert_ne!(neighbour, flipped);
-                assert!(e.to_string().contains(&format!("facet {flipped} is flipped")));
+                assert!(
+                    e.to_string()
+                        .contains(&format!("facet {flipped} is flipped"))
+                );
             }
             other => panic!("flipped facet {flipped}: {other:?}"),
         }

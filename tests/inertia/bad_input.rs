@@ -2,8 +2,8 @@
 //! with the degenerate direction or plane.
 use nalgebra::{DMatrix, DVector};
 use rotorflow::inertia::bodies::{
-    Body, FLATNESS_TOLERANCE, InertiaError, SimplexOrientation,
-    pentachoron_vertices, regular_simplex_positions,
+    Body, FLATNESS_TOLERANCE, InertiaError, SimplexOrientation, pentachoron_vertices,
+    regular_simplex_positions,
 };
 
 fn v(x: &[f64]) -> DVector<f64> {

@@ -244,7 +244,12 @@ fn regular_solid_simplex_matches_references_table() {
         let nf = n as f64;
         let want = body.mass() * a2 / (2.0 * (nf + 1.0) * (nf + 2.0));
         for i in 0..n {
-            assert_close!(body.principal_second_moments()[i], want, 1e-13 * want, "N={n}");
+            assert_close!(
+                body.principal_second_moments()[i],
+                want,
+                1e-13 * want,
+                "N={n}"
+            );
         }
         let pm = body.principal_plane_moments()[0];
         match n {

@@ -4,8 +4,8 @@
 #[macro_use]
 mod common;
 
-mod bad_input;
 mod api;
+mod bad_input;
 mod catalogue;
 mod invariance;
 mod map;

@@ -5,9 +5,7 @@ use crate::common::{EPS, max_abs, random_rotation, random_skew, random_spd, rng}
 use nalgebra::{DMatrix, DVector};
 use rotorflow::inertia::InertiaError;
 use rotorflow::inertia::bodies::Body;
-use rotorflow::inertia::tensor::{
-    ContractedInertia, ContractionNormalization, RankFourTensor,
-};
+use rotorflow::inertia::tensor::{ContractedInertia, ContractionNormalization, RankFourTensor};
 
 #[test]
 fn rank4_reproduces_angular_momentum_n2_to_n6() {
@@ -297,10 +295,7 @@ fn tensor_views_reject_bad_input() {
     nan[(2, 2)] = f64::NAN;
     assert!(matches!(
         ContractedInertia::from_mass_tensor(&nan, ContractionNormalization::LeviCivita),
-        Err(InertiaError::NonFinite {
-            index: Some(8),
-            ..
-        })
+        Err(InertiaError::NonFinite { index: Some(8), .. })
     ));
     assert!(matches!(
         t.apply(&DMatrix::identity(3, 3)),
