@@ -69,7 +69,7 @@ pub enum InertiaError {
     /// Give one mass per position, N entries per point in N dimensions, N+1 vertices for an
     /// N-simplex, N principal second moments, N(N−1)/2 plane moments in lexicographic order,
     /// and so on; `expected` says how many.
-    #[error("`{quantity}`{} has length {found}, expected {expected}", fmt_index(*.index))]
+    #[error("{}", length_message(quantity, *index, *expected, *found))]
     LengthMismatch {
         /// The argument with the wrong length.
         quantity: &'static str,
@@ -142,7 +142,7 @@ pub enum InertiaError {
     /// # How to fix
     /// Pass (M + Mᵀ)/2 if the asymmetry is round-off; the tolerance is
     /// [`SYMMETRY_TOLERANCE`](super::tolerance::SYMMETRY_TOLERANCE).
-    #[error("`{quantity}` is not symmetric: relative asymmetry {asymmetry:e}")]
+    #[error("{}", not_symmetric_message(quantity, *asymmetry))]
     NotSymmetric {
         /// Which argument.
         quantity: &'static str,
@@ -168,7 +168,7 @@ pub enum InertiaError {
     /// its plane moments with [`InertiaMap::from_plane_moments`](super::InertiaMap::from_plane_moments)
     /// or [`InertiaMap::from_classical_3d`](super::InertiaMap::from_classical_3d).
     #[error(
-        "mass tensor has a negative principal second moment {moment:e} (index {index}, 0-based); no body has it"
+        "not a valid mass tensor: it has a negative principal second moment {moment:e} (index {index}, 0-based); no body has it"
     )]
     NegativeMoment {
         /// The principal index (ascending order, or the given order for a diagonal J).
@@ -404,5 +404,26 @@ fn fmt_index(index: Option<usize>) -> String {
     match index {
         Some(i) => format!("[{i}]"),
         None => String::new(),
+    }
+}
+
+fn not_symmetric_message(quantity: &str, asymmetry: f64) -> String {
+    if quantity == "mass_tensor" {
+        format!("not a valid mass tensor: it is not symmetric (relative asymmetry {asymmetry:e})")
+    } else {
+        format!("`{quantity}` is not symmetric: relative asymmetry {asymmetry:e}")
+    }
+}
+
+/// A list named by its argument (`masses`) has a length; a list named in words
+/// (`plane moments`) has entries.
+fn length_message(quantity: &str, index: Option<usize>, expected: usize, found: usize) -> String {
+    if quantity.contains(' ') {
+        format!("{quantity} has {found} entries, expected {expected}")
+    } else {
+        format!(
+            "`{quantity}`{} has length {found}, expected {expected}",
+            fmt_index(index)
+        )
     }
 }

@@ -160,7 +160,7 @@ impl InertiaMap {
         }
         if n < 2 {
             return Err(InertiaError::LengthMismatch {
-                quantity: "principal_second_moments",
+                quantity: "principal second moments",
                 index: None,
                 expected: 2,
                 found: n,
@@ -260,7 +260,7 @@ impl InertiaMap {
         let n = (2..=crate::algebra::MAX_DIM)
             .find(|&n| bivector_len(n) == k)
             .ok_or(InertiaError::LengthMismatch {
-                quantity: "plane_moments",
+                quantity: "plane moments",
                 index: None,
                 expected: bivector_len(
                     ((1.0 + (1.0 + 8.0 * k as f64).sqrt()) / 2.0).ceil() as usize
