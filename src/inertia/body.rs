@@ -16,6 +16,13 @@ use nalgebra::{DMatrix, DVector};
 ///
 /// Build one with a constructor from the [table of contents](super::bodies). All constructors
 /// validate their input and return [`InertiaError`] instead of panicking or producing NaN.
+///
+/// Rotations and points can be given as rotorflow's [`Rotor`] and [`Vector`]
+/// ([`Body::rotated_by`], [`Body::translated_by`], [`Body::placed_by`],
+/// [`Body::point_masses_at`], [`Body::center_of_mass_vector`], [`Body::principal_rotor`]) or as
+/// nalgebra matrices and vectors (the methods without the suffix); `DVector::from(&vector)`,
+/// `Vector::from(&dvector)`, `rotor.to_matrix()` and `Rotor::from_matrix(&q)` convert between
+/// them.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Body {
     dim: usize,
@@ -128,6 +135,24 @@ impl Body {
             j.ger(*m, &d, &d, 1.0);
         }
         Body::new_checked(total, center, j, None)
+    }
+
+    /// Returns the body made of point masses `masses[k]` at the points `positions[k]`, given
+    /// as rotorflow [`Vector`]s; otherwise as [`Body::point_masses`].
+    ///
+    /// # Errors
+    /// As [`Body::point_masses`].
+    ///
+    /// ```
+    /// use rotorflow::algebra::Vector;
+    /// use rotorflow::inertia::Body;
+    /// let rod = Body::point_masses_at(&[1.0, 1.0], &[Vector::basis(2, 0), -Vector::basis(2, 0)])?;
+    /// assert_eq!(rod.mass_tensor()[(0, 0)], 2.0);
+    /// # Ok::<(), rotorflow::inertia::InertiaError>(())
+    /// ```
+    pub fn point_masses_at(masses: &[f64], positions: &[Vector]) -> Result<Body, InertiaError> {
+        let positions: Vec<DVector<f64>> = positions.iter().map(DVector::from).collect();
+        Body::point_masses(masses, &positions)
     }
 
     /// Returns the union of `parts`, which must not overlap, each already placed (see
@@ -326,7 +351,7 @@ impl Body {
         )
     }
 
-    /// Returns the principal plane moments Jᵢ + Jⱼ (principal moments ascending, planes in
+    /// Returns the principal plane moments Jᵢ + Jⱼ (principal second moments ascending, planes in
     /// lexicographic order), the eigenvalues of the inertia map.
     ///
     /// In 4D they satisfy I₁₂ + I₃₄ = I₁₃ + I₂₄ = I₁₄ + I₂₃ = tr J.

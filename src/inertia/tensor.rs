@@ -54,6 +54,7 @@ pub const MAX_LITERAL_CONTRACTION_DIM: usize = 8;
 /// The former name of [`InertiaError`] for the tensor views.
 #[allow(deprecated)]
 pub use super::error::TensorError;
+#[doc(inline)]
 pub use super::tolerance::SYMMETRY_TOLERANCE;
 
 fn check_square(quantity: &'static str, m: &DMatrix<f64>) -> Result<usize, InertiaError> {
