@@ -4,7 +4,7 @@
 //! `book/src/generated/inertia_tables.md`. `tests/book.rs` runs [`render`] and fails when the
 //! committed file differs, so the book never shows a number the code does not produce.
 //!
-//! Two tables: the catalogue's mass-tensor coefficients J_i/(m·a_i²) for N = 2…6, recovered as
+//! Two tables: the catalogue's mass-tensor coefficients Jᵢ/(m·aᵢ²) for N = 2…6, recovered as
 //! fractions from the computed values, and every value the paper states in its sections 4–6
 //! (eqs. 70–106), evaluated from the paper's printed formula and from rotorflow at the same
 //! parameters, with their ratio.

@@ -10,7 +10,7 @@ use rotorflow::inertia::bodies::{
 };
 use std::f64::consts::PI;
 
-/// All 2^N sign patterns (±a_1, …, ±a_N).
+/// All 2ᴺ sign patterns (±a₁, …, ±a_N).
 fn cuboid_corner_points(half: &[f64]) -> Vec<DVector<f64>> {
     let n = half.len();
     (0..1usize << n)

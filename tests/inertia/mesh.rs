@@ -106,7 +106,7 @@ fn kuhn_triangulation_signed_needs_consistent_orientation() {
     }
 }
 
-/// Outward-oriented triangulated boundary of the box: each facet x_a = ±h_a is an
+/// Outward-oriented triangulated boundary of the box: each facet xₐ = ±hₐ is an
 /// (N−1)-box, Kuhn-triangulated; orientation fixed so the cone from the centre is positive.
 fn box_boundary(half: &[f64]) -> (Vec<DVector<f64>>, Vec<Vec<usize>>) {
     let n = half.len();
@@ -289,7 +289,7 @@ fn nonconvex_prism_with_apex_outside_matches_boxes() {
 }
 
 /// Polytope inscribed in the sphere of radius R: the boundary of the cube [−1, 1]^N, each
-/// facet cut into k^{N−1} cells and each cell Kuhn-triangulated, with all vertices pushed
+/// facet cut into kᴺ⁻¹ cells and each cell Kuhn-triangulated, with all vertices pushed
 /// radially onto the sphere; the N-simplices are the cones from the origin. Returns the
 /// unsigned-volume mesh body.
 fn inscribed_polytope(n: usize, k: usize, radius: f64) -> Body {

@@ -6,7 +6,7 @@
 //! is a different normalisation of the contracted matrix 𝕀, which one it matches. The
 //! summary is ERRATA_INERTIA.md.
 //!
-//! Literal conventions (the book's Conventions chapter): I^{ijkl} from eq. (22) with the ½, and 𝕀 from the literal
+//! Literal conventions (the book's Conventions chapter): Iⁱʲᵏˡ from eq. (22) with the ½, and 𝕀 from the literal
 //! Levi-Civita contraction, 𝕀 = 2 (N − 2)! (tr J · 1 − J). Tolerances are relative 1e-12
 //! for closed-form comparisons (a handful of roundings), and "differs" means a relative
 //! difference above 1e-3 (the paper's errors are factors of 2 or more, or wrong signs).
@@ -488,7 +488,7 @@ fn paper_eq_82_5d_cuboid_components_have_wrong_factor_and_signs() {
 // §6.1–6.2 ellipsoids (eqs. 83–98)
 // ---------------------------------------------------------------------------------------
 
-/// ∫_{−h}^{h} f(t) dt with t = h sin θ (removes the square-root endpoint behaviour of the
+/// ∫₋ₕʰ f(t) dt with t = h sin θ (removes the square-root endpoint behaviour of the
 /// nested ellipsoid bounds), then 40-point Gauss–Legendre in θ. After the substitution the
 /// integrands are analytic in θ, so the rule converges exponentially; nested three or four
 /// deep it reproduces the closed forms to ~1e-15 relative.
@@ -774,7 +774,7 @@ fn paper_eqs_100_to_102_polar_moments_are_right() {
     }
 }
 
-/// φ(μ) = ∫_0^{π/2} sin^μ x dx (eq. 103) by Simpson's rule.
+/// φ(μ) = ∫_0^(π/2) sin^μ x dx (eq. 103) by Simpson's rule.
 fn wallis(mu: usize) -> f64 {
     simpson(|x| x.sin().powi(mu as i32), 0.0, PI / 2.0, 20_000)
 }
