@@ -536,16 +536,16 @@ fn determinant_in_place(a: &mut [f64], n: usize) -> f64 {
 fn check_facet_orientation<S: AsRef<[usize]>>(facets: &[S]) -> Result<(), InertiaError> {
     use std::collections::HashMap;
     // face (sorted indices) -> list of (facet, induced sign)
-    let mut faces: HashMap<Vec<usize>, SmallVec<[(usize, i8); 2]>> = HashMap::new();
+    let mut faces: HashMap<SmallVec<[usize; 8]>, SmallVec<[(usize, i8); 2]>> = HashMap::new();
     for (f, facet) in facets.iter().enumerate() {
         let facet = facet.as_ref();
-        let mut sorted = facet.to_vec();
+        let mut sorted: SmallVec<[usize; 8]> = SmallVec::from_slice(facet);
         sorted.sort_unstable();
         if sorted.windows(2).any(|w| w[0] == w[1]) {
             continue;
         }
         for k in 0..facet.len() {
-            let mut face: Vec<usize> = facet
+            let mut face: SmallVec<[usize; 8]> = facet
                 .iter()
                 .enumerate()
                 .filter(|&(i, _)| i != k)
@@ -559,7 +559,10 @@ fn check_facet_orientation<S: AsRef<[usize]>>(facets: &[S]) -> Result<(), Inerti
     // Adjacency through faces shared by exactly two facets: `same` = the two facets induce
     // the same sign there, so one of them is flipped relative to the other.
     let mut neighbours: Vec<Vec<(usize, bool, usize)>> = vec![Vec::new(); facets.len()];
-    let mut face_list: Vec<Vec<usize>> = Vec::new();
+    let mut face_list: Vec<SmallVec<[usize; 8]>> = Vec::new();
+    // Sorted, so that the facet named in an error does not depend on hashing.
+    let mut faces: Vec<_> = faces.into_iter().collect();
+    faces.sort_unstable_by(|a, b| a.0.cmp(&b.0));
     for (face, users) in faces {
         if let [(a, sa), (b, sb)] = users[..]
             && a != b
@@ -621,7 +624,7 @@ fn check_facet_orientation<S: AsRef<[usize]>>(facets: &[S]) -> Result<(), Inerti
                 .iter()
                 .find(|&&(_, same, _)| same)
                 .or(neighbours[facet].first())
-                .map(|&(g, _, face)| (g, face_list[face].clone()))
+                .map(|&(g, _, face)| (g, face_list[face].to_vec()))
                 .unwrap_or((facet, Vec::new()));
             return Err(InertiaError::InconsistentOrientation {
                 facet,
