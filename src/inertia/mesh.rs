@@ -523,6 +523,9 @@ fn determinant_in_place(a: &mut [f64], n: usize) -> f64 {
     det
 }
 
+/// An (N−2)-face of a boundary mesh: its vertex indices, sorted.
+type Face = SmallVec<[usize; 8]>;
+
 /// Checks that facets sharing an (N−2)-face (by vertex index) induce opposite orientations on
 /// it, and names a flipped facet otherwise.
 ///
@@ -536,7 +539,7 @@ fn determinant_in_place(a: &mut [f64], n: usize) -> f64 {
 fn check_facet_orientation<S: AsRef<[usize]>>(facets: &[S]) -> Result<(), InertiaError> {
     use std::collections::HashMap;
     // face (sorted indices) -> list of (facet, induced sign)
-    let mut faces: HashMap<SmallVec<[usize; 8]>, SmallVec<[(usize, i8); 2]>> = HashMap::new();
+    let mut faces: HashMap<Face, SmallVec<[(usize, i8); 2]>> = HashMap::new();
     for (f, facet) in facets.iter().enumerate() {
         let facet = facet.as_ref();
         let mut sorted: SmallVec<[usize; 8]> = SmallVec::from_slice(facet);
@@ -545,7 +548,7 @@ fn check_facet_orientation<S: AsRef<[usize]>>(facets: &[S]) -> Result<(), Inerti
             continue;
         }
         for k in 0..facet.len() {
-            let mut face: SmallVec<[usize; 8]> = facet
+            let mut face: Face = facet
                 .iter()
                 .enumerate()
                 .filter(|&(i, _)| i != k)
@@ -559,7 +562,7 @@ fn check_facet_orientation<S: AsRef<[usize]>>(facets: &[S]) -> Result<(), Inerti
     // Adjacency through faces shared by exactly two facets: `same` = the two facets induce
     // the same sign there, so one of them is flipped relative to the other.
     let mut neighbours: Vec<Vec<(usize, bool, usize)>> = vec![Vec::new(); facets.len()];
-    let mut face_list: Vec<SmallVec<[usize; 8]>> = Vec::new();
+    let mut face_list: Vec<Face> = Vec::new();
     // Sorted, so that the facet named in an error does not depend on hashing.
     let mut faces: Vec<_> = faces.into_iter().collect();
     faces.sort_unstable_by(|a, b| a.0.cmp(&b.0));
