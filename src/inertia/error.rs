@@ -186,9 +186,7 @@ pub enum InertiaError {
     /// A test body that no mass distribution has (such as I = (2, 1, 2/3)) is a general map:
     /// [`InertiaMap::from_classical_3d`](super::InertiaMap::from_classical_3d) or
     /// [`InertiaMap::from_plane_moments`](super::InertiaMap::from_plane_moments).
-    #[error(
-        "moments of inertia {moments:?} violate the triangle inequality I{} ≤ the sum of the other two, so no body has them; for a test body use InertiaMap::from_classical_3d or InertiaMap::from_plane_moments", .index + 1
-    )]
+    #[error("{}", not_physical_3d_message(moments, *index))]
     NotPhysical3d {
         /// The moments (I₁, I₂, I₃) given.
         moments: [f64; 3],
@@ -426,4 +424,20 @@ fn length_message(quantity: &str, index: Option<usize>, expected: usize, found: 
             fmt_index(index)
         )
     }
+}
+
+fn not_physical_3d_message(moments: &[f64; 3], index: usize) -> String {
+    let (j, k) = ((index + 1) % 3, (index + 2) % 3);
+    let (lo, hi) = (j.min(k), j.max(k));
+    format!(
+        "moments of inertia ({}, {}, {}) violate the triangle inequality: I{} = {} exceeds I{} + I{} = {}, so no body has them (they are not second moments either: for those use InertiaMap::from_principal_second_moments); for a test body use InertiaMap::from_classical_3d or InertiaMap::from_plane_moments",
+        moments[0],
+        moments[1],
+        moments[2],
+        index + 1,
+        moments[index],
+        lo + 1,
+        hi + 1,
+        moments[lo] + moments[hi]
+    )
 }

@@ -377,3 +377,15 @@ fn a_flipped_tetrahedron_face_and_polygon_edge_are_refused() {
         Err(InertiaError::InconsistentOrientation { facet: 2, .. })
     ));
 }
+
+#[test]
+fn the_triangle_inequality_error_explains_itself() {
+    let e = InertiaMap::from_principal_moments_of_inertia_3d([1.0, 4.0, 2.0]).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "moments of inertia (1, 4, 2) violate the triangle inequality: I2 = 4 exceeds I1 + I3 = 3, \
+         so no body has them (they are not second moments either: for those use \
+         InertiaMap::from_principal_second_moments); for a test body use \
+         InertiaMap::from_classical_3d or InertiaMap::from_plane_moments"
+    );
+}
