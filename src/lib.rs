@@ -108,6 +108,8 @@ pub mod prelude {
     pub use crate::algebra::{
         AlgebraError, Bivector, Decomposition, Multivector, Product, Rotor, Signature, Vector,
     };
+    #[allow(deprecated)]
+    pub use crate::inertia::BodyError;
     pub use crate::inertia::{Body, InertiaError, InertiaMap};
 }
 
