@@ -33,7 +33,7 @@ fn body(n: usize) -> RigidBody {
         .map(|k| (0.7 * k as f64 + 0.3).sin())
         .collect();
     RigidBody::from_body_momentum(
-        InertiaMap::from_principal_moments(&moments(n)).unwrap(),
+        InertiaMap::from_principal_second_moments(&moments(n)).unwrap(),
         Attitude::identity(n),
         &Bivector::from_components(n, &l).unwrap(),
     )

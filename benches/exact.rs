@@ -29,7 +29,7 @@ fn body(n: usize) -> RigidBody {
         .map(|k| (0.7 * k as f64 + 0.3).sin())
         .collect();
     RigidBody::from_body_momentum(
-        InertiaMap::from_principal_moments(&j).unwrap(),
+        InertiaMap::from_principal_second_moments(&j).unwrap(),
         Rotor::from_rotation_bivector(&Bivector::from_components(n, &l).unwrap()),
         &Bivector::from_components(n, &l).unwrap(),
     )

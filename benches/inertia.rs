@@ -1,4 +1,4 @@
-//! Criterion benches of the inertia layer (issue #3): apply and inverse-apply of the map for
+//! Criterion benches of the inertia layer: apply and inverse-apply of the map for
 //! N = 3, 4, 6, 8 beside a dense nalgebra matrix–vector product of the same size, and mesh
 //! inertia throughput in simplices per second (goal ≥ 1e7/s in 4D).
 //! `BENCH_QUICK=1` shortens the run.
@@ -37,7 +37,7 @@ fn bench_map(c: &mut Criterion) {
         )
         .unwrap();
         let moments: Vec<f64> = (0..n).map(|i| 1.0 + i as f64).collect();
-        let principal = InertiaMap::from_principal_moments(&moments).unwrap();
+        let principal = InertiaMap::from_principal_second_moments(&moments).unwrap();
         let general_frame = InertiaMap::from_mass_tensor(&random_spd(&mut rng, n)).unwrap();
         g.bench_function(BenchmarkId::new("rotorflow_apply_principal", n), |b| {
             b.iter(|| black_box(&principal).apply(black_box(&w)))

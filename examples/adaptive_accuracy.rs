@@ -14,7 +14,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .map(|_| r.gen_range(-1.0..1.0))
         .collect();
     let start = RigidBody::from_body_momentum(
-        InertiaMap::from_principal_moments(&moments)?,
+        InertiaMap::from_principal_second_moments(&moments)?,
         Rotor::identity(n),
         &Bivector::from_components(n, &l)?,
     )?;

@@ -57,7 +57,7 @@ fn cases() -> Res<Vec<Case>> {
     let w73 = [0.9, 0.1, -0.3, 0.2, 0.5, 0.4];
     let w3 = [0.4, -0.9, 1.2];
     let velocity = |j: &[f64], w: &[f64]| -> Res<RigidBody> {
-        let inertia = InertiaMap::from_principal_moments(j)?;
+        let inertia = InertiaMap::from_principal_second_moments(j)?;
         let omega = Bivector::from_components(j.len(), w)?;
         Ok(RigidBody::from_body_velocity(
             inertia,

@@ -4,7 +4,7 @@
 //! `book/src/generated/inertia_tables.md`. `tests/book.rs` runs [`render`] and fails when the
 //! committed file differs, so the book never shows a number the code does not produce.
 //!
-//! Two tables: the catalogue's mass-tensor coefficients J_i/(m·a_i²) for N = 2…6, recovered as
+//! Two tables: the catalogue's mass-tensor coefficients Jᵢ/(m·aᵢ²) for N = 2…6, recovered as
 //! fractions from the computed values, and every value the paper states in its sections 4–6
 //! (eqs. 70–106), evaluated from the paper's printed formula and from rotorflow at the same
 //! parameters, with their ratio.
@@ -240,7 +240,7 @@ fn paper_values(out: &mut String) -> Res<()> {
 
     // §4.2 the 5-cell of eq. (73).
     t.header("§4.2 The 5-cell of eq. (73) (eqs. 74–76)")?;
-    let body = Body::pentachoron_eq73(A, B, C, D)?;
+    let body = Body::pentachoron(A, B, C, D)?;
     let j = body.mass_tensor().clone();
     let rank4 = RankFourTensor::from_mass_tensor(&j)?;
     for (k, &(p, q)) in PLANES_4D.iter().enumerate() {

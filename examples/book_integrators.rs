@@ -41,7 +41,7 @@ struct Run {
 
 /// The body of the survey.
 fn start() -> Res<RigidBody> {
-    let inertia = InertiaMap::from_principal_moments(&[0.3, 0.7, 1.1, 1.9])?;
+    let inertia = InertiaMap::from_principal_second_moments(&[0.3, 0.7, 1.1, 1.9])?;
     let l0 = Bivector::from_components(4, &[1.7, -0.9, 2.3, 1.1, -2.6, 3.4])?;
     Ok(RigidBody::from_body_momentum(
         inertia,

@@ -63,7 +63,7 @@ fn run(integrator: &mut dyn Integrator, start: &RigidBody, steps: usize) -> Bive
 }
 
 pub fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let inertia = InertiaMap::from_principal_moments(&[0.4, 0.9, 1.3, 2.0])?;
+    let inertia = InertiaMap::from_principal_second_moments(&[0.4, 0.9, 1.3, 2.0])?;
     let omega = Bivector::from_components(4, &[1.0, 0.5, -0.3, 0.8, 0.2, -0.6])?;
     let start = RigidBody::from_body_velocity(inertia, Rotor::identity(4), &omega)?;
     let reference = run(&mut Rkmk4, &start, 4000);

@@ -11,7 +11,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // J = (1, 2, 3): classical moments I₁ = 5, I₂ = 4, I₃ = 3; the plane e13 (axis e2,
     // the intermediate one) is unstable.
     let j = [1.0, 2.0, 3.0];
-    let inertia = InertiaMap::from_principal_moments(&j)?;
+    let inertia = InertiaMap::from_principal_second_moments(&j)?;
     let omega = Bivector::from_components(3, &[1e-3, 2.0, 1e-3])?; // mostly e13
     let body = RigidBody::from_body_velocity(inertia, Rotor::identity(3), &omega)?;
     let lambda = growth_rate(&j, 0, 2, 2.0);

@@ -34,7 +34,7 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
         let matrix_drift = (&ls - &ls0).amax() / ls0.amax();
 
         let mut body = RigidBody::from_body_momentum(
-            InertiaMap::from_principal_moments(&j)?,
+            InertiaMap::from_principal_second_moments(&j)?,
             Attitude::identity(n),
             &l,
         )?;

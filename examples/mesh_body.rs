@@ -91,7 +91,10 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
         house.mass(),
         list(house.center_of_mass())
     );
-    println!("principal moments J: {}", list(&house.principal_moments()));
+    println!(
+        "principal moments J: {}",
+        list(&house.principal_second_moments())
+    );
 
     // The inertia map about the centre of mass; the rigid body moves to the principal frame.
     let inertia = InertiaMap::from_body(&house)?;

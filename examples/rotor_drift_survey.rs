@@ -15,7 +15,7 @@ fn main() {
             let l: Vec<f64> = (0..n * (n - 1) / 2)
                 .map(|_| r.gen_range(-1.0..1.0))
                 .collect();
-            let inertia = InertiaMap::from_principal_moments(&moments).unwrap();
+            let inertia = InertiaMap::from_principal_second_moments(&moments).unwrap();
             let mut body = RigidBody::from_body_momentum(
                 inertia,
                 Rotor::identity(n),

@@ -24,7 +24,7 @@ fn body(n: usize) -> Result<RigidBody, Box<dyn std::error::Error>> {
         .map(|k| (0.7 * k as f64 + 0.3).sin())
         .collect();
     Ok(RigidBody::from_body_momentum(
-        InertiaMap::from_principal_moments(&j)?,
+        InertiaMap::from_principal_second_moments(&j)?,
         Attitude::identity(n),
         &Bivector::from_components(n, &l)?,
     )?)

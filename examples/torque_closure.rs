@@ -8,7 +8,7 @@ use rotorflow::dynamics::{Integrator, RigidBody, Rkmk4, TorqueInput};
 use rotorflow::prelude::*;
 
 pub fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let inertia = InertiaMap::from_principal_moments(&[0.5, 0.8, 1.0, 1.3, 1.7])?;
+    let inertia = InertiaMap::from_principal_second_moments(&[0.5, 0.8, 1.0, 1.3, 1.7])?;
     let omega = Bivector::from_plane(5, 0, 1, 1.0)?;
     let mut body = RigidBody::from_body_velocity(inertia, Rotor::identity(5), &omega)?;
 

@@ -15,7 +15,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "tesseract: mass {}, principal moments {:?}",
         body.mass(),
-        inertia.principal_moments().unwrap()
+        inertia.principal_second_moments().unwrap()
     );
     println!(
         "plane moments (12,13,14,23,24,34): {:?}",

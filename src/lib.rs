@@ -148,7 +148,9 @@ pub mod prelude {
         Attitude, Dopri5, DynamicsError, Integrator, Midpoint, RigidBody, Rkmk4, Splitting,
         SplittingOrder, Torque, Trajectory, simulate,
     };
-    pub use crate::inertia::{Body, BodyError, InertiaError, InertiaMap};
+    #[allow(deprecated)]
+    pub use crate::inertia::BodyError;
+    pub use crate::inertia::{Body, InertiaError, InertiaMap};
 }
 
 /// The README's code blocks, compiled and run as doctests so that the README stays true.

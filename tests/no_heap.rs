@@ -83,7 +83,7 @@ fn integrator_steps_do_not_allocate() {
     for n in 2..=8 {
         let moments: Vec<f64> = (0..n).map(|k| 1.0 + k as f64).collect();
         let l: Vec<f64> = (0..n * (n - 1) / 2).map(|k| (k as f64).cos()).collect();
-        let inertia = InertiaMap::from_principal_moments(&moments).unwrap();
+        let inertia = InertiaMap::from_principal_second_moments(&moments).unwrap();
         let mut body = RigidBody::from_body_momentum(
             inertia,
             Rotor::identity(n),

@@ -90,7 +90,7 @@ pub fn inertia_json(parsed: &ParsedBody) -> CliResult<Value> {
     } else {
         (Value::Null, Value::Null)
     };
-    let principal: DVector<f64> = body.principal_moments();
+    let principal: DVector<f64> = body.principal_second_moments();
     Ok(json!({
         "dim": n,
         "spec": parsed.spec,

@@ -300,10 +300,10 @@ pub fn parse_body_with(
             if a.len() != 4 {
                 return Err(e(format!("{} parameters given, expected 4", a.len())));
             }
-            let points = crate::inertia::bodies::pentachoron_eq73_positions(a[0], a[1], a[2], a[3])
+            let points = crate::inertia::bodies::pentachoron_vertices(a[0], a[1], a[2], a[3])
                 .map_err(|err| e(err.to_string()))?;
             let body =
-                Body::pentachoron_eq73(a[0], a[1], a[2], a[3]).map_err(|err| e(err.to_string()))?;
+                Body::pentachoron(a[0], a[1], a[2], a[3]).map_err(|err| e(err.to_string()))?;
             (
                 Some(body),
                 Kind::Points(points.iter().map(|p| p.iter().copied().collect()).collect()),

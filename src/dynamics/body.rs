@@ -23,7 +23,7 @@ use crate::inertia::{InertiaError, InertiaMap};
 /// ```
 /// use rotorflow::prelude::*;
 /// use rotorflow::dynamics::RigidBody;
-/// let inertia = InertiaMap::from_principal_moments(&[1.0, 2.0, 3.0, 4.0])?;
+/// let inertia = InertiaMap::from_principal_second_moments(&[1.0, 2.0, 3.0, 4.0])?;
 /// let omega = Bivector::from_components(4, &[1.0, 0.0, 0.0, 0.0, 0.0, 0.5])?;
 /// let body = RigidBody::from_body_velocity(inertia, Rotor::identity(4), &omega)?;
 /// assert!((&body.omega() - &omega).norm() < 1e-15);
@@ -57,8 +57,9 @@ impl RigidBody {
         for d in [attitude.dim(), momentum.dim()] {
             if d != n {
                 return Err(InertiaError::DimensionMismatch {
-                    map: n,
-                    argument: d,
+                    quantity: "attitude or momentum",
+                    expected: n,
+                    found: d,
                 });
             }
         }
@@ -70,9 +71,9 @@ impl RigidBody {
                 .principal_axes()
                 .expect("a physical map has principal axes");
             let rp = Attitude::from_matrix(axes).map_err(InertiaError::from)?;
-            let diag = InertiaMap::from_principal_moments(
+            let diag = InertiaMap::from_principal_second_moments(
                 inertia
-                    .principal_moments()
+                    .principal_second_moments()
                     .expect("a physical map has principal moments"),
             )?;
             (diag, rp)
@@ -251,13 +252,18 @@ impl RigidBody {
         for d in [attitude.dim(), momentum.dim()] {
             if d != n {
                 return Err(InertiaError::DimensionMismatch {
-                    map: n,
-                    argument: d,
+                    quantity: "attitude or momentum",
+                    expected: n,
+                    found: d,
                 });
             }
         }
         if !attitude.is_finite() || !momentum.as_slice().iter().all(|x| x.is_finite()) {
-            return Err(InertiaError::NonFinite { what: "state" });
+            return Err(InertiaError::NonFinite {
+                quantity: "state",
+                index: None,
+                value: f64::NAN,
+            });
         }
         self.replace_state(attitude, momentum);
         Ok(())

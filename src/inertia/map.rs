@@ -1,21 +1,17 @@
 //! [`InertiaMap`]: the inertia of a rigid body as a linear operator on bivectors.
 
+use super::tolerance::SINGULAR_PLANE_TOLERANCE;
+use super::validate::{
+    check_finite, check_finite_matrix, check_moments_nonnegative, check_symmetric, singular_plane,
+};
 use super::{Body, InertiaError};
 use crate::algebra::{Bivector, Rotor, bivector_len, pairs};
 use nalgebra::{DMatrix, DVector};
 
-/// Relative tolerance on the symmetry of input matrices.
-const TOLERANCE: f64 = 1e-12;
-
-/// A plane moment at most this fraction of the largest is zero: the eigenvalues of J carry an
-/// absolute error of a few ε·max Jᵢ, so 64ε (1.4e-14) separates "singular" from "condition
-/// number up to ~1e13", which is still invertible.
-const SINGULAR_PLANE: f64 = 64.0 * f64::EPSILON;
-
 /// The inertia of a rigid body: the symmetric positive-definite linear map L = I(ω) from
 /// angular velocity to angular momentum, both bivectors in the body frame.
 ///
-/// For a physical body with mass tensor J = ∫ x xᵀ dm (DESIGN.md, "Inertia"):
+/// For a physical body with mass tensor J = ∫ x xᵀ dm (see the Conventions chapter of the rotorflow book):
 ///
 /// I(ω) = ∫ x∧(x⌋ω) dm, i.e. \[I(ω)\] = J\[ω\] + \[ω\]J,
 ///
@@ -26,18 +22,20 @@ const SINGULAR_PLANE: f64 = 64.0 * f64::EPSILON;
 ///
 /// # Why the inverse moments are stored
 /// Every step of the dynamics needs ω = I⁻¹(L). The map keeps the principal axes P, the
-/// principal moments Jᵢ and the inverse plane moments 1/(Jᵢ + Jⱼ), so in the principal frame
+/// principal second moments Jᵢ and the inverse plane moments 1/(Jᵢ + Jⱼ), so in the principal frame
 /// the inverse is a multiplication, and in a general frame it is a rotation to the principal
 /// frame, a multiplication and a rotation back (the solution of the Lyapunov equation
-/// JΩ + ΩJ = L, REFERENCES §2), never a linear solve. A general map stores its inverse matrix.
+/// JΩ + ΩJ = L), never a linear solve. A general map stores its inverse matrix.
 ///
 /// # Contents
-/// - Construction: [`InertiaMap::from_mass_tensor`], [`InertiaMap::from_principal_moments`],
-///   [`InertiaMap::from_body`], [`InertiaMap::from_plane_moments`],
+/// - Construction: [`InertiaMap::from_mass_tensor`],
+///   [`InertiaMap::from_principal_second_moments`] (the eigenvalues Jᵢ of J, any N),
+///   [`InertiaMap::from_principal_moments_of_inertia_3d`] (the classical 3D moments of
+///   inertia Iᵢ = Jⱼ + Jₖ), [`InertiaMap::from_body`], [`InertiaMap::from_plane_moments`],
 ///   [`InertiaMap::from_classical_3d`], [`InertiaMap::from_matrix`].
 /// - Action: [`InertiaMap::apply`], [`InertiaMap::apply_inverse`],
 ///   [`InertiaMap::kinetic_energy`], [`InertiaMap::to_matrix`].
-/// - Structure: [`InertiaMap::principal_moments`], [`InertiaMap::principal_axes`],
+/// - Structure: [`InertiaMap::principal_second_moments`], [`InertiaMap::principal_axes`],
 ///   [`InertiaMap::principal_rotor`], [`InertiaMap::plane_moments`],
 ///   [`InertiaMap::mass_tensor`], [`InertiaMap::is_physical`].
 /// - Frames: [`InertiaMap::rotated`].
@@ -45,8 +43,8 @@ const SINGULAR_PLANE: f64 = 64.0 * f64::EPSILON;
 /// ```
 /// use rotorflow::inertia::InertiaMap;
 /// use rotorflow::algebra::Bivector;
-/// // A 4D body with principal moments J = (1, 2, 3, 4): plane e12 has moment 1 + 2 = 3.
-/// let map = InertiaMap::from_principal_moments(&[1.0, 2.0, 3.0, 4.0])?;
+/// // A 4D body with principal second moments J = (1, 2, 3, 4): plane e12 has moment 1 + 2 = 3.
+/// let map = InertiaMap::from_principal_second_moments(&[1.0, 2.0, 3.0, 4.0])?;
 /// let w = Bivector::from_plane(4, 0, 1, 0.5)?;
 /// let l = map.apply(&w);
 /// assert_eq!(l.get(0, 1), 1.5);
@@ -94,22 +92,29 @@ impl InertiaMap {
     /// Returns the inertia map of the mass tensor J (N×N, symmetric positive semi-definite,
     /// about the reference point, usually the centre of mass).
     ///
+    /// The checks are those of [`Body::from_mass_properties`] and
+    /// [`Body::check_inertia_invertible`], with the tolerances of
+    /// [`tolerance`](super::tolerance).
+    ///
     /// # Errors
     /// [`InertiaError::WrongShape`], [`InertiaError::NonFinite`],
-    /// [`InertiaError::NotSymmetric`] (beyond 1e-12 relative), [`InertiaError::NegativeMoment`]
-    /// (no body has it), [`InertiaError::DegeneratePlane`] (a plane moment Jᵢ + Jⱼ at most 64ε
-    /// of the largest: the body is flat in two directions, the map is singular).
+    /// [`InertiaError::NotSymmetric`] (beyond
+    /// [`SYMMETRY_TOLERANCE`](super::tolerance::SYMMETRY_TOLERANCE)),
+    /// [`InertiaError::NegativeMoment`] (no body has it), [`InertiaError::DegeneratePlane`] (a
+    /// plane moment Jᵢ + Jⱼ at most [`SINGULAR_PLANE_TOLERANCE`] of the largest: the body is
+    /// flat in two directions, the map is singular).
     pub fn from_mass_tensor(j: &DMatrix<f64>) -> Result<Self, InertiaError> {
         let n = j.nrows();
         if j.ncols() != n || n < 2 {
             return Err(InertiaError::WrongShape {
-                what: "mass tensor",
+                quantity: "mass_tensor",
                 rows: j.nrows(),
                 cols: j.ncols(),
                 expected: n.max(2),
             });
         }
-        check_symmetric(j, "mass tensor")?;
+        check_finite_matrix("mass_tensor", j)?;
+        check_symmetric("mass_tensor", j)?;
         let j = (j + j.transpose()) * 0.5;
         let off_diagonal = (0..n).any(|r| (0..n).any(|c| r != c && j[(r, c)] != 0.0));
         let (moments, axes) = if off_diagonal {
@@ -130,34 +135,115 @@ impl InertiaMap {
     }
 
     /// Returns the inertia map of a body whose mass tensor is diagonal in its own axes,
-    /// J = diag(J₁, …, J_N) (the principal frame, axes kept in the given order).
+    /// J = diag(J₁, …, J_N): the principal *second* moments Jᵢ = ∫ xᵢ² dm, in the principal
+    /// frame (axes kept in the given order). The plane eᵢ∧eⱼ has moment Jᵢ + Jⱼ.
+    ///
+    /// These are not the classical 3D moments of inertia Iᵢ = Jⱼ + Jₖ: for those use
+    /// [`InertiaMap::from_principal_moments_of_inertia_3d`]. A solid cuboid with half-sides
+    /// (0.5, 1, 1.5) and mass 12 has J = (1, 4, 9) and I = (13, 10, 5).
+    ///
+    /// ```
+    /// use rotorflow::inertia::InertiaMap;
+    /// let from_j = InertiaMap::from_principal_second_moments(&[1.0, 4.0, 9.0])?;
+    /// let from_i = InertiaMap::from_principal_moments_of_inertia_3d([13.0, 10.0, 5.0])?;
+    /// assert_eq!(from_j, from_i);
+    /// # Ok::<(), rotorflow::inertia::InertiaError>(())
+    /// ```
     ///
     /// # Errors
-    /// As [`InertiaMap::from_mass_tensor`].
-    pub fn from_principal_moments(moments: &[f64]) -> Result<Self, InertiaError> {
+    /// [`InertiaError::LengthMismatch`] for fewer than 2 moments; otherwise as
+    /// [`InertiaMap::from_mass_tensor`].
+    pub fn from_principal_second_moments(moments: &[f64]) -> Result<Self, InertiaError> {
         let n = moments.len();
-        if moments.iter().any(|x| !x.is_finite()) {
-            return Err(InertiaError::NonFinite {
-                what: "principal moments",
+        for (i, &x) in moments.iter().enumerate() {
+            check_finite("principal_second_moments", Some(i), x)?;
+        }
+        if n < 2 {
+            return Err(InertiaError::LengthMismatch {
+                quantity: "principal second moments",
+                index: None,
+                expected: 2,
+                found: n,
             });
         }
         Self::from_mass_tensor(&DMatrix::from_diagonal(&DVector::from_column_slice(
             moments,
         )))
-        .map_err(|e| match e {
-            InertiaError::WrongShape { .. } => InertiaError::WrongLength {
-                what: "principal moments",
-                expected: 2.max(n),
-                found: n,
-            },
-            other => other,
-        })
+    }
+
+    /// Returns the inertia map of the principal second moments Jᵢ (the eigenvalues of J),
+    /// which in 3D are not the moments of inertia.
+    ///
+    /// # Errors
+    /// As [`InertiaMap::from_principal_second_moments`].
+    #[deprecated(
+        note = "use from_principal_second_moments (the same Jᵢ) or, for the 3D moments of inertia Iᵢ = Jⱼ + Jₖ, from_principal_moments_of_inertia_3d"
+    )]
+    pub fn from_principal_moments(moments: &[f64]) -> Result<Self, InertiaError> {
+        Self::from_principal_second_moments(moments)
+    }
+
+    /// Returns the inertia map of a 3D body from its classical principal moments of inertia
+    /// (I₁, I₂, I₃) about e₁, e₂, e₃ (the body frame is the principal frame).
+    ///
+    /// The second moments are Jᵢ = (Iⱼ + Iₖ − Iᵢ)/2, and the map is the physical one of
+    /// [`InertiaMap::from_principal_second_moments`] with those Jᵢ: the plane moments are
+    /// I₁₂ = I₃, I₁₃ = I₂, I₂₃ = I₁. Every mass distribution satisfies the triangle
+    /// inequalities Iᵢ ≤ Iⱼ + Iₖ (Jᵢ ≥ 0); moments that violate them are refused. A test body
+    /// that no mass distribution has, such as I = (2, 1, 2/3), is a general map: use
+    /// [`InertiaMap::from_classical_3d`] or [`InertiaMap::from_plane_moments`].
+    ///
+    /// ```
+    /// use rotorflow::inertia::{Body, InertiaMap};
+    /// // Solid cuboid, half-sides (0.5, 1, 1.5), mass 12: I = (13, 10, 5), J = (1, 4, 9).
+    /// let body = Body::solid_cuboid(&[0.5, 1.0, 1.5], 1.0)?.with_mass(12.0)?;
+    /// let map = InertiaMap::from_principal_moments_of_inertia_3d([13.0, 10.0, 5.0])?;
+    /// let j = map.principal_second_moments().unwrap();
+    /// assert!((j[0] - 1.0).abs() < 1e-12 && (j[1] - 4.0).abs() < 1e-12 && (j[2] - 9.0).abs() < 1e-12);
+    /// assert!((&map.to_matrix() - &InertiaMap::from_body(&body)?.to_matrix()).abs().max() < 1e-12);
+    /// // No body has I₁ > I₂ + I₃.
+    /// assert!(InertiaMap::from_principal_moments_of_inertia_3d([2.0, 1.0, 2.0 / 3.0]).is_err());
+    /// # Ok::<(), rotorflow::inertia::InertiaError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`InertiaError::NonFinite`], [`InertiaError::NotPositive`] for Iᵢ ≤ 0 (a rod, whose
+    /// map is singular), [`InertiaError::NotPhysical3d`] when a triangle inequality fails
+    /// beyond round-off ([`MASS_TENSOR_TOLERANCE`](super::tolerance::MASS_TENSOR_TOLERANCE)
+    /// relative to the largest Iᵢ).
+    pub fn from_principal_moments_of_inertia_3d(moments: [f64; 3]) -> Result<Self, InertiaError> {
+        for (i, &x) in moments.iter().enumerate() {
+            check_finite("moments_of_inertia", Some(i), x)?;
+            if x <= 0.0 {
+                return Err(InertiaError::NotPositive {
+                    quantity: "moments_of_inertia",
+                    index: Some(i),
+                    value: x,
+                });
+            }
+        }
+        let [i1, i2, i3] = moments;
+        let j = [
+            0.5 * (i2 + i3 - i1),
+            0.5 * (i1 + i3 - i2),
+            0.5 * (i1 + i2 - i3),
+        ];
+        let largest = moments.iter().fold(0.0f64, |a, &b| a.max(b));
+        let tolerance = super::tolerance::MASS_TENSOR_TOLERANCE * largest;
+        if let Some(index) = (0..3).find(|&k| j[k] < -tolerance) {
+            return Err(InertiaError::NotPhysical3d { moments, index });
+        }
+        // Round-off below the tolerance is a flat direction: J = 0 exactly.
+        Self::from_principal_second_moments(&j.map(|x| x.max(0.0)))
     }
 
     /// Returns the inertia map of a body about its centre of mass.
     ///
+    /// Every body accepted by [`Body`] is accepted here unless its map is singular, exactly
+    /// when [`Body::check_inertia_map`] fails.
+    ///
     /// # Errors
-    /// As [`InertiaMap::from_mass_tensor`] (a flat body is singular).
+    /// [`InertiaError::DegeneratePlane`] for a body flat in two directions.
     pub fn from_body(body: &Body) -> Result<Self, InertiaError> {
         Self::from_mass_tensor(body.mass_tensor())
     }
@@ -167,14 +253,15 @@ impl InertiaMap {
     /// physical or not.
     ///
     /// # Errors
-    /// [`InertiaError::WrongLength`] unless there are N(N−1)/2 moments for some N ≥ 2,
+    /// [`InertiaError::LengthMismatch`] unless there are N(N−1)/2 moments for some N ≥ 2,
     /// [`InertiaError::NonFinite`], [`InertiaError::NotPositiveDefinite`] for a moment ≤ 0.
     pub fn from_plane_moments(plane_moments: &[f64]) -> Result<Self, InertiaError> {
         let k = plane_moments.len();
         let n = (2..=crate::algebra::MAX_DIM)
             .find(|&n| bivector_len(n) == k)
-            .ok_or(InertiaError::WrongLength {
-                what: "plane moments",
+            .ok_or(InertiaError::LengthMismatch {
+                quantity: "plane moments",
+                index: None,
                 expected: bivector_len(
                     ((1.0 + (1.0 + 8.0 * k as f64).sqrt()) / 2.0).ceil() as usize
                 ),
@@ -184,11 +271,13 @@ impl InertiaMap {
         Self::from_matrix(n, &m)
     }
 
-    /// Returns the 3D map with classical principal moments (I₁, I₂, I₃) about e₁, e₂, e₃:
-    /// the plane moments are I₁₂ = I₃, I₁₃ = I₂, I₂₃ = I₁ (e₁∧e₂ ↔ e₃, DESIGN.md).
+    /// Returns the 3D map with classical principal moments of inertia (I₁, I₂, I₃) about
+    /// e₁, e₂, e₃, physical or not: the plane moments are I₁₂ = I₃, I₁₃ = I₂, I₂₃ = I₁ (e₁∧e₂ ↔ e₃; see the Conventions chapter of the rotorflow book).
     ///
-    /// A physical body satisfies the triangle inequalities Iᵢ ≤ Iⱼ + Iₖ; others (the
-    /// Hairer–Lubich–Wanner test body (2, 1, 2/3)) are accepted as general maps.
+    /// A physical body satisfies the triangle inequalities Iᵢ ≤ Iⱼ + Iₖ and gives the same
+    /// map as [`InertiaMap::from_principal_moments_of_inertia_3d`]; others (the
+    /// Hairer–Lubich–Wanner test body (2, 1, 2/3)) are accepted as general maps. Use
+    /// [`InertiaMap::from_principal_moments_of_inertia_3d`] to have such moments refused.
     ///
     /// # Errors
     /// [`InertiaError::NonFinite`], [`InertiaError::NotPositiveDefinite`].
@@ -202,7 +291,7 @@ impl InertiaMap {
                 0.5 * (i1 + i3 - i2),
                 0.5 * (i1 + i2 - i3),
             ];
-            if let Ok(map) = Self::from_principal_moments(&j) {
+            if let Ok(map) = Self::from_principal_second_moments(&j) {
                 return Ok(map);
             }
         }
@@ -220,18 +309,19 @@ impl InertiaMap {
         let k = bivector_len(n);
         if n < 2 || matrix.nrows() != k || matrix.ncols() != k {
             return Err(InertiaError::WrongShape {
-                what: "map on bivectors",
+                quantity: "map_on_bivectors",
                 rows: matrix.nrows(),
                 cols: matrix.ncols(),
                 expected: k,
             });
         }
-        check_symmetric(matrix, "map on bivectors")?;
+        check_finite_matrix("map_on_bivectors", matrix)?;
+        check_symmetric("map_on_bivectors", matrix)?;
         let m = (matrix + matrix.transpose()) * 0.5;
         let eig = crate::algebra::RobustEigen::new(m.clone());
         let smallest = eig.eigenvalues.iter().fold(f64::INFINITY, |a, &b| a.min(b));
         let largest = eig.eigenvalues.iter().fold(0.0f64, |a, &b| a.max(b));
-        if smallest.is_nan() || smallest <= SINGULAR_PLANE * largest || smallest <= 0.0 {
+        if smallest.is_nan() || smallest <= SINGULAR_PLANE_TOLERANCE * largest || smallest <= 0.0 {
             return Err(InertiaError::NotPositiveDefinite { smallest });
         }
         let inverse = m
@@ -262,25 +352,19 @@ impl InertiaMap {
         diagonal: bool,
     ) -> Result<Self, InertiaError> {
         let n = moments.len();
-        let largest_moment = moments.iter().fold(0.0f64, |a, &b| a.max(b.abs()));
-        for (index, &moment) in moments.iter().enumerate() {
-            if moment < -TOLERANCE * largest_moment {
-                return Err(InertiaError::NegativeMoment { index, moment });
-            }
-        }
-        let plane_moments: Vec<f64> = pairs(n).map(|(a, b)| moments[a] + moments[b]).collect();
-        let largest = plane_moments.iter().fold(0.0f64, |a, &b| a.max(b));
-        if let Some((plane, &moment)) = pairs(n)
-            .zip(plane_moments.iter())
-            .filter(|(_, m)| **m <= SINGULAR_PLANE * largest || **m <= 0.0)
-            .min_by(|a, b| a.1.total_cmp(b.1))
+        check_moments_nonnegative(&moments)?;
+        if let Some((plane, plane_moment, largest)) =
+            singular_plane(&moments, SINGULAR_PLANE_TOLERANCE)
         {
             return Err(InertiaError::DegeneratePlane {
                 plane,
-                moment,
+                first: axes.column(plane.0).into_owned(),
+                second: axes.column(plane.1).into_owned(),
+                plane_moment,
                 largest,
             });
         }
+        let plane_moments: Vec<f64> = pairs(n).map(|(a, b)| moments[a] + moments[b]).collect();
         let inverse_plane_moments = plane_moments.iter().map(|m| 1.0 / m).collect();
         Ok(InertiaMap {
             dim: n,
@@ -360,14 +444,21 @@ impl InertiaMap {
         }
     }
 
-    /// Returns the principal moments Jᵢ (eigenvalues of J) in the order of
+    /// Returns the principal second moments Jᵢ (eigenvalues of J) in the order of
     /// [`InertiaMap::principal_axes`]: ascending, or the given order when J was diagonal.
-    /// `None` for a general map.
-    pub fn principal_moments(&self) -> Option<&[f64]> {
+    /// `None` for a general map. In 3D the moments of inertia are Iᵢ = Jⱼ + Jₖ.
+    pub fn principal_second_moments(&self) -> Option<&[f64]> {
         match &self.kind {
             Kind::Physical { moments, .. } => Some(moments),
             Kind::General { .. } => None,
         }
+    }
+
+    /// Returns the principal second moments Jᵢ (eigenvalues of J), not the moments of
+    /// inertia.
+    #[deprecated(note = "use principal_second_moments (the same Jᵢ)")]
+    pub fn principal_moments(&self) -> Option<&[f64]> {
+        self.principal_second_moments()
     }
 
     /// Returns the principal axes as the columns of a rotation matrix P (det +1), with
@@ -531,7 +622,7 @@ impl InertiaMap {
         }
     }
 
-    /// Returns the kinetic energy T = ½⟨ω, I(ω)⟩ (DESIGN.md; the paper's eq. 34 is 2T).
+    /// Returns the kinetic energy T = ½⟨ω, I(ω)⟩ (see the Conventions chapter of the rotorflow book; the paper's eq. 34 is 2T).
     ///
     /// # Panics
     /// If the dimensions differ.
@@ -587,18 +678,6 @@ impl InertiaMap {
     }
 }
 
-fn check_symmetric(m: &DMatrix<f64>, what: &'static str) -> Result<(), InertiaError> {
-    if m.iter().any(|x| !x.is_finite()) {
-        return Err(InertiaError::NonFinite { what });
-    }
-    let scale = m.iter().fold(0.0f64, |a, &b| a.max(b.abs()));
-    let deviation = (m - m.transpose()).abs().max();
-    if deviation > TOLERANCE * scale {
-        return Err(InertiaError::NotSymmetric { what, deviation });
-    }
-    Ok(())
-}
-
 #[track_caller]
 fn assert_dims(map: usize, argument: usize) {
     assert!(
@@ -611,7 +690,11 @@ fn check_dims(map: usize, argument: usize) -> Result<(), InertiaError> {
     if map == argument {
         Ok(())
     } else {
-        Err(InertiaError::DimensionMismatch { map, argument })
+        Err(InertiaError::DimensionMismatch {
+            quantity: "argument",
+            expected: map,
+            found: argument,
+        })
     }
 }
 
@@ -630,7 +713,7 @@ fn packed_to_dense(n: usize, packed: &[f64]) -> DMatrix<f64> {
     m
 }
 
-/// out = packed([J][ω] + [ω][J]) for i < j: Σ_k J_ik ω_kj + ω_ik J_kj, from dense rows on the
+/// out = packed([J][ω] + [ω][J]) for i < j: Σₖ Jᵢₖ ωₖⱼ + ωᵢₖ Jₖⱼ, from dense rows on the
 /// stack (N ≤ 16).
 fn jw_plus_wj(n: usize, j: &DMatrix<f64>, omega: &[f64], out: &mut [f64]) {
     let mut stack = [0.0f64; 256];

@@ -2,220 +2,84 @@
 //! Levi-Civita-contracted matrix 𝕀 of eqs. (23), (24), (30) and (31), the gyration radii
 //! (Poinsot half-axes) of eq. (27) and the trace of eq. (29).
 //!
-//! Everything here is a function of J = ∫ x xᵀ dm (DESIGN.md part 1), so a physical body has
-//! only N(N+1)/2 inertia parameters (REFERENCES.md §0).
+//! Everything here is a function of J = ∫ x xᵀ dm (see the Conventions chapter of the
+//! rotorflow book), so a physical body has
+//! only N(N+1)/2 inertia parameters.
 //!
-//! # The rank-4 tensor (eq. 22, DESIGN.md normalisation)
+//! # The rank-4 tensor (eq. 22, the crate's normalisation)
 //!
-//! I^{ijkl} = ½ (δ_ik J_jl − δ_il J_jk − δ_jk J_il + δ_jl J_ik), so I^{ijij} = ½ (J_i + J_j)
-//! for i ≠ j in the principal frame, and L_ij = Σ_{k,l} I^{ijkl} ω_kl (sum over all k, l)
+//! Iⁱʲᵏˡ = ½ (δᵢₖ Jⱼₗ − δᵢₗ Jⱼₖ − δⱼₖ Jᵢₗ + δⱼₗ Jᵢₖ), so Iⁱʲⁱʲ = ½ (Jᵢ + Jⱼ)
+//! for i ≠ j in the principal frame, and Lᵢⱼ = Σₖₗ Iⁱʲᵏˡ ωₖₗ (sum over all k, l)
 //! gives \[L\] = J\[ω\] + \[ω\]J. It has the symmetries stated under eq. (22):
-//! I^{ijkl} = −I^{jikl} = −I^{ijlk} = I^{klij} and I^{ijkl} + I^{iklj} + I^{iljk} = 0.
-//! This is half of Parker's (2024) Kulkarni–Nomizu normalisation (REFERENCES.md §0).
+//! Iⁱʲᵏˡ = −Iʲⁱᵏˡ = −Iⁱʲˡᵏ = Iᵏˡⁱʲ and Iⁱʲᵏˡ + Iⁱᵏˡʲ + Iⁱˡʲᵏ = 0.
+//! This is half of Parker's (2024) Kulkarni–Nomizu normalisation (Parker, Int. J. Theor. Phys. 63, 2024, doi:10.1007/s10773-023-05505-7).
 //!
 //! # The contracted matrix 𝕀 (eqs. 23, 24, 30, 31)
 //!
-//! Read literally, eq. (31) is 𝕀^{pm} = Σ ε_{p s t r…n} ε_{m r…n k l} I^{stkl}, summed over
+//! Read literally, eq. (31) is 𝕀ᵖᵐ = Σ εₚₛₜᵣ…ₙ εₘᵣ…ₙₖₗ Iˢᵗᵏˡ, summed over
 //! s, t, k, l and the N − 3 extra indices r…n (eq. 30); for N = 3 this is eq. (23) and for
 //! N = 4 eq. (24). Moving k, l past the N − 3 extra indices is an even permutation, and
-//! Σ_{r…n} ε_{p s t r…n} ε_{m k l r…n} = (N − 3)! δ^{pst}_{mkl}, which with eq. (22) gives
+//! Σᵣ…ₙ εₚₛₜᵣ…ₙ εₘₖₗᵣ…ₙ = (N − 3)! δᵖˢᵗₘₖₗ, which with eq. (22) gives
 //!
-//! **𝕀 = 2 (N − 2)! (tr J · 1 − J)**, i.e. 𝕀^{pp} = 2 (N − 2)! Σ_{q ≠ p} J_q in the
+//! **𝕀 = 2 (N − 2)! (tr J · 1 − J)**, i.e. 𝕀ᵖᵖ = 2 (N − 2)! Σ Jᵣ (sum over r ≠ p) in the
 //! principal frame.
 //!
 //! tr J · 1 − J is the N-dimensional axis-moment tensor: its entry (p, p) is
-//! ∫ (|x|² − x_p²) dm, the second moment about the axis e_p; in 3D it is the classical
-//! inertia tensor. In terms of plane moments, Σ_{q≠p} J_q = (1/(N−2)) Σ_{planes (s,t) ∌ p}
-//! (J_s + J_t), so 𝕀^{pp} = 2 (N − 3)! × (sum of the plane moments of the planes orthogonal
-//! to e_p). In 3D the literal eq. (23) is therefore twice the classical inertia tensor, and
+//! ∫ (|x|² − xₚ²) dm, the second moment about the axis eₚ; in 3D it is the classical
+//! inertia tensor. In terms of plane moments, Σ Jᵣ (r ≠ p) = (1/(N−2)) Σ (Jₛ + Jₜ) over the planes (s, t) ∌ p,
+//! so 𝕀ᵖᵖ = 2 (N − 3)! × (sum of the plane moments of the planes orthogonal
+//! to eₚ). In 3D the literal eq. (23) is therefore twice the classical inertia tensor, and
 //! in 4D eq. (24) is four times the axis-moment tensor.
 //!
 //! The paper itself uses three different normalisations of 𝕀 (tested in
 //! `tests/paper_errata.rs`); [`ContractionNormalization`] offers all three, and the crate's
 //! choice is the literal one, [`ContractionNormalization::LeviCivita`]:
-//! - eq. (26) (4D) writes −𝕀_I as a sum of six components I^{stts}, which gives
-//!   (N − 2)(tr J − J_p) = half of the literal eq. (24): [`ContractionNormalization::PlaneSum`];
+//! - eq. (26) (4D) writes −𝕀_I as a sum of six components Iˢᵗᵗˢ, which gives
+//!   (N − 2)(tr J − Jₚ) = half of the literal eq. (24): [`ContractionNormalization::PlaneSum`];
 //! - the examples in eqs. (79), (80), (87)–(89), (95), (98) and (106) use tr J · 1 − J:
 //!   [`ContractionNormalization::AxisMoment`];
 //! - eqs. (75), (76) match the literal eq. (24), and eq. (71) matches eq. (26).
 //!
 //! The gyration radii (Poinsot half-axes) are 𝕀_α = μ L_α², L_α = √(𝕀_α/μ) (eq. 27) and the
-//! trace is 𝕀_0 = tr 𝕀 = μ Σ L_α² (eq. 29). They inherit the normalisation of 𝕀.
+//! trace is 𝕀₀ = tr 𝕀 = μ Σ L_α² (eq. 29). They inherit the normalisation of 𝕀.
 
+use super::InertiaError;
+use super::validate::{check_finite_matrix, check_positive, check_symmetric, max_abs};
 use nalgebra::{DMatrix, DVector};
-use thiserror::Error;
 
 /// Largest dimension for which [`RankFourTensor::levi_civita_contraction`] evaluates the
 /// literal Levi-Civita sum (cost grows like 6 N! N²; N = 8 takes about 2·10⁷ steps).
 pub const MAX_LITERAL_CONTRACTION_DIM: usize = 8;
 
-/// Relative tolerance of the symmetry check on J and the skew-symmetry check on \[ω\]:
-/// entries may differ from exact (skew-)symmetry by 1e-10 × the largest entry, which
-/// accepts matrices built in floating point (QJQᵀ is symmetric to ~1e-16) and rejects
-/// anything that is not meant to be symmetric.
-pub const SYMMETRY_TOLERANCE: f64 = 1e-10;
+/// The former name of [`InertiaError`] for the tensor views.
+#[allow(deprecated)]
+pub use super::error::TensorError;
+#[doc(inline)]
+pub use super::tolerance::SYMMETRY_TOLERANCE;
 
-/// Why a tensor view could not be computed.
-#[derive(Debug, Clone, PartialEq, Error)]
-#[non_exhaustive]
-pub enum TensorError {
-    /// A matrix that must be square is not.
-    ///
-    /// # How to fix
-    /// J and \[ω\] are N×N.
-    #[error("`{quantity}` is {rows}×{cols}, expected a square matrix")]
-    NotSquare {
-        /// Which argument.
-        quantity: &'static str,
-        /// Number of rows given.
-        rows: usize,
-        /// Number of columns given.
-        cols: usize,
-    },
-    /// Two arguments disagree in dimension.
-    ///
-    /// # How to fix
-    /// Use \[ω\] of the same size N as the tensor.
-    #[error("`{quantity}` has dimension {found}, expected {expected}")]
-    DimensionMismatch {
-        /// Which argument.
-        quantity: &'static str,
-        /// The tensor's dimension.
-        expected: usize,
-        /// The argument's dimension.
-        found: usize,
-    },
-    /// The dimension is outside the range this view is defined or evaluated for.
-    ///
-    /// # How to fix
-    /// The contraction of eqs. (23)–(31) needs N ≥ 3 (eq. 30 has N − 3 extra indices); the
-    /// literal Levi-Civita sum is evaluated up to [`MAX_LITERAL_CONTRACTION_DIM`]; use
-    /// [`ContractedInertia::from_mass_tensor`] (closed form) beyond that.
-    #[error("dimension {dim} is outside the supported range {min}..={max}")]
-    UnsupportedDimension {
-        /// The dimension given.
-        dim: usize,
-        /// The smallest supported dimension.
-        min: usize,
-        /// The largest supported dimension.
-        max: usize,
-    },
-    /// An entry is NaN or infinite.
-    ///
-    /// # How to fix
-    /// Pass finite numbers only.
-    #[error("`{quantity}`[({row}, {col})] is not finite: {value}")]
-    NonFinite {
-        /// Which argument.
-        quantity: &'static str,
-        /// Row of the entry.
-        row: usize,
-        /// Column of the entry.
-        col: usize,
-        /// The value.
-        value: f64,
-    },
-    /// J is not symmetric.
-    ///
-    /// # How to fix
-    /// Pass a symmetric mass tensor; `asymmetry` is |J_ij − J_ji| / max|J|.
-    #[error("mass tensor is not symmetric at ({row}, {col}): relative asymmetry {asymmetry:e}")]
-    NotSymmetric {
-        /// Row of the worst entry.
-        row: usize,
-        /// Column of the worst entry.
-        col: usize,
-        /// |J_ij − J_ji| / max|J|.
-        asymmetry: f64,
-    },
-    /// \[ω\] is not skew-symmetric.
-    ///
-    /// # How to fix
-    /// Pass the skew matrix of a bivector, \[ω\]_ji = −\[ω\]_ij, zero diagonal.
-    #[error("angular velocity is not skew at ({row}, {col}): relative residual {residual:e}")]
-    NotSkewSymmetric {
-        /// Row of the worst entry.
-        row: usize,
-        /// Column of the worst entry.
-        col: usize,
-        /// |ω_ij + ω_ji| / max|ω|.
-        residual: f64,
-    },
-    /// A mass is zero, negative or not finite.
-    ///
-    /// # How to fix
-    /// Pass the body's (positive) mass μ.
-    #[error("mass must be positive and finite, got {value}")]
-    NotPositiveMass {
-        /// The value given.
-        value: f64,
-    },
-    /// A contracted value is negative, so its gyration radius √(𝕀_α/μ) is not real.
-    ///
-    /// # How to fix
-    /// This happens only when J is not positive semidefinite, i.e. not a physical body.
-    #[error("contracted value {index} is negative ({value:e}); no real gyration radius")]
-    NegativeValue {
-        /// Which value (0-based).
-        index: usize,
-        /// The value.
-        value: f64,
-    },
-}
-
-fn check_square(quantity: &'static str, m: &DMatrix<f64>) -> Result<usize, TensorError> {
+fn check_square(quantity: &'static str, m: &DMatrix<f64>) -> Result<usize, InertiaError> {
     if m.nrows() != m.ncols() {
-        return Err(TensorError::NotSquare {
+        return Err(InertiaError::NotSquare {
             quantity,
             rows: m.nrows(),
             cols: m.ncols(),
         });
     }
-    for r in 0..m.nrows() {
-        for c in 0..m.ncols() {
-            let value = m[(r, c)];
-            if !value.is_finite() {
-                return Err(TensorError::NonFinite {
-                    quantity,
-                    row: r,
-                    col: c,
-                    value,
-                });
-            }
-        }
-    }
+    check_finite_matrix(quantity, m)?;
     Ok(m.nrows())
 }
 
-fn max_abs(m: &DMatrix<f64>) -> f64 {
-    m.iter().fold(0.0_f64, |acc, x| acc.max(x.abs()))
-}
-
 /// Checks that `j` is a finite symmetric square matrix and returns its symmetrized copy.
-fn checked_mass_tensor(j: &DMatrix<f64>) -> Result<DMatrix<f64>, TensorError> {
-    let n = check_square("mass_tensor", j)?;
-    let scale = max_abs(j);
-    if scale > 0.0 {
-        for r in 0..n {
-            for c in r + 1..n {
-                let asymmetry = (j[(r, c)] - j[(c, r)]).abs() / scale;
-                if asymmetry > SYMMETRY_TOLERANCE {
-                    return Err(TensorError::NotSymmetric {
-                        row: r,
-                        col: c,
-                        asymmetry,
-                    });
-                }
-            }
-        }
-    }
+fn checked_mass_tensor(j: &DMatrix<f64>) -> Result<DMatrix<f64>, InertiaError> {
+    check_square("mass_tensor", j)?;
+    check_symmetric("mass_tensor", j)?;
     Ok((j + j.transpose()) * 0.5)
 }
 
-fn check_skew(omega: &DMatrix<f64>, dim: usize) -> Result<(), TensorError> {
+fn check_skew(omega: &DMatrix<f64>, dim: usize) -> Result<(), InertiaError> {
     let n = check_square("omega", omega)?;
     if n != dim {
-        return Err(TensorError::DimensionMismatch {
+        return Err(InertiaError::DimensionMismatch {
             quantity: "omega",
             expected: dim,
             found: n,
@@ -223,17 +87,12 @@ fn check_skew(omega: &DMatrix<f64>, dim: usize) -> Result<(), TensorError> {
     }
     let scale = max_abs(omega);
     if scale > 0.0 {
-        for r in 0..n {
-            for c in r..n {
-                let residual = (omega[(r, c)] + omega[(c, r)]).abs() / scale;
-                if residual > SYMMETRY_TOLERANCE {
-                    return Err(TensorError::NotSkewSymmetric {
-                        row: r,
-                        col: c,
-                        residual,
-                    });
-                }
-            }
+        let residual = max_abs(&(omega + omega.transpose())) / scale;
+        if residual > SYMMETRY_TOLERANCE {
+            return Err(InertiaError::NotSkewSymmetric {
+                quantity: "omega",
+                residual,
+            });
         }
     }
     Ok(())
@@ -279,14 +138,14 @@ fn for_each_permutation(items: &mut [usize], mut f: impl FnMut(&[usize])) {
     }
 }
 
-/// The rank-4 inertia tensor I^{ijkl} of the paper's eq. (22), with DESIGN.md's
-/// normalisation I^{ijkl} = ½ (δ_ik J_jl − δ_il J_jk − δ_jk J_il + δ_jl J_ik).
+/// The rank-4 inertia tensor Iⁱʲᵏˡ of the paper's eq. (22), with the crate's
+/// normalisation Iⁱʲᵏˡ = ½ (δᵢₖ Jⱼₗ − δᵢₗ Jⱼₖ − δⱼₖ Jᵢₗ + δⱼₗ Jᵢₖ).
 ///
 /// Stored densely as N⁴ numbers. Indices are 0-based; component (i, j, k, l) lives at
 /// `components()[((i·N + j)·N + k)·N + l]`.
 ///
 /// # Example
-/// In the principal frame I^{ijij} is half the plane moment:
+/// In the principal frame Iⁱʲⁱʲ is half the plane moment:
 /// ```
 /// use rotorflow::inertia::tensor::RankFourTensor;
 /// use nalgebra::{DMatrix, DVector};
@@ -294,7 +153,7 @@ fn for_each_permutation(items: &mut [usize], mut f: impl FnMut(&[usize])) {
 /// let tensor = RankFourTensor::from_mass_tensor(&j)?;
 /// assert_eq!(tensor.get(0, 1, 0, 1), 1.5);  // ½(J_1 + J_2), paper eq. (40)
 /// assert_eq!(tensor.get(0, 1, 1, 0), -1.5);
-/// # Ok::<(), rotorflow::inertia::tensor::TensorError>(())
+/// # Ok::<(), rotorflow::inertia::InertiaError>(())
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct RankFourTensor {
@@ -306,9 +165,9 @@ impl RankFourTensor {
     /// Returns the eq. (22) tensor of the mass tensor J.
     ///
     /// # Errors
-    /// [`TensorError::NotSquare`], [`TensorError::NonFinite`] or
-    /// [`TensorError::NotSymmetric`] (beyond [`SYMMETRY_TOLERANCE`]) for a bad J.
-    pub fn from_mass_tensor(mass_tensor: &DMatrix<f64>) -> Result<RankFourTensor, TensorError> {
+    /// [`InertiaError::NotSquare`], [`InertiaError::NonFinite`] or
+    /// [`InertiaError::NotSymmetric`] (beyond [`SYMMETRY_TOLERANCE`]) for a bad J.
+    pub fn from_mass_tensor(mass_tensor: &DMatrix<f64>) -> Result<RankFourTensor, InertiaError> {
         let j = checked_mass_tensor(mass_tensor)?;
         let n = j.nrows();
         let delta = |a: usize, b: usize| if a == b { 1.0 } else { 0.0 };
@@ -339,7 +198,7 @@ impl RankFourTensor {
         &self.components
     }
 
-    /// Returns I^{ijkl} (0-based indices), or `None` if an index is ≥ N.
+    /// Returns Iⁱʲᵏˡ (0-based indices), or `None` if an index is ≥ N.
     ///
     /// See also [`RankFourTensor::get`], which panics instead.
     pub fn try_get(&self, i: usize, j: usize, k: usize, l: usize) -> Option<f64> {
@@ -351,7 +210,7 @@ impl RankFourTensor {
         }
     }
 
-    /// Returns I^{ijkl} (0-based indices).
+    /// Returns Iⁱʲᵏˡ (0-based indices).
     ///
     /// # Panics
     /// If an index is ≥ N. See [`RankFourTensor::try_get`] for the non-panicking form.
@@ -366,13 +225,13 @@ impl RankFourTensor {
         }
     }
 
-    /// Returns the angular momentum \[L\] with L_ij = Σ_{k,l} I^{ijkl} ω_kl, summed over all k
-    /// and l (paper eq. 32, DESIGN.md). It equals J\[ω\] + \[ω\]J.
+    /// Returns the angular momentum \[L\] with Lᵢⱼ = Σₖₗ Iⁱʲᵏˡ ωₖₗ, summed over all k
+    /// and l (paper eq. 32; see the Conventions chapter of the rotorflow book). It equals J\[ω\] + \[ω\]J.
     ///
     /// # Errors
-    /// [`TensorError::NotSquare`], [`TensorError::DimensionMismatch`],
-    /// [`TensorError::NonFinite`], [`TensorError::NotSkewSymmetric`] for a bad \[ω\].
-    pub fn apply(&self, omega: &DMatrix<f64>) -> Result<DMatrix<f64>, TensorError> {
+    /// [`InertiaError::NotSquare`], [`InertiaError::DimensionMismatch`],
+    /// [`InertiaError::NonFinite`], [`InertiaError::NotSkewSymmetric`] for a bad \[ω\].
+    pub fn apply(&self, omega: &DMatrix<f64>) -> Result<DMatrix<f64>, InertiaError> {
         check_skew(omega, self.dim)?;
         let n = self.dim;
         let mut l = DMatrix::zeros(n, n);
@@ -390,21 +249,21 @@ impl RankFourTensor {
         Ok(l)
     }
 
-    /// Returns the paper's rotational energy W = ½ Σ_{i,j,k,l} ω_ij I^{ijkl} ω_kl of eq. (34),
+    /// Returns the paper's rotational energy W = ½ Σᵢⱼₖₗ ωᵢⱼ Iⁱʲᵏˡ ωₖₗ of eq. (34),
     /// read literally (all index sums over 1…N).
     ///
     /// With the eq. (22) normalisation this is **twice** the kinetic energy
-    /// T = ½ ⟨ω, L⟩ = ½ Σ_{i<j} ω_ij L_ij of DESIGN.md, because the double sum over i, j
+    /// T = ½ ⟨ω, L⟩ = ½ Σ ωᵢⱼ Lᵢⱼ (sum over i < j) of the crate (see the Conventions chapter of the rotorflow book), because the double sum over i, j
     /// counts every plane twice. See `paper_eq_34_energy_is_twice_kinetic_energy`.
     ///
     /// # Errors
     /// As [`RankFourTensor::apply`].
-    pub fn paper_energy(&self, omega: &DMatrix<f64>) -> Result<f64, TensorError> {
+    pub fn paper_energy(&self, omega: &DMatrix<f64>) -> Result<f64, InertiaError> {
         let l = self.apply(omega)?;
         Ok(0.5 * omega.component_mul(&l).sum())
     }
 
-    /// Returns the matrix 𝕀^{pm} = Σ ε_{p s t r…n} ε_{m r…n k l} I^{stkl} of eqs. (23), (24),
+    /// Returns the matrix 𝕀ᵖᵐ = Σ εₚₛₜᵣ…ₙ εₘᵣ…ₙₖₗ Iˢᵗᵏˡ of eqs. (23), (24),
     /// (30) and (31), evaluated literally as a sum over all index values.
     ///
     /// Only index tuples where both Levi-Civita symbols are non-zero are visited: (p, s, t,
@@ -415,11 +274,11 @@ impl RankFourTensor {
     /// `literal_levi_civita_sum_matches_closed_form`).
     ///
     /// # Errors
-    /// [`TensorError::UnsupportedDimension`] unless 3 ≤ N ≤ [`MAX_LITERAL_CONTRACTION_DIM`].
-    pub fn levi_civita_contraction(&self) -> Result<DMatrix<f64>, TensorError> {
+    /// [`InertiaError::UnsupportedDimension`] unless 3 ≤ N ≤ [`MAX_LITERAL_CONTRACTION_DIM`].
+    pub fn levi_civita_contraction(&self) -> Result<DMatrix<f64>, InertiaError> {
         let n = self.dim;
         if !(3..=MAX_LITERAL_CONTRACTION_DIM).contains(&n) {
-            return Err(TensorError::UnsupportedDimension {
+            return Err(InertiaError::UnsupportedDimension {
                 dim: n,
                 min: 3,
                 max: MAX_LITERAL_CONTRACTION_DIM,
@@ -473,7 +332,7 @@ pub enum ContractionNormalization {
     /// it in 4D: c_N = N − 2 (1 in 3D, 2 in 4D). Equals the literal contraction divided by
     /// 2 (N − 3)!.
     PlaneSum,
-    /// The axis-moment tensor tr J · 1 − J, whose entry (p, p) is ∫ (|x|² − x_p²) dm, the
+    /// The axis-moment tensor tr J · 1 − J, whose entry (p, p) is ∫ (|x|² − xₚ²) dm, the
     /// classical inertia tensor in 3D: c_N = 1. The normalisation of the paper's examples
     /// in eqs. (79), (80), (87)–(89), (95), (98), (106).
     AxisMoment,
@@ -496,7 +355,7 @@ impl ContractionNormalization {
 /// values (eq. 25), gyration radii (eq. 27) and trace (eq. 29).
 ///
 /// 𝕀 = c_N (tr J · 1 − J) with c_N from [`ContractionNormalization::factor`]. Its
-/// eigenvectors are those of J; in the principal frame 𝕀_α = c_N Σ_{q≠α} J_q.
+/// eigenvectors are those of J; in the principal frame 𝕀_α = c_N Σ Jᵣ (sum over r ≠ α).
 ///
 /// # Example
 /// The paper's 5-cell (eq. 73) with a = b = c = d = 1 has J = 5/4 · 1, so the literal
@@ -504,7 +363,7 @@ impl ContractionNormalization {
 /// ```
 /// use rotorflow::inertia::bodies::Body;
 /// use rotorflow::inertia::tensor::{ContractedInertia, ContractionNormalization};
-/// let cell = Body::pentachoron_eq73(1.0, 1.0, 1.0, 1.0)?;
+/// let cell = Body::pentachoron(1.0, 1.0, 1.0, 1.0)?;
 /// let inertia = ContractedInertia::from_mass_tensor(
 ///     cell.mass_tensor(),
 ///     ContractionNormalization::LeviCivita,
@@ -523,17 +382,17 @@ impl ContractedInertia {
     /// docs for the derivation from eq. 31).
     ///
     /// # Errors
-    /// [`TensorError::UnsupportedDimension`] for N < 3 (eq. 30 needs N − 3 ≥ 0 extra
-    /// indices); [`TensorError::NotSquare`], [`TensorError::NonFinite`],
-    /// [`TensorError::NotSymmetric`] for a bad J.
+    /// [`InertiaError::UnsupportedDimension`] for N < 3 (eq. 30 needs N − 3 ≥ 0 extra
+    /// indices); [`InertiaError::NotSquare`], [`InertiaError::NonFinite`],
+    /// [`InertiaError::NotSymmetric`] for a bad J.
     pub fn from_mass_tensor(
         mass_tensor: &DMatrix<f64>,
         normalization: ContractionNormalization,
-    ) -> Result<ContractedInertia, TensorError> {
+    ) -> Result<ContractedInertia, InertiaError> {
         let j = checked_mass_tensor(mass_tensor)?;
         let n = j.nrows();
         if n < 3 {
-            return Err(TensorError::UnsupportedDimension {
+            return Err(InertiaError::UnsupportedDimension {
                 dim: n,
                 min: 3,
                 max: usize::MAX,
@@ -556,12 +415,12 @@ impl ContractedInertia {
         self.matrix.nrows()
     }
 
-    /// Returns the matrix 𝕀^{pm}.
+    /// Returns the matrix 𝕀ᵖᵐ.
     pub fn matrix(&self) -> &DMatrix<f64> {
         &self.matrix
     }
 
-    /// Returns the diagonal 𝕀^{pp} in the frame of J. When J is given in its principal frame
+    /// Returns the diagonal 𝕀ᵖᵖ in the frame of J. When J is given in its principal frame
     /// (as for every catalogue body) these are the 𝕀_I, 𝕀_II, … of eq. (25), in axis order.
     pub fn axis_values(&self) -> DVector<f64> {
         self.matrix.diagonal()
@@ -575,20 +434,20 @@ impl ContractedInertia {
         DVector::from_vec(values)
     }
 
-    /// Returns the trace 𝕀_0 = tr 𝕀 = c_N (N − 1) tr J (eq. 29).
+    /// Returns the trace 𝕀₀ = tr 𝕀 = c_N (N − 1) tr J (eq. 29).
     pub fn trace(&self) -> f64 {
         self.matrix.trace()
     }
 
-    /// Returns the gyration radii L_α = √(𝕀^{αα}/μ) of eq. (27) from [`axis_values`]
+    /// Returns the gyration radii L_α = √(𝕀^(αα)/μ) of eq. (27) from [`axis_values`]
     /// (axis order; the Poinsot half-axes when J is principal).
     ///
     /// [`axis_values`]: ContractedInertia::axis_values
     ///
     /// # Errors
-    /// [`TensorError::NotPositiveMass`]; [`TensorError::NegativeValue`] if a diagonal entry
+    /// [`InertiaError::NotPositive`] or [`InertiaError::NonFinite`]; [`InertiaError::NegativeValue`] if a diagonal entry
     /// is negative (J not positive semidefinite).
-    pub fn gyration_radii(&self, mass: f64) -> Result<DVector<f64>, TensorError> {
+    pub fn gyration_radii(&self, mass: f64) -> Result<DVector<f64>, InertiaError> {
         radii(&self.axis_values(), mass)
     }
 
@@ -597,21 +456,19 @@ impl ContractedInertia {
     ///
     /// # Errors
     /// As [`ContractedInertia::gyration_radii`].
-    pub fn principal_gyration_radii(&self, mass: f64) -> Result<DVector<f64>, TensorError> {
+    pub fn principal_gyration_radii(&self, mass: f64) -> Result<DVector<f64>, InertiaError> {
         radii(&self.principal_values(), mass)
     }
 }
 
-fn radii(values: &DVector<f64>, mass: f64) -> Result<DVector<f64>, TensorError> {
-    if !(mass.is_finite() && mass > 0.0) {
-        return Err(TensorError::NotPositiveMass { value: mass });
-    }
+fn radii(values: &DVector<f64>, mass: f64) -> Result<DVector<f64>, InertiaError> {
+    check_positive("mass", None, mass)?;
     let scale = values.iter().fold(0.0_f64, |acc, v| acc.max(v.abs()));
     let mut out = DVector::zeros(values.len());
     for (index, &value) in values.iter().enumerate() {
         // Eigenvalues of a PSD-derived matrix may come out at −1e-16·scale; clamp those.
         if value < -SYMMETRY_TOLERANCE * scale {
-            return Err(TensorError::NegativeValue { index, value });
+            return Err(InertiaError::NegativeValue { index, value });
         }
         out[index] = (value.max(0.0) / mass).sqrt();
     }

@@ -65,7 +65,7 @@ fn rk4_keeps_the_rotor_on_spin_n_without_renormalising() {
 fn steady_rotation_in_a_principal_plane_stays_steady() {
     for n in [3, 4, 5] {
         let j: Vec<f64> = (0..n).map(|k| 1.0 + 0.5 * k as f64).collect();
-        let inertia = InertiaMap::from_principal_moments(&j).unwrap();
+        let inertia = InertiaMap::from_principal_second_moments(&j).unwrap();
         let w = Bivector::from_plane(n, 0, 1, 2.0).unwrap();
         for integ in [
             &mut Splitting::strang() as &mut dyn rotorflow::dynamics::Integrator,

@@ -11,7 +11,7 @@ fn euler_3d_matches_classical() {
     // The Conventions chapter of the book: Ω = (ω23, −ω13, ω12), I₁ = J₂ + J₃ (and cyclic); the classical equations
     // I₁ dΩ₁/dt = (I₂ − I₃) Ω₂ Ω₃ and cyclic must equal dω/dt = I⁻¹(ω × L).
     let j = [0.7, 1.1, 1.9];
-    let inertia = InertiaMap::from_principal_moments(&j).unwrap();
+    let inertia = InertiaMap::from_principal_second_moments(&j).unwrap();
     let (i1, i2, i3) = (j[1] + j[2], j[0] + j[2], j[0] + j[1]);
     let w = Bivector::from_components(3, &[0.4, -1.3, 0.9]).unwrap();
     let body = RigidBody::from_body_velocity(inertia.clone(), Rotor::identity(3), &w).unwrap();
@@ -40,7 +40,7 @@ fn right_hand_side_equals_the_matrix_formulation() {
     let mut r = rng(201);
     for n in [4, 5, 8] {
         let j: Vec<f64> = (0..n).map(|k| 0.5 + 0.3 * k as f64).collect();
-        let inertia = InertiaMap::from_principal_moments(&j).unwrap();
+        let inertia = InertiaMap::from_principal_second_moments(&j).unwrap();
         let w = random_bivector(&mut r, n, 1.0);
         let l = inertia.apply(&w);
         let rate = w.commutator(&l);

@@ -65,7 +65,7 @@ fn matrix_attitude_reproduces_rotor_attitude_of_embedded_motion() {
     }
     let make = |n: usize, l: &Bivector| {
         RigidBody::from_body_momentum(
-            InertiaMap::from_principal_moments(&moments[..n]).unwrap(),
+            InertiaMap::from_principal_second_moments(&moments[..n]).unwrap(),
             Attitude::identity(n),
             l,
         )
@@ -109,7 +109,7 @@ fn large_n_free_body_keeps_invariants() {
         let attitude =
             Attitude::from_matrix(&random_bivector(&mut r, n, 0.3).exp_skew_matrix()).unwrap();
         let mut body = RigidBody::from_body_momentum(
-            InertiaMap::from_principal_moments(&moments).unwrap(),
+            InertiaMap::from_principal_second_moments(&moments).unwrap(),
             attitude,
             &random_bivector(&mut r, n, 1.0),
         )
@@ -151,7 +151,7 @@ fn heavy_top_at_n10_conserves_energy_and_horizontal_momentum() {
     let moments: Vec<f64> = (0..n).map(|k| 0.6 + 0.1 * k as f64).collect();
     let mut r = rng(95);
     let mut body = RigidBody::from_body_momentum(
-        InertiaMap::from_principal_moments(&moments).unwrap(),
+        InertiaMap::from_principal_second_moments(&moments).unwrap(),
         Attitude::identity(n),
         &random_bivector(&mut r, n, 1.0),
     )
@@ -188,7 +188,7 @@ fn overflowing_state_is_reported_not_propagated() {
             .map(|k| 1e300 * (k as f64 + 1.0))
             .collect();
         let body = RigidBody::from_body_momentum(
-            InertiaMap::from_principal_moments(&moments).unwrap(),
+            InertiaMap::from_principal_second_moments(&moments).unwrap(),
             Attitude::identity(n),
             &Bivector::from_components(n, &l).unwrap(),
         )
@@ -263,7 +263,7 @@ fn dense_free_rk4_matches_the_bivector_path() {
     let mut r = rng(95);
     for n in [9usize, 12, 16, 24] {
         let moments: Vec<f64> = (0..n).map(|_| r.gen_range(0.3..2.0)).collect();
-        let physical = InertiaMap::from_principal_moments(&moments).unwrap();
+        let physical = InertiaMap::from_principal_second_moments(&moments).unwrap();
         // A diagonal map that is not of the form Jᵢ + Jⱼ.
         let k = n * (n - 1) / 2;
         let planes: Vec<f64> = (0..k).map(|_| r.gen_range(0.5..3.0)).collect();

@@ -28,7 +28,7 @@ pub fn random_bivector(r: &mut impl Rng, n: usize, scale: f64) -> Bivector {
 /// A random free body in its principal frame: moments in [0.3, 2], random L and attitude.
 pub fn random_body(r: &mut impl Rng, n: usize) -> RigidBody {
     let moments: Vec<f64> = (0..n).map(|_| r.gen_range(0.3..2.0)).collect();
-    let inertia = InertiaMap::from_principal_moments(&moments).unwrap();
+    let inertia = InertiaMap::from_principal_second_moments(&moments).unwrap();
     let attitude = Rotor::from_rotation_bivector(&random_bivector(r, n, 1.0));
     RigidBody::from_body_momentum(inertia, attitude, &random_bivector(r, n, 1.0)).unwrap()
 }

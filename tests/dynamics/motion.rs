@@ -35,7 +35,7 @@ fn growth_rates_match_the_reference_values_in_4d() {
 /// Measures the growth rate of a perturbed steady rotation in plane (p, q) by simulation.
 fn measured_growth(j: &[f64], p: usize, q: usize) -> (f64, f64) {
     let n = j.len();
-    let inertia = InertiaMap::from_principal_moments(j).unwrap();
+    let inertia = InertiaMap::from_principal_second_moments(j).unwrap();
     let mut l = Bivector::zero(n);
     l.set(p, q, 1.0);
     let mut perturbed = l.clone();

@@ -149,7 +149,8 @@ mod adaptive {
     fn a_stiff_case_errors_clearly_instead_of_looping() {
         // ω ~ 1e6 with an inertia ratio of 1e4: the bound on internal steps ends the attempt.
         let inertia =
-            rotorflow::prelude::InertiaMap::from_principal_moments(&[1e-4, 1.0, 1.0, 1.0]).unwrap();
+            rotorflow::prelude::InertiaMap::from_principal_second_moments(&[1e-4, 1.0, 1.0, 1.0])
+                .unwrap();
         let w = rotorflow::prelude::Bivector::from_components(4, &[1e6, 1e3, 0.0, 1e3, 0.0, 1e6])
             .unwrap();
         let mut body = rotorflow::dynamics::RigidBody::from_body_velocity(
@@ -175,7 +176,7 @@ fn rk4_is_fourth_order_with_an_attitude_dependent_torque() {
         let mut r = rng(302);
         let moments: Vec<f64> = (0..n).map(|k| 0.5 + 0.2 * k as f64).collect();
         let start = RigidBody::from_body_momentum(
-            InertiaMap::from_principal_moments(&moments).unwrap(),
+            InertiaMap::from_principal_second_moments(&moments).unwrap(),
             rotorflow::dynamics::Attitude::identity(n),
             &crate::random_bivector(&mut r, n, 1.0),
         )

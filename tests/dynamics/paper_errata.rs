@@ -31,7 +31,7 @@ fn levi(idx: &[usize]) -> f64 {
 
 /// The crate's body-frame rate dω/dt = I⁻¹(ω × I(ω)) (+ I⁻¹ τ) in the principal frame.
 fn crate_rate(j: &[f64], w: &Bivector, tau: Option<&Bivector>) -> Bivector {
-    let inertia = InertiaMap::from_principal_moments(j).unwrap();
+    let inertia = InertiaMap::from_principal_second_moments(j).unwrap();
     let mut dl = w.commutator(&inertia.apply(w));
     if let Some(t) = tau {
         dl += t;
@@ -81,7 +81,9 @@ fn paper_eqs_43_52_68_bracket_is_minus_the_commutator_times_factorial() {
     for (n, factorial) in [(3usize, 1.0), (4, 1.0), (5, 2.0)] {
         let j: Vec<f64> = (0..n).map(|_| r.gen_range(0.3..2.0)).collect();
         let w = random_bivector(&mut r, n, 1.0);
-        let l = InertiaMap::from_principal_moments(&j).unwrap().apply(&w);
+        let l = InertiaMap::from_principal_second_moments(&j)
+            .unwrap()
+            .apply(&w);
         let extra = n - 3;
         let mut term = DMatrix::<f64>::zeros(n, n);
         for i in 0..n {
@@ -214,7 +216,9 @@ fn paper_eqs_39_48_66_momentum_entries_are_half_of_eq_32() {
         let rank4 = RankFourTensor::from_mass_tensor(&jm).unwrap();
         let w = random_bivector(&mut r, n, 1.0);
         let full = rank4.apply(&w.to_skew_matrix()).unwrap();
-        let l = InertiaMap::from_principal_moments(&j).unwrap().apply(&w);
+        let l = InertiaMap::from_principal_second_moments(&j)
+            .unwrap()
+            .apply(&w);
         for a in 0..n {
             for b in a + 1..n {
                 let printed = rank4.get(a, b, a, b) * w.get(a, b);
@@ -416,7 +420,7 @@ fn paper_eqs_49_to_51_polynomial_lacks_lambda4_and_its_coefficients_are_not_the_
         assert!((det - eq49).abs() > 1e-3);
     }
     // Same Casimirs, different energy.
-    let inertia = InertiaMap::from_principal_moments(&j).unwrap();
+    let inertia = InertiaMap::from_principal_second_moments(&j).unwrap();
     let l = inertia.apply(&w);
     let turned = Rotor::from_plane_angle(4, 0, 3, 0.9)
         .unwrap()

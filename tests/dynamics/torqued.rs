@@ -9,7 +9,7 @@ use rotorflow::prelude::*;
 
 fn heavy_top(n: usize) -> (RigidBody, Gravity) {
     let j: Vec<f64> = (0..n).map(|k| 0.6 + 0.35 * k as f64).collect();
-    let inertia = InertiaMap::from_principal_moments(&j).unwrap();
+    let inertia = InertiaMap::from_principal_second_moments(&j).unwrap();
     let mut r = rng(501);
     let w = crate::random_bivector(&mut r, n, 2.0);
     let tilt = Rotor::from_plane_angle(n, 0, n - 1, 0.4).unwrap();
@@ -65,7 +65,7 @@ fn damped_body_loses_energy_at_the_predicted_rate() {
     // ω(t) = ω₀ e^{−ct/I}, T(t) = T₀ e^{−2ct/I}.
     let c = 0.3;
     let n = 4;
-    let inertia = InertiaMap::from_principal_moments(&[1.0, 2.0, 3.0, 4.0]).unwrap();
+    let inertia = InertiaMap::from_principal_second_moments(&[1.0, 2.0, 3.0, 4.0]).unwrap();
     let w = Bivector::from_plane(n, 1, 3, 1.5).unwrap();
     let moment = 2.0 + 4.0;
     let start = RigidBody::from_body_velocity(inertia, Rotor::identity(n), &w).unwrap();

@@ -9,7 +9,7 @@ use rotorflow::prelude::*;
 fn body(j: &[f64], l: &[f64]) -> RigidBody {
     let n = j.len();
     RigidBody::from_body_momentum(
-        InertiaMap::from_principal_moments(j).unwrap(),
+        InertiaMap::from_principal_second_moments(j).unwrap(),
         Attitude::identity(n),
         &Bivector::from_components(n, l).unwrap(),
     )

@@ -45,7 +45,7 @@ pub fn no_closed_form_reasons<T: std::fmt::Debug>(
 
 /// The body with principal values `j`, attitude `attitude` and body angular velocity ω.
 pub fn body_with_omega(j: &[f64], attitude: Rotor, omega: &Bivector) -> RigidBody {
-    let inertia = InertiaMap::from_principal_moments(j).unwrap();
+    let inertia = InertiaMap::from_principal_second_moments(j).unwrap();
     RigidBody::from_body_velocity(inertia, attitude, omega).unwrap()
 }
 

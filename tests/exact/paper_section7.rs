@@ -14,7 +14,7 @@ use crate::{dopri_reference, rotor_distance};
 use rotorflow::dynamics::RigidBody;
 use rotorflow::dynamics::exact::paper::{
     ThreeEqualMoments, TwoEqualPairs, frequency_factor, isotropic_omega,
-    principal_moments_from_half_axes, three_equal_principal_moments,
+    principal_second_moments_from_half_axes, three_equal_principal_moments,
     two_equal_pairs_principal_moments,
 };
 use rotorflow::dynamics::exact::two_moments::{TwoMomentKind, TwoMomentSolution};
@@ -32,7 +32,7 @@ fn biv(c: &[f64; 6]) -> Bivector {
 
 fn body(j: &[f64], omega: &Bivector) -> RigidBody {
     RigidBody::from_body_velocity(
-        InertiaMap::from_principal_moments(j).unwrap(),
+        InertiaMap::from_principal_second_moments(j).unwrap(),
         Rotor::identity(4),
         omega,
     )
@@ -146,7 +146,7 @@ fn paper_eq_109_parameters_are_half_axes() {
         s.generator().get(0, 1) / w.get(0, 1)
     };
     // Half-axes: J = (a², b², c², d²) = (1, 1, 1, κ²).
-    let j_half = principal_moments_from_half_axes(&[1.0, 1.0, 1.0, k]).unwrap();
+    let j_half = principal_second_moments_from_half_axes(&[1.0, 1.0, 1.0, k]).unwrap();
     assert_eq!(j_half, three_equal_principal_moments(k).unwrap().to_vec());
     assert!(close(nu_of(&j_half), nu_paper, 1e-15));
     // a…d as the principal values of J: ν = (κ − 1)/(κ + 1) = 1/3.
@@ -179,7 +179,7 @@ fn paper_eq_109_parameters_are_half_axes() {
     }
     // §7.3: J = (1, 1, κ², κ²) from "a = b = 1, c = d = κ".
     assert_eq!(
-        principal_moments_from_half_axes(&[1.0, 1.0, KAPPA_73, KAPPA_73]).unwrap(),
+        principal_second_moments_from_half_axes(&[1.0, 1.0, KAPPA_73, KAPPA_73]).unwrap(),
         two_equal_pairs_principal_moments(KAPPA_73)
             .unwrap()
             .to_vec()
@@ -198,7 +198,7 @@ fn paper_eq_108_isotropic_omega_is_constant_in_every_dimension() {
             .collect();
         let w = Bivector::from_components(n, &c).unwrap();
         let b = RigidBody::from_body_velocity(
-            InertiaMap::from_principal_moments(&vec![1.3; n]).unwrap(),
+            InertiaMap::from_principal_second_moments(&vec![1.3; n]).unwrap(),
             Rotor::identity(n),
             &w,
         )

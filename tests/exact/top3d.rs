@@ -470,7 +470,7 @@ fn random_bodies_match_dopri5() {
 
 #[test]
 fn bad_input_gives_errors() {
-    let inertia = InertiaMap::from_principal_moments(&[1.0, 2.0, 3.0, 4.0]).unwrap();
+    let inertia = InertiaMap::from_principal_second_moments(&[1.0, 2.0, 3.0, 4.0]).unwrap();
     let l = Bivector::from_components(4, &[1.0, 0.0, 0.2, 0.5, 0.0, 0.0]).unwrap();
     let body4 = RigidBody::from_body_momentum(inertia, Rotor::identity(4), &l).unwrap();
     assert!(matches!(
@@ -555,7 +555,7 @@ fn bad_input_gives_errors() {
 
 /// A 4D body with mass tensor diag(J) and L in the planes of `axes`.
 fn body4(j: [f64; 4], axes: [usize; 3], l3: [f64; 3], tilt: &[f64; 6]) -> RigidBody {
-    let inertia = InertiaMap::from_principal_moments(&j).unwrap();
+    let inertia = InertiaMap::from_principal_second_moments(&j).unwrap();
     let mut l = Bivector::zero(4);
     l.set(axes[0], axes[1], l3[0]);
     l.set(axes[0], axes[2], l3[1]);

@@ -2,8 +2,8 @@
 //! with the degenerate direction or plane.
 use nalgebra::{DMatrix, DVector};
 use rotorflow::inertia::bodies::{
-    Body, BodyError, FLATNESS_TOLERANCE, MassTensorDefect, SimplexOrientation,
-    pentachoron_eq73_positions, regular_simplex_positions,
+    Body, FLATNESS_TOLERANCE, InertiaError, SimplexOrientation, pentachoron_vertices,
+    regular_simplex_positions,
 };
 
 fn v(x: &[f64]) -> DVector<f64> {
@@ -13,9 +13,9 @@ fn v(x: &[f64]) -> DVector<f64> {
 const BAD_NUMBERS: [f64; 5] = [0.0, -1.0, f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
 
 /// Asserts a positive-quantity error: NotPositive for 0 and negatives, NonFinite otherwise.
-fn assert_bad_number(result: Result<Body, BodyError>, value: f64, quantity: &str) {
+fn assert_bad_number(result: Result<Body, InertiaError>, value: f64, quantity: &str) {
     match result {
-        Err(BodyError::NotPositive {
+        Err(InertiaError::NotPositive {
             quantity: q,
             value: got,
             ..
@@ -27,7 +27,7 @@ fn assert_bad_number(result: Result<Body, BodyError>, value: f64, quantity: &str
             assert_eq!(q, quantity);
             assert_eq!(got, value);
         }
-        Err(BodyError::NonFinite { quantity: q, .. }) => {
+        Err(InertiaError::NonFinite { quantity: q, .. }) => {
             assert!(!value.is_finite(), "{quantity}: {value} gave NonFinite");
             assert_eq!(q, quantity);
         }
@@ -40,13 +40,13 @@ fn point_masses_reject_bad_input() {
     let p = vec![v(&[0.0, 0.0]), v(&[1.0, 0.0])];
     assert_eq!(
         Body::point_masses(&[], &[]),
-        Err(BodyError::Empty {
+        Err(InertiaError::Empty {
             quantity: "positions"
         })
     );
     assert!(matches!(
         Body::point_masses(&[1.0], &p),
-        Err(BodyError::LengthMismatch {
+        Err(InertiaError::LengthMismatch {
             quantity: "masses",
             expected: 2,
             found: 1,
@@ -55,7 +55,7 @@ fn point_masses_reject_bad_input() {
     ));
     assert!(matches!(
         Body::point_masses(&[1.0, 1.0], &[v(&[0.0, 0.0]), v(&[1.0, 0.0, 0.0])]),
-        Err(BodyError::LengthMismatch {
+        Err(InertiaError::LengthMismatch {
             quantity: "positions",
             index: Some(1),
             expected: 2,
@@ -64,7 +64,7 @@ fn point_masses_reject_bad_input() {
     ));
     assert!(matches!(
         Body::point_masses(&[1.0], &[DVector::zeros(0)]),
-        Err(BodyError::DimensionTooSmall { dim: 0, min: 1 })
+        Err(InertiaError::DimensionTooSmall { dim: 0, min: 1 })
     ));
     for bad in BAD_NUMBERS {
         assert_bad_number(Body::point_masses(&[1.0, bad], &p), bad, "masses");
@@ -72,7 +72,7 @@ fn point_masses_reject_bad_input() {
     for bad in [f64::NAN, f64::INFINITY] {
         assert!(matches!(
             Body::point_masses(&[1.0, 1.0], &[v(&[0.0, 0.0]), v(&[bad, 0.0])]),
-            Err(BodyError::NonFinite {
+            Err(InertiaError::NonFinite {
                 quantity: "positions",
                 index: Some(1),
                 ..
@@ -115,22 +115,22 @@ fn closed_form_bodies_reject_bad_numbers() {
             "vertex_mass",
         );
         assert_bad_number(
-            Body::pentachoron_eq73(1.0, 1.0, bad, 1.0),
+            Body::pentachoron(1.0, 1.0, bad, 1.0),
             bad,
             "pentachoron parameters (a, b, c, d)",
         );
-        assert!(pentachoron_eq73_positions(bad, 1.0, 1.0, 1.0).is_err());
+        assert!(pentachoron_vertices(bad, 1.0, 1.0, 1.0).is_err());
         assert!(regular_simplex_positions(2, bad).is_err());
     }
     assert_eq!(
         Body::solid_cuboid(&[], 1.0),
-        Err(BodyError::Empty {
+        Err(InertiaError::Empty {
             quantity: "half_edges"
         })
     );
     assert_eq!(
         Body::solid_ellipsoid(&[], 1.0),
-        Err(BodyError::Empty {
+        Err(InertiaError::Empty {
             quantity: "semi_axes"
         })
     );
@@ -142,14 +142,14 @@ fn closed_form_bodies_reject_bad_numbers() {
     ] {
         assert_eq!(
             make(0),
-            Err(BodyError::DimensionTooSmall { dim: 0, min: 1 })
+            Err(InertiaError::DimensionTooSmall { dim: 0, min: 1 })
         );
         assert!(make(1).is_ok());
     }
     // Error index points at the offending element.
     assert!(matches!(
         Body::solid_cuboid(&[1.0, 2.0, -3.0], 1.0),
-        Err(BodyError::NotPositive { index: Some(2), .. })
+        Err(InertiaError::NotPositive { index: Some(2), .. })
     ));
 }
 
@@ -157,15 +157,15 @@ fn closed_form_bodies_reject_bad_numbers() {
 fn overflow_is_reported_not_returned_as_infinity() {
     assert_eq!(
         Body::solid_cuboid(&[1e200, 1e200], 1.0),
-        Err(BodyError::NonFiniteResult { quantity: "mass" })
+        Err(InertiaError::NonFiniteResult { quantity: "mass" })
     );
     assert!(matches!(
         Body::solid_ball(3, 1e150, 1.0),
-        Err(BodyError::NonFiniteResult { .. })
+        Err(InertiaError::NonFiniteResult { .. })
     ));
     assert!(matches!(
         Body::point_masses(&[1e300, 1e300], &[v(&[0.0]), v(&[1e300])]),
-        Err(BodyError::NonFiniteResult { .. })
+        Err(InertiaError::NonFiniteResult { .. })
     ));
 }
 
@@ -175,7 +175,7 @@ fn simplices_reject_degenerate_and_malformed_input() {
     let flat = vec![v(&[0.0, 0.0]), v(&[1.0, 1.0]), v(&[2.0, 2.0])];
     assert!(matches!(
         Body::solid_simplex(&flat, 1.0),
-        Err(BodyError::DegenerateSimplex { simplex: 0, .. })
+        Err(InertiaError::DegenerateSimplex { simplex: 0, .. })
     ));
     // Nearly flat tetrahedron (relative volume 1e-14) is degenerate too.
     let thin = vec![
@@ -186,13 +186,13 @@ fn simplices_reject_degenerate_and_malformed_input() {
     ];
     assert!(matches!(
         Body::solid_simplex(&thin, 1.0),
-        Err(BodyError::DegenerateSimplex { .. })
+        Err(InertiaError::DegenerateSimplex { .. })
     ));
     // Repeated vertex.
     let repeated = vec![v(&[0.0, 0.0]), v(&[0.0, 0.0]), v(&[1.0, 0.0])];
     assert!(matches!(
         Body::solid_simplex(&repeated, 1.0),
-        Err(BodyError::DegenerateSimplex { .. })
+        Err(InertiaError::DegenerateSimplex { .. })
     ));
     // Wrong number of vertices: a triangle in 3D is not a solid 3-simplex.
     let triangle3 = vec![
@@ -202,7 +202,7 @@ fn simplices_reject_degenerate_and_malformed_input() {
     ];
     assert!(matches!(
         Body::solid_simplex(&triangle3, 1.0),
-        Err(BodyError::LengthMismatch {
+        Err(InertiaError::LengthMismatch {
             quantity: "vertices",
             expected: 4,
             found: 3,
@@ -215,7 +215,7 @@ fn simplices_reject_degenerate_and_malformed_input() {
     }
     assert_eq!(
         Body::solid_simplex(&[], 1.0),
-        Err(BodyError::Empty {
+        Err(InertiaError::Empty {
             quantity: "vertices"
         })
     );
@@ -234,13 +234,13 @@ fn meshes_reject_malformed_input() {
     let none: Vec<[usize; 3]> = vec![];
     assert_eq!(
         Body::simplicial_mesh(&square, &none, 1.0, SimplexOrientation::Signed),
-        Err(BodyError::Empty {
+        Err(InertiaError::Empty {
             quantity: "simplices"
         })
     );
     assert_eq!(
         Body::simplicial_mesh(&square, &[vec![0, 1]], 1.0, SimplexOrientation::Signed),
-        Err(BodyError::WrongSimplexSize {
+        Err(InertiaError::WrongSimplexSize {
             simplex: 0,
             expected: 3,
             found: 2
@@ -253,7 +253,7 @@ fn meshes_reject_malformed_input() {
             1.0,
             SimplexOrientation::Signed
         ),
-        Err(BodyError::VertexIndexOutOfRange {
+        Err(InertiaError::VertexIndexOutOfRange {
             simplex: 1,
             vertex: 4,
             vertex_count: 4
@@ -267,7 +267,7 @@ fn meshes_reject_malformed_input() {
             1.0,
             SimplexOrientation::Unsigned
         ),
-        Err(BodyError::ZeroMeshVolume { .. })
+        Err(InertiaError::ZeroMeshVolume { .. })
     ));
     // Oppositely oriented copies of one triangle cancel.
     assert!(matches!(
@@ -277,7 +277,7 @@ fn meshes_reject_malformed_input() {
             1.0,
             SimplexOrientation::Signed
         ),
-        Err(BodyError::ZeroMeshVolume { .. })
+        Err(InertiaError::ZeroMeshVolume { .. })
     ));
     // Inconsistent orientation that does not cancel: a positive triangle near the origin
     // minus a smaller triangle far away gives a net positive volume but a negative second
@@ -296,14 +296,14 @@ fn meshes_reject_malformed_input() {
             1.0,
             SimplexOrientation::Signed
         ),
-        Err(BodyError::InconsistentMesh { .. })
+        Err(InertiaError::InconsistentMesh { .. })
     ));
     // Bad vertex data.
     let mut nan = square.clone();
     nan[2] = v(&[f64::NAN, 0.0]);
     assert!(matches!(
         Body::simplicial_mesh(&nan, &ok, 1.0, SimplexOrientation::Signed),
-        Err(BodyError::NonFinite {
+        Err(InertiaError::NonFinite {
             quantity: "vertices",
             index: Some(2),
             ..
@@ -319,7 +319,7 @@ fn meshes_reject_malformed_input() {
     // Boundary meshes: facets of N indices, N ≥ 2.
     assert_eq!(
         Body::closed_boundary_mesh(&square, &[[0, 1, 2]], 1.0),
-        Err(BodyError::WrongSimplexSize {
+        Err(InertiaError::WrongSimplexSize {
             simplex: 0,
             expected: 2,
             found: 3
@@ -327,14 +327,14 @@ fn meshes_reject_malformed_input() {
     );
     assert_eq!(
         Body::closed_boundary_mesh(&[v(&[0.0]), v(&[1.0])], &[[0], [1]], 1.0),
-        Err(BodyError::DimensionTooSmall { dim: 1, min: 2 })
+        Err(InertiaError::DimensionTooSmall { dim: 1, min: 2 })
     );
     // Whether a boundary is closed is not checked (the cones of an open boundary still
     // enclose a region; see the Signed documentation). A boundary whose cones all have zero
     // area, such as a single edge through the apex, is reported.
     assert!(matches!(
         Body::closed_boundary_mesh(&[v(&[0.0, 0.0]), v(&[1.0, 0.0])], &[[0, 1]], 1.0),
-        Err(BodyError::ZeroMeshVolume { .. })
+        Err(InertiaError::ZeroMeshVolume { .. })
     ));
 }
 
@@ -343,10 +343,10 @@ fn transformations_reject_bad_input() {
     let b = Body::solid_cuboid(&[1.0, 2.0, 3.0], 1.0).unwrap();
     assert!(matches!(
         b.rotated(&DMatrix::identity(2, 2)),
-        Err(BodyError::LengthMismatch {
+        Err(InertiaError::WrongShape {
             quantity: "rotation",
             expected: 3,
-            found: 2,
+            rows: 2,
             ..
         })
     ));
@@ -354,41 +354,51 @@ fn transformations_reject_bad_input() {
     skewed[(0, 1)] = 0.1;
     assert!(matches!(
         b.rotated(&skewed),
-        Err(BodyError::NotOrthogonal { .. })
+        Err(InertiaError::NotOrthogonal { .. })
     ));
     assert!(matches!(
         b.rotated(&(DMatrix::identity(3, 3) * 2.0)),
-        Err(BodyError::NotOrthogonal { .. })
+        Err(InertiaError::NotOrthogonal { .. })
     ));
     let mut nan = DMatrix::identity(3, 3);
     nan[(1, 1)] = f64::NAN;
     assert!(matches!(
         b.rotated(&nan),
-        Err(BodyError::NonFinite {
+        Err(InertiaError::NonFinite {
             quantity: "rotation",
             ..
         })
     ));
-    // Reflections are orthogonal and accepted.
+    // A reflection is orthogonal but not a rotation: `rotated` refuses it, and
+    // `orthogonally_transformed` gives the mirror image.
     let mirror = DMatrix::from_diagonal(&v(&[-1.0, 1.0, 1.0]));
-    assert!(b.rotated(&mirror).is_ok());
+    assert!(matches!(
+        b.rotated(&mirror),
+        Err(InertiaError::Reflection { determinant }) if (determinant + 1.0).abs() < 1e-15
+    ));
+    assert!(matches!(
+        b.placed(&mirror, &v(&[0.0, 0.0, 0.0])),
+        Err(InertiaError::Reflection { .. })
+    ));
+    let image = b.orthogonally_transformed(&mirror).unwrap();
+    assert_eq!(image.mass_tensor(), b.mass_tensor());
     assert!(matches!(
         b.translated(&v(&[1.0, 2.0])),
-        Err(BodyError::LengthMismatch {
+        Err(InertiaError::LengthMismatch {
             quantity: "offset",
             ..
         })
     ));
     assert!(matches!(
         b.translated(&v(&[1.0, f64::INFINITY, 0.0])),
-        Err(BodyError::NonFinite {
+        Err(InertiaError::NonFinite {
             quantity: "offset",
             ..
         })
     ));
     assert!(matches!(
         b.mass_tensor_about(&v(&[1.0])),
-        Err(BodyError::LengthMismatch {
+        Err(InertiaError::LengthMismatch {
             quantity: "point",
             ..
         })
@@ -399,7 +409,7 @@ fn transformations_reject_bad_input() {
     let other = Body::solid_ball(2, 1.0, 1.0).unwrap();
     assert!(matches!(
         Body::composite(&[b.clone(), other]),
-        Err(BodyError::LengthMismatch {
+        Err(InertiaError::LengthMismatch {
             quantity: "parts",
             index: Some(1),
             expected: 3,
@@ -408,7 +418,7 @@ fn transformations_reject_bad_input() {
     ));
     assert_eq!(
         Body::composite(&[]),
-        Err(BodyError::Empty { quantity: "parts" })
+        Err(InertiaError::Empty { quantity: "parts" })
     );
 }
 
@@ -418,39 +428,36 @@ fn from_mass_properties_checks_the_tensor() {
     assert!(Body::from_mass_properties(1.0, c.clone(), DMatrix::identity(2, 2), None).is_ok());
     assert!(matches!(
         Body::from_mass_properties(1.0, c.clone(), DMatrix::identity(3, 3), None),
-        Err(BodyError::LengthMismatch {
+        Err(InertiaError::WrongShape {
             quantity: "mass_tensor",
             expected: 2,
-            found: 3,
-            ..
+            rows: 3,
+            cols: 3,
         })
     ));
     let asym = DMatrix::from_row_slice(2, 2, &[1.0, 0.5, 0.0, 1.0]);
     assert!(matches!(
         Body::from_mass_properties(1.0, c.clone(), asym, None),
-        Err(BodyError::InvalidMassTensor {
-            reason: MassTensorDefect::NotSymmetric,
+        Err(InertiaError::NotSymmetric {
+            quantity: "mass_tensor",
             ..
         })
     ));
     let indefinite = DMatrix::from_row_slice(2, 2, &[1.0, 2.0, 2.0, 1.0]);
     assert!(matches!(
         Body::from_mass_properties(1.0, c.clone(), indefinite, None),
-        Err(BodyError::InvalidMassTensor {
-            reason: MassTensorDefect::NotPositiveSemidefinite,
-            ..
-        })
+        Err(InertiaError::NegativeMoment { index: 0, .. })
     ));
     assert!(matches!(
         Body::from_mass_properties(0.0, c.clone(), DMatrix::identity(2, 2), None),
-        Err(BodyError::NotPositive {
+        Err(InertiaError::NotPositive {
             quantity: "mass",
             ..
         })
     ));
     assert!(matches!(
         Body::from_mass_properties(1.0, c, DMatrix::identity(2, 2), Some(-1.0)),
-        Err(BodyError::NotPositive {
+        Err(InertiaError::NotPositive {
             quantity: "volume",
             ..
         })
@@ -475,7 +482,7 @@ fn flat_bodies_name_the_degenerate_direction_and_plane() {
     assert_eq!(flat.len(), 1);
     assert!((flat[0][2].abs() - 1.0).abs() < 1e-12);
     match square.check_full_rank(FLATNESS_TOLERANCE) {
-        Err(BodyError::FlatBody {
+        Err(InertiaError::FlatBody {
             direction,
             moment,
             largest_moment,
@@ -500,10 +507,11 @@ fn flat_bodies_name_the_degenerate_direction_and_plane() {
     .unwrap();
     assert_eq!(rod.flat_directions(FLATNESS_TOLERANCE).len(), 2);
     match rod.check_inertia_invertible(FLATNESS_TOLERANCE) {
-        Err(BodyError::DegeneratePlane {
+        Err(InertiaError::DegeneratePlane {
             first,
             second,
             plane_moment,
+            ..
         }) => {
             assert!(first[0].abs() < 1e-12 && second[0].abs() < 1e-12);
             assert!((first.dot(&second)).abs() < 1e-12);
@@ -530,7 +538,7 @@ fn flat_bodies_name_the_degenerate_direction_and_plane() {
     let disc4 = Body::from_mass_properties(disc4.mass(), DVector::zeros(4), disc_j, None).unwrap();
     assert!(matches!(
         disc4.check_inertia_invertible(FLATNESS_TOLERANCE),
-        Err(BodyError::DegeneratePlane { .. })
+        Err(InertiaError::DegeneratePlane { .. })
     ));
     // Solid bodies are never flat.
     for b in [

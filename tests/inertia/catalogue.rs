@@ -10,7 +10,7 @@ use rotorflow::inertia::bodies::{
 };
 use std::f64::consts::PI;
 
-/// All 2^N sign patterns (±a_1, …, ±a_N).
+/// All 2ᴺ sign patterns (±a₁, …, ±a_N).
 fn cuboid_corner_points(half: &[f64]) -> Vec<DVector<f64>> {
     let n = half.len();
     (0..1usize << n)
@@ -136,9 +136,9 @@ fn regular_polytopes_have_isotropic_mass_tensor() {
 }
 
 #[test]
-fn pentachoron_eq73_has_the_diagonal_mass_tensor() {
+fn pentachoron_has_the_diagonal_mass_tensor() {
     let (a, b, c, d) = (1.1, 0.7, 1.9, 1.3);
-    let body = Body::pentachoron_eq73(a, b, c, d).unwrap();
+    let body = Body::pentachoron(a, b, c, d).unwrap();
     let expected = DMatrix::from_diagonal(&DVector::from_vec(vec![
         1.25 * a * a,
         1.25 * b * b,
@@ -214,7 +214,7 @@ fn textbook_3d_principal_moments_via_plane_moments() {
 
 #[test]
 fn standard_simplex_matches_canonical_covariance() {
-    // ∫ x_i x_j dV over conv(0, e_1, …, e_N) = (1 + δ_ij)/(N+2)! (REFERENCES.md §1).
+    // ∫ x_i x_j dV over conv(0, e_1, …, e_N) = (1 + δ_ij)/(N+2)!.
     for n in 1..=7 {
         let mut vertices = vec![DVector::zeros(n)];
         for i in 0..n {
@@ -234,7 +234,7 @@ fn standard_simplex_matches_canonical_covariance() {
 
 #[test]
 fn regular_solid_simplex_matches_references_table() {
-    // J = m a²/(2(N+1)(N+2)) for edge a (REFERENCES.md §6): triangle polar moment m a²/12,
+    // J = m a²/(2(N+1)(N+2)) for edge a : triangle polar moment m a²/12,
     // tetrahedron axis moment m a²/20, 5-cell J = m a²/60 and plane moment m a²/30.
     for n in 2..=6 {
         let r = 0.9;
@@ -244,7 +244,12 @@ fn regular_solid_simplex_matches_references_table() {
         let nf = n as f64;
         let want = body.mass() * a2 / (2.0 * (nf + 1.0) * (nf + 2.0));
         for i in 0..n {
-            assert_close!(body.principal_moments()[i], want, 1e-13 * want, "N={n}");
+            assert_close!(
+                body.principal_second_moments()[i],
+                want,
+                1e-13 * want,
+                "N={n}"
+            );
         }
         let pm = body.principal_plane_moments()[0];
         match n {
@@ -328,7 +333,7 @@ fn mass_tensors_are_symmetric_positive_semidefinite() {
         for (k, b) in assorted_bodies(n, 40 + n as u64).iter().enumerate() {
             let j = b.mass_tensor();
             assert_eq!(*j, j.transpose(), "N={n} body {k}: not exactly symmetric");
-            let moments = b.principal_moments();
+            let moments = b.principal_second_moments();
             assert!(
                 moments[0] >= -1e-14 * moments[n - 1],
                 "N={n} body {k}: eigenvalue {}",
@@ -337,13 +342,13 @@ fn mass_tensors_are_symmetric_positive_semidefinite() {
             assert!(b.mass() > 0.0);
         }
     }
-    let pentachoron = Body::pentachoron_eq73(1.0, 2.0, 3.0, 4.0).unwrap();
-    assert!(pentachoron.principal_moments()[0] > 0.0);
+    let pentachoron = Body::pentachoron(1.0, 2.0, 3.0, 4.0).unwrap();
+    assert!(pentachoron.principal_second_moments()[0] > 0.0);
 }
 
 #[test]
 fn four_d_principal_plane_moments_satisfy_the_weyl_identity() {
-    // I12 + I34 = I13 + I24 = I14 + I23 = tr J (REFERENCES.md §0; Parker 2024).
+    // I12 + I34 = I13 + I24 = I14 + I23 = tr J (Parker 2024).
     for (k, b) in assorted_bodies(4, 7).iter().enumerate() {
         let pm = b.principal_plane_moments(); // 12, 13, 14, 23, 24, 34
         let tr = b.mass_tensor().trace();

@@ -188,7 +188,7 @@ impl MomentEstimator {
 }
 
 /// The Kuhn (Freudenthal) triangulation of the unit cube [0,1]^N: N! simplices, one per
-/// permutation σ, with vertices v_0 = 0, v_k = v_{k−1} + e_{σ(k)}.
+/// permutation σ, with vertices v₀ = 0, vₖ = vₖ₋₁ + e_{σ(k)}.
 ///
 /// Returns (vertices as 0/1 bit patterns, simplices as vertex indices, permutation signs).
 /// The determinant of simplex σ is sign(σ) (its edge matrix is a permutation matrix), so
@@ -266,7 +266,7 @@ pub fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64, intervals: usize) -> f64 
     s * h / 3.0
 }
 
-/// Gauss–Legendre nodes and weights on [−1, 1] (Newton iteration on P_n from the Chebyshev
+/// Gauss–Legendre nodes and weights on [−1, 1] (Newton iteration on Pₙ from the Chebyshev
 /// initial guess; nodes accurate to ~1 ulp for n ≤ 100).
 pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
     let mut nodes = vec![0.0; n];

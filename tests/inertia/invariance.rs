@@ -55,7 +55,7 @@ proptest! {
         prop_assert!(crate::common::max_abs_diff(rotated.mass_tensor(), &expected) <= REL * scale);
         prop_assert!(crate::common::max_abs_diff(rotated.mass_tensor(), rebuilt.mass_tensor()) <= REL * scale * 10.0);
         prop_assert!((rotated.center_of_mass() - rebuilt.center_of_mass()).norm() <= 1e-12 * 10.0);
-        let (a, b) = (body.principal_moments(), rotated.principal_moments());
+        let (a, b) = (body.principal_second_moments(), rotated.principal_second_moments());
         for i in 0..n {
             prop_assert!((a[i] - b[i]).abs() <= REL * scale * 10.0);
         }
@@ -87,7 +87,7 @@ proptest! {
         let body = Body::point_masses(&masses, &points).unwrap();
         let j = body.mass_tensor();
         prop_assert_eq!(j, &j.transpose());
-        let moments = body.principal_moments();
+        let moments = body.principal_second_moments();
         prop_assert!(moments[0] >= -REL * max_abs(j).max(1e-300));
     }
 
@@ -97,7 +97,7 @@ proptest! {
         let body = Body::solid_ellipsoid(&axes, 1.0).unwrap();
         let q = random_rotation(n, &mut rng(seed));
         let rotated = body.rotated(&q).unwrap();
-        let (x, y) = (body.principal_moments(), rotated.principal_moments());
+        let (x, y) = (body.principal_second_moments(), rotated.principal_second_moments());
         for i in 0..n {
             prop_assert!((x[i] - y[i]).abs() <= REL * x[n - 1]);
         }

@@ -4,6 +4,7 @@
 #[macro_use]
 mod common;
 
+mod api;
 mod bad_input;
 mod catalogue;
 mod invariance;

@@ -99,7 +99,7 @@ fn principal_frame_diagonalises_the_map() {
     for n in 2..=8 {
         let j = random_spd(n, &mut r);
         let map = InertiaMap::from_mass_tensor(&j).unwrap();
-        let moments = map.principal_moments().unwrap().to_vec();
+        let moments = map.principal_second_moments().unwrap().to_vec();
         let rp = map.principal_rotor().unwrap().unwrap();
         // the rotor takes eᵢ to the i-th principal axis
         let axes = map.principal_axes().unwrap();
@@ -196,7 +196,7 @@ fn classical_3d_moments_and_the_non_physical_test_body() {
     let l = hlw.apply(&w);
     assert_eq!(l.as_slice(), &[0.3 * 2.0 / 3.0, -0.2 * 1.0, 0.5 * 2.0]);
     assert!(matches!(
-        InertiaMap::from_principal_moments(&[-1.0 / 6.0, 0.5, 1.5]),
+        InertiaMap::from_principal_second_moments(&[-1.0 / 6.0, 0.5, 1.5]),
         Err(InertiaError::NegativeMoment { .. })
     ));
 }
@@ -204,26 +204,26 @@ fn classical_3d_moments_and_the_non_physical_test_body() {
 #[test]
 fn bad_input_gives_clear_errors() {
     // a rod (flat in two directions): the plane of its two zero moments is singular
-    let err = InertiaMap::from_principal_moments(&[0.0, 0.0, 1.0]).unwrap_err();
+    let err = InertiaMap::from_principal_second_moments(&[0.0, 0.0, 1.0]).unwrap_err();
     assert!(
         matches!(err, InertiaError::DegeneratePlane { plane: (0, 1), .. }),
         "{err}"
     );
     assert!(err.to_string().contains("p1∧p2"));
     // a flat plate in 3D is fine (one zero moment), a flat 4D body in two directions is not
-    assert!(InertiaMap::from_principal_moments(&[0.0, 1.0, 1.0]).is_ok());
-    assert!(InertiaMap::from_principal_moments(&[0.0, 0.0, 1.0, 1.0]).is_err());
+    assert!(InertiaMap::from_principal_second_moments(&[0.0, 1.0, 1.0]).is_ok());
+    assert!(InertiaMap::from_principal_second_moments(&[0.0, 0.0, 1.0, 1.0]).is_err());
     assert!(matches!(
         InertiaMap::from_mass_tensor(&DMatrix::from_row_slice(2, 2, &[1.0, 0.5, 0.0, 1.0])),
         Err(InertiaError::NotSymmetric { .. })
     ));
     assert!(matches!(
-        InertiaMap::from_principal_moments(&[1.0, f64::NAN]),
+        InertiaMap::from_principal_second_moments(&[1.0, f64::NAN]),
         Err(InertiaError::NonFinite { .. })
     ));
     assert!(matches!(
         InertiaMap::from_plane_moments(&[1.0, 2.0]),
-        Err(InertiaError::WrongLength { .. })
+        Err(InertiaError::LengthMismatch { .. })
     ));
     assert!(matches!(
         InertiaMap::from_plane_moments(&[1.0, 0.0, 2.0]),
@@ -233,12 +233,13 @@ fn bad_input_gives_clear_errors() {
         InertiaMap::from_matrix(3, &DMatrix::identity(2, 2)),
         Err(InertiaError::WrongShape { .. })
     ));
-    let map = InertiaMap::from_principal_moments(&[1.0, 2.0, 3.0]).unwrap();
+    let map = InertiaMap::from_principal_second_moments(&[1.0, 2.0, 3.0]).unwrap();
     assert!(matches!(
         map.try_apply(&Bivector::zero(4)),
         Err(InertiaError::DimensionMismatch {
-            map: 3,
-            argument: 4
+            expected: 3,
+            found: 4,
+            ..
         })
     ));
     // a flat body from the catalogue: the error names the degenerate plane
@@ -260,12 +261,12 @@ fn bad_input_gives_clear_errors() {
 fn nearly_flat_bodies_with_condition_1e12_still_invert() {
     // J = diag(1e-12, 1, 1, 1): plane moments 1 + 1e-12 … 2, condition ~2; a body flat in
     // one direction is fine, and the inverse stays accurate.
-    let map = InertiaMap::from_principal_moments(&[1e-12, 1.0, 1.0, 1.0]).unwrap();
+    let map = InertiaMap::from_principal_second_moments(&[1e-12, 1.0, 1.0, 1.0]).unwrap();
     let mut r = rng(108);
     let w = random_bivector(&mut r, 4);
     assert!((&map.apply_inverse(&map.apply(&w)) - &w).max_abs() < 1e-15);
     // two small directions: plane moment 2e-12 against 2, condition 1e12
-    let map = InertiaMap::from_principal_moments(&[1e-12, 1e-12, 1.0, 1.0]).unwrap();
+    let map = InertiaMap::from_principal_second_moments(&[1e-12, 1e-12, 1.0, 1.0]).unwrap();
     let back = map.apply_inverse(&map.apply(&w));
     assert!((&back - &w).max_abs() < 1e-15);
     let q = random_rotation(4, &mut r);

@@ -3,7 +3,7 @@
 //! ball under refinement.
 use crate::common::{EPS, kuhn_triangulation, max_abs, max_abs_diff};
 use nalgebra::{DMatrix, DVector};
-use rotorflow::inertia::bodies::{Body, BodyError, SimplexOrientation};
+use rotorflow::inertia::bodies::{Body, InertiaError, SimplexOrientation};
 
 fn half_edges(n: usize) -> Vec<f64> {
     (0..n).map(|i| 0.75 + 0.5 * i as f64).collect()
@@ -63,7 +63,7 @@ fn kuhn_triangulation_signed_needs_consistent_orientation() {
         let err = Body::simplicial_mesh(&vertices, &simplices, 1.0, SimplexOrientation::Signed)
             .unwrap_err();
         assert!(
-            matches!(err, BodyError::ZeroMeshVolume { .. }),
+            matches!(err, InertiaError::ZeroMeshVolume { .. }),
             "N={n}: {err:?}"
         );
         // Reoriented (swap the last two vertices of each odd simplex): a consistently
@@ -106,7 +106,7 @@ fn kuhn_triangulation_signed_needs_consistent_orientation() {
     }
 }
 
-/// Outward-oriented triangulated boundary of the box: each facet x_a = ±h_a is an
+/// Outward-oriented triangulated boundary of the box: each facet xₐ = ±hₐ is an
 /// (N−1)-box, Kuhn-triangulated; orientation fixed so the cone from the centre is positive.
 fn box_boundary(half: &[f64]) -> (Vec<DVector<f64>>, Vec<Vec<usize>>) {
     let n = half.len();
@@ -289,7 +289,7 @@ fn nonconvex_prism_with_apex_outside_matches_boxes() {
 }
 
 /// Polytope inscribed in the sphere of radius R: the boundary of the cube [−1, 1]^N, each
-/// facet cut into k^{N−1} cells and each cell Kuhn-triangulated, with all vertices pushed
+/// facet cut into kᴺ⁻¹ cells and each cell Kuhn-triangulated, with all vertices pushed
 /// radially onto the sphere; the N-simplices are the cones from the origin. Returns the
 /// unsigned-volume mesh body.
 fn inscribed_polytope(n: usize, k: usize, radius: f64) -> Body {

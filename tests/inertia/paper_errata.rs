@@ -6,13 +6,13 @@
 //! is a different normalisation of the contracted matrix 𝕀, which one it matches. The
 //! summary is ERRATA_INERTIA.md.
 //!
-//! Literal conventions (DESIGN.md): I^{ijkl} from eq. (22) with the ½, and 𝕀 from the literal
+//! Literal conventions (the book's Conventions chapter): Iⁱʲᵏˡ from eq. (22) with the ½, and 𝕀 from the literal
 //! Levi-Civita contraction, 𝕀 = 2 (N − 2)! (tr J · 1 − J). Tolerances are relative 1e-12
 //! for closed-form comparisons (a handful of roundings), and "differs" means a relative
 //! difference above 1e-3 (the paper's errors are factors of 2 or more, or wrong signs).
 use crate::common::{gamma_half, gauss_legendre, rng, simpson, uniform};
 use nalgebra::{DMatrix, DVector};
-use rotorflow::inertia::bodies::{Body, pentachoron_eq73_positions, unit_ball_volume};
+use rotorflow::inertia::bodies::{Body, pentachoron_vertices, unit_ball_volume};
 use rotorflow::inertia::tensor::{ContractedInertia, ContractionNormalization, RankFourTensor};
 use std::f64::consts::PI;
 
@@ -263,7 +263,7 @@ fn paper_eq_72_tesseract_mass_is_16_not_32() {
 #[test]
 fn paper_eq_73_five_cell_is_centred_and_regular_only_for_equal_parameters() {
     // Centred for every a, b, c, d.
-    let points = pentachoron_eq73_positions(A, B, C, D).unwrap();
+    let points = pentachoron_vertices(A, B, C, D).unwrap();
     let centroid = points.iter().fold(DVector::zeros(4), |acc, p| acc + p) / 5.0;
     assert!(centroid.norm() <= 1e-15, "centroid {centroid}");
     // Not regular for unequal parameters: the ten edges differ.
@@ -283,7 +283,7 @@ fn paper_eq_73_five_cell_is_centred_and_regular_only_for_equal_parameters() {
     assert_differs!(lo, hi, "edges of the a≠b≠c≠d 5-cell");
     // Regular for a = b = c = d = r: circumradius r, edge r √(5/2).
     let r = 1.3;
-    let regular = pentachoron_eq73_positions(r, r, r, r).unwrap();
+    let regular = pentachoron_vertices(r, r, r, r).unwrap();
     for p in &regular {
         assert_same!(p.norm(), r, "circumradius");
     }
@@ -291,7 +291,7 @@ fn paper_eq_73_five_cell_is_centred_and_regular_only_for_equal_parameters() {
         assert_same!(x, r * 2.5f64.sqrt(), "edge");
     }
     // J = (5/4) diag(a², b², c², d²), mass 5.
-    let body = Body::pentachoron_eq73(A, B, C, D).unwrap();
+    let body = Body::pentachoron(A, B, C, D).unwrap();
     for (k, x) in [A, B, C, D].iter().enumerate() {
         assert_same!(body.mass_tensor()[(k, k)], 1.25 * x * x, "J_{k}");
     }
@@ -301,7 +301,7 @@ fn paper_eq_73_five_cell_is_centred_and_regular_only_for_equal_parameters() {
 #[test]
 fn paper_eq_74_five_cell_rank4_components_are_right() {
     let p = [A, B, C, D];
-    let body = Body::pentachoron_eq73(A, B, C, D).unwrap();
+    let body = Body::pentachoron(A, B, C, D).unwrap();
     let t = RankFourTensor::from_mass_tensor(body.mass_tensor()).unwrap();
     for &(x, y) in &PLANES4 {
         let paper = 5.0 / 8.0 * (p[x] * p[x] + p[y] * p[y]);
@@ -323,7 +323,7 @@ fn paper_eq_74_five_cell_rank4_components_are_right() {
 #[test]
 fn paper_eq_75_five_cell_contracted_matrix_matches_literal_eq_24() {
     let p = [A, B, C, D];
-    let body = Body::pentachoron_eq73(A, B, C, D).unwrap();
+    let body = Body::pentachoron(A, B, C, D).unwrap();
     let literal = contracted(&body, LeviCivita).axis_values();
     let plane_sum = contracted(&body, PlaneSum).axis_values();
     let o = others4(p);
@@ -338,7 +338,7 @@ fn paper_eq_75_five_cell_contracted_matrix_matches_literal_eq_24() {
 #[test]
 fn paper_eq_76_five_cell_gyration_radii_match_literal_eq_24() {
     let p = [A, B, C, D];
-    let body = Body::pentachoron_eq73(A, B, C, D).unwrap();
+    let body = Body::pentachoron(A, B, C, D).unwrap();
     assert_eq!(body.mass(), 5.0);
     let radii = contracted(&body, LeviCivita).gyration_radii(5.0).unwrap();
     let o = others4(p);
@@ -359,7 +359,7 @@ fn paper_remark_after_eq_76_inertia_factor_reading() {
         1.0,
         "tesseract"
     );
-    let cell = Body::pentachoron_eq73(D, D, D, D).unwrap();
+    let cell = Body::pentachoron(D, D, D, D).unwrap();
     assert_same!(
         cell.mass_tensor().trace() / (cell.mass() * D * D),
         1.0,
@@ -381,7 +381,7 @@ fn paper_remark_after_eq_76_inertia_factor_reading() {
     }
     // The eq. (73) points with unequal parameters are not equidistant from the centre, so
     // the remark does not apply to the body the paper actually tabulates.
-    let pts = pentachoron_eq73_positions(A, B, C, D).unwrap();
+    let pts = pentachoron_vertices(A, B, C, D).unwrap();
     assert_differs!(pts[0].norm(), pts[4].norm(), "vertex distances");
 }
 
@@ -488,7 +488,7 @@ fn paper_eq_82_5d_cuboid_components_have_wrong_factor_and_signs() {
 // §6.1–6.2 ellipsoids (eqs. 83–98)
 // ---------------------------------------------------------------------------------------
 
-/// ∫_{−h}^{h} f(t) dt with t = h sin θ (removes the square-root endpoint behaviour of the
+/// ∫₋ₕʰ f(t) dt with t = h sin θ (removes the square-root endpoint behaviour of the
 /// nested ellipsoid bounds), then 40-point Gauss–Legendre in θ. After the substitution the
 /// integrands are analytic in θ, so the rule converges exponentially; nested three or four
 /// deep it reproduces the closed forms to ~1e-15 relative.
@@ -774,7 +774,7 @@ fn paper_eqs_100_to_102_polar_moments_are_right() {
     }
 }
 
-/// φ(μ) = ∫_0^{π/2} sin^μ x dx (eq. 103) by Simpson's rule.
+/// φ(μ) = ∫_0^(π/2) sin^μ x dx (eq. 103) by Simpson's rule.
 fn wallis(mu: usize) -> f64 {
     simpson(|x| x.sin().powi(mu as i32), 0.0, PI / 2.0, 20_000)
 }

@@ -3,10 +3,9 @@
 //! equals 2 (N − 2)! (tr J · 1 − J); gyration radii (eq. 27) and trace (eq. 29).
 use crate::common::{EPS, max_abs, random_rotation, random_skew, random_spd, rng};
 use nalgebra::{DMatrix, DVector};
+use rotorflow::inertia::InertiaError;
 use rotorflow::inertia::bodies::Body;
-use rotorflow::inertia::tensor::{
-    ContractedInertia, ContractionNormalization, RankFourTensor, TensorError,
-};
+use rotorflow::inertia::tensor::{ContractedInertia, ContractionNormalization, RankFourTensor};
 
 #[test]
 fn rank4_reproduces_angular_momentum_n2_to_n6() {
@@ -55,7 +54,7 @@ fn rank4_has_the_symmetries_stated_under_eq22() {
 
 #[test]
 fn rank4_principal_components_are_half_plane_moments() {
-    // In the principal frame I^{ijij} = ½ (J_i + J_j) (paper eqs. 40–42, DESIGN.md).
+    // In the principal frame I^{ijij} = ½ (J_i + J_j) (paper eqs. 40–42).
     let j = DMatrix::from_diagonal(&DVector::from_vec(vec![1.0, 2.5, 4.0, 7.0]));
     let t = RankFourTensor::from_mass_tensor(&j).unwrap();
     for a in 0..4 {
@@ -277,7 +276,7 @@ fn tensor_views_reject_bad_input() {
     let t = RankFourTensor::from_mass_tensor(&j3).unwrap();
     assert!(matches!(
         RankFourTensor::from_mass_tensor(&DMatrix::zeros(2, 3)),
-        Err(TensorError::NotSquare {
+        Err(InertiaError::NotSquare {
             rows: 2,
             cols: 3,
             ..
@@ -287,21 +286,24 @@ fn tensor_views_reject_bad_input() {
     bad[(0, 1)] = 0.5;
     assert!(matches!(
         RankFourTensor::from_mass_tensor(&bad),
-        Err(TensorError::NotSymmetric { row: 0, col: 1, .. })
+        Err(InertiaError::NotSymmetric {
+            quantity: "mass_tensor",
+            ..
+        })
     ));
     let mut nan = j3.clone();
     nan[(2, 2)] = f64::NAN;
     assert!(matches!(
         ContractedInertia::from_mass_tensor(&nan, ContractionNormalization::LeviCivita),
-        Err(TensorError::NonFinite { row: 2, col: 2, .. })
+        Err(InertiaError::NonFinite { index: Some(8), .. })
     ));
     assert!(matches!(
         t.apply(&DMatrix::identity(3, 3)),
-        Err(TensorError::NotSkewSymmetric { .. })
+        Err(InertiaError::NotSkewSymmetric { .. })
     ));
     assert!(matches!(
         t.apply(&DMatrix::zeros(4, 4)),
-        Err(TensorError::DimensionMismatch {
+        Err(InertiaError::DimensionMismatch {
             expected: 3,
             found: 4,
             ..
@@ -312,23 +314,29 @@ fn tensor_views_reject_bad_input() {
             &DMatrix::identity(2, 2),
             ContractionNormalization::AxisMoment
         ),
-        Err(TensorError::UnsupportedDimension { dim: 2, min: 3, .. })
+        Err(InertiaError::UnsupportedDimension { dim: 2, min: 3, .. })
     ));
     let t2 = RankFourTensor::from_mass_tensor(&DMatrix::identity(2, 2)).unwrap();
     assert!(matches!(
         t2.levi_civita_contraction(),
-        Err(TensorError::UnsupportedDimension { dim: 2, .. })
+        Err(InertiaError::UnsupportedDimension { dim: 2, .. })
     ));
     let t9 = RankFourTensor::from_mass_tensor(&DMatrix::identity(9, 9)).unwrap();
     assert!(matches!(
         t9.levi_civita_contraction(),
-        Err(TensorError::UnsupportedDimension { dim: 9, max: 8, .. })
+        Err(InertiaError::UnsupportedDimension { dim: 9, max: 8, .. })
     ));
     let c = ContractedInertia::from_mass_tensor(&j3, ContractionNormalization::LeviCivita).unwrap();
     for m in [0.0, -1.0, f64::NAN, f64::INFINITY] {
         assert!(matches!(
             c.gyration_radii(m),
-            Err(TensorError::NotPositiveMass { .. })
+            Err(InertiaError::NotPositive {
+                quantity: "mass",
+                ..
+            } | InertiaError::NonFinite {
+                quantity: "mass",
+                ..
+            })
         ));
     }
     // A non-physical "J" = diag(1, 1, −5): tr J · 1 − J = diag(−4, −4, 2) is negative first.
@@ -337,10 +345,10 @@ fn tensor_views_reject_bad_input() {
         .unwrap();
     assert!(matches!(
         c.gyration_radii(1.0),
-        Err(TensorError::NegativeValue { index: 0, .. })
+        Err(InertiaError::NegativeValue { index: 0, .. })
     ));
     // Error messages are real sentences.
-    let msg = TensorError::NotSquare {
+    let msg = InertiaError::NotSquare {
         quantity: "mass_tensor",
         rows: 2,
         cols: 3,

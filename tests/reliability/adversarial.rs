@@ -111,7 +111,7 @@ proptest! {
         let n = l.dim();
         let moments: Vec<f64> = exps[..n].iter().map(|&e| 10f64.powi(e)).collect();
         // Beyond a 1/(64ε) spread of plane moments the map is refused with a clear error.
-        let map = match InertiaMap::from_principal_moments(&moments) {
+        let map = match InertiaMap::from_principal_second_moments(&moments) {
             Ok(map) => map,
             Err(e) => {
                 prop_assert!(e.to_string().contains("plane"), "{e}");
@@ -144,7 +144,7 @@ proptest! {
     ) {
         let n = l.dim();
         let moments: Vec<f64> = exps[..n].iter().map(|&e| 10f64.powi(e)).collect();
-        let Ok(inertia) = InertiaMap::from_principal_moments(&moments) else {
+        let Ok(inertia) = InertiaMap::from_principal_second_moments(&moments) else {
             return Ok(());
         };
         let Ok(body) = RigidBody::from_body_momentum(inertia, Attitude::identity(n), &l) else {

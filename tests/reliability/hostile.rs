@@ -116,7 +116,7 @@ fn a_rotor_composed_a_million_times_stays_a_rotor() {
 fn inertia_of_a_nearly_flat_body() {
     let half = [1.0, 1.0, 1e-6, 1e-6];
     let body = Body::solid_cuboid(&half, 1.0).unwrap();
-    let j = body.principal_moments();
+    let j = body.principal_second_moments();
     let kappa = j.max() / j.min();
     assert!(
         (kappa / 1e12 - 1.0).abs() < 1e-9,
@@ -261,7 +261,7 @@ fn regression_exp_log_of_a_wide_range_bivector_in_7d() {
 fn regression_splitting_reports_an_overflowing_angle() {
     use rotorflow::dynamics::torques::Free;
     use rotorflow::dynamics::{Attitude, DynamicsError, Integrator, RigidBody, Splitting};
-    let inertia = InertiaMap::from_principal_moments(&[1e-181, 1e-181]).unwrap();
+    let inertia = InertiaMap::from_principal_second_moments(&[1e-181, 1e-181]).unwrap();
     let l = Bivector::from_components(2, &[5.0814314796920635e126]).unwrap();
     let mut body = RigidBody::from_body_momentum(inertia, Attitude::identity(2), &l).unwrap();
     let result = Splitting::strang().step(&mut body, 0.0, 10.0, &Free);

@@ -14,7 +14,7 @@ fn body(moments: &[f64], scale: f64) -> RigidBody {
         .map(|k| scale * (0.7 * k as f64 + 0.3).sin())
         .collect();
     RigidBody::from_body_momentum(
-        InertiaMap::from_principal_moments(moments).unwrap(),
+        InertiaMap::from_principal_second_moments(moments).unwrap(),
         Attitude::identity(n),
         &Bivector::from_components(n, &l).unwrap(),
     )

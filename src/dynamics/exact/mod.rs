@@ -36,7 +36,7 @@ pub type ExactError = DynamicsError;
 /// use rotorflow::prelude::*;
 /// use rotorflow::dynamics::RigidBody;
 /// // The paper's §7.2 body in 4D: three equal principal values, one different.
-/// let inertia = InertiaMap::from_principal_moments(&[1.0, 1.0, 1.0, 4.0])?;
+/// let inertia = InertiaMap::from_principal_second_moments(&[1.0, 1.0, 1.0, 4.0])?;
 /// let omega = Bivector::from_components(4, &[0.3, -0.5, 0.8, 0.4, 0.2, -0.6])?;
 /// let body = RigidBody::from_body_velocity(inertia, Rotor::identity(4), &omega)?;
 /// let exact = body.exact_solution()?;

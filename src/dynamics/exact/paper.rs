@@ -94,11 +94,22 @@ fn check_t(t: f64) -> Result<f64, DynamicsError> {
 ///
 /// # Errors
 /// [`DynamicsError::NonFiniteArgument`] for a non-finite half-axis.
-pub fn principal_moments_from_half_axes(half_axes: &[f64]) -> Result<Vec<f64>, DynamicsError> {
+pub fn principal_second_moments_from_half_axes(
+    half_axes: &[f64],
+) -> Result<Vec<f64>, DynamicsError> {
     half_axes
         .iter()
         .map(|&a| finite("half_axes", a).map(|a| a * a))
         .collect()
+}
+
+/// The principal second moments Jᵢ = aᵢ² of a body with half-axes aᵢ.
+///
+/// # Errors
+/// As [`principal_second_moments_from_half_axes`].
+#[deprecated(note = "use principal_second_moments_from_half_axes (the values are the Jᵢ)")]
+pub fn principal_moments_from_half_axes(half_axes: &[f64]) -> Result<Vec<f64>, DynamicsError> {
+    principal_second_moments_from_half_axes(half_axes)
 }
 
 /// Eq. (109), "a = b = c = 1, d = κ": the principal values J = (1, 1, 1, κ²).

@@ -107,7 +107,7 @@ pub enum TwoMomentKind {
 /// use rotorflow::dynamics::RigidBody;
 /// use rotorflow::dynamics::exact::two_moments::TwoMomentSolution;
 /// // The paper's §7.3 body in 4D: J = (1, 1, 4, 4).
-/// let inertia = InertiaMap::from_principal_moments(&[1.0, 1.0, 4.0, 4.0])?;
+/// let inertia = InertiaMap::from_principal_second_moments(&[1.0, 1.0, 4.0, 4.0])?;
 /// let omega = Bivector::from_components(4, &[0.3, 1.0, -0.2, 0.5, 0.7, -0.4])?;
 /// let body = RigidBody::from_body_velocity(inertia, Rotor::identity(4), &omega)?;
 /// let exact = TwoMomentSolution::new(&body)?;

@@ -156,7 +156,7 @@ fn free_step_dense_in(body: &mut RigidBody, h: f64, scratch: &mut Vec<f64>) -> b
         return false;
     };
     // Principal moments of a physical map (diagonal here, since the plane moments are).
-    let moments = inertia.principal_moments();
+    let moments = inertia.principal_second_moments();
     let physical = moments.is_some();
     let nn = n * n;
     // Buffers spaced nn + 24 apart: at N = 32 a spacing of nn puts every buffer at the same

@@ -306,7 +306,7 @@ mod tests {
             let attitude =
                 Rotor::from_rotation_bivector(&(Bivector::from_components(n, &l).unwrap() * 0.4));
             let body = RigidBody::from_body_momentum(
-                InertiaMap::from_principal_moments(&moments).unwrap(),
+                InertiaMap::from_principal_second_moments(&moments).unwrap(),
                 attitude,
                 &Bivector::from_components(n, &l).unwrap(),
             )
