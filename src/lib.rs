@@ -95,13 +95,9 @@
 #![forbid(unsafe_code)]
 
 pub mod algebra;
-#[cfg(feature = "cli")]
-pub mod cli;
 pub mod dynamics;
 pub mod inertia;
 pub mod special;
-#[cfg(feature = "cli")]
-pub mod viz;
 
 /// The types most programs need: `use rotorflow::prelude::*;`.
 pub mod prelude {

@@ -7,8 +7,8 @@ use super::error::{CliError, CliResult};
 use super::motion::{InitialArgs, Report, State, initial_body};
 use super::simulate::{ReportArgs, TimeArgs};
 use super::spec::{GRAMMAR, parse_body};
-use crate::dynamics::RigidBody;
 use clap::Args;
+use rotorflow::dynamics::RigidBody;
 
 /// Arguments of `exact`.
 #[derive(Args, Debug, Clone)]
@@ -55,13 +55,13 @@ pub fn run(args: &ExactArgs) -> CliResult<()> {
 /// [`CliError::Runtime`] if the closed form cannot be evaluated at a time.
 pub fn exact_report(start: &RigidBody, times: &[f64]) -> CliResult<Report> {
     let solution = start.exact_solution().map_err(|e| match e {
-        crate::dynamics::exact::ExactError::NoClosedForm(why) => {
+        rotorflow::dynamics::exact::ExactError::NoClosedForm(why) => {
             CliError::input(format!("no closed-form solution for this body: {why}"))
         }
         e => CliError::input(format!("no closed-form solution for this body: {e}")),
     })?;
     let state = |t: f64| -> CliResult<State> {
-        let fail = |e: crate::dynamics::exact::ExactError| {
+        let fail = |e: rotorflow::dynamics::exact::ExactError| {
             CliError::runtime(format!("closed form at t = {t}: {e}"))
         };
         Ok((

@@ -1,11 +1,13 @@
 //! `rotorflow inertia --body SPEC [--json]`: mass properties and the paper's tensors.
 
 use super::error::{CliError, CliResult};
-use super::output::{emit, matrix_json, plane_names, to_json_text, vector_json};
+use super::output::{
+    Format, emit, matrix_json, plane_names, report_format, to_json_text, vector_json,
+};
 use super::spec::{GRAMMAR, ParsedBody, parse_body};
-use crate::inertia::tensor::{ContractedInertia, ContractionNormalization, RankFourTensor};
 use clap::Args;
 use nalgebra::DVector;
+use rotorflow::inertia::tensor::{ContractedInertia, ContractionNormalization, RankFourTensor};
 use serde_json::{Value, json};
 use std::path::PathBuf;
 
@@ -20,7 +22,9 @@ pub struct InertiaArgs {
     /// plane_moments, inertia_matrix, rank4, contracted, gyration_radii.
     #[arg(long)]
     pub json: bool,
-    /// Write to FILE (whole or not at all) instead of standard output.
+    /// Write to FILE (whole or not at all) instead of standard output. Without --json the
+    /// format follows the file name: .json → JSON, .txt, .md or anything else → text (.csv
+    /// is refused); --json with a .txt or .md name is refused.
     #[arg(long, value_name = "FILE")]
     pub output: Option<PathBuf>,
 }
@@ -30,9 +34,11 @@ pub struct InertiaArgs {
 /// # Errors
 /// [`CliError::Input`] for a bad SPEC.
 pub fn run(args: &InertiaArgs) -> CliResult<()> {
+    let flag = args.json.then_some(Format::Json);
+    let format = report_format(args.output.as_deref(), flag, false)?;
     let parsed = parse_body(&args.body)?;
     let report = inertia_json(&parsed)?;
-    let text = if args.json {
+    let text = if format == Format::Json {
         to_json_text(&report, true)?
     } else {
         inertia_text(&parsed, &report)

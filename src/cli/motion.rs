@@ -3,16 +3,16 @@
 
 use super::error::{CliError, CliResult};
 use super::output::{Progress, matrix_json, number, plane_names};
-use super::spec::{ParsedBody, parse_list, parse_number};
-use crate::algebra::{Bivector, bivector_len};
-use crate::dynamics::torques::{BodyFrame, Free, LinearDamping, SpaceFrame};
-use crate::dynamics::trajectory::even_times;
-use crate::dynamics::{
+use super::spec::ParsedBody;
+use clap::{Args, ValueEnum};
+use nalgebra::DMatrix;
+use rotorflow::algebra::{Bivector, bivector_len};
+use rotorflow::dynamics::torques::{BodyFrame, Free, LinearDamping, SpaceFrame};
+use rotorflow::dynamics::{
     Attitude, Dopri5, Drift, Integrator, Invariants, Midpoint, RigidBody, Rkmk4, Splitting, Torque,
     simulate,
 };
-use clap::{Args, ValueEnum};
-use nalgebra::DMatrix;
+use rotorflow::inertia::spec::{parse_list, parse_number};
 use serde_json::{Value, json};
 
 /// Parses a finite number for clap (rejects NaN and infinities).
@@ -74,70 +74,6 @@ pub fn initial_body(parsed: &ParsedBody, initial: &InitialArgs) -> CliResult<Rig
         RigidBody::from_body_momentum(inertia, Attitude::identity(n), &b)
     };
     body.map_err(|e| CliError::input(format!("body `{}`: {e}", parsed.spec)))
-}
-
-/// Returns the sample times: `samples` even times from 0 to `t_end`, or the listed `times`.
-///
-/// # Errors
-/// [`CliError::Input`] for a missing or non-positive end time, fewer than 2 samples, or
-/// times that are negative, not increasing or beyond `t_end`.
-pub fn sample_times(
-    t_end: Option<f64>,
-    samples: Option<usize>,
-    times: Option<&str>,
-) -> CliResult<Vec<f64>> {
-    if let Some(t) = t_end
-        && t <= 0.0
-    {
-        return Err(CliError::input(format!(
-            "--t-end must be positive, got {t} (expected --t-end T with T > 0)"
-        )));
-    }
-    match (samples, times) {
-        (Some(_), Some(_)) => Err(CliError::input(
-            "give --samples K or --times t1,t2,..., not both",
-        )),
-        (Some(k), None) => {
-            let t = t_end.ok_or_else(|| {
-                CliError::input("--samples needs --t-end T (expected --t-end T --samples K)")
-            })?;
-            if !(2..=10_000_000).contains(&k) {
-                return Err(CliError::input(format!(
-                    "--samples must be between 2 and 10000000, got {k} (expected --samples K)"
-                )));
-            }
-            Ok(even_times(t, k))
-        }
-        (None, Some(list)) => {
-            let v = parse_list(list).map_err(|e| {
-                CliError::input(format!(
-                    "--times: {e} (expected --times t1,t2,... increasing, >= 0)"
-                ))
-            })?;
-            if let Some(t) = v.iter().find(|t| **t < 0.0) {
-                return Err(CliError::input(format!(
-                    "--times: {t} is negative (expected --times t1,t2,... increasing, >= 0)"
-                )));
-            }
-            if let Some(w) = v.windows(2).find(|w| w[1] <= w[0]) {
-                return Err(CliError::input(format!(
-                    "--times not increasing: {} then {} (expected --times t1,t2,... strictly increasing, >= 0)",
-                    w[0], w[1]
-                )));
-            }
-            if let (Some(end), Some(last)) = (t_end, v.last())
-                && *last > end
-            {
-                return Err(CliError::input(format!(
-                    "--times: {last} is beyond --t-end {end}"
-                )));
-            }
-            Ok(v)
-        }
-        (None, None) => Err(CliError::input(
-            "give --samples K (with --t-end T) or --times t1,t2,...",
-        )),
-    }
 }
 
 /// The integrators the command offers.
@@ -333,8 +269,9 @@ pub fn integrate(
     times: &[f64],
     progress: &mut Progress,
 ) -> CliResult<(Vec<State>, usize)> {
-    let fail =
-        |e: crate::dynamics::DynamicsError| CliError::runtime(format!("integration failed: {e}"));
+    let fail = |e: rotorflow::dynamics::DynamicsError| {
+        CliError::runtime(format!("integration failed: {e}"))
+    };
     let mut states: Vec<State> = Vec::with_capacity(times.len());
     let mut steps = 0;
     // Chunks of samples, so that the progress bar moves; each chunk restarts from the last
@@ -379,7 +316,9 @@ pub fn integrate(
             _ => unreachable!("one integrator is set"),
         };
         if let Some((r, l)) = block_states.last() {
-            current.replace_state(r.clone(), l.clone());
+            current.set_state(r.clone(), l.clone()).map_err(|_| {
+                CliError::runtime("integration failed: the state is no longer finite; reduce --dt")
+            })?;
             t0 = *block.last().expect("chunks are not empty");
         }
         states.extend(block_states);
@@ -451,7 +390,8 @@ impl Report {
         let mut b = start.clone();
         for state in states {
             let (r, l) = state?;
-            b.replace_state(r, l);
+            b.set_state(r, l)
+                .map_err(|e| CliError::runtime(format!("the motion cannot be evaluated: {e}")))?;
             let inv = Invariants::of(&b);
             let d = inv.drift_from(&reference);
             report.drift.energy = report.drift.energy.max(d.energy);

@@ -19,6 +19,7 @@
 pub mod bodies;
 mod error;
 mod map;
+pub mod spec;
 pub mod tensor;
 
 pub use bodies::{Body, BodyError};

@@ -70,9 +70,9 @@ cases! {
     malformed_spec_unknown_kind => { inertia("hypercube:1,2", "unknown kind `hypercube`") }
     malformed_spec_bad_number => { inertia("cuboid:1,x,3", "`x` is not a number") }
     malformed_spec_empty_number => { inertia("cuboid:1,,3", "a number is missing") }
-    malformed_spec_unknown_option => { inertia("cuboid:1,2;colour=3", "unknown option `colour`") }
-    malformed_spec_mass_and_density => { inertia("cuboid:1,2;mass=1;density=2", "not both") }
-    malformed_spec_density_of_point_masses => { inertia("tesseract:1,2;density=2", "density applies to solids") }
+    malformed_spec_unknown_option => { inertia("cuboid:1,2+colour=3", "unknown option `colour`") }
+    malformed_spec_mass_and_density => { inertia("cuboid:1,2+mass=1+density=2", "not both") }
+    malformed_spec_density_of_point_masses => { inertia("tesseract:1,2+density=2", "density applies to solids") }
     wrong_count_pentachoron => { inertia("pentachoron:1,2,3", "expected 4") }
     wrong_count_tensor => { inertia("tensor:1,2,3", "not N*N") }
     wrong_count_planes => { inertia("planes:1,2", "plane moments has 2 entries") }
@@ -87,7 +87,7 @@ cases! {
     negative_half_length => { inertia("cuboid:1,-2,3", "must be positive, got -2") }
     negative_radius => { inertia("ball:3,-1", "radius must be positive") }
     negative_principal_moment => { inertia("principal:1,-2,3", "must not be negative") }
-    negative_mass => { inertia("cuboid:1,2;mass=-1", "mass must be positive") }
+    negative_mass => { inertia("cuboid:1,2+mass=-1", "mass must be positive") }
     dimension_too_small => { inertia("simplex:1", "dimension 1 is not supported") }
     non_finite_size => { inertia("ellipsoid:1,inf,2", "`inf` is not a finite number") }
     non_finite_omega => { simulate("cuboid:1,2,3", "1,nan,0", &[], "`nan` is not a finite number") }

@@ -94,7 +94,7 @@ fn inertia_solids_match_library() {
         &Body::solid_cuboid(&[1.0, 2.0, 3.0, 4.0], 1.0).unwrap(),
     );
     check_against_library(
-        "cuboid:1,2,3;density=2.5",
+        "cuboid:1,2,3+density=2.5",
         &Body::solid_cuboid(&[1.0, 2.0, 3.0], 2.5).unwrap(),
     );
     check_against_library(
@@ -110,7 +110,7 @@ fn inertia_solids_match_library() {
     );
     check_against_library("ball:5,2", &Body::solid_ball(5, 2.0, 1.0).unwrap());
     check_against_library(
-        "sphere:4,1.5;density=3",
+        "sphere:4,1.5+density=3",
         &Body::hypersphere_shell(4, 1.5, 3.0).unwrap(),
     );
     check_against_library(
@@ -133,7 +133,7 @@ fn inertia_given_tensors_match_library() {
     );
     let j = DMatrix::from_row_slice(3, 3, &[2.0, 0.5, 0.1, 0.5, 3.0, 0.2, 0.1, 0.2, 4.0]);
     check_against_library(
-        "tensor:2,0.5,0.1,0.5,3,0.2,0.1,0.2,4;mass=2",
+        "tensor:2,0.5,0.1,0.5,3,0.2,0.1,0.2,4+mass=2",
         &Body::from_mass_properties(2.0, DVector::zeros(3), j, None).unwrap(),
     );
 }
@@ -174,7 +174,7 @@ fn inertia_mesh_file_matches_library() {
     let v = run_json(&[
         "inertia",
         "--body",
-        &format!("mesh:{};density=2", path.display()),
+        &format!("mesh:{}+density=2", path.display()),
         "--json",
     ]);
     assert_close(&[v["mass"].as_f64().unwrap()], &[2.0], 1e-12);
