@@ -268,6 +268,7 @@ fn parse_case(case: &Case) -> CliResult<(super::spec::ParsedBody, rotorflow::dyn
         &InitialArgs {
             omega: Some(case.omega.to_string()),
             momentum: None,
+            axial: false,
         },
     )?;
     Ok((parsed, start))
@@ -417,6 +418,7 @@ fn sweep(dir: &Path) -> CliResult<String> {
                 &InitialArgs {
                     omega: Some(omega_text.clone()),
                     momentum: None,
+                    axial: false,
                 },
             )?;
             let mut silent = Progress::new(0, true, "");

@@ -45,7 +45,11 @@ use std::process::ExitCode;
     long_about = "Rotating rigid bodies in N dimensions: inertia, Euler's equations as rotor flows, \
 closed-form solutions, plots and animations of the 3D projections.\n\n\
 Bivector components (ω, L, torques) are given and printed in lexicographic order of the planes \
-12,13,...,1N,23,..., 1-based, in the body's own axes.",
+12,13,...,1N,23,..., 1-based, in the body's own axes; ω₁₂ > 0 turns e₁ towards e₂. In 3D the \
+axial vector (x, y, z) of the right-hand rule is the bivector x e₂∧e₃ + y e₃∧e₁ + z e₁∧e₂: \
+(ω₁₂, ω₁₃, ω₂₃) = (z, −y, x), and `--axial` reads --omega, --momentum and constant torques \
+as x,y,z.\n\n\
+Quote body SPECs on a shell command line (`--body 'cuboid:1,2,3+mass=5'`).",
     after_long_help = spec::GRAMMAR,
 )]
 pub struct Cli {

@@ -20,17 +20,61 @@ pub fn finite_number(text: &str) -> Result<f64, String> {
     parse_number(text)
 }
 
-/// The initial condition: `--omega W` or `--momentum L`.
+/// The initial condition: `--omega W` or `--momentum L`, as bivector components or (N = 3,
+/// `--axial`) as axial vectors.
 #[derive(Args, Clone, Debug)]
-#[group(required = true, multiple = false)]
+#[group(required = true, multiple = true)]
 pub struct InitialArgs {
     /// Initial angular velocity ω: N(N−1)/2 bivector components in lexicographic order
     /// 12,13,…,1N,23,… in the body's own axes, comma-separated (e.g. `--omega=1,0,0.1`).
-    #[arg(long, value_name = "W", allow_hyphen_values = true)]
+    /// ω₁₂ > 0 turns e₁ towards e₂.
+    #[arg(
+        long,
+        value_name = "W",
+        allow_hyphen_values = true,
+        conflicts_with = "momentum"
+    )]
     pub omega: Option<String>,
     /// Initial angular momentum L, in the same order and axes as `--omega`.
     #[arg(long, value_name = "L", allow_hyphen_values = true)]
     pub momentum: Option<String>,
+    /// N = 3 only: read --omega, --momentum and the constant torques as axial vectors
+    /// x,y,z (right-hand rule) instead of bivector components. The axial vector (x, y, z)
+    /// is the bivector x e₂∧e₃ + y e₃∧e₁ + z e₁∧e₂, i.e. the components
+    /// (ω₁₂, ω₁₃, ω₂₃) = (z, −y, x), and conversely (x, y, z) = (ω₂₃, −ω₁₃, ω₁₂): a spin
+    /// about +z is ω₁₂ > 0. The output keeps the bivector components 12,13,23.
+    #[arg(long)]
+    pub axial: bool,
+}
+
+/// Returns the bivector components (ω₁₂, ω₁₃, ω₂₃) of the 3D axial vector (x, y, z):
+/// x e₂∧e₃ + y e₃∧e₁ + z e₁∧e₂ (right-hand rule, e₁∧e₂ ↔ e₃).
+pub fn bivector_from_axial([x, y, z]: [f64; 3]) -> [f64; 3] {
+    [z, -y, x]
+}
+
+/// Returns the bivector components of a list given on the command line: as they are, or, with
+/// `axial` (N = 3 only), read as an axial vector.
+///
+/// # Errors
+/// A one-line message when `axial` is asked for with N ≠ 3 or the list is not 3 numbers.
+pub fn components(values: Vec<f64>, n: usize, axial: bool) -> Result<Vec<f64>, String> {
+    if !axial {
+        return Ok(values);
+    }
+    if n != 3 {
+        return Err(format!(
+            "--axial needs N = 3 (the body has N = {n}: give the {} bivector components instead)",
+            bivector_len(n)
+        ));
+    }
+    match <[f64; 3]>::try_from(values) {
+        Ok(v) => Ok(bivector_from_axial(v).to_vec()),
+        Err(v) => Err(format!(
+            "{} components given; an axial vector is x,y,z",
+            v.len()
+        )),
+    }
 }
 
 /// Returns the rigid body at t = 0 in the identity attitude with the given ω or L.
@@ -48,16 +92,31 @@ pub fn initial_body(parsed: &ParsedBody, initial: &InitialArgs) -> CliResult<Rig
             ));
         }
     };
+    if initial.axial && n != 3 {
+        return Err(CliError::input(format!(
+            "--axial needs N = 3, the body has N = {n} (give {flag} as {} bivector components)",
+            bivector_len(n)
+        )));
+    }
     let names = plane_names(n);
     let expected = || {
-        format!(
-            "{} components {} (N = {n}, lexicographic, body's own axes)",
-            bivector_len(n),
-            names.join(",")
-        )
+        if initial.axial {
+            "3 components x,y,z (axial vector, body's own axes)".to_string()
+        } else {
+            format!(
+                "{} components {} (N = {n}, lexicographic, body's own axes)",
+                bivector_len(n),
+                names.join(",")
+            )
+        }
     };
     let values = parse_list(text)
         .map_err(|e| CliError::input(format!("{flag}: {e}; expected {}", expected())))?;
+    let values = if initial.axial && values.len() == 3 {
+        bivector_from_axial([values[0], values[1], values[2]]).to_vec()
+    } else {
+        values
+    };
     if values.len() != bivector_len(n) {
         return Err(CliError::input(format!(
             "{flag}: {} components given; expected {}",
@@ -212,11 +271,16 @@ impl SteppingArgs {
 /// The torque grammar, for help and errors.
 pub const TORQUE_FORMS: &str = "none | body:T12,T13,... (constant, body's own axes) | space:T12,T13,... (constant, space frame) | damping:C (tau = -C omega)";
 
-/// Parses `--torque SPEC` for a body of dimension `n` with principal rotor `principal`.
+/// Parses `--torque SPEC` for `body`; with `axial` (N = 3) the constant torques are axial
+/// vectors x,y,z.
 ///
 /// # Errors
 /// [`CliError::Input`] naming the problem and the expected forms.
-pub fn parse_torque(text: Option<&str>, body: &RigidBody) -> CliResult<Box<dyn Torque + Sync>> {
+pub fn parse_torque(
+    text: Option<&str>,
+    body: &RigidBody,
+    axial: bool,
+) -> CliResult<Box<dyn Torque + Sync>> {
     let n = body.dim();
     let Some(text) = text else {
         return Ok(Box::new(Free));
@@ -225,7 +289,7 @@ pub fn parse_torque(text: Option<&str>, body: &RigidBody) -> CliResult<Box<dyn T
         |m: String| CliError::input(format!("--torque `{text}`: {m} (expected {TORQUE_FORMS})"));
     let (kind, args) = text.split_once(':').unwrap_or((text, ""));
     let bivector = |args: &str| -> CliResult<Bivector> {
-        let v = parse_list(args).map_err(bad)?;
+        let v = components(parse_list(args).map_err(bad)?, n, axial).map_err(bad)?;
         if v.len() != bivector_len(n) {
             return Err(bad(format!(
                 "{} components given, N = {n} needs {}",

@@ -113,7 +113,8 @@ pub struct SimulateArgs {
     /// The initial condition.
     #[command(flatten)]
     pub initial: InitialArgs,
-    /// External torque: none | body:T12,... | space:T12,... | damping:C.
+    /// External torque: none | body:T12,... | space:T12,... | damping:C (with --axial,
+    /// body:x,y,z and space:x,y,z are axial vectors).
     #[arg(long, value_name = "SPEC", allow_hyphen_values = true)]
     pub torque: Option<String>,
     /// The sample times.
@@ -136,7 +137,7 @@ pub fn run(args: &SimulateArgs, quiet: bool) -> CliResult<()> {
     let parsed = parse_body(&args.body)?;
     let start = initial_body(&parsed, &args.initial)?;
     let times = args.time.resolve()?;
-    let torque = parse_torque(args.torque.as_deref(), &start)?;
+    let torque = parse_torque(args.torque.as_deref(), &start, args.initial.axial)?;
     let t_end = times.last().copied().unwrap_or(0.0);
     let stepping = args.stepping.resolve(&start, t_end)?;
     let mut progress = Progress::new(times.len() as u64, quiet, "simulate");

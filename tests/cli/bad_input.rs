@@ -66,6 +66,22 @@ macro_rules! cases {
 }
 
 cases! {
+    option_after_a_comma => { inertia("cuboid:1,2,3,4,mass=5", "write `+mass=5` (or a quoted `;mass=5`)") }
+    output_json_flag_against_csv_name => { simulate("cuboid:1,2,3", "1,0,0", &["--output", "r.csv"], "names a csv file but --json was asked for") }
+    output_csv_flag_against_json_name => {
+        refuses(&["simulate", "--body", "cuboid:1,2,3", "--omega", "1,0,0", "--t-end", "1", "--samples", "2", "--csv", "--output", "r.json"], "names a json file but --csv was asked for")
+    }
+    output_json_flag_against_text_name => {
+        refuses(&["inertia", "--body", "cuboid:1,2,3", "--json", "--output", "r.txt"], "names a txt file but --json was asked for")
+    }
+    inertia_has_no_csv => {
+        refuses(&["inertia", "--body", "cuboid:1,2,3", "--output", "r.csv"], "this command writes no CSV")
+    }
+    axial_outside_3d => { simulate("cuboid:1,2,3,4", "1,0,0", &["--axial"], "--axial needs N = 3, the body has N = 4") }
+    axial_with_too_many_components => { simulate("cuboid:1,2,3", "1,0,0,0", &["--axial"], "expected 3 components x,y,z (axial vector") }
+    axial_torque_outside_3d => {
+        refuses(&["simulate", "--body", "cuboid:1,2,3,4", "--axial", "--omega", "1,0,0", "--t-end", "1", "--samples", "2"], "--axial needs N = 3")
+    }
     malformed_spec_without_kind => { inertia("cuboid1,2", "missing `KIND:`") }
     malformed_spec_unknown_kind => { inertia("hypercube:1,2", "unknown kind `hypercube`") }
     malformed_spec_bad_number => { inertia("cuboid:1,x,3", "`x` is not a number") }

@@ -62,6 +62,15 @@ pub struct SweepArgs {
     /// Write the table as CSV to FILE (standard output otherwise). FILE appears whole or
     /// not at all; while the sweep runs, each finished run is also appended to the progress
     /// file FILE.partial, which `--resume` reads and which is removed once FILE is written.
+    ///
+    /// The columns, one row per run in grid order: run (0-based index in the grid); one
+    /// column per --param, named by it (its value); then for each plane ab of the 3D
+    /// projection (the three planes of --axes, lexicographic, e.g. 12, 13, 23): freq_ab (the
+    /// angular frequency of ω_ab about its mean, from its mean crossings; 0 if it does not
+    /// oscillate), amp_ab (half its peak-to-peak range), mean_ab (its mean); then flips
+    /// (sign changes of the largest of the three components), first_flip (the time of the
+    /// first, empty if none), energy_drift and casimir_drift (the largest relative drifts of
+    /// the energy and of the Casimirs over the run). Numbers are in shortest round-trip form.
     #[arg(long, value_name = "FILE")]
     pub csv: Option<PathBuf>,
     /// Continue an interrupted sweep: the runs recorded in FILE.partial (of `--csv FILE`) are
@@ -167,6 +176,7 @@ pub fn run(args: &SweepArgs, quiet: bool) -> CliResult<()> {
                 .as_deref()
                 .map(|t| substitute(t, &names, &values))
                 .transpose()?,
+            axial: args.initial.axial,
         };
         let start = initial_body(&body, &initial).map_err(in_run)?;
         let stepping = args
