@@ -125,7 +125,7 @@ fn axial_vectors_in_3d_follow_the_right_hand_rule() {
     assert_close(&e1, &[0.1f64.cos(), 0.1f64.sin(), 0.0], 1e-9);
     // A general vector, and the momentum: L = (x, y, z) axial is (z, −y, x).
     let v = run(&["--axial", "--omega", "0.3,-0.5,0.7"]);
-    assert_close(&matrix(&v["omega"])[0], &[0.7, 0.5, 0.3], 0.0);
+    assert_close(&matrix(&v["omega"])[0], &[0.7, 0.5, 0.3], 1e-15);
     let v = run(&["--axial", "--momentum", "1,2,3"]);
     assert_close(&matrix(&v["momentum"])[0], &[3.0, -2.0, 1.0], 1e-15);
     // A constant body torque about +x (axial) is τ₂₃ = 1: from rest the body turns about
