@@ -12,7 +12,9 @@
 
 use super::error::{CliError, CliResult};
 use super::exact::exact_report;
-use super::motion::{InitialArgs, IntegratorKind, Report, Stepping, initial_body, integrate};
+use super::motion::{
+    InitialArgs, InitialValue, IntegratorKind, Report, Stepping, initial_body, integrate,
+};
 use super::output::{Progress, number, plane_names, write_atomic};
 use super::render::picture;
 use super::simulate::{drift_plot, omega_plot};
@@ -266,8 +268,10 @@ fn parse_case(case: &Case) -> CliResult<(super::spec::ParsedBody, rotorflow::dyn
     let start = initial_body(
         &parsed,
         &InitialArgs {
-            omega: Some(case.omega.to_string()),
-            momentum: None,
+            value: InitialValue {
+                omega: Some(case.omega.to_string()),
+                momentum: None,
+            },
             axial: false,
         },
     )?;
@@ -416,8 +420,10 @@ fn sweep(dir: &Path) -> CliResult<String> {
             let start = initial_body(
                 &parsed,
                 &InitialArgs {
-                    omega: Some(omega_text.clone()),
-                    momentum: None,
+                    value: InitialValue {
+                        omega: Some(omega_text.clone()),
+                        momentum: None,
+                    },
                     axial: false,
                 },
             )?;

@@ -23,21 +23,10 @@ pub fn finite_number(text: &str) -> Result<f64, String> {
 /// The initial condition: `--omega W` or `--momentum L`, as bivector components or (N = 3,
 /// `--axial`) as axial vectors.
 #[derive(Args, Clone, Debug)]
-#[group(required = true, multiple = true)]
 pub struct InitialArgs {
-    /// Initial angular velocity ω: N(N−1)/2 bivector components in lexicographic order
-    /// 12,13,…,1N,23,… in the body's own axes, comma-separated (e.g. `--omega=1,0,0.1`).
-    /// ω₁₂ > 0 turns e₁ towards e₂.
-    #[arg(
-        long,
-        value_name = "W",
-        allow_hyphen_values = true,
-        conflicts_with = "momentum"
-    )]
-    pub omega: Option<String>,
-    /// Initial angular momentum L, in the same order and axes as `--omega`.
-    #[arg(long, value_name = "L", allow_hyphen_values = true)]
-    pub momentum: Option<String>,
+    /// `--omega W` or `--momentum L`.
+    #[command(flatten)]
+    pub value: InitialValue,
     /// N = 3 only: read --omega, --momentum and the constant torques as axial vectors
     /// x,y,z (right-hand rule) instead of bivector components. The axial vector (x, y, z)
     /// is the bivector x e₂∧e₃ + y e₃∧e₁ + z e₁∧e₂, i.e. the components
@@ -45,6 +34,20 @@ pub struct InitialArgs {
     /// about +z is ω₁₂ > 0. The output keeps the bivector components 12,13,23.
     #[arg(long)]
     pub axial: bool,
+}
+
+/// The initial angular velocity or momentum, one of the two.
+#[derive(Args, Clone, Debug)]
+#[group(required = true, multiple = false)]
+pub struct InitialValue {
+    /// Initial angular velocity ω: N(N−1)/2 bivector components in lexicographic order
+    /// 12,13,…,1N,23,… in the body's own axes, comma-separated (e.g. `--omega=1,0,0.1`).
+    /// ω₁₂ > 0 turns e₁ towards e₂.
+    #[arg(long, value_name = "W", allow_hyphen_values = true)]
+    pub omega: Option<String>,
+    /// Initial angular momentum L, in the same order and axes as `--omega`.
+    #[arg(long, value_name = "L", allow_hyphen_values = true)]
+    pub momentum: Option<String>,
 }
 
 /// Returns the bivector components (ω₁₂, ω₁₃, ω₂₃) of the 3D axial vector (x, y, z):
@@ -83,7 +86,7 @@ pub fn components(values: Vec<f64>, n: usize, axial: bool) -> Result<Vec<f64>, S
 /// [`CliError::Input`] for a malformed list or the wrong number of components.
 pub fn initial_body(parsed: &ParsedBody, initial: &InitialArgs) -> CliResult<RigidBody> {
     let n = parsed.dim;
-    let (flag, text) = match (&initial.omega, &initial.momentum) {
+    let (flag, text) = match (&initial.value.omega, &initial.value.momentum) {
         (Some(w), _) => ("--omega", w),
         (None, Some(l)) => ("--momentum", l),
         (None, None) => {

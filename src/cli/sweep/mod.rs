@@ -6,7 +6,9 @@ mod table;
 
 use super::error::{CliError, CliResult};
 use super::lists::{Param, parse_param, shard_range};
-use super::motion::{InitialArgs, Report, Stepping, SteppingArgs, initial_body, integrate};
+use super::motion::{
+    InitialArgs, InitialValue, Report, Stepping, SteppingArgs, initial_body, integrate,
+};
 use super::output::{Progress, check_extension, emit, number, write_atomic};
 use super::render::parse_axes;
 use super::simulate::TimeArgs;
@@ -163,19 +165,24 @@ pub fn run(args: &SweepArgs, quiet: bool) -> CliResult<()> {
             other => other,
         };
         let body = parse_body(&substitute(&args.body, &names, &values)?).map_err(in_run)?;
-        let initial = InitialArgs {
+        let value = InitialValue {
             omega: args
                 .initial
+                .value
                 .omega
                 .as_deref()
                 .map(|t| substitute(t, &names, &values))
                 .transpose()?,
             momentum: args
                 .initial
+                .value
                 .momentum
                 .as_deref()
                 .map(|t| substitute(t, &names, &values))
                 .transpose()?,
+        };
+        let initial = InitialArgs {
+            value,
             axial: args.initial.axial,
         };
         let start = initial_body(&body, &initial).map_err(in_run)?;
