@@ -27,7 +27,8 @@ pub struct Oscillation {
 /// ```
 /// use rotorflow::dynamics::trajectory::{even_times, oscillation};
 ///
-/// let t = even_times(20.0, 2001);
+/// // Ten whole periods of sin 3t about 0.5.
+/// let t = even_times(20.0 * std::f64::consts::PI / 3.0, 2001);
 /// let x: Vec<f64> = t.iter().map(|t| 0.5 + 2.0 * (3.0 * t).sin()).collect();
 /// let o = oscillation(&t, &x);
 /// assert!((o.frequency - 3.0).abs() < 1e-3);
@@ -127,15 +128,15 @@ pub fn projection_planes(axes: [usize; 3]) -> [(usize, usize); 3] {
 /// use rotorflow::algebra::Bivector;
 /// use rotorflow::dynamics::trajectory::{even_times, projected_observables};
 ///
-/// // In 4D, ω₁₂ = cos 2t turns over; ω₁₃ and ω₂₃ are constant.
-/// let t = even_times(10.0, 1001);
+/// // In 4D, ω₁₂ = cos 2t turns over (five whole periods); ω₁₃ and ω₂₃ are constant.
+/// let t = even_times(5.0 * std::f64::consts::PI, 2001);
 /// let omega: Vec<Bivector> = t
 ///     .iter()
 ///     .map(|t| Bivector::from_components(4, &[(2.0 * t).cos(), 0.1, 0.0, 0.2, 0.0, 0.0]).unwrap())
 ///     .collect();
 /// let o = projected_observables(&t, &omega, [0, 1, 2]).unwrap();
 /// assert!((o.frequency[0] - 2.0).abs() < 1e-3);
-/// assert_eq!(o.flips, 6); // cos 2t changes sign at t = π/4 + kπ/2 < 10
+/// assert_eq!(o.flips, 10); // cos 2t changes sign at t = π/4 + kπ/2 < 5π
 /// assert!((o.first_flip.unwrap() - std::f64::consts::FRAC_PI_4).abs() < 1e-3);
 /// ```
 ///
