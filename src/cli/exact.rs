@@ -15,7 +15,7 @@ use rotorflow::dynamics::RigidBody;
 #[command(after_long_help = GRAMMAR)]
 pub struct ExactArgs {
     /// The body (see the grammar below). A closed form exists for N = 3 (any body), for any N
-    /// with at most two distinct principal moments, for steady rotations (ω × L = 0) and for a
+    /// with at most two distinct second moments Jᵢ, for steady rotations (ω × L = 0) and for a
     /// momentum in the planes of three principal axes (the 3D top inside N-D).
     #[arg(long, value_name = "SPEC")]
     pub body: String,

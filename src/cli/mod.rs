@@ -70,7 +70,7 @@ pub enum Command {
     Inertia(inertia::InertiaArgs),
     /// Integrate Euler's equations; report ω, L, energy, Casimirs, attitude and drifts.
     Simulate(simulate::SimulateArgs),
-    /// The closed-form solution (N = 3; two distinct principal moments; steady or 3D motions).
+    /// The closed-form solution (N = 3; two distinct second moments Jᵢ; steady or 3D motions).
     Exact(exact::ExactArgs),
     /// Animate the body turning in N-D, projected to 3D (HTML), or a strip of frames (SVG).
     Render(render::RenderArgs),
