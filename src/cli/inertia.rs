@@ -180,7 +180,7 @@ fn inertia_text(parsed: &ParsedBody, report: &Value) -> String {
         }
     };
     let field = |out: &mut String, label: &str, v: &Value| {
-        out.push_str(&format!("{label:<44} {}\n", line(v)));
+        out.push_str(&format!("{label:<54} {}\n", line(v)));
     };
     field(&mut out, "mass", &report["mass"]);
     field(&mut out, "volume", &report["volume"]);
