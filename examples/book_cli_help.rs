@@ -4,12 +4,22 @@
 //! `tests/book.rs` runs [`render`] and fails when the committed file differs, so the book
 //! always shows the help the `rotorflow` binary prints.
 //!
-//! Everything comes from the code: the help texts from clap (`rotorflow::cli::command()`,
-//! rendered exactly as `rotorflow SUBCOMMAND --help` prints them), the files of `demo` from
-//! `rotorflow::cli::demo::promised_files()`, and every example command line below is parsed
-//! by clap and its body SPEC by `rotorflow::cli::spec::parse_body` before it is written.
+//! Everything comes from the code: the help texts from clap (`cli::command()`, rendered
+//! exactly as `rotorflow SUBCOMMAND --help` prints them), the files of `demo` from
+//! `cli::demo::promised_files()`, and every example command line below is parsed by clap and
+//! its body SPEC by `rotorflow::inertia::spec::parse_body` before it is written. The
+//! command's modules are private to the binary; this program compiles the same source files.
 
-use rotorflow::cli::{command, demo::promised_files, spec::GRAMMAR, spec::parse_body};
+// Only the clap description and the demo's file list are used here.
+#[allow(dead_code)]
+#[path = "../src/cli/mod.rs"]
+mod cli;
+#[allow(dead_code)]
+#[path = "../src/viz/mod.rs"]
+mod viz;
+
+use cli::{command, demo::promised_files, spec::GRAMMAR};
+use rotorflow::inertia::spec::parse_body;
 use std::error::Error;
 use std::fmt::Write as _;
 
@@ -21,7 +31,7 @@ const EXAMPLES: &[(&str, &[(&str, &str)])] = &[
         "demo",
         &[(
             "the paper's cases, plots, animations and summary.md in out/",
-            "demo --out out",
+            "demo --output out",
         )],
     ),
     (
@@ -33,7 +43,7 @@ const EXAMPLES: &[(&str, &[(&str, &str)])] = &[
             ),
             (
                 "a 5D solid ellipsoid of mass 3, as JSON",
-                "inertia --body ellipsoid:1,1.5,2,2.5,3;mass=3 --json",
+                "inertia --body ellipsoid:1,1.5,2,2.5,3+mass=3 --json",
             ),
         ],
     ),
@@ -72,11 +82,11 @@ const EXAMPLES: &[(&str, &[(&str, &str)])] = &[
         &[
             (
                 "an HTML animation of the tumbling tesseract",
-                "render --body tesseract:1,1.2,1.5,2 --omega 1,0.05,0.02,0.03,0.04,0.7 --t-end 20 --out tesseract.html",
+                "render --body tesseract:1,1.2,1.5,2 --omega 1,0.05,0.02,0.03,0.04,0.7 --t-end 20 --output tesseract.html",
             ),
             (
                 "a strip of 8 frames, axes 2, 3, 4, orthographic",
-                "render --body cuboid:1,1.2,1.5,2 --omega 1,0.05,0.02,0.03,0.04,0.7 --t-end 20 --out strip.svg --axes 2,3,4 --projection orthographic",
+                "render --body cuboid:1,1.2,1.5,2 --omega 1,0.05,0.02,0.03,0.04,0.7 --t-end 20 --output strip.svg --axes 2,3,4 --projection orthographic",
             ),
         ],
     ),
@@ -89,11 +99,31 @@ const EXAMPLES: &[(&str, &[(&str, &str)])] = &[
     ),
 ];
 
-/// Splits a command line at spaces (the examples need no quoting).
+/// Splits a command line at spaces (the examples are written unquoted here; the book shows
+/// them quoted, see [`quoted`]).
 fn words(line: &str) -> Vec<&str> {
     std::iter::once("rotorflow")
         .chain(line.split_whitespace())
         .collect()
+}
+
+/// Returns the command line as a shell user types it: every body SPEC, and every argument a
+/// shell would split or expand, in single quotes.
+fn quoted(line: &str) -> String {
+    let words: Vec<&str> = line.split_whitespace().collect();
+    words
+        .iter()
+        .enumerate()
+        .map(|(k, w)| {
+            let after_body = k > 0 && words[k - 1] == "--body";
+            if after_body || w.contains(['{', ';', '*', '?', '$', '&', '|']) {
+                format!("'{w}'")
+            } else {
+                w.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 /// Checks that clap accepts the example and that its body SPEC parses (sweep templates with
@@ -160,22 +190,7 @@ pub fn render() -> Res<String> {
         writeln!(md, "Examples:\n\n```sh")?;
         for (what, line) in examples {
             check_example(line)?;
-            let line = if line.contains('{') || line.contains(';') {
-                // Quote the arguments the shell would otherwise split or expand.
-                line.split_whitespace()
-                    .map(|w| {
-                        if w.contains('{') || w.contains(';') {
-                            format!("'{w}'")
-                        } else {
-                            w.to_string()
-                        }
-                    })
-                    .collect::<Vec<_>>()
-                    .join(" ")
-            } else {
-                line.to_string()
-            };
-            writeln!(md, "# {what}\ncargo run --release -- {line}")?;
+            writeln!(md, "# {what}\ncargo run --release -- {}", quoted(line))?;
         }
         writeln!(md, "```\n")?;
         // The grammar follows every subcommand's help as well; show it once, above.
@@ -205,9 +220,8 @@ pub fn render() -> Res<String> {
     writeln!(md, "### The files of `rotorflow demo`\n")?;
     writeln!(
         md,
-        "`rotorflow demo --out DIR` writes exactly these files into DIR \
-         (`rotorflow::cli::demo::promised_files`; `tests/cli/demo.rs` checks that each is \
-         written):\n"
+        "`rotorflow demo --output DIR` writes exactly these files into DIR \
+         (`tests/cli/demo.rs` checks that each is written):\n"
     )?;
     let files: Vec<String> = promised_files().iter().map(|f| format!("`{f}`")).collect();
     writeln!(md, "{}", files.join(", "))?;

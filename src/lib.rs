@@ -76,8 +76,8 @@
 //! - `book/src/performance.md`: rotorflow beside nalgebra's matrix formulation.
 //!
 //! # Crate features
-//! - `cli` (default): the `rotorflow` command ([`cli`], `cargo run --release -- demo`) and the
-//!   pictures it draws ([`viz`]: SVG plots with plotters, HTML animations). Turning it off
+//! - `cli` (default): the `rotorflow` command (`cargo run --release -- demo`) and the
+//!   pictures it draws (SVG plots with plotters, HTML animations). Turning it off
 //!   (`default-features = false`) drops clap, plotters, serde_json, indicatif, rayon and
 //!   tempfile; the library is the same.
 //! - `serde`: `Serialize`/`Deserialize` for every algebra type; deserialisation validates
@@ -95,13 +95,9 @@
 #![forbid(unsafe_code)]
 
 pub mod algebra;
-#[cfg(feature = "cli")]
-pub mod cli;
 pub mod dynamics;
 pub mod inertia;
 pub mod special;
-#[cfg(feature = "cli")]
-pub mod viz;
 
 /// The types most programs need: `use rotorflow::prelude::*;`.
 ///

@@ -1,5 +1,9 @@
-//! The `rotorflow` command: see `rotorflow --help` and the `rotorflow::cli` module.
+//! The `rotorflow` command: see `rotorflow --help`. The command's code is private to the
+//! binary; the library (`rotorflow::…`) is all a program needs.
+
+mod cli;
+mod viz;
 
 fn main() -> std::process::ExitCode {
-    rotorflow::cli::run()
+    cli::run()
 }

@@ -1,5 +1,5 @@
-//! The body SPEC grammar end to end: `parse_body_with` on arbitrary UTF-8, then the initial
-//! condition, as `rotorflow simulate --body SPEC --omega W` would.
+//! The body SPEC grammar end to end: `parse_body_with` on arbitrary UTF-8, then a rigid body
+//! with the initial angular velocity, as `rotorflow simulate --body SPEC --omega W` builds it.
 //!
 //! Input: `SPEC\nOMEGA\nFILE TEXT…` (missing lines are empty); `points:` and `mesh:` read the
 //! file text from the input instead of the file system.
@@ -10,8 +10,9 @@
 
 use libfuzzer_sys::fuzz_target;
 use rotorflow::algebra::MULTIVECTOR_MAX_DIM;
-use rotorflow::cli::motion::{InitialArgs, initial_body};
-use rotorflow::cli::spec::parse_body_with;
+use rotorflow::algebra::Bivector;
+use rotorflow::dynamics::{Attitude, RigidBody};
+use rotorflow::inertia::spec::{parse_body_with, parse_list};
 
 fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else {
@@ -36,12 +37,15 @@ fuzz_target!(|data: &[u8]| {
     );
     let matrix = parsed.inertia.to_matrix();
     assert!(matrix.iter().all(|x| x.is_finite()), "inertia {matrix}");
-    let _ = parsed.shape();
-    let initial = InitialArgs {
-        omega: Some(omega),
-        momentum: None,
+    let Ok(values) = parse_list(&omega) else {
+        return;
     };
-    if let Ok(body) = initial_body(&parsed, &initial) {
+    let Ok(w) = Bivector::from_components(parsed.dim, &values) else {
+        return;
+    };
+    let start =
+        RigidBody::from_body_velocity(parsed.inertia.clone(), Attitude::identity(parsed.dim), &w);
+    if let Ok(body) = start {
         assert!(body.omega().as_slice().iter().all(|x| x.is_finite()));
         assert!(body.momentum().as_slice().iter().all(|x| x.is_finite()));
     }

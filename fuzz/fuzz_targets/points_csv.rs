@@ -1,12 +1,12 @@
 //! The `points:FILE.csv` reader: `parse_points_text` on arbitrary UTF-8, then the body it
-//! describes (`parse_body_with("points:…")`, plain and with `;mass=2`).
+//! describes (`parse_body_with("points:…")`, plain, with `+mass=2` and with `;mass=2`).
 //!
 //! Asserts: no panic; accepted rows are non-empty, all of one dimension N ≥ 2, all finite;
 //! an accepted body has a finite inertia map and mass.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use rotorflow::cli::spec::{parse_body_with, parse_points_text};
+use rotorflow::inertia::spec::{parse_body_with, parse_points_text};
 
 fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else {
@@ -26,11 +26,15 @@ fuzz_target!(|data: &[u8]| {
                 .all(|p| p.iter().all(|x| x.is_finite()))
         );
     }
-    for spec in ["points:fuzz.csv", "points:fuzz.csv;mass=2"] {
+    for spec in [
+        "points:fuzz.csv",
+        "points:fuzz.csv+mass=2",
+        "points:fuzz.csv;mass=2",
+    ] {
         if let Ok(parsed) = parse_body_with(spec, &|_| Ok(text.to_string())) {
             assert!(parsed.mass.is_finite() && parsed.mass > 0.0);
             assert!(parsed.inertia.to_matrix().iter().all(|x| x.is_finite()));
-            let _ = parsed.shape();
+            assert_eq!(parsed.dim, parsed.inertia.dim());
         }
     }
 });

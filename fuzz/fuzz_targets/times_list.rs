@@ -8,10 +8,13 @@
 //! block inside the grid.
 #![no_main]
 
+// The command's number lists: the same source file the binary compiles.
+#[path = "../../src/cli/lists.rs"]
+mod lists;
+
 use libfuzzer_sys::fuzz_target;
-use rotorflow::cli::motion::sample_times;
-use rotorflow::cli::spec::parse_number;
-use rotorflow::cli::sweep::{parse_param, shard_range};
+use lists::{parse_param, sample_times, shard_range};
+use rotorflow::inertia::spec::parse_number;
 
 fn check_times(times: &[f64], t_end: Option<f64>) {
     assert!(!times.is_empty());

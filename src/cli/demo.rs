@@ -1,4 +1,4 @@
-//! `rotorflow demo [--out DIR]`: the paper's cases, end to end.
+//! `rotorflow demo [--output DIR]`: the paper's cases, end to end.
 //!
 //! Writes into DIR (default `out/`):
 //! - `omega_<case>.svg` and `drift_<case>.svg`: ω components and the drift of the invariants
@@ -12,18 +12,20 @@
 
 use super::error::{CliError, CliResult};
 use super::exact::exact_report;
-use super::motion::{InitialArgs, IntegratorKind, Report, Stepping, initial_body, integrate};
+use super::motion::{
+    InitialArgs, InitialValue, IntegratorKind, Report, Stepping, initial_body, integrate,
+};
 use super::output::{Progress, number, plane_names, write_atomic};
 use super::render::picture;
 use super::simulate::{drift_plot, omega_plot};
 use super::spec::parse_body;
 use super::sweep::observables;
-use crate::dynamics::torques::Free;
-use crate::dynamics::trajectory::even_times;
-use crate::viz::Projection;
-use crate::viz::plot::{PlotSpec, Series, line_plot, subscript};
+use super::viz::Projection;
+use super::viz::plot::{PlotSpec, Series, line_plot, subscript};
 use clap::Args;
 use rayon::prelude::*;
+use rotorflow::dynamics::torques::Free;
+use rotorflow::dynamics::trajectory::even_times;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -33,8 +35,8 @@ use std::time::Instant;
 #[derive(Args, Debug, Clone)]
 pub struct DemoArgs {
     /// The folder to write into (created if missing).
-    #[arg(long, value_name = "DIR", default_value = "out")]
-    pub out: PathBuf,
+    #[arg(long, value_name = "DIR", default_value = "out", alias = "out")]
+    pub output: PathBuf,
 }
 
 /// One case of the demo.
@@ -166,7 +168,7 @@ struct CaseResult {
 /// [`CliError::Runtime`] if DIR cannot be written or a run fails.
 pub fn run(args: &DemoArgs, quiet: bool) -> CliResult<()> {
     let clock = Instant::now();
-    let dir = &args.out;
+    let dir = &args.output;
     std::fs::create_dir_all(dir)
         .map_err(|e| CliError::runtime(format!("cannot create `{}`: {e}", dir.display())))?;
     let progress = Mutex::new(Progress::new((CASES.len() + 2) as u64, quiet, "demo"));
@@ -261,13 +263,16 @@ pub fn run(args: &DemoArgs, quiet: bool) -> CliResult<()> {
     Ok(())
 }
 
-fn parse_case(case: &Case) -> CliResult<(super::spec::ParsedBody, crate::dynamics::RigidBody)> {
+fn parse_case(case: &Case) -> CliResult<(super::spec::ParsedBody, rotorflow::dynamics::RigidBody)> {
     let parsed = parse_body(case.spec)?;
     let start = initial_body(
         &parsed,
         &InitialArgs {
-            omega: Some(case.omega.to_string()),
-            momentum: None,
+            value: InitialValue {
+                omega: Some(case.omega.to_string()),
+                momentum: None,
+            },
+            axial: false,
         },
     )?;
     Ok((parsed, start))
@@ -415,8 +420,11 @@ fn sweep(dir: &Path) -> CliResult<String> {
             let start = initial_body(
                 &parsed,
                 &InitialArgs {
-                    omega: Some(omega_text.clone()),
-                    momentum: None,
+                    value: InitialValue {
+                        omega: Some(omega_text.clone()),
+                        momentum: None,
+                    },
+                    axial: false,
                 },
             )?;
             let mut silent = Progress::new(0, true, "");
@@ -426,7 +434,7 @@ fn sweep(dir: &Path) -> CliResult<String> {
             };
             let (states, _) = integrate(&start, &Free, stepping, &times, &mut silent)?;
             let report = Report::from_states(&start, &times, states.into_iter().map(Ok))?;
-            let obs = observables(&report, axes);
+            let obs = observables(&report, axes)?;
             let c = (omega[0] * omega[0] + omega[1] * omega[1] + omega[3] * omega[3]).sqrt();
             let paper = (kappa * kappa - 1.0) / (kappa * kappa + 1.0) * c;
             Ok((

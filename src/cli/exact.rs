@@ -7,15 +7,15 @@ use super::error::{CliError, CliResult};
 use super::motion::{InitialArgs, Report, State, initial_body};
 use super::simulate::{ReportArgs, TimeArgs};
 use super::spec::{GRAMMAR, parse_body};
-use crate::dynamics::RigidBody;
 use clap::Args;
+use rotorflow::dynamics::RigidBody;
 
 /// Arguments of `exact`.
 #[derive(Args, Debug, Clone)]
 #[command(after_long_help = GRAMMAR)]
 pub struct ExactArgs {
     /// The body (see the grammar below). A closed form exists for N = 3 (any body), for any N
-    /// with at most two distinct principal moments, for steady rotations (ω × L = 0) and for a
+    /// with at most two distinct second moments Jᵢ, for steady rotations (ω × L = 0) and for a
     /// momentum in the planes of three principal axes (the 3D top inside N-D).
     #[arg(long, value_name = "SPEC")]
     pub body: String,
@@ -55,7 +55,7 @@ pub fn run(args: &ExactArgs) -> CliResult<()> {
 /// [`CliError::Runtime`] if the closed form cannot be evaluated at a time.
 pub fn exact_report(start: &RigidBody, times: &[f64]) -> CliResult<Report> {
     let solution = start.exact_solution().map_err(|e| match e {
-        crate::dynamics::DynamicsError::NoClosedForm { reasons } => {
+        rotorflow::dynamics::DynamicsError::NoClosedForm { reasons } => {
             let why: Vec<String> = reasons.iter().map(ToString::to_string).collect();
             CliError::input(format!(
                 "no closed-form solution for this body: {}",
@@ -65,7 +65,7 @@ pub fn exact_report(start: &RigidBody, times: &[f64]) -> CliResult<Report> {
         e => CliError::input(format!("no closed-form solution for this body: {e}")),
     })?;
     let state = |t: f64| -> CliResult<State> {
-        let fail = |e: crate::dynamics::DynamicsError| {
+        let fail = |e: rotorflow::dynamics::DynamicsError| {
             CliError::runtime(format!("closed form at t = {t}: {e}"))
         };
         Ok((

@@ -3,16 +3,16 @@
 
 use super::error::{CliError, CliResult};
 use super::output::{Progress, matrix_json, number, plane_names};
-use super::spec::{ParsedBody, parse_list, parse_number};
-use crate::algebra::{Bivector, bivector_len};
-use crate::dynamics::torques::{BodyFrame, Free, LinearDamping, SpaceFrame};
-use crate::dynamics::trajectory::even_times;
-use crate::dynamics::{
+use super::spec::ParsedBody;
+use clap::{Args, ValueEnum};
+use nalgebra::DMatrix;
+use rotorflow::algebra::{Bivector, bivector_len};
+use rotorflow::dynamics::torques::{BodyFrame, Free, LinearDamping, SpaceFrame};
+use rotorflow::dynamics::{
     Attitude, Dopri5, Drift, Integrator, Invariants, Midpoint, RigidBody, Rkmk4, Splitting, Torque,
     simulate,
 };
-use clap::{Args, ValueEnum};
-use nalgebra::DMatrix;
+use rotorflow::inertia::spec::{parse_list, parse_number};
 use serde_json::{Value, json};
 
 /// Parses a finite number for clap (rejects NaN and infinities).
@@ -20,17 +20,64 @@ pub fn finite_number(text: &str) -> Result<f64, String> {
     parse_number(text)
 }
 
-/// The initial condition: `--omega W` or `--momentum L`.
+/// The initial condition: `--omega W` or `--momentum L`, as bivector components or (N = 3,
+/// `--axial`) as axial vectors.
+#[derive(Args, Clone, Debug)]
+pub struct InitialArgs {
+    /// `--omega W` or `--momentum L`.
+    #[command(flatten)]
+    pub value: InitialValue,
+    /// N = 3 only: read --omega, --momentum and the constant torques as axial vectors
+    /// x,y,z (right-hand rule) instead of bivector components. The axial vector (x, y, z)
+    /// is the bivector x e₂∧e₃ + y e₃∧e₁ + z e₁∧e₂, i.e. the components
+    /// (ω₁₂, ω₁₃, ω₂₃) = (z, −y, x), and conversely (x, y, z) = (ω₂₃, −ω₁₃, ω₁₂): a spin
+    /// about +z is ω₁₂ > 0. The output keeps the bivector components 12,13,23.
+    #[arg(long)]
+    pub axial: bool,
+}
+
+/// The initial angular velocity or momentum, one of the two.
 #[derive(Args, Clone, Debug)]
 #[group(required = true, multiple = false)]
-pub struct InitialArgs {
+pub struct InitialValue {
     /// Initial angular velocity ω: N(N−1)/2 bivector components in lexicographic order
     /// 12,13,…,1N,23,… in the body's own axes, comma-separated (e.g. `--omega=1,0,0.1`).
+    /// ω₁₂ > 0 turns e₁ towards e₂.
     #[arg(long, value_name = "W", allow_hyphen_values = true)]
     pub omega: Option<String>,
     /// Initial angular momentum L, in the same order and axes as `--omega`.
     #[arg(long, value_name = "L", allow_hyphen_values = true)]
     pub momentum: Option<String>,
+}
+
+/// Returns the bivector components (ω₁₂, ω₁₃, ω₂₃) of the 3D axial vector (x, y, z):
+/// x e₂∧e₃ + y e₃∧e₁ + z e₁∧e₂ (right-hand rule, e₁∧e₂ ↔ e₃).
+pub fn bivector_from_axial([x, y, z]: [f64; 3]) -> [f64; 3] {
+    [z, -y, x]
+}
+
+/// Returns the bivector components of a list given on the command line: as they are, or, with
+/// `axial` (N = 3 only), read as an axial vector.
+///
+/// # Errors
+/// A one-line message when `axial` is asked for with N ≠ 3 or the list is not 3 numbers.
+pub fn components(values: Vec<f64>, n: usize, axial: bool) -> Result<Vec<f64>, String> {
+    if !axial {
+        return Ok(values);
+    }
+    if n != 3 {
+        return Err(format!(
+            "--axial needs N = 3 (the body has N = {n}: give the {} bivector components instead)",
+            bivector_len(n)
+        ));
+    }
+    match <[f64; 3]>::try_from(values) {
+        Ok(v) => Ok(bivector_from_axial(v).to_vec()),
+        Err(v) => Err(format!(
+            "{} components given; an axial vector is x,y,z",
+            v.len()
+        )),
+    }
 }
 
 /// Returns the rigid body at t = 0 in the identity attitude with the given ω or L.
@@ -39,7 +86,7 @@ pub struct InitialArgs {
 /// [`CliError::Input`] for a malformed list or the wrong number of components.
 pub fn initial_body(parsed: &ParsedBody, initial: &InitialArgs) -> CliResult<RigidBody> {
     let n = parsed.dim;
-    let (flag, text) = match (&initial.omega, &initial.momentum) {
+    let (flag, text) = match (&initial.value.omega, &initial.value.momentum) {
         (Some(w), _) => ("--omega", w),
         (None, Some(l)) => ("--momentum", l),
         (None, None) => {
@@ -48,16 +95,31 @@ pub fn initial_body(parsed: &ParsedBody, initial: &InitialArgs) -> CliResult<Rig
             ));
         }
     };
+    if initial.axial && n != 3 {
+        return Err(CliError::input(format!(
+            "--axial needs N = 3, the body has N = {n} (give {flag} as {} bivector components)",
+            bivector_len(n)
+        )));
+    }
     let names = plane_names(n);
     let expected = || {
-        format!(
-            "{} components {} (N = {n}, lexicographic, body's own axes)",
-            bivector_len(n),
-            names.join(",")
-        )
+        if initial.axial {
+            "3 components x,y,z (axial vector, body's own axes)".to_string()
+        } else {
+            format!(
+                "{} components {} (N = {n}, lexicographic, body's own axes)",
+                bivector_len(n),
+                names.join(",")
+            )
+        }
     };
     let values = parse_list(text)
         .map_err(|e| CliError::input(format!("{flag}: {e}; expected {}", expected())))?;
+    let values = if initial.axial && values.len() == 3 {
+        bivector_from_axial([values[0], values[1], values[2]]).to_vec()
+    } else {
+        values
+    };
     if values.len() != bivector_len(n) {
         return Err(CliError::input(format!(
             "{flag}: {} components given; expected {}",
@@ -74,70 +136,6 @@ pub fn initial_body(parsed: &ParsedBody, initial: &InitialArgs) -> CliResult<Rig
         RigidBody::from_body_momentum(inertia, Attitude::identity(n), &b)
     };
     body.map_err(|e| CliError::input(format!("body `{}`: {e}", parsed.spec)))
-}
-
-/// Returns the sample times: `samples` even times from 0 to `t_end`, or the listed `times`.
-///
-/// # Errors
-/// [`CliError::Input`] for a missing or non-positive end time, fewer than 2 samples, or
-/// times that are negative, not increasing or beyond `t_end`.
-pub fn sample_times(
-    t_end: Option<f64>,
-    samples: Option<usize>,
-    times: Option<&str>,
-) -> CliResult<Vec<f64>> {
-    if let Some(t) = t_end
-        && t <= 0.0
-    {
-        return Err(CliError::input(format!(
-            "--t-end must be positive, got {t} (expected --t-end T with T > 0)"
-        )));
-    }
-    match (samples, times) {
-        (Some(_), Some(_)) => Err(CliError::input(
-            "give --samples K or --times t1,t2,..., not both",
-        )),
-        (Some(k), None) => {
-            let t = t_end.ok_or_else(|| {
-                CliError::input("--samples needs --t-end T (expected --t-end T --samples K)")
-            })?;
-            if !(2..=10_000_000).contains(&k) {
-                return Err(CliError::input(format!(
-                    "--samples must be between 2 and 10000000, got {k} (expected --samples K)"
-                )));
-            }
-            Ok(even_times(t, k))
-        }
-        (None, Some(list)) => {
-            let v = parse_list(list).map_err(|e| {
-                CliError::input(format!(
-                    "--times: {e} (expected --times t1,t2,... increasing, >= 0)"
-                ))
-            })?;
-            if let Some(t) = v.iter().find(|t| **t < 0.0) {
-                return Err(CliError::input(format!(
-                    "--times: {t} is negative (expected --times t1,t2,... increasing, >= 0)"
-                )));
-            }
-            if let Some(w) = v.windows(2).find(|w| w[1] <= w[0]) {
-                return Err(CliError::input(format!(
-                    "--times not increasing: {} then {} (expected --times t1,t2,... strictly increasing, >= 0)",
-                    w[0], w[1]
-                )));
-            }
-            if let (Some(end), Some(last)) = (t_end, v.last())
-                && *last > end
-            {
-                return Err(CliError::input(format!(
-                    "--times: {last} is beyond --t-end {end}"
-                )));
-            }
-            Ok(v)
-        }
-        (None, None) => Err(CliError::input(
-            "give --samples K (with --t-end T) or --times t1,t2,...",
-        )),
-    }
 }
 
 /// The integrators the command offers.
@@ -276,11 +274,16 @@ impl SteppingArgs {
 /// The torque grammar, for help and errors.
 pub const TORQUE_FORMS: &str = "none | body:T12,T13,... (constant, body's own axes) | space:T12,T13,... (constant, space frame) | damping:C (tau = -C omega)";
 
-/// Parses `--torque SPEC` for a body of dimension `n` with principal rotor `principal`.
+/// Parses `--torque SPEC` for `body`; with `axial` (N = 3) the constant torques are axial
+/// vectors x,y,z.
 ///
 /// # Errors
 /// [`CliError::Input`] naming the problem and the expected forms.
-pub fn parse_torque(text: Option<&str>, body: &RigidBody) -> CliResult<Box<dyn Torque + Sync>> {
+pub fn parse_torque(
+    text: Option<&str>,
+    body: &RigidBody,
+    axial: bool,
+) -> CliResult<Box<dyn Torque + Sync>> {
     let n = body.dim();
     let Some(text) = text else {
         return Ok(Box::new(Free));
@@ -289,7 +292,7 @@ pub fn parse_torque(text: Option<&str>, body: &RigidBody) -> CliResult<Box<dyn T
         |m: String| CliError::input(format!("--torque `{text}`: {m} (expected {TORQUE_FORMS})"));
     let (kind, args) = text.split_once(':').unwrap_or((text, ""));
     let bivector = |args: &str| -> CliResult<Bivector> {
-        let v = parse_list(args).map_err(bad)?;
+        let v = components(parse_list(args).map_err(bad)?, n, axial).map_err(bad)?;
         if v.len() != bivector_len(n) {
             return Err(bad(format!(
                 "{} components given, N = {n} needs {}",
@@ -333,8 +336,9 @@ pub fn integrate(
     times: &[f64],
     progress: &mut Progress,
 ) -> CliResult<(Vec<State>, usize)> {
-    let fail =
-        |e: crate::dynamics::DynamicsError| CliError::runtime(format!("integration failed: {e}"));
+    let fail = |e: rotorflow::dynamics::DynamicsError| {
+        CliError::runtime(format!("integration failed: {e}"))
+    };
     let mut states: Vec<State> = Vec::with_capacity(times.len());
     let mut steps = 0;
     // Chunks of samples, so that the progress bar moves; each chunk restarts from the last
@@ -379,7 +383,9 @@ pub fn integrate(
             _ => unreachable!("one integrator is set"),
         };
         if let Some((r, l)) = block_states.last() {
-            current.replace_state(r.clone(), l.clone());
+            current.set_state(r.clone(), l.clone()).map_err(|_| {
+                CliError::runtime("integration failed: the state is no longer finite; reduce --dt")
+            })?;
             t0 = *block.last().expect("chunks are not empty");
         }
         states.extend(block_states);
@@ -451,7 +457,8 @@ impl Report {
         let mut b = start.clone();
         for state in states {
             let (r, l) = state?;
-            b.replace_state(r, l);
+            b.set_state(r, l)
+                .map_err(|e| CliError::runtime(format!("the motion cannot be evaluated: {e}")))?;
             let inv = Invariants::of(&b);
             let d = inv.drift_from(&reference);
             report.drift = report.drift.max(d);

@@ -76,6 +76,66 @@ pub fn check_extension(flag: &str, path: &Path, extensions: &[&str]) -> CliResul
     }
 }
 
+/// The format of a report.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// A text table for people.
+    Text,
+    /// JSON.
+    Json,
+    /// CSV, one row per sample.
+    Csv,
+}
+
+impl Format {
+    fn flag(self) -> &'static str {
+        match self {
+            Format::Text => "the text table",
+            Format::Json => "--json",
+            Format::Csv => "--csv",
+        }
+    }
+}
+
+/// Returns the format of a report written to `output`: the one a flag asks for (`flag`,
+/// `None` without `--json`/`--csv`), else the one the file name says (`.json` → JSON,
+/// `.csv` → CSV, `.txt`, `.md`, another or no extension → text). `csv` says whether the
+/// command can write CSV at all.
+///
+/// # Errors
+/// [`CliError::Input`] when the flag contradicts the extension (`--json --output r.csv`), or
+/// the extension asks for CSV where there is none.
+pub fn report_format(output: Option<&Path>, flag: Option<Format>, csv: bool) -> CliResult<Format> {
+    let ext = output
+        .and_then(|p| p.extension())
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let by_name = match ext.as_deref() {
+        Some("json") => Some(Format::Json),
+        Some("csv") => Some(Format::Csv),
+        Some("txt" | "md") => Some(Format::Text),
+        _ => None,
+    };
+    let path = || output.map_or(String::new(), |p| p.display().to_string());
+    if by_name == Some(Format::Csv) && !csv {
+        return Err(CliError::input(format!(
+            "--output `{}`: this command writes no CSV; use a .json file (or --json) or a .txt file",
+            path()
+        )));
+    }
+    match (flag, by_name) {
+        (Some(f), Some(n)) if f != n => Err(CliError::input(format!(
+            "--output `{}` names a {} file but {} was asked for; make the file name and the flag agree",
+            path(),
+            ext.as_deref().unwrap_or(""),
+            f.flag()
+        ))),
+        (Some(f), _) => Ok(f),
+        (None, Some(n)) => Ok(n),
+        (None, None) => Ok(Format::Text),
+    }
+}
+
 /// Returns the JSON array of a vector.
 pub fn vector_json(v: &DVector<f64>) -> Value {
     json!(v.iter().copied().collect::<Vec<f64>>())
@@ -124,7 +184,7 @@ pub fn number(x: f64) -> String {
 
 /// Returns the 1-based plane names of dimension `n` in lexicographic order ("12", "13", …).
 pub fn plane_names(n: usize) -> Vec<String> {
-    crate::algebra::pairs(n)
+    rotorflow::algebra::pairs(n)
         .map(|(i, j)| plane_name(n, i, j))
         .collect()
 }

@@ -5,13 +5,13 @@ use super::error::{CliError, CliResult};
 use super::motion::{InitialArgs, Report, SteppingArgs, finite_number, initial_body, integrate};
 use super::output::{Progress, check_extension, write_atomic};
 use super::spec::{GRAMMAR, ParsedBody, parse_body};
-use crate::dynamics::torques::Free;
-use crate::dynamics::trajectory::even_times;
-use crate::viz::html::{Animation, animation_html};
-use crate::viz::projection::svg_strip;
-use crate::viz::{Projection, Shape};
+use super::viz::html::{Animation, animation_html};
+use super::viz::projection::svg_strip;
+use super::viz::{Projection, Shape};
 use clap::{Args, ValueEnum};
 use nalgebra::DMatrix;
+use rotorflow::dynamics::torques::Free;
+use rotorflow::dynamics::trajectory::even_times;
 use std::path::PathBuf;
 
 /// The projection of the left-out axes, on the command line.
@@ -46,8 +46,8 @@ pub struct RenderArgs {
     #[arg(long, value_name = "T", value_parser = finite_number, allow_hyphen_values = true)]
     pub t_end: f64,
     /// The output: FILE.html (animation) or FILE.svg (a strip of frames).
-    #[arg(long, value_name = "FILE")]
-    pub out: PathBuf,
+    #[arg(long, value_name = "FILE", alias = "out")]
+    pub output: PathBuf,
     /// How the axes left out of the 3D view are removed.
     #[arg(long, value_enum, default_value = "perspective")]
     pub projection: ProjectionArg,
@@ -98,9 +98,9 @@ pub fn parse_axes(text: &str, n: usize) -> CliResult<[usize; 3]> {
 /// # Errors
 /// [`CliError::Input`] for bad input, [`CliError::Runtime`] if the integration fails.
 pub fn run(args: &RenderArgs, quiet: bool) -> CliResult<()> {
-    check_extension("--out", &args.out, &["html", "svg"])?;
+    check_extension("--output", &args.output, &["html", "svg"])?;
     let html = args
-        .out
+        .output
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("html"));
     let parsed = parse_body(&args.body)?;
@@ -125,7 +125,7 @@ pub fn run(args: &RenderArgs, quiet: bool) -> CliResult<()> {
     progress.finish();
     let report = Report::from_states(&start, &times, states.into_iter().map(Ok))?;
     let text = picture(&parsed, &report, axes, args.projection.into(), html);
-    write_atomic(&args.out, text.as_bytes())
+    write_atomic(&args.output, text.as_bytes())
 }
 
 /// Returns the HTML page (or SVG strip) of the trajectory `report` of the body `parsed`.
@@ -136,7 +136,7 @@ pub fn picture(
     projection: Projection,
     html: bool,
 ) -> String {
-    let (shape, matrices) = embed_3d(parsed.shape(), &report.attitude);
+    let (shape, matrices) = embed_3d(super::spec::shape(parsed), &report.attitude);
     if html {
         animation_html(&Animation {
             title: &parsed.spec,

@@ -1,13 +1,15 @@
 //! `rotorflow simulate`: integrate Euler's equations and report the trajectory.
 
 use super::error::{CliError, CliResult};
+use super::lists::sample_times;
 use super::motion::{
     InitialArgs, Report, SteppingArgs, finite_number, initial_body, integrate, parse_torque,
-    sample_times,
 };
-use super::output::{Progress, check_extension, emit, plane_names, to_json_text, write_atomic};
+use super::output::{
+    Format, Progress, check_extension, emit, plane_names, report_format, to_json_text, write_atomic,
+};
 use super::spec::{GRAMMAR, parse_body};
-use crate::viz::plot::{PlotSpec, Series, line_plot, subscript};
+use super::viz::plot::{PlotSpec, Series, line_plot, subscript};
 use clap::Args;
 use std::path::{Path, PathBuf};
 
@@ -31,7 +33,7 @@ impl TimeArgs {
     /// # Errors
     /// As [`sample_times`].
     pub fn resolve(&self) -> CliResult<Vec<f64>> {
-        sample_times(self.t_end, self.samples, self.times.as_deref())
+        sample_times(self.t_end, self.samples, self.times.as_deref()).map_err(CliError::input)
     }
 }
 
@@ -45,7 +47,9 @@ pub struct ReportArgs {
     /// Print CSV: t, ω, L, energy, Casimirs, attitude matrix (row-major).
     #[arg(long)]
     pub csv: bool,
-    /// Write to FILE (whole or not at all) instead of standard output.
+    /// Write to FILE (whole or not at all) instead of standard output. Without --json or
+    /// --csv the format follows the file name: .json → JSON, .csv → CSV, .txt, .md or
+    /// anything else → the text table; a flag that contradicts the name is refused.
     #[arg(long, value_name = "FILE")]
     pub output: Option<PathBuf>,
     /// Also draw the ω components over time as an SVG plot.
@@ -57,12 +61,29 @@ impl ReportArgs {
     /// Checks the output file names before any work is done.
     ///
     /// # Errors
-    /// [`CliError::Input`] for a plot file that is not `.svg`.
+    /// [`CliError::Input`] for a plot file that is not `.svg`, or an output file name that
+    /// contradicts `--json`/`--csv`.
     pub fn check(&self) -> CliResult<()> {
         if let Some(p) = &self.plot {
             check_extension("--plot", p, &["svg"])?;
         }
+        self.format()?;
         Ok(())
+    }
+
+    /// Returns the format of the report (see [`report_format`]).
+    ///
+    /// # Errors
+    /// As [`report_format`].
+    pub fn format(&self) -> CliResult<Format> {
+        let flag = if self.json {
+            Some(Format::Json)
+        } else if self.csv {
+            Some(Format::Csv)
+        } else {
+            None
+        };
+        report_format(self.output.as_deref(), flag, true)
     }
 
     /// Writes the report and the plot.
@@ -70,12 +91,10 @@ impl ReportArgs {
     /// # Errors
     /// [`CliError::Runtime`] when a file cannot be written.
     pub fn write(&self, report: &Report, title: &str) -> CliResult<()> {
-        let text = if self.json {
-            to_json_text(&report.to_json(), false)?
-        } else if self.csv {
-            report.to_csv()
-        } else {
-            report.to_text()
+        let text = match self.format()? {
+            Format::Json => to_json_text(&report.to_json(), false)?,
+            Format::Csv => report.to_csv(),
+            Format::Text => report.to_text(),
         };
         if let Some(p) = &self.plot {
             write_omega_plot(p, report, title)?;
@@ -94,7 +113,8 @@ pub struct SimulateArgs {
     /// The initial condition.
     #[command(flatten)]
     pub initial: InitialArgs,
-    /// External torque: none | body:T12,... | space:T12,... | damping:C.
+    /// External torque: none | body:T12,... | space:T12,... | damping:C (with --axial,
+    /// body:x,y,z and space:x,y,z are axial vectors).
     #[arg(long, value_name = "SPEC", allow_hyphen_values = true)]
     pub torque: Option<String>,
     /// The sample times.
@@ -117,7 +137,7 @@ pub fn run(args: &SimulateArgs, quiet: bool) -> CliResult<()> {
     let parsed = parse_body(&args.body)?;
     let start = initial_body(&parsed, &args.initial)?;
     let times = args.time.resolve()?;
-    let torque = parse_torque(args.torque.as_deref(), &start)?;
+    let torque = parse_torque(args.torque.as_deref(), &start, args.initial.axial)?;
     let t_end = times.last().copied().unwrap_or(0.0);
     let stepping = args.stepping.resolve(&start, t_end)?;
     let mut progress = Progress::new(times.len() as u64, quiet, "simulate");

@@ -121,3 +121,9 @@ pub fn even_times(t_end: f64, count: usize) -> Vec<f64> {
             .collect(),
     }
 }
+
+mod observables;
+pub use observables::{
+    Oscillation, ProjectedObservables, crossings, oscillation, projected_observables,
+    projection_planes,
+};

@@ -27,6 +27,7 @@ mod catalogue;
 mod error;
 mod map;
 mod mesh;
+pub mod spec;
 pub mod tensor;
 pub mod tolerance;
 mod validate;

@@ -17,4 +17,4 @@ pub mod projection;
 mod shape;
 
 pub use projection::Projection;
-pub use shape::{MAX_EDGES, MAX_POINTS, Shape};
+pub use shape::Shape;

@@ -66,13 +66,29 @@ macro_rules! cases {
 }
 
 cases! {
+    option_after_a_comma => { inertia("cuboid:1,2,3,4,mass=5", "write `+mass=5` (or a quoted `;mass=5`)") }
+    output_json_flag_against_csv_name => { simulate("cuboid:1,2,3", "1,0,0", &["--output", "r.csv"], "names a csv file but --json was asked for") }
+    output_csv_flag_against_json_name => {
+        refuses(&["simulate", "--body", "cuboid:1,2,3", "--omega", "1,0,0", "--t-end", "1", "--samples", "2", "--csv", "--output", "r.json"], "names a json file but --csv was asked for")
+    }
+    output_json_flag_against_text_name => {
+        refuses(&["inertia", "--body", "cuboid:1,2,3", "--json", "--output", "r.txt"], "names a txt file but --json was asked for")
+    }
+    inertia_has_no_csv => {
+        refuses(&["inertia", "--body", "cuboid:1,2,3", "--output", "r.csv"], "this command writes no CSV")
+    }
+    axial_outside_3d => { simulate("cuboid:1,2,3,4", "1,0,0", &["--axial"], "--axial needs N = 3, the body has N = 4") }
+    axial_with_too_many_components => { simulate("cuboid:1,2,3", "1,0,0,0", &["--axial"], "expected 3 components x,y,z (axial vector") }
+    axial_torque_outside_3d => {
+        refuses(&["simulate", "--body", "cuboid:1,2,3,4", "--axial", "--omega", "1,0,0", "--t-end", "1", "--samples", "2"], "--axial needs N = 3")
+    }
     malformed_spec_without_kind => { inertia("cuboid1,2", "missing `KIND:`") }
     malformed_spec_unknown_kind => { inertia("hypercube:1,2", "unknown kind `hypercube`") }
     malformed_spec_bad_number => { inertia("cuboid:1,x,3", "`x` is not a number") }
     malformed_spec_empty_number => { inertia("cuboid:1,,3", "a number is missing") }
-    malformed_spec_unknown_option => { inertia("cuboid:1,2;colour=3", "unknown option `colour`") }
-    malformed_spec_mass_and_density => { inertia("cuboid:1,2;mass=1;density=2", "not both") }
-    malformed_spec_density_of_point_masses => { inertia("tesseract:1,2;density=2", "density applies to solids") }
+    malformed_spec_unknown_option => { inertia("cuboid:1,2+colour=3", "unknown option `colour`") }
+    malformed_spec_mass_and_density => { inertia("cuboid:1,2+mass=1+density=2", "not both") }
+    malformed_spec_density_of_point_masses => { inertia("tesseract:1,2+density=2", "density applies to solids") }
     wrong_count_pentachoron => { inertia("pentachoron:1,2,3", "expected 4") }
     wrong_count_tensor => { inertia("tensor:1,2,3", "not N*N") }
     wrong_count_planes => { inertia("planes:1,2", "plane moments has 2 entries") }
@@ -87,7 +103,7 @@ cases! {
     negative_half_length => { inertia("cuboid:1,-2,3", "must be positive, got -2") }
     negative_radius => { inertia("ball:3,-1", "radius must be positive") }
     negative_principal_moment => { inertia("principal:1,-2,3", "must not be negative") }
-    negative_mass => { inertia("cuboid:1,2;mass=-1", "mass must be positive") }
+    negative_mass => { inertia("cuboid:1,2+mass=-1", "mass must be positive") }
     dimension_too_small => { inertia("simplex:1", "dimension 1 is not supported") }
     non_finite_size => { inertia("ellipsoid:1,inf,2", "`inf` is not a finite number") }
     non_finite_omega => { simulate("cuboid:1,2,3", "1,nan,0", &[], "`nan` is not a finite number") }

@@ -6,6 +6,7 @@ mod demo;
 mod exact;
 mod inertia;
 mod no_lost_output;
+mod options;
 mod render;
 mod simulate;
 mod sweep;

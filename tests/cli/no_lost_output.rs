@@ -1,4 +1,4 @@
-//! No lost output (issue #8 item 5): a command killed at any moment leaves each output file
+//! No lost output: a command killed at any moment leaves each output file
 //! whole or absent, and a killed `sweep` rerun with `--resume` continues from its finished
 //! runs and writes the same bytes as an uninterrupted run.
 
