@@ -90,7 +90,7 @@ fn inertia_tesseract_matches_library() {
 fn inertia_pentachoron_matches_library() {
     check_against_library(
         "pentachoron:1,1.2,1.5,2",
-        &Body::pentachoron_eq73(1.0, 1.2, 1.5, 2.0).unwrap(),
+        &Body::pentachoron(1.0, 1.2, 1.5, 2.0).unwrap(),
     );
 }
 
