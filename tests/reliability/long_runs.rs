@@ -1,4 +1,4 @@
-//! Long runs (issue #8): ignored by default, run by `.ci/run` in release with a time bound
+//! Long runs: ignored by default, run by `.ci/run` in release with a time bound
 //! (`cargo test --release --test reliability -- --ignored`). Each prints its figures.
 
 use rotorflow::dynamics::torques::Free;
@@ -60,8 +60,7 @@ fn long_strang(moments: &[f64], steps: usize, h: f64, attitude_bound: f64) {
 
 /// 10⁷ steps of a free 4-D body. Each Strang step turns the rotor once, by the product of
 /// its 11 plane rotors kept as a difference from 1 (`PlaneProduct`), so |R R̃ − 1| is a random
-/// walk of one rounding per step, ~√(10⁷)·ε/4 ≈ 1e-13 (measured 2.6e-13; before that change,
-/// with 11 roundings per step, 1.58e-12). No renormalisation.
+/// walk of one rounding per step, ~√(10⁷)·ε/4 ≈ 1e-13 (measured 2.6e-13). No renormalisation.
 #[test]
 #[ignore = "long run: cargo test --release --test reliability -- --ignored"]
 fn ten_million_strang_steps_in_4d() {
