@@ -4,7 +4,6 @@ use super::{assert_close, assert_matrix_close, floats, matrix, rotorflow, run_js
 use nalgebra::{DMatrix, DVector};
 use rotorflow::inertia::tensor::{ContractedInertia, ContractionNormalization, RankFourTensor};
 use rotorflow::inertia::{Body, InertiaMap};
-use serde_json::Value;
 
 const KEYS: [&str; 11] = [
     "dim",
@@ -221,5 +220,4 @@ fn inertia_text_output_names_the_quantities() {
     ] {
         assert!(text.contains(word), "missing {word} in\n{text}");
     }
-    let _: Option<Value> = None;
 }
