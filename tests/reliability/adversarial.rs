@@ -32,7 +32,6 @@ fn config() -> ProptestConfig {
 }
 
 /// Counts of the cases that reached an assertion, per counter and N (index N − 2).
-#[derive(Default)]
 struct Reached {
     counts: Vec<(&'static str, [Cell<u32>; 9])>,
 }
@@ -55,7 +54,10 @@ impl Reached {
     fn check(&self, property: &str, cases: u32, minimum: impl Fn(&str, u32) -> u32) {
         for (name, c) in &self.counts {
             let counts: Vec<u32> = c.iter().map(Cell::get).collect();
-            println!("{property}: {name}, accepted cases for N = 2 … 10: {counts:?} (of {cases})");
+            println!(
+                "{property}: cases reaching `{name}` for N = 2 … 10: {counts:?} \
+                 ({cases} accepted draws per N, plus the replayed regression seeds)"
+            );
             let min = minimum(name, cases);
             for (n, &k) in DIMS.zip(&counts) {
                 assert!(
