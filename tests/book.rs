@@ -36,19 +36,14 @@ mod book_inertia_tables;
 #[allow(dead_code)]
 #[path = "../examples/book_integrators.rs"]
 mod book_integrators;
-#[allow(dead_code)]
 #[path = "../examples/custom_integrator.rs"]
 mod custom_integrator;
-#[allow(dead_code)]
 #[path = "../examples/first_simulation.rs"]
 mod first_simulation;
-#[allow(dead_code)]
 #[path = "../examples/heavy_top_4d.rs"]
 mod heavy_top_4d;
-#[allow(dead_code)]
 #[path = "../examples/mesh_body.rs"]
 mod mesh_body;
-#[allow(dead_code)]
 #[path = "../examples/torque_closure.rs"]
 mod torque_closure;
 

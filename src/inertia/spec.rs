@@ -493,8 +493,8 @@ fn pentachoron(args: &str, options: &Options) -> Built {
     if a.len() != 4 {
         return Err(format!("{} parameters given, expected 4", a.len()));
     }
-    let points = bodies::pentachoron_vertices(a[0], a[1], a[2], a[3])
-        .map_err(|err| err.to_string())?;
+    let points =
+        bodies::pentachoron_vertices(a[0], a[1], a[2], a[3]).map_err(|err| err.to_string())?;
     let body = Body::pentachoron(a[0], a[1], a[2], a[3]).map_err(|err| err.to_string())?;
     Ok((body, points_geometry(&points)))
 }

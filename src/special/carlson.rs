@@ -497,14 +497,27 @@ mod tests {
         }
     }
 
+    /// `rescale` brings the largest argument into [2⁻², 2²] by a power of four (its doc), so
+    /// that scaling and unscaling are exact, also where s² itself is outside the f64 range.
     #[test]
     fn rescale_is_exact_power_of_four() {
-        let s = rescale(1e200, LIMIT_CUBIC);
-        assert_eq!(s.log2().fract(), 0.0);
-        assert!((scaled(1e200, s) - 1.0).abs() < 3.0);
+        for (v, limit) in [
+            (1e200, LIMIT_CUBIC),
+            (3e95, LIMIT_CUBIC),
+            (1e-200, LIMIT_CUBIC),
+            (f64::MAX, LIMIT_LINEAR),
+            (1e-300, LIMIT_LINEAR),
+            (5e-324, LIMIT_LINEAR),
+        ] {
+            let s = rescale(v, limit);
+            assert_eq!(s.log2().fract(), 0.0, "{v:e}: s = {s:e}");
+            let r = scaled(v, s);
+            assert!((0.25..=4.0).contains(&r), "{v:e} scaled to {r}");
+            assert_eq!(r / s / s, v, "{v:e}: scaling is not exact");
+        }
         assert_eq!(rescale(1.0, LIMIT_CUBIC), 1.0);
-        let tiny = rescale(5e-324, LIMIT_LINEAR);
-        assert!(tiny.is_finite() && (scaled(5e-324, tiny) - 1.0).abs() < 3.0);
+        assert_eq!(rescale(1e90, LIMIT_CUBIC), 1.0);
+        assert_eq!(rescale(1e270, LIMIT_LINEAR), 1.0);
     }
 
     #[test]

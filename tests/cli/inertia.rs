@@ -4,7 +4,6 @@ use super::{assert_close, assert_matrix_close, floats, matrix, rotorflow, run_js
 use nalgebra::{DMatrix, DVector};
 use rotorflow::inertia::tensor::{ContractedInertia, ContractionNormalization, RankFourTensor};
 use rotorflow::inertia::{Body, InertiaMap};
-use serde_json::Value;
 
 const KEYS: [&str; 15] = [
     "dim",
@@ -230,7 +229,6 @@ fn inertia_text_output_names_the_quantities() {
     ] {
         assert!(text.contains(word), "missing {word} in\n{text}");
     }
-    let _: Option<Value> = None;
 }
 
 /// The classical 3D moments of inertia and the second moments of a solid cuboid, labelled

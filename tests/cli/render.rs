@@ -94,7 +94,9 @@ fn render_solids_and_2d_bodies() {
     }
 }
 
-/// Returns a Chromium that runs, or None (with a loud message) when there is none.
+/// Returns a Chromium that runs, or None (with a loud message) when there is none and the run
+/// is local. Under CI (the `CI` variable set and not "false", as every CI service sets it) a
+/// missing browser is a failure: the check this test exists for would otherwise pass unseen.
 fn chromium() -> Option<String> {
     let candidates = [
         std::env::var("ROTORFLOW_CHROMIUM").unwrap_or_default(),
@@ -111,9 +113,15 @@ fn chromium() -> Option<String> {
             return Some(c.clone());
         }
     }
+    let under_ci = std::env::var("CI").is_ok_and(|v| !v.is_empty() && v != "false" && v != "0");
+    assert!(
+        !under_ci,
+        "no runnable Chromium under CI (tried {candidates:?}): install Debian's `chromium` \
+         (.ci/run does) or point ROTORFLOW_CHROMIUM at a browser"
+    );
     eprintln!(
-        "\n!!!!!!!! SKIPPED: no runnable Chromium (install Debian's `chromium`; .ci/run does) — \
-         the HTML animation was NOT checked in a browser !!!!!!!!\n"
+        "\n!!!!!!!! SKIPPED (local run, CI unset): no runnable Chromium (install Debian's \
+         `chromium`; .ci/run does) — the HTML animation was NOT checked in a browser !!!!!!!!\n"
     );
     None
 }

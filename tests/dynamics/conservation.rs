@@ -30,10 +30,11 @@ fn splitting_keeps_casimirs_over_1e5_steps() {
         // into a near-identity product first), so |RR̃ − 1| is a random walk of 1e5 roundings:
         // examples/rotor_drift_survey.rs measures at most 3.4e-14 (rotors, N = 3, 4) and
         // 8.6e-14 (matrices, N = 5, 6) over 8 seeds.
-        // The bound, with no renormalisation at all:
+        // Bound, with no renormalisation at all:
         assert!(d.attitude <= 1e-13, "n={n}: |RR̃ − 1| = {:e}", d.attitude);
-        // Energy error is O(h²) and bounded (no drift): compare the last and worst values.
-        assert!(worst_energy < 1e-3, "n={n}: energy error {worst_energy:e}");
+        // Energy error is O(h²) and bounded (no drift over 10⁵ steps): measured worst
+        // 2.3e-6 = 0.023·h² (n = 6); bound 3× that.
+        assert!(worst_energy < 7e-6, "n={n}: energy error {worst_energy:e}");
         if let (Some(a), Some(b)) = (Invariants::of(&body).pfaffian, start.pfaffian) {
             // The Pfaffian is of degree N/2 in L: on the Casimirs' scale (Drift::casimirs
             // divides c_k by |L|^(2k)) its drift is |ΔPf| / |L|^(N/2). Relative to Pf itself

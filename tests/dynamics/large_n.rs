@@ -128,7 +128,9 @@ fn large_n_free_body_keeps_invariants() {
             "N = {n}: L_s {:e}",
             drift.space_momentum
         );
-        assert!(drift.energy < 1e-3, "N = {n}: energy {:e}", drift.energy);
+        // Strang keeps a modified energy: |ΔT|/T = O(h²), measured ≤ 5.4e-6 = 0.054·h²
+        // (N = 32); bound 3× that.
+        assert!(drift.energy < 1.7e-5, "N = {n}: energy {:e}", drift.energy);
         assert!(
             now.attitude_error < 1e-13,
             "N = {n}: |QᵀQ − 1| = {:e}",

@@ -81,7 +81,8 @@ fn trajectory_samples_and_drift() {
     assert!((traj.samples()[10].time - 10.0).abs() < 1e-12);
     assert_eq!(traj.steps(), 1000);
     assert!(traj.drift().casimirs < 1e-13);
-    assert!(traj.drift().energy < 1e-3);
+    // Strang: |ΔT|/T = O(h²), measured 4.1e-6 = 0.041·h²; bound 3× that.
+    assert!(traj.drift().energy < 1.3e-5, "{:e}", traj.drift().energy);
     // a sample time between steps is hit exactly (the step is shortened)
     let t = simulate(&body, &mut Splitting::strang(), &Free, 0.3, &[0.0, 0.45]).unwrap();
     assert_eq!(t.samples()[1].time, 0.45);

@@ -62,8 +62,10 @@ fn attitude_error_is_a_matrix_error_above_n4_and_the_former_names_agree() {
     for n in [3, 4, 5, 6] {
         let omega = random_bivector(&mut r, n, 1.0);
         let body = RigidBody::from_body_velocity(
-            InertiaMap::from_principal_second_moments(&(1..=n).map(|i| i as f64).collect::<Vec<_>>())
-                .unwrap(),
+            InertiaMap::from_principal_second_moments(
+                &(1..=n).map(|i| i as f64).collect::<Vec<_>>(),
+            )
+            .unwrap(),
             Attitude::identity(n),
             &omega,
         )

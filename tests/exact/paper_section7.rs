@@ -565,8 +565,7 @@ fn paper_eq_110_does_not_follow_from_the_printed_eq_53() {
     let w = OMEGA_72;
     let j = three_equal_principal_moments(KAPPA_72).unwrap();
     let i = |a: usize, b: usize| 0.5 * (j[a] + j[b]);
-    let (w12, w13, w14, w23, w24, w34) = (w[0], w[1], w[2], w[3], w[4], w[5]);
-    let _ = (w12, w34);
+    let (w13, w14, w23, w24) = (w[1], w[2], w[3], w[4]);
     let printed_53 = (-(i(1, 3) - i(0, 1)) * w13 * w23 + (i(0, 2) - i(2, 3)) * w14 * w24) / i(0, 3);
     assert!(close(printed_53, 0.024, 1e-15), "{printed_53}");
     assert!(omega_rate(&j, &biv(&w)).get(0, 1).abs() < 1e-16);

@@ -384,8 +384,8 @@ fn inscribed_polytope_converges_to_ball_n2_to_n5() {
 }
 
 /// N = 5 one level further (983 040 simplices): the ratio k = 4 → 8 is 3.47, approaching
-/// the asymptotic 4. About 3 s in a release build (much longer in debug); run with
-/// `cargo test --release -- --ignored`.
+/// the asymptotic 4. Ignored by `cargo test` (about 10 s in the test profile, opt-level 2);
+/// `.ci/run` runs it with `cargo test --all-features --test inertia -- --ignored`.
 #[test]
 #[ignore = "slow: 10^6 simplices"]
 fn inscribed_polytope_converges_to_ball_n5_fine() {

@@ -1,4 +1,4 @@
-//! Regression tests for what the fuzz targets under `fuzz/` found (issue #8 item 2), one per
+//! Regression tests for what the fuzz targets under `fuzz/` found, one per
 //! finding, with the crash input inlined. `fuzz/README.md` lists the runs.
 
 /// json_algebra: a long decimal literal parsed one ulp off by serde_json's default float

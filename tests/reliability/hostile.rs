@@ -1,4 +1,4 @@
-//! Numerically hostile cases, each with an asserted bound (the issue-#8 table).
+//! Numerically hostile cases, each with an asserted bound.
 
 use nalgebra::DMatrix;
 use rotorflow::inertia::Body;
@@ -181,7 +181,7 @@ fn matrix_to_rotor_for_matrices_orthogonal_only_to_1e_8() {
     }
 }
 
-/// Regression (adversarial proptest, issue #8): components 1e150 beside 1e37 in 8-D made
+/// Regression (found by the adversarial property tests): components 1e150 beside 1e37 in 8-D made
 /// nalgebra's symmetric eigen-solver return ∞/NaN inside the decomposition, which then lost
 /// every plane. Fixed by `algebra::eigen` (flush below ε²·max, check, Jacobi fallback).
 #[test]
@@ -265,6 +265,26 @@ fn regression_splitting_reports_an_overflowing_angle() {
     let l = Bivector::from_components(2, &[5.0814314796920635e126]).unwrap();
     let mut body = RigidBody::from_body_momentum(inertia, Attitude::identity(2), &l).unwrap();
     let result = Splitting::strang().step(&mut body, 0.0, 10.0, &Free);
+    assert!(
+        matches!(result, Err(DynamicsError::NonFinite { .. })),
+        "{result:?}"
+    );
+}
+
+/// Regression (adversarial proptest): the same overflow in the adaptive integrator, where the
+/// increment A = ∞ scales its own error tolerance to ∞, so the error estimate read 0 and the
+/// step was accepted with a NaN attitude; it now reports `NonFinite`.
+#[test]
+fn regression_dopri5_reports_an_overflowing_angle() {
+    use rotorflow::dynamics::torques::Free;
+    use rotorflow::dynamics::{Attitude, Dopri5, DynamicsError, Integrator, RigidBody};
+    let inertia =
+        InertiaMap::from_principal_second_moments(&[3.281159545697099e-222, 0.0]).unwrap();
+    let l = Bivector::from_components(2, &[-4.9729193217462704e86]).unwrap();
+    let mut body = RigidBody::from_body_momentum(inertia, Attitude::identity(2), &l).unwrap();
+    let result = Dopri5::new(1e-8, 1e-8)
+        .with_max_steps(2_000)
+        .step(&mut body, 0.0, 10.0, &Free);
     assert!(
         matches!(result, Err(DynamicsError::NonFinite { .. })),
         "{result:?}"

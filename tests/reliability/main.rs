@@ -1,4 +1,4 @@
-//! Reliability (issue #8): numerically hostile inputs with asserted bounds, adversarial
+//! Reliability: numerically hostile inputs with asserted bounds, adversarial
 //! magnitudes, and long runs (ignored by default; `.ci/run` runs them with a time bound).
 
 mod adversarial;

@@ -260,6 +260,11 @@ impl Dopri5 {
         self.accepted += 1;
         self.h_next = Some(h * factor);
         let attitude = r0.times_exp(&a1);
+        // A finite error estimate does not make the state finite: an increment A beyond f64
+        // scales its own tolerance to ∞ (the estimate then reads 0).
+        if !attitude.is_finite() || !l1.as_slice().iter().all(|x| x.is_finite()) {
+            return Err(DynamicsError::NonFinite { time: t });
+        }
         Ok(Some(StepResult {
             h,
             l0: l0.clone(),
