@@ -27,7 +27,8 @@ pub struct InertiaArgs {
     /// principal axes, the classical principal moments; null otherwise); inertia_matrix (the
     /// map on bivectors); rank4 (the paper's eq. 22 tensor); contracted and
     /// contracted_factor (𝕀 = c_N (tr J · 1 − J), the paper's eq. 24, with c_N; null for
-    /// N = 2); gyration_radii.
+    /// N = 2); gyration_radii; principal_moments (deprecated: the same values as
+    /// second_moments, kept for scripts written against rotorflow 0.1).
     #[arg(long)]
     pub json: bool,
     /// Write to FILE (whole or not at all) instead of standard output. Without --json the
@@ -73,6 +74,7 @@ pub fn inertia_json(parsed: &ParsedBody) -> CliResult<Value> {
             "center_of_mass": vec![0.0; n],
             "mass_tensor": Value::Null,
             "second_moments": Value::Null,
+            "principal_moments": Value::Null,
             "principal_axes": Value::Null,
             "plane_names": plane_names(n),
             "plane_moments": parsed.inertia.plane_moments(),
@@ -126,6 +128,9 @@ pub fn inertia_json(parsed: &ParsedBody) -> CliResult<Value> {
         "center_of_mass": vector_json(body.center_of_mass()),
         "mass_tensor": matrix_json(j),
         "second_moments": vector_json(&second),
+        // The 0.1 name of `second_moments`, kept so that existing scripts keep working; the
+        // help and the book call it deprecated (it is not the moments of inertia).
+        "principal_moments": vector_json(&second),
         "principal_axes": axes_json,
         "plane_names": plane_names(n),
         "plane_moments": vector_json(&body.plane_moments()),
