@@ -99,6 +99,7 @@ pub mod algebra;
 pub mod cli;
 pub mod dynamics;
 pub mod inertia;
+mod numeric;
 pub mod special;
 #[cfg(feature = "cli")]
 pub mod viz;

@@ -1,8 +1,8 @@
 //! Bivectors of Euclidean ℝᴺ: planes, angular velocities and momenta.
 
 use super::error::{assert_same_dim, check_finite, check_same_dim};
-use super::vector::scaled_norm;
 use super::{AlgebraError, MAX_DIM};
+use crate::numeric::scaled_norm;
 use nalgebra::DMatrix;
 use smallvec::SmallVec;
 
@@ -325,7 +325,7 @@ impl Bivector {
             i < n && j < n && i != j,
             "rotorflow: invalid plane ({i}, {j}) in dimension {n}"
         );
-        let (s, m) = crate::algebra::sin_cos_minus_one(angle);
+        let (s, m) = crate::numeric::sin_cos_minus_one(angle);
         self.rotate_in_plane_sin_cm1(i, j, s, m);
     }
 
@@ -504,20 +504,20 @@ impl Bivector {
     pub fn exp_skew_matrix(&self) -> DMatrix<f64> {
         let n = self.dim;
         let a = self.to_skew_matrix();
-        let norm1 = super::expm::norm1(&a);
+        let norm1 = crate::numeric::norm1(&a);
         if norm1 == 0.0 {
             return DMatrix::identity(n, n);
         }
         // ‖[B]‖₁ can overflow while every plane angle is representable (found by the
         // exp_log_bits fuzz target): the plane-by-plane form scales, so it takes that case too.
-        if !norm1.is_finite() || norm1 > super::expm::PADE_MAX_NORM {
+        if !norm1.is_finite() || norm1 > crate::numeric::PADE_MAX_NORM {
             return self.exp_skew_matrix_by_planes();
         }
         // Small rotations (integrator steps): the Taylor form needs no solve.
-        if let Some(q) = super::expm::expm_skew_taylor(&a, norm1) {
+        if let Some(q) = crate::numeric::expm_skew_taylor(&a, norm1) {
             return q;
         }
-        super::expm::expm_skew(&a, norm1).unwrap_or_else(|| super::expm::expm_spectral(&a))
+        crate::numeric::expm_skew(&a, norm1).unwrap_or_else(|| crate::numeric::expm_spectral(&a))
     }
 
     /// expm(\[B\]) plane by plane from the invariant decomposition: on each plane θ u∧v

@@ -268,8 +268,8 @@ fn planes_4d(c: &[f64]) -> Vec<RawPlane> {
     // Scaled norms: squaring a part of size ~1e-162 lands in the subnormals, where the norm
     // (and the unit direction built from it) loses most of its bits (fuzz finding F9: a rotor
     // off by 1e-3 from an isoclinic pair with a 1e-161 perturbation).
-    let na = scaled_norm3(alpha);
-    let nb = scaled_norm3(beta);
+    let na = crate::numeric::scaled_norm(&alpha);
+    let nb = crate::numeric::scaled_norm(&beta);
     // Unit directions; an exactly (anti-)self-dual B leaves the other direction free. Divide
     // by the largest component first: a subnormal norm has too few bits to divide by.
     let unit = |x: [f64; 3], n: f64| {
@@ -330,15 +330,6 @@ fn planes_4d(c: &[f64]) -> Vec<RawPlane> {
         });
     }
     out
-}
-
-/// |x| for a 3-vector without underflow or overflow in the squares.
-fn scaled_norm3(x: [f64; 3]) -> f64 {
-    let m = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    if m == 0.0 || !m.is_finite() {
-        return m;
-    }
-    m * ((x[0] / m).powi(2) + (x[1] / m).powi(2) + (x[2] / m).powi(2)).sqrt()
 }
 
 fn normalize_in_place(x: &mut [f64]) -> f64 {
@@ -426,7 +417,7 @@ fn planes_deflation(n: usize, comps: &[f64]) -> Vec<RawPlane> {
             break;
         }
         let s = a.transpose() * &a;
-        let (eigenvalues, eigenvectors) = super::symmetric_eigen(s);
+        let (eigenvalues, eigenvectors) = crate::numeric::symmetric_eigen(s);
         let top = eigenvalues
             .iter()
             .enumerate()

@@ -59,13 +59,7 @@ mod bivector;
 pub mod blade;
 pub mod decompose;
 mod display;
-mod eigen;
 mod error;
-mod expm;
-pub(crate) use eigen::{RobustEigen, symmetric_eigen};
-pub(crate) use expm::{
-    expm_skew, expm_skew_taylor, expm_skew_taylor_dense, norm1 as expm_norm1, norm1_slice,
-};
 mod multivector;
 mod nalgebra;
 mod ops;
@@ -73,10 +67,7 @@ mod rotor;
 #[cfg(feature = "serde")]
 mod serde_impls;
 mod signature;
-mod trig;
 mod vector;
-
-pub(crate) use trig::sin_cos_minus_one;
 
 pub(crate) use bivector::commutator_packed;
 pub use bivector::{Bivector, bivector_len, pair_index, pairs};

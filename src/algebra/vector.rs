@@ -118,7 +118,7 @@ impl Vector {
 
     /// Returns |x|, computed without overflow or underflow for any finite components.
     pub fn norm(&self) -> f64 {
-        scaled_norm(&self.coords)
+        crate::numeric::scaled_norm(&self.coords)
     }
 
     /// Returns x / |x|, or `None` for the zero vector.
@@ -224,20 +224,6 @@ impl std::ops::IndexMut<usize> for Vector {
     fn index_mut(&mut self, i: usize) -> &mut f64 {
         &mut self.coords[i]
     }
-}
-
-/// Euclidean norm of a slice that neither overflows nor underflows (scaled by the largest
-/// magnitude first, as LAPACK's `dnrm2`).
-pub(crate) fn scaled_norm(x: &[f64]) -> f64 {
-    let m = x.iter().fold(0.0f64, |m, c| m.max(c.abs()));
-    if m == 0.0 || !m.is_finite() {
-        return m;
-    }
-    if (1e-150..1e150).contains(&m) {
-        return x.iter().map(|c| c * c).sum::<f64>().sqrt();
-    }
-    let s: f64 = x.iter().map(|c| (c / m) * (c / m)).sum();
-    m * s.sqrt()
 }
 
 /// (x/sx) ∧ (y/sy), component by component (the overflow path of [`Vector::wedge`]).

@@ -40,6 +40,7 @@
 //! mass of one vertex. The simplex vertex formula is
 //! ∫ x xᵀ dV = Vol/((N+1)(N+2)) [Σ v_k v_kᵀ + (Σ v_k)(Σ v_k)ᵀ].
 
+use crate::numeric::{max_abs_matrix as max_abs, sorted_symmetric_eigen as sorted_eigen};
 use nalgebra::{DMatrix, DVector};
 use smallvec::SmallVec;
 use thiserror::Error;
@@ -524,24 +525,6 @@ fn check_points(quantity: &'static str, points: &[DVector<f64>]) -> Result<usize
 
 fn symmetrize(m: &DMatrix<f64>) -> DMatrix<f64> {
     (m + m.transpose()) * 0.5
-}
-
-fn max_abs(m: &DMatrix<f64>) -> f64 {
-    m.iter().fold(0.0_f64, |acc, x| acc.max(x.abs()))
-}
-
-/// Sorted (ascending) eigen-decomposition of a symmetric matrix; eigenvectors as columns.
-fn sorted_eigen(m: &DMatrix<f64>) -> (DVector<f64>, DMatrix<f64>) {
-    let n = m.nrows();
-    let eig = crate::algebra::RobustEigen::new(m.clone());
-    let mut order: Vec<usize> = (0..n).collect();
-    order.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
-    let values = DVector::from_iterator(n, order.iter().map(|&k| eig.eigenvalues[k]));
-    let mut vectors = DMatrix::zeros(n, n);
-    for (col, &k) in order.iter().enumerate() {
-        vectors.set_column(col, &eig.eigenvectors.column(k));
-    }
-    (values, vectors)
 }
 
 /// Signed volume, first moment ∫ x dV and second moment ∫ x xᵀ dV of the simplex with the

@@ -42,6 +42,7 @@
 //! The gyration radii (Poinsot half-axes) are 𝕀_α = μ L_α², L_α = √(𝕀_α/μ) (eq. 27) and the
 //! trace is 𝕀_0 = tr 𝕀 = μ Σ L_α² (eq. 29). They inherit the normalisation of 𝕀.
 
+use crate::numeric::max_abs_matrix;
 use nalgebra::{DMatrix, DVector};
 use thiserror::Error;
 
@@ -187,14 +188,10 @@ fn check_square(quantity: &'static str, m: &DMatrix<f64>) -> Result<usize, Tenso
     Ok(m.nrows())
 }
 
-fn max_abs(m: &DMatrix<f64>) -> f64 {
-    m.iter().fold(0.0_f64, |acc, x| acc.max(x.abs()))
-}
-
 /// Checks that `j` is a finite symmetric square matrix and returns its symmetrized copy.
 fn checked_mass_tensor(j: &DMatrix<f64>) -> Result<DMatrix<f64>, TensorError> {
     let n = check_square("mass_tensor", j)?;
-    let scale = max_abs(j);
+    let scale = max_abs_matrix(j);
     if scale > 0.0 {
         for r in 0..n {
             for c in r + 1..n {
@@ -221,7 +218,7 @@ fn check_skew(omega: &DMatrix<f64>, dim: usize) -> Result<(), TensorError> {
             found: n,
         });
     }
-    let scale = max_abs(omega);
+    let scale = max_abs_matrix(omega);
     if scale > 0.0 {
         for r in 0..n {
             for c in r..n {
@@ -569,10 +566,7 @@ impl ContractedInertia {
 
     /// Returns the eigenvalues of 𝕀 in ascending order (eq. 25, frame-independent).
     pub fn principal_values(&self) -> DVector<f64> {
-        let eig = crate::algebra::RobustEigen::new(self.matrix.clone());
-        let mut values: Vec<f64> = eig.eigenvalues.iter().copied().collect();
-        values.sort_by(f64::total_cmp);
-        DVector::from_vec(values)
+        crate::numeric::sorted_symmetric_eigen(&self.matrix).0
     }
 
     /// Returns the trace 𝕀_0 = tr 𝕀 = c_N (N − 1) tr J (eq. 29).

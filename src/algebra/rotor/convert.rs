@@ -5,6 +5,7 @@ use super::{Rotor, even_index};
 use crate::algebra::bivector::{bivector_len, pairs};
 use crate::algebra::decompose::{RawPlane, decompose_components};
 use crate::algebra::{AlgebraError, MULTIVECTOR_MAX_DIM};
+use crate::numeric::orthogonality_error;
 use nalgebra::{DMatrix, DVector};
 use smallvec::SmallVec;
 
@@ -104,7 +105,7 @@ impl Rotor {
     pub fn from_matrix_eps(q: &DMatrix<f64>, tolerance: f64) -> Result<Rotor, AlgebraError> {
         check_matrix_shape(q)?;
         let n = q.nrows();
-        let err = orthogonality_error(q);
+        let err = orthogonality_error(q.as_view());
         let det = if n == 0 { 1.0 } else { q.determinant() };
         if err.is_nan() || err > tolerance || det < 0.0 {
             return Err(AlgebraError::NotARotation {
@@ -125,14 +126,14 @@ impl Rotor {
     pub fn from_matrix_projected(m: &DMatrix<f64>) -> Result<Rotor, AlgebraError> {
         check_matrix_shape(m)?;
         let q = nearest_orthogonal(m).ok_or(AlgebraError::NotARotation {
-            orthogonality_error: orthogonality_error(m),
+            orthogonality_error: orthogonality_error(m.as_view()),
             determinant: m.determinant(),
             tolerance: f64::INFINITY,
         })?;
         let det = q.determinant();
         if det < 0.0 {
             return Err(AlgebraError::NotARotation {
-                orthogonality_error: orthogonality_error(m),
+                orthogonality_error: orthogonality_error(m.as_view()),
                 determinant: m.determinant(),
                 tolerance: f64::INFINITY,
             });
@@ -154,7 +155,7 @@ impl Rotor {
         let n = self.dim;
         match n {
             0..=3 => {
-                let s = crate::algebra::vector::scaled_norm(&self.coeffs);
+                let s = crate::numeric::scaled_norm(&self.coeffs);
                 if s > 0.0 {
                     self.clone().scaled(1.0 / s)
                 } else {
@@ -238,20 +239,6 @@ fn check_matrix_shape(q: &DMatrix<f64>) -> Result<(), AlgebraError> {
         return Err(AlgebraError::NonFinite { what: "matrix" });
     }
     Ok(())
-}
-
-/// max |(QᵀQ − 1)_ij|.
-pub(crate) fn orthogonality_error(q: &DMatrix<f64>) -> f64 {
-    let n = q.nrows();
-    let g = q.transpose() * q;
-    let mut err = 0.0f64;
-    for i in 0..n {
-        for j in 0..n {
-            let target = if i == j { 1.0 } else { 0.0 };
-            err = err.max((g[(i, j)] - target).abs());
-        }
-    }
-    err
 }
 
 /// The orthogonal polar factor U Vᵀ, or None if the SVD fails or the matrix is singular.
@@ -361,7 +348,7 @@ fn rotor_of_matrix_3d(q: &DMatrix<f64>) -> Rotor {
 pub(crate) fn planes_of_rotation(q: &DMatrix<f64>) -> Vec<RawPlane> {
     let n = q.nrows();
     let y = (q + q.transpose()) * 0.5;
-    let (eigenvalues, eigenvectors) = crate::algebra::symmetric_eigen(y);
+    let (eigenvalues, eigenvectors) = crate::numeric::symmetric_eigen(y);
     let mut plus = Vec::new();
     let mut minus = Vec::new();
     for (k, &lambda) in eigenvalues.iter().enumerate() {

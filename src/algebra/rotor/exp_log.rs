@@ -76,8 +76,8 @@ impl Bivector {
 /// a − b.
 fn exp_4d(c: &[f64], r: &mut Rotor) {
     let (alpha, beta) = self_dual_split(c);
-    let a = crate::algebra::vector::scaled_norm(&alpha);
-    let b = crate::algebra::vector::scaled_norm(&beta);
+    let a = crate::numeric::scaled_norm(&alpha);
+    let b = crate::numeric::scaled_norm(&beta);
     let (sa, ca) = (2.0 * a).sin_cos();
     let (sb, cb) = (2.0 * b).sin_cos();
     // ½ sin 2a · α/|α| with the a → 0 limit sin(2a)/(2a) → 1.
@@ -216,8 +216,8 @@ impl Rotor {
 fn log_4d(r: &Rotor) -> Bivector {
     let (s, b, p) = get_4d(r);
     let (alpha, beta) = self_dual_split(&b);
-    let na = crate::algebra::vector::scaled_norm(&alpha);
-    let nb = crate::algebra::vector::scaled_norm(&beta);
+    let na = crate::numeric::scaled_norm(&alpha);
+    let nb = crate::numeric::scaled_norm(&beta);
     // 2a = atan2(2|α|, s − p), 2b = atan2(2|β|, s + p); then B's halves are a α̂ and b β̂.
     let a2 = (2.0 * na).atan2(s - p);
     let b2 = (2.0 * nb).atan2(s + p);

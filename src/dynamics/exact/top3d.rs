@@ -90,6 +90,7 @@ use super::ExactError;
 use crate::algebra::{Bivector, Multivector, Rotor, Signature, pair_index, pairs};
 use crate::dynamics::Attitude;
 use crate::dynamics::RigidBody;
+use crate::numeric::scaled_norm;
 use crate::special::{
     Jacobi, elliptic_f_complement, elliptic_pi_complement, elliptic_pi_inc_complement,
 };
@@ -918,15 +919,6 @@ fn from_classical(v: [f64; 3]) -> Bivector {
     let mut b = Bivector::zero(3);
     b.as_mut_slice().copy_from_slice(&[v[2], -v[1], v[0]]);
     b
-}
-
-/// |v| without overflow or underflow.
-fn scaled_norm(v: &[f64; 3]) -> f64 {
-    let big = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    if big == 0.0 || !big.is_finite() {
-        return big;
-    }
-    big * v.iter().map(|x| (x / big) * (x / big)).sum::<f64>().sqrt()
 }
 
 /// The unit plane and magnitude of a 3D bivector (zero plane for zero).
