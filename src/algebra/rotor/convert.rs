@@ -1,7 +1,6 @@
 //! Rotors ↔ rotation matrices, and the projection of a drifted rotor back onto Spin(N).
 
-use super::exp_log::{get_4d, multiply_by_simple, set_4d};
-use super::{Rotor, even_index};
+use super::{Rotor, even_index, get_4d, multiply_by_simple, set_4d};
 use crate::algebra::bivector::{bivector_len, pairs};
 use crate::algebra::decompose::{RawPlane, decompose_components};
 use crate::algebra::{AlgebraError, MULTIVECTOR_MAX_DIM};
