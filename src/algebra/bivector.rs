@@ -42,6 +42,10 @@ pub struct Bivector {
     coeffs: BivStorage,
 }
 
+/// Default relative tolerance of [`Bivector::from_skew_matrix`] on the symmetric part of its
+/// input: a few thousand ulps, room for the round-off of a matrix computed in floating point.
+pub const SKEW_TOLERANCE: f64 = 1e-12;
+
 /// Returns the number of bivector components in dimension `n`, N(N−1)/2.
 #[inline]
 pub fn bivector_len(n: usize) -> usize {
@@ -65,17 +69,28 @@ impl Bivector {
     /// Returns the zero bivector of ℝⁿ.
     ///
     /// # Panics
-    /// If `n > MAX_DIM`.
+    /// If `n > MAX_DIM` (see [`Bivector::try_zero`]).
     #[track_caller]
     pub fn zero(n: usize) -> Self {
-        assert!(
-            n <= MAX_DIM,
-            "rotorflow: dimension {n} exceeds MAX_DIM = {MAX_DIM}"
-        );
-        Bivector {
+        Self::try_zero(n).unwrap_or_else(|e| panic!("rotorflow: {e}"))
+    }
+
+    /// Returns the zero bivector of ℝⁿ, or an error if `n` is too large.
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionTooLarge`] if `n > MAX_DIM`.
+    pub fn try_zero(n: usize) -> Result<Self, AlgebraError> {
+        if n > MAX_DIM {
+            return Err(AlgebraError::DimensionTooLarge {
+                what: "bivector",
+                dim: n,
+                max: MAX_DIM,
+            });
+        }
+        Ok(Bivector {
             dim: n,
             coeffs: SmallVec::from_elem(0.0, bivector_len(n)),
-        }
+        })
     }
 
     /// Builds a bivector of ℝⁿ from its N(N−1)/2 components in lexicographic order
@@ -197,15 +212,26 @@ impl Bivector {
     ///
     /// # Errors
     /// [`AlgebraError::NotSquare`]; [`AlgebraError::NotSkewSymmetric`] if
-    /// max |A_ij + A_ji| > 1e-12 · max |A_ij| (the antisymmetric part is taken otherwise);
+    /// max |A_ij + A_ji| > [`SKEW_TOLERANCE`] · max |A_ij| (the antisymmetric part is taken
+    /// otherwise; [`Bivector::from_skew_matrix_eps`] chooses the tolerance);
     /// [`AlgebraError::NonFinite`].
     pub fn from_skew_matrix(a: &DMatrix<f64>) -> Result<Self, AlgebraError> {
-        Self::from_skew_entries(a.nrows(), a.ncols(), |i, j| a[(i, j)])
+        Self::from_skew_matrix_eps(a, SKEW_TOLERANCE)
+    }
+
+    /// Like [`Bivector::from_skew_matrix`] with an explicit relative tolerance on the
+    /// symmetric part: max |A_ij + A_ji| ≤ `tolerance` · max |A_ij|.
+    ///
+    /// # Errors
+    /// As [`Bivector::from_skew_matrix`].
+    pub fn from_skew_matrix_eps(a: &DMatrix<f64>, tolerance: f64) -> Result<Self, AlgebraError> {
+        Self::from_skew_entries(a.nrows(), a.ncols(), tolerance, |i, j| a[(i, j)])
     }
 
     pub(crate) fn from_skew_entries(
         rows: usize,
         cols: usize,
+        relative_tolerance: f64,
         entry: impl Fn(usize, usize) -> f64,
     ) -> Result<Self, AlgebraError> {
         if rows != cols {
@@ -233,8 +259,8 @@ impl Bivector {
                 deviation = deviation.max((x + entry(j, i)).abs());
             }
         }
-        let tolerance = 1e-12 * scale;
-        if deviation > tolerance {
+        let tolerance = relative_tolerance * scale;
+        if !(deviation <= tolerance) {
             return Err(AlgebraError::NotSkewSymmetric {
                 deviation,
                 tolerance,

@@ -70,11 +70,11 @@ mod signature;
 mod vector;
 
 pub(crate) use bivector::commutator_packed;
-pub use bivector::{Bivector, bivector_len, pair_index, pairs};
+pub use bivector::{Bivector, SKEW_TOLERANCE, bivector_len, pair_index, pairs};
 pub use decompose::{Decomposition, SimplePlane};
 pub use error::AlgebraError;
 pub use multivector::{Multivector, Product};
-pub use rotor::{ROTATION_TOLERANCE, Rotor};
+pub use rotor::{NORMALIZE_TOLERANCE, ROTATION_TOLERANCE, ROTOR_TOLERANCE, Rotor};
 pub(crate) use rotor::{accumulate_plane_rotor, plane_tables};
 pub use signature::Signature;
 pub use vector::Vector;
@@ -98,7 +98,7 @@ impl From<&Vector> for Multivector {
     fn from(v: &Vector) -> Self {
         let mut m = Multivector::zero(Signature::euclidean(v.dim()));
         for (i, &c) in v.as_slice().iter().enumerate() {
-            m.coefficients_mut()[1 << i] = c;
+            m.as_mut_slice()[1 << i] = c;
         }
         m
     }
@@ -113,7 +113,7 @@ impl From<&Bivector> for Multivector {
     fn from(b: &Bivector) -> Self {
         let mut m = Multivector::zero(Signature::euclidean(b.dim()));
         for ((i, j), &c) in pairs(b.dim()).zip(b.as_slice()) {
-            m.coefficients_mut()[(1 << i) | (1 << j)] = c;
+            m.as_mut_slice()[(1 << i) | (1 << j)] = c;
         }
         m
     }
@@ -131,10 +131,10 @@ impl TryFrom<&Multivector> for Vector {
     /// The grade-1 part, if the multivector is Euclidean and has no other grades.
     ///
     /// # Errors
-    /// [`AlgebraError::UnsupportedSignature`]; [`AlgebraError::WrongComponentCount`] (with
-    /// `what = "pure vector"`) when other grades are present.
+    /// [`AlgebraError::UnsupportedSignature`]; [`AlgebraError::MixedGrades`] when other
+    /// grades are present.
     fn try_from(m: &Multivector) -> Result<Self, AlgebraError> {
-        graded_check(m, 1, "pure vector")?;
+        graded_check(m, 1, "vector")?;
         let n = m.dim();
         Vector::from_components(&(0..n).map(|i| m.coefficient(1 << i)).collect::<Vec<f64>>())
     }
@@ -145,10 +145,10 @@ impl TryFrom<&Multivector> for Bivector {
     /// The grade-2 part, if the multivector is Euclidean and has no other grades.
     ///
     /// # Errors
-    /// [`AlgebraError::UnsupportedSignature`]; [`AlgebraError::WrongComponentCount`] (with
-    /// `what = "pure bivector"`) when other grades are present.
+    /// [`AlgebraError::UnsupportedSignature`]; [`AlgebraError::MixedGrades`] when other
+    /// grades are present.
     fn try_from(m: &Multivector) -> Result<Self, AlgebraError> {
-        graded_check(m, 2, "pure bivector")?;
+        graded_check(m, 2, "bivector")?;
         let n = m.dim();
         let comps: Vec<f64> = pairs(n)
             .map(|(i, j)| m.coefficient((1 << i) | (1 << j)))
@@ -166,10 +166,10 @@ fn graded_check(m: &Multivector, k: usize, what: &'static str) -> Result<(), Alg
     }
     let others = m.terms().filter(|(b, _)| blade::grade(*b) != k).count();
     if others > 0 {
-        return Err(AlgebraError::WrongComponentCount {
+        return Err(AlgebraError::MixedGrades {
             what,
-            expected: 0,
-            found: others,
+            grade: k,
+            others,
         });
     }
     Ok(())

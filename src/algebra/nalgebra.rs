@@ -86,7 +86,7 @@ impl<const D: usize> TryFrom<&SMatrix<f64, D, D>> for Bivector {
     type Error = AlgebraError;
     /// See [`Bivector::from_skew_matrix`].
     fn try_from(m: &SMatrix<f64, D, D>) -> Result<Self, AlgebraError> {
-        Bivector::from_skew_entries(D, D, |i, j| m[(i, j)])
+        Bivector::from_skew_entries(D, D, crate::algebra::SKEW_TOLERANCE, |i, j| m[(i, j)])
     }
 }
 

@@ -98,7 +98,7 @@ impl Serialize for Rotor {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         GradedRepr {
             dim: self.dim(),
-            components: self.to_multivector().coefficients().to_vec(),
+            components: self.to_multivector().as_slice().to_vec(),
         }
         .serialize(s)
     }
@@ -118,7 +118,7 @@ impl Serialize for Multivector {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         MultivectorRepr {
             signature: self.signature(),
-            coefficients: self.coefficients().to_vec(),
+            coefficients: self.as_slice().to_vec(),
         }
         .serialize(s)
     }

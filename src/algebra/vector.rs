@@ -28,16 +28,34 @@ impl Vector {
     /// Returns the zero vector of ℝⁿ.
     ///
     /// # Panics
-    /// If `n > MAX_DIM`.
+    /// If `n > MAX_DIM` (see [`Vector::try_zero`]).
+    #[track_caller]
+    pub fn zero(n: usize) -> Self {
+        Self::try_zero(n).unwrap_or_else(|e| panic!("rotorflow: {e}"))
+    }
+
+    /// Returns the zero vector of ℝⁿ, or an error if `n` is too large.
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionTooLarge`] if `n > MAX_DIM`.
+    pub fn try_zero(n: usize) -> Result<Self, AlgebraError> {
+        if n > MAX_DIM {
+            return Err(AlgebraError::DimensionTooLarge {
+                what: "vector",
+                dim: n,
+                max: MAX_DIM,
+            });
+        }
+        Ok(Vector {
+            coords: SmallVec::from_elem(0.0, n),
+        })
+    }
+
+    /// Returns the zero vector of ℝⁿ.
+    #[deprecated(note = "use Vector::zero (one name for the zero element of every type)")]
     #[track_caller]
     pub fn zeros(n: usize) -> Self {
-        assert!(
-            n <= MAX_DIM,
-            "rotorflow: dimension {n} exceeds MAX_DIM = {MAX_DIM}"
-        );
-        Vector {
-            coords: SmallVec::from_elem(0.0, n),
-        }
+        Self::zero(n)
     }
 
     /// Returns the basis vector e_{i+1} of ℝⁿ (`i` is 0-based).
@@ -50,7 +68,7 @@ impl Vector {
             i < n,
             "rotorflow: basis index {i} out of range for dimension {n}"
         );
-        let mut v = Self::zeros(n);
+        let mut v = Self::zero(n);
         v.coords[i] = 1.0;
         v
     }
@@ -191,7 +209,7 @@ impl Vector {
     pub fn left_contract(&self, b: &Bivector) -> Vector {
         super::error::assert_same_dim(self.dim(), b.dim());
         let n = self.dim();
-        let mut out = Vector::zeros(n);
+        let mut out = Vector::zero(n);
         b.contract_into(&self.coords, &mut out.coords);
         out
     }

@@ -255,7 +255,7 @@ impl Attitude {
     /// Returns true if every stored number is finite.
     pub fn is_finite(&self) -> bool {
         match &self.repr {
-            Repr::Rotor(r) => r.raw_coefficients().iter().all(|x| x.is_finite()),
+            Repr::Rotor(r) => r.as_slice().iter().all(|x| x.is_finite()),
             Repr::Matrix(q) => q.iter().all(|x| x.is_finite()),
         }
     }
@@ -350,7 +350,7 @@ impl PlaneProduct {
     pub(crate) fn identity_for(attitude: &Attitude) -> Self {
         let dim = attitude.dim();
         let (len, rotor) = match &attitude.repr {
-            Repr::Rotor(r) => (r.raw_coefficients().len(), true),
+            Repr::Rotor(r) => (r.as_slice().len(), true),
             Repr::Matrix(q) => (q.len(), false),
         };
         PlaneProduct {

@@ -62,7 +62,7 @@ fn regressive_product_meets_planes_in_a_line() {
 fn involutions_have_the_right_signs() {
     let s = Signature::euclidean(4);
     let mut x = Multivector::zero(s);
-    for (b, c) in x.coefficients_mut().iter_mut().enumerate() {
+    for (b, c) in x.as_mut_slice().iter_mut().enumerate() {
         *c = 1.0 + b as f64;
     }
     for (b, c) in x.reverse().terms() {
@@ -161,10 +161,10 @@ fn inverse_of_versors_and_general_elements() {
 fn norm_squared_is_sum_of_squares_in_euclidean_space() {
     let s = Signature::euclidean(4);
     let mut x = Multivector::zero(s);
-    for (b, c) in x.coefficients_mut().iter_mut().enumerate() {
+    for (b, c) in x.as_mut_slice().iter_mut().enumerate() {
         *c = (b as f64).sin();
     }
-    let expected: f64 = x.coefficients().iter().map(|c| c * c).sum();
+    let expected: f64 = x.as_slice().iter().map(|c| c * c).sum();
     assert_close!(x.norm_squared(), expected, 1e-13);
     assert_close!((&x * &x.reverse()).scalar_part(), expected, 1e-13);
     // Minkowski: a timelike vector has positive, a spacelike one negative norm²
@@ -200,8 +200,8 @@ fn operators_panic_on_mismatched_dimensions() {
 fn multivectors_up_to_n_12_work() {
     let s = Signature::euclidean(12);
     let mut a = Multivector::zero(s);
-    a.coefficients_mut()[0b11] = 1.0; // e12
-    a.coefficients_mut()[0b1100_0000_0000] = 2.0; // e11,12
+    a.as_mut_slice()[0b11] = 1.0; // e12
+    a.as_mut_slice()[0b1100_0000_0000] = 2.0; // e11,12
     let sq = &a * &a;
     // (e12 + 2 e_{11,12})² = −1 − 4 + 4 e12∧e_{11,12}
     assert_eq!(sq.scalar_part(), -5.0);

@@ -11,6 +11,11 @@ use smallvec::SmallVec;
 /// Default tolerance on max |QᵀQ − 1| for [`Rotor::from_matrix`].
 pub const ROTATION_TOLERANCE: f64 = 1e-9;
 
+/// Default tolerance of [`Rotor::try_normalize`] on max |R R̃ − 1|: far above the drift that
+/// f64 round-off accumulates over long runs, and above the error of rotors that went through
+/// f32 data (~1e-7), but far below any deviation that is not round-off.
+pub const NORMALIZE_TOLERANCE: f64 = 1e-6;
+
 impl Rotor {
     /// Returns the N×N rotation matrix Q of R: column j is R eⱼ R̃, so Q x = R x R̃.
     ///
@@ -150,6 +155,7 @@ impl Rotor {
     ///
     /// A rotor that is far from Spin(N) (for example 0) has no meaningful projection; the
     /// result is then the identity's sign-nearest lift of whatever rotation remains.
+    /// [`Rotor::try_normalize`] refuses such input instead.
     pub fn normalize(&self) -> Rotor {
         let n = self.dim;
         match n {
@@ -183,6 +189,51 @@ impl Rotor {
                 if d < 0.0 { r.scaled(-1.0) } else { r }
             }
         }
+    }
+}
+
+impl Rotor {
+    /// [`Rotor::normalize`], refusing a rotor whose distance max |R R̃ − 1| from Spin(N)
+    /// ([`Rotor::unit_error`]) exceeds [`NORMALIZE_TOLERANCE`]: projecting removes drift, it
+    /// does not turn an arbitrary even element into a meaningful rotation.
+    ///
+    /// ```
+    /// use rotorflow::algebra::{AlgebraError, Bivector, Rotor};
+    /// let r = Bivector::from_plane(4, 0, 1, 0.3)?.exp();
+    /// let drifted = &r * &Rotor::identity(4); // any product accumulates round-off
+    /// assert!(drifted.try_normalize()?.unit_error() < 1e-15);
+    /// // Twice a rotor is 1 away from Spin(N) (R R̃ = 4): refused, with the distance.
+    /// let far = Rotor::from_multivector_unchecked(&(r.to_multivector() * 2.0));
+    /// match far.try_normalize() {
+    ///     Err(AlgebraError::FarFromGroup { distance, .. }) => assert!((distance - 3.0).abs() < 1e-14),
+    ///     other => panic!("{other:?}"),
+    /// }
+    /// # Ok::<(), AlgebraError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`AlgebraError::FarFromGroup`] with the measured distance (NaN for non-finite input).
+    pub fn try_normalize(&self) -> Result<Rotor, AlgebraError> {
+        self.try_normalize_eps(NORMALIZE_TOLERANCE)
+    }
+
+    /// Like [`Rotor::try_normalize`] with an explicit tolerance on max |R R̃ − 1|.
+    ///
+    /// # Errors
+    /// [`AlgebraError::FarFromGroup`].
+    pub fn try_normalize_eps(&self, tolerance: f64) -> Result<Rotor, AlgebraError> {
+        let distance = if self.coeffs.iter().all(|c| c.is_finite()) {
+            self.unit_error()
+        } else {
+            f64::NAN
+        };
+        if !(distance <= tolerance) {
+            return Err(AlgebraError::FarFromGroup {
+                distance,
+                tolerance,
+            });
+        }
+        Ok(self.normalize())
     }
 }
 

@@ -3,7 +3,8 @@
 use super::{Rotor, even_index, get_4d, multiply_by_simple, set_4d};
 use crate::algebra::bivector::pairs;
 use crate::algebra::decompose::{RawPlane, decompose_components, self_dual_join, self_dual_split};
-use crate::algebra::{Bivector, MULTIVECTOR_MAX_DIM, Vector};
+use crate::algebra::error::check_finite;
+use crate::algebra::{AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Vector};
 use nalgebra::DMatrix;
 use smallvec::SmallVec;
 
@@ -18,11 +19,12 @@ impl Bivector {
     ///
     /// The result is a unit rotor whenever |B| ≤ `f64::MAX`/2. Beyond, a plane angle (or a
     /// sum in the 4D split) may overflow, and the coefficients are then NaN for N ≥ 3, as
-    /// [`Bivector::exp_skew_matrix`]'s entries: an infinite angle has no value mod 2π
-    /// (found by the exp_log_bits fuzz target).
+    /// [`Bivector::exp_skew_matrix`]'s entries: an infinite angle has no value mod 2π.
+    /// [`Bivector::try_exp`] returns an error there instead.
     ///
     /// # Panics
-    /// If N > [`MULTIVECTOR_MAX_DIM`] (rotors store 2^(N−1) coefficients).
+    /// If N > [`MULTIVECTOR_MAX_DIM`] (rotors store 2^(N−1) coefficients; see
+    /// [`Bivector::try_exp`]).
     ///
     /// ```
     /// use rotorflow::algebra::Bivector;
@@ -68,6 +70,38 @@ impl Bivector {
             }
         }
         r
+    }
+
+    /// [`Bivector::exp`], or an error where it would panic or return NaN.
+    ///
+    /// ```
+    /// use rotorflow::algebra::{AlgebraError, Bivector};
+    /// let b = Bivector::from_plane(3, 0, 1, 0.5)?;
+    /// assert_eq!(b.try_exp()?, b.exp());
+    /// let huge = Bivector::from_components(3, &[f64::MAX, f64::MAX, 0.0])?;
+    /// assert!(matches!(huge.try_exp(), Err(AlgebraError::AngleTooLarge { .. })));
+    /// # Ok::<(), AlgebraError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionTooLarge`] if N > [`MULTIVECTOR_MAX_DIM`];
+    /// [`AlgebraError::NonFinite`] for NaN or infinite components;
+    /// [`AlgebraError::AngleTooLarge`] if |B| > `f64::MAX`/2.
+    pub fn try_exp(&self) -> Result<Rotor, AlgebraError> {
+        let n = self.dim();
+        if n > MULTIVECTOR_MAX_DIM {
+            return Err(AlgebraError::DimensionTooLarge {
+                what: "rotor",
+                dim: n,
+                max: MULTIVECTOR_MAX_DIM,
+            });
+        }
+        check_finite(self.as_slice(), "bivector")?;
+        let norm = self.norm();
+        if !(norm <= f64::MAX / 2.0) {
+            return Err(AlgebraError::AngleTooLarge { norm });
+        }
+        Ok(self.exp())
     }
 }
 

@@ -6,7 +6,7 @@
 //! and from rotation matrices and the projection back onto Spin(N).
 
 mod convert;
-pub use convert::ROTATION_TOLERANCE;
+pub use convert::{NORMALIZE_TOLERANCE, ROTATION_TOLERANCE};
 mod exp_log;
 
 use super::bivector::pairs;
@@ -17,6 +17,10 @@ use super::{AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Signature, Vector};
 use smallvec::SmallVec;
 
 /// Inline storage for rotors: the 2^(N−1) = 16 even coefficients of N ≤ 5 stay off the heap.
+/// Default tolerance of [`Rotor::from_multivector`]: how far from even, unit and
+/// vector-preserving a multivector may be and still be accepted as a rotor.
+pub const ROTOR_TOLERANCE: f64 = 1e-10;
+
 pub(crate) type RotorStorage = SmallVec<[f64; 16]>;
 
 /// A rotor of Euclidean ℝᴺ: an even, unit element R of the Clifford algebra with
@@ -113,16 +117,28 @@ impl Rotor {
     /// Returns the identity rotor 1 of ℝⁿ.
     ///
     /// # Panics
-    /// If `n > MULTIVECTOR_MAX_DIM` (rotors store 2^(N−1) coefficients).
+    /// If `n > MULTIVECTOR_MAX_DIM` (rotors store 2^(N−1) coefficients; see
+    /// [`Rotor::try_identity`]).
     #[track_caller]
     pub fn identity(n: usize) -> Self {
-        assert!(
-            n <= MULTIVECTOR_MAX_DIM,
-            "rotorflow: rotors are stored densely up to N = {MULTIVECTOR_MAX_DIM}, got {n}"
-        );
+        Self::try_identity(n).unwrap_or_else(|e| panic!("rotorflow: {e}"))
+    }
+
+    /// Returns the identity rotor 1 of ℝⁿ, or an error if `n` is too large.
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionTooLarge`] if `n > MULTIVECTOR_MAX_DIM`.
+    pub fn try_identity(n: usize) -> Result<Self, AlgebraError> {
+        if n > MULTIVECTOR_MAX_DIM {
+            return Err(AlgebraError::DimensionTooLarge {
+                what: "rotor",
+                dim: n,
+                max: MULTIVECTOR_MAX_DIM,
+            });
+        }
         let mut coeffs = SmallVec::from_elem(0.0, even_len(n));
         coeffs[0] = 1.0;
-        Rotor { dim: n, coeffs }
+        Ok(Rotor { dim: n, coeffs })
     }
 
     /// Returns the rotor that turns by `angle` radians in the plane eᵢ∧eⱼ, from eᵢ toward eⱼ
@@ -206,23 +222,33 @@ impl Rotor {
     }
 
     /// Returns the rotor held by a multivector, checking that it is one: Euclidean signature,
-    /// even, R R̃ = 1 and R x R̃ a vector for every basis vector x, each to within `1e-10`
-    /// relative.
+    /// even, R R̃ = 1 and R x R̃ a vector for every basis vector x, each to within
+    /// [`ROTOR_TOLERANCE`] (the odd part relative to the largest coefficient);
+    /// [`Rotor::from_multivector_eps`] chooses the tolerance.
     ///
     /// # Errors
     /// [`AlgebraError::UnsupportedSignature`], [`AlgebraError::NotARotor`],
     /// [`AlgebraError::NonFinite`].
     pub fn from_multivector(m: &Multivector) -> Result<Self, AlgebraError> {
+        Self::from_multivector_eps(m, ROTOR_TOLERANCE)
+    }
+
+    /// Like [`Rotor::from_multivector`] with an explicit tolerance on each of its three
+    /// checks.
+    ///
+    /// # Errors
+    /// As [`Rotor::from_multivector`].
+    pub fn from_multivector_eps(m: &Multivector, tolerance: f64) -> Result<Self, AlgebraError> {
         if !m.signature().is_euclidean() {
             return Err(AlgebraError::UnsupportedSignature {
                 operation: "Rotor::from_multivector",
                 signature: m.signature(),
             });
         }
-        check_finite(m.coefficients(), "multivector coefficients")?;
+        check_finite(m.as_slice(), "multivector coefficients")?;
         let scale = m.max_abs().max(1.0);
         let odd = m.odd().max_abs();
-        if odd > 1e-10 * scale {
+        if !(odd <= tolerance * scale) {
             return Err(AlgebraError::NotARotor {
                 reason: "it has odd-grade parts",
                 deviation: odd,
@@ -230,7 +256,7 @@ impl Rotor {
         }
         let r = Rotor::from_multivector_unchecked(m);
         let unit = r.unit_error();
-        if unit > 1e-10 {
+        if !(unit <= tolerance) {
             return Err(AlgebraError::NotARotor {
                 reason: "R R̃ ≠ 1",
                 deviation: unit,
@@ -245,7 +271,7 @@ impl Rotor {
                 .terms()
                 .filter(|(b, _)| blade::grade(*b) != 1)
                 .fold(0.0f64, |s, (_, c)| s.max(c.abs()));
-            if non_vector > 1e-10 {
+            if !(non_vector <= tolerance) {
                 return Err(AlgebraError::NotARotor {
                     reason: "R x R̃ is not a vector",
                     deviation: non_vector,
@@ -328,7 +354,7 @@ impl Rotor {
     #[track_caller]
     pub fn rotate_vector(&self, x: &Vector) -> Vector {
         assert_same_dim(self.dim, x.dim());
-        let mut out = Vector::zeros(self.dim);
+        let mut out = Vector::zero(self.dim);
         self.sandwich_vector_into(x.as_slice(), out.as_mut_slice());
         out
     }
@@ -452,8 +478,14 @@ impl Rotor {
 
     /// Returns the 2^(N−1) even coefficients in storage order (crate-internal layout: position
     /// `i` holds the even blade whose low N−1 bits are `i`).
-    pub fn raw_coefficients(&self) -> &[f64] {
+    pub fn as_slice(&self) -> &[f64] {
         &self.coeffs
+    }
+
+    /// Returns the 2^(N−1) even coefficients in storage order.
+    #[deprecated(note = "use Rotor::as_slice (the same name on every type)")]
+    pub fn raw_coefficients(&self) -> &[f64] {
+        self.as_slice()
     }
 
     /// Multiplies by a scalar (crate-internal: used by normalisation and sign flips).

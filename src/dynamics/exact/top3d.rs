@@ -397,7 +397,7 @@ impl AsymmetricTop {
                 (r, from_classical(ell))
             }
         };
-        if r.raw_coefficients().iter().all(|c| c.is_finite()) {
+        if r.as_slice().iter().all(|c| c.is_finite()) {
             Ok((r, finite(l, t)?))
         } else {
             Err(ExactError::NonFinite {
@@ -951,7 +951,7 @@ fn rotor3(c: [f64; 4]) -> Rotor {
 fn rotor_from_parts(scalar: f64, b: &Bivector) -> Result<Rotor, ExactError> {
     let n = b.dim();
     let mut m = Multivector::try_zero(Signature::euclidean(n))?;
-    let c = m.coefficients_mut();
+    let c = m.as_mut_slice();
     c[0] = scalar;
     for (k, (i, j)) in pairs(n).enumerate() {
         c[(1usize << i) | (1usize << j)] = b.as_slice()[k];
