@@ -183,6 +183,17 @@ pub enum AlgebraError {
         /// The norm |B| (may be infinite).
         norm: f64,
     },
+    /// A text does not name a basis blade.
+    ///
+    /// How to fix: write `1` for the scalar and `e` with 1-based indices for the others:
+    /// `e13`, `e1e3` or `e₁₃` (from dimension 10 on, `e1_10`).
+    #[error("invalid blade name {name:?}: {reason}")]
+    InvalidBladeName {
+        /// The text that was given.
+        name: String,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
     /// A zero (or numerically zero) element where a direction was needed.
     ///
     /// How to fix: give a non-zero element.

@@ -17,7 +17,9 @@
 //! available through [`Multivector`].
 //!
 //! # Conventions (DESIGN.md, part 1)
-//! - Basis blades are bit masks (see [`blade`]); bivector components are stored in
+//! - A basis blade is a bit mask: bit i set ⇔ e_{i+1} is a factor (e₁ = 0b1, e₁₃ = 0b101);
+//!   [`Multivector::basis_blade`] builds one by mask, [`Multivector::blade_by_name`] by
+//!   name (`e13`, `e1e3`, `e₁₃`). Bivector components are stored in
 //!   lexicographic order 12, 13, …, 1N, 23, …; indices in the API are 0-based, text is
 //!   1-based (`e12` is e₁∧e₂).
 //! - \[B\] is the skew matrix with \[B\]_ij = B_ij. The velocity of body point x under angular
@@ -56,7 +58,7 @@
 
 mod approx_impls;
 mod bivector;
-pub mod blade;
+pub(crate) mod blade;
 pub mod decompose;
 mod display;
 mod error;

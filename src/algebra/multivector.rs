@@ -128,17 +128,62 @@ impl Multivector {
     /// Returns the basis blade with bit mask `blade` (bit i set ⇔ e_{i+1} is a factor).
     ///
     /// # Panics
-    /// If the mask has bits at or above `sig.dim()`.
+    /// If the mask has bits at or above `sig.dim()` (see [`Multivector::try_basis_blade`]).
     #[track_caller]
     pub fn basis_blade(sig: Signature, blade: u64) -> Self {
-        let mut m = Self::zero(sig);
-        assert!(
-            (blade as usize) < m.coeffs.len(),
-            "rotorflow: blade mask {blade:#b} out of range for dimension {}",
-            sig.dim()
-        );
+        Self::try_basis_blade(sig, blade).unwrap_or_else(|_| {
+            panic!(
+                "rotorflow: blade mask {blade:#b} out of range for dimension {}",
+                sig.dim()
+            )
+        })
+    }
+
+    /// Returns the basis blade with bit mask `blade`, or an error if the mask is out of range.
+    ///
+    /// # Errors
+    /// [`AlgebraError::IndexOutOfRange`] if the mask has bits at or above `sig.dim()`;
+    /// [`AlgebraError::DimensionTooLarge`] if the algebra is too large.
+    pub fn try_basis_blade(sig: Signature, blade: u64) -> Result<Self, AlgebraError> {
+        let mut m = Self::try_zero(sig)?;
+        if blade as usize >= m.coeffs.len() {
+            return Err(AlgebraError::IndexOutOfRange {
+                index: 63 - blade.leading_zeros() as usize,
+                dim: sig.dim(),
+            });
+        }
         m.coeffs[blade as usize] = 1.0;
-        m
+        Ok(m)
+    }
+
+    /// Returns `coefficient` times the basis blade named `name`: `1` for the scalar, `e13`,
+    /// `e1e3` or `e₁₃` for e₁∧e₃ (1-based, as [`Display`](std::fmt::Display) writes blades;
+    /// from dimension 10 on, `e1_10`). Indices in another order give the reordered blade's
+    /// sign: `e31` is −e₁₃.
+    ///
+    /// ```
+    /// use rotorflow::algebra::{Multivector, Signature};
+    /// let sig = Signature::euclidean(3);
+    /// let b = Multivector::blade_by_name(sig, "e13", 0.5)?;
+    /// assert_eq!(b, Multivector::basis_blade(sig, 0b101) * 0.5);
+    /// assert_eq!(Multivector::blade_by_name(sig, "e₃₁", 1.0)?.coefficient(0b101), -1.0);
+    /// assert!(Multivector::blade_by_name(sig, "e14", 1.0).is_err()); // no e₄ in ℝ³
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`AlgebraError::InvalidBladeName`] for a malformed name or an index out of range;
+    /// [`AlgebraError::NonFinite`]; [`AlgebraError::DimensionTooLarge`].
+    pub fn blade_by_name(
+        sig: Signature,
+        name: &str,
+        coefficient: f64,
+    ) -> Result<Self, AlgebraError> {
+        let (sign, mask) = blade::parse_name(name, sig.dim())?;
+        check_finite(&[coefficient], "blade coefficient")?;
+        let mut m = Self::try_zero(sig)?;
+        m.coeffs[mask as usize] = sign * coefficient;
+        Ok(m)
     }
 
     /// Builds a multivector from its 2^N coefficients, indexed by blade bit mask.

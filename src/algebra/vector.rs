@@ -61,7 +61,7 @@ impl Vector {
     /// Returns the basis vector e_{i+1} of ℝⁿ (`i` is 0-based).
     ///
     /// # Panics
-    /// If `i ≥ n` or `n > MAX_DIM`.
+    /// If `i ≥ n` or `n > MAX_DIM` (see [`Vector::try_basis`]).
     #[track_caller]
     pub fn basis(n: usize, i: usize) -> Self {
         assert!(
@@ -71,6 +71,20 @@ impl Vector {
         let mut v = Self::zero(n);
         v.coords[i] = 1.0;
         v
+    }
+
+    /// Returns the basis vector e_{i+1} of ℝⁿ, or an error for a bad index or dimension.
+    ///
+    /// # Errors
+    /// [`AlgebraError::IndexOutOfRange`] if `i ≥ n`; [`AlgebraError::DimensionTooLarge`] if
+    /// `n > MAX_DIM`.
+    pub fn try_basis(n: usize, i: usize) -> Result<Self, AlgebraError> {
+        let mut v = Self::try_zero(n)?;
+        if i >= n {
+            return Err(AlgebraError::IndexOutOfRange { index: i, dim: n });
+        }
+        v.coords[i] = 1.0;
+        Ok(v)
     }
 
     /// Builds a vector from its components x₁ … x_N.
