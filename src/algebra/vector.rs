@@ -16,7 +16,7 @@ pub(crate) type VecStorage = SmallVec<[f64; 8]>;
 /// let x = Vector::from_components(&[1.0, 2.0, 2.0])?;
 /// assert_eq!(x.norm(), 3.0);
 /// let plane = Vector::basis(3, 0).wedge(&Vector::basis(3, 1)); // e₁ ∧ e₂
-/// assert_eq!(plane.to_string(), "1e12");
+/// assert_eq!(plane.to_string(), "1·e12");
 /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
 /// ```
 #[derive(Clone, Debug, PartialEq)]

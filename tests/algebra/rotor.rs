@@ -289,6 +289,70 @@ fn from_multivector_checks_membership() {
 #[test]
 fn display_of_rotors() {
     let r = Rotor::from_plane_angle(3, 0, 1, 2.0 * 0.6435011087932844).unwrap();
-    assert_eq!(format!("{r:.1}"), "0.8 - 0.6e12");
+    assert_eq!(format!("{r:.1}"), "0.8 - 0.6·e12");
     assert_eq!(Rotor::identity(4).to_string(), "1");
+}
+
+/// try_normalize projects drift (the same result as normalize) and refuses what is far from
+/// Spin(N), reporting the measured distance max |R R̃ − 1|.
+#[test]
+fn try_normalize_projects_drift_and_refuses_far_input() {
+    let mut r = rng(41);
+    for n in 2..=7 {
+        let rot = random_rotor(&mut r, n);
+        let mut m = rot.to_multivector();
+        m.as_mut_slice()[0] += 1e-9;
+        let drifted = Rotor::from_multivector_unchecked(&m);
+        assert_eq!(drifted.try_normalize().unwrap(), drifted.normalize());
+        // Twice a rotor: R R̃ = 4, distance 3.
+        let far = Rotor::from_multivector_unchecked(&(rot.to_multivector() * 2.0));
+        match far.try_normalize() {
+            Err(AlgebraError::FarFromGroup {
+                distance,
+                tolerance,
+            }) => {
+                assert_close!(distance, 3.0, 1e-13);
+                assert_eq!(tolerance, rotorflow::algebra::NORMALIZE_TOLERANCE);
+            }
+            other => panic!("N = {n}: {other:?}"),
+        }
+        // The tolerance is the caller's to choose, and the message names the distance.
+        assert!(far.try_normalize_eps(3.5).is_ok());
+        let text = far.try_normalize().unwrap_err().to_string();
+        assert!(text.contains("= 3") && text.contains("1e-6"), "{text}");
+        let zero = Rotor::from_multivector_unchecked(&(rot.to_multivector() * 0.0));
+        assert!(matches!(
+            zero.try_normalize(),
+            Err(AlgebraError::FarFromGroup { distance, .. }) if distance == 1.0
+        ));
+        let nan = Rotor::from_multivector_unchecked(&(rot.to_multivector() * f64::NAN));
+        assert!(matches!(
+            nan.try_normalize(),
+            Err(AlgebraError::FarFromGroup { distance, .. }) if distance.is_nan()
+        ));
+    }
+}
+
+#[test]
+fn try_identity_and_from_multivector_eps() {
+    assert_eq!(Rotor::try_identity(4).unwrap(), Rotor::identity(4));
+    assert!(matches!(
+        Rotor::try_identity(17),
+        Err(AlgebraError::DimensionTooLarge {
+            dim: 17,
+            max: 16,
+            ..
+        })
+    ));
+    // A rotor 1e-8 off the group: refused at the default tolerance, accepted at a looser one.
+    let rot = Rotor::from_plane_angle(4, 0, 2, 0.7).unwrap();
+    let mut m = rot.to_multivector();
+    m.as_mut_slice()[0] += 1e-8;
+    assert!(matches!(
+        Rotor::from_multivector(&m),
+        Err(AlgebraError::NotARotor { .. })
+    ));
+    let loose = Rotor::from_multivector_eps(&m, 1e-6).unwrap();
+    assert_eq!(loose, Rotor::from_multivector_unchecked(&m));
+    assert!(Rotor::from_multivector_eps(&m, 1e-9).is_err());
 }

@@ -3,7 +3,7 @@
 use super::{Rotor, even_index, get_4d, multiply_by_simple, set_4d};
 use crate::algebra::bivector::pairs;
 use crate::algebra::decompose::{RawPlane, decompose_components, self_dual_join, self_dual_split};
-use crate::algebra::error::check_finite;
+use crate::algebra::error::{assert_same_dim, check_finite};
 use crate::algebra::{AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Vector};
 use nalgebra::DMatrix;
 use smallvec::SmallVec;
@@ -249,14 +249,55 @@ impl Rotor {
         out
     }
 
-    /// Returns the rotor a fraction `t` of the way from `self` to `other` along the geodesic
-    /// of Spin(N): self · exp(t · log(self⁻¹ · other)). `t = 0` gives `self`, `t = 1` gives
-    /// `other`.
+    /// Returns the rotation a fraction `t` of the way from `self` to `other` along the
+    /// shorter arc: R and −R are the same rotation, so `other` is first given the sign that
+    /// makes ⟨R̃₁R₂⟩₀ ≥ 0, and then the path is [`Rotor::slerp_spinor`]. Every rotation angle
+    /// of the path's generator is then at most π, and `slerp(a, b, t)` and `slerp(a, −b, t)`
+    /// are the same rotor. `t = 0` gives `self`; `t = 1` gives `other` or `−other` (the same
+    /// rotation).
+    ///
+    /// ```
+    /// use rotorflow::algebra::{Bivector, Rotor};
+    /// let a = Rotor::identity(3);
+    /// let b = Bivector::from_plane(3, 0, 1, 0.4)?.exp(); // turns by −0.8 in e12
+    /// let minus_b = Rotor::from_multivector_unchecked(&(b.to_multivector() * -1.0));
+    /// let (m1, m2) = (a.slerp(&b, 0.5), a.slerp(&minus_b, 0.5));
+    /// assert!((m1.to_matrix() - m2.to_matrix()).amax() < 1e-15);
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
     ///
     /// # Panics
     /// If the dimensions differ.
     #[track_caller]
     pub fn slerp(&self, other: &Rotor, t: f64) -> Rotor {
+        assert_same_dim(self.dim, other.dim);
+        // ⟨R̃₁R₂⟩₀ is the plain dot product of the coefficients in a Euclidean signature.
+        let d: f64 = self
+            .coeffs
+            .iter()
+            .zip(&other.coeffs)
+            .map(|(a, b)| a * b)
+            .sum();
+        if d < 0.0 {
+            self.slerp_spinor(&other.clone().scaled(-1.0), t)
+        } else {
+            self.slerp_spinor(other, t)
+        }
+    }
+
+    /// Returns the rotor a fraction `t` of the way from `self` to `other` along the geodesic
+    /// of Spin(N): self · exp(t · log(self⁻¹ · other)). `t = 0` gives `self`, `t = 1` gives
+    /// `other` exactly as given.
+    ///
+    /// This interpolates spinors, not rotations: from R₁ to −R₁ (the same rotation) it turns
+    /// by 2π, and from R₁ to −R₂ it takes the longer arc of the rotation. Use it where the
+    /// sign of the rotor matters (spinor transport); [`Rotor::slerp`] is the rotation
+    /// interpolation.
+    ///
+    /// # Panics
+    /// If the dimensions differ.
+    #[track_caller]
+    pub fn slerp_spinor(&self, other: &Rotor, t: f64) -> Rotor {
         let delta = self.reverse().compose(other);
         self.compose(&(delta.log() * t).exp())
     }

@@ -43,9 +43,9 @@ pub(crate) type RotorStorage = SmallVec<[f64; 16]>;
 ///   [`Rotor::rotate_bivector`], [`Rotor::rotate_multivector`],
 ///   [`Rotor::rotate_in_plane_mut`].
 /// - Logarithm and interpolation: [`Rotor::log`], [`Rotor::rotation_bivector`],
-///   [`Rotor::slerp`].
+///   [`Rotor::slerp`] (the shorter arc of the rotation), [`Rotor::slerp_spinor`].
 /// - Matrices: [`Rotor::to_matrix`].
-/// - Drift: [`Rotor::unit_error`], [`Rotor::normalize`].
+/// - Drift: [`Rotor::unit_error`], [`Rotor::normalize`], [`Rotor::try_normalize`].
 ///
 /// ```
 /// use rotorflow::algebra::{Rotor, Vector};
