@@ -1,5 +1,5 @@
 //! Criterion benches of the algebra kernels, each beside nalgebra doing the same job in the
-//! same group (issue #2): exp vs the matrix exponential of the skew matrix, the bivector
+//! same group: exp vs the matrix exponential of the skew matrix, the bivector
 //! commutator vs A·B − B·A on skew matrices, the sandwich vs matrix × vector, composition vs
 //! matrix × matrix. Run `cargo bench --bench algebra`; `BENCH_QUICK=1` shortens the run.
 

@@ -16,7 +16,8 @@
 //! infallible. Any signature Cl(p, q, r), projective and conformal algebras included, is
 //! available through [`Multivector`].
 //!
-//! # Conventions (DESIGN.md, part 1)
+//! # Conventions
+//! The Conventions chapter of the rotorflow book states them in full; in short:
 //! - A basis blade is a bit mask: bit i set ⇔ e_{i+1} is a factor (e₁ = 0b1, e₁₃ = 0b101);
 //!   [`Multivector::basis_blade`] builds one by mask, [`Multivector::blade_by_name`] by
 //!   name (`e13`, `e1e3`, `e₁₃`). Bivector components are stored in

@@ -4,8 +4,7 @@
 //!
 //! Serialisation writes each component's shortest round-trip decimal. To read it back bit
 //! for bit with `serde_json`, enable that crate's `float_roundtrip` feature (rotorflow's own
-//! `cli` feature does): its default float parser can be one ulp off for long literals
-//! (found by the `json_algebra` fuzz target; see `fuzz/README.md`).
+//! `cli` feature does): its default float parser can be one ulp off for long literals.
 
 use super::{AlgebraError, Bivector, Multivector, Rotor, Signature, Vector};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};

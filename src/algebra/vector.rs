@@ -198,7 +198,7 @@ impl Vector {
             }
         }
         if c.iter().any(|c| c.is_nan()) {
-            // ∞ − ∞ from an overflowing product (found by the json_algebra fuzz target):
+            // ∞ − ∞ from an overflowing product of finite components:
             // scale both factors into [−1, 1], then scale the (finite) result back.
             let (sx, sy) = (self.max_abs(), other.max_abs());
             if sx.is_finite() && sy.is_finite() && sx > 0.0 && sy > 0.0 {
@@ -215,7 +215,7 @@ impl Vector {
     /// (x⌋B)ⱼ = Σᵢ xᵢ B_ij, i.e. \[B\]ᵀ x.
     ///
     /// This is how a bivector acts on a vector: with ω the angular velocity, x ⌋ ω is the
-    /// velocity of the body point x (DESIGN.md, "Angular velocity"), and e₁ ⌋ e₁₂ = e₂.
+    /// velocity of the body point x (see the Conventions chapter of the rotorflow book), and e₁ ⌋ e₁₂ = e₂.
     ///
     /// # Panics
     /// If the dimensions differ.

@@ -27,7 +27,7 @@ fn commutator_matches_multivector_product_for_n_2_to_10() {
 
 #[test]
 fn commutator_in_3d_is_the_cross_product_of_dual_vectors() {
-    // e12 ↔ e3, e13 ↔ −e2, e23 ↔ e1 (DESIGN.md: Ω = (ω23, −ω13, ω12)).
+    // e12 ↔ e3, e13 ↔ −e2, e23 ↔ e1 (Conventions chapter: Ω = (ω23, −ω13, ω12)).
     let to_omega = |b: &Bivector| [b.get(1, 2), -b.get(0, 2), b.get(0, 1)];
     let a = Bivector::from_components(3, &[0.3, -1.2, 0.7]).unwrap();
     let b = Bivector::from_components(3, &[2.0, 0.5, -0.1]).unwrap();
@@ -46,7 +46,7 @@ fn commutator_in_3d_is_the_cross_product_of_dual_vectors() {
 
 #[test]
 fn contraction_gives_point_velocity() {
-    // DESIGN.md: v = x ⌋ ω = [ω]ᵀ x; ω = e12 turns e1 toward e2.
+    // Conventions chapter: v = x ⌋ ω = [ω]ᵀ x; ω = e12 turns e1 toward e2.
     let w = Bivector::from_plane(3, 0, 1, 1.0).unwrap();
     let v = Vector::basis(3, 0).left_contract(&w);
     assert_eq!(v.as_slice(), &[0.0, 1.0, 0.0]);

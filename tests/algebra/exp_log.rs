@@ -1,5 +1,5 @@
 //! Closed-form exp and log: agreement with nalgebra's matrix exponential, round trips on
-//! every hard family, angles near π, with the error bounds of the issue asserted.
+//! every hard family, angles near π, with their error bounds asserted.
 
 use crate::support::*;
 use rotorflow::prelude::*;
@@ -66,7 +66,7 @@ fn round_trip_isoclinic_and_near_isoclinic() {
             check_round_trip(&bivector_with_planes(&mut r, n, &[1.4 + gap, 1.4]), 1e-13);
         }
     }
-    // the issue's example, 0.7(e12 + e34), in 4D exactly
+    // the isoclinic example 0.7(e12 + e34), in 4D exactly
     let b = Bivector::from_components(4, &[0.7, 0.0, 0.0, 0.0, 0.0, 0.7]).unwrap();
     check_round_trip(&b, 1e-15);
 }

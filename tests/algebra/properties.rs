@@ -1,5 +1,5 @@
 //! Property tests (proptest) over random dimensions N = 2 … 10 and random elements: the
-//! algebraic identities of the issue.
+//! algebraic identities the layer promises (products, involutions, exp and log, rotations).
 
 use crate::support::*;
 use proptest::prelude::*;

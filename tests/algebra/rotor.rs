@@ -9,7 +9,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 
 #[test]
 fn plane_angle_turns_first_vector_toward_second() {
-    // DESIGN.md: R = exp(−θ B̂/2) turns e_i toward e_j by θ.
+    // Conventions chapter: R = exp(−θ B̂/2) turns e_i toward e_j by θ.
     for n in 2..=8 {
         let r = Rotor::from_plane_angle(n, 0, 1, FRAC_PI_2).unwrap();
         let x = r.rotate_vector(&Vector::basis(n, 0));

@@ -140,7 +140,7 @@ impl Bivector {
     /// the spectral form expm(A) = V diag(cos θₖ) Vᵀ + A V diag(sin θₖ/θₖ) Vᵀ from the
     /// eigen-decomposition −A² = V diag(θₖ²) Vᵀ, which stays orthogonal to ε at any angle
     /// (scaling and squaring would not). The rotation matrix of the rotor e^A is expm(2\[A\])
-    /// (DESIGN.md: exp(−θB̂/2) ↔ expm(\[θB̂\]ᵀ)).
+    /// (exp(−θB̂/2) ↔ expm(\[θB̂\]ᵀ); see the Conventions chapter of the rotorflow book).
     ///
     /// Finite and orthogonal whenever |B| ≤ `f64::MAX`/2; beyond, a plane angle may overflow
     /// and the entries are then NaN (as for [`Bivector::exp`]).
@@ -160,8 +160,8 @@ impl Bivector {
         if norm1 == 0.0 {
             return DMatrix::identity(n, n);
         }
-        // ‖[B]‖₁ can overflow while every plane angle is representable (found by the
-        // exp_log_bits fuzz target): the plane-by-plane form scales, so it takes that case too.
+        // ‖[B]‖₁ can overflow while every plane angle is representable: the plane-by-plane
+        // form scales, so it takes that case too.
         if !norm1.is_finite() || norm1 > crate::numeric::PADE_MAX_NORM {
             return self.exp_skew_matrix_by_planes();
         }
@@ -193,7 +193,8 @@ impl Bivector {
 
 impl Rotor {
     /// Returns exp(−Θ/2): the rotor that turns by θₖ in each plane of the rotation bivector
-    /// Θ = Σ θₖ Pₖ (DESIGN.md's attitude convention; for Θ = θ e₁₂ it turns e₁ toward e₂).
+    /// Θ = Σ θₖ Pₖ (the attitude convention of the rotorflow book's Conventions chapter; for Θ = θ e₁₂
+    /// it turns e₁ toward e₂).
     ///
     /// Over a step h with constant body angular velocity ω, the attitude advances as
     /// R ← R · `Rotor::from_rotation_bivector(&(ω * h))`.
