@@ -170,6 +170,20 @@ mod tests {
         }
     }
 
+    /// The sorted form: ascending values, columns that are their eigenvectors, and S rebuilt.
+    #[test]
+    fn sorted_symmetric_eigen_orders_values_and_vectors_together() {
+        let s = DMatrix::from_row_slice(3, 3, &[3.0, 1.0, 0.0, 1.0, 2.0, 0.5, 0.0, 0.5, -1.0]);
+        let (values, vectors) = sorted_symmetric_eigen(&s);
+        assert!(values[0] <= values[1] && values[1] <= values[2]);
+        for k in 0..3 {
+            let v = vectors.column(k);
+            assert!((&s * v - v * values[k]).amax() < 1e-14, "column {k}");
+        }
+        let back = &vectors * DMatrix::from_diagonal(&values) * vectors.transpose();
+        assert!((back - &s).amax() < 1e-14);
+    }
+
     /// Jacobi on a random symmetric matrix matches nalgebra's eigenvalues.
     #[test]
     fn jacobi_matches_nalgebra() {
