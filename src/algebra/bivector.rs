@@ -1,6 +1,6 @@
 //! Bivectors of Euclidean ℝᴺ: planes, angular velocities and momenta.
 
-use super::error::{assert_same_dim, check_finite, check_same_dim};
+use super::error::{assert_same_dim, check_finite, check_same_dim, within};
 use super::{AlgebraError, MAX_DIM};
 use crate::numeric::scaled_norm;
 use nalgebra::DMatrix;
@@ -260,7 +260,7 @@ impl Bivector {
             }
         }
         let tolerance = relative_tolerance * scale;
-        if !(deviation <= tolerance) {
+        if !within(deviation, tolerance) {
             return Err(AlgebraError::NotSkewSymmetric {
                 deviation,
                 tolerance,

@@ -215,6 +215,12 @@ pub enum AlgebraError {
     },
 }
 
+/// value ≤ tolerance, and false when either is NaN: a NaN measure or tolerance never passes.
+#[inline]
+pub(crate) fn within(value: f64, tolerance: f64) -> bool {
+    value <= tolerance
+}
+
 /// Checks that every number in `values` is finite.
 pub(crate) fn check_finite(values: &[f64], what: &'static str) -> Result<(), AlgebraError> {
     if values.iter().all(|x| x.is_finite()) {

@@ -132,11 +132,8 @@ pub fn plane_names(n: usize) -> Vec<String> {
 /// Returns the 1-based name of the plane (i, j) (0-based) in dimension `n`: "12", or "1_10"
 /// when N ≥ 10.
 pub fn plane_name(n: usize, i: usize, j: usize) -> String {
-    if n < 10 {
-        format!("{}{}", i + 1, j + 1)
-    } else {
-        format!("{}_{}", i + 1, j + 1)
-    }
+    // The blade name without its `e`: one naming rule for text, tables and `Display`.
+    crate::algebra::blade::name((1 << i) | (1 << j), n)[1..].to_string()
 }
 
 /// A progress bar on standard error that appears only when the run has taken longer than a

@@ -355,7 +355,7 @@ fn check_nonnegative(name: &'static str, value: f64) -> Result<(), EllipticError
 /// homogeneous of degree −1/2.
 ///
 /// Accuracy: relative error ≤ 5.0e-16 (2.2 ulp) against 30-digit mpmath
-/// values (352 argument triples from 0 to 1e15, `tests/mpmath_reference.rs`).
+/// values (352 argument triples from 0 to 1e15, `tests/special/mpmath_reference.rs`).
 ///
 /// Source: Carlson (1995) §2 algorithm with the degree-7 series of DLMF 19.36.1.
 ///

@@ -3,6 +3,7 @@
 use super::{Rotor, even_index, get_4d, multiply_by_simple, set_4d};
 use crate::algebra::bivector::{bivector_len, pairs};
 use crate::algebra::decompose::{RawPlane, decompose_components};
+use crate::algebra::error::within;
 use crate::algebra::{AlgebraError, MULTIVECTOR_MAX_DIM};
 use crate::numeric::orthogonality_error;
 use nalgebra::{DMatrix, DVector};
@@ -227,7 +228,7 @@ impl Rotor {
         } else {
             f64::NAN
         };
-        if !(distance <= tolerance) {
+        if !within(distance, tolerance) {
             return Err(AlgebraError::FarFromGroup {
                 distance,
                 tolerance,

@@ -3,7 +3,7 @@
 use super::{Rotor, even_index, get_4d, multiply_by_simple, set_4d};
 use crate::algebra::bivector::pairs;
 use crate::algebra::decompose::{RawPlane, decompose_components, self_dual_join, self_dual_split};
-use crate::algebra::error::{assert_same_dim, check_finite};
+use crate::algebra::error::{assert_same_dim, check_finite, within};
 use crate::algebra::{AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Vector};
 use nalgebra::DMatrix;
 use smallvec::SmallVec;
@@ -98,7 +98,7 @@ impl Bivector {
         }
         check_finite(self.as_slice(), "bivector")?;
         let norm = self.norm();
-        if !(norm <= f64::MAX / 2.0) {
+        if !within(norm, f64::MAX / 2.0) {
             return Err(AlgebraError::AngleTooLarge { norm });
         }
         Ok(self.exp())

@@ -11,7 +11,7 @@ mod exp_log;
 
 use super::bivector::pairs;
 use super::blade;
-use super::error::{assert_same_dim, check_finite, check_same_dim};
+use super::error::{assert_same_dim, check_finite, check_same_dim, within};
 use super::multivector::{Multivector, MvStorage};
 use super::{AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Signature, Vector};
 use smallvec::SmallVec;
@@ -248,7 +248,7 @@ impl Rotor {
         check_finite(m.as_slice(), "multivector coefficients")?;
         let scale = m.max_abs().max(1.0);
         let odd = m.odd().max_abs();
-        if !(odd <= tolerance * scale) {
+        if !within(odd, tolerance * scale) {
             return Err(AlgebraError::NotARotor {
                 reason: "it has odd-grade parts",
                 deviation: odd,
@@ -256,7 +256,7 @@ impl Rotor {
         }
         let r = Rotor::from_multivector_unchecked(m);
         let unit = r.unit_error();
-        if !(unit <= tolerance) {
+        if !within(unit, tolerance) {
             return Err(AlgebraError::NotARotor {
                 reason: "R R̃ ≠ 1",
                 deviation: unit,
@@ -271,7 +271,7 @@ impl Rotor {
                 .terms()
                 .filter(|(b, _)| blade::grade(*b) != 1)
                 .fold(0.0f64, |s, (_, c)| s.max(c.abs()));
-            if !(non_vector <= tolerance) {
+            if !within(non_vector, tolerance) {
                 return Err(AlgebraError::NotARotor {
                     reason: "R x R̃ is not a vector",
                     deviation: non_vector,
