@@ -15,9 +15,10 @@ pub(crate) type DenseScratch = SmallVec<[f64; 144]>;
 /// A bivector of Euclidean ℝᴺ: B = Σ_{i<j} B_ij eᵢ∧eⱼ, the algebra's object for oriented planes,
 /// angular velocities, angular momenta and torques.
 ///
-/// Components are stored in lexicographic order of the pairs (see the Conventions chapter of the rotorflow book): for N = 4,
-/// `[B12, B13, B14, B23, B24, B34]`. The skew matrix of B is \[B\] with \[B\]_ij = B_ij,
-/// \[B\]_ji = −B_ij. Indices in the API are 0-based (`get(0, 1)` is B₁₂); text is 1-based.
+/// Components are stored in lexicographic order of the pairs (see the Conventions chapter of
+/// the rotorflow book): for N = 4, `[B12, B13, B14, B23, B24, B34]`. The skew matrix of B is
+/// \[B\] with \[B\]_ij = B_ij, \[B\]_ji = −B_ij. Indices in the API are 0-based (`get(0, 1)`
+/// is B₁₂); text is 1-based.
 ///
 /// # Contents
 /// - Construction: [`Bivector::zero`], [`Bivector::from_components`],
@@ -273,8 +274,8 @@ impl Bivector {
         Ok(b)
     }
 
-    /// Returns ⟨A, B⟩ = Σ_{i<j} A_ij B_ij (the pairing of the rotorflow book's Conventions chapter; kinetic
-    /// energy is ½⟨ω, L⟩).
+    /// Returns ⟨A, B⟩ = Σ_{i<j} A_ij B_ij (the pairing of the rotorflow book's Conventions
+    /// chapter; kinetic energy is ½⟨ω, L⟩).
     ///
     /// Note ⟨A, B⟩ = −⟨A B⟩₀: the geometric scalar product of two bivectors has the opposite
     /// sign.

@@ -215,7 +215,8 @@ impl Vector {
     /// (x⌋B)ⱼ = Σᵢ xᵢ B_ij, i.e. \[B\]ᵀ x.
     ///
     /// This is how a bivector acts on a vector: with ω the angular velocity, x ⌋ ω is the
-    /// velocity of the body point x (see the Conventions chapter of the rotorflow book), and e₁ ⌋ e₁₂ = e₂.
+    /// velocity of the body point x (see the Conventions chapter of the rotorflow book), and
+    /// e₁ ⌋ e₁₂ = e₂.
     ///
     /// # Panics
     /// If the dimensions differ.

@@ -266,4 +266,10 @@ fn try_exp_refuses_overflowing_angles_non_finite_input_and_large_n() {
         Bivector::zero(17).try_exp(),
         Err(AlgebraError::DimensionTooLarge { dim: 17, .. })
     ));
+    let theta = random_bivector(&mut r, 5, 2.0);
+    assert_eq!(
+        Rotor::try_from_rotation_bivector(&theta).unwrap(),
+        Rotor::from_rotation_bivector(&theta)
+    );
+    assert!(Rotor::try_from_rotation_bivector(&Bivector::zero(17)).is_err());
 }

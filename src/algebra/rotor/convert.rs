@@ -20,7 +20,8 @@ pub const NORMALIZE_TOLERANCE: f64 = 1e-6;
 impl Rotor {
     /// Returns the N×N rotation matrix Q of R: column j is R eⱼ R̃, so Q x = R x R̃.
     ///
-    /// For R = exp(−θ B̂/2) this is expm(\[θB̂\]ᵀ) (see the Conventions chapter of the rotorflow book). Costs O(N²·2^N).
+    /// For R = exp(−θ B̂/2) this is expm(\[θB̂\]ᵀ) (see the Conventions chapter of the
+    /// rotorflow book). Costs O(N²·2^N).
     pub fn to_matrix(&self) -> DMatrix<f64> {
         let n = self.dim;
         let mut q = DMatrix::zeros(n, n);
@@ -295,8 +296,8 @@ fn check_matrix_shape(q: &DMatrix<f64>) -> Result<(), AlgebraError> {
 /// The orthogonal polar factor U Vᵀ, or None if the SVD fails or the matrix is singular.
 ///
 /// nalgebra's SVD can turn to NaN on finite entries of extreme range, and its ordered form
-/// then panics while sorting the singular values (entries from 1e-319 to 5e226 do it). So: the unordered SVD (U Vᵀ needs no order), NaN checked
-/// here; and, since the factor does not change when `m` is scaled, on m / max |m_ij| with
+/// then panics while sorting the singular values (entries from 1e-319 to 5e226 do it). So:
+/// the unordered SVD (U Vᵀ needs no order), NaN checked here; and, since the factor does not change when `m` is scaled, on m / max |m_ij| with
 /// entries below 1e-150 of the largest set to 0 (far below round-off), so that no square
 /// overflows or falls into the subnormal range.
 fn nearest_orthogonal(m: &DMatrix<f64>) -> Option<DMatrix<f64>> {

@@ -193,13 +193,25 @@ impl Bivector {
 
 impl Rotor {
     /// Returns exp(−Θ/2): the rotor that turns by θₖ in each plane of the rotation bivector
-    /// Θ = Σ θₖ Pₖ (the attitude convention of the rotorflow book's Conventions chapter; for Θ = θ e₁₂
-    /// it turns e₁ toward e₂).
+    /// Θ = Σ θₖ Pₖ (the attitude convention of the rotorflow book's Conventions chapter; for
+    /// Θ = θ e₁₂ it turns e₁ toward e₂).
     ///
     /// Over a step h with constant body angular velocity ω, the attitude advances as
     /// R ← R · `Rotor::from_rotation_bivector(&(ω * h))`.
+    ///
+    /// # Panics
+    /// If N > [`MULTIVECTOR_MAX_DIM`] (see [`Rotor::try_from_rotation_bivector`]).
+    #[track_caller]
     pub fn from_rotation_bivector(theta: &Bivector) -> Rotor {
         (theta * -0.5).exp()
+    }
+
+    /// [`Rotor::from_rotation_bivector`], or an error where [`Bivector::try_exp`] gives one.
+    ///
+    /// # Errors
+    /// As [`Bivector::try_exp`] for −Θ/2.
+    pub fn try_from_rotation_bivector(theta: &Bivector) -> Result<Rotor, AlgebraError> {
+        (theta * -0.5).try_exp()
     }
 
     /// Returns the rotation bivector Θ = −2 log R, so that

@@ -26,8 +26,9 @@ pub(crate) type RotorStorage = SmallVec<[f64; 16]>;
 /// A rotor of Euclidean ℝᴺ: an even, unit element R of the Clifford algebra with
 /// R R̃ = 1 and R x R̃ a vector for every vector x, i.e. an element of Spin(N).
 ///
-/// R maps body to space, x_space = R x R̃ (see the Conventions chapter of the rotorflow book). `R = exp(−θ B̂/2)` turns by θ in the
-/// plane B̂, from its first vector toward its second; its rotation matrix is expm(\[θB̂\]ᵀ).
+/// R maps body to space, x_space = R x R̃ (see the Conventions chapter of the rotorflow
+/// book). `R = exp(−θ B̂/2)` turns by θ in the plane B̂, from its first vector toward its
+/// second; its rotation matrix is expm(\[θB̂\]ᵀ).
 /// Rotors compose by the geometric product: `r2 * r1` applies `r1` first.
 ///
 /// The 2^(N−1) even coefficients are stored densely, so N ≤ [`MULTIVECTOR_MAX_DIM`].
