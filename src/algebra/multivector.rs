@@ -11,11 +11,11 @@ pub(crate) type MvStorage = SmallVec<[f64; 16]>;
 /// A general element of the Clifford algebra Cl(p, q, r): a linear combination of all 2^N basis
 /// blades.
 ///
-/// Coefficients are stored densely, indexed by the blade's bit mask (see [`super::blade`]), so
-/// N ≤ [`MULTIVECTOR_MAX_DIM`]. Products skip zero coefficients, so sparse multivectors (a
-/// vector, a bivector) multiply in time proportional to the number of non-zero pairs. Use the
-/// graded types [`super::Vector`], [`super::Bivector`] and [`super::Rotor`] when you know the
-/// grade: they are faster and go to higher N.
+/// Coefficients are stored densely, indexed by the blade's bit mask (bit i set ⇔ eᵢ₊₁ is a
+/// factor), so N ≤ [`MULTIVECTOR_MAX_DIM`]. Products skip zero coefficients, so sparse
+/// multivectors (a vector, a bivector) multiply in time proportional to the number of non-zero
+/// pairs. Use the graded types [`super::Vector`], [`super::Bivector`] and [`super::Rotor`]
+/// when you know the grade: they are faster and go to higher N.
 ///
 /// # Contents
 /// - Construction: [`Multivector::zero`], [`Multivector::scalar`], [`Multivector::basis_blade`],
@@ -118,11 +118,25 @@ impl Multivector {
     }
 
     /// Returns the scalar `s` as a multivector of algebra `sig`.
+    ///
+    /// # Panics
+    /// If `sig.dim()` exceeds [`MULTIVECTOR_MAX_DIM`] (see [`Multivector::try_scalar`]).
     #[track_caller]
     pub fn scalar(sig: Signature, s: f64) -> Self {
         let mut m = Self::zero(sig);
         m.coeffs[0] = s;
         m
+    }
+
+    /// Returns the scalar `s` as a multivector of algebra `sig`, or an error if the algebra
+    /// is too large.
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionTooLarge`].
+    pub fn try_scalar(sig: Signature, s: f64) -> Result<Self, AlgebraError> {
+        let mut m = Self::try_zero(sig)?;
+        m.coeffs[0] = s;
+        Ok(m)
     }
 
     /// Returns the basis blade with bit mask `blade` (bit i set ⇔ e_{i+1} is a factor).

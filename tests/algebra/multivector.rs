@@ -339,6 +339,11 @@ fn blades_by_name_match_blades_by_mask() {
         Err(AlgebraError::NonFinite { .. })
     ));
     assert!(Multivector::try_basis_blade(s, 0b10000).is_err());
+    assert_eq!(
+        Multivector::try_scalar(s, 2.0).unwrap(),
+        Multivector::scalar(s, 2.0)
+    );
+    assert!(Multivector::try_scalar(Signature::euclidean(17), 1.0).is_err());
 }
 
 /// Converting a multivector with other grades to a graded type names the problem.
