@@ -76,7 +76,7 @@ pub(crate) use bivector::commutator_packed;
 pub use bivector::{Bivector, SKEW_TOLERANCE, bivector_len, pair_index, pairs};
 pub use decompose::{Decomposition, SimplePlane};
 pub use error::AlgebraError;
-pub use multivector::{Multivector, Product};
+pub use multivector::{INVERSE_TOLERANCE, Multivector, Product};
 pub use rotor::{NORMALIZE_TOLERANCE, ROTATION_TOLERANCE, ROTOR_TOLERANCE, Rotor};
 pub(crate) use rotor::{accumulate_plane_rotor, plane_tables};
 pub use signature::Signature;

@@ -1,8 +1,13 @@
 //! General multivectors in any signature: one product kernel, many products.
 
-use super::error::{check_finite, check_same_dim};
+use super::error::{check_finite, check_same_dim, within};
 use super::{AlgebraError, MULTIVECTOR_MAX_DIM, Signature, blade};
 use smallvec::SmallVec;
+
+/// Default tolerance of [`Multivector::inverse`] on the residual max |A A⁻¹ − 1| when the
+/// inverse comes from solving the linear system: far above its round-off for well-conditioned
+/// elements, far below any inverse worth the name.
+pub const INVERSE_TOLERANCE: f64 = 1e-8;
 
 /// Inline storage for multivectors: 16 coefficients cover every multivector up to N = 4
 /// without touching the heap.
@@ -456,10 +461,22 @@ impl Multivector {
     /// 2^N × 2^N linear system of left multiplication, whose cost grows like 8^N (practical to
     /// N ≈ 10).
     ///
+    /// The linear system's answer is accepted when the residual max |A A⁻¹ − 1| is at most
+    /// [`INVERSE_TOLERANCE`]; [`Multivector::inverse_eps`] chooses the tolerance.
+    ///
     /// # Errors
     /// [`AlgebraError::NotInvertible`] if the element is singular (a null vector, a zero
     /// divisor such as 1 + e₁ in ℝ³, anything in a null direction of a degenerate metric).
     pub fn inverse(&self) -> Result<Self, AlgebraError> {
+        self.inverse_eps(INVERSE_TOLERANCE)
+    }
+
+    /// Like [`Multivector::inverse`] with an explicit tolerance on the residual
+    /// max |A A⁻¹ − 1| of the linear-system path.
+    ///
+    /// # Errors
+    /// As [`Multivector::inverse`].
+    pub fn inverse_eps(&self, tolerance: f64) -> Result<Self, AlgebraError> {
         let rev = self.reverse();
         let prod = self.geometric(&rev);
         let s = prod.scalar_part();
@@ -503,7 +520,7 @@ impl Multivector {
                 err = err.max(c.abs());
             }
         }
-        if !err.is_finite() || err > 1e-8 {
+        if !within(err, tolerance) {
             return Err(AlgebraError::NotInvertible {
                 reason: "left multiplication is singular",
             });

@@ -144,6 +144,14 @@ fn inverse_of_versors_and_general_elements() {
     let p = &g * &gi;
     assert_close!(p.scalar_part(), 1.0, 1e-14);
     assert!((p.clone() - Multivector::scalar(s, 1.0)).max_abs() < 1e-14);
+    // The residual check of the linear-system path takes its tolerance from the caller.
+    assert_eq!(
+        g.inverse_eps(rotorflow::algebra::INVERSE_TOLERANCE)
+            .unwrap(),
+        gi
+    );
+    assert!(g.inverse_eps(f64::NAN).is_err());
+    assert!(g.inverse_eps(-1.0).is_err());
     // zero divisor 1 + e1 (since (1+e1)(1−e1) = 0) has no inverse
     let z = Multivector::from_coefficients(s, &[1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]).unwrap();
     assert!(matches!(
