@@ -9,11 +9,14 @@
 //! - [`eigen`]: a symmetric eigen-decomposition that never returns NaN for finite input;
 //! - [`expm`]: the matrix exponential of skew matrices (scaling and squaring, Padé, Taylor);
 //! - [`trig`]: sin x and cos x − 1 without cancellation;
-//! - the small helpers below (scaled norms, max-abs norms, orthogonality error), each the
+//! - [`householder`]: the complement of two orthonormal vectors by Householder reflections;
+//! - the small helpers below (exact scaling by powers of two, scaled norms, max-abs norms,
+//!   orthogonality error), each the
 //!   one copy the crate uses.
 
 pub(crate) mod eigen;
 pub(crate) mod expm;
+pub(crate) mod householder;
 pub(crate) mod trig;
 
 pub(crate) use eigen::{RobustEigen, sorted_symmetric_eigen, symmetric_eigen};
@@ -21,9 +24,35 @@ pub(crate) use expm::{
     PADE_MAX_NORM, expm_skew, expm_skew_taylor, expm_skew_taylor_dense, expm_spectral, norm1,
     norm1_slice,
 };
+pub(crate) use householder::householder_complement;
 pub(crate) use trig::sin_cos_minus_one;
 
 use nalgebra::{DMatrix, DMatrixView};
+
+/// Multiplies by 2^e exactly (barring overflow/underflow of the result), also for |e| > 1023.
+pub(crate) fn ldexp(mut x: f64, mut e: i32) -> f64 {
+    while e > 1000 {
+        x *= 2f64.powi(1000);
+        e -= 1000;
+    }
+    while e < -1000 {
+        x *= 2f64.powi(-1000);
+        e += 1000;
+    }
+    x * 2f64.powi(e)
+}
+
+/// Returns e with 2^e ≤ s < 2^(e+1) for finite s > 0.
+pub(crate) fn exponent_of(s: f64) -> i32 {
+    let bits = s.to_bits();
+    let raw = ((bits >> 52) & 0x7ff) as i32;
+    if raw == 0 {
+        // Subnormal: normalise first.
+        exponent_of(s * 2f64.powi(64)) - 64
+    } else {
+        raw - 1023
+    }
+}
 
 /// Euclidean norm of a slice that neither overflows nor underflows (scaled by the largest
 /// magnitude first, as LAPACK's `dnrm2`).
@@ -79,6 +108,17 @@ mod tests {
         assert!(close(scaled_norm(&[1e308, 1e308]), 1e308 * 2f64.sqrt()));
         assert_eq!(scaled_norm(&[]), 0.0);
         assert_eq!(scaled_norm(&[f64::INFINITY, 1.0]), f64::INFINITY);
+    }
+
+    /// ldexp is exact across the whole exponent range, and exponent_of brackets its input.
+    #[test]
+    fn ldexp_and_exponent_of() {
+        assert_eq!(ldexp(1.5, 1500), 1.5 * 2f64.powi(1000) * 2f64.powi(500));
+        assert_eq!(ldexp(ldexp(3.0, -1070), 1070), 3.0);
+        for s in [1.0, 0.75, 3e300, 5e-324, 1e-310, f64::MAX] {
+            let e = exponent_of(s);
+            assert!(ldexp(1.0, e) <= s && s < ldexp(2.0, e), "{s:e}");
+        }
     }
 
     #[test]
