@@ -12,7 +12,7 @@ pub(crate) type BivStorage = SmallVec<[f64; 28]>;
 /// Dense scratch for an N×N skew matrix; stays on the stack up to N = 12.
 pub(crate) type DenseScratch = SmallVec<[f64; 144]>;
 
-/// A bivector of Euclidean ℝᴺ: B = Σ_{i<j} B_ij eᵢ∧eⱼ, the algebra's object for oriented planes,
+/// A bivector of Euclidean ℝᴺ: B = Σ_(i<j) B_ij eᵢ∧eⱼ, the algebra's object for oriented planes,
 /// angular velocities, angular momenta and torques.
 ///
 /// Components are stored in lexicographic order of the pairs (see the Conventions chapter of
@@ -274,7 +274,7 @@ impl Bivector {
         Ok(b)
     }
 
-    /// Returns ⟨A, B⟩ = Σ_{i<j} A_ij B_ij (the pairing of the rotorflow book's Conventions
+    /// Returns ⟨A, B⟩ = Σ_(i<j) A_ij B_ij (the pairing of the rotorflow book's Conventions
     /// chapter; kinetic energy is ½⟨ω, L⟩).
     ///
     /// Note ⟨A, B⟩ = −⟨A B⟩₀: the geometric scalar product of two bivectors has the opposite
@@ -292,7 +292,7 @@ impl Bivector {
             .sum()
     }
 
-    /// Returns |B|² = Σ_{i<j} B_ij² (= ⟨B B̃⟩₀ = −⟨B²⟩₀).
+    /// Returns |B|² = Σ_(i<j) B_ij² (= ⟨B B̃⟩₀ = −⟨B²⟩₀).
     #[inline]
     pub fn norm_squared(&self) -> f64 {
         self.coeffs.iter().map(|c| c * c).sum()
@@ -422,10 +422,10 @@ impl Bivector {
     }
 
     /// Returns the coefficients c_k of the characteristic polynomial of the skew matrix,
-    /// det(λ − \[B\]) = Σ_k c_k λ^{N−2k}, for k = 0 … ⌊N/2⌋ (c₀ = 1; odd powers vanish).
+    /// det(λ − \[B\]) = Σ_k c_k λᴺ⁻²ᵏ, for k = 0 … ⌊N/2⌋ (c₀ = 1; odd powers vanish).
     ///
     /// c_k is the k-th elementary symmetric polynomial of the squared plane magnitudes θᵢ² of
-    /// the invariant decomposition; equivalently c_k = |B^{∧k}/k!|². These are the Casimirs of
+    /// the invariant decomposition; equivalently c_k = |B^(∧k)/k!|². These are the Casimirs of
     /// the free rigid body (c₁ = |B|²; in 4D c₂ = Pf(\[B\])²). Computed from the invariant
     /// decomposition in O(N³).
     pub fn characteristic_coefficients(&self) -> Vec<f64> {
@@ -445,7 +445,7 @@ impl Bivector {
     /// Returns the Pfaffian Pf(\[B\]) of the skew matrix (0 in odd N).
     ///
     /// Pf² = det \[B\]; Pf(θ e₁₂) = θ, and in 4D Pf = B₁₂B₃₄ − B₁₃B₂₄ + B₁₄B₂₃. It is the
-    /// coefficient of B^{∧N/2}/(N/2)! on the unit pseudoscalar. Computed by the skew
+    /// coefficient of B^(∧N/2)/(N/2)! on the unit pseudoscalar. Computed by the skew
     /// Parlett–Reid elimination with pivoting (Wimmer, ACM TOMS 38 (2012), `pfaffian_LTL`),
     /// O(N³).
     pub fn pfaffian(&self) -> f64 {

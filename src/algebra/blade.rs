@@ -1,6 +1,6 @@
 //! Basis blades as bit masks.
 //!
-//! The basis blade e_{i₁ i₂ … i_k} (i₁ < i₂ < … < i_k, 0-based) is the bit mask with bits
+//! The basis blade e_(i₁ i₂ … i_k) (i₁ < i₂ < … < i_k, 0-based) is the bit mask with bits
 //! i₁ … i_k set, as in kingdon and geometric_algebra: e₁ = 0b1, e₂ = 0b10, e₁₂ = 0b11. The
 //! product of two basis blades is, up to sign and metric, the blade `a ^ b` (exclusive or);
 //! the sign counts the transpositions needed to sort the concatenated indices. A `u64` mask
@@ -14,10 +14,10 @@ pub fn grade(a: u64) -> usize {
     a.count_ones() as usize
 }
 
-/// Returns the sign (+1 or −1) of reordering e_a e_b into the canonical order of e_{a^b},
+/// Returns the sign (+1 or −1) of reordering e_a e_b into the canonical order of e_(a^b),
 /// ignoring the metric.
 ///
-/// The number of transpositions is Σ_{j ∈ b} #{i ∈ a : i > j}; its parity is the parity of
+/// The number of transpositions is Σ_(j ∈ b) #{i ∈ a : i > j}; its parity is the parity of
 /// `suffix_parity(a) & b`, so the sign costs a handful of bit operations for any N ≤ 64.
 #[inline]
 pub fn reorder_sign(a: u64, b: u64) -> f64 {
@@ -44,7 +44,7 @@ pub fn parity_sign(x: u64) -> f64 {
     if x.count_ones() & 1 == 0 { 1.0 } else { -1.0 }
 }
 
-/// Returns the sign (−1)^{k(k−1)/2} that the reverse puts on a blade of grade `k`.
+/// Returns the sign (−1)^(k(k−1)/2) that the reverse puts on a blade of grade `k`.
 #[inline]
 pub fn reverse_sign(k: usize) -> f64 {
     if (k / 2).is_multiple_of(2) { 1.0 } else { -1.0 }
@@ -56,7 +56,7 @@ pub fn involution_sign(k: usize) -> f64 {
     if k.is_multiple_of(2) { 1.0 } else { -1.0 }
 }
 
-/// Returns the sign (−1)^{k(k+1)/2} that the Clifford conjugate puts on a blade of grade `k`.
+/// Returns the sign (−1)^(k(k+1)/2) that the Clifford conjugate puts on a blade of grade `k`.
 #[inline]
 pub fn conjugate_sign(k: usize) -> f64 {
     reverse_sign(k) * involution_sign(k)
@@ -160,14 +160,14 @@ pub(crate) fn parse_name(text: &str, n: usize) -> Result<(f64, u64), AlgebraErro
     Ok((sign, mask))
 }
 
-/// Returns the sign s with e_a ∧ (s e_{ā}) = e_{1…n}, where ā is the complement of `a`
+/// Returns the sign s with e_a ∧ (s e_ā) = e₁…ₙ, where ā is the complement of `a`
 /// (the right complement of Lengyel's exterior algebra; metric-free).
 #[inline]
 pub fn right_complement_sign(a: u64, n: usize) -> f64 {
     reorder_sign(a, full_mask(n) & !a)
 }
 
-/// Returns the sign s with (s e_{ā}) ∧ e_a = e_{1…n} (the left complement; it undoes the
+/// Returns the sign s with (s e_ā) ∧ e_a = e₁…ₙ (the left complement; it undoes the
 /// right complement).
 #[inline]
 pub fn left_complement_sign(a: u64, n: usize) -> f64 {

@@ -5,7 +5,7 @@
 //! | type | what it is | storage | dimensions |
 //! |---|---|---|---|
 //! | [`Vector`] | x = Σ xᵢ eᵢ in Euclidean ℝᴺ | N components, inline up to N = 8 | N ≤ [`MAX_DIM`] |
-//! | [`Bivector`] | B = Σ_{i<j} B_ij eᵢ∧eⱼ: planes, angular velocity, momentum | N(N−1)/2, inline up to N = 8 | N ≤ [`MAX_DIM`] |
+//! | [`Bivector`] | B = Σ_(i<j) B_ij eᵢ∧eⱼ: planes, angular velocity, momentum | N(N−1)/2, inline up to N = 8 | N ≤ [`MAX_DIM`] |
 //! | [`Rotor`] | an element of Spin(N), turning by R x R̃ | 2^(N−1) even coefficients, inline up to N = 5 | N ≤ [`MULTIVECTOR_MAX_DIM`] |
 //! | [`Multivector`] | any element of Cl(p, q, r) | 2^N coefficients, inline up to N = 4 | N ≤ [`MULTIVECTOR_MAX_DIM`] |
 //! | [`Signature`] | the metric Cl(p, q, r) | three small integers | p + q + r ≤ [`MAX_DIM`] |
@@ -18,7 +18,7 @@
 //!
 //! # Conventions
 //! The Conventions chapter of the rotorflow book states them in full; in short:
-//! - A basis blade is a bit mask: bit i set ⇔ e_{i+1} is a factor (e₁ = 0b1, e₁₃ = 0b101);
+//! - A basis blade is a bit mask: bit i set ⇔ eᵢ₊₁ is a factor (e₁ = 0b1, e₁₃ = 0b101);
 //!   [`Multivector::basis_blade`] builds one by mask, [`Multivector::blade_by_name`] by
 //!   name (`e13`, `e1e3`, `e₁₃`). Bivector components are stored in
 //!   lexicographic order 12, 13, …, 1N, 23, …; indices in the API are 0-based, text is

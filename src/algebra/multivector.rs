@@ -144,7 +144,7 @@ impl Multivector {
         Ok(m)
     }
 
-    /// Returns the basis blade with bit mask `blade` (bit i set ⇔ e_{i+1} is a factor).
+    /// Returns the basis blade with bit mask `blade` (bit i set ⇔ eᵢ₊₁ is a factor).
     ///
     /// # Panics
     /// If the mask has bits at or above `sig.dim()` (see [`Multivector::try_basis_blade`]).
@@ -421,7 +421,7 @@ impl Multivector {
         (0..=self.dim()).filter(|&k| present[k]).collect()
     }
 
-    /// Returns the reverse Ã: each grade-k part times (−1)^{k(k−1)/2}.
+    /// Returns the reverse Ã: each grade-k part times (−1)^(k(k−1)/2).
     pub fn reverse(&self) -> Self {
         self.map_blades(|b, c| c * blade::reverse_sign(blade::grade(b)))
     }
@@ -431,7 +431,7 @@ impl Multivector {
         self.map_blades(|b, c| c * blade::involution_sign(blade::grade(b)))
     }
 
-    /// Returns the Clifford conjugate Ā: each grade-k part times (−1)^{k(k+1)/2}.
+    /// Returns the Clifford conjugate Ā: each grade-k part times (−1)^(k(k+1)/2).
     pub fn clifford_conjugate(&self) -> Self {
         self.map_blades(|b, c| c * blade::conjugate_sign(blade::grade(b)))
     }
@@ -555,7 +555,7 @@ impl Multivector {
     /// where ⟨e_a, e_a⟩ is the product of the squares of a's basis vectors.
     ///
     /// On basis blades ⋆e_a = ⟨e_a, e_a⟩ s e_ā (s the right-complement sign). Applying it twice
-    /// gives ⋆⋆A = (−1)^{k(N−k)} (−1)^q A on grade k in Cl(p, q, 0), and 0 on blades that meet a
+    /// gives ⋆⋆A = (−1)ᵏ⁽ᴺ⁻ᵏ⁾ (−1)^q A on grade k in Cl(p, q, 0), and 0 on blades that meet a
     /// null direction. In 3D, ⋆e₁₂ = e₃: the paper's Levi-Civita contractions such as
     /// Ω_k = ½ ε_ijk ω_ij are exactly this map (book, chapter "The mapping").
     pub fn hodge(&self) -> Self {

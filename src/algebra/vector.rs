@@ -58,7 +58,7 @@ impl Vector {
         Self::zero(n)
     }
 
-    /// Returns the basis vector e_{i+1} of ℝⁿ (`i` is 0-based).
+    /// Returns the basis vector eᵢ₊₁ of ℝⁿ (`i` is 0-based).
     ///
     /// # Panics
     /// If `i ≥ n` or `n > MAX_DIM` (see [`Vector::try_basis`]).
@@ -73,7 +73,7 @@ impl Vector {
         v
     }
 
-    /// Returns the basis vector e_{i+1} of ℝⁿ, or an error for a bad index or dimension.
+    /// Returns the basis vector eᵢ₊₁ of ℝⁿ, or an error for a bad index or dimension.
     ///
     /// # Errors
     /// [`AlgebraError::IndexOutOfRange`] if `i ≥ n`; [`AlgebraError::DimensionTooLarge`] if

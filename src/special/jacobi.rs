@@ -304,7 +304,7 @@ impl Jacobi {
     }
 
     /// DLMF 22.10.7-22.10.9 to first order in m1, rearranged so that no
-    /// intermediate grows like e^{2r}:
+    /// intermediate grows like e²ʳ:
     /// sn = tanh + (m1/4)(tanh - r sech^2), cn = sech - (m1/4)(sinh tanh - r tanh sech),
     /// dn = sech + (m1/4)(sinh tanh + r tanh sech).
     fn hyperbolic_expansion(&self, r: f64) -> (f64, f64, f64) {

@@ -239,7 +239,7 @@ impl Rotor {
     }
 }
 
-/// σ(i, j, a) < 0 for the matrix entry formula: σ = sign(eᵢ e_a) · sign(e_{i⊕a} eⱼ) (the
+/// σ(i, j, a) < 0 for the matrix entry formula: σ = sign(eᵢ e_a) · sign(e_(i⊕a) eⱼ) (the
 /// reverse of the last factor and its square cancel in a Euclidean signature).
 fn matrix_sign_negative(a: u64, i: usize, j: usize) -> bool {
     let s1 = crate::algebra::blade::reorder_sign(1 << i, a);
