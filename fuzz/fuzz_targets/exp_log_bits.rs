@@ -151,10 +151,7 @@ fn check_matrix(m: &DMatrix<f64>, entries_finite: bool) {
             entries_finite,
             "from_matrix_projected accepted non-finite {m}"
         );
-        assert!(
-            finite(r.as_slice()),
-            "from_matrix_projected {m} = {r:?}"
-        );
+        assert!(finite(r.as_slice()), "from_matrix_projected {m} = {r:?}");
         assert!(
             r.unit_error() < 1e-9,
             "from_matrix_projected {m}: unit error {:e}",
