@@ -1,5 +1,5 @@
 //! Criterion benches of the algebra kernels, each beside nalgebra doing the same job in the
-//! same group (issue #2): exp vs the matrix exponential of the skew matrix, the bivector
+//! same group: exp vs the matrix exponential of the skew matrix, the bivector
 //! commutator vs A·B − B·A on skew matrices, the sandwich vs matrix × vector, composition vs
 //! matrix × matrix. Run `cargo bench --bench algebra`; `BENCH_QUICK=1` shortens the run.
 
@@ -8,7 +8,6 @@ use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rotorflow::prelude::*;
-use std::time::Duration;
 
 const DIMS: [usize; 5] = [3, 4, 6, 8, 10];
 
@@ -24,16 +23,9 @@ fn random_vector(rng: &mut impl Rng, n: usize) -> Vector {
     Vector::from_components(&c).unwrap()
 }
 
-fn configure(c: &mut Criterion) -> Criterion {
-    let quick = std::env::var_os("BENCH_QUICK").is_some();
-    let _ = c;
-    Criterion::default()
-        .configure_from_args()
-        .without_plots()
-        .warm_up_time(Duration::from_millis(if quick { 200 } else { 500 }))
-        .measurement_time(Duration::from_millis(if quick { 500 } else { 1500 }))
-        .sample_size(if quick { 20 } else { 40 })
-}
+#[path = "common/configure.rs"]
+mod configure;
+use configure::configure;
 
 /// Runs `f::<D>()` for the fixed sizes nalgebra's SMatrix baselines need.
 macro_rules! for_fixed_dim {
@@ -217,7 +209,8 @@ fn bench_geometric_product(c: &mut Criterion) {
 }
 
 fn benches(c: &mut Criterion) {
-    let mut c = configure(c);
+    let _ = c;
+    let mut c = configure();
     bench_exp(&mut c);
     bench_log(&mut c);
     bench_commutator(&mut c);

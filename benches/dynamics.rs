@@ -8,21 +8,14 @@ use nalgebra::{DMatrix, SMatrix};
 use rotorflow::dynamics::torques::Free;
 use rotorflow::dynamics::{Attitude, Dopri5, Integrator, Midpoint, RigidBody, Rkmk4, Splitting};
 use rotorflow::prelude::*;
-use std::time::Duration;
 
 #[path = "common/dmatrix_rk4.rs"]
 mod dmatrix_baseline;
 use dmatrix_baseline::dmatrix_rk4;
 
-fn configure() -> Criterion {
-    let quick = std::env::var_os("BENCH_QUICK").is_some();
-    Criterion::default()
-        .configure_from_args()
-        .without_plots()
-        .warm_up_time(Duration::from_millis(if quick { 200 } else { 500 }))
-        .measurement_time(Duration::from_millis(if quick { 500 } else { 1500 }))
-        .sample_size(if quick { 20 } else { 40 })
-}
+#[path = "common/configure.rs"]
+mod configure;
+use configure::configure;
 
 fn moments(n: usize) -> Vec<f64> {
     (0..n).map(|k| 0.5 + 0.25 * k as f64).collect()

@@ -8,17 +8,10 @@ use rotorflow::dynamics::exact::two_moments::TwoMomentSolution;
 use rotorflow::dynamics::torques::Free;
 use rotorflow::dynamics::{Integrator, RigidBody, Rkmk4};
 use rotorflow::prelude::*;
-use std::time::Duration;
 
-fn configure() -> Criterion {
-    let quick = std::env::var_os("BENCH_QUICK").is_some();
-    Criterion::default()
-        .configure_from_args()
-        .without_plots()
-        .warm_up_time(Duration::from_millis(if quick { 200 } else { 500 }))
-        .measurement_time(Duration::from_millis(if quick { 500 } else { 1500 }))
-        .sample_size(if quick { 20 } else { 40 })
-}
+#[path = "common/configure.rs"]
+mod configure;
+use configure::configure;
 
 /// A body with two principal values: 1 on the first ⌈N/2⌉ axes, 2.5 on the others.
 fn body(n: usize) -> RigidBody {

@@ -9,17 +9,10 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rotorflow::inertia::bodies::SimplexOrientation;
 use rotorflow::prelude::*;
-use std::time::Duration;
 
-fn configure() -> Criterion {
-    let quick = std::env::var_os("BENCH_QUICK").is_some();
-    Criterion::default()
-        .configure_from_args()
-        .without_plots()
-        .warm_up_time(Duration::from_millis(if quick { 200 } else { 500 }))
-        .measurement_time(Duration::from_millis(if quick { 500 } else { 1500 }))
-        .sample_size(if quick { 20 } else { 40 })
-}
+#[path = "common/configure.rs"]
+mod configure;
+use configure::configure;
 
 fn random_spd(rng: &mut impl Rng, n: usize) -> DMatrix<f64> {
     let a = DMatrix::from_fn(n, n, |_, _| rng.gen_range(-1.0..1.0));

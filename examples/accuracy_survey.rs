@@ -17,9 +17,9 @@ fn main() {
             let l = r.rotation_bivector();
             let r2 = Rotor::from_rotation_bivector(&l);
             let d = r
-                .raw_coefficients()
+                .as_slice()
                 .iter()
-                .zip(r2.raw_coefficients())
+                .zip(r2.as_slice())
                 .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
             e1 = e1.max(d);
             let mags = b.decompose().magnitudes();

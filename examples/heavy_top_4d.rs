@@ -16,7 +16,7 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
     let pivot = ellipsoid.center_of_mass() - offset.to_dvector();
     let j = ellipsoid.mass_tensor_about(&pivot)?;
     let inertia = InertiaMap::from_mass_tensor(&j)?;
-    let mut weight = Vector::zeros(4);
+    let mut weight = Vector::zero(4);
     weight[3] = -9.81 * ellipsoid.mass();
     let gravity = Gravity { weight, offset };
     let tilt = Rotor::from_plane_angle(4, 0, 3, 0.3)?;

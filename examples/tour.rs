@@ -74,7 +74,7 @@ fn main() -> Result<(), AlgebraError> {
 
     // 8. Drifted rotors are projected back onto Spin(N) (dividing by the norm is not enough).
     let mut m = r4.to_multivector();
-    m.coefficients_mut()[0b1111] += 1e-6;
+    m.as_mut_slice()[0b1111] += 1e-6;
     let drifted = Rotor::from_multivector_unchecked(&m);
     println!(
         "8. drift |R R̃ − 1| = {:.1e} → after normalize(): {:.1e}",

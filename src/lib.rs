@@ -97,6 +97,7 @@
 pub mod algebra;
 pub mod dynamics;
 pub mod inertia;
+mod numeric;
 pub mod special;
 
 /// The types most programs need: `use rotorflow::prelude::*;`.

@@ -1,5 +1,6 @@
-//! Vectors and bivectors up to N = 8, and 4D rotors, never touch the heap: a counting global
-//! allocator asserts it for construction and the hot kernels.
+//! Vectors and bivectors up to N = 8, rotors in 3D and 4D, and the integrator steps of the
+//! splitting and RK4 methods up to N = 8 never touch the heap: a counting global allocator
+//! asserts it for construction, the hot kernels and the steps.
 
 use rotorflow::prelude::*;
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -79,7 +80,8 @@ fn integrator_steps_do_not_allocate() {
     use rotorflow::dynamics::torques::Free;
     use rotorflow::dynamics::{Integrator, RigidBody, Rkmk4, Splitting};
     // Strang and Yoshida work in place on the attitude and momentum: no heap for N ≤ 8.
-    // RK4 forms rotor exponentials: heap-free up to N = 4 (inline rotors, closed-form exp).
+    // RK4 too: rotor attitudes up to N = 4 (inline rotors, closed-form exp), inline matrix
+    // attitudes above, up to N = 8.
     for n in 2..=8 {
         let moments: Vec<f64> = (0..n).map(|k| 1.0 + k as f64).collect();
         let l: Vec<f64> = (0..n * (n - 1) / 2).map(|k| (k as f64).cos()).collect();

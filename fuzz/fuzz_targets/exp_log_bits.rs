@@ -36,7 +36,7 @@ fn orthogonality_error(q: &DMatrix<f64>) -> f64 {
 
 /// max |R − S| over the coefficients, up to the overall sign.
 fn rotor_distance(r: &Rotor, s: &Rotor) -> f64 {
-    let (a, b) = (r.raw_coefficients(), s.raw_coefficients());
+    let (a, b) = (r.as_slice(), s.as_slice());
     let plus = a
         .iter()
         .zip(b)
@@ -91,7 +91,7 @@ fn check_bivector(b: &Bivector) {
         return;
     }
     let r = b.exp();
-    assert!(finite(r.raw_coefficients()), "exp {b:?} = {r:?}");
+    assert!(finite(r.as_slice()), "exp {b:?} = {r:?}");
     assert!(
         r.unit_error() < 1e-12,
         "exp {b:?}: unit error {:e}",
@@ -139,7 +139,7 @@ fn check_bivector(b: &Bivector) {
 fn check_matrix(m: &DMatrix<f64>, entries_finite: bool) {
     if let Ok(r) = Rotor::from_matrix(m) {
         assert!(entries_finite, "from_matrix accepted non-finite {m}");
-        assert!(finite(r.raw_coefficients()), "from_matrix {m} = {r:?}");
+        assert!(finite(r.as_slice()), "from_matrix {m} = {r:?}");
         let d = max_abs(&(r.to_matrix() - m));
         assert!(
             d < 1e-6,
@@ -151,10 +151,7 @@ fn check_matrix(m: &DMatrix<f64>, entries_finite: bool) {
             entries_finite,
             "from_matrix_projected accepted non-finite {m}"
         );
-        assert!(
-            finite(r.raw_coefficients()),
-            "from_matrix_projected {m} = {r:?}"
-        );
+        assert!(finite(r.as_slice()), "from_matrix_projected {m} = {r:?}");
         assert!(
             r.unit_error() < 1e-9,
             "from_matrix_projected {m}: unit error {:e}",

@@ -54,6 +54,5 @@ macro_rules! approx_impls {
 
 approx_impls!(Vector, as_slice, |a, b| a.dim() == b.dim());
 approx_impls!(Bivector, as_slice, |a, b| a.dim() == b.dim());
-approx_impls!(Rotor, raw_coefficients, |a, b| a.dim() == b.dim());
-approx_impls!(Multivector, coefficients, |a, b| a.signature()
-    == b.signature());
+approx_impls!(Rotor, as_slice, |a, b| a.dim() == b.dim());
+approx_impls!(Multivector, as_slice, |a, b| a.signature() == b.signature());

@@ -1,8 +1,8 @@
 //! Bivectors of Euclidean ℝᴺ: planes, angular velocities and momenta.
 
-use super::error::{assert_same_dim, check_finite, check_same_dim};
-use super::vector::scaled_norm;
+use super::error::{assert_same_dim, check_finite, check_same_dim, within};
 use super::{AlgebraError, MAX_DIM};
+use crate::numeric::scaled_norm;
 use nalgebra::DMatrix;
 use smallvec::SmallVec;
 
@@ -12,12 +12,13 @@ pub(crate) type BivStorage = SmallVec<[f64; 28]>;
 /// Dense scratch for an N×N skew matrix; stays on the stack up to N = 12.
 pub(crate) type DenseScratch = SmallVec<[f64; 144]>;
 
-/// A bivector of Euclidean ℝᴺ: B = Σ_{i<j} B_ij eᵢ∧eⱼ, the algebra's object for oriented planes,
+/// A bivector of Euclidean ℝᴺ: B = Σ_(i<j) B_ij eᵢ∧eⱼ, the algebra's object for oriented planes,
 /// angular velocities, angular momenta and torques.
 ///
-/// Components are stored in lexicographic order of the pairs (DESIGN.md): for N = 4,
-/// `[B12, B13, B14, B23, B24, B34]`. The skew matrix of B is \[B\] with \[B\]_ij = B_ij,
-/// \[B\]_ji = −B_ij. Indices in the API are 0-based (`get(0, 1)` is B₁₂); text is 1-based.
+/// Components are stored in lexicographic order of the pairs (see the Conventions chapter of
+/// the rotorflow book): for N = 4, `[B12, B13, B14, B23, B24, B34]`. The skew matrix of B is
+/// \[B\] with \[B\]_ij = B_ij, \[B\]_ji = −B_ij. Indices in the API are 0-based (`get(0, 1)`
+/// is B₁₂); text is 1-based.
 ///
 /// # Contents
 /// - Construction: [`Bivector::zero`], [`Bivector::from_components`],
@@ -42,6 +43,10 @@ pub struct Bivector {
     coeffs: BivStorage,
 }
 
+/// Default relative tolerance of [`Bivector::from_skew_matrix`] on the symmetric part of its
+/// input: a few thousand ulps, room for the round-off of a matrix computed in floating point.
+pub const SKEW_TOLERANCE: f64 = 1e-12;
+
 /// Returns the number of bivector components in dimension `n`, N(N−1)/2.
 #[inline]
 pub fn bivector_len(n: usize) -> usize {
@@ -61,21 +66,45 @@ pub fn pairs(n: usize) -> impl Iterator<Item = (usize, usize)> {
     (0..n).flat_map(move |i| (i + 1..n).map(move |j| (i, j)))
 }
 
+/// Returns the 1-based name of the plane eᵢ∧eⱼ (0-based i < j) in dimension `n`, as text,
+/// tables and `Display` print it: `"12"` for e₁∧e₂, and `"1_10"` from N = 10 on, where the
+/// indices need a separator to stay unambiguous.
+///
+/// ```
+/// use rotorflow::algebra::plane_name;
+/// assert_eq!(plane_name(4, 0, 1), "12");
+/// assert_eq!(plane_name(12, 0, 9), "1_10");
+/// ```
+pub fn plane_name(n: usize, i: usize, j: usize) -> String {
+    crate::algebra::blade::name((1 << i) | (1 << j), n)[1..].to_string()
+}
+
 impl Bivector {
     /// Returns the zero bivector of ℝⁿ.
     ///
     /// # Panics
-    /// If `n > MAX_DIM`.
+    /// If `n > MAX_DIM` (see [`Bivector::try_zero`]).
     #[track_caller]
     pub fn zero(n: usize) -> Self {
-        assert!(
-            n <= MAX_DIM,
-            "rotorflow: dimension {n} exceeds MAX_DIM = {MAX_DIM}"
-        );
-        Bivector {
+        Self::try_zero(n).unwrap_or_else(|e| panic!("rotorflow: {e}"))
+    }
+
+    /// Returns the zero bivector of ℝⁿ, or an error if `n` is too large.
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionTooLarge`] if `n > MAX_DIM`.
+    pub fn try_zero(n: usize) -> Result<Self, AlgebraError> {
+        if n > MAX_DIM {
+            return Err(AlgebraError::DimensionTooLarge {
+                what: "bivector",
+                dim: n,
+                max: MAX_DIM,
+            });
+        }
+        Ok(Bivector {
             dim: n,
             coeffs: SmallVec::from_elem(0.0, bivector_len(n)),
-        }
+        })
     }
 
     /// Builds a bivector of ℝⁿ from its N(N−1)/2 components in lexicographic order
@@ -197,15 +226,26 @@ impl Bivector {
     ///
     /// # Errors
     /// [`AlgebraError::NotSquare`]; [`AlgebraError::NotSkewSymmetric`] if
-    /// max |A_ij + A_ji| > 1e-12 · max |A_ij| (the antisymmetric part is taken otherwise);
+    /// max |A_ij + A_ji| > [`SKEW_TOLERANCE`] · max |A_ij| (the antisymmetric part is taken
+    /// otherwise; [`Bivector::from_skew_matrix_eps`] chooses the tolerance);
     /// [`AlgebraError::NonFinite`].
     pub fn from_skew_matrix(a: &DMatrix<f64>) -> Result<Self, AlgebraError> {
-        Self::from_skew_entries(a.nrows(), a.ncols(), |i, j| a[(i, j)])
+        Self::from_skew_matrix_eps(a, SKEW_TOLERANCE)
+    }
+
+    /// Like [`Bivector::from_skew_matrix`] with an explicit relative tolerance on the
+    /// symmetric part: max |A_ij + A_ji| ≤ `tolerance` · max |A_ij|.
+    ///
+    /// # Errors
+    /// As [`Bivector::from_skew_matrix`].
+    pub fn from_skew_matrix_eps(a: &DMatrix<f64>, tolerance: f64) -> Result<Self, AlgebraError> {
+        Self::from_skew_entries(a.nrows(), a.ncols(), tolerance, |i, j| a[(i, j)])
     }
 
     pub(crate) fn from_skew_entries(
         rows: usize,
         cols: usize,
+        relative_tolerance: f64,
         entry: impl Fn(usize, usize) -> f64,
     ) -> Result<Self, AlgebraError> {
         if rows != cols {
@@ -233,8 +273,8 @@ impl Bivector {
                 deviation = deviation.max((x + entry(j, i)).abs());
             }
         }
-        let tolerance = 1e-12 * scale;
-        if deviation > tolerance {
+        let tolerance = relative_tolerance * scale;
+        if !within(deviation, tolerance) {
             return Err(AlgebraError::NotSkewSymmetric {
                 deviation,
                 tolerance,
@@ -247,7 +287,8 @@ impl Bivector {
         Ok(b)
     }
 
-    /// Returns ⟨A, B⟩ = Σ_{i<j} A_ij B_ij (DESIGN.md's pairing; kinetic energy is ½⟨ω, L⟩).
+    /// Returns ⟨A, B⟩ = Σ_(i<j) A_ij B_ij (the pairing of the rotorflow book's Conventions
+    /// chapter; kinetic energy is ½⟨ω, L⟩).
     ///
     /// Note ⟨A, B⟩ = −⟨A B⟩₀: the geometric scalar product of two bivectors has the opposite
     /// sign.
@@ -264,7 +305,7 @@ impl Bivector {
             .sum()
     }
 
-    /// Returns |B|² = Σ_{i<j} B_ij² (= ⟨B B̃⟩₀ = −⟨B²⟩₀).
+    /// Returns |B|² = Σ_(i<j) B_ij² (= ⟨B B̃⟩₀ = −⟨B²⟩₀).
     #[inline]
     pub fn norm_squared(&self) -> f64 {
         self.coeffs.iter().map(|c| c * c).sum()
@@ -289,7 +330,7 @@ impl Bivector {
     /// bivector: the Lie bracket of so(N), \[A × B\] = \[A\]\[B\] − \[B\]\[A\].
     ///
     /// Computed from components in O(N³) without forming a multivector. Euler's equations
-    /// read dL/dt = ω × L (DESIGN.md).
+    /// read dL/dt = ω × L (see the Conventions chapter of the rotorflow book).
     ///
     /// # Panics
     /// If the dimensions differ (see [`Bivector::try_commutator`]).
@@ -325,7 +366,7 @@ impl Bivector {
             i < n && j < n && i != j,
             "rotorflow: invalid plane ({i}, {j}) in dimension {n}"
         );
-        let (s, m) = crate::algebra::sin_cos_minus_one(angle);
+        let (s, m) = crate::numeric::sin_cos_minus_one(angle);
         self.rotate_in_plane_sin_cm1(i, j, s, m);
     }
 
@@ -394,10 +435,10 @@ impl Bivector {
     }
 
     /// Returns the coefficients c_k of the characteristic polynomial of the skew matrix,
-    /// det(λ − \[B\]) = Σ_k c_k λ^{N−2k}, for k = 0 … ⌊N/2⌋ (c₀ = 1; odd powers vanish).
+    /// det(λ − \[B\]) = Σ_k c_k λᴺ⁻²ᵏ, for k = 0 … ⌊N/2⌋ (c₀ = 1; odd powers vanish).
     ///
     /// c_k is the k-th elementary symmetric polynomial of the squared plane magnitudes θᵢ² of
-    /// the invariant decomposition; equivalently c_k = |B^{∧k}/k!|². These are the Casimirs of
+    /// the invariant decomposition; equivalently c_k = |B^(∧k)/k!|². These are the Casimirs of
     /// the free rigid body (c₁ = |B|²; in 4D c₂ = Pf(\[B\])²). Computed from the invariant
     /// decomposition in O(N³).
     pub fn characteristic_coefficients(&self) -> Vec<f64> {
@@ -417,7 +458,7 @@ impl Bivector {
     /// Returns the Pfaffian Pf(\[B\]) of the skew matrix (0 in odd N).
     ///
     /// Pf² = det \[B\]; Pf(θ e₁₂) = θ, and in 4D Pf = B₁₂B₃₄ − B₁₃B₂₄ + B₁₄B₂₃. It is the
-    /// coefficient of B^{∧N/2}/(N/2)! on the unit pseudoscalar. Computed by the skew
+    /// coefficient of B^(∧N/2)/(N/2)! on the unit pseudoscalar. Computed by the skew
     /// Parlett–Reid elimination with pivoting (Wimmer, ACM TOMS 38 (2012), `pfaffian_LTL`),
     /// O(N³).
     pub fn pfaffian(&self) -> f64 {
@@ -470,72 +511,6 @@ impl Bivector {
             k += 2;
         }
         pf
-    }
-
-    /// Returns the matrix exponential expm(\[B\]) of the skew matrix of B: a rotation matrix,
-    /// in O(N³) for any N (no rotor, so also above the rotor limit).
-    ///
-    /// Small rotations (‖\[B\]‖₂ ≤ 0.82 by the bound min(‖A‖₁, ‖A²‖₁^½), every integrator
-    /// step): the Taylor polynomial of the lowest degree m ∈ {6, 9, 12, 16} whose truncation
-    /// error is below the unit round-off, by Paterson–Stockmeyer (3 to 6 products, no solve;
-    /// Higham, *Functions of Matrices*, 2008, §4.4.3), a rotation to round-off because the
-    /// truncation is. Up to ‖\[B\]‖₁ ≈ 5.37: the diagonal Padé approximant
-    /// r_m(A) = q_m(A)⁻¹ p_m(A) of the degree m ∈ {3, 5, 7, 9, 13} that Higham's bound
-    /// selects (Higham, SIAM J. Matrix Anal. Appl. 26 (2005) 1179; backward error below the
-    /// unit round-off). For skew A,
-    /// q_m(A) = p_m(−A) = p_m(A)ᵀ, so r_m(A) is orthogonal in exact arithmetic: a rotation
-    /// to round-off, never a truncated series that leaves the group. Larger rotations use
-    /// the spectral form expm(A) = V diag(cos θₖ) Vᵀ + A V diag(sin θₖ/θₖ) Vᵀ from the
-    /// eigen-decomposition −A² = V diag(θₖ²) Vᵀ, which stays orthogonal to ε at any angle
-    /// (scaling and squaring would not). The rotation matrix of the rotor e^A is expm(2\[A\])
-    /// (DESIGN.md: exp(−θB̂/2) ↔ expm(\[θB̂\]ᵀ)).
-    ///
-    /// Finite and orthogonal whenever |B| ≤ `f64::MAX`/2; beyond, a plane angle may overflow
-    /// and the entries are then NaN (as for [`Bivector::exp`]).
-    ///
-    /// ```
-    /// use rotorflow::algebra::Bivector;
-    /// let b = Bivector::from_components(4, &[0.3, -0.2, 0.5, 0.1, 0.7, -0.4])?;
-    /// let q = b.exp_skew_matrix();
-    /// let expected = (&b * 0.5).exp().to_matrix(); // the rotor e^{B/2} has matrix expm([B])
-    /// assert!((q - expected).amax() < 1e-14);
-    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
-    /// ```
-    pub fn exp_skew_matrix(&self) -> DMatrix<f64> {
-        let n = self.dim;
-        let a = self.to_skew_matrix();
-        let norm1 = super::expm::norm1(&a);
-        if norm1 == 0.0 {
-            return DMatrix::identity(n, n);
-        }
-        // ‖[B]‖₁ can overflow while every plane angle is representable (found by the
-        // exp_log_bits fuzz target): the plane-by-plane form scales, so it takes that case too.
-        if !norm1.is_finite() || norm1 > super::expm::PADE_MAX_NORM {
-            return self.exp_skew_matrix_by_planes();
-        }
-        // Small rotations (integrator steps): the Taylor form needs no solve.
-        if let Some(q) = super::expm::expm_skew_taylor(&a, norm1) {
-            return q;
-        }
-        super::expm::expm_skew(&a, norm1).unwrap_or_else(|| super::expm::expm_spectral(&a))
-    }
-
-    /// expm(\[B\]) plane by plane from the invariant decomposition: on each plane θ u∧v
-    /// (\[B\] v = θ u) a rotation by θ, Q = 1 + Σ (cos θ − 1)(u uᵀ + v vᵀ) + sin θ (u vᵀ − v uᵀ).
-    /// Each angle is reduced on its own, so Q is orthogonal to ε at any angle.
-    fn exp_skew_matrix_by_planes(&self) -> DMatrix<f64> {
-        let n = self.dim;
-        let mut q = DMatrix::identity(n, n);
-        for p in super::decompose::decompose_components(n, &self.coeffs) {
-            let (s, c) = p.theta.sin_cos();
-            for i in 0..n {
-                for j in 0..n {
-                    q[(i, j)] += (c - 1.0) * (p.u[i] * p.u[j] + p.v[i] * p.v[j])
-                        + s * (p.u[i] * p.v[j] - p.v[i] * p.u[j]);
-                }
-            }
-        }
-        q
     }
 
     /// Writes the dense row-major skew matrix into `a` (length N²).

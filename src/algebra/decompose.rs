@@ -25,6 +25,7 @@
 
 use super::bivector::{bivector_len, pairs};
 use super::{Bivector, Vector};
+use crate::numeric::{exponent_of, householder_complement, ldexp};
 use nalgebra::{DMatrix, DVector};
 use smallvec::SmallVec;
 
@@ -161,31 +162,6 @@ pub(crate) struct RawPlane {
     pub v: SmallVec<[f64; 8]>,
 }
 
-/// Multiplies by 2^e exactly (barring overflow/underflow of the result), also for |e| > 1023.
-pub(crate) fn ldexp(mut x: f64, mut e: i32) -> f64 {
-    while e > 1000 {
-        x *= 2f64.powi(1000);
-        e -= 1000;
-    }
-    while e < -1000 {
-        x *= 2f64.powi(-1000);
-        e += 1000;
-    }
-    x * 2f64.powi(e)
-}
-
-/// Returns e with 2^e ≤ s < 2^(e+1) for finite s > 0.
-pub(crate) fn exponent_of(s: f64) -> i32 {
-    let bits = s.to_bits();
-    let raw = ((bits >> 52) & 0x7ff) as i32;
-    if raw == 0 {
-        // Subnormal: normalise first.
-        exponent_of(s * 2f64.powi(64)) - 64
-    } else {
-        raw - 1023
-    }
-}
-
 /// Decomposes packed bivector components of dimension `n`.
 pub(crate) fn decompose_components(n: usize, comps: &[f64]) -> Vec<RawPlane> {
     debug_assert_eq!(comps.len(), bivector_len(n));
@@ -268,8 +244,8 @@ fn planes_4d(c: &[f64]) -> Vec<RawPlane> {
     // Scaled norms: squaring a part of size ~1e-162 lands in the subnormals, where the norm
     // (and the unit direction built from it) loses most of its bits (fuzz finding F9: a rotor
     // off by 1e-3 from an isoclinic pair with a 1e-161 perturbation).
-    let na = scaled_norm3(alpha);
-    let nb = scaled_norm3(beta);
+    let na = crate::numeric::scaled_norm(&alpha);
+    let nb = crate::numeric::scaled_norm(&beta);
     // Unit directions; an exactly (anti-)self-dual B leaves the other direction free. Divide
     // by the largest component first: a subnormal norm has too few bits to divide by.
     let unit = |x: [f64; 3], n: f64| {
@@ -330,15 +306,6 @@ fn planes_4d(c: &[f64]) -> Vec<RawPlane> {
         });
     }
     out
-}
-
-/// |x| for a 3-vector without underflow or overflow in the squares.
-fn scaled_norm3(x: [f64; 3]) -> f64 {
-    let m = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    if m == 0.0 || !m.is_finite() {
-        return m;
-    }
-    m * ((x[0] / m).powi(2) + (x[1] / m).powi(2) + (x[2] / m).powi(2)).sqrt()
 }
 
 fn normalize_in_place(x: &mut [f64]) -> f64 {
@@ -426,7 +393,7 @@ fn planes_deflation(n: usize, comps: &[f64]) -> Vec<RawPlane> {
             break;
         }
         let s = a.transpose() * &a;
-        let (eigenvalues, eigenvectors) = super::symmetric_eigen(s);
+        let (eigenvalues, eigenvectors) = crate::numeric::symmetric_eigen(s);
         let top = eigenvalues
             .iter()
             .enumerate()
@@ -471,58 +438,5 @@ fn lift(basis: &DMatrix<f64>, p: &RawPlane, level_exp: i32) -> RawPlane {
         theta: ldexp(p.theta, -level_exp),
         u: map(&p.u),
         v: map(&p.v),
-    }
-}
-
-/// Returns an m×(m−2) matrix whose orthonormal columns span the complement of the orthonormal
-/// pair (w, u), from two Householder reflections (stable even when w, u are near basis vectors).
-pub(crate) fn householder_complement(w: &DVector<f64>, u: &DVector<f64>) -> DMatrix<f64> {
-    let m = w.len();
-    let mut q = DMatrix::<f64>::identity(m, m);
-    // H1 maps w to ±e1.
-    let h1 = householder(w.as_slice(), 0);
-    // H2 acts on coordinates 1.. and maps (H1 u)[1..] to ±e2.
-    let mut hu: Vec<f64> = u.iter().copied().collect();
-    apply_householder(&h1, &mut hu);
-    let h2 = householder(&hu, 1);
-    // Q = H1 H2: apply H2 then H1 to each column of the identity.
-    for c in 0..m {
-        let mut col: Vec<f64> = q.column(c).iter().copied().collect();
-        apply_householder(&h2, &mut col);
-        apply_householder(&h1, &mut col);
-        q.column_mut(c).copy_from_slice(&col);
-    }
-    q.columns(2, m - 2).into_owned()
-}
-
-/// A Householder reflection I − 2 h hᵀ (|h| = 1, h zero before `start`); identity if h = 0.
-struct Householder {
-    h: Vec<f64>,
-}
-
-fn householder(x: &[f64], start: usize) -> Householder {
-    let m = x.len();
-    let mut h = vec![0.0; m];
-    let tail_norm = x[start..].iter().map(|a| a * a).sum::<f64>().sqrt();
-    if tail_norm == 0.0 {
-        return Householder { h };
-    }
-    // h ∝ x − σ|x| e_start with σ = −sign(x_start), avoiding cancellation.
-    let sigma = if x[start] >= 0.0 { -1.0 } else { 1.0 };
-    h[start..].copy_from_slice(&x[start..]);
-    h[start] -= sigma * tail_norm;
-    let hn = h.iter().map(|a| a * a).sum::<f64>().sqrt();
-    if hn > 0.0 {
-        h.iter_mut().for_each(|a| *a /= hn);
-    }
-    Householder { h }
-}
-
-fn apply_householder(hh: &Householder, x: &mut [f64]) {
-    let d: f64 = hh.h.iter().zip(x.iter()).map(|(a, b)| a * b).sum();
-    if d != 0.0 {
-        x.iter_mut()
-            .zip(hh.h.iter())
-            .for_each(|(xi, hi)| *xi -= 2.0 * d * hi);
     }
 }

@@ -1,6 +1,10 @@
-//! `Display` for every algebra type: a sum of terms such as `0.5e12 - 1.25e34`, 1-based,
+//! `Display` for every algebra type: a sum of terms such as `0.5·e12 - 1.25·e34`, 1-based,
 //! zero terms omitted, the zero element printed as `0`. Precision flags (`{:.3}`) apply to
 //! every coefficient.
+//!
+//! The middle dot keeps every term from reading as a float: `0.5e12` would be 5·10¹¹. The
+//! scalar term is printed plain (`0.8 + 0.6·e12`). Blade names read back with
+//! [`super::Multivector::blade_by_name`].
 
 use super::{Bivector, Multivector, Rotor, Vector, blade};
 use std::fmt;
@@ -27,6 +31,7 @@ fn write_terms<'a>(
             None => write!(f, "{mag}")?,
         }
         if name != "1" {
+            f.write_str("·")?;
             f.write_str(&name)?;
         }
         first = false;
@@ -38,7 +43,7 @@ fn write_terms<'a>(
 }
 
 impl fmt::Display for Vector {
-    /// Formats as `1e1 - 2.5e3`.
+    /// Formats as `1·e1 - 2.5·e3`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let n = self.dim();
         write_terms(
@@ -52,7 +57,7 @@ impl fmt::Display for Vector {
 }
 
 impl fmt::Display for Bivector {
-    /// Formats as `0.5e12 - 1.25e34`.
+    /// Formats as `0.5·e12 - 1.25·e34`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let n = self.dim();
         write_terms(
@@ -75,7 +80,7 @@ fn sorted_terms(n: usize, terms: Vec<(u64, f64)>) -> Vec<(f64, String)> {
 }
 
 impl fmt::Display for Rotor {
-    /// Formats as `0.8 + 0.6e12`.
+    /// Formats as `0.8 + 0.6·e12`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let n = self.dim();
         write_terms(f, sorted_terms(n, self.terms().collect()).into_iter())
@@ -83,7 +88,7 @@ impl fmt::Display for Rotor {
 }
 
 impl fmt::Display for Multivector {
-    /// Formats as `1 + 2e1 - 0.5e123`.
+    /// Formats as `1 + 2·e1 - 0.5·e123`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let n = self.dim();
         write_terms(f, sorted_terms(n, self.terms().collect()).into_iter())

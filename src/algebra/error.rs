@@ -146,6 +146,54 @@ pub enum AlgebraError {
         /// Size of the failure.
         deviation: f64,
     },
+    /// A multivector has parts of grades other than the one a conversion needs (for example
+    /// a scalar part when converting to a [`super::Bivector`]).
+    ///
+    /// How to fix: take the part you want with `Multivector::grade(k)` first.
+    #[error("not a pure {what}: {others} term(s) of grades other than {grade}")]
+    MixedGrades {
+        /// What was being built ("vector", "bivector").
+        what: &'static str,
+        /// The grade the conversion needs.
+        grade: usize,
+        /// How many non-zero terms have another grade.
+        others: usize,
+    },
+    /// A rotor is too far from Spin(N) for a projection back onto it to mean anything.
+    ///
+    /// How to fix: normalisation removes round-off drift; an element this far away was not
+    /// a rotor to begin with (check how it was built), or pass a larger tolerance to
+    /// [`super::Rotor::try_normalize_eps`].
+    #[error(
+        "rotor is too far from Spin(N) to normalise: max |R R̃ − 1| = {distance:e} exceeds the tolerance {tolerance:e}"
+    )]
+    FarFromGroup {
+        /// The measured distance max |R R̃ − 1| (may be NaN or infinite).
+        distance: f64,
+        /// The tolerance that was applied.
+        tolerance: f64,
+    },
+    /// A bivector is too large for its exponential: beyond |B| = `f64::MAX`/2 a plane angle
+    /// may overflow, and an infinite angle has no value mod 2π.
+    ///
+    /// How to fix: reduce the plane angles mod 2π (mod π for the half-angles of a rotor)
+    /// before exponentiating.
+    #[error("bivector norm {norm:e} is too large for the exponential (at most f64::MAX/2)")]
+    AngleTooLarge {
+        /// The norm |B| (may be infinite).
+        norm: f64,
+    },
+    /// A text does not name a basis blade.
+    ///
+    /// How to fix: write `1` for the scalar and `e` with 1-based indices for the others:
+    /// `e13`, `e1e3` or `e₁₃` (from dimension 10 on, `e1_10`).
+    #[error("invalid blade name {name:?}: {reason}")]
+    InvalidBladeName {
+        /// The text that was given.
+        name: String,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
     /// A zero (or numerically zero) element where a direction was needed.
     ///
     /// How to fix: give a non-zero element.
@@ -165,6 +213,12 @@ pub enum AlgebraError {
         /// The signature that was given.
         signature: Signature,
     },
+}
+
+/// value ≤ tolerance, and false when either is NaN: a NaN measure or tolerance never passes.
+#[inline]
+pub(crate) fn within(value: f64, tolerance: f64) -> bool {
+    value <= tolerance
 }
 
 /// Checks that every number in `values` is finite.

@@ -5,7 +5,7 @@
 //! | type | what it is | storage | dimensions |
 //! |---|---|---|---|
 //! | [`Vector`] | x = Σ xᵢ eᵢ in Euclidean ℝᴺ | N components, inline up to N = 8 | N ≤ [`MAX_DIM`] |
-//! | [`Bivector`] | B = Σ_{i<j} B_ij eᵢ∧eⱼ: planes, angular velocity, momentum | N(N−1)/2, inline up to N = 8 | N ≤ [`MAX_DIM`] |
+//! | [`Bivector`] | B = Σ_(i<j) B_ij eᵢ∧eⱼ: planes, angular velocity, momentum | N(N−1)/2, inline up to N = 8 | N ≤ [`MAX_DIM`] |
 //! | [`Rotor`] | an element of Spin(N), turning by R x R̃ | 2^(N−1) even coefficients, inline up to N = 5 | N ≤ [`MULTIVECTOR_MAX_DIM`] |
 //! | [`Multivector`] | any element of Cl(p, q, r) | 2^N coefficients, inline up to N = 4 | N ≤ [`MULTIVECTOR_MAX_DIM`] |
 //! | [`Signature`] | the metric Cl(p, q, r) | three small integers | p + q + r ≤ [`MAX_DIM`] |
@@ -16,8 +16,11 @@
 //! infallible. Any signature Cl(p, q, r), projective and conformal algebras included, is
 //! available through [`Multivector`].
 //!
-//! # Conventions (DESIGN.md, part 1)
-//! - Basis blades are bit masks (see [`blade`]); bivector components are stored in
+//! # Conventions
+//! The Conventions chapter of the rotorflow book states them in full; in short:
+//! - A basis blade is a bit mask: bit i set ⇔ eᵢ₊₁ is a factor (e₁ = 0b1, e₁₃ = 0b101);
+//!   [`Multivector::basis_blade`] builds one by mask, [`Multivector::blade_by_name`] by
+//!   name (`e13`, `e1e3`, `e₁₃`). Bivector components are stored in
 //!   lexicographic order 12, 13, …, 1N, 23, …; indices in the API are 0-based, text is
 //!   1-based (`e12` is e₁∧e₂).
 //! - \[B\] is the skew matrix with \[B\]_ij = B_ij. The velocity of body point x under angular
@@ -56,16 +59,10 @@
 
 mod approx_impls;
 mod bivector;
-pub mod blade;
+pub(crate) mod blade;
 pub mod decompose;
 mod display;
-mod eigen;
 mod error;
-mod expm;
-pub(crate) use eigen::{RobustEigen, symmetric_eigen};
-pub(crate) use expm::{
-    expm_skew, expm_skew_taylor, expm_skew_taylor_dense, norm1 as expm_norm1, norm1_slice,
-};
 mod multivector;
 mod nalgebra;
 mod ops;
@@ -73,17 +70,14 @@ mod rotor;
 #[cfg(feature = "serde")]
 mod serde_impls;
 mod signature;
-mod trig;
 mod vector;
 
-pub(crate) use trig::sin_cos_minus_one;
-
 pub(crate) use bivector::commutator_packed;
-pub use bivector::{Bivector, bivector_len, pair_index, pairs};
+pub use bivector::{Bivector, SKEW_TOLERANCE, bivector_len, pair_index, pairs, plane_name};
 pub use decompose::{Decomposition, SimplePlane};
 pub use error::AlgebraError;
-pub use multivector::{Multivector, Product};
-pub use rotor::{ROTATION_TOLERANCE, Rotor};
+pub use multivector::{INVERSE_TOLERANCE, Multivector, Product};
+pub use rotor::{NORMALIZE_TOLERANCE, ROTATION_TOLERANCE, ROTOR_TOLERANCE, Rotor};
 pub(crate) use rotor::{accumulate_plane_rotor, plane_tables};
 pub use signature::Signature;
 pub use vector::Vector;
@@ -107,7 +101,7 @@ impl From<&Vector> for Multivector {
     fn from(v: &Vector) -> Self {
         let mut m = Multivector::zero(Signature::euclidean(v.dim()));
         for (i, &c) in v.as_slice().iter().enumerate() {
-            m.coefficients_mut()[1 << i] = c;
+            m.as_mut_slice()[1 << i] = c;
         }
         m
     }
@@ -122,7 +116,7 @@ impl From<&Bivector> for Multivector {
     fn from(b: &Bivector) -> Self {
         let mut m = Multivector::zero(Signature::euclidean(b.dim()));
         for ((i, j), &c) in pairs(b.dim()).zip(b.as_slice()) {
-            m.coefficients_mut()[(1 << i) | (1 << j)] = c;
+            m.as_mut_slice()[(1 << i) | (1 << j)] = c;
         }
         m
     }
@@ -140,10 +134,10 @@ impl TryFrom<&Multivector> for Vector {
     /// The grade-1 part, if the multivector is Euclidean and has no other grades.
     ///
     /// # Errors
-    /// [`AlgebraError::UnsupportedSignature`]; [`AlgebraError::WrongComponentCount`] (with
-    /// `what = "pure vector"`) when other grades are present.
+    /// [`AlgebraError::UnsupportedSignature`]; [`AlgebraError::MixedGrades`] when other
+    /// grades are present.
     fn try_from(m: &Multivector) -> Result<Self, AlgebraError> {
-        graded_check(m, 1, "pure vector")?;
+        graded_check(m, 1, "vector")?;
         let n = m.dim();
         Vector::from_components(&(0..n).map(|i| m.coefficient(1 << i)).collect::<Vec<f64>>())
     }
@@ -154,10 +148,10 @@ impl TryFrom<&Multivector> for Bivector {
     /// The grade-2 part, if the multivector is Euclidean and has no other grades.
     ///
     /// # Errors
-    /// [`AlgebraError::UnsupportedSignature`]; [`AlgebraError::WrongComponentCount`] (with
-    /// `what = "pure bivector"`) when other grades are present.
+    /// [`AlgebraError::UnsupportedSignature`]; [`AlgebraError::MixedGrades`] when other
+    /// grades are present.
     fn try_from(m: &Multivector) -> Result<Self, AlgebraError> {
-        graded_check(m, 2, "pure bivector")?;
+        graded_check(m, 2, "bivector")?;
         let n = m.dim();
         let comps: Vec<f64> = pairs(n)
             .map(|(i, j)| m.coefficient((1 << i) | (1 << j)))
@@ -175,10 +169,10 @@ fn graded_check(m: &Multivector, k: usize, what: &'static str) -> Result<(), Alg
     }
     let others = m.terms().filter(|(b, _)| blade::grade(*b) != k).count();
     if others > 0 {
-        return Err(AlgebraError::WrongComponentCount {
+        return Err(AlgebraError::MixedGrades {
             what,
-            expected: 0,
-            found: others,
+            grade: k,
+            others,
         });
     }
     Ok(())

@@ -1,8 +1,13 @@
 //! General multivectors in any signature: one product kernel, many products.
 
-use super::error::{check_finite, check_same_dim};
+use super::error::{check_finite, check_same_dim, within};
 use super::{AlgebraError, MULTIVECTOR_MAX_DIM, Signature, blade};
 use smallvec::SmallVec;
+
+/// Default tolerance of [`Multivector::inverse`] on the residual max |A A⁻¹ − 1| when the
+/// inverse comes from solving the linear system: far above its round-off for well-conditioned
+/// elements, far below any inverse worth the name.
+pub const INVERSE_TOLERANCE: f64 = 1e-8;
 
 /// Inline storage for multivectors: 16 coefficients cover every multivector up to N = 4
 /// without touching the heap.
@@ -11,11 +16,11 @@ pub(crate) type MvStorage = SmallVec<[f64; 16]>;
 /// A general element of the Clifford algebra Cl(p, q, r): a linear combination of all 2^N basis
 /// blades.
 ///
-/// Coefficients are stored densely, indexed by the blade's bit mask (see [`super::blade`]), so
-/// N ≤ [`MULTIVECTOR_MAX_DIM`]. Products skip zero coefficients, so sparse multivectors (a
-/// vector, a bivector) multiply in time proportional to the number of non-zero pairs. Use the
-/// graded types [`super::Vector`], [`super::Bivector`] and [`super::Rotor`] when you know the
-/// grade: they are faster and go to higher N.
+/// Coefficients are stored densely, indexed by the blade's bit mask (bit i set ⇔ eᵢ₊₁ is a
+/// factor), so N ≤ [`MULTIVECTOR_MAX_DIM`]. Products skip zero coefficients, so sparse
+/// multivectors (a vector, a bivector) multiply in time proportional to the number of non-zero
+/// pairs. Use the graded types [`super::Vector`], [`super::Bivector`] and [`super::Rotor`]
+/// when you know the grade: they are faster and go to higher N.
 ///
 /// # Contents
 /// - Construction: [`Multivector::zero`], [`Multivector::scalar`], [`Multivector::basis_blade`],
@@ -118,6 +123,9 @@ impl Multivector {
     }
 
     /// Returns the scalar `s` as a multivector of algebra `sig`.
+    ///
+    /// # Panics
+    /// If `sig.dim()` exceeds [`MULTIVECTOR_MAX_DIM`] (see [`Multivector::try_scalar`]).
     #[track_caller]
     pub fn scalar(sig: Signature, s: f64) -> Self {
         let mut m = Self::zero(sig);
@@ -125,20 +133,76 @@ impl Multivector {
         m
     }
 
-    /// Returns the basis blade with bit mask `blade` (bit i set ⇔ e_{i+1} is a factor).
+    /// Returns the scalar `s` as a multivector of algebra `sig`, or an error if the algebra
+    /// is too large.
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionTooLarge`].
+    pub fn try_scalar(sig: Signature, s: f64) -> Result<Self, AlgebraError> {
+        let mut m = Self::try_zero(sig)?;
+        m.coeffs[0] = s;
+        Ok(m)
+    }
+
+    /// Returns the basis blade with bit mask `blade` (bit i set ⇔ eᵢ₊₁ is a factor).
     ///
     /// # Panics
-    /// If the mask has bits at or above `sig.dim()`.
+    /// If the mask has bits at or above `sig.dim()` (see [`Multivector::try_basis_blade`]).
     #[track_caller]
     pub fn basis_blade(sig: Signature, blade: u64) -> Self {
-        let mut m = Self::zero(sig);
-        assert!(
-            (blade as usize) < m.coeffs.len(),
-            "rotorflow: blade mask {blade:#b} out of range for dimension {}",
-            sig.dim()
-        );
+        Self::try_basis_blade(sig, blade).unwrap_or_else(|_| {
+            panic!(
+                "rotorflow: blade mask {blade:#b} out of range for dimension {}",
+                sig.dim()
+            )
+        })
+    }
+
+    /// Returns the basis blade with bit mask `blade`, or an error if the mask is out of range.
+    ///
+    /// # Errors
+    /// [`AlgebraError::IndexOutOfRange`] if the mask has bits at or above `sig.dim()`;
+    /// [`AlgebraError::DimensionTooLarge`] if the algebra is too large.
+    pub fn try_basis_blade(sig: Signature, blade: u64) -> Result<Self, AlgebraError> {
+        let mut m = Self::try_zero(sig)?;
+        if blade as usize >= m.coeffs.len() {
+            return Err(AlgebraError::IndexOutOfRange {
+                index: 63 - blade.leading_zeros() as usize,
+                dim: sig.dim(),
+            });
+        }
         m.coeffs[blade as usize] = 1.0;
-        m
+        Ok(m)
+    }
+
+    /// Returns `coefficient` times the basis blade named `name`: `1` for the scalar, `e13`,
+    /// `e1e3` or `e₁₃` for e₁∧e₃ (1-based, as [`Display`](std::fmt::Display) writes blades;
+    /// from dimension 10 on, `e1_10`). Indices in another order give the reordered blade's
+    /// sign: `e31` is −e₁₃.
+    ///
+    /// ```
+    /// use rotorflow::algebra::{Multivector, Signature};
+    /// let sig = Signature::euclidean(3);
+    /// let b = Multivector::blade_by_name(sig, "e13", 0.5)?;
+    /// assert_eq!(b, Multivector::basis_blade(sig, 0b101) * 0.5);
+    /// assert_eq!(Multivector::blade_by_name(sig, "e₃₁", 1.0)?.coefficient(0b101), -1.0);
+    /// assert!(Multivector::blade_by_name(sig, "e14", 1.0).is_err()); // no e₄ in ℝ³
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`AlgebraError::InvalidBladeName`] for a malformed name or an index out of range;
+    /// [`AlgebraError::NonFinite`]; [`AlgebraError::DimensionTooLarge`].
+    pub fn blade_by_name(
+        sig: Signature,
+        name: &str,
+        coefficient: f64,
+    ) -> Result<Self, AlgebraError> {
+        let (sign, mask) = blade::parse_name(name, sig.dim())?;
+        check_finite(&[coefficient], "blade coefficient")?;
+        let mut m = Self::try_zero(sig)?;
+        m.coeffs[mask as usize] = sign * coefficient;
+        Ok(m)
     }
 
     /// Builds a multivector from its 2^N coefficients, indexed by blade bit mask.
@@ -180,14 +244,26 @@ impl Multivector {
 
     /// Returns all 2^N coefficients, indexed by blade bit mask.
     #[inline]
-    pub fn coefficients(&self) -> &[f64] {
+    pub fn as_slice(&self) -> &[f64] {
         &self.coeffs
     }
 
     /// Returns the coefficients mutably, indexed by blade bit mask.
     #[inline]
-    pub fn coefficients_mut(&mut self) -> &mut [f64] {
+    pub fn as_mut_slice(&mut self) -> &mut [f64] {
         &mut self.coeffs
+    }
+
+    /// Returns all 2^N coefficients, indexed by blade bit mask.
+    #[deprecated(note = "use Multivector::as_slice (the same name on every type)")]
+    pub fn coefficients(&self) -> &[f64] {
+        self.as_slice()
+    }
+
+    /// Returns the coefficients mutably, indexed by blade bit mask.
+    #[deprecated(note = "use Multivector::as_mut_slice (the same name on every type)")]
+    pub fn coefficients_mut(&mut self) -> &mut [f64] {
+        self.as_mut_slice()
     }
 
     /// Returns the coefficient of basis blade `blade` (0 if the mask is out of range).
@@ -345,7 +421,7 @@ impl Multivector {
         (0..=self.dim()).filter(|&k| present[k]).collect()
     }
 
-    /// Returns the reverse Ã: each grade-k part times (−1)^{k(k−1)/2}.
+    /// Returns the reverse Ã: each grade-k part times (−1)^(k(k−1)/2).
     pub fn reverse(&self) -> Self {
         self.map_blades(|b, c| c * blade::reverse_sign(blade::grade(b)))
     }
@@ -355,7 +431,7 @@ impl Multivector {
         self.map_blades(|b, c| c * blade::involution_sign(blade::grade(b)))
     }
 
-    /// Returns the Clifford conjugate Ā: each grade-k part times (−1)^{k(k+1)/2}.
+    /// Returns the Clifford conjugate Ā: each grade-k part times (−1)^(k(k+1)/2).
     pub fn clifford_conjugate(&self) -> Self {
         self.map_blades(|b, c| c * blade::conjugate_sign(blade::grade(b)))
     }
@@ -385,10 +461,22 @@ impl Multivector {
     /// 2^N × 2^N linear system of left multiplication, whose cost grows like 8^N (practical to
     /// N ≈ 10).
     ///
+    /// The linear system's answer is accepted when the residual max |A A⁻¹ − 1| is at most
+    /// [`INVERSE_TOLERANCE`]; [`Multivector::inverse_eps`] chooses the tolerance.
+    ///
     /// # Errors
     /// [`AlgebraError::NotInvertible`] if the element is singular (a null vector, a zero
     /// divisor such as 1 + e₁ in ℝ³, anything in a null direction of a degenerate metric).
     pub fn inverse(&self) -> Result<Self, AlgebraError> {
+        self.inverse_eps(INVERSE_TOLERANCE)
+    }
+
+    /// Like [`Multivector::inverse`] with an explicit tolerance on the residual
+    /// max |A A⁻¹ − 1| of the linear-system path.
+    ///
+    /// # Errors
+    /// As [`Multivector::inverse`].
+    pub fn inverse_eps(&self, tolerance: f64) -> Result<Self, AlgebraError> {
         let rev = self.reverse();
         let prod = self.geometric(&rev);
         let s = prod.scalar_part();
@@ -432,7 +520,7 @@ impl Multivector {
                 err = err.max(c.abs());
             }
         }
-        if !err.is_finite() || err > 1e-8 {
+        if !within(err, tolerance) {
             return Err(AlgebraError::NotInvertible {
                 reason: "left multiplication is singular",
             });
@@ -467,7 +555,7 @@ impl Multivector {
     /// where ⟨e_a, e_a⟩ is the product of the squares of a's basis vectors.
     ///
     /// On basis blades ⋆e_a = ⟨e_a, e_a⟩ s e_ā (s the right-complement sign). Applying it twice
-    /// gives ⋆⋆A = (−1)^{k(N−k)} (−1)^q A on grade k in Cl(p, q, 0), and 0 on blades that meet a
+    /// gives ⋆⋆A = (−1)ᵏ⁽ᴺ⁻ᵏ⁾ (−1)^q A on grade k in Cl(p, q, 0), and 0 on blades that meet a
     /// null direction. In 3D, ⋆e₁₂ = e₃: the paper's Levi-Civita contractions such as
     /// Ω_k = ½ ε_ijk ω_ij are exactly this map (book, chapter "The mapping").
     pub fn hodge(&self) -> Self {

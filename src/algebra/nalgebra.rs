@@ -14,7 +14,8 @@
 //!
 //! The quaternion convention: nalgebra's q = w + xi + yj + zk turns v into q v q*, a
 //! right-handed rotation about (x, y, z). The same rotation as a rotor is
-//! R = w − x e₂₃ + y e₁₃ − z e₁₂ (e₁∧e₂ ↔ e₃, DESIGN.md), so both give the same matrix.
+//! R = w − x e₂₃ + y e₁₃ − z e₁₂ (e₁∧e₂ ↔ e₃; see the Conventions chapter of the rotorflow
+//! book), so both give the same matrix.
 
 use super::rotor::even_index;
 use super::{AlgebraError, Bivector, Rotor, Vector};
@@ -86,7 +87,7 @@ impl<const D: usize> TryFrom<&SMatrix<f64, D, D>> for Bivector {
     type Error = AlgebraError;
     /// See [`Bivector::from_skew_matrix`].
     fn try_from(m: &SMatrix<f64, D, D>) -> Result<Self, AlgebraError> {
-        Bivector::from_skew_entries(D, D, |i, j| m[(i, j)])
+        Bivector::from_skew_entries(D, D, crate::algebra::SKEW_TOLERANCE, |i, j| m[(i, j)])
     }
 }
 

@@ -198,7 +198,7 @@ fn check_pair<T: SameSpace>(a: &T, b: &T) {
 
 linear_ops!(Vector, dim, as_slice, as_mut_slice);
 linear_ops!(Bivector, dim, as_slice, as_mut_slice);
-linear_ops!(Multivector, dim, coefficients, coefficients_mut);
+linear_ops!(Multivector, dim, as_slice, as_mut_slice);
 
 /// Implements a product operator on `&Multivector` and `Multivector` from a method.
 macro_rules! mv_product_op {

@@ -4,8 +4,7 @@
 //!
 //! Serialisation writes each component's shortest round-trip decimal. To read it back bit
 //! for bit with `serde_json`, enable that crate's `float_roundtrip` feature (rotorflow's own
-//! `cli` feature does): its default float parser can be one ulp off for long literals
-//! (found by the `json_algebra` fuzz target; see `fuzz/README.md`).
+//! `cli` feature does): its default float parser can be one ulp off for long literals.
 
 use super::{AlgebraError, Bivector, Multivector, Rotor, Signature, Vector};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -98,7 +97,7 @@ impl Serialize for Rotor {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         GradedRepr {
             dim: self.dim(),
-            components: self.to_multivector().coefficients().to_vec(),
+            components: self.to_multivector().as_slice().to_vec(),
         }
         .serialize(s)
     }
@@ -118,7 +117,7 @@ impl Serialize for Multivector {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         MultivectorRepr {
             signature: self.signature(),
-            coefficients: self.coefficients().to_vec(),
+            coefficients: self.as_slice().to_vec(),
         }
         .serialize(s)
     }

@@ -7,7 +7,7 @@ use std::fmt;
 /// and `r` to 0.
 ///
 /// The basis vectors are ordered positive first, then negative, then null: in Cl(p, q, r),
-/// e₁ … e_p square to +1, e_{p+1} … e_{p+q} to −1 and the last `r` to 0. (This puts the null
+/// e₁ … e_p square to +1, eₚ₊₁ … e_(p+q) to −1 and the last `r` to 0. (This puts the null
 /// vector of projective GA last; re-index if you prefer it first.) The dimension is
 /// N = p + q + r ≤ [`MAX_DIM`].
 ///

@@ -16,7 +16,7 @@ pub(crate) type VecStorage = SmallVec<[f64; 8]>;
 /// let x = Vector::from_components(&[1.0, 2.0, 2.0])?;
 /// assert_eq!(x.norm(), 3.0);
 /// let plane = Vector::basis(3, 0).wedge(&Vector::basis(3, 1)); // e₁ ∧ e₂
-/// assert_eq!(plane.to_string(), "1e12");
+/// assert_eq!(plane.to_string(), "1·e12");
 /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
 /// ```
 #[derive(Clone, Debug, PartialEq)]
@@ -28,31 +28,63 @@ impl Vector {
     /// Returns the zero vector of ℝⁿ.
     ///
     /// # Panics
-    /// If `n > MAX_DIM`.
+    /// If `n > MAX_DIM` (see [`Vector::try_zero`]).
     #[track_caller]
-    pub fn zeros(n: usize) -> Self {
-        assert!(
-            n <= MAX_DIM,
-            "rotorflow: dimension {n} exceeds MAX_DIM = {MAX_DIM}"
-        );
-        Vector {
-            coords: SmallVec::from_elem(0.0, n),
-        }
+    pub fn zero(n: usize) -> Self {
+        Self::try_zero(n).unwrap_or_else(|e| panic!("rotorflow: {e}"))
     }
 
-    /// Returns the basis vector e_{i+1} of ℝⁿ (`i` is 0-based).
+    /// Returns the zero vector of ℝⁿ, or an error if `n` is too large.
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionTooLarge`] if `n > MAX_DIM`.
+    pub fn try_zero(n: usize) -> Result<Self, AlgebraError> {
+        if n > MAX_DIM {
+            return Err(AlgebraError::DimensionTooLarge {
+                what: "vector",
+                dim: n,
+                max: MAX_DIM,
+            });
+        }
+        Ok(Vector {
+            coords: SmallVec::from_elem(0.0, n),
+        })
+    }
+
+    /// Returns the zero vector of ℝⁿ.
+    #[deprecated(note = "use Vector::zero (one name for the zero element of every type)")]
+    #[track_caller]
+    pub fn zeros(n: usize) -> Self {
+        Self::zero(n)
+    }
+
+    /// Returns the basis vector eᵢ₊₁ of ℝⁿ (`i` is 0-based).
     ///
     /// # Panics
-    /// If `i ≥ n` or `n > MAX_DIM`.
+    /// If `i ≥ n` or `n > MAX_DIM` (see [`Vector::try_basis`]).
     #[track_caller]
     pub fn basis(n: usize, i: usize) -> Self {
         assert!(
             i < n,
             "rotorflow: basis index {i} out of range for dimension {n}"
         );
-        let mut v = Self::zeros(n);
+        let mut v = Self::zero(n);
         v.coords[i] = 1.0;
         v
+    }
+
+    /// Returns the basis vector eᵢ₊₁ of ℝⁿ, or an error for a bad index or dimension.
+    ///
+    /// # Errors
+    /// [`AlgebraError::IndexOutOfRange`] if `i ≥ n`; [`AlgebraError::DimensionTooLarge`] if
+    /// `n > MAX_DIM`.
+    pub fn try_basis(n: usize, i: usize) -> Result<Self, AlgebraError> {
+        let mut v = Self::try_zero(n)?;
+        if i >= n {
+            return Err(AlgebraError::IndexOutOfRange { index: i, dim: n });
+        }
+        v.coords[i] = 1.0;
+        Ok(v)
     }
 
     /// Builds a vector from its components x₁ … x_N.
@@ -118,7 +150,7 @@ impl Vector {
 
     /// Returns |x|, computed without overflow or underflow for any finite components.
     pub fn norm(&self) -> f64 {
-        scaled_norm(&self.coords)
+        crate::numeric::scaled_norm(&self.coords)
     }
 
     /// Returns x / |x|, or `None` for the zero vector.
@@ -166,7 +198,7 @@ impl Vector {
             }
         }
         if c.iter().any(|c| c.is_nan()) {
-            // ∞ − ∞ from an overflowing product (found by the json_algebra fuzz target):
+            // ∞ − ∞ from an overflowing product of finite components:
             // scale both factors into [−1, 1], then scale the (finite) result back.
             let (sx, sy) = (self.max_abs(), other.max_abs());
             if sx.is_finite() && sy.is_finite() && sx > 0.0 && sy > 0.0 {
@@ -183,7 +215,8 @@ impl Vector {
     /// (x⌋B)ⱼ = Σᵢ xᵢ B_ij, i.e. \[B\]ᵀ x.
     ///
     /// This is how a bivector acts on a vector: with ω the angular velocity, x ⌋ ω is the
-    /// velocity of the body point x (DESIGN.md, "Angular velocity"), and e₁ ⌋ e₁₂ = e₂.
+    /// velocity of the body point x (see the Conventions chapter of the rotorflow book), and
+    /// e₁ ⌋ e₁₂ = e₂.
     ///
     /// # Panics
     /// If the dimensions differ.
@@ -191,7 +224,7 @@ impl Vector {
     pub fn left_contract(&self, b: &Bivector) -> Vector {
         super::error::assert_same_dim(self.dim(), b.dim());
         let n = self.dim();
-        let mut out = Vector::zeros(n);
+        let mut out = Vector::zero(n);
         b.contract_into(&self.coords, &mut out.coords);
         out
     }
@@ -224,20 +257,6 @@ impl std::ops::IndexMut<usize> for Vector {
     fn index_mut(&mut self, i: usize) -> &mut f64 {
         &mut self.coords[i]
     }
-}
-
-/// Euclidean norm of a slice that neither overflows nor underflows (scaled by the largest
-/// magnitude first, as LAPACK's `dnrm2`).
-pub(crate) fn scaled_norm(x: &[f64]) -> f64 {
-    let m = x.iter().fold(0.0f64, |m, c| m.max(c.abs()));
-    if m == 0.0 || !m.is_finite() {
-        return m;
-    }
-    if (1e-150..1e150).contains(&m) {
-        return x.iter().map(|c| c * c).sum::<f64>().sqrt();
-    }
-    let s: f64 = x.iter().map(|c| (c / m) * (c / m)).sum();
-    m * s.sqrt()
 }
 
 /// (x/sx) ∧ (y/sy), component by component (the overflow path of [`Vector::wedge`]).

@@ -185,18 +185,8 @@ pub fn number(x: f64) -> String {
 /// Returns the 1-based plane names of dimension `n` in lexicographic order ("12", "13", …).
 pub fn plane_names(n: usize) -> Vec<String> {
     rotorflow::algebra::pairs(n)
-        .map(|(i, j)| plane_name(n, i, j))
+        .map(|(i, j)| rotorflow::algebra::plane_name(n, i, j))
         .collect()
-}
-
-/// Returns the 1-based name of the plane (i, j) (0-based) in dimension `n`: "12", or "1_10"
-/// when N ≥ 10.
-pub fn plane_name(n: usize, i: usize, j: usize) -> String {
-    if n < 10 {
-        format!("{}{}", i + 1, j + 1)
-    } else {
-        format!("{}_{}", i + 1, j + 1)
-    }
 }
 
 /// A progress bar on standard error that appears only when the run has taken longer than a

@@ -1,9 +1,8 @@
 //! [`Attitude`]: the rotation body → space, a unit rotor for small N and an SO(N) matrix
 //! above.
 
-use crate::algebra::{
-    AlgebraError, Bivector, Rotor, Vector, accumulate_plane_rotor, pairs, sin_cos_minus_one,
-};
+use crate::algebra::{AlgebraError, Bivector, Rotor, Vector, accumulate_plane_rotor, pairs};
+use crate::numeric::{orthogonality_error, sin_cos_minus_one};
 use nalgebra::{DMatrix, DMatrixView, DMatrixViewMut, SMatrix};
 use smallvec::SmallVec;
 
@@ -100,7 +99,7 @@ impl Attitude {
         if q.iter().any(|x| !x.is_finite()) {
             return Err(AlgebraError::NonFinite { what: "matrix" });
         }
-        let err = matrix_orthogonality_error(q.as_view());
+        let err = orthogonality_error(q.as_view());
         let det = q.determinant();
         let tolerance = crate::algebra::ROTATION_TOLERANCE;
         if err > tolerance || det < 0.0 {
@@ -249,14 +248,14 @@ impl Attitude {
     pub fn unit_error(&self) -> f64 {
         match &self.repr {
             Repr::Rotor(r) => r.unit_error(),
-            Repr::Matrix(q) => matrix_orthogonality_error(Self::view(q)),
+            Repr::Matrix(q) => orthogonality_error(Self::view(q)),
         }
     }
 
     /// Returns true if every stored number is finite.
     pub fn is_finite(&self) -> bool {
         match &self.repr {
-            Repr::Rotor(r) => r.raw_coefficients().iter().all(|x| x.is_finite()),
+            Repr::Rotor(r) => r.as_slice().iter().all(|x| x.is_finite()),
             Repr::Matrix(q) => q.iter().all(|x| x.is_finite()),
         }
     }
@@ -303,13 +302,13 @@ impl Attitude {
     pub(crate) fn times_expm_dense(&mut self, s: &[f64], work: &mut [f64]) {
         let n = self.dim();
         let nn = n * n;
-        let norm = crate::algebra::norm1_slice(n, s);
+        let norm = crate::numeric::norm1_slice(n, s);
         if let (Repr::Matrix(q), true) = (&mut self.repr, norm.is_finite()) {
             if norm == 0.0 {
                 return;
             }
             let (e, q0) = work.split_at_mut(nn);
-            if crate::algebra::expm_skew_taylor_dense(n, s, norm, e) {
+            if crate::numeric::expm_skew_taylor_dense(n, s, norm, e) {
                 let q0 = &mut q0[..nn];
                 q0.copy_from_slice(q);
                 DMatrixViewMut::from_slice(q, n, n).gemm(
@@ -351,7 +350,7 @@ impl PlaneProduct {
     pub(crate) fn identity_for(attitude: &Attitude) -> Self {
         let dim = attitude.dim();
         let (len, rotor) = match &attitude.repr {
-            Repr::Rotor(r) => (r.raw_coefficients().len(), true),
+            Repr::Rotor(r) => (r.as_slice().len(), true),
             Repr::Matrix(q) => (q.len(), false),
         };
         PlaneProduct {
@@ -369,7 +368,7 @@ impl PlaneProduct {
 
     /// P ← P G with G the turn by θ in the body plane eᵢ∧eⱼ (from eᵢ toward eⱼ): the rotor
     /// exp(−θ/2 eᵢⱼ), or the Givens rotation on columns i and j. `(s, m)` are sin θ and
-    /// cos θ − 1 from [`crate::algebra::sin_cos_minus_one`]; a rotor evaluates its half angle
+    /// cos θ − 1 from `numeric::sin_cos_minus_one`; a rotor evaluates its half angle
     /// the same way, so each factor is orthogonal to O(εθ²).
     #[inline]
     pub(crate) fn rotate_in_plane(&mut self, i: usize, j: usize, theta: f64, (s, m): (f64, f64)) {
@@ -467,20 +466,6 @@ fn conjugate(q: DMatrixView<'_, f64>, b: &Bivector, transposed: bool) -> Bivecto
     out
 }
 
-/// max |(QᵀQ − 1)_ij|.
-fn matrix_orthogonality_error(q: DMatrixView<'_, f64>) -> f64 {
-    let g = q.tr_mul(&q);
-    let n = g.nrows();
-    let mut err = 0.0f64;
-    for i in 0..n {
-        for j in 0..n {
-            let target = if i == j { 1.0 } else { 0.0 };
-            err = err.max((g[(i, j)] - target).abs());
-        }
-    }
-    err
-}
-
 /// Q ← Q expm(2\[A\]) for a literal N, on the stack (a macro rather than a const generic:
 /// nalgebra's LU needs the size as a type-level number).
 macro_rules! times_exp_fixed {
@@ -491,10 +476,10 @@ macro_rules! times_exp_fixed {
             s[(i, j)] = 2.0 * c;
             s[(j, i)] = -2.0 * c;
         }
-        let norm = crate::algebra::expm_norm1(&s);
+        let norm = crate::numeric::norm1(&s);
         if norm != 0.0 {
-            let e = match crate::algebra::expm_skew_taylor(&s, norm)
-                .or_else(|| crate::algebra::expm_skew(&s, norm))
+            let e = match crate::numeric::expm_skew_taylor(&s, norm)
+                .or_else(|| crate::numeric::expm_skew(&s, norm))
             {
                 Some(e) => e,
                 None => SMatrix::from_column_slice((a * 2.0).exp_skew_matrix().as_slice()),

@@ -118,11 +118,8 @@ impl InertiaMap {
         let j = (j + j.transpose()) * 0.5;
         let off_diagonal = (0..n).any(|r| (0..n).any(|c| r != c && j[(r, c)] != 0.0));
         let (moments, axes) = if off_diagonal {
-            let eig = crate::algebra::RobustEigen::new(j.clone());
-            let mut order: Vec<usize> = (0..n).collect();
-            order.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
-            let moments: Vec<f64> = order.iter().map(|&k| eig.eigenvalues[k]).collect();
-            let mut axes = DMatrix::from_fn(n, n, |r, c| eig.eigenvectors[(r, order[c])]);
+            let (moments, mut axes) = crate::numeric::sorted_symmetric_eigen(&j);
+            let moments: Vec<f64> = moments.iter().copied().collect();
             if axes.determinant() < 0.0 {
                 let flipped = -axes.column(n - 1);
                 axes.set_column(n - 1, &flipped);
@@ -318,7 +315,7 @@ impl InertiaMap {
         check_finite_matrix("map_on_bivectors", matrix)?;
         check_symmetric("map_on_bivectors", matrix)?;
         let m = (matrix + matrix.transpose()) * 0.5;
-        let eig = crate::algebra::RobustEigen::new(m.clone());
+        let eig = crate::numeric::RobustEigen::new(m.clone());
         let smallest = eig.eigenvalues.iter().fold(f64::INFINITY, |a, &b| a.min(b));
         let largest = eig.eigenvalues.iter().fold(0.0f64, |a, &b| a.max(b));
         if smallest.is_nan() || smallest <= SINGULAR_PLANE_TOLERANCE * largest || smallest <= 0.0 {
@@ -494,15 +491,11 @@ impl InertiaMap {
                 matrix, diagonal, ..
             } => match diagonal {
                 Some(d) => d.clone(),
-                None => {
-                    let mut v: Vec<f64> = crate::algebra::RobustEigen::new(matrix.clone())
-                        .eigenvalues
-                        .iter()
-                        .copied()
-                        .collect();
-                    v.sort_by(f64::total_cmp);
-                    v
-                }
+                None => crate::numeric::sorted_symmetric_eigen(matrix)
+                    .0
+                    .iter()
+                    .copied()
+                    .collect(),
             },
         }
     }

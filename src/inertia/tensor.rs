@@ -428,10 +428,7 @@ impl ContractedInertia {
 
     /// Returns the eigenvalues of 𝕀 in ascending order (eq. 25, frame-independent).
     pub fn principal_values(&self) -> DVector<f64> {
-        let eig = crate::algebra::RobustEigen::new(self.matrix.clone());
-        let mut values: Vec<f64> = eig.eigenvalues.iter().copied().collect();
-        values.sort_by(f64::total_cmp);
-        DVector::from_vec(values)
+        crate::numeric::sorted_symmetric_eigen(&self.matrix).0
     }
 
     /// Returns the trace 𝕀₀ = tr 𝕀 = c_N (N − 1) tr J (eq. 29).

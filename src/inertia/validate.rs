@@ -96,23 +96,9 @@ pub(super) fn symmetrize(m: &DMatrix<f64>) -> DMatrix<f64> {
     (m + m.transpose()) * 0.5
 }
 
-pub(super) fn max_abs(m: &DMatrix<f64>) -> f64 {
-    m.iter().fold(0.0_f64, |acc, x| acc.max(x.abs()))
-}
-
-/// Sorted (ascending) eigen-decomposition of a symmetric matrix; eigenvectors as columns.
-pub(super) fn sorted_eigen(m: &DMatrix<f64>) -> (DVector<f64>, DMatrix<f64>) {
-    let n = m.nrows();
-    let eig = crate::algebra::RobustEigen::new(m.clone());
-    let mut order: Vec<usize> = (0..n).collect();
-    order.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
-    let values = DVector::from_iterator(n, order.iter().map(|&k| eig.eigenvalues[k]));
-    let mut vectors = DMatrix::zeros(n, n);
-    for (col, &k) in order.iter().enumerate() {
-        vectors.set_column(col, &eig.eigenvectors.column(k));
-    }
-    (values, vectors)
-}
+pub(super) use crate::numeric::{
+    max_abs_matrix as max_abs, sorted_symmetric_eigen as sorted_eigen,
+};
 
 /// Checks that every entry of `m` is finite; the index of a bad entry is row · ncols + col.
 pub(super) fn check_finite_matrix(

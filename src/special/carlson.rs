@@ -1,34 +1,34 @@
-//! Carlson's symmetric elliptic integrals $R_F$, $R_D$, $R_J$ and $R_C$.
+//! Carlson's symmetric elliptic integrals R_F, R_D, R_J and R_C.
 //!
 //! All four use Carlson's duplication theorem (B. C. Carlson, "Numerical
 //! computation of real or complex elliptic integrals", Numer. Algorithms 10
 //! (1995) 13–26, arXiv:math/9409227; DLMF §19.36(i)): the arguments are
-//! replaced by $(v + \lambda)/4$ until they agree to about 1 %, and the
+//! replaced by (v + λ)/4 until they agree to about 1 %, and the
 //! remaining integral is summed from its Taylor series in the elementary
-//! symmetric functions $E_2 \dots E_5$ (DLMF 19.36.1 and 19.36.2, which carry
+//! symmetric functions E₂ … E₅ (DLMF 19.36.1 and 19.36.2, which carry
 //! the series two orders further than the 1995 paper). The series is
-//! truncated after degree 7, so stopping at relative spread $t \le 10^{-2}$
-//! leaves a truncation error of about $10^{-2} t^8 \le 10^{-18}$; the rest of
+//! truncated after degree 7, so stopping at relative spread t ≤ 10⁻²
+//! leaves a truncation error of about 10⁻² t⁸ ≤ 10⁻¹⁸; the rest of
 //! the error is rounding.
 //!
 //! Arguments are first rescaled by an even power of two (exact, and exact in
-//! the square root) when the largest one is outside $[2^{-300}, 2^{300}]$
-//! ($R_J$, $R_D$) or $[2^{-900}, 2^{900}]$ ($R_F$, $R_C$), so that the cubes
-//! formed inside $R_J$ neither overflow nor underflow. Arguments whose ratio
-//! exceeds about $2^{1000}$ cannot all be represented after scaling; the
+//! the square root) when the largest one is outside [2⁻³⁰⁰, 2³⁰⁰]
+//! (R_J, R_D) or [2⁻⁹⁰⁰, 2⁹⁰⁰] (R_F, R_C), so that the cubes
+//! formed inside R_J neither overflow nor underflow. Arguments whose ratio
+//! exceeds about 2¹⁰⁰⁰ cannot all be represented after scaling; the
 //! result is then finite but not accurate (this is the only loss of
 //! accuracy inside the domain).
 
 use crate::special::error::{EllipticError, check_finite, finish};
 
-/// Stop the duplication when $4^{-n}\max_i|A_0 - v_i| \le$ `TOL` $\cdot A_n$.
-/// The neglected series terms are then below $\approx 0.03\,$`TOL`$^8$
-/// (measured with mpmath for both series) — about $5 \times 10^{-19}$.
+/// Stop the duplication when 4⁻ⁿ max_i|A₀ − v_i| ≤ `TOL` · A_n.
+/// The neglected series terms are then below ≈ 0.03 `TOL`⁸
+/// (measured with mpmath for both series) — about 5 × 10⁻¹⁹.
 const TOL: f64 = 8e-3;
 
 /// Iteration cap; the spread shrinks at least by 4 per step once the
 /// arguments are within a factor of a few, and the initial coalescence of
-/// widely spread arguments takes $\log_2\log(\max/\min)$ steps, so 100 is
+/// widely spread arguments takes log₂ log(max/min) steps, so 100 is
 /// never reached for finite inputs.
 const MAX_ITER: usize = 100;
 
@@ -45,11 +45,11 @@ fn rescale(largest: f64, limit: f64) -> f64 {
     }
 }
 
-/// Scaling limit for $R_J$ and $R_D$, whose duplication forms cubes of the
-/// arguments: $2^{300}$.
+/// Scaling limit for R_J and R_D, whose duplication forms cubes of the
+/// arguments: 2³⁰⁰.
 const LIMIT_CUBIC: f64 = 2.037_035_976_334_486e90;
-/// Scaling limit for $R_F$ and $R_C$ (no products beyond square roots):
-/// $2^{900}$, which also keeps subnormal inputs away from the core loop.
+/// Scaling limit for R_F and R_C (no products beyond square roots):
+/// 2⁹⁰⁰, which also keeps subnormal inputs away from the core loop.
 const LIMIT_LINEAR: f64 = 8.452_712_498_170_644e270;
 
 /// `v * s * s` without forming `s * s`. A non-zero argument that would
@@ -66,7 +66,7 @@ fn scaled(v: f64, s: f64) -> f64 {
     }
 }
 
-/// Degree-7 truncation of the $R_F$ series, DLMF 19.36.1.
+/// Degree-7 truncation of the R_F series, DLMF 19.36.1.
 #[inline]
 fn rf_series(e2: f64, e3: f64) -> f64 {
     // 1 - E2/10 + E3/14 + E2^2/24 - 3 E2 E3/44 - 5 E2^3/208 + 3 E3^2/104 + E2^2 E3/16
@@ -75,7 +75,7 @@ fn rf_series(e2: f64, e3: f64) -> f64 {
         + e2 * e2 * e3 / 16.0
 }
 
-/// Degree-7 truncation of the $R_J$ (and $R_D$) series, DLMF 19.36.2.
+/// Degree-7 truncation of the R_J (and R_D) series, DLMF 19.36.2.
 #[inline]
 fn rj_series(e2: f64, e3: f64, e4: f64, e5: f64) -> f64 {
     1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0 - 9.0 * e2 * e3 / 52.0
@@ -87,7 +87,7 @@ fn rj_series(e2: f64, e3: f64, e4: f64, e5: f64) -> f64 {
         - 9.0 * (e3 * e4 + e2 * e5) / 68.0
 }
 
-/// $R_F$ for finite `x, y, z >= 0` with at most one zero. No checks.
+/// R_F for finite `x, y, z >= 0` with at most one zero. No checks.
 pub(crate) fn rf(x: f64, y: f64, z: f64) -> f64 {
     let zeros = (x == 0.0) as u8 + (y == 0.0) as u8 + (z == 0.0) as u8;
     if zeros >= 2 {
@@ -126,7 +126,7 @@ fn rf_core(x0: f64, y0: f64, z0: f64) -> f64 {
     rf_series(e2, e3) / a.sqrt()
 }
 
-/// $R_D$ for finite `x, y >= 0` (not both zero) and `z > 0`. No checks.
+/// R_D for finite `x, y >= 0` (not both zero) and `z > 0`. No checks.
 pub(crate) fn rd(x: f64, y: f64, z: f64) -> f64 {
     if z == 0.0 || (x == 0.0 && y == 0.0) {
         return f64::INFINITY;
@@ -170,7 +170,7 @@ fn rd_core(x0: f64, y0: f64, z0: f64) -> f64 {
     f * rj_series(e2, e3, e4, e5) / (a * a.sqrt()) + 3.0 * sum
 }
 
-/// $R_C(1, w^2)$ for $w \ge 0$ without forming $w^2$ (DLMF 19.2.18–19.2.19).
+/// R_C(1, w²) for w ≥ 0 without forming w² (DLMF 19.2.18–19.2.19).
 fn rc_one_sq(w: f64) -> f64 {
     if w < 1.0 {
         if w == 0.0 {
@@ -194,7 +194,7 @@ fn rc_one_sq(w: f64) -> f64 {
     }
 }
 
-/// $R_J$ for finite `x, y, z >= 0` with at most one zero and `p > 0`.
+/// R_J for finite `x, y, z >= 0` with at most one zero and `p > 0`.
 fn rj_positive(x: f64, y: f64, z: f64, p: f64) -> f64 {
     let sc = rescale(x.max(y).max(z).max(p), LIMIT_CUBIC);
     if sc != 1.0 {
@@ -251,7 +251,7 @@ fn rj_core(x0: f64, y0: f64, z0: f64, p0: f64) -> f64 {
     f * rj_series(e2, e3, e4, e5) / (a * a.sqrt()) + 3.0 * sum
 }
 
-/// $R_J$ for finite `x, y, z >= 0` and any finite `p`, principal value for
+/// R_J for finite `x, y, z >= 0` and any finite `p`, principal value for
 /// `p < 0`. Returns `None` when `p < 0` and two of `x, y, z` vanish.
 pub(crate) fn rj(x: f64, y: f64, z: f64, p: f64) -> Option<f64> {
     let zeros = (x == 0.0) as u8 + (y == 0.0) as u8 + (z == 0.0) as u8;
@@ -295,7 +295,7 @@ pub(crate) fn rj(x: f64, y: f64, z: f64, p: f64) -> Option<f64> {
     Some(value / (y + q))
 }
 
-/// $R_C$ for finite `x >= 0`, `y != 0` (principal value for `y < 0`);
+/// R_C for finite `x >= 0`, `y != 0` (principal value for `y < 0`);
 /// `y == 0` gives `+inf`. No checks.
 pub(crate) fn rc(x: f64, y: f64) -> f64 {
     if y < 0.0 {
@@ -348,14 +348,14 @@ fn check_nonnegative(name: &'static str, value: f64) -> Result<(), EllipticError
 }
 
 /// Returns Carlson's symmetric integral of the first kind,
-/// $$R_F(x,y,z) = \frac12\int_0^\infty \frac{dt}{\sqrt{(t+x)(t+y)(t+z)}}.$$
+/// R_F(x,y,z) = ½ ∫₀^∞ dt/√((t+x)(t+y)(t+z)).
 ///
-/// Domain: finite $x, y, z \ge 0$. If two (or three) arguments are zero the
-/// integral diverges and `+inf` is returned. $R_F$ is symmetric and
-/// homogeneous of degree $-1/2$.
+/// Domain: finite x, y, z ≥ 0. If two (or three) arguments are zero the
+/// integral diverges and `+inf` is returned. R_F is symmetric and
+/// homogeneous of degree −1/2.
 ///
 /// Accuracy: relative error ≤ 5.0e-16 (2.2 ulp) against 30-digit mpmath
-/// values (352 argument triples from 0 to 1e15, `tests/mpmath_reference.rs`).
+/// values (352 argument triples from 0 to 1e15, `tests/special/mpmath_reference.rs`).
 ///
 /// Source: Carlson (1995) §2 algorithm with the degree-7 series of DLMF 19.36.1.
 ///
@@ -379,14 +379,14 @@ pub fn carlson_rf(x: f64, y: f64, z: f64) -> Result<f64, EllipticError> {
 }
 
 /// Returns Carlson's symmetric integral of the second kind,
-/// $$R_D(x,y,z) = \frac32\int_0^\infty \frac{dt}{(t+z)\sqrt{(t+x)(t+y)(t+z)}}.$$
+/// R_D(x,y,z) = (3/2) ∫₀^∞ dt/((t+z)√((t+x)(t+y)(t+z))).
 ///
-/// Domain: finite $x, y \ge 0$, $z \ge 0$. It is symmetric in $x, y$ only.
-/// If $z = 0$, or $x = y = 0$, the integral diverges and `+inf` is returned.
+/// Domain: finite x, y ≥ 0, z ≥ 0. It is symmetric in x, y only.
+/// If z = 0, or x = y = 0, the integral diverges and `+inf` is returned.
 ///
 /// Accuracy: relative error ≤ 5.0e-16 (2.2 ulp) against mpmath (847 triples).
 ///
-/// Source: Carlson (1995) §2 with the series of DLMF 19.36.2 ($R_D = R_J(x,y,z,z)$).
+/// Source: Carlson (1995) §2 with the series of DLMF 19.36.2 (R_D = R_J(x,y,z,z)).
 ///
 /// # Errors
 /// [`EllipticError::NonFinite`], or [`EllipticError::OutOfDomain`] for a
@@ -407,30 +407,30 @@ pub fn carlson_rd(x: f64, y: f64, z: f64) -> Result<f64, EllipticError> {
 }
 
 /// Returns Carlson's symmetric integral of the third kind,
-/// $$R_J(x,y,z,p) = \frac32\int_0^\infty \frac{dt}{(t+p)\sqrt{(t+x)(t+y)(t+z)}},$$
-/// taken as a Cauchy principal value when $p < 0$.
+/// R_J(x,y,z,p) = (3/2) ∫₀^∞ dt/((t+p)√((t+x)(t+y)(t+z))),
+/// taken as a Cauchy principal value when p < 0.
 ///
-/// Domain: finite $x, y, z \ge 0$ and finite $p$.
-/// * $p > 0$: two zero arguments among $x, y, z$ make it diverge → `+inf`.
-/// * $p = 0$: diverges → `+inf`.
-/// * $p < 0$: principal value from Carlson (1995) §2
-///   (DLMF 19.20.14, form with $x \le y \le z$):
-///   $(y-p)R_J(x,y,z,p) = (p'-y)R_J(x,y,z,p') - 3R_F(x,y,z) +
-///   3\sqrt{xyz/(xz+p'q)}\,R_C(xz+p'q,\,p'q)$, with $q=-p$ and
-///   $p' = y + (z-y)(y-x)/(y+q)$. Undefined (error) if two of $x,y,z$ vanish.
+/// Domain: finite x, y, z ≥ 0 and finite p.
+/// * p > 0: two zero arguments among x, y, z make it diverge → `+inf`.
+/// * p = 0: diverges → `+inf`.
+/// * p < 0: principal value from Carlson (1995) §2
+///   (DLMF 19.20.14, form with x ≤ y ≤ z):
+///   (y−p)R_J(x,y,z,p) = (p'−y)R_J(x,y,z,p') − 3R_F(x,y,z) +
+///   3√(xyz/(xz+p'q)) R_C(xz+p'q, p'q), with q=−p and
+///   p' = y + (z−y)(y−x)/(y+q). Undefined (error) if two of x,y,z vanish.
 ///
-/// Accuracy: relative error ≤ 5.3e-16 (2.4 ulp) for $p > 0$ (385 cases) and
+/// Accuracy: relative error ≤ 5.3e-16 (2.4 ulp) for p > 0 (385 cases) and
 /// ≤ 9.5e-15 for the principal value (308 cases): the PV combines terms of
 /// both signs, and its relative error is ~2 ulp times their cancellation ratio.
-/// Arguments spanning more than ~$10^{250}$ may give
+/// Arguments spanning more than ~10²⁵⁰ may give
 /// [`EllipticError::Overflow`] or an inaccurate value.
 ///
-/// Source: Carlson (1995) §2 duplication, with the $R_C(\alpha_m, \beta_m)$
+/// Source: Carlson (1995) §2 duplication, with the R_C(α_m, β_m)
 /// terms of Carlson (1988, Math. Comp. 51, 267) and the series DLMF 19.36.2.
 ///
 /// # Errors
 /// [`EllipticError::NonFinite`], [`EllipticError::OutOfDomain`] (negative
-/// $x, y, z$), [`EllipticError::Divergent`] ($p < 0$ with two zero arguments).
+/// x, y, z), [`EllipticError::Divergent`] (p < 0 with two zero arguments).
 ///
 /// # Example
 /// ```
@@ -451,12 +451,12 @@ pub fn carlson_rj(x: f64, y: f64, z: f64, p: f64) -> Result<f64, EllipticError> 
 }
 
 /// Returns Carlson's degenerate integral
-/// $$R_C(x,y) = R_F(x,y,y) = \frac12\int_0^\infty \frac{dt}{(t+y)\sqrt{t+x}},$$
-/// taken as a Cauchy principal value when $y < 0$.
+/// R_C(x,y) = R_F(x,y,y) = ½ ∫₀^∞ dt/((t+y)√(t+x)),
+/// taken as a Cauchy principal value when y < 0.
 ///
-/// Domain: finite $x \ge 0$ and finite $y$. $y = 0$ diverges → `+inf`.
-/// For $y < 0$: $R_C(x,y) = \sqrt{x/(x-y)}\,R_C(x-y,-y)$ (DLMF 19.2.20), and
-/// $R_C(0, y<0) = 0$.
+/// Domain: finite x ≥ 0 and finite y. y = 0 diverges → `+inf`.
+/// For y < 0: R_C(x,y) = √(x/(x−y)) R_C(x−y,−y) (DLMF 19.2.20), and
+/// R_C(0, y<0) = 0.
 ///
 /// Accuracy: relative error ≤ 2.8e-16 (1.2 ulp) against mpmath (70 pairs).
 ///
@@ -464,7 +464,7 @@ pub fn carlson_rj(x: f64, y: f64, z: f64, p: f64) -> Result<f64, EllipticError> 
 /// arranged to avoid cancellation), not duplication.
 ///
 /// # Errors
-/// [`EllipticError::NonFinite`], or [`EllipticError::OutOfDomain`] for $x < 0$.
+/// [`EllipticError::NonFinite`], or [`EllipticError::OutOfDomain`] for x < 0.
 ///
 /// # Example
 /// ```

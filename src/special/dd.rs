@@ -1,6 +1,6 @@
 //! Minimal double-double arithmetic (an unevaluated sum `hi + lo` with
-//! `|lo| <= ulp(hi) / 2`), used only to know the quarter period $K(m)$ and
-//! $\pi$ to about 106 bits so that large arguments can be reduced exactly.
+//! `|lo| <= ulp(hi) / 2`), used only to know the quarter period K(m) and
+//! π to about 106 bits so that large arguments can be reduced exactly.
 //!
 //! The algorithms are the classical error-free transformations (Knuth's
 //! two-sum, FMA two-product) and the Dekker/Bailey double-double operations.
@@ -12,13 +12,13 @@ pub(crate) struct Dd {
     pub lo: f64,
 }
 
-/// $\pi/2$ as a double-double.
+/// π/2 as a double-double.
 pub(crate) const FRAC_PI_2: Dd = Dd {
     hi: core::f64::consts::FRAC_PI_2,
     lo: 6.123_233_995_736_766e-17,
 };
 
-/// $\pi$ as a double-double.
+/// π as a double-double.
 pub(crate) const PI: Dd = Dd {
     hi: core::f64::consts::PI,
     lo: 1.224_646_799_147_353_2e-16,
@@ -147,13 +147,13 @@ impl Dd {
     }
 }
 
-/// The complementary parameter $1 - m$ as an exact double-double.
+/// The complementary parameter 1 − m as an exact double-double.
 pub(crate) fn one_minus(m: f64) -> Dd {
     let (hi, lo) = two_sum(1.0, -m);
     Dd { hi, lo }
 }
 
-/// Arithmetic-geometric mean $M(1, \sqrt{m_1})$ in double-double arithmetic
+/// Arithmetic-geometric mean M(1, √m₁) in double-double arithmetic
 /// (DLMF 19.8.1). Converges quadratically; returns 0 when `m1 == 0`.
 pub(crate) fn agm_one_sqrt(m1: Dd) -> Dd {
     if m1.hi <= 0.0 {
@@ -175,7 +175,7 @@ pub(crate) fn agm_one_sqrt(m1: Dd) -> Dd {
     a.add(b).half()
 }
 
-/// $K(m) = \pi / (2 M(1, \sqrt{1-m}))$ as a double-double (DLMF 19.8.5),
+/// K(m) = π / (2 M(1, √(1−m))) as a double-double (DLMF 19.8.5),
 /// for a complementary parameter `0 < m1 <= 1` given as a double-double.
 pub(crate) fn complete_k_dd(m1: Dd) -> Dd {
     FRAC_PI_2.div(agm_one_sqrt(m1))

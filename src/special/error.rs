@@ -4,7 +4,7 @@
 ///
 /// No function of this crate returns NaN: an input for which no value is
 /// defined (or supported) gives one of these variants instead. Integrals that
-/// diverge because their integrand is positive (e.g. $K(1)$) are *not* errors:
+/// diverge because their integrand is positive (e.g. K(1)) are *not* errors:
 /// they return `f64::INFINITY`, which is the value of the integral.
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 #[non_exhaustive]
@@ -25,7 +25,7 @@ pub enum EllipticError {
     /// An argument is finite but outside the supported domain.
     ///
     /// # How to fix
-    /// `domain` states the accepted range. For a parameter $m > 1$ use the
+    /// `domain` states the accepted range. For a parameter m > 1 use the
     /// reciprocal-modulus transformation (DLMF 19.7.4, 22.17.4) before calling.
     #[error("argument `{name}` = {value} is outside the supported domain {domain}")]
     OutOfDomain {
@@ -57,8 +57,8 @@ pub enum EllipticError {
 
     /// The integral has no value, not even as a Cauchy principal value.
     ///
-    /// This happens only for $R_J(x, y, z, p)$ with $p < 0$ and two of
-    /// $x, y, z$ equal to zero, where the integrand has a non-integrable
+    /// This happens only for R_J(x, y, z, p) with p < 0 and two of
+    /// x, y, z equal to zero, where the integrand has a non-integrable
     /// singularity of both signs.
     ///
     /// # How to fix
@@ -71,7 +71,7 @@ pub enum EllipticError {
 
     /// Intermediate quantities over- or underflowed `f64`, so no meaningful
     /// value could be formed. This needs extreme inputs, such as Carlson
-    /// arguments whose ratio exceeds ~$10^{250}$ or $|m| > 10^{250}$.
+    /// arguments whose ratio exceeds ~10²⁵⁰ or |m| > 10²⁵⁰.
     ///
     /// # How to fix
     /// Rescale the problem (Carlson integrals are homogeneous) or use an

@@ -1,56 +1,56 @@
-//! Jacobi elliptic functions $\mathrm{sn}$, $\mathrm{cn}$, $\mathrm{dn}$ and
-//! the (unwrapped) amplitude $\mathrm{am}$, for real $u$ and $0 \le m \le 1$.
+//! Jacobi elliptic functions sn, cn, dn and
+//! the (unwrapped) amplitude am, for real u and 0 ≤ m ≤ 1.
 //!
 //! # Algorithm
-//! 1. **Reduction.** $u = jK + v$ with $j = \operatorname{round}(u/K)$ and
-//!    $|v| \le K/2$, where $K = K(m)$ is known to ~106 bits (double-double
-//!    AGM, DLMF 19.8.5). $v$ is formed as a double-double $v_{hi} + v_{lo}$
-//!    and $v_{lo}$ enters through a first-order Taylor correction, so even
-//!    $u = 10^{12}$ or $u$ next to a zero of sn or cn keeps its *relative*
+//! 1. **Reduction.** u = jK + v with j = round(u/K) and
+//!    |v| ≤ K/2, where K = K(m) is known to ~106 bits (double-double
+//!    AGM, DLMF 19.8.5). v is formed as a double-double v_hi + v_lo
+//!    and v_lo enters through a first-order Taylor correction, so even
+//!    u = 10¹² or u next to a zero of sn or cn keeps its *relative*
 //!    accuracy. The quarter-period shifts (DLMF Table 22.4.3)
-//!    $\mathrm{sn}(v+K) = \mathrm{cd}\,v$, $\mathrm{cn}(v+K) = -k'\,\mathrm{sd}\,v$,
-//!    $\mathrm{dn}(v+K) = k'\,\mathrm{nd}\,v$ then give the result from
-//!    $(\mathrm{sn}, \mathrm{cn}, \mathrm{dn})(|v|)$, all of them bounded away
-//!    from zero except sn at $v = 0$.
-//! 2. **Halving and Maclaurin series.** $w = |v|/2^N \le 2^{-7}$; the series
-//!    DLMF 22.10.1–22.10.3 to $w^8$ give $\mathrm{sn}\,w$, $1-\mathrm{cn}\,w$
-//!    and $1-\mathrm{dn}\,w$ to full relative precision.
-//! 3. **Doubling** $N$ times with the duplication formulas (DLMF 22.8.1–22.8.3
-//!    rearranged so that no subtraction cancels for $|v| \le K/2$):
-//!    with $\Delta = \mathrm{dn}^2 + m\,\mathrm{sn}^2\mathrm{cn}^2 = 1 - m\,\mathrm{sn}^4$,
-//!    * $\mathrm{sn}\,2u = 2\,\mathrm{sn}\,\mathrm{cn}\,\mathrm{dn}/\Delta$,
-//!    * $1-\mathrm{cn}\,2u = 2\,\mathrm{sn}^2\mathrm{dn}^2/\Delta$ and
-//!      $1-\mathrm{dn}\,2u = 2m\,\mathrm{sn}^2\mathrm{cn}^2/\Delta$ while cn and dn are near 1,
-//!    * $\mathrm{cn}\,2u = (\mathrm{cn}^2 - k'\mathrm{sn}^2)(\mathrm{cn}^2 + k'\mathrm{sn}^2)/\Delta$ and
-//!      $\mathrm{dn}\,2u = (\mathrm{cn}^2\mathrm{dn}^2 + m_1\mathrm{sn}^2)/\Delta$ afterwards.
+//!    sn(v+K) = cd v, cn(v+K) = −k' sd v,
+//!    dn(v+K) = k' nd v then give the result from
+//!    (sn, cn, dn)(|v|), all of them bounded away
+//!    from zero except sn at v = 0.
+//! 2. **Halving and Maclaurin series.** w = |v|/2^N ≤ 2⁻⁷; the series
+//!    DLMF 22.10.1–22.10.3 to w⁸ give sn w, 1−cn w
+//!    and 1−dn w to full relative precision.
+//! 3. **Doubling** N times with the duplication formulas (DLMF 22.8.1–22.8.3
+//!    rearranged so that no subtraction cancels for |v| ≤ K/2):
+//!    with Δ = dn² + m sn²cn² = 1 − m sn⁴,
+//!    * sn 2u = 2 sn cn dn/Δ,
+//!    * 1−cn 2u = 2 sn²dn²/Δ and
+//!      1−dn 2u = 2m sn²cn²/Δ while cn and dn are near 1,
+//!    * cn 2u = (cn² − k'sn²)(cn² + k'sn²)/Δ and
+//!      dn 2u = (cn²dn² + m₁sn²)/Δ afterwards.
 //!
-//!    The last two forms use $m_1 = 1-m$ directly, so $m$ within $10^{-16}$
-//!    of 1 (or given only through $m_1$) is handled without loss.
-//!    The idea (halve, series, double with $1-\mathrm{cn}$ and $1-\mathrm{dn}$)
+//!    The last two forms use m₁ = 1−m directly, so m within 10⁻¹⁶
+//!    of 1 (or given only through m₁) is handled without loss.
+//!    The idea (halve, series, double with 1−cn and 1−dn)
 //!    is T. Fukushima's (Celest. Mech. Dyn. Astr. 105 (2009) 305; "conditional
 //!    duplication", Numer. Math. 123 (2013) 585); the formulas above were
 //!    re-derived here, with the cancellation-free second phase added.
-//! 4. **Closed forms at the ends.** For $m \le 10^{-8}$ the first-order
-//!    expansion in $m$ (DLMF 22.10.4–22.10.6) and, for $m_1^2 e^{2|v|} \le 10^{-18}$,
-//!    the first-order expansion in $m_1$ (DLMF 22.10.7–22.10.9) replace steps 2–3.
-//!    Their remainders, measured with mpmath, are below $5\times10^{-19}$ and
-//!    $\approx 0.1\,m_1^2e^{2|v|} \le 10^{-19}$; they cost fewer roundings than
-//!    the ~10–15 doublings otherwise needed there. For $m_1 \le 10^{-11}$ this
-//!    covers the whole reduced range $|v| \le K/2$.
-//! 5. $\mathrm{am} = j\pi/2 + \operatorname{atan2}(\cdot,\cdot)$ of the reduced values,
-//!    continuous in $u$, with $\mathrm{am}(u + 2K) = \mathrm{am}(u) + \pi$.
+//! 4. **Closed forms at the ends.** For m ≤ 10⁻⁸ the first-order
+//!    expansion in m (DLMF 22.10.4–22.10.6) and, for m₁² e^(2|v|) ≤ 10⁻¹⁸,
+//!    the first-order expansion in m₁ (DLMF 22.10.7–22.10.9) replace steps 2–3.
+//!    Their remainders, measured with mpmath, are below 5×10⁻¹⁹ and
+//!    ≈ 0.1 m₁²e^(2|v|) ≤ 10⁻¹⁹; they cost fewer roundings than
+//!    the ~10–15 doublings otherwise needed there. For m₁ ≤ 10⁻¹¹ this
+//!    covers the whole reduced range |v| ≤ K/2.
+//! 5. am = jπ/2 + atan2(·,·) of the reduced values,
+//!    continuous in u, with am(u + 2K) = am(u) + π.
 //!
 //! # Error behaviour
 //! The doubling steps add a backward error of a few ulp per step to the
-//! argument. Since $|v|$ can reach $K/2 \approx \tfrac12\ln(4/k')$, whose relative
-//! condition number for cn and dn is about $|v|$, the relative error of cn and
-//! dn grows mildly as $m \to 1$ in the range not covered by step 4
-//! ($10^{-11} \lesssim m_1 \lesssim 10^{-3}$); see the measured table in the crate docs.
+//! argument. Since |v| can reach K/2 ≈ ½ ln(4/k'), whose relative
+//! condition number for cn and dn is about |v|, the relative error of cn and
+//! dn grows mildly as m → 1 in the range not covered by step 4
+//! (10⁻¹¹ ≲ m₁ ≲ 10⁻³); see the measured table in the crate docs.
 
 use crate::special::dd::{self, Dd};
 use crate::special::error::{EllipticError, check_finite};
 
-/// Largest accepted $|u|/K$ (quarter periods) for the general case.
+/// Largest accepted |u|/K (quarter periods) for the general case.
 const U_LIMIT_QUARTERS: f64 = 1_125_899_906_842_624.0; // 2^50
 
 /// Threshold below which the Maclaurin series is used directly.
@@ -62,15 +62,15 @@ const SMALL_M: f64 = 1e-8;
 /// The four Jacobi quantities at one argument, computed together.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct JacobiElliptic {
-    /// $\mathrm{sn}(u|m) = \sin\mathrm{am}(u|m)$.
+    /// sn(u|m) = sin am(u|m).
     pub sn: f64,
-    /// $\mathrm{cn}(u|m) = \cos\mathrm{am}(u|m)$.
+    /// cn(u|m) = cos am(u|m).
     pub cn: f64,
-    /// $\mathrm{dn}(u|m) = \sqrt{1 - m\,\mathrm{sn}^2(u|m)}$ (always $> 0$ for $m < 1$).
+    /// dn(u|m) = √(1 − m sn²(u|m)) (always > 0 for m < 1).
     pub dn: f64,
-    /// The amplitude $\mathrm{am}(u|m)$, the inverse of $F(\cdot|m)$:
-    /// continuous (unwrapped), odd, and $\mathrm{am}(u + 2K) = \mathrm{am}(u) + \pi$.
-    /// For $m = 1$ it is the Gudermannian $\operatorname{gd} u = \arctan\sinh u$.
+    /// The amplitude am(u|m), the inverse of F(·|m):
+    /// continuous (unwrapped), odd, and am(u + 2K) = am(u) + π.
+    /// For m = 1 it is the Gudermannian gd u = arctan sinh u.
     pub am: f64,
 }
 
@@ -84,13 +84,13 @@ enum Kind {
     General,
 }
 
-/// A parameter $m \in [0, 1]$ prepared for repeated evaluation of the Jacobi
-/// elliptic functions: it caches $K(m)$ to double-double precision and
-/// $k' = \sqrt{1-m}$.
+/// A parameter m ∈ [0, 1] prepared for repeated evaluation of the Jacobi
+/// elliptic functions: it caches K(m) to double-double precision and
+/// k' = √(1−m).
 ///
-/// Building one costs one double-double AGM (≈ 0.2 µs); [`Jacobi::eval`] then
-/// costs ≈ 0.1 µs. Use it when many arguments share one parameter, as in a
-/// rigid-body trajectory.
+/// Building one costs one double-double AGM; [`Jacobi::eval`] then reuses it.
+/// Use it when many arguments share one parameter, as in a rigid-body
+/// trajectory.
 ///
 /// # Example
 /// ```
@@ -114,11 +114,11 @@ pub struct Jacobi {
 }
 
 impl Jacobi {
-    /// Prepares the parameter $m$ (with $m_1 = 1 - m$ formed exactly).
+    /// Prepares the parameter m (with m₁ = 1 − m formed exactly).
     ///
     /// # Errors
     /// [`EllipticError::NonFinite`], or [`EllipticError::OutOfDomain`] unless
-    /// $0 \le m \le 1$.
+    /// 0 ≤ m ≤ 1.
     pub fn new(m: f64) -> Result<Self, EllipticError> {
         check_finite("m", m)?;
         if !(0.0..=1.0).contains(&m) {
@@ -131,14 +131,14 @@ impl Jacobi {
         Ok(Self::build(m, dd::one_minus(m)))
     }
 
-    /// Prepares the parameter from its complement $m_1 = 1 - m$, which is
+    /// Prepares the parameter from its complement m₁ = 1 − m, which is
     /// taken as exact. Near the separatrix of the rigid body
-    /// ($m_1 = 10^{-16} \dots 10^{-6}$) $m_1$ is the well-known quantity;
-    /// passing $m = 1 - m_1$ would round it.
+    /// (m₁ = 10⁻¹⁶ … 10⁻⁶) m₁ is the well-known quantity;
+    /// passing m = 1 − m₁ would round it.
     ///
     /// # Errors
     /// [`EllipticError::NonFinite`], or [`EllipticError::OutOfDomain`] unless
-    /// $0 \le m_1 \le 1$.
+    /// 0 ≤ m₁ ≤ 1.
     pub fn from_complement(m1: f64) -> Result<Self, EllipticError> {
         check_finite("m1", m1)?;
         if !(0.0..=1.0).contains(&m1) {
@@ -186,30 +186,30 @@ impl Jacobi {
         }
     }
 
-    /// Returns the parameter $m$.
+    /// Returns the parameter m.
     pub fn parameter(&self) -> f64 {
         self.m
     }
 
-    /// Returns the complementary parameter $m_1 = 1 - m$.
+    /// Returns the complementary parameter m₁ = 1 − m.
     pub fn complementary_parameter(&self) -> f64 {
         self.m1
     }
 
-    /// Returns the quarter period $K(m)$ (`+inf` for $m = 1$), correctly
+    /// Returns the quarter period K(m) (`+inf` for m = 1), correctly
     /// rounded from a double-double AGM.
     pub fn quarter_period(&self) -> f64 {
         self.k.hi
     }
 
-    /// Returns $\mathrm{sn}$, $\mathrm{cn}$, $\mathrm{dn}$ and $\mathrm{am}$ at `u`.
+    /// Returns sn, cn, dn and am at `u`.
     ///
     /// Accuracy: see [`jacobi_elliptic`].
     ///
     /// # Errors
     /// [`EllipticError::NonFinite`] for NaN or infinite `u`;
-    /// [`EllipticError::ArgumentTooLarge`] if $|u| \ge 2^{50}K(m)$ for
-    /// $0 < m < 1$ (the period reduction would have no correct bits left).
+    /// [`EllipticError::ArgumentTooLarge`] if |u| ≥ 2⁵⁰K(m) for
+    /// 0 < m < 1 (the period reduction would have no correct bits left).
     pub fn eval(&self, u: f64) -> Result<JacobiElliptic, EllipticError> {
         check_finite("u", u)?;
         match self.kind {
@@ -282,7 +282,7 @@ impl Jacobi {
         Ok(JacobiElliptic { sn, cn, dn, am })
     }
 
-    /// $(\mathrm{sn}, \mathrm{cn}, \mathrm{dn})(r)$ for $0 \le r \lesssim K/2$.
+    /// (sn, cn, dn)(r) for 0 ≤ r ≲ K/2.
     fn reduced(&self, r: f64) -> (f64, f64, f64) {
         if self.m <= SMALL_M {
             return self.circular_expansion(r);
@@ -304,7 +304,7 @@ impl Jacobi {
     }
 
     /// DLMF 22.10.7-22.10.9 to first order in m1, rearranged so that no
-    /// intermediate grows like e^{2r}:
+    /// intermediate grows like e²ʳ:
     /// sn = tanh + (m1/4)(tanh - r sech^2), cn = sech - (m1/4)(sinh tanh - r tanh sech),
     /// dn = sech + (m1/4)(sinh tanh + r tanh sech).
     fn hyperbolic_expansion(&self, r: f64) -> (f64, f64, f64) {
@@ -388,24 +388,24 @@ impl Jacobi {
     }
 }
 
-/// Returns $\mathrm{sn}$, $\mathrm{cn}$, $\mathrm{dn}$ and $\mathrm{am}$ of
-/// $u$ for the parameter $m$, defined through the amplitude
-/// $$u = \int_0^{\mathrm{am}(u|m)} \frac{d\theta}{\sqrt{1-m\sin^2\theta}},\quad
-/// \mathrm{sn} = \sin\mathrm{am},\ \mathrm{cn} = \cos\mathrm{am},\
-/// \mathrm{dn} = \sqrt{1-m\,\mathrm{sn}^2}.$$
+/// Returns sn, cn, dn and am of
+/// u for the parameter m, defined through the amplitude
+/// u = ∫₀^am(u|m) dθ/√(1 − m sin²θ),
+/// sn = sin am, cn = cos am,
+/// dn = √(1−m sn²).
 ///
-/// Domain: finite $u$ (with $|u| < 2^{50}K(m)$), $0 \le m \le 1$.
-/// $m = 0$ gives $(\sin u, \cos u, 1, u)$; $m = 1$ gives
-/// $(\tanh u, \operatorname{sech} u, \operatorname{sech} u, \operatorname{gd} u)$.
+/// Domain: finite u (with |u| < 2⁵⁰K(m)), 0 ≤ m ≤ 1.
+/// m = 0 gives (sin u, cos u, 1, u); m = 1 gives
+/// (tanh u, sech u, sech u, gd u).
 ///
-/// Accuracy against 30-digit mpmath values (644 arguments, $|u| \le 10^6$,
-/// $m$ from 0 to 1 and $m_1$ down to $10^{-300}$), as relative error:
-/// * away from zeros ($|f| \ge 10^{-8}$): sn ≤ 5.8e-16, cn ≤ 1.9e-15,
-///   dn ≤ 1.9e-15, am ≤ 6.0e-16 (the largest values at $m_1 = 10^{-6}$,
+/// Accuracy against 30-digit mpmath values (644 arguments, |u| ≤ 10⁶,
+/// m from 0 to 1 and m₁ down to 10⁻³⁰⁰), as relative error:
+/// * away from zeros (|f| ≥ 10⁻⁸): sn ≤ 5.8e-16, cn ≤ 1.9e-15,
+///   dn ≤ 1.9e-15, am ≤ 6.0e-16 (the largest values at m₁ = 10⁻⁶,
 ///   where 10 doubling steps are needed);
-/// * at the $f64$ neighbours of the zeros $u = jK$ ($j \le 40$): sn ≤ 9.6e-15,
-///   cn ≤ 4.5e-15. This is an absolute error of ~$|u| \cdot 10^{-32}$, the
-///   precision of the double-double $K$ used in the reduction.
+/// * at the f64 neighbours of the zeros u = jK (j ≤ 40): sn ≤ 9.6e-15,
+///   cn ≤ 4.5e-15. This is an absolute error of ~|u| · 10⁻³², the
+///   precision of the double-double K used in the reduction.
 ///
 /// Source: DLMF §22.2, §22.16(i) (definitions), Table 22.4.3 (quarter-period
 /// shifts), §22.8 (duplication), 22.10.1–22.10.9 (series and limiting forms),
@@ -416,7 +416,7 @@ impl Jacobi {
 ///
 /// # Errors
 /// [`EllipticError::NonFinite`]; [`EllipticError::OutOfDomain`] unless
-/// $0 \le m \le 1$; [`EllipticError::ArgumentTooLarge`].
+/// 0 ≤ m ≤ 1; [`EllipticError::ArgumentTooLarge`].
 ///
 /// # Example
 /// ```
@@ -431,16 +431,16 @@ pub fn jacobi_elliptic(u: f64, m: f64) -> Result<JacobiElliptic, EllipticError> 
     Jacobi::new(m)?.eval(u)
 }
 
-/// Returns $\mathrm{sn}$, $\mathrm{cn}$, $\mathrm{dn}$, $\mathrm{am}$ of $u$
-/// for the parameter $m = 1 - m_1$, with the complementary parameter
-/// $0 \le m_1 \le 1$ taken as exact; see [`jacobi_elliptic`].
+/// Returns sn, cn, dn, am of u
+/// for the parameter m = 1 − m₁, with the complementary parameter
+/// 0 ≤ m₁ ≤ 1 taken as exact; see [`jacobi_elliptic`].
 ///
-/// Use this near the rigid body's separatrix, where $m_1$ is known to full
-/// relative precision but $1 - m_1$ is not representable.
+/// Use this near the rigid body's separatrix, where m₁ is known to full
+/// relative precision but 1 − m₁ is not representable.
 ///
 /// # Errors
 /// [`EllipticError::NonFinite`]; [`EllipticError::OutOfDomain`] unless
-/// $0 \le m_1 \le 1$; [`EllipticError::ArgumentTooLarge`].
+/// 0 ≤ m₁ ≤ 1; [`EllipticError::ArgumentTooLarge`].
 ///
 /// # Example
 /// ```

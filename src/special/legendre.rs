@@ -1,29 +1,29 @@
 //! Legendre's complete and incomplete elliptic integrals of the first, second
 //! and third kind, in terms of Carlson's symmetric integrals (DLMF §19.25(i)).
 //!
-//! Conventions (DLMF 19.2.4–19.2.7 with $k^2 = m$, A&S 17.2):
-//! * parameter $m = k^2$, complementary parameter $m_1 = 1 - m$;
-//! * characteristic $n$ as in $\Pi(n;\phi\,|\,m)$, the sign convention of DLMF
-//!   ($\alpha^2 = n$) and of mpmath — *not* A&S 17.2.14, which uses $-n$.
+//! Conventions (DLMF 19.2.4–19.2.7 with k² = m, A&S 17.2):
+//! * parameter m = k², complementary parameter m₁ = 1 − m;
+//! * characteristic n as in Π(n;φ | m), the sign convention of DLMF
+//!   (α² = n) and of mpmath — *not* A&S 17.2.14, which uses −n.
 //!
-//! Every function has a `_complement` twin taking $m_1 = 1-m$ instead of $m$.
-//! Use it when $m$ is close to 1: $m_1 = 10^{-20}$ cannot be represented as
-//! $m = 1 - 10^{-20}$ in `f64`, and the integrals depend on $\ln m_1$ there.
+//! Every function has a `_complement` twin taking m₁ = 1−m instead of m.
+//! Use it when m is close to 1: m₁ = 10⁻²⁰ cannot be represented as
+//! m = 1 − 10⁻²⁰ in `f64`, and the integrals depend on ln m₁ there.
 //!
-//! Incomplete integrals accept any real amplitude $\phi$ with
-//! $|\phi| < 2^{50}$: $\phi = j\pi + r$, $|r| \le \pi/2$, is reduced with a
-//! double-double $\pi$ (the low part of $r$ enters through a first-order
+//! Incomplete integrals accept any real amplitude φ with
+//! |φ| < 2⁵⁰: φ = jπ + r, |r| ≤ π/2, is reduced with a
+//! double-double π (the low part of r enters through a first-order
 //! correction), and quasi-periodicity (DLMF §19.2(ii); the integrands have
-//! period $\pi$) gives $F(\phi|m) = 2jK(m) + F(r|m)$, and likewise for $E$ and $\Pi$.
+//! period π) gives F(φ|m) = 2jK(m) + F(r|m), and likewise for E and Π.
 
 use crate::special::carlson::{rc, rd, rf, rj};
 use crate::special::dd;
 use crate::special::error::{EllipticError, check_finite, finish};
 
-/// Largest accepted $|\phi| / \pi$ for incomplete integrals.
+/// Largest accepted |φ| / π for incomplete integrals.
 const PHI_LIMIT_PERIODS: f64 = 1_125_899_906_842_624.0; // 2^50
 
-/// A validated parameter pair $(m, m_1 = 1 - m)$, each known to full precision.
+/// A validated parameter pair (m, m₁ = 1 − m), each known to full precision.
 #[derive(Debug, Clone, Copy)]
 struct Param {
     m: f64,
@@ -31,7 +31,7 @@ struct Param {
 }
 
 impl Param {
-    /// From $m \le 1$; $1 - m$ is exact for $m \ge 1/2$ (Sterbenz) and
+    /// From m ≤ 1; 1 − m is exact for m ≥ 1/2 (Sterbenz) and
     /// correctly rounded otherwise.
     fn from_m(m: f64) -> Result<Self, EllipticError> {
         check_finite("m", m)?;
@@ -45,7 +45,7 @@ impl Param {
         Ok(Param { m, m1: 1.0 - m })
     }
 
-    /// From $m_1 \ge 0$.
+    /// From m₁ ≥ 0.
     fn from_m1(m1: f64) -> Result<Self, EllipticError> {
         check_finite("m1", m1)?;
         if m1 < 0.0 {
@@ -131,25 +131,25 @@ fn pi_impl(n: f64, p: Param) -> f64 {
     k_impl(p) + coef * rj(0.0, p.m1, 1.0, 1.0 - n).unwrap_or(f64::INFINITY)
 }
 
-/// $1 - m/n = ((n - 1) + m_1)/n$ for $n > 1$, without cancellation when
-/// $m/n \to 1$ ($n - 1$ is exact for $1 < n \le 2$).
+/// 1 − m/n = ((n − 1) + m₁)/n for n > 1, without cancellation when
+/// m/n → 1 (n − 1 is exact for 1 < n ≤ 2).
 #[inline]
 fn one_minus_m_over_n(n: f64, p: Param) -> f64 {
     ((n - 1.0) + p.m1) / n
 }
 
 /// Returns the complete elliptic integral of the first kind
-/// $$K(m) = \int_0^{\pi/2}\frac{d\theta}{\sqrt{1-m\sin^2\theta}} = R_F(0, 1-m, 1).$$
+/// K(m) = ∫₀^(π/2) dθ/√(1−m sin²θ) = R_F(0, 1−m, 1).
 ///
-/// Domain: finite $m \le 1$ (negative $m$ allowed). $K(1) = +\infty$.
+/// Domain: finite m ≤ 1 (negative m allowed). K(1) = +∞.
 ///
-/// Accuracy: relative error ≤ 5.3e-16 (2.4 ulp) against mpmath for $m$ from
-/// $-1000$ to $1 - 2^{-52}$.
+/// Accuracy: relative error ≤ 5.3e-16 (2.4 ulp) against mpmath for m from
+/// −1000 to 1 − 2⁻⁵².
 ///
 /// Source: DLMF 19.2.8 (definition), 19.25.1 (Carlson form).
 ///
 /// # Errors
-/// [`EllipticError::NonFinite`]; [`EllipticError::OutOfDomain`] for $m > 1$.
+/// [`EllipticError::NonFinite`]; [`EllipticError::OutOfDomain`] for m > 1.
 ///
 /// # Example
 /// ```
@@ -162,76 +162,76 @@ pub fn elliptic_k(m: f64) -> Result<f64, EllipticError> {
     finish("elliptic_k", k_impl(Param::from_m(m)?))
 }
 
-/// Returns $K(1 - m_1)$ for a complementary parameter $m_1 \ge 0$ given
-/// exactly; see [`elliptic_k`]. Near the separatrix ($m_1 \to 0$),
-/// $K \approx \ln(4/\sqrt{m_1})$ (DLMF 19.12.1).
+/// Returns K(1 − m₁) for a complementary parameter m₁ ≥ 0 given
+/// exactly; see [`elliptic_k`]. Near the separatrix (m₁ → 0),
+/// K ≈ ln(4/√m₁) (DLMF 19.12.1).
 ///
-/// Accuracy: relative error ≤ 3.1e-16 (1.4 ulp) against mpmath for $m_1$
-/// from $10^{-300}$ to $10^3$.
+/// Accuracy: relative error ≤ 3.1e-16 (1.4 ulp) against mpmath for m₁
+/// from 10⁻³⁰⁰ to 10³.
 ///
 /// # Errors
-/// [`EllipticError::NonFinite`]; [`EllipticError::OutOfDomain`] for $m_1 < 0$.
+/// [`EllipticError::NonFinite`]; [`EllipticError::OutOfDomain`] for m₁ < 0.
 pub fn elliptic_k_complement(m1: f64) -> Result<f64, EllipticError> {
     finish("elliptic_k_complement", k_impl(Param::from_m1(m1)?))
 }
 
 /// Returns the complete elliptic integral of the second kind
-/// $$E(m) = \int_0^{\pi/2}\sqrt{1-m\sin^2\theta}\,d\theta
-///   = \tfrac{1-m}{3}\,[R_D(0,1-m,1) + R_D(0,1,1-m)].$$
+/// E(m) = ∫₀^(π/2) √(1−m sin²θ) dθ
+/// = (1−m)/3 [R_D(0,1−m,1) + R_D(0,1,1−m)].
 ///
-/// Domain: finite $m \le 1$. $E(1) = 1$.
+/// Domain: finite m ≤ 1. E(1) = 1.
 ///
-/// Accuracy: relative error ≤ 3.3e-16 (1.5 ulp) against mpmath ($m$ from $-1000$ to 1;
-/// $m_1$ from $10^{-300}$ with the complement form).
+/// Accuracy: relative error ≤ 3.3e-16 (1.5 ulp) against mpmath (m from −1000 to 1;
+/// m₁ from 10⁻³⁰⁰ with the complement form).
 ///
 /// Source: DLMF 19.2.8, 19.25.1 (second form: two positive terms).
 ///
 /// # Errors
-/// [`EllipticError::NonFinite`]; [`EllipticError::OutOfDomain`] for $m > 1$.
+/// [`EllipticError::NonFinite`]; [`EllipticError::OutOfDomain`] for m > 1.
 pub fn elliptic_e(m: f64) -> Result<f64, EllipticError> {
     finish("elliptic_e", e_impl(Param::from_m(m)?))
 }
 
-/// Returns $E(1 - m_1)$ for a complementary parameter $m_1 \ge 0$; see
+/// Returns E(1 − m₁) for a complementary parameter m₁ ≥ 0; see
 /// [`elliptic_e`].
 ///
 /// # Errors
-/// [`EllipticError::NonFinite`]; [`EllipticError::OutOfDomain`] for $m_1 < 0$.
+/// [`EllipticError::NonFinite`]; [`EllipticError::OutOfDomain`] for m₁ < 0.
 pub fn elliptic_e_complement(m1: f64) -> Result<f64, EllipticError> {
     finish("elliptic_e_complement", e_impl(Param::from_m1(m1)?))
 }
 
 /// Returns the complete elliptic integral of the third kind
-/// $$\Pi(n|m) = \int_0^{\pi/2}\frac{d\theta}{(1-n\sin^2\theta)\sqrt{1-m\sin^2\theta}}
-///   = K(m) + \tfrac{n}{3}R_J(0, 1-m, 1, 1-n),$$
-/// as a Cauchy principal value when $n > 1$.
+/// Π(n|m) = ∫₀^(π/2) dθ/((1−n sin²θ)√(1−m sin²θ))
+/// = K(m) + (n/3) R_J(0, 1−m, 1, 1−n),
+/// as a Cauchy principal value when n > 1.
 ///
-/// Domain: finite $n$, finite $m \le 1$.
-/// * $n < 0$ uses the cancellation-free form $\Pi = (1-N)K + \tfrac{N}{3}\,q\,R_J(0,1-m,1,q)$
-///   with $N = -n/(1-n)$, $q = (1-m)/(1-n)$ (DLMF 19.21.12), accurate even for $n \to -\infty$.
-/// * $n = 1$: $+\infty$. $n > 1$: principal value, computed as
-///   $-\tfrac{m}{3n}R_J(0, 1-m, 1, 1-m/n)$, i.e. DLMF 19.6.5
-///   $K(m) - \Pi(m/n\,|\,m)$ without its cancellation.
-/// * $m = 1$: $+\infty$ for $n \le 1$, $-\infty$ for $n > 1$.
+/// Domain: finite n, finite m ≤ 1.
+/// * n < 0 uses the cancellation-free form Π = (1−N)K + N/3 q R_J(0,1−m,1,q)
+///   with N = −n/(1−n), q = (1−m)/(1−n) (DLMF 19.21.12), accurate even for n → −∞.
+/// * n = 1: +∞. n > 1: principal value, computed as
+///   −(m/3n) R_J(0, 1−m, 1, 1−m/n), i.e. DLMF 19.6.5
+///   K(m) − Π(m/n | m) without its cancellation.
+/// * m = 1: +∞ for n ≤ 1, −∞ for n > 1.
 ///
-/// Accuracy: relative error ≤ 4.0e-16 (1.8 ulp) against mpmath for $n$ from
-/// $-10^{10}$ to $10^4$ (principal values included) and $m$ from $-10$ to
-/// $1 - 10^{-12}$, $m_1$ down to $10^{-300}$.
+/// Accuracy: relative error ≤ 4.0e-16 (1.8 ulp) against mpmath for n from
+/// −10¹⁰ to 10⁴ (principal values included) and m from −10 to
+/// 1 − 10⁻¹², m₁ down to 10⁻³⁰⁰.
 ///
 /// Source: DLMF 19.2.7, 19.25.2, 19.21.12; Carlson (1995).
 ///
 /// # Errors
-/// [`EllipticError::NonFinite`]; [`EllipticError::OutOfDomain`] for $m > 1$.
+/// [`EllipticError::NonFinite`]; [`EllipticError::OutOfDomain`] for m > 1.
 pub fn elliptic_pi(n: f64, m: f64) -> Result<f64, EllipticError> {
     check_finite("n", n)?;
     finish("elliptic_pi", pi_impl(n, Param::from_m(m)?))
 }
 
-/// Returns $\Pi(n\,|\,1 - m_1)$ for a complementary parameter $m_1 \ge 0$;
+/// Returns Π(n | 1 − m₁) for a complementary parameter m₁ ≥ 0;
 /// see [`elliptic_pi`].
 ///
 /// # Errors
-/// [`EllipticError::NonFinite`]; [`EllipticError::OutOfDomain`] for $m_1 < 0$.
+/// [`EllipticError::NonFinite`]; [`EllipticError::OutOfDomain`] for m₁ < 0.
 pub fn elliptic_pi_complement(n: f64, m1: f64) -> Result<f64, EllipticError> {
     check_finite("n", n)?;
     finish("elliptic_pi_complement", pi_impl(n, Param::from_m1(m1)?))
@@ -240,7 +240,7 @@ pub fn elliptic_pi_complement(n: f64, m1: f64) -> Result<f64, EllipticError> {
 // ---------------------------------------------------------------------------
 // incomplete integrals
 
-/// An amplitude reduced to $\phi = j\pi + r$.
+/// An amplitude reduced to φ = jπ + r.
 #[derive(Debug, Clone, Copy)]
 struct Reduced {
     /// number of half-turns, an integer
@@ -332,8 +332,8 @@ fn assemble(
     }
 }
 
-/// $\Delta^2 = 1 - m\sin^2 r$, written as $\cos^2 r + m_1 \sin^2 r$ so that it
-/// keeps full relative accuracy when $m \to 1$ and $r \to \pi/2$.
+/// Δ² = 1 − m sin² r, written as cos² r + m₁ sin² r so that it
+/// keeps full relative accuracy when m → 1 and r → π/2.
 #[inline]
 fn delta2(p: Param, s: f64, c: f64) -> f64 {
     c * c + p.m1 * (s * s)
@@ -456,22 +456,22 @@ fn pi_inc_impl(n: f64, phi: f64, p: Param) -> Result<f64, EllipticError> {
 }
 
 /// Returns the incomplete elliptic integral of the first kind
-/// $$F(\phi|m) = \int_0^{\phi}\frac{d\theta}{\sqrt{1-m\sin^2\theta}}
-///   = \sin\phi\,R_F(\cos^2\phi,\,1-m\sin^2\phi,\,1)\quad(|\phi|\le\pi/2),$$
-/// extended to all real $\phi$ by $F(\phi + j\pi|m) = F(\phi|m) + 2jK(m)$.
+/// F(φ|m) = ∫₀^φ dθ/√(1−m sin²θ)
+/// = sin φ R_F(cos²φ, 1−m sin²φ, 1) (|φ|≤π/2),
+/// extended to all real φ by F(φ + jπ|m) = F(φ|m) + 2jK(m).
 ///
-/// Domain: finite $|\phi| < 2^{50}\pi$, finite $m \le 1$.
-/// $F(\phi|0) = \phi$; $F(\phi|1) = \operatorname{artanh}(\sin\phi)$ for
-/// $|\phi| < \pi/2$ and $\pm\infty$ beyond.
+/// Domain: finite |φ| < 2⁵⁰π, finite m ≤ 1.
+/// F(φ|0) = φ; F(φ|1) = artanh(sin φ) for
+/// |φ| < π/2 and ±∞ beyond.
 ///
-/// Accuracy: relative error ≤ 6.1e-16 (2.7 ulp) against mpmath for $\phi$ from
-/// $10^{-300}$ to $10^{10}$ (negative included) and $m$ from $-10$ to 1.
+/// Accuracy: relative error ≤ 6.1e-16 (2.7 ulp) against mpmath for φ from
+/// 10⁻³⁰⁰ to 10¹⁰ (negative included) and m from −10 to 1.
 ///
 /// Source: DLMF 19.2.4, 19.25.5, 19.2.10 (quasi-periodicity).
 ///
 /// # Errors
-/// [`EllipticError::NonFinite`]; [`EllipticError::OutOfDomain`] for $m > 1$;
-/// [`EllipticError::ArgumentTooLarge`] for $|\phi| \ge 2^{50}\pi$.
+/// [`EllipticError::NonFinite`]; [`EllipticError::OutOfDomain`] for m > 1;
+/// [`EllipticError::ArgumentTooLarge`] for |φ| ≥ 2⁵⁰π.
 ///
 /// # Example
 /// ```
@@ -486,26 +486,26 @@ pub fn elliptic_f(phi: f64, m: f64) -> Result<f64, EllipticError> {
     finish("elliptic_f", f_impl(phi, Param::from_m(m)?)?)
 }
 
-/// Returns $F(\phi\,|\,1 - m_1)$ for a complementary parameter $m_1 \ge 0$;
+/// Returns F(φ | 1 − m₁) for a complementary parameter m₁ ≥ 0;
 /// see [`elliptic_f`].
 ///
 /// # Errors
-/// As [`elliptic_f`], with [`EllipticError::OutOfDomain`] for $m_1 < 0$.
+/// As [`elliptic_f`], with [`EllipticError::OutOfDomain`] for m₁ < 0.
 pub fn elliptic_f_complement(phi: f64, m1: f64) -> Result<f64, EllipticError> {
     finish("elliptic_f_complement", f_impl(phi, Param::from_m1(m1)?)?)
 }
 
 /// Returns the incomplete elliptic integral of the second kind
-/// $$E(\phi|m) = \int_0^{\phi}\sqrt{1-m\sin^2\theta}\,d\theta,$$
-/// extended by $E(\phi + j\pi|m) = E(\phi|m) + 2jE(m)$.
+/// E(φ|m) = ∫₀^φ √(1−m sin²θ) dθ,
+/// extended by E(φ + jπ|m) = E(φ|m) + 2jE(m).
 ///
-/// For $0 \le m \le 1$ it is evaluated as
-/// $m_1F(\phi|m) + \tfrac{m m_1}{3}\sin^3\phi\,R_D(\cos^2\phi, 1, \Delta^2) + m\sin\phi\cos\phi/\Delta$,
-/// $\Delta^2 = 1 - m\sin^2\phi$ (DLMF 19.25.10, three non-negative terms, no
-/// cancellation near $m = 1$); for $m < 0$ by DLMF 19.25.9.
+/// For 0 ≤ m ≤ 1 it is evaluated as
+/// m₁F(φ|m) + (m m₁)/3 sin³φ R_D(cos²φ, 1, Δ²) + m sin φ cos φ/Δ,
+/// Δ² = 1 − m sin²φ (DLMF 19.25.10, three non-negative terms, no
+/// cancellation near m = 1); for m < 0 by DLMF 19.25.9.
 ///
-/// Domain: finite $|\phi| < 2^{50}\pi$, finite $m \le 1$. $E(\phi|1) = \sin\phi$ for
-/// $|\phi| \le \pi/2$.
+/// Domain: finite |φ| < 2⁵⁰π, finite m ≤ 1. E(φ|1) = sin φ for
+/// |φ| ≤ π/2.
 ///
 /// Accuracy: relative error ≤ 6.8e-16 (3 ulp) against mpmath on the same
 /// grid as [`elliptic_f`].
@@ -518,7 +518,7 @@ pub fn elliptic_e_inc(phi: f64, m: f64) -> Result<f64, EllipticError> {
     finish("elliptic_e_inc", e_inc_impl(phi, Param::from_m(m)?)?)
 }
 
-/// Returns $E(\phi\,|\,1 - m_1)$ for a complementary parameter $m_1 \ge 0$;
+/// Returns E(φ | 1 − m₁) for a complementary parameter m₁ ≥ 0;
 /// see [`elliptic_e_inc`].
 ///
 /// # Errors
@@ -531,38 +531,38 @@ pub fn elliptic_e_inc_complement(phi: f64, m1: f64) -> Result<f64, EllipticError
 }
 
 /// Returns the incomplete elliptic integral of the third kind
-/// $$\Pi(n;\phi|m) = \int_0^{\phi}\frac{d\theta}{(1-n\sin^2\theta)\sqrt{1-m\sin^2\theta}}
-/// = \sin\phi\,R_F(c^2,\Delta^2,1) + \tfrac n3\sin^3\phi\,R_J(c^2,\Delta^2,1,1-n\sin^2\phi),$$
-/// ($c = \cos\phi$, $\Delta^2 = 1-m\sin^2\phi$), extended by
-/// $\Pi(n;\phi+j\pi|m) = \Pi(n;\phi|m) + 2j\,\Pi(n|m)$.
+/// Π(n;φ|m) = ∫₀^φ dθ/((1−n sin²θ)√(1−m sin²θ))
+/// = sin φ R_F(c²,Δ²,1) + n/3 sin³φ R_J(c²,Δ²,1,1−n sin²φ),
+/// (c = cos φ, Δ² = 1−m sin²φ), extended by
+/// Π(n;φ+jπ|m) = Π(n;φ|m) + 2j Π(n|m).
 ///
-/// Domain: finite $n$, finite $|\phi| < 2^{50}\pi$, finite $m \le 1$.
-/// * $n < 0$ (the rigid-body case, where $n$ can be very negative) uses the
+/// Domain: finite n, finite |φ| < 2⁵⁰π, finite m ≤ 1.
+/// * n < 0 (the rigid-body case, where n can be very negative) uses the
 ///   positive-term form of DLMF 19.21.12 (see [`elliptic_pi`]).
-/// * $n > 1$ with $n\sin^2\theta = 1$ inside the range: Cauchy principal
+/// * n > 1 with n sin²θ = 1 inside the range: Cauchy principal
 ///   value (also for the periods added by quasi-periodicity), computed with
-///   DLMF 19.7.8 ($n \to m/n$ plus a logarithm), which needs no principal
-///   value of $R_J$. If $n \sin^2\phi = 1$ exactly the integral diverges
+///   DLMF 19.7.8 (n → m/n plus a logarithm), which needs no principal
+///   value of R_J. If n sin²φ = 1 exactly the integral diverges
 ///   (the logarithm is infinite).
 ///
-/// Accuracy: relative error ≤ 8.0e-16 (3.6 ulp) for $n \le 1$ against mpmath
-/// ($n$ from $-10^8$ to 0.95, the grid of [`elliptic_f`]); for $n > 1$ the
+/// Accuracy: relative error ≤ 8.0e-16 (3.6 ulp) for n ≤ 1 against mpmath
+/// (n from −10⁸ to 0.95, the grid of [`elliptic_f`]); for n > 1 the
 /// two terms of DLMF 19.7.8 partly cancel and the relative error reached
 /// 6.5e-15 (absolute error below 2e-17).
 ///
 /// Source: DLMF 19.2.7, 19.25.14, 19.21.12, 19.7.8; Carlson (1995).
 ///
 /// # Errors
-/// As [`elliptic_f`], plus [`EllipticError::NonFinite`] for $n$.
+/// As [`elliptic_f`], plus [`EllipticError::NonFinite`] for n.
 pub fn elliptic_pi_inc(n: f64, phi: f64, m: f64) -> Result<f64, EllipticError> {
     finish("elliptic_pi_inc", pi_inc_impl(n, phi, Param::from_m(m)?)?)
 }
 
-/// Returns $\Pi(n;\phi\,|\,1 - m_1)$ for a complementary parameter
-/// $m_1 \ge 0$; see [`elliptic_pi_inc`].
+/// Returns Π(n;φ | 1 − m₁) for a complementary parameter
+/// m₁ ≥ 0; see [`elliptic_pi_inc`].
 ///
 /// # Errors
-/// As [`elliptic_pi_inc`], with [`EllipticError::OutOfDomain`] for $m_1 < 0$.
+/// As [`elliptic_pi_inc`], with [`EllipticError::OutOfDomain`] for m₁ < 0.
 pub fn elliptic_pi_inc_complement(n: f64, phi: f64, m1: f64) -> Result<f64, EllipticError> {
     finish(
         "elliptic_pi_inc_complement",

@@ -27,7 +27,7 @@ fn commutator_matches_multivector_product_for_n_2_to_10() {
 
 #[test]
 fn commutator_in_3d_is_the_cross_product_of_dual_vectors() {
-    // e12 ↔ e3, e13 ↔ −e2, e23 ↔ e1 (DESIGN.md: Ω = (ω23, −ω13, ω12)).
+    // e12 ↔ e3, e13 ↔ −e2, e23 ↔ e1 (Conventions chapter: Ω = (ω23, −ω13, ω12)).
     let to_omega = |b: &Bivector| [b.get(1, 2), -b.get(0, 2), b.get(0, 1)];
     let a = Bivector::from_components(3, &[0.3, -1.2, 0.7]).unwrap();
     let b = Bivector::from_components(3, &[2.0, 0.5, -0.1]).unwrap();
@@ -46,7 +46,7 @@ fn commutator_in_3d_is_the_cross_product_of_dual_vectors() {
 
 #[test]
 fn contraction_gives_point_velocity() {
-    // DESIGN.md: v = x ⌋ ω = [ω]ᵀ x; ω = e12 turns e1 toward e2.
+    // Conventions chapter: v = x ⌋ ω = [ω]ᵀ x; ω = e12 turns e1 toward e2.
     let w = Bivector::from_plane(3, 0, 1, 1.0).unwrap();
     let v = Vector::basis(3, 0).left_contract(&w);
     assert_eq!(v.as_slice(), &[0.0, 1.0, 0.0]);
@@ -190,13 +190,13 @@ fn constructors_check_their_input() {
 #[test]
 fn display_uses_one_based_lexicographic_names() {
     let b = Bivector::from_components(4, &[0.5, 0.0, 0.0, 0.0, 0.0, -1.25]).unwrap();
-    assert_eq!(b.to_string(), "0.5e12 - 1.25e34");
+    assert_eq!(b.to_string(), "0.5·e12 - 1.25·e34");
     assert_eq!(Bivector::zero(3).to_string(), "0");
     let mut big = Bivector::zero(12);
     big.set(0, 11, 2.0);
-    assert_eq!(big.to_string(), "2e1_12");
+    assert_eq!(big.to_string(), "2·e1_12");
     let v = Vector::from_components(&[1.0, 0.0, -3.0]).unwrap();
-    assert_eq!(v.to_string(), "1e1 - 3e3");
+    assert_eq!(v.to_string(), "1·e1 - 3·e3");
 }
 
 #[test]
@@ -247,4 +247,39 @@ fn rotate_in_plane_mut_equals_the_rotor_sandwich() {
             }
         }
     }
+}
+
+#[test]
+fn zero_constructors_have_checked_siblings() {
+    assert_eq!(Bivector::try_zero(5).unwrap(), Bivector::zero(5));
+    assert_eq!(Vector::try_zero(5).unwrap(), Vector::zero(5));
+    assert!(matches!(
+        Bivector::try_zero(65),
+        Err(AlgebraError::DimensionTooLarge { dim: 65, .. })
+    ));
+    assert!(matches!(
+        Vector::try_zero(65),
+        Err(AlgebraError::DimensionTooLarge { dim: 65, .. })
+    ));
+    assert_eq!(Vector::try_basis(3, 1).unwrap(), Vector::basis(3, 1));
+    assert!(matches!(
+        Vector::try_basis(3, 3),
+        Err(AlgebraError::IndexOutOfRange { index: 3, dim: 3 })
+    ));
+}
+
+#[test]
+fn from_skew_matrix_eps_applies_its_tolerance() {
+    let mut a = Bivector::from_components(3, &[0.3, -1.0, 2.0])
+        .unwrap()
+        .to_skew_matrix();
+    a[(0, 1)] += 1e-10; // |A + Aᵀ| = 1e-10 against max |A| = 2: relative 5e-11
+    assert!(matches!(
+        Bivector::from_skew_matrix(&a),
+        Err(AlgebraError::NotSkewSymmetric { .. })
+    ));
+    let b = Bivector::from_skew_matrix_eps(&a, 1e-10).unwrap();
+    assert_close!(b.get(0, 1), 0.3 + 0.5e-10, 1e-16);
+    assert!(Bivector::from_skew_matrix_eps(&a, 1e-11).is_err());
+    assert!(Bivector::from_skew_matrix_eps(&a, f64::NAN).is_err());
 }

@@ -1,5 +1,5 @@
 //! Closed-form exp and log: agreement with nalgebra's matrix exponential, round trips on
-//! every hard family, angles near π, with the error bounds of the issue asserted.
+//! every hard family, angles near π, with their error bounds asserted.
 
 use crate::support::*;
 use rotorflow::prelude::*;
@@ -66,7 +66,7 @@ fn round_trip_isoclinic_and_near_isoclinic() {
             check_round_trip(&bivector_with_planes(&mut r, n, &[1.4 + gap, 1.4]), 1e-13);
         }
     }
-    // the issue's example, 0.7(e12 + e34), in 4D exactly
+    // the isoclinic example 0.7(e12 + e34), in 4D exactly
     let b = Bivector::from_components(4, &[0.7, 0.0, 0.0, 0.0, 0.0, 0.7]).unwrap();
     check_round_trip(&b, 1e-15);
 }
@@ -143,7 +143,7 @@ fn huge_angles_give_valid_rotors() {
         let b = random_bivector(&mut r, n, 1e150);
         let rot = Rotor::from_rotation_bivector(&b);
         assert!(rot.unit_error() < 1e-14, "n={n}");
-        assert!(rot.raw_coefficients().iter().all(|c| c.is_finite()));
+        assert!(rot.as_slice().iter().all(|c| c.is_finite()));
         assert!(orthogonality(&rot.to_matrix()) < 1e-14);
     }
 }
@@ -175,17 +175,101 @@ fn log_is_the_least_norm_branch() {
 }
 
 #[test]
-fn slerp_interpolates_along_the_geodesic() {
+fn slerp_spinor_interpolates_along_the_geodesic_of_spin_n() {
     let mut r = rng(29);
     for n in [3, 4, 6] {
         let a = random_rotor(&mut r, n);
         let b = random_rotor(&mut r, n);
-        assert!(rotor_distance(&a.slerp(&b, 0.0), &a) < 1e-14);
-        assert!(rotor_distance(&a.slerp(&b, 1.0), &b) < 1e-13);
+        assert!(rotor_distance(&a.slerp_spinor(&b, 0.0), &a) < 1e-14);
+        assert!(rotor_distance(&a.slerp_spinor(&b, 1.0), &b) < 1e-13);
         // the midpoint is equidistant: a⁻¹m = m⁻¹b
-        let m = a.slerp(&b, 0.5);
+        let m = a.slerp_spinor(&b, 0.5);
         let d1 = a.reverse().compose(&m);
         let d2 = m.reverse().compose(&b);
         assert!(rotor_distance(&d1, &d2) < 1e-13);
     }
+}
+
+fn negated(r: &Rotor) -> Rotor {
+    Rotor::from_multivector_unchecked(&(r.to_multivector() * -1.0))
+}
+
+/// slerp interpolates rotations: b and −b give the same path, the path turns by at most π
+/// in every plane, its endpoints are a and ±b, and it is the geodesic (equal steps).
+#[test]
+fn slerp_takes_the_shorter_arc_of_the_rotation() {
+    let mut r = rng(31);
+    for n in [2, 3, 4, 5, 6] {
+        for _ in 0..20 {
+            let a = random_rotor(&mut r, n);
+            let b = random_rotor(&mut r, n);
+            let minus_b = negated(&b);
+            assert_eq!(rotor_distance(&a.slerp(&b, 0.0), &a), 0.0);
+            assert!(rotor_distance_up_to_sign(&a.slerp(&b, 1.0), &b) < 1e-13);
+            for t in [0.25, 0.5, 0.9] {
+                let (p, q) = (a.slerp(&b, t), a.slerp(&minus_b, t));
+                assert!(
+                    (p.to_matrix() - q.to_matrix()).amax() < 1e-13,
+                    "N = {n}, t = {t}"
+                );
+            }
+            // The rotation from a to the end of the path turns by at most π in every plane.
+            let step = a.reverse().compose(&a.slerp(&b, 1.0));
+            let angles = step.rotation_bivector().decompose().magnitudes();
+            assert!(
+                angles.iter().all(|&x| x <= PI + 1e-12),
+                "N = {n}: {angles:?}"
+            );
+            // Equal steps: a⁻¹m = m⁻¹(end).
+            let (m, end) = (a.slerp(&b, 0.5), a.slerp(&b, 1.0));
+            let d1 = a.reverse().compose(&m);
+            let d2 = m.reverse().compose(&end);
+            assert!(rotor_distance(&d1, &d2) < 1e-13, "N = {n}");
+        }
+    }
+    // The case that reads wrong as spinors: b = −a is no rotation at all.
+    let a = random_rotor(&mut r, 3);
+    let path = a.slerp(&negated(&a), 0.5);
+    assert!((path.to_matrix() - a.to_matrix()).amax() < 1e-14);
+    assert!((a.slerp_spinor(&negated(&a), 0.5).to_matrix() - a.to_matrix()).amax() > 1.0);
+}
+
+/// try_exp agrees with exp where exp is defined and refuses what exp cannot do.
+#[test]
+fn try_exp_refuses_overflowing_angles_non_finite_input_and_large_n() {
+    let mut r = rng(37);
+    for n in [2, 3, 4, 5, 7] {
+        let b = random_bivector(&mut r, n, 3.0);
+        assert_eq!(b.try_exp().unwrap(), b.exp());
+        // At |B| = f64::MAX/2 the exponential is still a unit rotor; beyond, an error.
+        let mut edge = Bivector::zero(n);
+        edge.set(0, 1, f64::MAX / 2.0);
+        let e = edge.try_exp().unwrap();
+        assert!(e.unit_error() < 1e-15, "N = {n}");
+        let mut huge = Bivector::zero(n);
+        huge.set(0, 1, f64::MAX);
+        match huge.try_exp() {
+            Err(AlgebraError::AngleTooLarge { norm }) => assert_eq!(norm, f64::MAX),
+            other => panic!("N = {n}: {other:?}"),
+        }
+        let mut nan = Bivector::zero(n);
+        nan.set(0, 1, f64::NAN);
+        assert!(matches!(nan.try_exp(), Err(AlgebraError::NonFinite { .. })));
+    }
+    // Components that are each finite but whose norm overflows.
+    let b = Bivector::from_components(3, &[f64::MAX, f64::MAX, 0.0]).unwrap();
+    assert!(matches!(
+        b.try_exp(),
+        Err(AlgebraError::AngleTooLarge { .. })
+    ));
+    assert!(matches!(
+        Bivector::zero(17).try_exp(),
+        Err(AlgebraError::DimensionTooLarge { dim: 17, .. })
+    ));
+    let theta = random_bivector(&mut r, 5, 2.0);
+    assert_eq!(
+        Rotor::try_from_rotation_bivector(&theta).unwrap(),
+        Rotor::from_rotation_bivector(&theta)
+    );
+    assert!(Rotor::try_from_rotation_bivector(&Bivector::zero(17)).is_err());
 }

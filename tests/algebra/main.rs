@@ -1,5 +1,6 @@
 //! Tests of the Clifford-algebra layer, one module per part of `src/algebra`.
 
+#[path = "../support/mod.rs"]
 mod support;
 
 mod bivector;

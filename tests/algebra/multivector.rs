@@ -1,7 +1,6 @@
 //! Products, involutions, duals and inverses of general multivectors in several signatures.
 
 use crate::assert_close;
-use rotorflow::algebra::blade;
 use rotorflow::prelude::*;
 
 fn e(sig: Signature, mask: u64) -> Multivector {
@@ -62,11 +61,11 @@ fn regressive_product_meets_planes_in_a_line() {
 fn involutions_have_the_right_signs() {
     let s = Signature::euclidean(4);
     let mut x = Multivector::zero(s);
-    for (b, c) in x.coefficients_mut().iter_mut().enumerate() {
+    for (b, c) in x.as_mut_slice().iter_mut().enumerate() {
         *c = 1.0 + b as f64;
     }
     for (b, c) in x.reverse().terms() {
-        let k = blade::grade(b);
+        let k = b.count_ones() as usize;
         let expected = if k % 4 == 2 || k % 4 == 3 { -1.0 } else { 1.0 };
         assert_eq!(c, expected * (1.0 + b as f64));
     }
@@ -81,7 +80,7 @@ fn hodge_star_twice_is_plus_or_minus_one() {
         let s = Signature::new(p, q, 0).unwrap();
         let n = p + q;
         for b in 0..(1u64 << n) {
-            let k = blade::grade(b);
+            let k = b.count_ones() as usize;
             let x = e(s, b);
             let twice = x.hodge().hodge();
             let sign = if (k * (n - k) + q).is_multiple_of(2) {
@@ -106,7 +105,7 @@ fn hodge_satisfies_its_definition() {
     let i = e(s, 0b1111);
     for a in 0..16u64 {
         for b in 0..16u64 {
-            if blade::grade(a) != blade::grade(b) {
+            if (a.count_ones() as usize) != (b.count_ones() as usize) {
                 continue;
             }
             let lhs = e(s, b).wedge(&e(s, a).hodge());
@@ -145,6 +144,14 @@ fn inverse_of_versors_and_general_elements() {
     let p = &g * &gi;
     assert_close!(p.scalar_part(), 1.0, 1e-14);
     assert!((p.clone() - Multivector::scalar(s, 1.0)).max_abs() < 1e-14);
+    // The residual check of the linear-system path takes its tolerance from the caller.
+    assert_eq!(
+        g.inverse_eps(rotorflow::algebra::INVERSE_TOLERANCE)
+            .unwrap(),
+        gi
+    );
+    assert!(g.inverse_eps(f64::NAN).is_err());
+    assert!(g.inverse_eps(-1.0).is_err());
     // zero divisor 1 + e1 (since (1+e1)(1−e1) = 0) has no inverse
     let z = Multivector::from_coefficients(s, &[1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]).unwrap();
     assert!(matches!(
@@ -161,10 +168,10 @@ fn inverse_of_versors_and_general_elements() {
 fn norm_squared_is_sum_of_squares_in_euclidean_space() {
     let s = Signature::euclidean(4);
     let mut x = Multivector::zero(s);
-    for (b, c) in x.coefficients_mut().iter_mut().enumerate() {
+    for (b, c) in x.as_mut_slice().iter_mut().enumerate() {
         *c = (b as f64).sin();
     }
-    let expected: f64 = x.coefficients().iter().map(|c| c * c).sum();
+    let expected: f64 = x.as_slice().iter().map(|c| c * c).sum();
     assert_close!(x.norm_squared(), expected, 1e-13);
     assert_close!((&x * &x.reverse()).scalar_part(), expected, 1e-13);
     // Minkowski: a timelike vector has positive, a spacelike one negative norm²
@@ -200,13 +207,13 @@ fn operators_panic_on_mismatched_dimensions() {
 fn multivectors_up_to_n_12_work() {
     let s = Signature::euclidean(12);
     let mut a = Multivector::zero(s);
-    a.coefficients_mut()[0b11] = 1.0; // e12
-    a.coefficients_mut()[0b1100_0000_0000] = 2.0; // e11,12
+    a.as_mut_slice()[0b11] = 1.0; // e12
+    a.as_mut_slice()[0b1100_0000_0000] = 2.0; // e11,12
     let sq = &a * &a;
     // (e12 + 2 e_{11,12})² = −1 − 4 + 4 e12∧e_{11,12}
     assert_eq!(sq.scalar_part(), -5.0);
     assert_eq!(sq.coefficient(0b1100_0000_0011), 4.0);
-    assert_eq!(a.to_string(), "1e1_2 + 2e11_12");
+    assert_eq!(a.to_string(), "1·e1_2 + 2·e11_12");
     assert!(Multivector::try_zero(Signature::euclidean(17)).is_err());
 }
 
@@ -214,8 +221,8 @@ fn multivectors_up_to_n_12_work() {
 fn display_is_readable() {
     let s = Signature::euclidean(3);
     let x = Multivector::from_coefficients(s, &[1.0, -2.0, 0.0, 0.5, 0.0, 0.0, 0.0, -1.0]).unwrap();
-    assert_eq!(x.to_string(), "1 - 2e1 + 0.5e12 - 1e123");
-    assert_eq!(format!("{x:.2}"), "1.00 - 2.00e1 + 0.50e12 - 1.00e123");
+    assert_eq!(x.to_string(), "1 - 2·e1 + 0.5·e12 - 1·e123");
+    assert_eq!(format!("{x:.2}"), "1.00 - 2.00·e1 + 0.50·e12 - 1.00·e123");
     assert_eq!(Multivector::zero(s).to_string(), "0");
 }
 
@@ -234,4 +241,142 @@ fn from_coefficients_rejects_bad_input() {
         Multivector::from_coefficients(s, &[1.0, f64::NAN, 0.0, 0.0]),
         Err(AlgebraError::NonFinite { .. })
     ));
+}
+
+/// Splits `Display` output into signed terms ("1 - 2·e1" → [(1, "1"), (−1, "2·e1")]).
+fn signed_terms(text: &str) -> Vec<(f64, &str)> {
+    let (mut sign, mut rest) = match text.strip_prefix('-') {
+        Some(r) => (-1.0, r),
+        None => (1.0, text),
+    };
+    let mut out = Vec::new();
+    loop {
+        let next = [rest.find(" + "), rest.find(" - ")]
+            .into_iter()
+            .flatten()
+            .min();
+        match next {
+            None => {
+                out.push((sign, rest));
+                return out;
+            }
+            Some(k) => {
+                out.push((sign, &rest[..k]));
+                sign = if rest[k..].starts_with(" - ") {
+                    -1.0
+                } else {
+                    1.0
+                };
+                rest = &rest[k + 3..];
+            }
+        }
+    }
+}
+
+/// Display reads back exactly through `blade_by_name`, and no blade term reads as a float
+/// (`1e1` would be ten): only the scalar term parses as a number.
+#[test]
+fn display_reads_back_through_blade_names_and_no_term_reads_as_a_float() {
+    use rand::Rng;
+    let mut r = crate::support::rng(43);
+    for n in [1, 2, 3, 4, 5, 11] {
+        let s = Signature::euclidean(n);
+        for _ in 0..20 {
+            let coeffs: Vec<f64> = (0..1usize << n)
+                .map(|_| {
+                    if r.gen_bool(0.3) {
+                        r.gen_range(-10.0..10.0)
+                    } else {
+                        0.0
+                    }
+                })
+                .collect();
+            let x = Multivector::from_coefficients(s, &coeffs).unwrap();
+            let text = x.to_string();
+            let mut back = Multivector::zero(s);
+            for (sign, term) in signed_terms(&text) {
+                match term.split_once('·') {
+                    Some((c, name)) => {
+                        assert!(term.parse::<f64>().is_err(), "{term} reads as a float");
+                        let c: f64 = c.parse().unwrap();
+                        back += &Multivector::blade_by_name(s, name, sign * c).unwrap();
+                    }
+                    None => back += &Multivector::scalar(s, sign * term.parse::<f64>().unwrap()),
+                }
+            }
+            assert_eq!(back, x, "{text}");
+        }
+    }
+}
+
+#[test]
+fn blades_by_name_match_blades_by_mask() {
+    let s = Signature::euclidean(4);
+    for (name, mask, sign) in [
+        ("1", 0, 1.0),
+        ("e1", 0b1, 1.0),
+        ("e13", 0b101, 1.0),
+        ("e1e3", 0b101, 1.0),
+        ("e₁₃", 0b101, 1.0),
+        ("e31", 0b101, -1.0),
+        ("e1234", 0b1111, 1.0),
+        ("e2143", 0b1111, 1.0),
+    ] {
+        let by_name = Multivector::blade_by_name(s, name, 2.5).unwrap();
+        assert_eq!(
+            by_name,
+            Multivector::basis_blade(s, mask) * (sign * 2.5),
+            "{name}"
+        );
+    }
+    // e31 = e3 e1 as a geometric product.
+    let e1 = Multivector::basis_blade(s, 0b1);
+    let e3 = Multivector::basis_blade(s, 0b100);
+    assert_eq!(
+        Multivector::blade_by_name(s, "e31", 1.0).unwrap(),
+        &e3 * &e1
+    );
+    for bad in ["e5", "e11", "x1", "e", "e1.5", "12"] {
+        match Multivector::blade_by_name(s, bad, 1.0) {
+            Err(AlgebraError::InvalidBladeName { name, .. }) => assert_eq!(name, bad),
+            other => panic!("{bad}: {other:?}"),
+        }
+    }
+    assert!(matches!(
+        Multivector::blade_by_name(s, "e1", f64::NAN),
+        Err(AlgebraError::NonFinite { .. })
+    ));
+    assert!(Multivector::try_basis_blade(s, 0b10000).is_err());
+    assert_eq!(
+        Multivector::try_scalar(s, 2.0).unwrap(),
+        Multivector::scalar(s, 2.0)
+    );
+    assert!(Multivector::try_scalar(Signature::euclidean(17), 1.0).is_err());
+}
+
+/// Converting a multivector with other grades to a graded type names the problem.
+#[test]
+fn graded_conversions_report_mixed_grades() {
+    let s = Signature::euclidean(3);
+    let x = Multivector::from_coefficients(s, &[1.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 0.0]).unwrap();
+    match Bivector::try_from(&x) {
+        Err(AlgebraError::MixedGrades {
+            what,
+            grade,
+            others,
+        }) => assert_eq!((what, grade, others), ("bivector", 2, 1)),
+        other => panic!("{other:?}"),
+    }
+    let err = Vector::try_from(&x).unwrap_err();
+    assert_eq!(
+        err,
+        AlgebraError::MixedGrades {
+            what: "vector",
+            grade: 1,
+            others: 2
+        }
+    );
+    assert!(!err.to_string().contains("expected 0"), "{err}");
+    let pure = Multivector::blade_by_name(s, "e13", 0.5).unwrap();
+    assert_eq!(Bivector::try_from(&pure).unwrap().get(0, 2), 0.5);
 }

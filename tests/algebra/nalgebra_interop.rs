@@ -50,7 +50,7 @@ fn right_hand_rule_pins_the_signs() {
     assert!(rotor_distance(&qx, &Rotor::from_plane_angle(3, 1, 2, theta).unwrap()) < 1e-16);
     let qy = Rotor::from(UnitQuaternion::from_axis_angle(&Vector3::y_axis(), theta));
     assert!(rotor_distance(&qy, &Rotor::from_plane_angle(3, 2, 0, theta).unwrap()) < 1e-16);
-    // the angular-velocity dual of DESIGN.md: Ω = (ω23, −ω13, ω12)
+    // the angular-velocity dual of the book's Conventions chapter: Ω = (ω23, −ω13, ω12)
     let w = Bivector::from_components(3, &[0.3, -0.2, 0.7]).unwrap();
     let omega = Vector3::new(w.get(1, 2), -w.get(0, 2), w.get(0, 1));
     let x = Vector3::new(0.5, -1.0, 2.0);

@@ -1,5 +1,5 @@
 //! Property tests (proptest) over random dimensions N = 2 … 10 and random elements: the
-//! algebraic identities of the issue.
+//! algebraic identities the layer promises (products, involutions, exp and log, rotations).
 
 use crate::support::*;
 use proptest::prelude::*;
@@ -150,7 +150,7 @@ proptest! {
     ) {
         let mut rr = rng(seed);
         let mut m = Multivector::zero(Signature::euclidean(n));
-        for (b, c) in m.coefficients_mut().iter_mut().enumerate() {
+        for (b, c) in m.as_mut_slice().iter_mut().enumerate() {
             if (b as u64).count_ones() as usize == k {
                 *c = rand::Rng::gen_range(&mut rr, -1.0..1.0);
             }

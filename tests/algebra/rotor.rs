@@ -9,7 +9,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 
 #[test]
 fn plane_angle_turns_first_vector_toward_second() {
-    // DESIGN.md: R = exp(−θ B̂/2) turns e_i toward e_j by θ.
+    // Conventions chapter: R = exp(−θ B̂/2) turns e_i toward e_j by θ.
     for n in 2..=8 {
         let r = Rotor::from_plane_angle(n, 0, 1, FRAC_PI_2).unwrap();
         let x = r.rotate_vector(&Vector::basis(n, 0));
@@ -204,7 +204,7 @@ fn normalize_projects_drifted_rotors_onto_spin_n() {
         let rot = random_rotor(&mut r, n);
         let mut coeffs = rot.to_multivector();
         // perturb every even coefficient by 1e-6
-        for (k, c) in coeffs.coefficients_mut().iter_mut().enumerate() {
+        for (k, c) in coeffs.as_mut_slice().iter_mut().enumerate() {
             if (k as u64).count_ones().is_multiple_of(2) {
                 *c += 1e-6 * ((k as f64) * 1.7).sin();
             }
@@ -231,14 +231,9 @@ fn dividing_by_the_norm_is_not_enough_in_4d() {
         &Bivector::from_components(4, &[0.4, 0.0, 0.0, 0.0, 0.0, 1.3]).unwrap(),
     );
     let mut m = rot.to_multivector();
-    m.coefficients_mut()[0b1111] += 1e-4;
+    m.as_mut_slice()[0b1111] += 1e-4;
     let drifted = Rotor::from_multivector_unchecked(&m);
-    let norm = drifted
-        .raw_coefficients()
-        .iter()
-        .map(|c| c * c)
-        .sum::<f64>()
-        .sqrt();
+    let norm = drifted.as_slice().iter().map(|c| c * c).sum::<f64>().sqrt();
     let naive = Rotor::from_multivector_unchecked(&(m.clone() * (1.0 / norm)));
     assert!(naive.unit_error() > 1e-6);
     assert!(drifted.normalize().unit_error() < 1e-15);
@@ -273,7 +268,7 @@ fn from_multivector_checks_membership() {
     let m = rot.to_multivector();
     assert_eq!(Rotor::from_multivector(&m).unwrap(), rot);
     let mut odd = m.clone();
-    odd.coefficients_mut()[1] = 0.1;
+    odd.as_mut_slice()[1] = 0.1;
     assert!(matches!(
         Rotor::from_multivector(&odd),
         Err(AlgebraError::NotARotor { .. })
@@ -283,7 +278,7 @@ fn from_multivector_checks_membership() {
     // even, R R̃ = 1, but not a versor in 6D: (1 + e123456)/√2 ... (RR̃ = 1 needs I² = −1)
     let s6 = Signature::euclidean(6);
     let mut x = Multivector::scalar(s6, std::f64::consts::FRAC_1_SQRT_2);
-    x.coefficients_mut()[0b111111] = std::f64::consts::FRAC_1_SQRT_2;
+    x.as_mut_slice()[0b111111] = std::f64::consts::FRAC_1_SQRT_2;
     assert_close!((&x * &x.reverse()).scalar_part(), 1.0, 1e-15);
     assert!(matches!(
         Rotor::from_multivector(&x),
@@ -294,6 +289,71 @@ fn from_multivector_checks_membership() {
 #[test]
 fn display_of_rotors() {
     let r = Rotor::from_plane_angle(3, 0, 1, 2.0 * 0.6435011087932844).unwrap();
-    assert_eq!(format!("{r:.1}"), "0.8 - 0.6e12");
+    assert_eq!(format!("{r:.1}"), "0.8 - 0.6·e12");
     assert_eq!(Rotor::identity(4).to_string(), "1");
+}
+
+/// try_normalize projects drift (the same result as normalize) and refuses what is far from
+/// Spin(N), reporting the measured distance max |R R̃ − 1|.
+#[test]
+fn try_normalize_projects_drift_and_refuses_far_input() {
+    let mut r = rng(41);
+    for n in 2..=7 {
+        let rot = random_rotor(&mut r, n);
+        let mut m = rot.to_multivector();
+        m.as_mut_slice()[0] += 1e-9;
+        let drifted = Rotor::from_multivector_unchecked(&m);
+        assert_eq!(drifted.try_normalize().unwrap(), drifted.normalize());
+        // Twice a rotor: R R̃ = 4, distance 3.
+        let far = Rotor::from_multivector_unchecked(&(rot.to_multivector() * 2.0));
+        match far.try_normalize() {
+            Err(AlgebraError::FarFromGroup {
+                distance,
+                tolerance,
+            }) => {
+                assert_close!(distance, 3.0, 1e-13);
+                assert_eq!(tolerance, rotorflow::algebra::NORMALIZE_TOLERANCE);
+            }
+            other => panic!("N = {n}: {other:?}"),
+        }
+        // The tolerance is the caller's to choose, and the message names the distance.
+        assert!(far.try_normalize_eps(3.5).is_ok());
+        let text = far.try_normalize().unwrap_err().to_string();
+        let distance = format!("{:e}", far.unit_error());
+        assert!(text.contains(&distance) && text.contains("1e-6"), "{text}");
+        let zero = Rotor::from_multivector_unchecked(&(rot.to_multivector() * 0.0));
+        assert!(matches!(
+            zero.try_normalize(),
+            Err(AlgebraError::FarFromGroup { distance, .. }) if distance == 1.0
+        ));
+        let nan = Rotor::from_multivector_unchecked(&(rot.to_multivector() * f64::NAN));
+        assert!(matches!(
+            nan.try_normalize(),
+            Err(AlgebraError::FarFromGroup { distance, .. }) if distance.is_nan()
+        ));
+    }
+}
+
+#[test]
+fn try_identity_and_from_multivector_eps() {
+    assert_eq!(Rotor::try_identity(4).unwrap(), Rotor::identity(4));
+    assert!(matches!(
+        Rotor::try_identity(17),
+        Err(AlgebraError::DimensionTooLarge {
+            dim: 17,
+            max: 16,
+            ..
+        })
+    ));
+    // A rotor 1e-8 off the group: refused at the default tolerance, accepted at a looser one.
+    let rot = Rotor::from_plane_angle(4, 0, 2, 0.7).unwrap();
+    let mut m = rot.to_multivector();
+    m.as_mut_slice()[0] += 1e-8;
+    assert!(matches!(
+        Rotor::from_multivector(&m),
+        Err(AlgebraError::NotARotor { .. })
+    ));
+    let loose = Rotor::from_multivector_eps(&m, 1e-6).unwrap();
+    assert_eq!(loose, Rotor::from_multivector_unchecked(&m));
+    assert!(Rotor::from_multivector_eps(&m, 1e-9).is_err());
 }

@@ -9,21 +9,13 @@ mod orders;
 mod paper_errata;
 mod torqued;
 
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
+#[path = "../support/mod.rs"]
+mod support;
+
+use rand::Rng;
 use rotorflow::dynamics::{Attitude, Integrator, RigidBody, Torque};
 use rotorflow::prelude::*;
-
-pub fn rng(seed: u64) -> ChaCha8Rng {
-    ChaCha8Rng::seed_from_u64(seed)
-}
-
-pub fn random_bivector(r: &mut impl Rng, n: usize, scale: f64) -> Bivector {
-    let c: Vec<f64> = (0..n * (n - 1) / 2)
-        .map(|_| scale * r.gen_range(-1.0..1.0))
-        .collect();
-    Bivector::from_components(n, &c).unwrap()
-}
+pub use support::{random_bivector, rng};
 
 /// A random free body in its principal frame: moments in [0.3, 2], random L and attitude.
 pub fn random_body(r: &mut impl Rng, n: usize) -> RigidBody {
@@ -51,9 +43,9 @@ pub fn run(
 pub fn attitude_distance(a: &Attitude, b: &Attitude) -> f64 {
     match (a.as_rotor(), b.as_rotor()) {
         (Some(x), Some(y)) => x
-            .raw_coefficients()
+            .as_slice()
             .iter()
-            .zip(y.raw_coefficients())
+            .zip(y.as_slice())
             .fold(0.0f64, |m, (p, q)| m.max((p - q).abs())),
         _ => (a.to_matrix() - b.to_matrix()).amax(),
     }

@@ -459,7 +459,7 @@ fn paper_eqs_14_15_18_levi_civita_velocity_rotates_the_dual_plane() {
     let mut r = rng(1415);
     let n = 4;
     let eps_velocity = |w: &Bivector, t: &Vector| {
-        let mut v = Vector::zeros(n);
+        let mut v = Vector::zero(n);
         for l in 0..n {
             for i in 0..n {
                 for jj in 0..n {

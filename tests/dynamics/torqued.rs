@@ -14,9 +14,9 @@ fn heavy_top(n: usize) -> (RigidBody, Gravity) {
     let w = crate::random_bivector(&mut r, n, 2.0);
     let tilt = Rotor::from_plane_angle(n, 0, n - 1, 0.4).unwrap();
     let body = RigidBody::from_body_velocity(inertia, tilt, &w).unwrap();
-    let mut weight = Vector::zeros(n);
+    let mut weight = Vector::zero(n);
     weight[n - 1] = -9.81;
-    let mut offset = Vector::zeros(n);
+    let mut offset = Vector::zero(n);
     offset[n - 1] = 0.3;
     (body, Gravity { weight, offset })
 }

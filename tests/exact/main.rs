@@ -7,28 +7,15 @@ mod paper_section7;
 mod top3d;
 mod two_moments;
 
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
+#[path = "../support/mod.rs"]
+mod support;
+
 use rotorflow::dynamics::torques::Free;
 use rotorflow::dynamics::{
     Attitude, Dopri5, DynamicsError, Integrator, NoClosedFormReason, RigidBody,
 };
 use rotorflow::prelude::*;
-
-pub fn rng(seed: u64) -> ChaCha8Rng {
-    ChaCha8Rng::seed_from_u64(seed)
-}
-
-pub fn random_bivector(r: &mut impl Rng, n: usize, scale: f64) -> Bivector {
-    let c: Vec<f64> = (0..n * (n - 1) / 2)
-        .map(|_| scale * r.gen_range(-1.0..1.0))
-        .collect();
-    Bivector::from_components(n, &c).unwrap()
-}
-
-pub fn random_rotor(r: &mut impl Rng, n: usize) -> Rotor {
-    Rotor::from_rotation_bivector(&random_bivector(r, n, 2.0))
-}
+pub use support::{random_bivector, random_rotor, rng};
 
 /// The reasons of a [`DynamicsError::NoClosedForm`], or a panic naming what came instead.
 pub fn no_closed_form_reasons<T: std::fmt::Debug>(
@@ -79,9 +66,9 @@ pub fn rotor_distance(a: &impl AsAttitude, b: &impl AsAttitude) -> f64 {
     let (a, b) = (a.as_attitude(), b.as_attitude());
     match (a.as_rotor(), b.as_rotor()) {
         (Some(x), Some(y)) => x
-            .raw_coefficients()
+            .as_slice()
             .iter()
-            .zip(y.raw_coefficients())
+            .zip(y.as_slice())
             .fold(0.0f64, |m, (p, q)| m.max((p - q).abs())),
         _ => (a.to_matrix() - b.to_matrix()).amax(),
     }

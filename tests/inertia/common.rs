@@ -1,19 +1,17 @@
-//! Shared helpers for the integration tests: seeded randomness, random matrices, a
-//! diagnostic closeness assertion, Monte Carlo moment estimators and the Kuhn triangulation.
+//! Helpers of the inertia tests: random matrices, a matrix closeness assertion, Monte Carlo
+//! moment estimators and the Kuhn triangulation. Seeded randomness and `assert_close!` come
+//! from the shared test support (`tests/support/mod.rs`) and are re-exported here.
 
 #![allow(dead_code)]
 
 use nalgebra::{DMatrix, DVector};
-use rand::{Rng, SeedableRng};
+use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
 /// Machine epsilon.
 pub const EPS: f64 = f64::EPSILON;
 
-/// Seeded generator (fixed seeds keep every Monte Carlo test deterministic).
-pub fn rng(seed: u64) -> ChaCha8Rng {
-    ChaCha8Rng::seed_from_u64(seed)
-}
+pub use crate::support::{max_abs, max_abs_diff, random_bivector, rng};
 
 /// Standard normal deviate by Box–Muller.
 pub fn gaussian(rng: &mut ChaCha8Rng) -> f64 {
@@ -61,43 +59,6 @@ pub fn random_spd(n: usize, rng: &mut ChaCha8Rng) -> DMatrix<f64> {
 pub fn random_skew(n: usize, rng: &mut ChaCha8Rng) -> DMatrix<f64> {
     let a = DMatrix::from_fn(n, n, |_, _| gaussian(rng));
     &a - a.transpose()
-}
-
-pub fn max_abs_diff(a: &DMatrix<f64>, b: &DMatrix<f64>) -> f64 {
-    assert_eq!(a.shape(), b.shape());
-    a.iter()
-        .zip(b.iter())
-        .fold(0.0_f64, |acc, (x, y)| acc.max((x - y).abs()))
-}
-
-pub fn max_abs(a: &DMatrix<f64>) -> f64 {
-    a.iter().fold(0.0_f64, |acc, x| acc.max(x.abs()))
-}
-
-/// Asserts |a − b| ≤ tol and prints both values, the tolerance and the difference.
-#[macro_export]
-macro_rules! assert_close {
-    ($a:expr, $b:expr, $tol:expr) => {{
-        let (a, b, tol): (f64, f64, f64) = ($a, $b, $tol);
-        let diff = (a - b).abs();
-        assert!(
-            diff <= tol,
-            "assert_close failed: {} = {a:e}, {} = {b:e}, |diff| = {diff:e} > tol = {tol:e}",
-            stringify!($a),
-            stringify!($b)
-        );
-    }};
-    ($a:expr, $b:expr, $tol:expr, $($msg:tt)+) => {{
-        let (a, b, tol): (f64, f64, f64) = ($a, $b, $tol);
-        let diff = (a - b).abs();
-        assert!(
-            diff <= tol,
-            "assert_close failed ({}): {} = {a:e}, {} = {b:e}, |diff| = {diff:e} > tol = {tol:e}",
-            format!($($msg)+),
-            stringify!($a),
-            stringify!($b)
-        );
-    }};
 }
 
 /// Asserts every entry of two matrices agrees within `tol`.

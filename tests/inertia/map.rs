@@ -1,19 +1,12 @@
 //! The inertia map against independent routes: the direct sum Σ m x∧(x⌋ω) over point masses,
 //! the point-velocity kinetic energy, the rank-4 view, and rotations of the body.
 
-use crate::common::{random_rotation, random_spd, rng};
+use crate::common::{random_bivector, random_rotation, random_spd, rng};
 use nalgebra::{DMatrix, DVector};
 use rand::Rng;
 use rotorflow::algebra::Vector;
 use rotorflow::inertia::tensor::RankFourTensor;
 use rotorflow::prelude::*;
-
-fn random_bivector(r: &mut impl Rng, n: usize) -> Bivector {
-    let c: Vec<f64> = (0..n * (n - 1) / 2)
-        .map(|_| r.gen_range(-1.0..1.0))
-        .collect();
-    Bivector::from_components(n, &c).unwrap()
-}
 
 fn random_cloud(r: &mut impl Rng, n: usize, count: usize) -> (Vec<f64>, Vec<DVector<f64>>) {
     let masses = (0..count).map(|_| r.gen_range(0.5..2.0)).collect();
@@ -33,7 +26,7 @@ fn map_equals_direct_sum_over_point_masses() {
         let map = InertiaMap::from_body(&body).unwrap();
         let c = body.center_of_mass();
         for _ in 0..5 {
-            let w = random_bivector(&mut r, n);
+            let w = random_bivector(&mut r, n, 1.0);
             let mut direct = Bivector::zero(n);
             let mut energy = 0.0;
             for (m, p) in masses.iter().zip(&points) {
@@ -58,11 +51,11 @@ fn inverse_undoes_apply_in_any_frame() {
         let map = InertiaMap::from_mass_tensor(&j).unwrap();
         assert!(!map.is_principal() || n == 1);
         for _ in 0..5 {
-            let w = random_bivector(&mut r, n);
+            let w = random_bivector(&mut r, n, 1.0);
             let back = map.apply_inverse(&map.apply(&w));
             assert!((&back - &w).max_abs() < 1e-12, "n={n}");
             // and the inverse solves the Lyapunov equation J[ω] + [ω]J = [L]
-            let l = random_bivector(&mut r, n);
+            let l = random_bivector(&mut r, n, 1.0);
             let w2 = map.apply_inverse(&l);
             let lhs = &j * w2.to_skew_matrix() + w2.to_skew_matrix() * &j;
             assert!((lhs - l.to_skew_matrix()).abs().max() < 1e-12);
@@ -138,7 +131,7 @@ fn rotating_the_body_rotates_the_map() {
             .unwrap()
             .rotated(&rotor)
             .unwrap();
-        let w = random_bivector(&mut r, n);
+        let w = random_bivector(&mut r, n, 1.0);
         assert!((&a.apply(&w) - &b.apply(&w)).max_abs() < 1e-12);
         // equivariance: I′(RωR̃) = R I(ω) R̃
         let map = InertiaMap::from_body(&body).unwrap();
@@ -159,7 +152,7 @@ fn rank_four_view_reproduces_the_map() {
         let j = random_spd(n, &mut r);
         let map = InertiaMap::from_mass_tensor(&j).unwrap();
         let t = RankFourTensor::from_mass_tensor(&j).unwrap();
-        let w = random_bivector(&mut r, n);
+        let w = random_bivector(&mut r, n, 1.0);
         let l = t.apply(&w.to_skew_matrix()).unwrap();
         let expected = map.apply(&w).to_skew_matrix();
         assert!((l - expected).abs().max() < 1e-13, "n={n}");
@@ -263,7 +256,7 @@ fn nearly_flat_bodies_with_condition_1e12_still_invert() {
     // one direction is fine, and the inverse stays accurate.
     let map = InertiaMap::from_principal_second_moments(&[1e-12, 1.0, 1.0, 1.0]).unwrap();
     let mut r = rng(108);
-    let w = random_bivector(&mut r, 4);
+    let w = random_bivector(&mut r, 4, 1.0);
     assert!((&map.apply_inverse(&map.apply(&w)) - &w).max_abs() < 1e-15);
     // two small directions: plane moment 2e-12 against 2, condition 1e12
     let map = InertiaMap::from_principal_second_moments(&[1e-12, 1e-12, 1.0, 1.0]).unwrap();

@@ -1,20 +1,27 @@
 //! Rotors ↔ rotation matrices, and the projection of a drifted rotor back onto Spin(N).
 
-use super::exp_log::{get_4d, multiply_by_simple, set_4d};
-use super::{Rotor, even_index};
+use super::{Rotor, even_index, get_4d, multiply_by_simple, set_4d};
 use crate::algebra::bivector::{bivector_len, pairs};
 use crate::algebra::decompose::{RawPlane, decompose_components};
+use crate::algebra::error::within;
 use crate::algebra::{AlgebraError, MULTIVECTOR_MAX_DIM};
+use crate::numeric::orthogonality_error;
 use nalgebra::{DMatrix, DVector};
 use smallvec::SmallVec;
 
 /// Default tolerance on max |QᵀQ − 1| for [`Rotor::from_matrix`].
 pub const ROTATION_TOLERANCE: f64 = 1e-9;
 
+/// Default tolerance of [`Rotor::try_normalize`] on max |R R̃ − 1|: far above the drift that
+/// f64 round-off accumulates over long runs, and above the error of rotors that went through
+/// f32 data (~1e-7), but far below any deviation that is not round-off.
+pub const NORMALIZE_TOLERANCE: f64 = 1e-6;
+
 impl Rotor {
     /// Returns the N×N rotation matrix Q of R: column j is R eⱼ R̃, so Q x = R x R̃.
     ///
-    /// For R = exp(−θ B̂/2) this is expm(\[θB̂\]ᵀ) (DESIGN.md). Costs O(N²·2^N).
+    /// For R = exp(−θ B̂/2) this is expm(\[θB̂\]ᵀ) (see the Conventions chapter of the
+    /// rotorflow book). Costs O(N²·2^N).
     pub fn to_matrix(&self) -> DMatrix<f64> {
         let n = self.dim;
         let mut q = DMatrix::zeros(n, n);
@@ -104,7 +111,7 @@ impl Rotor {
     pub fn from_matrix_eps(q: &DMatrix<f64>, tolerance: f64) -> Result<Rotor, AlgebraError> {
         check_matrix_shape(q)?;
         let n = q.nrows();
-        let err = orthogonality_error(q);
+        let err = orthogonality_error(q.as_view());
         let det = if n == 0 { 1.0 } else { q.determinant() };
         if err.is_nan() || err > tolerance || det < 0.0 {
             return Err(AlgebraError::NotARotation {
@@ -125,14 +132,14 @@ impl Rotor {
     pub fn from_matrix_projected(m: &DMatrix<f64>) -> Result<Rotor, AlgebraError> {
         check_matrix_shape(m)?;
         let q = nearest_orthogonal(m).ok_or(AlgebraError::NotARotation {
-            orthogonality_error: orthogonality_error(m),
+            orthogonality_error: orthogonality_error(m.as_view()),
             determinant: m.determinant(),
             tolerance: f64::INFINITY,
         })?;
         let det = q.determinant();
         if det < 0.0 {
             return Err(AlgebraError::NotARotation {
-                orthogonality_error: orthogonality_error(m),
+                orthogonality_error: orthogonality_error(m.as_view()),
                 determinant: m.determinant(),
                 tolerance: f64::INFINITY,
             });
@@ -150,11 +157,12 @@ impl Rotor {
     ///
     /// A rotor that is far from Spin(N) (for example 0) has no meaningful projection; the
     /// result is then the identity's sign-nearest lift of whatever rotation remains.
+    /// [`Rotor::try_normalize`] refuses such input instead.
     pub fn normalize(&self) -> Rotor {
         let n = self.dim;
         match n {
             0..=3 => {
-                let s = crate::algebra::vector::scaled_norm(&self.coeffs);
+                let s = crate::numeric::scaled_norm(&self.coeffs);
                 if s > 0.0 {
                     self.clone().scaled(1.0 / s)
                 } else {
@@ -186,7 +194,52 @@ impl Rotor {
     }
 }
 
-/// σ(i, j, a) < 0 for the matrix entry formula: σ = sign(eᵢ e_a) · sign(e_{i⊕a} eⱼ) (the
+impl Rotor {
+    /// [`Rotor::normalize`], refusing a rotor whose distance max |R R̃ − 1| from Spin(N)
+    /// ([`Rotor::unit_error`]) exceeds [`NORMALIZE_TOLERANCE`]: projecting removes drift, it
+    /// does not turn an arbitrary even element into a meaningful rotation.
+    ///
+    /// ```
+    /// use rotorflow::algebra::{AlgebraError, Bivector, Rotor};
+    /// let r = Bivector::from_plane(4, 0, 1, 0.3)?.exp();
+    /// let drifted = &r * &Rotor::identity(4); // any product accumulates round-off
+    /// assert!(drifted.try_normalize()?.unit_error() < 1e-15);
+    /// // Twice a rotor is 1 away from Spin(N) (R R̃ = 4): refused, with the distance.
+    /// let far = Rotor::from_multivector_unchecked(&(r.to_multivector() * 2.0));
+    /// match far.try_normalize() {
+    ///     Err(AlgebraError::FarFromGroup { distance, .. }) => assert!((distance - 3.0).abs() < 1e-14),
+    ///     other => panic!("{other:?}"),
+    /// }
+    /// # Ok::<(), AlgebraError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`AlgebraError::FarFromGroup`] with the measured distance (NaN for non-finite input).
+    pub fn try_normalize(&self) -> Result<Rotor, AlgebraError> {
+        self.try_normalize_eps(NORMALIZE_TOLERANCE)
+    }
+
+    /// Like [`Rotor::try_normalize`] with an explicit tolerance on max |R R̃ − 1|.
+    ///
+    /// # Errors
+    /// [`AlgebraError::FarFromGroup`].
+    pub fn try_normalize_eps(&self, tolerance: f64) -> Result<Rotor, AlgebraError> {
+        let distance = if self.coeffs.iter().all(|c| c.is_finite()) {
+            self.unit_error()
+        } else {
+            f64::NAN
+        };
+        if !within(distance, tolerance) {
+            return Err(AlgebraError::FarFromGroup {
+                distance,
+                tolerance,
+            });
+        }
+        Ok(self.normalize())
+    }
+}
+
+/// σ(i, j, a) < 0 for the matrix entry formula: σ = sign(eᵢ e_a) · sign(e_(i⊕a) eⱼ) (the
 /// reverse of the last factor and its square cancel in a Euclidean signature).
 fn matrix_sign_negative(a: u64, i: usize, j: usize) -> bool {
     let s1 = crate::algebra::blade::reorder_sign(1 << i, a);
@@ -240,26 +293,11 @@ fn check_matrix_shape(q: &DMatrix<f64>) -> Result<(), AlgebraError> {
     Ok(())
 }
 
-/// max |(QᵀQ − 1)_ij|.
-pub(crate) fn orthogonality_error(q: &DMatrix<f64>) -> f64 {
-    let n = q.nrows();
-    let g = q.transpose() * q;
-    let mut err = 0.0f64;
-    for i in 0..n {
-        for j in 0..n {
-            let target = if i == j { 1.0 } else { 0.0 };
-            err = err.max((g[(i, j)] - target).abs());
-        }
-    }
-    err
-}
-
 /// The orthogonal polar factor U Vᵀ, or None if the SVD fails or the matrix is singular.
 ///
 /// nalgebra's SVD can turn to NaN on finite entries of extreme range, and its ordered form
-/// then panics while sorting the singular values (found by the exp_log_bits fuzz target on
-/// entries from 1e-319 to 5e226). So: the unordered SVD (U Vᵀ needs no order), NaN checked
-/// here; and, since the factor does not change when `m` is scaled, on m / max |m_ij| with
+/// then panics while sorting the singular values (entries from 1e-319 to 5e226 do it). So:
+/// the unordered SVD (U Vᵀ needs no order), NaN checked here; and, since the factor does not change when `m` is scaled, on m / max |m_ij| with
 /// entries below 1e-150 of the largest set to 0 (far below round-off), so that no square
 /// overflows or falls into the subnormal range.
 fn nearest_orthogonal(m: &DMatrix<f64>) -> Option<DMatrix<f64>> {
@@ -361,7 +399,7 @@ fn rotor_of_matrix_3d(q: &DMatrix<f64>) -> Rotor {
 pub(crate) fn planes_of_rotation(q: &DMatrix<f64>) -> Vec<RawPlane> {
     let n = q.nrows();
     let y = (q + q.transpose()) * 0.5;
-    let (eigenvalues, eigenvectors) = crate::algebra::symmetric_eigen(y);
+    let (eigenvalues, eigenvectors) = crate::numeric::symmetric_eigen(y);
     let mut plus = Vec::new();
     let mut minus = Vec::new();
     for (k, &lambda) in eigenvalues.iter().enumerate() {

@@ -1,9 +1,11 @@
 //! Closed-form exponential and logarithm (never a truncated series).
 
-use super::{Rotor, even_index, even_len};
+use super::{Rotor, even_index, get_4d, multiply_by_simple, set_4d};
 use crate::algebra::bivector::pairs;
 use crate::algebra::decompose::{RawPlane, decompose_components, self_dual_join, self_dual_split};
-use crate::algebra::{Bivector, MULTIVECTOR_MAX_DIM, Vector, blade};
+use crate::algebra::error::{assert_same_dim, check_finite, within};
+use crate::algebra::{AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Vector};
+use nalgebra::DMatrix;
 use smallvec::SmallVec;
 
 impl Bivector {
@@ -17,11 +19,12 @@ impl Bivector {
     ///
     /// The result is a unit rotor whenever |B| ≤ `f64::MAX`/2. Beyond, a plane angle (or a
     /// sum in the 4D split) may overflow, and the coefficients are then NaN for N ≥ 3, as
-    /// [`Bivector::exp_skew_matrix`]'s entries: an infinite angle has no value mod 2π
-    /// (found by the exp_log_bits fuzz target).
+    /// [`Bivector::exp_skew_matrix`]'s entries: an infinite angle has no value mod 2π.
+    /// [`Bivector::try_exp`] returns an error there instead.
     ///
     /// # Panics
-    /// If N > [`MULTIVECTOR_MAX_DIM`] (rotors store 2^(N−1) coefficients).
+    /// If N > [`MULTIVECTOR_MAX_DIM`] (rotors store 2^(N−1) coefficients; see
+    /// [`Bivector::try_exp`]).
     ///
     /// ```
     /// use rotorflow::algebra::Bivector;
@@ -68,6 +71,38 @@ impl Bivector {
         }
         r
     }
+
+    /// [`Bivector::exp`], or an error where it would panic or return NaN.
+    ///
+    /// ```
+    /// use rotorflow::algebra::{AlgebraError, Bivector};
+    /// let b = Bivector::from_plane(3, 0, 1, 0.5)?;
+    /// assert_eq!(b.try_exp()?, b.exp());
+    /// let huge = Bivector::from_components(3, &[f64::MAX, f64::MAX, 0.0])?;
+    /// assert!(matches!(huge.try_exp(), Err(AlgebraError::AngleTooLarge { .. })));
+    /// # Ok::<(), AlgebraError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionTooLarge`] if N > [`MULTIVECTOR_MAX_DIM`];
+    /// [`AlgebraError::NonFinite`] for NaN or infinite components;
+    /// [`AlgebraError::AngleTooLarge`] if |B| > `f64::MAX`/2.
+    pub fn try_exp(&self) -> Result<Rotor, AlgebraError> {
+        let n = self.dim();
+        if n > MULTIVECTOR_MAX_DIM {
+            return Err(AlgebraError::DimensionTooLarge {
+                what: "rotor",
+                dim: n,
+                max: MULTIVECTOR_MAX_DIM,
+            });
+        }
+        check_finite(self.as_slice(), "bivector")?;
+        let norm = self.norm();
+        if !within(norm, f64::MAX / 2.0) {
+            return Err(AlgebraError::AngleTooLarge { norm });
+        }
+        Ok(self.exp())
+    }
 }
 
 /// 4D: B = aF + bG (self-dual and anti-self-dual halves, |α| = a, |β| = b) gives
@@ -76,8 +111,8 @@ impl Bivector {
 /// a − b.
 fn exp_4d(c: &[f64], r: &mut Rotor) {
     let (alpha, beta) = self_dual_split(c);
-    let a = crate::algebra::vector::scaled_norm(&alpha);
-    let b = crate::algebra::vector::scaled_norm(&beta);
+    let a = crate::numeric::scaled_norm(&alpha);
+    let b = crate::numeric::scaled_norm(&beta);
     let (sa, ca) = (2.0 * a).sin_cos();
     let (sb, cb) = (2.0 * b).sin_cos();
     // ½ sin 2a · α/|α| with the a → 0 limit sin(2a)/(2a) → 1.
@@ -88,66 +123,95 @@ fn exp_4d(c: &[f64], r: &mut Rotor) {
     set_4d(r, 0.5 * (ca + cb), self_dual_join(f, g), 0.5 * (cb - ca));
 }
 
-/// Writes scalar, bivector (lexicographic) and pseudoscalar parts into a 4D rotor.
-pub(super) fn set_4d(r: &mut Rotor, s: f64, b: [f64; 6], p: f64) {
-    r.coeffs[0] = s;
-    for ((i, j), &x) in pairs(4).zip(b.iter()) {
-        r.coeffs[even_index(4, (1 << i) | (1 << j))] = x;
+impl Bivector {
+    /// Returns the matrix exponential expm(\[B\]) of the skew matrix of B: a rotation matrix,
+    /// in O(N³) for any N (no rotor, so also above the rotor limit).
+    ///
+    /// Small rotations (‖\[B\]‖₂ ≤ 0.82 by the bound min(‖A‖₁, ‖A²‖₁^½), every integrator
+    /// step): the Taylor polynomial of the lowest degree m ∈ {6, 9, 12, 16} whose truncation
+    /// error is below the unit round-off, by Paterson–Stockmeyer (3 to 6 products, no solve;
+    /// Higham, *Functions of Matrices*, 2008, §4.4.3), a rotation to round-off because the
+    /// truncation is. Up to ‖\[B\]‖₁ ≈ 5.37: the diagonal Padé approximant
+    /// r_m(A) = q_m(A)⁻¹ p_m(A) of the degree m ∈ {3, 5, 7, 9, 13} that Higham's bound
+    /// selects (Higham, SIAM J. Matrix Anal. Appl. 26 (2005) 1179; backward error below the
+    /// unit round-off). For skew A,
+    /// q_m(A) = p_m(−A) = p_m(A)ᵀ, so r_m(A) is orthogonal in exact arithmetic: a rotation
+    /// to round-off, never a truncated series that leaves the group. Larger rotations use
+    /// the spectral form expm(A) = V diag(cos θₖ) Vᵀ + A V diag(sin θₖ/θₖ) Vᵀ from the
+    /// eigen-decomposition −A² = V diag(θₖ²) Vᵀ, which stays orthogonal to ε at any angle
+    /// (scaling and squaring would not). The rotation matrix of the rotor e^A is expm(2\[A\])
+    /// (exp(−θB̂/2) ↔ expm(\[θB̂\]ᵀ); see the Conventions chapter of the rotorflow book).
+    ///
+    /// Finite and orthogonal whenever |B| ≤ `f64::MAX`/2; beyond, a plane angle may overflow
+    /// and the entries are then NaN (as for [`Bivector::exp`]).
+    ///
+    /// ```
+    /// use rotorflow::algebra::Bivector;
+    /// let b = Bivector::from_components(4, &[0.3, -0.2, 0.5, 0.1, 0.7, -0.4])?;
+    /// let q = b.exp_skew_matrix();
+    /// let expected = (&b * 0.5).exp().to_matrix(); // the rotor e^{B/2} has matrix expm([B])
+    /// assert!((q - expected).amax() < 1e-14);
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
+    pub fn exp_skew_matrix(&self) -> DMatrix<f64> {
+        let n = self.dim();
+        let a = self.to_skew_matrix();
+        let norm1 = crate::numeric::norm1(&a);
+        if norm1 == 0.0 {
+            return DMatrix::identity(n, n);
+        }
+        // ‖[B]‖₁ can overflow while every plane angle is representable: the plane-by-plane
+        // form scales, so it takes that case too.
+        if !norm1.is_finite() || norm1 > crate::numeric::PADE_MAX_NORM {
+            return self.exp_skew_matrix_by_planes();
+        }
+        // Small rotations (integrator steps): the Taylor form needs no solve.
+        if let Some(q) = crate::numeric::expm_skew_taylor(&a, norm1) {
+            return q;
+        }
+        crate::numeric::expm_skew(&a, norm1).unwrap_or_else(|| crate::numeric::expm_spectral(&a))
     }
-    r.coeffs[even_index(4, 0b1111)] = p;
-}
 
-/// Reads scalar, bivector (lexicographic) and pseudoscalar parts of a 4D rotor.
-pub(super) fn get_4d(r: &Rotor) -> (f64, [f64; 6], f64) {
-    let mut b = [0.0; 6];
-    for ((i, j), x) in pairs(4).zip(b.iter_mut()) {
-        *x = r.coeffs[even_index(4, (1 << i) | (1 << j))];
-    }
-    (r.coeffs[0], b, r.coeffs[even_index(4, 0b1111)])
-}
-
-/// R ← R (c + s u v) for orthonormal u ⟂ v: two vector multiplications, O(N 2^N).
-///
-/// The sign of e_a eᵢ is bit i of `suffix_parity(a)`, computed once per blade.
-pub(crate) fn multiply_by_simple(r: &mut Rotor, c: f64, s: f64, u: &[f64], v: &[f64]) {
-    let n = r.dim;
-    let len = even_len(n);
-    let mask = (1u64 << (n - 1)) - 1;
-    // t = R u (odd, indexed by low bits).
-    let mut t: SmallVec<[f64; 32]> = SmallVec::from_elem(0.0, len);
-    for (&ra, &a) in r.coeffs.iter().zip(super::even_blades(n)) {
-        if ra == 0.0 {
-            continue;
+    /// expm(\[B\]) plane by plane from the invariant decomposition: on each plane θ u∧v
+    /// (\[B\] v = θ u) a rotation by θ, Q = 1 + Σ (cos θ − 1)(u uᵀ + v vᵀ) + sin θ (u vᵀ − v uᵀ).
+    /// Each angle is reduced on its own, so Q is orthogonal to ε at any angle.
+    fn exp_skew_matrix_by_planes(&self) -> DMatrix<f64> {
+        let n = self.dim();
+        let mut q = DMatrix::identity(n, n);
+        for p in decompose_components(n, self.as_slice()) {
+            let (s, c) = p.theta.sin_cos();
+            for i in 0..n {
+                for j in 0..n {
+                    q[(i, j)] += (c - 1.0) * (p.u[i] * p.u[j] + p.v[i] * p.v[j])
+                        + s * (p.u[i] * p.v[j] - p.v[i] * p.u[j]);
+                }
+            }
         }
-        let sp = blade::suffix_parity(a);
-        for (i, &ui) in u.iter().enumerate() {
-            let sign = if sp >> i & 1 == 0 { ra } else { -ra };
-            t[((a ^ (1 << i)) & mask) as usize] += sign * ui;
-        }
-    }
-    // R ← c R + s (t v).
-    r.coeffs.iter_mut().for_each(|x| *x *= c);
-    for (&tb, &b) in t.iter().zip(super::odd_blades(n)) {
-        if tb == 0.0 {
-            continue;
-        }
-        let sp = blade::suffix_parity(b);
-        let stb = s * tb;
-        for (i, &vi) in v.iter().enumerate() {
-            let sign = if sp >> i & 1 == 0 { stb } else { -stb };
-            r.coeffs[((b ^ (1 << i)) & mask) as usize] += sign * vi;
-        }
+        q
     }
 }
 
 impl Rotor {
     /// Returns exp(−Θ/2): the rotor that turns by θₖ in each plane of the rotation bivector
-    /// Θ = Σ θₖ Pₖ (DESIGN.md's attitude convention; for Θ = θ e₁₂ it turns e₁ toward e₂).
+    /// Θ = Σ θₖ Pₖ (the attitude convention of the rotorflow book's Conventions chapter; for
+    /// Θ = θ e₁₂ it turns e₁ toward e₂).
     ///
     /// Over a step h with constant body angular velocity ω, the attitude advances as
     /// R ← R · `Rotor::from_rotation_bivector(&(ω * h))`.
+    ///
+    /// # Panics
+    /// If N > [`MULTIVECTOR_MAX_DIM`] (see [`Rotor::try_from_rotation_bivector`]).
+    #[track_caller]
     pub fn from_rotation_bivector(theta: &Bivector) -> Rotor {
         (theta * -0.5).exp()
+    }
+
+    /// [`Rotor::from_rotation_bivector`], or an error where [`Bivector::try_exp`] gives one.
+    ///
+    /// # Errors
+    /// As [`Bivector::try_exp`] for −Θ/2.
+    pub fn try_from_rotation_bivector(theta: &Bivector) -> Result<Rotor, AlgebraError> {
+        (theta * -0.5).try_exp()
     }
 
     /// Returns the rotation bivector Θ = −2 log R, so that
@@ -198,14 +262,55 @@ impl Rotor {
         out
     }
 
-    /// Returns the rotor a fraction `t` of the way from `self` to `other` along the geodesic
-    /// of Spin(N): self · exp(t · log(self⁻¹ · other)). `t = 0` gives `self`, `t = 1` gives
-    /// `other`.
+    /// Returns the rotation a fraction `t` of the way from `self` to `other` along the
+    /// shorter arc: R and −R are the same rotation, so `other` is first given the sign that
+    /// makes ⟨R̃₁R₂⟩₀ ≥ 0, and then the path is [`Rotor::slerp_spinor`]. Every rotation angle
+    /// of the path's generator is then at most π, and `slerp(a, b, t)` and `slerp(a, −b, t)`
+    /// are the same rotor. `t = 0` gives `self`; `t = 1` gives `other` or `−other` (the same
+    /// rotation).
+    ///
+    /// ```
+    /// use rotorflow::algebra::{Bivector, Rotor};
+    /// let a = Rotor::identity(3);
+    /// let b = Bivector::from_plane(3, 0, 1, 0.4)?.exp(); // turns by −0.8 in e12
+    /// let minus_b = Rotor::from_multivector_unchecked(&(b.to_multivector() * -1.0));
+    /// let (m1, m2) = (a.slerp(&b, 0.5), a.slerp(&minus_b, 0.5));
+    /// assert!((m1.to_matrix() - m2.to_matrix()).amax() < 1e-15);
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
     ///
     /// # Panics
     /// If the dimensions differ.
     #[track_caller]
     pub fn slerp(&self, other: &Rotor, t: f64) -> Rotor {
+        assert_same_dim(self.dim, other.dim);
+        // ⟨R̃₁R₂⟩₀ is the plain dot product of the coefficients in a Euclidean signature.
+        let d: f64 = self
+            .coeffs
+            .iter()
+            .zip(&other.coeffs)
+            .map(|(a, b)| a * b)
+            .sum();
+        if d < 0.0 {
+            self.slerp_spinor(&other.clone().scaled(-1.0), t)
+        } else {
+            self.slerp_spinor(other, t)
+        }
+    }
+
+    /// Returns the rotor a fraction `t` of the way from `self` to `other` along the geodesic
+    /// of Spin(N): self · exp(t · log(self⁻¹ · other)). `t = 0` gives `self`, `t = 1` gives
+    /// `other` exactly as given.
+    ///
+    /// This interpolates spinors, not rotations: from R₁ to −R₁ (the same rotation) it turns
+    /// by 2π, and from R₁ to −R₂ it takes the longer arc of the rotation. Use it where the
+    /// sign of the rotor matters (spinor transport); [`Rotor::slerp`] is the rotation
+    /// interpolation.
+    ///
+    /// # Panics
+    /// If the dimensions differ.
+    #[track_caller]
+    pub fn slerp_spinor(&self, other: &Rotor, t: f64) -> Rotor {
         let delta = self.reverse().compose(other);
         self.compose(&(delta.log() * t).exp())
     }
@@ -216,8 +321,8 @@ impl Rotor {
 fn log_4d(r: &Rotor) -> Bivector {
     let (s, b, p) = get_4d(r);
     let (alpha, beta) = self_dual_split(&b);
-    let na = crate::algebra::vector::scaled_norm(&alpha);
-    let nb = crate::algebra::vector::scaled_norm(&beta);
+    let na = crate::numeric::scaled_norm(&alpha);
+    let nb = crate::numeric::scaled_norm(&beta);
     // 2a = atan2(2|α|, s − p), 2b = atan2(2|β|, s + p); then B's halves are a α̂ and b β̂.
     let a2 = (2.0 * na).atan2(s - p);
     let b2 = (2.0 * nb).atan2(s + p);

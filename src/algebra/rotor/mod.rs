@@ -6,23 +6,29 @@
 //! and from rotation matrices and the projection back onto Spin(N).
 
 mod convert;
-pub use convert::ROTATION_TOLERANCE;
+pub use convert::{NORMALIZE_TOLERANCE, ROTATION_TOLERANCE};
 mod exp_log;
 
+use super::bivector::pairs;
 use super::blade;
-use super::error::{assert_same_dim, check_finite, check_same_dim};
+use super::error::{assert_same_dim, check_finite, check_same_dim, within};
 use super::multivector::{Multivector, MvStorage};
 use super::{AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Signature, Vector};
 use smallvec::SmallVec;
 
 /// Inline storage for rotors: the 2^(N−1) = 16 even coefficients of N ≤ 5 stay off the heap.
+/// Default tolerance of [`Rotor::from_multivector`]: how far from even, unit and
+/// vector-preserving a multivector may be and still be accepted as a rotor.
+pub const ROTOR_TOLERANCE: f64 = 1e-10;
+
 pub(crate) type RotorStorage = SmallVec<[f64; 16]>;
 
 /// A rotor of Euclidean ℝᴺ: an even, unit element R of the Clifford algebra with
 /// R R̃ = 1 and R x R̃ a vector for every vector x, i.e. an element of Spin(N).
 ///
-/// R maps body to space, x_space = R x R̃ (DESIGN.md). `R = exp(−θ B̂/2)` turns by θ in the
-/// plane B̂, from its first vector toward its second; its rotation matrix is expm(\[θB̂\]ᵀ).
+/// R maps body to space, x_space = R x R̃ (see the Conventions chapter of the rotorflow
+/// book). `R = exp(−θ B̂/2)` turns by θ in the plane B̂, from its first vector toward its
+/// second; its rotation matrix is expm(\[θB̂\]ᵀ).
 /// Rotors compose by the geometric product: `r2 * r1` applies `r1` first.
 ///
 /// The 2^(N−1) even coefficients are stored densely, so N ≤ [`MULTIVECTOR_MAX_DIM`].
@@ -38,9 +44,9 @@ pub(crate) type RotorStorage = SmallVec<[f64; 16]>;
 ///   [`Rotor::rotate_bivector`], [`Rotor::rotate_multivector`],
 ///   [`Rotor::rotate_in_plane_mut`].
 /// - Logarithm and interpolation: [`Rotor::log`], [`Rotor::rotation_bivector`],
-///   [`Rotor::slerp`].
+///   [`Rotor::slerp`] (the shorter arc of the rotation), [`Rotor::slerp_spinor`].
 /// - Matrices: [`Rotor::to_matrix`].
-/// - Drift: [`Rotor::unit_error`], [`Rotor::normalize`].
+/// - Drift: [`Rotor::unit_error`], [`Rotor::normalize`], [`Rotor::try_normalize`].
 ///
 /// ```
 /// use rotorflow::algebra::{Rotor, Vector};
@@ -112,16 +118,28 @@ impl Rotor {
     /// Returns the identity rotor 1 of ℝⁿ.
     ///
     /// # Panics
-    /// If `n > MULTIVECTOR_MAX_DIM` (rotors store 2^(N−1) coefficients).
+    /// If `n > MULTIVECTOR_MAX_DIM` (rotors store 2^(N−1) coefficients; see
+    /// [`Rotor::try_identity`]).
     #[track_caller]
     pub fn identity(n: usize) -> Self {
-        assert!(
-            n <= MULTIVECTOR_MAX_DIM,
-            "rotorflow: rotors are stored densely up to N = {MULTIVECTOR_MAX_DIM}, got {n}"
-        );
+        Self::try_identity(n).unwrap_or_else(|e| panic!("rotorflow: {e}"))
+    }
+
+    /// Returns the identity rotor 1 of ℝⁿ, or an error if `n` is too large.
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionTooLarge`] if `n > MULTIVECTOR_MAX_DIM`.
+    pub fn try_identity(n: usize) -> Result<Self, AlgebraError> {
+        if n > MULTIVECTOR_MAX_DIM {
+            return Err(AlgebraError::DimensionTooLarge {
+                what: "rotor",
+                dim: n,
+                max: MULTIVECTOR_MAX_DIM,
+            });
+        }
         let mut coeffs = SmallVec::from_elem(0.0, even_len(n));
         coeffs[0] = 1.0;
-        Rotor { dim: n, coeffs }
+        Ok(Rotor { dim: n, coeffs })
     }
 
     /// Returns the rotor that turns by `angle` radians in the plane eᵢ∧eⱼ, from eᵢ toward eⱼ
@@ -205,23 +223,33 @@ impl Rotor {
     }
 
     /// Returns the rotor held by a multivector, checking that it is one: Euclidean signature,
-    /// even, R R̃ = 1 and R x R̃ a vector for every basis vector x, each to within `1e-10`
-    /// relative.
+    /// even, R R̃ = 1 and R x R̃ a vector for every basis vector x, each to within
+    /// [`ROTOR_TOLERANCE`] (the odd part relative to the largest coefficient);
+    /// [`Rotor::from_multivector_eps`] chooses the tolerance.
     ///
     /// # Errors
     /// [`AlgebraError::UnsupportedSignature`], [`AlgebraError::NotARotor`],
     /// [`AlgebraError::NonFinite`].
     pub fn from_multivector(m: &Multivector) -> Result<Self, AlgebraError> {
+        Self::from_multivector_eps(m, ROTOR_TOLERANCE)
+    }
+
+    /// Like [`Rotor::from_multivector`] with an explicit tolerance on each of its three
+    /// checks.
+    ///
+    /// # Errors
+    /// As [`Rotor::from_multivector`].
+    pub fn from_multivector_eps(m: &Multivector, tolerance: f64) -> Result<Self, AlgebraError> {
         if !m.signature().is_euclidean() {
             return Err(AlgebraError::UnsupportedSignature {
                 operation: "Rotor::from_multivector",
                 signature: m.signature(),
             });
         }
-        check_finite(m.coefficients(), "multivector coefficients")?;
+        check_finite(m.as_slice(), "multivector coefficients")?;
         let scale = m.max_abs().max(1.0);
         let odd = m.odd().max_abs();
-        if odd > 1e-10 * scale {
+        if !within(odd, tolerance * scale) {
             return Err(AlgebraError::NotARotor {
                 reason: "it has odd-grade parts",
                 deviation: odd,
@@ -229,7 +257,7 @@ impl Rotor {
         }
         let r = Rotor::from_multivector_unchecked(m);
         let unit = r.unit_error();
-        if unit > 1e-10 {
+        if !within(unit, tolerance) {
             return Err(AlgebraError::NotARotor {
                 reason: "R R̃ ≠ 1",
                 deviation: unit,
@@ -244,7 +272,7 @@ impl Rotor {
                 .terms()
                 .filter(|(b, _)| blade::grade(*b) != 1)
                 .fold(0.0f64, |s, (_, c)| s.max(c.abs()));
-            if non_vector > 1e-10 {
+            if !within(non_vector, tolerance) {
                 return Err(AlgebraError::NotARotor {
                     reason: "R x R̃ is not a vector",
                     deviation: non_vector,
@@ -327,7 +355,7 @@ impl Rotor {
     #[track_caller]
     pub fn rotate_vector(&self, x: &Vector) -> Vector {
         assert_same_dim(self.dim, x.dim());
-        let mut out = Vector::zeros(self.dim);
+        let mut out = Vector::zero(self.dim);
         self.sandwich_vector_into(x.as_slice(), out.as_mut_slice());
         out
     }
@@ -451,14 +479,72 @@ impl Rotor {
 
     /// Returns the 2^(N−1) even coefficients in storage order (crate-internal layout: position
     /// `i` holds the even blade whose low N−1 bits are `i`).
-    pub fn raw_coefficients(&self) -> &[f64] {
+    pub fn as_slice(&self) -> &[f64] {
         &self.coeffs
+    }
+
+    /// Returns the 2^(N−1) even coefficients in storage order.
+    #[deprecated(note = "use Rotor::as_slice (the same name on every type)")]
+    pub fn raw_coefficients(&self) -> &[f64] {
+        self.as_slice()
     }
 
     /// Multiplies by a scalar (crate-internal: used by normalisation and sign flips).
     pub(crate) fn scaled(mut self, s: f64) -> Self {
         self.coeffs.iter_mut().for_each(|c| *c *= s);
         self
+    }
+}
+
+/// Writes scalar, bivector (lexicographic) and pseudoscalar parts into a 4D rotor.
+pub(super) fn set_4d(r: &mut Rotor, s: f64, b: [f64; 6], p: f64) {
+    r.coeffs[0] = s;
+    for ((i, j), &x) in pairs(4).zip(b.iter()) {
+        r.coeffs[even_index(4, (1 << i) | (1 << j))] = x;
+    }
+    r.coeffs[even_index(4, 0b1111)] = p;
+}
+
+/// Reads scalar, bivector (lexicographic) and pseudoscalar parts of a 4D rotor.
+pub(super) fn get_4d(r: &Rotor) -> (f64, [f64; 6], f64) {
+    let mut b = [0.0; 6];
+    for ((i, j), x) in pairs(4).zip(b.iter_mut()) {
+        *x = r.coeffs[even_index(4, (1 << i) | (1 << j))];
+    }
+    (r.coeffs[0], b, r.coeffs[even_index(4, 0b1111)])
+}
+
+/// R ← R (c + s u v) for orthonormal u ⟂ v: two vector multiplications, O(N 2^N).
+///
+/// The sign of e_a eᵢ is bit i of `suffix_parity(a)`, computed once per blade.
+pub(crate) fn multiply_by_simple(r: &mut Rotor, c: f64, s: f64, u: &[f64], v: &[f64]) {
+    let n = r.dim;
+    let len = even_len(n);
+    let mask = (1u64 << (n - 1)) - 1;
+    // t = R u (odd, indexed by low bits).
+    let mut t: SmallVec<[f64; 32]> = SmallVec::from_elem(0.0, len);
+    for (&ra, &a) in r.coeffs.iter().zip(even_blades(n)) {
+        if ra == 0.0 {
+            continue;
+        }
+        let sp = blade::suffix_parity(a);
+        for (i, &ui) in u.iter().enumerate() {
+            let sign = if sp >> i & 1 == 0 { ra } else { -ra };
+            t[((a ^ (1 << i)) & mask) as usize] += sign * ui;
+        }
+    }
+    // R ← c R + s (t v).
+    r.coeffs.iter_mut().for_each(|x| *x *= c);
+    for (&tb, &b) in t.iter().zip(odd_blades(n)) {
+        if tb == 0.0 {
+            continue;
+        }
+        let sp = blade::suffix_parity(b);
+        let stb = s * tb;
+        for (i, &vi) in v.iter().enumerate() {
+            let sign = if sp >> i & 1 == 0 { stb } else { -stb };
+            r.coeffs[((b ^ (1 << i)) & mask) as usize] += sign * vi;
+        }
     }
 }
 

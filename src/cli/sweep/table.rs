@@ -2,8 +2,9 @@
 //! the plot of the observed frequencies.
 
 use super::super::error::{CliError, CliResult};
-use super::super::output::{number, plane_name};
+use super::super::output::number;
 use super::super::viz::plot::{PlotSpec, Series, line_plot, subscript};
+use rotorflow::algebra::plane_name;
 use rotorflow::dynamics::trajectory::{ProjectedObservables, projection_planes};
 
 /// One row of the sweep table.

@@ -92,6 +92,7 @@ pub use super::embedded::EmbeddedTop;
 use crate::algebra::{Bivector, Multivector, Rotor, Signature, pairs};
 use crate::dynamics::RigidBody;
 use crate::dynamics::{DynamicsError, NoClosedFormReason};
+use crate::numeric::scaled_norm;
 use crate::special::{
     Jacobi, elliptic_f_complement, elliptic_pi_complement, elliptic_pi_inc_complement,
 };
@@ -399,7 +400,7 @@ impl AsymmetricTop {
                 (r, from_classical(ell))
             }
         };
-        if r.raw_coefficients().iter().all(|c| c.is_finite()) {
+        if r.as_slice().iter().all(|c| c.is_finite()) {
             Ok((r, finite(l, t)?))
         } else {
             Err(DynamicsError::NonFiniteArgument {
@@ -770,15 +771,6 @@ fn from_classical(v: [f64; 3]) -> Bivector {
     b
 }
 
-/// |v| without overflow or underflow.
-fn scaled_norm(v: &[f64; 3]) -> f64 {
-    let big = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    if big == 0.0 || !big.is_finite() {
-        return big;
-    }
-    big * v.iter().map(|x| (x / big) * (x / big)).sum::<f64>().sqrt()
-}
-
 /// The unit plane and magnitude of a 3D bivector (zero plane for zero).
 fn unit(b: &Bivector) -> ([f64; 3], f64) {
     let c = b.as_slice();
@@ -809,7 +801,7 @@ fn rotor3(c: [f64; 4]) -> Rotor {
 pub(super) fn rotor_from_parts(scalar: f64, b: &Bivector) -> Result<Rotor, DynamicsError> {
     let n = b.dim();
     let mut m = Multivector::try_zero(Signature::euclidean(n))?;
-    let c = m.coefficients_mut();
+    let c = m.as_mut_slice();
     c[0] = scalar;
     for (k, (i, j)) in pairs(n).enumerate() {
         c[(1usize << i) | (1usize << j)] = b.as_slice()[k];

@@ -1,9 +1,10 @@
 //! Explicit Lie–Poisson splitting: each plane's flow is an exact rotation.
 
 use super::{DynamicsError, Integrator, momentum_rate};
-use crate::algebra::{Bivector, pair_index, pairs, sin_cos_minus_one};
+use crate::algebra::{Bivector, pair_index, pairs};
 use crate::dynamics::attitude::PlaneProduct;
 use crate::dynamics::{RigidBody, Torque};
+use crate::numeric::sin_cos_minus_one;
 
 /// The composition used by [`Splitting`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -63,7 +64,7 @@ fn plane_flow(
     rate: f64,
 ) {
     let theta = momentum.as_slice()[plane] * rate;
-    // (sin, cos − 1) without cancellation (see `algebra::trig`), so both rotations are
+    // (sin, cos − 1) without cancellation (see `numeric::trig`), so both rotations are
     // orthogonal to O(εθ²); θ for L, θ/2 for the rotor. The two evaluations are independent,
     // and only the first sits on the chain of dependent plane updates (no libm call on it).
     let full = sin_cos_minus_one(theta);

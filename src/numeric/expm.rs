@@ -108,7 +108,7 @@ where
 }
 
 /// Taylor degrees for [`expm_skew_taylor`]: (m, s, θ_m) with θ_m the largest ‖A‖₂ at which
-/// the truncation error Σ_{k>m} θᵏ/k! ≤ θ^{m+1}/(m+1)! / (1 − θ/(m+2)) stays below 2⁻⁵³,
+/// the truncation error Σ_(k>m) θᵏ/k! ≤ θᵐ⁺¹/(m+1)! / (1 − θ/(m+2)) stays below 2⁻⁵³,
 /// and s the Paterson–Stockmeyer block size, so that degree m = s·r costs (s − 1) + (r − 1)
 /// products: 3, 4, 5 and 6.
 const TAYLOR: [(usize, usize, f64); 4] = [
@@ -134,8 +134,8 @@ const INV_FACTORIAL: [f64; 17] = {
 /// §4.4.3) with products only: no linear solve. `None` when ‖A‖₂ may exceed θ₁₆ ≈ 0.82
 /// (use [`expm_skew`] there).
 ///
-/// A skew A is normal, so ‖e^A − T_m(A)‖₂ = maxₖ |e^{iθₖ} − T_m(iθₖ)| ≤ Σ_{k>m} θᵏ/k! with
-/// θ = ‖A‖₂ ≤ ρ = min(‖A‖₁, ‖A²‖₁^{1/2}); the degree is the lowest whose bound at ρ is below
+/// A skew A is normal, so ‖e^A − T_m(A)‖₂ = maxₖ |e^(iθₖ) − T_m(iθₖ)| ≤ Σ_(k>m) θᵏ/k! with
+/// θ = ‖A‖₂ ≤ ρ = min(‖A‖₁, ‖A²‖₁^(1/2)); the degree is the lowest whose bound at ρ is below
 /// the unit round-off, so the result is orthogonal to round-off like the Padé form. For the
 /// small exponentials of integrator steps this is the cheaper form: at N = 16 the Padé
 /// approximant's LU solve cost more than all its products.

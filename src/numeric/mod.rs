@@ -1,0 +1,134 @@
+//! The numeric toolbox: dense linear-algebra and scalar kernels that know nothing of
+//! geometric algebra.
+//!
+//! A leaf of the crate: it depends only on nalgebra, and `algebra`, `inertia` and `dynamics`
+//! build on it (numeric ← algebra ← inertia ← dynamics). Nothing here is public API; the
+//! public types re-export what users need (for instance [`crate::algebra::Rotor::to_matrix`]
+//! rather than the matrix exponential behind it).
+//!
+//! - [`eigen`]: a symmetric eigen-decomposition that never returns NaN for finite input;
+//! - [`expm`]: the matrix exponential of skew matrices (scaling and squaring, Padé, Taylor);
+//! - [`trig`]: sin x and cos x − 1 without cancellation;
+//! - [`householder`]: the complement of two orthonormal vectors by Householder reflections;
+//! - the small helpers below (exact scaling by powers of two, scaled norms, max-abs norms,
+//!   orthogonality error), each the
+//!   one copy the crate uses.
+
+pub(crate) mod eigen;
+pub(crate) mod expm;
+pub(crate) mod householder;
+pub(crate) mod trig;
+
+pub(crate) use eigen::{RobustEigen, sorted_symmetric_eigen, symmetric_eigen};
+pub(crate) use expm::{
+    PADE_MAX_NORM, expm_skew, expm_skew_taylor, expm_skew_taylor_dense, expm_spectral, norm1,
+    norm1_slice,
+};
+pub(crate) use householder::householder_complement;
+pub(crate) use trig::sin_cos_minus_one;
+
+use nalgebra::{DMatrix, DMatrixView};
+
+/// Multiplies by 2^e exactly (barring overflow/underflow of the result), also for |e| > 1023.
+pub(crate) fn ldexp(mut x: f64, mut e: i32) -> f64 {
+    while e > 1000 {
+        x *= 2f64.powi(1000);
+        e -= 1000;
+    }
+    while e < -1000 {
+        x *= 2f64.powi(-1000);
+        e += 1000;
+    }
+    x * 2f64.powi(e)
+}
+
+/// Returns e with 2^e ≤ s < 2^(e+1) for finite s > 0.
+pub(crate) fn exponent_of(s: f64) -> i32 {
+    let bits = s.to_bits();
+    let raw = ((bits >> 52) & 0x7ff) as i32;
+    if raw == 0 {
+        // Subnormal: normalise first.
+        exponent_of(s * 2f64.powi(64)) - 64
+    } else {
+        raw - 1023
+    }
+}
+
+/// Euclidean norm of a slice that neither overflows nor underflows (scaled by the largest
+/// magnitude first, as LAPACK's `dnrm2`).
+pub(crate) fn scaled_norm(x: &[f64]) -> f64 {
+    let m = max_abs(x);
+    if m == 0.0 || !m.is_finite() {
+        return m;
+    }
+    if (1e-150..1e150).contains(&m) {
+        return x.iter().map(|c| c * c).sum::<f64>().sqrt();
+    }
+    let s: f64 = x.iter().map(|c| (c / m) * (c / m)).sum();
+    m * s.sqrt()
+}
+
+/// max |xᵢ| over a slice (0 for an empty one; NaN entries are skipped, as `f64::max` does).
+pub(crate) fn max_abs(x: &[f64]) -> f64 {
+    x.iter().fold(0.0f64, |m, c| m.max(c.abs()))
+}
+
+/// max |Mᵢⱼ| over a matrix.
+pub(crate) fn max_abs_matrix(m: &DMatrix<f64>) -> f64 {
+    max_abs(m.as_slice())
+}
+
+/// max |(QᵀQ − 1)ᵢⱼ|: how far a square matrix is from orthogonal.
+pub(crate) fn orthogonality_error(q: DMatrixView<'_, f64>) -> f64 {
+    let g = q.tr_mul(&q);
+    let n = g.nrows();
+    let mut err = 0.0f64;
+    for i in 0..n {
+        for j in 0..n {
+            let target = if i == j { 1.0 } else { 0.0 };
+            err = err.max((g[(i, j)] - target).abs());
+        }
+    }
+    err
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Against the plain formula where it cannot overflow, and against the exact value where
+    /// it would.
+    #[test]
+    fn scaled_norm_matches_plain_and_survives_extremes() {
+        assert_eq!(scaled_norm(&[3.0, 4.0]), 5.0);
+        // The squares would overflow (underflow); the scaled form is good to a few ulps.
+        let close = |x: f64, y: f64| (x - y).abs() <= 4.0 * f64::EPSILON * y;
+        assert!(close(scaled_norm(&[3e200, 4e200]), 5e200));
+        assert!(close(scaled_norm(&[3e-200, 4e-200]), 5e-200));
+        assert!(close(scaled_norm(&[1e308, 1e308]), 1e308 * 2f64.sqrt()));
+        assert_eq!(scaled_norm(&[]), 0.0);
+        assert_eq!(scaled_norm(&[f64::INFINITY, 1.0]), f64::INFINITY);
+    }
+
+    /// ldexp is exact across the whole exponent range, and exponent_of brackets its input.
+    #[test]
+    fn ldexp_and_exponent_of() {
+        assert_eq!(ldexp(1.5, 1500), 1.5 * 2f64.powi(1000) * 2f64.powi(500));
+        assert_eq!(ldexp(ldexp(3.0, -1070), 1070), 3.0);
+        for s in [1.0, 0.75, 3e300, 5e-324, 1e-310, f64::MAX] {
+            let e = exponent_of(s);
+            assert!(ldexp(1.0, e) <= s && s < ldexp(2.0, e), "{s:e}");
+        }
+    }
+
+    #[test]
+    fn max_abs_and_orthogonality_error() {
+        assert_eq!(max_abs(&[1.0, -3.0, 2.0]), 3.0);
+        let (s, c) = 0.3f64.sin_cos();
+        let q = DMatrix::from_row_slice(2, 2, &[c, -s, s, c]);
+        assert!(orthogonality_error(q.as_view()) < 1e-15);
+        let m = DMatrix::from_row_slice(2, 2, &[2.0, 0.0, 0.0, 1.0]);
+        assert_eq!(orthogonality_error(m.as_view()), 3.0);
+        assert_eq!(max_abs_matrix(&m), 2.0);
+    }
+}
