@@ -231,7 +231,7 @@ fn generated_bench_table_is_rendered_from_its_data() {
         &table,
         "cargo run --release --example bench_table -- --write (after cargo bench)",
     );
-    for key in ["# date: ", "# machine: ", "# compiler: "] {
+    for key in ["# date: ", "# commit: ", "# machine: ", "# compiler: "] {
         assert!(data.contains(key), "bench_data.tsv lacks `{key}`");
     }
 }
