@@ -225,10 +225,10 @@ pub fn collect(dir: &Path) -> Res<Vec<Measurement>> {
         let est: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&estimates)?)?;
         let group = bench["group_id"].as_str().ok_or("group_id")?.to_string();
         let mut function = bench["function_id"].as_str().unwrap_or("").to_string();
-        if let Some(v) = bench["value_str"].as_str() {
-            if !group.ends_with(&format!("N={v}")) {
-                function = format!("{function} ({v})");
-            }
+        if let Some(v) = bench["value_str"].as_str()
+            && !group.ends_with(&format!("N={v}"))
+        {
+            function = format!("{function} ({v})");
         }
         let median = &est["median"];
         let num = |v: &serde_json::Value| v.as_f64().ok_or("number");

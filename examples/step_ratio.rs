@@ -20,6 +20,8 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
 
+// tests/book.rs compiles this file and bench_table.rs, so it loads this module twice.
+#[allow(clippy::duplicate_mod)]
 #[path = "support/provenance.rs"]
 mod provenance;
 
