@@ -4,7 +4,7 @@
 //! `book/src/generated/inertia_tables.md`. `tests/book.rs` runs [`render`] and fails when the
 //! committed file differs, so the book never shows a number the code does not produce.
 //!
-//! Two tables: the catalogue's mass-tensor coefficients J_i/(m·a_i²) for N = 2…6, recovered as
+//! Two tables: the catalogue's mass-tensor coefficients Jᵢ/(m·aᵢ²) for N = 2…6, recovered as
 //! fractions from the computed values, and every value the paper states in its sections 4–6
 //! (eqs. 70–106), evaluated from the paper's printed formula and from rotorflow at the same
 //! parameters, with their ratio.
@@ -105,24 +105,24 @@ fn ratio(paper: f64, crate_value: f64) -> String {
 fn catalogue(out: &mut String) -> Res<()> {
     writeln!(
         out,
-        "| body (constructor) | length a | J_i / (m a²), N = 2 | N = 3 | N = 4 | N = 5 | N = 6 |"
+        "| body (constructor) | length a | Jᵢ / (m a²), N = 2 | N = 3 | N = 4 | N = 5 | N = 6 |"
     )?;
     writeln!(out, "|---|---|---|---|---|---|---|")?;
     type Maker = fn(usize) -> Res<(Body, f64)>;
     let rows: [(&str, &str, Maker); 7] = [
         (
             "solid cuboid (`Body::solid_cuboid`)",
-            "half-edge a_i",
+            "half-edge aᵢ",
             |n| Ok((Body::solid_cuboid(&vec![1.3; n], 0.7)?, 1.3)),
         ),
         (
-            "cuboid vertices, 2^N point masses (`Body::cuboid_vertices`)",
-            "half-edge a_i",
+            "cuboid vertices, 2ᴺ point masses (`Body::cuboid_vertices`)",
+            "half-edge aᵢ",
             |n| Ok((Body::cuboid_vertices(&vec![1.3; n], 0.7)?, 1.3)),
         ),
         (
             "solid ellipsoid / ball (`Body::solid_ellipsoid`, `Body::solid_ball`)",
-            "semi-axis a_i",
+            "semi-axis aᵢ",
             |n| Ok((Body::solid_ellipsoid(&vec![1.3; n], 0.7)?, 1.3)),
         ),
         (
@@ -164,7 +164,7 @@ fn catalogue(out: &mut String) -> Res<()> {
     }
     writeln!(
         out,
-        "\nThe plane moment of the plane e_i∧e_j is J_i + J_j (`InertiaMap::plane_moments`).\n"
+        "\nThe plane moment of the plane eᵢ∧eⱼ is Jᵢ + Jⱼ (`InertiaMap::plane_moments`).\n"
     )?;
     Ok(())
 }
