@@ -134,7 +134,10 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
         tsv,
         "# method: fastest of {ROUNDS} alternating rounds of a few milliseconds each, ns per step, h = {H}, release build"
     )?;
-    writeln!(tsv, "n\trotorflow_rk4_ns\tdmatrix_rk4_ns\trotorflow_strang_ns")?;
+    writeln!(
+        tsv,
+        "n\trotorflow_rk4_ns\tdmatrix_rk4_ns\trotorflow_strang_ns"
+    )?;
     tsv.push_str(&measure()?);
     let table = render(&tsv)?;
     print!("{table}");
