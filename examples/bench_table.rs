@@ -3,7 +3,9 @@
 //! 1. Run the benches: `cargo bench` (or `BENCH_QUICK=1 cargo bench` for a shorter run).
 //! 2. `cargo run --release --example bench_table -- --write` reads every
 //!    `target/criterion/**/new/estimates.json`, writes the measurements with the date, the
-//!    machine and the compiler to `book/src/generated/bench_data.tsv`, and renders
+//!    commit of the measured code (`git rev-parse --short HEAD`, marked "dirty" when tracked
+//!    files differ from it), the machine and the compiler to
+//!    `book/src/generated/bench_data.tsv`, and renders
 //!    `book/src/generated/bench_table.md` from that file.
 //!
 //! Without `--write` it prints the table rendered from the committed data file.
@@ -14,6 +16,9 @@ use std::collections::BTreeMap;
 use std::error::Error;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+
+#[path = "support/provenance.rs"]
+mod provenance;
 
 type Res<T> = Result<T, Box<dyn Error>>;
 
@@ -102,8 +107,8 @@ pub fn render(tsv: &str) -> Res<String> {
     Ok(out)
 }
 
-/// The integrator-step comparisons of issue #4 (ratios measured in the same run) and the
-/// growth of each step's cost with N, fitted over N = 8 … 32.
+/// One integrator step of rotorflow against the matrix baselines (ratios of medians from
+/// the same run) and the growth of each step's cost with N, fitted over N = 8 … 32.
 fn write_step_summary(out: &mut String, median: &dyn Fn(&str, &str) -> Option<f64>) -> Res<()> {
     let dims = [3usize, 4, 5, 8, 16, 32];
     if median("step/N=4", "rotorflow_rk4").is_none() {
@@ -220,10 +225,10 @@ pub fn collect(dir: &Path) -> Res<Vec<Measurement>> {
         let est: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&estimates)?)?;
         let group = bench["group_id"].as_str().ok_or("group_id")?.to_string();
         let mut function = bench["function_id"].as_str().unwrap_or("").to_string();
-        if let Some(v) = bench["value_str"].as_str() {
-            if !group.ends_with(&format!("N={v}")) {
-                function = format!("{function} ({v})");
-            }
+        if let Some(v) = bench["value_str"].as_str()
+            && !group.ends_with(&format!("N={v}"))
+        {
+            function = format!("{function} ({v})");
         }
         let median = &est["median"];
         let num = |v: &serde_json::Value| v.as_f64().ok_or("number");
@@ -239,29 +244,6 @@ pub fn collect(dir: &Path) -> Res<Vec<Measurement>> {
     Ok(out)
 }
 
-fn command_output(cmd: &str, args: &[&str]) -> String {
-    std::process::Command::new(cmd)
-        .args(args)
-        .output()
-        .ok()
-        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
-        .unwrap_or_default()
-}
-
-fn machine() -> String {
-    let cpu = std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("model name"))
-                .and_then(|l| l.split_once(':'))
-                .map(|(_, v)| v.trim().to_string())
-        })
-        .unwrap_or_else(|| std::env::consts::ARCH.to_string());
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    format!("{cpu}, {cores} cores, {}", std::env::consts::OS)
-}
-
 /// Collects the criterion results and writes the data file and the table, or prints the
 /// table rendered from the committed data file.
 pub fn main() -> Res<()> {
@@ -275,14 +257,7 @@ pub fn main() -> Res<()> {
                 "no criterion results under target/criterion: run `cargo bench` first".into(),
             );
         }
-        let mut tsv = String::new();
-        writeln!(
-            tsv,
-            "# date: {}",
-            command_output("date", &["-u", "+%Y-%m-%d"])
-        )?;
-        writeln!(tsv, "# machine: {}", machine())?;
-        writeln!(tsv, "# compiler: {}", command_output("rustc", &["-V"]))?;
+        let mut tsv = provenance::header();
         writeln!(
             tsv,
             "# command: `BENCH_QUICK={}` cargo bench (criterion, median of the samples)",

@@ -19,8 +19,8 @@
 //! `sin` and `exp`.
 
 use rotorflow::dynamics::exact::paper::{
-    ThreeEqualMoments, TwoEqualPairs, three_equal_principal_moments,
-    two_equal_pairs_principal_moments,
+    ThreeEqualMoments, TwoEqualPairs, three_equal_second_moments,
+    two_equal_pairs_second_moments,
 };
 use rotorflow::dynamics::exact::{ExactSolution, top3d::TopRegime, two_moments::TwoMomentKind};
 use rotorflow::dynamics::torques::Free;
@@ -79,14 +79,14 @@ fn cases() -> Res<Vec<Case>> {
             label: "§7.2 three equal, κ = 2",
             body: "J = (1, 1, 1, 4)",
             omega: "(0.3, −0.5, 0.8, 0.4, 0.2, −0.6)",
-            start: velocity(&three_equal_principal_moments(2.0)?, &w72)?,
+            start: velocity(&three_equal_second_moments(2.0)?, &w72)?,
             paper: Some(Box::new(move |t| Ok(p72.omega_at(t)?))),
         },
         Case {
             label: "§7.3 two pairs, κ = 1.5",
             body: "J = (1, 1, 2.25, 2.25)",
             omega: "(0.9, 0.1, −0.3, 0.2, 0.5, 0.4)",
-            start: velocity(&two_equal_pairs_principal_moments(1.5)?, &w73)?,
+            start: velocity(&two_equal_pairs_second_moments(1.5)?, &w73)?,
             paper: Some(Box::new(move |t| Ok(p73.omega_at(t)?))),
         },
         Case {

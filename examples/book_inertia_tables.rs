@@ -105,24 +105,24 @@ fn ratio(paper: f64, crate_value: f64) -> String {
 fn catalogue(out: &mut String) -> Res<()> {
     writeln!(
         out,
-        "| body (constructor) | length a | J_i / (m a²), N = 2 | N = 3 | N = 4 | N = 5 | N = 6 |"
+        "| body (constructor) | length a | Jᵢ / (m a²), N = 2 | N = 3 | N = 4 | N = 5 | N = 6 |"
     )?;
     writeln!(out, "|---|---|---|---|---|---|---|")?;
     type Maker = fn(usize) -> Res<(Body, f64)>;
     let rows: [(&str, &str, Maker); 7] = [
         (
             "solid cuboid (`Body::solid_cuboid`)",
-            "half-edge a_i",
+            "half-edge aᵢ",
             |n| Ok((Body::solid_cuboid(&vec![1.3; n], 0.7)?, 1.3)),
         ),
         (
-            "cuboid vertices, 2^N point masses (`Body::cuboid_vertices`)",
-            "half-edge a_i",
+            "cuboid vertices, 2ᴺ point masses (`Body::cuboid_vertices`)",
+            "half-edge aᵢ",
             |n| Ok((Body::cuboid_vertices(&vec![1.3; n], 0.7)?, 1.3)),
         ),
         (
             "solid ellipsoid / ball (`Body::solid_ellipsoid`, `Body::solid_ball`)",
-            "semi-axis a_i",
+            "semi-axis aᵢ",
             |n| Ok((Body::solid_ellipsoid(&vec![1.3; n], 0.7)?, 1.3)),
         ),
         (
@@ -164,7 +164,7 @@ fn catalogue(out: &mut String) -> Res<()> {
     }
     writeln!(
         out,
-        "\nThe plane moment of the plane e_i∧e_j is J_i + J_j (`InertiaMap::plane_moments`).\n"
+        "\nThe plane moment of the plane eᵢ∧eⱼ is Jᵢ + Jⱼ (`InertiaMap::plane_moments`).\n"
     )?;
     Ok(())
 }
@@ -223,7 +223,7 @@ fn paper_values(out: &mut String) -> Res<()> {
     for (k, &(p, q)) in PLANES_4D.iter().enumerate() {
         let sign = if (p, q) == (1, 3) { -1.0 } else { 1.0 }; // eq. 70 prints −4(b²+d²)
         let paper = sign * 4.0 * (sq[p] + sq[q]);
-        let quantity = format!("I^{{{0}{0}}}", names[k]);
+        let quantity = format!("$I^{{{0}{0}}}$", names[k]);
         t.row("70", &quantity, paper, rank4.get(p, q, p, q))?;
     }
     let lc = contracted(&j, ContractionNormalization::LeviCivita)?;
@@ -247,7 +247,7 @@ fn paper_values(out: &mut String) -> Res<()> {
         if (p, q) == (1, 2) {
             continue; // eq. 74 omits I^{2323}
         }
-        let quantity = format!("I^{{{0}{0}}}", names[k]);
+        let quantity = format!("$I^{{{0}{0}}}$", names[k]);
         t.row(
             "74",
             &quantity,
@@ -275,7 +275,7 @@ fn paper_values(out: &mut String) -> Res<()> {
     let j = body.mass_tensor().clone();
     let rank4 = RankFourTensor::from_mass_tensor(&j)?;
     for (k, &(p, q)) in PLANES_4D.iter().enumerate() {
-        let quantity = format!("I^{{{0}{0}}}", names[k]);
+        let quantity = format!("$I^{{{0}{0}}}$", names[k]);
         t.row(
             "78",
             &quantity,
@@ -316,7 +316,7 @@ fn paper_values(out: &mut String) -> Res<()> {
                 1.0
             };
             let paper = sign * v5 / 3.0 * (axes5[p].powi(2) + axes5[q].powi(2));
-            let quantity = format!("I^{{{a}{b}{a}{b}}}", a = names5[p], b = names5[q]);
+            let quantity = format!("$I^{{{a}{b}{a}{b}}}$", a = names5[p], b = names5[q]);
             t.row("82", &quantity, paper, rank4.get(p, q, p, q))?;
         }
     }
@@ -430,10 +430,10 @@ fn paper_values(out: &mut String) -> Res<()> {
         let trace = j.trace();
         let polar =
             nf * PI.powf(nf / 2.0) / gamma(nf / 2.0 + 1.0) * R.powi(n as i32 + 2) / (nf + 2.0);
-        t.row("101", &format!("I^P₍{n},2₎ (= tr J)"), polar, trace)?;
+        t.row("101", &format!("Iᴾ₍{n},2₎ (= tr J)"), polar, trace)?;
         t.row(
             "102",
-            &format!("I^P₍{n},2₎ / V₍{n}₎"),
+            &format!("Iᴾ₍{n},2₎ / V₍{n}₎"),
             nf / (nf + 2.0) * R * R,
             trace / ball.mass(),
         )?;
@@ -443,7 +443,7 @@ fn paper_values(out: &mut String) -> Res<()> {
             * R.powi(n as i32 + 2);
         t.row(
             "104",
-            &format!("I^D₍{n},2₎ (= tr J − J₁₁)"),
+            &format!("Iᴰ₍{n},2₎ (= tr J − J₁₁)"),
             paper104,
             diameter,
         )?;

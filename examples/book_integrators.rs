@@ -5,7 +5,8 @@
 //! `book/src/generated/integrators_error.svg`. `tests/book.rs` runs [`render`] and fails when
 //! the committed files differ.
 //!
-//! The problem: a free 4D body with J = (0.3, 0.7, 1.1, 1.9) (REFERENCES.md §4.6) and a
+//! The problem: a free 4D body with second moments J = (0.3, 0.7, 1.1, 1.9) (an asymmetric body
+//! with well-separated plane moments) and a
 //! generic angular momentum, integrated to T = 20 by every integrator at four step sizes,
 //! against a Dormand–Prince reference at rtol = 1e-13.
 

@@ -3,7 +3,11 @@
 #   scripts/book.sh          (needs mdbook and mdbook-katex; .ci/run installs the pinned ones)
 # 1. mdbook build book, failing on any WARN or ERROR line;
 # 2. cargo doc, copied to book/book/api (the book links to api/rotorflow/...);
-# 3. every internal link of the built HTML, anchors included, must resolve.
+# 3. every internal link of the built HTML, anchors included, must resolve;
+# 4. no raw TeX may be left in the text of a chapter (every formula rendered by KaTeX).
+#
+# This is the command that builds the book: a bare `mdbook build book` leaves the API links
+# (api/rotorflow/...) dead, because the API docs are copied in by step 2.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -20,3 +24,4 @@ rm -rf book/book/api
 cp -r target/doc book/book/api
 
 python3 scripts/check_book_links.py book/book
+python3 scripts/check_book_math.py book/book

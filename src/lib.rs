@@ -19,10 +19,29 @@
 //!   (the building blocks of the exact free 3D rigid body).
 //!
 //! # Conventions
-//! DESIGN.md part 1 is the contract; [`algebra`] restates it. In short: bivector components
-//! are ordered 12, 13, …, 1N, 23, …; API indices are 0-based and text is 1-based; the
-//! velocity of body point x is x ⌋ ω; R = exp(−θB̂/2) turns by θ in the plane B̂; Euler's
-//! equations read dL/dt = ω × L with the commutator product.
+//! The Conventions chapter of the rotorflow book states them in full; in short:
+//! - Bivector components are ordered 12, 13, …, 1N, 23, …; API indices are 0-based and
+//!   every printed name is 1-based (`Bivector::get(0, 1)` is the e₁₂ component). The skew
+//!   matrix \[B\] has \[B\]ᵢⱼ = Bᵢⱼ.
+//! - Signatures Cl(p, q, r) put the p positive, then the q negative, then the r null basis
+//!   vectors; a basis blade is indexed by a bit mask, bit i − 1 for eᵢ.
+//! - Angular velocity ω is a body-frame bivector; body point x moves with x⌋ω = \[ω\]ᵀx, so
+//!   ω = θ̇ e₁∧e₂ turns e₁ toward e₂. In 3D the axial vector is Ω = (ω₂₃, −ω₁₃, ω₁₂).
+//! - The attitude R maps body to space, x ↦ R x R̃; R = exp(−θB̂/2) turns by θ in the plane B̂,
+//!   dR/dt = −½Rω, and the rotation matrix of R is expm(\[θB̂\]ᵀ).
+//! - The mass tensor J = Σ m x xᵀ has the **second moments** Jᵢ as eigenvalues. The inertia
+//!   map is I(ω) = Σ m x∧(x⌋ω), \[I(ω)\] = J\[ω\] + \[ω\]J; in the principal frame it
+//!   multiplies the plane eᵢ∧eⱼ by its **plane moment** Jᵢ + Jⱼ. In 3D the plane moments are
+//!   the classical **moments of inertia** I₁ = J₂ + J₃, I₂ = J₁ + J₃, I₃ = J₁ + J₂. Any
+//!   symmetric positive-definite map on bivectors is accepted as well.
+//! - L = I(ω), T = ½⟨ω, L⟩, and Euler's equations read dL/dt = ω × L + τ with the commutator
+//!   product A × B = ½(AB − BA). Free motion keeps the space-frame L, T and the Casimirs of L.
+//! - The paper's rank-4 tensor is its eq. (22) read literally, Iⁱʲⁱʲ = ½(Jᵢ + Jⱼ), with
+//!   Lᵢⱼ = Σₖₗ Iⁱʲᵏˡ ωₖₗ summed over all k and l.
+//!
+//! The paper is *Tensor Formalism for Rotating Bodies in Multidimensional Euclidian Space*,
+//! preprint, 4 August 2025, doi:10.20944/preprints202508.0136.v1; the sources the crate
+//! builds on are listed in the References chapter of the book.
 //!
 //! # Quick start
 //! ```
@@ -32,7 +51,7 @@
 //! let theta = Bivector::from_components(4, &[0.5, 0.0, 0.0, 0.0, 0.0, 1.2])?;
 //! let r = Rotor::from_rotation_bivector(&theta);
 //!
-//! // Its matrix is the exponential of the skew matrix (transposed), as in DESIGN.md.
+//! // Its matrix is the exponential of the skew matrix (transposed): see the conventions.
 //! let q = r.to_matrix();
 //! assert!((q[(1, 0)] - 0.5f64.sin()).abs() < 1e-15);
 //!
@@ -60,20 +79,13 @@
 //! ```
 //!
 //! # The book
-//! The rotorflow book (`book/` in the repository, built with `mdbook build book`) explains
-//! the crate chapter by chapter:
-//! - `book/src/getting-started.md`: install, the two commands, a first simulation;
-//! - `book/src/geometric-algebra.md`: blades, bivectors as planes, rotors, the invariant
-//!   decomposition ([`algebra`]);
-//! - `book/src/mapping.md`: every equation of the paper, its geometric-algebra counterpart
-//!   and the function that computes it;
-//! - `book/src/inertia.md`: the body catalogue and the paper's sections 4–6 recomputed
-//!   ([`inertia`]);
-//! - `book/src/dynamics.md`: the integrators, what each conserves, error against cost
-//!   ([`dynamics`]);
-//! - `book/src/errata/index.md`: the paper's errata, each with the test that proves it;
-//! - `book/src/extending.md`: torques, a 4D heavy top, bodies from meshes, new integrators;
-//! - `book/src/performance.md`: rotorflow beside nalgebra's matrix formulation.
+//! The rotorflow book (`book/` in the repository; `scripts/book.sh` builds it with these API
+//! docs beside it) explains the crate chapter by chapter: getting started, the conventions,
+//! geometric algebra in N dimensions ([`algebra`]), the mapping of every equation of the
+//! paper onto the crate, the inertia of N-dimensional bodies ([`inertia`]), the integrators
+//! and what each conserves ([`dynamics`]), closed-form motion, the paper's errata with the
+//! test behind each one, extending the crate, performance beside nalgebra's matrix
+//! formulation, the command-line reference and the references.
 //!
 //! # Crate features
 //! - `cli` (default): the `rotorflow` command (`cargo run --release -- demo`) and the

@@ -4,7 +4,8 @@
 //!   compiles (through `#[path]`, so it is always the current source) and runs; an included
 //!   generated file is one whose generator this test re-runs;
 //! - the generated tables and plots equal their generators' output (byte for byte: the
-//!   generators print no timings — the bench table is rendered from its recorded data file —
+//!   generators print no timings — the timing tables are rendered from their recorded data
+//!   files, which carry the date, commit, machine and compiler of the measurement —
 //!   and print their numbers with two or three significant digits; `book_closed_form` also
 //!   shows round-off-level differences as a bound, "< 1e-13", so that its files do not
 //!   depend on the last bits of the platform's libm);
@@ -44,6 +45,9 @@ mod first_simulation;
 mod heavy_top_4d;
 #[path = "../examples/mesh_body.rs"]
 mod mesh_body;
+#[allow(dead_code)]
+#[path = "../examples/step_ratio.rs"]
+mod step_ratio;
 #[path = "../examples/torque_closure.rs"]
 mod torque_closure;
 
@@ -71,6 +75,7 @@ const GENERATED: &[&str] = &[
     "inertia_tables.md",
     "integrators.md",
     "integrators_error.svg",
+    "step_ratio.md",
 ];
 
 fn root() -> PathBuf {
@@ -226,8 +231,22 @@ fn generated_bench_table_is_rendered_from_its_data() {
         &table,
         "cargo run --release --example bench_table -- --write (after cargo bench)",
     );
-    for key in ["# date: ", "# machine: ", "# compiler: "] {
+    for key in ["# date: ", "# commit: ", "# machine: ", "# compiler: "] {
         assert!(data.contains(key), "bench_data.tsv lacks `{key}`");
+    }
+}
+
+#[test]
+fn generated_step_ratios_are_rendered_from_their_data() {
+    let data = read(&root().join("book/src/generated/step_ratio.tsv"));
+    let table = step_ratio::render(&data).expect("render");
+    assert_current(
+        "step_ratio.md",
+        &table,
+        "cargo run --release --example step_ratio -- --write",
+    );
+    for key in ["# date: ", "# commit: ", "# machine: ", "# compiler: "] {
+        assert!(data.contains(key), "step_ratio.tsv lacks `{key}`");
     }
 }
 

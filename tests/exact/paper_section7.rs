@@ -14,8 +14,8 @@ use crate::{dopri_reference, rotor_distance};
 use rotorflow::dynamics::RigidBody;
 use rotorflow::dynamics::exact::paper::{
     ThreeEqualMoments, TwoEqualPairs, frequency_factor, isotropic_omega,
-    principal_second_moments_from_half_axes, three_equal_principal_moments,
-    two_equal_pairs_principal_moments,
+    principal_second_moments_from_half_axes, three_equal_second_moments,
+    two_equal_pairs_second_moments,
 };
 use rotorflow::dynamics::exact::two_moments::{TwoMomentKind, TwoMomentSolution};
 use rotorflow::prelude::*;
@@ -147,7 +147,7 @@ fn paper_eq_109_parameters_are_half_axes() {
     };
     // Half-axes: J = (a², b², c², d²) = (1, 1, 1, κ²).
     let j_half = principal_second_moments_from_half_axes(&[1.0, 1.0, 1.0, k]).unwrap();
-    assert_eq!(j_half, three_equal_principal_moments(k).unwrap().to_vec());
+    assert_eq!(j_half, three_equal_second_moments(k).unwrap().to_vec());
     assert!(close(nu_of(&j_half), nu_paper, 1e-15));
     // a…d as the principal values of J: ν = (κ − 1)/(κ + 1) = 1/3.
     assert!(close(nu_of(&[1.0, 1.0, 1.0, k]), 1.0 / 3.0, 1e-15));
@@ -180,7 +180,7 @@ fn paper_eq_109_parameters_are_half_axes() {
     // §7.3: J = (1, 1, κ², κ²) from "a = b = 1, c = d = κ".
     assert_eq!(
         principal_second_moments_from_half_axes(&[1.0, 1.0, KAPPA_73, KAPPA_73]).unwrap(),
-        two_equal_pairs_principal_moments(KAPPA_73)
+        two_equal_pairs_second_moments(KAPPA_73)
             .unwrap()
             .to_vec()
     );
@@ -224,7 +224,7 @@ fn paper_eq_108_isotropic_omega_is_constant_in_every_dimension() {
 #[test]
 fn paper_eqs_110_to_112_omega_12_13_23_are_constant() {
     let w = biv(&OMEGA_72);
-    let j = three_equal_principal_moments(KAPPA_72).unwrap();
+    let j = three_equal_second_moments(KAPPA_72).unwrap();
     let s = TwoMomentSolution::new(&body(&j, &w)).unwrap();
     let p = ThreeEqualMoments::new(KAPPA_72, &w).unwrap();
     assert_eq!(p.constants_c1_to_c3(), [0.4, -0.5, 0.3]); // (ω₂₃, ω₁₃, ω₁₂)
@@ -243,7 +243,7 @@ fn paper_eqs_113_to_115_have_the_coupling_sign_reversed() {
     // κ = 2, ω(0) as above: the crate's (dω₁₄, dω₂₄, dω₃₄)/dt = (0.216, −0.288, 0.192); the
     // printed right-hand sides are exactly their negatives.
     let w = biv(&OMEGA_72);
-    let j = three_equal_principal_moments(KAPPA_72).unwrap();
+    let j = three_equal_second_moments(KAPPA_72).unwrap();
     let rate = omega_rate(&j, &w);
     let correct = [rate.get(0, 3), rate.get(1, 3), rate.get(2, 3)];
     let printed = printed_113_to_115(KAPPA_72, &OMEGA_72);
@@ -275,7 +275,7 @@ fn paper_eqs_116_to_118_run_backwards_in_time() {
     // −t. At t = 1 (κ = 2, ω(0) as above) the printed (ω₁₄, ω₂₄, ω₃₄) is
     // (0.5365, 0.4830, −0.7203), the correct (0.9557, −0.0759, −0.3477).
     let w = biv(&OMEGA_72);
-    let j = three_equal_principal_moments(KAPPA_72).unwrap();
+    let j = three_equal_second_moments(KAPPA_72).unwrap();
     let s = TwoMomentSolution::new(&body(&j, &w)).unwrap();
     let p = ThreeEqualMoments::new(KAPPA_72, &w).unwrap();
     let c = constants_72(&p);
@@ -303,7 +303,7 @@ const CORRECT_116_T1: f64 = 0.955_673_961_679_076_5;
 fn paper_eqs_117_118_divide_by_c1_and_by_c2_c3() {
     // c₁ = ω₂₃ = 0 or c₂ = c₃ = 0 make the printed ω₂₄, ω₃₄ 0/0; the corrected form stays
     // finite and matches the crate's closed form.
-    let j = three_equal_principal_moments(KAPPA_72).unwrap();
+    let j = three_equal_second_moments(KAPPA_72).unwrap();
     for w0 in [
         [0.3, -0.5, 0.8, 0.0, 0.2, -0.6], // c₁ = 0
         [0.0, 0.0, 0.8, 0.4, 0.2, -0.6],  // c₂ = c₃ = 0
@@ -325,7 +325,7 @@ fn paper_eqs_117_118_divide_by_c1_and_by_c2_c3() {
 fn paper_eqs_119_120_frequency_is_the_body_frame_rate() {
     // ν s = |Ω| (the crate's generator): after 2π/(ν s) the motion is back.
     let w = biv(&OMEGA_72);
-    let j = three_equal_principal_moments(KAPPA_72).unwrap();
+    let j = three_equal_second_moments(KAPPA_72).unwrap();
     let s = TwoMomentSolution::new(&body(&j, &w)).unwrap();
     let p = ThreeEqualMoments::new(KAPPA_72, &w).unwrap();
     let f = p.frequency();
@@ -339,7 +339,7 @@ fn paper_eqs_119_120_frequency_is_the_body_frame_rate() {
 #[test]
 fn paper_section72_corrected_solution_matches_dopri5() {
     let w = biv(&OMEGA_72);
-    let j = three_equal_principal_moments(KAPPA_72).unwrap();
+    let j = three_equal_second_moments(KAPPA_72).unwrap();
     let b = body(&j, &w);
     let p = ThreeEqualMoments::new(KAPPA_72, &w).unwrap();
     let s = TwoMomentSolution::new(&b).unwrap();
@@ -370,7 +370,7 @@ fn paper_section72_corrected_solution_matches_dopri5() {
 #[test]
 fn paper_eqs_122_123_omega_12_34_are_constant() {
     let w = biv(&OMEGA_73);
-    let j = two_equal_pairs_principal_moments(KAPPA_73).unwrap();
+    let j = two_equal_pairs_second_moments(KAPPA_73).unwrap();
     let rate = omega_rate(&j, &w);
     assert!(rate.get(0, 1).abs() < 1e-16 && rate.get(2, 3).abs() < 1e-16);
     let p = TwoEqualPairs::new(KAPPA_73, &w).unwrap();
@@ -385,7 +385,7 @@ fn paper_eqs_122_123_omega_12_34_are_constant() {
 #[test]
 fn paper_eqs_124_to_126_have_the_coupling_sign_reversed_and_127_is_right() {
     let w = biv(&OMEGA_73);
-    let j = two_equal_pairs_principal_moments(KAPPA_73).unwrap();
+    let j = two_equal_pairs_second_moments(KAPPA_73).unwrap();
     let rate = omega_rate(&j, &w);
     let printed = printed_124_to_127(KAPPA_73, &OMEGA_73);
     let correct = [
@@ -409,7 +409,7 @@ fn paper_eq_126_names_omega_34_for_omega_23() {
     // ω₃₄ is constant (eq. 123), yet (126) gives it a nonzero rate; its right-hand side is
     // (minus) that of ω₂₃.
     let w = biv(&OMEGA_73);
-    let j = two_equal_pairs_principal_moments(KAPPA_73).unwrap();
+    let j = two_equal_pairs_second_moments(KAPPA_73).unwrap();
     let rate = omega_rate(&j, &w);
     let printed = printed_124_to_127(KAPPA_73, &OMEGA_73)[2];
     assert!(rate.get(2, 3).abs() < 1e-16);
@@ -433,7 +433,7 @@ fn paper_eqs_128_to_131_constants_from_the_initial_state() {
 #[test]
 fn paper_eqs_128_to_131_run_backwards_in_time() {
     let w = biv(&OMEGA_73);
-    let j = two_equal_pairs_principal_moments(KAPPA_73).unwrap();
+    let j = two_equal_pairs_second_moments(KAPPA_73).unwrap();
     let s = TwoMomentSolution::new(&body(&j, &w)).unwrap();
     let p = TwoEqualPairs::new(KAPPA_73, &w).unwrap();
     let c = constants_73(&p);
@@ -470,7 +470,7 @@ fn paper_eqs_132_to_134_frequencies_are_right_in_magnitude() {
     // frequencies |ν(c₁ − c₂)| and |ν(c₁ + c₂)|: the corrected form built on (134) matches
     // the crate's closed form over 100 periods.
     let w = biv(&OMEGA_73);
-    let j = two_equal_pairs_principal_moments(KAPPA_73).unwrap();
+    let j = two_equal_pairs_second_moments(KAPPA_73).unwrap();
     let s = TwoMomentSolution::new(&body(&j, &w)).unwrap();
     let p = TwoEqualPairs::new(KAPPA_73, &w).unwrap();
     let nu = frequency_factor(KAPPA_73).unwrap();
@@ -488,7 +488,7 @@ fn paper_eqs_132_to_134_frequencies_are_right_in_magnitude() {
 #[test]
 fn paper_section73_corrected_solution_matches_dopri5() {
     let w = biv(&OMEGA_73);
-    let j = two_equal_pairs_principal_moments(KAPPA_73).unwrap();
+    let j = two_equal_pairs_second_moments(KAPPA_73).unwrap();
     let b = body(&j, &w);
     let p = TwoEqualPairs::new(KAPPA_73, &w).unwrap();
     let s = TwoMomentSolution::new(&b).unwrap();
@@ -563,7 +563,7 @@ fn paper_eq_110_does_not_follow_from_the_printed_eq_53() {
     // (κ = 2, ω(0) as above). The §7 systems follow from the correct Euler equations
     // (up to the sign errors above), not from the printed (53)–(58).
     let w = OMEGA_72;
-    let j = three_equal_principal_moments(KAPPA_72).unwrap();
+    let j = three_equal_second_moments(KAPPA_72).unwrap();
     let i = |a: usize, b: usize| 0.5 * (j[a] + j[b]);
     let (w13, w14, w23, w24) = (w[1], w[2], w[3], w[4]);
     let printed_53 = (-(i(1, 3) - i(0, 1)) * w13 * w23 + (i(0, 2) - i(2, 3)) * w14 * w24) / i(0, 3);
@@ -579,11 +579,11 @@ fn former_equation_numbered_names_return_the_same_values() {
     let (w72, w73) = (biv(&OMEGA_72), biv(&OMEGA_73));
     assert_eq!(
         paper::eq_109_principal_moments(2.0),
-        paper::three_equal_principal_moments(2.0)
+        paper::three_equal_second_moments(2.0)
     );
     assert_eq!(
         paper::eq_121_principal_moments(1.5),
-        paper::two_equal_pairs_principal_moments(1.5)
+        paper::two_equal_pairs_second_moments(1.5)
     );
     assert_eq!(paper::eq_119_factor(2.0), paper::frequency_factor(2.0));
     assert_eq!(

@@ -116,7 +116,7 @@ pub fn principal_moments_from_half_axes(half_axes: &[f64]) -> Result<Vec<f64>, D
 ///
 /// # Errors
 /// [`DynamicsError::NonFiniteArgument`]; [`DynamicsError::NoClosedForm`] for κ ≤ 0.
-pub fn three_equal_principal_moments(kappa: f64) -> Result<[f64; 4], DynamicsError> {
+pub fn three_equal_second_moments(kappa: f64) -> Result<[f64; 4], DynamicsError> {
     let k = check_kappa(kappa)?;
     Ok([1.0, 1.0, 1.0, k * k])
 }
@@ -125,7 +125,7 @@ pub fn three_equal_principal_moments(kappa: f64) -> Result<[f64; 4], DynamicsErr
 ///
 /// # Errors
 /// [`DynamicsError::NonFiniteArgument`]; [`DynamicsError::NoClosedForm`] for κ ≤ 0.
-pub fn two_equal_pairs_principal_moments(kappa: f64) -> Result<[f64; 4], DynamicsError> {
+pub fn two_equal_pairs_second_moments(kappa: f64) -> Result<[f64; 4], DynamicsError> {
     let k = check_kappa(kappa)?;
     Ok([1.0, 1.0, k * k, k * k])
 }
@@ -134,7 +134,7 @@ pub fn two_equal_pairs_principal_moments(kappa: f64) -> Result<[f64; 4], Dynamic
 /// (b − a)/(a + b) for a = 1, b = κ².
 ///
 /// # Errors
-/// As [`three_equal_principal_moments`].
+/// As [`three_equal_second_moments`].
 pub fn frequency_factor(kappa: f64) -> Result<f64, DynamicsError> {
     let k2 = check_kappa(kappa)?.powi(2);
     Ok((k2 - 1.0) / (k2 + 1.0))
@@ -375,16 +375,16 @@ impl TwoEqualPairs {
     }
 }
 
-/// Former name of [`three_equal_principal_moments`].
-#[deprecated(note = "use `three_equal_principal_moments` (no equation number in names)")]
+/// Former name of [`three_equal_second_moments`].
+#[deprecated(note = "use `three_equal_second_moments` (no equation number in names)")]
 pub fn eq_109_principal_moments(kappa: f64) -> Result<[f64; 4], DynamicsError> {
-    three_equal_principal_moments(kappa)
+    three_equal_second_moments(kappa)
 }
 
-/// Former name of [`two_equal_pairs_principal_moments`].
-#[deprecated(note = "use `two_equal_pairs_principal_moments` (no equation number in names)")]
+/// Former name of [`two_equal_pairs_second_moments`].
+#[deprecated(note = "use `two_equal_pairs_second_moments` (no equation number in names)")]
 pub fn eq_121_principal_moments(kappa: f64) -> Result<[f64; 4], DynamicsError> {
-    two_equal_pairs_principal_moments(kappa)
+    two_equal_pairs_second_moments(kappa)
 }
 
 /// Former name of [`frequency_factor`].
