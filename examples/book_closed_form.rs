@@ -19,8 +19,7 @@
 //! `sin` and `exp`.
 
 use rotorflow::dynamics::exact::paper::{
-    ThreeEqualMoments, TwoEqualPairs, three_equal_second_moments,
-    two_equal_pairs_second_moments,
+    ThreeEqualMoments, TwoEqualPairs, three_equal_second_moments, two_equal_pairs_second_moments,
 };
 use rotorflow::dynamics::exact::{ExactSolution, top3d::TopRegime, two_moments::TwoMomentKind};
 use rotorflow::dynamics::torques::Free;

@@ -9,8 +9,8 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use rotorflow::algebra::MULTIVECTOR_MAX_DIM;
 use rotorflow::algebra::Bivector;
+use rotorflow::algebra::MULTIVECTOR_MAX_DIM;
 use rotorflow::dynamics::{Attitude, RigidBody};
 use rotorflow::inertia::spec::{parse_body_with, parse_list};
 

@@ -180,9 +180,7 @@ fn paper_eq_109_parameters_are_half_axes() {
     // §7.3: J = (1, 1, κ², κ²) from "a = b = 1, c = d = κ".
     assert_eq!(
         principal_second_moments_from_half_axes(&[1.0, 1.0, KAPPA_73, KAPPA_73]).unwrap(),
-        two_equal_pairs_second_moments(KAPPA_73)
-            .unwrap()
-            .to_vec()
+        two_equal_pairs_second_moments(KAPPA_73).unwrap().to_vec()
     );
 }
 
