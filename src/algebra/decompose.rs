@@ -242,8 +242,8 @@ pub(crate) fn self_dual_join(a: [f64; 3], b: [f64; 3]) -> [f64; 6] {
 fn planes_4d(c: &[f64]) -> Vec<RawPlane> {
     let (alpha, beta) = self_dual_split(c);
     // Scaled norms: squaring a part of size ~1e-162 lands in the subnormals, where the norm
-    // (and the unit direction built from it) loses most of its bits (fuzz finding F9: a rotor
-    // off by 1e-3 from an isoclinic pair with a 1e-161 perturbation).
+    // (and the unit direction built from it) loses most of its bits: an isoclinic pair with a
+    // 1e-161 perturbation would give a rotor off by 1e-3.
     let na = crate::numeric::scaled_norm(&alpha);
     let nb = crate::numeric::scaled_norm(&beta);
     // Unit directions; an exactly (anti-)self-dual B leaves the other direction free. Divide

@@ -630,7 +630,7 @@ pub(crate) fn plane_tables(n: usize) -> &'static [Vec<(u8, u8, f64, f64)>] {
 /// out = a · b for even elements stored by even index (Euclidean signature). O(4^(N−1)):
 /// every pair of even blades meets once; the sign's suffix parity is computed once per row.
 /// N ≤ 5 runs a kernel unrolled at compile time from a constant sign table (the general loop
-/// spends most of its time on the signs: 125 ns for a 4D rotor product before the kernel).
+/// spends most of its time on the signs).
 pub(crate) fn even_product_into(n: usize, a: &[f64], b: &[f64], out: &mut [f64]) {
     match n {
         2 => return even_product_fixed(a, b, out, &EVEN_SIGNS_2),
