@@ -28,7 +28,7 @@ impl Bivector {
     ///
     /// ```
     /// use rotorflow::algebra::Bivector;
-    /// // e^0 = 1, and e^{π/2 e12} = e12.
+    /// // e^0 = 1, and exp(π/2 e12) = e12.
     /// assert_eq!(Bivector::zero(4).exp().scalar(), 1.0);
     /// let r = Bivector::from_plane(4, 0, 1, std::f64::consts::FRAC_PI_2)?.exp();
     /// assert!((r.coefficient(0b11) - 1.0).abs() < 1e-15);
@@ -149,7 +149,7 @@ impl Bivector {
     /// use rotorflow::algebra::Bivector;
     /// let b = Bivector::from_components(4, &[0.3, -0.2, 0.5, 0.1, 0.7, -0.4])?;
     /// let q = b.exp_skew_matrix();
-    /// let expected = (&b * 0.5).exp().to_matrix(); // the rotor e^{B/2} has matrix expm([B])
+    /// let expected = (&b * 0.5).exp().to_matrix(); // the rotor exp(B/2) has matrix expm([B])
     /// assert!((q - expected).amax() < 1e-14);
     /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
     /// ```
