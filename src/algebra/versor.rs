@@ -157,9 +157,10 @@ impl Multivector {
     /// At exactly θ = π (V = −exp(B′) with a rotation by π in a plane V does not determine)
     /// the logarithm is not unique: a Euclidean V gets one of them (as [`Rotor::log`]); in
     /// other signatures this point, like V = −exp(B′) for a boost or null B′, returns
-    /// [`AlgebraError::NoLogarithm`]. Near π (π − 10⁻¹² say) the result is exact to the
-    /// conditioning of the problem: exp(log V) = V to round-off, while the plane of the
-    /// rotation is only as accurate as V's tiny bivector part, ~ε/sin θ.
+    /// [`AlgebraError::NoLogarithm`]. Near π the logarithm is ill-conditioned: the plane of
+    /// a rotation by π − δ is fixed only by a bivector part of V of size ~δ, so the result
+    /// (and exp(log V) − V, where two planes share the 4-vector part) carries errors
+    /// ~ε/δ; a single plane at π ± 10⁻¹² still gives exp(log V) = V to round-off.
     ///
     /// # Errors
     /// [`AlgebraError::NonFinite`]; [`AlgebraError::NotAVersor`] if V has odd grades or

@@ -111,7 +111,7 @@ fn log_inverts_exp_in_every_signature() {
     let mut r = rng(1402);
     for s in table_signatures() {
         let (mut worst_v, mut worst_b): (f64, f64) = (0.0, 0.0);
-        for _ in 0..200 {
+        for _ in 0..2000 {
             // Coefficients ≤ 0.4: every rotation angle sum stays below π.
             let b = random_mv_bivector(&mut r, s, 0.4);
             let v = b.exp().unwrap();
@@ -120,8 +120,10 @@ fn log_inverts_exp_in_every_signature() {
             let ev = rel_diff(&l.exp().unwrap(), &v);
             worst_b = worst_b.max(eb);
             worst_v = worst_v.max(ev);
-            assert!(eb <= 1e-13, "{s}: log(exp B) − B = {eb:e} for {b}");
-            assert!(ev <= 1e-13, "{s}: exp(log V) − V = {ev:e} for {b}");
+            // 5e-13: in Cl(4,0,1) the split by the 4-vector part Q of V amplifies round-off by
+            // |Q| / √|Q²| when the rotation-rotation part of Q is small beside its null parts.
+            assert!(eb <= 5e-13, "{s}: log(exp B) − B = {eb:e} for {b}");
+            assert!(ev <= 5e-13, "{s}: exp(log V) − V = {ev:e} for {b}");
         }
         eprintln!("log {s}: log∘exp {worst_b:.2e}, exp∘log {worst_v:.2e}");
     }
@@ -411,18 +413,107 @@ proptest! {
         prop_assert!(e.odd().max_abs() == 0.0);
     }
 
+    /// Coefficients up to 2 reach past the principal branch. Where an angle of the log lands
+    /// within δ of π the logarithm is ill-conditioned (its plane is fixed by a bivector part
+    /// of size ~δ) and exp(log V) = V holds to ~ε/δ: random cases come within 1e-4 of π,
+    /// hence the 1e-10.
     #[test]
     fn exp_of_log_is_the_identity(b in bivector_in(2.0)) {
         let v = b.exp().unwrap();
         let l = v.log();
         prop_assume!(!matches!(l, Err(AlgebraError::NoLogarithm { .. })));
         let back = l.unwrap().exp().unwrap();
-        prop_assert!(rel_diff(&back, &v) <= 1e-12, "{}", rel_diff(&back, &v));
+        prop_assert!(rel_diff(&back, &v) <= 1e-10, "{}", rel_diff(&back, &v));
     }
 
+    /// Inside the principal branch (coefficients up to 0.4) exp(log V) = V to round-off.
+    #[test]
+    fn exp_of_log_is_the_identity_to_round_off_inside_the_branch(b in bivector_in(0.4)) {
+        let v = b.exp().unwrap();
+        let back = v.log().unwrap().exp().unwrap();
+        prop_assert!(rel_diff(&back, &v) <= 1e-13, "{}", rel_diff(&back, &v));
+    }
+
+    /// The tolerance as in `log_inverts_exp_in_every_signature`.
     #[test]
     fn log_of_exp_is_the_identity_on_the_principal_branch(b in bivector_in(0.4)) {
         let l = b.exp().unwrap().log().unwrap();
-        prop_assert!(rel_diff(&l, &b) <= 1e-13, "{}", rel_diff(&l, &b));
+        prop_assert!(rel_diff(&l, &b) <= 5e-13, "{}", rel_diff(&l, &b));
+    }
+}
+
+fn raw_multivector() -> impl Strategy<Value = Multivector> {
+    (
+        signature_strategy(),
+        prop::collection::vec(any::<u64>(), 64),
+    )
+        .prop_map(|(s, bits)| {
+            let mut m = Multivector::zero(s);
+            let n = m.as_slice().len();
+            for (c, b) in m.as_mut_slice().iter_mut().zip(&bits[..n]) {
+                *c = f64::from_bits(*b);
+            }
+            m
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(
+        std::env::var("PROPTEST_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(256)
+    ))]
+
+    /// Raw bit patterns (NaN, ∞, subnormals, 1e300): exp and log of the element, of its
+    /// bivector part and of its even part never panic and never return a non-finite
+    /// coefficient.
+    #[test]
+    fn raw_bit_patterns_give_an_error_or_a_finite_result(m in raw_multivector()) {
+        let results = [m.exp(), m.grade(2).exp(), m.log(), m.even().log()];
+        for r in results.iter().flatten() {
+            prop_assert!(r.as_slice().iter().all(|c| c.is_finite()), "{r:?} from {m:?}");
+        }
+        if m.as_slice().iter().all(|c| c.is_finite()) {
+            prop_assert!(m.grade(2).exp().is_ok() || m.grade(2).max_abs() > 1.0);
+        }
+    }
+}
+
+fn wide_range_bivector() -> impl Strategy<Value = Multivector> {
+    (
+        signature_strategy(),
+        prop::collection::vec((-1.0f64..1.0, -300i32..300, any::<bool>()), 15),
+    )
+        .prop_map(|(s, terms)| {
+            let mut m = Multivector::zero(s);
+            for (b, (c, e, on)) in bivector_masks(s.dim()).into_iter().zip(terms) {
+                if on {
+                    m.as_mut_slice()[b as usize] = c * 10f64.powi(e);
+                }
+            }
+            m
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(
+        std::env::var("PROPTEST_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(256)
+    ))]
+
+    /// Magnitudes from 1e-300 to 1e300 mixed in one bivector: exp returns a finite versor or
+    /// a clear error (overflow, or an angle beyond f64::MAX/2), and log of the result a
+    /// finite bivector or a clear error.
+    #[test]
+    fn wide_magnitudes_give_an_error_or_a_finite_result(b in wide_range_bivector()) {
+        match b.exp() {
+            Ok(e) => {
+                prop_assert!(e.as_slice().iter().all(|c| c.is_finite()));
+                if let Ok(l) = e.log() {
+                    prop_assert!(l.as_slice().iter().all(|c| c.is_finite()));
+                }
+            }
+            Err(err) => prop_assert!(
+                matches!(err, AlgebraError::Overflow { .. } | AlgebraError::AngleTooLarge { .. }),
+                "{err}"
+            ),
+        }
     }
 }
