@@ -74,12 +74,29 @@ impl Multivector {
     /// V = exp(−½ (d₁ e₁₄ + d₂ e₂₄ + d₃ e₃₄)) translates it by +d. A rotation generator
     /// exp(−½ θ e₁₂) turns e₁ toward e₂ by θ, as in the Euclidean convention.
     ///
-    /// Method (see the module documentation of `versor` for the derivation): Euclidean
-    /// signatures use [`Bivector::exp`] (any N ≤ [`super::MULTIVECTOR_MAX_DIM`]); other
-    /// signatures with N ≤ 5 use the closed form of the invariant decomposition into two
-    /// commuting simple parts, written without any division by λ₁ − λ₂, so it is exact for
-    /// isoclinic and repeated boosts, null (translation, light-like) parts, screws, complex
-    /// root pairs and magnitudes from 1e-300 to 1e300.
+    /// # Method
+    /// Euclidean signatures use [`Bivector::exp`] (any N ≤ [`super::MULTIVECTOR_MAX_DIM`]).
+    /// Other signatures with N ≤ [`CLOSED_FORM_MAX_DIM`] = 5 use the invariant decomposition
+    /// (Roelfs & De Keninck, "Graded symmetry groups: plane and simple", 2021/2023):
+    /// B = B₁ + B₂ with commuting simple Bᵢ whose squares λᵢ = Bᵢ² are scalars (negative:
+    /// rotation, cos/sin; positive: boost, cosh/sinh; zero: translation or light-like, 1 + Bᵢ)
+    /// and roots of λ² − ⟨B²⟩₀ λ + ¼ (B∧B)² = 0, so exp(B) = exp(B₁) exp(B₂). rotorflow
+    /// never forms the Bᵢ, whose formula divides by λ₁ − λ₂. With W = B∧B and x, y = √λ₁,
+    /// √λ₂ (complex where needed) the product expands to the exact identity
+    ///
+    ///   exp(B) = cosh x cosh y + ½ sinhc x sinhc y W + ½(sinhc(x + y) + sinhc(x − y)) B
+    ///            + H B W,
+    ///
+    /// with sinhc z = sinh z / z and H = (sinhc(x + y) − sinhc(x − y)) / (4xy)
+    /// = (cosh x sinhc y − sinhc x cosh y) / (2(x² − y²)), evaluated in whichever form has no
+    /// cancellation (a power series for |x| ≤ 1). One formula covers isoclinic rotations and
+    /// repeated boosts (x = ±y), null parts (y = 0: translations, light-like bivectors),
+    /// screws (B² with a grade-4 part) and complex root pairs (Cl(2, 2)); B is first scaled
+    /// by a power of two, so 1e-200 and 1e150 neither underflow nor overflow in B² or B W.
+    ///
+    /// Above N = 5 a bivector has three or more simple parts and these closed forms no longer
+    /// apply; non-Euclidean signatures there return [`AlgebraError::UnsupportedDimension`]
+    /// (so projective GA is covered up to Cl(4, 0, 1), conformal GA up to Cl(4, 1, 0)).
     ///
     /// A translation in 3D projective GA:
     /// ```
