@@ -173,8 +173,10 @@ impl Multivector {
     /// # Angle π
     /// At exactly θ = π (V = −exp(B′) with a rotation by π in a plane V does not determine)
     /// the logarithm is not unique: a Euclidean V gets one of them (as [`Rotor::log`]); in
-    /// other signatures this point, like V = −exp(B′) for a boost or null B′, returns
-    /// [`AlgebraError::NoLogarithm`]. Near π the logarithm is ill-conditioned: the plane of
+    /// other signatures this point returns [`AlgebraError::NoLogarithm`]. So does
+    /// V = −exp(B′) for a simple boost B′: in Cl(1, 3) it has the logarithms B′ ± π B̂′I (the
+    /// dual plane of a boost is a rotation plane commuting with it), both on the cut, and
+    /// neither is returned. Near π the logarithm is ill-conditioned: the plane of
     /// a rotation by π − δ is fixed only by a bivector part of V of size ~δ, so the result
     /// (and exp(log V) − V, where two planes share the 4-vector part) carries errors
     /// ~ε/δ; a single plane at π ± 10⁻¹² still gives exp(log V) = V to round-off.
@@ -186,7 +188,7 @@ impl Multivector {
     /// [`AlgebraError::NoLogarithm`] for elements without a real bivector logarithm
     /// (−exp(B) for a boost B in Cl(1, 1), Cl(2, 1) or Cl(1, 2), −(1 + N) for a light-like
     /// N in Cl(1, 3), −exp(t) for a translation t in 2D projective GA) and on the branch cut
-    /// described above.
+    /// at angle π described above (which includes −exp(B) for a boost B in Cl(1, 3)).
     ///
     /// ```
     /// use rotorflow::algebra::{Multivector, Signature};
