@@ -247,10 +247,10 @@ pub enum AlgebraError {
     },
     /// The operation is implemented for this kind of signature only up to a dimension.
     ///
-    /// How to fix: Euclidean signatures go to [`super::MULTIVECTOR_MAX_DIM`]; other
-    /// signatures to the `max` given.
+    /// How to fix: Euclidean Cl(N, 0, 0) and projective Cl(N − 1, 0, 1) signatures go to
+    /// [`super::MULTIVECTOR_MAX_DIM`]; other signatures to the `max` given.
     #[error(
-        "{operation} in a non-Euclidean signature is implemented up to N = {max}, got {signature}"
+        "{operation} in a signature neither Euclidean nor projective is implemented up to N = {max}, got {signature}"
     )]
     UnsupportedDimension {
         /// The operation.

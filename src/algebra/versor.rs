@@ -39,13 +39,25 @@
 //! (ζ = log1p(C − 1 + sinh ζ), with C − 1 = sinh²ζ/(C + 1) where that avoids cancellation)
 //! and returns B = v ζ / sinh ζ.
 //!
+//! # Projective GA in any dimension
+//! In Cl(p, 0, 1) write B = A + t e₀ with A Euclidean and t a vector (e₀ the null vector,
+//! last). e₀ commutes with the even Euclidean elements and any product with two factors e₀
+//! vanishes, so exp(B) = exp(A) (1 + u e₀) exactly, with
+//! u = ∫₀¹ exp(−sA) t exp(sA) ds = φ(2\[A\]ᵀ) t, φ(X) = Σ Xᵏ/(k+1)!, applied plane by plane of
+//! A's invariant decomposition: (sin α/α) 1 + ((1 − cos α)/α²) X on a plane of A with
+//! α = 2θ. The logarithm inverts it: A = log of the Euclidean part (a rotor, through
+//! [`super::Rotor::log`], exact for isoclinic rotations) and t = φ⁻¹ u. This route serves
+//! every projective log and the projective exp above N = 5.
+//!
 //! # Dimensions
 //! Euclidean signatures Cl(N, 0, 0) go through [`super::Bivector::exp`] and
-//! [`super::Rotor::log`] for every N ≤ [`super::MULTIVECTOR_MAX_DIM`]. Other signatures are
-//! supported up to N = [`CLOSED_FORM_MAX_DIM`] = 5, where a bivector has at most two simple
-//! parts and W² is a scalar; above, B∧B∧B appears and the closed forms above no longer
-//! hold, and [`Multivector::exp`] and [`Multivector::log`] return
-//! [`AlgebraError::UnsupportedDimension`].
+//! [`super::Rotor::log`], and projective ones Cl(N − 1, 0, 1) through the route above, for
+//! every N ≤ [`super::MULTIVECTOR_MAX_DIM`]. Other signatures are supported up to
+//! N = [`CLOSED_FORM_MAX_DIM`] = 5, where a bivector has at most two simple parts and W² is
+//! a scalar; above, B∧B∧B appears and the closed forms above no longer hold, and
+//! [`Multivector::exp`] and [`Multivector::log`] return
+//! [`AlgebraError::UnsupportedDimension`] (conformal GA of 4D space, Cl(5, 1, 0), is the
+//! first such case).
 
 use super::error::{check_finite, within};
 use super::{AlgebraError, Bivector, Multivector, Rotor};
@@ -53,9 +65,9 @@ use nalgebra::Complex;
 
 type C64 = Complex<f64>;
 
-/// The largest N for which [`Multivector::exp`] and [`Multivector::log`] accept a
-/// non-Euclidean signature (Euclidean signatures go to
-/// [`super::MULTIVECTOR_MAX_DIM`]).
+/// The largest N for which [`Multivector::exp`] and [`Multivector::log`] accept a signature
+/// other than Euclidean Cl(N, 0, 0) and projective Cl(N − 1, 0, 1), which go to
+/// [`super::MULTIVECTOR_MAX_DIM`].
 pub const CLOSED_FORM_MAX_DIM: usize = 5;
 
 /// Default tolerance of [`Multivector::log`] on max |V Ṽ − 1| / max(1, max |Vᵢ|²): far above
@@ -94,9 +106,11 @@ impl Multivector {
     /// screws (B² with a grade-4 part) and complex root pairs (Cl(2, 2)); B is first scaled
     /// by a power of two, so 1e-200 and 1e150 neither underflow nor overflow in B² or B W.
     ///
-    /// Above N = 5 a bivector has three or more simple parts and these closed forms no longer
-    /// apply; non-Euclidean signatures there return [`AlgebraError::UnsupportedDimension`]
-    /// (so projective GA is covered up to Cl(4, 0, 1), conformal GA up to Cl(4, 1, 0)).
+    /// Projective GA Cl(p, 0, 1) above N = 5 uses exp(A + t e₀) = exp(A) (1 + u e₀) with A
+    /// the Euclidean part, u = ∫₀¹ exp(−sA) t exp(sA) ds in closed form plane by plane, for
+    /// any N ≤ 16. Other signatures above N = 5 (a bivector then has three or more simple
+    /// parts and these closed forms no longer apply) return
+    /// [`AlgebraError::UnsupportedDimension`]: conformal GA is covered up to Cl(4, 1, 0).
     ///
     /// A translation in 3D projective GA:
     /// ```
@@ -130,7 +144,8 @@ impl Multivector {
     /// # Errors
     /// [`AlgebraError::NonFinite`] for NaN or infinite coefficients;
     /// [`AlgebraError::NotABivector`] if other grades are present;
-    /// [`AlgebraError::UnsupportedDimension`] for a non-Euclidean signature with N > 5;
+    /// [`AlgebraError::UnsupportedDimension`] for N > 5 in a signature neither Euclidean nor
+    /// projective;
     /// [`AlgebraError::AngleTooLarge`] (Euclidean, |B| > `f64::MAX`/2);
     /// [`AlgebraError::Overflow`] when a coefficient of the result exceeds `f64::MAX` (a boost
     /// of rapidity above ≈ 710).
@@ -141,6 +156,16 @@ impl Multivector {
         if sig.is_euclidean() {
             let b = Bivector::try_from(self)?;
             return Ok(b.try_exp()?.to_multivector());
+        }
+        if self.dim() > CLOSED_FORM_MAX_DIM && is_projective(sig) {
+            let out = exp_projective(self)?;
+            return if out.as_slice().iter().all(|c| c.is_finite()) {
+                Ok(out)
+            } else {
+                Err(AlgebraError::Overflow {
+                    what: "the exponential",
+                })
+            };
         }
         if self.dim() > CLOSED_FORM_MAX_DIM {
             return Err(AlgebraError::UnsupportedDimension {
@@ -160,7 +185,15 @@ impl Multivector {
     }
 
     /// Returns a bivector B with exp(B) = V for an even versor V (V Ṽ = 1), in any signature
-    /// with N ≤ 5 and in Euclidean signatures up to N = [`super::MULTIVECTOR_MAX_DIM`].
+    /// with N ≤ 5 and in Euclidean and projective (Cl(p, 0, 1)) signatures up to
+    /// N = [`super::MULTIVECTOR_MAX_DIM`].
+    ///
+    /// # Method
+    /// Euclidean: [`Rotor::log`]. Projective: the log A of the Euclidean part (a rotor) and
+    /// the translation part t = φ⁻¹ u that inverts [`Multivector::exp`]'s projective form.
+    /// Other signatures (N ≤ 5): V = c + v + Q (grades 0, 2, 4); C = c + Q is cosh √(B²) in
+    /// the algebra spanned by 1 and Q (split-complex for Q² > 0, complex for Q² < 0, dual for
+    /// Q² = 0), v = (sinh √(B²)/√(B²)) B; solving cosh ζ = C there gives B = v ζ / sinh ζ.
     ///
     /// # Branch
     /// The principal logarithm: every rotation part has angle θ ∈ \[0, π\] in exp(θ P̂)
@@ -184,7 +217,8 @@ impl Multivector {
     /// # Errors
     /// [`AlgebraError::NonFinite`]; [`AlgebraError::NotAVersor`] if V has odd grades or
     /// max |V Ṽ − 1| exceeds [`VERSOR_TOLERANCE`] · max(1, max |Vᵢ|²);
-    /// [`AlgebraError::UnsupportedDimension`] for a non-Euclidean signature with N > 5;
+    /// [`AlgebraError::UnsupportedDimension`] for N > 5 in a signature neither Euclidean nor
+    /// projective;
     /// [`AlgebraError::NoLogarithm`] for elements without a real bivector logarithm
     /// (−exp(B) for a boost B in Cl(1, 1), Cl(2, 1) or Cl(1, 2), −(1 + N) for a light-like
     /// N in Cl(1, 3), −exp(t) for a translation t in 2D projective GA) and on the branch cut
@@ -224,6 +258,9 @@ impl Multivector {
             let b = Rotor::from_multivector_unchecked(self).log();
             return Ok(Multivector::from(&b));
         }
+        if is_projective(sig) {
+            return log_projective(self);
+        }
         if self.dim() > CLOSED_FORM_MAX_DIM {
             return Err(AlgebraError::UnsupportedDimension {
                 operation: "the logarithm",
@@ -240,6 +277,112 @@ impl Multivector {
             })
         }
     }
+}
+
+/// Projective GA Cl(p, 0, 1): one null vector, the last.
+fn is_projective(sig: super::Signature) -> bool {
+    sig.q() == 0 && sig.r() == 1
+}
+
+/// The Euclidean part A (blades without the null vector e₀) and the translation part t
+/// (B = A + t e₀) of a bivector of Cl(p, 0, 1).
+fn split_projective(b: &Multivector) -> Result<(Bivector, Vec<f64>), AlgebraError> {
+    let p = b.dim() - 1;
+    let null = 1u64 << p;
+    let mut a = Bivector::try_zero(p)?;
+    for i in 0..p {
+        for j in i + 1..p {
+            a.set(i, j, b.coefficient((1 << i) | (1 << j)));
+        }
+    }
+    let t = (0..p).map(|i| b.coefficient((1 << i) | null)).collect();
+    Ok((a, t))
+}
+
+/// Applies φ(X) = Σ Xᵏ/(k+1)! = ∫₀¹ expm(sX) ds, X = 2\[A\]ᵀ, to t (or its inverse), plane by
+/// plane: on the plane of θ u∧v (α = 2θ) φ = (sin α/α) 1 + ((1 − cos α)/α²) X, and the
+/// identity on the complement.
+fn phi_projective(a: &Bivector, t: &[f64], inverse: bool) -> Result<Vec<f64>, AlgebraError> {
+    let mut out = t.to_vec();
+    let tv = super::Vector::from_components(t)?;
+    for plane in a.decompose().planes() {
+        let alpha = 2.0 * plane.magnitude();
+        let (u, v) = (plane.u(), plane.v());
+        let (cu, cv) = (tv.dot(u), tv.dot(v));
+        let tk: Vec<f64> = (0..t.len()).map(|i| cu * u[i] + cv * v[i]).collect();
+        let tkv = super::Vector::from_components(&tk)?;
+        let xt = tkv.left_contract(&plane.bivector());
+        let half = 0.5 * alpha;
+        let ca = alpha.sin() / alpha;
+        let cb = 2.0 * (half.sin() / alpha).powi(2);
+        let (ka, kb) = if inverse {
+            let den = ca * ca + cb * cb * alpha * alpha;
+            if den.is_nan() || den <= 1e-30 {
+                return Err(AlgebraError::NoLogarithm {
+                    reason: "a rotation by π in a plane the versor does not determine",
+                });
+            }
+            (ca / den, -cb / den)
+        } else {
+            (ca, cb)
+        };
+        for i in 0..t.len() {
+            out[i] += (ka - 1.0) * tk[i] + kb * 2.0 * xt[i];
+        }
+    }
+    Ok(out)
+}
+
+/// exp in Cl(p, 0, 1), any p: with B = A + t e₀ (e₀ commutes with the even Euclidean part,
+/// and any product with two factors e₀ vanishes), exp(B) = exp(A) (1 + u e₀) with
+/// u = ∫₀¹ exp(−sA) t exp(sA) ds = φ(2\[A\]ᵀ) t.
+fn exp_projective(b: &Multivector) -> Result<Multivector, AlgebraError> {
+    let sig = b.signature();
+    let p = b.dim() - 1;
+    let null = 1u64 << p;
+    let (a, t) = split_projective(b)?;
+    let r = a.try_exp()?.to_multivector();
+    let u = phi_projective(&a, &t, false)?;
+    let mut rm = Multivector::zero(sig);
+    for (k, c) in r.terms() {
+        rm.as_mut_slice()[k as usize] = c;
+    }
+    let mut um = Multivector::zero(sig);
+    for (i, c) in u.iter().enumerate() {
+        um.as_mut_slice()[((1u64 << i) | null) as usize] = *c;
+    }
+    Ok(&rm + &rm.geometric(&um))
+}
+
+/// log in Cl(p, 0, 1), any p: V = R + R U with R the Euclidean part (a rotor) and U = u e₀;
+/// A = log R ([`Rotor::log`]) and t = φ(2\[A\]ᵀ)⁻¹ u.
+fn log_projective(v: &Multivector) -> Result<Multivector, AlgebraError> {
+    let sig = v.signature();
+    let p = v.dim() - 1;
+    let null = 1u64 << p;
+    let mut re = Multivector::try_zero(super::Signature::euclidean(p))?;
+    let mut rm = Multivector::zero(sig);
+    let mut vn = Multivector::zero(sig);
+    for (k, c) in v.terms() {
+        if k & null == 0 {
+            re.as_mut_slice()[k as usize] = c;
+            rm.as_mut_slice()[k as usize] = c;
+        } else {
+            vn.as_mut_slice()[k as usize] = c;
+        }
+    }
+    let a = Rotor::from_multivector_unchecked(&re).log();
+    let um = rm.reverse().geometric(&vn);
+    let u: Vec<f64> = (0..p).map(|i| um.coefficient((1 << i) | null)).collect();
+    let t = phi_projective(&a, &u, true)?;
+    let mut out = Multivector::zero(sig);
+    for (i, j) in super::pairs(p) {
+        out.as_mut_slice()[((1u64 << i) | (1u64 << j)) as usize] = a.get(i, j);
+    }
+    for (i, c) in t.iter().enumerate() {
+        out.as_mut_slice()[((1u64 << i) | null) as usize] = *c;
+    }
+    Ok(out)
 }
 
 /// Err(NotABivector) naming the grades other than 2.
