@@ -216,7 +216,8 @@ impl Multivector {
     ///
     /// # Errors
     /// [`AlgebraError::NonFinite`]; [`AlgebraError::NotAVersor`] if V has odd grades or
-    /// max |V Ṽ − 1| exceeds [`VERSOR_TOLERANCE`] · max(1, max |Vᵢ|²);
+    /// max |V Ṽ − 1| exceeds [`VERSOR_TOLERANCE`] · max(1, max |Vᵢ|²) (or that bound
+    /// overflows); [`AlgebraError::Overflow`] if a projective logarithm exceeds `f64::MAX`;
     /// [`AlgebraError::UnsupportedDimension`] for N > 5 in a signature neither Euclidean nor
     /// projective;
     /// [`AlgebraError::NoLogarithm`] for elements without a real bivector logarithm
@@ -247,6 +248,12 @@ impl Multivector {
         vv.as_mut_slice()[0] -= 1.0;
         let deviation = vv.max_abs();
         let scale = self.max_abs().powi(2).max(1.0);
+        if !scale.is_finite() {
+            return Err(AlgebraError::NotAVersor {
+                reason: "V Ṽ overflows f64",
+                deviation,
+            });
+        }
         if !within(deviation, VERSOR_TOLERANCE * scale) {
             return Err(AlgebraError::NotAVersor {
                 reason: "V Ṽ is not 1",
@@ -259,7 +266,14 @@ impl Multivector {
             return Ok(Multivector::from(&b));
         }
         if is_projective(sig) {
-            return log_projective(self);
+            let out = log_projective(self)?;
+            return if out.as_slice().iter().all(|c| c.is_finite()) {
+                Ok(out)
+            } else {
+                Err(AlgebraError::Overflow {
+                    what: "the logarithm",
+                })
+            };
         }
         if self.dim() > CLOSED_FORM_MAX_DIM {
             return Err(AlgebraError::UnsupportedDimension {
