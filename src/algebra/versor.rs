@@ -135,9 +135,9 @@ impl Multivector {
     /// assert!((v.scalar_part() - 0.35f64.cosh()).abs() < 1e-15);
     /// assert!((v.coefficient(0b11) - 0.35f64.sinh()).abs() < 1e-15);
     /// let t = Multivector::basis_blade(sta, 0b1);
-    /// let moved = &(&v * &t) * &v.reverse(); // e₁ ↦ cosh 0.7 e₁ + sinh 0.7 e₂ (sign by e₁₂)
+    /// let moved = &(&v * &t) * &v.reverse(); // e₁ ↦ cosh 0.7 e₁ − sinh 0.7 e₂
     /// assert!((moved.coefficient(0b1) - 0.7f64.cosh()).abs() < 1e-15);
-    /// assert!((moved.coefficient(0b10).abs() - 0.7f64.sinh()).abs() < 1e-15);
+    /// assert!((moved.coefficient(0b10) + 0.7f64.sinh()).abs() < 1e-15);
     /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
     /// ```
     ///
