@@ -213,6 +213,61 @@ pub enum AlgebraError {
         /// The signature that was given.
         signature: Signature,
     },
+    /// An operation that needs a bivector got an element with other grades.
+    ///
+    /// How to fix: take the bivector part with `Multivector::grade(2)` if the other grades
+    /// are round-off; the exponential of other elements is not provided.
+    #[error("{operation} needs a bivector, but the element has parts of grade {grades:?}")]
+    NotABivector {
+        /// The operation.
+        operation: &'static str,
+        /// The grades other than 2 that are present, ascending.
+        grades: Vec<usize>,
+    },
+    /// An element is not an even versor (V Ṽ = 1 with grades 0, 2, 4, … only).
+    ///
+    /// How to fix: build versors as products or exponentials; if the deviation is drift,
+    /// renormalise first.
+    #[error("element is not an even versor: {reason} (deviation {deviation:e})")]
+    NotAVersor {
+        /// What failed.
+        reason: &'static str,
+        /// Size of the failure.
+        deviation: f64,
+    },
+    /// A versor has no real bivector logarithm (or none the closed form can pick).
+    ///
+    /// How to fix: such an element is −exp(B) for a B without a rotation part that could
+    /// absorb the sign; work with the element itself, or with −V if only the transformation
+    /// X ↦ V X Ṽ matters.
+    #[error("the versor has no real bivector logarithm: {reason}")]
+    NoLogarithm {
+        /// Why.
+        reason: &'static str,
+    },
+    /// The operation is implemented for this kind of signature only up to a dimension.
+    ///
+    /// How to fix: Euclidean Cl(N, 0, 0) and projective Cl(N − 1, 0, 1) signatures go to
+    /// [`super::MULTIVECTOR_MAX_DIM`]; other signatures to the `max` given.
+    #[error(
+        "{operation} in a signature neither Euclidean nor projective is implemented up to N = {max}, got {signature}"
+    )]
+    UnsupportedDimension {
+        /// The operation.
+        operation: &'static str,
+        /// The signature that was given.
+        signature: Signature,
+        /// The largest supported dimension.
+        max: usize,
+    },
+    /// A result would exceed the range of f64.
+    ///
+    /// How to fix: scale the input down (for a boost, a rapidity above ≈ 710 overflows).
+    #[error("{what} overflows f64")]
+    Overflow {
+        /// What overflowed.
+        what: &'static str,
+    },
 }
 
 /// value ≤ tolerance, and false when either is NaN: a NaN measure or tolerance never passes.

@@ -71,6 +71,7 @@ mod rotor;
 mod serde_impls;
 mod signature;
 mod vector;
+mod versor;
 
 pub(crate) use bivector::commutator_packed;
 pub use bivector::{Bivector, SKEW_TOLERANCE, bivector_len, pair_index, pairs, plane_name};
@@ -81,6 +82,7 @@ pub use rotor::{NORMALIZE_TOLERANCE, ROTATION_TOLERANCE, ROTOR_TOLERANCE, Rotor}
 pub(crate) use rotor::{accumulate_plane_rotor, plane_tables};
 pub use signature::Signature;
 pub use vector::Vector;
+pub use versor::{CLOSED_FORM_MAX_DIM, VERSOR_TOLERANCE};
 
 /// The largest dimension for vectors, bivectors and signatures: a basis blade is a `u64` bit
 /// mask, so N ≤ 64 (wedged makes the same trade-off at 31). Vectors and bivectors store N and

@@ -37,6 +37,8 @@ pub(crate) type MvStorage = SmallVec<[f64; 16]>;
 ///   [`Multivector::grades`].
 /// - Norms and inverse: [`Multivector::norm_squared`], [`Multivector::norm`],
 ///   [`Multivector::inverse`].
+/// - Versors: [`Multivector::exp`] of a bivector and [`Multivector::log`] of an even versor,
+///   in every signature up to N = 5 and in Euclidean and projective signatures up to N = 16.
 /// - Duals: [`Multivector::dual`], [`Multivector::hodge`], [`Multivector::right_complement`],
 ///   [`Multivector::left_complement`].
 ///

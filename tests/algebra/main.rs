@@ -10,3 +10,4 @@ mod multivector;
 mod nalgebra_interop;
 mod properties;
 mod rotor;
+mod versors;

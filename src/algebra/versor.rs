@@ -1,0 +1,651 @@
+//! Exponential and logarithm of bivectors and even versors in any signature Cl(p, q, r).
+//!
+//! # The invariant decomposition
+//! A bivector B of Cl(p, q, r) with N ≤ 5 is a sum B = B₁ + B₂ of at most two commuting
+//! simple bivectors whose squares λᵢ = Bᵢ² are scalars: λ < 0 for a rotation, λ > 0 for a
+//! boost, λ = 0 for a translation or a light-like generator (Roelfs & De Keninck, "Graded
+//! symmetry groups: plane and simple", 2021/2023). Squaring B gives
+//! B² = ⟨B²⟩₀ + B∧B = (λ₁ + λ₂) + 2B₁B₂, so the λᵢ are the roots of
+//!
+//!   λ² − ⟨B²⟩₀ λ + ¼ (B∧B)² = 0,
+//!
+//! and exp(B) = exp(B₁) exp(B₂) with exp(Bᵢ) = cos √−λᵢ + (sin √−λᵢ / √−λᵢ) Bᵢ,
+//! cosh √λᵢ + (sinh √λᵢ / √λᵢ) Bᵢ or 1 + Bᵢ.
+//!
+//! # Without dividing by λ₁ − λ₂
+//! The parts Bᵢ = (λᵢ B − ½ B (B∧B)) / (λᵢ − λⱼ) are ill-conditioned near λ₁ = λ₂
+//! (isoclinic rotations, repeated boosts), and the λᵢ may be complex conjugates (in Cl(2, 2));
+//! exp(B) is neither. rotorflow therefore never forms the Bᵢ. With W = B∧B (which commutes
+//! with B, and W² is a scalar for N ≤ 5), B² = σ + W with σ = ⟨B²⟩₀, and B is a root of
+//! (t² − a)(t² − b) with a, b = σ ∓ √(W²) = (x ∓ y)², x = √λ₁, y = √λ₂. Expanding the
+//! series Σ Bᵏ/k! = cosh B + sinh B in this commutative algebra gives the exact identity
+//!
+//!   exp(B) = ½(k(a) + k(b)) + k[a, b] W + ½(h(a) + h(b)) B + h[a, b] B W,
+//!
+//! with k(t) = cosh √t, h(t) = sinh √t / √t (entire functions of t) and f[a, b] their divided
+//! differences. In terms of x and y: ½(k(a) + k(b)) = cosh x cosh y,
+//! k[a, b] = ½ sinhc x sinhc y, ½(h(a) + h(b)) = ½(sinhc(x + y) + sinhc(x − y)), and
+//! h[a, b] = (sinhc(x + y) − sinhc(x − y)) / (4xy) = (cosh x sinhc y − sinhc x cosh y) /
+//! (2(x² − y²)), of which rotorflow takes the form without cancellation (a power series when
+//! |x| ≤ 1). Every case (isoclinic, null, complex λ, mixed screws with a grade-4 B²) is the
+//! same formula, and B is scaled by a power of two first so that 1e-200 and 1e150 do not
+//! underflow or overflow in B² or B W.
+//!
+//! # Logarithm
+//! An even versor V of N ≤ 5 has grades 0, 2 and 4: V = c + v + Q. The scalar and 4-vector
+//! parts form C = c + Q = cosh √(B²), a number in the two-dimensional algebra spanned by 1 and
+//! Q (split-complex when Q² > 0, complex when Q² < 0, dual when Q² = 0), and v = sinh √(B²) /
+//! √(B²) · B. rotorflow solves cosh ζ = C, sinh ζ = √(v²) in that algebra
+//! (ζ = log1p(C − 1 + sinh ζ), with C − 1 = sinh²ζ/(C + 1) where that avoids cancellation)
+//! and returns B = v ζ / sinh ζ.
+//!
+//! # Projective GA in any dimension
+//! In Cl(p, 0, 1) write B = A + t e₀ with A Euclidean and t a vector (e₀ the null vector,
+//! last). e₀ commutes with the even Euclidean elements and any product with two factors e₀
+//! vanishes, so exp(B) = exp(A) (1 + u e₀) exactly, with
+//! u = ∫₀¹ exp(−sA) t exp(sA) ds = φ(2\[A\]ᵀ) t, φ(X) = Σ Xᵏ/(k+1)!, applied plane by plane of
+//! A's invariant decomposition: (sin α/α) 1 + ((1 − cos α)/α²) X on a plane of A with
+//! α = 2θ. The logarithm inverts it: A = log of the Euclidean part (a rotor, through
+//! [`super::Rotor::log`], exact for isoclinic rotations) and t = φ⁻¹ u. This route serves
+//! every projective log and the projective exp above N = 5.
+//!
+//! # Dimensions
+//! Euclidean signatures Cl(N, 0, 0) go through [`super::Bivector::exp`] and
+//! [`super::Rotor::log`], and projective ones Cl(N − 1, 0, 1) through the route above, for
+//! every N ≤ [`super::MULTIVECTOR_MAX_DIM`]. Other signatures are supported up to
+//! N = [`CLOSED_FORM_MAX_DIM`] = 5, where a bivector has at most two simple parts and W² is
+//! a scalar; above, B∧B∧B appears and the closed forms above no longer hold, and
+//! [`Multivector::exp`] and [`Multivector::log`] return
+//! [`AlgebraError::UnsupportedDimension`] (conformal GA of 4D space, Cl(5, 1, 0), is the
+//! first such case).
+
+use super::error::{check_finite, within};
+use super::{AlgebraError, Bivector, Multivector, Rotor};
+use nalgebra::Complex;
+
+type C64 = Complex<f64>;
+
+/// The largest N for which [`Multivector::exp`] and [`Multivector::log`] accept a signature
+/// other than Euclidean Cl(N, 0, 0) and projective Cl(N − 1, 0, 1), which go to
+/// [`super::MULTIVECTOR_MAX_DIM`].
+pub const CLOSED_FORM_MAX_DIM: usize = 5;
+
+/// Default tolerance of [`Multivector::log`] on max |V Ṽ − 1| / max(1, max |Vᵢ|²): far above
+/// the round-off of a versor built by products, far below any element worth calling one.
+pub const VERSOR_TOLERANCE: f64 = 1e-8;
+
+impl Multivector {
+    /// Returns the exponential exp(B) = Σ Bᵏ/k! (geometric product) of a bivector B in any
+    /// signature Cl(p, q, r).
+    ///
+    /// The result is an even versor (V Ṽ = 1): a rotor for a Euclidean signature, a motor
+    /// (rigid motion) in projective GA Cl(N, 0, 1), a Lorentz transformation in Cl(1, 3). It
+    /// acts by the sandwich X ↦ V X Ṽ. In 3D projective GA with e₄ the null vector (the
+    /// projective e₀, last in rotorflow's basis order), the point at x is the trivector
+    /// X = e₁₂₃ + x₁ e₂₃₄ − x₂ e₁₃₄ + x₃ e₁₂₄ (the dual of e₄ + x), and
+    /// V = exp(−½ (d₁ e₁₄ + d₂ e₂₄ + d₃ e₃₄)) translates it by +d. A rotation generator
+    /// exp(−½ θ e₁₂) turns e₁ toward e₂ by θ, as in the Euclidean convention.
+    ///
+    /// # Method
+    /// Euclidean signatures use [`Bivector::exp`] (any N ≤ [`super::MULTIVECTOR_MAX_DIM`]).
+    /// Other signatures with N ≤ [`CLOSED_FORM_MAX_DIM`] = 5 use the invariant decomposition
+    /// (Roelfs & De Keninck, "Graded symmetry groups: plane and simple", 2021/2023):
+    /// B = B₁ + B₂ with commuting simple Bᵢ whose squares λᵢ = Bᵢ² are scalars (negative:
+    /// rotation, cos/sin; positive: boost, cosh/sinh; zero: translation or light-like, 1 + Bᵢ)
+    /// and roots of λ² − ⟨B²⟩₀ λ + ¼ (B∧B)² = 0, so exp(B) = exp(B₁) exp(B₂). rotorflow
+    /// never forms the Bᵢ, whose formula divides by λ₁ − λ₂. With W = B∧B and x, y = √λ₁,
+    /// √λ₂ (complex where needed) the product expands to the exact identity
+    ///
+    ///   exp(B) = cosh x cosh y + ½ sinhc x sinhc y W + ½(sinhc(x + y) + sinhc(x − y)) B
+    ///            + H B W,
+    ///
+    /// with sinhc z = sinh z / z and H = (sinhc(x + y) − sinhc(x − y)) / (4xy)
+    /// = (cosh x sinhc y − sinhc x cosh y) / (2(x² − y²)), evaluated in whichever form has no
+    /// cancellation (a power series for |x| ≤ 1). One formula covers isoclinic rotations and
+    /// repeated boosts (x = ±y), null parts (y = 0: translations, light-like bivectors),
+    /// screws (B² with a grade-4 part) and complex root pairs (Cl(2, 2)); B is first scaled
+    /// by a power of two, so 1e-200 and 1e150 neither underflow nor overflow in B² or B W.
+    ///
+    /// Projective GA Cl(p, 0, 1) above N = 5 uses exp(A + t e₀) = exp(A) (1 + u e₀) with A
+    /// the Euclidean part, u = ∫₀¹ exp(−sA) t exp(sA) ds in closed form plane by plane, for
+    /// any N ≤ 16. Other signatures above N = 5 (a bivector then has three or more simple
+    /// parts and these closed forms no longer apply) return
+    /// [`AlgebraError::UnsupportedDimension`]: conformal GA is covered up to Cl(4, 1, 0).
+    ///
+    /// A translation in 3D projective GA:
+    /// ```
+    /// use rotorflow::algebra::{Multivector, Signature};
+    /// let pga = Signature::new(3, 0, 1)?; // e₄² = 0 is the projective e₀
+    /// let b = Multivector::blade_by_name(pga, "e14", -0.5 * 2.0)?; // translate by 2 along e₁
+    /// let m = b.exp()?; // = 1 − e₁₄, a translator
+    /// assert_eq!(m.coefficient(0b1001), -1.0);
+    /// let origin = Multivector::blade_by_name(pga, "e123", 1.0)?;
+    /// let moved = &(&m * &origin) * &m.reverse();
+    /// // the point x = (2, 0, 0): e₁₂₃ + 2 e₂₃₄
+    /// assert_eq!(moved.coefficient(0b1110), 2.0);
+    /// assert_eq!(moved.coefficient(0b0111), 1.0);
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
+    ///
+    /// A boost of rapidity 0.7 along e₂ in the spacetime algebra Cl(1, 3):
+    /// ```
+    /// use rotorflow::algebra::{Multivector, Signature};
+    /// let sta = Signature::new(1, 3, 0)?; // e₁ is time, e₂ e₃ e₄ space
+    /// let v = Multivector::blade_by_name(sta, "e12", 0.35)?.exp()?; // exp(½ · 0.7 e₁₂)
+    /// assert!((v.scalar_part() - 0.35f64.cosh()).abs() < 1e-15);
+    /// assert!((v.coefficient(0b11) - 0.35f64.sinh()).abs() < 1e-15);
+    /// let t = Multivector::basis_blade(sta, 0b1);
+    /// let moved = &(&v * &t) * &v.reverse(); // e₁ ↦ cosh 0.7 e₁ − sinh 0.7 e₂
+    /// assert!((moved.coefficient(0b1) - 0.7f64.cosh()).abs() < 1e-15);
+    /// assert!((moved.coefficient(0b10) + 0.7f64.sinh()).abs() < 1e-15);
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`AlgebraError::NonFinite`] for NaN or infinite coefficients;
+    /// [`AlgebraError::NotABivector`] if other grades are present;
+    /// [`AlgebraError::UnsupportedDimension`] for N > 5 in a signature neither Euclidean nor
+    /// projective;
+    /// [`AlgebraError::AngleTooLarge`] (Euclidean, |B| > `f64::MAX`/2);
+    /// [`AlgebraError::Overflow`] when a coefficient of the result exceeds `f64::MAX` (a boost
+    /// of rapidity above ≈ 710).
+    pub fn exp(&self) -> Result<Multivector, AlgebraError> {
+        check_finite(self.as_slice(), "bivector")?;
+        check_bivector(self, "the exponential")?;
+        let sig = self.signature();
+        if sig.is_euclidean() {
+            let b = Bivector::try_from(self)?;
+            return Ok(b.try_exp()?.to_multivector());
+        }
+        if self.dim() > CLOSED_FORM_MAX_DIM && is_projective(sig) {
+            let out = exp_projective(self)?;
+            return if out.as_slice().iter().all(|c| c.is_finite()) {
+                Ok(out)
+            } else {
+                Err(AlgebraError::Overflow {
+                    what: "the exponential",
+                })
+            };
+        }
+        if self.dim() > CLOSED_FORM_MAX_DIM {
+            return Err(AlgebraError::UnsupportedDimension {
+                operation: "the exponential",
+                signature: sig,
+                max: CLOSED_FORM_MAX_DIM,
+            });
+        }
+        let out = exp_closed_form(self);
+        if out.as_slice().iter().all(|c| c.is_finite()) {
+            Ok(out)
+        } else {
+            Err(AlgebraError::Overflow {
+                what: "the exponential",
+            })
+        }
+    }
+
+    /// Returns a bivector B with exp(B) = V for an even versor V (V Ṽ = 1), in any signature
+    /// with N ≤ 5 and in Euclidean and projective (Cl(p, 0, 1)) signatures up to
+    /// N = [`super::MULTIVECTOR_MAX_DIM`].
+    ///
+    /// # Method
+    /// Euclidean: [`Rotor::log`]. Projective: the log A of the Euclidean part (a rotor) and
+    /// the translation part t = φ⁻¹ u that inverts [`Multivector::exp`]'s projective form.
+    /// Other signatures (N ≤ 5): V = c + v + Q (grades 0, 2, 4); C = c + Q is cosh √(B²) in
+    /// the algebra spanned by 1 and Q (split-complex for Q² > 0, complex for Q² < 0, dual for
+    /// Q² = 0), v = (sinh √(B²)/√(B²)) B; solving cosh ζ = C there gives B = v ζ / sinh ζ.
+    ///
+    /// # Branch
+    /// The principal logarithm: every rotation part has angle θ ∈ \[0, π\] in exp(θ P̂)
+    /// (the sandwich turns by 2θ), boosts and null parts are unique. Where V's rotation parts
+    /// mix in a 4D-like split (two planes sharing the 4-vector part of V, as in Cl(2, 2) or
+    /// the Euclidean 4D rotors), the sum of the two angles is at most π, as in
+    /// [`Rotor::log`]. So log(exp(B)) = B whenever B's rotation angles are inside that
+    /// domain. Euclidean signatures return [`Rotor::log`].
+    ///
+    /// # Angle π
+    /// At exactly θ = π (V = −exp(B′) with a rotation by π in a plane V does not determine)
+    /// the logarithm is not unique: a Euclidean V gets one of them (as [`Rotor::log`]); in
+    /// other signatures this point returns [`AlgebraError::NoLogarithm`]. So does
+    /// V = −exp(B′) for a simple boost B′: in Cl(1, 3) it has the logarithms B′ ± π B̂′I (the
+    /// dual plane of a boost is a rotation plane commuting with it), both on the cut, and
+    /// neither is returned. Near π the logarithm is ill-conditioned: the plane of
+    /// a rotation by π − δ is fixed only by a bivector part of V of size ~δ, so the result
+    /// (and exp(log V) − V, where two planes share the 4-vector part) carries errors
+    /// ~ε/δ; a single plane at π ± 10⁻¹² still gives exp(log V) = V to round-off.
+    ///
+    /// # Errors
+    /// [`AlgebraError::NonFinite`]; [`AlgebraError::NotAVersor`] if V has odd grades or
+    /// max |V Ṽ − 1| exceeds [`VERSOR_TOLERANCE`] · max(1, max |Vᵢ|²) (or that bound
+    /// overflows); [`AlgebraError::Overflow`] if a projective logarithm exceeds `f64::MAX`;
+    /// [`AlgebraError::UnsupportedDimension`] for N > 5 in a signature neither Euclidean nor
+    /// projective;
+    /// [`AlgebraError::NoLogarithm`] for elements without a real bivector logarithm
+    /// (−exp(B) for a boost B in Cl(1, 1), Cl(2, 1) or Cl(1, 2), −(1 + N) for a light-like
+    /// N in Cl(1, 3), −exp(t) for a translation t in 2D projective GA) and on the branch cut
+    /// at angle π described above (which includes −exp(B) for a boost B in Cl(1, 3)).
+    ///
+    /// ```
+    /// use rotorflow::algebra::{Multivector, Signature};
+    /// let pga = Signature::new(3, 0, 1)?;
+    /// // A screw: rotation in e12 and translation along e3 (e34).
+    /// let b = &Multivector::blade_by_name(pga, "e12", 0.4)?
+    ///     + &Multivector::blade_by_name(pga, "e34", -1.5)?;
+    /// let back = b.exp()?.log()?;
+    /// assert!((&back - &b).max_abs() < 1e-15);
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
+    pub fn log(&self) -> Result<Multivector, AlgebraError> {
+        check_finite(self.as_slice(), "versor")?;
+        let odd = self.odd().max_abs();
+        if odd != 0.0 {
+            return Err(AlgebraError::NotAVersor {
+                reason: "it has odd grades",
+                deviation: odd,
+            });
+        }
+        let mut vv = self.geometric(&self.reverse());
+        vv.as_mut_slice()[0] -= 1.0;
+        let deviation = vv.max_abs();
+        let scale = self.max_abs().powi(2).max(1.0);
+        if !scale.is_finite() {
+            return Err(AlgebraError::NotAVersor {
+                reason: "V Ṽ overflows f64",
+                deviation,
+            });
+        }
+        if !within(deviation, VERSOR_TOLERANCE * scale) {
+            return Err(AlgebraError::NotAVersor {
+                reason: "V Ṽ is not 1",
+                deviation,
+            });
+        }
+        let sig = self.signature();
+        if sig.is_euclidean() {
+            let b = Rotor::from_multivector_unchecked(self).log();
+            return Ok(Multivector::from(&b));
+        }
+        if is_projective(sig) {
+            let out = log_projective(self)?;
+            return if out.as_slice().iter().all(|c| c.is_finite()) {
+                Ok(out)
+            } else {
+                Err(AlgebraError::Overflow {
+                    what: "the logarithm",
+                })
+            };
+        }
+        if self.dim() > CLOSED_FORM_MAX_DIM {
+            return Err(AlgebraError::UnsupportedDimension {
+                operation: "the logarithm",
+                signature: sig,
+                max: CLOSED_FORM_MAX_DIM,
+            });
+        }
+        let out = log_closed_form(self)?;
+        if out.as_slice().iter().all(|c| c.is_finite()) {
+            Ok(refine(self, out))
+        } else {
+            Err(AlgebraError::NoLogarithm {
+                reason: "a rotation by π in a plane the versor does not determine",
+            })
+        }
+    }
+}
+
+/// Projective GA Cl(p, 0, 1): one null vector, the last.
+fn is_projective(sig: super::Signature) -> bool {
+    sig.q() == 0 && sig.r() == 1
+}
+
+/// The Euclidean part A (blades without the null vector e₀) and the translation part t
+/// (B = A + t e₀) of a bivector of Cl(p, 0, 1).
+fn split_projective(b: &Multivector) -> Result<(Bivector, Vec<f64>), AlgebraError> {
+    let p = b.dim() - 1;
+    let null = 1u64 << p;
+    let mut a = Bivector::try_zero(p)?;
+    for i in 0..p {
+        for j in i + 1..p {
+            a.set(i, j, b.coefficient((1 << i) | (1 << j)));
+        }
+    }
+    let t = (0..p).map(|i| b.coefficient((1 << i) | null)).collect();
+    Ok((a, t))
+}
+
+/// Applies φ(X) = Σ Xᵏ/(k+1)! = ∫₀¹ expm(sX) ds, X = 2\[A\]ᵀ, to t (or its inverse), plane by
+/// plane: on the plane of θ u∧v (α = 2θ) φ = (sin α/α) 1 + ((1 − cos α)/α²) X, and the
+/// identity on the complement.
+fn phi_projective(a: &Bivector, t: &[f64], inverse: bool) -> Result<Vec<f64>, AlgebraError> {
+    let mut out = t.to_vec();
+    let tv = super::Vector::from_components(t)?;
+    for plane in a.decompose().planes() {
+        let alpha = 2.0 * plane.magnitude();
+        let (u, v) = (plane.u(), plane.v());
+        let (cu, cv) = (tv.dot(u), tv.dot(v));
+        let tk: Vec<f64> = (0..t.len()).map(|i| cu * u[i] + cv * v[i]).collect();
+        let tkv = super::Vector::from_components(&tk)?;
+        let xt = tkv.left_contract(&plane.bivector());
+        let half = 0.5 * alpha;
+        let ca = alpha.sin() / alpha;
+        let cb = 2.0 * (half.sin() / alpha).powi(2);
+        let (ka, kb) = if inverse {
+            let den = ca * ca + cb * cb * alpha * alpha;
+            if den.is_nan() || den <= 1e-30 {
+                return Err(AlgebraError::NoLogarithm {
+                    reason: "a rotation by π in a plane the versor does not determine",
+                });
+            }
+            (ca / den, -cb / den)
+        } else {
+            (ca, cb)
+        };
+        for i in 0..t.len() {
+            out[i] += (ka - 1.0) * tk[i] + kb * 2.0 * xt[i];
+        }
+    }
+    Ok(out)
+}
+
+/// exp in Cl(p, 0, 1), any p: with B = A + t e₀ (e₀ commutes with the even Euclidean part,
+/// and any product with two factors e₀ vanishes), exp(B) = exp(A) (1 + u e₀) with
+/// u = ∫₀¹ exp(−sA) t exp(sA) ds = φ(2\[A\]ᵀ) t.
+fn exp_projective(b: &Multivector) -> Result<Multivector, AlgebraError> {
+    let sig = b.signature();
+    let p = b.dim() - 1;
+    let null = 1u64 << p;
+    let (a, t) = split_projective(b)?;
+    let r = a.try_exp()?.to_multivector();
+    let u = phi_projective(&a, &t, false)?;
+    let mut rm = Multivector::zero(sig);
+    for (k, c) in r.terms() {
+        rm.as_mut_slice()[k as usize] = c;
+    }
+    let mut um = Multivector::zero(sig);
+    for (i, c) in u.iter().enumerate() {
+        um.as_mut_slice()[((1u64 << i) | null) as usize] = *c;
+    }
+    Ok(&rm + &rm.geometric(&um))
+}
+
+/// log in Cl(p, 0, 1), any p: V = R + R U with R the Euclidean part (a rotor) and U = u e₀;
+/// A = log R ([`Rotor::log`]) and t = φ(2\[A\]ᵀ)⁻¹ u.
+fn log_projective(v: &Multivector) -> Result<Multivector, AlgebraError> {
+    let sig = v.signature();
+    let p = v.dim() - 1;
+    let null = 1u64 << p;
+    let mut re = Multivector::try_zero(super::Signature::euclidean(p))?;
+    let mut rm = Multivector::zero(sig);
+    let mut vn = Multivector::zero(sig);
+    for (k, c) in v.terms() {
+        if k & null == 0 {
+            re.as_mut_slice()[k as usize] = c;
+            rm.as_mut_slice()[k as usize] = c;
+        } else {
+            vn.as_mut_slice()[k as usize] = c;
+        }
+    }
+    let a = Rotor::from_multivector_unchecked(&re).log();
+    let um = rm.reverse().geometric(&vn);
+    let u: Vec<f64> = (0..p).map(|i| um.coefficient((1 << i) | null)).collect();
+    let t = phi_projective(&a, &u, true)?;
+    let mut out = Multivector::zero(sig);
+    for (i, j) in super::pairs(p) {
+        out.as_mut_slice()[((1u64 << i) | (1u64 << j)) as usize] = a.get(i, j);
+    }
+    for (i, c) in t.iter().enumerate() {
+        out.as_mut_slice()[((1u64 << i) | null) as usize] = *c;
+    }
+    Ok(out)
+}
+
+/// Err(NotABivector) naming the grades other than 2.
+fn check_bivector(m: &Multivector, operation: &'static str) -> Result<(), AlgebraError> {
+    let grades: Vec<usize> = m.grades().into_iter().filter(|&k| k != 2).collect();
+    if grades.is_empty() {
+        Ok(())
+    } else {
+        Err(AlgebraError::NotABivector { operation, grades })
+    }
+}
+
+/// sinh(s z′)/z′ = s · sinhc(s z′), with the limit s at z′ = 0.
+fn shs(z: C64, s: f64) -> C64 {
+    if z == C64::new(0.0, 0.0) {
+        C64::new(s, 0.0)
+    } else {
+        (z * s).sinh() / z
+    }
+}
+
+/// m scaled by 2^e coefficient by coefficient (exact barring overflow and underflow).
+fn scaled(m: &Multivector, e: i32) -> Multivector {
+    let mut out = m.clone();
+    for c in out.as_mut_slice() {
+        *c = crate::numeric::ldexp(*c, e);
+    }
+    out
+}
+
+/// The closed form of the module documentation, for a non-zero bivector of N ≤ 5.
+fn exp_closed_form(b: &Multivector) -> Multivector {
+    let sig = b.signature();
+    // The scale: in Cl(p, q, 1) only the blades without the null vector enter B², B∧B's
+    // square and B (B∧B) quadratically (a product of two blades that both hold the null
+    // vector vanishes), so a huge translation must not set the scale of a small rotation.
+    let m = if sig.r() == 1 {
+        let null = 1u64 << (sig.dim() - 1);
+        b.terms()
+            .filter(|(k, _)| k & null == 0)
+            .fold(0.0f64, |m, (_, c)| m.max(c.abs()))
+    } else {
+        b.max_abs()
+    };
+    if m == 0.0 {
+        // Every term holds the null vector (or B = 0): B² = 0.
+        return &Multivector::scalar(sig, 1.0) + b;
+    }
+    // B = s B′ with s = 2^e and max |B′| in [1, 2) over the blades above.
+    let e = crate::numeric::exponent_of(m);
+    let s = crate::numeric::ldexp(1.0, e);
+    let bp = scaled(b, -e);
+    let b2 = bp.geometric(&bp);
+    let sigma = b2.scalar_part();
+    let w = b2.grade(4);
+    let w2 = w.geometric(&w).scalar_part();
+    let delta2 = 0.25 * w2;
+    // Roots λ′ of λ² − σλ + δ² (scaled by s²), the larger first, without squaring σ/2 or
+    // δ (which could underflow).
+    let h = 0.5 * sigma;
+    let d = delta2.abs().sqrt();
+    let lambda1 = if delta2 < 0.0 {
+        let r = h.hypot(d);
+        C64::new(h + r.copysign(h), 0.0)
+    } else if h.abs() >= d {
+        let r = (h.abs() - d).sqrt() * (h.abs() + d).sqrt();
+        C64::new(h + r.copysign(h), 0.0)
+    } else {
+        C64::new(h, (d - h.abs()).sqrt() * (d + h.abs()).sqrt())
+    };
+    let delta = C64::new(delta2, 0.0).sqrt();
+    let x = lambda1.sqrt();
+    // x y = δ fixes the pairing (the formula is even in y).
+    let y = if x == C64::new(0.0, 0.0) {
+        C64::new(0.0, 0.0)
+    } else {
+        delta / x
+    };
+    let (xu, yu) = (x * s, y * s);
+    let cterm = (xu.cosh() * yu.cosh()).re;
+    let wterm = 0.5 * (shs(x, s) * shs(y, s)).re;
+    let fterm = 0.5 * (shs(x + y, s) + shs(x - y, s)).re;
+    // H s³ with H = h[a, b], in the form without cancellation.
+    let hterm = if xu.norm() <= 1.0 {
+        // Series: h[a, b] = Σ_{k≥1} h_{k−1}(a, b)/(2k+1)!, hₘ the complete homogeneous
+        // polynomials: h₀ = 1, h₁ = a + b, hₘ = (a + b) hₘ₋₁ − ab hₘ₋₂.
+        let su = sigma * s * s;
+        let e1 = 2.0 * su;
+        let e2 = su * su - 4.0 * delta2 * s * s * s * s;
+        let (mut hm2, mut hm1) = (0.0, 1.0);
+        let mut fact = 6.0; // (2k+1)! at k = 1
+        let mut sum = 0.0;
+        for k in 1..=30 {
+            sum += hm1 / fact;
+            let next = e1 * hm1 - e2 * hm2;
+            hm2 = hm1;
+            hm1 = next;
+            fact *= ((2 * k + 2) * (2 * k + 3)) as f64;
+        }
+        // multiplied by s³ below, stepwise
+        C64::new(sum, 0.0)
+    } else if yu.norm() <= 0.5 * xu.norm() {
+        (xu.cosh() * shs(y, s) - shs(x, s) * yu.cosh()) / ((x * x - y * y) * 2.0)
+    } else {
+        (shs(x + y, s) - shs(x - y, s)) / (x * y * 4.0)
+    };
+    let series = xu.norm() <= 1.0;
+    let mut out = Multivector::scalar(sig, cterm);
+    out = &out + &(&w * wterm);
+    out = &out + &(&bp * fterm);
+    let bw = bp.geometric(&w).grade(2);
+    if bw.max_abs() != 0.0 {
+        // H s³ B′W′, scaled stepwise so that no intermediate overflows when the result
+        // does not.
+        let mut t = &bw * hterm.re;
+        if series {
+            for _ in 0..3 {
+                t = &t * s;
+            }
+        }
+        out = &out + &t;
+    }
+    out
+}
+
+/// g(ζ) = ζ / sinh ζ and g′ = dg/d(cosh ζ) = (sinh ζ − ζ cosh ζ)/sinh³ζ for cosh ζ = c and
+/// sinh²ζ = s2, on the principal branch (Re ζ ≥ 0 after the sign choice, Im ζ ∈ (−π, π]).
+fn log_factor(c: C64, s2: C64) -> (C64, C64) {
+    let one = C64::new(1.0, 0.0);
+    let mut s = s2.sqrt();
+    if (c.conj() * s).re < 0.0 {
+        s = -s;
+    }
+    // C − 1 = sinh²ζ/(C + 1) where C + 1 is not small.
+    let cm1 = if c.re >= 0.0 { s2 / (c + one) } else { c - one };
+    let w = cm1 + s; // exp(ζ) − 1
+    let zeta = C64::new(
+        0.5 * (2.0 * w.re + w.norm_sqr()).ln_1p(),
+        w.im.atan2(1.0 + w.re),
+    );
+    let z = zeta * zeta;
+    if zeta.norm() < 1e-4 {
+        let g = one - z / 6.0 + z * z * (7.0 / 360.0);
+        let gp = C64::new(-1.0 / 3.0, 0.0) + z * (2.0 / 15.0) - z * z * (2.0 / 63.0);
+        return (g, gp);
+    }
+    let g = zeta / s;
+    let num = if zeta.norm() < 1.0 {
+        // sinh ζ − ζ cosh ζ = −Σ_{k≥1} 2k ζ^(2k+1)/(2k+1)!
+        let mut term = zeta;
+        let mut fact = 1.0;
+        let mut sum = C64::new(0.0, 0.0);
+        for k in 1..=14 {
+            term *= z;
+            fact *= ((2 * k) * (2 * k + 1)) as f64;
+            sum -= term * (2.0 * k as f64 / fact);
+        }
+        sum
+    } else {
+        s - zeta * c
+    };
+    (g, num / (s * s * s))
+}
+
+/// One correction step B ← B + ⟨exp(B)~ V⟩₂, kept only if it lowers the residual
+/// max |exp(B) − V|. The closed form's error lies mostly in the commutative algebra of B (the
+/// directions v and Q v), where exp(B + δ) = exp(B) exp(δ) and the step removes it.
+fn refine(v: &Multivector, b: Multivector) -> Multivector {
+    let Ok(e0) = exp_nonzero(&b) else {
+        return b;
+    };
+    let r0 = (&e0 - v).max_abs();
+    if r0 == 0.0 {
+        return b;
+    }
+    let delta = e0.reverse().geometric(v).grade(2);
+    let b1 = &b + &delta;
+    match exp_nonzero(&b1) {
+        Ok(e1) if (&e1 - v).max_abs() < r0 => b1,
+        _ => b,
+    }
+}
+
+/// exp for the refinement: the closed form, or an error on overflow.
+fn exp_nonzero(b: &Multivector) -> Result<Multivector, ()> {
+    let e = exp_closed_form(b);
+    if e.as_slice().iter().all(|c| c.is_finite()) {
+        Ok(e)
+    } else {
+        Err(())
+    }
+}
+
+/// Returns Err unless g is real (to round-off).
+fn real_factor(g: C64) -> Result<f64, AlgebraError> {
+    if g.re.is_finite() && g.im.abs() <= 1e-10 * g.re.abs().max(1.0) {
+        Ok(g.re)
+    } else if !g.re.is_finite() || !g.im.is_finite() {
+        Err(AlgebraError::NoLogarithm {
+            reason: "a rotation by π in a plane the versor does not determine",
+        })
+    } else {
+        Err(AlgebraError::NoLogarithm {
+            reason: "it is −exp(B) for a boost or null B",
+        })
+    }
+}
+
+/// The logarithm of an even versor of N ≤ 5 in a non-Euclidean signature.
+fn log_closed_form(v: &Multivector) -> Result<Multivector, AlgebraError> {
+    let c = v.scalar_part();
+    let bv = v.grade(2);
+    let q = v.grade(4);
+    let qq: f64 = q.as_slice().iter().map(|x| x * x).sum();
+    let kappa = q.geometric(&q).scalar_part();
+    if qq == 0.0 || kappa.abs() <= 1e-20 * qq {
+        // Dual numbers (Q² = 0): B = g(c) v + g′(c) Q v.
+        let s2 = bv.geometric(&bv).scalar_part();
+        let (g, gp) = log_factor(C64::new(c, 0.0), C64::new(s2, 0.0));
+        let g = real_factor(g)?;
+        let mut out = &bv * g;
+        if qq != 0.0 {
+            let gp = real_factor(gp)?;
+            out = &out + &(&q.geometric(&bv).grade(2) * gp);
+        }
+        return Ok(out);
+    }
+    let p = kappa.abs().sqrt();
+    let j = &q * (1.0 / p);
+    let vj = bv.geometric(&j).grade(2);
+    if kappa > 0.0 {
+        // Split-complex: the idempotents (1 ± J)/2 give two real factors.
+        let vp = &(&bv + &vj) * 0.5;
+        let vm = &(&bv - &vj) * 0.5;
+        let sp = 2.0 * vp.geometric(&vp).scalar_part();
+        let sm = 2.0 * vm.geometric(&vm).scalar_part();
+        let gp = real_factor(log_factor(C64::new(c + p, 0.0), C64::new(sp, 0.0)).0)?;
+        let gm = real_factor(log_factor(C64::new(c - p, 0.0), C64::new(sm, 0.0)).0)?;
+        Ok(&(&vp * gp) + &(&vm * gm))
+    } else {
+        // Complex: J² = −1 plays i.
+        let v2 = bv.geometric(&bv);
+        let beta = -v2.grade(4).geometric(&j).scalar_part();
+        let (g, _) = log_factor(C64::new(c, p), C64::new(v2.scalar_part(), beta));
+        if !(g.re.is_finite() && g.im.is_finite()) {
+            return Err(AlgebraError::NoLogarithm {
+                reason: "a rotation by π in a plane the versor does not determine",
+            });
+        }
+        Ok(&(&bv * g.re) + &(&vj * g.im))
+    }
+}
