@@ -268,6 +268,21 @@ pub enum AlgebraError {
         /// What overflowed.
         what: &'static str,
     },
+    /// An even element is too far from its versor group for a normalisation to mean
+    /// anything.
+    ///
+    /// How to fix: normalisation removes round-off drift; an element this far away was not
+    /// a versor to begin with (check how it was built), or pass a larger tolerance to
+    /// [`super::Multivector::try_normalize_versor_eps`].
+    #[error(
+        "element is too far from its versor group to normalise: max |M M̃ − 1| = {distance:e} exceeds the tolerance {tolerance:e}"
+    )]
+    VersorFarFromGroup {
+        /// The measured distance max |M M̃ − 1|.
+        distance: f64,
+        /// The tolerance that was applied.
+        tolerance: f64,
+    },
 }
 
 /// value ≤ tolerance, and false when either is NaN: a NaN measure or tolerance never passes.
