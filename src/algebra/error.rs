@@ -283,6 +283,37 @@ pub enum AlgebraError {
         /// The tolerance that was applied.
         tolerance: f64,
     },
+    /// The operation needs another kind of algebra (for example projective Cl(N, 0, 1)).
+    ///
+    /// How to fix: build the element in the algebra named in the message.
+    #[error("{operation} needs {expected}, got {signature}")]
+    WrongSignature {
+        /// The operation.
+        operation: &'static str,
+        /// The algebras it accepts.
+        expected: &'static str,
+        /// The signature that was given.
+        signature: Signature,
+    },
+    /// A projective point has zero weight (a point at infinity, a direction), so it has no
+    /// Euclidean coordinates.
+    ///
+    /// How to fix: a join or meet of parallel elements gives such a point; test the weight
+    /// first, or read the direction from the multivector.
+    #[error("the point is at infinity (weight {weight:e}) and has no Euclidean coordinates")]
+    PointAtInfinity {
+        /// The weight, the e₁…N coefficient.
+        weight: f64,
+    },
+    /// A homogeneous matrix does not end in the row (0, …, 0, 1).
+    ///
+    /// How to fix: a rigid motion's (N+1)×(N+1) matrix is \[\[Q, t\], \[0, 1\]\]; divide by
+    /// the corner entry if the matrix is only scaled.
+    #[error("matrix is not homogeneous: its last row differs from (0, …, 0, 1) by {deviation:e}")]
+    NotHomogeneous {
+        /// max |last row − (0, …, 0, 1)|.
+        deviation: f64,
+    },
 }
 
 /// value ≤ tolerance, and false when either is NaN: a NaN measure or tolerance never passes.

@@ -66,10 +66,12 @@ mod error;
 mod multivector;
 mod nalgebra;
 mod ops;
+pub mod pga;
 mod rotor;
 #[cfg(feature = "serde")]
 mod serde_impls;
 mod signature;
+pub mod sta;
 mod vector;
 mod versor;
 mod versor_sqrt;
