@@ -2,8 +2,8 @@
 //! (rigid motions), thin typed wrappers over [`Multivector`].
 //!
 //! # The plane-based model
-//! In projective GA (Gunn, "Geometric algebras for Euclidean geometry", 2017; De Keninck &
-//! Dorst, "Geometric algebra for computer graphics", SIGGRAPH course 2019) the vectors of
+//! In projective GA (Gunn, "Geometric algebras for Euclidean geometry", 2017; Gunn &
+//! De Keninck, "Geometric algebra for computer graphics", SIGGRAPH course, 2019) the vectors of
 //! Cl(N, 0, 1) are hyperplanes (planes in 3D, lines in 2D), the N-vectors are points, and the
 //! even versors (motors) are the rigid motions, acting on every element by the sandwich
 //! X ↦ M X M̃. The outer product ∧ intersects (the **meet**: two planes meet in a line), the
@@ -310,7 +310,8 @@ impl Motor {
     /// # Errors
     /// [`AlgebraError::WrongSignature`]; [`AlgebraError::NonFinite`];
     /// [`AlgebraError::NotAVersor`] for odd grades or max |M M̃ − 1| above
-    /// [`VERSOR_TOLERANCE`] (normalise drift with [`Multivector::normalize_versor`]).
+    /// [`VERSOR_TOLERANCE`] · max(1, max |Mᵢ|²) (normalise drift with
+    /// [`Multivector::normalize_versor`]).
     pub fn new(m: Multivector) -> Result<Motor, AlgebraError> {
         euclidean_dim(m.signature(), "a motor")?;
         check_finite(m.as_slice(), "motor")?;
@@ -324,7 +325,7 @@ impl Motor {
         let mut mm = m.geometric(&m.reverse());
         mm.as_mut_slice()[0] -= 1.0;
         let deviation = mm.max_abs();
-        if !within(deviation, VERSOR_TOLERANCE) {
+        if !within(deviation, VERSOR_TOLERANCE * m.max_abs().powi(2).max(1.0)) {
             return Err(AlgebraError::NotAVersor {
                 reason: "M M̃ is not 1",
                 deviation,
@@ -385,6 +386,25 @@ impl Motor {
     pub fn from_rotation_translation(r: &Rotor, t: &[f64]) -> Result<Motor, AlgebraError> {
         super::error::check_same_dim(r.dim(), t.len())?;
         Motor::from_rotor(r)?.then(&Motor::from_translation(t)?)
+    }
+
+    /// The motor exp(B) of a bivector B of Cl(N, 0, 1) (ganja.js's `Exp`, klein's `exp`):
+    /// exp(−½ θ eᵢⱼ) rotates by θ from eᵢ toward eⱼ, exp(−½ t e₀) translates by t.
+    ///
+    /// # Errors
+    /// [`AlgebraError::WrongSignature`]; the errors of [`Multivector::exp`].
+    pub fn from_bivector(b: &Multivector) -> Result<Motor, AlgebraError> {
+        euclidean_dim(b.signature(), "a motor")?;
+        Ok(Motor(b.exp()?))
+    }
+
+    /// The bivector log M with exp(log M) = M (ganja.js's `Log`, klein's `log`), see
+    /// [`Multivector::log`].
+    ///
+    /// # Errors
+    /// As [`Multivector::log`].
+    pub fn log(&self) -> Result<Multivector, AlgebraError> {
+        self.0.log()
     }
 
     /// The Euclidean dimension N.

@@ -11,7 +11,7 @@
 //! - **normalisation**: M′ = M (M M̃)^(−1/2) satisfies M′ M̃′ = M (M M̃)⁻¹ M̃ = 1 exactly, and
 //!   for 3D PGA reads M′ = M / √s · (1 − p/(2s) e₁₂₃₄), the formula of De Keninck & Dorst,
 //!   "Normalization, square roots, and the exponential and logarithmic maps in geometric
-//!   algebras of less than 6D" (2022), and of Gunn's motor normalisation;
+//!   algebras of less than 6D" (2022);
 //! - **square root**: for V = R² with R = exp(½ log V), 1 + V = R (R + R̃) and R + R̃ is
 //!   central, so R = (1 + V) (2 + V + Ṽ)^(−1/2), the same paper's closed form
 //!   √V = (1 + V)/|1 + V|.

@@ -3,6 +3,7 @@
 //! input and the 3D PGA Study-number formula written out by hand.
 
 use crate::support::*;
+use proptest::prelude::*;
 use rand::Rng;
 use rotorflow::algebra::VERSOR_NORMALIZE_TOLERANCE;
 use rotorflow::prelude::*;
@@ -265,4 +266,60 @@ fn normalize_refuses_far_and_invalid_input() {
     let null = Multivector::blade_by_name(pga, "e14", 1.0).unwrap();
     assert!(null.normalize_versor().is_err());
     assert!(Multivector::zero(sig(5, 0, 0)).normalize_versor().is_err());
+}
+
+/// The signatures of the property tests: every Cl(p, q, r) with N ≤ 5 and r ≤ 1 that has a
+/// bivector.
+fn property_signatures() -> Vec<Signature> {
+    let mut out = Vec::new();
+    for n in 2..=5 {
+        for r in 0..=1usize {
+            for q in 0..=(n - r) {
+                out.push(sig(n - r - q, q, r));
+            }
+        }
+    }
+    out
+}
+
+fn bivector_in(scale: f64) -> impl Strategy<Value = Multivector> {
+    let sigs = property_signatures();
+    (0..sigs.len(), proptest::collection::vec(-scale..scale, 10)).prop_map(move |(k, c)| {
+        let s = sigs[k];
+        let n = s.dim();
+        let mut m = Multivector::zero(s);
+        let mut it = c.into_iter();
+        for i in 0..n {
+            for j in i + 1..n {
+                m.as_mut_slice()[(1 << i) | (1 << j)] = it.next().unwrap();
+            }
+        }
+        m
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(
+        std::env::var("PROPTEST_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(64)
+    ))]
+
+    #[test]
+    fn sqrt_squared_is_v(b in bivector_in(0.7)) {
+        let v = b.exp().unwrap();
+        let h = v.sqrt().unwrap();
+        let err = (&(&h * &h) - &v).max_abs() / v.max_abs().max(1.0);
+        prop_assert!(err < 1e-13, "{}: {err:e}", b.signature());
+        let want = (&b * 0.5).exp().unwrap();
+        prop_assert!((&h - &want).max_abs() < 1e-13 * want.max_abs());
+    }
+
+    #[test]
+    fn normalize_is_on_the_group_and_near(b in bivector_in(1.0), seed in 0u64..1000) {
+        let v = b.exp().unwrap();
+        let delta = random_even(&mut rng(seed), v.signature(), 1e-8);
+        let fixed = (&v + &delta).try_normalize_versor().unwrap();
+        let scale = fixed.max_abs().powi(2).max(1.0);
+        prop_assert!(unit_distance(&fixed) < 4e-15 * scale, "{}", b.signature());
+        prop_assert!((&fixed - &v).max_abs() < 1e-6 * scale);
+    }
 }
