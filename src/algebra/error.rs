@@ -314,6 +314,17 @@ pub enum AlgebraError {
         /// max |last row − (0, …, 0, 1)|.
         deviation: f64,
     },
+    /// A bivector is not a rotation axis: its square is not a negative scalar.
+    ///
+    /// How to fix: give the meet of N − 1 hyperplanes (a line in 3D, a point in 2D); a screw
+    /// (rotation plus translation along the axis) is not simple, use `Multivector::exp`.
+    #[error("not a rotation axis: {reason} (deviation {deviation:e})")]
+    NotAnAxis {
+        /// What failed.
+        reason: &'static str,
+        /// Size of the failure.
+        deviation: f64,
+    },
 }
 
 /// value ≤ tolerance, and false when either is NaN: a NaN measure or tolerance never passes.

@@ -377,6 +377,58 @@ impl Motor {
         Motor::from_rotor(&Rotor::from_plane_angle(n, i, j, angle)?)
     }
 
+    /// The rotation by `angle` about an axis that need not pass through the origin (ganja.js's
+    /// `rotor(line, angle)`): M = cos(θ/2) − sin(θ/2) Â with Â = A/√(−A²), for a simple
+    /// bivector A with A² < 0 (a line of 3D PGA, such as the meet of two planes; a point of
+    /// 2D PGA; in general the meet of N − 1 hyperplanes). The rotation turns in the
+    /// orientation of A's Euclidean part: from eᵢ toward eⱼ for A = eᵢⱼ, and
+    /// counter-clockwise about a 2D point of positive weight.
+    ///
+    /// ```
+    /// use rotorflow::algebra::pga::{Motor, Point};
+    /// // A quarter turn about the 2D point (1, 1) takes (2, 1) to (1, 2).
+    /// let m = Motor::from_axis_angle(Point::new(&[1.0, 1.0])?.as_multivector(), std::f64::consts::FRAC_PI_2)?;
+    /// let x = m.apply_point(&Point::new(&[2.0, 1.0])?)?.coordinates()?;
+    /// assert!((x[0] - 1.0).abs() < 1e-15 && (x[1] - 2.0).abs() < 1e-15);
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`AlgebraError::WrongSignature`]; [`AlgebraError::NonFinite`];
+    /// [`AlgebraError::NotABivector`]; [`AlgebraError::NotAnAxis`] when A² is not a negative
+    /// scalar (A ∧ A ≠ 0 or no rotation part).
+    pub fn from_axis_angle(axis: &Multivector, angle: f64) -> Result<Motor, AlgebraError> {
+        euclidean_dim(axis.signature(), "a rotation axis")?;
+        check_finite(axis.as_slice(), "rotation axis")?;
+        check_finite(&[angle], "rotation angle")?;
+        let grades: Vec<usize> = axis.grades().into_iter().filter(|&k| k != 2).collect();
+        if !grades.is_empty() {
+            return Err(AlgebraError::NotABivector {
+                operation: "a rotation axis",
+                grades,
+            });
+        }
+        let sq = axis.geometric(axis);
+        let norm2 = -sq.scalar_part();
+        if norm2.is_nan() || norm2 <= 0.0 {
+            return Err(AlgebraError::NotAnAxis {
+                reason: "A² is not negative (no rotation part)",
+                deviation: -norm2,
+            });
+        }
+        let wedge = sq.grade(4).max_abs();
+        if !within(wedge, 1e-12 * norm2) {
+            return Err(AlgebraError::NotAnAxis {
+                reason: "A is not simple (A ∧ A ≠ 0)",
+                deviation: wedge / norm2,
+            });
+        }
+        let (s, c) = (0.5 * angle).sin_cos();
+        let mut m = axis * (-s / norm2.sqrt());
+        m.as_mut_slice()[0] = c;
+        Ok(Motor(m))
+    }
+
     /// The motion x ↦ Q x + t: first the rotation of `r`, then the translation by `t`
     /// (M = T R).
     ///

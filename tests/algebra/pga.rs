@@ -364,3 +364,57 @@ fn blade_signs_in_3d_are_pinned() {
     let x = t.apply_point(&p).unwrap().coordinates().unwrap();
     assert_eq!(x, vec![2.0, 3.0, 6.0]);
 }
+
+#[test]
+fn rotation_about_an_axis_off_the_origin() {
+    let mut rng = rng(60);
+    // 2D: about a point c, x ↦ c + Rot(θ)(x − c), counter-clockwise.
+    for _ in 0..50 {
+        let c = coords(&mut rng, 2);
+        let x = coords(&mut rng, 2);
+        let theta = rng.gen_range(-3.0..3.0);
+        let w = rng.gen_range(0.5..2.0); // the weight does not matter
+        let axis = Point::new(&c).unwrap().as_multivector() * w;
+        let m = Motor::from_axis_angle(&axis, theta).unwrap();
+        let got = m
+            .apply_point(&Point::new(&x).unwrap())
+            .unwrap()
+            .coordinates()
+            .unwrap();
+        let (s, co) = theta.sin_cos();
+        let d = [x[0] - c[0], x[1] - c[1]];
+        let want = [c[0] + co * d[0] - s * d[1], c[1] + s * d[0] + co * d[1]];
+        assert!(max_diff(&got, &want) < 1e-14);
+    }
+    // 3D: about the line through (1, 2, 0) parallel to e₃ (the meet of x₁ = 1 and x₂ = 2),
+    // oriented so that it turns e₁ toward e₂.
+    let line = meet(
+        &Plane::new(&[1.0, 0.0, 0.0], 1.0).unwrap(),
+        &Plane::new(&[0.0, 1.0, 0.0], 2.0).unwrap(),
+    )
+    .unwrap();
+    assert!(line.coefficient(0b011) > 0.0);
+    let m = Motor::from_axis_angle(&line, 0.4).unwrap();
+    let got = m
+        .apply_point(&Point::new(&[2.0, 2.0, 5.0]).unwrap())
+        .unwrap()
+        .coordinates()
+        .unwrap();
+    let want = [1.0 + 0.4f64.cos(), 2.0 + 0.4f64.sin(), 5.0];
+    assert!(max_diff(&got, &want) < 1e-15, "{got:?}");
+    // A screw axis, a translation and a vector are refused.
+    let pga = Signature::new(3, 0, 1).unwrap();
+    let screw = Multivector::blade_by_name(pga, "e12", 1.0).unwrap()
+        + Multivector::blade_by_name(pga, "e34", 1.0).unwrap();
+    assert!(matches!(
+        Motor::from_axis_angle(&screw, 1.0),
+        Err(AlgebraError::NotAnAxis { .. })
+    ));
+    let shift = Multivector::blade_by_name(pga, "e14", 1.0).unwrap();
+    assert!(matches!(
+        Motor::from_axis_angle(&shift, 1.0),
+        Err(AlgebraError::NotAnAxis { .. })
+    ));
+    let e1 = Multivector::basis_blade(pga, 1);
+    assert!(Motor::from_axis_angle(&e1, 1.0).is_err());
+}
