@@ -18,8 +18,9 @@
 //! # Ok::<(), rotorflow::algebra::AlgebraError>(())
 //! ```
 
-use super::error::check_finite;
-use super::{AlgebraError, Multivector, Signature};
+use super::error::{check_finite, within};
+use super::{AlgebraError, Multivector, Signature, VERSOR_TOLERANCE};
+use nalgebra::DMatrix;
 
 /// The spacetime algebra Cl(1, 3) (e₁ time, e₂ e₃ e₄ space).
 pub fn spacetime() -> Signature {
@@ -61,4 +62,56 @@ pub fn boost(rapidity: f64, direction: &[f64]) -> Result<Multivector, AlgebraErr
         v.as_mut_slice()[1 | (1 << (k + 1))] = -s * nk / len;
     }
     Ok(v)
+}
+
+/// The 4×4 Lorentz matrix Λ of an even versor V of Cl(1, 3): column k holds the components
+/// of V e_(k+1) Ṽ, so Λ x is V x Ṽ on the components (t, x, y, z) along e₁, e₂, e₃, e₄.
+///
+/// ```
+/// use rotorflow::algebra::sta;
+/// let l = sta::lorentz_matrix(&sta::boost(0.5, &[0.0, 0.0, 1.0])?)?;
+/// assert!((l[(0, 0)] - 0.5f64.cosh()).abs() < 1e-15);
+/// assert!((l[(3, 0)] - 0.5f64.sinh()).abs() < 1e-15);
+/// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+/// ```
+///
+/// # Errors
+/// [`AlgebraError::WrongSignature`] outside Cl(1, 3); [`AlgebraError::NonFinite`];
+/// [`AlgebraError::NotAVersor`] for odd grades or max |V Ṽ − 1| above
+/// [`VERSOR_TOLERANCE`] · max(1, max |Vᵢ|²).
+pub fn lorentz_matrix(v: &Multivector) -> Result<DMatrix<f64>, AlgebraError> {
+    if v.signature() != spacetime() {
+        return Err(AlgebraError::WrongSignature {
+            operation: "a Lorentz matrix",
+            expected: "the spacetime algebra Cl(1, 3)",
+            signature: v.signature(),
+        });
+    }
+    check_finite(v.as_slice(), "versor")?;
+    let odd = v.odd().max_abs();
+    if odd != 0.0 {
+        return Err(AlgebraError::NotAVersor {
+            reason: "it has odd grades",
+            deviation: odd,
+        });
+    }
+    let mut vv = v.geometric(&v.reverse());
+    vv.as_mut_slice()[0] -= 1.0;
+    let deviation = vv.max_abs();
+    if !within(deviation, VERSOR_TOLERANCE * v.max_abs().powi(2).max(1.0)) {
+        return Err(AlgebraError::NotAVersor {
+            reason: "V Ṽ is not 1",
+            deviation,
+        });
+    }
+    let rev = v.reverse();
+    let mut l = DMatrix::zeros(4, 4);
+    for k in 0..4 {
+        let e = Multivector::basis_blade(spacetime(), 1 << k);
+        let moved = v.geometric(&e).geometric(&rev);
+        for i in 0..4 {
+            l[(i, k)] = moved.coefficient(1 << i);
+        }
+    }
+    Ok(l)
 }

@@ -418,3 +418,35 @@ fn rotation_about_an_axis_off_the_origin() {
     let e1 = Multivector::basis_blade(pga, 1);
     assert!(Motor::from_axis_angle(&e1, 1.0).is_err());
 }
+
+#[test]
+fn lorentz_matrix_of_versors() {
+    let mut rng = rng(61);
+    let st = sta::spacetime();
+    // The metric diag(1, −1, −1, −1) is preserved: Λᵀ η Λ = η.
+    let eta = DMatrix::from_diagonal(&DVector::from_vec(vec![1.0, -1.0, -1.0, -1.0]));
+    for _ in 0..100 {
+        let phi = rng.gen_range(-2.0..2.0);
+        let raw = coords(&mut rng, 3);
+        let len = dot(&raw, &raw).sqrt();
+        let n = [raw[0] / len, raw[1] / len, raw[2] / len];
+        let boost = sta::boost(phi, &raw).unwrap();
+        let l = sta::lorentz_matrix(&boost).unwrap();
+        assert!(max_abs_diff(&l, &lorentz(phi, &n)) < 1e-14 * phi.cosh());
+        // A general Lorentz versor: boost times rotation, matrices multiply.
+        let mut b = Multivector::zero(st);
+        for (mask, c) in [(0b0110u64, 1.0), (0b1010, -0.4), (0b1100, 0.7)] {
+            b.as_mut_slice()[mask as usize] = c * rng.gen_range(-1.0..1.0);
+        }
+        let rot = b.exp().unwrap();
+        let both = sta::lorentz_matrix(&(&boost * &rot)).unwrap();
+        let prod = &l * sta::lorentz_matrix(&rot).unwrap();
+        assert!(max_abs_diff(&both, &prod) < 1e-13 * phi.cosh());
+        assert!(
+            max_abs_diff(&(both.transpose() * &eta * &both), &eta) < 1e-13 * phi.cosh().powi(2)
+        );
+    }
+    let pga = Signature::new(3, 0, 1).unwrap();
+    assert!(sta::lorentz_matrix(&Multivector::scalar(pga, 1.0)).is_err());
+    assert!(sta::lorentz_matrix(&Multivector::scalar(st, 2.0)).is_err());
+}
