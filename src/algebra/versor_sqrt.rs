@@ -150,7 +150,8 @@ impl Multivector {
                 return Ok(times_central(&one_plus, x, y, mask));
             }
         }
-        (&self.log()? * 0.5).exp()
+        let r = (&self.log()? * 0.5).exp()?;
+        Ok(polish_sqrt(self, r))
     }
 
     /// Returns the even versor nearest to a drifted one: M (M M̃)^(−1/2), so that the result
@@ -269,6 +270,26 @@ impl Multivector {
             });
         }
         self.normalize_versor()
+    }
+}
+
+/// One Newton step for R² = V from R ≈ √V: with R̃ V R̃ = 1 + δ (δ small, R and V
+/// commuting), R (1 + δ/2) squares to V up to O(δ²); the step is kept, renormalised, only if
+/// it lowers max |R² − V|.
+fn polish_sqrt(v: &Multivector, r: Multivector) -> Multivector {
+    let residual = |x: &Multivector| (&x.geometric(x) - v).max_abs();
+    let r0 = residual(&r);
+    if r0 == 0.0 {
+        return r;
+    }
+    let rr = r.reverse();
+    let mut delta = rr.geometric(v).geometric(&rr);
+    delta.as_mut_slice()[0] -= 1.0;
+    let mut step = &delta * 0.5;
+    step.as_mut_slice()[0] += 1.0;
+    match r.geometric(&step).normalize_versor() {
+        Ok(r1) if residual(&r1) < r0 => r1,
+        _ => r,
     }
 }
 
