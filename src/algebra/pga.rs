@@ -325,7 +325,9 @@ impl Motor {
         let mut mm = m.geometric(&m.reverse());
         mm.as_mut_slice()[0] -= 1.0;
         let deviation = mm.max_abs();
-        if !within(deviation, VERSOR_TOLERANCE * m.max_abs().powi(2).max(1.0)) {
+        if !deviation.is_finite()
+            || !within(deviation, VERSOR_TOLERANCE * m.max_abs().powi(2).max(1.0))
+        {
             return Err(AlgebraError::NotAVersor {
                 reason: "M M̃ is not 1",
                 deviation,

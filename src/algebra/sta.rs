@@ -98,7 +98,8 @@ pub fn lorentz_matrix(v: &Multivector) -> Result<DMatrix<f64>, AlgebraError> {
     let mut vv = v.geometric(&v.reverse());
     vv.as_mut_slice()[0] -= 1.0;
     let deviation = vv.max_abs();
-    if !within(deviation, VERSOR_TOLERANCE * v.max_abs().powi(2).max(1.0)) {
+    if !deviation.is_finite() || !within(deviation, VERSOR_TOLERANCE * v.max_abs().powi(2).max(1.0))
+    {
         return Err(AlgebraError::NotAVersor {
             reason: "V Ṽ is not 1",
             deviation,

@@ -126,12 +126,14 @@ impl Multivector {
     /// [`AlgebraError::NonFinite`]; [`AlgebraError::NotAVersor`] if V has odd grades or
     /// max |V Ṽ − 1| exceeds [`VERSOR_TOLERANCE`] · max(1, max |Vᵢ|²); and the errors of
     /// [`Multivector::log`] where the general route is taken (no real logarithm, N > 5 in a
-    /// non-Euclidean signature).
+    /// non-Euclidean signature); [`AlgebraError::Overflow`] if a coefficient of the result
+    /// overflows.
     pub fn sqrt(&self) -> Result<Multivector, AlgebraError> {
         check_even(self, "versor")?;
         let deviation = unit_distance(self);
         let scale = self.max_abs().powi(2).max(1.0);
-        if !within(deviation, VERSOR_TOLERANCE * scale) {
+        // A non-finite V Ṽ (coefficients beyond √f64::MAX) is never accepted.
+        if !deviation.is_finite() || !within(deviation, VERSOR_TOLERANCE * scale) {
             return Err(AlgebraError::NotAVersor {
                 reason: "V Ṽ is not 1",
                 deviation,
@@ -147,11 +149,11 @@ impl Multivector {
             };
             if let Some((x, y)) = inv_sqrt_central(a, b, eps, 0.5) {
                 let one_plus = &Multivector::scalar(self.signature(), 1.0) + self;
-                return Ok(times_central(&one_plus, x, y, mask));
+                return finite(times_central(&one_plus, x, y, mask));
             }
         }
         let r = (&self.log()? * 0.5).exp()?;
-        Ok(polish_sqrt(self, r))
+        finite(polish_sqrt(self, r))
     }
 
     /// Returns the even versor nearest to a drifted one: M (M M̃)^(−1/2), so that the result
@@ -185,10 +187,13 @@ impl Multivector {
     /// # Errors
     /// [`AlgebraError::NonFinite`]; [`AlgebraError::NotAVersor`] for odd grades, or when
     /// M M̃ has no positive square root (a zero or null element, or one that is no multiple
-    /// of a versor).
+    /// of a versor); [`AlgebraError::Overflow`] when M M̃ or the result overflows f64.
     pub fn normalize_versor(&self) -> Result<Multivector, AlgebraError> {
         check_even(self, "versor")?;
         let mm = self.geometric(&self.reverse());
+        if mm.as_slice().iter().any(|c| !c.is_finite()) {
+            return Err(AlgebraError::Overflow { what: "M M̃" });
+        }
         let no_root = AlgebraError::NotAVersor {
             reason: "M M̃ has no positive square root",
             deviation: unit_distance(self),
@@ -299,7 +304,7 @@ fn finite(m: Multivector) -> Result<Multivector, AlgebraError> {
         Ok(m)
     } else {
         Err(AlgebraError::Overflow {
-            what: "the normalised versor",
+            what: "the square root or normalisation of the versor",
         })
     }
 }

@@ -449,4 +449,8 @@ fn lorentz_matrix_of_versors() {
     let pga = Signature::new(3, 0, 1).unwrap();
     assert!(sta::lorentz_matrix(&Multivector::scalar(pga, 1.0)).is_err());
     assert!(sta::lorentz_matrix(&Multivector::scalar(st, 2.0)).is_err());
+    // V Ṽ overflows: refused, not accepted against an infinite tolerance.
+    let huge = Multivector::scalar(st, 1e200);
+    assert!(sta::lorentz_matrix(&huge).is_err());
+    assert!(Motor::new(Multivector::scalar(pga, 1e200)).is_err());
 }
