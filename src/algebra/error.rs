@@ -268,6 +268,63 @@ pub enum AlgebraError {
         /// What overflowed.
         what: &'static str,
     },
+    /// An even element is too far from its versor group for a normalisation to mean
+    /// anything.
+    ///
+    /// How to fix: normalisation removes round-off drift; an element this far away was not
+    /// a versor to begin with (check how it was built), or pass a larger tolerance to
+    /// [`super::Multivector::try_normalize_versor_eps`].
+    #[error(
+        "element is too far from its versor group to normalise: max |M M̃ − 1| = {distance:e} exceeds the tolerance {tolerance:e}"
+    )]
+    VersorFarFromGroup {
+        /// The measured distance max |M M̃ − 1|.
+        distance: f64,
+        /// The tolerance that was applied.
+        tolerance: f64,
+    },
+    /// The operation needs another kind of algebra (for example projective Cl(N, 0, 1)).
+    ///
+    /// How to fix: build the element in the algebra named in the message.
+    #[error("{operation} needs {expected}, got {signature}")]
+    WrongSignature {
+        /// The operation.
+        operation: &'static str,
+        /// The algebras it accepts.
+        expected: &'static str,
+        /// The signature that was given.
+        signature: Signature,
+    },
+    /// A projective point has zero weight (a point at infinity, a direction), so it has no
+    /// Euclidean coordinates.
+    ///
+    /// How to fix: a join or meet of parallel elements gives such a point; test the weight
+    /// first, or read the direction from the multivector.
+    #[error("the point is at infinity (weight {weight:e}) and has no Euclidean coordinates")]
+    PointAtInfinity {
+        /// The weight, the e₁…N coefficient.
+        weight: f64,
+    },
+    /// A homogeneous matrix does not end in the row (0, …, 0, 1).
+    ///
+    /// How to fix: a rigid motion's (N+1)×(N+1) matrix is \[\[Q, t\], \[0, 1\]\]; divide by
+    /// the corner entry if the matrix is only scaled.
+    #[error("matrix is not homogeneous: its last row differs from (0, …, 0, 1) by {deviation:e}")]
+    NotHomogeneous {
+        /// max |last row − (0, …, 0, 1)|.
+        deviation: f64,
+    },
+    /// A bivector is not a rotation axis: its square is not a negative scalar.
+    ///
+    /// How to fix: give the meet of N − 1 hyperplanes (a line in 3D, a point in 2D); a screw
+    /// (rotation plus translation along the axis) is not simple, use `Multivector::exp`.
+    #[error("not a rotation axis: {reason} (deviation {deviation:e})")]
+    NotAnAxis {
+        /// What failed.
+        reason: &'static str,
+        /// Size of the failure.
+        deviation: f64,
+    },
 }
 
 /// value ≤ tolerance, and false when either is NaN: a NaN measure or tolerance never passes.

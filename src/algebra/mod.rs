@@ -66,12 +66,15 @@ mod error;
 mod multivector;
 mod nalgebra;
 mod ops;
+pub mod pga;
 mod rotor;
 #[cfg(feature = "serde")]
 mod serde_impls;
 mod signature;
+pub mod sta;
 mod vector;
 mod versor;
+mod versor_sqrt;
 
 pub(crate) use bivector::commutator_packed;
 pub use bivector::{Bivector, SKEW_TOLERANCE, bivector_len, pair_index, pairs, plane_name};
@@ -83,6 +86,7 @@ pub(crate) use rotor::{accumulate_plane_rotor, plane_tables};
 pub use signature::Signature;
 pub use vector::Vector;
 pub use versor::{CLOSED_FORM_MAX_DIM, VERSOR_TOLERANCE};
+pub use versor_sqrt::VERSOR_NORMALIZE_TOLERANCE;
 
 /// The largest dimension for vectors, bivectors and signatures: a basis blade is a `u64` bit
 /// mask, so N ≤ 64 (wedged makes the same trade-off at 31). Vectors and bivectors store N and

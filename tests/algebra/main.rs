@@ -8,6 +8,8 @@ mod decompose;
 mod exp_log;
 mod multivector;
 mod nalgebra_interop;
+mod pga;
 mod properties;
 mod rotor;
+mod versor_sqrt;
 mod versors;
