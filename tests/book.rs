@@ -46,6 +46,9 @@ mod heavy_top_4d;
 #[path = "../examples/mesh_body.rs"]
 mod mesh_body;
 #[allow(dead_code)]
+#[path = "../examples/other_signatures.rs"]
+mod other_signatures;
+#[allow(dead_code)]
 #[path = "../examples/step_ratio.rs"]
 mod step_ratio;
 #[path = "../examples/torque_closure.rs"]
@@ -62,6 +65,7 @@ const RUN_EXAMPLES: &[&str] = &[
     "first_simulation",
     "heavy_top_4d",
     "mesh_body",
+    "other_signatures",
     "torque_closure",
 ];
 
@@ -170,6 +174,7 @@ fn included_examples_run() {
     torque_closure::main().expect("torque_closure");
     mesh_body::main().expect("mesh_body");
     custom_integrator::main().expect("custom_integrator");
+    other_signatures::main().expect("other_signatures");
     book_inertia_tables::render().expect("book_inertia_tables");
 }
 
