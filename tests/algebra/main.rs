@@ -10,4 +10,5 @@ mod multivector;
 mod nalgebra_interop;
 mod properties;
 mod rotor;
+mod versor_reference;
 mod versors;
