@@ -17,6 +17,11 @@
 //!   on V = the reference rounded to f64 (log alone) and on V = rotorflow's exp(B) (the
 //!   round trip log(exp(B)) = B).
 //!
+//! Every (signature, family) of [`EXPECTED`] must hold at least [`MIN_CASES`] cases and, where
+//! exp supports the signature, as many logarithm checks. A signature exp does not support
+//! (a non-Euclidean N = 6: `UnsupportedDimension`) is listed as such in the table; its cases
+//! must all return that documented error.
+//!
 //! The bound is 10⁻¹⁴ unless the table [`BOUNDS`] states a larger one for a (signature,
 //! family): those are the measured misses, asserted as measured so that a regression fails.
 //! `cargo test --all-features --test algebra versor_reference -- --nocapture` prints the
@@ -326,6 +331,20 @@ fn exp_and_log_match_the_high_precision_reference() {
             assert!(
                 n >= MIN_CASES,
                 "Cl{sig:?} {family}: {n} cases, expected at least {MIN_CASES}"
+            );
+        }
+    }
+    for ((sig, family), row) in &table {
+        if row.unsupported == 0 {
+            assert!(
+                row.log_cases >= MIN_CASES,
+                "Cl{sig:?} {family}: {} logarithms checked, expected at least {MIN_CASES}",
+                row.log_cases
+            );
+        } else {
+            assert_eq!(
+                row.unsupported, row.cases,
+                "Cl{sig:?} {family}: partly unsupported"
             );
         }
     }
