@@ -11,5 +11,6 @@ mod nalgebra_interop;
 mod pga;
 mod properties;
 mod rotor;
+mod versor_reference;
 mod versor_sqrt;
 mod versors;
