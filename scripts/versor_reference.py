@@ -215,7 +215,13 @@ def inside_principal_branch(sig, bv):
     """True when every rotation angle Im √λ is clearly inside the principal branch: the
     sum of |Im √λᵢ| below π − 0.05 (N ≤ 5; one rotation angle plane by plane otherwise)."""
     if n_of(sig) > 5:
-        return False
+        if sig[1] != 0 or sig[2] != 1:
+            return False
+        # Projective: exp(A + t e₀) = exp(A)(1 + u e₀), so the rotation angles are those of
+        # the Euclidean part A (the blades without the null vector, the last one).
+        p = sig[0]
+        euclid = {m: c for m, c in bv.items() if not (m >> p) & 1}
+        return inside_principal_branch((p, 0, 0), euclid) if p <= 5 else False
     lams = principal_lambdas(sig, bv)
     total = sum(abs(mpmath.im(mpmath.sqrt(lam))) for lam in lams)
     return total < math.pi - 0.05
@@ -375,7 +381,8 @@ def families(sig):
 # ---------------------------------------------------------------- logarithm targets
 
 def log_target(sig, fam, bv):
-    if n_of(sig) > 5 and sig[1] + sig[2] > 0:
+    # Above N = 5 only Euclidean and projective (one null vector) signatures have exp and log.
+    if n_of(sig) > 5 and not (sig[1] == 0 and sig[2] <= 1):
         return "-"
     if fam == "near_pi":
         with mp.workdps(60):
