@@ -8,6 +8,7 @@ mod decompose;
 mod exp_log;
 mod multivector;
 mod nalgebra_interop;
+mod outermorphism;
 mod pga;
 mod properties;
 mod rotor;
