@@ -273,3 +273,81 @@ fn try_exp_refuses_overflowing_angles_non_finite_input_and_large_n() {
     );
     assert!(Rotor::try_from_rotation_bivector(&Bivector::zero(17)).is_err());
 }
+
+/// log(exp B) relative to |B| (times max(1, |B|) by the caller's tolerance).
+fn log_exp_error(b: &Bivector) -> f64 {
+    let back = b.exp().log();
+    let scale = b.max_abs().max(f64::MIN_POSITIVE);
+    (&back - b).max_abs() / scale
+}
+
+#[test]
+fn log_is_relatively_accurate_for_tiny_angles_and_near_pi_in_n_5_6_8() {
+    // The matrix route alone carried the planes with absolute precision: 1.4e-9 relative at
+    // |B| = 1e-8 and 2.3e-5 at π ± 1e-12 in N = 5 (the 45-digit reference's rows); the
+    // Newton refinement against the rotor restores relative precision.
+    let mut r = rng(27);
+    let mut worst: f64 = 0.0;
+    for n in [5, 6, 8] {
+        for scale in [1e-200, 1e-100, 1e-30, 1e-12, 1e-8, 1e-4] {
+            for _ in 0..4 {
+                let b = random_bivector(&mut r, n, scale);
+                let e = log_exp_error(&b);
+                worst = worst.max(e);
+                assert!(e <= 1e-14, "n={n} |B|~{scale:e}: {e:e}");
+            }
+            let iso = bivector_with_planes(&mut r, n, &[scale, scale]);
+            let e = log_exp_error(&iso);
+            assert!(e <= 1e-14, "n={n} isoclinic {scale:e}: {e:e}");
+            let near = bivector_with_planes(&mut r, n, &[scale, scale * (1.0 + 1e-6)]);
+            let e = log_exp_error(&near);
+            assert!(e <= 1e-14, "n={n} near-isoclinic {scale:e}: {e:e}");
+        }
+        // Rotation angles π ± 1e-12 (plane magnitudes (π ± 1e-12)/2 of B), in one plane and
+        // alongside others.
+        for d in [-1e-12, 1e-12, -1e-9] {
+            let h = 0.5 * (PI + d);
+            let mut sets: Vec<Vec<f64>> = vec![vec![h], vec![h, 0.3]];
+            if n >= 6 {
+                sets.push(vec![h, 1.0, 1e-9]);
+            }
+            for mags in &sets {
+                for _ in 0..3 {
+                    let b = bivector_with_planes(&mut r, n, mags);
+                    let e = log_exp_error(&b);
+                    worst = worst.max(e);
+                    assert!(e <= 1e-14, "n={n} planes {mags:?}: {e:e}");
+                }
+            }
+        }
+    }
+    println!("worst relative error of log(exp B): {worst:.1e}");
+}
+
+#[test]
+fn log_keeps_planes_of_rotors_near_minus_one_in_n_5_6_8() {
+    // Plane magnitude π ∓ 1e-12 (the rotor is near −1, its matrix near I): below π the
+    // logarithm is B, above π the same plane on the other branch, B (1 − 2π/|B|).
+    let mut r = rng(28);
+    for n in [5, 6, 8] {
+        for d in [-1e-12, 1e-12, -1e-9] {
+            let m = PI + d;
+            let b = bivector_with_planes(&mut r, n, &[m]);
+            let expected = if d < 0.0 {
+                b.clone()
+            } else {
+                &b * (1.0 - 2.0 * PI / m)
+            };
+            let back = b.exp().log();
+            let e = (&back - &expected).max_abs() / expected.max_abs();
+            assert!(e <= 1e-14, "n={n} |B| = π{d:+e}: {e:e}");
+            if d < 0.0 {
+                // B is the least-norm logarithm only while the other planes are below −d
+                // (else moving one of them by π costs less), so: a plane at 1e-13.
+                let b2 = bivector_with_planes(&mut r, n, &[m, 1e-13]);
+                let e = log_exp_error(&b2);
+                assert!(e <= 1e-14, "n={n} planes π{d:+e}, 1e-13: {e:e}");
+            }
+        }
+    }
+}

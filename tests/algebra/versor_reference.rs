@@ -138,19 +138,6 @@ enum Measure {
 const BOUNDS: &[(Pqr, &str, Measure, f64)] = &[
     // measured 1.4e-14 (one random B with |B| ≈ 4.5)
     ((2, 2, 0), "random", Measure::LogOfExp, 3e-14),
-    // Euclidean N = 5 (Rotor::log): a random B of magnitude 1e-8, measured 1.4e-9 and 2.2e-9
-    ((5, 0, 0), "magnitude", Measure::LogOfReference, 3e-9),
-    ((5, 0, 0), "magnitude", Measure::LogOfExp, 5e-9),
-    // Euclidean N = 5 (Rotor::log): generic planes at π ± 1e-12, measured 2.3e-5 and 3.4e-5
-    // (N = 4 and the other signatures: below 4e-16 on the same family)
-    ((5, 0, 0), "near_pi", Measure::LogOfReference, 5e-5),
-    ((5, 0, 0), "near_pi", Measure::LogOfExp, 7e-5),
-    // 4D projective Cl(5, 0, 1): its log goes through the same Euclidean N = 5 Rotor::log,
-    // measured 7.1e-9 / 2.1e-9 (magnitude) and 3.8e-5 / 2.9e-5 (near π)
-    ((5, 0, 1), "magnitude", Measure::LogOfReference, 1.5e-8),
-    ((5, 0, 1), "magnitude", Measure::LogOfExp, 5e-9),
-    ((5, 0, 1), "near_pi", Measure::LogOfReference, 8e-5),
-    ((5, 0, 1), "near_pi", Measure::LogOfExp, 6e-5),
 ];
 
 fn bound(sig: Pqr, family: &str, measure: Measure) -> f64 {

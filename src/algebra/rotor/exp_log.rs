@@ -2,7 +2,7 @@
 
 use super::{Rotor, even_index, get_4d, multiply_by_simple, set_4d};
 use crate::algebra::bivector::pairs;
-use crate::algebra::decompose::{RawPlane, decompose_components, self_dual_join, self_dual_split};
+use crate::algebra::decompose::{decompose_components, self_dual_join, self_dual_split};
 use crate::algebra::error::{assert_same_dim, check_finite, within};
 use crate::algebra::{AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Vector};
 use nalgebra::DMatrix;
@@ -232,7 +232,11 @@ impl Rotor {
     /// N ≤ 3: quaternion logarithm; N = 4: the logarithms of the two SU(2) factors of
     /// Spin(4) (the self-dual split); N ≥ 5: the planes of the rotation matrix, found
     /// separately in the subspaces turned by less and by more than π/2 so that angles near π
-    /// stay exact, then the sign of the rotor fixes the branch.
+    /// stay exact, then the sign of the rotor fixes the branch. The matrix carries the planes
+    /// with absolute precision only (small angles, rotors near −1), so that estimate is
+    /// refined by Newton steps against the rotor itself (the residual e^(−B/2) R e^(−B/2)
+    /// and the inverse of the symmetric dexp in the frame of B's invariant decomposition),
+    /// which restores relative precision at every scale.
     ///
     /// # Accuracy
     /// exp(log R) = R to a few ulp for every rotor. log(exp B) = B to ~1e-15 relative, except
@@ -340,8 +344,167 @@ fn log_4d(r: &Rotor) -> Bivector {
     Bivector::from_storage(4, SmallVec::from_slice(&self_dual_join(f, g)))
 }
 
-/// General logarithm through the planes of the rotation matrix.
+/// General logarithm: the planes of the rotation matrix give a first estimate, which
+/// [`refine_log`] then corrects against the rotor itself.
+///
+/// On the negative sheet (R = −e^B′ with every half-angle of B′ in \[0, π/2\]) B′ is refined
+/// as the logarithm of −R, where the planes are well conditioned (a rotor near −1 is −e^B′
+/// with B′ small), and only then is its largest plane moved from φ to φ − π, so that a plane
+/// at half-angle π − η keeps its direction to relative precision.
 fn log_general(r: &Rotor) -> Bivector {
+    let n = r.dim;
+    let (b0, negative) = log_from_matrix(r);
+    if !negative {
+        return refine_log(r, b0);
+    }
+    let minus_r = r.clone().scaled(-1.0);
+    let b = refine_log(&minus_r, b0);
+    let planes = decompose_components(n, b.as_slice());
+    let Some(p) = planes.iter().max_by(|a, c| a.theta.total_cmp(&c.theta)) else {
+        // R = −1: any plane at half-angle π.
+        let mut out = Bivector::zero(n);
+        out.as_mut_slice()[0] = std::f64::consts::PI;
+        return out;
+    };
+    // The plane θ u∧v of B′ becomes (θ − π) u∧v, which costs the least norm.
+    let u = Vector::from_storage(p.u.clone());
+    let v = Vector::from_storage(p.v.clone());
+    &b + &(u.wedge(&v) * -std::f64::consts::PI)
+}
+
+/// Newton refinement of a logarithm estimate B of R.
+///
+/// The matrix route carries the planes with absolute precision only (the skew part of
+/// Q = I + O(θ) for small angles, the skew part of Q ≈ −I on a plane turned by nearly π), so
+/// B is corrected with the rotor: the residual M = e^(−B/2) R e^(−B/2) = e^(g(ad_B) Δ) is near
+/// 1, its bivector part δ = ⟨M⟩₂ carries the error with relative precision, and
+/// Δ = g(ad_B)⁻¹ δ with g(x) = sinh(x/2)/(x/2) (the symmetric form of dexp), applied in the
+/// frame of B's invariant decomposition where ad_B is block diagonal with eigenvalues
+/// ±2i(θₖ ± θₗ) and ±2iθₖ. A step is kept only if it lowers |δ|.
+fn refine_log(r: &Rotor, b0: Bivector) -> Bivector {
+    let residual = |b: &Bivector| -> Option<(Bivector, f64)> {
+        let h = (b * -0.5).exp();
+        let m = h.compose(r).compose(&h);
+        if m.coeffs[0] <= 0.0 {
+            return None;
+        }
+        let d = m.bivector_part();
+        let nd = d.norm();
+        nd.is_finite().then_some((d, nd))
+    };
+    let mut b = b0;
+    let Some((mut delta, mut nd)) = residual(&b) else {
+        return b;
+    };
+    for _ in 0..8 {
+        if nd == 0.0 {
+            break;
+        }
+        let cand = &b + &inverse_symmetric_dexp(&b, &delta);
+        match residual(&cand) {
+            Some((d, n)) if n < nd => {
+                b = cand;
+                delta = d;
+                nd = n;
+            }
+            _ => break,
+        }
+    }
+    b
+}
+
+/// Returns g(ad_B)⁻¹ δ, g(x) = sinh(x/2)/(x/2), through the invariant decomposition of B:
+/// in its orthonormal frame (uₖ, vₖ per plane, then a complement) the 2×2 block of δ between
+/// planes k and l splits into the part commuting with the plane's J (factor
+/// sin(θₖ − θₗ)/(θₖ − θₗ)) and the part anticommuting (sin(θₖ + θₗ)/(θₖ + θₗ)); between plane
+/// k and the complement the factor is sin θₖ/θₖ. Factors near a zero (an isoclinic pair at
+/// π, where the logarithm is ill-conditioned) are clamped.
+fn inverse_symmetric_dexp(b: &Bivector, delta: &Bivector) -> Bivector {
+    let n = b.dim();
+    let planes = decompose_components(n, b.as_slice());
+    // Frame columns and, per column, its plane (index, is-u) or None for the complement.
+    let mut frame: Vec<Vec<f64>> = Vec::with_capacity(n);
+    let mut role: Vec<Option<usize>> = Vec::with_capacity(n);
+    for (k, p) in planes.iter().enumerate() {
+        frame.push(p.u.to_vec());
+        frame.push(p.v.to_vec());
+        role.push(Some(k));
+        role.push(Some(k));
+    }
+    for i in 0..n {
+        if frame.len() == n {
+            break;
+        }
+        let mut x = vec![0.0; n];
+        x[i] = 1.0;
+        for _ in 0..2 {
+            for f in &frame {
+                let d: f64 = f.iter().zip(&x).map(|(a, c)| a * c).sum();
+                for (xi, fi) in x.iter_mut().zip(f) {
+                    *xi -= d * fi;
+                }
+            }
+        }
+        let nx = x.iter().map(|c| c * c).sum::<f64>().sqrt();
+        if nx > 0.5 {
+            x.iter_mut().for_each(|c| *c /= nx);
+            frame.push(x);
+            role.push(None);
+        }
+    }
+    let m = frame.len();
+    let f = DMatrix::from_fn(n, m, |i, j| frame[j][i]);
+    let a = delta.to_skew_matrix();
+    let x = f.transpose() * &a * &f;
+    // sin φ / φ, clamped away from zero.
+    let inv = |phi: f64| -> f64 {
+        let g = if phi == 0.0 { 1.0 } else { phi.sin() / phi };
+        if g.abs() < 0.05 { 1.0 } else { 1.0 / g }
+    };
+    let mut y = DMatrix::zeros(m, m);
+    for i in 0..m {
+        for j in (i + 1)..m {
+            y[(i, j)] = match (role[i], role[j]) {
+                (Some(k), Some(l)) if k == l => x[(i, j)],
+                (Some(k), Some(l)) => {
+                    // Handled block-wise from the block's top-left entry.
+                    if i % 2 != 0 || j % 2 != 0 {
+                        continue;
+                    }
+                    let (tk, tl) = (planes[k].theta, planes[l].theta);
+                    let (uu, uv, vu, vv) =
+                        (x[(i, j)], x[(i, j + 1)], x[(i + 1, j)], x[(i + 1, j + 1)]);
+                    let fp = inv(tk - tl);
+                    let fm = inv(tk + tl);
+                    let (pa, pb) = (0.5 * (uu + vv) * fp, 0.5 * (uv - vu) * fp);
+                    let (mc, md) = (0.5 * (uu - vv) * fm, 0.5 * (uv + vu) * fm);
+                    y[(i, j + 1)] = pb + md;
+                    y[(i + 1, j)] = -pb + md;
+                    y[(i + 1, j + 1)] = pa - mc;
+                    pa + mc
+                }
+                (Some(k), None) => x[(i, j)] * inv(planes[k].theta),
+                (None, Some(l)) => x[(i, j)] * inv(planes[l].theta),
+                (None, None) => x[(i, j)],
+            };
+        }
+    }
+    for i in 0..m {
+        for j in (i + 1)..m {
+            y[(j, i)] = -y[(i, j)];
+        }
+    }
+    let s = &f * y * f.transpose();
+    let mut out = Bivector::zero(n);
+    for ((i, j), c) in pairs(n).zip(out.as_mut_slice().iter_mut()) {
+        *c = 0.5 * (s[(i, j)] - s[(j, i)]);
+    }
+    out
+}
+
+/// Logarithm through the planes of the rotation matrix (absolute precision): B with every
+/// half-angle in \[0, π/2\] and whether R = −e^B (else R = e^B).
+fn log_from_matrix(r: &Rotor) -> (Bivector, bool) {
     let n = r.dim;
     let q = r.to_matrix();
     let planes = super::convert::planes_of_rotation(&q);
@@ -359,25 +522,15 @@ fn log_general(r: &Rotor) -> Bivector {
         .zip(r.coeffs.iter())
         .map(|(a, b)| a * b)
         .sum();
+    // Every half-angle in [0, π/2]: R = ±e^B with the sign of d.
     let mut out = Bivector::zero(n);
-    let mut halves: Vec<(f64, &RawPlane)> = planes.iter().map(|p| (0.5 * p.theta, p)).collect();
-    if d < 0.0 {
-        // R is the negative of the candidate: move the largest half-angle φ to π − φ on the
-        // opposite plane, which costs the least norm.
-        if let Some(k) = (0..halves.len()).max_by(|&a, &b| halves[a].0.total_cmp(&halves[b].0)) {
-            halves[k].0 -= std::f64::consts::PI; // (π − φ)(x∧y) = (φ − π)(y∧x)
-        } else {
-            out.as_mut_slice()[0] = std::f64::consts::PI;
-            return out;
-        }
-    }
-    for (phi, p) in halves {
-        // φ (y∧x) with y = p.u, x = p.v.
+    for p in &planes {
+        // (θ/2)(y∧x) with y = p.u, x = p.v.
         let y = Vector::from_storage(p.u.clone());
         let x = Vector::from_storage(p.v.clone());
-        out += &(y.wedge(&x) * phi);
+        out += &(y.wedge(&x) * (0.5 * p.theta));
     }
-    out
+    (out, d < 0.0)
 }
 
 #[cfg(test)]
