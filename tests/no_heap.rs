@@ -122,3 +122,68 @@ fn integrator_steps_do_not_allocate() {
         );
     }
 }
+
+/// A bivector of `sig` with every coefficient non-zero.
+fn dense_bivector(sig: rotorflow::algebra::Signature) -> Multivector {
+    let n = sig.dim();
+    let mut b = Multivector::zero(sig);
+    let mut k = 0;
+    for i in 0..n {
+        for j in i + 1..n {
+            b.as_mut_slice()[(1usize << i) | (1usize << j)] = 0.1 + 0.07 * k as f64;
+            k += 1;
+        }
+    }
+    b
+}
+
+/// Heap allocations of one `Multivector::exp` and one `Multivector::log` call (after a
+/// warm-up call that builds the cached blade tables).
+fn versor_allocations(p: usize, q: usize, r: usize) -> (usize, usize) {
+    let sig = rotorflow::algebra::Signature::new(p, q, r).unwrap();
+    let b = dense_bivector(sig);
+    let v = b.exp().unwrap();
+    let _ = v.log().unwrap();
+    let exp = allocations_in(|| {
+        let _ = std::hint::black_box(std::hint::black_box(&b).exp());
+    });
+    let log = allocations_in(|| {
+        let _ = std::hint::black_box(std::hint::black_box(&v).log());
+    });
+    (exp, log)
+}
+
+#[test]
+fn versor_exp_and_log_do_not_allocate_up_to_n4() {
+    // Multivector coefficients are stored inline up to N = 4 (16 of them); above, every
+    // Multivector temporary is a heap allocation.
+    for (p, q, r) in [
+        (2, 0, 0),
+        (3, 0, 0),
+        (4, 0, 0),
+        (1, 1, 0),
+        (2, 0, 1),
+        (3, 0, 1),
+        (3, 1, 0),
+        (1, 3, 0),
+        (2, 2, 0),
+        (2, 1, 1),
+    ] {
+        let (exp, log) = versor_allocations(p, q, r);
+        eprintln!("Cl({p}, {q}, {r}): exp {exp}, log {log}");
+        assert_eq!(
+            (exp, log),
+            (0, 0),
+            "Cl({p}, {q}, {r}): heap allocations in (exp, log)"
+        );
+    }
+}
+
+#[test]
+fn versor_allocations_n5_n6() {
+    // Not yet heap-free: reported, not asserted.
+    for (p, q, r) in [(4, 1, 0), (4, 0, 1), (5, 0, 0), (5, 0, 1), (6, 0, 0)] {
+        let (exp, log) = versor_allocations(p, q, r);
+        eprintln!("Cl({p}, {q}, {r}): exp {exp}, log {log} heap allocations per call");
+    }
+}

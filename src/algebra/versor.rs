@@ -62,6 +62,7 @@
 use super::error::{check_finite, within};
 use super::{AlgebraError, Bivector, Multivector, Rotor};
 use nalgebra::Complex;
+use smallvec::SmallVec;
 
 type C64 = Complex<f64>;
 
@@ -154,8 +155,7 @@ impl Multivector {
         check_bivector(self, "the exponential")?;
         let sig = self.signature();
         if sig.is_euclidean() {
-            let b = Bivector::try_from(self)?;
-            return Ok(b.try_exp()?.to_multivector());
+            return Ok(euclidean_bivector(self)?.try_exp()?.to_multivector());
         }
         if self.dim() > CLOSED_FORM_MAX_DIM && is_projective(sig) {
             let out = exp_projective(self)?;
@@ -293,14 +293,29 @@ impl Multivector {
     }
 }
 
+/// The bivector of a grade-2 element of Cl(N, 0, 0), built in place (no temporary list).
+fn euclidean_bivector(m: &Multivector) -> Result<Bivector, AlgebraError> {
+    let n = m.dim();
+    let mut b = Bivector::try_zero(n)?;
+    for i in 0..n {
+        for j in i + 1..n {
+            b.set(i, j, m.coefficient((1 << i) | (1 << j)));
+        }
+    }
+    Ok(b)
+}
+
 /// Projective GA Cl(p, 0, 1): one null vector, the last.
 fn is_projective(sig: super::Signature) -> bool {
     sig.q() == 0 && sig.r() == 1
 }
 
+/// Coordinates of a vector of the Euclidean part of Cl(p, 0, 1), inline for p ≤ 16.
+type Coords = SmallVec<[f64; 16]>;
+
 /// The Euclidean part A (blades without the null vector e₀) and the translation part t
 /// (B = A + t e₀) of a bivector of Cl(p, 0, 1).
-fn split_projective(b: &Multivector) -> Result<(Bivector, Vec<f64>), AlgebraError> {
+fn split_projective(b: &Multivector) -> Result<(Bivector, Coords), AlgebraError> {
     let p = b.dim() - 1;
     let null = 1u64 << p;
     let mut a = Bivector::try_zero(p)?;
@@ -315,36 +330,73 @@ fn split_projective(b: &Multivector) -> Result<(Bivector, Vec<f64>), AlgebraErro
 
 /// Applies φ(X) = Σ Xᵏ/(k+1)! = ∫₀¹ expm(sX) ds, X = 2\[A\]ᵀ, to t (or its inverse), plane by
 /// plane: on the plane of θ u∧v (α = 2θ) φ = (sin α/α) 1 + ((1 − cos α)/α²) X, and the
-/// identity on the complement.
-fn phi_projective(a: &Bivector, t: &[f64], inverse: bool) -> Result<Vec<f64>, AlgebraError> {
-    let mut out = t.to_vec();
+/// identity on the complement. For p ≤ 3, A is a single plane (or zero) and its projector is
+/// formed directly, without the general decomposition.
+fn phi_projective(a: &Bivector, t: &[f64], inverse: bool) -> Result<Coords, AlgebraError> {
+    let mut out: Coords = SmallVec::from_slice(t);
     let tv = super::Vector::from_components(t)?;
+    if t.len() <= 3 {
+        let theta = a.norm();
+        if theta == 0.0 {
+            return Ok(out);
+        }
+        let mut tk: Coords = SmallVec::from_slice(t);
+        if t.len() == 3 {
+            // The unit normal n̂ of A's plane (its Euclidean dual); tk = t − (t·n̂) n̂.
+            let n = [
+                a.get(1, 2) / theta,
+                -a.get(0, 2) / theta,
+                a.get(0, 1) / theta,
+            ];
+            let tn = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
+            for i in 0..3 {
+                tk[i] -= tn * n[i];
+            }
+        }
+        // t⌋A = tk⌋A: the normal component contracts to zero.
+        let xt = tv.left_contract(a);
+        apply_plane(&mut out, &tk, xt.as_slice(), 2.0 * theta, inverse)?;
+        return Ok(out);
+    }
     for plane in a.decompose().planes() {
         let alpha = 2.0 * plane.magnitude();
         let (u, v) = (plane.u(), plane.v());
         let (cu, cv) = (tv.dot(u), tv.dot(v));
-        let tk: Vec<f64> = (0..t.len()).map(|i| cu * u[i] + cv * v[i]).collect();
+        let tk: Coords = (0..t.len()).map(|i| cu * u[i] + cv * v[i]).collect();
         let tkv = super::Vector::from_components(&tk)?;
         let xt = tkv.left_contract(&plane.bivector());
-        let half = 0.5 * alpha;
-        let ca = alpha.sin() / alpha;
-        let cb = 2.0 * (half.sin() / alpha).powi(2);
-        let (ka, kb) = if inverse {
-            let den = ca * ca + cb * cb * alpha * alpha;
-            if den.is_nan() || den <= 1e-30 {
-                return Err(AlgebraError::NoLogarithm {
-                    reason: "a rotation by π in a plane the versor does not determine",
-                });
-            }
-            (ca / den, -cb / den)
-        } else {
-            (ca, cb)
-        };
-        for i in 0..t.len() {
-            out[i] += (ka - 1.0) * tk[i] + kb * 2.0 * xt[i];
-        }
+        apply_plane(&mut out, &tk, xt.as_slice(), alpha, inverse)?;
     }
     Ok(out)
+}
+
+/// Adds (φ − 1) tk to `out` on one plane of angle α, with tk the part of t in the plane and
+/// xt = tk⌋(θ u∧v) (or the inverse of φ there).
+fn apply_plane(
+    out: &mut [f64],
+    tk: &[f64],
+    xt: &[f64],
+    alpha: f64,
+    inverse: bool,
+) -> Result<(), AlgebraError> {
+    let half = 0.5 * alpha;
+    let ca = alpha.sin() / alpha;
+    let cb = 2.0 * (half.sin() / alpha).powi(2);
+    let (ka, kb) = if inverse {
+        let den = ca * ca + cb * cb * alpha * alpha;
+        if den.is_nan() || den <= 1e-30 {
+            return Err(AlgebraError::NoLogarithm {
+                reason: "a rotation by π in a plane the versor does not determine",
+            });
+        }
+        (ca / den, -cb / den)
+    } else {
+        (ca, cb)
+    };
+    for i in 0..out.len() {
+        out[i] += (ka - 1.0) * tk[i] + kb * 2.0 * xt[i];
+    }
+    Ok(())
 }
 
 /// exp in Cl(p, 0, 1), any p: with B = A + t e₀ (e₀ commutes with the even Euclidean part,
@@ -387,7 +439,7 @@ fn log_projective(v: &Multivector) -> Result<Multivector, AlgebraError> {
     }
     let a = Rotor::from_multivector_unchecked(&re).log();
     let um = rm.reverse().geometric(&vn);
-    let u: Vec<f64> = (0..p).map(|i| um.coefficient((1 << i) | null)).collect();
+    let u: Coords = (0..p).map(|i| um.coefficient((1 << i) | null)).collect();
     let t = phi_projective(&a, &u, true)?;
     let mut out = Multivector::zero(sig);
     for (i, j) in super::pairs(p) {
@@ -401,6 +453,9 @@ fn log_projective(v: &Multivector) -> Result<Multivector, AlgebraError> {
 
 /// Err(NotABivector) naming the grades other than 2.
 fn check_bivector(m: &Multivector, operation: &'static str) -> Result<(), AlgebraError> {
+    if m.terms().all(|(k, _)| k.count_ones() == 2) {
+        return Ok(());
+    }
     let grades: Vec<usize> = m.grades().into_iter().filter(|&k| k != 2).collect();
     if grades.is_empty() {
         Ok(())
