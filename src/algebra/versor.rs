@@ -29,7 +29,11 @@
 //! (2(x² − y²)), of which rotorflow takes the form without cancellation (a power series when
 //! |x| ≤ 1). Every case (isoclinic, null, complex λ, mixed screws with a grade-4 B²) is the
 //! same formula, and B is scaled by a power of two first so that 1e-200 and 1e150 do not
-//! underflow or overflow in B² or B W.
+//! underflow or overflow in B² or B W. Complex quotients use Smith's algorithm (no |z|²).
+//! At a huge rotation angle the B and B W terms cancel, so V is known only to ~ε |B| (as
+//! the angle itself); the result is then projected back onto the versors,
+//! V ← (V Ṽ)^(−½) V, computed in the algebra of 1 and the 4-vector part of V Ṽ (for
+//! N ≤ 5 an even V with V Ṽ = 1 is a versor), so that V Ṽ = 1 to round-off.
 //!
 //! # Logarithm
 //! An even versor V of N ≤ 5 has grades 0, 2 and 4: V = c + v + Q. The scalar and 4-vector
