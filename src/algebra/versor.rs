@@ -29,7 +29,11 @@
 //! (2(x² − y²)), of which rotorflow takes the form without cancellation (a power series when
 //! |x| ≤ 1). Every case (isoclinic, null, complex λ, mixed screws with a grade-4 B²) is the
 //! same formula, and B is scaled by a power of two first so that 1e-200 and 1e150 do not
-//! underflow or overflow in B² or B W.
+//! underflow or overflow in B² or B W. Complex quotients use Smith's algorithm (no |z|²).
+//! At a huge rotation angle the B and B W terms cancel, so V is known only to ~ε |B| (as
+//! the angle itself); the result is then projected back onto the versors,
+//! V ← (V Ṽ)^(−½) V, computed in the algebra of 1 and the 4-vector part of V Ṽ (for
+//! N ≤ 5 an even V with V Ṽ = 1 is a versor), so that V Ṽ = 1 to round-off.
 //!
 //! # Logarithm
 //! An even versor V of N ≤ 5 has grades 0, 2 and 4: V = c + v + Q. The scalar and 4-vector
@@ -147,7 +151,8 @@ impl Multivector {
     /// [`AlgebraError::NotABivector`] if other grades are present;
     /// [`AlgebraError::UnsupportedDimension`] for N > 5 in a signature neither Euclidean nor
     /// projective;
-    /// [`AlgebraError::AngleTooLarge`] (Euclidean, |B| > `f64::MAX`/2);
+    /// [`AlgebraError::AngleTooLarge`] (Euclidean, |B| > `f64::MAX`/2, or such a Euclidean
+    /// part of a projective B above N = 5);
     /// [`AlgebraError::Overflow`] when a coefficient of the result exceeds `f64::MAX` (a boost
     /// of rapidity above ≈ 710).
     pub fn exp(&self) -> Result<Multivector, AlgebraError> {
@@ -176,7 +181,7 @@ impl Multivector {
         }
         let out = exp_closed_form(self);
         if out.as_slice().iter().all(|c| c.is_finite()) {
-            Ok(out)
+            Ok(renormalize(out))
         } else {
             Err(AlgebraError::Overflow {
                 what: "the exponential",
@@ -464,12 +469,26 @@ fn check_bivector(m: &Multivector, operation: &'static str) -> Result<(), Algebr
     }
 }
 
+/// a / b by Smith's algorithm: no intermediate |b|² (num-complex's `/` forms it, which
+/// overflows for |b| ≳ 1e154 and underflows to a division by zero for |b| ≲ 1e-154).
+fn cdiv(a: C64, b: C64) -> C64 {
+    if b.re.abs() >= b.im.abs() {
+        let r = b.im / b.re;
+        let d = b.re + b.im * r;
+        C64::new((a.re + a.im * r) / d, (a.im - a.re * r) / d)
+    } else {
+        let r = b.re / b.im;
+        let d = b.re * r + b.im;
+        C64::new((a.re * r + a.im) / d, (a.im * r - a.re) / d)
+    }
+}
+
 /// sinh(s z′)/z′ = s · sinhc(s z′), with the limit s at z′ = 0.
 fn shs(z: C64, s: f64) -> C64 {
     if z == C64::new(0.0, 0.0) {
         C64::new(s, 0.0)
     } else {
-        (z * s).sinh() / z
+        cdiv((z * s).sinh(), z)
     }
 }
 
@@ -528,7 +547,7 @@ fn exp_closed_form(b: &Multivector) -> Multivector {
     let y = if x == C64::new(0.0, 0.0) {
         C64::new(0.0, 0.0)
     } else {
-        delta / x
+        cdiv(delta, x)
     };
     let (xu, yu) = (x * s, y * s);
     let cterm = (xu.cosh() * yu.cosh()).re;
@@ -554,9 +573,12 @@ fn exp_closed_form(b: &Multivector) -> Multivector {
         // multiplied by s³ below, stepwise
         C64::new(sum, 0.0)
     } else if yu.norm() <= 0.5 * xu.norm() {
-        (xu.cosh() * shs(y, s) - shs(x, s) * yu.cosh()) / ((x * x - y * y) * 2.0)
+        cdiv(
+            xu.cosh() * shs(y, s) - shs(x, s) * yu.cosh(),
+            (x * x - y * y) * 2.0,
+        )
     } else {
-        (shs(x + y, s) - shs(x - y, s)) / (x * y * 4.0)
+        cdiv(shs(x + y, s) - shs(x - y, s), x * y * 4.0)
     };
     let series = xu.norm() <= 1.0;
     let mut out = Multivector::scalar(sig, cterm);
@@ -577,6 +599,45 @@ fn exp_closed_form(b: &Multivector) -> Multivector {
     out
 }
 
+/// V (V Ṽ)^(−½) for an even V of N ≤ 5 near a versor with max |Vᵢ| ≤ 4: V Ṽ = n + Q
+/// (grades 0 and 4, Q² a scalar, so (n + Q)^(−½) lives in the algebra of 1 and Q) and
+/// the result has V′ Ṽ′ = 1 to round-off. The closed form loses accuracy like ε |B| at a
+/// huge rotation angle (cancellation between the B and B W terms), which is honest for V
+/// but not for V Ṽ: a versor must stay a versor. For larger |Vᵢ| (boosts) V Ṽ − 1 carries
+/// round-off ~ε |V|², as good as any product, and V is returned unchanged.
+fn renormalize(v: Multivector) -> Multivector {
+    let top = v.max_abs();
+    if top > 4.0 {
+        return v;
+    }
+    let nn = v.geometric(&v.reverse());
+    let n0 = nn.scalar_part();
+    let q = nn.grade(4);
+    let dev = (n0 - 1.0).abs().max(q.max_abs());
+    if dev == 0.0 || dev > 1e-2 {
+        return v;
+    }
+    let kappa = q.geometric(&q).scalar_part();
+    // (n + Q)^(−½) = α + β Q.
+    let (alpha, beta) = if kappa > 0.0 {
+        let p = kappa.sqrt();
+        let (fp, fm) = ((n0 + p).sqrt().recip(), (n0 - p).sqrt().recip());
+        (0.5 * (fp + fm), 0.5 * (fp - fm) / p)
+    } else if kappa < 0.0 {
+        let p = (-kappa).sqrt();
+        let f = C64::new(n0, p).sqrt().inv();
+        (f.re, f.im / p)
+    } else {
+        let r = n0.sqrt().recip();
+        (r, -0.5 * r / n0)
+    };
+    if !(alpha.is_finite() && beta.is_finite()) {
+        return v;
+    }
+    let f = &Multivector::scalar(v.signature(), alpha) + &(&q * beta);
+    f.geometric(&v)
+}
+
 /// g(ζ) = ζ / sinh ζ and g′ = dg/d(cosh ζ) = (sinh ζ − ζ cosh ζ)/sinh³ζ for cosh ζ = c and
 /// sinh²ζ = s2, on the principal branch (Re ζ ≥ 0 after the sign choice, Im ζ ∈ (−π, π]).
 fn log_factor(c: C64, s2: C64) -> (C64, C64) {
@@ -586,7 +647,11 @@ fn log_factor(c: C64, s2: C64) -> (C64, C64) {
         s = -s;
     }
     // C − 1 = sinh²ζ/(C + 1) where C + 1 is not small.
-    let cm1 = if c.re >= 0.0 { s2 / (c + one) } else { c - one };
+    let cm1 = if c.re >= 0.0 {
+        cdiv(s2, c + one)
+    } else {
+        c - one
+    };
     let w = cm1 + s; // exp(ζ) − 1
     let zeta = C64::new(
         0.5 * (2.0 * w.re + w.norm_sqr()).ln_1p(),
@@ -598,7 +663,7 @@ fn log_factor(c: C64, s2: C64) -> (C64, C64) {
         let gp = C64::new(-1.0 / 3.0, 0.0) + z * (2.0 / 15.0) - z * z * (2.0 / 63.0);
         return (g, gp);
     }
-    let g = zeta / s;
+    let g = cdiv(zeta, s);
     let num = if zeta.norm() < 1.0 {
         // sinh ζ − ζ cosh ζ = −Σ_{k≥1} 2k ζ^(2k+1)/(2k+1)!
         let mut term = zeta;
@@ -613,7 +678,7 @@ fn log_factor(c: C64, s2: C64) -> (C64, C64) {
     } else {
         s - zeta * c
     };
-    (g, num / (s * s * s))
+    (g, cdiv(cdiv(cdiv(num, s), s), s))
 }
 
 /// One correction step B ← B + ⟨exp(B)~ V⟩₂, kept only if it lowers the residual
@@ -667,7 +732,9 @@ fn log_closed_form(v: &Multivector) -> Result<Multivector, AlgebraError> {
     let q = v.grade(4);
     let qq: f64 = q.as_slice().iter().map(|x| x * x).sum();
     let kappa = q.geometric(&q).scalar_part();
-    if qq == 0.0 || kappa.abs() <= 1e-20 * qq {
+    // Q² = 0 up to the round-off of forming Q² (a few ε qq): the dual case; J = Q/√|κ|
+    // would be noise otherwise (a null W beside a large boost).
+    if qq == 0.0 || kappa.abs() <= 64.0 * f64::EPSILON * qq {
         // Dual numbers (Q² = 0): B = g(c) v + g′(c) Q v.
         let s2 = bv.geometric(&bv).scalar_part();
         let (g, gp) = log_factor(C64::new(c, 0.0), C64::new(s2, 0.0));

@@ -548,3 +548,110 @@ proptest! {
         }
     }
 }
+
+/// Fuzz finding (versor_bits) F1: a huge rotation beside O(1) or tiny parts in the N = 5
+/// mixed signatures. The closed form's B and B W terms cancel at a huge angle, so V is only
+/// known to ~ε |B| (honest), but V Ṽ = 1 must hold to round-off: a versor stays a versor.
+#[test]
+fn fuzz_huge_rotation_beside_small_parts_stays_a_versor() {
+    let s32 = sig(3, 2, 0);
+    let (a, t) = (2.26e6, -1.8e-6);
+    let mut cases = vec![
+        &(&(&blade(s32, "e23", a) + &blade(s32, "e45", a))
+            + &(&blade(s32, "e13", t) + &blade(s32, "e14", t)))
+            + &(&blade(s32, "e15", t) + &blade(s32, "e35", t)),
+    ];
+    for s in [
+        sig(4, 0, 1),
+        sig(2, 2, 0),
+        sig(2, 3, 0),
+        sig(3, 2, 0),
+        sig(4, 1, 0),
+    ] {
+        for a in [1e6, 1e8, 1e12] {
+            let mut b = blade(s, "e12", a);
+            for (i, n) in ["e13", "e14", "e23", "e25", "e34", "e35", "e45"]
+                .iter()
+                .enumerate()
+            {
+                if let Ok(x) = Multivector::blade_by_name(s, n, 0.3 + 0.1 * i as f64) {
+                    b = &b + &x;
+                }
+            }
+            cases.push(b);
+        }
+    }
+    for b in cases {
+        let v = b.exp().unwrap();
+        let ue = unit_error(&v);
+        assert!(ue <= 1e-14, "{b:?}: V Ṽ − 1 = {ue:e}");
+        let back = v.log().unwrap().exp().unwrap();
+        let d = rel_diff(&back, &v);
+        assert!(d <= 1e-13, "{b:?}: exp(log V) − V = {d:e}");
+    }
+}
+
+/// Fuzz finding F2: a boost of rapidity 128 with tiny parts whose B∧B is null (Q² = 0 in
+/// V): the logarithm's dual-number branch divided by sinh³ζ ≈ 1e165 through |sinh ζ|⁶,
+/// which overflows, and lost its Q v term (exp(log V) off by 2e-4 relative).
+#[test]
+fn fuzz_large_boost_with_tiny_parts_round_trips() {
+    let s = sig(3, 2, 0);
+    let t = -1.83e-6;
+    let b = &(&blade(s, "e24", 128.00000018) + &blade(s, "e13", t))
+        + &(&blade(s, "e14", t) + &blade(s, "e15", t));
+    let v = b.exp().unwrap();
+    assert!(unit_error(&v) <= 1e-14);
+    let l = v.log().unwrap();
+    let dl = (&l - &b).max_abs() / b.max_abs();
+    assert!(dl <= 1e-13, "log: {dl:e}");
+    let d = rel_diff(&l.exp().unwrap(), &v);
+    assert!(d <= 1e-13, "exp(log V): {d:e}");
+}
+
+/// Fuzz finding F3: nearly null parts of 1e82 … 1e274 beside small terms (Cl(0,2,2),
+/// Cl(2,0,2)): exp of the logarithm reported `Overflow` although it is finite. The closed
+/// form divided complex numbers through |z|², which over- or underflows for |z| outside
+/// 1e-154 … 1e154 (a division by zero: ∞).
+#[test]
+fn fuzz_no_overflow_for_nearly_null_parts() {
+    let mk = |s: Signature, terms: &[(u64, f64)]| {
+        let mut b = Multivector::zero(s);
+        for &(m, c) in terms {
+            b.as_mut_slice()[m as usize] = c;
+        }
+        b
+    };
+    let cases = [
+        mk(
+            sig(0, 2, 2),
+            &[
+                (3, 5.256633473081305e83),
+                (5, 2.255858409778442e-305),
+                (9, 5.256633473081304e83),
+                (6, 1.5241268609589208e82),
+                (10, 1.047042593e-314),
+            ],
+        ),
+        mk(
+            sig(2, 0, 2),
+            &[
+                (3, -5.1933465720748865e274),
+                (5, -2.6699837501662295e97),
+                (9, -5.403795835963677e274),
+                (6, 6.36123895270227e-309),
+                (10, -9.213530580391169e273),
+                (12, 1.23e-321),
+            ],
+        ),
+    ];
+    for b in cases {
+        let v = b.exp().unwrap();
+        let l = v.log().unwrap();
+        let back = l
+            .exp()
+            .unwrap_or_else(|e| panic!("exp(log V) for {b:?}: {e}"));
+        let d = (&back - &v).max_abs() / v.max_abs();
+        assert!(d <= 1e-13 * l.max_abs().max(1.0), "{b:?}: {d:e}");
+    }
+}
