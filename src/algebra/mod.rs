@@ -173,6 +173,15 @@ fn graded_check(m: &Multivector, k: usize, what: &'static str) -> Result<(), Alg
             signature: m.signature(),
         });
     }
+    check_grade(m, k, what)
+}
+
+/// Checks that `m` has no part of a grade other than `k`.
+pub(crate) fn check_grade(
+    m: &Multivector,
+    k: usize,
+    what: &'static str,
+) -> Result<(), AlgebraError> {
     let others = m.terms().filter(|(b, _)| blade::grade(*b) != k).count();
     if others > 0 {
         return Err(AlgebraError::MixedGrades {

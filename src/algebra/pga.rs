@@ -43,6 +43,7 @@
 //! # Ok::<(), rotorflow::algebra::AlgebraError>(())
 //! ```
 
+use super::check_grade;
 use super::error::{check_finite, within};
 use super::{AlgebraError, MULTIVECTOR_MAX_DIM, Multivector, Rotor, Signature, VERSOR_TOLERANCE};
 use nalgebra::DMatrix;
@@ -77,22 +78,6 @@ fn euclidean_dim(sig: Signature, operation: &'static str) -> Result<usize, Algeb
             signature: sig,
         })
     }
-}
-
-/// Checks that `m` is of grade `k` only.
-fn check_grade(m: &Multivector, k: usize, what: &'static str) -> Result<(), AlgebraError> {
-    let others = m
-        .terms()
-        .filter(|(b, _)| b.count_ones() as usize != k)
-        .count();
-    if others > 0 {
-        return Err(AlgebraError::MixedGrades {
-            what,
-            grade: k,
-            others,
-        });
-    }
-    Ok(())
 }
 
 /// The mask and sign of e₀ eᵢ e₁…N in Cl(n, 0, 1).
