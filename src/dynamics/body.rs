@@ -45,8 +45,10 @@ impl RigidBody {
     /// The attitude is a [`Rotor`](crate::algebra::Rotor) or an [`Attitude`] (any N; e.g. [`Attitude::identity`]).
     ///
     /// # Errors
-    /// [`InertiaError::DimensionMismatch`]; [`InertiaError::Algebra`] if the principal axes
-    /// do not form a rotation (not expected for a physical map).
+    /// [`InertiaError::DimensionMismatch`]; [`InertiaError::NonFinite`] if the momentum, or
+    /// the angular velocity ω = I⁻¹(L) it implies, is not finite (overflow);
+    /// [`InertiaError::Algebra`] if the principal axes do not form a rotation (not expected
+    /// for a physical map).
     pub fn from_body_momentum(
         inertia: InertiaMap,
         attitude: impl Into<Attitude>,
@@ -78,14 +80,20 @@ impl RigidBody {
             )?;
             (diag, rp)
         };
+        check_finite("angular momentum", momentum)?;
         let momentum = principal_frame.inverse_rotate_bivector(momentum);
         let attitude = attitude.compose(&principal_frame);
-        Ok(RigidBody {
+        let body = RigidBody {
             inertia,
             principal_frame,
             attitude,
             momentum,
-        })
+        };
+        // A finite L can still overflow in the principal frame or in ω = I⁻¹(L) (tiny plane
+        // moments): refuse the state rather than hand out a body whose ω is not finite.
+        check_finite("angular momentum in the principal frame", &body.momentum)?;
+        check_finite("angular velocity I⁻¹(L)", &body.omega())?;
+        Ok(body)
     }
 
     /// Returns the body with body-frame angular velocity ω (in the body's own axes).
@@ -258,13 +266,14 @@ impl RigidBody {
                 });
             }
         }
-        if !attitude.is_finite() || !momentum.as_slice().iter().all(|x| x.is_finite()) {
+        if !attitude.is_finite() {
             return Err(InertiaError::NonFinite {
-                quantity: "state",
+                quantity: "attitude",
                 index: None,
                 value: f64::NAN,
             });
         }
+        check_finite("angular momentum", &momentum)?;
         self.replace_state(attitude, momentum);
         Ok(())
     }
@@ -273,5 +282,17 @@ impl RigidBody {
     pub(crate) fn replace_state(&mut self, attitude: Attitude, momentum: Bivector) {
         self.attitude = attitude;
         self.momentum = momentum;
+    }
+}
+
+/// Refuses a bivector with a non-finite component, naming the first one.
+fn check_finite(quantity: &'static str, b: &Bivector) -> Result<(), InertiaError> {
+    match b.as_slice().iter().position(|x| !x.is_finite()) {
+        Some(index) => Err(InertiaError::NonFinite {
+            quantity,
+            index: Some(index),
+            value: b.as_slice()[index],
+        }),
+        None => Ok(()),
     }
 }

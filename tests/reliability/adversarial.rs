@@ -308,8 +308,15 @@ fn integrator_steps_at_adversarial_magnitudes() {
                 Momentum::Independent(l) => l,
                 Momentum::FromOmega(w) => inertia.apply(&w),
             };
+            // An L whose ω = I⁻¹(L) overflows (tiny plane moments) is refused, by name.
             let body = RigidBody::from_body_momentum(inertia, Attitude::identity(n), &l);
-            prop_assert!(body.is_ok(), "{:?}", body.err());
+            if let Err(e) = &body {
+                prop_assert!(
+                    matches!(e, rotorflow::inertia::InertiaError::NonFinite { .. }),
+                    "{e}"
+                );
+            }
+            prop_assume!(body.is_ok(), "ω = I⁻¹(L) beyond f64");
             let body = body.unwrap();
             reached.hit("accepted body", n);
             let h = 10f64.powi(h_exp);

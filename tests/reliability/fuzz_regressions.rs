@@ -202,3 +202,29 @@ fn fuzz_decomposition_of_an_isoclinic_bivector_with_a_subnormal_part() {
     let back = r.log().exp();
     assert!((back.to_matrix() - r.to_matrix()).amax() < 1e-14);
 }
+
+/// body_spec: a 2D cuboid with a half-length of 4.9e101 has a finite inertia map (plane
+/// moment 3.1e305), but ω = 8.9e101 gives L = I(ω) = ∞, and the rigid body was built with a
+/// NaN momentum and ω. The constructors now refuse a state whose momentum or ω = I⁻¹(L) is
+/// not finite, naming the quantity.
+#[test]
+fn fuzz_body_with_overflowing_momentum_is_an_error() {
+    use rotorflow::inertia::InertiaError;
+    use rotorflow::inertia::spec::parse_body_with;
+    use rotorflow::prelude::*;
+    let spec = "cuboid:2,488880000000000000000000000000000000000000000000000000000000000000000000000000000000000000001400764148";
+    let parsed = parse_body_with(spec, &|_| Ok(String::new())).unwrap();
+    assert!(parsed.inertia.to_matrix().iter().all(|x| x.is_finite()));
+    let w = Bivector::from_components(2, &[8.888e101]).unwrap();
+    let err = RigidBody::from_body_velocity(parsed.inertia.clone(), Attitude::identity(2), &w)
+        .expect_err("an overflowing momentum is refused");
+    assert!(
+        matches!(err, InertiaError::NonFinite { .. }),
+        "unexpected error {err}"
+    );
+    // A representable state of the same body is still accepted.
+    let w = Bivector::from_components(2, &[1.0]).unwrap();
+    let body = RigidBody::from_body_velocity(parsed.inertia, Attitude::identity(2), &w).unwrap();
+    assert!(body.omega().as_slice().iter().all(|x| x.is_finite()));
+    assert!(body.momentum().as_slice().iter().all(|x| x.is_finite()));
+}
