@@ -183,7 +183,7 @@ fn matrix_to_rotor_for_matrices_orthogonal_only_to_1e_8() {
 
 /// Regression (found by the adversarial property tests): components 1e150 beside 1e37 in 8-D made
 /// nalgebra's symmetric eigen-solver return ∞/NaN inside the decomposition, which then lost
-/// every plane. Fixed by `algebra::eigen` (flush below ε²·max, check, Jacobi fallback).
+/// every plane. Fixed by the crate's robust symmetric eigensolver (`numeric::eigen`) (flush below ε²·max, check, Jacobi fallback).
 #[test]
 fn regression_decomposition_of_a_wide_range_bivector_in_8d() {
     let c = [
