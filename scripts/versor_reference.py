@@ -16,7 +16,9 @@ computed twice, at that precision and 20 + log10 |B| digits more, and the genera
 write a case where the two differ by more than 1e-45 of the largest coefficient or where
 V Ṽ differs from 1 by more than 1e-45 · max(1, max |V|²).
 
-Usage: python3 scripts/versor_reference.py [OUTPUT]   (needs mpmath: pip install mpmath)
+Usage: python3 scripts/versor_reference.py [--general] [OUTPUT]   (needs mpmath)
+With --general it writes tests/algebra/data/versor_reference_general.tsv: the signatures with
+6 <= N that are neither Euclidean nor projective (rotorflow's general route).
 
 Each case is one line: "p q r", family, B, V, L (tab-separated). B is the input bivector as
 mask=value pairs (value: the f64's shortest repr, exact); V is the reference exp(B) as
@@ -43,6 +45,15 @@ SIGNATURES = [
     (4, 1, 0), (1, 3, 0), (3, 1, 0), (2, 2, 0),
     (3, 0, 0), (4, 0, 0), (5, 0, 0),
 ]
+
+# With --general: the signatures above N = 5 that are neither Euclidean nor projective
+# (conformal GA of 4D and 5D space, other mixed and degenerate metrics), written to
+# GENERAL_OUTPUT with their own seed so that the first file does not change.
+GENERAL_SIGNATURES = [
+    (5, 1, 0), (4, 2, 0), (3, 3, 0), (4, 1, 1), (3, 0, 3), (6, 1, 0),
+]
+GENERAL_SEED = 20261126
+GENERAL_OUTPUT = "tests/algebra/data/versor_reference_general.tsv"
 
 
 # ---------------------------------------------------------------- the algebra
@@ -212,19 +223,40 @@ def principal_lambdas(sig, bv):
 
 
 def inside_principal_branch(sig, bv):
-    """True when every rotation angle Im √λ is clearly inside the principal branch: the
-    sum of |Im √λᵢ| below π − 0.05 (N ≤ 5; one rotation angle plane by plane otherwise)."""
+    """True when every rotation angle is clearly inside the principal branch: the sum of the
+    rotation angles θᵢ below π − 0.05 (the joint angles |±θ₁ ± θ₂ ± …| of V stay below π).
+    For N ≤ 5 from the roots λ of the quadratic; above, from the eigenvalues of ad_B on
+    vectors, which are ±2√λᵢ (and zeros), so Σ|Im| over them is 4 Σ θᵢ. Projective
+    signatures above N = 5 take one rotation angle plane by plane (their own route), so only
+    their Euclidean part counts there."""
     if n_of(sig) > 5:
-        if sig[1] != 0 or sig[2] != 1:
-            return False
-        # Projective: exp(A + t e₀) = exp(A)(1 + u e₀), so the rotation angles are those of
-        # the Euclidean part A (the blades without the null vector, the last one).
-        p = sig[0]
-        euclid = {m: c for m, c in bv.items() if not (m >> p) & 1}
-        return inside_principal_branch((p, 0, 0), euclid) if p <= 5 else False
+        if sig[1] == 0 and sig[2] == 1:
+            # Projective: exp(A + t e₀) = exp(A)(1 + u e₀), so the rotation angles are those
+            # of the Euclidean part A (the blades without the null vector, the last one).
+            p = sig[0]
+            euclid = {m: c for m, c in bv.items() if not (m >> p) & 1}
+            return inside_principal_branch((p, 0, 0), euclid) if p <= 5 else False
+        total = sum(abs(mpmath.im(lam)) for lam in ad_eigenvalues(sig, bv)) / 4
+        return total < math.pi - 0.05
     lams = principal_lambdas(sig, bv)
     total = sum(abs(mpmath.im(mpmath.sqrt(lam))) for lam in lams)
     return total < math.pi - 0.05
+
+
+def ad_eigenvalues(sig, bv):
+    """Eigenvalues of X ↦ BX − XB on the vectors, at 60 digits."""
+    n = n_of(sig)
+    with mp.workdps(60):
+        b = {m: mpf(c) for m, c in bv.items()}
+        a = mpmath.matrix(n, n)
+        for k in range(n):
+            e = {1 << k: mpf(1)}
+            img = gp(sig, b, e)
+            for m, c in gp(sig, e, b).items():
+                img[m] = img.get(m, 0) - c
+            for i in range(n):
+                a[i, k] = img.get(1 << i, mpf(0))
+        return mpmath.eig(a, left=False, right=False)
 
 
 # ---------------------------------------------------------------- families
@@ -371,7 +403,7 @@ def families(sig):
         fams += [("isoclinic", fam_isoclinic), ("near_isoclinic", fam_near_isoclinic)]
     if r == 1:
         fams.append(("translation", fam_translation))
-    if (p, q, r) in ((1, 3, 0), (3, 1, 0)):
+    if (p, q, r) in ((1, 3, 0), (3, 1, 0)) or (n_of(sig) > 5 and r == 0 and 1 in (p, q)):
         fams.append(("light_like", fam_light_like))
     if boost_planes(sig):
         fams.append(("rapidity", fam_rapidity))
@@ -381,9 +413,6 @@ def families(sig):
 # ---------------------------------------------------------------- logarithm targets
 
 def log_target(sig, fam, bv):
-    # Above N = 5 only Euclidean and projective (one null vector) signatures have exp and log.
-    if n_of(sig) > 5 and not (sig[1] == 0 and sig[2] <= 1):
-        return "-"
     if fam == "near_pi":
         with mp.workdps(60):
             norm = mpmath.sqrt(sum(mpf(c) ** 2 for c in bv.values()))
@@ -412,10 +441,13 @@ def fmt_input(bv):
 
 
 def main():
-    out_path = sys.argv[1] if len(sys.argv) > 1 else DEFAULT_OUTPUT
-    rng = random.Random(SEED)
+    args = sys.argv[1:]
+    general = "--general" in args
+    args = [a for a in args if a != "--general"]
+    out_path = args[0] if args else (GENERAL_OUTPUT if general else DEFAULT_OUTPUT)
+    rng = random.Random(GENERAL_SEED if general else SEED)
     lines = []
-    for sig in SIGNATURES:
+    for sig in GENERAL_SIGNATURES if general else SIGNATURES:
         for fam, gen in families(sig):
             for bv in gen(sig, rng):
                 bv = {m: float(c) for m, c in bv.items() if float(c) != 0.0}
@@ -423,11 +455,14 @@ def main():
                 lines.append("\t".join([
                     " ".join(map(str, sig)), fam, fmt_input(bv), fmt_pairs(v, OUT_DIGITS),
                     log_target(sig, fam, bv)]))
+        print(f"Cl{sig}: {len(lines)} cases so far", file=sys.stderr)
+    flag = " --general" if general else ""
     header = [
         "# exp(B) of bivectors of Cl(p, q, r) at high precision: reference values for",
         "# tests/algebra/versor_reference.rs. Generated by",
-        f"#   python3 scripts/versor_reference.py {out_path}",
-        f"# Python {sys.version.split()[0]}, mpmath {mpmath.__version__}, seed {SEED}, working "
+        f"#   python3 scripts/versor_reference.py{flag} {out_path}",
+        f"# Python {sys.version.split()[0]}, mpmath {mpmath.__version__}, "
+        f"seed {GENERAL_SEED if general else SEED}, working "
         f"precision {WORK_DIGITS} + 2 log10 max|B| digits;",
         f"# recomputed with 20 + log10 max|B| digits more: the two agree to {CHECK_DIGITS} digits "
         f"and V Ṽ = 1 to {CHECK_DIGITS} digits.",

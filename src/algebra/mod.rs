@@ -74,6 +74,7 @@ mod signature;
 pub mod sta;
 mod vector;
 mod versor;
+mod versor_general;
 mod versor_sqrt;
 
 pub(crate) use bivector::commutator_packed;
@@ -86,6 +87,7 @@ pub(crate) use rotor::{accumulate_plane_rotor, plane_tables};
 pub use signature::Signature;
 pub use vector::Vector;
 pub use versor::{CLOSED_FORM_MAX_DIM, VERSOR_TOLERANCE};
+pub use versor_general::GENERAL_MAX_DIM;
 pub use versor_sqrt::VERSOR_NORMALIZE_TOLERANCE;
 
 /// The largest dimension for vectors, bivectors and signatures: a basis blade is a `u64` bit

@@ -38,7 +38,7 @@ pub(crate) type MvStorage = SmallVec<[f64; 16]>;
 /// - Norms and inverse: [`Multivector::norm_squared`], [`Multivector::norm`],
 ///   [`Multivector::inverse`].
 /// - Versors: [`Multivector::exp`] of a bivector and [`Multivector::log`] of an even versor,
-///   in every signature up to N = 5 and in Euclidean and projective signatures up to N = 16.
+///   in every signature up to N = 8 and in Euclidean and projective signatures up to N = 16.
 /// - Duals: [`Multivector::dual`], [`Multivector::hodge`], [`Multivector::right_complement`],
 ///   [`Multivector::left_complement`].
 ///

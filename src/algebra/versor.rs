@@ -56,14 +56,16 @@
 //! # Dimensions
 //! Euclidean signatures Cl(N, 0, 0) go through [`super::Bivector::exp`] and
 //! [`super::Rotor::log`], and projective ones Cl(N − 1, 0, 1) through the route above, for
-//! every N ≤ [`super::MULTIVECTOR_MAX_DIM`]. Other signatures are supported up to
-//! N = [`CLOSED_FORM_MAX_DIM`] = 5, where a bivector has at most two simple parts and W² is
-//! a scalar; above, B∧B∧B appears and the closed forms above no longer hold, and
-//! [`Multivector::exp`] and [`Multivector::log`] return
-//! [`AlgebraError::UnsupportedDimension`] (conformal GA of 4D space, Cl(5, 1, 0), is the
-//! first such case).
+//! every N ≤ [`super::MULTIVECTOR_MAX_DIM`]. Other signatures take the closed form above up
+//! to N = [`CLOSED_FORM_MAX_DIM`] = 5, where a bivector has at most two simple parts and W²
+//! is a scalar. Above, B∧B∧B appears and these closed forms no longer hold; signatures with
+//! 6 ≤ N ≤ [`GENERAL_MAX_DIM`] = 8 (conformal GA of 4D and 5D space, Cl(5, 1, 0) and
+//! Cl(6, 1, 0), and every other mixed or degenerate metric) go through the general route of
+//! `versor_general.rs`: scaling and squaring for exp, a Krylov space and the principal matrix
+//! logarithm for log. Beyond N = 8 they return [`AlgebraError::UnsupportedDimension`].
 
 use super::error::{check_finite, within};
+use super::versor_general::{GENERAL_MAX_DIM, exp_general, log_general};
 use super::{AlgebraError, Bivector, Multivector, Rotor};
 use nalgebra::Complex;
 use smallvec::SmallVec;
@@ -113,9 +115,11 @@ impl Multivector {
     ///
     /// Projective GA Cl(p, 0, 1) above N = 5 uses exp(A + t e₀) = exp(A) (1 + u e₀) with A
     /// the Euclidean part, u = ∫₀¹ exp(−sA) t exp(sA) ds in closed form plane by plane, for
-    /// any N ≤ 16. Other signatures above N = 5 (a bivector then has three or more simple
-    /// parts and these closed forms no longer apply) return
-    /// [`AlgebraError::UnsupportedDimension`]: conformal GA is covered up to Cl(4, 1, 0).
+    /// any N ≤ 16. Other signatures with 6 ≤ N ≤ [`GENERAL_MAX_DIM`] = 8 (a bivector then
+    /// has three or more simple parts and these closed forms no longer apply), conformal GA
+    /// of 4D space Cl(5, 1, 0) among them, use scaling and squaring in the algebra, accurate
+    /// to a small multiple of ε |B| relative; beyond N = 8 they return
+    /// [`AlgebraError::UnsupportedDimension`].
     ///
     /// A translation in 3D projective GA:
     /// ```
@@ -149,12 +153,13 @@ impl Multivector {
     /// # Errors
     /// [`AlgebraError::NonFinite`] for NaN or infinite coefficients;
     /// [`AlgebraError::NotABivector`] if other grades are present;
-    /// [`AlgebraError::UnsupportedDimension`] for N > 5 in a signature neither Euclidean nor
+    /// [`AlgebraError::UnsupportedDimension`] for N > 8 in a signature neither Euclidean nor
     /// projective;
     /// [`AlgebraError::AngleTooLarge`] (Euclidean, |B| > `f64::MAX`/2, or such a Euclidean
     /// part of a projective B above N = 5);
     /// [`AlgebraError::Overflow`] when a coefficient of the result exceeds `f64::MAX` (a boost
-    /// of rapidity above ≈ 710).
+    /// of rapidity above ≈ 710), or, for N ≥ 6 with two or more null vectors, when the
+    /// squarings do (rotation angles of 10¹⁰⁰ and more beside null parts of that size).
     pub fn exp(&self) -> Result<Multivector, AlgebraError> {
         check_finite(self.as_slice(), "bivector")?;
         check_bivector(self, "the exponential")?;
@@ -173,11 +178,14 @@ impl Multivector {
             };
         }
         if self.dim() > CLOSED_FORM_MAX_DIM {
-            return Err(AlgebraError::UnsupportedDimension {
-                operation: "the exponential",
-                signature: sig,
-                max: CLOSED_FORM_MAX_DIM,
-            });
+            if self.dim() > GENERAL_MAX_DIM {
+                return Err(AlgebraError::UnsupportedDimension {
+                    operation: "the exponential",
+                    signature: sig,
+                    max: GENERAL_MAX_DIM,
+                });
+            }
+            return exp_general(self);
         }
         let out = exp_closed_form(self);
         if out.as_slice().iter().all(|c| c.is_finite()) {
@@ -190,8 +198,8 @@ impl Multivector {
     }
 
     /// Returns a bivector B with exp(B) = V for an even versor V (V Ṽ = 1), in any signature
-    /// with N ≤ 5 and in Euclidean and projective (Cl(p, 0, 1)) signatures up to
-    /// N = [`super::MULTIVECTOR_MAX_DIM`].
+    /// with N ≤ [`GENERAL_MAX_DIM`] = 8 and in Euclidean and projective (Cl(p, 0, 1))
+    /// signatures up to N = [`super::MULTIVECTOR_MAX_DIM`].
     ///
     /// # Method
     /// Euclidean: [`Rotor::log`]. Projective: the log A of the Euclidean part (a rotor) and
@@ -199,14 +207,19 @@ impl Multivector {
     /// Other signatures (N ≤ 5): V = c + v + Q (grades 0, 2, 4); C = c + Q is cosh √(B²) in
     /// the algebra spanned by 1 and Q (split-complex for Q² > 0, complex for Q² < 0, dual for
     /// Q² = 0), v = (sinh √(B²)/√(B²)) B; solving cosh ζ = C there gives B = v ζ / sinh ζ.
+    /// Other signatures with 6 ≤ N ≤ 8: the principal logarithm of the matrix of left
+    /// multiplication by V on the algebra V generates (a Krylov space of dimension at most
+    /// 2^⌊N/2⌋), polished by Gauss–Newton steps against V itself.
     ///
     /// # Branch
     /// The principal logarithm: every rotation part has angle θ ∈ \[0, π\] in exp(θ P̂)
     /// (the sandwich turns by 2θ), boosts and null parts are unique. Where V's rotation parts
     /// mix in a 4D-like split (two planes sharing the 4-vector part of V, as in Cl(2, 2) or
     /// the Euclidean 4D rotors), the sum of the two angles is at most π, as in
-    /// [`Rotor::log`]. So log(exp(B)) = B whenever B's rotation angles are inside that
-    /// domain. Euclidean signatures return [`Rotor::log`].
+    /// [`Rotor::log`]; for 6 ≤ N ≤ 8 in signatures neither Euclidean nor projective, every
+    /// joint angle |±θ₁ ± θ₂ ± …| is below π (the sum of the rotation angles below π). So
+    /// log(exp(B)) = B whenever B's rotation angles are inside that domain. Euclidean
+    /// signatures return [`Rotor::log`].
     ///
     /// # Angle π
     /// At exactly θ = π (V = −exp(B′) with a rotation by π in a plane V does not determine)
@@ -223,7 +236,7 @@ impl Multivector {
     /// [`AlgebraError::NonFinite`]; [`AlgebraError::NotAVersor`] if V has odd grades or
     /// max |V Ṽ − 1| exceeds [`VERSOR_TOLERANCE`] · max(1, max |Vᵢ|²) (or that bound
     /// overflows); [`AlgebraError::Overflow`] if a projective logarithm exceeds `f64::MAX`;
-    /// [`AlgebraError::UnsupportedDimension`] for N > 5 in a signature neither Euclidean nor
+    /// [`AlgebraError::UnsupportedDimension`] for N > 8 in a signature neither Euclidean nor
     /// projective;
     /// [`AlgebraError::NoLogarithm`] for elements without a real bivector logarithm
     /// (−exp(B) for a boost B in Cl(1, 1), Cl(2, 1) or Cl(1, 2), −(1 + N) for a light-like
@@ -281,11 +294,14 @@ impl Multivector {
             };
         }
         if self.dim() > CLOSED_FORM_MAX_DIM {
-            return Err(AlgebraError::UnsupportedDimension {
-                operation: "the logarithm",
-                signature: sig,
-                max: CLOSED_FORM_MAX_DIM,
-            });
+            if self.dim() > GENERAL_MAX_DIM {
+                return Err(AlgebraError::UnsupportedDimension {
+                    operation: "the logarithm",
+                    signature: sig,
+                    max: GENERAL_MAX_DIM,
+                });
+            }
+            return log_general(self);
         }
         let out = log_closed_form(self)?;
         if out.as_slice().iter().all(|c| c.is_finite()) {

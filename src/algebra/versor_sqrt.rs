@@ -125,8 +125,8 @@ impl Multivector {
     /// # Errors
     /// [`AlgebraError::NonFinite`]; [`AlgebraError::NotAVersor`] if V has odd grades or
     /// max |V Ṽ − 1| exceeds [`VERSOR_TOLERANCE`] · max(1, max |Vᵢ|²); and the errors of
-    /// [`Multivector::log`] where the general route is taken (no real logarithm, N > 5 in a
-    /// non-Euclidean signature); [`AlgebraError::Overflow`] if a coefficient of the result
+    /// [`Multivector::log`] where that route is taken (no real logarithm, N > 8 in a
+    /// signature neither Euclidean nor projective); [`AlgebraError::Overflow`] if a coefficient of the result
     /// overflows.
     pub fn sqrt(&self) -> Result<Multivector, AlgebraError> {
         check_even(self, "versor")?;

@@ -12,6 +12,7 @@ mod outermorphism;
 mod pga;
 mod properties;
 mod rotor;
+mod versor_general;
 mod versor_reference;
 mod versor_sqrt;
 mod versors;

@@ -413,14 +413,15 @@ fn bad_input_is_refused() {
     let pga2 = sig(2, 0, 1);
     let v = &blade(pga2, "e13", 0.7).exp().unwrap() * -1.0;
     assert!(matches!(v.log(), Err(AlgebraError::NoLogarithm { .. })));
-    // Above N = 5 in a non-Euclidean signature.
+    // Above N = 5: projective signatures of any N, others up to N = 8.
     let b = blade(sig(4, 0, 1), "e12", 1.0);
     assert!(b.exp().is_ok());
     assert!(blade(sig(6, 0, 1), "e12", 1.0).exp().is_ok());
-    let b6 = blade(sig(4, 1, 1), "e12", 1.0);
+    assert!(blade(sig(4, 1, 1), "e12", 1.0).exp().is_ok());
+    let b9 = blade(sig(6, 2, 1), "e12", 1.0);
     assert!(matches!(
-        b6.exp(),
-        Err(AlgebraError::UnsupportedDimension { max: 5, .. })
+        b9.exp(),
+        Err(AlgebraError::UnsupportedDimension { max: 8, .. })
     ));
 }
 
