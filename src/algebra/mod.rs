@@ -75,6 +75,7 @@ pub mod sta;
 mod vector;
 mod versor;
 mod versor_general;
+mod versor_pga3;
 mod versor_sqrt;
 
 pub(crate) use bivector::commutator_packed;

@@ -66,6 +66,7 @@
 
 use super::error::{check_finite, within};
 use super::versor_general::{GENERAL_MAX_DIM, exp_general, log_general};
+use super::versor_pga3 as pga3;
 use super::{AlgebraError, Bivector, Multivector, Rotor};
 use nalgebra::Complex;
 use smallvec::SmallVec;
@@ -94,6 +95,9 @@ impl Multivector {
     /// exp(−½ θ e₁₂) turns e₁ toward e₂ by θ, as in the Euclidean convention.
     ///
     /// # Method
+    /// 3D projective GA Cl(3, 0, 1) has its own fixed-size closed form (ganja.js's and
+    /// klein's, written without dividing by the rotation angle), within a factor of about 2
+    /// of a hand-written kernel (`cargo bench --bench versors`).
     /// Euclidean signatures use [`Bivector::exp`] (any N ≤ [`super::MULTIVECTOR_MAX_DIM`]).
     /// Other signatures with N ≤ [`CLOSED_FORM_MAX_DIM`] = 5 use the invariant decomposition
     /// (Roelfs & De Keninck, "Graded symmetry groups: plane and simple", 2021/2023):
@@ -161,6 +165,18 @@ impl Multivector {
     /// of rapidity above ≈ 710), or, for N ≥ 6 with two or more null vectors, when the
     /// squarings do (rotation angles of 10¹⁰⁰ and more beside null parts of that size).
     pub fn exp(&self) -> Result<Multivector, AlgebraError> {
+        // 3D PGA on fixed-size arrays; everything else (and every error) below.
+        if pga3::is_pga3(self.signature())
+            && let Some(v) = pga3::exp(self)
+        {
+            return Ok(v);
+        }
+        self.exp_any_signature()
+    }
+
+    /// [`Multivector::exp`] in every signature, with the checks.
+    #[inline(never)]
+    fn exp_any_signature(&self) -> Result<Multivector, AlgebraError> {
         check_finite(self.as_slice(), "bivector")?;
         check_bivector(self, "the exponential")?;
         let sig = self.signature();
@@ -254,6 +270,18 @@ impl Multivector {
     /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
     /// ```
     pub fn log(&self) -> Result<Multivector, AlgebraError> {
+        // 3D PGA on fixed-size arrays; everything else (and every error) below.
+        if pga3::is_pga3(self.signature())
+            && let Some(b) = pga3::log(self, VERSOR_TOLERANCE)
+        {
+            return Ok(b);
+        }
+        self.log_any_signature()
+    }
+
+    /// [`Multivector::log`] in every signature, with the checks.
+    #[inline(never)]
+    fn log_any_signature(&self) -> Result<Multivector, AlgebraError> {
         check_finite(self.as_slice(), "versor")?;
         let odd = self.odd().max_abs();
         if odd != 0.0 {
@@ -262,9 +290,14 @@ impl Multivector {
                 deviation: odd,
             });
         }
-        let mut vv = self.geometric(&self.reverse());
-        vv.as_mut_slice()[0] -= 1.0;
-        let deviation = vv.max_abs();
+        let sig = self.signature();
+        let deviation = if pga3::is_pga3(sig) {
+            pga3::versor_deviation(self)
+        } else {
+            let mut vv = self.geometric(&self.reverse());
+            vv.as_mut_slice()[0] -= 1.0;
+            vv.max_abs()
+        };
         let scale = self.max_abs().powi(2).max(1.0);
         if !scale.is_finite() {
             return Err(AlgebraError::NotAVersor {
@@ -278,7 +311,6 @@ impl Multivector {
                 deviation,
             });
         }
-        let sig = self.signature();
         if sig.is_euclidean() {
             let b = Rotor::from_multivector_unchecked(self).log();
             return Ok(Multivector::from(&b));
@@ -515,6 +547,18 @@ fn scaled(m: &Multivector, e: i32) -> Multivector {
         *c = crate::numeric::ldexp(*c, e);
     }
     out
+}
+
+/// The closed form for the fixed-size routes' tests.
+#[cfg(test)]
+pub(super) fn exp_closed_form_for_tests(b: &Multivector) -> Multivector {
+    renormalize(exp_closed_form(b))
+}
+
+/// The closed-form logarithm for the fixed-size routes' tests.
+#[cfg(test)]
+pub(super) fn log_closed_form_for_tests(v: &Multivector) -> Multivector {
+    refine(v, log_closed_form(v).expect("a logarithm"))
 }
 
 /// The closed form of the module documentation, for a non-zero bivector of N ≤ 5.
