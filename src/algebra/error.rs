@@ -390,6 +390,14 @@ pub(crate) fn within(value: f64, tolerance: f64) -> bool {
     value <= tolerance
 }
 
+/// |value| at the round-off level of sums and differences of numbers of size `scale`: the
+/// sign and direction of such a value carry no information, so the geometric constructors
+/// treat it as zero (parallel planes, coincident points, a point at infinity).
+#[inline]
+pub(crate) fn negligible(value: f64, scale: f64) -> bool {
+    value.abs() <= 64.0 * f64::EPSILON * scale
+}
+
 /// Checks that every number in `values` is finite.
 pub(crate) fn check_finite(values: &[f64], what: &'static str) -> Result<(), AlgebraError> {
     if values.iter().all(|x| x.is_finite()) {

@@ -62,7 +62,7 @@
 //! ```
 
 use super::check_grade;
-use super::error::{check_finite, within};
+use super::error::{check_finite, negligible, within};
 use super::{
     AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Multivector, Rotor, Signature, VERSOR_TOLERANCE,
 };
@@ -146,12 +146,6 @@ fn moment_blade(sig: Signature, n: usize, i: usize, j: usize) -> (u64, f64) {
     single_term(&ideal_basis(sig, n, i).regressive(&ideal_basis(sig, n, j)))
 }
 
-/// |value| at the round-off level of a sum of products of magnitude `scale`: the sign and
-/// direction of such a value carry no information, so joins and meets treat it as zero.
-fn negligible(value: f64, scale: f64) -> bool {
-    value.abs() <= 64.0 * f64::EPSILON * scale
-}
-
 /// The largest coefficient without e₀ (the weight part: a hyperplane's normal, a point's
 /// e₁…N coefficient, a line's direction).
 fn weight_norm(m: &Multivector) -> f64 {
@@ -218,6 +212,15 @@ impl Point {
     /// lines with direction `d` meet (klein's `direction`). It joins with a point to the line
     /// through that point with direction `d`, and it is what [`Line::meet_plane`] returns for
     /// a line parallel to the plane.
+    ///
+    /// ```
+    /// use rotorflow::algebra::pga::{Line, Point};
+    /// let up = Point::ideal(&[0.0, 0.0, 1.0])?;
+    /// assert_eq!(up.weight(), 0.0);
+    /// let vertical = Point::new(&[1.0, 2.0, 0.0])?.join(&up)?;
+    /// assert_eq!(vertical, Line::from_point_direction(&[1.0, 2.0, 0.0], &[0.0, 0.0, 1.0])?);
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
     ///
     /// # Errors
     /// [`AlgebraError::NonFinite`]; [`AlgebraError::ZeroLength`] for a zero direction;
@@ -422,7 +425,8 @@ impl AsRef<Multivector> for Plane {
 /// with e₄ the projective e₀,
 /// L = d₁ e₂₃ − d₂ e₁₃ + d₃ e₁₂ + M₂₃ e₁₄ − M₁₃ e₂₄ + M₁₂ e₃₄.
 /// Every `Line` has a non-zero direction (the lines at infinity, which two directions span,
-/// are not `Line`s).
+/// are not `Line`s). Dorst & De Keninck, *May the Forque Be With You: Dynamics in PGA*
+/// (2022), use such lines for forces and momenta.
 ///
 /// ```
 /// use rotorflow::algebra::pga::{Line, Point};
@@ -913,6 +917,16 @@ impl Motor {
     }
 
     /// The moved line.
+    ///
+    /// ```
+    /// use rotorflow::algebra::pga::{Line, Motor};
+    /// // A half turn about e₃ reverses the line along e₁ through (0, 1, 0).
+    /// let m = Motor::from_plane_angle(3, 0, 1, std::f64::consts::PI)?;
+    /// let l = m.apply_line(&Line::from_point_direction(&[0.0, 1.0, 0.0], &[1.0, 0.0, 0.0])?)?;
+    /// let (d, p) = (l.direction(), l.point_nearest_origin());
+    /// assert!((d[0] + 1.0).abs() < 1e-15 && (p[1] + 1.0).abs() < 1e-15);
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
     ///
     /// # Errors
     /// [`AlgebraError::SignatureMismatch`].
