@@ -1,12 +1,13 @@
 //! Versors outside Euclidean space: a screw motion in 3D projective geometric algebra, a
-//! Lorentz boost in the spacetime algebra, and exponentials where eigenvalue methods break
-//! down (equal rotation planes, a light-like generator). The rotorflow book's chapter "Other
-//! signatures" includes this file; `cargo test` runs it (tests/book.rs).
+//! Lorentz boost in the spacetime algebra, exponentials where eigenvalue methods break
+//! down (equal rotation planes, a light-like generator), a projective line, and conformal
+//! maps of points and spheres. The rotorflow book's chapter "Other signatures" includes this
+//! file; `cargo test` runs it (tests/book.rs).
 //!
 //! `cargo run --example other_signatures`
 
-use rotorflow::algebra::pga::{Motor, Point};
-use rotorflow::algebra::{AlgebraError, Multivector, Signature, sta};
+use rotorflow::algebra::pga::{Motor, Plane, Point};
+use rotorflow::algebra::{AlgebraError, Multivector, Signature, cga, sta};
 
 /// Largest coefficient of a − b.
 fn distance(a: &Multivector, b: &Multivector) -> f64 {
@@ -85,5 +86,49 @@ pub fn main() -> Result<(), AlgebraError> {
         );
         assert!(err < 1e-15);
     }
+
+    // 5. A line in 3D PGA: the join of two points, its Plücker coordinates, where it meets
+    //    a plane, and the quarter turn about it.
+    let line = Point::new(&[1.0, 0.0, 0.0])?.join(&Point::new(&[1.0, 0.0, 2.0])?)?;
+    println!(
+        "line: direction {:?}, moment {:?} (M12, M13, M23)",
+        line.direction(),
+        line.moment().as_slice()
+    );
+    assert_eq!(line.direction(), vec![0.0, 0.0, 2.0]);
+    let hit = line
+        .meet_plane(&Plane::new(&[0.0, 0.0, 1.0], 5.0)?)?
+        .coordinates()?;
+    assert_eq!(hit, vec![1.0, 0.0, 5.0]);
+    let turn = Motor::from_axis_angle(&line, std::f64::consts::FRAC_PI_2)?;
+    let turned = turn
+        .apply_point(&Point::new(&[2.0, 0.0, 0.0])?)?
+        .coordinates()?;
+    println!(
+        "quarter turn about it: (2, 0, 0) ↦ ({:.6}, {:.6}, {:.6})",
+        turned[0], turned[1], turned[2]
+    );
+    assert!(distance_slices(&turned, &[1.0, 1.0, 0.0]) < 1e-15);
+
+    // 6. Conformal GA Cl(4, 1, 0): points are null vectors up(x), and translations,
+    //    rotations, dilations and transversions are versors. Here a dilation by 3 about the
+    //    origin, then a translation by (1, 0, 0), of a point and of a sphere through it.
+    let v = &cga::translator(&[1.0, 0.0, 0.0])? * &cga::dilator(3, 3.0)?;
+    let sandwich = |x: &Multivector| &(&v * x) * &v.reverse();
+    let image = cga::down(&sandwich(&cga::up(&[0.0, 1.0, 0.0])?))?;
+    println!(
+        "conformal: (0, 1, 0) ↦ ({:.6}, {:.6}, {:.6})",
+        image[0], image[1], image[2]
+    );
+    assert!(distance_slices(&image, &[1.0, 3.0, 0.0]) < 1e-14);
+    let sphere = sandwich(&cga::sphere(&[0.0, 0.0, 0.0], 1.0)?);
+    assert!(cga::point_on(&sphere, &image, 1e-14)?);
+    assert!((cga::signed_distance(&sphere, &[1.0, 0.0, 0.0])? + 3.0).abs() < 1e-14);
+    assert!(distance(&v.log()?.exp()?, &v) < 1e-15);
     Ok(())
+}
+
+/// Largest difference of two coordinate lists.
+fn distance_slices(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).fold(0.0, |m, (x, y)| m.max((x - y).abs()))
 }

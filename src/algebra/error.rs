@@ -325,12 +325,77 @@ pub enum AlgebraError {
         /// Size of the failure.
         deviation: f64,
     },
+    /// A projective element is not a line: not a blade, or without a direction.
+    ///
+    /// How to fix: build lines as joins of points or meets of planes
+    /// ([`super::pga::Line::through`], [`super::pga::Plane::meet`]).
+    #[error("not a line: {reason} (deviation {deviation:e})")]
+    NotALine {
+        /// What failed.
+        reason: &'static str,
+        /// Size of the failure.
+        deviation: f64,
+    },
+    /// A join or meet of elements in a special position has no element of the requested
+    /// kind: two equal points span no line, parallel planes meet only at infinity, a line
+    /// in a plane meets it everywhere.
+    ///
+    /// How to fix: test the configuration first, or use the untyped [`super::pga::join`]
+    /// and [`super::pga::meet`], which return the (possibly zero or ideal) multivector.
+    #[error("{operation} is degenerate: {reason}")]
+    Degenerate {
+        /// The operation.
+        operation: &'static str,
+        /// Which special position was met.
+        reason: &'static str,
+    },
+    /// A conformal vector is not a point: it is not null (X² ≠ 0, a sphere or a plane).
+    ///
+    /// How to fix: build points with [`super::cga::up`]; a point moved by a versor stays a
+    /// point, so a large deviation means the element was built as something else.
+    #[error("not a conformal point: {reason} (deviation {deviation:e})")]
+    NotAPoint {
+        /// What failed.
+        reason: &'static str,
+        /// Size of the failure.
+        deviation: f64,
+    },
+    /// A conformal vector is not a real sphere or plane (its square is not positive: a
+    /// point or an imaginary sphere).
+    ///
+    /// How to fix: build spheres and planes with [`super::cga::sphere`] and
+    /// [`super::cga::plane`].
+    #[error("not a sphere or plane: {reason} (deviation {deviation:e})")]
+    NotASphere {
+        /// What failed.
+        reason: &'static str,
+        /// Size of the failure.
+        deviation: f64,
+    },
+    /// A number that must be positive is not (a scale factor, a radius).
+    ///
+    /// How to fix: pass a finite number above zero.
+    #[error("{what} must be positive, got {value}")]
+    NotPositive {
+        /// What the number is.
+        what: &'static str,
+        /// The value given.
+        value: f64,
+    },
 }
 
 /// value ≤ tolerance, and false when either is NaN: a NaN measure or tolerance never passes.
 #[inline]
 pub(crate) fn within(value: f64, tolerance: f64) -> bool {
     value <= tolerance
+}
+
+/// |value| at the round-off level of sums and differences of numbers of size `scale`: the
+/// sign and direction of such a value carry no information, so the geometric constructors
+/// treat it as zero (parallel planes, coincident points, a point at infinity).
+#[inline]
+pub(crate) fn negligible(value: f64, scale: f64) -> bool {
+    value.abs() <= 64.0 * f64::EPSILON * scale
 }
 
 /// Checks that every number in `values` is finite.

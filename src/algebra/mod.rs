@@ -14,7 +14,9 @@
 //! The graded types ([`Vector`], [`Bivector`], [`Rotor`]) model Euclidean ℝᴺ, the setting of
 //! rigid-body rotation: they carry no signature, so their kernels are tight and their API is
 //! infallible. Any signature Cl(p, q, r), projective and conformal algebras included, is
-//! available through [`Multivector`].
+//! available through [`Multivector`]; the modules [`pga`] (points, lines, planes, motors),
+//! [`cga`] (conformal points, spheres, planes and versors) and [`sta`] (Lorentz boosts) add
+//! the geometry of the three most used ones.
 //!
 //! # Conventions
 //! The Conventions chapter of the rotorflow book states them in full; in short:
@@ -60,6 +62,7 @@
 mod approx_impls;
 mod bivector;
 pub(crate) mod blade;
+pub mod cga;
 pub mod decompose;
 mod display;
 mod error;

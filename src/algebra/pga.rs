@@ -1,5 +1,5 @@
-//! Projective geometric algebra Cl(N, 0, 1): points, hyperplanes, join and meet, and motors
-//! (rigid motions), thin typed wrappers over [`Multivector`].
+//! Projective geometric algebra Cl(N, 0, 1): points, lines, hyperplanes, join and meet, and
+//! motors (rigid motions), thin typed wrappers over [`Multivector`].
 //!
 //! # The plane-based model
 //! In projective GA (Gunn, "Geometric algebras for Euclidean geometry", 2017; Gunn &
@@ -22,10 +22,28 @@
 //! | element | rotorflow (Cl(N, 0, 1), e₀ = e_(N+1)) |
 //! |---|---|
 //! | point x | X = (1 + e₀ x) e₁…N (in 3D: e₁₂₃ + x₁ e₂₃₄ − x₂ e₁₃₄ + x₃ e₁₂₄) |
+//! | ideal point (direction) d | e₀ d e₁…N (in 3D: d₁ e₂₃₄ − d₂ e₁₃₄ + d₃ e₁₂₄) |
+//! | line through p, direction d | P ∨ D, an (N − 1)-vector (in 3D: d₁ e₂₃ − d₂ e₁₃ + d₃ e₁₂ + M₂₃ e₁₄ − M₁₃ e₂₄ + M₁₂ e₃₄ with M = p ∧ d) |
 //! | hyperplane a·x = d | Σᵢ aᵢ eᵢ + d e₀ (in 3D: a₁e₁ + a₂e₂ + a₃e₃ + d e₄) |
 //! | translation by t | T = 1 − ½ Σᵢ tᵢ eᵢ e₀ = exp(−½ t e₀) |
 //! | rotation by θ in eᵢ∧eⱼ | R = cos(θ/2) − sin(θ/2) eᵢⱼ (turns eᵢ toward eⱼ) |
 //! | rigid motion x ↦ Q x + t | M = T R |
+//!
+//! # Typed join and meet
+//! [`join`] and [`meet`] take and return plain multivectors, whatever the operands. The
+//! typed companions return the element the geometry promises and refuse the special
+//! positions where it does not exist, with [`AlgebraError::Degenerate`]:
+//!
+//! | operation | result | refused |
+//! |---|---|---|
+//! | [`Point::join`], [`Line::through`] | [`Line`] with direction q − p | equal points; two ideal points (a line at infinity) |
+//! | [`Plane::meet`] (3D) | [`Line`] with direction a × b | parallel or equal planes |
+//! | [`Line::meet_plane`] | [`Point`]; the ideal point of the line's direction when parallel | a line in the plane |
+//! | [`Line::join_point`] (3D) | [`Plane`] | a point on the line |
+//!
+//! Ideal points (weight 0, [`Point::ideal`]) are accepted as operands everywhere: a point
+//! joined with a direction is the line through it along that direction. "Parallel" and
+//! "equal" mean: to within the round-off of the operands' coefficients.
 //!
 //! ```
 //! use rotorflow::algebra::pga::{Motor, Plane, Point, join, meet};
@@ -44,8 +62,11 @@
 //! ```
 
 use super::check_grade;
-use super::error::{check_finite, within};
-use super::{AlgebraError, MULTIVECTOR_MAX_DIM, Multivector, Rotor, Signature, VERSOR_TOLERANCE};
+use super::error::{check_finite, negligible, within};
+use super::{
+    AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Multivector, Rotor, Signature, VERSOR_TOLERANCE,
+};
+use crate::numeric::scaled_norm;
 use nalgebra::DMatrix;
 
 /// The projective algebra Cl(n, 0, 1) of Euclidean ℝⁿ, for 2 ≤ n < [`MULTIVECTOR_MAX_DIM`].
@@ -67,6 +88,19 @@ fn pga(n: usize) -> Result<Signature, AlgebraError> {
     Signature::new(n, 0, 1)
 }
 
+/// Checks that `sig` is 3D projective GA Cl(3, 0, 1).
+fn require_3d(sig: Signature, operation: &'static str) -> Result<(), AlgebraError> {
+    if euclidean_dim(sig, operation)? == 3 {
+        Ok(())
+    } else {
+        Err(AlgebraError::WrongSignature {
+            operation,
+            expected: "3D projective GA Cl(3, 0, 1)",
+            signature: sig,
+        })
+    }
+}
+
 /// N for a projective signature Cl(N, 0, 1), else an error.
 fn euclidean_dim(sig: Signature, operation: &'static str) -> Result<usize, AlgebraError> {
     if sig.q() == 0 && sig.r() == 1 && sig.p() >= 2 {
@@ -85,12 +119,44 @@ fn point_blade(sig: Signature, n: usize, i: usize) -> (u64, f64) {
     let ie = Multivector::basis_blade(sig, (1 << n) - 1);
     let ei = Multivector::basis_blade(sig, 1 << i);
     let e0 = Multivector::basis_blade(sig, 1 << n);
-    let b = e0.geometric(&ei).geometric(&ie);
-    let (mask, c) = b.terms().next().expect("a single blade");
-    (mask, c)
+    single_term(&e0.geometric(&ei).geometric(&ie))
+}
+
+/// The mask and coefficient of a multivector that is a multiple of one basis blade.
+fn single_term(m: &Multivector) -> (u64, f64) {
+    m.terms().next().expect("a single blade")
+}
+
+/// The ideal point (direction) eᵢ, of weight 0: e₀ eᵢ e₁…N.
+fn ideal_basis(sig: Signature, n: usize, i: usize) -> Multivector {
+    let (mask, sign) = point_blade(sig, n, i);
+    Multivector::basis_blade(sig, mask) * sign
+}
+
+/// The mask and sign of the line through the origin with direction eᵢ, O ∨ eᵢ (O = e₁…N):
+/// the blades a line's direction is read from.
+fn direction_blade(sig: Signature, n: usize, i: usize) -> (u64, f64) {
+    let origin = Multivector::basis_blade(sig, (1 << n) - 1);
+    single_term(&origin.regressive(&ideal_basis(sig, n, i)))
+}
+
+/// The mask and sign of the ideal line eᵢ ∨ eⱼ of two directions: the blades a line's
+/// moment p ∧ d is read from.
+fn moment_blade(sig: Signature, n: usize, i: usize, j: usize) -> (u64, f64) {
+    single_term(&ideal_basis(sig, n, i).regressive(&ideal_basis(sig, n, j)))
+}
+
+/// The largest coefficient without e₀ (the weight part: a hyperplane's normal, a point's
+/// e₁…N coefficient, a line's direction).
+fn weight_norm(m: &Multivector) -> f64 {
+    let null = 1u64 << (m.dim() - 1);
+    m.terms()
+        .filter(|(mask, _)| mask & null == 0)
+        .fold(0.0, |acc, (_, c)| acc.max(c.abs()))
 }
 
 /// The meet A ∧ B (outer product): two hyperplanes meet in their intersection.
+/// [`Plane::meet`] and [`Line::meet_plane`] are the typed forms.
 ///
 /// # Errors
 /// [`AlgebraError::SignatureMismatch`] for operands of different algebras.
@@ -102,6 +168,7 @@ pub fn meet(
 }
 
 /// The join A ∨ B (regressive product): two points join to the line through them.
+/// [`Point::join`] and [`Line::join_point`] are the typed forms.
 ///
 /// # Errors
 /// [`AlgebraError::SignatureMismatch`] for operands of different algebras.
@@ -139,6 +206,48 @@ impl Point {
             m.as_mut_slice()[mask as usize] = sign * xi;
         }
         Ok(Point(m))
+    }
+
+    /// The ideal point (point at infinity) of the direction `d`, of weight 0: where the
+    /// lines with direction `d` meet (klein's `direction`). It joins with a point to the line
+    /// through that point with direction `d`, and it is what [`Line::meet_plane`] returns for
+    /// a line parallel to the plane.
+    ///
+    /// ```
+    /// use rotorflow::algebra::pga::{Line, Point};
+    /// let up = Point::ideal(&[0.0, 0.0, 1.0])?;
+    /// assert_eq!(up.weight(), 0.0);
+    /// let vertical = Point::new(&[1.0, 2.0, 0.0])?.join(&up)?;
+    /// assert_eq!(vertical, Line::from_point_direction(&[1.0, 2.0, 0.0], &[0.0, 0.0, 1.0])?);
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`AlgebraError::NonFinite`]; [`AlgebraError::ZeroLength`] for a zero direction;
+    /// [`AlgebraError::WrongSignature`] for N < 2; [`AlgebraError::DimensionTooLarge`].
+    #[doc(alias = "direction")]
+    pub fn ideal(d: &[f64]) -> Result<Point, AlgebraError> {
+        check_finite(d, "direction")?;
+        if d.iter().all(|&c| c == 0.0) {
+            return Err(AlgebraError::ZeroLength { what: "direction" });
+        }
+        let n = d.len();
+        let sig = pga(n)?;
+        let mut m = Multivector::zero(sig);
+        for (i, &di) in d.iter().enumerate() {
+            let (mask, sign) = point_blade(sig, n, i);
+            m.as_mut_slice()[mask as usize] = sign * di;
+        }
+        Ok(Point(m))
+    }
+
+    /// The line through this point and `other` (the join P ∨ Q, klein's `p1 & p2`), with
+    /// direction `other − self` for points of weight 1; see [`Line::through`].
+    ///
+    /// # Errors
+    /// As [`Line::through`].
+    pub fn join(&self, other: &Point) -> Result<Line, AlgebraError> {
+        Line::through(self, other)
     }
 
     /// Wraps an N-vector of Cl(N, 0, 1) (any weight; weight 0 is a point at infinity, a
@@ -249,6 +358,39 @@ impl Plane {
         self.0.dim() - 1
     }
 
+    /// The line where this plane meets `other` in 3D (the meet A ∧ B, klein's `p1 ^ p2`).
+    /// For the planes a·x = d and b·x = e its direction is a × b, so that
+    /// [`Motor::from_axis_angle`] about it turns a toward b.
+    ///
+    /// ```
+    /// use rotorflow::algebra::pga::Plane;
+    /// // The planes x₁ = 1 and x₂ = 2 meet in the line through (1, 2, 0) along e₃.
+    /// let line = Plane::new(&[1.0, 0.0, 0.0], 1.0)?.meet(&Plane::new(&[0.0, 1.0, 0.0], 2.0)?)?;
+    /// assert_eq!(line.direction(), vec![0.0, 0.0, 1.0]);
+    /// assert_eq!(line.point_nearest_origin(), vec![1.0, 2.0, 0.0]);
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`AlgebraError::WrongSignature`] outside 3D (in N dimensions two hyperplanes meet in
+    /// an (N − 2)-flat, a line only for N = 3; [`meet`] returns it);
+    /// [`AlgebraError::SignatureMismatch`]; [`AlgebraError::Degenerate`] for parallel or
+    /// equal planes (a × b zero to within round-off: they meet only at infinity).
+    pub fn meet(&self, other: &Plane) -> Result<Line, AlgebraError> {
+        require_3d(self.0.signature(), "the meet of two planes as a line")?;
+        let m = self.0.try_product(&other.0, super::Product::Wedge)?;
+        if negligible(
+            weight_norm(&m),
+            weight_norm(&self.0) * weight_norm(&other.0),
+        ) {
+            return Err(AlgebraError::Degenerate {
+                operation: "the meet of two planes",
+                reason: "the planes are parallel",
+            });
+        }
+        Ok(Line(m))
+    }
+
     /// The equation (a, d) of the plane a·x = d, as stored (not normalised).
     pub fn equation(&self) -> (Vec<f64>, f64) {
         let n = self.dim();
@@ -268,6 +410,274 @@ impl Plane {
 }
 
 impl AsRef<Multivector> for Plane {
+    fn as_ref(&self) -> &Multivector {
+        &self.0
+    }
+}
+
+/// A line of ℝᴺ as an (N − 1)-vector of Cl(N, 0, 1): the join P ∨ Q of two of its points,
+/// or the meet of N − 1 hyperplanes through it (klein's and ganja.js's `line`; in 3D a
+/// bivector, in 2D a vector, the same element as a [`Plane`] of 2D).
+///
+/// A line carries Plücker coordinates: its [`direction`](Line::direction) d and its
+/// [`moment`](Line::moment) p ∧ d for any point p on it (in 3D the classical moment vector
+/// p × d is the dual (M₂₃, −M₁₃, M₁₂)). The line through p and q has direction q − p; in 3D,
+/// with e₄ the projective e₀,
+/// L = d₁ e₂₃ − d₂ e₁₃ + d₃ e₁₂ + M₂₃ e₁₄ − M₁₃ e₂₄ + M₁₂ e₃₄.
+/// Every `Line` has a non-zero direction (the lines at infinity, which two directions span,
+/// are not `Line`s). Dorst & De Keninck, *May the Forque Be With You: Dynamics in PGA*
+/// (2022), use such lines for forces and momenta.
+///
+/// ```
+/// use rotorflow::algebra::pga::{Line, Point};
+/// let p = Point::new(&[0.0, 0.0, 0.0])?;
+/// let q = Point::new(&[1.0, 0.0, 0.0])?;
+/// let line = p.join(&q)?; // = Line::through(&p, &q)
+/// assert_eq!(line.direction(), vec![1.0, 0.0, 0.0]);
+/// assert_eq!(line.distance_to_point(&Point::new(&[5.0, 3.0, 4.0])?)?, 5.0);
+/// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Line(Multivector);
+
+impl Line {
+    /// The line through `p` and `q` (the join P ∨ Q), with direction w_p w_q (q − p) for
+    /// points of weights w_p, w_q (so q − p for points built by [`Point::new`]). One point may
+    /// be ideal: a point joined with the ideal point of d is the line through it along ±d.
+    ///
+    /// # Errors
+    /// [`AlgebraError::SignatureMismatch`]; [`AlgebraError::Degenerate`] when the points
+    /// coincide to within round-off, or when both are ideal (they span a line at infinity).
+    pub fn through(p: &Point, q: &Point) -> Result<Line, AlgebraError> {
+        let m = p.0.try_product(&q.0, super::Product::Regressive)?;
+        let scale = p.weight().abs() * q.0.max_abs() + q.weight().abs() * p.0.max_abs();
+        if negligible(weight_norm(&m), scale) {
+            let reason = if p.weight() == 0.0 && q.weight() == 0.0 {
+                "both points are at infinity"
+            } else {
+                "the points coincide"
+            };
+            return Err(AlgebraError::Degenerate {
+                operation: "the line through two points",
+                reason,
+            });
+        }
+        Ok(Line(m))
+    }
+
+    /// The line through the point at `point` with direction `direction` (N = `point.len()`):
+    /// the join of the point and the ideal point of the direction, with
+    /// [`direction`](Line::direction) exactly `direction`.
+    ///
+    /// ```
+    /// use rotorflow::algebra::pga::Line;
+    /// let line = Line::from_point_direction(&[1.0, 2.0, 3.0], &[0.0, 0.0, 2.0])?;
+    /// assert_eq!(line.direction(), vec![0.0, 0.0, 2.0]);
+    /// assert_eq!(line.point_nearest_origin(), vec![1.0, 2.0, 0.0]);
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionMismatch`]; [`AlgebraError::NonFinite`];
+    /// [`AlgebraError::ZeroLength`] for a zero direction; [`AlgebraError::WrongSignature`]
+    /// for N < 2; [`AlgebraError::DimensionTooLarge`].
+    pub fn from_point_direction(point: &[f64], direction: &[f64]) -> Result<Line, AlgebraError> {
+        super::error::check_same_dim(point.len(), direction.len())?;
+        let p = Point::new(point)?;
+        let d = Point::ideal(direction)?;
+        Ok(Line(p.0.regressive(&d.0)))
+    }
+
+    /// Wraps an (N − 1)-vector of Cl(N, 0, 1) that is a finite line.
+    ///
+    /// # Errors
+    /// [`AlgebraError::WrongSignature`]; [`AlgebraError::NonFinite`];
+    /// [`AlgebraError::MixedGrades`] for other grades; [`AlgebraError::NotALine`] when the
+    /// element is not a blade (in 3D: the Plücker condition d · (p × d) = 0 fails, relative
+    /// deviation above 1e-12) or has no direction (zero, or a line at infinity).
+    pub fn from_multivector(m: Multivector) -> Result<Line, AlgebraError> {
+        let n = euclidean_dim(m.signature(), "a line")?;
+        check_finite(m.as_slice(), "line")?;
+        check_grade(&m, n - 1, "line")?;
+        if weight_norm(&m) == 0.0 {
+            return Err(AlgebraError::NotALine {
+                reason: "it has no direction (zero, or a line at infinity)",
+                deviation: 0.0,
+            });
+        }
+        // An (N − 1)-vector is a blade exactly when its complement, a bivector B, has
+        // B ∧ B = 0.
+        let b = m.right_complement() * (1.0 / m.max_abs());
+        let deviation = b.wedge(&b).max_abs();
+        if !within(deviation, 1e-12) {
+            return Err(AlgebraError::NotALine {
+                reason: "it is not a blade (not the join of two points)",
+                deviation,
+            });
+        }
+        Ok(Line(m))
+    }
+
+    /// The Euclidean dimension N.
+    pub fn dim(&self) -> usize {
+        self.0.dim() - 1
+    }
+
+    /// The direction d, as stored (its length is the line's weight: q − p for the line
+    /// through the points p and q).
+    pub fn direction(&self) -> Vec<f64> {
+        let (sig, n) = (self.0.signature(), self.dim());
+        (0..n)
+            .map(|i| {
+                let (mask, sign) = direction_blade(sig, n, i);
+                // + 0.0 turns the −0.0 of a sign flip into 0.0.
+                sign * self.0.coefficient(mask) + 0.0
+            })
+            .collect()
+    }
+
+    /// The moment p ∧ d, for any point p on the line and d its [`direction`](Line::direction):
+    /// the bivector whose 3D dual (M₂₃, −M₁₃, M₁₂) is the Plücker moment p × d. It is zero
+    /// exactly for lines through the origin.
+    pub fn moment(&self) -> Bivector {
+        let (sig, n) = (self.0.signature(), self.dim());
+        let mut m = Bivector::zero(n);
+        for i in 0..n {
+            for j in i + 1..n {
+                let (mask, sign) = moment_blade(sig, n, i, j);
+                m.set(i, j, sign * self.0.coefficient(mask) + 0.0);
+            }
+        }
+        m
+    }
+
+    /// The point of the line nearest the origin, p − (p·d̂) d̂ = −(d ⌋ (p ∧ d)) / |d|².
+    pub fn point_nearest_origin(&self) -> Vec<f64> {
+        let (d, m) = self.unit_scaled();
+        let dd: f64 = d.iter().map(|c| c * c).sum();
+        (0..self.dim())
+            .map(|j| {
+                0.0 - d
+                    .iter()
+                    .enumerate()
+                    .map(|(i, di)| di * m.get(i, j))
+                    .sum::<f64>()
+                    / dd
+            })
+            .collect()
+    }
+
+    /// The Euclidean distance from the point `x` to the line, |(x − p) ∧ d| / |d| =
+    /// |x ∧ d − p ∧ d| / |d|.
+    ///
+    /// # Errors
+    /// [`AlgebraError::PointAtInfinity`] for an ideal point; [`AlgebraError::DimensionMismatch`].
+    pub fn distance_to_point(&self, x: &Point) -> Result<f64, AlgebraError> {
+        super::error::check_same_dim(self.dim(), x.dim())?;
+        let x = x.coordinates()?;
+        let (d, m) = self.unit_scaled();
+        let mut off = Vec::with_capacity(m.as_slice().len());
+        for i in 0..d.len() {
+            for j in i + 1..d.len() {
+                off.push(x[i] * d[j] - x[j] * d[i] - m.get(i, j));
+            }
+        }
+        Ok(scaled_norm(&off) / scaled_norm(&d))
+    }
+
+    /// Direction and moment divided by the largest direction component, so that |d| ≥ 1
+    /// and neither squares nor ratios underflow or overflow for tiny or huge weights.
+    fn unit_scaled(&self) -> (Vec<f64>, Bivector) {
+        let d = self.direction();
+        let s = d.iter().fold(0.0f64, |a, c| a.max(c.abs()));
+        let d: Vec<f64> = d.iter().map(|c| c / s).collect();
+        let mut m = self.moment();
+        for c in m.as_mut_slice() {
+            *c /= s;
+        }
+        (d, m)
+    }
+
+    /// The point where the line meets `plane` (the meet L ∧ A). For a line parallel to the
+    /// plane (d · a = 0 to within round-off) it is the ideal point of the line's direction:
+    /// weight exactly 0, so [`Point::coordinates`] reports [`AlgebraError::PointAtInfinity`].
+    ///
+    /// ```
+    /// use rotorflow::algebra::pga::{Line, Plane};
+    /// let line = Line::from_point_direction(&[1.0, 1.0, 0.0], &[0.0, 0.0, 1.0])?;
+    /// let x = line.meet_plane(&Plane::new(&[0.0, 0.0, 1.0], 4.0)?)?.coordinates()?;
+    /// assert_eq!(x, vec![1.0, 1.0, 4.0]);
+    /// // A parallel plane meets it at infinity.
+    /// let ideal = line.meet_plane(&Plane::new(&[1.0, 0.0, 0.0], 4.0)?)?;
+    /// assert_eq!(ideal.weight(), 0.0);
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`AlgebraError::SignatureMismatch`]; [`AlgebraError::Degenerate`] when the line lies
+    /// in the plane (the meet vanishes to within round-off).
+    pub fn meet_plane(&self, plane: &Plane) -> Result<Point, AlgebraError> {
+        let mut x = self.0.try_product(&plane.0, super::Product::Wedge)?;
+        if negligible(x.max_abs(), self.0.max_abs() * plane.0.max_abs()) {
+            return Err(AlgebraError::Degenerate {
+                operation: "the meet of a line and a plane",
+                reason: "the line lies in the plane",
+            });
+        }
+        let w = (1usize << self.dim()) - 1;
+        if negligible(
+            x.as_slice()[w],
+            weight_norm(&self.0) * weight_norm(&plane.0),
+        ) {
+            x.as_mut_slice()[w] = 0.0;
+        }
+        Ok(Point(x))
+    }
+
+    /// The plane through this line and the point `p` in 3D (the join L ∨ P). Its normal is
+    /// d × (x − p₀) for a point x of weight 1 and p₀ on the line. `p` may be ideal: the plane
+    /// through the line parallel to that direction.
+    ///
+    /// ```
+    /// use rotorflow::algebra::pga::{Line, Point};
+    /// // The e₁ axis and the point (0, 1, 0) span the plane x₃ = 0.
+    /// let line = Line::from_point_direction(&[0.0, 0.0, 0.0], &[1.0, 0.0, 0.0])?;
+    /// let (normal, d) = line.join_point(&Point::new(&[0.0, 1.0, 0.0])?)?.equation();
+    /// assert!(normal[0] == 0.0 && normal[1] == 0.0 && normal[2] != 0.0 && d == 0.0);
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`AlgebraError::WrongSignature`] outside 3D (in N dimensions a line and a point span
+    /// a 2-flat; [`join`] returns it); [`AlgebraError::SignatureMismatch`];
+    /// [`AlgebraError::Degenerate`] when the point lies on the line (or is its direction).
+    pub fn join_point(&self, p: &Point) -> Result<Plane, AlgebraError> {
+        require_3d(
+            self.0.signature(),
+            "the join of a line and a point as a plane",
+        )?;
+        let y = self.0.try_product(&p.0, super::Product::Regressive)?;
+        if negligible(weight_norm(&y), self.0.max_abs() * p.0.max_abs()) {
+            return Err(AlgebraError::Degenerate {
+                operation: "the join of a line and a point",
+                reason: "the point lies on the line",
+            });
+        }
+        Ok(Plane(y))
+    }
+
+    /// The underlying (N − 1)-vector.
+    pub fn as_multivector(&self) -> &Multivector {
+        &self.0
+    }
+
+    /// The underlying (N − 1)-vector, by value.
+    pub fn into_multivector(self) -> Multivector {
+        self.0
+    }
+}
+
+impl AsRef<Multivector> for Line {
     fn as_ref(&self) -> &Multivector {
         &self.0
     }
@@ -366,10 +776,21 @@ impl Motor {
 
     /// The rotation by `angle` about an axis that need not pass through the origin (ganja.js's
     /// `rotor(line, angle)`): M = cos(θ/2) − sin(θ/2) Â with Â = A/√(−A²), for a simple
-    /// bivector A with A² < 0 (a line of 3D PGA, such as the meet of two planes; a point of
-    /// 2D PGA; in general the meet of N − 1 hyperplanes). The rotation turns in the
-    /// orientation of A's Euclidean part: from eᵢ toward eⱼ for A = eᵢⱼ, and
-    /// counter-clockwise about a 2D point of positive weight.
+    /// bivector A with A² < 0 (a [`Line`] of 3D PGA; a [`Point`] of 2D PGA; in general the
+    /// meet of two hyperplanes, an (N − 2)-flat). The axis may be given as a `Line`, a
+    /// `Point` or a plain [`Multivector`]. The rotation turns in the orientation of A's
+    /// Euclidean part: from eᵢ toward eⱼ for A = eᵢⱼ, right-handed about a 3D line's
+    /// [`Line::direction`], and counter-clockwise about a 2D point of positive weight.
+    ///
+    /// ```
+    /// use rotorflow::algebra::pga::{Line, Motor, Point};
+    /// // A quarter turn about the vertical line through (1, 0, 0) takes (2, 0, 5) to (1, 1, 5).
+    /// let axis = Line::from_point_direction(&[1.0, 0.0, 0.0], &[0.0, 0.0, 1.0])?;
+    /// let m = Motor::from_axis_angle(&axis, std::f64::consts::FRAC_PI_2)?;
+    /// let x = m.apply_point(&Point::new(&[2.0, 0.0, 5.0])?)?.coordinates()?;
+    /// assert!((x[0] - 1.0).abs() < 1e-15 && (x[1] - 1.0).abs() < 1e-15 && (x[2] - 5.0).abs() < 1e-15);
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
     ///
     /// ```
     /// use rotorflow::algebra::pga::{Motor, Point};
@@ -384,7 +805,11 @@ impl Motor {
     /// [`AlgebraError::WrongSignature`]; [`AlgebraError::NonFinite`];
     /// [`AlgebraError::NotABivector`]; [`AlgebraError::NotAnAxis`] when A² is not a negative
     /// scalar (A ∧ A ≠ 0 or no rotation part).
-    pub fn from_axis_angle(axis: &Multivector, angle: f64) -> Result<Motor, AlgebraError> {
+    pub fn from_axis_angle(
+        axis: &impl AsRef<Multivector>,
+        angle: f64,
+    ) -> Result<Motor, AlgebraError> {
+        let axis = axis.as_ref();
         euclidean_dim(axis.signature(), "a rotation axis")?;
         check_finite(axis.as_slice(), "rotation axis")?;
         check_finite(&[angle], "rotation angle")?;
@@ -489,6 +914,24 @@ impl Motor {
     /// [`AlgebraError::SignatureMismatch`].
     pub fn apply_plane(&self, p: &Plane) -> Result<Plane, AlgebraError> {
         Ok(Plane(self.apply(&p.0)?.grade(1)))
+    }
+
+    /// The moved line.
+    ///
+    /// ```
+    /// use rotorflow::algebra::pga::{Line, Motor};
+    /// // A half turn about e₃ reverses the line along e₁ through (0, 1, 0).
+    /// let m = Motor::from_plane_angle(3, 0, 1, std::f64::consts::PI)?;
+    /// let l = m.apply_line(&Line::from_point_direction(&[0.0, 1.0, 0.0], &[1.0, 0.0, 0.0])?)?;
+    /// let (d, p) = (l.direction(), l.point_nearest_origin());
+    /// assert!((d[0] + 1.0).abs() < 1e-15 && (p[1] + 1.0).abs() < 1e-15);
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`AlgebraError::SignatureMismatch`].
+    pub fn apply_line(&self, l: &Line) -> Result<Line, AlgebraError> {
+        Ok(Line(self.apply(&l.0)?.grade(self.dim() - 1)))
     }
 
     /// The rotation part R, a Euclidean rotor of ℝᴺ (the terms without e₀).

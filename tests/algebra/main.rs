@@ -4,6 +4,7 @@
 mod support;
 
 mod bivector;
+mod cga;
 mod decompose;
 mod exp_log;
 mod multivector;

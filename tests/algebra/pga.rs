@@ -4,8 +4,9 @@
 
 use crate::support::*;
 use nalgebra::{DMatrix, DVector};
+use proptest::prelude::*;
 use rand::Rng;
-use rotorflow::algebra::pga::{Motor, Plane, Point, join, meet};
+use rotorflow::algebra::pga::{Line, Motor, Plane, Point, join, meet};
 use rotorflow::algebra::sta;
 use rotorflow::prelude::*;
 
@@ -453,4 +454,381 @@ fn lorentz_matrix_of_versors() {
     let huge = Multivector::scalar(st, 1e200);
     assert!(sta::lorentz_matrix(&huge).is_err());
     assert!(Motor::new(Multivector::scalar(pga, 1e200)).is_err());
+}
+
+fn cross(a: &[f64], b: &[f64]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn sub(a: &[f64], b: &[f64]) -> Vec<f64> {
+    a.iter().zip(b).map(|(x, y)| x - y).collect()
+}
+
+/// The distance from x to the line through p with direction d, by projection.
+fn distance_by_projection(x: &[f64], p: &[f64], d: &[f64]) -> f64 {
+    let v = sub(x, p);
+    let t = dot(&v, d) / dot(d, d);
+    let perp: Vec<f64> = v.iter().zip(d).map(|(a, b)| a - t * b).collect();
+    dot(&perp, &perp).sqrt()
+}
+
+#[test]
+fn line_signs_in_3d_are_pinned() {
+    // The line through the origin and (1, 0, 0) has direction +e₁ and is the blade e₂₃.
+    let o = Point::new(&[0.0, 0.0, 0.0]).unwrap();
+    let x1 = Point::new(&[1.0, 0.0, 0.0]).unwrap();
+    let l = o.join(&x1).unwrap();
+    assert_eq!(l.direction(), vec![1.0, 0.0, 0.0]);
+    assert_eq!(l.moment().as_slice(), &[0.0, 0.0, 0.0]);
+    let e23 = Multivector::blade_by_name(Signature::new(3, 0, 1).unwrap(), "e23", 1.0).unwrap();
+    assert_eq!(l.as_multivector(), &e23);
+    // Reversing the points reverses the line.
+    assert_eq!(x1.join(&o).unwrap().direction(), vec![-1.0, 0.0, 0.0]);
+    // The line of the type documentation, blade by blade: through (1, 2, 3) and (2, 2, 5),
+    // d = (1, 0, 2), p ∧ d = (M₁₂, M₁₃, M₂₃) = (−2, −1, 4).
+    let l = Line::through(
+        &Point::new(&[1.0, 2.0, 3.0]).unwrap(),
+        &Point::new(&[2.0, 2.0, 5.0]).unwrap(),
+    )
+    .unwrap();
+    let m = l.as_multivector();
+    for (name, want) in [
+        ("e23", 1.0),
+        ("e13", 0.0),
+        ("e12", 2.0),
+        ("e14", 4.0),
+        ("e24", 1.0),
+        ("e34", -2.0),
+    ] {
+        let blade = Multivector::blade_by_name(m.signature(), name, 1.0).unwrap();
+        let mask = blade.terms().next().unwrap().0;
+        assert_eq!(m.coefficient(mask), want, "{name}");
+    }
+    assert_eq!(l.moment().as_slice(), &[-2.0, -1.0, 4.0]);
+    assert!(max_diff(&l.point_nearest_origin(), &[-0.4, 2.0, 0.2]) < 1e-15);
+    // The translator by (1, 2, 3) moves the origin to (1, 2, 3), and the e₁ axis to the line
+    // through (1, 2, 3) along e₁.
+    let t = Motor::from_translation(&[1.0, 2.0, 3.0]).unwrap();
+    assert_eq!(
+        t.apply_point(&o).unwrap().coordinates().unwrap(),
+        vec![1.0, 2.0, 3.0]
+    );
+    let moved = t.apply_line(&o.join(&x1).unwrap()).unwrap();
+    assert_eq!(moved.direction(), vec![1.0, 0.0, 0.0]);
+    assert_eq!(moved.point_nearest_origin(), vec![0.0, 2.0, 3.0]);
+    // Planes x₁ = 1 and x₂ = 2 meet in the line along e₁ × e₂ = e₃ through (1, 2, 0).
+    let a = Plane::new(&[1.0, 0.0, 0.0], 1.0).unwrap();
+    let b = Plane::new(&[0.0, 1.0, 0.0], 2.0).unwrap();
+    let l = a.meet(&b).unwrap();
+    assert_eq!(l.direction(), vec![0.0, 0.0, 1.0]);
+    assert_eq!(l.point_nearest_origin(), vec![1.0, 2.0, 0.0]);
+    assert_eq!(b.meet(&a).unwrap().direction(), vec![0.0, 0.0, -1.0]);
+    // The typed meet is the untyped one.
+    assert_eq!(l.as_multivector(), &meet(&a, &b).unwrap());
+    // A quarter turn about that line (right-handed about +e₃) takes (2, 2, 5) to (1, 3, 5).
+    let q = Motor::from_axis_angle(&l, std::f64::consts::FRAC_PI_2).unwrap();
+    let x = q
+        .apply_point(&Point::new(&[2.0, 2.0, 5.0]).unwrap())
+        .unwrap()
+        .coordinates()
+        .unwrap();
+    assert!(max_diff(&x, &[1.0, 3.0, 5.0]) < 1e-15, "{x:?}");
+    // The e₁ axis and the point (0, 1, 0) span the plane with normal e₁ × e₂ = e₃.
+    let plane = o
+        .join(&x1)
+        .unwrap()
+        .join_point(&Point::new(&[0.0, 1.0, 0.0]).unwrap());
+    assert_eq!(plane.unwrap().equation(), (vec![0.0, 0.0, 1.0], 0.0));
+}
+
+#[test]
+fn lines_through_points_carry_plucker_coordinates() {
+    let mut rng = rng(62);
+    for n in 2..=5 {
+        for _ in 0..50 {
+            let p = coords(&mut rng, n);
+            let q = coords(&mut rng, n);
+            let l = Line::through(&Point::new(&p).unwrap(), &Point::new(&q).unwrap()).unwrap();
+            assert_eq!(l.dim(), n);
+            assert_eq!(l.as_multivector().grades(), vec![n - 1]);
+            let d = sub(&q, &p);
+            assert!(max_diff(&l.direction(), &d) < 1e-15, "N = {n}");
+            let pv = Vector::from_components(&p).unwrap();
+            let qv = Vector::from_components(&q).unwrap();
+            let m = pv.wedge(&qv);
+            assert!(max_diff(l.moment().as_slice(), m.as_slice()) < 1e-14);
+            // The same line from a point and a direction.
+            let l2 = Line::from_point_direction(&p, &d).unwrap();
+            assert!((l2.as_multivector() - l.as_multivector()).max_abs() < 1e-14);
+            // The nearest point to the origin lies on the line, perpendicular to d.
+            let foot = l.point_nearest_origin();
+            assert!(dot(&foot, &d).abs() < 1e-13);
+            assert!(distance_by_projection(&foot, &p, &d) < 1e-13);
+            // Distances agree with the projection formula; points on the line are at 0.
+            let x = coords(&mut rng, n);
+            let got = l.distance_to_point(&Point::new(&x).unwrap()).unwrap();
+            let want = distance_by_projection(&x, &p, &d);
+            assert!(
+                (got - want).abs() < 1e-13 * (1.0 + want),
+                "N = {n}: {got} vs {want}"
+            );
+            let t = rng.gen_range(-2.0..2.0);
+            let on: Vec<f64> = p.iter().zip(&d).map(|(a, b)| a + t * b).collect();
+            assert!(l.distance_to_point(&Point::new(&on).unwrap()).unwrap() < 1e-14);
+            // The line round-trips through its multivector.
+            let back = Line::from_multivector(l.as_multivector().clone()).unwrap();
+            assert_eq!(back, l);
+        }
+    }
+}
+
+#[test]
+fn lines_meet_planes_in_their_intersection() {
+    let mut rng = rng(63);
+    for n in 2..=5 {
+        for _ in 0..50 {
+            let p = coords(&mut rng, n);
+            let d = coords(&mut rng, n);
+            let a = coords(&mut rng, n);
+            let delta = rng.gen_range(-2.0..2.0);
+            if dot(&a, &d).abs() < 0.1 {
+                continue;
+            }
+            let l = Line::from_point_direction(&p, &d).unwrap();
+            let x = l
+                .meet_plane(&Plane::new(&a, delta).unwrap())
+                .unwrap()
+                .coordinates()
+                .unwrap();
+            // x = p + t d with a·x = δ.
+            let t = (delta - dot(&a, &p)) / dot(&a, &d);
+            let want: Vec<f64> = p.iter().zip(&d).map(|(pi, di)| pi + t * di).collect();
+            assert!(max_diff(&x, &want) < 1e-12 * (1.0 + t.abs()), "N = {n}");
+        }
+        // Parallel: the ideal point of the line's direction. In the plane: refused.
+        let mut d = vec![0.0; n];
+        d[0] = 1.0;
+        let mut normal = vec![0.0; n];
+        normal[1] = 1.0;
+        let l = Line::from_point_direction(&vec![0.5; n], &d).unwrap();
+        let ideal = l.meet_plane(&Plane::new(&normal, 3.0).unwrap()).unwrap();
+        assert_eq!(ideal.weight(), 0.0);
+        assert!(matches!(
+            ideal.coordinates(),
+            Err(AlgebraError::PointAtInfinity { .. })
+        ));
+        // The ideal point is the line's direction: joined with a point it gives a parallel.
+        let parallel = Point::new(&vec![0.0; n]).unwrap().join(&ideal).unwrap();
+        let pd = parallel.direction();
+        assert!(pd[0] != 0.0 && pd[1..].iter().all(|&c| c == 0.0), "{pd:?}");
+        assert!(matches!(
+            l.meet_plane(&Plane::new(&normal, 0.5).unwrap()),
+            Err(AlgebraError::Degenerate { .. })
+        ));
+    }
+}
+
+#[test]
+fn planes_meet_and_lines_join_in_3d() {
+    let mut rng = rng(64);
+    for _ in 0..100 {
+        let a = coords(&mut rng, 3);
+        let b = coords(&mut rng, 3);
+        let (da, db) = (rng.gen_range(-2.0..2.0), rng.gen_range(-2.0..2.0));
+        let axb = cross(&a, &b);
+        if dot(&axb, &axb) < 0.01 {
+            continue;
+        }
+        let l = Plane::new(&a, da)
+            .unwrap()
+            .meet(&Plane::new(&b, db).unwrap())
+            .unwrap();
+        assert!(max_diff(&l.direction(), &axb) < 1e-14);
+        // Its points satisfy both plane equations.
+        let p = l.point_nearest_origin();
+        let s = 1.0 + p.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+        assert!((dot(&a, &p) - da).abs() < 1e-13 * s && (dot(&b, &p) - db).abs() < 1e-13 * s);
+        // The plane through the line and a point contains both.
+        let x = coords(&mut rng, 3);
+        if l.distance_to_point(&Point::new(&x).unwrap()).unwrap() < 0.1 {
+            continue;
+        }
+        let plane = l.join_point(&Point::new(&x).unwrap()).unwrap();
+        let (normal, delta) = plane.equation();
+        let scale = dot(&normal, &normal).sqrt();
+        let q: Vec<f64> = p.iter().zip(&axb).map(|(pi, di)| pi + 0.7 * di).collect();
+        for y in [&x, &p, &q] {
+            assert!((dot(&normal, y) - delta).abs() < 1e-12 * scale * s);
+        }
+        // Its normal is d × (x − p).
+        let want = cross(&axb, &sub(&x, &p));
+        assert!(max_diff(&normal, &want) < 1e-12 * scale);
+    }
+    // Parallel planes, a point on the line, wrong dimensions.
+    let a = Plane::new(&[1.0, 2.0, 0.0], 1.0).unwrap();
+    let b = Plane::new(&[2.0, 4.0, 0.0], 5.0).unwrap();
+    assert!(matches!(a.meet(&b), Err(AlgebraError::Degenerate { .. })));
+    assert!(matches!(a.meet(&a), Err(AlgebraError::Degenerate { .. })));
+    let l = Line::from_point_direction(&[1.0, 2.0, 3.0], &[0.0, 1.0, 0.0]).unwrap();
+    let on = Point::new(&[1.0, 7.0, 3.0]).unwrap();
+    assert!(matches!(
+        l.join_point(&on),
+        Err(AlgebraError::Degenerate { .. })
+    ));
+    assert!(matches!(
+        l.join_point(&Point::ideal(&[0.0, 2.0, 0.0]).unwrap()),
+        Err(AlgebraError::Degenerate { .. })
+    ));
+    // An ideal point not along the line spans the plane through the line parallel to it.
+    let (normal, d) = l
+        .join_point(&Point::ideal(&[1.0, 0.0, 0.0]).unwrap())
+        .unwrap()
+        .equation();
+    assert!(normal[0] == 0.0 && normal[1] == 0.0 && (d / normal[2] - 3.0).abs() < 1e-15);
+    let p2 = Plane::new(&[1.0, 0.0], 0.0).unwrap();
+    assert!(matches!(
+        p2.meet(&Plane::new(&[0.0, 1.0], 0.0).unwrap()),
+        Err(AlgebraError::WrongSignature { .. })
+    ));
+    let l4 = Line::from_point_direction(&[0.0; 4], &[1.0, 0.0, 0.0, 0.0]).unwrap();
+    assert!(matches!(
+        l4.join_point(&Point::new(&[0.0, 1.0, 0.0, 0.0]).unwrap()),
+        Err(AlgebraError::WrongSignature { .. })
+    ));
+    assert!(
+        a.meet(&Plane::new(&[1.0, 0.0, 0.0, 0.0], 0.0).unwrap())
+            .is_err()
+    );
+}
+
+#[test]
+fn bad_lines_are_refused() {
+    let p = Point::new(&[1.0, 2.0, 3.0]).unwrap();
+    assert!(matches!(
+        Line::through(&p, &p),
+        Err(AlgebraError::Degenerate { .. })
+    ));
+    let u = Point::ideal(&[1.0, 0.0, 0.0]).unwrap();
+    let v = Point::ideal(&[0.0, 1.0, 0.0]).unwrap();
+    assert!(matches!(
+        Line::through(&u, &v),
+        Err(AlgebraError::Degenerate { .. })
+    ));
+    assert!(matches!(
+        Point::ideal(&[0.0, 0.0, 0.0]),
+        Err(AlgebraError::ZeroLength { .. })
+    ));
+    assert!(matches!(
+        Line::from_point_direction(&[1.0, 2.0, 3.0], &[0.0; 3]),
+        Err(AlgebraError::ZeroLength { .. })
+    ));
+    assert!(matches!(
+        Line::from_point_direction(&[1.0, 2.0, 3.0], &[1.0, 0.0]),
+        Err(AlgebraError::DimensionMismatch { .. })
+    ));
+    assert!(matches!(
+        Line::from_point_direction(&[f64::NAN, 2.0, 3.0], &[1.0, 0.0, 0.0]),
+        Err(AlgebraError::NonFinite { .. })
+    ));
+    // A point joined with an ideal point: the line through it along that direction.
+    let l = p.join(&u).unwrap();
+    assert_eq!(l.direction(), vec![1.0, 0.0, 0.0]);
+    assert_eq!(l.distance_to_point(&p).unwrap(), 0.0);
+    assert!(matches!(
+        l.distance_to_point(&u),
+        Err(AlgebraError::PointAtInfinity { .. })
+    ));
+    let pga = Signature::new(3, 0, 1).unwrap();
+    let name = |s: &str| Multivector::blade_by_name(pga, s, 1.0).unwrap();
+    // Not a blade (a screw axis), at infinity, zero, wrong grade, wrong algebra.
+    for (m, what) in [
+        (&name("e12") + &name("e34"), "screw"),
+        (name("e14"), "ideal"),
+        (Multivector::zero(pga), "zero"),
+    ] {
+        assert!(
+            matches!(
+                Line::from_multivector(m),
+                Err(AlgebraError::NotALine { .. })
+            ),
+            "{what}"
+        );
+    }
+    assert!(matches!(
+        Line::from_multivector(name("e1")),
+        Err(AlgebraError::MixedGrades { .. })
+    ));
+    let e12 = Multivector::blade_by_name(Signature::euclidean(3), "e12", 1.0).unwrap();
+    assert!(matches!(
+        Line::from_multivector(e12),
+        Err(AlgebraError::WrongSignature { .. })
+    ));
+    // Different dimensions.
+    let q2 = Point::new(&[1.0, 2.0]).unwrap();
+    assert!(Line::through(&p, &q2).is_err());
+    assert!(l.distance_to_point(&q2).is_err());
+}
+
+fn point_strategy(n: usize) -> impl Strategy<Value = Vec<f64>> {
+    proptest::collection::vec(-3.0f64..3.0, n)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Motors move lines as they move points: M (P ∨ Q) M̃ = (M P M̃) ∨ (M Q M̃).
+    #[test]
+    fn motors_move_lines_with_their_points(
+        (p, q) in (2usize..=4).prop_flat_map(|n| (point_strategy(n), point_strategy(n))),
+        seed in 0u64..1000,
+    ) {
+        let n = p.len();
+        prop_assume!(max_diff(&p, &q) > 1e-3);
+        let m = random_motor(&mut rng(seed), n);
+        let (pp, qq) = (Point::new(&p).unwrap(), Point::new(&q).unwrap());
+        let moved = m.apply_line(&pp.join(&qq).unwrap()).unwrap();
+        let want = m.apply_point(&pp).unwrap().join(&m.apply_point(&qq).unwrap()).unwrap();
+        let err = (moved.as_multivector() - want.as_multivector()).max_abs();
+        prop_assert!(err < 1e-12 * want.as_multivector().max_abs().max(1.0), "{err:e}");
+        // The moved direction is the rotated direction.
+        let d = m.rotor().rotate_vector(&Vector::from_components(&sub(&q, &p)).unwrap());
+        prop_assert!(max_diff(&moved.direction(), d.as_slice()) < 1e-12);
+    }
+
+    /// A rotation about a 3D line keeps the line's points and turns the others about it by
+    /// the angle: distances to the line are kept, and a quarter turn moves a point by √2 r.
+    #[test]
+    fn rotations_about_lines_fix_the_line(
+        p in point_strategy(3),
+        d in point_strategy(3),
+        x in point_strategy(3),
+        angle in -3.0f64..3.0,
+    ) {
+        prop_assume!(dot(&d, &d) > 0.01);
+        let l = Line::from_point_direction(&p, &d).unwrap();
+        let m = Motor::from_axis_angle(&l, angle).unwrap();
+        let on: Vec<f64> = p.iter().zip(&d).map(|(a, b)| a + 0.3 * b).collect();
+        let fixed = m.apply_point(&Point::new(&on).unwrap()).unwrap().coordinates().unwrap();
+        prop_assert!(max_diff(&fixed, &on) < 1e-13);
+        let xp = Point::new(&x).unwrap();
+        let moved = m.apply_point(&xp).unwrap();
+        let r = l.distance_to_point(&xp).unwrap();
+        prop_assert!((l.distance_to_point(&moved).unwrap() - r).abs() < 1e-12);
+        let chord = 2.0 * r * (0.5 * angle).sin().abs();
+        let y = moved.coordinates().unwrap();
+        prop_assert!((dot(&sub(&y, &x), &sub(&y, &x)).sqrt() - chord).abs() < 1e-12);
+        // Right-handed about d: (x − foot) turns toward d × (x − foot).
+        let v = sub(&x, &l.point_nearest_origin());
+        let v_perp: Vec<f64> = {
+            let t = dot(&v, &d) / dot(&d, &d);
+            v.iter().zip(&d).map(|(a, b)| a - t * b).collect()
+        };
+        prop_assume!(r > 0.1);
+        let turn = dot(&sub(&y, &x), &cross(&d, &v_perp));
+        prop_assert!(turn * angle.sin() >= -1e-12, "{turn} at {angle}");
+    }
 }
