@@ -74,6 +74,7 @@ mod rotor;
 #[cfg(feature = "serde")]
 mod serde_impls;
 mod signature;
+mod small;
 pub mod sta;
 mod vector;
 mod versor;

@@ -65,6 +65,7 @@
 //! logarithm for log. Beyond N = 8 they return [`AlgebraError::UnsupportedDimension`].
 
 use super::error::{check_finite, within};
+use super::small::Small;
 use super::versor_general::{GENERAL_MAX_DIM, exp_general, log_general};
 use super::versor_pga3 as pga3;
 use super::{AlgebraError, Bivector, Multivector, Rotor};
@@ -203,9 +204,9 @@ impl Multivector {
             }
             return exp_general(self);
         }
-        let out = exp_closed_form(self);
+        let out = exp_closed_form(&Small::from_multivector(self));
         if out.as_slice().iter().all(|c| c.is_finite()) {
-            Ok(renormalize(out))
+            Ok(renormalize(out).to_multivector())
         } else {
             Err(AlgebraError::Overflow {
                 what: "the exponential",
@@ -335,9 +336,10 @@ impl Multivector {
             }
             return log_general(self);
         }
-        let out = log_closed_form(self)?;
+        let v = Small::from_multivector(self);
+        let out = log_closed_form(&v)?;
         if out.as_slice().iter().all(|c| c.is_finite()) {
-            Ok(refine(self, out))
+            Ok(refine(&v, out).to_multivector())
         } else {
             Err(AlgebraError::NoLogarithm {
                 reason: "a rotation by π in a plane the versor does not determine",
@@ -541,8 +543,8 @@ fn shs(z: C64, s: f64) -> C64 {
 }
 
 /// m scaled by 2^e coefficient by coefficient (exact barring overflow and underflow).
-fn scaled(m: &Multivector, e: i32) -> Multivector {
-    let mut out = m.clone();
+fn scaled(m: &Small, e: i32) -> Small {
+    let mut out = *m;
     for c in out.as_mut_slice() {
         *c = crate::numeric::ldexp(*c, e);
     }
@@ -552,17 +554,18 @@ fn scaled(m: &Multivector, e: i32) -> Multivector {
 /// The closed form for the fixed-size routes' tests.
 #[cfg(test)]
 pub(super) fn exp_closed_form_for_tests(b: &Multivector) -> Multivector {
-    renormalize(exp_closed_form(b))
+    renormalize(exp_closed_form(&Small::from_multivector(b))).to_multivector()
 }
 
 /// The closed-form logarithm for the fixed-size routes' tests.
 #[cfg(test)]
 pub(super) fn log_closed_form_for_tests(v: &Multivector) -> Multivector {
-    refine(v, log_closed_form(v).expect("a logarithm"))
+    let v = Small::from_multivector(v);
+    refine(&v, log_closed_form(&v).expect("a logarithm")).to_multivector()
 }
 
 /// The closed form of the module documentation, for a non-zero bivector of N ≤ 5.
-fn exp_closed_form(b: &Multivector) -> Multivector {
+fn exp_closed_form(b: &Small) -> Small {
     let sig = b.signature();
     // The scale: in Cl(p, q, 1) only the blades without the null vector enter B², B∧B's
     // square and B (B∧B) quadratically (a product of two blades that both hold the null
@@ -577,7 +580,7 @@ fn exp_closed_form(b: &Multivector) -> Multivector {
     };
     if m == 0.0 {
         // Every term holds the null vector (or B = 0): B² = 0.
-        return &Multivector::scalar(sig, 1.0) + b;
+        return &Small::scalar(sig, 1.0) + b;
     }
     // B = s B′ with s = 2^e and max |B′| in [1, 2) over the blades above.
     let e = crate::numeric::exponent_of(m);
@@ -641,7 +644,7 @@ fn exp_closed_form(b: &Multivector) -> Multivector {
         cdiv(shs(x + y, s) - shs(x - y, s), x * y * 4.0)
     };
     let series = xu.norm() <= 1.0;
-    let mut out = Multivector::scalar(sig, cterm);
+    let mut out = Small::scalar(sig, cterm);
     out = &out + &(&w * wterm);
     out = &out + &(&bp * fterm);
     let bw = bp.geometric(&w).grade(2);
@@ -665,7 +668,7 @@ fn exp_closed_form(b: &Multivector) -> Multivector {
 /// huge rotation angle (cancellation between the B and B W terms), which is honest for V
 /// but not for V Ṽ: a versor must stay a versor. For larger |Vᵢ| (boosts) V Ṽ − 1 carries
 /// round-off ~ε |V|², as good as any product, and V is returned unchanged.
-fn renormalize(v: Multivector) -> Multivector {
+fn renormalize(v: Small) -> Small {
     let top = v.max_abs();
     if top > 4.0 {
         return v;
@@ -694,7 +697,7 @@ fn renormalize(v: Multivector) -> Multivector {
     if !(alpha.is_finite() && beta.is_finite()) {
         return v;
     }
-    let f = &Multivector::scalar(v.signature(), alpha) + &(&q * beta);
+    let f = &Small::scalar(v.signature(), alpha) + &(&q * beta);
     f.geometric(&v)
 }
 
@@ -744,7 +747,7 @@ fn log_factor(c: C64, s2: C64) -> (C64, C64) {
 /// One correction step B ← B + ⟨exp(B)~ V⟩₂, kept only if it lowers the residual
 /// max |exp(B) − V|. The closed form's error lies mostly in the commutative algebra of B (the
 /// directions v and Q v), where exp(B + δ) = exp(B) exp(δ) and the step removes it.
-fn refine(v: &Multivector, b: Multivector) -> Multivector {
+fn refine(v: &Small, b: Small) -> Small {
     let Ok(e0) = exp_nonzero(&b) else {
         return b;
     };
@@ -761,7 +764,7 @@ fn refine(v: &Multivector, b: Multivector) -> Multivector {
 }
 
 /// exp for the refinement: the closed form, or an error on overflow.
-fn exp_nonzero(b: &Multivector) -> Result<Multivector, ()> {
+fn exp_nonzero(b: &Small) -> Result<Small, ()> {
     let e = exp_closed_form(b);
     if e.as_slice().iter().all(|c| c.is_finite()) {
         Ok(e)
@@ -786,7 +789,7 @@ fn real_factor(g: C64) -> Result<f64, AlgebraError> {
 }
 
 /// The logarithm of an even versor of N ≤ 5 in a non-Euclidean signature.
-fn log_closed_form(v: &Multivector) -> Result<Multivector, AlgebraError> {
+fn log_closed_form(v: &Small) -> Result<Small, AlgebraError> {
     let c = v.scalar_part();
     let bv = v.grade(2);
     let q = v.grade(4);
