@@ -260,7 +260,7 @@ pub fn render(tsv: &str) -> Res<String> {
          peer_versors.tsv (written by `python3 scripts/peer_versors.py --write`); do not \
          edit. -->\n"
     )?;
-    writeln!(out, "Peers recorded by the script:\n")?;
+    writeln!(out, "Where and when the peers were run:\n")?;
     for m in &data.meta {
         writeln!(out, "- {}", escape(m))?;
     }
