@@ -37,6 +37,9 @@ mod book_inertia_tables;
 #[allow(dead_code)]
 #[path = "../examples/book_integrators.rs"]
 mod book_integrators;
+#[allow(dead_code)]
+#[path = "../examples/book_peer_versors.rs"]
+mod book_peer_versors;
 #[path = "../examples/custom_integrator.rs"]
 mod custom_integrator;
 #[path = "../examples/first_simulation.rs"]
@@ -79,6 +82,7 @@ const GENERATED: &[&str] = &[
     "inertia_tables.md",
     "integrators.md",
     "integrators_error.svg",
+    "peer_versors.md",
     "step_ratio.md",
 ];
 
@@ -253,6 +257,43 @@ fn generated_step_ratios_are_rendered_from_their_data() {
     for key in ["# date: ", "# commit: ", "# machine: ", "# compiler: "] {
         assert!(data.contains(key), "step_ratio.tsv lacks `{key}`");
     }
+}
+
+/// The peer comparison of versor exp and log: the table is the rendering of the recorded
+/// data, and rotorflow's own column, computed here from the recorded cases and their
+/// high-precision references, stays within 1e-14 on every case.
+#[test]
+fn generated_peer_comparison_is_rendered_from_its_data() {
+    let data = read(&root().join("book/src/generated/peer_versors.tsv"));
+    let table = book_peer_versors::render(&data).expect("render");
+    assert_current(
+        "peer_versors.md",
+        &table,
+        "cargo run --example book_peer_versors -- --write (after python3 scripts/peer_versors.py \
+         --write for new peer data)",
+    );
+    for key in [
+        "# date: ",
+        "# commit: ",
+        "# machine: ",
+        "# python: ",
+        "# node: ",
+    ] {
+        assert!(data.contains(key), "peer_versors.tsv lacks `{key}`");
+    }
+    let cases = data.lines().filter(|l| l.starts_with("case\t")).count();
+    let errors = book_peer_versors::rotorflow_errors(&data).expect("rotorflow's errors");
+    assert!(
+        cases >= 10 && errors.len() == cases,
+        "checked {} of {cases} cases",
+        errors.len()
+    );
+    let failures: Vec<String> = errors
+        .iter()
+        .filter(|e| !(e.exp <= 1e-14 && e.log <= 1e-14))
+        .map(|e| format!("{}: exp error {:.1e}, log error {:.1e}", e.id, e.exp, e.log))
+        .collect();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
 /// A reference to a test: the file (relative to the repository) and the function name.
