@@ -27,7 +27,7 @@ use super::bivector::{bivector_len, pairs};
 use super::{Bivector, Vector};
 use crate::numeric::{exponent_of, householder_complement, ldexp};
 use nalgebra::{DMatrix, DVector};
-use smallvec::SmallVec;
+use smallvec::{SmallVec, smallvec};
 
 /// One simple component θ u∧v of a bivector: a magnitude θ > 0 and an orthonormal pair
 /// (u, v) spanning its plane, oriented so that \[B\] v = θ u.
@@ -154,6 +154,9 @@ impl Bivector {
     }
 }
 
+/// The planes of a decomposition, inline up to N = 9 (at most four planes).
+pub(crate) type Planes = SmallVec<[RawPlane; 4]>;
+
 /// A plane in raw form: B ⊇ θ u∧v with \[B\] v = θ u.
 #[derive(Clone, Debug)]
 pub(crate) struct RawPlane {
@@ -163,11 +166,11 @@ pub(crate) struct RawPlane {
 }
 
 /// Decomposes packed bivector components of dimension `n`.
-pub(crate) fn decompose_components(n: usize, comps: &[f64]) -> Vec<RawPlane> {
+pub(crate) fn decompose_components(n: usize, comps: &[f64]) -> Planes {
     debug_assert_eq!(comps.len(), bivector_len(n));
     let scale = comps.iter().fold(0.0f64, |m, c| m.max(c.abs()));
     if n < 2 || scale == 0.0 || !scale.is_finite() {
-        return Vec::new();
+        return Planes::new();
     }
     // Scale exactly by a power of two so that the largest component lies in [1, 2).
     let e = exponent_of(scale);
@@ -187,10 +190,10 @@ pub(crate) fn decompose_components(n: usize, comps: &[f64]) -> Vec<RawPlane> {
     planes
 }
 
-fn plane_2d(c: &[f64]) -> Vec<RawPlane> {
+fn plane_2d(c: &[f64]) -> Planes {
     let b = c[0];
     if b == 0.0 {
-        return Vec::new();
+        return Planes::new();
     }
     // θ e1∧e2 with [B] e2 = θ e1: u = e1, v = e2 (swapped for negative b).
     let (u, v) = if b > 0.0 {
@@ -198,21 +201,21 @@ fn plane_2d(c: &[f64]) -> Vec<RawPlane> {
     } else {
         ([0.0, 1.0], [1.0, 0.0])
     };
-    vec![RawPlane {
+    smallvec![RawPlane {
         theta: b.abs(),
         u: SmallVec::from_slice(&u),
         v: SmallVec::from_slice(&v),
     }]
 }
 
-fn plane_3d(c: &[f64]) -> Vec<RawPlane> {
+fn plane_3d(c: &[f64]) -> Planes {
     let theta = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
     if theta == 0.0 {
-        return Vec::new();
+        return Planes::new();
     }
     let unit: SmallVec<[f64; 28]> = c.iter().map(|x| x / theta).collect();
     let (u, v) = unit_plane_vectors(3, &unit);
-    vec![RawPlane { theta, u, v }]
+    smallvec![RawPlane { theta, u, v }]
 }
 
 /// Splits the components (12, 13, 14, 23, 24, 34) of a 4D bivector into its self-dual and
@@ -239,7 +242,7 @@ pub(crate) fn self_dual_join(a: [f64; 3], b: [f64; 3]) -> [f64; 6] {
 }
 
 /// The 4D closed form through the self-dual / anti-self-dual split.
-fn planes_4d(c: &[f64]) -> Vec<RawPlane> {
+fn planes_4d(c: &[f64]) -> Planes {
     let (alpha, beta) = self_dual_split(c);
     // Scaled norms: squaring a part of size ~1e-162 lands in the subnormals, where the norm
     // (and the unit direction built from it) loses most of its bits: an isoclinic pair with a
@@ -273,7 +276,7 @@ fn planes_4d(c: &[f64]) -> Vec<RawPlane> {
         theta2 = -theta2;
         p2.iter_mut().for_each(|x| *x = -*x);
     }
-    let mut out = Vec::with_capacity(2);
+    let mut out = Planes::new();
     let (u1, v1) = unit_plane_vectors(4, &p1);
     if theta1 > 0.0 {
         out.push(RawPlane {
@@ -358,14 +361,14 @@ pub(crate) fn unit_plane_vectors(n: usize, p: &[f64]) -> (SmallVec<[f64; 8]>, Sm
 }
 
 /// Deflation for N ≥ 5 (see the module documentation).
-fn planes_deflation(n: usize, comps: &[f64]) -> Vec<RawPlane> {
+fn planes_deflation(n: usize, comps: &[f64]) -> Planes {
     let mut a = DMatrix::<f64>::zeros(n, n);
     for ((i, j), &c) in pairs(n).zip(comps.iter()) {
         a[(i, j)] = c;
         a[(j, i)] = -c;
     }
     let mut basis = DMatrix::<f64>::identity(n, n);
-    let mut out = Vec::new();
+    let mut out = Planes::new();
     let mut level_exp = 0i32; // a = 2^level_exp · (restriction of the scaled input)
     loop {
         let m = a.ncols();
@@ -385,7 +388,7 @@ fn planes_deflation(n: usize, comps: &[f64]) -> Vec<RawPlane> {
                 2 => plane_2d(&packed),
                 3 => plane_3d(&packed),
                 4 => planes_4d(&packed),
-                _ => Vec::new(),
+                _ => Planes::new(),
             };
             for p in local {
                 out.push(lift(&basis, &p, level_exp));

@@ -68,6 +68,7 @@ impl Small {
         out.as_mut_slice().copy_from_slice(&self.c[..n]);
     }
 
+    #[cfg(test)]
     pub(super) fn to_multivector(self) -> Multivector {
         let mut out = Multivector::zero(self.sig);
         self.write_to(&mut out);

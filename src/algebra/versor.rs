@@ -64,6 +64,7 @@
 //! `versor_general.rs`: scaling and squaring for exp, a Krylov space and the principal matrix
 //! logarithm for log. Beyond N = 8 they return [`AlgebraError::UnsupportedDimension`].
 
+use super::decompose::decompose_components;
 use super::error::{check_finite, within};
 use super::small::Small;
 use super::versor_general::{GENERAL_MAX_DIM, exp_general, log_general};
@@ -172,29 +173,57 @@ impl Multivector {
         {
             return Ok(v);
         }
-        self.exp_any_signature()
+        let mut out = Multivector::zero(self.signature());
+        self.exp_any_signature(&mut out)?;
+        Ok(out)
     }
 
-    /// [`Multivector::exp`] in every signature, with the checks.
+    /// [`Multivector::exp`] written into `out`, an element of the same algebra whose storage
+    /// is reused: no heap allocation at all for N ≤ 5 in any signature, where
+    /// [`Multivector::exp`] allocates only the result's storage from N = 5 on (multivectors
+    /// keep up to 16 coefficients inline). On an error `out` is unspecified.
+    ///
+    /// ```
+    /// use rotorflow::algebra::{Multivector, Signature};
+    /// let cga3 = Signature::new(4, 1, 0)?; // conformal GA of 3D space
+    /// let b = Multivector::blade_by_name(cga3, "e45", 0.3)?; // a dilation generator
+    /// let mut v = Multivector::zero(cga3);
+    /// b.exp_to(&mut v)?;
+    /// assert_eq!(v, b.exp()?);
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`AlgebraError::SignatureMismatch`] if `out` belongs to another algebra; those of
+    /// [`Multivector::exp`].
+    pub fn exp_to(&self, out: &mut Multivector) -> Result<(), AlgebraError> {
+        check_same_algebra(self, out)?;
+        if pga3::is_pga3(self.signature()) && pga3::exp_to(self, out) {
+            return Ok(());
+        }
+        self.exp_any_signature(out)
+    }
+
+    /// [`Multivector::exp`] in every signature, with the checks, into `out` (same algebra).
     #[inline(never)]
-    fn exp_any_signature(&self) -> Result<Multivector, AlgebraError> {
+    fn exp_any_signature(&self, out: &mut Multivector) -> Result<(), AlgebraError> {
         check_finite(self.as_slice(), "bivector")?;
         check_bivector(self, "the exponential")?;
         let sig = self.signature();
+        // Euclidean signatures take the rotor route: near π it keeps V's bivector part
+        // relatively accurate (sin θ times the plane), which the closed form below does not
+        // in a generic plane of Cl(5, 0, 0).
         if sig.is_euclidean() {
-            return Ok(euclidean_bivector(self)?.try_exp()?.to_multivector());
+            let r = euclidean_bivector(self)?.try_exp()?;
+            out.as_mut_slice().fill(0.0);
+            for (k, c) in r.terms() {
+                out.as_mut_slice()[k as usize] = c;
+            }
+            return Ok(());
         }
-        if self.dim() > CLOSED_FORM_MAX_DIM && is_projective(sig) {
-            let out = exp_projective(self)?;
-            return if out.as_slice().iter().all(|c| c.is_finite()) {
-                Ok(out)
-            } else {
-                Err(AlgebraError::Overflow {
-                    what: "the exponential",
-                })
-            };
-        }
-        if self.dim() > CLOSED_FORM_MAX_DIM {
+        let result = if self.dim() > CLOSED_FORM_MAX_DIM && is_projective(sig) {
+            exp_projective(self)?
+        } else if self.dim() > CLOSED_FORM_MAX_DIM {
             if self.dim() > GENERAL_MAX_DIM {
                 return Err(AlgebraError::UnsupportedDimension {
                     operation: "the exponential",
@@ -202,16 +231,24 @@ impl Multivector {
                     max: GENERAL_MAX_DIM,
                 });
             }
-            return exp_general(self);
-        }
-        let out = exp_closed_form(&Small::from_multivector(self));
-        if out.as_slice().iter().all(|c| c.is_finite()) {
-            Ok(renormalize(out).to_multivector())
+            exp_general(self)?
         } else {
-            Err(AlgebraError::Overflow {
+            let v = exp_closed_form(&Small::from_multivector(self));
+            if !v.as_slice().iter().all(|c| c.is_finite()) {
+                return Err(AlgebraError::Overflow {
+                    what: "the exponential",
+                });
+            }
+            renormalize(v).write_to(out);
+            return Ok(());
+        };
+        if !result.as_slice().iter().all(|c| c.is_finite()) {
+            return Err(AlgebraError::Overflow {
                 what: "the exponential",
-            })
+            });
         }
+        *out = result;
+        Ok(())
     }
 
     /// Returns a bivector B with exp(B) = V for an even versor V (V Ṽ = 1), in any signature
@@ -277,14 +314,34 @@ impl Multivector {
         {
             return Ok(b);
         }
-        self.log_any_signature()
+        let mut out = Multivector::zero(self.signature());
+        self.log_any_signature(&mut out)?;
+        Ok(out)
     }
 
-    /// [`Multivector::log`] in every signature, with the checks.
+    /// [`Multivector::log`] written into `out`, an element of the same algebra whose storage
+    /// is reused: no heap allocation at all for N ≤ 5 in any signature. On an error `out` is
+    /// unspecified.
+    ///
+    /// # Errors
+    /// [`AlgebraError::SignatureMismatch`] if `out` belongs to another algebra; those of
+    /// [`Multivector::log`].
+    pub fn log_to(&self, out: &mut Multivector) -> Result<(), AlgebraError> {
+        check_same_algebra(self, out)?;
+        if pga3::is_pga3(self.signature()) && pga3::log_to(self, VERSOR_TOLERANCE, out) {
+            return Ok(());
+        }
+        self.log_any_signature(out)
+    }
+
+    /// [`Multivector::log`] in every signature, with the checks, into `out` (same algebra).
     #[inline(never)]
-    fn log_any_signature(&self) -> Result<Multivector, AlgebraError> {
+    fn log_any_signature(&self, out: &mut Multivector) -> Result<(), AlgebraError> {
         check_finite(self.as_slice(), "versor")?;
-        let odd = self.odd().max_abs();
+        let odd = self
+            .terms()
+            .filter(|(k, _)| k.count_ones() % 2 == 1)
+            .fold(0.0f64, |m, (_, c)| m.max(c.abs()));
         if odd != 0.0 {
             return Err(AlgebraError::NotAVersor {
                 reason: "it has odd grades",
@@ -294,6 +351,11 @@ impl Multivector {
         let sig = self.signature();
         let deviation = if pga3::is_pga3(sig) {
             pga3::versor_deviation(self)
+        } else if self.dim() <= CLOSED_FORM_MAX_DIM {
+            let v = Small::from_multivector(self);
+            let mut vv = v.geometric(&v.reverse());
+            vv.as_mut_slice()[0] -= 1.0;
+            vv.max_abs()
         } else {
             let mut vv = self.geometric(&self.reverse());
             vv.as_mut_slice()[0] -= 1.0;
@@ -312,14 +374,29 @@ impl Multivector {
                 deviation,
             });
         }
+        if sig.is_euclidean() && self.dim() == CLOSED_FORM_MAX_DIM {
+            // The closed form below (no decomposition, no heap); at angle π, where it
+            // returns no logarithm, the rotor route picks one.
+            let v = Small::from_multivector(self);
+            if let Ok(b) = log_closed_form(&v)
+                && b.as_slice().iter().all(|c| c.is_finite())
+            {
+                refine(&v, b).write_to(out);
+                return Ok(());
+            }
+        }
         if sig.is_euclidean() {
             let b = Rotor::from_multivector_unchecked(self).log();
-            return Ok(Multivector::from(&b));
+            out.as_mut_slice().fill(0.0);
+            for (i, j) in super::pairs(self.dim()) {
+                out.as_mut_slice()[(1usize << i) | (1usize << j)] = b.get(i, j);
+            }
+            return Ok(());
         }
         if is_projective(sig) {
-            let out = log_projective(self)?;
+            log_projective(self, out)?;
             return if out.as_slice().iter().all(|c| c.is_finite()) {
-                Ok(out)
+                Ok(())
             } else {
                 Err(AlgebraError::Overflow {
                     what: "the logarithm",
@@ -334,17 +411,31 @@ impl Multivector {
                     max: GENERAL_MAX_DIM,
                 });
             }
-            return log_general(self);
+            *out = log_general(self)?;
+            return Ok(());
         }
         let v = Small::from_multivector(self);
-        let out = log_closed_form(&v)?;
-        if out.as_slice().iter().all(|c| c.is_finite()) {
-            Ok(refine(&v, out).to_multivector())
+        let b = log_closed_form(&v)?;
+        if b.as_slice().iter().all(|c| c.is_finite()) {
+            refine(&v, b).write_to(out);
+            Ok(())
         } else {
             Err(AlgebraError::NoLogarithm {
                 reason: "a rotation by π in a plane the versor does not determine",
             })
         }
+    }
+}
+
+/// Err(SignatureMismatch) unless `out` belongs to the algebra of `m`.
+fn check_same_algebra(m: &Multivector, out: &Multivector) -> Result<(), AlgebraError> {
+    if m.signature() == out.signature() {
+        Ok(())
+    } else {
+        Err(AlgebraError::SignatureMismatch {
+            left: m.signature(),
+            right: out.signature(),
+        })
     }
 }
 
@@ -413,14 +504,16 @@ fn phi_projective(a: &Bivector, t: &[f64], inverse: bool) -> Result<Coords, Alge
         apply_plane(&mut out, &tk, xt.as_slice(), 2.0 * theta, inverse)?;
         return Ok(out);
     }
-    for plane in a.decompose().planes() {
-        let alpha = 2.0 * plane.magnitude();
-        let (u, v) = (plane.u(), plane.v());
-        let (cu, cv) = (tv.dot(u), tv.dot(v));
+    for plane in decompose_components(a.dim(), a.as_slice()) {
+        let (theta, u, v) = (plane.theta, &plane.u, &plane.v);
+        let dot = |x: &[f64]| t.iter().zip(x).map(|(a, b)| a * b).sum::<f64>();
+        let (cu, cv) = (dot(u), dot(v));
+        // tk = (t·u) u + (t·v) v and tk⌋(θ u∧v) = θ ((tk·u) v − (tk·v) u).
         let tk: Coords = (0..t.len()).map(|i| cu * u[i] + cv * v[i]).collect();
-        let tkv = super::Vector::from_components(&tk)?;
-        let xt = tkv.left_contract(&plane.bivector());
-        apply_plane(&mut out, &tk, xt.as_slice(), alpha, inverse)?;
+        let xt: Coords = (0..t.len())
+            .map(|i| theta * (cu * v[i] - cv * u[i]))
+            .collect();
+        apply_plane(&mut out, &tk, &xt, 2.0 * theta, inverse)?;
     }
     Ok(out)
 }
@@ -477,33 +570,35 @@ fn exp_projective(b: &Multivector) -> Result<Multivector, AlgebraError> {
 
 /// log in Cl(p, 0, 1), any p: V = R + R U with R the Euclidean part (a rotor) and U = u e₀;
 /// A = log R ([`Rotor::log`]) and t = φ(2\[A\]ᵀ)⁻¹ u.
-fn log_projective(v: &Multivector) -> Result<Multivector, AlgebraError> {
-    let sig = v.signature();
+fn log_projective(v: &Multivector, out: &mut Multivector) -> Result<(), AlgebraError> {
     let p = v.dim() - 1;
     let null = 1u64 << p;
-    let mut re = Multivector::try_zero(super::Signature::euclidean(p))?;
-    let mut rm = Multivector::zero(sig);
-    let mut vn = Multivector::zero(sig);
-    for (k, c) in v.terms() {
-        if k & null == 0 {
-            re.as_mut_slice()[k as usize] = c;
-            rm.as_mut_slice()[k as usize] = c;
-        } else {
-            vn.as_mut_slice()[k as usize] = c;
+    let x = v.as_slice();
+    let r = Rotor::from_blades(p, |k| x[k as usize]);
+    let a = r.log();
+    // u e₀ = R̃ (V − R): only the products of R̃'s blades with the blades of V that hold e₀,
+    // landing on a vector times e₀. Both factors are Euclidean apart from e₀ (the last
+    // vector, so it never reorders), and every metric factor is +1.
+    let mut u: Coords = SmallVec::from_elem(0.0, p);
+    for (kr, cr) in r.terms() {
+        let cr = cr * super::blade::reverse_sign(kr.count_ones() as usize);
+        for (kv, cv) in v.terms().filter(|(k, _)| k & null != 0) {
+            let e = kr ^ (kv & !null);
+            if e.count_ones() == 1 {
+                let i = e.trailing_zeros() as usize;
+                u[i] += super::blade::reorder_sign(kr, kv & !null) * cr * cv;
+            }
         }
     }
-    let a = Rotor::from_multivector_unchecked(&re).log();
-    let um = rm.reverse().geometric(&vn);
-    let u: Coords = (0..p).map(|i| um.coefficient((1 << i) | null)).collect();
     let t = phi_projective(&a, &u, true)?;
-    let mut out = Multivector::zero(sig);
+    out.as_mut_slice().fill(0.0);
     for (i, j) in super::pairs(p) {
         out.as_mut_slice()[((1u64 << i) | (1u64 << j)) as usize] = a.get(i, j);
     }
     for (i, c) in t.iter().enumerate() {
         out.as_mut_slice()[((1u64 << i) | null) as usize] = *c;
     }
-    Ok(out)
+    Ok(())
 }
 
 /// Err(NotABivector) naming the grades other than 2.

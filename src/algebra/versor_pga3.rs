@@ -85,23 +85,34 @@ fn sinc_minus_cos(theta: f64, sin: f64, cos: f64) -> f64 {
 
 /// exp(B) for a multivector B of Cl(3, 0, 1), or None unless B is a finite bivector with a
 /// finite exponential (the general route then reports what is wrong). One pass checks the
-/// input; the result is built on the stack and moved once.
+/// input; the result is built in place.
 #[inline]
 pub(super) fn exp(b: &Multivector) -> Option<Multivector> {
-    let c: &[f64; 16] = b.as_slice().try_into().ok()?;
+    let mut out = Multivector::zero(b.signature());
+    exp_to(b, &mut out).then_some(out)
+}
+
+/// [`exp`] into `out` (Cl(3, 0, 1) too): true if it was written.
+#[inline]
+pub(super) fn exp_to(b: &Multivector, out: &mut Multivector) -> bool {
+    let (Ok(c), Ok(o)) = (
+        <&[f64; 16]>::try_from(b.as_slice()),
+        <&mut [f64; 16]>::try_from(out.as_mut_slice()),
+    ) else {
+        return false;
+    };
     if !zero(c, NOT_GRADE_2) || !finite(c, PLANES) {
-        return None;
+        return false;
     }
     let (a12, a13, a23, t14, t24, t34) = (c[3], c[5], c[6], c[9], c[10], c[12]);
     let theta = norm3(a12, a13, a23);
-    let mut out = Multivector::zero(b.signature());
-    let o: &mut [f64; 16] = out.as_mut_slice().try_into().ok()?;
+    *o = [0.0; 16];
     if theta == 0.0 {
         o[0] = 1.0;
         o[0b1001] = t14;
         o[0b1010] = t24;
         o[0b1100] = t34;
-        return Some(out);
+        return true;
     }
     let inv = 1.0 / theta;
     let (n12, n13, n23) = (a12 * inv, a13 * inv, a23 * inv);
@@ -123,7 +134,7 @@ pub(super) fn exp(b: &Multivector) -> Option<Multivector> {
     o[0b1010] = sc * t24 + k * n13;
     o[0b1100] = sc * t34 - k * n12;
     o[PSEUDO] = pi * sin;
-    finite(o, MOTOR).then_some(out)
+    finite(o, MOTOR)
 }
 
 /// max |V Ṽ − 1| for an even V of Cl(3, 0, 1): V Ṽ = c² + |b|² + 2(cq − b∧m) e₁₂₃₄ (the
@@ -145,9 +156,21 @@ pub(super) fn versor_deviation(v: &Multivector) -> f64 {
 /// coefficient of the result overflows.
 #[inline]
 pub(super) fn log(v: &Multivector, tolerance: f64) -> Option<Multivector> {
-    let x: &[f64; 16] = v.as_slice().try_into().ok()?;
+    let mut out = Multivector::zero(v.signature());
+    log_to(v, tolerance, &mut out).then_some(out)
+}
+
+/// [`log`] into `out` (Cl(3, 0, 1) too): true if it was written.
+#[inline]
+pub(super) fn log_to(v: &Multivector, tolerance: f64, out: &mut Multivector) -> bool {
+    let (Ok(x), Ok(o)) = (
+        <&[f64; 16]>::try_from(v.as_slice()),
+        <&mut [f64; 16]>::try_from(out.as_mut_slice()),
+    ) else {
+        return false;
+    };
     if !zero(x, ODD) {
-        return None;
+        return false;
     }
     // The general check max |V Ṽ − 1| ≤ tolerance · max(1, max |Vᵢ|²); the scale is needed
     // only when the deviation exceeds the tolerance itself. NaN fails every comparison, and
@@ -157,7 +180,7 @@ pub(super) fn log(v: &Multivector, tolerance: f64) -> Option<Multivector> {
         let top = MOTOR.iter().fold(0.0f64, |a, &k| a.max(x[k].abs()));
         let scale = top * top;
         if !(scale.is_finite() && deviation <= tolerance * scale) {
-            return None;
+            return false;
         }
     }
     let (b12, b13, b23, m14, m24, m34) = (x[3], x[5], x[6], x[9], x[10], x[12]);
@@ -165,7 +188,7 @@ pub(super) fn log(v: &Multivector, tolerance: f64) -> Option<Multivector> {
     let s = norm3(b12, b13, b23);
     // Subnormal |b| (no reciprocal) and |b| = 0 go to the general route.
     if s < f64::MIN_POSITIVE {
-        return None;
+        return false;
     }
     let theta = s.atan2(c);
     let inv_s = 1.0 / s;
@@ -180,14 +203,13 @@ pub(super) fn log(v: &Multivector, tolerance: f64) -> Option<Multivector> {
         theta * inv_s
     };
     if !(inv_sc.is_finite() && inv_sc < 1e300) {
-        return None;
+        return false;
     }
     // u = (−â₂₃, â₁₃, −â₁₂) on (e₁₄, e₂₄, e₃₄); m = m⊥ + ⟨m, u⟩ u.
     let m_axis = -m14 * n23 + m24 * n13 - m34 * n12;
     let pi = q * sin - m_axis * cos;
     let (p14, p24, p34) = (m14 + m_axis * n23, m24 - m_axis * n13, m34 + m_axis * n12);
-    let mut out = Multivector::zero(v.signature());
-    let o: &mut [f64; 16] = out.as_mut_slice().try_into().ok()?;
+    *o = [0.0; 16];
     o[0b0011] = theta * n12;
     o[0b0101] = theta * n13;
     o[0b0110] = theta * n23;
@@ -195,7 +217,7 @@ pub(super) fn log(v: &Multivector, tolerance: f64) -> Option<Multivector> {
     o[0b1001] = inv_sc * p14 + pi * n23;
     o[0b1010] = inv_sc * p24 - pi * n13;
     o[0b1100] = inv_sc * p34 + pi * n12;
-    finite(o, PLANES).then_some(out)
+    finite(o, PLANES)
 }
 
 #[cfg(test)]

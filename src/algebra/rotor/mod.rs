@@ -282,6 +282,13 @@ impl Rotor {
         Ok(r)
     }
 
+    /// The rotor of Spin(n) whose coefficient on each even blade (bit mask) is `f(blade)`,
+    /// unchecked: for data the crate has just computed, without an intermediate multivector.
+    pub(crate) fn from_blades(n: usize, f: impl Fn(u64) -> f64) -> Self {
+        let coeffs = (0..even_len(n)).map(|i| f(even_blade(n, i))).collect();
+        Rotor { dim: n, coeffs }
+    }
+
     /// Returns the even part of `m` as a rotor without checking that it is one.
     ///
     /// Use this to rebuild a rotor from data you trust; the result is only meaningful if `m`
