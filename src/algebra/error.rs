@@ -245,6 +245,21 @@ pub enum AlgebraError {
         /// Why.
         reason: &'static str,
     },
+    /// The logarithm of a versor could not be recovered in f64: the exponential of the
+    /// computed bivector differs from the versor by more than round-off.
+    ///
+    /// This happens only where V's coefficients span many orders of magnitude: boosts of
+    /// rapidity beyond about 25 beside rotations (V's small eigenvalues e^(−φ) are then
+    /// below the rounding of its large ones), or null parts far larger than the rest in
+    /// signatures with several null vectors. How to fix: keep the bivector B you exponentiated
+    /// instead of recovering it from V, or split the motion into smaller steps.
+    #[error(
+        "the logarithm is not determined in f64: exp(log V) differs from V by {residual:e} relative to max |Vᵢ|"
+    )]
+    LogarithmInaccurate {
+        /// max |exp(log V) − V| / max(1, max |Vᵢ|).
+        residual: f64,
+    },
     /// The operation is implemented for this kind of signature only up to a dimension.
     ///
     /// How to fix: Euclidean Cl(N, 0, 0) and projective Cl(N − 1, 0, 1) signatures go to

@@ -295,7 +295,13 @@ impl Multivector {
     /// [`AlgebraError::NoLogarithm`] for elements without a real bivector logarithm
     /// (−exp(B) for a boost B in Cl(1, 1), Cl(2, 1) or Cl(1, 2), −(1 + N) for a light-like
     /// N in Cl(1, 3), −exp(t) for a translation t in 2D projective GA) and on the branch cut
-    /// at angle π described above (which includes −exp(B) for a boost B in Cl(1, 3)).
+    /// at angle π described above (which includes −exp(B) for a boost B in Cl(1, 3));
+    /// [`AlgebraError::LogarithmInaccurate`] where V's coefficients span more orders of
+    /// magnitude than f64 resolves (boosts of rapidity beyond about 25 beside rotations,
+    /// huge null parts beside others with several null vectors): every logarithm returned
+    /// outside the Euclidean signatures is checked to give back V,
+    /// max |exp(log V) − V| ≤ 10⁻¹⁰ · max(1, max |Vᵢ|) · max(1, max |(log V)ᵢ|), and refused
+    /// otherwise, so that no wrong bivector is returned.
     ///
     /// ```
     /// use rotorflow::algebra::{Multivector, Signature};
@@ -381,8 +387,11 @@ impl Multivector {
             if let Ok(b) = log_closed_form(&v)
                 && b.as_slice().iter().all(|c| c.is_finite())
             {
-                refine(&v, b).write_to(out);
-                return Ok(());
+                let (b, residual) = refine(&v, b);
+                if check_log_residual(residual, v.max_abs(), b.max_abs()).is_ok() {
+                    b.write_to(out);
+                    return Ok(());
+                }
             }
         }
         if sig.is_euclidean() {
@@ -395,13 +404,18 @@ impl Multivector {
         }
         if is_projective(sig) {
             log_projective(self, out)?;
-            return if out.as_slice().iter().all(|c| c.is_finite()) {
-                Ok(())
-            } else {
-                Err(AlgebraError::Overflow {
+            if !out.as_slice().iter().all(|c| c.is_finite()) {
+                return Err(AlgebraError::Overflow {
                     what: "the logarithm",
-                })
+                });
+            }
+            let residual = if self.dim() <= CLOSED_FORM_MAX_DIM {
+                let e = exp_closed_form(&Small::from_multivector(out));
+                (&e - &Small::from_multivector(self)).max_abs()
+            } else {
+                exp_projective(out).map_or(f64::INFINITY, |e| (&e - self).max_abs())
             };
+            return check_log_residual(residual, self.max_abs(), out.max_abs());
         }
         if self.dim() > CLOSED_FORM_MAX_DIM {
             if self.dim() > GENERAL_MAX_DIM {
@@ -417,7 +431,9 @@ impl Multivector {
         let v = Small::from_multivector(self);
         let b = log_closed_form(&v)?;
         if b.as_slice().iter().all(|c| c.is_finite()) {
-            refine(&v, b).write_to(out);
+            let (b, residual) = refine(&v, b);
+            check_log_residual(residual, v.max_abs(), b.max_abs())?;
+            b.write_to(out);
             Ok(())
         } else {
             Err(AlgebraError::NoLogarithm {
@@ -656,7 +672,9 @@ pub(super) fn exp_closed_form_for_tests(b: &Multivector) -> Multivector {
 #[cfg(test)]
 pub(super) fn log_closed_form_for_tests(v: &Multivector) -> Multivector {
     let v = Small::from_multivector(v);
-    refine(&v, log_closed_form(&v).expect("a logarithm")).to_multivector()
+    refine(&v, log_closed_form(&v).expect("a logarithm"))
+        .0
+        .to_multivector()
 }
 
 /// The closed form of the module documentation, for a non-zero bivector of N ≤ 5.
@@ -842,19 +860,38 @@ fn log_factor(c: C64, s2: C64) -> (C64, C64) {
 /// One correction step B ← B + ⟨exp(B)~ V⟩₂, kept only if it lowers the residual
 /// max |exp(B) − V|. The closed form's error lies mostly in the commutative algebra of B (the
 /// directions v and Q v), where exp(B + δ) = exp(B) exp(δ) and the step removes it.
-fn refine(v: &Small, b: Small) -> Small {
+/// Returns the bivector and its residual max |exp(B) − V| (∞ if exp(B) overflows).
+fn refine(v: &Small, b: Small) -> (Small, f64) {
     let Ok(e0) = exp_nonzero(&b) else {
-        return b;
+        return (b, f64::INFINITY);
     };
     let r0 = (&e0 - v).max_abs();
     if r0 == 0.0 {
-        return b;
+        return (b, r0);
     }
     let delta = e0.reverse().geometric(v).grade(2);
     let b1 = &b + &delta;
     match exp_nonzero(&b1) {
-        Ok(e1) if (&e1 - v).max_abs() < r0 => b1,
-        _ => b,
+        Ok(e1) if (&e1 - v).max_abs() < r0 => (b1, (&e1 - v).max_abs()),
+        _ => (b, r0),
+    }
+}
+
+/// Bound on max |exp(log V) − V| / (max(1, |V|) · max(1, |log V|)) for a logarithm to be
+/// returned: far above the round-off of an accurate logarithm (a few ε times the
+/// conditioning of exp), far below a wrong one.
+const LOG_RESIDUAL_TOLERANCE: f64 = 1e-10;
+
+/// Ok if a logarithm of size `b_size` reproduces V of size `v_size` to `residual`.
+fn check_log_residual(residual: f64, v_size: f64, b_size: f64) -> Result<(), AlgebraError> {
+    let scale = v_size.max(1.0);
+    // Relative, so that a huge V or B cannot make the bound infinite.
+    if within(residual / scale / b_size.max(1.0), LOG_RESIDUAL_TOLERANCE) {
+        Ok(())
+    } else {
+        Err(AlgebraError::LogarithmInaccurate {
+            residual: residual / scale,
+        })
     }
 }
 
