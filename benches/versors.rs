@@ -5,13 +5,17 @@
 //!   general `Multivector` route versus a hand-written closed form on fixed-size arrays (the
 //!   formula klein and ganja.js use, written below). The setup asserts that both return the
 //!   same motor (bivector) to 1e-14, so both columns compute the same thing.
-//! - `general_exp/Cl(p,q,r)`: exp of a bivector in Cl(3, 1, 0) (N = 4), Cl(4, 1, 0) (N = 5)
-//!   and Cl(5, 0, 1) (N = 6) through `Multivector::exp` versus nalgebra's matrix exponential
-//!   (`DMatrix::exp`, and `SMatrix::exp` at the fixed size) of the N × N matrix of
-//!   v ↦ Bv − vB = 2 B × v. That matrix exponential is the action of the versor on vectors,
-//!   v ↦ exp(B) v exp(B)~ (checked in the setup), not the versor itself: it holds N² numbers
-//!   where the versor has 2^(N−1), and it cannot act on higher grades or be composed as a
-//!   versor. It is the cheapest standard computation that carries the same transformation.
+//! - `general_exp/Cl(p,q,r)`: exp of a bivector in Cl(3, 1, 0) (N = 4), Cl(4, 1, 0) (N = 5),
+//!   Cl(5, 0, 1) and Cl(5, 1, 0) (N = 6, projective and conformal) through
+//!   `Multivector::exp` versus two matrix exponentials of nalgebra:
+//!   - of the N × N matrix of v ↦ Bv − vB = 2 B × v (`DMatrix::exp`, and `SMatrix::exp` at
+//!     the fixed size). That is the action of the versor on vectors, v ↦ exp(B) v exp(B)~
+//!     (checked in the setup), not the versor itself: it holds N² numbers where the versor
+//!     has 2^(N−1), and it cannot act on higher grades or be composed as a versor. It is the
+//!     cheapest standard computation that carries the same transformation.
+//!   - of the 2^(N−1) × 2^(N−1) matrix of X ↦ B X on the even subalgebra (`SMatrix::exp`),
+//!     the regular representation, whose exponential's first column is the versor exp(B)
+//!     (checked in the setup): the same output as rotorflow's.
 //!
 //! Run `cargo bench --bench versors`; `BENCH_QUICK=1` shortens the run.
 
@@ -164,8 +168,21 @@ fn action_matrix(b: &Multivector) -> DMatrix<f64> {
     })
 }
 
+/// The 2^(N−1) × 2^(N−1) matrix of X ↦ B X on the even subalgebra (column j: B times the
+/// j-th even blade, in mask order): the regular representation, whose matrix exponential
+/// applied to 1 (its first column) is the versor exp(B) itself.
+fn even_left_multiplication(b: &Multivector) -> DMatrix<f64> {
+    let sig = b.signature();
+    let even: Vec<u64> = (0..1u64 << b.dim())
+        .filter(|m| m.count_ones() % 2 == 0)
+        .collect();
+    DMatrix::from_fn(even.len(), even.len(), |i, j| {
+        (b * &Multivector::basis_blade(sig, even[j])).coefficient(even[i])
+    })
+}
+
 macro_rules! general_exp {
-    ($c:expr, $(($p:literal, $q:literal, $r:literal, $n:literal)),*) => {$({
+    ($c:expr, $(($p:literal, $q:literal, $r:literal, $n:literal, $e:literal)),*) => {$({
         let sig = Signature::new($p, $q, $r).unwrap();
         let b = dense_bivector(sig);
         let m = action_matrix(&b);
@@ -181,6 +198,15 @@ macro_rules! general_exp {
             }
         }
         let sm: SMatrix<f64, $n, $n> = SMatrix::from_iterator(m.iter().copied());
+        // The regular representation gives the versor itself: its first column is exp(B).
+        let l = even_left_multiplication(&b);
+        let sl: SMatrix<f64, $e, $e> = SMatrix::from_iterator(l.iter().copied());
+        let el = sl.exp();
+        let even: Vec<u64> = (0..1u64 << $n).filter(|m| m.count_ones() % 2 == 0).collect();
+        for (i, m) in even.iter().enumerate() {
+            let d = (el[(i, 0)] - v.coefficient(*m)).abs();
+            assert!(d <= 1e-12 * v.max_abs().max(1.0), "{sig:?}: regular representation, blade {m:#b}");
+        }
         let mut g = $c.benchmark_group(format!("general_exp/Cl({},{},{})", $p, $q, $r));
         g.bench_function(BenchmarkId::new("rotorflow_multivector_exp", $n), |bench| {
             bench.iter(|| black_box(&b).exp().unwrap())
@@ -191,12 +217,21 @@ macro_rules! general_exp {
         g.bench_function(BenchmarkId::new("nalgebra_smatrix_expm", $n), |bench| {
             bench.iter(|| black_box(&sm).exp())
         });
+        g.bench_function(BenchmarkId::new("nalgebra_smatrix_expm_regular_representation", $n), |bench| {
+            bench.iter(|| black_box(&sl).exp())
+        });
         g.finish();
     })*};
 }
 
 fn bench_general(c: &mut Criterion) {
-    general_exp!(c, (3, 1, 0, 4), (4, 1, 0, 5), (5, 0, 1, 6));
+    general_exp!(
+        c,
+        (3, 1, 0, 4, 8),
+        (4, 1, 0, 5, 16),
+        (5, 0, 1, 6, 32),
+        (5, 1, 0, 6, 32)
+    );
 }
 
 criterion_group! {

@@ -67,7 +67,7 @@
 use super::decompose::decompose_components;
 use super::error::{check_finite, within};
 use super::small::Small;
-use super::versor_general::{GENERAL_MAX_DIM, exp_general, log_general};
+use super::versor_general::{GENERAL_MAX_DIM, exp_general_to, log_general};
 use super::versor_pga3 as pga3;
 use super::{AlgebraError, Bivector, Multivector, Rotor};
 use nalgebra::Complex;
@@ -179,9 +179,11 @@ impl Multivector {
     }
 
     /// [`Multivector::exp`] written into `out`, an element of the same algebra whose storage
-    /// is reused: no heap allocation at all for N ≤ 5 in any signature, where
-    /// [`Multivector::exp`] allocates only the result's storage from N = 5 on (multivectors
-    /// keep up to 16 coefficients inline). On an error `out` is unspecified.
+    /// is reused: no heap allocation for N ≤ 5 in every signature but Euclidean Cl(5, 0, 0),
+    /// and for N = 6 in every signature neither Euclidean nor projective, where
+    /// [`Multivector::exp`] allocates only the result's storage (multivectors keep up to 16
+    /// coefficients inline). The Euclidean and projective routes above N = 4 allocate in
+    /// the rotor's eigen-decomposition. On an error `out` is unspecified.
     ///
     /// ```
     /// use rotorflow::algebra::{Multivector, Signature};
@@ -231,16 +233,13 @@ impl Multivector {
                     max: GENERAL_MAX_DIM,
                 });
             }
-            exp_general(self)?
+            return exp_general_to(self, out);
         } else {
-            let v = exp_closed_form(&Small::from_multivector(self));
-            if !v.as_slice().iter().all(|c| c.is_finite()) {
-                return Err(AlgebraError::Overflow {
-                    what: "the exponential",
-                });
-            }
-            renormalize(v).write_to(out);
-            return Ok(());
+            return if self.dim() <= 4 {
+                exp_small::<16>(self, out)
+            } else {
+                exp_small::<32>(self, out)
+            };
         };
         if !result.as_slice().iter().all(|c| c.is_finite()) {
             return Err(AlgebraError::Overflow {
@@ -357,11 +356,10 @@ impl Multivector {
         let sig = self.signature();
         let deviation = if pga3::is_pga3(sig) {
             pga3::versor_deviation(self)
+        } else if self.dim() <= 4 {
+            unit_deviation::<16>(self)
         } else if self.dim() <= CLOSED_FORM_MAX_DIM {
-            let v = Small::from_multivector(self);
-            let mut vv = v.geometric(&v.reverse());
-            vv.as_mut_slice()[0] -= 1.0;
-            vv.max_abs()
+            unit_deviation::<32>(self)
         } else {
             let mut vv = self.geometric(&self.reverse());
             vv.as_mut_slice()[0] -= 1.0;
@@ -383,15 +381,8 @@ impl Multivector {
         if sig.is_euclidean() && self.dim() == CLOSED_FORM_MAX_DIM {
             // The closed form below (no decomposition, no heap); at angle π, where it
             // returns no logarithm, the rotor route picks one.
-            let v = Small::from_multivector(self);
-            if let Ok(b) = log_closed_form(&v)
-                && b.as_slice().iter().all(|c| c.is_finite())
-            {
-                let (b, residual) = refine(&v, b);
-                if check_log_residual(residual, v.max_abs(), b.max_abs()).is_ok() {
-                    b.write_to(out);
-                    return Ok(());
-                }
+            if log_small::<32>(self, out).is_ok() {
+                return Ok(());
             }
         }
         if sig.is_euclidean() {
@@ -409,9 +400,10 @@ impl Multivector {
                     what: "the logarithm",
                 });
             }
-            let residual = if self.dim() <= CLOSED_FORM_MAX_DIM {
-                let e = exp_closed_form(&Small::from_multivector(out));
-                (&e - &Small::from_multivector(self)).max_abs()
+            let residual = if self.dim() <= 4 {
+                closed_form_residual::<16>(out, self)
+            } else if self.dim() <= CLOSED_FORM_MAX_DIM {
+                closed_form_residual::<32>(out, self)
             } else {
                 exp_projective(out).map_or(f64::INFINITY, |e| (&e - self).max_abs())
             };
@@ -428,18 +420,55 @@ impl Multivector {
             *out = log_general(self)?;
             return Ok(());
         }
-        let v = Small::from_multivector(self);
-        let b = log_closed_form(&v)?;
-        if b.as_slice().iter().all(|c| c.is_finite()) {
-            let (b, residual) = refine(&v, b);
-            check_log_residual(residual, v.max_abs(), b.max_abs())?;
-            b.write_to(out);
-            Ok(())
+        if self.dim() <= 4 {
+            log_small::<16>(self, out)
         } else {
-            Err(AlgebraError::NoLogarithm {
-                reason: "a rotation by π in a plane the versor does not determine",
-            })
+            log_small::<32>(self, out)
         }
+    }
+}
+
+/// The closed-form exponential of a finite bivector of N ≤ 5 on stack storage of L ≥ 2^N
+/// coefficients, written into `out`.
+fn exp_small<const L: usize>(b: &Multivector, out: &mut Multivector) -> Result<(), AlgebraError> {
+    let v = exp_closed_form(&Small::<L>::from_multivector(b));
+    if !v.as_slice().iter().all(|c| c.is_finite()) {
+        return Err(AlgebraError::Overflow {
+            what: "the exponential",
+        });
+    }
+    renormalize(v).write_to(out);
+    Ok(())
+}
+
+/// max |V Ṽ − 1| of an element of N ≤ 5 on stack storage.
+fn unit_deviation<const L: usize>(v: &Multivector) -> f64 {
+    let v = Small::<L>::from_multivector(v);
+    let mut vv = v.geometric(&v.reverse());
+    vv.as_mut_slice()[0] -= 1.0;
+    vv.max_abs()
+}
+
+/// max |exp(B) − V| with exp by the closed form, for N ≤ 5.
+fn closed_form_residual<const L: usize>(b: &Multivector, v: &Multivector) -> f64 {
+    let e = exp_closed_form(&Small::<L>::from_multivector(b));
+    (&e - &Small::<L>::from_multivector(v)).max_abs()
+}
+
+/// The closed-form logarithm of a checked even versor of N ≤ 5, refined and verified,
+/// written into `out`.
+fn log_small<const L: usize>(v: &Multivector, out: &mut Multivector) -> Result<(), AlgebraError> {
+    let v = Small::<L>::from_multivector(v);
+    let b = log_closed_form(&v)?;
+    if b.as_slice().iter().all(|c| c.is_finite()) {
+        let (b, residual) = refine(&v, b);
+        check_log_residual(residual, v.max_abs(), b.max_abs())?;
+        b.write_to(out);
+        Ok(())
+    } else {
+        Err(AlgebraError::NoLogarithm {
+            reason: "a rotation by π in a plane the versor does not determine",
+        })
     }
 }
 
@@ -654,7 +683,7 @@ fn shs(z: C64, s: f64) -> C64 {
 }
 
 /// m scaled by 2^e coefficient by coefficient (exact barring overflow and underflow).
-fn scaled(m: &Small, e: i32) -> Small {
+fn scaled<const L: usize>(m: &Small<L>, e: i32) -> Small<L> {
     let mut out = *m;
     for c in out.as_mut_slice() {
         *c = crate::numeric::ldexp(*c, e);
@@ -665,20 +694,34 @@ fn scaled(m: &Small, e: i32) -> Small {
 /// The closed form for the fixed-size routes' tests.
 #[cfg(test)]
 pub(super) fn exp_closed_form_for_tests(b: &Multivector) -> Multivector {
-    renormalize(exp_closed_form(&Small::from_multivector(b))).to_multivector()
+    renormalize(exp_closed_form(&Small::<32>::from_multivector(b))).to_multivector()
 }
 
 /// The closed-form logarithm for the fixed-size routes' tests.
 #[cfg(test)]
 pub(super) fn log_closed_form_for_tests(v: &Multivector) -> Multivector {
-    let v = Small::from_multivector(v);
+    let v = Small::<32>::from_multivector(v);
     refine(&v, log_closed_form(&v).expect("a logarithm"))
         .0
         .to_multivector()
 }
 
+/// 1/(2k + 1)! for k = 1 … 16.
+const INV_ODD_FACTORIALS: [f64; 16] = {
+    let mut out = [0.0; 16];
+    let mut fact = 6.0;
+    let mut k = 0;
+    while k < 16 {
+        out[k] = 1.0 / fact;
+        let m = (2 * k + 4) as f64;
+        fact *= m * (m + 1.0);
+        k += 1;
+    }
+    out
+};
+
 /// The closed form of the module documentation, for a non-zero bivector of N ≤ 5.
-fn exp_closed_form(b: &Small) -> Small {
+fn exp_closed_form<const L: usize>(b: &Small<L>) -> Small<L> {
     let sig = b.signature();
     // The scale: in Cl(p, q, 1) only the blades without the null vector enter B², B∧B's
     // square and B (B∧B) quadratically (a product of two blades that both hold the null
@@ -693,7 +736,7 @@ fn exp_closed_form(b: &Small) -> Small {
     };
     if m == 0.0 {
         // Every term holds the null vector (or B = 0): B² = 0.
-        return &Small::scalar(sig, 1.0) + b;
+        return &Small::<L>::scalar(sig, 1.0) + b;
     }
     // B = s B′ with s = 2^e and max |B′| in [1, 2) over the blades above.
     let e = crate::numeric::exponent_of(m);
@@ -702,7 +745,7 @@ fn exp_closed_form(b: &Small) -> Small {
     let b2 = bp.geometric(&bp);
     let sigma = b2.scalar_part();
     let w = b2.grade(4);
-    let w2 = w.geometric(&w).scalar_part();
+    let w2 = w.geometric_grades(&w, 1).scalar_part();
     let delta2 = 0.25 * w2;
     // Roots λ′ of λ² − σλ + δ² (scaled by s²), the larger first, without squaring σ/2 or
     // δ (which could underflow).
@@ -736,15 +779,15 @@ fn exp_closed_form(b: &Small) -> Small {
         let su = sigma * s * s;
         let e1 = 2.0 * su;
         let e2 = su * su - 4.0 * delta2 * s * s * s * s;
+        // |a|, |b| ≤ 4 here, so |hₘ| ≤ (m + 1) 4^m and the terms beyond k = 16 are below
+        // 10⁻²⁴ of the first (1/6).
         let (mut hm2, mut hm1) = (0.0, 1.0);
-        let mut fact = 6.0; // (2k+1)! at k = 1
         let mut sum = 0.0;
-        for k in 1..=30 {
-            sum += hm1 / fact;
+        for inv_fact in INV_ODD_FACTORIALS {
+            sum += hm1 * inv_fact;
             let next = e1 * hm1 - e2 * hm2;
             hm2 = hm1;
             hm1 = next;
-            fact *= ((2 * k + 2) * (2 * k + 3)) as f64;
         }
         // multiplied by s³ below, stepwise
         C64::new(sum, 0.0)
@@ -757,7 +800,7 @@ fn exp_closed_form(b: &Small) -> Small {
         cdiv(shs(x + y, s) - shs(x - y, s), x * y * 4.0)
     };
     let series = xu.norm() <= 1.0;
-    let mut out = Small::scalar(sig, cterm);
+    let mut out = Small::<L>::scalar(sig, cterm);
     out = &out + &(&w * wterm);
     out = &out + &(&bp * fterm);
     let bw = bp.geometric(&w).grade(2);
@@ -781,19 +824,20 @@ fn exp_closed_form(b: &Small) -> Small {
 /// huge rotation angle (cancellation between the B and B W terms), which is honest for V
 /// but not for V Ṽ: a versor must stay a versor. For larger |Vᵢ| (boosts) V Ṽ − 1 carries
 /// round-off ~ε |V|², as good as any product, and V is returned unchanged.
-fn renormalize(v: Small) -> Small {
+fn renormalize<const L: usize>(v: Small<L>) -> Small<L> {
     let top = v.max_abs();
     if top > 4.0 {
         return v;
     }
-    let nn = v.geometric(&v.reverse());
+    // V Ṽ has grades 0 and 4 only (for N ≤ 5 an even V with V Ṽ = 1 is a versor).
+    let nn = v.geometric_grades(&v.reverse(), 1 | 1 << 4);
     let n0 = nn.scalar_part();
     let q = nn.grade(4);
     let dev = (n0 - 1.0).abs().max(q.max_abs());
     if dev == 0.0 || dev > 1e-2 {
         return v;
     }
-    let kappa = q.geometric(&q).scalar_part();
+    let kappa = q.geometric_grades(&q, 1).scalar_part();
     // (n + Q)^(−½) = α + β Q.
     let (alpha, beta) = if kappa > 0.0 {
         let p = kappa.sqrt();
@@ -810,7 +854,7 @@ fn renormalize(v: Small) -> Small {
     if !(alpha.is_finite() && beta.is_finite()) {
         return v;
     }
-    let f = &Small::scalar(v.signature(), alpha) + &(&q * beta);
+    let f = &Small::<L>::scalar(v.signature(), alpha) + &(&q * beta);
     f.geometric(&v)
 }
 
@@ -861,7 +905,7 @@ fn log_factor(c: C64, s2: C64) -> (C64, C64) {
 /// max |exp(B) − V|. The closed form's error lies mostly in the commutative algebra of B (the
 /// directions v and Q v), where exp(B + δ) = exp(B) exp(δ) and the step removes it.
 /// Returns the bivector and its residual max |exp(B) − V| (∞ if exp(B) overflows).
-fn refine(v: &Small, b: Small) -> (Small, f64) {
+fn refine<const L: usize>(v: &Small<L>, b: Small<L>) -> (Small<L>, f64) {
     let Ok(e0) = exp_nonzero(&b) else {
         return (b, f64::INFINITY);
     };
@@ -896,7 +940,7 @@ fn check_log_residual(residual: f64, v_size: f64, b_size: f64) -> Result<(), Alg
 }
 
 /// exp for the refinement: the closed form, or an error on overflow.
-fn exp_nonzero(b: &Small) -> Result<Small, ()> {
+fn exp_nonzero<const L: usize>(b: &Small<L>) -> Result<Small<L>, ()> {
     let e = exp_closed_form(b);
     if e.as_slice().iter().all(|c| c.is_finite()) {
         Ok(e)
@@ -921,7 +965,7 @@ fn real_factor(g: C64) -> Result<f64, AlgebraError> {
 }
 
 /// The logarithm of an even versor of N ≤ 5 in a non-Euclidean signature.
-fn log_closed_form(v: &Small) -> Result<Small, AlgebraError> {
+fn log_closed_form<const L: usize>(v: &Small<L>) -> Result<Small<L>, AlgebraError> {
     let c = v.scalar_part();
     let bv = v.grade(2);
     let q = v.grade(4);

@@ -49,7 +49,8 @@
 //! [`AlgebraError::NoLogarithm`] is returned.
 
 use super::error::within;
-use super::{AlgebraError, Multivector};
+use super::small::{SMALL_MAX_DIM, Small};
+use super::{AlgebraError, Multivector, Signature};
 use crate::numeric::{exponent_of, ldexp, scaled_norm};
 use nalgebra::DMatrix;
 
@@ -57,6 +58,76 @@ use nalgebra::DMatrix;
 /// signature Cl(p, q, r). Euclidean and projective signatures go to
 /// [`super::MULTIVECTOR_MAX_DIM`].
 pub const GENERAL_MAX_DIM: usize = 8;
+
+/// The operations the scaling and squaring needs, on the heap ([`Multivector`], any N) or
+/// on the stack ([`Small`] of 64 coefficients, N ≤ 6, where exp then allocates nothing).
+trait Mv: Clone {
+    fn sig(&self) -> Signature;
+    fn coeffs(&self) -> &[f64];
+    fn coeffs_mut(&mut self) -> &mut [f64];
+    fn one(sig: Signature) -> Self;
+    fn mul(&self, other: &Self) -> Self;
+    fn rev(&self) -> Self;
+    fn plus(&self, other: &Self) -> Self;
+    fn times(&self, s: f64) -> Self;
+    fn max_abs(&self) -> f64 {
+        self.coeffs().iter().fold(0.0f64, |m, c| m.max(c.abs()))
+    }
+}
+
+impl Mv for Multivector {
+    fn sig(&self) -> Signature {
+        self.signature()
+    }
+    fn coeffs(&self) -> &[f64] {
+        self.as_slice()
+    }
+    fn coeffs_mut(&mut self) -> &mut [f64] {
+        self.as_mut_slice()
+    }
+    fn one(sig: Signature) -> Self {
+        Multivector::scalar(sig, 1.0)
+    }
+    fn mul(&self, other: &Self) -> Self {
+        self.geometric(other)
+    }
+    fn rev(&self) -> Self {
+        self.reverse()
+    }
+    fn plus(&self, other: &Self) -> Self {
+        self + other
+    }
+    fn times(&self, s: f64) -> Self {
+        self * s
+    }
+}
+
+impl<const L: usize> Mv for Small<L> {
+    fn sig(&self) -> Signature {
+        self.signature()
+    }
+    fn coeffs(&self) -> &[f64] {
+        self.as_slice()
+    }
+    fn coeffs_mut(&mut self) -> &mut [f64] {
+        self.as_mut_slice()
+    }
+    fn one(sig: Signature) -> Self {
+        Small::scalar(sig, 1.0)
+    }
+    fn mul(&self, other: &Self) -> Self {
+        self.geometric(other)
+    }
+    fn rev(&self) -> Self {
+        self.reverse()
+    }
+    fn plus(&self, other: &Self) -> Self {
+        self + other
+    }
+    fn times(&self, s: f64) -> Self {
+        self * s
+    }
+}
 
 /// Degree of the Taylor polynomial after scaling (see [`squarings`]).
 const TAYLOR_DEGREE: usize = 16;
@@ -72,10 +143,27 @@ const RENORMALIZE_EVERY: i32 = 8;
 /// 2^(jk). Without it a translation of 1e150 beside null–null parts would form products
 /// beyond f64 in the squarings although exp(B) itself is finite.
 pub(super) fn exp_general(b: &Multivector) -> Result<Multivector, AlgebraError> {
+    let mut out = Multivector::zero(b.signature());
+    exp_general_to(b, &mut out)?;
+    Ok(out)
+}
+
+/// [`exp_general`] into `out` (same algebra): on the stack, without allocating, up to N = 6.
+pub(super) fn exp_general_to(b: &Multivector, out: &mut Multivector) -> Result<(), AlgebraError> {
+    if b.dim() <= SMALL_MAX_DIM {
+        exp_any::<Small<64>>(&Small::from_multivector(b))?.write_to(out);
+    } else {
+        *out = exp_any(b)?;
+    }
+    Ok(())
+}
+
+/// [`exp_general`] on either storage.
+fn exp_any<T: Mv>(b: &T) -> Result<T, AlgebraError> {
     let k = null_scale(b);
     let v = exp_scaled(&scale_null(b, k))?;
     let v = scale_null(&v, -k);
-    if v.as_slice().iter().all(|c| c.is_finite()) {
+    if v.coeffs().iter().all(|c| c.is_finite()) {
         Ok(v)
     } else {
         Err(AlgebraError::Overflow {
@@ -86,14 +174,14 @@ pub(super) fn exp_general(b: &Multivector) -> Result<Multivector, AlgebraError> 
 
 /// The exponent k ≤ 0 that brings the null parts of m to the size of its other parts (at
 /// least 1).
-fn null_scale(m: &Multivector) -> i32 {
+fn null_scale<T: Mv>(m: &T) -> i32 {
     let null = null_mask(m);
     if null == 0 {
         return 0;
     }
     let (mut with, mut without) = (0.0f64, 1.0f64);
-    for (mask, c) in m.terms() {
-        if mask & null == 0 {
+    for (mask, &c) in m.coeffs().iter().enumerate() {
+        if mask as u64 & null == 0 {
             without = without.max(c.abs());
         } else {
             with = with.max(c.abs());
@@ -108,13 +196,13 @@ fn null_scale(m: &Multivector) -> i32 {
 
 /// The automorphism e₀ ↦ 2^k e₀ of every null basis vector: each coefficient times 2^(jk),
 /// j the number of null vectors of its blade.
-fn scale_null(m: &Multivector, k: i32) -> Multivector {
+fn scale_null<T: Mv>(m: &T, k: i32) -> T {
     let null = null_mask(m);
     let mut out = m.clone();
     if k == 0 || null == 0 {
         return out;
     }
-    for (mask, c) in out.as_mut_slice().iter_mut().enumerate() {
+    for (mask, c) in out.coeffs_mut().iter_mut().enumerate() {
         let j = (mask as u64 & null).count_ones() as i32;
         if j > 0 && *c != 0.0 {
             *c = ldexp(*c, j * k);
@@ -124,9 +212,8 @@ fn scale_null(m: &Multivector, k: i32) -> Multivector {
 }
 
 /// exp(B) by scaling and squaring, for B with null parts no larger than the rest.
-fn exp_scaled(b: &Multivector) -> Result<Multivector, AlgebraError> {
-    let sig = b.signature();
-    let one = Multivector::scalar(sig, 1.0);
+fn exp_scaled<T: Mv>(b: &T) -> Result<T, AlgebraError> {
+    let one = T::one(b.sig());
     let top = b.max_abs();
     if top == 0.0 {
         return Ok(one);
@@ -135,11 +222,11 @@ fn exp_scaled(b: &Multivector) -> Result<Multivector, AlgebraError> {
     let x = scaled(b, -s);
     let mut v = one.clone();
     for k in (1..=TAYLOR_DEGREE).rev() {
-        v = &one + &(x.geometric(&v) * (1.0 / k as f64));
+        v = one.plus(&x.mul(&v).times(1.0 / k as f64));
     }
     for i in 1..=s {
-        v = v.geometric(&v);
-        if !v.as_slice().iter().all(|c| c.is_finite()) {
+        v = v.mul(&v);
+        if !v.coeffs().iter().all(|c| c.is_finite()) {
             return Err(AlgebraError::Overflow {
                 what: "the exponential",
             });
@@ -159,12 +246,12 @@ fn exp_scaled(b: &Multivector) -> Result<Multivector, AlgebraError> {
 /// and ‖X‖₁ d^(k−1) for odd k. For a bivector d is close to the largest |√λᵢ| (as
 /// B² = Σλᵢ + 2Σ BᵢBⱼ), well below ‖B‖₁ when B has many planes, and every squaring saved
 /// halves the rounding error the squarings amplify (about 2^s ε).
-fn squarings(b: &Multivector, top: f64) -> i32 {
+fn squarings<T: Mv>(b: &T, top: f64) -> i32 {
     // B′ = 2^(−e) B has max |B′ᵢ| in [1, 2): its norms are finite.
     let e = exponent_of(top);
     let bp = scaled(b, -e);
-    let n1: f64 = bp.as_slice().iter().map(|c| c.abs()).sum();
-    let n2: f64 = bp.geometric(&bp).as_slice().iter().map(|c| c.abs()).sum();
+    let n1: f64 = bp.coeffs().iter().map(|c| c.abs()).sum();
+    let n2: f64 = bp.mul(&bp).coeffs().iter().map(|c| c.abs()).sum();
     let d = n2.sqrt();
     // Start where ‖X‖₁ < 2 and step up until the remainder is small enough.
     let mut s = (e + exponent_of(n1)).max(0);
@@ -200,36 +287,35 @@ fn taylor_remainder(x1: f64, d: f64) -> f64 {
 /// 10⁻² there. Larger V (boosts) carry a round-off ~ε |V|² in E that the step would multiply
 /// by |V|, so they are left as computed. Null parts may be of any size (a translation by
 /// 1e99): their products vanish exactly, so their round-off in E is only ε |V|.
-fn pull_to_group(mut v: Multivector) -> Multivector {
+fn pull_to_group<T: Mv>(mut v: T) -> T {
     let null = null_mask(&v);
-    let top = v
-        .terms()
-        .filter(|(m, _)| m & null == 0)
-        .fold(0.0f64, |a, (_, c)| a.max(c.abs()));
-    if top > 4.0 {
-        return v;
-    }
-    let deviation = |e: &Multivector| {
-        e.terms()
-            .filter(|(m, _)| m & null == 0)
+    // max |xᵢ| over the blades without a null vector.
+    let non_null = move |x: &T| {
+        x.coeffs()
+            .iter()
+            .enumerate()
+            .filter(|(m, _)| *m as u64 & null == 0)
             .fold(0.0f64, |a, (_, c)| a.max(c.abs()))
     };
-    let defect = |v: &Multivector| {
-        let mut e = v.geometric(&v.reverse());
-        e.as_mut_slice()[0] -= 1.0;
+    if non_null(&v) > 4.0 {
+        return v;
+    }
+    let defect = |v: &T| {
+        let mut e = v.mul(&v.rev());
+        e.coeffs_mut()[0] -= 1.0;
         e
     };
     let mut e = defect(&v);
-    let mut dev = deviation(&e);
+    let mut dev = non_null(&e);
     for _ in 0..3 {
         if dev == 0.0 || dev > 1e-2 {
             break;
         }
-        let mut step = &e * -0.5;
-        step.as_mut_slice()[0] += 1.0;
-        let next = step.geometric(&v);
+        let mut step = e.times(-0.5);
+        step.coeffs_mut()[0] += 1.0;
+        let next = step.mul(&v);
         let e1 = defect(&next);
-        let d = deviation(&e1);
+        let d = non_null(&e1);
         if d >= dev {
             break;
         }
@@ -241,16 +327,16 @@ fn pull_to_group(mut v: Multivector) -> Multivector {
 }
 
 /// The bits of the null basis vectors (the last r).
-fn null_mask(v: &Multivector) -> u64 {
-    let s = v.signature();
+fn null_mask<T: Mv>(v: &T) -> u64 {
+    let s = v.sig();
     let n = s.dim();
     ((1u64 << n) - 1) & !((1u64 << (s.p() + s.q())) - 1)
 }
 
 /// m · 2^e, exactly.
-fn scaled(m: &Multivector, e: i32) -> Multivector {
+fn scaled<T: Mv>(m: &T, e: i32) -> T {
     let mut out = m.clone();
-    for c in out.as_mut_slice() {
+    for c in out.coeffs_mut() {
         *c = ldexp(*c, e);
     }
     out
