@@ -84,6 +84,8 @@ pub fn render(tsv: &str) -> Res<String> {
             .map(|m| m.time_ns)
     };
     write_step_summary(&mut out, &median)?;
+    write_versor_summary(&mut out, &median)?;
+    writeln!(out, "\n**All measurements**")?;
     writeln!(
         out,
         "\n| benchmark group | implementation | median time | 95 % interval | × fastest in group |"
@@ -180,7 +182,73 @@ fn write_step_summary(out: &mut String, median: &dyn Fn(&str, &str) -> Option<f6
         let den: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
         writeln!(out, "| {function} | {:.2} |", num / den)?;
     }
-    writeln!(out, "\n**All measurements**")?;
+    Ok(())
+}
+
+/// The versor exponential and logarithm outside the Euclidean signatures (`benches/versors.rs`)
+/// against their baselines, as ratios of medians from the same run.
+fn write_versor_summary(out: &mut String, median: &dyn Fn(&str, &str) -> Option<f64>) -> Res<()> {
+    if median("pga3_exp", "rotorflow_multivector_exp").is_none() {
+        return Ok(());
+    }
+    let cell = |x: Option<f64>| x.map_or("—".to_string(), time);
+    let ratio = |a: Option<f64>, b: Option<f64>| match (a, b) {
+        (Some(a), Some(b)) => format!("{:.2}", a / b),
+        _ => "—".to_string(),
+    };
+    writeln!(
+        out,
+        "\n**3D PGA motors: `Multivector::exp` and `log` against a hand-written closed form** (ratio: rotorflow / hand-written)\n"
+    )?;
+    writeln!(out, "| operation | rotorflow | hand-written | ratio |")?;
+    writeln!(out, "|---|---|---|---|")?;
+    for (op, group, function) in [
+        ("exp", "pga3_exp", "rotorflow_multivector_exp"),
+        ("log", "pga3_log", "rotorflow_multivector_log"),
+    ] {
+        let r = median(group, function);
+        let h = median(group, "hand_written_closed_form");
+        writeln!(
+            out,
+            "| {op} | {} | {} | {} |",
+            cell(r),
+            cell(h),
+            ratio(r, h)
+        )?;
+    }
+    writeln!(
+        out,
+        "\n**`Multivector::exp` in other signatures against nalgebra's matrix exponential** (ratio: rotorflow / nalgebra; < 1: rotorflow is faster). The N × N matrix is the versor's action on vectors; the 2^(N−1) × 2^(N−1) regular representation yields the versor itself.\n"
+    )?;
+    writeln!(
+        out,
+        "| signature | N | rotorflow | DMatrix N × N | ratio | SMatrix N × N | ratio | SMatrix regular representation | ratio |"
+    )?;
+    writeln!(out, "|---|---|---|---|---|---|---|---|---|")?;
+    for (sig, n) in [
+        ("Cl(3,1,0)", 4),
+        ("Cl(4,1,0)", 5),
+        ("Cl(5,0,1)", 6),
+        ("Cl(5,1,0)", 6),
+    ] {
+        let g = format!("general_exp/{sig}");
+        let f = |name: &str| median(&g, &format!("{name} ({n})"));
+        let r = f("rotorflow_multivector_exp");
+        let dm = f("nalgebra_dmatrix_expm");
+        let sm = f("nalgebra_smatrix_expm");
+        let reg = f("nalgebra_smatrix_expm_regular_representation");
+        writeln!(
+            out,
+            "| {sig} | {n} | {} | {} | {} | {} | {} | {} | {} |",
+            cell(r),
+            cell(dm),
+            ratio(r, dm),
+            cell(sm),
+            ratio(r, sm),
+            cell(reg),
+            ratio(r, reg)
+        )?;
+    }
     Ok(())
 }
 

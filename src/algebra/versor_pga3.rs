@@ -47,11 +47,17 @@ fn zero(c: &[f64; 16], blades: impl IntoIterator<Item = usize>) -> bool {
     blades.into_iter().fold(0u64, |a, k| a | c[k].to_bits()) << 1 == 0
 }
 
-/// True when the coefficients at `blades` are all finite (a product of zeros: NaN as soon
-/// as one is NaN or infinite; no branch per blade).
-#[inline]
+/// True when the coefficients at `blades` are all finite, by a pairwise sum (NaN or ±∞ as
+/// soon as one is): no branch per blade and a short dependency chain. A sum of finite
+/// coefficients near f64::MAX may overflow too; the caller then leaves the case to the
+/// general route, which is exact about it.
+#[inline(always)]
 fn finite<const K: usize>(c: &[f64; 16], blades: [usize; K]) -> bool {
-    blades.iter().fold(0.0, |a, &k| a + c[k] * 0.0) == 0.0
+    let mut lanes = [0.0; 4];
+    for (i, &k) in blades.iter().enumerate() {
+        lanes[i % 4] += c[k];
+    }
+    ((lanes[0] + lanes[1]) + (lanes[2] + lanes[3])).is_finite()
 }
 
 /// True for 3D projective GA, Cl(3, 0, 1).
@@ -59,16 +65,20 @@ pub(super) fn is_pga3(sig: Signature) -> bool {
     sig.p() == 3 && sig.q() == 0 && sig.r() == 1
 }
 
-/// √(x² + y² + z²) without overflow or underflow.
+/// √(x² + y² + z²) without overflow or underflow: the plain sum where it is a normal
+/// number well inside the range, else scaled by the largest magnitude.
 #[inline(always)]
 fn norm3(x: f64, y: f64, z: f64) -> f64 {
-    let m = x.abs().max(y.abs()).max(z.abs());
-    if (1e-150..=1e150).contains(&m) || m == 0.0 {
-        (x * x + y * y + z * z).sqrt()
-    } else {
-        let (x, y, z) = (x / m, y / m, z / m);
-        m * (x * x + y * y + z * z).sqrt()
+    let s = x * x + y * y + z * z;
+    if (1e-290..1e300).contains(&s) {
+        return s.sqrt();
     }
+    let m = x.abs().max(y.abs()).max(z.abs());
+    if m == 0.0 || !m.is_finite() {
+        return m;
+    }
+    let (x, y, z) = (x / m, y / m, z / m);
+    m * (x * x + y * y + z * z).sqrt()
 }
 
 /// sin θ/θ − cos θ, without cancellation at small θ (= θ²/3 − θ⁴/30 + …).
@@ -88,8 +98,10 @@ fn sinc_minus_cos(theta: f64, sin: f64, cos: f64) -> f64 {
 /// input; the result is built in place.
 #[inline]
 pub(super) fn exp(b: &Multivector) -> Option<Multivector> {
+    let c: &[f64; 16] = b.as_slice().try_into().ok()?;
     let mut out = Multivector::zero(b.signature());
-    exp_to(b, &mut out).then_some(out)
+    let o: &mut [f64; 16] = out.as_mut_slice().try_into().ok()?;
+    exp_coefficients(c, o).then_some(out)
 }
 
 /// [`exp`] into `out` (Cl(3, 0, 1) too): true if it was written.
@@ -101,12 +113,20 @@ pub(super) fn exp_to(b: &Multivector, out: &mut Multivector) -> bool {
     ) else {
         return false;
     };
-    if !zero(c, NOT_GRADE_2) || !finite(c, PLANES) {
+    *o = [0.0; 16];
+    exp_coefficients(c, o)
+}
+
+/// The motor's coefficients into `o` (all zero on entry); false unless B is a finite
+/// bivector with a finite exponential.
+#[inline(always)]
+fn exp_coefficients(c: &[f64; 16], o: &mut [f64; 16]) -> bool {
+    // A NaN or infinite plane coefficient makes the result non-finite (checked at the end).
+    if !zero(c, NOT_GRADE_2) {
         return false;
     }
     let (a12, a13, a23, t14, t24, t34) = (c[3], c[5], c[6], c[9], c[10], c[12]);
     let theta = norm3(a12, a13, a23);
-    *o = [0.0; 16];
     if theta == 0.0 {
         o[0] = 1.0;
         o[0b1001] = t14;
@@ -141,7 +161,12 @@ pub(super) fn exp_to(b: &Multivector, out: &mut Multivector) -> bool {
 /// Study number), so no general product is needed.
 #[inline(always)]
 pub(super) fn versor_deviation(v: &Multivector) -> f64 {
-    let x = v.as_slice();
+    <&[f64; 16]>::try_from(v.as_slice()).map_or(f64::NAN, study_deviation)
+}
+
+/// [`versor_deviation`] on the coefficients.
+#[inline(always)]
+fn study_deviation(x: &[f64; 16]) -> f64 {
     let (b12, b13, b23, m14, m24, m34) = (x[3], x[5], x[6], x[9], x[10], x[12]);
     let (c, q) = (x[0], x[PSEUDO]);
     let s = c * c + b12 * b12 + b13 * b13 + b23 * b23 - 1.0;
@@ -156,8 +181,10 @@ pub(super) fn versor_deviation(v: &Multivector) -> f64 {
 /// coefficient of the result overflows.
 #[inline]
 pub(super) fn log(v: &Multivector, tolerance: f64) -> Option<Multivector> {
+    let x: &[f64; 16] = v.as_slice().try_into().ok()?;
     let mut out = Multivector::zero(v.signature());
-    log_to(v, tolerance, &mut out).then_some(out)
+    let o: &mut [f64; 16] = out.as_mut_slice().try_into().ok()?;
+    log_coefficients(x, tolerance, o).then_some(out)
 }
 
 /// [`log`] into `out` (Cl(3, 0, 1) too): true if it was written.
@@ -169,13 +196,21 @@ pub(super) fn log_to(v: &Multivector, tolerance: f64, out: &mut Multivector) -> 
     ) else {
         return false;
     };
+    *o = [0.0; 16];
+    log_coefficients(x, tolerance, o)
+}
+
+/// The logarithm's coefficients into `o` (all zero on entry); false where the general route
+/// decides.
+#[inline(always)]
+fn log_coefficients(x: &[f64; 16], tolerance: f64, o: &mut [f64; 16]) -> bool {
     if !zero(x, ODD) {
         return false;
     }
     // The general check max |V Ṽ − 1| ≤ tolerance · max(1, max |Vᵢ|²); the scale is needed
     // only when the deviation exceeds the tolerance itself. NaN fails every comparison, and
     // an infinite coefficient gives an infinite or NaN deviation.
-    let deviation = versor_deviation(v);
+    let deviation = study_deviation(x);
     if deviation.is_nan() || deviation > tolerance {
         let top = MOTOR.iter().fold(0.0f64, |a, &k| a.max(x[k].abs()));
         let scale = top * top;
@@ -209,7 +244,6 @@ pub(super) fn log_to(v: &Multivector, tolerance: f64, out: &mut Multivector) -> 
     let m_axis = -m14 * n23 + m24 * n13 - m34 * n12;
     let pi = q * sin - m_axis * cos;
     let (p14, p24, p34) = (m14 + m_axis * n23, m24 - m_axis * n13, m34 + m_axis * n12);
-    *o = [0.0; 16];
     o[0b0011] = theta * n12;
     o[0b0101] = theta * n13;
     o[0b0110] = theta * n23;
