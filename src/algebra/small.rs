@@ -172,6 +172,26 @@ impl<const L: usize> Small<L> {
         out
     }
 
+    /// ⟨B²⟩₀ and ⟨B²⟩₄ = B∧B of a bivector B: the squares of its planes and the products of
+    /// its disjoint planes, without the pairs that only cancel (B² has no grade 2).
+    pub(super) fn bivector_square(&self) -> (f64, Self) {
+        let t = table(self.sig);
+        let (idx, val, m) = self.nonzero();
+        let mut out = Self::zero(self.sig);
+        let mut scalar = 0.0;
+        for a in 0..m {
+            let (i, x) = (idx[a] as usize & (TABLE_LEN - 1), val[a]);
+            scalar += t[i][i] * (x * x);
+            for b in a + 1..m {
+                let (j, y) = (idx[b] as usize & (TABLE_LEN - 1), val[b]);
+                if i & j == 0 {
+                    out.c[(i | j) & (L - 1)] += (t[i][j] + t[j][i]) * (x * y);
+                }
+            }
+        }
+        (scalar, out)
+    }
+
     /// The blades and coefficients of the non-zero terms, and their count.
     fn nonzero(&self) -> ([u8; L], [f64; L], usize) {
         let mut idx = [0u8; L];
@@ -284,6 +304,11 @@ mod tests {
                         "{sig}: grades {grades:b}"
                     );
                 }
+                let biv = a.grade(2);
+                let (s0, s4) = Small::<L>::from_multivector(&biv).bivector_square();
+                let square = biv.geometric(&biv);
+                assert!((s0 - square.scalar_part()).abs() <= 1e-13, "{sig}");
+                assert!((&s4.to_multivector() - &square.grade(4)).max_abs() <= 1e-13, "{sig}");
                 let rev = Small::<L>::from_multivector(&a).reverse().to_multivector();
                 assert_eq!(rev, a.reverse(), "{sig}");
                 let g2 = Small::<L>::from_multivector(&a).grade(2).to_multivector();

@@ -742,9 +742,7 @@ fn exp_closed_form<const L: usize>(b: &Small<L>) -> Small<L> {
     let e = crate::numeric::exponent_of(m);
     let s = crate::numeric::ldexp(1.0, e);
     let bp = scaled(b, -e);
-    let b2 = bp.geometric(&bp);
-    let sigma = b2.scalar_part();
-    let w = b2.grade(4);
+    let (sigma, w) = bp.bivector_square();
     let w2 = w.geometric_grades(&w, 1).scalar_part();
     let delta2 = 0.25 * w2;
     // Roots λ′ of λ² − σλ + δ² (scaled by s²), the larger first, without squaring σ/2 or
