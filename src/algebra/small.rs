@@ -308,7 +308,10 @@ mod tests {
                 let (s0, s4) = Small::<L>::from_multivector(&biv).bivector_square();
                 let square = biv.geometric(&biv);
                 assert!((s0 - square.scalar_part()).abs() <= 1e-13, "{sig}");
-                assert!((&s4.to_multivector() - &square.grade(4)).max_abs() <= 1e-13, "{sig}");
+                assert!(
+                    (&s4.to_multivector() - &square.grade(4)).max_abs() <= 1e-13,
+                    "{sig}"
+                );
                 let rev = Small::<L>::from_multivector(&a).reverse().to_multivector();
                 assert_eq!(rev, a.reverse(), "{sig}");
                 let g2 = Small::<L>::from_multivector(&a).grade(2).to_multivector();
