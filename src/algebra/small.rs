@@ -181,11 +181,16 @@ impl<const L: usize> Small<L> {
         let mut scalar = 0.0;
         for a in 0..m {
             let (i, x) = (idx[a] as usize & (TABLE_LEN - 1), val[a]);
-            scalar += t[i][i] * (x * x);
+            // Zero signs (a plane holding a null vector) must skip the term: an overflowing
+            // x² times 0 would be NaN.
+            if t[i][i] != 0.0 {
+                scalar += t[i][i] * (x * x);
+            }
             for b in a + 1..m {
                 let (j, y) = (idx[b] as usize & (TABLE_LEN - 1), val[b]);
-                if i & j == 0 {
-                    out.c[(i | j) & (L - 1)] += (t[i][j] + t[j][i]) * (x * y);
+                let sign = t[i][j] + t[j][i];
+                if i & j == 0 && sign != 0.0 {
+                    out.c[(i | j) & (L - 1)] += sign * (x * y);
                 }
             }
         }

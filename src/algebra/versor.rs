@@ -433,11 +433,20 @@ impl Multivector {
 fn exp_small<const L: usize>(b: &Multivector, out: &mut Multivector) -> Result<(), AlgebraError> {
     let v = exp_closed_form(&Small::<L>::from_multivector(b));
     if !v.as_slice().iter().all(|c| c.is_finite()) {
-        return Err(AlgebraError::Overflow {
-            what: "the exponential",
-        });
+        // The closed form's intermediate products can overflow beside null parts of 1e100
+        // and more where exp(B) itself is finite; the general route scales the null vectors.
+        return exp_general_to(b, out);
     }
-    renormalize(v).write_to(out);
+    let (v, defect) = renormalize(v);
+    // The roots λ of the closed form come from ⟨B²⟩₀ and (B∧B)², whose discriminant cancels
+    // for a huge, nearly isoclinic B (|B| ≈ 10⁹ beside a part of size 1): no f64 formula in
+    // those two numbers recovers them, and V is then no versor at all. Scaling and squaring
+    // needs no roots. Where it overflows (huge null parts beside several null vectors) the
+    // closed form's V stands: its error is then within the ε |B| that bounds any exp(B).
+    if defect > 1e-8 && exp_general_to(b, out).is_ok() {
+        return Ok(());
+    }
+    v.write_to(out);
     Ok(())
 }
 
@@ -458,11 +467,27 @@ fn closed_form_residual<const L: usize>(b: &Multivector, v: &Multivector) -> f64
 /// The closed-form logarithm of a checked even versor of N ≤ 5, refined and verified,
 /// written into `out`.
 fn log_small<const L: usize>(v: &Multivector, out: &mut Multivector) -> Result<(), AlgebraError> {
-    let v = Small::<L>::from_multivector(v);
+    let v_given = v;
+    let given = Small::<L>::from_multivector(v);
+    // Near the angle π the closed form reads the plane from a bivector part of size sin θ,
+    // where a defect V Ṽ − 1 of a few ε already turns it by ε / sin θ: the logarithm is
+    // taken of the versor nearest V (no change beyond round-off), and checked against V.
+    let v = renormalize_exactly(given);
     let b = log_closed_form(&v)?;
     if b.as_slice().iter().all(|c| c.is_finite()) {
-        let (b, residual) = refine(&v, b);
-        check_log_residual(residual, v.max_abs(), b.max_abs())?;
+        let (b, _) = refine(&v, b);
+        let residual = exp_nonzero(&b).map_or(f64::INFINITY, |e| (&e - &given).max_abs());
+        if let Err(e) = check_log_residual(residual, given.max_abs(), b.max_abs()) {
+            // The closed form's roots can be lost where the general route, which needs none,
+            // still finds the logarithm; it checks its own result.
+            return match log_general(v_given) {
+                Ok(l) => {
+                    *out = l;
+                    Ok(())
+                }
+                Err(_) => Err(e),
+            };
+        }
         b.write_to(out);
         Ok(())
     } else {
@@ -694,7 +719,9 @@ fn scaled<const L: usize>(m: &Small<L>, e: i32) -> Small<L> {
 /// The closed form for the fixed-size routes' tests.
 #[cfg(test)]
 pub(super) fn exp_closed_form_for_tests(b: &Multivector) -> Multivector {
-    renormalize(exp_closed_form(&Small::<32>::from_multivector(b))).to_multivector()
+    renormalize(exp_closed_form(&Small::<32>::from_multivector(b)))
+        .0
+        .to_multivector()
 }
 
 /// The closed-form logarithm for the fixed-size routes' tests.
@@ -738,8 +765,16 @@ fn exp_closed_form<const L: usize>(b: &Small<L>) -> Small<L> {
         // Every term holds the null vector (or B = 0): B² = 0.
         return &Small::<L>::scalar(sig, 1.0) + b;
     }
-    // B = s B′ with s = 2^e and max |B′| in [1, 2) over the blades above.
-    let e = crate::numeric::exponent_of(m);
+    // B = s B′ with s = 2^e and max |B′| in [1, 2) over the blades above, but no smaller
+    // than keeps the null parts of B′ finite (beside subnormal non-null parts, B′² then
+    // underflows harmlessly: exp(B) = 1 + B to round-off).
+    let mut e = crate::numeric::exponent_of(m);
+    if sig.r() == 1 {
+        let top = b.max_abs();
+        if top > m {
+            e = e.max(crate::numeric::exponent_of(top) - 1000);
+        }
+    }
     let s = crate::numeric::ldexp(1.0, e);
     let bp = scaled(b, -e);
     let (sigma, w) = bp.bivector_square();
@@ -822,18 +857,29 @@ fn exp_closed_form<const L: usize>(b: &Small<L>) -> Small<L> {
 /// huge rotation angle (cancellation between the B and B W terms), which is honest for V
 /// but not for V Ṽ: a versor must stay a versor. For larger |Vᵢ| (boosts) V Ṽ − 1 carries
 /// round-off ~ε |V|², as good as any product, and V is returned unchanged.
-fn renormalize<const L: usize>(v: Small<L>) -> Small<L> {
+fn renormalize<const L: usize>(v: Small<L>) -> (Small<L>, f64) {
+    // At a few ε the correction cannot do better than the product that applies it.
+    project_onto_versors(v, 16.0 * f64::EPSILON)
+}
+
+/// [`renormalize`] down to any defect: for the logarithm, whose plane near π moves with the
+/// last ε of V Ṽ.
+fn renormalize_exactly<const L: usize>(v: Small<L>) -> Small<L> {
+    project_onto_versors(v, 0.0).0
+}
+
+/// V (V Ṽ)^(−½) when max |V Ṽ − 1| lies in (floor, 10⁻²] and max |Vᵢ| ≤ 4, else V; and the
+/// defect max |V Ṽ − 1| / max(1, max |Vᵢ|²) of the V given.
+fn project_onto_versors<const L: usize>(v: Small<L>, floor: f64) -> (Small<L>, f64) {
     let top = v.max_abs();
-    if top > 4.0 {
-        return v;
-    }
     // V Ṽ has grades 0 and 4 only (for N ≤ 5 an even V with V Ṽ = 1 is a versor).
     let nn = v.geometric_grades(&v.reverse(), 1 | 1 << 4);
     let n0 = nn.scalar_part();
     let q = nn.grade(4);
     let dev = (n0 - 1.0).abs().max(q.max_abs());
-    if dev == 0.0 || dev > 1e-2 {
-        return v;
+    let defect = dev / (top * top).max(1.0);
+    if top > 4.0 || dev <= floor || dev > 1e-2 {
+        return (v, defect);
     }
     let kappa = q.geometric_grades(&q, 1).scalar_part();
     // (n + Q)^(−½) = α + β Q.
@@ -850,10 +896,10 @@ fn renormalize<const L: usize>(v: Small<L>) -> Small<L> {
         (r, -0.5 * r / n0)
     };
     if !(alpha.is_finite() && beta.is_finite()) {
-        return v;
+        return (v, defect);
     }
     let f = &Small::<L>::scalar(v.signature(), alpha) + &(&q * beta);
-    f.geometric(&v)
+    (f.geometric(&v), defect)
 }
 
 /// g(ζ) = ζ / sinh ζ and g′ = dg/d(cosh ζ) = (sinh ζ − ζ cosh ζ)/sinh³ζ for cosh ζ = c and

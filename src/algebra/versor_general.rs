@@ -308,7 +308,8 @@ fn pull_to_group<T: Mv>(mut v: T) -> T {
     let mut e = defect(&v);
     let mut dev = non_null(&e);
     for _ in 0..3 {
-        if dev == 0.0 || dev > 1e-2 {
+        // At a few ε the step cannot do better than the product that forms it.
+        if dev <= 16.0 * f64::EPSILON || dev > 1e-2 {
             break;
         }
         let mut step = e.times(-0.5);

@@ -73,6 +73,10 @@ fn norm3(x: f64, y: f64, z: f64) -> f64 {
     if (1e-290..1e300).contains(&s) {
         return s.sqrt();
     }
+    if s.is_nan() {
+        // f64::max below would drop a NaN.
+        return s;
+    }
     let m = x.abs().max(y.abs()).max(z.abs());
     if m == 0.0 || !m.is_finite() {
         return m;
@@ -132,7 +136,7 @@ fn exp_coefficients(c: &[f64; 16], o: &mut [f64; 16]) -> bool {
         o[0b1001] = t14;
         o[0b1010] = t24;
         o[0b1100] = t34;
-        return true;
+        return finite(o, MOTOR);
     }
     let inv = 1.0 / theta;
     let (n12, n13, n23) = (a12 * inv, a13 * inv, a23 * inv);
@@ -323,6 +327,25 @@ mod tests {
             vv.as_mut_slice()[0] -= 1.0;
             assert!((versor_deviation(&v) - vv.max_abs()).abs() <= 1e-15);
         }
+    }
+
+    #[test]
+    fn non_finite_input_is_left_to_the_general_route() {
+        for (k, x) in [
+            (0, f64::NAN),
+            (1, f64::NAN),
+            (0, f64::INFINITY),
+            (3, f64::NAN),
+        ] {
+            let mut c = [0.3, 0.2, 0.0, 1.0, 0.0, 0.0];
+            c[k] = x;
+            assert!(exp(&bivector(c)).is_none(), "{c:?}");
+            c[1] = f64::NAN;
+            c[0] = 0.0;
+            assert!(exp(&bivector(c)).is_none(), "{c:?}");
+        }
+        let pure_nan_rotation = bivector([f64::NAN, f64::NAN, 0.0, 1e-309, 0.0, 0.0]);
+        assert!(exp(&pure_nan_rotation).is_none());
     }
 
     #[test]

@@ -656,3 +656,19 @@ fn fuzz_no_overflow_for_nearly_null_parts() {
         assert!(d <= 1e-13 * l.max_abs().max(1.0), "{b:?}: {d:e}");
     }
 }
+
+/// A subnormal rotation beside a huge translation in 2D PGA: the closed form scaled B by the
+/// size of its non-null part (2^1074 here), which made the translation infinite, and
+/// returned `Overflow` for a finite exp(B) = 1 + B. The scale now keeps the null parts
+/// finite.
+#[test]
+fn subnormal_rotation_beside_a_huge_translation() {
+    let s = sig(2, 0, 1);
+    for t in [1e-170, 1e200, 1.8e300] {
+        let b = &blade(s, "e12", -5e-324) + &blade(s, "e23", t);
+        let v = b.exp().unwrap();
+        let mut want = b.clone();
+        want.as_mut_slice()[0] = 1.0;
+        assert!((&v - &want).max_abs() <= 1e-15 * t, "{v:?}");
+    }
+}

@@ -339,3 +339,51 @@ fn fuzz_log_beyond_the_resolution_of_f64_is_refused() {
         log_is_honest(&versor_input(2, 3, 0, terms).exp().unwrap());
     }
 }
+
+/// versor_bits: in Cl(0, 4, 1), B = (π − 10⁻¹²) e₁₂ − 5.96e8 (e₂₃ + e₁₄ + e₁₅) gave an exp
+/// with V Ṽ − 1 ≈ 2: the closed form's roots come from ⟨B²⟩₀ and (B∧B)², whose discriminant
+/// cancels completely for such a huge, nearly isoclinic B. The exponential now checks that
+/// its result is a versor and takes the general route (scaling and squaring, no roots) when
+/// it is not.
+#[test]
+fn fuzz_exp_of_a_huge_nearly_isoclinic_bivector_is_a_versor() {
+    let b = versor_input(
+        0,
+        4,
+        1,
+        &[
+            (3, 3.141592653588793),
+            (6, -595821443.5137254),
+            (9, -595821443.5137254),
+            (10, 2.3e-322),
+            (12, 6.83e-320),
+            (17, -595821443.5137254),
+        ],
+    );
+    let v = b.exp().unwrap();
+    let top = v.max_abs();
+    let w = &v * (1.0 / top);
+    let mut ww = &w * &w.reverse();
+    ww.as_mut_slice()[0] -= 1.0 / (top * top);
+    assert!(
+        ww.max_abs() <= 1e-12 * b.max_abs(),
+        "V Ṽ − 1 = {:e}",
+        ww.max_abs()
+    );
+    log_is_honest(&v);
+}
+
+/// versor_bits: the fixed-size 3D PGA exponential took NaN rotation coefficients for 0 (the
+/// norm's f64::max drops a NaN) and returned the finite translator 1 + T. NaN now reaches
+/// the result and the general route reports `NonFinite`.
+#[test]
+fn fuzz_pga_exp_of_nan_is_an_error() {
+    use rotorflow::algebra::AlgebraError;
+    let b = versor_input(
+        3,
+        0,
+        1,
+        &[(3, f64::NAN), (5, f64::NAN), (9, 1.390671161566996e-309)],
+    );
+    assert!(matches!(b.exp(), Err(AlgebraError::NonFinite { .. })));
+}
