@@ -103,9 +103,11 @@ fn sinc_minus_cos(theta: f64, sin: f64, cos: f64) -> f64 {
 #[inline]
 pub(super) fn exp(b: &Multivector) -> Option<Multivector> {
     let c: &[f64; 16] = b.as_slice().try_into().ok()?;
-    let mut out = Multivector::zero(b.signature());
-    let o: &mut [f64; 16] = out.as_mut_slice().try_into().ok()?;
-    exp_coefficients(c, o).then_some(out)
+    let mut o = [0.0; 16];
+    if !exp_coefficients(c, &mut o) {
+        return None;
+    }
+    Some(Multivector::from_storage(b.signature(), o.into()))
 }
 
 /// [`exp`] into `out` (Cl(3, 0, 1) too): true if it was written.
