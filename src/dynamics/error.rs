@@ -101,6 +101,20 @@ pub enum DynamicsError {
     /// An algebra operation failed (e.g. N above the rotor limit).
     #[error(transparent)]
     Algebra(#[from] AlgebraError),
+    /// A body or system of moving bodies was given inconsistent or unphysical data.
+    ///
+    /// How to fix: the message names the quantity (a mass that is not positive, a vector of
+    /// the wrong length, a force on a body the system does not have).
+    #[error("invalid {what}: {reason}")]
+    InvalidMotion {
+        /// The quantity.
+        what: &'static str,
+        /// What is wrong with it.
+        reason: String,
+    },
+    /// The rotation part of a moving body could not be built.
+    #[error(transparent)]
+    Inertia(#[from] InertiaError),
 }
 
 impl DynamicsError {

@@ -21,6 +21,8 @@
 //! - [`trajectory`]: sampled runs ([`simulate`]) with a drift summary.
 //! - [`kinematics`]: point velocities, Coriolis and centrifugal accelerations (eqs. 18–21).
 //! - [`stability`]: growth rates of perturbed steady rotations.
+//! - [`motion`]: bodies that move as well as turn (centre of mass, forces and torques,
+//!   systems of bodies with springs).
 //! - [`exact`]: closed-form free motions, the references the integrators are measured against.
 //! - [`DynamicsError`]: the one error type of the layer ([`NoClosedFormReason`] says why a
 //!   body has no closed form).
@@ -35,6 +37,7 @@ pub mod exact;
 pub mod integrate;
 pub mod invariants;
 pub mod kinematics;
+pub mod motion;
 pub mod stability;
 mod torque;
 pub mod trajectory;

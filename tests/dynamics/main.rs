@@ -4,6 +4,7 @@ mod conservation;
 mod equations;
 mod large_n;
 mod motion;
+mod moving_bodies;
 mod names;
 mod orders;
 mod paper_errata;

@@ -1,0 +1,249 @@
+//! [`MovingBody`]: a rigid body that moves as well as turns.
+
+use super::Wrench;
+use crate::algebra::pga::Motor;
+use crate::algebra::{Bivector, Vector};
+use crate::dynamics::{Attitude, DynamicsError, RigidBody};
+use crate::inertia::InertiaMap;
+use nalgebra::DMatrix;
+
+/// A rigid body in ℝᴺ that moves and turns: its centre of mass x and linear momentum
+/// p = m v in space, and its rotation about the centre of mass as a [`RigidBody`] (attitude
+/// R and spin L in the principal frame, the inertia map taken about the centre of mass).
+///
+/// Newton–Euler in N dimensions, with F the total force (space frame) and τ the torque about
+/// the centre of mass (principal body frame; a force F at body point r gives r ∧ F):
+///
+///   dx/dt = p/m,  dp/dt = F,  dL/dt = ω × L + τ,  dR/dt = −½ R ω.
+///
+/// The translation and the rotation are coupled only through the forques, which read both.
+/// Body points are given in the body's own axes (as its vertices are); the body's placement
+/// is the rigid motion x_space = x + R_b r R̃_b with R_b =
+/// [`RigidBody::body_axes_attitude`], which [`MovingBody::motor`] returns as a motor of
+/// projective GA and [`MovingBody::homogeneous_matrix`] as an (N+1) × (N+1) matrix.
+///
+/// ```
+/// use rotorflow::prelude::*;
+/// use rotorflow::dynamics::motion::MovingBody;
+/// let inertia = InertiaMap::from_principal_second_moments(&[1.0, 2.0, 3.0])?;
+/// let body = MovingBody::new(
+///     2.0,
+///     inertia,
+///     Rotor::identity(3),
+///     &Vector::from_components(&[0.0, 0.0, 1.0])?,
+///     &Vector::from_components(&[1.0, 0.0, 0.0])?,
+///     &Bivector::zero(3),
+/// )?;
+/// assert_eq!(body.linear_momentum().as_slice(), &[2.0, 0.0, 0.0]);
+/// assert!((body.kinetic_energy() - 1.0).abs() < 1e-15);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct MovingBody {
+    rotation: RigidBody,
+    mass: f64,
+    position: Vector,
+    momentum: Vector,
+}
+
+impl MovingBody {
+    /// Returns the body of mass `mass` and inertia `inertia` (about its centre of mass, in
+    /// its own axes), placed with attitude `attitude` (own axes → space) and centre of mass
+    /// `position`, moving with velocity `velocity` and turning with angular velocity `omega`
+    /// (bivector, in its own axes).
+    ///
+    /// # Errors
+    /// [`DynamicsError::InvalidMotion`] for a mass that is not finite and positive or
+    /// vectors of another dimension than the inertia; [`DynamicsError::Inertia`] as
+    /// [`RigidBody::from_body_velocity`].
+    pub fn new(
+        mass: f64,
+        inertia: InertiaMap,
+        attitude: impl Into<Attitude>,
+        position: &Vector,
+        velocity: &Vector,
+        omega: &Bivector,
+    ) -> Result<Self, DynamicsError> {
+        let rotation = RigidBody::from_body_velocity(inertia, attitude, omega)?;
+        Self::from_rigid_body(rotation, mass, position, velocity)
+    }
+
+    /// Returns the body turning as `rotation` (whose inertia is about the centre of mass),
+    /// with mass `mass`, centre of mass `position` and velocity `velocity`.
+    ///
+    /// # Errors
+    /// As [`MovingBody::new`].
+    pub fn from_rigid_body(
+        rotation: RigidBody,
+        mass: f64,
+        position: &Vector,
+        velocity: &Vector,
+    ) -> Result<Self, DynamicsError> {
+        if !(mass.is_finite() && mass > 0.0) {
+            return Err(DynamicsError::InvalidMotion {
+                what: "mass",
+                reason: format!("{mass} is not a finite positive number"),
+            });
+        }
+        let n = rotation.dim();
+        for (what, v) in [("position", position), ("velocity", velocity)] {
+            check_vector(what, v, n)?;
+        }
+        let momentum = velocity * mass;
+        check_vector("linear momentum", &momentum, n)?;
+        Ok(MovingBody {
+            rotation,
+            mass,
+            position: position.clone(),
+            momentum,
+        })
+    }
+
+    /// Returns the dimension N.
+    pub fn dim(&self) -> usize {
+        self.rotation.dim()
+    }
+
+    /// Returns the mass m.
+    pub fn mass(&self) -> f64 {
+        self.mass
+    }
+
+    /// Returns the rotation about the centre of mass (attitude, spin, inertia).
+    pub fn rotation(&self) -> &RigidBody {
+        &self.rotation
+    }
+
+    /// Returns the centre of mass x (space frame).
+    pub fn position(&self) -> &Vector {
+        &self.position
+    }
+
+    /// Returns the velocity of the centre of mass, v = p/m.
+    pub fn velocity(&self) -> Vector {
+        &self.momentum * (1.0 / self.mass)
+    }
+
+    /// Returns the linear momentum p = m v.
+    pub fn linear_momentum(&self) -> &Vector {
+        &self.momentum
+    }
+
+    /// Returns the attitude of the body's own axes (own axes → space).
+    pub fn attitude(&self) -> Attitude {
+        self.rotation.body_axes_attitude()
+    }
+
+    /// Returns the angular velocity in the body's own axes.
+    pub fn omega(&self) -> Bivector {
+        self.rotation
+            .principal_frame()
+            .rotate_bivector(&self.rotation.omega())
+    }
+
+    /// Returns the angular velocity in space, ω_s = R ω R̃.
+    pub fn space_omega(&self) -> Bivector {
+        self.rotation.space_omega()
+    }
+
+    /// Returns the position in space of the body point `point` (own axes):
+    /// x + R_b r R̃_b.
+    pub fn point_position(&self, point: &Vector) -> Vector {
+        &self.position + &self.attitude().rotate_vector(point)
+    }
+
+    /// Returns the velocity in space of the body point `point` (own axes): v + r_s ⌋ ω_s,
+    /// with r_s its offset from the centre of mass in space (the Conventions chapter's
+    /// x ⌋ ω).
+    pub fn point_velocity(&self, point: &Vector) -> Vector {
+        let r = self.attitude().rotate_vector(point);
+        &self.velocity() + &r.left_contract(&self.space_omega())
+    }
+
+    /// Returns the wrench of a force `force` (space frame) applied at the body point `point`
+    /// (own axes): the force, and the torque r ∧ F about the centre of mass in the principal
+    /// frame.
+    pub fn wrench_at(&self, point: &Vector, force: &Vector) -> Wrench {
+        let r = self.attitude().rotate_vector(point);
+        let torque_space = r.wedge(force);
+        Wrench {
+            force: force.clone(),
+            torque: self
+                .rotation
+                .principal_frame_attitude()
+                .inverse_rotate_bivector(&torque_space),
+        }
+    }
+
+    /// Returns the kinetic energy ½ m v² + ½⟨ω, L⟩.
+    pub fn kinetic_energy(&self) -> f64 {
+        0.5 * self.momentum.norm_squared() / self.mass + self.rotation.energy()
+    }
+
+    /// Returns the angular momentum about the origin of space, x ∧ p + L_s (orbital plus
+    /// spin, both bivectors of space).
+    pub fn angular_momentum(&self) -> Bivector {
+        &self.position.wedge(&self.momentum) + &self.rotation.space_momentum()
+    }
+
+    /// Returns the placement as a motor of projective GA Cl(N, 0, 1): the rotation of the
+    /// body's own axes followed by the translation to the centre of mass.
+    ///
+    /// # Errors
+    /// [`crate::algebra::AlgebraError`] above the rotor limit (N = 16).
+    pub fn motor(&self) -> Result<Motor, DynamicsError> {
+        let rotor = self.attitude().to_rotor()?;
+        Ok(Motor::from_rotation_translation(
+            &rotor,
+            self.position.as_slice(),
+        )?)
+    }
+
+    /// Returns the (N+1) × (N+1) homogeneous matrix [[R, x], [0, 1]] of the placement (body
+    /// point r in own axes ↦ x + R r).
+    pub fn homogeneous_matrix(&self) -> DMatrix<f64> {
+        let n = self.dim();
+        let r = self.attitude().to_matrix();
+        let mut h = DMatrix::identity(n + 1, n + 1);
+        h.view_mut((0, 0), (n, n)).copy_from(&r);
+        for i in 0..n {
+            h[(i, n)] = self.position.as_slice()[i];
+        }
+        h
+    }
+
+    /// Mutable state for the integrators: position, momentum, rotation.
+    pub(crate) fn state_mut(&mut self) -> (&mut Vector, &mut Vector, &mut RigidBody) {
+        (&mut self.position, &mut self.momentum, &mut self.rotation)
+    }
+
+    /// True if every part of the state is finite.
+    pub(crate) fn is_finite(&self) -> bool {
+        self.position.as_slice().iter().all(|x| x.is_finite())
+            && self.momentum.as_slice().iter().all(|x| x.is_finite())
+            && self
+                .rotation
+                .momentum()
+                .as_slice()
+                .iter()
+                .all(|x| x.is_finite())
+            && self.rotation.principal_frame_attitude().is_finite()
+    }
+}
+
+/// Refuses a vector of the wrong dimension or with a non-finite component.
+pub(crate) fn check_vector(what: &'static str, v: &Vector, n: usize) -> Result<(), DynamicsError> {
+    if v.dim() != n {
+        return Err(DynamicsError::InvalidMotion {
+            what,
+            reason: format!("{} components for a body in {n} dimensions", v.dim()),
+        });
+    }
+    if let Some(x) = v.as_slice().iter().find(|x| !x.is_finite()) {
+        return Err(DynamicsError::InvalidMotion {
+            what,
+            reason: format!("component {x} is not finite"),
+        });
+    }
+    Ok(())
+}
