@@ -71,6 +71,12 @@ impl MotionIntegrator for MotionSplitting {
     }
 
     fn step(&mut self, system: &mut System, t: f64, h: f64) -> Result<(), DynamicsError> {
+        if !system.joints().is_empty() || !system.half_spaces().is_empty() {
+            return Err(DynamicsError::InvalidMotion {
+                what: "integrator",
+                reason: "joints and contact are not yet integrated".into(),
+            });
+        }
         let w = system.wrenches(t);
         Self::kick(system, &w, 0.5 * h);
         for b in system.bodies_mut() {
@@ -153,6 +159,13 @@ impl MotionIntegrator for MotionRk4 {
     }
 
     fn step(&mut self, system: &mut System, t: f64, h: f64) -> Result<(), DynamicsError> {
+        if !system.joints().is_empty() || !system.half_spaces().is_empty() {
+            return Err(DynamicsError::InvalidMotion {
+                what: "integrator",
+                reason: "RKMK4 integrates forques only: joints and contact need the splitting"
+                    .into(),
+            });
+        }
         let b0: Vec<MovingBody> = system.bodies().to_vec();
         let k1 = rates(&b0, &system.wrenches_for(t, &b0));
         let u2: Vec<Bivector> = k1.iter().map(|k| &k.a * (0.5 * h)).collect();

@@ -22,11 +22,15 @@
 //!   their group).
 
 mod body;
+mod contact;
 mod forque;
 mod integrate;
+mod joint;
 mod system;
 
 pub use body::MovingBody;
+pub use contact::{Contact, ContactShape, HalfSpace};
 pub use forque::{Forque, ForqueInput, Wrench, forques};
 pub use integrate::{MotionIntegrator, MotionRk4, MotionSplitting};
+pub use joint::BallJoint;
 pub use system::System;

@@ -1,6 +1,7 @@
 //! [`System`]: moving bodies and the forques between them.
 
-use super::{Forque, ForqueInput, MovingBody, Wrench};
+use super::forques::Anchor;
+use super::{BallJoint, Contact, ContactShape, Forque, ForqueInput, HalfSpace, MovingBody, Wrench};
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::DynamicsError;
 
@@ -17,6 +18,10 @@ use crate::dynamics::DynamicsError;
 pub struct System {
     bodies: Vec<MovingBody>,
     forques: Vec<Box<dyn Forque>>,
+    shapes: Vec<ContactShape>,
+    half_spaces: Vec<HalfSpace>,
+    joints: Vec<BallJoint>,
+    contacts: Vec<Contact>,
 }
 
 impl std::fmt::Debug for System {
@@ -24,6 +29,9 @@ impl std::fmt::Debug for System {
         f.debug_struct("System")
             .field("bodies", &self.bodies)
             .field("forques", &self.forques.len())
+            .field("shapes", &self.shapes)
+            .field("half_spaces", &self.half_spaces)
+            .field("joints", &self.joints)
             .finish()
     }
 }
@@ -49,8 +57,12 @@ impl System {
             });
         }
         Ok(System {
+            shapes: vec![ContactShape::None; bodies.len()],
             bodies,
             forques: Vec::new(),
+            half_spaces: Vec::new(),
+            joints: Vec::new(),
+            contacts: Vec::new(),
         })
     }
 
@@ -74,6 +86,87 @@ impl System {
         }
         self.forques.push(Box::new(forque));
         Ok(())
+    }
+
+    /// Checks a body index.
+    fn check_body(&self, what: &'static str, i: usize) -> Result<(), DynamicsError> {
+        if i < self.bodies.len() {
+            return Ok(());
+        }
+        Err(DynamicsError::InvalidMotion {
+            what,
+            reason: format!(
+                "body {i} does not exist (the system has {} bodies, numbered from 0)",
+                self.bodies.len()
+            ),
+        })
+    }
+
+    /// Gives body `body` the shape it touches half-spaces with (by default it has none).
+    ///
+    /// # Errors
+    /// [`DynamicsError::InvalidMotion`] for a missing body or a shape of another dimension.
+    pub fn set_shape(&mut self, body: usize, shape: ContactShape) -> Result<(), DynamicsError> {
+        self.check_body("shape", body)?;
+        shape.check(self.dim())?;
+        self.shapes[body] = shape;
+        Ok(())
+    }
+
+    /// Adds a half-space of solid world (floor, wall, slope) that the bodies' shapes touch.
+    ///
+    /// # Errors
+    /// [`DynamicsError::InvalidMotion`] for a normal of another dimension.
+    pub fn add_half_space(&mut self, half_space: HalfSpace) -> Result<(), DynamicsError> {
+        super::body::check_vector("normal", half_space.normal(), self.dim())?;
+        self.half_spaces.push(half_space);
+        Ok(())
+    }
+
+    /// Adds a ball joint.
+    ///
+    /// # Errors
+    /// [`DynamicsError::InvalidMotion`] for a missing body, a body jointed to itself or
+    /// points of another dimension.
+    pub fn add_ball_joint(&mut self, joint: BallJoint) -> Result<(), DynamicsError> {
+        let n = self.dim();
+        self.check_body("joint", joint.body)?;
+        super::body::check_vector("joint point", &joint.point, n)?;
+        match &joint.other {
+            Anchor::World(x) => super::body::check_vector("joint anchor", x, n)?,
+            Anchor::Body(j, p) => {
+                self.check_body("joint", *j)?;
+                if *j == joint.body {
+                    return Err(DynamicsError::InvalidMotion {
+                        what: "joint",
+                        reason: format!("body {j} is jointed to itself"),
+                    });
+                }
+                super::body::check_vector("joint point", p, n)?;
+            }
+        }
+        self.joints.push(joint);
+        Ok(())
+    }
+
+    /// Returns the bodies' contact shapes, in the order of the bodies.
+    pub fn shapes(&self) -> &[ContactShape] {
+        &self.shapes
+    }
+
+    /// Returns the half-spaces.
+    pub fn half_spaces(&self) -> &[HalfSpace] {
+        &self.half_spaces
+    }
+
+    /// Returns the ball joints.
+    pub fn joints(&self) -> &[BallJoint] {
+        &self.joints
+    }
+
+    /// Returns the contacts of the last step, with their impulses.
+    pub fn contacts(&self) -> &[Contact] {
+        &self.contacts
     }
 
     /// Returns the dimension N.

@@ -1,0 +1,238 @@
+//! Contact of bodies with half-spaces: the shapes bodies touch with, the planes, and the
+//! contacts found at a step.
+
+use crate::algebra::Vector;
+use crate::dynamics::{Attitude, DynamicsError};
+use crate::inertia::spec::Geometry;
+
+/// What a body touches the world with, in its own axes about its centre of mass.
+///
+/// Contact is between a body's shape and a [`HalfSpace`]; the shape answers one question,
+/// "which of my points lie deepest along a direction", so that body–body contact can later
+/// use the same shapes (a support function is what GJK needs).
+#[derive(Clone, Debug, PartialEq)]
+pub enum ContactShape {
+    /// No contact: the body passes through planes.
+    None,
+    /// The convex hull of these points (a polytope's vertices, a mesh's vertices): only
+    /// they can touch a plane.
+    Vertices(Vec<Vector>),
+    /// A solid ellipsoid (a ball when the semi-axes are equal) with these semi-axes along
+    /// the own axes.
+    Ellipsoid(Vec<f64>),
+}
+
+impl ContactShape {
+    /// Returns the contact shape of a body of the SPEC grammar: the vertices of boxes,
+    /// point sets and meshes, the ellipsoid of `ellipsoid:`, `ball:` and `sphere:`, and
+    /// [`ContactShape::None`] for bodies given only by their mass tensor or plane moments.
+    pub fn from_geometry(geometry: &Geometry) -> ContactShape {
+        let vertices = |points: &[Vec<f64>]| {
+            ContactShape::Vertices(points.iter().map(|p| vector_of(p)).collect())
+        };
+        match geometry {
+            Geometry::Cuboid { half_lengths, .. } => {
+                let n = half_lengths.len();
+                let corners = (0..1usize << n)
+                    .map(|mask| {
+                        let c: Vec<f64> = (0..n)
+                            .map(|i| {
+                                if mask >> i & 1 == 1 {
+                                    half_lengths[i]
+                                } else {
+                                    -half_lengths[i]
+                                }
+                            })
+                            .collect();
+                        vector_of(&c)
+                    })
+                    .collect();
+                ContactShape::Vertices(corners)
+            }
+            Geometry::Points(points) => vertices(points),
+            Geometry::Mesh { vertices: v, .. } => vertices(v),
+            Geometry::Ellipsoid { semi_axes, .. } => ContactShape::Ellipsoid(semi_axes.clone()),
+            _ => ContactShape::None,
+        }
+    }
+
+    /// Returns the radius of the smallest ball about the centre of mass holding the shape
+    /// (0 for no shape): the length contact tolerances are relative to.
+    pub fn radius(&self) -> f64 {
+        match self {
+            ContactShape::None => 0.0,
+            ContactShape::Vertices(v) => v.iter().map(Vector::norm).fold(0.0, f64::max),
+            ContactShape::Ellipsoid(a) => a.iter().copied().fold(0.0, f64::max),
+        }
+    }
+
+    /// Checks the shape against the dimension `n`.
+    pub(crate) fn check(&self, n: usize) -> Result<(), DynamicsError> {
+        let bad = |reason: String| {
+            Err(DynamicsError::InvalidMotion {
+                what: "shape",
+                reason,
+            })
+        };
+        match self {
+            ContactShape::None => Ok(()),
+            ContactShape::Vertices(v) => {
+                if v.is_empty() {
+                    return bad("no vertex".into());
+                }
+                for p in v {
+                    super::body::check_vector("shape vertex", p, n)?;
+                }
+                Ok(())
+            }
+            ContactShape::Ellipsoid(a) => {
+                if a.len() != n {
+                    return bad(format!(
+                        "{} semi-axes for a body in {n} dimensions",
+                        a.len()
+                    ));
+                }
+                match a.iter().find(|x| !(x.is_finite() && **x > 0.0)) {
+                    Some(x) => bad(format!("semi-axis {x} is not a finite positive number")),
+                    None => Ok(()),
+                }
+            }
+        }
+    }
+
+    /// Calls `visit(r, r_space)` for each point of the shape that can touch a plane of unit
+    /// normal `normal` (space frame): every vertex, or the one point of the ellipsoid whose
+    /// outward normal is −`normal`. `r` is in own axes, `r_space` its offset from the centre
+    /// of mass in space.
+    #[allow(dead_code)]
+    pub(crate) fn candidates(
+        &self,
+        attitude: &Attitude,
+        normal: &Vector,
+        mut visit: impl FnMut(&Vector, &Vector),
+    ) {
+        match self {
+            ContactShape::None => {}
+            ContactShape::Vertices(v) => {
+                for r in v {
+                    visit(r, &attitude.rotate_vector(r));
+                }
+            }
+            ContactShape::Ellipsoid(a) => {
+                // The support point along −n: r = −A² m / |A m|, m = Rᵀ n in own axes.
+                let m = attitude.inverse_rotate_vector(normal);
+                let mut r = m.clone();
+                let mut q = 0.0;
+                for (i, x) in r.as_mut_slice().iter_mut().enumerate() {
+                    q += (a[i] * *x) * (a[i] * *x);
+                    *x *= -a[i] * a[i];
+                }
+                let r = &r * (1.0 / q.sqrt());
+                visit(&r, &attitude.rotate_vector(&r));
+            }
+        }
+    }
+}
+
+/// A vector from components already known to be finite and few.
+fn vector_of(components: &[f64]) -> Vector {
+    Vector::from_storage(smallvec::SmallVec::from_slice(components))
+}
+
+/// A half-space {x : n·x ≤ d} of solid world (a floor, a wall, a slope) bounded by the plane
+/// n·x = d, with the coefficients of its contacts: Coulomb friction μ and restitution e.
+///
+/// The normal n points out of the solid, into the free side. It is stored unit: a normal
+/// of length s and offset d describe the plane n·x = d, that is (n/s)·x = d/s.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HalfSpace {
+    normal: Vector,
+    offset: f64,
+    friction: f64,
+    restitution: f64,
+}
+
+impl HalfSpace {
+    /// Returns the half-space below the plane `normal`·x = `offset`, with friction
+    /// coefficient `friction` (≥ 0) and restitution `restitution` (in [0, 1]).
+    ///
+    /// # Errors
+    /// [`DynamicsError::InvalidMotion`] naming the bad parameter: a zero or non-finite
+    /// normal, a non-finite offset, a negative friction, a restitution outside [0, 1].
+    pub fn new(
+        normal: &Vector,
+        offset: f64,
+        friction: f64,
+        restitution: f64,
+    ) -> Result<HalfSpace, DynamicsError> {
+        let bad =
+            |what: &'static str, reason: String| Err(DynamicsError::InvalidMotion { what, reason });
+        let s = normal.norm();
+        if !(s.is_finite() && s > 0.0) {
+            return bad(
+                "normal",
+                format!("{:?} is not a finite non-zero vector", normal.as_slice()),
+            );
+        }
+        if !offset.is_finite() {
+            return bad("offset", format!("{offset} is not finite"));
+        }
+        if !(friction.is_finite() && friction >= 0.0) {
+            return bad("friction", format!("{friction} is not a finite number ≥ 0"));
+        }
+        if !(0.0..=1.0).contains(&restitution) {
+            return bad("restitution", format!("{restitution} is not in [0, 1]"));
+        }
+        Ok(HalfSpace {
+            normal: normal * (1.0 / s),
+            offset: offset / s,
+            friction,
+            restitution,
+        })
+    }
+
+    /// Returns the unit normal n (out of the solid).
+    pub fn normal(&self) -> &Vector {
+        &self.normal
+    }
+
+    /// Returns the offset d of the plane n·x = d (n unit).
+    pub fn offset(&self) -> f64 {
+        self.offset
+    }
+
+    /// Returns the Coulomb friction coefficient μ.
+    pub fn friction(&self) -> f64 {
+        self.friction
+    }
+
+    /// Returns the restitution e.
+    pub fn restitution(&self) -> f64 {
+        self.restitution
+    }
+
+    /// Returns the signed distance n·x − d of a point from the plane (negative inside the
+    /// solid).
+    pub fn distance(&self, x: &Vector) -> f64 {
+        self.normal.dot(x) - self.offset
+    }
+}
+
+/// One contact of the last step: where a body touched a half-space and the impulse the
+/// half-space gave it there.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Contact {
+    /// The body, by index.
+    pub body: usize,
+    /// The half-space, by index.
+    pub half_space: usize,
+    /// The contact point, in the body's own axes.
+    pub point: Vector,
+    /// The normal impulse (≥ 0) over the step.
+    pub normal_impulse: f64,
+    /// The friction impulse over the step (space frame, in the plane).
+    pub friction_impulse: Vector,
+    /// The sliding velocity of the contact point in the plane after the step's impulses
+    /// (space frame): zero while the contact sticks or rolls.
+    pub slip: Vector,
+}
