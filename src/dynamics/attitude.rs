@@ -185,6 +185,34 @@ impl Attitude {
         }
     }
 
+    /// Writes Q (x_space = Q x_body) into `out`, row-major N × N, without allocating.
+    ///
+    /// # Panics
+    /// If `out` is shorter than N².
+    pub(crate) fn write_matrix(&self, out: &mut [f64]) {
+        let n = self.dim();
+        match &self.repr {
+            Repr::Rotor(r) => {
+                let (mut e, mut col) = ([0.0; 16], [0.0; 16]);
+                for j in 0..n {
+                    e[..n].fill(0.0);
+                    e[j] = 1.0;
+                    r.sandwich_vector_into(&e[..n], &mut col[..n]);
+                    for i in 0..n {
+                        out[i * n + j] = col[i];
+                    }
+                }
+            }
+            Repr::Matrix(q) => {
+                for i in 0..n {
+                    for j in 0..n {
+                        out[i * n + j] = q[j * n + i];
+                    }
+                }
+            }
+        }
+    }
+
     /// Returns the space image of the body vector `x`: R x R̃ = Q x.
     ///
     /// # Panics

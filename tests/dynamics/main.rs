@@ -1,6 +1,7 @@
 //! Tests of the dynamics layer: Euler's equations as rotor/bivector flows.
 
 mod conservation;
+mod contact_and_joints;
 mod equations;
 mod large_n;
 mod motion;

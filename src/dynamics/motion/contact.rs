@@ -2,7 +2,7 @@
 //! contacts found at a step.
 
 use crate::algebra::Vector;
-use crate::dynamics::{Attitude, DynamicsError};
+use crate::dynamics::DynamicsError;
 use crate::inertia::spec::Geometry;
 
 /// What a body touches the world with, in its own axes about its centre of mass.
@@ -102,33 +102,40 @@ impl ContactShape {
 
     /// Calls `visit(r, r_space)` for each point of the shape that can touch a plane of unit
     /// normal `normal` (space frame): every vertex, or the one point of the ellipsoid whose
-    /// outward normal is −`normal`. `r` is in own axes, `r_space` its offset from the centre
-    /// of mass in space.
-    #[allow(dead_code)]
+    /// outward normal is −`normal`. `r` is in own axes, `r_space` = Q r its offset from the
+    /// centre of mass in space, with `q` the attitude of the own axes (row-major N × N).
     pub(crate) fn candidates(
         &self,
-        attitude: &Attitude,
+        q: &[f64],
         normal: &Vector,
         mut visit: impl FnMut(&Vector, &Vector),
     ) {
+        let n = normal.dim();
+        let place = |r: &Vector| {
+            let mut out = Vector::zero(n);
+            for (i, o) in out.as_mut_slice().iter_mut().enumerate() {
+                *o = (0..n).map(|j| q[i * n + j] * r.as_slice()[j]).sum();
+            }
+            out
+        };
         match self {
             ContactShape::None => {}
             ContactShape::Vertices(v) => {
                 for r in v {
-                    visit(r, &attitude.rotate_vector(r));
+                    visit(r, &place(r));
                 }
             }
             ContactShape::Ellipsoid(a) => {
-                // The support point along −n: r = −A² m / |A m|, m = Rᵀ n in own axes.
-                let m = attitude.inverse_rotate_vector(normal);
-                let mut r = m.clone();
-                let mut q = 0.0;
-                for (i, x) in r.as_mut_slice().iter_mut().enumerate() {
-                    q += (a[i] * *x) * (a[i] * *x);
-                    *x *= -a[i] * a[i];
+                // The support point along −n: r = −A² m / |A m|, m = Qᵀ n in own axes.
+                let mut r = Vector::zero(n);
+                let mut s = 0.0;
+                for (j, x) in r.as_mut_slice().iter_mut().enumerate() {
+                    let m: f64 = (0..n).map(|i| q[i * n + j] * normal.as_slice()[i]).sum();
+                    s += (a[j] * m) * (a[j] * m);
+                    *x = -a[j] * a[j] * m;
                 }
-                let r = &r * (1.0 / q.sqrt());
-                visit(&r, &attitude.rotate_vector(&r));
+                let r = &r * (1.0 / s.sqrt());
+                visit(&r, &place(&r));
             }
         }
     }

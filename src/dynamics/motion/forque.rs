@@ -81,7 +81,10 @@ pub mod forques {
     impl Forque for Gravity {
         fn apply(&self, input: &ForqueInput<'_>, wrenches: &mut [Wrench]) {
             for (b, w) in input.bodies.iter().zip(wrenches.iter_mut()) {
-                w.force += &(&self.0 * b.mass());
+                let m = b.mass();
+                for (f, g) in w.force.as_mut_slice().iter_mut().zip(self.0.as_slice()) {
+                    *f += m * g;
+                }
             }
         }
         fn potential_energy(&self, input: &ForqueInput<'_>) -> Option<f64> {

@@ -22,6 +22,7 @@
 //!   their group).
 
 mod body;
+mod constraint;
 mod contact;
 mod forque;
 mod integrate;

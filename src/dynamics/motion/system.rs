@@ -194,6 +194,51 @@ impl System {
         w
     }
 
+    /// Writes the wrench on every body at time `t` into `out` (reused storage).
+    pub(crate) fn wrenches_into(&self, t: f64, out: &mut Vec<Wrench>) {
+        let n = self.dim();
+        out.resize(self.bodies.len(), Wrench::zero(n));
+        for w in out.iter_mut() {
+            w.force.as_mut_slice().fill(0.0);
+            w.torque.as_mut_slice().fill(0.0);
+        }
+        let input = ForqueInput {
+            time: t,
+            bodies: &self.bodies,
+        };
+        for f in &self.forques {
+            f.apply(&input, out);
+        }
+    }
+
+    /// The parts the integrators change and read together.
+    #[allow(clippy::type_complexity)]
+    pub(crate) fn parts_mut(
+        &mut self,
+    ) -> (
+        &mut [MovingBody],
+        &[ContactShape],
+        &[HalfSpace],
+        &[BallJoint],
+        &mut Vec<Contact>,
+    ) {
+        (
+            &mut self.bodies,
+            &self.shapes,
+            &self.half_spaces,
+            &self.joints,
+            &mut self.contacts,
+        )
+    }
+
+    pub(crate) fn clear_contacts(&mut self) {
+        self.contacts.clear();
+    }
+
+    pub(crate) fn truncate_contacts(&mut self, len: usize) {
+        self.contacts.truncate(len);
+    }
+
     /// Returns the wrench on every body at time `t`.
     pub fn wrenches(&self, t: f64) -> Vec<Wrench> {
         self.wrenches_for(t, &self.bodies)

@@ -1,0 +1,752 @@
+//! Impulses that keep joints together and bodies out of half-spaces: the velocity-level
+//! solve (Signorini's condition with restitution and Coulomb's friction cone at each
+//! contact, the ball joints' relative velocity) and the position-level solve of the joints.
+//!
+//! Each contact or joint acts on body points through impulses J; the point's velocity
+//! answers linearly, Δu = K J, with the contact's effective inverse mass
+//! K = (1/m) 1 + (r ⌋ I_s⁻¹ (r ∧ ·)) (for a joint between two bodies the sum of both). The
+//! solve is projected Gauss–Seidel over the contacts and joints, each solved exactly as a
+//! block: the normal impulse is the smallest λ ≥ 0 that stops the approach (or reverses it
+//! by e for an impact), and the friction impulse is the one of maximal dissipation in the
+//! disc |J_t| ≤ μ λ — the sticking impulse when it fits, else the one on the rim whose
+//! remaining slip is exactly opposite to it (a trust-region problem in the (N−1)-dimensional
+//! tangent space, solved by bisection on its multiplier).
+
+use super::forques::Anchor;
+use super::{BallJoint, Contact, ContactShape, HalfSpace, MovingBody};
+use crate::algebra::{Bivector, Vector};
+use smallvec::SmallVec;
+
+/// Up to N = 8 the matrices live on the stack.
+type Dense = SmallVec<[f64; 64]>;
+
+/// Gauss–Seidel sweeps of the velocity solve, at most.
+const MAX_SWEEPS: usize = 200;
+
+/// One body during a solve: its velocity and angular velocity (space) as the impulses so
+/// far leave them, its inverse mass and inverse inertia in space, and the impulses to hand
+/// back to its momenta when the solve ends.
+#[derive(Clone, Debug)]
+pub(crate) struct BodyState {
+    inv_mass: f64,
+    /// I⁻¹ in space, M × M row-major on the bivector components.
+    inv_inertia: Vec<f64>,
+    /// The rotation of the principal frame on bivectors, M × M row-major (columns: the
+    /// images of the basis planes).
+    frame: Vec<f64>,
+    v: Vector,
+    w: Bivector,
+    dp: Vector,
+    dl: Bivector,
+    pub used: bool,
+}
+
+impl BodyState {
+    fn empty(n: usize) -> BodyState {
+        BodyState {
+            inv_mass: 0.0,
+            inv_inertia: Vec::new(),
+            frame: Vec::new(),
+            v: Vector::zero(n),
+            w: Bivector::zero(n),
+            dp: Vector::zero(n),
+            dl: Bivector::zero(n),
+            used: false,
+        }
+    }
+
+    /// Loads body `b`: the rotation of the planes by its principal frame P, I⁻¹ in space
+    /// (P I⁻¹ Pᵀ on bivectors), its velocities, no impulse yet.
+    fn load(&mut self, b: &MovingBody, work: &mut Dense) {
+        let n = b.dim();
+        let m = n * (n - 1) / 2;
+        work.clear();
+        work.resize(n * n, 0.0);
+        b.rotation().principal_frame_attitude().write_matrix(work);
+        let p = &work[..];
+        self.frame.clear();
+        self.frame.resize(m * m, 0.0);
+        for (k, (a, bb)) in crate::algebra::pairs(n).enumerate() {
+            for (row, (c, d)) in crate::algebra::pairs(n).enumerate() {
+                self.frame[row * m + k] =
+                    p[c * n + a] * p[d * n + bb] - p[d * n + a] * p[c * n + bb];
+            }
+        }
+        // I⁻¹ in the principal frame, column by column, then F I⁻¹ Fᵀ.
+        let inertia = b.rotation().inertia();
+        let mut ip: SmallVec<[f64; 784]> = SmallVec::from_elem(0.0, m * m);
+        let mut e = Bivector::zero(n);
+        for k in 0..m {
+            e.as_mut_slice().fill(0.0);
+            e.as_mut_slice()[k] = 1.0;
+            let col = inertia.apply_inverse(&e);
+            for (row, x) in col.as_slice().iter().enumerate() {
+                ip[row * m + k] = *x;
+            }
+        }
+        let mut fi: SmallVec<[f64; 784]> = SmallVec::from_elem(0.0, m * m);
+        for i in 0..m {
+            for j in 0..m {
+                fi[i * m + j] = (0..m).map(|k| self.frame[i * m + k] * ip[k * m + j]).sum();
+            }
+        }
+        self.inv_inertia.clear();
+        self.inv_inertia.resize(m * m, 0.0);
+        for i in 0..m {
+            for j in 0..m {
+                self.inv_inertia[i * m + j] =
+                    (0..m).map(|k| fi[i * m + k] * self.frame[j * m + k]).sum();
+            }
+        }
+        self.inv_mass = 1.0 / b.mass();
+        self.v = b.velocity();
+        self.w = b.space_omega();
+        self.dp = Vector::zero(n);
+        self.dl = Bivector::zero(n);
+        self.used = true;
+    }
+
+    /// I⁻¹ B (space).
+    fn inverse_inertia(&self, b: &Bivector) -> Bivector {
+        let m = b.as_slice().len();
+        let mut out = Bivector::zero(b.dim());
+        for (i, o) in out.as_mut_slice().iter_mut().enumerate() {
+            *o = (0..m)
+                .map(|k| self.inv_inertia[i * m + k] * b.as_slice()[k])
+                .sum();
+        }
+        out
+    }
+
+    /// The velocity change at offset `q` for an impulse `j` at offset `r`.
+    fn response(&self, r: &Vector, j: &Vector, q: &Vector) -> Vector {
+        let mut du = j * self.inv_mass;
+        du += &q.left_contract(&self.inverse_inertia(&r.wedge(j)));
+        du
+    }
+
+    /// The velocity of the point at offset `r`.
+    fn velocity_at(&self, r: &Vector) -> Vector {
+        let mut u = self.v.clone();
+        u += &r.left_contract(&self.w);
+        u
+    }
+
+    /// Takes an impulse `j` at offset `r`.
+    fn apply(&mut self, r: &Vector, j: &Vector) {
+        let dl = r.wedge(j);
+        self.v += &(j * self.inv_mass);
+        self.w += &self.inverse_inertia(&dl);
+        self.dp += j;
+        self.dl += &dl;
+    }
+
+    /// Hands the impulses to body `b`: p += Σ J, L += Pᵀ (Σ r ∧ J) in the principal frame.
+    fn store(&mut self, b: &mut MovingBody) {
+        let m = self.dl.as_slice().len();
+        let (_, p, rotation) = b.state_mut();
+        *p += &self.dp;
+        let (_, l) = rotation.state_mut();
+        for (i, x) in l.as_mut_slice().iter_mut().enumerate() {
+            *x += (0..m)
+                .map(|k| self.frame[k * m + i] * self.dl.as_slice()[k])
+                .sum::<f64>();
+        }
+        self.used = false;
+    }
+}
+
+/// The effective inverse mass of a body state at offset `r`, added to `k` (n × n, row-major).
+fn add_inverse_mass(b: &BodyState, r: &Vector, k: &mut [f64]) {
+    let n = r.dim();
+    for c in 0..n {
+        let col = b.response(r, &Vector::basis(n, c), r);
+        for (row, x) in col.as_slice().iter().enumerate() {
+            k[row * n + c] += x;
+        }
+    }
+}
+
+/// Solves a x = b in place for a symmetric positive definite n × n `a` (row-major,
+/// overwritten by its Cholesky factor). Returns false if `a` is not positive definite.
+pub(crate) fn cholesky_solve(a: &mut [f64], n: usize, b: &mut [f64]) -> bool {
+    for j in 0..n {
+        let mut d = a[j * n + j];
+        for k in 0..j {
+            d -= a[j * n + k] * a[j * n + k];
+        }
+        if d.is_nan() || d <= 0.0 {
+            return false;
+        }
+        let d = d.sqrt();
+        a[j * n + j] = d;
+        for i in j + 1..n {
+            let mut s = a[i * n + j];
+            for k in 0..j {
+                s -= a[i * n + k] * a[j * n + k];
+            }
+            a[i * n + j] = s / d;
+        }
+    }
+    for i in 0..n {
+        let mut s = b[i];
+        for k in 0..i {
+            s -= a[i * n + k] * b[k];
+        }
+        b[i] = s / a[i * n + i];
+    }
+    for i in (0..n).rev() {
+        let mut s = b[i];
+        for k in i + 1..n {
+            s -= a[k * n + i] * b[k];
+        }
+        b[i] = s / a[i * n + i];
+    }
+    true
+}
+
+/// One contact point in a solve.
+#[derive(Clone, Debug)]
+pub(crate) struct ContactRow {
+    pub body: usize,
+    pub half_space: usize,
+    /// The candidate's number on its body and half-space.
+    index: usize,
+    /// The point in own axes and its offset from the centre of mass in space.
+    pub point: Vector,
+    pub r: Vector,
+    /// The normal velocity wanted after the impulse (0, or −e u⁻ for an impact).
+    pub target: f64,
+    pub normal_impulse: f64,
+    pub friction_impulse: Vector,
+    /// nᵀ K n and the tangent block of K (set when the solve starts).
+    knn: f64,
+    kt: Dense,
+    eigenvalues: Dense,
+    eigenvectors: Dense,
+}
+
+/// One ball joint in a solve: the offsets of its two ends.
+#[derive(Clone, Debug)]
+pub(crate) struct JointRow {
+    pub body: usize,
+    pub r: Vector,
+    pub other: Option<(usize, Vector)>,
+    pub impulse: Vector,
+    /// The joint's inverse mass K (set when a solve starts).
+    k: Dense,
+}
+
+impl JointRow {
+    pub(crate) fn new(joint: &BallJoint, bodies: &[MovingBody]) -> JointRow {
+        let r = bodies[joint.body].attitude().rotate_vector(&joint.point);
+        let other = match &joint.other {
+            Anchor::World(_) => None,
+            Anchor::Body(j, p) => Some((*j, bodies[*j].attitude().rotate_vector(p))),
+        };
+        JointRow {
+            body: joint.body,
+            r,
+            other,
+            impulse: Vector::zero(bodies[0].dim()),
+            k: Dense::new(),
+        }
+    }
+
+    /// The gap between the two ends (zero when the joint holds).
+    pub(crate) fn gap(joint: &BallJoint, bodies: &[MovingBody]) -> Vector {
+        let a = bodies[joint.body].point_position(&joint.point);
+        match &joint.other {
+            Anchor::World(x) => &a - x,
+            Anchor::Body(j, p) => &a - &bodies[*j].point_position(p),
+        }
+    }
+
+    /// The relative velocity of the two ends.
+    fn velocity(&self, states: &[BodyState]) -> Vector {
+        let mut u = states[self.body].velocity_at(&self.r);
+        if let Some((j, q)) = &self.other {
+            u -= &states[*j].velocity_at(q);
+        }
+        u
+    }
+
+    /// Applies the impulse `j` to the first end and −`j` to the second.
+    fn apply(&self, states: &mut [BodyState], j: &Vector) {
+        states[self.body].apply(&self.r, j);
+        if let Some((b, q)) = &self.other {
+            states[*b].apply(q, &(j * -1.0));
+        }
+    }
+
+    /// The ends as (body, offset, sign of the impulse there).
+    fn ends(&self) -> impl Iterator<Item = (usize, &Vector, f64)> {
+        std::iter::once((self.body, &self.r, 1.0))
+            .chain(self.other.iter().map(|(b, q)| (*b, q, -1.0)))
+    }
+
+    /// The change of this joint's relative velocity per impulse `j` of joint `other`.
+    fn cross_response(&self, other: &JointRow, j: &Vector, states: &[BodyState]) -> Vector {
+        let mut du = Vector::zero(j.dim());
+        for (bi, ri, si) in other.ends() {
+            for (bk, rk, sk) in self.ends() {
+                if bi == bk {
+                    du += &(&states[bi].response(ri, j, rk) * (si * sk));
+                }
+            }
+        }
+        du
+    }
+}
+
+/// The reusable work space of the solves.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Solver {
+    pub contacts: Vec<ContactRow>,
+    pub joints: Vec<JointRow>,
+    states: Vec<BodyState>,
+    work: Dense,
+    rhs: Dense,
+    big: Vec<f64>,
+    big_rhs: Vec<f64>,
+    pub residuals: Vec<Vector>,
+    /// The impulses of the last solve, by (body, half-space, candidate), to start the next
+    /// one from: a resting contact then needs one sweep.
+    warm: Vec<(usize, usize, usize, f64, Vector)>,
+}
+
+impl Solver {
+    /// Finds the contact points of `bodies` within `tolerance` × their radius of a
+    /// half-space, with the impact targets: restitution e for a point approaching faster
+    /// than `resting_speed[i]`, none below (a resting contact).
+    pub(crate) fn find_contacts(
+        &mut self,
+        bodies: &[MovingBody],
+        shapes: &[ContactShape],
+        half_spaces: &[HalfSpace],
+        tolerance: f64,
+        resting_speed: &[f64],
+    ) {
+        self.contacts.clear();
+        let n = bodies[0].dim();
+        let mut q = std::mem::take(&mut self.work);
+        for (i, (b, shape)) in bodies.iter().zip(shapes).enumerate() {
+            if matches!(shape, ContactShape::None) {
+                continue;
+            }
+            q.clear();
+            q.resize(n * n, 0.0);
+            b.attitude().write_matrix(&mut q);
+            let reach = tolerance * shape.radius();
+            let (v, w) = (b.velocity(), b.space_omega());
+            for (k, plane) in half_spaces.iter().enumerate() {
+                let nrm = plane.normal();
+                let base = plane.distance(b.position());
+                let mut index = 0;
+                shape.candidates(&q, nrm, |p, r| {
+                    index += 1;
+                    if base + nrm.dot(r) <= reach {
+                        let mut u = v.clone();
+                        u += &r.left_contract(&w);
+                        let un = nrm.dot(&u);
+                        let target = if un < -resting_speed[i] {
+                            -plane.restitution() * un
+                        } else {
+                            0.0
+                        };
+                        self.contacts.push(ContactRow {
+                            body: i,
+                            half_space: k,
+                            index,
+                            point: p.clone(),
+                            r: r.clone(),
+                            target,
+                            normal_impulse: 0.0,
+                            friction_impulse: Vector::zero(n),
+                            knn: 0.0,
+                            kt: Dense::new(),
+                            eigenvalues: Dense::new(),
+                            eigenvectors: Dense::new(),
+                        });
+                    }
+                });
+            }
+        }
+        self.work = q;
+    }
+
+    /// Sets up the joint rows at the current placement.
+    pub(crate) fn find_joints(&mut self, bodies: &[MovingBody], joints: &[BallJoint]) {
+        self.joints.clear();
+        self.joints
+            .extend(joints.iter().map(|j| JointRow::new(j, bodies)));
+    }
+
+    /// Loads the bodies the rows act on.
+    fn load(&mut self, bodies: &[MovingBody]) {
+        let n = bodies[0].dim();
+        self.states
+            .resize_with(bodies.len(), || BodyState::empty(n));
+        let mut work = std::mem::take(&mut self.work);
+        let touched = self.contacts.iter().map(|c| c.body).chain(
+            self.joints
+                .iter()
+                .flat_map(|j| std::iter::once(j.body).chain(j.other.iter().map(|(b, _)| *b))),
+        );
+        for i in touched {
+            if !self.states[i].used {
+                self.states[i].load(&bodies[i], &mut work);
+            }
+        }
+        self.work = work;
+    }
+
+    /// Hands the impulses of the solve to the bodies.
+    fn store(&mut self, bodies: &mut [MovingBody]) {
+        for (s, b) in self.states.iter_mut().zip(bodies) {
+            if s.used {
+                s.store(b);
+            }
+        }
+    }
+
+    /// The velocity solve: impulses such that every joint's ends move together and every
+    /// contact point leaves its half-space at its target speed or faster, with friction in
+    /// Coulomb's cone. Appends the contacts and their impulses to `record`.
+    pub(crate) fn solve_velocities(
+        &mut self,
+        bodies: &mut [MovingBody],
+        half_spaces: &[HalfSpace],
+        record: &mut Vec<Contact>,
+    ) {
+        if self.contacts.is_empty() && self.joints.is_empty() {
+            return;
+        }
+        self.load(bodies);
+        let n = bodies[0].dim();
+        if self.contacts.is_empty() {
+            // Equalities only: one dense solve is exact.
+            let mut u = std::mem::take(&mut self.residuals);
+            u.clear();
+            u.extend(self.joints.iter().map(|row| row.velocity(&self.states)));
+            self.solve_joints_dense_loaded(&u, 1.0);
+            self.residuals = u;
+            self.store(bodies);
+            return;
+        }
+        for row in &mut self.joints {
+            row.k.clear();
+            row.k.resize(n * n, 0.0);
+            add_inverse_mass(&self.states[row.body], &row.r, &mut row.k);
+            if let Some((j, q)) = &row.other {
+                add_inverse_mass(&self.states[*j], q, &mut row.k);
+            }
+        }
+        let mut speed = 0.0f64;
+        for row in &mut self.contacts {
+            let nrm = half_spaces[row.half_space].normal();
+            let st = &self.states[row.body];
+            row.kt.clear();
+            row.kt.resize(n * n, 0.0);
+            add_inverse_mass(st, &row.r, &mut row.kt);
+            row.knn = (0..n)
+                .map(|i| {
+                    (0..n)
+                        .map(|j| nrm[i] * row.kt[i * n + j] * nrm[j])
+                        .sum::<f64>()
+                })
+                .sum();
+            tangent_block(&mut row.kt, nrm);
+            symmetric_eigen(&row.kt, n, &mut row.eigenvalues, &mut row.eigenvectors);
+            speed = speed
+                .max(st.velocity_at(&row.r).max_abs())
+                .max(row.target.abs());
+        }
+        // Start from the last solve's impulses where the same points touch again.
+        let mut w = 0;
+        for row in &mut self.contacts {
+            let key = (row.body, row.half_space, row.index);
+            while w < self.warm.len() && (self.warm[w].0, self.warm[w].1, self.warm[w].2) < key {
+                w += 1;
+            }
+            if let Some((_, _, _, lambda, jt)) = self.warm.get(w).filter(|e| (e.0, e.1, e.2) == key)
+            {
+                let plane = &half_spaces[row.half_space];
+                let nrm = plane.normal();
+                let limit = plane.friction() * lambda;
+                let scale = if jt.norm() > limit {
+                    limit / jt.norm()
+                } else {
+                    1.0
+                };
+                let mut j = jt * scale;
+                j -= &(nrm * nrm.dot(&j));
+                row.normal_impulse = *lambda;
+                let mut total = nrm * *lambda;
+                total += &j;
+                self.states[row.body].apply(&row.r, &total);
+                row.friction_impulse = j;
+            }
+        }
+        // Converged when no impulse changes a velocity by more than this.
+        let tolerance = 1e-12 * speed.max(1e-300);
+        for _ in 0..MAX_SWEEPS {
+            let mut change = 0.0f64;
+            for row in &mut self.joints {
+                let u = row.velocity(&self.states);
+                self.work.clear();
+                self.work.extend_from_slice(&row.k);
+                self.rhs.clear();
+                self.rhs.extend(u.as_slice().iter().map(|x| -x));
+                if !cholesky_solve(&mut self.work, n, &mut self.rhs) {
+                    continue;
+                }
+                let dj = Vector::from_storage(self.rhs.iter().copied().collect());
+                row.apply(&mut self.states, &dj);
+                row.impulse += &dj;
+                change = change.max(u.max_abs());
+            }
+            for row in &mut self.contacts {
+                let plane = &half_spaces[row.half_space];
+                let nrm = plane.normal();
+                let st = &mut self.states[row.body];
+                // Normal: the smallest accumulated λ ≥ 0 reaching the target.
+                let un = nrm.dot(&st.velocity_at(&row.r));
+                let lambda = (row.normal_impulse + (row.target - un) / row.knn).max(0.0);
+                let dl = lambda - row.normal_impulse;
+                if dl != 0.0 {
+                    st.apply(&row.r, &(nrm * dl));
+                    row.normal_impulse = lambda;
+                }
+                change = change.max((dl * row.knn).abs());
+                // Friction: maximal dissipation in the disc |J_t| ≤ μλ.
+                let limit = plane.friction() * row.normal_impulse;
+                let mut ut = st.velocity_at(&row.r);
+                ut -= &(nrm * nrm.dot(&ut));
+                let new = if limit > 0.0 {
+                    friction_impulse(
+                        &row.eigenvalues,
+                        &row.eigenvectors,
+                        &row.kt,
+                        &row.friction_impulse,
+                        &ut,
+                        limit,
+                    )
+                } else {
+                    Vector::zero(n)
+                };
+                let dj = &new - &row.friction_impulse;
+                if dj.max_abs() > 0.0 {
+                    st.apply(&row.r, &dj);
+                    row.friction_impulse = new;
+                    change = change.max(dj.max_abs() * row.knn);
+                }
+            }
+            if change <= tolerance {
+                break;
+            }
+        }
+        self.warm.clear();
+        self.warm.extend(self.contacts.iter().map(|r| {
+            (
+                r.body,
+                r.half_space,
+                r.index,
+                r.normal_impulse,
+                r.friction_impulse.clone(),
+            )
+        }));
+        for row in &self.contacts {
+            let nrm = half_spaces[row.half_space].normal();
+            let mut slip = self.states[row.body].velocity_at(&row.r);
+            slip -= &(nrm * nrm.dot(&slip));
+            record.push(Contact {
+                body: row.body,
+                half_space: row.half_space,
+                point: row.point.clone(),
+                normal_impulse: row.normal_impulse,
+                friction_impulse: row.friction_impulse.clone(),
+                slip,
+            });
+        }
+        self.store(bodies);
+    }
+
+    /// Solves the joints' equalities together: the impulses J (one per joint) with
+    /// Σ_k K_jk J_k = −`residuals`[j]/`per`, applied to the bodies.
+    pub(crate) fn solve_joints_dense(
+        &mut self,
+        bodies: &mut [MovingBody],
+        residuals: &[Vector],
+        per: f64,
+    ) {
+        self.load(bodies);
+        self.solve_joints_dense_loaded(residuals, per);
+        self.store(bodies);
+    }
+
+    fn solve_joints_dense_loaded(&mut self, residuals: &[Vector], per: f64) {
+        let Some(n) = residuals.first().map(Vector::dim) else {
+            return;
+        };
+        let m = self.joints.len() * n;
+        self.big.clear();
+        self.big.resize(m * m, 0.0);
+        self.big_rhs.clear();
+        for (a, row) in self.joints.iter().enumerate() {
+            self.big_rhs
+                .extend(residuals[a].as_slice().iter().map(|x| -x / per));
+            for (c, other) in self.joints.iter().enumerate() {
+                for col in 0..n {
+                    let du = row.cross_response(other, &Vector::basis(n, col), &self.states);
+                    for (i, x) in du.as_slice().iter().enumerate() {
+                        self.big[(a * n + i) * m + c * n + col] = *x;
+                    }
+                }
+            }
+        }
+        if !cholesky_solve(&mut self.big, m, &mut self.big_rhs) {
+            return;
+        }
+        for a in 0..self.joints.len() {
+            let j =
+                Vector::from_storage(self.big_rhs[a * n..(a + 1) * n].iter().copied().collect());
+            let row = &mut self.joints[a];
+            row.apply(&mut self.states, &j);
+            row.impulse += &j;
+        }
+    }
+}
+
+/// Turns the inverse mass k into its tangent block P k P + n nᵀ (P = 1 − n nᵀ), which maps
+/// the tangent space to itself and keeps the normal apart.
+fn tangent_block(k: &mut [f64], nrm: &Vector) {
+    let n = nrm.dim();
+    let nv = nrm.as_slice();
+    // k n and nᵀ k n.
+    let kn: SmallVec<[f64; 8]> = (0..n)
+        .map(|i| (0..n).map(|j| k[i * n + j] * nv[j]).sum())
+        .collect();
+    let nkn: f64 = (0..n).map(|i| nv[i] * kn[i]).sum();
+    for i in 0..n {
+        for j in 0..n {
+            // P k P = k − n (kn)ᵀ − (kn) nᵀ + (nᵀkn) n nᵀ
+            k[i * n + j] += -nv[i] * kn[j] - kn[i] * nv[j] + nkn * nv[i] * nv[j] + nv[i] * nv[j];
+        }
+    }
+}
+
+/// The eigen-decomposition K = V diag(d) Vᵀ of a small symmetric matrix by cyclic Jacobi
+/// rotations (row-major; V's columns are the eigenvectors).
+fn symmetric_eigen(k: &[f64], n: usize, d: &mut Dense, v: &mut Dense) {
+    let mut a: Dense = k.iter().copied().collect();
+    v.clear();
+    v.resize(n * n, 0.0);
+    for i in 0..n {
+        v[i * n + i] = 1.0;
+    }
+    for _ in 0..30 {
+        let off: f64 = (0..n)
+            .flat_map(|i| (0..n).filter(move |&j| j != i).map(move |j| (i, j)))
+            .map(|(i, j)| a[i * n + j] * a[i * n + j])
+            .sum();
+        let diag: f64 = (0..n).map(|i| a[i * n + i] * a[i * n + i]).sum();
+        if off <= 1e-32 * diag {
+            break;
+        }
+        for p in 0..n {
+            for q in p + 1..n {
+                let apq = a[p * n + q];
+                if apq == 0.0 {
+                    continue;
+                }
+                let theta = (a[q * n + q] - a[p * n + p]) / (2.0 * apq);
+                let t = theta.signum().max(0.0) * 2.0 - 1.0;
+                let t = t / (theta.abs() + (theta * theta + 1.0).sqrt());
+                let c = 1.0 / (t * t + 1.0).sqrt();
+                let s = t * c;
+                for r in 0..n {
+                    let (arp, arq) = (a[r * n + p], a[r * n + q]);
+                    a[r * n + p] = c * arp - s * arq;
+                    a[r * n + q] = s * arp + c * arq;
+                }
+                for r in 0..n {
+                    let (apr, aqr) = (a[p * n + r], a[q * n + r]);
+                    a[p * n + r] = c * apr - s * aqr;
+                    a[q * n + r] = s * apr + c * aqr;
+                }
+                for r in 0..n {
+                    let (vrp, vrq) = (v[r * n + p], v[r * n + q]);
+                    v[r * n + p] = c * vrp - s * vrq;
+                    v[r * n + q] = s * vrp + c * vrq;
+                }
+            }
+        }
+    }
+    d.clear();
+    d.extend((0..n).map(|i| a[i * n + i]));
+}
+
+/// The friction impulse of maximal dissipation: with slip `ut` under the impulse `old`,
+/// the sticking impulse old − K_t⁻¹ ut when |·| ≤ `limit`, else the J on the rim |J| = limit
+/// with (K_t + σ) J = K_t old − ut for the σ ≥ 0 that puts it there, so that the slip left,
+/// K_t (J − old) + ut = −σ J, is exactly opposite to J. K_t = V diag(d) Vᵀ is given by its
+/// eigen-decomposition; σ comes from Newton's method on 1/|J(σ)| − 1/limit, which is
+/// nearly linear in σ and converges from σ = 0 without overshooting (Moré–Sorensen).
+fn friction_impulse(
+    d: &[f64],
+    v: &[f64],
+    kt: &[f64],
+    old: &Vector,
+    ut: &Vector,
+    limit: f64,
+) -> Vector {
+    let n = d.len();
+    // c = Vᵀ b, b = K_t old − ut.
+    let b: SmallVec<[f64; 8]> = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| kt[i * n + j] * old.as_slice()[j])
+                .sum::<f64>()
+                - ut.as_slice()[i]
+        })
+        .collect();
+    let c: SmallVec<[f64; 8]> = (0..n)
+        .map(|k| (0..n).map(|i| v[i * n + k] * b[i]).sum())
+        .collect();
+    let size = |sigma: f64| -> (f64, f64) {
+        let (mut s2, mut s3) = (0.0, 0.0);
+        for k in 0..n {
+            let q = c[k] / (d[k] + sigma);
+            s2 += q * q;
+            s3 += q * q / (d[k] + sigma);
+        }
+        (s2.sqrt(), s3)
+    };
+    let (norm0, _) = size(0.0);
+    let sigma = if norm0 <= limit {
+        0.0
+    } else {
+        let mut sigma = 0.0f64;
+        for _ in 0..60 {
+            let (norm, s3) = size(sigma);
+            let psi = 1.0 / norm - 1.0 / limit;
+            let step = psi * norm * norm * norm / s3;
+            sigma -= step;
+            if step.abs() <= 1e-15 * sigma.abs() {
+                break;
+            }
+        }
+        sigma.max(0.0)
+    };
+    let (norm, _) = size(sigma);
+    let scale = if sigma > 0.0 { limit / norm } else { 1.0 };
+    let mut j = Vector::zero(n);
+    for (i, x) in j.as_mut_slice().iter_mut().enumerate() {
+        *x = scale
+            * (0..n)
+                .map(|k| v[i * n + k] * c[k] / (d[k] + sigma))
+                .sum::<f64>();
+    }
+    j
+}
