@@ -44,6 +44,10 @@ pub struct SceneArgs {
     /// Write the HTML animation of the bodies and planes to FILE.html.
     #[arg(long, value_name = "FILE.html")]
     pub html: Option<PathBuf>,
+    /// Only check the scene file (every key, the bodies, springs, planes and joints) and
+    /// say what it holds; run nothing and write nothing.
+    #[arg(long, conflicts_with_all = ["out", "csv", "html"])]
+    pub check: bool,
 }
 
 /// The help text after the options: the scene keys in brief.
@@ -103,6 +107,10 @@ pub fn run(args: &SceneArgs, quiet: bool) -> CliResult<()> {
     let scene = format::load(&args.file)?;
     let times = times(args, &scene)?;
     let mut system = run::build_system(&scene, &file)?;
+    if args.check {
+        println!("{}: ok: {}", file, output::contents(&scene));
+        return Ok(());
+    }
     let mut progress = Progress::new(times.len() as u64, quiet, "scene");
     let record = run::run(&scene, &mut system, &times, &mut progress)?;
     progress.finish();

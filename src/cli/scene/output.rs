@@ -176,22 +176,33 @@ fn list(v: &[f64]) -> String {
         .join(", ")
 }
 
+fn count(k: usize, one: &str, many: &str) -> String {
+    format!("{k} {}", if k == 1 { one } else { many })
+}
+
+/// Returns what a scene holds, in one line.
+pub fn contents(scene: &Scene) -> String {
+    format!(
+        "{} in {} dimensions, {}, {}, {}; {} integrator, dt = {}, t_end = {}",
+        count(scene.bodies.len(), "body", "bodies"),
+        scene.dim,
+        count(scene.planes.len(), "plane", "planes"),
+        count(scene.springs.len(), "spring", "springs"),
+        count(scene.joints.len(), "joint", "joints"),
+        scene.integrator.name(),
+        scene.dt,
+        scene.t_end
+    )
+}
+
 /// Returns the summary for people: the run, the energy drift, the momentum changes and the
 /// final positions.
 pub fn summary(scene: &Scene, record: &Record, file: &str) -> String {
     let last = record.times.len().saturating_sub(1);
     let mut out = format!(
-        "scene {file}: {} bodies in {} dimensions, {} planes, {} springs, {} joints; {} \
-         integrator, dt = {}, {} steps to t = {}\n",
-        scene.bodies.len(),
-        scene.dim,
-        scene.planes.len(),
-        scene.springs.len(),
-        scene.joints.len(),
-        scene.integrator.name(),
-        scene.dt,
-        record.steps,
-        scene.t_end
+        "scene {file}: {}; {} steps\n",
+        contents(scene),
+        record.steps
     );
     if record.times.is_empty() {
         return out;
