@@ -451,3 +451,33 @@ fn scene_failed_run_exits_1_and_writes_nothing() {
     assert!(!err.contains("NaN"), "{err}");
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
 }
+
+#[test]
+fn scene_html_draws_and_animates_in_headless_chromium() {
+    let Some(browser) = super::render::chromium() else {
+        return;
+    };
+    let (dir, _) = scene_file(TWO_BODIES);
+    run_ok(
+        dir.path(),
+        &["scene.toml", "--samples", "31", "--html", "a.html"],
+    );
+    let url = format!("file://{}#selftest", dir.path().join("a.html").display());
+    let out = super::render::chromium_command(&browser, &dir.path().join("profile"))
+        .arg("--dump-dom")
+        .arg(url)
+        .output()
+        .expect("chromium runs");
+    let dom = String::from_utf8_lossy(&out.stdout);
+    let start = dom
+        .find("<pre id=\"selftest\"")
+        .unwrap_or_else(|| panic!("no selftest in DOM:\n{dom}"));
+    let json_start = start + dom[start..].find('>').unwrap() + 1;
+    let json_end = json_start + dom[json_start..].find("</pre>").unwrap();
+    let report: Value = serde_json::from_str(&dom[json_start..json_end])
+        .unwrap_or_else(|e| panic!("selftest did not run ({e}): {}", &dom[start..json_end]));
+    assert_eq!(report["frames"].as_u64(), Some(31), "{report}");
+    assert!(report["nonblank_first"].as_u64().unwrap() > 500, "{report}");
+    assert!(report["changed"].as_u64().unwrap() > 100, "{report}");
+    assert_eq!(report["errors"], serde_json::json!([]), "{report}");
+}
