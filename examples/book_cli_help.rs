@@ -97,6 +97,19 @@ const EXAMPLES: &[(&str, &[(&str, &str)])] = &[
             "sweep --body tesseract:1,1,1,{k} --param k=1.2:3.6:0.1 --omega 0.3,0.4,0.2,0.5,0.1,0.3 --t-end 120 --samples 2401 --integrator yoshida4 --dt 0.005 --axes 2,3,4 --csv sweep.csv --plot sweep.svg",
         )],
     ),
+    (
+        "scene",
+        &[
+            (
+                "a tesseract hanging from a spring under gravity: the summary",
+                "scene scenes/tesseract-spring.toml",
+            ),
+            (
+                "the same as JSON, one CSV per body and an animation",
+                "scene scenes/tesseract-spring.toml --samples 101 --out run.json --csv run-csv --html run.html",
+            ),
+        ],
+    ),
 ];
 
 /// Splits a command line at spaces (the examples are written unquoted here; the book shows
@@ -141,6 +154,10 @@ fn check_example(line: &str) -> Res<()> {
             spec = spec.replace(&format!("{{{name}}}"), start);
         }
         parse_body(&spec).map_err(|e| format!("`rotorflow {line}`: {e}"))?;
+    }
+    if argv[1] == "scene" {
+        let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(argv[2]);
+        cli::scene::format::load(&file).map_err(|e| format!("`rotorflow {line}`: {e}"))?;
     }
     Ok(())
 }

@@ -10,6 +10,7 @@
 //! | `exact` | the closed-form solution, in the same shape as `simulate` |
 //! | `render` | an HTML animation or an SVG strip of the body turning in N-D, projected to 3D |
 //! | `sweep` | a grid of simulations in parallel, with the observables of the 3D projection |
+//! | `scene` | bodies that move and turn together, from a TOML scene file: JSON, CSV, animation |
 //!
 //! Bad input (a malformed body SPEC, wrong component counts, non-finite numbers, an unknown
 //! integrator, times not increasing, a singular body) ends with one line on standard error
@@ -24,6 +25,7 @@ pub mod lists;
 pub mod motion;
 pub mod output;
 pub mod render;
+pub mod scene;
 pub mod simulate;
 pub mod spec;
 pub mod sweep;
@@ -76,6 +78,9 @@ pub enum Command {
     Render(render::RenderArgs),
     /// Run a grid of simulations in parallel and report the observables of the 3D projection.
     Sweep(sweep::SweepArgs),
+    /// Bodies that move and turn together, from a TOML scene file: gravity, springs, planes
+    /// and ball joints; JSON, CSV per body and an HTML animation.
+    Scene(scene::SceneArgs),
 }
 
 /// Returns the clap description of the `rotorflow` command: every subcommand with its flags,
@@ -127,6 +132,7 @@ pub fn dispatch(cli: Cli) -> CliResult<()> {
         Command::Exact(a) => exact::run(&a),
         Command::Render(a) => render::run(&a, quiet),
         Command::Sweep(a) => sweep::run(&a, quiet),
+        Command::Scene(a) => scene::run(&a, quiet),
     }
 }
 

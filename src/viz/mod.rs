@@ -6,6 +6,8 @@
 //!   figures 1–3, or orthographic) and 3D → page; an SVG strip of frames.
 //! - [`html`]: a self-contained HTML animation with play/pause, a time slider, a draggable
 //!   view and a choice of projection axes.
+//! - [`scene`]: the HTML animation of a scene: several bodies moving and turning, and the
+//!   planes of solid world, in the same projection.
 //! - [`plot`]: SVG line plots (plotters) with labelled axes and legends.
 //!
 //! The module only draws: it takes rotation matrices and numbers from the dynamics and
@@ -14,6 +16,7 @@
 pub mod html;
 pub mod plot;
 pub mod projection;
+pub mod scene;
 mod shape;
 
 pub use projection::Projection;

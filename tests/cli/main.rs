@@ -8,6 +8,7 @@ mod inertia;
 mod no_lost_output;
 mod options;
 mod render;
+mod scene;
 mod simulate;
 mod sweep;
 

@@ -97,7 +97,7 @@ fn render_solids_and_2d_bodies() {
 /// Returns a Chromium that runs, or None (with a loud message) when there is none and the run
 /// is local. Under CI (the `CI` variable set and not "false", as every CI service sets it) a
 /// missing browser is a failure: the check this test exists for would otherwise pass unseen.
-fn chromium() -> Option<String> {
+pub fn chromium() -> Option<String> {
     let candidates = [
         std::env::var("ROTORFLOW_CHROMIUM").unwrap_or_default(),
         "chromium".into(),
@@ -126,7 +126,7 @@ fn chromium() -> Option<String> {
     None
 }
 
-fn chromium_command(browser: &str, profile: &Path) -> Command {
+pub fn chromium_command(browser: &str, profile: &Path) -> Command {
     let mut cmd = Command::new(browser);
     cmd.args([
         "--headless",

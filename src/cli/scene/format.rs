@@ -1,0 +1,751 @@
+//! The scene file: TOML read into [`Scene`], every key checked, with one-line errors that
+//! name the file, the section (`body "cube"`, `plane 2`, …) and the key.
+
+use super::super::error::{CliError, CliResult};
+use super::super::spec::{ParsedBody, parse_body};
+use nalgebra::DMatrix;
+use serde::Deserialize;
+use toml::Value;
+
+/// The integrator of a scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IntegratorKind {
+    /// The symplectic Strang splitting (contact and joints).
+    Splitting,
+    /// Runge–Kutta–Munthe-Kaas of order 4 (forques only).
+    Rk4,
+}
+
+impl IntegratorKind {
+    /// The name in the scene file.
+    pub fn name(self) -> &'static str {
+        match self {
+            IntegratorKind::Splitting => "splitting",
+            IntegratorKind::Rk4 => "rk4",
+        }
+    }
+}
+
+/// A body of the scene.
+#[derive(Clone, Debug)]
+pub struct SceneBody {
+    /// Its unique name.
+    pub name: String,
+    /// Its SPEC, parsed (with `+mass=M` appended when the scene gives a mass).
+    pub parsed: ParsedBody,
+    /// Its mass.
+    pub mass: f64,
+    /// The centre of mass at t = 0.
+    pub position: Vec<f64>,
+    /// The velocity of the centre of mass at t = 0.
+    pub velocity: Vec<f64>,
+    /// The angular velocity at t = 0, in the body's own axes.
+    pub omega: Vec<f64>,
+    /// The attitude at t = 0 (own axes → space).
+    pub attitude: DMatrix<f64>,
+}
+
+/// A plane n·x = d bounding solid world on the side opposite to n.
+#[derive(Clone, Debug)]
+pub struct ScenePlane {
+    /// The normal n (as given).
+    pub normal: Vec<f64>,
+    /// The offset d.
+    pub offset: f64,
+    /// Coulomb friction μ ≥ 0.
+    pub friction: f64,
+    /// Restitution e ∈ [0, 1].
+    pub restitution: f64,
+}
+
+/// The other end of a spring or a joint.
+#[derive(Clone, Debug)]
+pub enum SceneAnchor {
+    /// A fixed point of space.
+    World(Vec<f64>),
+    /// A point (own axes) of another body, by index.
+    Body(usize, Vec<f64>),
+}
+
+/// A Hooke spring with damping.
+#[derive(Clone, Debug)]
+pub struct SceneSpring {
+    /// The body, by index.
+    pub body: usize,
+    /// The attachment point, own axes.
+    pub point: Vec<f64>,
+    /// The other end.
+    pub anchor: SceneAnchor,
+    /// Stiffness k ≥ 0.
+    pub stiffness: f64,
+    /// Rest length ℓ₀ ≥ 0.
+    pub rest_length: f64,
+    /// Damping c ≥ 0.
+    pub damping: f64,
+}
+
+/// A ball joint.
+#[derive(Clone, Debug)]
+pub struct SceneJoint {
+    /// The body, by index.
+    pub body: usize,
+    /// The jointed point, own axes.
+    pub point: Vec<f64>,
+    /// What it is held on.
+    pub other: SceneAnchor,
+}
+
+/// A checked scene.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// The dimension N.
+    pub dim: usize,
+    /// Uniform gravity g.
+    pub gravity: Vec<f64>,
+    /// The end time.
+    pub t_end: f64,
+    /// The step.
+    pub dt: f64,
+    /// The integrator.
+    pub integrator: IntegratorKind,
+    /// The bodies.
+    pub bodies: Vec<SceneBody>,
+    /// The planes.
+    pub planes: Vec<ScenePlane>,
+    /// The springs.
+    pub springs: Vec<SceneSpring>,
+    /// The ball joints.
+    pub joints: Vec<SceneJoint>,
+}
+
+/// The most steps a scene may ask for (t_end / dt).
+pub const MAX_STEPS: f64 = 1e8;
+
+// The keys of each table. The fields are read one by one below so that every message names
+// its key; serde refuses the keys that are not listed.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawScene {
+    dim: Option<Value>,
+    gravity: Option<Value>,
+    t_end: Option<Value>,
+    dt: Option<Value>,
+    integrator: Option<Value>,
+    body: Option<Value>,
+    plane: Option<Value>,
+    spring: Option<Value>,
+    joint: Option<Value>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawBody {
+    name: Option<Value>,
+    shape: Option<Value>,
+    mass: Option<Value>,
+    position: Option<Value>,
+    velocity: Option<Value>,
+    omega: Option<Value>,
+    attitude: Option<Value>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPlane {
+    normal: Option<Value>,
+    offset: Option<Value>,
+    friction: Option<Value>,
+    restitution: Option<Value>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSpring {
+    body: Option<Value>,
+    point: Option<Value>,
+    anchor: Option<Value>,
+    other: Option<Value>,
+    other_point: Option<Value>,
+    stiffness: Option<Value>,
+    rest_length: Option<Value>,
+    damping: Option<Value>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawJoint {
+    body: Option<Value>,
+    point: Option<Value>,
+    anchor: Option<Value>,
+    other: Option<Value>,
+    other_point: Option<Value>,
+}
+
+/// Where a key is: the file and the section, for messages.
+struct Place<'a> {
+    file: &'a str,
+    section: String,
+}
+
+impl Place<'_> {
+    fn error(&self, message: impl std::fmt::Display) -> CliError {
+        if self.section.is_empty() {
+            CliError::input(format!("{}: {message}", self.file))
+        } else {
+            CliError::input(format!("{}: {}: {message}", self.file, self.section))
+        }
+    }
+
+    /// Reads a table into its raw struct, refusing unknown keys.
+    fn table<T: for<'de> Deserialize<'de>>(&self, value: &Value, what: &str) -> CliResult<T> {
+        if !value.is_table() {
+            return Err(self.error(format!(
+                "expected a table ([[{what}]]), got {}",
+                value.type_str()
+            )));
+        }
+        value.clone().try_into::<T>().map_err(|e| {
+            let m = one_line(e.message()).replace("unknown field", "unknown key");
+            self.error(m)
+        })
+    }
+
+    fn required<'v>(&self, key: &str, v: &'v Option<Value>) -> CliResult<&'v Value> {
+        v.as_ref()
+            .ok_or_else(|| self.error(format!("missing key `{key}`")))
+    }
+
+    fn number(&self, key: &str, v: &Value) -> CliResult<f64> {
+        let x = match v {
+            Value::Integer(i) => *i as f64,
+            Value::Float(x) => *x,
+            other => {
+                return Err(self.error(format!(
+                    "{key} must be a number, got a {}",
+                    other.type_str()
+                )));
+            }
+        };
+        if !x.is_finite() {
+            return Err(self.error(format!("{key} is {x}, expected a finite number")));
+        }
+        Ok(x)
+    }
+
+    /// A number with a default, checked by `ok` (which describes the allowed range).
+    fn number_in(
+        &self,
+        key: &str,
+        v: &Option<Value>,
+        default: Option<f64>,
+        range: (&str, fn(f64) -> bool),
+    ) -> CliResult<f64> {
+        let x = match (v, default) {
+            (Some(v), _) => self.number(key, v)?,
+            (None, Some(d)) => return Ok(d),
+            (None, None) => return Err(self.error(format!("missing key `{key}`"))),
+        };
+        if !(range.1)(x) {
+            return Err(self.error(format!("{key} must be {}, got {x}", range.0)));
+        }
+        Ok(x)
+    }
+
+    fn list(&self, key: &str, v: &Value, expected: &str) -> CliResult<Vec<f64>> {
+        let Value::Array(items) = v else {
+            return Err(self.error(format!(
+                "{key} must be a list of numbers ({expected}), got a {}",
+                v.type_str()
+            )));
+        };
+        items
+            .iter()
+            .enumerate()
+            .map(|(k, x)| self.number(&format!("{key} component {}", k + 1), x))
+            .collect()
+    }
+
+    /// A vector of `n` numbers (default zero).
+    fn vector(&self, key: &str, v: &Option<Value>, n: usize) -> CliResult<Vec<f64>> {
+        let Some(v) = v else {
+            return Ok(vec![0.0; n]);
+        };
+        let x = self.list(key, v, &format!("{n} components"))?;
+        if x.len() != n {
+            return Err(self.error(format!(
+                "{key} has {} components, expected {n} (dim = {n})",
+                x.len()
+            )));
+        }
+        Ok(x)
+    }
+
+    fn string<'v>(&self, key: &str, v: &'v Value) -> CliResult<&'v str> {
+        v.as_str()
+            .ok_or_else(|| self.error(format!("{key} must be a string, got a {}", v.type_str())))
+    }
+
+    /// An array of tables (`[[body]]`), or none.
+    fn tables<'v>(&self, key: &str, v: &'v Option<Value>) -> CliResult<&'v [Value]> {
+        match v {
+            None => Ok(&[]),
+            Some(Value::Array(a)) => Ok(a),
+            Some(other) => Err(self.error(format!(
+                "{key} must be an array of tables ([[{key}]]), got a {}",
+                other.type_str()
+            ))),
+        }
+    }
+}
+
+fn positive(x: f64) -> bool {
+    x > 0.0
+}
+
+fn non_negative(x: f64) -> bool {
+    x >= 0.0
+}
+
+fn unit_interval(x: f64) -> bool {
+    (0.0..=1.0).contains(&x)
+}
+
+/// Joins a multi-line message into one line.
+fn one_line(text: &str) -> String {
+    text.lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+/// Returns the 1-based line and column of byte `offset` of `text`.
+fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, column)
+}
+
+/// Reads and checks the scene file `path`.
+///
+/// # Errors
+/// [`CliError::Input`] naming the file, the section and the key.
+pub fn load(path: &std::path::Path) -> CliResult<Scene> {
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| CliError::input(format!("{file}: cannot read the scene file: {e}")))?;
+    parse(&text, &file)
+}
+
+/// Parses and checks the scene `text` (read from `file`, named in messages).
+///
+/// # Errors
+/// [`CliError::Input`] naming the file, the section and the key.
+pub fn parse(text: &str, file: &str) -> CliResult<Scene> {
+    let top = Place {
+        file,
+        section: String::new(),
+    };
+    let table: toml::Table = toml::from_str(text).map_err(|e| {
+        let at = e.span().map(|s| line_column(text, s.start));
+        let message = one_line(e.message());
+        match at {
+            Some((l, c)) => {
+                let line = text.lines().nth(l - 1).unwrap_or("").trim();
+                CliError::input(format!(
+                    "{file}:{l}:{c}: {message} (in `{line}`; expected TOML)"
+                ))
+            }
+            None => CliError::input(format!("{file}: {message} (expected TOML)")),
+        }
+    })?;
+    let raw: RawScene = top.table(&Value::Table(table), "scene")?;
+
+    let dim_value = top.required("dim", &raw.dim)?;
+    let max = rotorflow::algebra::MAX_DIM;
+    let dim = match dim_value {
+        Value::Integer(d) if (2..=max as i64).contains(d) => *d as usize,
+        Value::Integer(d) => {
+            return Err(top.error(format!("dim must be an integer from 2 to {max}, got {d}")));
+        }
+        other => {
+            return Err(top.error(format!(
+                "dim must be an integer from 2 to {max}, got a {}",
+                other.type_str()
+            )));
+        }
+    };
+    let gravity = top.vector("gravity", &raw.gravity, dim)?;
+    let t_end = top.number_in("t_end", &raw.t_end, None, ("> 0", positive))?;
+    let dt = top.number_in("dt", &raw.dt, None, ("> 0", positive))?;
+    if t_end / dt > MAX_STEPS {
+        return Err(top.error(format!(
+            "dt = {dt} takes {:.3e} steps to t_end = {t_end}; at most {MAX_STEPS:e} are allowed",
+            t_end / dt
+        )));
+    }
+    let integrator = match &raw.integrator {
+        None => IntegratorKind::Splitting,
+        Some(v) => match top.string("integrator", v)? {
+            "splitting" => IntegratorKind::Splitting,
+            "rk4" => IntegratorKind::Rk4,
+            other => {
+                return Err(top.error(format!(
+                    "integrator `{other}` is unknown (expected \"splitting\" or \"rk4\")"
+                )));
+            }
+        },
+    };
+
+    let body_tables = top.tables("body", &raw.body)?;
+    if body_tables.is_empty() {
+        return Err(top.error("no [[body]]: a scene needs at least one body"));
+    }
+    let mut bodies: Vec<SceneBody> = Vec::with_capacity(body_tables.len());
+    for (k, t) in body_tables.iter().enumerate() {
+        let body = read_body(file, k, t, dim)?;
+        if bodies.iter().any(|b| b.name == body.name) {
+            return Err(CliError::input(format!(
+                "{file}: body {}: name \"{}\" is used twice (body names must be unique)",
+                k + 1,
+                body.name
+            )));
+        }
+        bodies.push(body);
+    }
+    let names: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
+
+    let planes = top
+        .tables("plane", &raw.plane)?
+        .iter()
+        .enumerate()
+        .map(|(k, t)| read_plane(file, k, t, dim))
+        .collect::<CliResult<Vec<_>>>()?;
+    let springs = top
+        .tables("spring", &raw.spring)?
+        .iter()
+        .enumerate()
+        .map(|(k, t)| read_spring(file, k, t, dim, &names))
+        .collect::<CliResult<Vec<_>>>()?;
+    let joints = top
+        .tables("joint", &raw.joint)?
+        .iter()
+        .enumerate()
+        .map(|(k, t)| read_joint(file, k, t, dim, &names))
+        .collect::<CliResult<Vec<_>>>()?;
+    if integrator == IntegratorKind::Rk4 && !(planes.is_empty() && joints.is_empty()) {
+        return Err(top.error(
+            "integrator \"rk4\" integrates forces and springs only; a scene with [[plane]] or \
+             [[joint]] needs integrator = \"splitting\"",
+        ));
+    }
+    Ok(Scene {
+        dim,
+        gravity,
+        t_end,
+        dt,
+        integrator,
+        bodies,
+        planes,
+        springs,
+        joints,
+    })
+}
+
+/// True if the SPEC carries a `mass=` option.
+fn spec_has_mass(spec: &str) -> bool {
+    spec.split(['+', ';']).skip(1).any(|opt| {
+        opt.trim_start()
+            .strip_prefix("mass")
+            .is_some_and(|rest| rest.trim_start().starts_with('='))
+    })
+}
+
+fn read_body(file: &str, k: usize, t: &Value, dim: usize) -> CliResult<SceneBody> {
+    let mut place = Place {
+        file,
+        section: format!("body {}", k + 1),
+    };
+    // Name the body as soon as its name is known.
+    if let Some(Value::String(name)) = t.get("name") {
+        place.section = format!("body \"{name}\"");
+    }
+    let raw: RawBody = place.table(t, "body")?;
+    let name = place.string("name", place.required("name", &raw.name)?)?;
+    if name.is_empty()
+        || name.starts_with('.')
+        || name
+            .chars()
+            .any(|c| c == '/' || c == '\\' || c.is_control())
+        || name == "system"
+    {
+        return Err(place.error(format!(
+            "name \"{name}\" cannot name a file (expected a non-empty name without '/', '\\' or \
+             a leading '.', other than \"system\")"
+        )));
+    }
+    let spec = place.string("shape", place.required("shape", &raw.shape)?)?;
+    let mass = match &raw.mass {
+        None => None,
+        Some(v) => {
+            let m = place.number("mass", v)?;
+            if m <= 0.0 {
+                return Err(place.error(format!("mass must be > 0, got {m}")));
+            }
+            Some(m)
+        }
+    };
+    let full_spec = match mass {
+        Some(m) if spec_has_mass(spec) => {
+            return Err(place.error(format!(
+                "mass = {m} and shape `{spec}` both give the mass; give one of them"
+            )));
+        }
+        Some(m) => format!("{spec}+mass={m:?}"),
+        None => spec.to_string(),
+    };
+    let mut parsed = parse_body(&full_spec).map_err(|e| place.error(format!("shape: {e}")))?;
+    if parsed.dim != dim {
+        return Err(place.error(format!(
+            "shape `{spec}` is a body in {} dimensions, expected {dim} (dim = {dim})",
+            parsed.dim
+        )));
+    }
+    if let Some(m) = mass {
+        // A mass tensor (principal:, tensor:, planes:) is taken as it is: the mass is its own.
+        parsed.mass = m;
+    }
+    let position = place.vector("position", &raw.position, dim)?;
+    let velocity = place.vector("velocity", &raw.velocity, dim)?;
+    let planes = dim * (dim - 1) / 2;
+    let omega = match &raw.omega {
+        None => vec![0.0; planes],
+        Some(v) => {
+            let w = place.list("omega", v, &format!("{planes} plane components"))?;
+            if w.len() != planes {
+                return Err(place.error(format!(
+                    "omega has {} components, expected {planes} (the planes 12,13,... of dim = \
+                     {dim})",
+                    w.len()
+                )));
+            }
+            w
+        }
+    };
+    let attitude = match &raw.attitude {
+        None => DMatrix::identity(dim, dim),
+        Some(v) => read_attitude(&place, v, dim)?,
+    };
+    Ok(SceneBody {
+        name: name.to_string(),
+        mass: parsed.mass,
+        parsed,
+        position,
+        velocity,
+        omega,
+        attitude,
+    })
+}
+
+/// An attitude: N² numbers row-major or N rows of N; a rotation to 1e-9.
+fn read_attitude(place: &Place<'_>, v: &Value, n: usize) -> CliResult<DMatrix<f64>> {
+    let expected = format!("{} numbers row-major or {n} rows of {n}", n * n);
+    let Value::Array(items) = v else {
+        return Err(place.error(format!(
+            "attitude must be a list ({expected}), got a {}",
+            v.type_str()
+        )));
+    };
+    let entries: Vec<f64> = if items.iter().all(Value::is_array) && !items.is_empty() {
+        let mut all = Vec::with_capacity(n * n);
+        for (r, row) in items.iter().enumerate() {
+            let row = place.list(&format!("attitude row {}", r + 1), row, &expected)?;
+            if row.len() != n {
+                return Err(place.error(format!(
+                    "attitude row {} has {} entries, expected {n} (dim = {n})",
+                    r + 1,
+                    row.len()
+                )));
+            }
+            all.extend(row);
+        }
+        if items.len() != n {
+            return Err(place.error(format!(
+                "attitude has {} rows, expected {n} (dim = {n})",
+                items.len()
+            )));
+        }
+        all
+    } else {
+        let all = place.list("attitude", v, &expected)?;
+        if all.len() != n * n {
+            return Err(place.error(format!(
+                "attitude has {} entries, expected {} ({expected}; dim = {n})",
+                all.len(),
+                n * n
+            )));
+        }
+        all
+    };
+    let q = DMatrix::from_row_slice(n, n, &entries);
+    let err = (q.transpose() * &q - DMatrix::<f64>::identity(n, n))
+        .iter()
+        .fold(0.0_f64, |m, x| m.max(x.abs()));
+    let det = q.determinant();
+    if err > 1e-9 {
+        return Err(place.error(format!(
+            "attitude is not a rotation: max |QᵀQ − 1| = {err:.3e} > 1e-9"
+        )));
+    }
+    if det <= 0.0 {
+        return Err(place.error(format!(
+            "attitude is not a rotation: det = {det:.6} (a reflection; expected det +1)"
+        )));
+    }
+    Ok(q)
+}
+
+fn read_plane(file: &str, k: usize, t: &Value, dim: usize) -> CliResult<ScenePlane> {
+    let place = Place {
+        file,
+        section: format!("plane {}", k + 1),
+    };
+    let raw: RawPlane = place.table(t, "plane")?;
+    let normal = place.vector(
+        "normal",
+        &Some(place.required("normal", &raw.normal)?.clone()),
+        dim,
+    )?;
+    if normal.iter().all(|x| *x == 0.0) {
+        return Err(place.error("normal is zero, expected a non-zero vector"));
+    }
+    Ok(ScenePlane {
+        normal,
+        offset: place.number_in("offset", &raw.offset, Some(0.0), ("finite", f64::is_finite))?,
+        friction: place.number_in("friction", &raw.friction, Some(0.0), ("≥ 0", non_negative))?,
+        restitution: place.number_in(
+            "restitution",
+            &raw.restitution,
+            Some(0.0),
+            ("in [0, 1]", unit_interval),
+        )?,
+    })
+}
+
+/// The body named by `key`, by index.
+fn body_index(place: &Place<'_>, key: &str, v: &Value, names: &[&str]) -> CliResult<usize> {
+    let name = place.string(key, v)?;
+    names.iter().position(|n| *n == name).ok_or_else(|| {
+        place.error(format!(
+            "{key} = \"{name}\" names no body (the bodies are {})",
+            names
+                .iter()
+                .map(|n| format!("\"{n}\""))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ))
+    })
+}
+
+/// `anchor` (a world point) or `other` with `other_point`: exactly one of the two.
+fn read_anchor(
+    place: &Place<'_>,
+    body: usize,
+    anchor: &Option<Value>,
+    other: &Option<Value>,
+    other_point: &Option<Value>,
+    dim: usize,
+    names: &[&str],
+) -> CliResult<SceneAnchor> {
+    match (anchor, other) {
+        (Some(_), Some(_)) => {
+            Err(place.error("give anchor (a point of space) or other (a body), not both"))
+        }
+        (None, None) => Err(place
+            .error("missing key `anchor` or `other` (the other end: a point of space or a body)")),
+        (Some(_), None) => {
+            if other_point.is_some() {
+                return Err(place.error("other_point needs other (a body); with anchor drop it"));
+            }
+            Ok(SceneAnchor::World(place.vector("anchor", anchor, dim)?))
+        }
+        (None, Some(v)) => {
+            let j = body_index(place, "other", v, names)?;
+            if j == body {
+                return Err(place.error(format!(
+                    "other = \"{}\" is the body itself; expected another body",
+                    names[j]
+                )));
+            }
+            Ok(SceneAnchor::Body(
+                j,
+                place.vector("other_point", other_point, dim)?,
+            ))
+        }
+    }
+}
+
+fn read_spring(
+    file: &str,
+    k: usize,
+    t: &Value,
+    dim: usize,
+    names: &[&str],
+) -> CliResult<SceneSpring> {
+    let place = Place {
+        file,
+        section: format!("spring {}", k + 1),
+    };
+    let raw: RawSpring = place.table(t, "spring")?;
+    let body = body_index(&place, "body", place.required("body", &raw.body)?, names)?;
+    let point = place.vector("point", &raw.point, dim)?;
+    let anchor = read_anchor(
+        &place,
+        body,
+        &raw.anchor,
+        &raw.other,
+        &raw.other_point,
+        dim,
+        names,
+    )?;
+    Ok(SceneSpring {
+        body,
+        point,
+        anchor,
+        stiffness: place.number_in("stiffness", &raw.stiffness, None, ("≥ 0", non_negative))?,
+        rest_length: place.number_in(
+            "rest_length",
+            &raw.rest_length,
+            Some(0.0),
+            ("≥ 0", non_negative),
+        )?,
+        damping: place.number_in("damping", &raw.damping, Some(0.0), ("≥ 0", non_negative))?,
+    })
+}
+
+fn read_joint(
+    file: &str,
+    k: usize,
+    t: &Value,
+    dim: usize,
+    names: &[&str],
+) -> CliResult<SceneJoint> {
+    let place = Place {
+        file,
+        section: format!("joint {}", k + 1),
+    };
+    let raw: RawJoint = place.table(t, "joint")?;
+    let body = body_index(&place, "body", place.required("body", &raw.body)?, names)?;
+    let point = place.vector("point", &raw.point, dim)?;
+    let other = read_anchor(
+        &place,
+        body,
+        &raw.anchor,
+        &raw.other,
+        &raw.other_point,
+        dim,
+        names,
+    )?;
+    Ok(SceneJoint { body, point, other })
+}

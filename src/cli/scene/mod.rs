@@ -1,0 +1,159 @@
+//! `rotorflow scene FILE`: bodies that move and turn together, read from a TOML scene file
+//! (bodies by their SPEC, gravity, springs, planes, ball joints), integrated by the
+//! library's `dynamics::motion`, written as JSON, CSV and an HTML animation.
+//!
+//! - [`format`]: the file, every key checked, one-line errors naming the key;
+//! - [`run`]: the system, stepped from 0 to t_end with every sample time hit exactly;
+//! - [`output`]: JSON, CSV, the animation and the summary.
+
+pub mod format;
+pub mod output;
+pub mod run;
+
+use super::error::{CliError, CliResult};
+use super::lists::sample_times;
+use super::output::{Progress, check_extension, write_atomic};
+use clap::Args;
+use rotorflow::dynamics::trajectory::even_times;
+use std::path::{Path, PathBuf};
+
+/// The samples of a scene without `--samples` or `--times`: at most this many.
+pub const DEFAULT_SAMPLES: usize = 201;
+
+/// Arguments of `scene`.
+#[derive(Args, Debug, Clone)]
+#[command(after_long_help = SCENE_HELP)]
+pub struct SceneArgs {
+    /// The scene file (TOML; see the book's chapter "Scene files").
+    #[arg(value_name = "FILE")]
+    pub file: PathBuf,
+    /// Number of evenly spaced samples from 0 to t_end inclusive (K ≥ 2; default 201, or
+    /// one per step for runs of fewer than 200 steps).
+    #[arg(long, value_name = "K", conflicts_with = "times")]
+    pub samples: Option<usize>,
+    /// Explicit sample times, comma-separated, strictly increasing, in [0, t_end].
+    #[arg(long, value_name = "t1,t2,...", allow_hyphen_values = true)]
+    pub times: Option<String>,
+    /// Write the samples as JSON to FILE.json (keys dim, times, bodies, energy, momentum,
+    /// angular_momentum, planes).
+    #[arg(long, value_name = "FILE.json", alias = "output")]
+    pub out: Option<PathBuf>,
+    /// Write one CSV per body (DIR/<name>.csv) and DIR/system.csv; DIR is created if needed.
+    #[arg(long, value_name = "DIR")]
+    pub csv: Option<PathBuf>,
+    /// Write the HTML animation of the bodies and planes to FILE.html.
+    #[arg(long, value_name = "FILE.html")]
+    pub html: Option<PathBuf>,
+    /// Only check the scene file (every key, the bodies, springs, planes and joints) and
+    /// say what it holds; run nothing and write nothing.
+    #[arg(long, conflicts_with_all = ["out", "csv", "html"])]
+    pub check: bool,
+}
+
+/// The help text after the options: the scene keys in brief.
+pub const SCENE_HELP: &str = "\
+Scene file keys (TOML; unknown keys are errors):
+  dim = N (required), gravity = [g1,...,gN], t_end = T (required), dt = h (required),
+  integrator = \"splitting\" (default: symplectic, contact and joints) | \"rk4\" (forces only)
+  [[body]]   name, shape (body SPEC), mass, position, velocity, omega (own axes, planes 12,13,...),
+             attitude (N*N numbers row-major or N rows; a rotation)
+  [[plane]]  normal, offset (the plane normal.x = offset, solid opposite the normal), friction,
+             restitution
+  [[spring]] body, point (own axes), anchor (a point of space) | other (a body) + other_point,
+             stiffness, rest_length, damping
+  [[joint]]  body, point, anchor | other + other_point  (ball joint)
+Without --out, --csv or --html a summary is printed: energy drift, momentum change, final
+positions. Outputs are written only after a run succeeds, each whole or not at all.";
+
+/// Returns the sample times of a scene.
+///
+/// # Errors
+/// [`CliError::Input`] for bad `--samples` or `--times`.
+pub fn times(args: &SceneArgs, scene: &format::Scene) -> CliResult<Vec<f64>> {
+    if args.samples.is_none() && args.times.is_none() {
+        let steps = (scene.t_end / scene.dt - 1e-9).ceil().max(1.0);
+        let k = if steps < (DEFAULT_SAMPLES - 1) as f64 {
+            steps as usize + 1
+        } else {
+            DEFAULT_SAMPLES
+        };
+        return Ok(even_times(scene.t_end, k));
+    }
+    sample_times(Some(scene.t_end), args.samples, args.times.as_deref())
+        .map_err(|e| CliError::input(e.replace("--t-end", "t_end")))
+}
+
+/// Runs `scene`.
+///
+/// # Errors
+/// [`CliError::Input`] for bad input, [`CliError::Runtime`] if the run or a write fails.
+pub fn run(args: &SceneArgs, quiet: bool) -> CliResult<()> {
+    if let Some(p) = &args.out {
+        check_extension("--out", p, &["json"])?;
+    }
+    if let Some(p) = &args.html {
+        check_extension("--html", p, &["html"])?;
+    }
+    if let Some(d) = &args.csv
+        && d.exists()
+        && !d.is_dir()
+    {
+        return Err(CliError::input(format!(
+            "--csv `{}` is a file, expected a folder",
+            d.display()
+        )));
+    }
+    let file = args.file.display().to_string();
+    let scene = format::load(&args.file)?;
+    let times = times(args, &scene)?;
+    let mut system = run::build_system(&scene, &file)?;
+    if args.check {
+        println!("{}: ok: {}", file, output::contents(&scene));
+        return Ok(());
+    }
+    let mut progress = Progress::new(times.len() as u64, quiet, "scene");
+    let record = run::run(&scene, &mut system, &times, &mut progress)?;
+    progress.finish();
+
+    // Everything is rendered before the first file is written.
+    let json = match &args.out {
+        Some(_) => Some(output::json_text(&scene, &record)?),
+        None => None,
+    };
+    let csv = match &args.csv {
+        Some(_) => Some(output::csv_files(&scene, &record)?),
+        None => None,
+    };
+    let title = args
+        .file
+        .file_name()
+        .map_or(file.clone(), |n| n.to_string_lossy().into_owned());
+    let html = args
+        .html
+        .as_ref()
+        .map(|_| output::html(&scene, &record, &title));
+    if let (Some(p), Some(text)) = (&args.out, &json) {
+        write_atomic(p, text.as_bytes())?;
+    }
+    if let (Some(dir), Some(files)) = (&args.csv, &csv) {
+        write_csv_dir(dir, files)?;
+    }
+    if let (Some(p), Some(text)) = (&args.html, &html) {
+        write_atomic(p, text.as_bytes())?;
+    }
+    if args.out.is_none() && args.csv.is_none() && args.html.is_none() {
+        print!("{}", output::summary(&scene, &record, &file));
+    }
+    Ok(())
+}
+
+/// Creates `dir` if needed and writes each file into it atomically.
+fn write_csv_dir(dir: &Path, files: &[(String, String)]) -> CliResult<()> {
+    std::fs::create_dir_all(dir).map_err(|e| {
+        CliError::runtime(format!("cannot create the folder `{}`: {e}", dir.display()))
+    })?;
+    for (name, text) in files {
+        write_atomic(&dir.join(name), text.as_bytes())?;
+    }
+    Ok(())
+}

@@ -1,0 +1,380 @@
+//! A self-contained HTML animation of a scene (no network): several bodies that move and
+//! turn in N-D, and the planes of solid world, projected to 3D as the single-body page of
+//! [`super::html`] does.
+//!
+//! Each body is its [`Shape`] placed at each frame by its rotation matrix (own axes → space)
+//! and its centre of mass. Points are taken relative to the centre of the scene (the middle
+//! of the box that holds every body at every frame), so the perspective from each left-out
+//! axis is about the scene's centre. A plane n·x = d is drawn as a translucent square: its
+//! trace in the three shown coordinates, with the left-out coordinates at the centre's,
+//! around the bodies' region. Opened with `#selftest` the page reports pixel statistics as
+//! the single-body page does.
+
+use super::Shape;
+use super::projection::escape;
+use nalgebra::DMatrix;
+use serde_json::json;
+
+/// One body of the scene and its placement at each frame.
+#[derive(Clone, Debug)]
+pub struct SceneBodyFrames {
+    /// The body's name.
+    pub name: String,
+    /// Its geometry, in its own axes about the centre of mass.
+    pub shape: Shape,
+    /// The centre of mass at each frame.
+    pub positions: Vec<Vec<f64>>,
+    /// The rotation matrix (own axes → space) at each frame.
+    pub matrices: Vec<DMatrix<f64>>,
+}
+
+/// What the scene page shows.
+#[derive(Clone, Debug)]
+pub struct SceneAnimation<'a> {
+    /// The title.
+    pub title: &'a str,
+    /// The dimension N of space.
+    pub dim: usize,
+    /// The frame times.
+    pub times: &'a [f64],
+    /// The bodies.
+    pub bodies: &'a [SceneBodyFrames],
+    /// The planes n·x = d as (n, d).
+    pub planes: &'a [(Vec<f64>, f64)],
+}
+
+fn round(x: f64) -> f64 {
+    (x * 1e9).round() / 1e9
+}
+
+/// Embeds a point of dimension `n` < 3 in 3D (zeros after).
+fn pad(p: &[f64], dim: usize) -> Vec<f64> {
+    let mut v: Vec<f64> = p.iter().map(|x| round(*x)).collect();
+    v.resize(dim, 0.0);
+    v
+}
+
+/// Returns the page's HTML.
+pub fn scene_html(a: &SceneAnimation<'_>) -> String {
+    let n = a.dim;
+    // A 2D scene is drawn in the plane z = 0 of 3D space.
+    let shown = n.max(3);
+    // The box that holds every body at every frame.
+    let mut lo = vec![f64::INFINITY; shown];
+    let mut hi = vec![f64::NEG_INFINITY; shown];
+    let mut body_radius: f64 = 0.0;
+    for b in a.bodies {
+        let r = b.shape.radius();
+        body_radius = body_radius.max(r);
+        for x in &b.positions {
+            for k in 0..shown {
+                let c = x.get(k).copied().unwrap_or(0.0);
+                lo[k] = lo[k].min(c - r);
+                hi[k] = hi[k].max(c + r);
+            }
+        }
+    }
+    if lo.iter().any(|x| !x.is_finite()) {
+        lo = vec![-1.0; shown];
+        hi = vec![1.0; shown];
+    }
+    let centre: Vec<f64> = lo
+        .iter()
+        .zip(&hi)
+        .map(|(l, h)| round(0.5 * (l + h)))
+        .collect();
+    let radius = lo
+        .iter()
+        .zip(&hi)
+        .map(|(l, h)| 0.5 * (h - l))
+        .map(|x| x * x)
+        .sum::<f64>()
+        .sqrt()
+        .max(body_radius)
+        .max(1e-9);
+    let bodies: Vec<_> = a
+        .bodies
+        .iter()
+        .map(|b| {
+            let frames: Vec<Vec<f64>> = b
+                .matrices
+                .iter()
+                .map(|m| {
+                    let mut q = vec![0.0; shown * shown];
+                    for r in 0..shown {
+                        for c in 0..shown {
+                            q[r * shown + c] = if r < n && c < n {
+                                round(m[(r, c)])
+                            } else if r == c {
+                                1.0
+                            } else {
+                                0.0
+                            };
+                        }
+                    }
+                    q
+                })
+                .collect();
+            json!({
+                "name": b.name,
+                "points": b.shape.points.iter().map(|p| pad(p, shown)).collect::<Vec<_>>(),
+                "edges": b.shape.edges,
+                "cloud": b.shape.cloud,
+                "frames": frames,
+                "positions": b.positions.iter().map(|p| pad(p, shown)).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    let planes: Vec<_> = a
+        .planes
+        .iter()
+        .map(|(normal, offset)| json!({ "normal": pad(normal, shown), "offset": round(*offset) }))
+        .collect();
+    let data = json!({
+        "dim": shown,
+        "title": a.title,
+        "times": a.times,
+        "centre": centre,
+        "radius": round(radius),
+        "bodies": bodies,
+        "planes": planes,
+        "axes": [0, 1, 2],
+    });
+    // `</` must not appear inside a <script> element; `<\/` is the same JSON string.
+    let data = data.to_string().replace("</", "<\\/");
+    TEMPLATE
+        .replace("{{TITLE}}", &escape(a.title))
+        .replace("{{DATA}}", &data)
+}
+
+const TEMPLATE: &str = r##"<!DOCTYPE html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<title>rotorflow scene: {{TITLE}}</title>
+<style>
+  body { font-family: sans-serif; margin: 12px; background: #f4f5f7; color: #222; }
+  #controls { display: flex; flex-wrap: wrap; gap: 10px; align-items: center; margin: 8px 0; }
+  #controls label { font-size: 14px; }
+  canvas { background: #ffffff; border: 1px solid #bbb; cursor: grab; touch-action: none; max-width: 100%; }
+  #time { font-variant-numeric: tabular-nums; min-width: 8em; display: inline-block; }
+  #slider { width: 320px; }
+  #legend span { margin-right: 12px; font-size: 13px; }
+  #selftest { display: none; }
+</style>
+</head>
+<body>
+<h3 id="heading">rotorflow scene: {{TITLE}}</h3>
+<div id="controls">
+  <button id="play" type="button">Pause</button>
+  <input id="slider" type="range" min="0" max="0" value="0" aria-label="time">
+  <span id="time"></span>
+  <label>axes <select id="axes"></select></label>
+  <label>projection <select id="projection">
+    <option value="perspective">perspective</option>
+    <option value="orthographic" selected>orthographic</option>
+  </select></label>
+  <label>speed <select id="speed">
+    <option value="0.5">0.5×</option><option value="1" selected>1×</option><option value="2">2×</option><option value="4">4×</option>
+  </select></label>
+</div>
+<div id="legend"></div>
+<canvas id="view" width="720" height="540"></canvas>
+<p style="font-size:13px;color:#555">Drag to turn the 3D view. Planes are the translucent squares: each plane's
+trace in the three shown coordinates, the others held at the scene's centre. The N−3 axes left out are dropped
+(orthographic) or removed by a perspective from each of them in turn about the scene's centre.</p>
+<pre id="selftest"></pre>
+<script type="application/json" id="data">{{DATA}}</script>
+<script>
+"use strict";
+(function () {
+  const errors = [];
+  window.addEventListener("error", function (e) { errors.push(String(e.message)); });
+  const D = JSON.parse(document.getElementById("data").textContent);
+  const n = D.dim;
+  const canvas = document.getElementById("view");
+  const selftest = window.location.hash === "#selftest";
+  const ctx = canvas.getContext("2d", { willReadFrequently: selftest });
+  const slider = document.getElementById("slider");
+  const timeLabel = document.getElementById("time");
+  const playButton = document.getElementById("play");
+  const axesSelect = document.getElementById("axes");
+  const projSelect = document.getElementById("projection");
+  const speedSelect = document.getElementById("speed");
+  const colours = ["#1f4e9c", "#c0392b", "#27864a", "#8e44ad", "#d35400", "#16a085", "#7f8c8d", "#b7950b"];
+  const state = { frame: 0, playing: true, yaw: 0.6, pitch: 0.35, axes: D.axes.slice(),
+                  perspective: false, last: null, acc: 0 };
+  const count = D.times.length;
+  slider.max = String(Math.max(0, count - 1));
+  const legend = document.getElementById("legend");
+  D.bodies.forEach(function (b, i) {
+    const s = document.createElement("span");
+    s.style.color = colours[i % colours.length];
+    s.textContent = "■ " + b.name;
+    legend.appendChild(s);
+  });
+  for (let i = 0; i < n; i++) for (let j = i + 1; j < n; j++) for (let k = j + 1; k < n; k++) {
+    const o = document.createElement("option");
+    o.value = i + "," + j + "," + k;
+    o.textContent = (i + 1) + "-" + (j + 1) + "-" + (k + 1);
+    if (i === state.axes[0] && j === state.axes[1] && k === state.axes[2]) o.selected = true;
+    axesSelect.appendChild(o);
+  }
+  // A space point (N coordinates, relative to the centre) → 3D.
+  function project(y) {
+    const a = state.axes;
+    let v = [y[a[0]], y[a[1]], y[a[2]]];
+    if (state.perspective) {
+      const dist = 3 * D.radius;
+      for (let k = 0; k < n; k++) {
+        if (k === a[0] || k === a[1] || k === a[2]) continue;
+        const f = dist / Math.max(dist - y[k], 1e-3 * dist);
+        v = [v[0] * f, v[1] * f, v[2] * f];
+      }
+    }
+    return v;
+  }
+  function view(v) {
+    const sy = Math.sin(state.yaw), cy = Math.cos(state.yaw);
+    const sp = Math.sin(state.pitch), cp = Math.cos(state.pitch);
+    const x1 = cy * v[0] + sy * v[1], y1 = -sy * v[0] + cy * v[1], z1 = v[2];
+    const depth = cp * y1 + sp * z1, up = -sp * y1 + cp * z1;
+    const f = 4 * D.radius / (4 * D.radius + depth);
+    return [x1 * f, -up * f, depth];
+  }
+  // The square patch of a plane in the shown coordinates, relative to the centre (3D).
+  function patch(p) {
+    const a = state.axes;
+    const m = [p.normal[a[0]], p.normal[a[1]], p.normal[a[2]]];
+    const mm = m[0] * m[0] + m[1] * m[1] + m[2] * m[2];
+    if (mm < 1e-12) return null;
+    // n·(c + y) = d with the left-out y = 0: m·y3 = d − n·c.
+    let d = p.offset;
+    for (let k = 0; k < n; k++) d -= p.normal[k] * D.centre[k];
+    const base = [m[0] * d / mm, m[1] * d / mm, m[2] * d / mm];
+    const len = Math.sqrt(mm);
+    const u0 = [m[0] / len, m[1] / len, m[2] / len];
+    const helper = Math.abs(u0[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0];
+    let t1 = [u0[1] * helper[2] - u0[2] * helper[1], u0[2] * helper[0] - u0[0] * helper[2], u0[0] * helper[1] - u0[1] * helper[0]];
+    const l1 = Math.hypot(t1[0], t1[1], t1[2]);
+    t1 = [t1[0] / l1, t1[1] / l1, t1[2] / l1];
+    const t2 = [u0[1] * t1[2] - u0[2] * t1[1], u0[2] * t1[0] - u0[0] * t1[2], u0[0] * t1[1] - u0[1] * t1[0]];
+    const s = 1.2 * D.radius;
+    return [[1, 1], [1, -1], [-1, -1], [-1, 1]].map(function (c) {
+      return [base[0] + s * (c[0] * t1[0] + c[1] * t2[0]),
+              base[1] + s * (c[0] * t1[1] + c[1] * t2[1]),
+              base[2] + s * (c[0] * t1[2] + c[1] * t2[2])];
+    });
+  }
+  function draw() {
+    const w = canvas.width, h = canvas.height;
+    ctx.fillStyle = "#ffffff";
+    ctx.fillRect(0, 0, w, h);
+    if (count === 0) return;
+    const scale = 0.36 * Math.min(w, h) / D.radius;
+    const page = function (s) { return [w / 2 + scale * s[0], h / 2 + scale * s[1], s[2]]; };
+    for (const p of D.planes) {
+      const corners = patch(p);
+      if (!corners) continue;
+      const q = corners.map(function (c) { return page(view(c)); });
+      ctx.fillStyle = "rgba(120, 140, 160, 0.22)";
+      ctx.strokeStyle = "rgba(90, 100, 120, 0.6)";
+      ctx.lineWidth = 1;
+      ctx.beginPath(); ctx.moveTo(q[0][0], q[0][1]);
+      for (let i = 1; i < 4; i++) ctx.lineTo(q[i][0], q[i][1]);
+      ctx.closePath(); ctx.fill(); ctx.stroke();
+    }
+    ctx.lineWidth = 1;
+    ["#d33", "#3a3", "#33d"].forEach(function (col, k) {
+      const e = [0, 0, 0]; e[k] = 0.4 * D.radius;
+      const o = page(view([0, 0, 0])), t = page(view(e));
+      ctx.strokeStyle = col; ctx.globalAlpha = 0.35;
+      ctx.beginPath(); ctx.moveTo(o[0], o[1]); ctx.lineTo(t[0], t[1]); ctx.stroke();
+      ctx.globalAlpha = 1;
+      ctx.fillStyle = col; ctx.font = "13px sans-serif";
+      ctx.fillText(String(state.axes[k] + 1), t[0] + 3, t[1]);
+    });
+    const f = state.frame;
+    D.bodies.forEach(function (b, i) {
+      const q = b.frames[f], x = b.positions[f];
+      const pts = b.points.map(function (p) {
+        const y = new Array(n).fill(0);
+        for (let r = 0; r < n; r++) {
+          let s = x[r] - D.centre[r];
+          for (let c = 0; c < n; c++) s += q[r * n + c] * p[c];
+          y[r] = s;
+        }
+        return page(view(project(y)));
+      });
+      const colour = colours[i % colours.length];
+      ctx.strokeStyle = colour; ctx.fillStyle = colour;
+      ctx.lineWidth = 1.4; ctx.globalAlpha = 0.85;
+      for (const e of b.edges) {
+        const p = pts[e[0]], r = pts[e[1]];
+        ctx.beginPath(); ctx.moveTo(p[0], p[1]); ctx.lineTo(r[0], r[1]); ctx.stroke();
+      }
+      ctx.globalAlpha = 1;
+      const rad = b.cloud ? 1.4 : 3;
+      for (const p of pts) { ctx.beginPath(); ctx.arc(p[0], p[1], rad, 0, 2 * Math.PI); ctx.fill(); }
+    });
+    slider.value = String(state.frame);
+    timeLabel.textContent = "t = " + D.times[state.frame].toFixed(3);
+  }
+  function tick(now) {
+    if (state.playing && count > 1) {
+      if (state.last !== null) {
+        state.acc += (now - state.last) / 1000 * 30 * Number(speedSelect.value);
+        const steps = Math.floor(state.acc);
+        if (steps > 0) { state.acc -= steps; state.frame = (state.frame + steps) % count; draw(); }
+      }
+      state.last = now;
+    } else { state.last = null; }
+    window.requestAnimationFrame(tick);
+  }
+  playButton.addEventListener("click", function () {
+    state.playing = !state.playing;
+    playButton.textContent = state.playing ? "Pause" : "Play";
+  });
+  slider.addEventListener("input", function () { state.frame = Number(slider.value); draw(); });
+  axesSelect.addEventListener("change", function () { state.axes = axesSelect.value.split(",").map(Number); draw(); });
+  projSelect.addEventListener("change", function () { state.perspective = projSelect.value === "perspective"; draw(); });
+  let drag = null;
+  canvas.addEventListener("pointerdown", function (e) { drag = [e.clientX, e.clientY]; canvas.setPointerCapture(e.pointerId); });
+  canvas.addEventListener("pointermove", function (e) {
+    if (!drag) return;
+    state.yaw += (e.clientX - drag[0]) * 0.01;
+    state.pitch = Math.max(-1.5, Math.min(1.5, state.pitch + (e.clientY - drag[1]) * 0.01));
+    drag = [e.clientX, e.clientY];
+    draw();
+  });
+  canvas.addEventListener("pointerup", function () { drag = null; });
+  function pixels() { return ctx.getImageData(0, 0, canvas.width, canvas.height).data; }
+  function nonBlank(d) {
+    let c = 0;
+    for (let i = 0; i < d.length; i += 4) if (d[i] < 250 || d[i + 1] < 250 || d[i + 2] < 250) c++;
+    return c;
+  }
+  if (selftest) {
+    state.playing = false;
+    state.frame = 0; draw();
+    const first = pixels();
+    state.frame = Math.floor((count - 1) / 2); draw();
+    const later = pixels();
+    let changed = 0;
+    for (let i = 0; i < first.length; i += 4) {
+      if (first[i] !== later[i] || first[i + 1] !== later[i + 1] || first[i + 2] !== later[i + 2]) changed++;
+    }
+    const pre = document.getElementById("selftest");
+    pre.textContent = JSON.stringify({ frames: count, nonblank_first: nonBlank(first), nonblank_later: nonBlank(later),
+                                       changed: changed, later_frame: state.frame, errors: errors });
+    pre.style.display = "block";
+  } else {
+    draw();
+    window.requestAnimationFrame(tick);
+  }
+})();
+</script>
+</body>
+</html>
+"##;

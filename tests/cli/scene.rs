@@ -1,0 +1,483 @@
+//! `rotorflow scene`: free flight under gravity against the exact parabola, a two-body
+//! spring keeping the linear momentum, the CSV and HTML files, the example scenes, and every
+//! kind of bad scene file refused with one line naming the key.
+
+use super::{floats, matrix, rotorflow};
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+
+/// Writes `text` as `scene.toml` in a new folder.
+fn scene_file(text: &str) -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("scene.toml");
+    std::fs::write(&path, text).unwrap();
+    (dir, path)
+}
+
+/// Runs `scene` in `dir` and checks that it succeeds.
+fn run_ok(dir: &Path, args: &[&str]) -> String {
+    let out = rotorflow()
+        .current_dir(dir)
+        .arg("scene")
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "rotorflow scene {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+fn read_json(path: &Path) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+const FREE_FLIGHT: &str = r#"
+dim = 4
+gravity = [0.5, 0.0, -1.0, -9.81]
+t_end = 2.0
+dt = 0.01
+
+[[body]]
+name = "cube"
+shape = "tesseract:1,1.2,1.5,2"
+mass = 3
+position = [1.0, -2.0, 0.5, 10.0]
+velocity = [1.0, 0.5, 0.0, 2.0]
+omega = [1.0, 0.0, 0.2, 0.0, 0.0, 0.5]
+"#;
+
+#[test]
+fn scene_free_flight_follows_the_parabola() {
+    let (dir, _) = scene_file(FREE_FLIGHT);
+    run_ok(
+        dir.path(),
+        &["scene.toml", "--samples", "21", "--out", "run.json"],
+    );
+    let json = read_json(&dir.path().join("run.json"));
+    for key in [
+        "dim",
+        "times",
+        "bodies",
+        "energy",
+        "momentum",
+        "angular_momentum",
+        "planes",
+    ] {
+        assert!(json.get(key).is_some(), "no key {key}");
+    }
+    assert_eq!(json["dim"], 4);
+    let times = floats(&json["times"]);
+    assert_eq!(times.len(), 21);
+    assert_eq!(times[0], 0.0);
+    assert_eq!(*times.last().unwrap(), 2.0);
+    let body = &json["bodies"][0];
+    let keys: Vec<&String> = body.as_object().unwrap().keys().collect();
+    for key in ["name", "position", "velocity", "attitude", "omega"] {
+        assert!(body.get(key).is_some(), "body lacks {key}: {keys:?}");
+    }
+    assert_eq!(body["name"], "cube");
+    let (x0, v0, g) = (
+        [1.0, -2.0, 0.5, 10.0],
+        [1.0, 0.5, 0.0, 2.0],
+        [0.5, 0.0, -1.0, -9.81],
+    );
+    let positions = matrix(&body["position"]);
+    let velocities = matrix(&body["velocity"]);
+    assert_eq!(positions.len(), 21);
+    for (k, t) in times.iter().enumerate() {
+        for i in 0..4 {
+            let exact = x0[i] + v0[i] * t + 0.5 * g[i] * t * t;
+            let got = positions[k][i];
+            assert!(
+                (got - exact).abs() <= 1e-12 * exact.abs().max(1.0),
+                "t = {t}, x{}: {got} vs {exact}",
+                i + 1
+            );
+            let v = v0[i] + g[i] * t;
+            assert!((velocities[k][i] - v).abs() <= 1e-12 * v.abs().max(1.0));
+        }
+        // The attitude is a 4 × 4 rotation, as `simulate` writes it (rows).
+        let rows = matrix(&body["attitude"][k]);
+        assert_eq!(rows.len(), 4);
+        for a in 0..4 {
+            for b in 0..4 {
+                let dot: f64 = (0..4).map(|c| rows[c][a] * rows[c][b]).sum();
+                let want = if a == b { 1.0 } else { 0.0 };
+                assert!((dot - want).abs() < 1e-9, "QᵀQ[{a}][{b}] = {dot}");
+            }
+        }
+        assert_eq!(floats(&body["omega"][k]).len(), 6);
+    }
+    // Energy is kept by the splitting; momentum changes by m g t.
+    let energy = floats(&json["energy"]);
+    assert!((energy[20] - energy[0]).abs() <= 1e-6 * energy[0].abs());
+    let p = matrix(&json["momentum"]);
+    for i in 0..4 {
+        let want = 3.0 * (v0[i] + g[i] * 2.0);
+        assert!((p[20][i] - want).abs() <= 1e-12 * want.abs().max(1.0));
+    }
+}
+
+#[test]
+fn scene_rk4_free_flight_follows_the_parabola() {
+    let text = FREE_FLIGHT.replace("dt = 0.01", "dt = 0.01\nintegrator = \"rk4\"");
+    let (dir, _) = scene_file(&text);
+    run_ok(
+        dir.path(),
+        &["scene.toml", "--times", "0,0.5,1.25", "--out", "run.json"],
+    );
+    let json = read_json(&dir.path().join("run.json"));
+    assert_eq!(floats(&json["times"]), vec![0.0, 0.5, 1.25]);
+    let positions = matrix(&json["bodies"][0]["position"]);
+    let t = 1.25;
+    let exact = 10.0 + 2.0 * t - 0.5 * 9.81 * t * t;
+    assert!((positions[2][3] - exact).abs() <= 1e-12 * exact.abs());
+}
+
+const TWO_BODIES: &str = r#"
+dim = 3
+t_end = 3.0
+dt = 0.005
+
+[[body]]
+name = "a"
+shape = "cuboid:0.5,0.3,0.2"
+mass = 2.0
+position = [-1.0, 0.0, 0.0]
+velocity = [0.0, 0.3, 0.1]
+omega = [0.4, -0.2, 1.0]
+
+[[body]]
+name = "b"
+shape = "ellipsoid:0.3,0.4,0.5"
+position = [1.5, 0.2, 0.0]
+velocity = [-0.2, 0.0, 0.0]
+attitude = [0.0, -1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0]
+
+[[spring]]
+body = "a"
+point = [0.5, 0.3, 0.2]
+other = "b"
+other_point = [0.0, 0.0, 0.5]
+stiffness = 20.0
+rest_length = 1.0
+damping = 0.3
+"#;
+
+#[test]
+fn scene_two_body_spring_keeps_the_linear_momentum() {
+    let (dir, _) = scene_file(TWO_BODIES);
+    run_ok(dir.path(), &["scene.toml", "--out", "run.json"]);
+    let json = read_json(&dir.path().join("run.json"));
+    let p = matrix(&json["momentum"]);
+    assert!(p.len() > 100);
+    for row in &p {
+        for i in 0..3 {
+            assert!(
+                (row[i] - p[0][i]).abs() <= 1e-12 * p[0][i].abs().max(1.0),
+                "{row:?} vs {:?}",
+                p[0]
+            );
+        }
+    }
+    // The spring pulled the bodies: their velocities changed.
+    let v = matrix(&json["bodies"][0]["velocity"]);
+    assert!((v.last().unwrap()[0] - v[0][0]).abs() > 1e-3);
+    // No output file means a summary on standard output.
+    let text = run_ok(dir.path(), &["scene.toml", "--samples", "5"]);
+    assert!(
+        text.contains("energy") && text.contains("final positions"),
+        "{text}"
+    );
+    assert!(text.contains("  a: (") && text.contains("  b: ("), "{text}");
+    assert!(!text.contains("NaN"), "{text}");
+}
+
+#[test]
+fn scene_writes_csv_per_body_and_html() {
+    let (dir, _) = scene_file(TWO_BODIES);
+    let out = run_ok(
+        dir.path(),
+        &[
+            "scene.toml",
+            "--samples",
+            "11",
+            "--csv",
+            "csv",
+            "--html",
+            "anim.html",
+            "--out",
+            "run.json",
+        ],
+    );
+    assert!(out.is_empty(), "{out}");
+    let json = read_json(&dir.path().join("run.json"));
+    let a = std::fs::read_to_string(dir.path().join("csv/a.csv")).unwrap();
+    let lines: Vec<&str> = a.lines().collect();
+    assert_eq!(lines.len(), 12);
+    assert_eq!(
+        lines[0],
+        "t,x1,x2,x3,v1,v2,v3,R11,R12,R13,R21,R22,R23,R31,R32,R33,w12,w13,w23"
+    );
+    let last: Vec<f64> = lines[11].split(',').map(|x| x.parse().unwrap()).collect();
+    assert_eq!(last[0], 3.0);
+    assert_eq!(
+        &last[1..4],
+        floats(&json["bodies"][0]["position"][10]).as_slice()
+    );
+    assert!(dir.path().join("csv/b.csv").exists());
+    let system = std::fs::read_to_string(dir.path().join("csv/system.csv")).unwrap();
+    assert!(
+        system.starts_with("t,energy,p1,p2,p3,L12,L13,L23\n"),
+        "{system}"
+    );
+    assert_eq!(system.lines().count(), 12);
+    let html = std::fs::read_to_string(dir.path().join("anim.html")).unwrap();
+    assert!(html.starts_with("<!DOCTYPE html>"));
+    assert!(html.contains("\"bodies\"") && html.contains("\"name\":\"b\""));
+    assert!(!html.contains("http://") && !html.contains("https://"));
+}
+
+#[test]
+fn scene_check_accepts_planes_and_writes_nothing() {
+    let text = TWO_BODIES.to_string() + "\n[[plane]]\nnormal = [0, 0, 1]\noffset = -2\n";
+    let (dir, _) = scene_file(&text);
+    // `--check` reads the planes, builds the system and writes nothing.
+    let out = run_ok(dir.path(), &["scene.toml", "--check"]);
+    assert!(out.contains("1 plane"), "{out}");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+}
+
+#[test]
+fn scene_example_files_are_valid() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let mut count = 0;
+    for entry in std::fs::read_dir(&root).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            let out = rotorflow()
+                .args(["scene", "--check"])
+                .arg(&path)
+                .output()
+                .unwrap();
+            assert!(
+                out.status.success(),
+                "{}: {}",
+                path.display(),
+                String::from_utf8_lossy(&out.stderr)
+            );
+            count += 1;
+        }
+    }
+    assert!(count >= 3, "only {count} example scenes");
+}
+
+#[test]
+fn scene_example_with_springs_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/tesseract-spring.toml");
+    let out = rotorflow()
+        .current_dir(dir.path())
+        .arg("scene")
+        .arg(&file)
+        .args(["--samples", "11", "--out", "run.json"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json = read_json(&dir.path().join("run.json"));
+    let energy = floats(&json["energy"]);
+    // The undamped spring and gravity are conservative: the splitting keeps the energy.
+    for e in &energy {
+        assert!((e - energy[0]).abs() < 1e-2 * energy[0].abs(), "{energy:?}");
+    }
+}
+
+/// Runs `scene` on `text` with every output asked for and checks the refusal: exit code 2,
+/// one line on standard error holding each of `needles`, nothing written.
+fn refuses(text: &str, needles: &[&str]) {
+    let (dir, _) = scene_file(text);
+    let out = rotorflow()
+        .current_dir(dir.path())
+        .args([
+            "scene",
+            "scene.toml",
+            "--out",
+            "run.json",
+            "--csv",
+            "csv",
+            "--html",
+            "run.html",
+        ])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{text}\n{err}");
+    assert_eq!(err.lines().count(), 1, "not one line: {err}");
+    for needle in needles {
+        assert!(err.contains(needle), "{err:?} lacks {needle:?}");
+    }
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(out.stdout.is_empty());
+    let left: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .filter(|n| n != "scene.toml")
+        .collect();
+    assert!(left.is_empty(), "files written: {left:?}");
+}
+
+const HEAD: &str = "dim = 4\nt_end = 1.0\ndt = 0.1\n";
+const CUBE: &str = "[[body]]\nname = \"cube\"\nshape = \"tesseract:1,1,1,1\"\n";
+
+macro_rules! bad_scenes {
+    ($($name:ident => ($text:expr, [$($needle:expr),+]))*) => {
+        $( #[test] fn $name() { refuses(&$text, &[$($needle),+]); } )*
+    };
+}
+
+bad_scenes! {
+    scene_refuses_unknown_top_key => (format!("{HEAD}colour = 1\n{CUBE}"), ["scene.toml", "unknown key `colour`"])
+    scene_refuses_unknown_body_key => (format!("{HEAD}{CUBE}colour = 1\n"), ["body \"cube\"", "unknown key `colour`"])
+    scene_refuses_unknown_plane_key => (format!("{HEAD}{CUBE}[[plane]]\nnormal = [0,0,0,1]\nheight = 2\n"), ["plane 1", "unknown key `height`"])
+    scene_refuses_unknown_spring_key => (format!("{HEAD}{CUBE}[[spring]]\nbody = \"cube\"\nanchor = [0,0,0,0]\nstiffness = 1\nk = 2\n"), ["spring 1", "unknown key `k`"])
+    scene_refuses_unknown_joint_key => (format!("{HEAD}{CUBE}[[joint]]\nbody = \"cube\"\nanchor = [0,0,0,0]\nstiff = true\n"), ["joint 1", "unknown key `stiff`"])
+    scene_refuses_wrong_position_length => (format!("{HEAD}{CUBE}position = [1, 2, 3]\n"), ["body \"cube\": position has 3 components, expected 4 (dim = 4)"])
+    scene_refuses_wrong_velocity_length => (format!("{HEAD}{CUBE}velocity = [1, 2, 3, 4, 5]\n"), ["body \"cube\"", "velocity has 5 components, expected 4"])
+    scene_refuses_wrong_omega_length => (format!("{HEAD}{CUBE}omega = [1, 2, 3, 4]\n"), ["body \"cube\"", "omega has 4 components, expected 6"])
+    scene_refuses_wrong_gravity_length => (format!("{HEAD}gravity = [0, -9.81]\n{CUBE}"), ["gravity has 2 components, expected 4"])
+    scene_refuses_wrong_anchor_length => (format!("{HEAD}{CUBE}[[spring]]\nbody = \"cube\"\nanchor = [0,0]\nstiffness = 1\n"), ["spring 1", "anchor has 2 components"])
+    scene_refuses_zero_mass => (format!("{HEAD}{CUBE}mass = 0\n"), ["body \"cube\"", "mass must be > 0"])
+    scene_refuses_negative_mass => (format!("{HEAD}{CUBE}mass = -2.5\n"), ["body \"cube\"", "mass must be > 0, got -2.5"])
+    scene_refuses_mass_twice => (format!("{HEAD}[[body]]\nname = \"cube\"\nshape = \"cuboid:1,1,1,1+mass=2\"\nmass = 3\n"), ["body \"cube\"", "mass"])
+    scene_refuses_spring_to_a_missing_body => (format!("{HEAD}{CUBE}[[spring]]\nbody = \"ball\"\nanchor = [0,0,0,0]\nstiffness = 1\n"), ["spring 1", "body = \"ball\" names no body"])
+    scene_refuses_spring_to_a_missing_other_body => (format!("{HEAD}{CUBE}[[spring]]\nbody = \"cube\"\nother = \"ball\"\nstiffness = 1\n"), ["spring 1", "other = \"ball\" names no body"])
+    scene_refuses_joint_to_a_missing_body => (format!("{HEAD}{CUBE}[[joint]]\nbody = \"cube\"\nother = \"bar\"\n"), ["joint 1", "other = \"bar\" names no body"])
+    scene_refuses_joint_with_anchor_and_other => (format!("{HEAD}{CUBE}[[body]]\nname = \"bar\"\nshape = \"cuboid:1,1,1,1\"\n[[joint]]\nbody = \"cube\"\nother = \"bar\"\nanchor = [0,0,0,0]\n"), ["joint 1", "anchor", "other"])
+    scene_refuses_spring_without_other_end => (format!("{HEAD}{CUBE}[[spring]]\nbody = \"cube\"\nstiffness = 1\n"), ["spring 1", "missing key `anchor` or `other`"])
+    scene_refuses_nan => (format!("{HEAD}{CUBE}velocity = [nan, 0, 0, 0]\n"), ["body \"cube\"", "velocity component 1 is NaN"])
+    scene_refuses_infinite_dt => ("dim = 4\nt_end = 1.0\ndt = inf\n".to_string() + CUBE, ["dt is inf"])
+    scene_refuses_nan_stiffness => (format!("{HEAD}{CUBE}[[spring]]\nbody = \"cube\"\nanchor = [0,0,0,0]\nstiffness = nan\n"), ["spring 1", "stiffness is NaN"])
+    scene_refuses_missing_dim => ("t_end = 1.0\ndt = 0.1\n".to_string() + CUBE, ["missing key `dim`"])
+    scene_refuses_missing_t_end => ("dim = 4\ndt = 0.1\n".to_string() + CUBE, ["missing key `t_end`"])
+    scene_refuses_missing_dt => ("dim = 4\nt_end = 1\n".to_string() + CUBE, ["missing key `dt`"])
+    scene_refuses_missing_shape => (format!("{HEAD}[[body]]\nname = \"cube\"\n"), ["body \"cube\"", "missing key `shape`"])
+    scene_refuses_missing_name => (format!("{HEAD}[[body]]\nshape = \"tesseract:1,1,1,1\"\n"), ["body 1", "missing key `name`"])
+    scene_refuses_missing_stiffness => (format!("{HEAD}{CUBE}[[spring]]\nbody = \"cube\"\nanchor = [0,0,0,0]\n"), ["spring 1", "missing key `stiffness`"])
+    scene_refuses_missing_plane_normal => (format!("{HEAD}{CUBE}[[plane]]\noffset = 1\n"), ["plane 1", "missing key `normal`"])
+    scene_refuses_no_body => (format!("{HEAD}"), ["no [[body]]"])
+    scene_refuses_bad_spec => (format!("{HEAD}[[body]]\nname = \"cube\"\nshape = \"blob:1,2\"\n"), ["body \"cube\"", "shape", "unknown kind `blob`"])
+    scene_refuses_spec_of_another_dimension => (format!("{HEAD}[[body]]\nname = \"cube\"\nshape = \"cuboid:1,2,3\"\n"), ["body \"cube\"", "shape", "3 dimensions, expected 4"])
+    scene_refuses_duplicate_names => (format!("{HEAD}{CUBE}{CUBE}"), ["body 2", "\"cube\" is used twice"])
+    scene_refuses_reflection_attitude => (format!("{HEAD}{CUBE}attitude = [[0,1,0,0],[1,0,0,0],[0,0,1,0],[0,0,0,1]]\n"), ["body \"cube\"", "attitude is not a rotation", "det"])
+    scene_refuses_skewed_attitude => (format!("{HEAD}{CUBE}attitude = [1,0.1,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]\n"), ["body \"cube\"", "attitude is not a rotation"])
+    scene_refuses_attitude_of_wrong_size => (format!("{HEAD}{CUBE}attitude = [1,0,0, 0,1,0, 0,0,1]\n"), ["body \"cube\"", "attitude has 9 entries, expected 16"])
+    scene_refuses_zero_normal => (format!("{HEAD}{CUBE}[[plane]]\nnormal = [0,0,0,0]\n"), ["plane 1", "normal is zero"])
+    scene_refuses_restitution_above_one => (format!("{HEAD}{CUBE}[[plane]]\nnormal = [0,0,0,1]\nrestitution = 1.5\n"), ["plane 1", "restitution must be in [0, 1]"])
+    scene_refuses_negative_friction => (format!("{HEAD}{CUBE}[[plane]]\nnormal = [0,0,0,1]\nfriction = -1\n"), ["plane 1", "friction must be ≥ 0"])
+    scene_refuses_negative_damping => (format!("{HEAD}{CUBE}[[spring]]\nbody = \"cube\"\nanchor = [0,0,0,0]\nstiffness = 1\ndamping = -1\n"), ["spring 1", "damping must be ≥ 0"])
+    scene_refuses_negative_t_end => ("dim = 4\nt_end = -1\ndt = 0.1\n".to_string() + CUBE, ["t_end must be > 0"])
+    scene_refuses_small_dim => ("dim = 1\nt_end = 1\ndt = 0.1\n".to_string() + CUBE, ["dim must be an integer from 2"])
+    scene_refuses_unknown_integrator => (format!("{HEAD}integrator = \"euler\"\n{CUBE}"), ["integrator `euler` is unknown"])
+    scene_refuses_rk4_with_joints => (format!("{HEAD}integrator = \"rk4\"\n{CUBE}[[joint]]\nbody = \"cube\"\nanchor = [0,0,0,0]\n"), ["rk4", "splitting"])
+    scene_refuses_wrong_type => (format!("{HEAD}{CUBE}position = \"up\"\n"), ["body \"cube\"", "position must be a list of numbers"])
+    scene_refuses_toml_syntax_errors => (format!("{HEAD}{CUBE}position = [1, 2\n"), ["scene.toml:"])
+    scene_refuses_a_body_jointed_to_itself => (format!("{HEAD}{CUBE}[[joint]]\nbody = \"cube\"\nother = \"cube\"\n"), ["joint 1", "the body itself"])
+}
+
+#[test]
+fn scene_refuses_bad_options_before_running() {
+    let (dir, _) = scene_file(&format!("{HEAD}{CUBE}"));
+    for (args, needle) in [
+        (
+            vec!["--out", "run.txt"],
+            "--out `run.txt`: expected a file name ending in .json",
+        ),
+        (vec!["--html", "run.svg"], "--html `run.svg`"),
+        (vec!["--times", "0,2"], "beyond t_end 1"),
+        (vec!["--samples", "1"], "--samples must be between 2"),
+    ] {
+        let out = rotorflow()
+            .current_dir(dir.path())
+            .args(["scene", "scene.toml"])
+            .args(&args)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains(needle), "{err:?} lacks {needle:?}");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+    let out = rotorflow()
+        .arg("scene")
+        .arg(dir.path().join("missing.toml"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot read the scene file"));
+}
+
+#[test]
+fn scene_failed_run_exits_1_and_writes_nothing() {
+    // A stiff spring stepped far too coarsely blows up.
+    let text = "dim = 3\nt_end = 1000\ndt = 1\n[[body]]\nname = \"a\"\nshape = \"cuboid:1,1,1\"\n\
+         position = [3, 0, 0]\n[[spring]]\nbody = \"a\"\npoint = [1, 1, 1]\nanchor = [0, 0, 0]\n\
+         stiffness = 1e6\n";
+    let (dir, _) = scene_file(text);
+    let out = rotorflow()
+        .current_dir(dir.path())
+        .args([
+            "scene",
+            "scene.toml",
+            "--out",
+            "run.json",
+            "--csv",
+            "csv",
+            "--html",
+            "a.html",
+        ])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(!err.contains("NaN"), "{err}");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+}
+
+#[test]
+fn scene_html_draws_and_animates_in_headless_chromium() {
+    let Some(browser) = super::render::chromium() else {
+        return;
+    };
+    let (dir, _) = scene_file(TWO_BODIES);
+    run_ok(
+        dir.path(),
+        &["scene.toml", "--samples", "31", "--html", "a.html"],
+    );
+    let url = format!("file://{}#selftest", dir.path().join("a.html").display());
+    let out = super::render::chromium_command(&browser, &dir.path().join("profile"))
+        .arg("--dump-dom")
+        .arg(url)
+        .output()
+        .expect("chromium runs");
+    let dom = String::from_utf8_lossy(&out.stdout);
+    let start = dom
+        .find("<pre id=\"selftest\"")
+        .unwrap_or_else(|| panic!("no selftest in DOM:\n{dom}"));
+    let json_start = start + dom[start..].find('>').unwrap() + 1;
+    let json_end = json_start + dom[json_start..].find("</pre>").unwrap();
+    let report: Value = serde_json::from_str(&dom[json_start..json_end])
+        .unwrap_or_else(|e| panic!("selftest did not run ({e}): {}", &dom[start..json_end]));
+    assert_eq!(report["frames"].as_u64(), Some(31), "{report}");
+    assert!(report["nonblank_first"].as_u64().unwrap() > 500, "{report}");
+    assert!(report["changed"].as_u64().unwrap() > 100, "{report}");
+    assert_eq!(report["errors"], serde_json::json!([]), "{report}");
+}
