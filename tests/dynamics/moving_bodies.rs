@@ -311,3 +311,60 @@ fn spring_force_and_torque_signs_in_3d() {
             .is_err()
     );
 }
+
+/// The placement converts both ways: the homogeneous matrix maps a body point (r, 1) to its
+/// space position (x + Q r, 1), the motor moves the point as the matrix does, and building
+/// the body back from either gives the same position and attitude, N = 2 … 6.
+#[test]
+fn placements_convert_to_and_from_matrices_and_motors() {
+    let mut r = rng(1505);
+    for n in 2..=6 {
+        let rotation = random_body(&mut r, n);
+        let (x, v) = (random_vector(&mut r, n, 2.0), random_vector(&mut r, n, 1.0));
+        let body = moving(rotation.clone(), 1.7, x.clone(), v.clone());
+        let h = body.homogeneous_matrix();
+        let point = random_vector(&mut r, n, 1.0);
+        let mut column = nalgebra::DVector::zeros(n + 1);
+        column.as_mut_slice()[..n].copy_from_slice(point.as_slice());
+        column[n] = 1.0;
+        let moved = &h * column;
+        let want = body.point_position(&point);
+        for i in 0..n {
+            assert!((moved[i] - want.as_slice()[i]).abs() <= 1e-14, "N = {n}");
+        }
+        assert!((moved[n] - 1.0).abs() == 0.0);
+        let motor = body.motor().unwrap();
+        assert!(
+            (motor.to_matrix() - &h).abs().max() <= 1e-14,
+            "N = {n}: motor ≠ matrix"
+        );
+        let omega = body.omega();
+        let inertia = rotation.inertia().clone();
+        for back in [
+            MovingBody::from_homogeneous_matrix(1.7, inertia.clone(), &h, &v, &omega).unwrap(),
+            MovingBody::from_motor(1.7, inertia.clone(), &motor, &v, &omega).unwrap(),
+        ] {
+            assert!(rel(back.position(), &x) <= 1e-15, "N = {n}");
+            assert!(
+                (back.homogeneous_matrix() - &h).abs().max() <= 1e-14,
+                "N = {n}"
+            );
+            assert!((&back.omega() - &omega).max_abs() <= 1e-14, "N = {n}");
+            assert!(rel(&back.velocity(), &v) <= 1e-15, "N = {n}");
+        }
+    }
+    // A matrix that is not a placement is refused.
+    let mut bad = nalgebra::DMatrix::identity(4, 4);
+    bad[(3, 0)] = 0.5;
+    let inertia = InertiaMap::from_principal_second_moments(&[1.0, 2.0, 3.0]).unwrap();
+    assert!(
+        MovingBody::from_homogeneous_matrix(
+            1.0,
+            inertia,
+            &bad,
+            &Vector::zero(3),
+            &Bivector::zero(3)
+        )
+        .is_err()
+    );
+}

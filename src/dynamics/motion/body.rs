@@ -99,6 +99,41 @@ impl MovingBody {
         })
     }
 
+    /// Returns the body placed by the homogeneous matrix `placement` = [[Q, x], [0, 1]]
+    /// (own axes → space: body point r at x + Q r), moving with `velocity` and turning with
+    /// `omega` (own axes): the inverse of [`MovingBody::homogeneous_matrix`].
+    ///
+    /// # Errors
+    /// [`DynamicsError::Algebra`] when the matrix is not square, not finite, its last row is
+    /// not (0, …, 0, 1) or Q is not a rotation; otherwise as [`MovingBody::new`].
+    pub fn from_homogeneous_matrix(
+        mass: f64,
+        inertia: InertiaMap,
+        placement: &DMatrix<f64>,
+        velocity: &Vector,
+        omega: &Bivector,
+    ) -> Result<Self, DynamicsError> {
+        let motor = Motor::from_matrix(placement)?;
+        Self::from_motor(mass, inertia, &motor, velocity, omega)
+    }
+
+    /// Returns the body placed by the motor `placement` of projective GA (the rotation of
+    /// the own axes, then the translation to the centre of mass), moving with `velocity` and
+    /// turning with `omega` (own axes): the inverse of [`MovingBody::motor`].
+    ///
+    /// # Errors
+    /// As [`MovingBody::new`].
+    pub fn from_motor(
+        mass: f64,
+        inertia: InertiaMap,
+        placement: &Motor,
+        velocity: &Vector,
+        omega: &Bivector,
+    ) -> Result<Self, DynamicsError> {
+        let position = Vector::from_components(&placement.translation())?;
+        Self::new(mass, inertia, placement.rotor(), &position, velocity, omega)
+    }
+
     /// Returns the dimension N.
     pub fn dim(&self) -> usize {
         self.rotation.dim()

@@ -210,8 +210,8 @@ pub(crate) fn cholesky_solve(a: &mut [f64], n: usize, b: &mut [f64]) -> bool {
 pub(crate) struct ContactRow {
     pub body: usize,
     pub half_space: usize,
-    /// The candidate's number on its body and half-space.
-    index: usize,
+    /// The candidate's number on its body and half-space (from 1).
+    pub index: usize,
     /// The point in own axes and its offset from the centre of mass in space.
     pub point: Vector,
     pub r: Vector,
@@ -219,8 +219,10 @@ pub(crate) struct ContactRow {
     pub target: f64,
     pub normal_impulse: f64,
     pub friction_impulse: Vector,
+    /// The normal impulse added in the free flight to keep the point out (position level).
+    pub position_impulse: f64,
     /// nᵀ K n and the tangent block of K (set when the solve starts).
-    knn: f64,
+    pub knn: f64,
     kt: Dense,
     eigenvalues: Dense,
     eigenvectors: Dense,
@@ -363,6 +365,7 @@ impl Solver {
                             target,
                             normal_impulse: 0.0,
                             friction_impulse: Vector::zero(n),
+                            position_impulse: 0.0,
                             knn: 0.0,
                             kt: Dense::new(),
                             eigenvalues: Dense::new(),

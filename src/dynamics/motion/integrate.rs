@@ -60,6 +60,7 @@ pub struct MotionSplitting {
     resting_speed: Vec<f64>,
     active: Vec<bool>,
     gaps: Vec<Vector>,
+    distances: Vec<f64>,
 }
 
 impl Default for MotionSplitting {
@@ -73,6 +74,7 @@ impl Default for MotionSplitting {
             resting_speed: Vec::new(),
             active: Vec::new(),
             gaps: Vec::new(),
+            distances: Vec::new(),
         }
     }
 }
@@ -173,15 +175,19 @@ impl MotionSplitting {
         self.solver.solve_velocities(bodies, half_spaces, contacts);
     }
 
-    /// Free flight with the joints closed at its end (RATTLE's position step).
+    /// Free flight with the joints closed and the contacts of the step out of their
+    /// half-spaces at its end (RATTLE's position step): the first half kick gets the
+    /// impulses (joint impulses of any sign, normal contact impulses ≥ 0) that put every
+    /// joint's ends together and every contact point on or above its plane after the
+    /// flight, found by Newton's method with the Jacobian h K of the impulses.
     fn constrained_drift(
         &mut self,
         system: &mut System,
         t: f64,
         h: f64,
     ) -> Result<(), DynamicsError> {
-        let (bodies, _, _, joints, _) = system.parts_mut();
-        if joints.is_empty() {
+        let (bodies, shapes, half_spaces, joints, _) = system.parts_mut();
+        if joints.is_empty() && self.solver.contacts.is_empty() {
             return self.drift(bodies, t, h);
         }
         let size = bodies
@@ -189,27 +195,72 @@ impl MotionSplitting {
             .map(|b| b.position().norm())
             .chain(joints.iter().map(|j| j.point.norm()))
             .fold(1.0, f64::max);
+        for row in &mut self.solver.contacts {
+            row.position_impulse = 0.0;
+        }
         save(bodies, &mut self.pre_drift);
+        let mut worst_gap = 0.0;
         for _ in 0..50 {
             self.drift(bodies, t, h)?;
             self.gaps.clear();
             self.gaps
                 .extend(joints.iter().map(|j| JointRow::gap(j, bodies)));
-            let worst = self.gaps.iter().map(Vector::max_abs).fold(0.0, f64::max);
-            if worst <= 1e-13 * size {
+            worst_gap = self.gaps.iter().map(Vector::max_abs).fold(0.0, f64::max);
+            self.distances.clear();
+            let mut contacts_hold = true;
+            for row in &self.solver.contacts {
+                let shape = &shapes[row.body];
+                let d = candidate_distance(
+                    &bodies[row.body],
+                    shape,
+                    &half_spaces[row.half_space],
+                    row.index,
+                );
+                let tolerance = 1e-12 * shape.radius();
+                contacts_hold &= d >= -tolerance && (row.position_impulse == 0.0 || d <= tolerance);
+                self.distances.push(d);
+            }
+            if worst_gap <= 1e-13 * size && contacts_hold {
                 return Ok(());
             }
             restore(bodies, &self.pre_drift);
-            self.solver.find_joints(bodies, joints);
-            let gaps = std::mem::take(&mut self.gaps);
-            self.solver.solve_joints_dense(bodies, &gaps, h);
-            self.gaps = gaps;
+            if !joints.is_empty() {
+                self.solver.find_joints(bodies, joints);
+                let gaps = std::mem::take(&mut self.gaps);
+                self.solver.solve_joints_dense(bodies, &gaps, h);
+                self.gaps = gaps;
+            }
+            // Contacts: one Newton step each, shared among the contacts of a body that push.
+            let pushing = |k: usize, rows: &[super::constraint::ContactRow]| {
+                self.distances[k] < 0.0 || rows[k].position_impulse > 0.0
+            };
+            for k in 0..self.solver.contacts.len() {
+                let rows = &self.solver.contacts;
+                if !pushing(k, rows) {
+                    continue;
+                }
+                let body = rows[k].body;
+                let sharing = (0..rows.len())
+                    .filter(|&i| rows[i].body == body && pushing(i, rows))
+                    .count() as f64;
+                let row = &mut self.solver.contacts[k];
+                let d = self.distances[k];
+                let want = (row.position_impulse - d / (h * row.knn * sharing)).max(0.0);
+                let dl = want - row.position_impulse;
+                row.position_impulse = want;
+                let nrm = half_spaces[row.half_space].normal();
+                push(&mut bodies[row.body], &row.r, &(nrm * dl));
+            }
             save(bodies, &mut self.pre_drift);
+        }
+        if worst_gap <= 1e-13 * size {
+            // Contacts that did not settle within the iterations are lifted out after.
+            return Ok(());
         }
         Err(DynamicsError::SolverDidNotConverge {
             time: t,
             iterations: 50,
-            residual: self.gaps.iter().map(Vector::max_abs).fold(0.0, f64::max) / size,
+            residual: worst_gap / size,
         })
     }
 
@@ -351,6 +402,36 @@ fn own_axes_matrix(b: &MovingBody) -> SmallVec<[f64; 64]> {
     let mut q = SmallVec::from_elem(0.0, n * n);
     b.attitude().write_matrix(&mut q);
     q
+}
+
+/// The distance from half-space `plane` of candidate `index` (from 1) of a body's shape.
+fn candidate_distance(
+    b: &MovingBody,
+    shape: &ContactShape,
+    plane: &super::HalfSpace,
+    index: usize,
+) -> f64 {
+    let q = own_axes_matrix(b);
+    let base = plane.distance(b.position());
+    let (mut k, mut out) = (0, f64::INFINITY);
+    shape.candidates(&q, plane.normal(), |_, r| {
+        k += 1;
+        if k == index {
+            out = base + plane.normal().dot(r);
+        }
+    });
+    out
+}
+
+/// Gives body `b` the impulse `j` (space) at offset `r` (space) from its centre of mass.
+fn push(b: &mut MovingBody, r: &Vector, j: &Vector) {
+    let (_, p, rotation) = b.state_mut();
+    *p += j;
+    let dl = rotation
+        .principal_frame_attitude()
+        .inverse_rotate_bivector(&r.wedge(j));
+    let (_, l) = rotation.state_mut();
+    *l += &dl;
 }
 
 /// Lifts every body that sinks into a half-space back onto its plane, along the normal.
