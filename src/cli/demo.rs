@@ -7,8 +7,11 @@
 //! - `tesseract_frames.svg`: a strip of frames of the tumbling tesseract;
 //! - `sweep.svg` and `sweep.csv`: an observed 3D frequency against the hypothetical 4D
 //!   parameter κ (section 7.2), with the paper's eq. (119) frequency beside it;
-//! - `summary.md`: a table of the cases (numeric vs exact, drifts, timings) and of the
-//!   integrators on the tesseract.
+//! - `<scene>.html` and `energy_<scene>.svg`: three scene files of `scenes/` (a tesseract on
+//!   a spring, a 4D ball sliding into rolling, a 5-cell bouncing down a slope), each animated
+//!   and its energy and momenta plotted over time;
+//! - `summary.md`: a table of the cases (numeric vs exact, drifts, timings), of the
+//!   integrators on the tesseract, and of the scenes with their measured figures.
 
 use super::error::{CliError, CliResult};
 use super::exact::exact_report;
@@ -17,13 +20,19 @@ use super::motion::{
 };
 use super::output::{Progress, number, plane_names, write_atomic};
 use super::render::picture;
+use super::scene;
+use super::scene::format::Scene;
+use super::scene::run::Record;
 use super::simulate::{drift_plot, omega_plot};
 use super::spec::parse_body;
 use super::sweep::observables;
 use super::viz::Projection;
 use super::viz::plot::{PlotSpec, Series, line_plot, subscript};
+use super::viz::scene::up_axis;
 use clap::Args;
+use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
+use rotorflow::dynamics::motion::ContactShape;
 use rotorflow::dynamics::torques::Free;
 use rotorflow::dynamics::trajectory::even_times;
 use std::fmt::Write as _;
@@ -142,6 +151,11 @@ pub fn promised_files() -> Vec<String> {
         })
         .collect();
     files.extend(
+        SCENES
+            .iter()
+            .flat_map(|s| [format!("{}.html", s.name), format!("energy_{}.svg", s.name)]),
+    );
+    files.extend(
         [
             "tesseract_frames.svg",
             "sweep.svg",
@@ -171,20 +185,39 @@ pub fn run(args: &DemoArgs, quiet: bool) -> CliResult<()> {
     let dir = &args.output;
     std::fs::create_dir_all(dir)
         .map_err(|e| CliError::runtime(format!("cannot create `{}`: {e}", dir.display())))?;
-    let progress = Mutex::new(Progress::new((CASES.len() + 2) as u64, quiet, "demo"));
+    let progress = Mutex::new(Progress::new(
+        (CASES.len() + SCENES.len() + 2) as u64,
+        quiet,
+        "demo",
+    ));
     let step = || {
         if let Ok(mut p) = progress.lock() {
             p.advance(1);
         }
     };
-    let results: Vec<CaseResult> = CASES
-        .par_iter()
-        .map(|case| {
-            let r = run_case(case, dir);
-            step();
-            r
-        })
-        .collect::<CliResult<_>>()?;
+    let (results, scenes) = rayon::join(
+        || {
+            CASES
+                .par_iter()
+                .map(|case| {
+                    let r = run_case(case, dir);
+                    step();
+                    r
+                })
+                .collect::<CliResult<Vec<CaseResult>>>()
+        },
+        || {
+            SCENES
+                .par_iter()
+                .map(|s| {
+                    let r = run_scene(s, dir);
+                    step();
+                    r
+                })
+                .collect::<CliResult<Vec<SceneResult>>>()
+        },
+    );
+    let (results, scenes) = (results?, scenes?);
     let integrators = integrator_table()?;
     step();
     let sweep_text = sweep(dir)?;
@@ -246,6 +279,34 @@ pub fn run(args: &DemoArgs, quiet: bool) -> CliResult<()> {
     md.push_str(&integrators);
     let _ = writeln!(md, "\n## Sweep\n");
     md.push_str(&sweep_text);
+    let _ = writeln!(md, "\n## Scenes\n");
+    let _ = writeln!(
+        md,
+        "Scene files of `scenes/`, run as `rotorflow scene FILE` runs them: bodies that move and \
+         turn under gravity, springs and contact with planes (Coulomb friction, restitution), \
+         with the symplectic Strang splitting of `dynamics::motion`. The animations show the \
+         vertical axis x₄ upwards; the plots show the energy and the momenta over time.\n"
+    );
+    let _ = writeln!(
+        md,
+        "| scene | file | T | steps | time (s) | measured | files |"
+    );
+    let _ = writeln!(md, "|---|---|---|---|---|---|---|");
+    for (s, r) in SCENES.iter().zip(&scenes) {
+        let t_end = scene::format::parse(s.text, s.file)
+            .map(|sc| number(sc.t_end))
+            .unwrap_or_default();
+        let _ = writeln!(
+            md,
+            "| {} | `{}` | {t_end} | {} | {:.3} | {} | [animation]({n}.html), [energy and momenta](energy_{n}.svg) |",
+            s.title,
+            s.file,
+            r.steps,
+            r.seconds,
+            r.figures,
+            n = s.name
+        );
+    }
     let _ = writeln!(
         md,
         "\nAlso: [tesseract_frames.svg](tesseract_frames.svg), a strip of frames of the tumbling tesseract.\n\nTotal time: {:.1} s.\n",
@@ -493,4 +554,278 @@ fn sweep(dir: &Path) -> CliResult<String> {
          oscillate at the frequency of the paper's eq. (119); the largest relative difference between the \
          observed frequency (from mean crossings) and eq. (119) is {worst:.1e}.\n"
     ))
+}
+
+/// One scene of the demo: a scene file of `scenes/`, embedded so that the demo runs from any
+/// folder.
+struct DemoScene {
+    /// The stem of its files: `<name>.html` and `energy_<name>.svg`.
+    name: &'static str,
+    title: &'static str,
+    /// The file in the repository, for the summary.
+    file: &'static str,
+    text: &'static str,
+    samples: usize,
+    /// The measured figures, for the summary.
+    figures: fn(&Scene, &Record) -> String,
+}
+
+const SCENES: [DemoScene; 3] = [
+    DemoScene {
+        name: "tesseract_spring",
+        title: "4D tesseract hanging by a corner from a spring",
+        file: "scenes/tesseract-spring.toml",
+        text: include_str!("../../scenes/tesseract-spring.toml"),
+        samples: 501,
+        figures: spring_figures,
+    },
+    DemoScene {
+        name: "ball_rolling",
+        title: "solid 4D ball sliding into rolling",
+        file: "scenes/ball-rolling-4d.toml",
+        text: include_str!("../../scenes/ball-rolling-4d.toml"),
+        samples: 151,
+        figures: rolling_figures,
+    },
+    DemoScene {
+        name: "five_cell_slope",
+        title: "5-cell bouncing down a slope",
+        file: "scenes/five-cell-slope.toml",
+        text: include_str!("../../scenes/five-cell-slope.toml"),
+        samples: 251,
+        figures: slope_figures,
+    },
+];
+
+/// The result of a scene of the demo.
+struct SceneResult {
+    steps: usize,
+    seconds: f64,
+    figures: String,
+}
+
+/// Runs a scene of the demo and writes its animation and its plot of the energy and the
+/// momenta.
+fn run_scene(s: &DemoScene, dir: &Path) -> CliResult<SceneResult> {
+    let scene = scene::format::parse(s.text, s.file)?;
+    let times = even_times(scene.t_end, s.samples);
+    let clock = Instant::now();
+    let mut system = scene::run::build_system(&scene, s.file)?;
+    let mut silent = Progress::new(0, true, "");
+    let record = scene::run::run(&scene, &mut system, &times, &mut silent)?;
+    let seconds = clock.elapsed().as_secs_f64();
+    let html = scene::output::html(&scene, &record, s.title);
+    write_atomic(&dir.join(format!("{}.html", s.name)), html.as_bytes())?;
+    let norms = |rows: &[Vec<f64>]| -> Vec<(f64, f64)> {
+        record
+            .times
+            .iter()
+            .zip(rows)
+            .map(|(t, v)| (*t, norm(v)))
+            .collect()
+    };
+    let series = vec![
+        Series {
+            name: "energy E".into(),
+            points: record
+                .times
+                .iter()
+                .copied()
+                .zip(record.energy.iter().copied())
+                .collect(),
+        },
+        Series {
+            name: "|p| (linear momentum)".into(),
+            points: norms(&record.momentum),
+        },
+        Series {
+            name: "|L| (angular momentum about the origin)".into(),
+            points: norms(&record.angular_momentum),
+        },
+    ];
+    let svg = line_plot(
+        &PlotSpec {
+            title: &format!("energy and momenta: {} ({})", s.title, s.file),
+            x_label: "time t",
+            y_label: "E, |p|, |L|",
+            log_y: false,
+            markers: false,
+        },
+        &series,
+    )
+    .map_err(|e| CliError::runtime(format!("cannot draw the plot: {e}")))?;
+    write_atomic(&dir.join(format!("energy_{}.svg", s.name)), svg.as_bytes())?;
+    Ok(SceneResult {
+        steps: record.steps,
+        seconds,
+        figures: (s.figures)(&scene, &record),
+    })
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// The largest relative change of the energy from t = 0 over the samples.
+fn energy_error(record: &Record) -> f64 {
+    let e0 = record.energy[0];
+    record
+        .energy
+        .iter()
+        .map(|e| (e - e0).abs() / e0.abs().max(f64::MIN_POSITIVE))
+        .fold(0.0, f64::max)
+}
+
+/// The planes (i, j), i < j, in the order of the bivector components.
+fn planes_of(n: usize) -> Vec<(usize, usize)> {
+    (0..n)
+        .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+        .collect()
+}
+
+/// The angular velocity ω (own-axes components) as the space-frame matrix R Ω Rᵀ, where
+/// Ω e_i = ω_ij e_j for i < j (ω₁₂ > 0 turns e₁ towards e₂).
+fn space_omega(omega: &[f64], attitude: &DMatrix<f64>) -> DMatrix<f64> {
+    let n = attitude.nrows();
+    let mut w = DMatrix::zeros(n, n);
+    for ((i, j), x) in planes_of(n).into_iter().zip(omega) {
+        w[(j, i)] = *x;
+        w[(i, j)] = -*x;
+    }
+    attitude * w * attitude.transpose()
+}
+
+/// The lowest point of every body over every plane and sample, as the smallest signed
+/// distance divided by the body's radius (negative: inside the solid).
+fn lowest_gap(scene: &Scene, record: &Record) -> f64 {
+    let mut lowest = f64::INFINITY;
+    for (b, track) in scene.bodies.iter().zip(&record.bodies) {
+        let shape = ContactShape::from_geometry(&b.parsed.geometry);
+        let radius = shape.radius();
+        if radius == 0.0 {
+            continue;
+        }
+        for p in &scene.planes {
+            let s = norm(&p.normal);
+            let n: Vec<f64> = p.normal.iter().map(|x| x / s).collect();
+            let d = p.offset / s;
+            for (x, q) in track.position.iter().zip(&track.attitude) {
+                let centre: f64 = n.iter().zip(x).map(|(a, b)| a * b).sum::<f64>() - d;
+                // m = Qᵀ n: the normal in own axes.
+                let m: Vec<f64> = (0..n.len())
+                    .map(|j| (0..n.len()).map(|i| q[(i, j)] * n[i]).sum())
+                    .collect();
+                let depth = match &shape {
+                    ContactShape::Vertices(v) => v
+                        .iter()
+                        .map(|r| r.as_slice().iter().zip(&m).map(|(a, b)| a * b).sum::<f64>())
+                        .fold(f64::INFINITY, f64::min),
+                    ContactShape::Ellipsoid(a) => {
+                        -norm(&a.iter().zip(&m).map(|(a, m)| a * m).collect::<Vec<_>>())
+                    }
+                    ContactShape::None => continue,
+                };
+                lowest = lowest.min((centre + depth) / radius);
+            }
+        }
+    }
+    lowest
+}
+
+/// The tesseract on a spring: the energy error (bounded, no damping) and the momenta.
+fn spring_figures(scene: &Scene, record: &Record) -> String {
+    let last = record.times.len() - 1;
+    let up = up_axis(&scene.gravity);
+    // The spring pulls towards its anchor and gravity is vertical, so the angular momentum
+    // about the anchor (the origin) is kept in the planes without the vertical axis.
+    let kept: Vec<usize> = planes_of(scene.dim)
+        .into_iter()
+        .enumerate()
+        .filter(|(_, (i, j))| Some(*i) != up && Some(*j) != up)
+        .map(|(k, _)| k)
+        .collect();
+    let names = plane_names(scene.dim);
+    let l0 = &record.angular_momentum[0];
+    let dl = record
+        .angular_momentum
+        .iter()
+        .flat_map(|l| kept.iter().map(move |&k| (l[k] - l0[k]).abs()))
+        .fold(0.0, f64::max);
+    let p_range = record
+        .momentum
+        .iter()
+        .map(|p| norm(p))
+        .fold((f64::INFINITY, 0.0_f64), |(a, b), x| (a.min(x), b.max(x)));
+    format!(
+        "energy error max abs(ΔE)/abs(E(0)) = {:.2e} (bounded, no drift); angular momentum about \
+         the anchor in the planes {} (gravity vertical, spring central): max change {:.1e}; \
+         abs(p) between {:.3} and {:.3}, abs(L) {:.3} → {:.3}",
+        energy_error(record),
+        kept.iter()
+            .map(|&k| subscript(&names[k]))
+            .map(|s| format!("L{s}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        dl,
+        p_range.0,
+        p_range.1,
+        norm(l0),
+        norm(&record.angular_momentum[last]),
+    )
+}
+
+/// The rolling speed of a ball launched without spin on a floor: v0 (N + 2)/(N + 4).
+fn rolling_prediction(scene: &Scene) -> f64 {
+    let n = scene.dim as f64;
+    norm(&scene.bodies[0].velocity) * (n + 2.0) / (n + 4.0)
+}
+
+/// The ball sliding into rolling: the final speed against v0 (N + 2)/(N + 4).
+fn rolling_figures(scene: &Scene, record: &Record) -> String {
+    let track = &record.bodies[0];
+    let last = record.times.len() - 1;
+    let predicted = rolling_prediction(scene);
+    let measured = norm(&track.velocity[last]);
+    // The contact point: R below the centre, along minus the floor's normal.
+    let radius = ContactShape::from_geometry(&scene.bodies[0].parsed.geometry).radius();
+    let floor = &scene.planes[0].normal;
+    let s = norm(floor);
+    let slip_at = |k: usize| {
+        let w = space_omega(&track.omega[k], &track.attitude[k]);
+        let r = DVector::from_iterator(floor.len(), floor.iter().map(|x| -radius * x / s));
+        let v = DVector::from_column_slice(&track.velocity[k]) + w * r;
+        v.norm()
+    };
+    let v0 = norm(&track.velocity[0]);
+    let rolls_from = (0..=last)
+        .find(|&k| (k..=last).all(|j| slip_at(j) <= 1e-9 * v0))
+        .map_or("never".to_string(), |k| format!("t = {}", record.times[k]));
+    format!(
+        "rolling speed {measured:.12} against v0·(N+2)/(N+4) = {predicted}: relative error \
+         {:.1e}; contact point slip at the end {:.1e}; rolling from {rolls_from} (predicted \
+         2 v0/((N+4) μ g) = {:.4}); lowest point {:.1e} R from the floor",
+        (measured - predicted).abs() / predicted,
+        slip_at(last),
+        2.0 * v0 / ((scene.dim as f64 + 4.0) * scene.planes[0].friction * norm(&scene.gravity)),
+        lowest_gap(scene, record),
+    )
+}
+
+/// The 5-cell bouncing down a slope: the energy lost and the deepest point.
+fn slope_figures(scene: &Scene, record: &Record) -> String {
+    let last = record.times.len() - 1;
+    let (e0, e1) = (record.energy[0], record.energy[last]);
+    let lowest = lowest_gap(scene, record);
+    let verdict = if lowest >= -1e-9 {
+        "never deeper than the contact tolerance 1e-9"
+    } else {
+        "deeper than the contact tolerance 1e-9"
+    };
+    format!(
+        "energy {e0:.3} → {e1:.3} (zero on the floor): {:.1} % lost in the impacts and the \
+         friction; lowest vertex over all samples {lowest:.1e} of the radius from the planes \
+         ({verdict}); final speed {:.1e}",
+        100.0 * (e0 - e1) / e0,
+        norm(&record.bodies[0].velocity[last]),
+    )
 }

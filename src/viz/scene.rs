@@ -41,6 +41,45 @@ pub struct SceneAnimation<'a> {
     pub bodies: &'a [SceneBodyFrames],
     /// The planes n·x = d as (n, d).
     pub planes: &'a [(Vec<f64>, f64)],
+    /// The vertical axis (0-based), drawn upwards and always among the axes shown first:
+    /// the axis of the gravity, if any.
+    pub up: Option<usize>,
+}
+
+/// Returns the vertical axis of a scene with gravity `g`: the axis of its largest
+/// component, if g is not zero (0-based).
+pub fn up_axis(g: &[f64]) -> Option<usize> {
+    let (k, m) = g.iter().enumerate().fold((0, 0.0_f64), |(k, m), (i, x)| {
+        if x.abs() > m { (i, x.abs()) } else { (k, m) }
+    });
+    (m > 0.0).then_some(k)
+}
+
+/// Returns the three axes (0-based) a scene's page shows first: the vertical axis `up` (if
+/// any) and the axes of the widest `extent` (the size of the box the bodies' centres sweep
+/// along each axis) after it, ties to the lower axis; the vertical axis last (drawn
+/// upwards), the others in increasing order. With N ≤ 3: 0, 1, 2, with `up` last.
+pub fn default_axes(extent: &[f64], up: Option<usize>) -> [usize; 3] {
+    let n = extent.len().max(3);
+    let up = up.filter(|&u| u < n);
+    let mut others: Vec<usize> = (0..n).filter(|&k| Some(k) != up).collect();
+    // Widest first; the sort is stable, so ties keep the lower axis first.
+    others.sort_by(|&a, &b| {
+        let (ea, eb) = (
+            extent.get(a).copied().unwrap_or(0.0),
+            extent.get(b).copied().unwrap_or(0.0),
+        );
+        eb.partial_cmp(&ea).unwrap_or(std::cmp::Ordering::Equal)
+    });
+    let mut chosen: Vec<usize> = others
+        .into_iter()
+        .take(if up.is_some() { 2 } else { 3 })
+        .collect();
+    chosen.sort_unstable();
+    if let Some(u) = up {
+        chosen.push(u);
+    }
+    [chosen[0], chosen[1], chosen[2]]
 }
 
 fn round(x: f64) -> f64 {
@@ -125,6 +164,21 @@ pub fn scene_html(a: &SceneAnimation<'_>) -> String {
             })
         })
         .collect();
+    // How far the centres of mass move along each axis.
+    let extent: Vec<f64> = (0..shown)
+        .map(|k| {
+            let (l, h) = a
+                .bodies
+                .iter()
+                .flat_map(|b| b.positions.iter())
+                .map(|x| x.get(k).copied().unwrap_or(0.0))
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), c| {
+                    (l.min(c), h.max(c))
+                });
+            if h >= l { round(h - l) } else { 0.0 }
+        })
+        .collect();
+    let axes = default_axes(&extent, a.up);
     let planes: Vec<_> = a
         .planes
         .iter()
@@ -138,7 +192,8 @@ pub fn scene_html(a: &SceneAnimation<'_>) -> String {
         "radius": round(radius),
         "bodies": bodies,
         "planes": planes,
-        "axes": [0, 1, 2],
+        "axes": axes,
+        "up": a.up.filter(|&u| u < shown),
     });
     // `</` must not appear inside a <script> element; `<\/` is the same JSON string.
     let data = data.to_string().replace("</", "<\\/");
@@ -181,7 +236,7 @@ const TEMPLATE: &str = r##"<!DOCTYPE html>
 </div>
 <div id="legend"></div>
 <canvas id="view" width="720" height="540"></canvas>
-<p style="font-size:13px;color:#555">Drag to turn the 3D view. Planes are the translucent squares: each plane's
+<p style="font-size:13px;color:#555">Drag to turn the 3D view. The vertical axis (that of gravity) is drawn upwards. Planes are the translucent squares: each plane's
 trace in the three shown coordinates, the others held at the scene's centre. The N−3 axes left out are dropped
 (orthographic) or removed by a perspective from each of them in turn about the scene's centre.</p>
 <pre id="selftest"></pre>
@@ -218,7 +273,7 @@ trace in the three shown coordinates, the others held at the scene's centre. The
     const o = document.createElement("option");
     o.value = i + "," + j + "," + k;
     o.textContent = (i + 1) + "-" + (j + 1) + "-" + (k + 1);
-    if (i === state.axes[0] && j === state.axes[1] && k === state.axes[2]) o.selected = true;
+    if (state.axes.slice().sort(function (x, y) { return x - y; }).join(",") === o.value) o.selected = true;
     axesSelect.appendChild(o);
   }
   // A space point (N coordinates, relative to the centre) → 3D.
@@ -337,7 +392,12 @@ trace in the three shown coordinates, the others held at the scene's centre. The
     playButton.textContent = state.playing ? "Pause" : "Play";
   });
   slider.addEventListener("input", function () { state.frame = Number(slider.value); draw(); });
-  axesSelect.addEventListener("change", function () { state.axes = axesSelect.value.split(",").map(Number); draw(); });
+  // The vertical axis, when shown, is drawn upwards (last).
+  function upLast(a) {
+    if (D.up === null || a.indexOf(D.up) < 0) return a;
+    return a.filter(function (k) { return k !== D.up; }).concat([D.up]);
+  }
+  axesSelect.addEventListener("change", function () { state.axes = upLast(axesSelect.value.split(",").map(Number)); draw(); });
   projSelect.addEventListener("change", function () { state.perspective = projSelect.value === "perspective"; draw(); });
   let drag = null;
   canvas.addEventListener("pointerdown", function (e) { drag = [e.clientX, e.clientY]; canvas.setPointerCapture(e.pointerId); });

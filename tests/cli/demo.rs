@@ -1,5 +1,5 @@
 //! `rotorflow demo`: runs end to end, writes every promised file, and its summary's numbers
-//! are within the bounds its method allows.
+//! are within the bounds its method allows (the paper's cases and the three scenes).
 
 use super::rotorflow;
 use std::time::Instant;
@@ -16,6 +16,10 @@ const CASES: [&str; 8] = [
     "top_3d",
 ];
 
+/// The scenes of the demo (files of `scenes/`), each with an animation and a plot of its
+/// energy and momenta.
+const SCENES: [&str; 3] = ["tesseract_spring", "ball_rolling", "five_cell_slope"];
+
 /// Every file `demo` promises (its help and the book's CLI chapter list them).
 fn promised_files() -> Vec<String> {
     let mut files: Vec<String> = CASES
@@ -28,6 +32,10 @@ fn promised_files() -> Vec<String> {
             ]
         })
         .collect();
+    for s in SCENES {
+        files.push(format!("{s}.html"));
+        files.push(format!("energy_{s}.svg"));
+    }
     for f in [
         "tesseract_frames.svg",
         "sweep.svg",
@@ -105,6 +113,7 @@ fn demo_writes_every_promised_file() {
         );
     }
     check_numbers(&summary);
+    check_scenes(&summary);
     // Nothing but the promised files.
     let count = std::fs::read_dir(&out).unwrap().count();
     assert_eq!(count, promised_files().len());
@@ -169,5 +178,60 @@ fn check_numbers(summary: &str) {
             rows.iter().any(|r| r["case"].contains(title)),
             "no row {title}"
         );
+    }
+}
+
+/// The number after `label` in `text` (up to the next space, `;` or `)`).
+fn number_after(text: &str, label: &str) -> f64 {
+    let start = text
+        .find(label)
+        .unwrap_or_else(|| panic!("no `{label}` in {text}"))
+        + label.len();
+    let rest = text[start..].trim_start();
+    let end = rest.find([' ', ';', ')']).unwrap_or(rest.len());
+    rest[..end]
+        .parse()
+        .unwrap_or_else(|_| panic!("`{}` after `{label}` is not a number", &rest[..end]))
+}
+
+/// The scene table: one row per scene with its measured figures.
+/// - the tesseract on a spring: the splitting's energy error is bounded (measured 1.05e-4
+///   at dt = 0.002), and the angular momentum about the anchor in the horizontal planes is
+///   kept to round-off;
+/// - the ball: the rolling speed v0 (N + 2)/(N + 4) to 1e-6 (measured 1.5e-15);
+/// - the 5-cell: most of the energy lost, no vertex below a plane beyond the contact
+///   tolerance.
+fn check_scenes(summary: &str) {
+    let section = &summary[summary.find("## Scenes").expect("a section Scenes")..];
+    let row = |title: &str| -> &str {
+        section
+            .lines()
+            .find(|l| l.starts_with(&format!("| {title}")))
+            .unwrap_or_else(|| panic!("no row {title}:\n{section}"))
+    };
+    let spring = row("4D tesseract hanging by a corner from a spring");
+    assert!(spring.contains("scenes/tesseract-spring.toml"), "{spring}");
+    assert!(
+        number_after(spring, "abs(ΔE)/abs(E(0)) =") < 2e-4,
+        "{spring}"
+    );
+    assert!(number_after(spring, "max change") < 1e-12, "{spring}");
+    let ball = row("solid 4D ball sliding into rolling");
+    assert!(ball.contains("v0·(N+2)/(N+4) = 1.5"), "{ball}");
+    assert!(number_after(ball, "relative error") < 1e-6, "{ball}");
+    let slope = row("5-cell bouncing down a slope");
+    let lost = number_after(slope, "(zero on the floor):");
+    assert!(lost > 50.0 && lost < 100.0, "{slope}");
+    assert!(
+        number_after(slope, "lowest vertex over all samples") >= -1e-9,
+        "{slope}"
+    );
+    assert!(
+        slope.contains("never deeper than the contact tolerance"),
+        "{slope}"
+    );
+    for s in SCENES {
+        assert!(section.contains(&format!("({s}.html)")), "{s}");
+        assert!(section.contains(&format!("(energy_{s}.svg)")), "{s}");
     }
 }

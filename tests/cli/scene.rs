@@ -1,8 +1,11 @@
 //! `rotorflow scene`: free flight under gravity against the exact parabola, a two-body
-//! spring keeping the linear momentum, the CSV and HTML files, the example scenes, and every
-//! kind of bad scene file refused with one line naming the key.
+//! spring keeping the linear momentum, the CSV and HTML files, the example scenes run end to
+//! end (a spring, contact with planes, ball joints, and the figures the demo reports), and
+//! every kind of bad scene file refused with one line naming the key.
 
 use super::{floats, matrix, rotorflow};
+use rotorflow::dynamics::motion::ContactShape;
+use rotorflow::inertia::spec::parse_body;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
@@ -272,30 +275,284 @@ fn scene_example_files_are_valid() {
             count += 1;
         }
     }
-    assert!(count >= 3, "only {count} example scenes");
+    assert!(count >= 5, "only {count} example scenes");
 }
 
-#[test]
-fn scene_example_with_springs_runs() {
+/// Runs the example scene `scenes/<file>` with `--out run.json` and `extra` options and
+/// returns the JSON.
+fn run_example(file: &str, extra: &[&str]) -> Value {
     let dir = tempfile::tempdir().unwrap();
-    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/tesseract-spring.toml");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(file);
     let out = rotorflow()
         .current_dir(dir.path())
         .arg("scene")
-        .arg(&file)
-        .args(["--samples", "11", "--out", "run.json"])
+        .arg(&path)
+        .args(["--out", "run.json"])
+        .args(extra)
         .output()
         .unwrap();
     assert!(
         out.status.success(),
-        "{}",
+        "{file}: {}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let json = read_json(&dir.path().join("run.json"));
+    read_json(&dir.path().join("run.json"))
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+fn norm(a: &[f64]) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// R r: the attitude (rows, own axes → space) applied to a vector of own axes.
+fn turn(rows: &[Vec<f64>], r: &[f64]) -> Vec<f64> {
+    rows.iter().map(|row| dot(row, r)).collect()
+}
+
+/// The body point `r` (own axes) of body `b` in space at sample `k`: x + R r.
+fn place(json: &Value, b: usize, k: usize, r: &[f64]) -> Vec<f64> {
+    let body = &json["bodies"][b];
+    let x = floats(&body["position"][k]);
+    let offset = turn(&matrix(&body["attitude"][k]), r);
+    x.iter().zip(&offset).map(|(a, b)| a + b).collect()
+}
+
+/// The velocity of the point at offset `d` (space) from body `b`'s centre at sample `k`:
+/// v + W d, with W = R Ω Rᵀ and Ω e_i = ω_ij e_j for i < j (ω₁₂ > 0 turns e₁ to e₂).
+fn point_velocity(json: &Value, b: usize, k: usize, d: &[f64]) -> Vec<f64> {
+    let body = &json["bodies"][b];
+    let n = d.len();
+    let omega = floats(&body["omega"][k]);
+    let rows = matrix(&body["attitude"][k]);
+    // Rᵀ d in own axes, Ω on it, R back to space.
+    let own: Vec<f64> = (0..n)
+        .map(|j| (0..n).map(|i| rows[i][j] * d[i]).sum())
+        .collect();
+    let mut spun = vec![0.0; n];
+    let mut c = 0;
+    for i in 0..n {
+        for j in i + 1..n {
+            spun[j] += omega[c] * own[i];
+            spun[i] -= omega[c] * own[j];
+            c += 1;
+        }
+    }
+    let v = floats(&body["velocity"][k]);
+    v.iter()
+        .zip(turn(&rows, &spun))
+        .map(|(a, b)| a + b)
+        .collect()
+}
+
+/// The smallest signed distance from a plane of any point of any body over all samples,
+/// divided by the body's radius (negative: inside the solid), from the JSON's positions and
+/// attitudes and each body's contact shape.
+fn lowest_gap(json: &Value) -> f64 {
+    let planes = json["planes"].as_array().unwrap();
+    let mut lowest = f64::INFINITY;
+    for (b, body) in json["bodies"].as_array().unwrap().iter().enumerate() {
+        let parsed = parse_body(body["shape"].as_str().unwrap()).unwrap();
+        let shape = ContactShape::from_geometry(&parsed.geometry);
+        let radius = shape.radius();
+        for plane in planes {
+            let normal = floats(&plane["normal"]);
+            let s = norm(&normal);
+            let n: Vec<f64> = normal.iter().map(|x| x / s).collect();
+            let d = plane["offset"].as_f64().unwrap() / s;
+            for k in 0..json["times"].as_array().unwrap().len() {
+                let gap = match &shape {
+                    ContactShape::Vertices(v) => v
+                        .iter()
+                        .map(|r| dot(&n, &place(json, b, k, r.as_slice())) - d)
+                        .fold(f64::INFINITY, f64::min),
+                    ContactShape::Ellipsoid(a) => {
+                        // The support point along −n: −A²m/|Am|, m = Rᵀn.
+                        let rows = matrix(&body["attitude"][k]);
+                        let m: Vec<f64> = (0..n.len())
+                            .map(|j| (0..n.len()).map(|i| rows[i][j] * n[i]).sum())
+                            .collect();
+                        let am: Vec<f64> = a.iter().zip(&m).map(|(a, m)| a * m).collect();
+                        let length = norm(&am);
+                        let r: Vec<f64> = a.iter().zip(&am).map(|(a, x)| -a * x / length).collect();
+                        dot(&n, &place(json, b, k, &r)) - d
+                    }
+                    ContactShape::None => continue,
+                };
+                lowest = lowest.min(gap / radius);
+            }
+        }
+    }
+    lowest
+}
+
+/// The largest |E − E(0)| over the samples.
+fn energy_change(json: &Value) -> f64 {
     let energy = floats(&json["energy"]);
-    // The undamped spring and gravity are conservative: the splitting keeps the energy.
-    for e in &energy {
-        assert!((e - energy[0]).abs() < 1e-2 * energy[0].abs(), "{energy:?}");
+    energy
+        .iter()
+        .map(|e| (e - energy[0]).abs())
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn scene_example_with_springs_runs() {
+    let json = run_example("tesseract-spring.toml", &["--samples", "501"]);
+    let energy = floats(&json["energy"]);
+    // The undamped spring and gravity are conservative: the splitting keeps the energy to a
+    // bounded error of order dt² (measured 1.05e-4 of E(0) at dt = 0.002).
+    let error = energy_change(&json) / energy[0].abs();
+    assert!(error < 2e-4, "relative energy error {error:e}");
+    // The spring pulls towards its anchor at the origin and gravity is along x4: the
+    // angular momentum about the origin is kept in the planes 12, 13, 23 (components 0, 1,
+    // 3), to round-off; the others change.
+    let l = matrix(&json["angular_momentum"]);
+    for row in &l {
+        for c in [0, 1, 3] {
+            assert!((row[c] - l[0][c]).abs() < 1e-12, "{row:?} vs {:?}", l[0]);
+        }
+    }
+    assert!((l.last().unwrap()[2] - l[0][2]).abs() > 1e-2);
+}
+
+#[test]
+fn scene_ball_on_floor_never_sinks_and_ends_rolling() {
+    let json = run_example("ball-on-floor.toml", &["--samples", "801"]);
+    // Neither the ball nor the box's corners go below the floor by more than the contact
+    // tolerance (1e-9 of the radius).
+    let lowest = lowest_gap(&json);
+    assert!(lowest >= -1e-9, "lowest point {lowest:e} of the radius");
+    let x = matrix(&json["bodies"][0]["position"]);
+    let radius = 0.5;
+    for (k, p) in x.iter().enumerate() {
+        assert!(p[3] - radius >= -1e-9 * radius, "sample {k}: x4 = {}", p[3]);
+    }
+    // The ball lands, bounces and then rolls: at the end it touches the floor and its
+    // contact point does not move, while the ball still moves.
+    let last = x.len() - 1;
+    assert!(
+        (x[last][3] - radius).abs() <= 1e-9 * radius,
+        "{:?}",
+        x[last]
+    );
+    let v = floats(&json["bodies"][0]["velocity"][last]);
+    let slip = norm(&point_velocity(&json, 0, last, &[0.0, 0.0, 0.0, -radius]));
+    assert!(norm(&v) > 0.1, "{v:?}");
+    assert!(slip <= 1e-9 * norm(&v), "contact point velocity {slip:e}");
+    // The floor took energy: the bounces (e = 0.5) and the slide.
+    let energy = floats(&json["energy"]);
+    assert!(
+        energy[last] < 0.5 * energy[0],
+        "{} → {}",
+        energy[0],
+        energy[last]
+    );
+}
+
+#[test]
+fn scene_double_pendulum_joints_hold_and_energy_is_bounded() {
+    let json = run_example("double-pendulum-4d.toml", &["--samples", "1001"]);
+    let count = json["times"].as_array().unwrap().len();
+    assert_eq!(count, 1001);
+    let (inner, outer) = ([-0.5, 0.0, 0.0, 0.0], [0.5, 0.0, 0.0, 0.0]);
+    for k in 0..count {
+        // Joint 1: the upper bar's inner end on the origin.
+        let a = place(&json, 0, k, &inner);
+        assert!(
+            norm(&a) <= 1e-9,
+            "sample {k}: joint 1 open by {:e}",
+            norm(&a)
+        );
+        // Joint 2: the lower bar's inner end on the upper bar's outer end.
+        let b = place(&json, 1, k, &inner);
+        let c = place(&json, 0, k, &outer);
+        let gap: Vec<f64> = b.iter().zip(&c).map(|(x, y)| x - y).collect();
+        assert!(
+            norm(&gap) <= 1e-9,
+            "sample {k}: joint 2 open by {:e}",
+            norm(&gap)
+        );
+    }
+    // The pendulum swings: the lower bar falls by a good part of its reach.
+    let lowest = matrix(&json["bodies"][1]["position"])
+        .iter()
+        .map(|p| p[3])
+        .fold(f64::INFINITY, f64::min);
+    assert!(lowest < -0.5, "{lowest}");
+    // Joints do no work and gravity is conservative: the energy error stays bounded, small
+    // against the energy exchanged (m g times the drop, ≈ 2 · 9.81 · 1).
+    let scale = 2.0 * 9.81;
+    let change = energy_change(&json);
+    assert!(change < 1e-3 * scale, "energy change {change:e}");
+}
+
+/// The demo's three scenes (the figures `rotorflow demo` reports in summary.md).
+#[test]
+fn scene_ball_rolling_reaches_the_rolling_speed() {
+    let json = run_example("ball-rolling-4d.toml", &["--samples", "151"]);
+    // A solid N-ball has plane moment 2 m R²/(N + 2); the angular momentum about the
+    // contact point is kept through the slide, so it rolls at v0 (N + 2)/(N + 4).
+    let (v0, n) = (2.0, 4.0);
+    let predicted = v0 * (n + 2.0) / (n + 4.0);
+    let v = matrix(&json["bodies"][0]["velocity"]);
+    let last = v.len() - 1;
+    let measured = norm(&v[last]);
+    assert!(
+        (measured - predicted).abs() <= 1e-6 * predicted,
+        "{measured} vs {predicted}"
+    );
+    // Rolling from t = 2 v0/((N + 4) μ g) = 0.17 on: the contact point stands still.
+    let times = floats(&json["times"]);
+    let roll = 2.0 * v0 / ((n + 4.0) * 0.3 * 9.81);
+    for (k, t) in times.iter().enumerate() {
+        let slip = norm(&point_velocity(&json, 0, k, &[0.0, 0.0, 0.0, -0.5]));
+        if *t > roll + 0.011 {
+            assert!(slip <= 1e-9 * predicted, "t = {t}: slip {slip:e}");
+        } else if *t < roll - 0.011 {
+            assert!(slip > 1e-3, "t = {t}: already rolling");
+        }
+    }
+    assert!(lowest_gap(&json) >= -1e-9);
+}
+
+#[test]
+fn scene_five_cell_bounces_down_the_slope_without_sinking() {
+    let json = run_example("five-cell-slope.toml", &["--samples", "501"]);
+    // No vertex goes into the slope or the floor beyond the contact tolerance.
+    let lowest = lowest_gap(&json);
+    assert!(lowest >= -1e-9, "lowest vertex {lowest:e} of the radius");
+    // It bounces down the slope and comes to rest on the floor past the slope's foot
+    // (x1 = 3), on a face: the centre at the inradius 1/4 above the floor.
+    let x = matrix(&json["bodies"][0]["position"]);
+    let last = x.len() - 1;
+    assert!(x[last][0] > 3.0, "{:?}", x[last]);
+    assert!((x[last][3] - 0.25).abs() < 1e-6, "{:?}", x[last]);
+    assert!(norm(&floats(&json["bodies"][0]["velocity"][last])) < 1e-6);
+    // It tumbled: its attitude turned by more than a right angle.
+    let rows = matrix(&json["bodies"][0]["attitude"][last]);
+    let trace: f64 = (0..4).map(|i| rows[i][i]).sum();
+    assert!(trace < 3.0, "trace {trace}");
+    // The impacts (e = 0.5) and the friction took most of the energy: what is left is the
+    // potential m g h of the 5-cell at rest, 5 · 9.81 · 0.25.
+    let energy = floats(&json["energy"]);
+    assert!(
+        (energy[last] - 5.0 * 9.81 * 0.25).abs() < 1e-6,
+        "{}",
+        energy[last]
+    );
+    assert!(
+        energy[last] < 0.1 * energy[0],
+        "{} → {}",
+        energy[0],
+        energy[last]
+    );
+    // The energy never rises (beyond round-off): contact only takes energy away.
+    for w in energy.windows(2) {
+        assert!(w[1] <= w[0] + 1e-9 * energy[0], "{w:?}");
     }
 }
 

@@ -3,7 +3,7 @@
 
 use super::super::error::{CliError, CliResult};
 use super::super::output::{matrix_json, number, plane_names, to_json_text};
-use super::super::viz::scene::{SceneAnimation, SceneBodyFrames, scene_html};
+use super::super::viz::scene::{SceneAnimation, SceneBodyFrames, scene_html, up_axis};
 use super::format::Scene;
 use super::run::Record;
 use serde_json::{Value, json};
@@ -134,7 +134,7 @@ pub fn csv_files(scene: &Scene, record: &Record) -> CliResult<Vec<(String, Strin
     Ok(files)
 }
 
-/// Returns the HTML animation of a run.
+/// Returns the HTML animation of a run; the axis of the gravity is drawn upwards.
 pub fn html(scene: &Scene, record: &Record, title: &str) -> String {
     let bodies: Vec<SceneBodyFrames> = scene
         .bodies
@@ -158,6 +158,7 @@ pub fn html(scene: &Scene, record: &Record, title: &str) -> String {
         times: &record.times,
         bodies: &bodies,
         planes: &planes,
+        up: up_axis(&scene.gravity),
     })
 }
 
