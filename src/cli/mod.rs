@@ -66,7 +66,7 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Subcommand, Debug)]
 pub enum Command {
-    /// Run the paper's cases and write plots, animations, a sweep and summary.md.
+    /// Run the paper's cases and the moving-body scenes; write plots, animations, a sweep and summary.md.
     Demo(demo::DemoArgs),
     /// Mass properties, plane moments, inertia matrix and the paper's tensors of a body.
     Inertia(inertia::InertiaArgs),
