@@ -66,6 +66,39 @@ impl ContactShape {
         }
     }
 
+    /// Returns the support point of the shape placed with `attitude` (own axes → space):
+    /// the point of the shape, in own axes, that reaches furthest along the space
+    /// direction `direction` (None for [`ContactShape::None`] or a zero direction). The
+    /// support function is all a convex body needs to show for contact: half-spaces use it
+    /// along their inward normal, and body–body collision (GJK/EPA) can use it as is.
+    ///
+    /// # Panics
+    /// If the dimensions differ.
+    pub fn support_point(
+        &self,
+        attitude: &crate::dynamics::Attitude,
+        direction: &Vector,
+    ) -> Option<Vector> {
+        let n = direction.dim();
+        assert_eq!(attitude.dim(), n, "rotorflow: dimension mismatch");
+        let length = direction.norm();
+        if !(length > 0.0 && length.is_finite()) {
+            return None;
+        }
+        let mut q = smallvec::SmallVec::<[f64; 64]>::from_elem(0.0, n * n);
+        attitude.write_matrix(&mut q);
+        // The candidates against −direction are the points furthest along direction.
+        let inward = direction * (-1.0 / length);
+        let mut best: Option<(f64, Vector)> = None;
+        self.candidates(&q, &inward, |r, r_space| {
+            let reach = -inward.dot(r_space);
+            if best.as_ref().is_none_or(|(b, _)| reach > *b) {
+                best = Some((reach, r.clone()));
+            }
+        });
+        best.map(|(_, r)| r)
+    }
+
     /// Checks the shape against the dimension `n`.
     pub(crate) fn check(&self, n: usize) -> Result<(), DynamicsError> {
         let bad = |reason: String| {
