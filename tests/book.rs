@@ -38,6 +38,9 @@ mod book_inertia_tables;
 #[path = "../examples/book_integrators.rs"]
 mod book_integrators;
 #[allow(dead_code)]
+#[path = "../examples/book_moving_bodies.rs"]
+mod book_moving_bodies;
+#[allow(dead_code)]
 #[path = "../examples/book_peer_versors.rs"]
 mod book_peer_versors;
 #[path = "../examples/custom_integrator.rs"]
@@ -51,6 +54,8 @@ mod mesh_body;
 #[allow(dead_code)]
 #[path = "../examples/other_signatures.rs"]
 mod other_signatures;
+#[path = "../examples/rolling_ball.rs"]
+mod rolling_ball;
 #[allow(dead_code)]
 #[path = "../examples/step_ratio.rs"]
 mod step_ratio;
@@ -69,6 +74,7 @@ const RUN_EXAMPLES: &[&str] = &[
     "heavy_top_4d",
     "mesh_body",
     "other_signatures",
+    "rolling_ball",
     "torque_closure",
 ];
 
@@ -82,6 +88,7 @@ const GENERATED: &[&str] = &[
     "inertia_tables.md",
     "integrators.md",
     "integrators_error.svg",
+    "moving_bodies.md",
     "peer_versors.md",
     "step_ratio.md",
 ];
@@ -179,6 +186,7 @@ fn included_examples_run() {
     mesh_body::main().expect("mesh_body");
     custom_integrator::main().expect("custom_integrator");
     other_signatures::main().expect("other_signatures");
+    rolling_ball::main().expect("rolling_ball");
     book_inertia_tables::render().expect("book_inertia_tables");
 }
 
@@ -257,6 +265,25 @@ fn generated_step_ratios_are_rendered_from_their_data() {
     for key in ["# date: ", "# commit: ", "# machine: ", "# compiler: "] {
         assert!(data.contains(key), "step_ratio.tsv lacks `{key}`");
     }
+}
+
+/// The validation of moving bodies (chapter "Bodies that move"): the tables are the rendering
+/// of the recorded data, the data say where and when they were measured, and every recorded
+/// figure meets the bound the chapter states for it.
+#[test]
+fn generated_moving_body_validation_is_rendered_from_its_data() {
+    let data = read(&root().join("book/src/generated/moving_bodies.tsv"));
+    let table = book_moving_bodies::render(&data).expect("render");
+    assert_current(
+        "moving_bodies.md",
+        &table,
+        "cargo run --release --example book_moving_bodies -- --write",
+    );
+    for key in ["# date: ", "# commit: ", "# machine: ", "# compiler: "] {
+        assert!(data.contains(key), "moving_bodies.tsv lacks `{key}`");
+    }
+    let failures = book_moving_bodies::check(&data).expect("the recorded figures");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
 /// The peer comparison of versor exp and log: the table is the rendering of the recorded
