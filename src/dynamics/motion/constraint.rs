@@ -10,7 +10,7 @@
 //! by e for an impact), and the friction impulse is the one of maximal dissipation in the
 //! disc |J_t| ≤ μ λ — the sticking impulse when it fits, else the one on the rim whose
 //! remaining slip is exactly opposite to it (a trust-region problem in the (N−1)-dimensional
-//! tangent space, solved by bisection on its multiplier).
+//! tangent space, solved by Newton's method on its multiplier, Moré–Sorensen).
 
 use super::forques::Anchor;
 use super::{BallJoint, Contact, ContactShape, HalfSpace, MovingBody};
@@ -21,7 +21,7 @@ use smallvec::SmallVec;
 type Dense = SmallVec<[f64; 64]>;
 
 /// Gauss–Seidel sweeps of the velocity solve, at most.
-const MAX_SWEEPS: usize = 200;
+const MAX_SWEEPS: usize = 20_000;
 
 /// One body during a solve: its velocity and angular velocity (space) as the impulses so
 /// far leave them, its inverse mass and inverse inertia in space, and the impulses to hand
