@@ -327,7 +327,8 @@ impl Solver {
         tolerance: f64,
         resting_speed: &[f64],
     ) {
-        self.contacts.clear();
+        // Rows are overwritten in place (a row is large: moving it costs more than its setup).
+        let mut used = 0;
         let n = bodies[0].dim();
         let mut q = std::mem::take(&mut self.work);
         for (i, (b, shape)) in bodies.iter().zip(shapes).enumerate() {
@@ -354,24 +355,41 @@ impl Solver {
                         } else {
                             0.0
                         };
-                        self.contacts.push(ContactRow {
-                            body: i,
-                            half_space: k,
-                            index,
-                            point: p.clone(),
-                            r: r.clone(),
-                            target,
-                            normal_impulse: 0.0,
-                            friction_impulse: Vector::zero(n),
-                            knn: 0.0,
-                            kt: Dense::new(),
-                            eigenvalues: Dense::new(),
-                            eigenvectors: Dense::new(),
-                        });
+                        if let Some(row) = self.contacts.get_mut(used) {
+                            row.body = i;
+                            row.half_space = k;
+                            row.index = index;
+                            row.point.clone_from(p);
+                            row.r.clone_from(r);
+                            row.target = target;
+                            row.normal_impulse = 0.0;
+                            row.friction_impulse = Vector::zero(n);
+                            row.knn = 0.0;
+                            row.kt.clear();
+                            row.eigenvalues.clear();
+                            row.eigenvectors.clear();
+                        } else {
+                            self.contacts.push(ContactRow {
+                                body: i,
+                                half_space: k,
+                                index,
+                                point: p.clone(),
+                                r: r.clone(),
+                                target,
+                                normal_impulse: 0.0,
+                                friction_impulse: Vector::zero(n),
+                                knn: 0.0,
+                                kt: Dense::new(),
+                                eigenvalues: Dense::new(),
+                                eigenvectors: Dense::new(),
+                            });
+                        }
+                        used += 1;
                     }
                 });
             }
         }
+        self.contacts.truncate(used);
         self.work = q;
     }
 
