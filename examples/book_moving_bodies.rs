@@ -490,7 +490,7 @@ fn orders(out: &mut String) -> Res<()> {
         run(&mut s, integrator, 1.0 / steps as f64, steps)?;
         Ok(order_state(&s))
     };
-    let reference = solve(&mut MotionRk4, 16384)?;
+    let reference = solve(&mut MotionRk4::new(), 16384)?;
     let err = |x: Vec<f64>| {
         x.iter()
             .zip(&reference)
@@ -501,7 +501,7 @@ fn orders(out: &mut String) -> Res<()> {
             "`MotionSplitting`",
             &mut MotionSplitting::new() as &mut dyn MotionIntegrator,
         ),
-        ("`MotionRk4`", &mut MotionRk4),
+        ("`MotionRk4`", &mut MotionRk4::new()),
     ] {
         let steps = [50, 100, 200, 400];
         let errors: Vec<f64> = steps
@@ -552,7 +552,7 @@ fn momenta(out: &mut String) -> Res<()> {
                 "`MotionSplitting`",
                 &mut MotionSplitting::new() as &mut dyn MotionIntegrator,
             ),
-            ("`MotionRk4`", &mut MotionRk4),
+            ("`MotionRk4`", &mut MotionRk4::new()),
         ] {
             let mut s = build()?;
             let (p0, l0) = (s.linear_momentum(), s.angular_momentum());

@@ -274,3 +274,145 @@ fn versor_exp_to_and_log_to_allocations_at_n6() {
     }
     assert!(checked >= 26, "{checked} signatures");
 }
+
+mod moving_bodies {
+    use super::allocations_in;
+    use rotorflow::dynamics::motion::forques::{Anchor, Gravity, Spring};
+    use rotorflow::dynamics::motion::{
+        BallJoint, ContactShape, HalfSpace, MotionIntegrator, MotionRk4, MotionSplitting,
+        MovingBody, System,
+    };
+    use rotorflow::inertia::spec::parse_body;
+    use rotorflow::prelude::*;
+
+    fn axis(n: usize, i: usize, x: f64) -> Vector {
+        let mut v = Vector::zero(n);
+        v.as_mut_slice()[i] = x;
+        v
+    }
+
+    /// A solid cuboid in N dimensions (half-lengths 0.5, 0.6, …) at `x`, moving with `v` and
+    /// turning with `omega` (own axes), with its contact shape.
+    fn cuboid(n: usize, x: Vector, v: Vector, omega: f64) -> (MovingBody, ContactShape) {
+        let half: Vec<String> = (0..n)
+            .map(|k| format!("{}", 0.5 + 0.1 * k as f64))
+            .collect();
+        let parsed = parse_body(&format!("cuboid:{}", half.join(","))).unwrap();
+        let w: Vec<f64> = (0..n * (n - 1) / 2)
+            .map(|k| omega * (0.7 * k as f64 + 0.3).sin())
+            .collect();
+        let body = MovingBody::new(
+            parsed.mass,
+            parsed.inertia.clone(),
+            Rotor::identity(n),
+            &x,
+            &v,
+            &Bivector::from_components(n, &w).unwrap(),
+        )
+        .unwrap();
+        (body, ContactShape::from_geometry(&parsed.geometry))
+    }
+
+    /// A turning body under gravity, hung from a point of space by a damped spring attached
+    /// off its centre of mass.
+    fn sprung(n: usize) -> System {
+        let (b, _) = cuboid(n, axis(n, 0, 0.3), axis(n, 1, 0.5), 1.0);
+        let mut s = System::new(vec![b]).unwrap();
+        s.add_forque(Gravity(axis(n, n - 1, -9.81))).unwrap();
+        s.add_forque(Spring {
+            body: 0,
+            point: axis(n, 0, 0.4),
+            anchor: Anchor::World(axis(n, n - 1, 2.0)),
+            stiffness: 30.0,
+            rest_length: 1.0,
+            damping: 0.1,
+        })
+        .unwrap();
+        s
+    }
+
+    /// Heap allocations of `steps` steps of `integrator` on `system`, after one warm-up step
+    /// (which sizes the integrator's buffers).
+    fn step_allocations(
+        integrator: &mut dyn MotionIntegrator,
+        system: &mut System,
+        h: f64,
+        steps: usize,
+    ) -> usize {
+        integrator.step(system, 0.0, h).unwrap();
+        allocations_in(|| {
+            for k in 1..=steps {
+                integrator.step(system, k as f64 * h, h).unwrap();
+            }
+        })
+    }
+
+    #[test]
+    fn motion_splitting_free_flight_does_not_allocate() {
+        for n in 2..=8 {
+            let mut system = sprung(n);
+            let count = step_allocations(&mut MotionSplitting::new(), &mut system, 0.01, 50);
+            assert_eq!(count, 0, "N = {n}: {count} heap allocations in 50 steps");
+        }
+    }
+
+    #[test]
+    fn motion_rk4_does_not_allocate() {
+        for n in 2..=8 {
+            let mut system = sprung(n);
+            let count = step_allocations(&mut MotionRk4::new(), &mut system, 0.01, 50);
+            assert_eq!(count, 0, "N = {n}: {count} heap allocations in 50 steps");
+        }
+    }
+
+    #[test]
+    fn motion_splitting_resting_contact_does_not_allocate() {
+        for n in 3..=8 {
+            // A cuboid set down on the floor x_N = 0 with friction, settled before counting.
+            let h_n = 0.5 + 0.1 * (n - 1) as f64;
+            let (b, shape) = cuboid(n, axis(n, n - 1, h_n + 1e-3), Vector::zero(n), 0.05);
+            let mut system = System::new(vec![b]).unwrap();
+            system.set_shape(0, shape).unwrap();
+            system.add_forque(Gravity(axis(n, n - 1, -9.81))).unwrap();
+            system
+                .add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
+                .unwrap();
+            let mut integrator = MotionSplitting::new();
+            for k in 0..100 {
+                integrator.step(&mut system, k as f64 * 0.01, 0.01).unwrap();
+            }
+            assert!(!system.contacts().is_empty(), "N = {n}: the body rests");
+            let count = step_allocations(&mut integrator, &mut system, 0.01, 50);
+            assert!(!system.contacts().is_empty(), "N = {n}: the body rests");
+            assert_eq!(count, 0, "N = {n}: {count} heap allocations in 50 steps");
+        }
+    }
+
+    #[test]
+    fn motion_splitting_ball_joint_does_not_allocate() {
+        for n in 3..=8 {
+            // A pendulum: the body hangs from a point of space by a corner, and a second body
+            // hangs from the first.
+            let (a, _) = cuboid(n, Vector::zero(n), axis(n, 0, 0.2), 0.5);
+            let (b, _) = cuboid(n, axis(n, 0, 1.0), Vector::zero(n), 0.3);
+            let mut system = System::new(vec![a, b]).unwrap();
+            system.add_forque(Gravity(axis(n, n - 1, -9.81))).unwrap();
+            system
+                .add_ball_joint(BallJoint {
+                    body: 0,
+                    point: axis(n, 0, -0.5),
+                    other: Anchor::World(axis(n, 0, -0.5)),
+                })
+                .unwrap();
+            system
+                .add_ball_joint(BallJoint {
+                    body: 0,
+                    point: axis(n, 0, 0.5),
+                    other: Anchor::Body(1, axis(n, 0, -0.5)),
+                })
+                .unwrap();
+            let count = step_allocations(&mut MotionSplitting::new(), &mut system, 0.01, 50);
+            assert_eq!(count, 0, "N = {n}: {count} heap allocations in 50 steps");
+        }
+    }
+}

@@ -168,7 +168,18 @@ impl Attitude {
     pub fn inverse(&self) -> Attitude {
         match &self.repr {
             Repr::Rotor(r) => r.reverse().into(),
-            Repr::Matrix(q) => Self::matrix(&Self::view(q).transpose()),
+            Repr::Matrix(q) => {
+                let n = side(q);
+                let mut t = MatrixStorage::from_elem(0.0, n * n);
+                for j in 0..n {
+                    for i in 0..n {
+                        t[i * n + j] = q[j * n + i];
+                    }
+                }
+                Attitude {
+                    repr: Repr::Matrix(t),
+                }
+            }
         }
     }
 
@@ -181,6 +192,20 @@ impl Attitude {
         assert_eq!(self.dim(), other.dim(), "rotorflow: dimension mismatch");
         match (&self.repr, &other.repr) {
             (Repr::Rotor(a), Repr::Rotor(b)) => a.compose(b).into(),
+            (Repr::Matrix(a), Repr::Matrix(b)) => {
+                // Column j of AB is Σₖ A[:, k] B[k, j], column-major, on the stack up to N = 8.
+                let n = side(a);
+                let mut c = MatrixStorage::from_elem(0.0, n * n);
+                for (j, col) in c.chunks_exact_mut(n).enumerate() {
+                    for (k, &bkj) in b[j * n..(j + 1) * n].iter().enumerate() {
+                        let ak = &a[k * n..(k + 1) * n];
+                        col.iter_mut().zip(ak).for_each(|(o, x)| *o += x * bkj);
+                    }
+                }
+                Attitude {
+                    repr: Repr::Matrix(c),
+                }
+            }
             _ => Self::matrix(&(self.to_matrix() * other.to_matrix())),
         }
     }
@@ -221,12 +246,7 @@ impl Attitude {
     pub fn rotate_vector(&self, x: &Vector) -> Vector {
         match &self.repr {
             Repr::Rotor(r) => r.rotate_vector(x),
-            Repr::Matrix(q) => {
-                let q = Self::view(q);
-                assert_eq!(q.nrows(), x.dim(), "rotorflow: dimension mismatch");
-                let y = q * nalgebra::DVector::from_column_slice(x.as_slice());
-                Vector::from_components(y.as_slice()).expect("dimension within the vector limit")
-            }
+            Repr::Matrix(q) => matrix_times_vector(q, x, false),
         }
     }
 
@@ -238,12 +258,7 @@ impl Attitude {
     pub fn inverse_rotate_vector(&self, x: &Vector) -> Vector {
         match &self.repr {
             Repr::Rotor(r) => r.reverse().rotate_vector(x),
-            Repr::Matrix(q) => {
-                let q = Self::view(q);
-                assert_eq!(q.nrows(), x.dim(), "rotorflow: dimension mismatch");
-                let y = q.tr_mul(&nalgebra::DVector::from_column_slice(x.as_slice()));
-                Vector::from_components(y.as_slice()).expect("dimension within the vector limit")
-            }
+            Repr::Matrix(q) => matrix_times_vector(q, x, true),
         }
     }
 
@@ -254,8 +269,8 @@ impl Attitude {
     #[track_caller]
     pub fn rotate_bivector(&self, b: &Bivector) -> Bivector {
         match &self.repr {
-            Repr::Rotor(r) => r.rotate_bivector(b),
-            Repr::Matrix(q) => conjugate(Self::view(q), b, false),
+            Repr::Rotor(_) => self.rotor_conjugate(b, false),
+            Repr::Matrix(q) => conjugate(q, side(q), b, false),
         }
     }
 
@@ -266,9 +281,19 @@ impl Attitude {
     #[track_caller]
     pub fn inverse_rotate_bivector(&self, b: &Bivector) -> Bivector {
         match &self.repr {
-            Repr::Rotor(r) => r.reverse().rotate_bivector(b),
-            Repr::Matrix(q) => conjugate(Self::view(q), b, true),
+            Repr::Rotor(_) => self.rotor_conjugate(b, true),
+            Repr::Matrix(q) => conjugate(q, side(q), b, true),
         }
+    }
+
+    /// R B R̃ (or R̃ B R when `inverse`) for a rotor attitude, through its matrix on the
+    /// stack (no heap).
+    fn rotor_conjugate(&self, b: &Bivector, inverse: bool) -> Bivector {
+        let n = self.dim();
+        let mut q = [0.0; 16];
+        // Row-major Q is the column-major storage of Qᵀ.
+        self.write_matrix(&mut q[..n * n]);
+        conjugate(&q[..n * n], n, b, !inverse)
     }
 
     /// Returns how far the attitude has left the group: |R R̃ − 1| for a rotor
@@ -478,18 +503,62 @@ fn side(q: &MatrixStorage) -> usize {
     (q.len() as f64).sqrt().round() as usize
 }
 
-/// Q \[B\] Qᵀ (or Qᵀ \[B\] Q when `transposed`) as a bivector.
-fn conjugate(q: DMatrixView<'_, f64>, b: &Bivector, transposed: bool) -> Bivector {
-    let n = q.nrows();
-    assert_eq!(n, b.dim(), "rotorflow: dimension mismatch");
-    let m = if transposed {
-        q.tr_mul(&(b.to_skew_matrix() * q))
+/// Q x (or Qᵀ x when `transposed`) for the stored column-major Q, without a heap matrix.
+#[track_caller]
+fn matrix_times_vector(q: &MatrixStorage, x: &Vector, transposed: bool) -> Vector {
+    let n = side(q);
+    assert_eq!(n, x.dim(), "rotorflow: dimension mismatch");
+    let mut y = Vector::zero(n);
+    let (xs, ys) = (x.as_slice(), y.as_mut_slice());
+    if transposed {
+        // (Qᵀ x)ᵢ is column i of Q dotted with x.
+        for (i, yi) in ys.iter_mut().enumerate() {
+            *yi = q[i * n..(i + 1) * n]
+                .iter()
+                .zip(xs)
+                .map(|(a, b)| a * b)
+                .sum();
+        }
     } else {
-        q * b.to_skew_matrix() * q.transpose()
+        for (j, &xj) in xs.iter().enumerate() {
+            let col = &q[j * n..(j + 1) * n];
+            ys.iter_mut().zip(col).for_each(|(y, a)| *y += a * xj);
+        }
+    }
+    y
+}
+
+/// Q \[B\] Qᵀ (or Qᵀ \[B\] Q when `transposed`) as a bivector, for the stored column-major
+/// Q (on the stack up to N = 8).
+#[track_caller]
+fn conjugate(q: &[f64], n: usize, b: &Bivector, transposed: bool) -> Bivector {
+    assert_eq!(n, b.dim(), "rotorflow: dimension mismatch");
+    // Q[r, c] (or Qᵀ[r, c]) of the column-major storage.
+    let at = |r: usize, c: usize| {
+        if transposed {
+            q[r * n + c]
+        } else {
+            q[c * n + r]
+        }
     };
+    let mut skew = MatrixStorage::from_elem(0.0, n * n);
+    for ((i, j), &c) in pairs(n).zip(b.as_slice()) {
+        skew[i * n + j] = c;
+        skew[j * n + i] = -c;
+    }
+    // T = [B] Pᵀ with P = Q (or Qᵀ), row-major: T[a, j] = Σ_c [B][a, c] P[j, c].
+    let mut t = MatrixStorage::from_elem(0.0, n * n);
+    for a in 0..n {
+        for j in 0..n {
+            t[a * n + j] = (0..n).map(|c| skew[a * n + c] * at(j, c)).sum();
+        }
+    }
     let mut out = Bivector::zero(n);
     for (k, (i, j)) in pairs(n).enumerate() {
-        out.as_mut_slice()[k] = 0.5 * (m[(i, j)] - m[(j, i)]);
+        // M = P T; the antisymmetric part of M (exactly skew up to round-off).
+        let mij: f64 = (0..n).map(|a| at(i, a) * t[a * n + j]).sum();
+        let mji: f64 = (0..n).map(|a| at(j, a) * t[a * n + i]).sum();
+        out.as_mut_slice()[k] = 0.5 * (mij - mji);
     }
     out
 }

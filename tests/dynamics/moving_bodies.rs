@@ -118,7 +118,7 @@ fn two_bodies_on_a_spring_keep_their_momenta() {
         };
         for integrator in [
             &mut MotionSplitting::new() as &mut dyn MotionIntegrator,
-            &mut MotionRk4,
+            &mut MotionRk4::new(),
         ] {
             let mut system = build();
             let (p0, l0, e0) = (
@@ -241,7 +241,7 @@ fn measured_orders() {
         run(&mut s, integrator, 1.0 / steps as f64, steps);
         state(&s)
     };
-    let reference = solve(&mut MotionRk4, 64 * 256);
+    let reference = solve(&mut MotionRk4::new(), 64 * 256);
     let err = |x: Vec<f64>| {
         x.iter()
             .zip(&reference)
@@ -253,7 +253,7 @@ fn measured_orders() {
             2.0,
             200,
         ),
-        (&mut MotionRk4, 4.0, 100),
+        (&mut MotionRk4::new(), 4.0, 100),
     ] {
         let e1 = err(solve(integrator, base));
         let e2 = err(solve(integrator, 2 * base));

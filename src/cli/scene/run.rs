@@ -156,7 +156,7 @@ pub fn run(
 ) -> CliResult<Record> {
     let mut integrator: Box<dyn MotionIntegrator> = match scene.integrator {
         IntegratorKind::Splitting => Box::new(MotionSplitting::new()),
-        IntegratorKind::Rk4 => Box::new(MotionRk4),
+        IntegratorKind::Rk4 => Box::new(MotionRk4::new()),
     };
     let mut record = Record {
         times: Vec::with_capacity(times.len()),

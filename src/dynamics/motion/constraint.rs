@@ -221,8 +221,10 @@ pub(crate) struct ContactRow {
     pub friction_impulse: Vector,
     /// The normal impulse added in the free flight to keep the point out (position level).
     pub position_impulse: f64,
-    /// nᵀ K n and the tangent block of K (set when the solve starts).
+    /// nᵀ K n and the tangent block of K, and the point's speed (set when the solve
+    /// starts).
     pub knn: f64,
+    speed: f64,
     kt: Dense,
     eigenvalues: Dense,
     eigenvectors: Dense,
@@ -329,7 +331,8 @@ impl Solver {
         tolerance: f64,
         resting_speed: &[f64],
     ) {
-        self.contacts.clear();
+        // Rows are overwritten in place (a row is large: moving it costs more than its setup).
+        let mut used = 0;
         let n = bodies[0].dim();
         let mut q = std::mem::take(&mut self.work);
         for (i, (b, shape)) in bodies.iter().zip(shapes).enumerate() {
@@ -356,25 +359,45 @@ impl Solver {
                         } else {
                             0.0
                         };
-                        self.contacts.push(ContactRow {
-                            body: i,
-                            half_space: k,
-                            index,
-                            point: p.clone(),
-                            r: r.clone(),
-                            target,
-                            normal_impulse: 0.0,
-                            friction_impulse: Vector::zero(n),
-                            position_impulse: 0.0,
-                            knn: 0.0,
-                            kt: Dense::new(),
-                            eigenvalues: Dense::new(),
-                            eigenvectors: Dense::new(),
-                        });
+                        if let Some(row) = self.contacts.get_mut(used) {
+                            row.body = i;
+                            row.half_space = k;
+                            row.index = index;
+                            row.point.clone_from(p);
+                            row.r.clone_from(r);
+                            row.target = target;
+                            row.normal_impulse = 0.0;
+                            row.friction_impulse = Vector::zero(n);
+                            row.position_impulse = 0.0;
+                            row.knn = 0.0;
+                            row.speed = 0.0;
+                            row.kt.clear();
+                            row.eigenvalues.clear();
+                            row.eigenvectors.clear();
+                        } else {
+                            self.contacts.push(ContactRow {
+                                body: i,
+                                half_space: k,
+                                index,
+                                point: p.clone(),
+                                r: r.clone(),
+                                target,
+                                normal_impulse: 0.0,
+                                friction_impulse: Vector::zero(n),
+                                position_impulse: 0.0,
+                                knn: 0.0,
+                                speed: 0.0,
+                                kt: Dense::new(),
+                                eigenvalues: Dense::new(),
+                                eigenvectors: Dense::new(),
+                            });
+                        }
+                        used += 1;
                     }
                 });
             }
         }
+        self.contacts.truncate(used);
         self.work = q;
     }
 
@@ -445,7 +468,6 @@ impl Solver {
                 add_inverse_mass(&self.states[*j], q, &mut row.k);
             }
         }
-        let mut speed = 0.0f64;
         for row in &mut self.contacts {
             let nrm = half_spaces[row.half_space].normal();
             let st = &self.states[row.body];
@@ -461,9 +483,7 @@ impl Solver {
                 .sum();
             tangent_block(&mut row.kt, nrm);
             symmetric_eigen(&row.kt, n, &mut row.eigenvalues, &mut row.eigenvectors);
-            speed = speed
-                .max(st.velocity_at(&row.r).max_abs())
-                .max(row.target.abs());
+            row.speed = st.velocity_at(&row.r).max_abs().max(row.target.abs());
         }
         // Start from the last solve's impulses where the same points touch again.
         let mut w = 0;
@@ -491,63 +511,53 @@ impl Solver {
                 row.friction_impulse = j;
             }
         }
-        // Converged when no impulse changes a velocity by more than this.
-        let tolerance = 1e-12 * speed.max(1e-300);
-        for _ in 0..MAX_SWEEPS {
-            let mut change = 0.0f64;
-            for row in &mut self.joints {
-                let u = row.velocity(&self.states);
-                self.work.clear();
-                self.work.extend_from_slice(&row.k);
-                self.rhs.clear();
-                self.rhs.extend(u.as_slice().iter().map(|x| -x));
-                if !cholesky_solve(&mut self.work, n, &mut self.rhs) {
-                    continue;
+        // Bodies that no joint couples are solved apart (their contacts are consecutive), each
+        // until no impulse changes one of its velocities by more than 1e-12 of its speeds;
+        // with joints, everything is one problem.
+        let coupled = !self.joints.is_empty();
+        let mut start = 0;
+        while start < self.contacts.len() {
+            let end = if coupled {
+                self.contacts.len()
+            } else {
+                let body = self.contacts[start].body;
+                start
+                    + self.contacts[start..]
+                        .iter()
+                        .take_while(|r| r.body == body)
+                        .count()
+            };
+            let speed = self.contacts[start..end]
+                .iter()
+                .map(|r| r.speed)
+                .fold(0.0, f64::max);
+            let tolerance = 1e-12 * speed.max(1e-300);
+            for _ in 0..MAX_SWEEPS {
+                let mut change = 0.0f64;
+                if coupled {
+                    for row in &mut self.joints {
+                        let u = row.velocity(&self.states);
+                        self.work.clear();
+                        self.work.extend_from_slice(&row.k);
+                        self.rhs.clear();
+                        self.rhs.extend(u.as_slice().iter().map(|x| -x));
+                        if !cholesky_solve(&mut self.work, n, &mut self.rhs) {
+                            continue;
+                        }
+                        let dj = Vector::from_storage(self.rhs.iter().copied().collect());
+                        row.apply(&mut self.states, &dj);
+                        row.impulse += &dj;
+                        change = change.max(u.max_abs());
+                    }
                 }
-                let dj = Vector::from_storage(self.rhs.iter().copied().collect());
-                row.apply(&mut self.states, &dj);
-                row.impulse += &dj;
-                change = change.max(u.max_abs());
-            }
-            for row in &mut self.contacts {
-                let plane = &half_spaces[row.half_space];
-                let nrm = plane.normal();
-                let st = &mut self.states[row.body];
-                // Normal: the smallest accumulated λ ≥ 0 reaching the target.
-                let un = nrm.dot(&st.velocity_at(&row.r));
-                let lambda = (row.normal_impulse + (row.target - un) / row.knn).max(0.0);
-                let dl = lambda - row.normal_impulse;
-                if dl != 0.0 {
-                    st.apply(&row.r, &(nrm * dl));
-                    row.normal_impulse = lambda;
+                for row in &mut self.contacts[start..end] {
+                    change = change.max(sweep_contact(row, half_spaces, &mut self.states, n));
                 }
-                change = change.max((dl * row.knn).abs());
-                // Friction: maximal dissipation in the disc |J_t| ≤ μλ.
-                let limit = plane.friction() * row.normal_impulse;
-                let mut ut = st.velocity_at(&row.r);
-                ut -= &(nrm * nrm.dot(&ut));
-                let new = if limit > 0.0 {
-                    friction_impulse(
-                        &row.eigenvalues,
-                        &row.eigenvectors,
-                        &row.kt,
-                        &row.friction_impulse,
-                        &ut,
-                        limit,
-                    )
-                } else {
-                    Vector::zero(n)
-                };
-                let dj = &new - &row.friction_impulse;
-                if dj.max_abs() > 0.0 {
-                    st.apply(&row.r, &dj);
-                    row.friction_impulse = new;
-                    change = change.max(dj.max_abs() * row.knn);
+                if change <= tolerance {
+                    break;
                 }
             }
-            if change <= tolerance {
-                break;
-            }
+            start = end;
         }
         self.warm.clear();
         self.warm.extend(self.contacts.iter().map(|r| {
@@ -619,6 +629,52 @@ impl Solver {
             row.impulse += &j;
         }
     }
+}
+
+/// One Gauss–Seidel update of a contact: the normal impulse, then the friction impulse.
+/// Returns the largest velocity change it made.
+fn sweep_contact(
+    row: &mut ContactRow,
+    half_spaces: &[HalfSpace],
+    states: &mut [BodyState],
+    n: usize,
+) -> f64 {
+    let mut change = 0.0f64;
+    let plane = &half_spaces[row.half_space];
+    let nrm = plane.normal();
+    let st = &mut states[row.body];
+    // Normal: the smallest accumulated λ ≥ 0 reaching the target.
+    let un = nrm.dot(&st.velocity_at(&row.r));
+    let lambda = (row.normal_impulse + (row.target - un) / row.knn).max(0.0);
+    let dl = lambda - row.normal_impulse;
+    if dl != 0.0 {
+        st.apply(&row.r, &(nrm * dl));
+        row.normal_impulse = lambda;
+    }
+    change = change.max((dl * row.knn).abs());
+    // Friction: maximal dissipation in the disc |J_t| ≤ μλ.
+    let limit = plane.friction() * row.normal_impulse;
+    let mut ut = st.velocity_at(&row.r);
+    ut -= &(nrm * nrm.dot(&ut));
+    let new = if limit > 0.0 {
+        friction_impulse(
+            &row.eigenvalues,
+            &row.eigenvectors,
+            &row.kt,
+            &row.friction_impulse,
+            &ut,
+            limit,
+        )
+    } else {
+        Vector::zero(n)
+    };
+    let dj = &new - &row.friction_impulse;
+    if dj.max_abs() > 0.0 {
+        st.apply(&row.r, &dj);
+        row.friction_impulse = new;
+        change = change.max(dj.max_abs() * row.knn);
+    }
+    change
 }
 
 /// Turns the inverse mass k into its tangent block P k P + n nᵀ (P = 1 − n nᵀ), which maps

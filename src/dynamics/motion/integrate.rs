@@ -61,6 +61,7 @@ pub struct MotionSplitting {
     active: Vec<bool>,
     gaps: Vec<Vector>,
     distances: Vec<f64>,
+    sharing: Vec<usize>,
 }
 
 impl Default for MotionSplitting {
@@ -75,6 +76,7 @@ impl Default for MotionSplitting {
             active: Vec::new(),
             gaps: Vec::new(),
             distances: Vec::new(),
+            sharing: Vec::new(),
         }
     }
 }
@@ -231,20 +233,18 @@ impl MotionSplitting {
                 self.gaps = gaps;
             }
             // Contacts: one Newton step each, shared among the contacts of a body that push.
-            let pushing = |k: usize, rows: &[super::constraint::ContactRow]| {
-                self.distances[k] < 0.0 || rows[k].position_impulse > 0.0
-            };
-            for k in 0..self.solver.contacts.len() {
-                let rows = &self.solver.contacts;
-                if !pushing(k, rows) {
+            self.sharing.clear();
+            self.sharing.resize(bodies.len(), 0);
+            for (row, d) in self.solver.contacts.iter().zip(&self.distances) {
+                if *d < 0.0 || row.position_impulse > 0.0 {
+                    self.sharing[row.body] += 1;
+                }
+            }
+            for (row, &d) in self.solver.contacts.iter_mut().zip(&self.distances) {
+                if d >= 0.0 && row.position_impulse == 0.0 {
                     continue;
                 }
-                let body = rows[k].body;
-                let sharing = (0..rows.len())
-                    .filter(|&i| rows[i].body == body && pushing(i, rows))
-                    .count() as f64;
-                let row = &mut self.solver.contacts[k];
-                let d = self.distances[k];
+                let sharing = self.sharing[row.body] as f64;
                 let want = (row.position_impulse - d / (h * row.knn * sharing)).max(0.0);
                 let dl = want - row.position_impulse;
                 row.position_impulse = want;
@@ -482,10 +482,21 @@ impl MotionIntegrator for MotionSplitting {
 /// momenta, the attitudes advanced on Spin(N) (or SO(N)) by one exponential per step with
 /// the commutator correction of [`crate::dynamics::Rkmk4`], so that each attitude stays on
 /// its group. Any forques, dissipative ones included.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct MotionRk4;
+///
+/// It keeps the stage states and rates between steps, so that after the first step a step
+/// does not touch the heap (N ≤ 8); make one with [`MotionRk4::new`] (or `default()`) and
+/// reuse it.
+#[derive(Clone, Debug, Default)]
+pub struct MotionRk4 {
+    /// The bodies at the current stage (their mass and inertia are the system's).
+    stage: Vec<MovingBody>,
+    /// The rates k₁ … k₄ of every body.
+    k: [Vec<Rates>; 4],
+    wrenches: Vec<Wrench>,
+}
 
 /// The rates of one body: dx/dt, dp/dt, dL/dt and a = −½ω (the attitude's generator).
+#[derive(Clone, Debug)]
 struct Rates {
     dx: Vector,
     dp: Vector,
@@ -493,47 +504,75 @@ struct Rates {
     a: Bivector,
 }
 
-fn rates(bodies: &[MovingBody], wrenches: &[Wrench]) -> Vec<Rates> {
-    bodies
-        .iter()
-        .zip(wrenches)
-        .map(|(b, w)| {
-            let l = b.rotation().momentum();
-            let omega = b.rotation().inertia().apply_inverse(l);
-            let mut dl = omega.commutator(l);
-            dl += &w.torque;
-            Rates {
-                dx: b.linear_momentum() * (1.0 / b.mass()),
-                dp: w.force.clone(),
-                dl,
-                a: omega * -0.5,
-            }
-        })
-        .collect()
+impl Rates {
+    fn zero(n: usize) -> Rates {
+        Rates {
+            dx: Vector::zero(n),
+            dp: Vector::zero(n),
+            dl: Bivector::zero(n),
+            a: Bivector::zero(n),
+        }
+    }
 }
 
-/// The bodies at a stage: x₀ + c dx, p₀ + c dp, L₀ + c dL, R₀ exp(u).
-fn stage(
+/// Writes the rates of `bodies` under `wrenches` into `out`.
+fn rates_into(bodies: &[MovingBody], wrenches: &[Wrench], out: &mut Vec<Rates>) {
+    let n = bodies[0].dim();
+    out.resize_with(bodies.len(), || Rates::zero(n));
+    for ((b, w), k) in bodies.iter().zip(wrenches).zip(out.iter_mut()) {
+        let l = b.rotation().momentum();
+        let omega = b.rotation().inertia().apply_inverse(l);
+        let mut dl = omega.commutator(l);
+        dl += &w.torque;
+        k.dx = b.linear_momentum() * (1.0 / b.mass());
+        k.dp.clone_from(&w.force);
+        k.dl = dl;
+        k.a = omega * -0.5;
+    }
+}
+
+/// Sets the bodies `out` at a stage: x₀ + c dx, p₀ + c dp, L₀ + c dL, R₀ exp(u(i)).
+fn set_stage(
     start: &[MovingBody],
     k: &[Rates],
     c: f64,
-    attitude_steps: &[Bivector],
-) -> Vec<MovingBody> {
-    start
-        .iter()
-        .zip(k)
-        .zip(attitude_steps)
-        .map(|((b0, k), u)| {
-            let mut b = b0.clone();
-            let (x, p, rotation) = b.state_mut();
-            *x += &(&k.dx * c);
-            *p += &(&k.dp * c);
-            let r = rotation.principal_frame_attitude().times_exp(u);
-            let l = rotation.momentum() + &(&k.dl * c);
-            rotation.replace_state(r, l);
-            b
-        })
-        .collect()
+    attitude_step: impl Fn(usize) -> Bivector,
+    out: &mut [MovingBody],
+) {
+    for (i, ((b0, k), b)) in start.iter().zip(k).zip(out.iter_mut()).enumerate() {
+        let (x, p, rotation) = b.state_mut();
+        x.clone_from(b0.position());
+        *x += &(&k.dx * c);
+        p.clone_from(b0.linear_momentum());
+        *p += &(&k.dp * c);
+        let (r, l) = rotation.state_mut();
+        r.clone_from(b0.rotation().principal_frame_attitude());
+        r.times_exp_mut(&attitude_step(i));
+        l.clone_from(b0.rotation().momentum());
+        *l += &(&k.dl * c);
+    }
+}
+
+impl MotionRk4 {
+    /// Returns the integrator, with empty buffers (the first step sizes them).
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Makes the stage bodies copies of `bodies` (mass, inertia and frames; the state is set
+    /// at each stage), cloning only when they are not already.
+    fn prepare(&mut self, bodies: &[MovingBody]) {
+        let same = self.stage.len() == bodies.len()
+            && self.stage.iter().zip(bodies).all(|(s, b)| {
+                s.mass() == b.mass()
+                    && s.rotation().inertia() == b.rotation().inertia()
+                    && s.rotation().principal_frame() == b.rotation().principal_frame()
+            });
+        if !same {
+            self.stage.clear();
+            self.stage.extend_from_slice(bodies);
+        }
+    }
 }
 
 impl MotionIntegrator for MotionRk4 {
@@ -553,32 +592,38 @@ impl MotionIntegrator for MotionRk4 {
                     .into(),
             });
         }
-        let b0: Vec<MovingBody> = system.bodies().to_vec();
-        let k1 = rates(&b0, &system.wrenches_for(t, &b0));
-        let u2: Vec<Bivector> = k1.iter().map(|k| &k.a * (0.5 * h)).collect();
-        let b2 = stage(&b0, &k1, 0.5 * h, &u2);
-        let k2 = rates(&b2, &system.wrenches_for(t + 0.5 * h, &b2));
-        let u3: Vec<Bivector> = k1
-            .iter()
-            .zip(&k2)
-            .map(|(k1, k2)| &(&k2.a * (0.5 * h)) + &(k1.a.commutator(&k2.a) * (0.25 * h * h)))
-            .collect();
-        let b3 = stage(&b0, &k2, 0.5 * h, &u3);
-        let k3 = rates(&b3, &system.wrenches_for(t + 0.5 * h, &b3));
-        let u4: Vec<Bivector> = k3.iter().map(|k| &k.a * h).collect();
-        let b4 = stage(&b0, &k3, h, &u4);
-        let k4 = rates(&b4, &system.wrenches_for(t + h, &b4));
+        self.prepare(system.bodies());
+        let MotionRk4 { stage, k, wrenches } = self;
+        let [k1, k2, k3, k4] = k;
+        let b0 = system.bodies();
+        system.wrenches_for_into(t, b0, wrenches);
+        rates_into(b0, wrenches, k1);
+        set_stage(b0, k1, 0.5 * h, |i| &k1[i].a * (0.5 * h), stage);
+        system.wrenches_for_into(t + 0.5 * h, stage, wrenches);
+        rates_into(stage, wrenches, k2);
+        set_stage(
+            b0,
+            k2,
+            0.5 * h,
+            |i| &(&k2[i].a * (0.5 * h)) + &(k1[i].a.commutator(&k2[i].a) * (0.25 * h * h)),
+            stage,
+        );
+        system.wrenches_for_into(t + 0.5 * h, stage, wrenches);
+        rates_into(stage, wrenches, k3);
+        set_stage(b0, k3, h, |i| &k3[i].a * h, stage);
+        system.wrenches_for_into(t + h, stage, wrenches);
+        rates_into(stage, wrenches, k4);
         for (i, b) in system.bodies_mut().iter_mut().enumerate() {
             let (x, p, rotation) = b.state_mut();
-            let sum = |f: &dyn Fn(&Rates) -> Vector| -> Vector {
-                let mut s = f(&k1[i]);
-                s += &(&f(&k2[i]) * 2.0);
-                s += &(&f(&k3[i]) * 2.0);
-                s += &f(&k4[i]);
+            let sum = |f: &dyn Fn(&Rates) -> &Vector| -> Vector {
+                let mut s = f(&k1[i]).clone();
+                s += &(f(&k2[i]) * 2.0);
+                s += &(f(&k3[i]) * 2.0);
+                s += f(&k4[i]);
                 s
             };
-            *x += &(&sum(&|k: &Rates| k.dx.clone()) * (h / 6.0));
-            *p += &(&sum(&|k: &Rates| k.dp.clone()) * (h / 6.0));
+            *x += &(&sum(&|k: &Rates| &k.dx) * (h / 6.0));
+            *p += &(&sum(&|k: &Rates| &k.dp) * (h / 6.0));
             let mut dl = k1[i].dl.clone();
             dl += &(&k2[i].dl * 2.0);
             dl += &(&k3[i].dl * 2.0);
@@ -589,9 +634,9 @@ impl MotionIntegrator for MotionRk4 {
             u += &k4[i].a;
             u *= h / 6.0;
             u += &(k1[i].a.commutator(&k4[i].a) * (h * h / 6.0));
-            let r: Attitude = rotation.principal_frame_attitude().times_exp(&u);
-            let l = rotation.momentum() + &(&dl * (h / 6.0));
-            rotation.replace_state(r, l);
+            let (r, l) = rotation.state_mut();
+            r.times_exp_mut(&u);
+            *l += &(&dl * (h / 6.0));
         }
         check_finite(system, t)
     }

@@ -196,16 +196,19 @@ impl System {
 
     /// Writes the wrench on every body at time `t` into `out` (reused storage).
     pub(crate) fn wrenches_into(&self, t: f64, out: &mut Vec<Wrench>) {
+        self.wrenches_for_into(t, &self.bodies, out);
+    }
+
+    /// Writes the wrench on every body at time `t` for the given states into `out` (reused
+    /// storage).
+    pub(crate) fn wrenches_for_into(&self, t: f64, bodies: &[MovingBody], out: &mut Vec<Wrench>) {
         let n = self.dim();
-        out.resize(self.bodies.len(), Wrench::zero(n));
+        out.resize(bodies.len(), Wrench::zero(n));
         for w in out.iter_mut() {
             w.force.as_mut_slice().fill(0.0);
             w.torque.as_mut_slice().fill(0.0);
         }
-        let input = ForqueInput {
-            time: t,
-            bodies: &self.bodies,
-        };
+        let input = ForqueInput { time: t, bodies };
         for f in &self.forques {
             f.apply(&input, out);
         }
