@@ -210,14 +210,19 @@ impl MotionSplitting {
             worst_gap = self.gaps.iter().map(Vector::max_abs).fold(0.0, f64::max);
             self.distances.clear();
             let mut contacts_hold = true;
+            // Rows come grouped by body: place each body's axes once.
+            let mut placed: Option<(usize, SmallVec<[f64; 64]>)> = None;
             for row in &self.solver.contacts {
                 let shape = &shapes[row.body];
-                let d = candidate_distance(
-                    &bodies[row.body],
-                    shape,
-                    &half_spaces[row.half_space],
-                    row.index,
-                );
+                let b = &bodies[row.body];
+                if placed.as_ref().is_none_or(|(i, _)| *i != row.body) {
+                    placed = Some((row.body, own_axes_matrix(b)));
+                }
+                let q = placed
+                    .as_ref()
+                    .map(|(_, q)| q.as_slice())
+                    .unwrap_or_default();
+                let d = candidate_distance(b, q, shape, &half_spaces[row.half_space], row.index);
                 let tolerance = 1e-12 * shape.radius();
                 contacts_hold &= d >= -tolerance && (row.position_impulse == 0.0 || d <= tolerance);
                 self.distances.push(d);
@@ -404,17 +409,18 @@ fn own_axes_matrix(b: &MovingBody) -> SmallVec<[f64; 64]> {
     q
 }
 
-/// The distance from half-space `plane` of candidate `index` (from 1) of a body's shape.
+/// The distance from half-space `plane` of candidate `index` (from 1) of a body's shape,
+/// placed with the own-axes matrix `q`.
 fn candidate_distance(
     b: &MovingBody,
+    q: &[f64],
     shape: &ContactShape,
     plane: &super::HalfSpace,
     index: usize,
 ) -> f64 {
-    let q = own_axes_matrix(b);
     let base = plane.distance(b.position());
     let (mut k, mut out) = (0, f64::INFINITY);
-    shape.candidates(&q, plane.normal(), |_, r| {
+    shape.candidates(q, plane.normal(), |_, r| {
         k += 1;
         if k == index {
             out = base + plane.normal().dot(r);
