@@ -79,6 +79,7 @@ pub mod sta;
 mod vector;
 mod versor;
 mod versor_general;
+mod versor_n4;
 mod versor_pga3;
 mod versor_sqrt;
 

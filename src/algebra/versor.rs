@@ -68,6 +68,7 @@ use super::decompose::decompose_components;
 use super::error::{check_finite, within};
 use super::small::Small;
 use super::versor_general::{GENERAL_MAX_DIM, exp_general_to, log_general};
+use super::versor_n4 as n4;
 use super::versor_pga3 as pga3;
 use super::{AlgebraError, Bivector, Multivector, Rotor};
 use nalgebra::Complex;
@@ -101,7 +102,11 @@ impl Multivector {
     /// klein's, written without dividing by the rotation angle), within a factor of about 2
     /// of a hand-written kernel (`cargo bench --bench versors`).
     /// Euclidean signatures use [`Bivector::exp`] (any N ≤ [`super::MULTIVECTOR_MAX_DIM`]).
-    /// Other signatures with N ≤ [`CLOSED_FORM_MAX_DIM`] = 5 use the invariant decomposition
+    /// Other signatures with N ≤ 4 use exp(B) = C(B²) + S(B²) B with the entire functions
+    /// C(z) = cosh √z and S(z) = sinh √z / √z, evaluated exactly at B² = α + βI (I the
+    /// pseudoscalar) in the complex, split-complex or dual numbers that 1 and I span, on
+    /// fixed-size arrays: the decomposition below without forming its parts. Those with
+    /// N = 5 (and N ≤ 4 where the squares overflow) use the invariant decomposition
     /// (Roelfs & De Keninck, "Graded symmetry groups: plane and simple", 2021/2023):
     /// B = B₁ + B₂ with commuting simple Bᵢ whose squares λᵢ = Bᵢ² are scalars (negative:
     /// rotation, cos/sin; positive: boost, cosh/sinh; zero: translation or light-like, 1 + Bᵢ)
@@ -174,6 +179,9 @@ impl Multivector {
             return Ok(v);
         }
         let mut out = Multivector::zero(self.signature());
+        if n4::applies(self.signature()) && n4::exp_to(self, &mut out) {
+            return Ok(out);
+        }
         self.exp_any_signature(&mut out)?;
         Ok(out)
     }
@@ -201,6 +209,9 @@ impl Multivector {
     pub fn exp_to(&self, out: &mut Multivector) -> Result<(), AlgebraError> {
         check_same_algebra(self, out)?;
         if pga3::is_pga3(self.signature()) && pga3::exp_to(self, out) {
+            return Ok(());
+        }
+        if n4::applies(self.signature()) && n4::exp_to(self, out) {
             return Ok(());
         }
         self.exp_any_signature(out)
