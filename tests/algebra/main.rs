@@ -7,6 +7,7 @@ mod bivector;
 mod cga;
 mod decompose;
 mod exp_log;
+mod fixed;
 mod multivector;
 mod nalgebra_interop;
 mod outermorphism;

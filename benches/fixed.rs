@@ -1,0 +1,274 @@
+//! Criterion benches of the fixed-size 3D and 4D rotors (`Rotor3`, `Rotor4`) beside the
+//! strongest fair baselines, each pair in one group of the same run:
+//!
+//! - 3D, f64 and f32: glam's `DQuat`/`Quat` (product, rotating a vector, the rotation matrix,
+//!   `from_scaled_axis`/`to_scaled_axis` against `from_rotation_bivector`/
+//!   `rotation_bivector`, which compute the same rotation: the axis is the dual of the
+//!   plane), and the run-time `Rotor` at N = 3.
+//! - 4D, f64: a hand-written quaternion-pair product and closed-form exponential (the same
+//!   arithmetic written out below), nalgebra's `Matrix4` product and `Matrix4 * Vector4`, and
+//!   the run-time `Rotor` at N = 4.
+//!
+//! Every variant keeps a full rotation (no variant skips the attitude). The setup asserts
+//! that each pair computes the same rotation. Run `cargo bench --bench fixed`
+//! (`BENCH_QUICK=1` for a shorter run).
+
+use criterion::{Criterion, black_box, criterion_group, criterion_main};
+use glam::{DMat3, DQuat, DVec3, Mat3, Quat, Vec3};
+use nalgebra::{Vector3, Vector4};
+use rotorflow::algebra::{Bivector, Bivector3, Bivector4, Rotor3, Vector};
+
+#[path = "common/configure.rs"]
+mod configure;
+use configure::configure;
+
+/// The glam axis of a rotation bivector Θ: the rotation in e₁₂ is about e₃.
+fn axis(t: Bivector3) -> DVec3 {
+    DVec3::new(t.b23, -t.b13, t.b12)
+}
+
+fn bench_3d(c: &mut Criterion) {
+    let (ta, tb) = (
+        Bivector3::new(0.3, -0.7, 0.5),
+        Bivector3::new(-0.2, 0.4, 1.1),
+    );
+    let (a, b) = (
+        Rotor3::from_rotation_bivector(ta),
+        Rotor3::from_rotation_bivector(tb),
+    );
+    let (qa, qb) = (
+        DQuat::from_scaled_axis(axis(ta)),
+        DQuat::from_scaled_axis(axis(tb)),
+    );
+    let v = Vector3::new(0.3, -1.2, 2.0);
+    let dv = DVec3::new(0.3, -1.2, 2.0);
+    // Same rotations, same products, same matrices.
+    let close = |x: DVec3, y: Vector3<f64>| (x - DVec3::new(y.x, y.y, y.z)).abs().max_element();
+    assert!(close(qa * dv, a.rotate_vector(v)) < 1e-14);
+    assert!(close((qa * qb) * dv, (a * b).rotate_vector(v)) < 1e-14);
+    let m = DMat3::from_quat(qa);
+    for i in 0..3 {
+        for j in 0..3 {
+            assert!((m.col(j)[i] - a.to_matrix()[(i, j)]).abs() < 1e-14);
+        }
+    }
+    assert!(close(qa.to_scaled_axis(), Vector3::new(ta.b23, -ta.b13, ta.b12)) < 1e-14);
+
+    let (ra, rb) = (a.to_rotor(), b.to_rotor());
+    let vv = Vector::from_components(&[0.3, -1.2, 2.0]).unwrap();
+
+    let mut g = c.benchmark_group("fixed3_f64_product");
+    g.bench_function("glam_dquat", |x| x.iter(|| black_box(qa) * black_box(qb)));
+    g.bench_function("rotorflow_rotor3", |x| {
+        x.iter(|| black_box(a) * black_box(b))
+    });
+    g.bench_function("rotorflow_rotor_n3", |x| {
+        x.iter(|| black_box(&ra).compose(black_box(&rb)))
+    });
+    g.finish();
+    let mut g = c.benchmark_group("fixed3_f64_rotate_vector");
+    g.bench_function("glam_dquat", |x| x.iter(|| black_box(qa) * black_box(dv)));
+    g.bench_function("rotorflow_rotor3", |x| {
+        x.iter(|| black_box(a).rotate_vector(black_box(v)))
+    });
+    g.bench_function("rotorflow_rotor_n3", |x| {
+        x.iter(|| black_box(&ra).rotate_vector(black_box(&vv)))
+    });
+    g.finish();
+    let mut g = c.benchmark_group("fixed3_f64_to_matrix");
+    g.bench_function("glam_dmat3_from_quat", |x| {
+        x.iter(|| DMat3::from_quat(black_box(qa)))
+    });
+    g.bench_function("rotorflow_rotor3", |x| x.iter(|| black_box(a).to_matrix()));
+    g.finish();
+    let mut g = c.benchmark_group("fixed3_f64_exp");
+    g.bench_function("glam_from_scaled_axis", |x| {
+        x.iter(|| DQuat::from_scaled_axis(black_box(axis(ta))))
+    });
+    g.bench_function("rotorflow_rotor3", |x| {
+        x.iter(|| Rotor3::from_rotation_bivector(black_box(ta)))
+    });
+    g.finish();
+    let mut g = c.benchmark_group("fixed3_f64_log");
+    g.bench_function("glam_to_scaled_axis", |x| {
+        x.iter(|| black_box(qa).to_scaled_axis())
+    });
+    g.bench_function("rotorflow_rotor3", |x| {
+        x.iter(|| black_box(a).rotation_bivector())
+    });
+    g.finish();
+
+    // f32 against glam's Quat (SIMD on x86-64).
+    let (ta32, tb32) = (
+        Bivector3::<f32>::new(0.3, -0.7, 0.5),
+        Bivector3::<f32>::new(-0.2, 0.4, 1.1),
+    );
+    let (a32, b32) = (
+        Rotor3::from_rotation_bivector(ta32),
+        Rotor3::from_rotation_bivector(tb32),
+    );
+    let ax32 = |t: Bivector3<f32>| Vec3::new(t.b23, -t.b13, t.b12);
+    let (qa32, qb32) = (
+        Quat::from_scaled_axis(ax32(ta32)),
+        Quat::from_scaled_axis(ax32(tb32)),
+    );
+    let v32 = Vector3::new(0.3f32, -1.2, 2.0);
+    let dv32 = Vec3::new(0.3, -1.2, 2.0);
+    let w = (a32 * b32).rotate_vector(v32);
+    assert!(
+        (((qa32 * qb32) * dv32) - Vec3::new(w.x, w.y, w.z))
+            .abs()
+            .max_element()
+            < 1e-6
+    );
+    let mut g = c.benchmark_group("fixed3_f32_product");
+    g.bench_function("glam_quat", |x| {
+        x.iter(|| black_box(qa32) * black_box(qb32))
+    });
+    g.bench_function("rotorflow_rotor3", |x| {
+        x.iter(|| black_box(a32) * black_box(b32))
+    });
+    g.finish();
+    let mut g = c.benchmark_group("fixed3_f32_rotate_vector");
+    g.bench_function("glam_quat", |x| {
+        x.iter(|| black_box(qa32) * black_box(dv32))
+    });
+    g.bench_function("rotorflow_rotor3", |x| {
+        x.iter(|| black_box(a32).rotate_vector(black_box(v32)))
+    });
+    g.finish();
+    let mut g = c.benchmark_group("fixed3_f32_to_matrix");
+    g.bench_function("glam_mat3_from_quat", |x| {
+        x.iter(|| Mat3::from_quat(black_box(qa32)))
+    });
+    g.bench_function("rotorflow_rotor3", |x| {
+        x.iter(|| black_box(a32).to_matrix())
+    });
+    g.finish();
+    let mut g = c.benchmark_group("fixed3_f32_exp");
+    g.bench_function("glam_from_scaled_axis", |x| {
+        x.iter(|| Quat::from_scaled_axis(black_box(ax32(ta32))))
+    });
+    g.bench_function("rotorflow_rotor3", |x| {
+        x.iter(|| Rotor3::from_rotation_bivector(black_box(ta32)))
+    });
+    g.finish();
+    let mut g = c.benchmark_group("fixed3_f32_log");
+    g.bench_function("glam_to_scaled_axis", |x| {
+        x.iter(|| black_box(qa32).to_scaled_axis())
+    });
+    g.bench_function("rotorflow_rotor3", |x| {
+        x.iter(|| black_box(a32).rotation_bivector())
+    });
+    g.finish();
+}
+
+/// A quaternion as (w, x, y, z).
+type Quaternion = [f64; 4];
+
+/// Hamilton's product, written out.
+#[inline]
+fn hamilton(a: Quaternion, b: Quaternion) -> Quaternion {
+    [
+        a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+        a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+        a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+        a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0],
+    ]
+}
+
+/// The hand-written quaternion-pair product of Spin(4) ≅ SU(2) × SU(2).
+#[inline]
+fn pair_product(
+    a: (Quaternion, Quaternion),
+    b: (Quaternion, Quaternion),
+) -> (Quaternion, Quaternion) {
+    (hamilton(a.0, b.0), hamilton(a.1, b.1))
+}
+
+/// The hand-written closed-form exponential of a 4D bivector: the quaternion exponential of
+/// its self-dual and anti-self-dual halves.
+#[inline]
+fn pair_exp(b: [f64; 6]) -> (Quaternion, Quaternion) {
+    let [b12, b13, b14, b23, b24, b34] = b;
+    let half = |v: [f64; 3]| {
+        let t = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        let (s, c) = t.sin_cos();
+        let k = if t > 0.0 { s / t } else { 1.0 };
+        [c, k * v[0], k * v[1], k * v[2]]
+    };
+    (
+        half([b12 - b34, b13 + b24, b14 - b23]),
+        half([b12 + b34, b13 - b24, -(b14 + b23)]),
+    )
+}
+
+fn bench_4d(c: &mut Criterion) {
+    // Non-simple bivectors (two planes with different angles).
+    let (ba, bb) = (
+        [0.3, -0.7, 0.5, 0.2, 0.9, -0.4],
+        [-0.2, 0.4, 1.1, -0.6, 0.1, 0.3],
+    );
+    let (a, b) = (
+        Bivector4::from_array(ba).exp(),
+        Bivector4::from_array(bb).exp(),
+    );
+    let (pa, pb) = (pair_exp(ba), pair_exp(bb));
+    assert_eq!(a.to_quaternion_pair(), pa);
+    assert_eq!((a * b).to_quaternion_pair(), pair_product(pa, pb));
+    let (ma, mb) = (a.to_matrix(), b.to_matrix());
+    assert!(((a * b).to_matrix() - ma * mb).amax() < 1e-14);
+    let v = Vector4::new(0.3, -1.2, 2.0, 0.7);
+    assert!((a.rotate_vector(v) - ma * v).amax() < 1e-14);
+    let (ra, rb) = (a.to_rotor(), b.to_rotor());
+    let vv = Vector::from_components(&[0.3, -1.2, 2.0, 0.7]).unwrap();
+    let bv = Bivector::from_components(4, &ba).unwrap();
+
+    let mut g = c.benchmark_group("fixed4_f64_product");
+    g.bench_function("hand_written_quaternion_pair", |x| {
+        x.iter(|| pair_product(black_box(pa), black_box(pb)))
+    });
+    g.bench_function("rotorflow_rotor4", |x| {
+        x.iter(|| black_box(a) * black_box(b))
+    });
+    g.bench_function("nalgebra_matrix4_product", |x| {
+        x.iter(|| black_box(ma) * black_box(mb))
+    });
+    g.bench_function("rotorflow_rotor_n4", |x| {
+        x.iter(|| black_box(&ra).compose(black_box(&rb)))
+    });
+    g.finish();
+    let mut g = c.benchmark_group("fixed4_f64_rotate_vector");
+    g.bench_function("nalgebra_matrix4_times_vector4", |x| {
+        x.iter(|| black_box(ma) * black_box(v))
+    });
+    g.bench_function("rotorflow_rotor4", |x| {
+        x.iter(|| black_box(a).rotate_vector(black_box(v)))
+    });
+    g.bench_function("rotorflow_rotor_n4", |x| {
+        x.iter(|| black_box(&ra).rotate_vector(black_box(&vv)))
+    });
+    g.finish();
+    let mut g = c.benchmark_group("fixed4_f64_exp");
+    g.bench_function("hand_written_closed_form", |x| {
+        x.iter(|| pair_exp(black_box(ba)))
+    });
+    g.bench_function("rotorflow_rotor4", |x| {
+        x.iter(|| Bivector4::from_array(black_box(ba)).exp())
+    });
+    g.bench_function("rotorflow_bivector_n4", |x| x.iter(|| black_box(&bv).exp()));
+    g.finish();
+    let mut g = c.benchmark_group("fixed4_f64_to_matrix");
+    g.bench_function("rotorflow_rotor4", |x| x.iter(|| black_box(a).to_matrix()));
+    g.bench_function("rotorflow_rotor_n4", |x| {
+        x.iter(|| black_box(&ra).to_matrix())
+    });
+    g.finish();
+}
+
+criterion_group! {
+    name = benches;
+    config = configure();
+    targets = bench_3d, bench_4d
+}
+criterion_main!(benches);

@@ -1,0 +1,440 @@
+//! [`Bivector3`] and [`Rotor3`]: 3D rotation at the cost of a quaternion.
+
+use super::{Real, norm, quat_conj, quat_exp_with_norm, quat_log, quat_mul, quat_unit_error};
+use crate::algebra::{AlgebraError, Bivector, Rotor};
+use nalgebra::{Matrix3, Vector3};
+use std::ops::{Add, Mul, Neg, Sub};
+
+/// A bivector of 3D space, b₁₂e₁₂ + b₁₃e₁₃ + b₂₃e₂₃ (the lexicographic order of
+/// [`Bivector`]): a plane with a magnitude, an angular velocity or momentum, the generator
+/// of a rotation.
+///
+/// ```
+/// use rotorflow::algebra::{Bivector3, Rotor3};
+/// let theta = Bivector3::new(std::f64::consts::FRAC_PI_2, 0.0, 0.0); // a quarter turn in e12
+/// let r = Rotor3::from_rotation_bivector(theta);
+/// let v = r.rotate_vector(nalgebra::Vector3::new(1.0, 0.0, 0.0));
+/// assert!((v - nalgebra::Vector3::new(0.0, 1.0, 0.0)).amax() < 1e-15); // e1 turns toward e2
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Bivector3<T = f64> {
+    /// The e₁₂ component.
+    pub b12: T,
+    /// The e₁₃ component.
+    pub b13: T,
+    /// The e₂₃ component.
+    pub b23: T,
+}
+
+impl<T: Real> Bivector3<T> {
+    /// The bivector b₁₂e₁₂ + b₁₃e₁₃ + b₂₃e₂₃.
+    #[inline]
+    pub fn new(b12: T, b13: T, b23: T) -> Self {
+        Self { b12, b13, b23 }
+    }
+
+    /// The zero bivector.
+    #[inline]
+    pub fn zero() -> Self {
+        Self::new(T::zero(), T::zero(), T::zero())
+    }
+
+    /// The components in lexicographic order \[b₁₂, b₁₃, b₂₃\].
+    #[inline]
+    pub fn to_array(self) -> [T; 3] {
+        [self.b12, self.b13, self.b23]
+    }
+
+    /// The bivector with components \[b₁₂, b₁₃, b₂₃\].
+    #[inline]
+    pub fn from_array(c: [T; 3]) -> Self {
+        Self::new(c[0], c[1], c[2])
+    }
+
+    /// |B|² = Σ b_ij².
+    #[inline]
+    pub fn norm_squared(self) -> T {
+        self.b12 * self.b12 + self.b13 * self.b13 + self.b23 * self.b23
+    }
+
+    /// |B|, without overflow or underflow.
+    #[inline]
+    pub fn norm(self) -> T {
+        norm(self.to_array())
+    }
+
+    /// The commutator product A × B = ½(AB − BA), a bivector (the Lie bracket of so(3)).
+    #[inline]
+    pub fn commutator(self, other: Self) -> Self {
+        // The quaternion map is an algebra isomorphism and ½(ab − ba) = a × b for pure
+        // quaternions a, b.
+        let (a, b) = (self.quaternion_vector(), other.quaternion_vector());
+        let c = [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ];
+        Self::from_quaternion_vector(c)
+    }
+
+    /// exp(B) = cos |B| + (sin |B| / |B|) B, a unit rotor (it turns by 2|B|; see
+    /// [`Rotor3::from_rotation_bivector`] for the rotation by an angle).
+    #[inline]
+    pub fn exp(self) -> Rotor3<T> {
+        Rotor3 {
+            q: quat_exp_with_norm(self.quaternion_vector(), self.norm()),
+        }
+    }
+
+    /// The vector part of the pure quaternion with the same geometric product.
+    #[inline(always)]
+    fn quaternion_vector(self) -> [T; 3] {
+        [-self.b23, self.b13, -self.b12]
+    }
+
+    #[inline(always)]
+    fn from_quaternion_vector(v: [T; 3]) -> Self {
+        Self::new(-v[2], v[1], -v[0])
+    }
+
+    /// The run-time [`Bivector`] (N = 3).
+    pub fn to_bivector(self) -> Bivector {
+        let c = self.to_array().map(Real::to_f64);
+        Bivector::from_components(3, &c).expect("three components of a 3D bivector")
+    }
+}
+
+impl Bivector3<f64> {
+    /// The fixed-size form of a run-time bivector.
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionMismatch`] unless N = 3.
+    pub fn from_bivector(b: &Bivector) -> Result<Self, AlgebraError> {
+        match b.as_slice() {
+            &[b12, b13, b23] => Ok(Self::new(b12, b13, b23)),
+            _ => Err(AlgebraError::DimensionMismatch {
+                left: 3,
+                right: b.dim(),
+            }),
+        }
+    }
+}
+
+impl<T: Real> Add for Bivector3<T> {
+    type Output = Self;
+    #[inline]
+    fn add(self, o: Self) -> Self {
+        Self::new(self.b12 + o.b12, self.b13 + o.b13, self.b23 + o.b23)
+    }
+}
+
+impl<T: Real> Sub for Bivector3<T> {
+    type Output = Self;
+    #[inline]
+    fn sub(self, o: Self) -> Self {
+        Self::new(self.b12 - o.b12, self.b13 - o.b13, self.b23 - o.b23)
+    }
+}
+
+impl<T: Real> Neg for Bivector3<T> {
+    type Output = Self;
+    #[inline]
+    fn neg(self) -> Self {
+        Self::new(-self.b12, -self.b13, -self.b23)
+    }
+}
+
+impl<T: Real> Mul<T> for Bivector3<T> {
+    type Output = Self;
+    #[inline]
+    fn mul(self, s: T) -> Self {
+        Self::new(self.b12 * s, self.b13 * s, self.b23 * s)
+    }
+}
+
+/// A rotor of 3D space, s + b₁₂e₁₂ + b₁₃e₁₃ + b₂₃e₂₃ with R R̃ = 1, acting by x ↦ R x R̃;
+/// R = exp(−θB̂/2) turns by θ in the plane B̂ from its first vector toward its second (the
+/// conventions of [`Rotor`]).
+///
+/// Stored as the unit quaternion (w, x, y, z) = (s, −b₂₃, b₁₃, −b₁₂), whose Hamilton
+/// product is the geometric product: glam's `DQuat`/`Quat` and this type agree
+/// operation for operation, with the rotation by θ in e₁₂ the quaternion of the axis e₃.
+///
+/// ```
+/// use rotorflow::algebra::{Bivector3, Rotor3};
+/// let a = Rotor3::from_rotation_bivector(Bivector3::new(0.3, -0.2, 0.5));
+/// let b = Rotor3::from_rotation_bivector(Bivector3::new(-0.1, 0.4, 0.2));
+/// let m = (a * b).to_matrix();
+/// assert!((m - a.to_matrix() * b.to_matrix()).amax() < 1e-15);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rotor3<T = f64> {
+    q: [T; 4],
+}
+
+impl<T: Real> Default for Rotor3<T> {
+    fn default() -> Self {
+        Self::identity()
+    }
+}
+
+impl<T: Real> Rotor3<T> {
+    /// The identity rotor 1.
+    #[inline]
+    pub fn identity() -> Self {
+        Self {
+            q: [T::one(), T::zero(), T::zero(), T::zero()],
+        }
+    }
+
+    /// The rotor s + B from its scalar and bivector parts, as given (not normalised).
+    #[inline]
+    pub fn from_parts(s: T, b: Bivector3<T>) -> Self {
+        Self {
+            q: [s, -b.b23, b.b13, -b.b12],
+        }
+    }
+
+    /// The rotor of the unit quaternion (w, x, y, z) (w + xi + yj + zk with i = −e₂₃,
+    /// j = e₁₃, k = −e₁₂), as given.
+    #[inline]
+    pub fn from_quaternion(w: T, x: T, y: T, z: T) -> Self {
+        Self { q: [w, x, y, z] }
+    }
+
+    /// The quaternion (w, x, y, z) of this rotor.
+    #[inline]
+    pub fn to_quaternion(self) -> [T; 4] {
+        self.q
+    }
+
+    /// The scalar part s.
+    #[inline]
+    pub fn scalar(self) -> T {
+        self.q[0]
+    }
+
+    /// The bivector part.
+    #[inline]
+    pub fn bivector_part(self) -> Bivector3<T> {
+        Bivector3::new(-self.q[3], self.q[2], -self.q[1])
+    }
+
+    /// The rotor exp(−Θ/2) of the rotation bivector Θ: the rotation by |Θ| in the plane Θ̂,
+    /// as [`Rotor::from_rotation_bivector`].
+    #[inline]
+    pub fn from_rotation_bivector(theta: Bivector3<T>) -> Self {
+        (theta * T::lit(-0.5)).exp()
+    }
+
+    /// Θ = −2 log R, the inverse of [`Rotor3::from_rotation_bivector`].
+    #[inline]
+    pub fn rotation_bivector(self) -> Bivector3<T> {
+        self.log() * T::lit(-2.0)
+    }
+
+    /// The principal logarithm (half-angle in \[0, π\]), as [`Rotor::log`]: R = −1 gives π e₁₂.
+    #[inline]
+    pub fn log(self) -> Bivector3<T> {
+        Bivector3::from_quaternion_vector(quat_log(self.q))
+    }
+
+    /// The reverse R̃ (the inverse of a unit rotor).
+    #[inline]
+    pub fn reverse(self) -> Self {
+        Self {
+            q: quat_conj(self.q),
+        }
+    }
+
+    /// The geometric product self · other: the rotation `other` first, then `self`.
+    #[inline]
+    pub fn compose(self, other: Self) -> Self {
+        Self {
+            q: quat_mul(self.q, other.q),
+        }
+    }
+
+    /// R x R̃.
+    #[inline]
+    pub fn rotate_vector(self, x: Vector3<T>) -> Vector3<T> {
+        // v + 2w (u × v) + 2 u × (u × v) with u the quaternion's vector part.
+        let [w, ux, uy, uz] = self.q;
+        let two = T::lit(2.0);
+        let tx = two * (uy * x.z - uz * x.y);
+        let ty = two * (uz * x.x - ux * x.z);
+        let tz = two * (ux * x.y - uy * x.x);
+        Vector3::new(
+            x.x + w * tx + (uy * tz - uz * ty),
+            x.y + w * ty + (uz * tx - ux * tz),
+            x.z + w * tz + (ux * ty - uy * tx),
+        )
+    }
+
+    /// The rotation matrix Q (Q x = R x R̃), as [`Rotor::to_matrix`].
+    #[inline]
+    pub fn to_matrix(self) -> Matrix3<T> {
+        let [w, x, y, z] = self.q;
+        let two = T::lit(2.0);
+        Matrix3::new(
+            w * w + x * x - y * y - z * z,
+            two * (x * y - w * z),
+            two * (x * z + w * y),
+            two * (x * y + w * z),
+            w * w - x * x + y * y - z * z,
+            two * (y * z - w * x),
+            two * (x * z - w * y),
+            two * (y * z + w * x),
+            w * w - x * x - y * y + z * z,
+        )
+    }
+
+    /// The rotor (scalar part ≥ 0) of a rotation matrix, by Shepperd's method as
+    /// [`Rotor::from_matrix`], which also checks the matrix.
+    ///
+    /// # Errors
+    /// [`AlgebraError::NonFinite`] for NaN or infinite entries; [`AlgebraError::NotARotation`]
+    /// if max |QᵀQ − 1| exceeds [`crate::algebra::ROTATION_TOLERANCE`] or det Q < 0.
+    pub fn from_matrix(m: &Matrix3<T>) -> Result<Self, AlgebraError> {
+        if !m.iter().all(|c| c.is_finite()) {
+            return Err(AlgebraError::NonFinite { what: "matrix" });
+        }
+        let error = (m.transpose() * m - Matrix3::identity()).amax().to_f64();
+        let det = m.determinant().to_f64();
+        if !(error <= crate::algebra::ROTATION_TOLERANCE && det > 0.0) {
+            return Err(AlgebraError::NotARotation {
+                orthogonality_error: error,
+                determinant: det,
+                tolerance: crate::algebra::ROTATION_TOLERANCE,
+            });
+        }
+        Ok(Self::from_matrix_unchecked(m))
+    }
+
+    /// Shepperd's method without the checks: the largest of w², x², y², z² from the trace and
+    /// diagonal, so no square root of a small number is taken.
+    pub fn from_matrix_unchecked(q: &Matrix3<T>) -> Self {
+        let (one, two, quarter) = (T::one(), T::lit(2.0), T::lit(0.25));
+        let (m00, m11, m22) = (q[(0, 0)], q[(1, 1)], q[(2, 2)]);
+        let tr = m00 + m11 + m22;
+        let root = |x: T| two * x.max(T::zero()).sqrt();
+        let (w, x, y, z);
+        if tr >= m00 && tr >= m11 && tr >= m22 {
+            let s = root(one + tr);
+            w = quarter * s;
+            x = (q[(2, 1)] - q[(1, 2)]) / s;
+            y = (q[(0, 2)] - q[(2, 0)]) / s;
+            z = (q[(1, 0)] - q[(0, 1)]) / s;
+        } else if m00 >= m11 && m00 >= m22 {
+            let s = root(one + m00 - m11 - m22);
+            w = (q[(2, 1)] - q[(1, 2)]) / s;
+            x = quarter * s;
+            y = (q[(0, 1)] + q[(1, 0)]) / s;
+            z = (q[(0, 2)] + q[(2, 0)]) / s;
+        } else if m11 >= m22 {
+            let s = root(one + m11 - m00 - m22);
+            w = (q[(0, 2)] - q[(2, 0)]) / s;
+            x = (q[(0, 1)] + q[(1, 0)]) / s;
+            y = quarter * s;
+            z = (q[(1, 2)] + q[(2, 1)]) / s;
+        } else {
+            let s = root(one + m22 - m00 - m11);
+            w = (q[(1, 0)] - q[(0, 1)]) / s;
+            x = (q[(0, 2)] + q[(2, 0)]) / s;
+            y = (q[(1, 2)] + q[(2, 1)]) / s;
+            z = quarter * s;
+        }
+        let sign = if w < T::zero() { -one } else { one };
+        let k = sign / (w * w + x * x + y * y + z * z).sqrt();
+        Self {
+            q: [k * w, k * x, k * y, k * z],
+        }
+    }
+
+    /// The rotation a fraction `t` of the way from `self` to `other` along the shorter arc,
+    /// as [`Rotor::slerp`].
+    #[inline]
+    pub fn slerp(self, other: Self, t: T) -> Self {
+        let d = self.q[0] * other.q[0]
+            + self.q[1] * other.q[1]
+            + self.q[2] * other.q[2]
+            + self.q[3] * other.q[3];
+        let other = if d < T::zero() {
+            Self {
+                q: other.q.map(|c| -c),
+            }
+        } else {
+            other
+        };
+        let delta = self.reverse().compose(other);
+        self.compose((delta.log() * t).exp())
+    }
+
+    /// R / |R|: back onto the group after drift.
+    #[inline]
+    pub fn normalize(self) -> Self {
+        let k = T::one() / norm(self.q);
+        Self {
+            q: self.q.map(|c| c * k),
+        }
+    }
+
+    /// max |R R̃ − 1|, as [`Rotor::unit_error`].
+    #[inline]
+    pub fn unit_error(self) -> T {
+        quat_unit_error(self.q)
+    }
+
+    /// The run-time [`Rotor`] (N = 3).
+    pub fn to_rotor(self) -> Rotor {
+        let b = self.bivector_part();
+        let mut m = crate::algebra::Multivector::zero(crate::algebra::Signature::euclidean(3));
+        let c = m.as_mut_slice();
+        c[0] = self.scalar().to_f64();
+        c[0b011] = b.b12.to_f64();
+        c[0b101] = b.b13.to_f64();
+        c[0b110] = b.b23.to_f64();
+        Rotor::from_multivector_unchecked(&m)
+    }
+}
+
+impl Rotor3<f64> {
+    /// The fixed-size form of a run-time rotor.
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionMismatch`] unless N = 3.
+    pub fn from_rotor(r: &Rotor) -> Result<Self, AlgebraError> {
+        if r.dim() != 3 {
+            return Err(AlgebraError::DimensionMismatch {
+                left: 3,
+                right: r.dim(),
+            });
+        }
+        Ok(Self::from_parts(
+            r.scalar(),
+            Bivector3::new(
+                r.coefficient(0b011),
+                r.coefficient(0b101),
+                r.coefficient(0b110),
+            ),
+        ))
+    }
+}
+
+impl<T: Real> Mul for Rotor3<T> {
+    type Output = Self;
+    /// The geometric product, [`Rotor3::compose`].
+    #[inline]
+    fn mul(self, other: Self) -> Self {
+        self.compose(other)
+    }
+}
+
+impl<T: Real> Mul<Vector3<T>> for Rotor3<T> {
+    type Output = Vector3<T>;
+    /// [`Rotor3::rotate_vector`].
+    #[inline]
+    fn mul(self, x: Vector3<T>) -> Vector3<T> {
+        self.rotate_vector(x)
+    }
+}
