@@ -13,7 +13,7 @@
 //! that each pair computes the same rotation. Run `cargo bench --bench fixed`
 //! (`BENCH_QUICK=1` for a shorter run).
 
-use criterion::{Criterion, black_box, criterion_group, criterion_main};
+use criterion::{Criterion, Throughput, black_box, criterion_group, criterion_main};
 use glam::{DMat3, DQuat, DVec3, Mat3, Quat, Vec3};
 use nalgebra::{Vector3, Vector4};
 use rotorflow::algebra::{Bivector, Bivector3, Bivector4, Rotor3, Vector};
@@ -266,9 +266,93 @@ fn bench_4d(c: &mut Criterion) {
     g.finish();
 }
 
+/// Many vectors turned by one rotor, per second: the structure-of-arrays kernels (through the
+/// matrix) against glam's quaternion and matrix applied in a loop over `DVec3`/`Vec3`.
+fn bench_batch(c: &mut Criterion) {
+    const COUNT: usize = 4096;
+    let theta = Bivector3::new(0.3, -0.7, 0.5);
+    let r = Rotor3::from_rotation_bivector(theta);
+    let r32 = Rotor3::from_rotation_bivector(Bivector3::<f32>::new(0.3, -0.7, 0.5));
+    let q = DQuat::from_scaled_axis(axis(theta));
+    let (q32, m, m32) = (
+        q.as_quat(),
+        DMat3::from_quat(q),
+        Mat3::from_quat(q.as_quat()),
+    );
+    let coords = |k: usize| -> Vec<f64> {
+        (0..COUNT)
+            .map(|i| ((i * 7 + k) % 13) as f64 * 0.1 - 0.6)
+            .collect()
+    };
+    let (x, y, z) = (coords(0), coords(1), coords(2));
+    let (x32, y32, z32): (Vec<f32>, Vec<f32>, Vec<f32>) = (
+        x.iter().map(|&v| v as f32).collect(),
+        y.iter().map(|&v| v as f32).collect(),
+        z.iter().map(|&v| v as f32).collect(),
+    );
+    let aos: Vec<Vector3<f64>> = (0..COUNT).map(|i| Vector3::new(x[i], y[i], z[i])).collect();
+    let glam: Vec<DVec3> = (0..COUNT).map(|i| DVec3::new(x[i], y[i], z[i])).collect();
+    let glam32: Vec<Vec3> = glam.iter().map(|v| v.as_vec3()).collect();
+    // The SoA kernel and glam's loop turn the same vectors.
+    let (mut a, mut b, mut cc) = (x.clone(), y.clone(), z.clone());
+    r.rotate_soa(&mut a, &mut b, &mut cc);
+    for i in 0..COUNT {
+        assert!(
+            (q * glam[i] - DVec3::new(a[i], b[i], cc[i]))
+                .abs()
+                .max_element()
+                < 1e-14
+        );
+    }
+
+    let mut g = c.benchmark_group("batch3_rotate_vectors");
+    g.throughput(Throughput::Elements(COUNT as u64));
+    g.bench_function("rotorflow_f64_soa", |bch| {
+        let (mut a, mut b, mut cc) = (x.clone(), y.clone(), z.clone());
+        bch.iter(|| black_box(r).rotate_soa(&mut a, &mut b, &mut cc))
+    });
+    g.bench_function("rotorflow_f64_aos", |bch| {
+        let mut v = aos.clone();
+        bch.iter(|| black_box(r).rotate_vectors(&mut v))
+    });
+    g.bench_function("glam_dquat_loop", |bch| {
+        let mut v = glam.clone();
+        bch.iter(|| {
+            let q = black_box(q);
+            v.iter_mut().for_each(|p| *p = q * *p)
+        })
+    });
+    g.bench_function("glam_dmat3_loop", |bch| {
+        let mut v = glam.clone();
+        bch.iter(|| {
+            let m = black_box(m);
+            v.iter_mut().for_each(|p| *p = m * *p)
+        })
+    });
+    g.bench_function("rotorflow_f32_soa", |bch| {
+        let (mut a, mut b, mut cc) = (x32.clone(), y32.clone(), z32.clone());
+        bch.iter(|| black_box(r32).rotate_soa(&mut a, &mut b, &mut cc))
+    });
+    g.bench_function("glam_quat_loop", |bch| {
+        let mut v = glam32.clone();
+        bch.iter(|| {
+            let q = black_box(q32);
+            v.iter_mut().for_each(|p| *p = q * *p)
+        })
+    });
+    g.bench_function("glam_mat3_loop", |bch| {
+        let mut v = glam32.clone();
+        bch.iter(|| {
+            let m = black_box(m32);
+            v.iter_mut().for_each(|p| *p = m * *p)
+        })
+    });
+    g.finish();
+}
+
 criterion_group! {
     name = benches;
     config = configure();
-    targets = bench_3d, bench_4d
+    targets = bench_3d, bench_4d, bench_batch
 }
 criterion_main!(benches);

@@ -279,3 +279,93 @@ fn rotate_vector_is_the_matrix_and_matrices_compose() {
     );
     assert!(Rotor4::from_matrix(&Matrix4::from_element(f64::NAN)).is_err());
 }
+
+#[test]
+fn batch_kernels_equal_one_at_a_time() {
+    let mut rng = ChaCha8Rng::seed_from_u64(46);
+    let count = 40_000; // above the parallel chunk, so the threads split it
+    let r3 = Bivector3::new(0.4, -1.1, 0.3).exp();
+    let r4 = Bivector4::new(0.4, -1.1, 0.3, 0.9, -0.2, 0.5).exp();
+    let mut coords: Vec<Vec<f64>> = (0..4)
+        .map(|_| (0..count).map(|_| rng.gen_range(-3.0..3.0)).collect())
+        .collect();
+    let original = coords.clone();
+    let [x, y, z, w] = &mut coords[..] else {
+        unreachable!()
+    };
+    r4.rotate_soa(x, y, z, w);
+    let mut aos: Vec<Vector4<f64>> = (0..count)
+        .map(|i| {
+            Vector4::new(
+                original[0][i],
+                original[1][i],
+                original[2][i],
+                original[3][i],
+            )
+        })
+        .collect();
+    r4.rotate_vectors(&mut aos);
+    for i in 0..count {
+        let one = r4.rotate_vector(Vector4::new(
+            original[0][i],
+            original[1][i],
+            original[2][i],
+            original[3][i],
+        ));
+        let soa = Vector4::new(x[i], y[i], z[i], w[i]);
+        assert!((one - soa).amax() <= 1e-14 && (one - aos[i]).amax() <= 1e-14);
+    }
+    let (mut a, mut b, mut c) = (
+        original[0].clone(),
+        original[1].clone(),
+        original[2].clone(),
+    );
+    r3.rotate_soa(&mut a, &mut b, &mut c);
+    let mut v3: Vec<Vector3<f64>> = (0..count)
+        .map(|i| Vector3::new(original[0][i], original[1][i], original[2][i]))
+        .collect();
+    r3.rotate_vectors(&mut v3);
+    for i in 0..count {
+        let one = r3.rotate_vector(Vector3::new(original[0][i], original[1][i], original[2][i]));
+        assert!((one - Vector3::new(a[i], b[i], c[i])).amax() <= 1e-14);
+        assert!((one - v3[i]).amax() <= 1e-14);
+    }
+    #[cfg(feature = "parallel")]
+    {
+        let (mut pa, mut pb, mut pc) = (
+            original[0].clone(),
+            original[1].clone(),
+            original[2].clone(),
+        );
+        r3.par_rotate_soa(&mut pa, &mut pb, &mut pc);
+        assert_eq!((pa, pb, pc), (a, b, c));
+        let mut p: Vec<Vec<f64>> = original.clone();
+        let [px, py, pz, pw] = &mut p[..] else {
+            unreachable!()
+        };
+        r4.par_rotate_soa(px, py, pz, pw);
+        assert_eq!(&p, &coords);
+    }
+    let mut rotors: Vec<Rotor4> = (0..100)
+        .map(|k| Bivector4::new(0.01 * k as f64, 0.3, -0.2, 0.1, 0.0, 0.7).exp())
+        .collect();
+    let before = rotors.clone();
+    r4.compose_all(&mut rotors);
+    for (after, b) in rotors.iter().zip(&before) {
+        assert_eq!(*after, r4 * *b);
+    }
+    let mut rotors3: Vec<Rotor3> = before
+        .iter()
+        .map(|_| Bivector3::new(0.2, 0.1, -0.3).exp())
+        .collect();
+    let b3 = rotors3.clone();
+    r3.compose_all(&mut rotors3);
+    assert!(rotors3.iter().zip(&b3).all(|(a, b)| *a == r3 * *b));
+}
+
+#[test]
+#[should_panic(expected = "coordinate slices of different lengths")]
+fn batch_kernels_refuse_ragged_slices() {
+    let r = Rotor3::<f64>::identity();
+    r.rotate_soa(&mut [0.0; 3], &mut [0.0; 3], &mut [0.0; 2]);
+}

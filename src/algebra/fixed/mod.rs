@@ -21,6 +21,7 @@
 //! Every operation agrees with the run-time types to a few ulp (`tests/algebra/fixed.rs`);
 //! conversions both ways are `to_rotor`/`from_rotor` and `to_bivector`/`from_bivector`.
 
+mod batch;
 mod d3;
 mod d4;
 
