@@ -350,9 +350,207 @@ fn bench_batch(c: &mut Criterion) {
     g.finish();
 }
 
+/// ω × L in 3D on (e₁₂, e₁₃, e₂₃) components, written out.
+#[inline]
+fn cross3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[2] * b[1] - a[1] * b[2],
+        a[0] * b[2] - a[2] * b[0],
+        a[1] * b[0] - a[0] * b[1],
+    ]
+}
+
+/// ω × L in 4D through the self-dual halves: (α, β) of each, the cross product per half.
+#[inline]
+fn cross4(a: [f64; 6], b: [f64; 6]) -> [f64; 6] {
+    let halves = |c: [f64; 6]| {
+        let [b12, b13, b14, b23, b24, b34] = c;
+        (
+            [b12 - b34, b13 + b24, b14 - b23],
+            [b12 + b34, b13 - b24, -(b14 + b23)],
+        )
+    };
+    let x = |u: [f64; 3], v: [f64; 3]| {
+        [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ]
+    };
+    let ((aa, ab), (ba, bb)) = (halves(a), halves(b));
+    let (p, m) = (x(aa, ba), x(ab, bb));
+    [
+        0.5 * (p[0] + m[0]),
+        0.5 * (p[1] + m[1]),
+        0.5 * (p[2] - m[2]),
+        -0.5 * (p[2] + m[2]),
+        0.5 * (p[1] - m[1]),
+        0.5 * (m[0] - p[0]),
+    ]
+}
+
+/// A hand-written RKMK4 free step on plain arrays: momentum `l`, attitude `q` (a quaternion
+/// in 3D, the quaternion pair in 4D, advanced by `advance` with the step's generator), the
+/// same scheme as `FreeBody3::step_rk4`/`FreeBody4::step_rk4`.
+#[inline]
+fn hand_rkmk4<const K: usize>(
+    l: &mut [f64; K],
+    inv: &[f64; K],
+    h: f64,
+    cross: impl Fn([f64; K], [f64; K]) -> [f64; K],
+) -> [f64; K] {
+    let rate = |l: [f64; K]| {
+        let w: [f64; K] = std::array::from_fn(|k| l[k] * inv[k]);
+        (cross(w, l), w)
+    };
+    let axpy =
+        |x: [f64; K], y: [f64; K], s: f64| -> [f64; K] { std::array::from_fn(|k| x[k] + s * y[k]) };
+    let l0 = *l;
+    let (d1, w1) = rate(l0);
+    let (d2, w2) = rate(axpy(l0, d1, 0.5 * h));
+    let (d3, w3) = rate(axpy(l0, d2, 0.5 * h));
+    let (d4, w4) = rate(axpy(l0, d3, h));
+    let c = cross(w1, w4);
+    for k in 0..K {
+        l[k] = l0[k] + h / 6.0 * (d1[k] + 2.0 * d2[k] + 2.0 * d3[k] + d4[k]);
+    }
+    std::array::from_fn(|k| {
+        -h / 12.0 * (w1[k] + 2.0 * w2[k] + 2.0 * w3[k] + w4[k]) + h * h / 24.0 * c[k]
+    })
+}
+
+/// The quaternion exponential of the pure quaternion v, written out.
+#[inline]
+fn quat_exp(v: [f64; 3]) -> Quaternion {
+    let t = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let (s, c) = t.sin_cos();
+    let k = if t > 0.0 { s / t } else { 1.0 };
+    [c, k * v[0], k * v[1], k * v[2]]
+}
+
+fn bench_bodies(c: &mut Criterion) {
+    use rotorflow::dynamics::torques::Free;
+    use rotorflow::dynamics::{FreeBody3, FreeBody4, Integrator, RigidBody, Rkmk4, Splitting};
+    use rotorflow::inertia::InertiaMap;
+    let h = 0.01;
+    let rigid = |n: usize| {
+        let j: Vec<f64> = (0..n).map(|k| 0.5 + 0.25 * k as f64).collect();
+        let k = n * (n - 1) / 2;
+        let l: Vec<f64> = (0..k).map(|i| (0.7 * i as f64 + 0.3).sin()).collect();
+        let a: Vec<f64> = (0..k).map(|i| 0.1 * i as f64 - 0.2).collect();
+        RigidBody::from_body_momentum(
+            InertiaMap::from_principal_second_moments(&j).unwrap(),
+            Bivector::from_components(n, &a).unwrap().exp(),
+            &Bivector::from_components(n, &l).unwrap(),
+        )
+        .unwrap()
+    };
+    // 3D.
+    let r3 = rigid(3);
+    let f3 = FreeBody3::from_rigid_body(&r3).unwrap();
+    let inv3 = f3.moments().map(|m| 1.0 / m);
+    let (mut hl3, hq3) = (f3.momentum().to_array(), f3.attitude().to_quaternion());
+    let u = hand_rkmk4(&mut hl3, &inv3, h, cross3);
+    // The generator's quaternion vector is (−u₂₃, u₁₃, −u₁₂).
+    let hq3 = hamilton(hq3, quat_exp([-u[2], u[1], -u[0]]));
+    let mut check = f3;
+    check.step_rk4(h);
+    assert_eq!(check.momentum().to_array(), hl3);
+    let cq = check.attitude().to_quaternion();
+    assert!((0..4).all(|i| (cq[i] - hq3[i]).abs() < 1e-15));
+    let mut g = c.benchmark_group("fixed_body_step/N=3");
+    g.bench_function("hand_written_rkmk4_quaternion", |b| {
+        let (mut l, mut q) = (f3.momentum().to_array(), f3.attitude().to_quaternion());
+        b.iter(|| {
+            let u = hand_rkmk4(black_box(&mut l), &inv3, h, cross3);
+            q = hamilton(q, quat_exp([-u[2], u[1], -u[0]]));
+        })
+    });
+    g.bench_function("rotorflow_freebody3_rk4", |b| {
+        let mut f = f3;
+        b.iter(|| black_box(&mut f).step_rk4(h))
+    });
+    g.bench_function("rotorflow_freebody3_strang", |b| {
+        let mut f = f3;
+        b.iter(|| black_box(&mut f).step_strang(h))
+    });
+    g.bench_function("rotorflow_rigidbody_rkmk4", |b| {
+        let mut r = r3.clone();
+        b.iter(|| Rkmk4.step(black_box(&mut r), 0.0, h, &Free).unwrap())
+    });
+    g.bench_function("rotorflow_rigidbody_strang", |b| {
+        let (mut r, mut s) = (r3.clone(), Splitting::strang());
+        b.iter(|| s.step(black_box(&mut r), 0.0, h, &Free).unwrap())
+    });
+    g.finish();
+    // 4D.
+    let r4 = rigid(4);
+    let f4 = FreeBody4::from_rigid_body(&r4).unwrap();
+    let inv4 = f4.moments().map(|m| 1.0 / m);
+    let pair_step = |l: &mut [f64; 6], q: &mut (Quaternion, Quaternion)| {
+        let u = hand_rkmk4(l, &inv4, h, cross4);
+        *q = pair_product(*q, pair_exp(u));
+    };
+    let (mut hl4, mut hq4) = (f4.momentum().to_array(), f4.attitude().to_quaternion_pair());
+    pair_step(&mut hl4, &mut hq4);
+    let mut check = f4;
+    check.step_rk4(h);
+    let cl = check.momentum().to_array();
+    assert!((0..6).all(|i| (cl[i] - hl4[i]).abs() < 1e-15));
+    let (cp, cm) = check.attitude().to_quaternion_pair();
+    assert!((0..4).all(|i| (cp[i] - hq4.0[i]).abs() < 1e-15 && (cm[i] - hq4.1[i]).abs() < 1e-15));
+    let mut g = c.benchmark_group("fixed_body_step/N=4");
+    g.bench_function("hand_written_rkmk4_quaternion_pair", |b| {
+        let (mut l, mut q) = (f4.momentum().to_array(), f4.attitude().to_quaternion_pair());
+        b.iter(|| pair_step(black_box(&mut l), &mut q))
+    });
+    g.bench_function("rotorflow_freebody4_rk4", |b| {
+        let mut f = f4;
+        b.iter(|| black_box(&mut f).step_rk4(h))
+    });
+    g.bench_function("rotorflow_freebody4_strang", |b| {
+        let mut f = f4;
+        b.iter(|| black_box(&mut f).step_strang(h))
+    });
+    g.bench_function("rotorflow_rigidbody_rkmk4", |b| {
+        let mut r = r4.clone();
+        b.iter(|| Rkmk4.step(black_box(&mut r), 0.0, h, &Free).unwrap())
+    });
+    g.bench_function("rotorflow_rigidbody_strang", |b| {
+        let (mut r, mut s) = (r4.clone(), Splitting::strang());
+        b.iter(|| s.step(black_box(&mut r), 0.0, h, &Free).unwrap())
+    });
+    g.finish();
+    // Many 4D bodies: one thread, and both cores with the `parallel` feature.
+    const BODIES: usize = 20_000;
+    let swarm: Vec<FreeBody4> = vec![f4; BODIES];
+    let mut g = c.benchmark_group("fixed_body_swarm/N=4");
+    g.throughput(Throughput::Elements(BODIES as u64));
+    g.bench_function("rk4_one_thread", |b| {
+        let mut s = swarm.clone();
+        b.iter(|| FreeBody4::step_all_rk4(black_box(&mut s), h))
+    });
+    g.bench_function("strang_one_thread", |b| {
+        let mut s = swarm.clone();
+        b.iter(|| FreeBody4::step_all_strang(black_box(&mut s), h))
+    });
+    #[cfg(feature = "parallel")]
+    {
+        g.bench_function("rk4_parallel", |b| {
+            let mut s = swarm.clone();
+            b.iter(|| FreeBody4::par_step_all_rk4(black_box(&mut s), h))
+        });
+        g.bench_function("strang_parallel", |b| {
+            let mut s = swarm.clone();
+            b.iter(|| FreeBody4::par_step_all_strang(black_box(&mut s), h))
+        });
+    }
+    g.finish();
+}
+
 criterion_group! {
     name = benches;
     config = configure();
-    targets = bench_3d, bench_4d, bench_batch
+    targets = bench_3d, bench_4d, bench_batch, bench_bodies
 }
 criterion_main!(benches);

@@ -542,7 +542,9 @@ pub(crate) fn commutator_into(a: &Bivector, b: &Bivector, out: &mut [f64]) {
 }
 
 /// [`commutator_into`] on packed component slices of dimension `n` (the integrators' fixed-size
-/// kernels call it on stack arrays).
+/// kernels call it on stack arrays; inlined, so a constant `n` selects its kernel at compile
+/// time).
+#[inline]
 pub(crate) fn commutator_packed(n: usize, a: &[f64], b: &[f64], out: &mut [f64]) {
     match n {
         0..=2 => out.iter_mut().for_each(|o| *o = 0.0),

@@ -3,6 +3,7 @@
 mod conservation;
 mod contact_and_joints;
 mod equations;
+mod fixed;
 mod large_n;
 mod motion;
 mod moving_bodies;

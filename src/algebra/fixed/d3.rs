@@ -385,6 +385,27 @@ impl<T: Real> Rotor3<T> {
         quat_unit_error(self.q)
     }
 
+    /// The even element in the run-time rotor's storage order (s, e₁₃, e₂₃, e₁₂), any
+    /// values (not only unit rotors).
+    pub(crate) fn from_even_layout(c: &[f64; 4]) -> Self
+    where
+        T: From<f64>,
+    {
+        Self::from_parts(
+            T::from(c[0]),
+            Bivector3::new(T::from(c[3]), T::from(c[1]), T::from(c[2])),
+        )
+    }
+
+    /// self + self · d, the update R ← R (1 + D) of an increment D.
+    #[inline]
+    pub(crate) fn plus_product(self, d: Self) -> Self {
+        let p = quat_mul(self.q, d.q);
+        Self {
+            q: std::array::from_fn(|i| self.q[i] + p[i]),
+        }
+    }
+
     /// The run-time [`Rotor`] (N = 3).
     pub fn to_rotor(self) -> Rotor {
         let b = self.bivector_part();

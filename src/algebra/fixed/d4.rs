@@ -459,6 +459,30 @@ impl<T: Real> Rotor4<T> {
         (h * (p + m) - T::one()).abs().max((h * (p - m)).abs())
     }
 
+    /// The even element in the run-time rotor's storage order (s, e₁₄, e₂₄, e₁₂, e₃₄, e₁₃,
+    /// e₂₃, e₁₂₃₄), any values (not only unit rotors).
+    pub(crate) fn from_even_layout(c: &[f64; 8]) -> Self
+    where
+        T: From<f64>,
+    {
+        let t = |k: usize| T::from(c[k]);
+        Self::from_parts(
+            t(0),
+            Bivector4::new(t(3), t(5), t(1), t(6), t(2), t(4)),
+            t(7),
+        )
+    }
+
+    /// self + self · d, the update R ← R (1 + D) of an increment D.
+    #[inline]
+    pub(crate) fn plus_product(self, d: Self) -> Self {
+        let (p, m) = (quat_mul(self.plus, d.plus), quat_mul(self.minus, d.minus));
+        Self {
+            plus: std::array::from_fn(|i| self.plus[i] + p[i]),
+            minus: std::array::from_fn(|i| self.minus[i] + m[i]),
+        }
+    }
+
     /// The run-time [`Rotor`] (N = 4).
     pub fn to_rotor(self) -> Rotor {
         let b = self.bivector_part();

@@ -17,6 +17,7 @@ mod dopri;
 mod midpoint;
 mod rkmk;
 mod splitting;
+pub(crate) use splitting::{strang_drift_3, strang_drift_4};
 
 pub use dopri::Dopri5;
 pub use midpoint::Midpoint;

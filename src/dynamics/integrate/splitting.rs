@@ -195,16 +195,23 @@ impl<const K: usize, const LP: usize, const RP: usize> RotorDrift<K, LP, RP> {
 
     /// The Strang drift for time `h` ([`strang_drift`]).
     fn drift(&self, body: &mut RigidBody, moments: &[f64], h: f64) {
-        let mut rates = [0.0; K];
-        for (r, &m) in rates.iter_mut().zip(moments) {
-            *r = 0.5 * h / m;
-        }
         let (attitude, momentum) = body.state_mut();
         let mut turn = PlaneProduct::identity_for(attitude);
         let d = turn
             .rotor_increment_mut()
             .expect("a rotor attitude for N ≤ 4");
-        let l = momentum.as_mut_slice();
+        self.drift_slices(momentum.as_mut_slice(), d, moments, h);
+        turn.apply_to(attitude);
+    }
+
+    /// The drift on the momentum `l` and the rotor increment `d` (zero on entry; the
+    /// attitude's update is R ← R (1 + D)).
+    #[inline(always)]
+    fn drift_slices(&self, l: &mut [f64], d: &mut [f64], moments: &[f64], h: f64) {
+        let mut rates = [0.0; K];
+        for (r, &m) in rates.iter_mut().zip(moments) {
+            *r = 0.5 * h / m;
+        }
         for (p, &rate) in rates.iter().enumerate().take(K - 1) {
             self.plane(l, d, p, rate);
         }
@@ -212,8 +219,22 @@ impl<const K: usize, const LP: usize, const RP: usize> RotorDrift<K, LP, RP> {
         for (p, &rate) in rates.iter().enumerate().take(K - 1).rev() {
             self.plane(l, d, p, rate);
         }
-        turn.apply_to(attitude);
     }
+}
+
+/// The 3D Strang drift of the fixed-size free body: `l` updated, the attitude increment D
+/// (rotor storage order) returned, the same updates as [`Splitting::strang`]'s.
+pub(crate) fn strang_drift_3(l: &mut [f64; 3], moments: &[f64; 3], h: f64) -> [f64; 4] {
+    let mut d = [0.0; 4];
+    rotor_drift_3().drift_slices(l, &mut d, moments, h);
+    d
+}
+
+/// [`strang_drift_3`] in 4D.
+pub(crate) fn strang_drift_4(l: &mut [f64; 6], moments: &[f64; 6], h: f64) -> [f64; 8] {
+    let mut d = [0.0; 8];
+    rotor_drift_4().drift_slices(l, &mut d, moments, h);
+    d
 }
 
 /// The torque's flow for time `h` with the attitude frozen, by the midpoint rule.
