@@ -78,10 +78,10 @@ fn rotor_kernels_do_not_allocate_in_3d_and_4d() {
 #[test]
 fn integrator_steps_do_not_allocate() {
     use rotorflow::dynamics::torques::Free;
-    use rotorflow::dynamics::{Integrator, RigidBody, Rkmk4, Splitting};
+    use rotorflow::dynamics::{Dopri5, Integrator, Midpoint, RigidBody, Rkmk4, Splitting};
     // Strang and Yoshida work in place on the attitude and momentum: no heap for N ≤ 8.
-    // RK4 too: rotor attitudes up to N = 4 (inline rotors, closed-form exp), inline matrix
-    // attitudes above, up to N = 8.
+    // RK4, the midpoint rule and Dopri5 too: rotor attitudes up to N = 4 (inline rotors,
+    // closed-form exp), inline matrix attitudes above, up to N = 8.
     for n in 2..=8 {
         let moments: Vec<f64> = (0..n).map(|k| 1.0 + k as f64).collect();
         let l: Vec<f64> = (0..n * (n - 1) / 2).map(|k| (k as f64).cos()).collect();
@@ -119,6 +119,23 @@ fn integrator_steps_do_not_allocate() {
         assert_eq!(
             count, 0,
             "rk4, N = {n}: {count} heap allocations in 100 steps"
+        );
+        // The implicit midpoint rule and adaptive Dopri5 (stages inline).
+        let mut midpoint = Midpoint::default();
+        let mut dopri = Dopri5::new(1e-8, 1e-8);
+        midpoint.step(&mut body, 0.0, 0.01, &Free).unwrap();
+        dopri.step(&mut body, 0.0, 0.01, &Free).unwrap();
+        let count = allocations_in(|| {
+            for k in 0..50 {
+                midpoint
+                    .step(&mut body, k as f64 * 0.01, 0.01, &Free)
+                    .unwrap();
+                dopri.step(&mut body, k as f64 * 0.01, 0.01, &Free).unwrap();
+            }
+        });
+        assert_eq!(
+            count, 0,
+            "midpoint and dopri5, N = {n}: {count} heap allocations in 100 steps"
         );
     }
 }

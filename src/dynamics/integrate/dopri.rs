@@ -4,6 +4,7 @@ use super::{DynamicsError, Integrator, dexp_inverse, momentum_rate};
 use crate::algebra::Bivector;
 use crate::dynamics::Attitude;
 use crate::dynamics::{RigidBody, Torque};
+use smallvec::SmallVec;
 
 // Dormand & Prince, J. Comput. Appl. Math. 6 (1980) 19; dense output of Hairer, Nørsett &
 // Wanner, "Solving ODEs I", II.6 (dopri5 "contd5").
@@ -184,8 +185,9 @@ impl Dopri5 {
         let r0 = body.principal_frame_attitude();
         let l0 = body.momentum();
         let n = body.dim();
-        let mut kl: Vec<Bivector> = Vec::with_capacity(7);
-        let mut ka: Vec<Bivector> = Vec::with_capacity(7);
+        // The seven stages inline: no heap for N ≤ 8, where bivectors are inline too.
+        let mut kl: Stages = SmallVec::new();
+        let mut ka: Stages = SmallVec::new();
         let mut a_stage = Bivector::zero(n);
         let mut l_stage = l0.clone();
         for s in 0..7 {
@@ -278,14 +280,17 @@ impl Dopri5 {
     }
 }
 
+/// The stage values of one step.
+type Stages = SmallVec<[Bivector; 7]>;
+
 /// An accepted step with what its dense output needs.
 struct StepResult {
     h: f64,
     l0: Bivector,
     l1: Bivector,
     a1: Bivector,
-    kl: Vec<Bivector>,
-    ka: Vec<Bivector>,
+    kl: Stages,
+    ka: Stages,
     attitude: Attitude,
     momentum: Bivector,
 }
