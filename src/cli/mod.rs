@@ -28,6 +28,7 @@ pub mod render;
 pub mod scene;
 pub mod simulate;
 pub mod spec;
+pub mod stream;
 pub mod sweep;
 
 use error::CliResult;

@@ -336,14 +336,41 @@ pub fn integrate(
     times: &[f64],
     progress: &mut Progress,
 ) -> CliResult<(Vec<State>, usize)> {
+    let mut states: Vec<State> = Vec::with_capacity(times.len());
+    let steps = integrate_each(body, torque, stepping, times, progress, &mut |s| {
+        states.push(s);
+        Ok(())
+    })?;
+    Ok((states, steps))
+}
+
+/// The most samples integrated as one block: the blocks' states are the only ones held at a
+/// time, so memory stays flat however many samples a run asks for.
+const BLOCK_MAX: usize = 128;
+
+/// [`integrate`] handing each state to `sink` in time order instead of keeping them, and
+/// returning the number of steps taken.
+///
+/// # Errors
+/// [`CliError::Runtime`] when the integrator fails or the state stops being finite; the
+/// errors of `sink`.
+pub fn integrate_each(
+    body: &RigidBody,
+    torque: &dyn Torque,
+    stepping: Stepping,
+    times: &[f64],
+    progress: &mut Progress,
+    sink: &mut dyn FnMut(State) -> CliResult<()>,
+) -> CliResult<usize> {
     let fail = |e: rotorflow::dynamics::DynamicsError| {
         CliError::runtime(format!("integration failed: {e}"))
     };
-    let mut states: Vec<State> = Vec::with_capacity(times.len());
+    let not_finite =
+        || CliError::runtime("integration failed: the state is no longer finite; reduce --dt");
     let mut steps = 0;
-    // Chunks of samples, so that the progress bar moves; each chunk restarts from the last
+    // Blocks of samples, so that the progress bar moves; each block restarts from the last
     // state with times relative to it (the torques offered here do not depend on time).
-    let chunk = times.len().div_ceil(100).max(1);
+    let chunk = times.len().div_ceil(100).clamp(1, BLOCK_MAX);
     let mut current = body.clone();
     let mut t0 = 0.0;
     let mut fixed: Option<Box<dyn Integrator>> = None;
@@ -382,24 +409,24 @@ pub fn integrate(
             }
             _ => unreachable!("one integrator is set"),
         };
+        if block_states
+            .iter()
+            .any(|(r, l)| l.as_slice().iter().any(|x| !x.is_finite()) || !r.is_finite())
+        {
+            return Err(not_finite());
+        }
         if let Some((r, l)) = block_states.last() {
-            current.set_state(r.clone(), l.clone()).map_err(|_| {
-                CliError::runtime("integration failed: the state is no longer finite; reduce --dt")
-            })?;
+            current
+                .set_state(r.clone(), l.clone())
+                .map_err(|_| not_finite())?;
             t0 = *block.last().expect("chunks are not empty");
         }
-        states.extend(block_states);
+        for s in block_states {
+            sink(s)?;
+        }
         progress.advance(block.len() as u64);
     }
-    if states
-        .iter()
-        .any(|(r, l)| l.as_slice().iter().any(|x| !x.is_finite()) || !r.is_finite())
-    {
-        return Err(CliError::runtime(
-            "integration failed: the state is no longer finite; reduce --dt",
-        ));
-    }
-    Ok((states, steps))
+    Ok(steps)
 }
 
 /// A trajectory as reported: everything in the body's own axes.

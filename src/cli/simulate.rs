@@ -3,14 +3,16 @@
 use super::error::{CliError, CliResult};
 use super::lists::sample_times;
 use super::motion::{
-    InitialArgs, Report, SteppingArgs, finite_number, initial_body, integrate, parse_torque,
+    InitialArgs, Report, SteppingArgs, finite_number, initial_body, integrate_each, parse_torque,
 };
 use super::output::{
     Format, Progress, check_extension, emit, plane_names, report_format, to_json_text, write_atomic,
 };
 use super::spec::{GRAMMAR, parse_body};
+use super::stream::ReportStream;
 use super::viz::plot::{PlotSpec, Series, line_plot, subscript};
 use clap::Args;
+use rotorflow::algebra::Bivector;
 use std::path::{Path, PathBuf};
 
 /// Sample times: `--t-end T` with `--samples K`, or `--times t1,t2,…`.
@@ -141,10 +143,33 @@ pub fn run(args: &SimulateArgs, quiet: bool) -> CliResult<()> {
     let t_end = times.last().copied().unwrap_or(0.0);
     let stepping = args.stepping.resolve(&start, t_end)?;
     let mut progress = Progress::new(times.len() as u64, quiet, "simulate");
-    let (states, _steps) = integrate(&start, torque.as_ref(), stepping, &times, &mut progress)?;
+    // Samples go to the output as they come (memory flat in their number); ω is kept only
+    // for a plot.
+    let format = args.report.format()?;
+    let plot = args.report.plot.as_deref();
+    let mut stream = ReportStream::new(
+        &start,
+        &times,
+        format,
+        args.report.output.as_deref(),
+        plot.is_some(),
+    )?;
+    integrate_each(
+        &start,
+        torque.as_ref(),
+        stepping,
+        &times,
+        &mut progress,
+        &mut |s| stream.push(s),
+    )?;
     progress.finish();
-    let report = Report::from_states(&start, &times, states.into_iter().map(Ok))?;
-    args.report.write(&report, &parsed.spec)
+    let finished = stream.finish()?;
+    // The plot first, then the report: each file appears whole or not at all.
+    if let (Some(path), Some((times, omega))) = (plot, &finished.omega) {
+        let svg = omega_series_plot(start.dim(), times, omega, &parsed.spec)?;
+        write_atomic(path, svg.as_bytes())?;
+    }
+    finished.publish()
 }
 
 /// Writes the plot of the ω components of `report` to `path`.
@@ -161,15 +186,27 @@ pub fn write_omega_plot(path: &Path, report: &Report, title: &str) -> CliResult<
 /// # Errors
 /// [`CliError::Runtime`] when the plot cannot be drawn.
 pub fn omega_plot(report: &Report, title: &str) -> CliResult<String> {
-    let series: Vec<Series> = plane_names(report.dim)
+    omega_series_plot(report.dim, &report.times, &report.omega, title)
+}
+
+/// Returns the SVG plot of the ω components `omega` (dimension `dim`) at `times`.
+///
+/// # Errors
+/// [`CliError::Runtime`] when the plot cannot be drawn.
+pub fn omega_series_plot(
+    dim: usize,
+    times: &[f64],
+    omega: &[Bivector],
+    title: &str,
+) -> CliResult<String> {
+    let series: Vec<Series> = plane_names(dim)
         .iter()
         .enumerate()
         .map(|(k, p)| Series {
             name: format!("ω{}", subscript(p)),
-            points: report
-                .times
+            points: times
                 .iter()
-                .zip(&report.omega)
+                .zip(omega)
                 .map(|(t, w)| (*t, w.as_slice()[k]))
                 .collect(),
         })

@@ -5,6 +5,7 @@ mod bad_input;
 mod demo;
 mod exact;
 mod inertia;
+mod memory;
 mod no_lost_output;
 mod options;
 mod render;
