@@ -443,8 +443,12 @@ fn integrator_table() -> CliResult<String> {
             let seconds = clock.elapsed().as_secs_f64();
             let report = Report::from_states(&start, &times, states.into_iter().map(Ok))?;
             Ok(format!(
-                "| {name} | {steps} | {:.2e} | {:.2e} | {:.2e} | {:.4} |",
-                report.drift.energy, report.drift.casimirs, report.drift.space_momentum, seconds
+                "| {name} | {steps} | {:.2e} | {:.2e} | {:.2e} | {:.2e} | {:.4} |",
+                report.drift.energy,
+                report.drift.casimirs,
+                report.drift.manakov,
+                report.drift.space_momentum,
+                seconds
             ))
         })
         .collect::<CliResult<_>>()?;
@@ -452,7 +456,7 @@ fn integrator_table() -> CliResult<String> {
         "`{}`, ω(0) = ({}), T = {}, step {DT} for the fixed-step integrators.\n\n",
         case.spec, case.omega, case.t_end
     );
-    md.push_str("| integrator | steps | energy drift | Casimir drift | space-momentum drift | time (s) |\n|---|---|---|---|---|---|\n");
+    md.push_str("| integrator | steps | energy drift | Casimir drift | Manakov drift | space-momentum drift | time (s) |\n|---|---|---|---|---|---|---|\n");
     for r in rows {
         md.push_str(&r);
         md.push('\n');

@@ -429,6 +429,14 @@ pub fn integrate_each(
     Ok(steps)
 }
 
+/// The text report's last line: the largest relative drifts.
+pub fn drift_line(d: &Drift) -> String {
+    format!(
+        "largest relative drift: energy {:.3e}, Casimirs {:.3e}, Manakov integrals {:.3e}, space momentum {:.3e}\n",
+        d.energy, d.casimirs, d.manakov, d.space_momentum
+    )
+}
+
 /// A trajectory as reported: everything in the body's own axes.
 #[derive(Clone, Debug)]
 pub struct Report {
@@ -452,6 +460,9 @@ pub struct Report {
     pub casimir_drift: Vec<f64>,
     /// Largest drifts over all samples.
     pub drift: Drift,
+    /// Largest relative drift of each Manakov integral over all samples (empty for a general
+    /// inertia map or N above [`rotorflow::dynamics::MANAKOV_MAX_DIM`]).
+    pub manakov_drift: Vec<f64>,
 }
 
 impl Report {
@@ -480,6 +491,7 @@ impl Report {
             energy_drift: Vec::with_capacity(times.len()),
             casimir_drift: Vec::with_capacity(times.len()),
             drift: Drift::default(),
+            manakov_drift: vec![0.0; reference.manakov.len()],
         };
         let mut b = start.clone();
         for state in states {
@@ -489,6 +501,13 @@ impl Report {
             let inv = Invariants::of(&b);
             let d = inv.drift_from(&reference);
             report.drift = report.drift.max(d);
+            for (worst, m) in report
+                .manakov_drift
+                .iter_mut()
+                .zip(inv.manakov_drifts(&reference))
+            {
+                *worst = worst.max(m);
+            }
             report.energy_drift.push(d.energy);
             report.casimir_drift.push(d.casimirs);
             report.omega.push(rp.rotate_bivector(&b.omega()));
@@ -522,6 +541,7 @@ impl Report {
             "drift": {
                 "energy": self.drift.energy,
                 "casimirs": self.drift.casimirs,
+                "manakov": self.manakov_drift,
                 "space_momentum": self.drift.space_momentum,
             },
         })
@@ -573,10 +593,7 @@ impl Report {
             }
             out.push_str(&format!(" {:>14.8}\n", self.energy[k]));
         }
-        out.push_str(&format!(
-            "largest relative drift: energy {:.3e}, Casimirs {:.3e}, space momentum {:.3e}\n",
-            self.drift.energy, self.drift.casimirs, self.drift.space_momentum
-        ));
+        out.push_str(&drift_line(&self.drift));
         out
     }
 }

@@ -6,7 +6,7 @@
 //! [`Report`](super::motion::Report)'s `to_json`, `to_csv` and `to_text` (a test checks it).
 
 use super::error::{CliError, CliResult};
-use super::motion::State;
+use super::motion::{State, drift_line};
 use super::output::{Format, number, plane_names};
 use rotorflow::algebra::Bivector;
 use rotorflow::dynamics::{Attitude, Drift, Invariants, RigidBody};
@@ -27,6 +27,7 @@ pub struct ReportStream {
     principal_reverse: Attitude,
     body: RigidBody,
     drift: Drift,
+    manakov_drift: Vec<f64>,
     /// The text (CSV, text) or the whole JSON assembled at the end.
     main: BufWriter<tempfile::NamedTempFile>,
     /// JSON columns in key order: attitude, casimirs, energy, momentum, omega.
@@ -117,17 +118,20 @@ impl ReportStream {
             Vec::new()
         };
         let principal = start.principal_frame().clone();
+        let reference = Invariants::of(start);
+        let manakov_count = reference.manakov.len();
         let mut stream = ReportStream {
             format,
             output: output.map(Path::to_path_buf),
             dim: start.dim(),
             times: times.to_vec(),
             count: 0,
-            reference: Invariants::of(start),
+            reference,
             principal_reverse: principal.inverse(),
             principal,
             body: start.clone(),
             drift: Drift::default(),
+            manakov_drift: vec![0.0; manakov_count],
             main,
             columns,
             omega_for_plot: keep_omega.then(Vec::new),
@@ -178,6 +182,13 @@ impl ReportStream {
             .map_err(|e| CliError::runtime(format!("the motion cannot be evaluated: {e}")))?;
         let inv = Invariants::of(&self.body);
         self.drift = self.drift.max(inv.drift_from(&self.reference));
+        for (worst, m) in self
+            .manakov_drift
+            .iter_mut()
+            .zip(inv.manakov_drifts(&self.reference))
+        {
+            *worst = worst.max(m);
+        }
         let omega = self.principal.rotate_bivector(&self.body.omega());
         let momentum = self.principal.rotate_bivector(self.body.momentum());
         let attitude = self
@@ -264,12 +275,7 @@ impl ReportStream {
         let fail = io_fail(&shown);
         match self.format {
             Format::Json => self.assemble_json().map_err(&fail)?,
-            Format::Text => writeln!(
-                self.main,
-                "largest relative drift: energy {:.3e}, Casimirs {:.3e}, space momentum {:.3e}",
-                self.drift.energy, self.drift.casimirs, self.drift.space_momentum
-            )
-            .map_err(&fail)?,
+            Format::Text => write!(self.main, "{}", drift_line(&self.drift)).map_err(&fail)?,
             Format::Csv => {}
         }
         let mut file = self.main.into_inner().map_err(|e| fail(e.into_error()))?;
@@ -306,6 +312,7 @@ impl ReportStream {
             &serde_json::json!({
                 "energy": self.drift.energy,
                 "casimirs": self.drift.casimirs,
+                "manakov": self.manakov_drift,
                 "space_momentum": self.drift.space_momentum,
             }),
         )?;
@@ -342,9 +349,9 @@ pub(crate) fn stream_text(
 
 #[cfg(test)]
 mod tests {
-    use super::*;
     use super::super::motion::Report;
     use super::super::output::to_json_text;
+    use super::*;
     use rotorflow::prelude::*;
 
     #[test]

@@ -5,6 +5,7 @@ mod contact_and_joints;
 mod equations;
 mod fixed;
 mod large_n;
+mod manakov;
 mod motion;
 mod moving_bodies;
 mod names;
