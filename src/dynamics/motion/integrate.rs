@@ -475,6 +475,38 @@ impl MotionIntegrator for MotionSplitting {
             self.constrained_step(system, t, h)?;
             return check_finite(system, t);
         }
+        if let (bodies, Some(constant)) = system.bodies_and_constant_wrenches() {
+            // Constant forques (gravity): both half kicks are one wrench, evaluated when the
+            // forques joined the system; the halves that are zero change nothing.
+            let kick = |bodies: &mut [MovingBody]| {
+                for (b, w) in bodies.iter_mut().zip(&constant.wrenches) {
+                    let (_, p, rotation) = b.state_mut();
+                    if constant.any_force {
+                        axpy(p.as_mut_slice(), 0.5 * h, w.force.as_slice());
+                    }
+                    if constant.any_torque {
+                        let (_, l) = rotation.state_mut();
+                        axpy(l.as_mut_slice(), 0.5 * h, w.torque.as_slice());
+                    }
+                }
+            };
+            kick(bodies);
+            self.drift(bodies, t, h)?;
+            kick(bodies);
+            // The rotation step has checked the attitude and L; after it only the kick
+            // changed p (and L under a constant torque).
+            let finite = |x: &[f64]| x.iter().all(|c| c.is_finite());
+            let ok = bodies.iter().all(|b| {
+                finite(b.position().as_slice())
+                    && finite(b.linear_momentum().as_slice())
+                    && (!constant.any_torque || finite(b.rotation().momentum().as_slice()))
+            });
+            return if ok {
+                Ok(())
+            } else {
+                Err(DynamicsError::NonFinite { time: t })
+            };
+        }
         self.wrenches_at(system, t);
         Self::kick(system.bodies_mut(), &self.wrenches, 0.5 * h);
         self.drift(system.bodies_mut(), t, h)?;

@@ -22,6 +22,18 @@ pub struct System {
     half_spaces: Vec<HalfSpace>,
     joints: Vec<BallJoint>,
     contacts: Vec<Contact>,
+    /// The wrenches when every forque is constant ([`Forque::is_constant`]), evaluated when
+    /// a forque joins.
+    constant: Option<ConstantWrenches>,
+}
+
+/// The wrench on every body under forques that are all constant, and whether any force or
+/// any torque is non-zero (a kick without them changes nothing and is skipped).
+#[derive(Clone, Debug)]
+pub(crate) struct ConstantWrenches {
+    pub wrenches: Vec<Wrench>,
+    pub any_force: bool,
+    pub any_torque: bool,
 }
 
 impl std::fmt::Debug for System {
@@ -56,14 +68,40 @@ impl System {
                 reason: format!("a body in {} dimensions beside one in {n}", b.dim()),
             });
         }
-        Ok(System {
+        let mut system = System {
             shapes: vec![ContactShape::None; bodies.len()],
             bodies,
             forques: Vec::new(),
             half_spaces: Vec::new(),
             joints: Vec::new(),
             contacts: Vec::new(),
-        })
+            constant: None,
+        };
+        system.refresh_constant();
+        Ok(system)
+    }
+
+    /// Evaluates the forques once if they are all constant (no forque at all is constant
+    /// too: zero wrenches).
+    fn refresh_constant(&mut self) {
+        self.constant = None;
+        if !self.forques.iter().all(|f| f.is_constant()) {
+            return;
+        }
+        let wrenches = self.wrenches_for(0.0, &self.bodies);
+        let nonzero = |x: &[f64]| x.iter().any(|&c| c != 0.0);
+        self.constant = Some(ConstantWrenches {
+            any_force: wrenches.iter().any(|w| nonzero(w.force.as_slice())),
+            any_torque: wrenches.iter().any(|w| nonzero(w.torque.as_slice())),
+            wrenches,
+        });
+    }
+
+    /// The bodies, and the wrenches on them if the forques are all constant.
+    pub(crate) fn bodies_and_constant_wrenches(
+        &mut self,
+    ) -> (&mut [MovingBody], Option<&ConstantWrenches>) {
+        (&mut self.bodies, self.constant.as_ref())
     }
 
     /// Adds a forque.
@@ -85,6 +123,7 @@ impl System {
             });
         }
         self.forques.push(Box::new(forque));
+        self.refresh_constant();
         Ok(())
     }
 
@@ -202,8 +241,14 @@ impl System {
     /// Writes the wrench on every body at time `t` for the given states into `out` (reused
     /// storage).
     pub(crate) fn wrenches_for_into(&self, t: f64, bodies: &[MovingBody], out: &mut Vec<Wrench>) {
+        if let Some(c) = &self.constant {
+            out.clone_from(&c.wrenches);
+            return;
+        }
         let n = self.dim();
-        out.resize(bodies.len(), Wrench::zero(n));
+        if out.len() != bodies.len() {
+            out.resize(bodies.len(), Wrench::zero(n));
+        }
         for w in out.iter_mut() {
             w.force.as_mut_slice().fill(0.0);
             w.torque.as_mut_slice().fill(0.0);
