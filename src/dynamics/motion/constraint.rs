@@ -15,6 +15,7 @@
 use super::forques::Anchor;
 use super::{BallJoint, Contact, ContactShape, HalfSpace, MovingBody};
 use crate::algebra::{Bivector, Vector};
+use crate::dynamics::Attitude;
 use smallvec::SmallVec;
 
 /// Up to N = 8 the matrices live on the stack.
@@ -39,6 +40,11 @@ pub(crate) struct BodyState {
     dp: Vector,
     dl: Bivector,
     pub used: bool,
+    /// The attitude of the principal frame, the mass and the inverse plane moments that
+    /// `frame` and `inv_inertia` were computed for (None when they must be computed anew):
+    /// a body at the same placement as at the last solve reuses them.
+    key: Option<(Attitude, f64)>,
+    key_moments: SmallVec<[f64; 28]>,
 }
 
 impl BodyState {
@@ -52,12 +58,59 @@ impl BodyState {
             dp: Vector::zero(n),
             dl: Bivector::zero(n),
             used: false,
+            key: None,
+            key_moments: SmallVec::new(),
         }
     }
 
     /// Loads body `b`: the rotation of the planes by its principal frame P, I⁻¹ in space
-    /// (P I⁻¹ Pᵀ on bivectors), its velocities, no impulse yet.
-    fn load(&mut self, b: &MovingBody, work: &mut Dense) {
+    /// (P I⁻¹ Pᵀ on bivectors), its velocities, no impulse yet. Returns true if the frame
+    /// and the inverse inertia were computed anew (false: the body has not turned since
+    /// they were).
+    fn load(&mut self, b: &MovingBody, work: &mut Dense) -> bool {
+        let n = b.dim();
+        let m = n * (n - 1) / 2;
+        let attitude = b.rotation().principal_frame_attitude();
+        let inertia = b.rotation().inertia();
+        let diagonal = inertia.diagonal_inverse_plane_moments();
+        let same = match (&self.key, diagonal) {
+            (Some((a, mass)), Some(inv)) => {
+                a == attitude && *mass == b.mass() && self.key_moments[..] == inv[..]
+            }
+            _ => false,
+        };
+        if !same {
+            self.place(b, work);
+            match diagonal {
+                Some(inv) => {
+                    self.key = Some((attitude.clone(), b.mass()));
+                    self.key_moments.clear();
+                    self.key_moments.extend_from_slice(inv);
+                }
+                None => self.key = None,
+            }
+        }
+        self.inv_mass = 1.0 / b.mass();
+        self.v.clone_from(b.linear_momentum());
+        self.v *= self.inv_mass;
+        match diagonal {
+            // ω in space = P (I⁻¹ L), I⁻¹ diagonal in the principal frame.
+            Some(inv) => {
+                let l = b.rotation().momentum().as_slice();
+                for (i, w) in self.w.as_mut_slice().iter_mut().enumerate() {
+                    *w = (0..m).map(|k| self.frame[i * m + k] * inv[k] * l[k]).sum();
+                }
+            }
+            None => self.w = b.space_omega(),
+        }
+        self.dp.as_mut_slice().fill(0.0);
+        self.dl.as_mut_slice().fill(0.0);
+        self.used = true;
+        !same
+    }
+
+    /// Computes the rotation of the planes by the principal frame and I⁻¹ in space.
+    fn place(&mut self, b: &MovingBody, work: &mut Dense) {
         let n = b.dim();
         let m = n * (n - 1) / 2;
         work.clear();
@@ -72,8 +125,21 @@ impl BodyState {
                     p[c * n + a] * p[d * n + bb] - p[d * n + a] * p[c * n + bb];
             }
         }
-        // I⁻¹ in the principal frame, column by column, then F I⁻¹ Fᵀ.
         let inertia = b.rotation().inertia();
+        self.inv_inertia.clear();
+        self.inv_inertia.resize(m * m, 0.0);
+        if let Some(inv) = inertia.diagonal_inverse_plane_moments() {
+            // F diag(1/I) Fᵀ.
+            for i in 0..m {
+                for j in 0..m {
+                    self.inv_inertia[i * m + j] = (0..m)
+                        .map(|k| self.frame[i * m + k] * inv[k] * self.frame[j * m + k])
+                        .sum();
+                }
+            }
+            return;
+        }
+        // I⁻¹ in the principal frame, column by column, then F I⁻¹ Fᵀ.
         let mut ip: SmallVec<[f64; 784]> = SmallVec::from_elem(0.0, m * m);
         let mut e = Bivector::zero(n);
         for k in 0..m {
@@ -90,20 +156,12 @@ impl BodyState {
                 fi[i * m + j] = (0..m).map(|k| self.frame[i * m + k] * ip[k * m + j]).sum();
             }
         }
-        self.inv_inertia.clear();
-        self.inv_inertia.resize(m * m, 0.0);
         for i in 0..m {
             for j in 0..m {
                 self.inv_inertia[i * m + j] =
                     (0..m).map(|k| fi[i * m + k] * self.frame[j * m + k]).sum();
             }
         }
-        self.inv_mass = 1.0 / b.mass();
-        self.v = b.velocity();
-        self.w = b.space_omega();
-        self.dp = Vector::zero(n);
-        self.dl = Bivector::zero(n);
-        self.used = true;
     }
 
     /// I⁻¹ B (space).
@@ -170,6 +228,16 @@ fn add_inverse_mass(b: &BodyState, r: &Vector, k: &mut [f64]) {
 /// Solves a x = b in place for a symmetric positive definite n × n `a` (row-major,
 /// overwritten by its Cholesky factor). Returns false if `a` is not positive definite.
 pub(crate) fn cholesky_solve(a: &mut [f64], n: usize, b: &mut [f64]) -> bool {
+    if !cholesky_factor(a, n) {
+        return false;
+    }
+    cholesky_substitute(a, n, b);
+    true
+}
+
+/// Overwrites the lower triangle of a symmetric positive definite n × n `a` (row-major) by
+/// its Cholesky factor. Returns false if `a` is not positive definite.
+fn cholesky_factor(a: &mut [f64], n: usize) -> bool {
     for j in 0..n {
         let mut d = a[j * n + j];
         for k in 0..j {
@@ -188,21 +256,25 @@ pub(crate) fn cholesky_solve(a: &mut [f64], n: usize, b: &mut [f64]) -> bool {
             a[i * n + j] = s / d;
         }
     }
+    true
+}
+
+/// Solves L Lᵀ x = b in place, L the factor [`cholesky_factor`] left in `l`.
+fn cholesky_substitute(l: &[f64], n: usize, b: &mut [f64]) {
     for i in 0..n {
         let mut s = b[i];
         for k in 0..i {
-            s -= a[i * n + k] * b[k];
+            s -= l[i * n + k] * b[k];
         }
-        b[i] = s / a[i * n + i];
+        b[i] = s / l[i * n + i];
     }
     for i in (0..n).rev() {
         let mut s = b[i];
         for k in i + 1..n {
-            s -= a[k * n + i] * b[k];
+            s -= l[k * n + i] * b[k];
         }
-        b[i] = s / a[i * n + i];
+        b[i] = s / l[i * n + i];
     }
-    true
 }
 
 /// One contact point in a solve.
@@ -257,15 +329,6 @@ impl JointRow {
         }
     }
 
-    /// The gap between the two ends (zero when the joint holds).
-    pub(crate) fn gap(joint: &BallJoint, bodies: &[MovingBody]) -> Vector {
-        let a = bodies[joint.body].point_position(&joint.point);
-        match &joint.other {
-            Anchor::World(x) => &a - x,
-            Anchor::Body(j, p) => &a - &bodies[*j].point_position(p),
-        }
-    }
-
     /// The relative velocity of the two ends.
     fn velocity(&self, states: &[BodyState]) -> Vector {
         let mut u = states[self.body].velocity_at(&self.r);
@@ -288,19 +351,6 @@ impl JointRow {
         std::iter::once((self.body, &self.r, 1.0))
             .chain(self.other.iter().map(|(b, q)| (*b, q, -1.0)))
     }
-
-    /// The change of this joint's relative velocity per impulse `j` of joint `other`.
-    fn cross_response(&self, other: &JointRow, j: &Vector, states: &[BodyState]) -> Vector {
-        let mut du = Vector::zero(j.dim());
-        for (bi, ri, si) in other.ends() {
-            for (bk, rk, sk) in self.ends() {
-                if bi == bk {
-                    du += &(&states[bi].response(ri, j, rk) * (si * sk));
-                }
-            }
-        }
-        du
-    }
 }
 
 /// The reusable work space of the solves.
@@ -313,6 +363,13 @@ pub(crate) struct Solver {
     rhs: Dense,
     big: Vec<f64>,
     big_rhs: Vec<f64>,
+    /// Each joint end's contraction and inverse-inertia matrices (for K).
+    end_c: Vec<f64>,
+    end_w: Vec<f64>,
+    /// True while `big` holds the Cholesky factor of the joints' K at the bodies' current
+    /// attitudes (the rows' offsets): a velocity solve of joints alone leaves it there, and
+    /// the position solve of the same placement reuses it.
+    joint_factor: bool,
     pub residuals: Vec<Vector>,
     /// The impulses of the last solve, by (body, half-space, candidate), to start the next
     /// one from: a resting contact then needs one sweep.
@@ -402,10 +459,27 @@ impl Solver {
     }
 
     /// Sets up the joint rows at the current placement.
+    /// The factor of the joints' K is kept if every row is the same as before (the bodies'
+    /// attitudes did not change; [`Solver::load`] checks their inertias).
     pub(crate) fn find_joints(&mut self, bodies: &[MovingBody], joints: &[BallJoint]) {
-        self.joints.clear();
-        self.joints
-            .extend(joints.iter().map(|j| JointRow::new(j, bodies)));
+        let mut same = self.joints.len() == joints.len();
+        self.joints.truncate(joints.len());
+        for (k, joint) in joints.iter().enumerate() {
+            let row = JointRow::new(joint, bodies);
+            match self.joints.get_mut(k) {
+                Some(old) => {
+                    same &= old.body == row.body && old.r == row.r && old.other == row.other;
+                    old.body = row.body;
+                    old.r = row.r;
+                    old.other = row.other;
+                    old.impulse.as_mut_slice().fill(0.0);
+                }
+                None => self.joints.push(row),
+            }
+        }
+        if !same {
+            self.joint_factor = false;
+        }
     }
 
     /// Loads the bodies the rows act on.
@@ -419,12 +493,17 @@ impl Solver {
                 .iter()
                 .flat_map(|j| std::iter::once(j.body).chain(j.other.iter().map(|(b, _)| *b))),
         );
+        let mut placed = false;
         for i in touched {
             if !self.states[i].used {
-                self.states[i].load(&bodies[i], &mut work);
+                placed |= self.states[i].load(&bodies[i], &mut work);
             }
         }
         self.work = work;
+        if placed {
+            // A body turned: the joints' K is another.
+            self.joint_factor = false;
+        }
     }
 
     /// Hands the impulses of the solve to the bodies.
@@ -585,48 +664,168 @@ impl Solver {
         self.store(bodies);
     }
 
-    /// Solves the joints' equalities together: the impulses J (one per joint) with
-    /// Σ_k K_jk J_k = −`residuals`[j]/`per`, applied to the bodies.
-    pub(crate) fn solve_joints_dense(
+    /// The position step of the joints at the placement the rows were found at: the
+    /// impulses J (one per joint) with Σ_k K_jk J_k = −`residuals`[j]/`per`, given to the
+    /// bodies. The bodies' inverse inertias and the factor of K are kept from one call to
+    /// the next (the placement does not change between them: only momenta do) until
+    /// [`Solver::release`]; a velocity solve of joints alone at the same placement leaves
+    /// its factor for the first call.
+    /// Each joint's impulse is added to `totals`.
+    pub(crate) fn joint_position_step(
         &mut self,
         bodies: &mut [MovingBody],
         residuals: &[Vector],
         per: f64,
+        totals: &mut [Vector],
     ) {
         self.load(bodies);
-        self.solve_joints_dense_loaded(residuals, per);
-        self.store(bodies);
+        if !self.joint_factor {
+            self.factor_joints();
+        }
+        if self.joint_factor {
+            self.apply_joint_solve(residuals, per, Some(totals));
+        }
+        self.store_loaded(bodies);
     }
 
-    fn solve_joints_dense_loaded(&mut self, residuals: &[Vector], per: f64) {
-        let Some(n) = residuals.first().map(Vector::dim) else {
+    /// Gives the joints the impulses `impulses` (one per joint, first end; the second
+    /// takes the opposite), at the placement the rows were found at; the bodies stay
+    /// loaded as for [`Solver::joint_position_step`].
+    pub(crate) fn joint_position_impulses(
+        &mut self,
+        bodies: &mut [MovingBody],
+        impulses: &[Vector],
+    ) {
+        self.load(bodies);
+        for (row, j) in self.joints.iter().zip(impulses) {
+            row.apply(&mut self.states, j);
+        }
+        self.store_loaded(bodies);
+    }
+
+    /// Hands the impulses so far to the bodies, keeping them loaded.
+    fn store_loaded(&mut self, bodies: &mut [MovingBody]) {
+        for (s, b) in self.states.iter_mut().zip(bodies.iter_mut()) {
+            if s.used {
+                s.store(b);
+                // Stay loaded for the next call.
+                s.used = true;
+                s.dp.as_mut_slice().fill(0.0);
+                s.dl.as_mut_slice().fill(0.0);
+            }
+        }
+    }
+
+    /// Forgets the loaded bodies and the joints' factor (the placement is about to change).
+    pub(crate) fn release(&mut self) {
+        self.joint_factor = false;
+        for s in &mut self.states {
+            s.used = false;
+        }
+    }
+
+    /// Assembles the joints' K (all joints together, n × n blocks) in `big` and factors it.
+    fn factor_joints(&mut self) {
+        self.joint_factor = false;
+        let Some(n) = self.joints.first().map(|j| j.r.dim()) else {
             return;
         };
         let m = self.joints.len() * n;
-        self.big.clear();
-        self.big.resize(m * m, 0.0);
-        self.big_rhs.clear();
+        let planes = n * (n - 1) / 2;
+        // For each joint end (joint a, end e at offset r of body b): C = (r ⌋ ·) as an
+        // n × M matrix and W = I⁻¹ (r ∧ ·) as an M × n matrix; the velocity at an end of
+        // joint a per impulse at an end of joint c on the same body is 1/m + C_a W_c.
+        let (cs, ws) = (n * planes, planes * n);
+        self.end_c.clear();
+        self.end_c.resize(self.joints.len() * 2 * cs, 0.0);
+        self.end_w.clear();
+        self.end_w.resize(self.joints.len() * 2 * ws, 0.0);
+        let mut e = Bivector::zero(n);
         for (a, row) in self.joints.iter().enumerate() {
-            self.big_rhs
-                .extend(residuals[a].as_slice().iter().map(|x| -x / per));
-            for (c, other) in self.joints.iter().enumerate() {
+            for (end, (b, r, _)) in row.ends().enumerate() {
+                let at = a * 2 + end;
+                let c = &mut self.end_c[at * cs..(at + 1) * cs];
+                for p in 0..planes {
+                    e.as_mut_slice().fill(0.0);
+                    e.as_mut_slice()[p] = 1.0;
+                    for (i, x) in r.left_contract(&e).as_slice().iter().enumerate() {
+                        c[i * planes + p] = *x;
+                    }
+                }
+                let w = &mut self.end_w[at * ws..(at + 1) * ws];
                 for col in 0..n {
-                    let du = row.cross_response(other, &Vector::basis(n, col), &self.states);
-                    for (i, x) in du.as_slice().iter().enumerate() {
-                        self.big[(a * n + i) * m + c * n + col] = *x;
+                    let iw = self.states[b].inverse_inertia(&r.wedge(&Vector::basis(n, col)));
+                    for (p, x) in iw.as_slice().iter().enumerate() {
+                        w[p * n + col] = *x;
                     }
                 }
             }
         }
-        if !cholesky_solve(&mut self.big, m, &mut self.big_rhs) {
-            return;
+        self.big.clear();
+        self.big.resize(m * m, 0.0);
+        for (a, row) in self.joints.iter().enumerate() {
+            for (ea, (ba, _, sa)) in row.ends().enumerate() {
+                let c = &self.end_c[(a * 2 + ea) * cs..(a * 2 + ea + 1) * cs];
+                for (k, other) in self.joints.iter().enumerate() {
+                    for (ek, (bk, _, sk)) in other.ends().enumerate() {
+                        if ba != bk {
+                            continue;
+                        }
+                        let w = &self.end_w[(k * 2 + ek) * ws..(k * 2 + ek + 1) * ws];
+                        let inv_mass = self.states[ba].inv_mass;
+                        for i in 0..n {
+                            for col in 0..n {
+                                let mut x: f64 = (0..planes)
+                                    .map(|p| c[i * planes + p] * w[p * n + col])
+                                    .sum();
+                                if i == col {
+                                    x += inv_mass;
+                                }
+                                self.big[(a * n + i) * m + k * n + col] += sa * sk * x;
+                            }
+                        }
+                    }
+                }
+            }
         }
+        self.joint_factor = cholesky_factor(&mut self.big, m);
+    }
+
+    /// With the factor in `big`: the impulses J with K J = −`residuals`/`per`, applied to
+    /// the loaded states.
+    fn apply_joint_solve(
+        &mut self,
+        residuals: &[Vector],
+        per: f64,
+        mut totals: Option<&mut [Vector]>,
+    ) {
+        let Some(n) = residuals.first().map(Vector::dim) else {
+            return;
+        };
+        let m = self.joints.len() * n;
+        self.big_rhs.clear();
+        for r in residuals {
+            self.big_rhs.extend(r.as_slice().iter().map(|x| -x / per));
+        }
+        cholesky_substitute(&self.big, m, &mut self.big_rhs);
         for a in 0..self.joints.len() {
             let j =
                 Vector::from_storage(self.big_rhs[a * n..(a + 1) * n].iter().copied().collect());
             let row = &mut self.joints[a];
             row.apply(&mut self.states, &j);
+            if let Some(t) = totals.as_deref_mut() {
+                t[a] += &j;
+            }
             row.impulse += &j;
+        }
+    }
+
+    fn solve_joints_dense_loaded(&mut self, residuals: &[Vector], per: f64) {
+        if !self.joint_factor {
+            self.factor_joints();
+        }
+        if self.joint_factor {
+            self.apply_joint_solve(residuals, per, None);
         }
     }
 }

@@ -1,6 +1,7 @@
 //! Integrators for systems of moving bodies.
 
-use super::constraint::{JointRow, Solver};
+use super::constraint::Solver;
+use super::forques::Anchor;
 use super::{ContactShape, MovingBody, System, Wrench};
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::torques::Free;
@@ -62,6 +63,11 @@ pub struct MotionSplitting {
     gaps: Vec<Vector>,
     distances: Vec<f64>,
     sharing: Vec<usize>,
+    /// Each joint's position impulse of the last step over its length (a force), to start
+    /// the next step's position solve from: the solve then needs fewer passes.
+    joint_force: Vec<Vector>,
+    /// The position impulses of the current solve, per joint.
+    joint_total: Vec<Vector>,
 }
 
 impl Default for MotionSplitting {
@@ -77,6 +83,8 @@ impl Default for MotionSplitting {
             gaps: Vec::new(),
             distances: Vec::new(),
             sharing: Vec::new(),
+            joint_force: Vec::new(),
+            joint_total: Vec::new(),
         }
     }
 }
@@ -188,6 +196,18 @@ impl MotionSplitting {
         t: f64,
         h: f64,
     ) -> Result<(), DynamicsError> {
+        let result = self.constrained_drift_loaded(system, t, h);
+        self.solver.release();
+        result
+    }
+
+    /// [`Self::constrained_drift`], leaving the solver's bodies loaded.
+    fn constrained_drift_loaded(
+        &mut self,
+        system: &mut System,
+        t: f64,
+        h: f64,
+    ) -> Result<(), DynamicsError> {
         let (bodies, shapes, half_spaces, joints, _) = system.parts_mut();
         if joints.is_empty() && self.solver.contacts.is_empty() {
             return self.drift(bodies, t, h);
@@ -200,13 +220,34 @@ impl MotionSplitting {
         for row in &mut self.solver.contacts {
             row.position_impulse = 0.0;
         }
+        let n = bodies[0].dim();
+        if !joints.is_empty() {
+            self.joint_total
+                .resize_with(joints.len(), || Vector::zero(n));
+            if self.joint_force.len() == joints.len() {
+                // Start from the last step's joint forces: the gaps left are then of the
+                // order of their change over a step.
+                for (total, f) in self.joint_total.iter_mut().zip(&self.joint_force) {
+                    for (x, y) in total.as_mut_slice().iter_mut().zip(f.as_slice()) {
+                        *x = y * h;
+                    }
+                }
+                self.solver
+                    .joint_position_impulses(bodies, &self.joint_total);
+            } else {
+                for total in &mut self.joint_total {
+                    total.as_mut_slice().fill(0.0);
+                }
+            }
+        }
         save(bodies, &mut self.pre_drift);
         let mut worst_gap = 0.0;
         for _ in 0..50 {
             self.drift(bodies, t, h)?;
-            self.gaps.clear();
-            self.gaps
-                .extend(joints.iter().map(|j| JointRow::gap(j, bodies)));
+            self.gaps.resize_with(joints.len(), || Vector::zero(n));
+            for (gap, j) in self.gaps.iter_mut().zip(joints) {
+                joint_gap(j, bodies, gap);
+            }
             worst_gap = self.gaps.iter().map(Vector::max_abs).fold(0.0, f64::max);
             self.distances.clear();
             let mut contacts_hold = true;
@@ -228,14 +269,14 @@ impl MotionSplitting {
                 self.distances.push(d);
             }
             if worst_gap <= 1e-13 * size && contacts_hold {
+                self.keep_joint_forces(h);
                 return Ok(());
             }
             restore(bodies, &self.pre_drift);
             if !joints.is_empty() {
-                self.solver.find_joints(bodies, joints);
-                let gaps = std::mem::take(&mut self.gaps);
-                self.solver.solve_joints_dense(bodies, &gaps, h);
-                self.gaps = gaps;
+                // The start placement again: the rows and K of the velocity solve hold.
+                self.solver
+                    .joint_position_step(bodies, &self.gaps, h, &mut self.joint_total);
             }
             // Contacts: one Newton step each, shared among the contacts of a body that push.
             self.sharing.clear();
@@ -260,6 +301,7 @@ impl MotionSplitting {
         }
         if worst_gap <= 1e-13 * size {
             // Contacts that did not settle within the iterations are lifted out after.
+            self.keep_joint_forces(h);
             return Ok(());
         }
         Err(DynamicsError::SolverDidNotConverge {
@@ -267,6 +309,16 @@ impl MotionSplitting {
             iterations: 50,
             residual: worst_gap / size,
         })
+    }
+
+    /// Keeps the joints' position impulses of the step, as forces, for the next step.
+    fn keep_joint_forces(&mut self, h: f64) {
+        self.joint_force
+            .resize_with(self.joint_total.len(), || Vector::zero(0));
+        for (f, total) in self.joint_force.iter_mut().zip(&self.joint_total) {
+            f.clone_from(total);
+            *f *= 1.0 / h;
+        }
     }
 
     /// Marks the contact candidates within the contact tolerance now.
@@ -407,6 +459,30 @@ fn own_axes_matrix(b: &MovingBody) -> SmallVec<[f64; 64]> {
     let mut q = SmallVec::from_elem(0.0, n * n);
     b.attitude().write_matrix(&mut q);
     q
+}
+
+/// Writes into `gap` the gap between the two ends of `joint` (zero when it holds).
+fn joint_gap(joint: &super::BallJoint, bodies: &[MovingBody], gap: &mut Vector) {
+    let n = gap.dim();
+    // x + Q r, Q the own axes as a matrix.
+    let place = |b: &MovingBody, r: &Vector, sign: f64, out: &mut [f64]| {
+        let q = own_axes_matrix(b);
+        for (i, o) in out.iter_mut().enumerate() {
+            let qr: f64 = (0..n).map(|j| q[i * n + j] * r.as_slice()[j]).sum();
+            *o += sign * (b.position().as_slice()[i] + qr);
+        }
+    };
+    let g = gap.as_mut_slice();
+    g.fill(0.0);
+    place(&bodies[joint.body], &joint.point, 1.0, g);
+    match &joint.other {
+        Anchor::World(x) => {
+            for (o, x) in g.iter_mut().zip(x.as_slice()) {
+                *o -= x;
+            }
+        }
+        Anchor::Body(j, p) => place(&bodies[*j], p, -1.0, g),
+    }
 }
 
 /// The distance from half-space `plane` of candidate `index` (from 1) of a body's shape,
