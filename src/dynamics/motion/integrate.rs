@@ -68,6 +68,9 @@ pub struct MotionSplitting {
     joint_force: Vec<Vector>,
     /// The position impulses of the current solve, per joint.
     joint_total: Vec<Vector>,
+    /// Each joint's point in the principal axes of its body, and the other end: a point in
+    /// the principal axes of the other body, or of space.
+    joint_ends: Vec<(Vector, Vector)>,
 }
 
 impl Default for MotionSplitting {
@@ -85,6 +88,7 @@ impl Default for MotionSplitting {
             sharing: Vec::new(),
             joint_force: Vec::new(),
             joint_total: Vec::new(),
+            joint_ends: Vec::new(),
         }
     }
 }
@@ -222,6 +226,22 @@ impl MotionSplitting {
         }
         let n = bodies[0].dim();
         if !joints.is_empty() {
+            // In principal axes a joint's end is placed by one rotation, the one the
+            // integrators advance.
+            let principal = |b: usize, p: &Vector| {
+                bodies[b]
+                    .rotation()
+                    .principal_frame()
+                    .inverse_rotate_vector(p)
+            };
+            self.joint_ends.clear();
+            self.joint_ends.extend(joints.iter().map(|j| {
+                let other = match &j.other {
+                    Anchor::World(x) => x.clone(),
+                    Anchor::Body(k, p) => principal(*k, p),
+                };
+                (principal(j.body, &j.point), other)
+            }));
             self.joint_total
                 .resize_with(joints.len(), || Vector::zero(n));
             if self.joint_force.len() == joints.len() {
@@ -245,8 +265,8 @@ impl MotionSplitting {
         for _ in 0..50 {
             self.drift(bodies, t, h)?;
             self.gaps.resize_with(joints.len(), || Vector::zero(n));
-            for (gap, j) in self.gaps.iter_mut().zip(joints) {
-                joint_gap(j, bodies, gap);
+            for ((gap, j), ends) in self.gaps.iter_mut().zip(joints).zip(&self.joint_ends) {
+                joint_gap(j, ends, bodies, gap);
             }
             worst_gap = self.gaps.iter().map(Vector::max_abs).fold(0.0, f64::max);
             self.distances.clear();
@@ -461,27 +481,23 @@ fn own_axes_matrix(b: &MovingBody) -> SmallVec<[f64; 64]> {
     q
 }
 
-/// Writes into `gap` the gap between the two ends of `joint` (zero when it holds).
-fn joint_gap(joint: &super::BallJoint, bodies: &[MovingBody], gap: &mut Vector) {
-    let n = gap.dim();
-    // x + Q r, Q the own axes as a matrix.
-    let place = |b: &MovingBody, r: &Vector, sign: f64, out: &mut [f64]| {
-        let q = own_axes_matrix(b);
-        for (i, o) in out.iter_mut().enumerate() {
-            let qr: f64 = (0..n).map(|j| q[i * n + j] * r.as_slice()[j]).sum();
-            *o += sign * (b.position().as_slice()[i] + qr);
-        }
+/// Writes into `gap` the gap between the two ends of `joint` (zero when it holds), its
+/// points given by `ends` as in `MotionSplitting::joint_ends`.
+fn joint_gap(
+    joint: &super::BallJoint,
+    (point, other): &(Vector, Vector),
+    bodies: &[MovingBody],
+    gap: &mut Vector,
+) {
+    let place = |b: &MovingBody, r: &Vector| {
+        let mut x = b.rotation().principal_frame_attitude().rotate_vector(r);
+        x += b.position();
+        x
     };
-    let g = gap.as_mut_slice();
-    g.fill(0.0);
-    place(&bodies[joint.body], &joint.point, 1.0, g);
+    *gap = place(&bodies[joint.body], point);
     match &joint.other {
-        Anchor::World(x) => {
-            for (o, x) in g.iter_mut().zip(x.as_slice()) {
-                *o -= x;
-            }
-        }
-        Anchor::Body(j, p) => place(&bodies[*j], p, -1.0, g),
+        Anchor::World(_) => *gap -= other,
+        Anchor::Body(k, _) => *gap -= &place(&bodies[*k], other),
     }
 }
 
