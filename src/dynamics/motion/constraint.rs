@@ -13,6 +13,7 @@
 //! tangent space, solved by Newton's method on its multiplier, Moré–Sorensen).
 
 use super::forques::Anchor;
+use super::placement::{Placements, attitudes_close, dot};
 use super::{BallJoint, Contact, ContactShape, HalfSpace, MovingBody};
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::Attitude;
@@ -45,6 +46,8 @@ pub(crate) struct BodyState {
     /// a body at the same placement as at the last solve reuses them.
     key: Option<(Attitude, f64)>,
     key_moments: SmallVec<[f64; 28]>,
+    /// Changes whenever `frame` and `inv_inertia` are computed anew.
+    generation: u64,
 }
 
 impl BodyState {
@@ -60,6 +63,7 @@ impl BodyState {
             used: false,
             key: None,
             key_moments: SmallVec::new(),
+            generation: 0,
         }
     }
 
@@ -75,7 +79,7 @@ impl BodyState {
         let diagonal = inertia.diagonal_inverse_plane_moments();
         let same = match (&self.key, diagonal) {
             (Some((a, mass)), Some(inv)) => {
-                a == attitude && *mass == b.mass() && self.key_moments[..] == inv[..]
+                attitudes_close(a, attitude) && *mass == b.mass() && self.key_moments[..] == inv[..]
             }
             _ => false,
         };
@@ -199,6 +203,53 @@ impl BodyState {
         self.dl += &dl;
     }
 
+    /// Takes an impulse `j` at the point of a contact row with matrices `data`.
+    fn apply_with(&mut self, data: &[f64], l: &RowLayout, j: &[f64]) {
+        let (n, m) = (l.n, l.m);
+        for ((v, dp), x) in self
+            .v
+            .as_mut_slice()
+            .iter_mut()
+            .zip(self.dp.as_mut_slice())
+            .zip(j)
+        {
+            *v += x * self.inv_mass;
+            *dp += x;
+        }
+        add_mat_vec(self.w.as_mut_slice(), &data[l.w..l.w + m * n], 1.0, j);
+        add_mat_vec(self.dl.as_mut_slice(), &data[l.r..l.r + m * n], 1.0, j);
+    }
+
+    /// Takes the normal impulse λ n at the point of a contact row with matrices `data`.
+    fn apply_normal(&mut self, data: &[f64], l: &RowLayout, nrm: &[f64], lambda: f64) {
+        for ((v, dp), x) in self
+            .v
+            .as_mut_slice()
+            .iter_mut()
+            .zip(self.dp.as_mut_slice())
+            .zip(nrm)
+        {
+            *v += lambda * x * self.inv_mass;
+            *dp += lambda * x;
+        }
+        for (w, x) in self
+            .w
+            .as_mut_slice()
+            .iter_mut()
+            .zip(&data[l.wn..l.wn + l.m])
+        {
+            *w += lambda * x;
+        }
+        for (d, x) in self
+            .dl
+            .as_mut_slice()
+            .iter_mut()
+            .zip(&data[l.rn..l.rn + l.m])
+        {
+            *d += lambda * x;
+        }
+    }
+
     /// Hands the impulses to body `b`: p += Σ J, L += Pᵀ (Σ r ∧ J) in the principal frame.
     fn store(&mut self, b: &mut MovingBody) {
         let m = self.dl.as_slice().len();
@@ -293,13 +344,93 @@ pub(crate) struct ContactRow {
     pub friction_impulse: Vector,
     /// The normal impulse added in the free flight to keep the point out (position level).
     pub position_impulse: f64,
-    /// nᵀ K n and the tangent block of K, and the point's speed (set when the solve
-    /// starts).
+    /// nᵀ K n and the point's speed (set when the solve starts; the rest of K is in the
+    /// solver's row matrices).
     pub knn: f64,
     speed: f64,
-    kt: Dense,
-    eigenvalues: Dense,
-    eigenvectors: Dense,
+}
+
+/// Where the matrices of one contact row lie in the solver's `row_data` (N = n, M planes):
+/// C (n × M: the velocity at the point per angular velocity, u = v + C w), W (M × n: the
+/// angular velocity per impulse, I⁻¹ (r ∧ ·)), R (M × n: the angular impulse, r ∧ ·), their
+/// products with the normal (Cᵀn, W n, R n), the tangent block K_t of K with its
+/// eigen-decomposition, and nᵀ K n.
+#[derive(Clone, Copy, Debug)]
+struct RowLayout {
+    n: usize,
+    m: usize,
+    c: usize,
+    w: usize,
+    r: usize,
+    cn: usize,
+    wn: usize,
+    rn: usize,
+    kt: usize,
+    values: usize,
+    vectors: usize,
+    knn: usize,
+    stride: usize,
+}
+
+impl RowLayout {
+    fn new(n: usize) -> RowLayout {
+        let m = n * (n - 1) / 2;
+        let c = 0;
+        let w = c + n * m;
+        let r = w + m * n;
+        let cn = r + m * n;
+        let wn = cn + m;
+        let rn = wn + m;
+        let kt = rn + m;
+        let values = kt + n * n;
+        let vectors = values + n;
+        let knn = vectors + n * n;
+        RowLayout {
+            n,
+            m,
+            c,
+            w,
+            r,
+            cn,
+            wn,
+            rn,
+            kt,
+            values,
+            vectors,
+            knn,
+            stride: knn + 1,
+        }
+    }
+}
+
+/// What a contact row's matrices were computed for: the row's point (body, half-space,
+/// candidate), its offset and normal, and the generation of its body's inverse inertia.
+#[derive(Clone, Debug, Default)]
+struct RowKey {
+    body: usize,
+    half_space: usize,
+    index: usize,
+    generation: u64,
+    r: SmallVec<[f64; 8]>,
+    normal: SmallVec<[f64; 8]>,
+}
+
+/// u = v + C w at a row's point.
+#[inline]
+fn point_velocity(d: &[f64], l: &RowLayout, v: &[f64], w: &[f64], u: &mut [f64]) {
+    let c = &d[l.c..l.c + l.n * l.m];
+    for (i, ui) in u.iter_mut().enumerate() {
+        *ui = v[i] + dot(&c[i * l.m..(i + 1) * l.m], w);
+    }
+}
+
+/// y += a A x for an M × n row-major A.
+#[inline]
+fn add_mat_vec(y: &mut [f64], a_mat: &[f64], a: f64, x: &[f64]) {
+    let n = x.len();
+    for (p, yp) in y.iter_mut().enumerate() {
+        *yp += a * dot(&a_mat[p * n..(p + 1) * n], x);
+    }
 }
 
 /// One ball joint in a solve: the offsets of its two ends.
@@ -366,6 +497,12 @@ pub(crate) struct Solver {
     /// Each joint end's contraction and inverse-inertia matrices (for K).
     end_c: Vec<f64>,
     end_w: Vec<f64>,
+    /// The contact rows' matrices ([`RowLayout`]), slot k for row k, and what they were
+    /// computed for: a row that touches again at the same placement keeps them.
+    row_data: Vec<f64>,
+    row_keys: Vec<RowKey>,
+    /// The last generation handed to a body's inverse inertia.
+    generations: u64,
     /// True while `big` holds the Cholesky factor of the joints' K at the bodies' current
     /// attitudes (the rows' offsets): a velocity solve of joints alone leaves it there, and
     /// the position solve of the same placement reuses it.
@@ -387,75 +524,66 @@ impl Solver {
         half_spaces: &[HalfSpace],
         tolerance: f64,
         resting_speed: &[f64],
+        placements: &Placements,
     ) {
         // Rows are overwritten in place (a row is large: moving it costs more than its setup).
         let mut used = 0;
         let n = bodies[0].dim();
-        let mut q = std::mem::take(&mut self.work);
         for (i, (b, shape)) in bodies.iter().zip(shapes).enumerate() {
             if matches!(shape, ContactShape::None) {
                 continue;
             }
-            q.clear();
-            q.resize(n * n, 0.0);
-            b.attitude().write_matrix(&mut q);
+            let placed = placements.get(i);
             let reach = tolerance * shape.radius();
             let (v, w) = (b.velocity(), b.space_omega());
             for (k, plane) in half_spaces.iter().enumerate() {
                 let nrm = plane.normal();
                 let base = plane.distance(b.position());
-                let mut index = 0;
-                shape.candidates(&q, nrm, |p, r| {
-                    index += 1;
-                    if base + nrm.dot(r) <= reach {
-                        let mut u = v.clone();
-                        u += &r.left_contract(&w);
-                        let un = nrm.dot(&u);
-                        let target = if un < -resting_speed[i] {
-                            -plane.restitution() * un
-                        } else {
-                            0.0
-                        };
-                        if let Some(row) = self.contacts.get_mut(used) {
-                            row.body = i;
-                            row.half_space = k;
-                            row.index = index;
-                            row.point.clone_from(p);
-                            row.r.clone_from(r);
-                            row.target = target;
-                            row.normal_impulse = 0.0;
-                            row.friction_impulse = Vector::zero(n);
-                            row.position_impulse = 0.0;
-                            row.knn = 0.0;
-                            row.speed = 0.0;
-                            row.kt.clear();
-                            row.eigenvalues.clear();
-                            row.eigenvectors.clear();
-                        } else {
-                            self.contacts.push(ContactRow {
-                                body: i,
-                                half_space: k,
-                                index,
-                                point: p.clone(),
-                                r: r.clone(),
-                                target,
-                                normal_impulse: 0.0,
-                                friction_impulse: Vector::zero(n),
-                                position_impulse: 0.0,
-                                knn: 0.0,
-                                speed: 0.0,
-                                kt: Dense::new(),
-                                eigenvalues: Dense::new(),
-                                eigenvectors: Dense::new(),
-                            });
-                        }
-                        used += 1;
+                placed.candidates(shape, nrm, |index, p, r| {
+                    if base + dot(nrm.as_slice(), r) > reach {
+                        return;
                     }
+                    let r = Vector::from_storage(SmallVec::from_slice(r));
+                    let mut u = v.clone();
+                    u += &r.left_contract(&w);
+                    let un = nrm.dot(&u);
+                    let target = if un < -resting_speed[i] {
+                        -plane.restitution() * un
+                    } else {
+                        0.0
+                    };
+                    if let Some(row) = self.contacts.get_mut(used) {
+                        row.body = i;
+                        row.half_space = k;
+                        row.index = index;
+                        row.point.clone_from(p);
+                        row.r = r;
+                        row.target = target;
+                        row.normal_impulse = 0.0;
+                        row.friction_impulse.as_mut_slice().fill(0.0);
+                        row.position_impulse = 0.0;
+                        row.knn = 0.0;
+                        row.speed = 0.0;
+                    } else {
+                        self.contacts.push(ContactRow {
+                            body: i,
+                            half_space: k,
+                            index,
+                            point: p.clone(),
+                            r,
+                            target,
+                            normal_impulse: 0.0,
+                            friction_impulse: Vector::zero(n),
+                            position_impulse: 0.0,
+                            knn: 0.0,
+                            speed: 0.0,
+                        });
+                    }
+                    used += 1;
                 });
             }
         }
         self.contacts.truncate(used);
-        self.work = q;
     }
 
     /// Sets up the joint rows at the current placement.
@@ -495,8 +623,10 @@ impl Solver {
         );
         let mut placed = false;
         for i in touched {
-            if !self.states[i].used {
-                placed |= self.states[i].load(&bodies[i], &mut work);
+            if !self.states[i].used && self.states[i].load(&bodies[i], &mut work) {
+                placed = true;
+                self.generations += 1;
+                self.states[i].generation = self.generations;
             }
         }
         self.work = work;
@@ -547,26 +677,50 @@ impl Solver {
                 add_inverse_mass(&self.states[*j], q, &mut row.k);
             }
         }
-        for row in &mut self.contacts {
+        let layout = RowLayout::new(n);
+        let rows = self.contacts.len();
+        if self.row_data.len() < rows * layout.stride {
+            self.row_data.resize(rows * layout.stride, 0.0);
+        }
+        if self.row_keys.len() < rows {
+            self.row_keys.resize_with(rows, RowKey::default);
+        }
+        let mut u = Vector::zero(n);
+        for (k, row) in self.contacts.iter_mut().enumerate() {
             let nrm = half_spaces[row.half_space].normal();
             let st = &self.states[row.body];
-            row.kt.clear();
-            row.kt.resize(n * n, 0.0);
-            add_inverse_mass(st, &row.r, &mut row.kt);
-            row.knn = (0..n)
-                .map(|i| {
-                    (0..n)
-                        .map(|j| nrm[i] * row.kt[i * n + j] * nrm[j])
-                        .sum::<f64>()
-                })
-                .sum();
-            tangent_block(&mut row.kt, nrm);
-            symmetric_eigen(&row.kt, n, &mut row.eigenvalues, &mut row.eigenvectors);
-            row.speed = st.velocity_at(&row.r).max_abs().max(row.target.abs());
+            let data = &mut self.row_data[k * layout.stride..(k + 1) * layout.stride];
+            let key = &mut self.row_keys[k];
+            let same = key.body == row.body
+                && key.half_space == row.half_space
+                && key.index == row.index
+                && key.generation == st.generation
+                && key.r[..] == row.r.as_slice()[..]
+                && key.normal[..] == nrm.as_slice()[..];
+            if !same {
+                row_matrices(st, &row.r, nrm, &layout, data);
+                key.body = row.body;
+                key.half_space = row.half_space;
+                key.index = row.index;
+                key.generation = st.generation;
+                key.r.clear();
+                key.r.extend_from_slice(row.r.as_slice());
+                key.normal.clear();
+                key.normal.extend_from_slice(nrm.as_slice());
+            }
+            row.knn = data[layout.knn];
+            point_velocity(
+                data,
+                &layout,
+                st.v.as_slice(),
+                st.w.as_slice(),
+                u.as_mut_slice(),
+            );
+            row.speed = u.max_abs().max(row.target.abs());
         }
         // Start from the last solve's impulses where the same points touch again.
         let mut w = 0;
-        for row in &mut self.contacts {
+        for (k, row) in self.contacts.iter_mut().enumerate() {
             let key = (row.body, row.half_space, row.index);
             while w < self.warm.len() && (self.warm[w].0, self.warm[w].1, self.warm[w].2) < key {
                 w += 1;
@@ -586,7 +740,8 @@ impl Solver {
                 row.normal_impulse = *lambda;
                 let mut total = nrm * *lambda;
                 total += &j;
-                self.states[row.body].apply(&row.r, &total);
+                let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
+                self.states[row.body].apply_with(data, &layout, total.as_slice());
                 row.friction_impulse = j;
             }
         }
@@ -629,8 +784,16 @@ impl Solver {
                         change = change.max(u.max_abs());
                     }
                 }
-                for row in &mut self.contacts[start..end] {
-                    change = change.max(sweep_contact(row, half_spaces, &mut self.states, n));
+                for (k, row) in self.contacts[start..end].iter_mut().enumerate() {
+                    let at = (start + k) * layout.stride;
+                    let data = &self.row_data[at..at + layout.stride];
+                    change = change.max(sweep_contact(
+                        row,
+                        data,
+                        &layout,
+                        half_spaces,
+                        &mut self.states,
+                    ));
                 }
                 if change <= tolerance {
                     break;
@@ -648,9 +811,18 @@ impl Solver {
                 r.friction_impulse.clone(),
             )
         }));
-        for row in &self.contacts {
+        for (k, row) in self.contacts.iter().enumerate() {
             let nrm = half_spaces[row.half_space].normal();
-            let mut slip = self.states[row.body].velocity_at(&row.r);
+            let st = &self.states[row.body];
+            let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
+            let mut slip = Vector::zero(n);
+            point_velocity(
+                data,
+                &layout,
+                st.v.as_slice(),
+                st.w.as_slice(),
+                slip.as_mut_slice(),
+            );
             slip -= &(nrm * nrm.dot(&slip));
             record.push(Contact {
                 body: row.body,
@@ -830,36 +1002,41 @@ impl Solver {
     }
 }
 
-/// One Gauss–Seidel update of a contact: the normal impulse, then the friction impulse.
-/// Returns the largest velocity change it made.
+/// One Gauss–Seidel update of a contact: the normal impulse, then the friction impulse,
+/// through the row's matrices `data` laid out by `l`. Returns the largest velocity change
+/// it made.
 fn sweep_contact(
     row: &mut ContactRow,
+    data: &[f64],
+    l: &RowLayout,
     half_spaces: &[HalfSpace],
     states: &mut [BodyState],
-    n: usize,
 ) -> f64 {
+    let n = l.n;
     let mut change = 0.0f64;
     let plane = &half_spaces[row.half_space];
     let nrm = plane.normal();
+    let nv = nrm.as_slice();
     let st = &mut states[row.body];
-    // Normal: the smallest accumulated λ ≥ 0 reaching the target.
-    let un = nrm.dot(&st.velocity_at(&row.r));
+    // Normal: the smallest accumulated λ ≥ 0 reaching the target; u·n = v·n + (Cᵀn)·w.
+    let un = dot(nv, st.v.as_slice()) + dot(&data[l.cn..l.cn + l.m], st.w.as_slice());
     let lambda = (row.normal_impulse + (row.target - un) / row.knn).max(0.0);
     let dl = lambda - row.normal_impulse;
     if dl != 0.0 {
-        st.apply(&row.r, &(nrm * dl));
+        st.apply_normal(data, l, nv, dl);
         row.normal_impulse = lambda;
     }
     change = change.max((dl * row.knn).abs());
     // Friction: maximal dissipation in the disc |J_t| ≤ μλ.
     let limit = plane.friction() * row.normal_impulse;
-    let mut ut = st.velocity_at(&row.r);
+    let mut ut = Vector::zero(n);
+    point_velocity(data, l, st.v.as_slice(), st.w.as_slice(), ut.as_mut_slice());
     ut -= &(nrm * nrm.dot(&ut));
     let new = if limit > 0.0 {
         friction_impulse(
-            &row.eigenvalues,
-            &row.eigenvectors,
-            &row.kt,
+            &data[l.values..l.values + n],
+            &data[l.vectors..l.vectors + n * n],
+            &data[l.kt..l.kt + n * n],
             &row.friction_impulse,
             &ut,
             limit,
@@ -869,11 +1046,63 @@ fn sweep_contact(
     };
     let dj = &new - &row.friction_impulse;
     if dj.max_abs() > 0.0 {
-        st.apply(&row.r, &dj);
+        st.apply_with(data, l, dj.as_slice());
         row.friction_impulse = new;
         change = change.max(dj.max_abs() * row.knn);
     }
     change
+}
+
+/// Computes a contact row's matrices ([`RowLayout`]) for a body state `st`, the offset `r`
+/// of the point and the unit normal `nrm`.
+fn row_matrices(st: &BodyState, r: &Vector, nrm: &Vector, l: &RowLayout, data: &mut [f64]) {
+    let (n, m) = (l.n, l.m);
+    // C: column p is r ⌋ e_p (the velocity at r of a unit angular velocity in plane p).
+    let mut e = Bivector::zero(n);
+    for p in 0..m {
+        e.as_mut_slice().fill(0.0);
+        e.as_mut_slice()[p] = 1.0;
+        for (i, x) in r.left_contract(&e).as_slice().iter().enumerate() {
+            data[l.c + i * m + p] = *x;
+        }
+    }
+    // R: column j is r ∧ e_j; W = I⁻¹ R.
+    for j in 0..n {
+        let rj = r.wedge(&Vector::basis(n, j));
+        let wj = st.inverse_inertia(&rj);
+        for p in 0..m {
+            data[l.r + p * n + j] = rj.as_slice()[p];
+            data[l.w + p * n + j] = wj.as_slice()[p];
+        }
+    }
+    let nv = nrm.as_slice();
+    for p in 0..m {
+        data[l.cn + p] = (0..n).map(|i| data[l.c + i * m + p] * nv[i]).sum();
+        data[l.wn + p] = dot(&data[l.w + p * n..l.w + (p + 1) * n], nv);
+        data[l.rn + p] = dot(&data[l.r + p * n..l.r + (p + 1) * n], nv);
+    }
+    // K = 1/m + C W.
+    let mut k: Dense = SmallVec::from_elem(0.0, n * n);
+    for i in 0..n {
+        for j in 0..n {
+            let mut x: f64 = (0..m)
+                .map(|p| data[l.c + i * m + p] * data[l.w + p * n + j])
+                .sum();
+            if i == j {
+                x += st.inv_mass;
+            }
+            k[i * n + j] = x;
+        }
+    }
+    data[l.knn] = (0..n)
+        .map(|i| (0..n).map(|j| nv[i] * k[i * n + j] * nv[j]).sum::<f64>())
+        .sum();
+    tangent_block(&mut k, nrm);
+    let (mut values, mut vectors) = (Dense::new(), Dense::new());
+    symmetric_eigen(&k, n, &mut values, &mut vectors);
+    data[l.kt..l.kt + n * n].copy_from_slice(&k);
+    data[l.values..l.values + n].copy_from_slice(&values);
+    data[l.vectors..l.vectors + n * n].copy_from_slice(&vectors);
 }
 
 /// Turns the inverse mass k into its tangent block P k P + n nᵀ (P = 1 − n nᵀ), which maps

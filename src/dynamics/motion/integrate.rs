@@ -2,11 +2,11 @@
 
 use super::constraint::Solver;
 use super::forques::Anchor;
+use super::placement::{Placements, dot};
 use super::{ContactShape, MovingBody, System, Wrench};
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::torques::Free;
 use crate::dynamics::{Attitude, DynamicsError, Integrator, Splitting};
-use smallvec::SmallVec;
 
 /// An integrator of Newton–Euler for a [`System`]: advances every body by one step.
 pub trait MotionIntegrator {
@@ -71,6 +71,8 @@ pub struct MotionSplitting {
     /// Each joint's point in the principal axes of its body, and the other end: a point in
     /// the principal axes of the other body, or of space.
     joint_ends: Vec<(Vector, Vector)>,
+    /// The bodies' own axes and vertices in space, kept while they do not turn.
+    placements: Placements,
 }
 
 impl Default for MotionSplitting {
@@ -89,6 +91,7 @@ impl Default for MotionSplitting {
             joint_force: Vec::new(),
             joint_total: Vec::new(),
             joint_ends: Vec::new(),
+            placements: Placements::default(),
         }
     }
 }
@@ -177,6 +180,7 @@ impl MotionSplitting {
 
     /// The velocity solve of the contacts and joints at the current placement.
     fn solve_velocities(&mut self, system: &mut System) {
+        self.place(system);
         let (bodies, shapes, half_spaces, joints, contacts) = system.parts_mut();
         self.solver.find_contacts(
             bodies,
@@ -184,9 +188,18 @@ impl MotionSplitting {
             half_spaces,
             CONTACT_TOLERANCE,
             &self.resting_speed,
+            &self.placements,
         );
         self.solver.find_joints(bodies, joints);
         self.solver.solve_velocities(bodies, half_spaces, contacts);
+    }
+
+    /// Places the bodies that turned since they were last placed.
+    fn place(&mut self, system: &System) {
+        if !system.half_spaces().is_empty() {
+            self.placements
+                .update(system.bodies(), system.shapes(), system.shape_key());
+        }
     }
 
     /// Free flight with the joints closed and the contacts of the step out of their
@@ -212,6 +225,7 @@ impl MotionSplitting {
         t: f64,
         h: f64,
     ) -> Result<(), DynamicsError> {
+        let shape_key = system.shape_key();
         let (bodies, shapes, half_spaces, joints, _) = system.parts_mut();
         if joints.is_empty() && self.solver.contacts.is_empty() {
             return self.drift(bodies, t, h);
@@ -271,19 +285,18 @@ impl MotionSplitting {
             worst_gap = self.gaps.iter().map(Vector::max_abs).fold(0.0, f64::max);
             self.distances.clear();
             let mut contacts_hold = true;
-            // Rows come grouped by body: place each body's axes once.
-            let mut placed: Option<(usize, SmallVec<[f64; 64]>)> = None;
+            if !self.solver.contacts.is_empty() {
+                self.placements.update(bodies, shapes, shape_key);
+            }
             for row in &self.solver.contacts {
                 let shape = &shapes[row.body];
-                let b = &bodies[row.body];
-                if placed.as_ref().is_none_or(|(i, _)| *i != row.body) {
-                    placed = Some((row.body, own_axes_matrix(b)));
-                }
-                let q = placed
-                    .as_ref()
-                    .map(|(_, q)| q.as_slice())
-                    .unwrap_or_default();
-                let d = candidate_distance(b, q, shape, &half_spaces[row.half_space], row.index);
+                let plane = &half_spaces[row.half_space];
+                let d = plane.distance(bodies[row.body].position())
+                    + self.placements.get(row.body).candidate_height(
+                        shape,
+                        plane.normal(),
+                        row.index,
+                    );
                 let tolerance = 1e-12 * shape.radius();
                 contacts_hold &= d >= -tolerance && (row.position_impulse == 0.0 || d <= tolerance);
                 self.distances.push(d);
@@ -343,17 +356,21 @@ impl MotionSplitting {
 
     /// Marks the contact candidates within the contact tolerance now.
     fn mark_active(&mut self, system: &System) {
+        self.place(system);
         self.active.clear();
         let mut active = std::mem::take(&mut self.active);
-        for_each_candidate(system, |_, d, reach| active.push(d <= reach));
+        for_each_candidate(system, &self.placements, |_, d, reach| {
+            active.push(d <= reach)
+        });
         self.active = active;
     }
 
     /// The least distance, relative to the reach, of the candidates that were not in
     /// contact at the start of the step (+∞ if there are none).
-    fn new_penetration(&self, system: &System) -> f64 {
+    fn new_penetration(&mut self, system: &System) -> f64 {
+        self.place(system);
         let mut worst = f64::INFINITY;
-        for_each_candidate(system, |k, d, reach| {
+        for_each_candidate(system, &self.placements, |k, d, reach| {
             if !self.active[k] {
                 worst = worst.min(d / reach);
             }
@@ -371,7 +388,7 @@ impl MotionSplitting {
         self.solve_velocities(system);
         self.constrained_drift(system, t, h)?;
         let fresh = self.new_penetration(system);
-        lift_out(system);
+        lift_out(system, &self.placements);
         self.wrenches_at(system, t + h);
         Self::kick(system.bodies_mut(), &self.wrenches, 0.5 * h);
         self.solve_velocities(system);
@@ -453,32 +470,28 @@ fn axpy(y: &mut [f64], a: f64, x: &[f64]) {
 }
 
 /// Calls `visit(k, distance, reach)` for every contact candidate of every body against
-/// every half-space, k numbering them in a fixed order.
-fn for_each_candidate(system: &System, mut visit: impl FnMut(usize, f64, f64)) {
+/// every half-space, k numbering them in a fixed order, the bodies placed by `placements`.
+fn for_each_candidate(
+    system: &System,
+    placements: &Placements,
+    mut visit: impl FnMut(usize, f64, f64),
+) {
     let mut k = 0;
-    for (b, shape) in system.bodies().iter().zip(system.shapes()) {
+    for (i, (b, shape)) in system.bodies().iter().zip(system.shapes()).enumerate() {
         if matches!(shape, ContactShape::None) {
             continue;
         }
-        let q = own_axes_matrix(b);
+        let placed = placements.get(i);
         let reach = CONTACT_TOLERANCE * shape.radius();
         for plane in system.half_spaces() {
             let n = plane.normal();
             let base = plane.distance(b.position());
-            shape.candidates(&q, n, |_, r| {
-                visit(k, base + n.dot(r), reach);
+            placed.candidates(shape, n, |_, _, r| {
+                visit(k, base + dot(n.as_slice(), r), reach);
                 k += 1;
             });
         }
     }
-}
-
-/// The attitude of a body's own axes as a row-major matrix (on the stack up to N = 8).
-fn own_axes_matrix(b: &MovingBody) -> SmallVec<[f64; 64]> {
-    let n = b.dim();
-    let mut q = SmallVec::from_elem(0.0, n * n);
-    b.attitude().write_matrix(&mut q);
-    q
 }
 
 /// Writes into `gap` the gap between the two ends of `joint` (zero when it holds), its
@@ -501,26 +514,6 @@ fn joint_gap(
     }
 }
 
-/// The distance from half-space `plane` of candidate `index` (from 1) of a body's shape,
-/// placed with the own-axes matrix `q`.
-fn candidate_distance(
-    b: &MovingBody,
-    q: &[f64],
-    shape: &ContactShape,
-    plane: &super::HalfSpace,
-    index: usize,
-) -> f64 {
-    let base = plane.distance(b.position());
-    let (mut k, mut out) = (0, f64::INFINITY);
-    shape.candidates(q, plane.normal(), |_, r| {
-        k += 1;
-        if k == index {
-            out = base + plane.normal().dot(r);
-        }
-    });
-    out
-}
-
 /// Gives body `b` the impulse `j` (space) at offset `r` (space) from its centre of mass.
 fn push(b: &mut MovingBody, r: &Vector, j: &Vector) {
     let (_, p, rotation) = b.state_mut();
@@ -532,18 +525,21 @@ fn push(b: &mut MovingBody, r: &Vector, j: &Vector) {
     *l += &dl;
 }
 
-/// Lifts every body that sinks into a half-space back onto its plane, along the normal.
-fn lift_out(system: &mut System) {
+/// Lifts every body that sinks into a half-space back onto its plane, along the normal
+/// (the bodies placed by `placements`; lifting does not turn them).
+fn lift_out(system: &mut System, placements: &Placements) {
     let (bodies, shapes, half_spaces, _, _) = system.parts_mut();
-    for (b, shape) in bodies.iter_mut().zip(shapes.iter()) {
+    for (i, (b, shape)) in bodies.iter_mut().zip(shapes.iter()).enumerate() {
         if matches!(shape, ContactShape::None) {
             continue;
         }
-        let q = own_axes_matrix(b);
+        let placed = placements.get(i);
         for plane in half_spaces.iter() {
             let n = plane.normal();
             let mut deepest = f64::INFINITY;
-            shape.candidates(&q, n, |_, r| deepest = deepest.min(n.dot(r)));
+            placed.candidates(shape, n, |_, _, r| {
+                deepest = deepest.min(dot(n.as_slice(), r))
+            });
             let d = plane.distance(b.position()) + deepest;
             if d < 0.0 {
                 let (x, _, _) = b.state_mut();

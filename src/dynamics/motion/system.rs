@@ -25,6 +25,9 @@ pub struct System {
     /// The wrenches when every forque is constant ([`Forque::is_constant`]), evaluated when
     /// a forque joins.
     constant: Option<ConstantWrenches>,
+    /// This system among all (for the integrators' caches), and the version of its shapes.
+    id: u64,
+    shapes_version: u64,
 }
 
 /// The wrench on every body under forques that are all constant, and whether any force or
@@ -76,6 +79,11 @@ impl System {
             joints: Vec::new(),
             contacts: Vec::new(),
             constant: None,
+            id: {
+                static SYSTEMS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+                SYSTEMS.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
+            },
+            shapes_version: 0,
         };
         system.refresh_constant();
         Ok(system)
@@ -149,6 +157,7 @@ impl System {
         self.check_body("shape", body)?;
         shape.check(self.dim())?;
         self.shapes[body] = shape;
+        self.shapes_version += 1;
         Ok(())
     }
 
@@ -186,6 +195,12 @@ impl System {
         }
         self.joints.push(joint);
         Ok(())
+    }
+
+    /// Names this system and the version of its shapes: the integrators keep the bodies'
+    /// placements for as long as both stay the same.
+    pub(crate) fn shape_key(&self) -> (u64, u64) {
+        (self.id, self.shapes_version)
     }
 
     /// Returns the bodies' contact shapes, in the order of the bodies.
