@@ -515,15 +515,13 @@ pub(crate) struct Solver {
 
 impl Solver {
     /// Finds the contact points of `bodies` within `tolerance` × their radius of a
-    /// half-space, with the impact targets: restitution e for a point approaching faster
-    /// than `resting_speed[i]`, none below (a resting contact).
+    /// half-space, the bodies placed by `placements`.
     pub(crate) fn find_contacts(
         &mut self,
         bodies: &[MovingBody],
         shapes: &[ContactShape],
         half_spaces: &[HalfSpace],
         tolerance: f64,
-        resting_speed: &[f64],
         placements: &Placements,
     ) {
         // Rows are overwritten in place (a row is large: moving it costs more than its setup).
@@ -535,7 +533,6 @@ impl Solver {
             }
             let placed = placements.get(i);
             let reach = tolerance * shape.radius();
-            let (v, w) = (b.velocity(), b.space_omega());
             for (k, plane) in half_spaces.iter().enumerate() {
                 let nrm = plane.normal();
                 let base = plane.distance(b.position());
@@ -544,14 +541,8 @@ impl Solver {
                         return;
                     }
                     let r = Vector::from_storage(SmallVec::from_slice(r));
-                    let mut u = v.clone();
-                    u += &r.left_contract(&w);
-                    let un = nrm.dot(&u);
-                    let target = if un < -resting_speed[i] {
-                        -plane.restitution() * un
-                    } else {
-                        0.0
-                    };
+                    // The target is set when the solve starts, from the loaded velocities.
+                    let target = 0.0;
                     if let Some(row) = self.contacts.get_mut(used) {
                         row.body = i;
                         row.half_space = k;
@@ -648,10 +639,14 @@ impl Solver {
     /// The velocity solve: impulses such that every joint's ends move together and every
     /// contact point leaves its half-space at its target speed or faster, with friction in
     /// Coulomb's cone. Appends the contacts and their impulses to `record`.
+    ///
+    /// A contact's target is restitution e for a point approaching faster than
+    /// `resting_speed[i]` (body i), none below (a resting contact).
     pub(crate) fn solve_velocities(
         &mut self,
         bodies: &mut [MovingBody],
         half_spaces: &[HalfSpace],
+        resting_speed: &[f64],
         record: &mut Vec<Contact>,
     ) {
         if self.contacts.is_empty() && self.joints.is_empty() {
@@ -716,6 +711,12 @@ impl Solver {
                 st.w.as_slice(),
                 u.as_mut_slice(),
             );
+            let un = nrm.dot(&u);
+            row.target = if un < -resting_speed[row.body] {
+                -half_spaces[row.half_space].restitution() * un
+            } else {
+                0.0
+            };
             row.speed = u.max_abs().max(row.target.abs());
         }
         // Start from the last solve's impulses where the same points touch again.

@@ -187,11 +187,11 @@ impl MotionSplitting {
             shapes,
             half_spaces,
             CONTACT_TOLERANCE,
-            &self.resting_speed,
             &self.placements,
         );
         self.solver.find_joints(bodies, joints);
-        self.solver.solve_velocities(bodies, half_spaces, contacts);
+        self.solver
+            .solve_velocities(bodies, half_spaces, &self.resting_speed, contacts);
     }
 
     /// Places the bodies that turned since they were last placed.
