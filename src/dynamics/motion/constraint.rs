@@ -419,17 +419,16 @@ struct RowKey {
 #[inline]
 fn point_velocity(d: &[f64], l: &RowLayout, v: &[f64], w: &[f64], u: &mut [f64]) {
     let c = &d[l.c..l.c + l.n * l.m];
-    for (i, ui) in u.iter_mut().enumerate() {
-        *ui = v[i] + dot(&c[i * l.m..(i + 1) * l.m], w);
+    for ((ui, vi), row) in u.iter_mut().zip(v).zip(c.chunks_exact(l.m)) {
+        *ui = vi + dot(row, w);
     }
 }
 
 /// y += a A x for an M × n row-major A.
 #[inline]
 fn add_mat_vec(y: &mut [f64], a_mat: &[f64], a: f64, x: &[f64]) {
-    let n = x.len();
-    for (p, yp) in y.iter_mut().enumerate() {
-        *yp += a * dot(&a_mat[p * n..(p + 1) * n], x);
+    for (yp, row) in y.iter_mut().zip(a_mat.chunks_exact(x.len())) {
+        *yp += a * dot(row, x);
     }
 }
 
@@ -532,7 +531,7 @@ impl Solver {
                 continue;
             }
             let placed = placements.get(i);
-            let reach = tolerance * shape.radius();
+            let reach = tolerance * placed.radius;
             for (k, plane) in half_spaces.iter().enumerate() {
                 let nrm = plane.normal();
                 let base = plane.distance(b.position());
@@ -1030,29 +1029,40 @@ fn sweep_contact(
     change = change.max((dl * row.knn).abs());
     // Friction: maximal dissipation in the disc |J_t| ≤ μλ.
     let limit = plane.friction() * row.normal_impulse;
-    let mut ut = Vector::zero(n);
-    point_velocity(data, l, st.v.as_slice(), st.w.as_slice(), ut.as_mut_slice());
-    ut -= &(nrm * nrm.dot(&ut));
-    let new = if limit > 0.0 {
+    let mut ut: Small = SmallVec::from_elem(0.0, n);
+    point_velocity(data, l, st.v.as_slice(), st.w.as_slice(), &mut ut);
+    let normal_part = dot(nv, &ut);
+    for (u, x) in ut.iter_mut().zip(nv) {
+        *u -= normal_part * x;
+    }
+    let mut new: Small = SmallVec::from_elem(0.0, n);
+    if limit > 0.0 {
         friction_impulse(
             &data[l.values..l.values + n],
             &data[l.vectors..l.vectors + n * n],
             &data[l.kt..l.kt + n * n],
-            &row.friction_impulse,
+            row.friction_impulse.as_slice(),
             &ut,
             limit,
-        )
-    } else {
-        Vector::zero(n)
-    };
-    let dj = &new - &row.friction_impulse;
-    if dj.max_abs() > 0.0 {
-        st.apply_with(data, l, dj.as_slice());
-        row.friction_impulse = new;
-        change = change.max(dj.max_abs() * row.knn);
+            &mut new,
+        );
+    }
+    let mut dj: Small = SmallVec::from_elem(0.0, n);
+    let mut largest = 0.0f64;
+    for ((d, x), y) in dj.iter_mut().zip(&new).zip(row.friction_impulse.as_slice()) {
+        *d = x - y;
+        largest = largest.max(d.abs());
+    }
+    if largest > 0.0 {
+        st.apply_with(data, l, &dj);
+        row.friction_impulse.as_mut_slice().copy_from_slice(&new);
+        change = change.max(largest * row.knn);
     }
     change
 }
+
+/// A short vector on the stack (N ≤ 8).
+type Small = SmallVec<[f64; 8]>;
 
 /// Computes a contact row's matrices ([`RowLayout`]) for a body state `st`, the offset `r`
 /// of the point and the unit normal `nrm`.
@@ -1185,23 +1195,23 @@ fn friction_impulse(
     d: &[f64],
     v: &[f64],
     kt: &[f64],
-    old: &Vector,
-    ut: &Vector,
+    old: &[f64],
+    ut: &[f64],
     limit: f64,
-) -> Vector {
+    out: &mut [f64],
+) {
     let n = d.len();
     // c = Vᵀ b, b = K_t old − ut.
-    let b: SmallVec<[f64; 8]> = (0..n)
-        .map(|i| {
-            (0..n)
-                .map(|j| kt[i * n + j] * old.as_slice()[j])
-                .sum::<f64>()
-                - ut.as_slice()[i]
-        })
-        .collect();
-    let c: SmallVec<[f64; 8]> = (0..n)
-        .map(|k| (0..n).map(|i| v[i * n + k] * b[i]).sum())
-        .collect();
+    let mut b: Small = SmallVec::from_elem(0.0, n);
+    for (i, x) in b.iter_mut().enumerate() {
+        *x = dot(&kt[i * n..(i + 1) * n], old) - ut[i];
+    }
+    let mut c: Small = SmallVec::from_elem(0.0, n);
+    for (row, bi) in v.chunks_exact(n).zip(&b) {
+        for (x, vik) in c.iter_mut().zip(row) {
+            *x += vik * bi;
+        }
+    }
     let size = |sigma: f64| -> (f64, f64) {
         let (mut s2, mut s3) = (0.0, 0.0);
         for k in 0..n {
@@ -1229,12 +1239,10 @@ fn friction_impulse(
     };
     let (norm, _) = size(sigma);
     let scale = if sigma > 0.0 { limit / norm } else { 1.0 };
-    let mut j = Vector::zero(n);
-    for (i, x) in j.as_mut_slice().iter_mut().enumerate() {
-        *x = scale
-            * (0..n)
-                .map(|k| v[i * n + k] * c[k] / (d[k] + sigma))
-                .sum::<f64>();
+    for (k, x) in c.iter_mut().enumerate() {
+        *x /= d[k] + sigma;
     }
-    j
+    for (i, x) in out.iter_mut().enumerate() {
+        *x = scale * dot(&v[i * n..(i + 1) * n], &c);
+    }
 }

@@ -297,7 +297,7 @@ impl MotionSplitting {
                         plane.normal(),
                         row.index,
                     );
-                let tolerance = 1e-12 * shape.radius();
+                let tolerance = 1e-12 * self.placements.get(row.body).radius;
                 contacts_hold &= d >= -tolerance && (row.position_impulse == 0.0 || d <= tolerance);
                 self.distances.push(d);
             }
@@ -482,7 +482,7 @@ fn for_each_candidate(
             continue;
         }
         let placed = placements.get(i);
-        let reach = CONTACT_TOLERANCE * shape.radius();
+        let reach = CONTACT_TOLERANCE * placed.radius;
         for plane in system.half_spaces() {
             let n = plane.normal();
             let base = plane.distance(b.position());

@@ -50,6 +50,8 @@ pub(crate) struct Placement {
     pub q: SmallVec<[f64; 64]>,
     /// For a shape of vertices, Q r of each vertex r (N numbers each).
     offsets: Vec<f64>,
+    /// The shape's radius ([`ContactShape::radius`]), which contact tolerances scale with.
+    pub radius: f64,
 }
 
 impl Placement {
@@ -133,8 +135,9 @@ impl Placements {
         if self.owner != Some(owner) || self.bodies.len() != bodies.len() {
             self.owner = Some(owner);
             self.bodies.resize_with(bodies.len(), Placement::default);
-            for p in &mut self.bodies {
+            for (p, shape) in self.bodies.iter_mut().zip(shapes) {
                 p.attitude = None;
+                p.radius = shape.radius();
             }
         }
         for ((p, b), shape) in self.bodies.iter_mut().zip(bodies).zip(shapes) {
