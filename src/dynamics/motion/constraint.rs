@@ -348,6 +348,8 @@ pub(crate) struct ContactRow {
     /// solver's row matrices).
     pub knn: f64,
     speed: f64,
+    /// True if the impulses are the last solve's at the same point (a warm start).
+    warm: bool,
 }
 
 /// Where the matrices of one contact row lie in the solver's `row_data` (N = n, M planes):
@@ -543,14 +545,19 @@ impl Solver {
                     // The target is set when the solve starts, from the loaded velocities.
                     let target = 0.0;
                     if let Some(row) = self.contacts.get_mut(used) {
+                        // The same point in the same slot keeps its impulses of the last
+                        // solve, to start from.
+                        row.warm = row.body == i && row.half_space == k && row.index == index;
+                        if !row.warm {
+                            row.normal_impulse = 0.0;
+                            row.friction_impulse.as_mut_slice().fill(0.0);
+                        }
                         row.body = i;
                         row.half_space = k;
                         row.index = index;
                         row.point.clone_from(p);
                         row.r = r;
                         row.target = target;
-                        row.normal_impulse = 0.0;
-                        row.friction_impulse.as_mut_slice().fill(0.0);
                         row.position_impulse = 0.0;
                         row.knn = 0.0;
                         row.speed = 0.0;
@@ -567,6 +574,7 @@ impl Solver {
                             position_impulse: 0.0,
                             knn: 0.0,
                             speed: 0.0,
+                            warm: false,
                         });
                     }
                     used += 1;
@@ -718,32 +726,47 @@ impl Solver {
             };
             row.speed = u.max_abs().max(row.target.abs());
         }
-        // Start from the last solve's impulses where the same points touch again.
+        // Start from the last solve's impulses where the same points touch again: kept in
+        // the row when it is in the same slot, else looked up.
         let mut w = 0;
+        let mut jt: Small = SmallVec::from_elem(0.0, n);
+        let mut total: Small = SmallVec::from_elem(0.0, n);
         for (k, row) in self.contacts.iter_mut().enumerate() {
-            let key = (row.body, row.half_space, row.index);
-            while w < self.warm.len() && (self.warm[w].0, self.warm[w].1, self.warm[w].2) < key {
-                w += 1;
+            let lambda = if row.warm {
+                jt.copy_from_slice(row.friction_impulse.as_slice());
+                row.normal_impulse
+            } else {
+                let key = (row.body, row.half_space, row.index);
+                while w < self.warm.len() && (self.warm[w].0, self.warm[w].1, self.warm[w].2) < key
+                {
+                    w += 1;
+                }
+                match self.warm.get(w).filter(|e| (e.0, e.1, e.2) == key) {
+                    Some(e) => {
+                        jt.copy_from_slice(e.4.as_slice());
+                        e.3
+                    }
+                    None => continue,
+                }
+            };
+            let plane = &half_spaces[row.half_space];
+            let nv = plane.normal().as_slice();
+            // Into the friction disc of the normal impulse, and into the plane.
+            let limit = plane.friction() * lambda;
+            let norm = dot(&jt, &jt).sqrt();
+            let scale = if norm > limit { limit / norm } else { 1.0 };
+            for x in jt.iter_mut() {
+                *x *= scale;
             }
-            if let Some((_, _, _, lambda, jt)) = self.warm.get(w).filter(|e| (e.0, e.1, e.2) == key)
-            {
-                let plane = &half_spaces[row.half_space];
-                let nrm = plane.normal();
-                let limit = plane.friction() * lambda;
-                let scale = if jt.norm() > limit {
-                    limit / jt.norm()
-                } else {
-                    1.0
-                };
-                let mut j = jt * scale;
-                j -= &(nrm * nrm.dot(&j));
-                row.normal_impulse = *lambda;
-                let mut total = nrm * *lambda;
-                total += &j;
-                let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
-                self.states[row.body].apply_with(data, &layout, total.as_slice());
-                row.friction_impulse = j;
+            let along = dot(nv, &jt);
+            for ((t, x), nx) in total.iter_mut().zip(jt.iter_mut()).zip(nv) {
+                *x -= nx * along;
+                *t = nx * lambda + *x;
             }
+            row.normal_impulse = lambda;
+            row.friction_impulse.as_mut_slice().copy_from_slice(&jt);
+            let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
+            self.states[row.body].apply_with(data, &layout, &total);
         }
         // Bodies that no joint couples are solved apart (their contacts are consecutive), each
         // until no impulse changes one of its velocities by more than 1e-12 of its speeds;
