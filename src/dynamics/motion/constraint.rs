@@ -356,7 +356,7 @@ pub(crate) struct ContactRow {
 /// C (n × M: the velocity at the point per angular velocity, u = v + C w), W (M × n: the
 /// angular velocity per impulse, I⁻¹ (r ∧ ·)), R (M × n: the angular impulse, r ∧ ·), their
 /// products with the normal (Cᵀn, W n, R n), the tangent block K_t of K with its
-/// eigen-decomposition, and nᵀ K n.
+/// eigen-decomposition, nᵀ K n, and K_t⁻¹ (for the sticking impulse).
 #[derive(Clone, Copy, Debug)]
 struct RowLayout {
     n: usize,
@@ -371,6 +371,7 @@ struct RowLayout {
     values: usize,
     vectors: usize,
     knn: usize,
+    kinv: usize,
     stride: usize,
 }
 
@@ -387,6 +388,7 @@ impl RowLayout {
         let values = kt + n * n;
         let vectors = values + n;
         let knn = vectors + n * n;
+        let kinv = knn + 1;
         RowLayout {
             n,
             m,
@@ -400,7 +402,8 @@ impl RowLayout {
             values,
             vectors,
             knn,
-            stride: knn + 1,
+            kinv,
+            stride: kinv + n * n,
         }
     }
 }
@@ -1059,7 +1062,16 @@ fn sweep_contact(
         *u -= normal_part * x;
     }
     let mut new: Small = SmallVec::from_elem(0.0, n);
-    if limit > 0.0 {
+    // The sticking impulse old − K_t⁻¹ u_t when it lies in the disc (a resting contact),
+    // else the one of maximal dissipation on its rim.
+    let old = row.friction_impulse.as_slice();
+    let kinv = &data[l.kinv..l.kinv + n * n];
+    for ((x, o), k) in new.iter_mut().zip(old).zip(kinv.chunks_exact(n)) {
+        *x = o - dot(k, &ut);
+    }
+    if limit <= 0.0 {
+        new.fill(0.0);
+    } else if dot(&new, &new) > limit * limit {
         friction_impulse(
             &data[l.values..l.values + n],
             &data[l.vectors..l.vectors + n * n],
@@ -1137,6 +1149,14 @@ fn row_matrices(st: &BodyState, r: &Vector, nrm: &Vector, l: &RowLayout, data: &
     data[l.kt..l.kt + n * n].copy_from_slice(&k);
     data[l.values..l.values + n].copy_from_slice(&values);
     data[l.vectors..l.vectors + n * n].copy_from_slice(&vectors);
+    // K_t⁻¹ = V diag(1/d) Vᵀ.
+    for i in 0..n {
+        for j in 0..n {
+            data[l.kinv + i * n + j] = (0..n)
+                .map(|k| vectors[i * n + k] * vectors[j * n + k] / values[k])
+                .sum();
+        }
+    }
 }
 
 /// Turns the inverse mass k into its tangent block P k P + n nᵀ (P = 1 − n nᵀ), which maps
