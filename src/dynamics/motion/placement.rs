@@ -178,3 +178,37 @@ impl Placements {
         &self.bodies[i]
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebra::{Bivector, Rotor};
+
+    /// Rotors (N ≤ 4) and rotation matrices (N > 4) alike: an attitude turned by 1e-17 rad
+    /// places a body as before, one turned by 1e-13 rad does not, nor one of another
+    /// dimension.
+    #[test]
+    fn attitudes_are_close_within_round_off_only() {
+        for n in [3usize, 4, 5, 6] {
+            let planes = n * (n - 1) / 2;
+            let b: Vec<f64> = (0..planes).map(|k| 0.3 + 0.1 * k as f64).collect();
+            let base = Attitude::from(Rotor::from_rotation_bivector(
+                &Bivector::from_components(n, &b).unwrap(),
+            ));
+            let turned = |angle: f64| {
+                let mut a = base.clone();
+                let mut w = Bivector::zero(n);
+                w.as_mut_slice()[0] = angle;
+                a.times_exp_mut(&w);
+                a
+            };
+            assert!(attitudes_close(&base, &base.clone()), "N = {n}");
+            assert!(attitudes_close(&base, &turned(1e-17)), "N = {n}");
+            assert!(!attitudes_close(&base, &turned(1e-13)), "N = {n}");
+            assert!(
+                !attitudes_close(&base, &Attitude::identity(n + 1)),
+                "N = {n}"
+            );
+        }
+    }
+}
