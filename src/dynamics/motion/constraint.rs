@@ -12,9 +12,10 @@
 //! remaining slip is exactly opposite to it (a trust-region problem in the (N−1)-dimensional
 //! tangent space, solved by Newton's method on its multiplier, Moré–Sorensen).
 
+use super::contact::ContactLog;
 use super::forques::Anchor;
 use super::placement::{Placements, attitudes_close, dot};
-use super::{BallJoint, Contact, ContactShape, HalfSpace, MovingBody};
+use super::{BallJoint, ContactShape, HalfSpace, MovingBody};
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::Attitude;
 use smallvec::SmallVec;
@@ -657,7 +658,7 @@ impl Solver {
         bodies: &mut [MovingBody],
         half_spaces: &[HalfSpace],
         resting_speed: &[f64],
-        record: &mut Vec<Contact>,
+        record: &mut ContactLog,
     ) {
         if self.contacts.is_empty() && self.joints.is_empty() {
             return;
@@ -841,23 +842,17 @@ impl Solver {
             let nrm = half_spaces[row.half_space].normal();
             let st = &self.states[row.body];
             let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
-            let mut slip = Vector::zero(n);
-            point_velocity(
-                data,
-                &layout,
-                st.v.as_slice(),
-                st.w.as_slice(),
-                slip.as_mut_slice(),
+            let mut u: Small = SmallVec::from_elem(0.0, n);
+            point_velocity(data, &layout, st.v.as_slice(), st.w.as_slice(), &mut u);
+            record.record(
+                row.body,
+                row.half_space,
+                &row.point,
+                row.normal_impulse,
+                &row.friction_impulse,
+                &u,
+                nrm.as_slice(),
             );
-            slip -= &(nrm * nrm.dot(&slip));
-            record.push(Contact {
-                body: row.body,
-                half_space: row.half_space,
-                point: row.point.clone(),
-                normal_impulse: row.normal_impulse,
-                friction_impulse: row.friction_impulse.clone(),
-                slip,
-            });
         }
         self.store(bodies);
     }

@@ -1,5 +1,6 @@
 //! [`System`]: moving bodies and the forques between them.
 
+use super::contact::ContactLog;
 use super::forques::Anchor;
 use super::{BallJoint, Contact, ContactShape, Forque, ForqueInput, HalfSpace, MovingBody, Wrench};
 use crate::algebra::{Bivector, Vector};
@@ -21,7 +22,7 @@ pub struct System {
     shapes: Vec<ContactShape>,
     half_spaces: Vec<HalfSpace>,
     joints: Vec<BallJoint>,
-    contacts: Vec<Contact>,
+    contacts: ContactLog,
     /// The wrenches when every forque is constant ([`Forque::is_constant`]), evaluated when
     /// a forque joins.
     constant: Option<ConstantWrenches>,
@@ -77,7 +78,7 @@ impl System {
             forques: Vec::new(),
             half_spaces: Vec::new(),
             joints: Vec::new(),
-            contacts: Vec::new(),
+            contacts: ContactLog::default(),
             constant: None,
             id: {
                 static SYSTEMS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
@@ -220,7 +221,7 @@ impl System {
 
     /// Returns the contacts of the last step, with their impulses.
     pub fn contacts(&self) -> &[Contact] {
-        &self.contacts
+        self.contacts.as_slice()
     }
 
     /// Returns the dimension N.
@@ -283,7 +284,7 @@ impl System {
         &[ContactShape],
         &[HalfSpace],
         &[BallJoint],
-        &mut Vec<Contact>,
+        &mut ContactLog,
     ) {
         (
             &mut self.bodies,
