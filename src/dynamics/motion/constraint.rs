@@ -845,8 +845,7 @@ impl Solver {
             let mut u: Small = SmallVec::from_elem(0.0, n);
             point_velocity(data, &layout, st.v.as_slice(), st.w.as_slice(), &mut u);
             record.record(
-                row.body,
-                row.half_space,
+                (row.body, row.half_space),
                 &row.point,
                 row.normal_impulse,
                 &row.friction_impulse,

@@ -306,8 +306,7 @@ impl ContactLog {
     /// plane of unit normal `normal` here).
     pub(crate) fn record(
         &mut self,
-        body: usize,
-        half_space: usize,
+        (body, half_space): (usize, usize),
         point: &Vector,
         normal_impulse: f64,
         friction_impulse: &Vector,
