@@ -66,6 +66,8 @@ pub struct MotionSplitting {
     /// Each joint's position impulse of the last step over its length (a force), to start
     /// the next step's position solve from: the solve then needs fewer passes.
     joint_force: Vec<Vector>,
+    /// The same of the step before, to extrapolate from.
+    joint_force_before: Vec<Vector>,
     /// The position impulses of the current solve, per joint.
     joint_total: Vec<Vector>,
     /// Each joint's point in the principal axes of its body, and the other end: a point in
@@ -89,6 +91,7 @@ impl Default for MotionSplitting {
             distances: Vec::new(),
             sharing: Vec::new(),
             joint_force: Vec::new(),
+            joint_force_before: Vec::new(),
             joint_total: Vec::new(),
             joint_ends: Vec::new(),
             placements: Placements::default(),
@@ -259,11 +262,28 @@ impl MotionSplitting {
             self.joint_total
                 .resize_with(joints.len(), || Vector::zero(n));
             if self.joint_force.len() == joints.len() {
-                // Start from the last step's joint forces: the gaps left are then of the
-                // order of their change over a step.
-                for (total, f) in self.joint_total.iter_mut().zip(&self.joint_force) {
-                    for (x, y) in total.as_mut_slice().iter_mut().zip(f.as_slice()) {
-                        *x = y * h;
+                // Start from the joint forces extrapolated from the last two steps (or the
+                // last step's): the gaps left are then of the order of their second
+                // difference (or their change) over a step.
+                let before = (self.joint_force_before.len() == joints.len())
+                    .then_some(&self.joint_force_before);
+                for (k, (total, f)) in self
+                    .joint_total
+                    .iter_mut()
+                    .zip(&self.joint_force)
+                    .enumerate()
+                {
+                    let f0 = before.map(|b| b[k].as_slice());
+                    for (i, (x, y)) in total
+                        .as_mut_slice()
+                        .iter_mut()
+                        .zip(f.as_slice())
+                        .enumerate()
+                    {
+                        *x = match f0 {
+                            Some(f0) => (2.0 * y - f0[i]) * h,
+                            None => y * h,
+                        };
                     }
                 }
                 self.solver
@@ -346,6 +366,7 @@ impl MotionSplitting {
 
     /// Keeps the joints' position impulses of the step, as forces, for the next step.
     fn keep_joint_forces(&mut self, h: f64) {
+        std::mem::swap(&mut self.joint_force, &mut self.joint_force_before);
         self.joint_force
             .resize_with(self.joint_total.len(), || Vector::zero(0));
         for (f, total) in self.joint_force.iter_mut().zip(&self.joint_total) {
