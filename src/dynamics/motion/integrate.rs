@@ -366,6 +366,11 @@ impl MotionSplitting {
 
     /// Keeps the joints' position impulses of the step, as forces, for the next step.
     fn keep_joint_forces(&mut self, h: f64) {
+        // Room for the joints in both, so that the swaps of the next steps do not allocate.
+        let joints = self.joint_total.len();
+        for forces in [&mut self.joint_force, &mut self.joint_force_before] {
+            forces.reserve(joints.saturating_sub(forces.len()));
+        }
         std::mem::swap(&mut self.joint_force, &mut self.joint_force_before);
         self.joint_force
             .resize_with(self.joint_total.len(), || Vector::zero(0));
