@@ -115,13 +115,25 @@ struct SavedBody {
 }
 
 fn save(bodies: &[MovingBody], into: &mut Vec<SavedBody>) {
-    into.clear();
-    into.extend(bodies.iter().map(|b| SavedBody {
-        x: b.position().clone(),
-        p: b.linear_momentum().clone(),
-        attitude: b.rotation().principal_frame_attitude().clone(),
-        l: b.rotation().momentum().clone(),
-    }));
+    // Over the entries already there: copying a body's state costs less than building it.
+    into.truncate(bodies.len());
+    for (i, b) in bodies.iter().enumerate() {
+        match into.get_mut(i) {
+            Some(s) => {
+                s.x.clone_from(b.position());
+                s.p.clone_from(b.linear_momentum());
+                s.attitude
+                    .clone_from(b.rotation().principal_frame_attitude());
+                s.l.clone_from(b.rotation().momentum());
+            }
+            None => into.push(SavedBody {
+                x: b.position().clone(),
+                p: b.linear_momentum().clone(),
+                attitude: b.rotation().principal_frame_attitude().clone(),
+                l: b.rotation().momentum().clone(),
+            }),
+        }
+    }
 }
 
 fn restore(bodies: &mut [MovingBody], from: &[SavedBody]) {
