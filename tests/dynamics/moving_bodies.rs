@@ -80,6 +80,77 @@ fn free_flight_follows_the_parabola_and_turns_as_the_rotation_only_body() {
     }
 }
 
+/// Constant forques (gravity, a constant force at the centre of mass) are evaluated once,
+/// when they join the system; the step they take must be the one the same forces give
+/// through the general path (a closure, which the system re-evaluates at each half kick),
+/// to the last bit, and the attitude-dependent constant force must not be taken for one.
+#[test]
+fn constant_forques_step_as_the_same_forces_evaluated_each_kick() {
+    use rotorflow::dynamics::motion::forques::{ConstantForce, Frame};
+    use rotorflow::dynamics::motion::{Forque, ForqueInput, Wrench};
+    let mut r = rng(1502);
+    for n in 2..=5 {
+        let bodies: Vec<MovingBody> = (0..3)
+            .map(|k| {
+                let x = random_vector(&mut r, n, 3.0);
+                let v = random_vector(&mut r, n, 2.0);
+                moving(random_body(&mut r, n), 1.0 + k as f64, x, v)
+            })
+            .collect();
+        let g = random_vector(&mut r, n, 10.0);
+        let push = random_vector(&mut r, n, 1.0);
+        let at_centre = ConstantForce {
+            body: 1,
+            force: push.clone(),
+            point: Vector::zero(n),
+            frame: Frame::World,
+        };
+        assert!(Gravity(g.clone()).is_constant() && at_centre.is_constant());
+        let mut off_centre = at_centre.clone();
+        off_centre.point = random_vector(&mut r, n, 0.5);
+        assert!(!off_centre.is_constant(), "its torque turns with the body");
+        let mut in_body = at_centre.clone();
+        in_body.frame = Frame::Body;
+        assert!(!in_body.is_constant(), "its direction turns with the body");
+
+        let mut fast = System::new(bodies.clone()).unwrap();
+        fast.add_forque(Gravity(g.clone())).unwrap();
+        fast.add_forque(at_centre).unwrap();
+        let general_start_p1 = bodies[1].linear_momentum().clone();
+        let mut general = System::new(bodies).unwrap();
+        let (g2, push2) = (g.clone(), push.clone());
+        general
+            .add_forque(move |input: &ForqueInput<'_>, w: &mut [Wrench]| {
+                for (b, w) in input.bodies.iter().zip(w.iter_mut()) {
+                    w.force += &(&g2 * b.mass());
+                }
+                w[1].force += &push2;
+            })
+            .unwrap();
+        let (h, steps) = (0.01, 300);
+        run(&mut fast, &mut MotionSplitting::new(), h, steps);
+        run(&mut general, &mut MotionSplitting::new(), h, steps);
+        for (a, b) in fast.bodies().iter().zip(general.bodies()) {
+            assert_eq!(a.position(), b.position(), "N = {n}");
+            assert_eq!(a.linear_momentum(), b.linear_momentum(), "N = {n}");
+            assert_eq!(a.rotation().momentum(), b.rotation().momentum(), "N = {n}");
+            assert_eq!(
+                a.rotation().principal_frame_attitude(),
+                b.rotation().principal_frame_attitude(),
+                "N = {n}"
+            );
+        }
+        // And the forces act: p₁ = p₁(0) + t (m₁ g + F).
+        let t = h * steps as f64;
+        let mut want = general_start_p1.clone();
+        want += &(&(&(&g * 2.0) + &push) * t);
+        assert!(
+            rel(fast.bodies()[1].linear_momentum(), &want) <= 1e-12,
+            "N = {n}"
+        );
+    }
+}
+
 /// Two bodies joined by an undamped spring between off-centre points, no external forque:
 /// the total linear momentum and the angular momentum about the origin are conserved to
 /// round-off by both integrators (the spring's forces are opposite and along the line of

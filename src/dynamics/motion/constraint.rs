@@ -12,9 +12,12 @@
 //! remaining slip is exactly opposite to it (a trust-region problem in the (N−1)-dimensional
 //! tangent space, solved by Newton's method on its multiplier, Moré–Sorensen).
 
+use super::contact::ContactLog;
 use super::forques::Anchor;
-use super::{BallJoint, Contact, ContactShape, HalfSpace, MovingBody};
+use super::placement::{Placements, attitudes_close, dot};
+use super::{BallJoint, ContactShape, HalfSpace, MovingBody};
 use crate::algebra::{Bivector, Vector};
+use crate::dynamics::Attitude;
 use smallvec::SmallVec;
 
 /// Up to N = 8 the matrices live on the stack.
@@ -39,6 +42,13 @@ pub(crate) struct BodyState {
     dp: Vector,
     dl: Bivector,
     pub used: bool,
+    /// The attitude of the principal frame, the mass and the inverse plane moments that
+    /// `frame` and `inv_inertia` were computed for (None when they must be computed anew):
+    /// a body at the same placement as at the last solve reuses them.
+    key: Option<(Attitude, f64)>,
+    key_moments: SmallVec<[f64; 28]>,
+    /// Changes whenever `frame` and `inv_inertia` are computed anew.
+    generation: u64,
 }
 
 impl BodyState {
@@ -52,12 +62,60 @@ impl BodyState {
             dp: Vector::zero(n),
             dl: Bivector::zero(n),
             used: false,
+            key: None,
+            key_moments: SmallVec::new(),
+            generation: 0,
         }
     }
 
     /// Loads body `b`: the rotation of the planes by its principal frame P, I⁻¹ in space
-    /// (P I⁻¹ Pᵀ on bivectors), its velocities, no impulse yet.
-    fn load(&mut self, b: &MovingBody, work: &mut Dense) {
+    /// (P I⁻¹ Pᵀ on bivectors), its velocities, no impulse yet. Returns true if the frame
+    /// and the inverse inertia were computed anew (false: the body has not turned since
+    /// they were).
+    fn load(&mut self, b: &MovingBody, work: &mut Dense) -> bool {
+        let n = b.dim();
+        let m = n * (n - 1) / 2;
+        let attitude = b.rotation().principal_frame_attitude();
+        let inertia = b.rotation().inertia();
+        let diagonal = inertia.diagonal_inverse_plane_moments();
+        let same = match (&self.key, diagonal) {
+            (Some((a, mass)), Some(inv)) => {
+                attitudes_close(a, attitude) && *mass == b.mass() && self.key_moments[..] == inv[..]
+            }
+            _ => false,
+        };
+        if !same {
+            self.place(b, work);
+            match diagonal {
+                Some(inv) => {
+                    self.key = Some((attitude.clone(), b.mass()));
+                    self.key_moments.clear();
+                    self.key_moments.extend_from_slice(inv);
+                }
+                None => self.key = None,
+            }
+        }
+        self.inv_mass = 1.0 / b.mass();
+        self.v.clone_from(b.linear_momentum());
+        self.v *= self.inv_mass;
+        match diagonal {
+            // ω in space = P (I⁻¹ L), I⁻¹ diagonal in the principal frame.
+            Some(inv) => {
+                let l = b.rotation().momentum().as_slice();
+                for (i, w) in self.w.as_mut_slice().iter_mut().enumerate() {
+                    *w = (0..m).map(|k| self.frame[i * m + k] * inv[k] * l[k]).sum();
+                }
+            }
+            None => self.w = b.space_omega(),
+        }
+        self.dp.as_mut_slice().fill(0.0);
+        self.dl.as_mut_slice().fill(0.0);
+        self.used = true;
+        !same
+    }
+
+    /// Computes the rotation of the planes by the principal frame and I⁻¹ in space.
+    fn place(&mut self, b: &MovingBody, work: &mut Dense) {
         let n = b.dim();
         let m = n * (n - 1) / 2;
         work.clear();
@@ -72,8 +130,21 @@ impl BodyState {
                     p[c * n + a] * p[d * n + bb] - p[d * n + a] * p[c * n + bb];
             }
         }
-        // I⁻¹ in the principal frame, column by column, then F I⁻¹ Fᵀ.
         let inertia = b.rotation().inertia();
+        self.inv_inertia.clear();
+        self.inv_inertia.resize(m * m, 0.0);
+        if let Some(inv) = inertia.diagonal_inverse_plane_moments() {
+            // F diag(1/I) Fᵀ.
+            for i in 0..m {
+                for j in 0..m {
+                    self.inv_inertia[i * m + j] = (0..m)
+                        .map(|k| self.frame[i * m + k] * inv[k] * self.frame[j * m + k])
+                        .sum();
+                }
+            }
+            return;
+        }
+        // I⁻¹ in the principal frame, column by column, then F I⁻¹ Fᵀ.
         let mut ip: SmallVec<[f64; 784]> = SmallVec::from_elem(0.0, m * m);
         let mut e = Bivector::zero(n);
         for k in 0..m {
@@ -90,20 +161,12 @@ impl BodyState {
                 fi[i * m + j] = (0..m).map(|k| self.frame[i * m + k] * ip[k * m + j]).sum();
             }
         }
-        self.inv_inertia.clear();
-        self.inv_inertia.resize(m * m, 0.0);
         for i in 0..m {
             for j in 0..m {
                 self.inv_inertia[i * m + j] =
                     (0..m).map(|k| fi[i * m + k] * self.frame[j * m + k]).sum();
             }
         }
-        self.inv_mass = 1.0 / b.mass();
-        self.v = b.velocity();
-        self.w = b.space_omega();
-        self.dp = Vector::zero(n);
-        self.dl = Bivector::zero(n);
-        self.used = true;
     }
 
     /// I⁻¹ B (space).
@@ -141,6 +204,53 @@ impl BodyState {
         self.dl += &dl;
     }
 
+    /// Takes an impulse `j` at the point of a contact row with matrices `data`.
+    fn apply_with(&mut self, data: &[f64], l: &RowLayout, j: &[f64]) {
+        let (n, m) = (l.n, l.m);
+        for ((v, dp), x) in self
+            .v
+            .as_mut_slice()
+            .iter_mut()
+            .zip(self.dp.as_mut_slice())
+            .zip(j)
+        {
+            *v += x * self.inv_mass;
+            *dp += x;
+        }
+        add_mat_vec(self.w.as_mut_slice(), &data[l.w..l.w + m * n], 1.0, j);
+        add_mat_vec(self.dl.as_mut_slice(), &data[l.r..l.r + m * n], 1.0, j);
+    }
+
+    /// Takes the normal impulse λ n at the point of a contact row with matrices `data`.
+    fn apply_normal(&mut self, data: &[f64], l: &RowLayout, nrm: &[f64], lambda: f64) {
+        for ((v, dp), x) in self
+            .v
+            .as_mut_slice()
+            .iter_mut()
+            .zip(self.dp.as_mut_slice())
+            .zip(nrm)
+        {
+            *v += lambda * x * self.inv_mass;
+            *dp += lambda * x;
+        }
+        for (w, x) in self
+            .w
+            .as_mut_slice()
+            .iter_mut()
+            .zip(&data[l.wn..l.wn + l.m])
+        {
+            *w += lambda * x;
+        }
+        for (d, x) in self
+            .dl
+            .as_mut_slice()
+            .iter_mut()
+            .zip(&data[l.rn..l.rn + l.m])
+        {
+            *d += lambda * x;
+        }
+    }
+
     /// Hands the impulses to body `b`: p += Σ J, L += Pᵀ (Σ r ∧ J) in the principal frame.
     fn store(&mut self, b: &mut MovingBody) {
         let m = self.dl.as_slice().len();
@@ -170,6 +280,16 @@ fn add_inverse_mass(b: &BodyState, r: &Vector, k: &mut [f64]) {
 /// Solves a x = b in place for a symmetric positive definite n × n `a` (row-major,
 /// overwritten by its Cholesky factor). Returns false if `a` is not positive definite.
 pub(crate) fn cholesky_solve(a: &mut [f64], n: usize, b: &mut [f64]) -> bool {
+    if !cholesky_factor(a, n) {
+        return false;
+    }
+    cholesky_substitute(a, n, b);
+    true
+}
+
+/// Overwrites the lower triangle of a symmetric positive definite n × n `a` (row-major) by
+/// its Cholesky factor. Returns false if `a` is not positive definite.
+fn cholesky_factor(a: &mut [f64], n: usize) -> bool {
     for j in 0..n {
         let mut d = a[j * n + j];
         for k in 0..j {
@@ -188,21 +308,25 @@ pub(crate) fn cholesky_solve(a: &mut [f64], n: usize, b: &mut [f64]) -> bool {
             a[i * n + j] = s / d;
         }
     }
+    true
+}
+
+/// Solves L Lᵀ x = b in place, L the factor [`cholesky_factor`] left in `l`.
+fn cholesky_substitute(l: &[f64], n: usize, b: &mut [f64]) {
     for i in 0..n {
         let mut s = b[i];
         for k in 0..i {
-            s -= a[i * n + k] * b[k];
+            s -= l[i * n + k] * b[k];
         }
-        b[i] = s / a[i * n + i];
+        b[i] = s / l[i * n + i];
     }
     for i in (0..n).rev() {
         let mut s = b[i];
         for k in i + 1..n {
-            s -= a[k * n + i] * b[k];
+            s -= l[k * n + i] * b[k];
         }
-        b[i] = s / a[i * n + i];
+        b[i] = s / l[i * n + i];
     }
-    true
 }
 
 /// One contact point in a solve.
@@ -221,13 +345,97 @@ pub(crate) struct ContactRow {
     pub friction_impulse: Vector,
     /// The normal impulse added in the free flight to keep the point out (position level).
     pub position_impulse: f64,
-    /// nᵀ K n and the tangent block of K, and the point's speed (set when the solve
-    /// starts).
+    /// nᵀ K n and the point's speed (set when the solve starts; the rest of K is in the
+    /// solver's row matrices).
     pub knn: f64,
     speed: f64,
-    kt: Dense,
-    eigenvalues: Dense,
-    eigenvectors: Dense,
+    /// True if the impulses are the last solve's at the same point (a warm start).
+    warm: bool,
+}
+
+/// Where the matrices of one contact row lie in the solver's `row_data` (N = n, M planes):
+/// C (n × M: the velocity at the point per angular velocity, u = v + C w), W (M × n: the
+/// angular velocity per impulse, I⁻¹ (r ∧ ·)), R (M × n: the angular impulse, r ∧ ·), their
+/// products with the normal (Cᵀn, W n, R n), the tangent block K_t of K with its
+/// eigen-decomposition, nᵀ K n, and K_t⁻¹ (for the sticking impulse).
+#[derive(Clone, Copy, Debug)]
+struct RowLayout {
+    n: usize,
+    m: usize,
+    c: usize,
+    w: usize,
+    r: usize,
+    cn: usize,
+    wn: usize,
+    rn: usize,
+    kt: usize,
+    values: usize,
+    vectors: usize,
+    knn: usize,
+    kinv: usize,
+    stride: usize,
+}
+
+impl RowLayout {
+    fn new(n: usize) -> RowLayout {
+        let m = n * (n - 1) / 2;
+        let c = 0;
+        let w = c + n * m;
+        let r = w + m * n;
+        let cn = r + m * n;
+        let wn = cn + m;
+        let rn = wn + m;
+        let kt = rn + m;
+        let values = kt + n * n;
+        let vectors = values + n;
+        let knn = vectors + n * n;
+        let kinv = knn + 1;
+        RowLayout {
+            n,
+            m,
+            c,
+            w,
+            r,
+            cn,
+            wn,
+            rn,
+            kt,
+            values,
+            vectors,
+            knn,
+            kinv,
+            stride: kinv + n * n,
+        }
+    }
+}
+
+/// What a contact row's matrices were computed for: the row's point (body, half-space,
+/// candidate), its offset and normal, and the generation of its body's inverse inertia.
+#[derive(Clone, Debug, Default)]
+struct RowKey {
+    body: usize,
+    half_space: usize,
+    index: usize,
+    generation: u64,
+    r: SmallVec<[f64; 8]>,
+    normal: SmallVec<[f64; 8]>,
+}
+
+/// u = v + C w at a row's point.
+#[inline]
+fn point_velocity(d: &[f64], l: &RowLayout, v: &[f64], w: &[f64], u: &mut [f64]) {
+    let c = &d[l.c..l.c + l.n * l.m];
+    for ((ui, vi), row) in u.iter_mut().zip(v).zip(c.chunks_exact(l.m)) {
+        *ui = vi + dot(row, w);
+    }
+}
+
+/// y += a A x for an M × n row-major A.
+#[inline]
+fn add_mat_vec(y: &mut [f64], a_mat: &[f64], a: f64, x: &[f64]) {
+    for (yp, row) in y.iter_mut().zip(a_mat.chunks_exact(x.len())) {
+        *yp += a * dot(row, x);
+    }
 }
 
 /// One ball joint in a solve: the offsets of its two ends.
@@ -257,15 +465,6 @@ impl JointRow {
         }
     }
 
-    /// The gap between the two ends (zero when the joint holds).
-    pub(crate) fn gap(joint: &BallJoint, bodies: &[MovingBody]) -> Vector {
-        let a = bodies[joint.body].point_position(&joint.point);
-        match &joint.other {
-            Anchor::World(x) => &a - x,
-            Anchor::Body(j, p) => &a - &bodies[*j].point_position(p),
-        }
-    }
-
     /// The relative velocity of the two ends.
     fn velocity(&self, states: &[BodyState]) -> Vector {
         let mut u = states[self.body].velocity_at(&self.r);
@@ -288,19 +487,6 @@ impl JointRow {
         std::iter::once((self.body, &self.r, 1.0))
             .chain(self.other.iter().map(|(b, q)| (*b, q, -1.0)))
     }
-
-    /// The change of this joint's relative velocity per impulse `j` of joint `other`.
-    fn cross_response(&self, other: &JointRow, j: &Vector, states: &[BodyState]) -> Vector {
-        let mut du = Vector::zero(j.dim());
-        for (bi, ri, si) in other.ends() {
-            for (bk, rk, sk) in self.ends() {
-                if bi == bk {
-                    du += &(&states[bi].response(ri, j, rk) * (si * sk));
-                }
-            }
-        }
-        du
-    }
 }
 
 /// The reusable work space of the solves.
@@ -313,6 +499,19 @@ pub(crate) struct Solver {
     rhs: Dense,
     big: Vec<f64>,
     big_rhs: Vec<f64>,
+    /// Each joint end's contraction and inverse-inertia matrices (for K).
+    end_c: Vec<f64>,
+    end_w: Vec<f64>,
+    /// The contact rows' matrices ([`RowLayout`]), slot k for row k, and what they were
+    /// computed for: a row that touches again at the same placement keeps them.
+    row_data: Vec<f64>,
+    row_keys: Vec<RowKey>,
+    /// The last generation handed to a body's inverse inertia.
+    generations: u64,
+    /// True while `big` holds the Cholesky factor of the joints' K at the bodies' current
+    /// attitudes (the rows' offsets): a velocity solve of joints alone leaves it there, and
+    /// the position solve of the same placement reuses it.
+    joint_factor: bool,
     pub residuals: Vec<Vector>,
     /// The impulses of the last solve, by (body, half-space, candidate), to start the next
     /// one from: a resting contact then needs one sweep.
@@ -321,91 +520,96 @@ pub(crate) struct Solver {
 
 impl Solver {
     /// Finds the contact points of `bodies` within `tolerance` × their radius of a
-    /// half-space, with the impact targets: restitution e for a point approaching faster
-    /// than `resting_speed[i]`, none below (a resting contact).
+    /// half-space, the bodies placed by `placements`.
     pub(crate) fn find_contacts(
         &mut self,
         bodies: &[MovingBody],
         shapes: &[ContactShape],
         half_spaces: &[HalfSpace],
         tolerance: f64,
-        resting_speed: &[f64],
+        placements: &Placements,
     ) {
         // Rows are overwritten in place (a row is large: moving it costs more than its setup).
         let mut used = 0;
         let n = bodies[0].dim();
-        let mut q = std::mem::take(&mut self.work);
         for (i, (b, shape)) in bodies.iter().zip(shapes).enumerate() {
             if matches!(shape, ContactShape::None) {
                 continue;
             }
-            q.clear();
-            q.resize(n * n, 0.0);
-            b.attitude().write_matrix(&mut q);
-            let reach = tolerance * shape.radius();
-            let (v, w) = (b.velocity(), b.space_omega());
+            let placed = placements.get(i);
+            let reach = tolerance * placed.radius;
             for (k, plane) in half_spaces.iter().enumerate() {
                 let nrm = plane.normal();
                 let base = plane.distance(b.position());
-                let mut index = 0;
-                shape.candidates(&q, nrm, |p, r| {
-                    index += 1;
-                    if base + nrm.dot(r) <= reach {
-                        let mut u = v.clone();
-                        u += &r.left_contract(&w);
-                        let un = nrm.dot(&u);
-                        let target = if un < -resting_speed[i] {
-                            -plane.restitution() * un
-                        } else {
-                            0.0
-                        };
-                        if let Some(row) = self.contacts.get_mut(used) {
-                            row.body = i;
-                            row.half_space = k;
-                            row.index = index;
-                            row.point.clone_from(p);
-                            row.r.clone_from(r);
-                            row.target = target;
-                            row.normal_impulse = 0.0;
-                            row.friction_impulse = Vector::zero(n);
-                            row.position_impulse = 0.0;
-                            row.knn = 0.0;
-                            row.speed = 0.0;
-                            row.kt.clear();
-                            row.eigenvalues.clear();
-                            row.eigenvectors.clear();
-                        } else {
-                            self.contacts.push(ContactRow {
-                                body: i,
-                                half_space: k,
-                                index,
-                                point: p.clone(),
-                                r: r.clone(),
-                                target,
-                                normal_impulse: 0.0,
-                                friction_impulse: Vector::zero(n),
-                                position_impulse: 0.0,
-                                knn: 0.0,
-                                speed: 0.0,
-                                kt: Dense::new(),
-                                eigenvalues: Dense::new(),
-                                eigenvectors: Dense::new(),
-                            });
-                        }
-                        used += 1;
+                placed.candidates(shape, nrm, |index, p, r| {
+                    if base + dot(nrm.as_slice(), r) > reach {
+                        return;
                     }
+                    let r = Vector::from_storage(SmallVec::from_slice(r));
+                    // The target is set when the solve starts, from the loaded velocities.
+                    let target = 0.0;
+                    if let Some(row) = self.contacts.get_mut(used) {
+                        // The same point in the same slot keeps its impulses of the last
+                        // solve, to start from.
+                        row.warm = row.body == i && row.half_space == k && row.index == index;
+                        if !row.warm {
+                            row.normal_impulse = 0.0;
+                            row.friction_impulse.as_mut_slice().fill(0.0);
+                        }
+                        row.body = i;
+                        row.half_space = k;
+                        row.index = index;
+                        row.point.clone_from(p);
+                        row.r = r;
+                        row.target = target;
+                        row.position_impulse = 0.0;
+                        row.knn = 0.0;
+                        row.speed = 0.0;
+                    } else {
+                        self.contacts.push(ContactRow {
+                            body: i,
+                            half_space: k,
+                            index,
+                            point: p.clone(),
+                            r,
+                            target,
+                            normal_impulse: 0.0,
+                            friction_impulse: Vector::zero(n),
+                            position_impulse: 0.0,
+                            knn: 0.0,
+                            speed: 0.0,
+                            warm: false,
+                        });
+                    }
+                    used += 1;
                 });
             }
         }
         self.contacts.truncate(used);
-        self.work = q;
     }
 
     /// Sets up the joint rows at the current placement.
+    /// The factor of the joints' K is kept if every row is the same as before (the bodies'
+    /// attitudes did not change; [`Solver::load`] checks their inertias).
     pub(crate) fn find_joints(&mut self, bodies: &[MovingBody], joints: &[BallJoint]) {
-        self.joints.clear();
-        self.joints
-            .extend(joints.iter().map(|j| JointRow::new(j, bodies)));
+        let mut same = self.joints.len() == joints.len();
+        self.joints.truncate(joints.len());
+        for (k, joint) in joints.iter().enumerate() {
+            let row = JointRow::new(joint, bodies);
+            match self.joints.get_mut(k) {
+                Some(old) => {
+                    same &= old.body == row.body && old.r == row.r && old.other == row.other;
+                    old.body = row.body;
+                    old.r = row.r;
+                    old.other = row.other;
+                    old.impulse.as_mut_slice().fill(0.0);
+                }
+                None => self.joints.push(row),
+            }
+        }
+        if !same {
+            self.joint_factor = false;
+        }
     }
 
     /// Loads the bodies the rows act on.
@@ -419,12 +623,19 @@ impl Solver {
                 .iter()
                 .flat_map(|j| std::iter::once(j.body).chain(j.other.iter().map(|(b, _)| *b))),
         );
+        let mut placed = false;
         for i in touched {
-            if !self.states[i].used {
-                self.states[i].load(&bodies[i], &mut work);
+            if !self.states[i].used && self.states[i].load(&bodies[i], &mut work) {
+                placed = true;
+                self.generations += 1;
+                self.states[i].generation = self.generations;
             }
         }
         self.work = work;
+        if placed {
+            // A body turned: the joints' K is another.
+            self.joint_factor = false;
+        }
     }
 
     /// Hands the impulses of the solve to the bodies.
@@ -439,11 +650,15 @@ impl Solver {
     /// The velocity solve: impulses such that every joint's ends move together and every
     /// contact point leaves its half-space at its target speed or faster, with friction in
     /// Coulomb's cone. Appends the contacts and their impulses to `record`.
+    ///
+    /// A contact's target is restitution e for a point approaching faster than
+    /// `resting_speed[i]` (body i), none below (a resting contact).
     pub(crate) fn solve_velocities(
         &mut self,
         bodies: &mut [MovingBody],
         half_spaces: &[HalfSpace],
-        record: &mut Vec<Contact>,
+        resting_speed: &[f64],
+        record: &mut ContactLog,
     ) {
         if self.contacts.is_empty() && self.joints.is_empty() {
             return;
@@ -468,48 +683,94 @@ impl Solver {
                 add_inverse_mass(&self.states[*j], q, &mut row.k);
             }
         }
-        for row in &mut self.contacts {
+        let layout = RowLayout::new(n);
+        let rows = self.contacts.len();
+        if self.row_data.len() < rows * layout.stride {
+            self.row_data.resize(rows * layout.stride, 0.0);
+        }
+        if self.row_keys.len() < rows {
+            self.row_keys.resize_with(rows, RowKey::default);
+        }
+        let mut u = Vector::zero(n);
+        for (k, row) in self.contacts.iter_mut().enumerate() {
             let nrm = half_spaces[row.half_space].normal();
             let st = &self.states[row.body];
-            row.kt.clear();
-            row.kt.resize(n * n, 0.0);
-            add_inverse_mass(st, &row.r, &mut row.kt);
-            row.knn = (0..n)
-                .map(|i| {
-                    (0..n)
-                        .map(|j| nrm[i] * row.kt[i * n + j] * nrm[j])
-                        .sum::<f64>()
-                })
-                .sum();
-            tangent_block(&mut row.kt, nrm);
-            symmetric_eigen(&row.kt, n, &mut row.eigenvalues, &mut row.eigenvectors);
-            row.speed = st.velocity_at(&row.r).max_abs().max(row.target.abs());
+            let data = &mut self.row_data[k * layout.stride..(k + 1) * layout.stride];
+            let key = &mut self.row_keys[k];
+            let same = key.body == row.body
+                && key.half_space == row.half_space
+                && key.index == row.index
+                && key.generation == st.generation
+                && key.r[..] == row.r.as_slice()[..]
+                && key.normal[..] == nrm.as_slice()[..];
+            if !same {
+                row_matrices(st, &row.r, nrm, &layout, data);
+                key.body = row.body;
+                key.half_space = row.half_space;
+                key.index = row.index;
+                key.generation = st.generation;
+                key.r.clear();
+                key.r.extend_from_slice(row.r.as_slice());
+                key.normal.clear();
+                key.normal.extend_from_slice(nrm.as_slice());
+            }
+            row.knn = data[layout.knn];
+            point_velocity(
+                data,
+                &layout,
+                st.v.as_slice(),
+                st.w.as_slice(),
+                u.as_mut_slice(),
+            );
+            let un = nrm.dot(&u);
+            row.target = if un < -resting_speed[row.body] {
+                -half_spaces[row.half_space].restitution() * un
+            } else {
+                0.0
+            };
+            row.speed = u.max_abs().max(row.target.abs());
         }
-        // Start from the last solve's impulses where the same points touch again.
+        // Start from the last solve's impulses where the same points touch again: kept in
+        // the row when it is in the same slot, else looked up.
         let mut w = 0;
-        for row in &mut self.contacts {
-            let key = (row.body, row.half_space, row.index);
-            while w < self.warm.len() && (self.warm[w].0, self.warm[w].1, self.warm[w].2) < key {
-                w += 1;
+        let mut jt: Small = SmallVec::from_elem(0.0, n);
+        let mut total: Small = SmallVec::from_elem(0.0, n);
+        for (k, row) in self.contacts.iter_mut().enumerate() {
+            let lambda = if row.warm {
+                jt.copy_from_slice(row.friction_impulse.as_slice());
+                row.normal_impulse
+            } else {
+                let key = (row.body, row.half_space, row.index);
+                while w < self.warm.len() && (self.warm[w].0, self.warm[w].1, self.warm[w].2) < key
+                {
+                    w += 1;
+                }
+                match self.warm.get(w).filter(|e| (e.0, e.1, e.2) == key) {
+                    Some(e) => {
+                        jt.copy_from_slice(e.4.as_slice());
+                        e.3
+                    }
+                    None => continue,
+                }
+            };
+            let plane = &half_spaces[row.half_space];
+            let nv = plane.normal().as_slice();
+            // Into the friction disc of the normal impulse, and into the plane.
+            let limit = plane.friction() * lambda;
+            let norm = dot(&jt, &jt).sqrt();
+            let scale = if norm > limit { limit / norm } else { 1.0 };
+            for x in jt.iter_mut() {
+                *x *= scale;
             }
-            if let Some((_, _, _, lambda, jt)) = self.warm.get(w).filter(|e| (e.0, e.1, e.2) == key)
-            {
-                let plane = &half_spaces[row.half_space];
-                let nrm = plane.normal();
-                let limit = plane.friction() * lambda;
-                let scale = if jt.norm() > limit {
-                    limit / jt.norm()
-                } else {
-                    1.0
-                };
-                let mut j = jt * scale;
-                j -= &(nrm * nrm.dot(&j));
-                row.normal_impulse = *lambda;
-                let mut total = nrm * *lambda;
-                total += &j;
-                self.states[row.body].apply(&row.r, &total);
-                row.friction_impulse = j;
+            let along = dot(nv, &jt);
+            for ((t, x), nx) in total.iter_mut().zip(jt.iter_mut()).zip(nv) {
+                *x -= nx * along;
+                *t = nx * lambda + *x;
             }
+            row.normal_impulse = lambda;
+            row.friction_impulse.as_mut_slice().copy_from_slice(&jt);
+            let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
+            self.states[row.body].apply_with(data, &layout, &total);
         }
         // Bodies that no joint couples are solved apart (their contacts are consecutive), each
         // until no impulse changes one of its velocities by more than 1e-12 of its speeds;
@@ -550,8 +811,16 @@ impl Solver {
                         change = change.max(u.max_abs());
                     }
                 }
-                for row in &mut self.contacts[start..end] {
-                    change = change.max(sweep_contact(row, half_spaces, &mut self.states, n));
+                for (k, row) in self.contacts[start..end].iter_mut().enumerate() {
+                    let at = (start + k) * layout.stride;
+                    let data = &self.row_data[at..at + layout.stride];
+                    change = change.max(sweep_contact(
+                        row,
+                        data,
+                        &layout,
+                        half_spaces,
+                        &mut self.states,
+                    ));
                 }
                 if change <= tolerance {
                     break;
@@ -569,112 +838,319 @@ impl Solver {
                 r.friction_impulse.clone(),
             )
         }));
-        for row in &self.contacts {
+        for (k, row) in self.contacts.iter().enumerate() {
             let nrm = half_spaces[row.half_space].normal();
-            let mut slip = self.states[row.body].velocity_at(&row.r);
-            slip -= &(nrm * nrm.dot(&slip));
-            record.push(Contact {
-                body: row.body,
-                half_space: row.half_space,
-                point: row.point.clone(),
-                normal_impulse: row.normal_impulse,
-                friction_impulse: row.friction_impulse.clone(),
-                slip,
-            });
+            let st = &self.states[row.body];
+            let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
+            let mut u: Small = SmallVec::from_elem(0.0, n);
+            point_velocity(data, &layout, st.v.as_slice(), st.w.as_slice(), &mut u);
+            record.record(
+                (row.body, row.half_space),
+                &row.point,
+                row.normal_impulse,
+                &row.friction_impulse,
+                &u,
+                nrm.as_slice(),
+            );
         }
         self.store(bodies);
     }
 
-    /// Solves the joints' equalities together: the impulses J (one per joint) with
-    /// Σ_k K_jk J_k = −`residuals`[j]/`per`, applied to the bodies.
-    pub(crate) fn solve_joints_dense(
+    /// The position step of the joints at the placement the rows were found at: the
+    /// impulses J (one per joint) with Σ_k K_jk J_k = −`residuals`[j]/`per`, given to the
+    /// bodies. The bodies' inverse inertias and the factor of K are kept from one call to
+    /// the next (the placement does not change between them: only momenta do) until
+    /// [`Solver::release`]; a velocity solve of joints alone at the same placement leaves
+    /// its factor for the first call.
+    /// Each joint's impulse is added to `totals`.
+    pub(crate) fn joint_position_step(
         &mut self,
         bodies: &mut [MovingBody],
         residuals: &[Vector],
         per: f64,
+        totals: &mut [Vector],
     ) {
         self.load(bodies);
-        self.solve_joints_dense_loaded(residuals, per);
-        self.store(bodies);
+        if !self.joint_factor {
+            self.factor_joints();
+        }
+        if self.joint_factor {
+            self.apply_joint_solve(residuals, per, Some(totals));
+        }
+        self.store_loaded(bodies);
     }
 
-    fn solve_joints_dense_loaded(&mut self, residuals: &[Vector], per: f64) {
-        let Some(n) = residuals.first().map(Vector::dim) else {
+    /// Gives the joints the impulses `impulses` (one per joint, first end; the second
+    /// takes the opposite), at the placement the rows were found at; the bodies stay
+    /// loaded as for [`Solver::joint_position_step`].
+    pub(crate) fn joint_position_impulses(
+        &mut self,
+        bodies: &mut [MovingBody],
+        impulses: &[Vector],
+    ) {
+        self.load(bodies);
+        for (row, j) in self.joints.iter().zip(impulses) {
+            row.apply(&mut self.states, j);
+        }
+        self.store_loaded(bodies);
+    }
+
+    /// Hands the impulses so far to the bodies, keeping them loaded.
+    fn store_loaded(&mut self, bodies: &mut [MovingBody]) {
+        for (s, b) in self.states.iter_mut().zip(bodies.iter_mut()) {
+            if s.used {
+                s.store(b);
+                // Stay loaded for the next call.
+                s.used = true;
+                s.dp.as_mut_slice().fill(0.0);
+                s.dl.as_mut_slice().fill(0.0);
+            }
+        }
+    }
+
+    /// Forgets the loaded bodies and the joints' factor (the placement is about to change).
+    pub(crate) fn release(&mut self) {
+        self.joint_factor = false;
+        for s in &mut self.states {
+            s.used = false;
+        }
+    }
+
+    /// Assembles the joints' K (all joints together, n × n blocks) in `big` and factors it.
+    fn factor_joints(&mut self) {
+        self.joint_factor = false;
+        let Some(n) = self.joints.first().map(|j| j.r.dim()) else {
             return;
         };
         let m = self.joints.len() * n;
-        self.big.clear();
-        self.big.resize(m * m, 0.0);
-        self.big_rhs.clear();
+        let planes = n * (n - 1) / 2;
+        // For each joint end (joint a, end e at offset r of body b): C = (r ⌋ ·) as an
+        // n × M matrix and W = I⁻¹ (r ∧ ·) as an M × n matrix; the velocity at an end of
+        // joint a per impulse at an end of joint c on the same body is 1/m + C_a W_c.
+        let (cs, ws) = (n * planes, planes * n);
+        self.end_c.clear();
+        self.end_c.resize(self.joints.len() * 2 * cs, 0.0);
+        self.end_w.clear();
+        self.end_w.resize(self.joints.len() * 2 * ws, 0.0);
+        let mut e = Bivector::zero(n);
         for (a, row) in self.joints.iter().enumerate() {
-            self.big_rhs
-                .extend(residuals[a].as_slice().iter().map(|x| -x / per));
-            for (c, other) in self.joints.iter().enumerate() {
+            for (end, (b, r, _)) in row.ends().enumerate() {
+                let at = a * 2 + end;
+                let c = &mut self.end_c[at * cs..(at + 1) * cs];
+                for p in 0..planes {
+                    e.as_mut_slice().fill(0.0);
+                    e.as_mut_slice()[p] = 1.0;
+                    for (i, x) in r.left_contract(&e).as_slice().iter().enumerate() {
+                        c[i * planes + p] = *x;
+                    }
+                }
+                let w = &mut self.end_w[at * ws..(at + 1) * ws];
                 for col in 0..n {
-                    let du = row.cross_response(other, &Vector::basis(n, col), &self.states);
-                    for (i, x) in du.as_slice().iter().enumerate() {
-                        self.big[(a * n + i) * m + c * n + col] = *x;
+                    let iw = self.states[b].inverse_inertia(&r.wedge(&Vector::basis(n, col)));
+                    for (p, x) in iw.as_slice().iter().enumerate() {
+                        w[p * n + col] = *x;
                     }
                 }
             }
         }
-        if !cholesky_solve(&mut self.big, m, &mut self.big_rhs) {
-            return;
+        self.big.clear();
+        self.big.resize(m * m, 0.0);
+        for (a, row) in self.joints.iter().enumerate() {
+            for (ea, (ba, _, sa)) in row.ends().enumerate() {
+                let c = &self.end_c[(a * 2 + ea) * cs..(a * 2 + ea + 1) * cs];
+                for (k, other) in self.joints.iter().enumerate() {
+                    for (ek, (bk, _, sk)) in other.ends().enumerate() {
+                        if ba != bk {
+                            continue;
+                        }
+                        let w = &self.end_w[(k * 2 + ek) * ws..(k * 2 + ek + 1) * ws];
+                        let inv_mass = self.states[ba].inv_mass;
+                        for i in 0..n {
+                            for col in 0..n {
+                                let mut x: f64 = (0..planes)
+                                    .map(|p| c[i * planes + p] * w[p * n + col])
+                                    .sum();
+                                if i == col {
+                                    x += inv_mass;
+                                }
+                                self.big[(a * n + i) * m + k * n + col] += sa * sk * x;
+                            }
+                        }
+                    }
+                }
+            }
         }
+        self.joint_factor = cholesky_factor(&mut self.big, m);
+    }
+
+    /// With the factor in `big`: the impulses J with K J = −`residuals`/`per`, applied to
+    /// the loaded states.
+    fn apply_joint_solve(
+        &mut self,
+        residuals: &[Vector],
+        per: f64,
+        mut totals: Option<&mut [Vector]>,
+    ) {
+        let Some(n) = residuals.first().map(Vector::dim) else {
+            return;
+        };
+        let m = self.joints.len() * n;
+        self.big_rhs.clear();
+        for r in residuals {
+            self.big_rhs.extend(r.as_slice().iter().map(|x| -x / per));
+        }
+        cholesky_substitute(&self.big, m, &mut self.big_rhs);
         for a in 0..self.joints.len() {
             let j =
                 Vector::from_storage(self.big_rhs[a * n..(a + 1) * n].iter().copied().collect());
             let row = &mut self.joints[a];
             row.apply(&mut self.states, &j);
+            if let Some(t) = totals.as_deref_mut() {
+                t[a] += &j;
+            }
             row.impulse += &j;
+        }
+    }
+
+    fn solve_joints_dense_loaded(&mut self, residuals: &[Vector], per: f64) {
+        if !self.joint_factor {
+            self.factor_joints();
+        }
+        if self.joint_factor {
+            self.apply_joint_solve(residuals, per, None);
         }
     }
 }
 
-/// One Gauss–Seidel update of a contact: the normal impulse, then the friction impulse.
-/// Returns the largest velocity change it made.
+/// One Gauss–Seidel update of a contact: the normal impulse, then the friction impulse,
+/// through the row's matrices `data` laid out by `l`. Returns the largest velocity change
+/// it made.
 fn sweep_contact(
     row: &mut ContactRow,
+    data: &[f64],
+    l: &RowLayout,
     half_spaces: &[HalfSpace],
     states: &mut [BodyState],
-    n: usize,
 ) -> f64 {
+    let n = l.n;
     let mut change = 0.0f64;
     let plane = &half_spaces[row.half_space];
     let nrm = plane.normal();
+    let nv = nrm.as_slice();
     let st = &mut states[row.body];
-    // Normal: the smallest accumulated λ ≥ 0 reaching the target.
-    let un = nrm.dot(&st.velocity_at(&row.r));
+    // Normal: the smallest accumulated λ ≥ 0 reaching the target; u·n = v·n + (Cᵀn)·w.
+    let un = dot(nv, st.v.as_slice()) + dot(&data[l.cn..l.cn + l.m], st.w.as_slice());
     let lambda = (row.normal_impulse + (row.target - un) / row.knn).max(0.0);
     let dl = lambda - row.normal_impulse;
     if dl != 0.0 {
-        st.apply(&row.r, &(nrm * dl));
+        st.apply_normal(data, l, nv, dl);
         row.normal_impulse = lambda;
     }
     change = change.max((dl * row.knn).abs());
     // Friction: maximal dissipation in the disc |J_t| ≤ μλ.
     let limit = plane.friction() * row.normal_impulse;
-    let mut ut = st.velocity_at(&row.r);
-    ut -= &(nrm * nrm.dot(&ut));
-    let new = if limit > 0.0 {
+    let mut ut: Small = SmallVec::from_elem(0.0, n);
+    point_velocity(data, l, st.v.as_slice(), st.w.as_slice(), &mut ut);
+    let normal_part = dot(nv, &ut);
+    for (u, x) in ut.iter_mut().zip(nv) {
+        *u -= normal_part * x;
+    }
+    let mut new: Small = SmallVec::from_elem(0.0, n);
+    // The sticking impulse old − K_t⁻¹ u_t when it lies in the disc (a resting contact),
+    // else the one of maximal dissipation on its rim.
+    let old = row.friction_impulse.as_slice();
+    let kinv = &data[l.kinv..l.kinv + n * n];
+    for ((x, o), k) in new.iter_mut().zip(old).zip(kinv.chunks_exact(n)) {
+        *x = o - dot(k, &ut);
+    }
+    if limit <= 0.0 {
+        new.fill(0.0);
+    } else if dot(&new, &new) > limit * limit {
         friction_impulse(
-            &row.eigenvalues,
-            &row.eigenvectors,
-            &row.kt,
-            &row.friction_impulse,
+            &data[l.values..l.values + n],
+            &data[l.vectors..l.vectors + n * n],
+            &data[l.kt..l.kt + n * n],
+            row.friction_impulse.as_slice(),
             &ut,
             limit,
-        )
-    } else {
-        Vector::zero(n)
-    };
-    let dj = &new - &row.friction_impulse;
-    if dj.max_abs() > 0.0 {
-        st.apply(&row.r, &dj);
-        row.friction_impulse = new;
-        change = change.max(dj.max_abs() * row.knn);
+            &mut new,
+        );
+    }
+    let mut dj: Small = SmallVec::from_elem(0.0, n);
+    let mut largest = 0.0f64;
+    for ((d, x), y) in dj.iter_mut().zip(&new).zip(row.friction_impulse.as_slice()) {
+        *d = x - y;
+        largest = largest.max(d.abs());
+    }
+    if largest > 0.0 {
+        st.apply_with(data, l, &dj);
+        row.friction_impulse.as_mut_slice().copy_from_slice(&new);
+        change = change.max(largest * row.knn);
     }
     change
+}
+
+/// A short vector on the stack (N ≤ 8).
+type Small = SmallVec<[f64; 8]>;
+
+/// Computes a contact row's matrices ([`RowLayout`]) for a body state `st`, the offset `r`
+/// of the point and the unit normal `nrm`.
+fn row_matrices(st: &BodyState, r: &Vector, nrm: &Vector, l: &RowLayout, data: &mut [f64]) {
+    let (n, m) = (l.n, l.m);
+    // C: column p is r ⌋ e_p (the velocity at r of a unit angular velocity in plane p).
+    let mut e = Bivector::zero(n);
+    for p in 0..m {
+        e.as_mut_slice().fill(0.0);
+        e.as_mut_slice()[p] = 1.0;
+        for (i, x) in r.left_contract(&e).as_slice().iter().enumerate() {
+            data[l.c + i * m + p] = *x;
+        }
+    }
+    // R: column j is r ∧ e_j; W = I⁻¹ R.
+    for j in 0..n {
+        let rj = r.wedge(&Vector::basis(n, j));
+        let wj = st.inverse_inertia(&rj);
+        for p in 0..m {
+            data[l.r + p * n + j] = rj.as_slice()[p];
+            data[l.w + p * n + j] = wj.as_slice()[p];
+        }
+    }
+    let nv = nrm.as_slice();
+    for p in 0..m {
+        data[l.cn + p] = (0..n).map(|i| data[l.c + i * m + p] * nv[i]).sum();
+        data[l.wn + p] = dot(&data[l.w + p * n..l.w + (p + 1) * n], nv);
+        data[l.rn + p] = dot(&data[l.r + p * n..l.r + (p + 1) * n], nv);
+    }
+    // K = 1/m + C W.
+    let mut k: Dense = SmallVec::from_elem(0.0, n * n);
+    for i in 0..n {
+        for j in 0..n {
+            let mut x: f64 = (0..m)
+                .map(|p| data[l.c + i * m + p] * data[l.w + p * n + j])
+                .sum();
+            if i == j {
+                x += st.inv_mass;
+            }
+            k[i * n + j] = x;
+        }
+    }
+    data[l.knn] = (0..n)
+        .map(|i| (0..n).map(|j| nv[i] * k[i * n + j] * nv[j]).sum::<f64>())
+        .sum();
+    tangent_block(&mut k, nrm);
+    let (mut values, mut vectors) = (Dense::new(), Dense::new());
+    symmetric_eigen(&k, n, &mut values, &mut vectors);
+    data[l.kt..l.kt + n * n].copy_from_slice(&k);
+    data[l.values..l.values + n].copy_from_slice(&values);
+    data[l.vectors..l.vectors + n * n].copy_from_slice(&vectors);
+    // K_t⁻¹ = V diag(1/d) Vᵀ.
+    for i in 0..n {
+        for j in 0..n {
+            data[l.kinv + i * n + j] = (0..n)
+                .map(|k| vectors[i * n + k] * vectors[j * n + k] / values[k])
+                .sum();
+        }
+    }
 }
 
 /// Turns the inverse mass k into its tangent block P k P + n nᵀ (P = 1 − n nᵀ), which maps
@@ -756,23 +1232,23 @@ fn friction_impulse(
     d: &[f64],
     v: &[f64],
     kt: &[f64],
-    old: &Vector,
-    ut: &Vector,
+    old: &[f64],
+    ut: &[f64],
     limit: f64,
-) -> Vector {
+    out: &mut [f64],
+) {
     let n = d.len();
     // c = Vᵀ b, b = K_t old − ut.
-    let b: SmallVec<[f64; 8]> = (0..n)
-        .map(|i| {
-            (0..n)
-                .map(|j| kt[i * n + j] * old.as_slice()[j])
-                .sum::<f64>()
-                - ut.as_slice()[i]
-        })
-        .collect();
-    let c: SmallVec<[f64; 8]> = (0..n)
-        .map(|k| (0..n).map(|i| v[i * n + k] * b[i]).sum())
-        .collect();
+    let mut b: Small = SmallVec::from_elem(0.0, n);
+    for (i, x) in b.iter_mut().enumerate() {
+        *x = dot(&kt[i * n..(i + 1) * n], old) - ut[i];
+    }
+    let mut c: Small = SmallVec::from_elem(0.0, n);
+    for (row, bi) in v.chunks_exact(n).zip(&b) {
+        for (x, vik) in c.iter_mut().zip(row) {
+            *x += vik * bi;
+        }
+    }
     let size = |sigma: f64| -> (f64, f64) {
         let (mut s2, mut s3) = (0.0, 0.0);
         for k in 0..n {
@@ -800,12 +1276,10 @@ fn friction_impulse(
     };
     let (norm, _) = size(sigma);
     let scale = if sigma > 0.0 { limit / norm } else { 1.0 };
-    let mut j = Vector::zero(n);
-    for (i, x) in j.as_mut_slice().iter_mut().enumerate() {
-        *x = scale
-            * (0..n)
-                .map(|k| v[i * n + k] * c[k] / (d[k] + sigma))
-                .sum::<f64>();
+    for (k, x) in c.iter_mut().enumerate() {
+        *x /= d[k] + sigma;
     }
-    j
+    for (i, x) in out.iter_mut().enumerate() {
+        *x = scale * dot(&v[i * n..(i + 1) * n], &c);
+    }
 }

@@ -276,3 +276,67 @@ pub struct Contact {
     /// (space frame): zero while the contact sticks or rolls.
     pub slip: Vector,
 }
+
+/// The contacts of the last step. Entries past the length stay allocated, so that the
+/// contacts of the next step are written over them instead of being built and moved.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct ContactLog {
+    entries: Vec<Contact>,
+    len: usize,
+}
+
+impl ContactLog {
+    /// The contacts recorded.
+    pub(crate) fn as_slice(&self) -> &[Contact] {
+        &self.entries[..self.len]
+    }
+
+    /// Forgets every contact.
+    pub(crate) fn clear(&mut self) {
+        self.len = 0;
+    }
+
+    /// Keeps the first `len` contacts.
+    pub(crate) fn truncate(&mut self, len: usize) {
+        self.len = self.len.min(len);
+    }
+
+    /// Records a contact: the point of body `body` (own axes) touching half-space
+    /// `half_space`, its impulses, and `slip`, its velocity after them (projected into the
+    /// plane of unit normal `normal` here).
+    pub(crate) fn record(
+        &mut self,
+        (body, half_space): (usize, usize),
+        point: &Vector,
+        normal_impulse: f64,
+        friction_impulse: &Vector,
+        slip: &[f64],
+        normal: &[f64],
+    ) {
+        let n = point.dim();
+        if self.len == self.entries.len() {
+            self.entries.push(Contact {
+                body,
+                half_space,
+                point: point.clone(),
+                normal_impulse,
+                friction_impulse: friction_impulse.clone(),
+                slip: Vector::zero(n),
+            });
+        }
+        let c = &mut self.entries[self.len];
+        c.body = body;
+        c.half_space = half_space;
+        c.point.clone_from(point);
+        c.normal_impulse = normal_impulse;
+        c.friction_impulse.clone_from(friction_impulse);
+        if c.slip.dim() != n {
+            c.slip = Vector::zero(n);
+        }
+        let along: f64 = slip.iter().zip(normal).map(|(u, x)| u * x).sum();
+        for ((s, u), x) in c.slip.as_mut_slice().iter_mut().zip(slip).zip(normal) {
+            *s = u - along * x;
+        }
+        self.len += 1;
+    }
+}

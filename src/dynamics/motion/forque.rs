@@ -58,6 +58,14 @@ pub trait Forque {
     fn bodies(&self) -> Vec<usize> {
         Vec::new()
     }
+
+    /// True if the wrenches depend on neither the time nor the bodies' positions, momenta
+    /// and attitudes (only on their masses and inertias, which never change), as for
+    /// uniform gravity. A system whose forques are all constant evaluates them once, when
+    /// they join it, instead of twice per step. False by default.
+    fn is_constant(&self) -> bool {
+        false
+    }
 }
 
 impl<F> Forque for F
@@ -95,6 +103,9 @@ pub mod forques {
                     .map(|b| -b.mass() * self.0.dot(b.position()))
                     .sum(),
             )
+        }
+        fn is_constant(&self) -> bool {
+            true
         }
     }
 
@@ -235,6 +246,10 @@ pub mod forques {
         }
         fn bodies(&self) -> Vec<usize> {
             vec![self.body]
+        }
+        fn is_constant(&self) -> bool {
+            // Fixed in space and at the centre of mass: no torque, whatever the attitude.
+            self.frame == Frame::World && self.point.as_slice().iter().all(|&x| x == 0.0)
         }
     }
 

@@ -1,11 +1,12 @@
 //! Integrators for systems of moving bodies.
 
-use super::constraint::{JointRow, Solver};
+use super::constraint::Solver;
+use super::forques::Anchor;
+use super::placement::{Placements, dot};
 use super::{ContactShape, MovingBody, System, Wrench};
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::torques::Free;
 use crate::dynamics::{Attitude, DynamicsError, Integrator, Splitting};
-use smallvec::SmallVec;
 
 /// An integrator of Newton–Euler for a [`System`]: advances every body by one step.
 pub trait MotionIntegrator {
@@ -62,6 +63,18 @@ pub struct MotionSplitting {
     gaps: Vec<Vector>,
     distances: Vec<f64>,
     sharing: Vec<usize>,
+    /// Each joint's position impulse of the last step over its length (a force), to start
+    /// the next step's position solve from: the solve then needs fewer passes.
+    joint_force: Vec<Vector>,
+    /// The same of the step before, to extrapolate from.
+    joint_force_before: Vec<Vector>,
+    /// The position impulses of the current solve, per joint.
+    joint_total: Vec<Vector>,
+    /// Each joint's point in the principal axes of its body, and the other end: a point in
+    /// the principal axes of the other body, or of space.
+    joint_ends: Vec<(Vector, Vector)>,
+    /// The bodies' own axes and vertices in space, kept while they do not turn.
+    placements: Placements,
 }
 
 impl Default for MotionSplitting {
@@ -77,6 +90,11 @@ impl Default for MotionSplitting {
             gaps: Vec::new(),
             distances: Vec::new(),
             sharing: Vec::new(),
+            joint_force: Vec::new(),
+            joint_force_before: Vec::new(),
+            joint_total: Vec::new(),
+            joint_ends: Vec::new(),
+            placements: Placements::default(),
         }
     }
 }
@@ -97,13 +115,25 @@ struct SavedBody {
 }
 
 fn save(bodies: &[MovingBody], into: &mut Vec<SavedBody>) {
-    into.clear();
-    into.extend(bodies.iter().map(|b| SavedBody {
-        x: b.position().clone(),
-        p: b.linear_momentum().clone(),
-        attitude: b.rotation().principal_frame_attitude().clone(),
-        l: b.rotation().momentum().clone(),
-    }));
+    // Over the entries already there: copying a body's state costs less than building it.
+    into.truncate(bodies.len());
+    for (i, b) in bodies.iter().enumerate() {
+        match into.get_mut(i) {
+            Some(s) => {
+                s.x.clone_from(b.position());
+                s.p.clone_from(b.linear_momentum());
+                s.attitude
+                    .clone_from(b.rotation().principal_frame_attitude());
+                s.l.clone_from(b.rotation().momentum());
+            }
+            None => into.push(SavedBody {
+                x: b.position().clone(),
+                p: b.linear_momentum().clone(),
+                attitude: b.rotation().principal_frame_attitude().clone(),
+                l: b.rotation().momentum().clone(),
+            }),
+        }
+    }
 }
 
 fn restore(bodies: &mut [MovingBody], from: &[SavedBody]) {
@@ -165,16 +195,26 @@ impl MotionSplitting {
 
     /// The velocity solve of the contacts and joints at the current placement.
     fn solve_velocities(&mut self, system: &mut System) {
+        self.place(system);
         let (bodies, shapes, half_spaces, joints, contacts) = system.parts_mut();
         self.solver.find_contacts(
             bodies,
             shapes,
             half_spaces,
             CONTACT_TOLERANCE,
-            &self.resting_speed,
+            &self.placements,
         );
         self.solver.find_joints(bodies, joints);
-        self.solver.solve_velocities(bodies, half_spaces, contacts);
+        self.solver
+            .solve_velocities(bodies, half_spaces, &self.resting_speed, contacts);
+    }
+
+    /// Places the bodies that turned since they were last placed.
+    fn place(&mut self, system: &System) {
+        if !system.half_spaces().is_empty() {
+            self.placements
+                .update(system.bodies(), system.shapes(), system.shape_key());
+        }
     }
 
     /// Free flight with the joints closed and the contacts of the step out of their
@@ -188,6 +228,19 @@ impl MotionSplitting {
         t: f64,
         h: f64,
     ) -> Result<(), DynamicsError> {
+        let result = self.constrained_drift_loaded(system, t, h);
+        self.solver.release();
+        result
+    }
+
+    /// [`Self::constrained_drift`], leaving the solver's bodies loaded.
+    fn constrained_drift_loaded(
+        &mut self,
+        system: &mut System,
+        t: f64,
+        h: f64,
+    ) -> Result<(), DynamicsError> {
+        let shape_key = system.shape_key();
         let (bodies, shapes, half_spaces, joints, _) = system.parts_mut();
         if joints.is_empty() && self.solver.contacts.is_empty() {
             return self.drift(bodies, t, h);
@@ -200,42 +253,95 @@ impl MotionSplitting {
         for row in &mut self.solver.contacts {
             row.position_impulse = 0.0;
         }
+        let n = bodies[0].dim();
+        if !joints.is_empty() {
+            // In principal axes a joint's end is placed by one rotation, the one the
+            // integrators advance.
+            let principal = |b: usize, p: &Vector| {
+                bodies[b]
+                    .rotation()
+                    .principal_frame()
+                    .inverse_rotate_vector(p)
+            };
+            self.joint_ends.clear();
+            self.joint_ends.extend(joints.iter().map(|j| {
+                let other = match &j.other {
+                    Anchor::World(x) => x.clone(),
+                    Anchor::Body(k, p) => principal(*k, p),
+                };
+                (principal(j.body, &j.point), other)
+            }));
+            self.joint_total
+                .resize_with(joints.len(), || Vector::zero(n));
+            if self.joint_force.len() == joints.len() {
+                // Start from the joint forces extrapolated from the last two steps (or the
+                // last step's): the gaps left are then of the order of their second
+                // difference (or their change) over a step.
+                let before = (self.joint_force_before.len() == joints.len())
+                    .then_some(&self.joint_force_before);
+                for (k, (total, f)) in self
+                    .joint_total
+                    .iter_mut()
+                    .zip(&self.joint_force)
+                    .enumerate()
+                {
+                    let f0 = before.map(|b| b[k].as_slice());
+                    for (i, (x, y)) in total
+                        .as_mut_slice()
+                        .iter_mut()
+                        .zip(f.as_slice())
+                        .enumerate()
+                    {
+                        *x = match f0 {
+                            Some(f0) => (2.0 * y - f0[i]) * h,
+                            None => y * h,
+                        };
+                    }
+                }
+                self.solver
+                    .joint_position_impulses(bodies, &self.joint_total);
+            } else {
+                for total in &mut self.joint_total {
+                    total.as_mut_slice().fill(0.0);
+                }
+            }
+        }
         save(bodies, &mut self.pre_drift);
         let mut worst_gap = 0.0;
         for _ in 0..50 {
             self.drift(bodies, t, h)?;
-            self.gaps.clear();
-            self.gaps
-                .extend(joints.iter().map(|j| JointRow::gap(j, bodies)));
+            self.gaps.resize_with(joints.len(), || Vector::zero(n));
+            for ((gap, j), ends) in self.gaps.iter_mut().zip(joints).zip(&self.joint_ends) {
+                joint_gap(j, ends, bodies, gap);
+            }
             worst_gap = self.gaps.iter().map(Vector::max_abs).fold(0.0, f64::max);
             self.distances.clear();
             let mut contacts_hold = true;
-            // Rows come grouped by body: place each body's axes once.
-            let mut placed: Option<(usize, SmallVec<[f64; 64]>)> = None;
+            if !self.solver.contacts.is_empty() {
+                self.placements.update(bodies, shapes, shape_key);
+            }
             for row in &self.solver.contacts {
                 let shape = &shapes[row.body];
-                let b = &bodies[row.body];
-                if placed.as_ref().is_none_or(|(i, _)| *i != row.body) {
-                    placed = Some((row.body, own_axes_matrix(b)));
-                }
-                let q = placed
-                    .as_ref()
-                    .map(|(_, q)| q.as_slice())
-                    .unwrap_or_default();
-                let d = candidate_distance(b, q, shape, &half_spaces[row.half_space], row.index);
-                let tolerance = 1e-12 * shape.radius();
+                let plane = &half_spaces[row.half_space];
+                let d = plane.distance(bodies[row.body].position())
+                    + self.placements.get(row.body).candidate_height(
+                        shape,
+                        plane.normal(),
+                        row.index,
+                    );
+                let tolerance = 1e-12 * self.placements.get(row.body).radius;
                 contacts_hold &= d >= -tolerance && (row.position_impulse == 0.0 || d <= tolerance);
                 self.distances.push(d);
             }
             if worst_gap <= 1e-13 * size && contacts_hold {
+                self.keep_joint_forces(h);
                 return Ok(());
             }
             restore(bodies, &self.pre_drift);
             if !joints.is_empty() {
-                self.solver.find_joints(bodies, joints);
-                let gaps = std::mem::take(&mut self.gaps);
-                self.solver.solve_joints_dense(bodies, &gaps, h);
-                self.gaps = gaps;
+                // The start placement again: the rows and K of the velocity solve hold.
+                self.solver
+                    .joint_position_step(bodies, &self.gaps, h, &mut self.joint_total);
             }
             // Contacts: one Newton step each, shared among the contacts of a body that push.
             self.sharing.clear();
@@ -260,6 +366,7 @@ impl MotionSplitting {
         }
         if worst_gap <= 1e-13 * size {
             // Contacts that did not settle within the iterations are lifted out after.
+            self.keep_joint_forces(h);
             return Ok(());
         }
         Err(DynamicsError::SolverDidNotConverge {
@@ -269,19 +376,39 @@ impl MotionSplitting {
         })
     }
 
+    /// Keeps the joints' position impulses of the step, as forces, for the next step.
+    fn keep_joint_forces(&mut self, h: f64) {
+        // Room for the joints in both, so that the swaps of the next steps do not allocate.
+        let joints = self.joint_total.len();
+        for forces in [&mut self.joint_force, &mut self.joint_force_before] {
+            forces.reserve(joints.saturating_sub(forces.len()));
+        }
+        std::mem::swap(&mut self.joint_force, &mut self.joint_force_before);
+        self.joint_force
+            .resize_with(self.joint_total.len(), || Vector::zero(0));
+        for (f, total) in self.joint_force.iter_mut().zip(&self.joint_total) {
+            f.clone_from(total);
+            *f *= 1.0 / h;
+        }
+    }
+
     /// Marks the contact candidates within the contact tolerance now.
     fn mark_active(&mut self, system: &System) {
+        self.place(system);
         self.active.clear();
         let mut active = std::mem::take(&mut self.active);
-        for_each_candidate(system, |_, d, reach| active.push(d <= reach));
+        for_each_candidate(system, &self.placements, |_, d, reach| {
+            active.push(d <= reach)
+        });
         self.active = active;
     }
 
     /// The least distance, relative to the reach, of the candidates that were not in
     /// contact at the start of the step (+∞ if there are none).
-    fn new_penetration(&self, system: &System) -> f64 {
+    fn new_penetration(&mut self, system: &System) -> f64 {
+        self.place(system);
         let mut worst = f64::INFINITY;
-        for_each_candidate(system, |k, d, reach| {
+        for_each_candidate(system, &self.placements, |k, d, reach| {
             if !self.active[k] {
                 worst = worst.min(d / reach);
             }
@@ -299,7 +426,7 @@ impl MotionSplitting {
         self.solve_velocities(system);
         self.constrained_drift(system, t, h)?;
         let fresh = self.new_penetration(system);
-        lift_out(system);
+        lift_out(system, &self.placements);
         self.wrenches_at(system, t + h);
         Self::kick(system.bodies_mut(), &self.wrenches, 0.5 * h);
         self.solve_velocities(system);
@@ -381,52 +508,48 @@ fn axpy(y: &mut [f64], a: f64, x: &[f64]) {
 }
 
 /// Calls `visit(k, distance, reach)` for every contact candidate of every body against
-/// every half-space, k numbering them in a fixed order.
-fn for_each_candidate(system: &System, mut visit: impl FnMut(usize, f64, f64)) {
+/// every half-space, k numbering them in a fixed order, the bodies placed by `placements`.
+fn for_each_candidate(
+    system: &System,
+    placements: &Placements,
+    mut visit: impl FnMut(usize, f64, f64),
+) {
     let mut k = 0;
-    for (b, shape) in system.bodies().iter().zip(system.shapes()) {
+    for (i, (b, shape)) in system.bodies().iter().zip(system.shapes()).enumerate() {
         if matches!(shape, ContactShape::None) {
             continue;
         }
-        let q = own_axes_matrix(b);
-        let reach = CONTACT_TOLERANCE * shape.radius();
+        let placed = placements.get(i);
+        let reach = CONTACT_TOLERANCE * placed.radius;
         for plane in system.half_spaces() {
             let n = plane.normal();
             let base = plane.distance(b.position());
-            shape.candidates(&q, n, |_, r| {
-                visit(k, base + n.dot(r), reach);
+            placed.candidates(shape, n, |_, _, r| {
+                visit(k, base + dot(n.as_slice(), r), reach);
                 k += 1;
             });
         }
     }
 }
 
-/// The attitude of a body's own axes as a row-major matrix (on the stack up to N = 8).
-fn own_axes_matrix(b: &MovingBody) -> SmallVec<[f64; 64]> {
-    let n = b.dim();
-    let mut q = SmallVec::from_elem(0.0, n * n);
-    b.attitude().write_matrix(&mut q);
-    q
-}
-
-/// The distance from half-space `plane` of candidate `index` (from 1) of a body's shape,
-/// placed with the own-axes matrix `q`.
-fn candidate_distance(
-    b: &MovingBody,
-    q: &[f64],
-    shape: &ContactShape,
-    plane: &super::HalfSpace,
-    index: usize,
-) -> f64 {
-    let base = plane.distance(b.position());
-    let (mut k, mut out) = (0, f64::INFINITY);
-    shape.candidates(q, plane.normal(), |_, r| {
-        k += 1;
-        if k == index {
-            out = base + plane.normal().dot(r);
-        }
-    });
-    out
+/// Writes into `gap` the gap between the two ends of `joint` (zero when it holds), its
+/// points given by `ends` as in `MotionSplitting::joint_ends`.
+fn joint_gap(
+    joint: &super::BallJoint,
+    (point, other): &(Vector, Vector),
+    bodies: &[MovingBody],
+    gap: &mut Vector,
+) {
+    let place = |b: &MovingBody, r: &Vector| {
+        let mut x = b.rotation().principal_frame_attitude().rotate_vector(r);
+        x += b.position();
+        x
+    };
+    *gap = place(&bodies[joint.body], point);
+    match &joint.other {
+        Anchor::World(_) => *gap -= other,
+        Anchor::Body(k, _) => *gap -= &place(&bodies[*k], other),
+    }
 }
 
 /// Gives body `b` the impulse `j` (space) at offset `r` (space) from its centre of mass.
@@ -440,18 +563,21 @@ fn push(b: &mut MovingBody, r: &Vector, j: &Vector) {
     *l += &dl;
 }
 
-/// Lifts every body that sinks into a half-space back onto its plane, along the normal.
-fn lift_out(system: &mut System) {
+/// Lifts every body that sinks into a half-space back onto its plane, along the normal
+/// (the bodies placed by `placements`; lifting does not turn them).
+fn lift_out(system: &mut System, placements: &Placements) {
     let (bodies, shapes, half_spaces, _, _) = system.parts_mut();
-    for (b, shape) in bodies.iter_mut().zip(shapes.iter()) {
+    for (i, (b, shape)) in bodies.iter_mut().zip(shapes.iter()).enumerate() {
         if matches!(shape, ContactShape::None) {
             continue;
         }
-        let q = own_axes_matrix(b);
+        let placed = placements.get(i);
         for plane in half_spaces.iter() {
             let n = plane.normal();
             let mut deepest = f64::INFINITY;
-            shape.candidates(&q, n, |_, r| deepest = deepest.min(n.dot(r)));
+            placed.candidates(shape, n, |_, _, r| {
+                deepest = deepest.min(dot(n.as_slice(), r))
+            });
             let d = plane.distance(b.position()) + deepest;
             if d < 0.0 {
                 let (x, _, _) = b.state_mut();
@@ -474,6 +600,38 @@ impl MotionIntegrator for MotionSplitting {
         if !system.joints().is_empty() || !system.half_spaces().is_empty() {
             self.constrained_step(system, t, h)?;
             return check_finite(system, t);
+        }
+        if let (bodies, Some(constant)) = system.bodies_and_constant_wrenches() {
+            // Constant forques (gravity): both half kicks are one wrench, evaluated when the
+            // forques joined the system; the halves that are zero change nothing.
+            let kick = |bodies: &mut [MovingBody]| {
+                for (b, w) in bodies.iter_mut().zip(&constant.wrenches) {
+                    let (_, p, rotation) = b.state_mut();
+                    if constant.any_force {
+                        axpy(p.as_mut_slice(), 0.5 * h, w.force.as_slice());
+                    }
+                    if constant.any_torque {
+                        let (_, l) = rotation.state_mut();
+                        axpy(l.as_mut_slice(), 0.5 * h, w.torque.as_slice());
+                    }
+                }
+            };
+            kick(bodies);
+            self.drift(bodies, t, h)?;
+            kick(bodies);
+            // The rotation step has checked the attitude and L; after it only the kick
+            // changed p (and L under a constant torque).
+            let finite = |x: &[f64]| x.iter().all(|c| c.is_finite());
+            let ok = bodies.iter().all(|b| {
+                finite(b.position().as_slice())
+                    && finite(b.linear_momentum().as_slice())
+                    && (!constant.any_torque || finite(b.rotation().momentum().as_slice()))
+            });
+            return if ok {
+                Ok(())
+            } else {
+                Err(DynamicsError::NonFinite { time: t })
+            };
         }
         self.wrenches_at(system, t);
         Self::kick(system.bodies_mut(), &self.wrenches, 0.5 * h);

@@ -67,6 +67,7 @@ mod contact;
 mod forque;
 mod integrate;
 mod joint;
+mod placement;
 mod system;
 
 pub use body::MovingBody;

@@ -1,5 +1,6 @@
 //! [`System`]: moving bodies and the forques between them.
 
+use super::contact::ContactLog;
 use super::forques::Anchor;
 use super::{BallJoint, Contact, ContactShape, Forque, ForqueInput, HalfSpace, MovingBody, Wrench};
 use crate::algebra::{Bivector, Vector};
@@ -21,7 +22,22 @@ pub struct System {
     shapes: Vec<ContactShape>,
     half_spaces: Vec<HalfSpace>,
     joints: Vec<BallJoint>,
-    contacts: Vec<Contact>,
+    contacts: ContactLog,
+    /// The wrenches when every forque is constant ([`Forque::is_constant`]), evaluated when
+    /// a forque joins.
+    constant: Option<ConstantWrenches>,
+    /// This system among all (for the integrators' caches), and the version of its shapes.
+    id: u64,
+    shapes_version: u64,
+}
+
+/// The wrench on every body under forques that are all constant, and whether any force or
+/// any torque is non-zero (a kick without them changes nothing and is skipped).
+#[derive(Clone, Debug)]
+pub(crate) struct ConstantWrenches {
+    pub wrenches: Vec<Wrench>,
+    pub any_force: bool,
+    pub any_torque: bool,
 }
 
 impl std::fmt::Debug for System {
@@ -56,14 +72,45 @@ impl System {
                 reason: format!("a body in {} dimensions beside one in {n}", b.dim()),
             });
         }
-        Ok(System {
+        let mut system = System {
             shapes: vec![ContactShape::None; bodies.len()],
             bodies,
             forques: Vec::new(),
             half_spaces: Vec::new(),
             joints: Vec::new(),
-            contacts: Vec::new(),
-        })
+            contacts: ContactLog::default(),
+            constant: None,
+            id: {
+                static SYSTEMS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+                SYSTEMS.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
+            },
+            shapes_version: 0,
+        };
+        system.refresh_constant();
+        Ok(system)
+    }
+
+    /// Evaluates the forques once if they are all constant (no forque at all is constant
+    /// too: zero wrenches).
+    fn refresh_constant(&mut self) {
+        self.constant = None;
+        if !self.forques.iter().all(|f| f.is_constant()) {
+            return;
+        }
+        let wrenches = self.wrenches_for(0.0, &self.bodies);
+        let nonzero = |x: &[f64]| x.iter().any(|&c| c != 0.0);
+        self.constant = Some(ConstantWrenches {
+            any_force: wrenches.iter().any(|w| nonzero(w.force.as_slice())),
+            any_torque: wrenches.iter().any(|w| nonzero(w.torque.as_slice())),
+            wrenches,
+        });
+    }
+
+    /// The bodies, and the wrenches on them if the forques are all constant.
+    pub(crate) fn bodies_and_constant_wrenches(
+        &mut self,
+    ) -> (&mut [MovingBody], Option<&ConstantWrenches>) {
+        (&mut self.bodies, self.constant.as_ref())
     }
 
     /// Adds a forque.
@@ -85,6 +132,7 @@ impl System {
             });
         }
         self.forques.push(Box::new(forque));
+        self.refresh_constant();
         Ok(())
     }
 
@@ -110,6 +158,7 @@ impl System {
         self.check_body("shape", body)?;
         shape.check(self.dim())?;
         self.shapes[body] = shape;
+        self.shapes_version += 1;
         Ok(())
     }
 
@@ -149,6 +198,12 @@ impl System {
         Ok(())
     }
 
+    /// Names this system and the version of its shapes: the integrators keep the bodies'
+    /// placements for as long as both stay the same.
+    pub(crate) fn shape_key(&self) -> (u64, u64) {
+        (self.id, self.shapes_version)
+    }
+
     /// Returns the bodies' contact shapes, in the order of the bodies.
     pub fn shapes(&self) -> &[ContactShape] {
         &self.shapes
@@ -166,7 +221,7 @@ impl System {
 
     /// Returns the contacts of the last step, with their impulses.
     pub fn contacts(&self) -> &[Contact] {
-        &self.contacts
+        self.contacts.as_slice()
     }
 
     /// Returns the dimension N.
@@ -202,8 +257,14 @@ impl System {
     /// Writes the wrench on every body at time `t` for the given states into `out` (reused
     /// storage).
     pub(crate) fn wrenches_for_into(&self, t: f64, bodies: &[MovingBody], out: &mut Vec<Wrench>) {
+        if let Some(c) = &self.constant {
+            out.clone_from(&c.wrenches);
+            return;
+        }
         let n = self.dim();
-        out.resize(bodies.len(), Wrench::zero(n));
+        if out.len() != bodies.len() {
+            out.resize(bodies.len(), Wrench::zero(n));
+        }
         for w in out.iter_mut() {
             w.force.as_mut_slice().fill(0.0);
             w.torque.as_mut_slice().fill(0.0);
@@ -223,7 +284,7 @@ impl System {
         &[ContactShape],
         &[HalfSpace],
         &[BallJoint],
-        &mut Vec<Contact>,
+        &mut ContactLog,
     ) {
         (
             &mut self.bodies,
