@@ -66,8 +66,8 @@
 
 use super::decompose::decompose_components;
 use super::error::{check_finite, within};
-use super::small::Small;
-use super::versor_general::{GENERAL_MAX_DIM, exp_general_to, log_general};
+use super::small::{SMALL_MAX_DIM, Small};
+use super::versor_general::{GENERAL_MAX_DIM, exp_general_to, log_general_to};
 use super::versor_pga3 as pga3;
 use super::{AlgebraError, Bivector, Multivector, Rotor};
 use nalgebra::Complex;
@@ -223,8 +223,17 @@ impl Multivector {
             }
             return Ok(());
         }
-        let result = if self.dim() > CLOSED_FORM_MAX_DIM && is_projective(sig) {
+        let result = if self.dim() > SMALL_MAX_DIM && is_projective(sig) {
             exp_projective(self)?
+        } else if self.dim() > CLOSED_FORM_MAX_DIM && is_projective(sig) {
+            let v = exp_projective_small(self)?;
+            if !v.as_slice().iter().all(|c| c.is_finite()) {
+                return Err(AlgebraError::Overflow {
+                    what: "the exponential",
+                });
+            }
+            v.write_to(out);
+            return Ok(());
         } else if self.dim() > CLOSED_FORM_MAX_DIM {
             if self.dim() > GENERAL_MAX_DIM {
                 return Err(AlgebraError::UnsupportedDimension {
@@ -360,6 +369,8 @@ impl Multivector {
             unit_deviation::<16>(self)
         } else if self.dim() <= CLOSED_FORM_MAX_DIM {
             unit_deviation::<32>(self)
+        } else if self.dim() <= SMALL_MAX_DIM {
+            unit_deviation::<64>(self)
         } else {
             let mut vv = self.geometric(&self.reverse());
             vv.as_mut_slice()[0] -= 1.0;
@@ -404,6 +415,10 @@ impl Multivector {
                 closed_form_residual::<16>(out, self)
             } else if self.dim() <= CLOSED_FORM_MAX_DIM {
                 closed_form_residual::<32>(out, self)
+            } else if self.dim() <= SMALL_MAX_DIM {
+                exp_projective_small(out).map_or(f64::INFINITY, |e| {
+                    (&e - &Small::<64>::from_multivector(self)).max_abs()
+                })
             } else {
                 exp_projective(out).map_or(f64::INFINITY, |e| (&e - self).max_abs())
             };
@@ -417,8 +432,7 @@ impl Multivector {
                     max: GENERAL_MAX_DIM,
                 });
             }
-            *out = log_general(self)?;
-            return Ok(());
+            return log_general_to(self, out);
         }
         if self.dim() <= 4 {
             log_small::<16>(self, out)
@@ -480,13 +494,7 @@ fn log_small<const L: usize>(v: &Multivector, out: &mut Multivector) -> Result<(
         if let Err(e) = check_log_residual(residual, given.max_abs(), b.max_abs()) {
             // The closed form's roots can be lost where the general route, which needs none,
             // still finds the logarithm; it checks its own result.
-            return match log_general(v_given) {
-                Ok(l) => {
-                    *out = l;
-                    Ok(())
-                }
-                Err(_) => Err(e),
-            };
+            return log_general_to(v_given, out).map_err(|_| e);
         }
         b.write_to(out);
         Ok(())
@@ -625,13 +633,32 @@ fn exp_projective(b: &Multivector) -> Result<Multivector, AlgebraError> {
     let p = b.dim() - 1;
     let null = 1u64 << p;
     let (a, t) = split_projective(b)?;
-    let r = a.try_exp()?.to_multivector();
+    let r = a.try_exp()?;
     let u = phi_projective(&a, &t, false)?;
     let mut rm = Multivector::zero(sig);
     for (k, c) in r.terms() {
         rm.as_mut_slice()[k as usize] = c;
     }
     let mut um = Multivector::zero(sig);
+    for (i, c) in u.iter().enumerate() {
+        um.as_mut_slice()[((1u64 << i) | null) as usize] = *c;
+    }
+    Ok(&rm + &rm.geometric(&um))
+}
+
+/// [`exp_projective`] on the stack, for N ≤ 6.
+fn exp_projective_small(b: &Multivector) -> Result<Small<64>, AlgebraError> {
+    let sig = b.signature();
+    let p = b.dim() - 1;
+    let null = 1u64 << p;
+    let (a, t) = split_projective(b)?;
+    let r = a.try_exp()?;
+    let u = phi_projective(&a, &t, false)?;
+    let mut rm = Small::<64>::zero(sig);
+    for (k, c) in r.terms() {
+        rm.as_mut_slice()[k as usize] = c;
+    }
+    let mut um = Small::<64>::zero(sig);
     for (i, c) in u.iter().enumerate() {
         um.as_mut_slice()[((1u64 << i) | null) as usize] = *c;
     }

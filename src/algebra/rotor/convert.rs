@@ -2,11 +2,12 @@
 
 use super::{Rotor, even_index, get_4d, multiply_by_simple, set_4d};
 use crate::algebra::bivector::{bivector_len, pairs};
-use crate::algebra::decompose::{RawPlane, decompose_components};
+use crate::algebra::decompose::{Planes, RawPlane, decompose_components};
+use crate::algebra::dense::{Mat8, Vec8, dot, norm};
 use crate::algebra::error::within;
 use crate::algebra::{AlgebraError, MULTIVECTOR_MAX_DIM};
 use crate::numeric::orthogonality_error;
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 use smallvec::SmallVec;
 
 /// Default tolerance on max |QᵀQ − 1| for [`Rotor::from_matrix`].
@@ -25,9 +26,25 @@ impl Rotor {
     pub fn to_matrix(&self) -> DMatrix<f64> {
         let n = self.dim;
         let mut q = DMatrix::zeros(n, n);
+        self.fill_matrix(|i, j, x| q[(i, j)] = x);
+        q
+    }
+
+    /// [`Rotor::to_matrix`] on inline storage (N ≤ 8 without the heap).
+    pub(crate) fn to_mat8(&self) -> Mat8 {
+        let n = self.dim;
+        let mut q = Mat8::zeros(n, n);
+        self.fill_matrix(|i, j, x| q[(i, j)] = x);
+        q
+    }
+
+    /// Calls `set(i, j, Qᵢⱼ)` for every entry of the rotation matrix (all zero entries
+    /// included, so `set` may write into any zeroed storage).
+    fn fill_matrix(&self, mut set: impl FnMut(usize, usize, f64)) {
+        let n = self.dim;
         match n {
             0 => {}
-            1 => q[(0, 0)] = 1.0,
+            1 => set(0, 0, 1.0),
             3 => {
                 // Quaternion formula with q = w − x e23 + y e13 − z e12 (see nalgebra.rs).
                 let w = self.coeffs[0];
@@ -54,9 +71,9 @@ impl Rotor {
                         w * w - x * x - y * y + z * z,
                     ],
                 ];
-                for i in 0..3 {
-                    for j in 0..3 {
-                        q[(i, j)] = m[i][j];
+                for (i, row) in m.iter().enumerate() {
+                    for (j, &x) in row.iter().enumerate() {
+                        set(i, j, x);
                     }
                 }
             }
@@ -82,12 +99,11 @@ impl Rotor {
                             };
                             acc += if negative { -ra * rb } else { ra * rb };
                         }
-                        q[(i, j)] = acc;
+                        set(i, j, acc);
                     }
                 }
             }
         }
-        q
     }
 
     /// Returns the rotor of a rotation matrix (either of ±R; the one with non-negative scalar
@@ -337,7 +353,7 @@ fn rotor_of_orthogonal(q: &DMatrix<f64>) -> Rotor {
         3 => rotor_of_matrix_3d(q),
         _ => {
             let mut r = Rotor::identity(n);
-            for p in planes_of_rotation(q) {
+            for p in planes_of_rotation(&Mat8::from_fn(n, n, |i, j| q[(i, j)])) {
                 let (s, c) = (0.5 * p.theta).sin_cos();
                 multiply_by_simple(&mut r, c, s, &p.u, &p.v);
             }
@@ -396,30 +412,29 @@ fn rotor_of_matrix_3d(q: &DMatrix<f64>) -> Rotor {
 /// than π/2 they come from the skew part of −Q, which turns by π − θ < π/2. Either way the
 /// plane information is read from a well-conditioned rotation; directions left over in the
 /// second part are rotations by exactly π and are paired arbitrarily.
-pub(crate) fn planes_of_rotation(q: &DMatrix<f64>) -> Vec<RawPlane> {
+pub(crate) fn planes_of_rotation(q: &Mat8) -> Planes {
     let n = q.nrows();
-    let y = (q + q.transpose()) * 0.5;
-    let (eigenvalues, eigenvectors) = crate::numeric::symmetric_eigen(y);
-    let mut plus = Vec::new();
-    let mut minus = Vec::new();
+    let y = Mat8::from_fn(n, n, |i, j| (q[(i, j)] + q[(j, i)]) * 0.5);
+    let (eigenvalues, eigenvectors) = y.symmetric_eigen();
+    let mut plus: SmallVec<[usize; 8]> = SmallVec::new();
+    let mut minus: SmallVec<[usize; 8]> = SmallVec::new();
     for (k, &lambda) in eigenvalues.iter().enumerate() {
-        let col: DVector<f64> = eigenvectors.column(k).into_owned();
         if lambda >= 0.0 {
-            plus.push(col);
+            plus.push(k);
         } else {
-            minus.push(col);
+            minus.push(k);
         }
     }
-    let mut out = Vec::new();
-    for (basis, flip) in [(plus, false), (minus, true)] {
-        let m = basis.len();
+    let mut out = Planes::new();
+    for (columns, flip) in [(plus, false), (minus, true)] {
+        let m = columns.len();
         if m < 2 {
             continue;
         }
-        let v = DMatrix::from_columns(&basis);
-        let mut qs = v.transpose() * q * &v;
+        let v = Mat8::from_fn(n, m, |i, k| eigenvectors[(i, columns[k])]);
+        let mut qs = v.transpose().mul(q).mul(&v);
         if flip {
-            qs *= -1.0;
+            qs = qs.scaled(-1.0);
         }
         // Skew part → bivector components in the subspace basis.
         let comps: SmallVec<[f64; 28]> = pairs(m)
@@ -427,59 +442,51 @@ pub(crate) fn planes_of_rotation(q: &DMatrix<f64>) -> Vec<RawPlane> {
             .collect();
         debug_assert_eq!(comps.len(), bivector_len(m));
         let local = decompose_components(m, &comps);
-        let lift = |x: &[f64]| -> SmallVec<[f64; 8]> {
-            (0..n)
-                .map(|i| (0..m).map(|k| v[(i, k)] * x[k]).sum())
-                .collect()
-        };
-        let mut covered: Vec<DVector<f64>> = Vec::new();
+        let mut covered: SmallVec<[Vec8; 8]> = SmallVec::new();
         for p in &local {
-            let uu = DVector::from_column_slice(&p.u);
-            let vv = DVector::from_column_slice(&p.v);
             // qs turns v toward u by δ. sin δ is the plane's magnitude in the skew part (read
             // there, not as uᵀ qs v − vᵀ qs u, where the unit diagonal swamps tiny angles);
             // cos δ comes from the symmetric part.
             let s = p.theta;
-            let c = 0.5 * (uu.dot(&(&qs * &uu)) + vv.dot(&(&qs * &vv)));
+            let c = 0.5 * (dot(&p.u, &qs.mul_vec(&p.u)) + dot(&p.v, &qs.mul_vec(&p.v)));
             let delta = s.atan2(c);
             let (theta, pu, pv) = if flip {
                 // Q = −qs turns v toward u by π + δ, i.e. u toward v by π − δ.
-                (std::f64::consts::PI - delta, p.v.clone(), p.u.clone())
+                (std::f64::consts::PI - delta, &p.v, &p.u)
             } else {
-                (delta, p.u.clone(), p.v.clone())
+                (delta, &p.u, &p.v)
             };
-            covered.push(uu);
-            covered.push(vv);
+            covered.push(p.u.clone());
+            covered.push(p.v.clone());
             out.push(RawPlane {
                 theta,
-                u: lift(&pu),
-                v: lift(&pv),
+                u: v.mul_vec(pu),
+                v: v.mul_vec(pv),
             });
         }
         if flip {
             // Directions of the −1 eigenspace not covered: rotations by exactly π.
-            let mut rest: Vec<DVector<f64>> = Vec::new();
+            let mut rest: SmallVec<[Vec8; 8]> = SmallVec::new();
             for k in 0..m {
-                let mut x = DVector::<f64>::zeros(m);
+                let mut x: Vec8 = SmallVec::from_elem(0.0, m);
                 x[k] = 1.0;
-                for b in covered.iter().chain(rest.iter()) {
-                    let d = b.dot(&x);
-                    x -= b * d;
+                for _ in 0..2 {
+                    for b in covered.iter().chain(rest.iter()) {
+                        let d = dot(b, &x);
+                        x.iter_mut().zip(b).for_each(|(xi, bi)| *xi -= bi * d);
+                    }
                 }
-                for b in covered.iter().chain(rest.iter()) {
-                    let d = b.dot(&x);
-                    x -= b * d;
-                }
-                let nx = x.norm();
+                let nx = norm(&x);
                 if nx > 0.5 {
-                    rest.push(x / nx);
+                    x.iter_mut().for_each(|xi| *xi /= nx);
+                    rest.push(x);
                 }
             }
             for pair in rest.chunks_exact(2) {
                 out.push(RawPlane {
                     theta: std::f64::consts::PI,
-                    u: lift(pair[0].as_slice()),
-                    v: lift(pair[1].as_slice()),
+                    u: v.mul_vec(&pair[0]),
+                    v: v.mul_vec(&pair[1]),
                 });
             }
         }

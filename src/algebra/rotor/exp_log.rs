@@ -3,6 +3,7 @@
 use super::{Rotor, even_index, get_4d, multiply_by_simple, set_4d};
 use crate::algebra::bivector::pairs;
 use crate::algebra::decompose::{decompose_components, self_dual_join, self_dual_split};
+use crate::algebra::dense::{Mat8, Vec8};
 use crate::algebra::error::{assert_same_dim, check_finite, within};
 use crate::algebra::{AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Vector};
 use nalgebra::DMatrix;
@@ -422,25 +423,26 @@ fn refine_log(r: &Rotor, b0: Bivector) -> Bivector {
 fn inverse_symmetric_dexp(b: &Bivector, delta: &Bivector) -> Bivector {
     let n = b.dim();
     let planes = decompose_components(n, b.as_slice());
-    // Frame columns and, per column, its plane (index, is-u) or None for the complement.
-    let mut frame: Vec<Vec<f64>> = Vec::with_capacity(n);
-    let mut role: Vec<Option<usize>> = Vec::with_capacity(n);
+    // Frame columns and, per column, its plane (index) or None for the complement.
+    let mut frame = Mat8::zeros(n, n);
+    let mut role: SmallVec<[Option<usize>; 8]> = SmallVec::new();
     for (k, p) in planes.iter().enumerate() {
-        frame.push(p.u.to_vec());
-        frame.push(p.v.to_vec());
+        frame.column_mut(role.len()).copy_from_slice(&p.u);
         role.push(Some(k));
+        frame.column_mut(role.len()).copy_from_slice(&p.v);
         role.push(Some(k));
     }
     for i in 0..n {
-        if frame.len() == n {
+        if role.len() == n {
             break;
         }
-        let mut x = vec![0.0; n];
+        let mut x: Vec8 = SmallVec::from_elem(0.0, n);
         x[i] = 1.0;
         for _ in 0..2 {
-            for f in &frame {
-                let d: f64 = f.iter().zip(&x).map(|(a, c)| a * c).sum();
-                for (xi, fi) in x.iter_mut().zip(f) {
+            for f in 0..role.len() {
+                let col = frame.column(f);
+                let d: f64 = col.iter().zip(&x).map(|(a, c)| a * c).sum();
+                for (xi, fi) in x.iter_mut().zip(col) {
                     *xi -= d * fi;
                 }
             }
@@ -448,20 +450,24 @@ fn inverse_symmetric_dexp(b: &Bivector, delta: &Bivector) -> Bivector {
         let nx = x.iter().map(|c| c * c).sum::<f64>().sqrt();
         if nx > 0.5 {
             x.iter_mut().for_each(|c| *c /= nx);
-            frame.push(x);
+            frame.column_mut(role.len()).copy_from_slice(&x);
             role.push(None);
         }
     }
-    let m = frame.len();
-    let f = DMatrix::from_fn(n, m, |i, j| frame[j][i]);
-    let a = delta.to_skew_matrix();
-    let x = f.transpose() * &a * &f;
+    let m = role.len();
+    let f = Mat8::from_fn(n, m, |i, j| frame[(i, j)]);
+    let mut a = Mat8::zeros(n, n);
+    for ((i, j), &c) in pairs(n).zip(delta.as_slice()) {
+        a[(i, j)] = c;
+        a[(j, i)] = -c;
+    }
+    let x = f.transpose().mul(&a).mul(&f);
     // sin φ / φ, clamped away from zero.
     let inv = |phi: f64| -> f64 {
         let g = if phi == 0.0 { 1.0 } else { phi.sin() / phi };
         if g.abs() < 0.05 { 1.0 } else { 1.0 / g }
     };
-    let mut y = DMatrix::zeros(m, m);
+    let mut y = Mat8::zeros(m, m);
     for i in 0..m {
         for j in (i + 1)..m {
             y[(i, j)] = match (role[i], role[j]) {
@@ -494,7 +500,7 @@ fn inverse_symmetric_dexp(b: &Bivector, delta: &Bivector) -> Bivector {
             y[(j, i)] = -y[(i, j)];
         }
     }
-    let s = &f * y * f.transpose();
+    let s = f.mul(&y).mul(&f.transpose());
     let mut out = Bivector::zero(n);
     for ((i, j), c) in pairs(n).zip(out.as_mut_slice().iter_mut()) {
         *c = 0.5 * (s[(i, j)] - s[(j, i)]);
@@ -506,7 +512,7 @@ fn inverse_symmetric_dexp(b: &Bivector, delta: &Bivector) -> Bivector {
 /// half-angle in \[0, π/2\] and whether R = −e^B (else R = e^B).
 fn log_from_matrix(r: &Rotor) -> (Bivector, bool) {
     let n = r.dim;
-    let q = r.to_matrix();
+    let q = r.to_mat8();
     let planes = super::convert::planes_of_rotation(&q);
     // Candidate: half-angle θ/2 on each plane x→y, i.e. B = Σ (θ/2) y∧x.
     let mut cand = Rotor::identity(n);

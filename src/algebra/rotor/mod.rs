@@ -16,12 +16,14 @@ use super::multivector::{Multivector, MvStorage};
 use super::{AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Signature, Vector};
 use smallvec::SmallVec;
 
-/// Inline storage for rotors: the 2^(N−1) = 16 even coefficients of N ≤ 5 stay off the heap.
 /// Default tolerance of [`Rotor::from_multivector`]: how far from even, unit and
 /// vector-preserving a multivector may be and still be accepted as a rotor.
 pub const ROTOR_TOLERANCE: f64 = 1e-10;
 
-pub(crate) type RotorStorage = SmallVec<[f64; 16]>;
+/// Inline storage for rotors: the 2^(N−1) = 32 even coefficients of N ≤ 6 stay off the heap,
+/// so that the rotor exponential and logarithm of N ≤ 6 (and the versor exp and log of the
+/// Euclidean signatures built on them) never allocate.
+pub(crate) type RotorStorage = SmallVec<[f64; 32]>;
 
 /// A rotor of Euclidean ℝᴺ: an even, unit element R of the Clifford algebra with
 /// R R̃ = 1 and R x R̃ a vector for every vector x, i.e. an element of Spin(N).
