@@ -179,11 +179,12 @@ impl Multivector {
     }
 
     /// [`Multivector::exp`] written into `out`, an element of the same algebra whose storage
-    /// is reused: no heap allocation for N ≤ 5 in every signature but Euclidean Cl(5, 0, 0),
-    /// and for N = 6 in every signature neither Euclidean nor projective, where
-    /// [`Multivector::exp`] allocates only the result's storage (multivectors keep up to 16
-    /// coefficients inline). The Euclidean and projective routes above N = 4 allocate in
-    /// the rotor's eigen-decomposition. On an error `out` is unspecified.
+    /// is reused: no heap allocation for N ≤ 6 in every signature. Every route works there on
+    /// stack storage (multivectors of up to 64 coefficients, rotors of up to 32, the invariant
+    /// decomposition's matrices up to 8 × 8), so [`Multivector::exp`] allocates only the
+    /// result's storage, and only from N = 5 (multivectors keep up to 16 coefficients
+    /// inline). Above N = 6 the intermediate multivectors and rotors are on the heap. On an
+    /// error `out` is unspecified.
     ///
     /// ```
     /// use rotorflow::algebra::{Multivector, Signature};
@@ -334,8 +335,13 @@ impl Multivector {
     }
 
     /// [`Multivector::log`] written into `out`, an element of the same algebra whose storage
-    /// is reused: no heap allocation at all for N ≤ 5 in any signature. On an error `out` is
-    /// unspecified.
+    /// is reused: no heap allocation for N ≤ 6 in every signature. The closed forms, the
+    /// rotor logarithm (rotation matrix, eigen-decomposition and Newton refinement), the
+    /// projective route and the Krylov logarithm of the general route (its basis, the Krylov
+    /// matrix of at most 16 × 16, its square roots and logarithm, and the least-squares
+    /// polish) all work on stack storage there, so [`Multivector::log`] allocates only the
+    /// result's storage, and only from N = 5. Above N = 6 the intermediate multivectors,
+    /// rotors and matrices spill to the heap. On an error `out` is unspecified.
     ///
     /// # Errors
     /// [`AlgebraError::SignatureMismatch`] if `out` belongs to another algebra; those of

@@ -38,7 +38,13 @@
 //! scaling and squaring (Higham, *Functions of Matrices*, 2008, §11.5): Denman–Beavers square
 //! roots until ‖X − I‖₁ ≤ ¼, then the 8-point Gauss–Legendre rule for
 //! log(I + Y) = ∫₀¹ Y (I + tY)⁻¹ dt (the diagonal Padé approximant), times 2^j. The grade-2
-//! part of the result is polished by Newton steps B ← B + ⟨exp(B)~ V⟩₂ against V itself.
+//! part of the result is polished by Gauss–Newton steps against V itself (a least-squares
+//! solve through the singular value decomposition).
+//!
+//! # Storage
+//! Up to N = 6 both routes run on stack multivectors of 64 coefficients and inline matrices
+//! (the Krylov matrix of at most 17 × 16, the polish's 32 × 15 system), so exp and log
+//! allocate nothing there; above, the same code spills to the heap.
 //!
 //! The eigenvalues of H are the joint eigenvalues of V, e^(±x₁ ± x₂ ± …) for the parts'
 //! √λᵢ = xᵢ, so the principal matrix logarithm gives the principal versor logarithm: every

@@ -473,7 +473,7 @@ impl Rotor {
     /// R ← R (1 + D) for an even element D given by its 2^(N−1) coefficients in storage
     /// order (crate-internal: how the splitting applies the product of a drift's plane rotors,
     /// kept as its difference from 1, see `dynamics::attitude::PlaneProduct`). Each
-    /// coefficient of R is rounded once. No allocation for N ≤ 5.
+    /// coefficient of R is rounded once. No allocation for N ≤ 6.
     pub(crate) fn times_one_plus(&mut self, d: &[f64]) {
         debug_assert_eq!(d.len(), self.coeffs.len());
         let mut rd: RotorStorage = SmallVec::from_elem(0.0, self.coeffs.len());
@@ -727,7 +727,7 @@ fn even_product_fixed<const L: usize>(
 
 impl std::ops::MulAssign<&Rotor> for Rotor {
     /// In-place composition: `r *= s` sets r ← r s (apply `s` first). No allocation for
-    /// N ≤ 5: the product is formed on the stack and copied back.
+    /// N ≤ 6: the product is formed on the stack and copied back.
     #[track_caller]
     fn mul_assign(&mut self, rhs: &Rotor) {
         assert_same_dim(self.dim, rhs.dim);
