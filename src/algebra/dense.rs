@@ -4,8 +4,8 @@
 //! N = 6 never allocate while larger N keep working.
 //!
 //! The kernels are the textbook ones (Golub & Van Loan, *Matrix Computations*, 4th ed.): the
-//! cyclic Jacobi method for symmetric eigenproblems (§8.5), the one-sided Jacobi SVD (§8.6.3),
-//! LU with partial pivoting (§3.4) and Householder reflections (§5.1).
+//! cyclic Jacobi method for symmetric eigenproblems (§8.5), LU with partial pivoting (§3.4)
+//! and Householder reflections (§5.1).
 
 use smallvec::SmallVec;
 use std::ops::{Index, IndexMut};
@@ -101,15 +101,16 @@ impl<const CAP: usize> Dense<CAP> {
     /// The product self · other.
     pub(crate) fn mul(&self, other: &Self) -> Self {
         debug_assert_eq!(self.cols, other.rows);
-        let mut out = Self::zeros(self.rows, other.cols);
-        for j in 0..other.cols {
-            for k in 0..self.cols {
-                let b = other[(k, j)];
+        let r = self.rows;
+        let mut out = Self::zeros(r, other.cols);
+        let a = self.a.as_slice();
+        for (j, oc) in out.a.chunks_exact_mut(r.max(1)).enumerate() {
+            for (k, &b) in other.column(j).iter().enumerate() {
                 if b == 0.0 {
                     continue;
                 }
-                for i in 0..self.rows {
-                    out.a[j * self.rows + i] += self.a[k * self.rows + i] * b;
+                for (o, &x) in oc.iter_mut().zip(&a[k * r..(k + 1) * r]) {
+                    *o += x * b;
                 }
             }
         }
@@ -169,10 +170,11 @@ impl<const CAP: usize> Dense<CAP> {
 
     /// The eigenvalues and eigenvectors (columns, in the order of the values) of a symmetric
     /// matrix, by the cyclic Jacobi method: sweeps of exact plane rotations that zero each
-    /// off-diagonal entry in turn, until the off-diagonal mass is below ε² of the total
-    /// (quadratic convergence; at most 60 sweeps). Entries below ε² max |aᵢⱼ| are flushed to
-    /// zero first: they move no eigenvalue by more than that, far below round-off, and would
-    /// only cost rotations.
+    /// off-diagonal entry in turn, until a sweep finds every a_pq below ε √|a_pp a_qq| (the
+    /// threshold of Demmel & Veselić, "Jacobi's method is more accurate than QR", 1992;
+    /// quadratic convergence, at most 60 sweeps). Entries below ε² max |aᵢⱼ| count as zero:
+    /// they move no eigenvalue by more than that, far below round-off, and would only cost
+    /// rotations.
     pub(crate) fn symmetric_eigen(&self) -> (Vec8, Self) {
         let n = self.rows;
         let mut a = self.clone();
@@ -187,52 +189,55 @@ impl<const CAP: usize> Dense<CAP> {
                 *x = 0.0;
             }
         });
+        let (am, vm) = (a.a.as_mut_slice(), v.a.as_mut_slice());
         for _sweep in 0..60 {
-            let mut off = 0.0;
-            let mut total = 0.0;
-            for j in 0..n {
-                for i in 0..n {
-                    let x = a[(i, j)] * a[(i, j)];
-                    total += x;
-                    if i != j {
-                        off += x;
-                    }
-                }
-            }
-            if off <= f64::EPSILON * f64::EPSILON * total {
-                break;
-            }
+            let mut rotated = false;
             for p in 0..n {
                 for q in p + 1..n {
-                    let apq = a[(p, q)];
-                    if apq == 0.0 {
+                    let apq = am[q * n + p];
+                    // An entry below ε √|a_pp a_qq| (or the floor) moves no eigenvalue beyond
+                    // round-off: it is dropped rather than rotated away, which would only
+                    // create round-off of the same size elsewhere.
+                    let (app, aqq) = (am[p * n + p], am[q * n + q]);
+                    if apq.abs() <= floor.max(f64::EPSILON * (app * aqq).abs().sqrt()) {
+                        am[q * n + p] = 0.0;
+                        am[p * n + q] = 0.0;
                         continue;
                     }
-                    // The rotation angle that annihilates a_pq, in the stable tangent form.
-                    let theta = (a[(q, q)] - a[(p, p)]) / (2.0 * apq);
+                    rotated = true;
+                    // The rotation angle that annihilates a_pq, in the stable tangent form
+                    // (|t| ≤ 1; a θ whose square overflows gives t = 0, no rotation).
+                    let theta = (aqq - app) / (2.0 * apq);
                     let t = if theta == 0.0 {
                         1.0
                     } else {
-                        theta.signum() / (theta.abs() + theta.hypot(1.0))
+                        theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt())
                     };
-                    let c = 1.0 / t.hypot(1.0);
+                    let c = 1.0 / (t * t + 1.0).sqrt();
                     let s = t * c;
+                    // Rows and columns p and q outside the 2 × 2 block, kept symmetric; the
+                    // block becomes diag(a_pp − t a_pq, a_qq + t a_pq) (Numerical Recipes'
+                    // form, which needs no products of the rotation there).
                     for k in 0..n {
-                        let (akp, akq) = (a[(k, p)], a[(k, q)]);
-                        a[(k, p)] = c * akp - s * akq;
-                        a[(k, q)] = s * akp + c * akq;
+                        if k == p || k == q {
+                            continue;
+                        }
+                        let (akp, akq) = (am[p * n + k], am[q * n + k]);
+                        let (x, y) = (c * akp - s * akq, s * akp + c * akq);
+                        am[p * n + k] = x;
+                        am[q * n + k] = y;
+                        am[k * n + p] = x;
+                        am[k * n + q] = y;
                     }
-                    for k in 0..n {
-                        let (apk, aqk) = (a[(p, k)], a[(q, k)]);
-                        a[(p, k)] = c * apk - s * aqk;
-                        a[(q, k)] = s * apk + c * aqk;
-                    }
-                    for k in 0..n {
-                        let (vkp, vkq) = (v[(k, p)], v[(k, q)]);
-                        v[(k, p)] = c * vkp - s * vkq;
-                        v[(k, q)] = s * vkp + c * vkq;
-                    }
+                    am[p * n + p] = app - t * apq;
+                    am[q * n + q] = aqq + t * apq;
+                    am[q * n + p] = 0.0;
+                    am[p * n + q] = 0.0;
+                    rotate_columns(vm, n, p, q, c, s);
                 }
+            }
+            if !rotated {
+                break;
             }
         }
         ((0..n).map(|i| a[(i, i)]).collect(), v)
@@ -243,11 +248,13 @@ impl<const CAP: usize> Dense<CAP> {
     pub(crate) fn inverse_and_log_det(&self) -> Option<(Self, f64)> {
         let n = self.rows;
         let mut lu = self.clone();
+        let l = lu.a.as_mut_slice();
         let mut perm: SmallVec<[usize; 32]> = (0..n).collect();
         let mut log_det = 0.0;
+        // Entry (i, j) is l[j * n + i].
         for k in 0..n {
             let (p, pivot) = (k..n)
-                .map(|i| (i, lu[(i, k)].abs()))
+                .map(|i| (i, l[k * n + i].abs()))
                 .fold((k, -1.0), |best, x| if x.1 > best.1 { x } else { best });
             if pivot == 0.0 || !pivot.is_finite() {
                 return None;
@@ -255,46 +262,45 @@ impl<const CAP: usize> Dense<CAP> {
             if p != k {
                 perm.swap(p, k);
                 for j in 0..n {
-                    let t = lu[(p, j)];
-                    lu[(p, j)] = lu[(k, j)];
-                    lu[(k, j)] = t;
+                    l.swap(j * n + p, j * n + k);
                 }
             }
             log_det += pivot.ln();
-            let d = lu[(k, k)];
-            for i in k + 1..n {
-                lu[(i, k)] /= d;
+            let (left, right) = l.split_at_mut((k + 1) * n);
+            let col_k = &mut left[k * n..];
+            let d = col_k[k];
+            for x in &mut col_k[k + 1..] {
+                *x /= d;
             }
-            for j in k + 1..n {
-                let ukj = lu[(k, j)];
+            for cj in right.chunks_exact_mut(n) {
+                let ukj = cj[k];
                 if ukj == 0.0 {
                     continue;
                 }
-                for i in k + 1..n {
-                    let l = lu[(i, k)];
-                    lu[(i, j)] -= l * ukj;
+                for (x, &lik) in cj[k + 1..].iter_mut().zip(&col_k[k + 1..]) {
+                    *x -= lik * ukj;
                 }
             }
         }
-        // Solve L U X = P I column by column.
+        // Solve L U X = P I column by column: column perm[c] of the inverse has the unit
+        // vector e_c on the right.
         let mut inv = Self::zeros(n, n);
         for (c, &pc) in perm.iter().enumerate() {
-            // Column pc of the inverse solves with the unit vector e_pc permuted to row c.
             let col = inv.column_mut(pc);
             col[c] = 1.0;
             for i in 0..n {
                 let mut s = col[i];
                 for k in 0..i {
-                    s -= lu[(i, k)] * col[k];
+                    s -= l[k * n + i] * col[k];
                 }
                 col[i] = s;
             }
             for i in (0..n).rev() {
                 let mut s = col[i];
                 for k in i + 1..n {
-                    s -= lu[(i, k)] * col[k];
+                    s -= l[k * n + i] * col[k];
                 }
-                col[i] = s / lu[(i, i)];
+                col[i] = s / l[i * n + i];
             }
         }
         inv.a
@@ -302,78 +308,18 @@ impl<const CAP: usize> Dense<CAP> {
             .all(|x| x.is_finite())
             .then_some((inv, log_det))
     }
+}
 
-    /// The least-squares solution x of min |A x − b| through the singular value
-    /// decomposition, with the directions whose singular value is at most `cut_relative`
-    /// times the largest left out (they would only fit round-off). One-sided Jacobi
-    /// (Hestenes): plane rotations of pairs of columns until every pair is orthogonal to ε,
-    /// then σⱼ = |aⱼ| and x = Σ vⱼ (aⱼ · b)/σⱼ². None if b or A is not finite.
-    pub(crate) fn least_squares_svd<const V: usize>(
-        &self,
-        b: &[f64],
-        cut_relative: f64,
-    ) -> Option<SmallVec<[f64; V]>> {
-        let (m, n) = (self.rows, self.cols);
-        if !(self.a.iter().all(|x| x.is_finite()) && b.iter().all(|x| x.is_finite())) {
-            return None;
-        }
-        let mut a = self.clone();
-        let mut v: Dense<V> = Dense::identity(n);
-        for _sweep in 0..60 {
-            let mut rotated = false;
-            for p in 0..n {
-                for q in p + 1..n {
-                    let (mut alpha, mut beta, mut gamma) = (0.0, 0.0, 0.0);
-                    for i in 0..m {
-                        let (x, y) = (a[(i, p)], a[(i, q)]);
-                        alpha += x * x;
-                        beta += y * y;
-                        gamma += x * y;
-                    }
-                    if gamma == 0.0 || gamma.abs() <= f64::EPSILON * (alpha * beta).sqrt() {
-                        continue;
-                    }
-                    rotated = true;
-                    let zeta = (beta - alpha) / (2.0 * gamma);
-                    let t = if zeta == 0.0 {
-                        1.0
-                    } else {
-                        zeta.signum() / (zeta.abs() + zeta.hypot(1.0))
-                    };
-                    let c = 1.0 / t.hypot(1.0);
-                    let s = c * t;
-                    for i in 0..m {
-                        let (x, y) = (a[(i, p)], a[(i, q)]);
-                        a[(i, p)] = c * x - s * y;
-                        a[(i, q)] = s * x + c * y;
-                    }
-                    for i in 0..n {
-                        let (x, y) = (v[(i, p)], v[(i, q)]);
-                        v[(i, p)] = c * x - s * y;
-                        v[(i, q)] = s * x + c * y;
-                    }
-                }
-            }
-            if !rotated {
-                break;
-            }
-        }
-        let sigma: SmallVec<[f64; V]> = (0..n)
-            .map(|j| crate::numeric::scaled_norm(a.column(j)))
-            .collect();
-        let cut = cut_relative * sigma.iter().fold(0.0f64, |s, x| s.max(*x));
-        let mut x: SmallVec<[f64; V]> = SmallVec::from_elem(0.0, n);
-        for j in 0..n {
-            if sigma[j] <= cut || sigma[j] == 0.0 {
-                continue;
-            }
-            let ub: f64 = a.column(j).iter().zip(b).map(|(u, y)| u * y).sum();
-            let k = ub / sigma[j] / sigma[j];
-            for (xi, vi) in x.iter_mut().zip(v.column(j)) {
-                *xi += k * vi;
-            }
-        }
-        x.iter().all(|c| c.is_finite()).then_some(x)
+/// Columns p < q of a matrix stored by columns of `rows` entries:
+/// (x, y) ← (c x − s y, s x + c y).
+#[inline]
+fn rotate_columns(a: &mut [f64], rows: usize, p: usize, q: usize, c: f64, s: f64) {
+    let (left, right) = a.split_at_mut(q * rows);
+    let (x, y) = (&mut left[p * rows..(p + 1) * rows], &mut right[..rows]);
+    for (x, y) in x.iter_mut().zip(y.iter_mut()) {
+        let (a, b) = (*x, *y);
+        *x = c * a - s * b;
+        *y = s * a + c * b;
     }
 }
 
@@ -492,28 +438,6 @@ mod tests {
                     assert!((o - want).abs() < 1e-14, "n = {n}");
                 }
             }
-        }
-    }
-
-    #[test]
-    fn least_squares_matches_nalgebra_svd_and_cuts_null_directions() {
-        let mut seed = 11u64;
-        let (m, n) = (12, 5);
-        let mut a = Dense::<64>::from_fn(m, n, |_, _| random(&mut seed));
-        // Column 4 a multiple of column 0: a null direction the cut must leave out.
-        for i in 0..m {
-            a[(i, 4)] = 2.0 * a[(i, 0)];
-        }
-        let b: Vec<f64> = (0..m).map(|_| random(&mut seed)).collect();
-        let x = a.least_squares_svd::<8>(&b, 1e-10).unwrap();
-        let da = DMatrix::from_fn(m, n, |i, j| a[(i, j)]);
-        let svd = da.svd(true, true);
-        let cut = 1e-10 * svd.singular_values.max();
-        let want = svd
-            .solve(&nalgebra::DVector::from_column_slice(&b), cut)
-            .unwrap();
-        for j in 0..n {
-            assert!((x[j] - want[j]).abs() < 1e-12, "{x:?} vs {want}");
         }
     }
 

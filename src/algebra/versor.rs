@@ -64,7 +64,7 @@
 //! `versor_general.rs`: scaling and squaring for exp, a Krylov space and the principal matrix
 //! logarithm for log. Beyond N = 8 they return [`AlgebraError::UnsupportedDimension`].
 
-use super::decompose::decompose_components;
+use super::decompose::{RawPlane, decompose_components};
 use super::error::{check_finite, within};
 use super::small::{SMALL_MAX_DIM, Small};
 use super::versor_general::{GENERAL_MAX_DIM, exp_general_to, log_general_to};
@@ -588,7 +588,13 @@ fn phi_projective(a: &Bivector, t: &[f64], inverse: bool) -> Result<Coords, Alge
         apply_plane(&mut out, &tk, xt.as_slice(), 2.0 * theta, inverse)?;
         return Ok(out);
     }
-    for plane in decompose_components(a.dim(), a.as_slice()) {
+    phi_of_planes(&decompose_components(a.dim(), a.as_slice()), t, inverse)
+}
+
+/// [`phi_projective`] for p ≥ 4 from the planes of A's invariant decomposition.
+fn phi_of_planes(planes: &[RawPlane], t: &[f64], inverse: bool) -> Result<Coords, AlgebraError> {
+    let mut out: Coords = SmallVec::from_slice(t);
+    for plane in planes {
         let (theta, u, v) = (plane.theta, &plane.u, &plane.v);
         let dot = |x: &[f64]| t.iter().zip(x).map(|(a, b)| a * b).sum::<f64>();
         let (cu, cv) = (dot(u), dot(v));
@@ -658,8 +664,21 @@ fn exp_projective_small(b: &Multivector) -> Result<Small<64>, AlgebraError> {
     let p = b.dim() - 1;
     let null = 1u64 << p;
     let (a, t) = split_projective(b)?;
-    let r = a.try_exp()?;
-    let u = phi_projective(&a, &t, false)?;
+    let (r, u) = if p >= 5 {
+        // exp(A) and φ share A's invariant decomposition (Bivector::exp's route for p ≥ 5),
+        // formed once; the checks are those of Bivector::try_exp (A is finite here).
+        let norm = a.norm();
+        if !within(norm, f64::MAX / 2.0) {
+            return Err(AlgebraError::AngleTooLarge { norm });
+        }
+        let planes = decompose_components(p, a.as_slice());
+        (
+            super::rotor::exp_of_planes(p, &planes),
+            phi_of_planes(&planes, &t, false)?,
+        )
+    } else {
+        (a.try_exp()?, phi_projective(&a, &t, false)?)
+    };
     let mut rm = Small::<64>::zero(sig);
     for (k, c) in r.terms() {
         rm.as_mut_slice()[k as usize] = c;

@@ -43,8 +43,9 @@
 //!
 //! # Storage
 //! Up to N = 6 both routes run on stack multivectors of 64 coefficients and inline matrices
-//! (the Krylov matrix of at most 17 × 16, the polish's 32 × 15 system), so exp and log
-//! allocate nothing there; above, the same code spills to the heap.
+//! (the Krylov matrix of at most 17 × 16, and the polish's least-squares system as a
+//! fixed-size 32 × 15 nalgebra matrix), so exp and log allocate nothing there; above, the
+//! same code spills to the heap.
 //!
 //! The eigenvalues of H are the joint eigenvalues of V, e^(±x₁ ± x₂ ± …) for the parts'
 //! √λᵢ = xᵢ, so the principal matrix logarithm gives the principal versor logarithm: every
@@ -59,6 +60,7 @@ use super::error::within;
 use super::small::{SMALL_MAX_DIM, Small};
 use super::{AlgebraError, Multivector, Signature};
 use crate::numeric::{exponent_of, ldexp, scaled_norm};
+use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use smallvec::SmallVec;
 
 /// The largest N for which [`Multivector::exp`] and [`Multivector::log`] accept every
@@ -529,20 +531,50 @@ fn polish<T: Mv>(v: &T, mut b: T) -> Result<T, AlgebraError> {
             break;
         }
         let residual = v.minus(&e);
-        let mut a = Dense::<480>::zeros(even.len(), planes.len());
-        for (col, &m) in planes.iter().enumerate() {
+        let image = |m: u64| {
             let mut blade = T::zero(sig);
             blade.coeffs_mut()[m as usize] = 1.0;
-            let image = e.mul(&blade);
-            for (row, &k) in even.iter().enumerate() {
-                a[(row, col)] = image.coeffs()[k];
-            }
-        }
-        let rhs: SmallVec<[f64; 32]> = even.iter().map(|&k| residual.coeffs()[k]).collect();
+            e.mul(&blade)
+        };
         // Directions whose singular value is below 10⁻¹⁰ of the largest (the far side of a
         // boost: exp(B) e₁₂ and exp(B) e₂₆ nearly parallel) would only fit round-off.
-        let Some(delta) = a.least_squares_svd::<225>(&rhs, 1e-10) else {
-            break;
+        let delta: SmallVec<[f64; 28]> = if n <= SMALL_MAX_DIM {
+            // Up to N = 6 on the stack: 32 even blades and 15 planes at most, the rest of
+            // the fixed-size system zero (zero rows change no singular value, and zero
+            // columns give zero singular values, cut like the other null directions).
+            let mut a = SMatrix::<f64, 32, 15>::zeros();
+            for (col, &m) in planes.iter().enumerate() {
+                let image = image(m);
+                for (row, &k) in even.iter().enumerate() {
+                    a[(row, col)] = image.coeffs()[k];
+                }
+            }
+            let mut rhs = SVector::<f64, 32>::zeros();
+            for (row, &k) in even.iter().enumerate() {
+                rhs[row] = residual.coeffs()[k];
+            }
+            let svd = a.svd(true, true);
+            let cut = 1e-10 * svd.singular_values.max();
+            let Ok(x) = svd.solve(&rhs, cut) else {
+                break;
+            };
+            x.iter().take(planes.len()).copied().collect()
+        } else {
+            let mut a = DMatrix::<f64>::zeros(even.len(), planes.len());
+            for (col, &m) in planes.iter().enumerate() {
+                let image = image(m);
+                for (row, &k) in even.iter().enumerate() {
+                    a[(row, col)] = image.coeffs()[k];
+                }
+            }
+            let rhs =
+                DVector::from_iterator(even.len(), even.iter().map(|&k| residual.coeffs()[k]));
+            let svd = a.svd(true, true);
+            let cut = 1e-10 * svd.singular_values.max();
+            let Ok(x) = svd.solve(&rhs, cut) else {
+                break;
+            };
+            x.iter().copied().collect()
         };
         let mut b1 = b.clone();
         for (&m, d) in planes.iter().zip(delta.iter()) {

@@ -2,7 +2,7 @@
 
 use super::{Rotor, even_index, get_4d, multiply_by_simple, set_4d};
 use crate::algebra::bivector::pairs;
-use crate::algebra::decompose::{decompose_components, self_dual_join, self_dual_split};
+use crate::algebra::decompose::{RawPlane, decompose_components, self_dual_join, self_dual_split};
 use crate::algebra::dense::{Mat8, Vec8};
 use crate::algebra::error::{assert_same_dim, check_finite, within};
 use crate::algebra::{AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Vector};
@@ -61,14 +61,7 @@ impl Bivector {
                 }
             }
             4 => exp_4d(c, &mut r),
-            _ => {
-                let planes = decompose_components(n, c);
-                for p in &planes {
-                    let (s, co) = p.theta.sin_cos();
-                    // e^{θ u∧v} = cos θ + sin θ u v (u ⟂ v): multiply on the right.
-                    multiply_by_simple(&mut r, co, s, &p.u, &p.v);
-                }
-            }
+            _ => r = exp_of_planes(n, &decompose_components(n, c)),
         }
         r
     }
@@ -104,6 +97,18 @@ impl Bivector {
         }
         Ok(self.exp())
     }
+}
+
+/// e^B = Πₖ (cos θₖ + sin θₖ uₖ vₖ) from the planes θₖ uₖ∧vₖ of B's invariant decomposition
+/// (how [`Bivector::exp`] forms it for N ≥ 5), for callers that need the planes too.
+pub(crate) fn exp_of_planes(n: usize, planes: &[RawPlane]) -> Rotor {
+    let mut r = Rotor::identity(n);
+    for p in planes {
+        let (s, co) = p.theta.sin_cos();
+        // e^{θ u∧v} = cos θ + sin θ u v (u ⟂ v): multiply on the right.
+        multiply_by_simple(&mut r, co, s, &p.u, &p.v);
+    }
+    r
 }
 
 /// 4D: B = aF + bG (self-dual and anti-self-dual halves, |α| = a, |β| = b) gives

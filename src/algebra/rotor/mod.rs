@@ -8,6 +8,7 @@
 mod convert;
 pub use convert::{NORMALIZE_TOLERANCE, ROTATION_TOLERANCE};
 mod exp_log;
+pub(crate) use exp_log::exp_of_planes;
 
 use super::bivector::pairs;
 use super::blade;
