@@ -82,6 +82,17 @@ impl<const CAP: usize> Dense<CAP> {
         self.cols
     }
 
+    /// The entries, by columns.
+    #[inline]
+    pub(crate) fn as_slice(&self) -> &[f64] {
+        &self.a
+    }
+
+    #[inline]
+    pub(crate) fn as_mut_slice(&mut self) -> &mut [f64] {
+        &mut self.a
+    }
+
     /// Column j, contiguous.
     #[inline]
     pub(crate) fn column(&self, j: usize) -> &[f64] {
@@ -169,13 +180,60 @@ impl<const CAP: usize> Dense<CAP> {
     }
 
     /// The eigenvalues and eigenvectors (columns, in the order of the values) of a symmetric
+    /// matrix, as `crate::numeric::symmetric_eigen` computes them (nalgebra's symmetric QR
+    /// after flushing entries below ε² max |aᵢⱼ| to zero, and the cyclic Jacobi method where
+    /// that returns NaN), on fixed-size nalgebra matrices up to 8 × 8 so that nothing is
+    /// allocated there.
+    pub(crate) fn symmetric_eigen(&self) -> (Vec8, Self) {
+        let n = self.rows;
+        let scale = self.amax();
+        if scale == 0.0 || !scale.is_finite() {
+            return ((0..n).map(|i| self[(i, i)]).collect(), Self::identity(n));
+        }
+        let floor = f64::EPSILON * f64::EPSILON * scale;
+        let entry = |i: usize, j: usize| {
+            let x = self[(i, j)];
+            if x.abs() < floor { 0.0 } else { x }
+        };
+        // One arm per size, each on a fixed-size matrix (no heap).
+        macro_rules! fixed {
+            ($($size:literal),*) => {
+                match n {
+                    $($size => {
+                        let s = nalgebra::SMatrix::<f64, $size, $size>::from_fn(entry);
+                        if let Some(eig) = nalgebra::SymmetricEigen::try_new(s, f64::EPSILON, 0) {
+                            let finite = eig.eigenvalues.iter().all(|x| x.is_finite())
+                                && eig.eigenvectors.iter().all(|x| x.is_finite());
+                            if finite {
+                                return (
+                                    eig.eigenvalues.iter().copied().collect(),
+                                    Self::from_fn(n, n, |i, j| eig.eigenvectors[(i, j)]),
+                                );
+                            }
+                        }
+                        return Self::from_fn(n, n, entry).jacobi_eigen();
+                    })*
+                    _ => {}
+                }
+            };
+        }
+        fixed!(1, 2, 3, 4, 5, 6, 7, 8);
+        let (values, vectors) =
+            crate::numeric::symmetric_eigen(nalgebra::DMatrix::from_fn(n, n, |i, j| self[(i, j)]));
+        (
+            values.iter().copied().collect(),
+            Self::from_fn(n, n, |i, j| vectors[(i, j)]),
+        )
+    }
+
+    /// The eigenvalues and eigenvectors (columns, in the order of the values) of a symmetric
     /// matrix, by the cyclic Jacobi method: sweeps of exact plane rotations that zero each
     /// off-diagonal entry in turn, until a sweep finds every a_pq below ε √|a_pp a_qq| (the
     /// threshold of Demmel & Veselić, "Jacobi's method is more accurate than QR", 1992;
     /// quadratic convergence, at most 60 sweeps). Entries below ε² max |aᵢⱼ| count as zero:
     /// they move no eigenvalue by more than that, far below round-off, and would only cost
     /// rotations.
-    pub(crate) fn symmetric_eigen(&self) -> (Vec8, Self) {
+    pub(crate) fn jacobi_eigen(&self) -> (Vec8, Self) {
         let n = self.rows;
         let mut a = self.clone();
         let mut v = Self::identity(n);
@@ -424,18 +482,19 @@ mod tests {
                 (log_det - da.determinant().abs().ln()).abs() < 1e-12,
                 "n = {n}"
             );
-            // Symmetric eigen: A = V diag(λ) Vᵀ with V orthogonal.
+            // Symmetric eigen: A = V diag(λ) Vᵀ with V orthogonal, both routes.
             let s = a.transpose().mul(&a);
-            let (values, vectors) = s.symmetric_eigen();
-            for i in 0..n {
-                for j in 0..n {
-                    let r: f64 = (0..n)
-                        .map(|k| vectors[(i, k)] * values[k] * vectors[(j, k)])
-                        .sum();
-                    assert!((r - s[(i, j)]).abs() < 1e-13 * s.amax(), "n = {n}");
-                    let o: f64 = (0..n).map(|k| vectors[(k, i)] * vectors[(k, j)]).sum();
-                    let want = if i == j { 1.0 } else { 0.0 };
-                    assert!((o - want).abs() < 1e-14, "n = {n}");
+            for (values, vectors) in [s.symmetric_eigen(), s.jacobi_eigen()] {
+                for i in 0..n {
+                    for j in 0..n {
+                        let r: f64 = (0..n)
+                            .map(|k| vectors[(i, k)] * values[k] * vectors[(j, k)])
+                            .sum();
+                        assert!((r - s[(i, j)]).abs() < 1e-13 * s.amax(), "n = {n}");
+                        let o: f64 = (0..n).map(|k| vectors[(k, i)] * vectors[(k, j)]).sum();
+                        let want = if i == j { 1.0 } else { 0.0 };
+                        assert!((o - want).abs() < 1e-14, "n = {n}");
+                    }
                 }
             }
         }

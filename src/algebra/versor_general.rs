@@ -82,6 +82,18 @@ trait Mv: Clone {
     fn rev(&self) -> Self;
     fn plus(&self, other: &Self) -> Self;
     fn times(&self, s: f64) -> Self;
+    /// self ← self + x · c in place, each coefficient rounded as self + (x · c).
+    fn add_times(&mut self, x: &Self, c: f64) {
+        for (a, b) in self.coeffs_mut().iter_mut().zip(x.coeffs()) {
+            *a += b * c;
+        }
+    }
+    /// self ← self − x · c in place, each coefficient rounded as self − (x · c).
+    fn sub_times(&mut self, x: &Self, c: f64) {
+        for (a, b) in self.coeffs_mut().iter_mut().zip(x.coeffs()) {
+            *a -= b * c;
+        }
+    }
     fn max_abs(&self) -> f64 {
         self.coeffs().iter().fold(0.0f64, |m, c| m.max(c.abs()))
     }
@@ -505,7 +517,7 @@ impl<T: Mv> Krylov<T> {
         let mut out = T::zero(self.basis[0].sig());
         for (i, q) in self.basis.iter().enumerate() {
             let c = ldexp(fh[(i, 0)], self.exponents[i] - self.exponents[0]);
-            out = out.plus(&q.times(c));
+            out.add_times(q, c);
         }
         out.coeffs().iter().all(|c| c.is_finite()).then_some(out)
     }
@@ -599,7 +611,7 @@ fn polish<T: Mv>(v: &T, mut b: T) -> Result<T, AlgebraError> {
 fn project_onto_algebra<T: Mv>(v: &T, b: &T) -> T {
     let mut out = T::zero(b.sig());
     for d in bivector_directions(v) {
-        out = out.plus(&d.times(dot(&d, b)));
+        out.add_times(&d, dot(&d, b));
     }
     out
 }
@@ -627,7 +639,8 @@ fn bivector_directions<T: Mv>(v: &T) -> Basis<T> {
         }
         for _ in 0..2 {
             for d in &out {
-                g = g.minus(&d.times(dot(d, &g)));
+                let c = dot(d, &g);
+                g.sub_times(d, c);
             }
         }
         let norm = scaled_norm(g.coeffs());
@@ -661,7 +674,7 @@ fn arnoldi<T: Mv>(v: &T) -> (Basis<T>, KrylovMatrix) {
             for (i, q) in basis.iter().enumerate() {
                 let c = dot(q, &w);
                 h[(i, j)] += c;
-                w = w.minus(&q.times(c));
+                w.sub_times(q, c);
             }
         }
         let beta = scaled_norm(w.coeffs());
@@ -743,10 +756,14 @@ fn principal_log(a: &KrylovMatrix) -> Option<KrylovMatrix> {
     for (node, weight) in GAUSS_LEGENDRE_8 {
         let t = 0.5 * (1.0 + node);
         let (inv, _) = eye.add_scaled(&y, t).inverse_and_log_det()?;
-        out = out.add_scaled(&y.mul(&inv), 0.5 * weight);
+        let term = y.mul(&inv);
+        for (o, &x) in out.as_mut_slice().iter_mut().zip(term.as_slice()) {
+            *o += x * (0.5 * weight);
+        }
     }
     let scale = ldexp(1.0, roots);
-    Some(out.scaled(scale))
+    out.as_mut_slice().iter_mut().for_each(|x| *x *= scale);
+    Some(out)
 }
 
 /// The principal square root Y = A^(½) and Z = A^(−½) by the Denman–Beavers iteration with
@@ -777,11 +794,18 @@ fn sqrt_denman_beavers(a: &KrylovMatrix) -> Option<(KrylovMatrix, KrylovMatrix)>
         } else {
             1.0
         };
-        let y1 = y.scaled(mu).add_scaled(&zi, 1.0 / mu).scaled(0.5);
-        let z1 = z.scaled(mu).add_scaled(&yi, 1.0 / mu).scaled(0.5);
-        let change = y1.add_scaled(&y, -1.0).amax() / y1.amax();
-        y = y1;
-        z = z1;
+        // Y ← ½(μY + Z⁻¹/μ), Z ← ½(μZ + Y⁻¹/μ) in place, with the largest change of Y.
+        let (mut change, mut size) = (0.0f64, 0.0f64);
+        for (x, &w) in y.as_mut_slice().iter_mut().zip(zi.as_slice()) {
+            let next = (*x * mu + w / mu) * 0.5;
+            change = change.max((next - *x).abs());
+            size = size.max(next.abs());
+            *x = next;
+        }
+        for (x, &w) in z.as_mut_slice().iter_mut().zip(yi.as_slice()) {
+            *x = (*x * mu + w / mu) * 0.5;
+        }
+        let change = change / size;
         if !change.is_finite() {
             return None;
         }
