@@ -18,7 +18,7 @@
 //!   symmetric AᵀA, pair it with u = A w / |A w| (so A w = θ u exactly up to rounding, even
 //!   when w mixes nearly equal planes), split off the plane (w, u) with a Householder basis of
 //!   its complement, and recurse on the restricted matrix until N ≤ 4. Up to N = 8 the
-//!   matrices are inline and the eigenvector comes from the cyclic Jacobi method, so the
+//!   matrices are inline and the eigenproblem runs on nalgebra's fixed-size matrices, so the
 //!   decomposition (and the rotor exponential of N ≤ 6 built on it) never allocates. Taking only the top
 //!   plane per level keeps the error at the level of eps·|B|: mixing between nearly equal
 //!   planes (error ε/gap) multiplies a residual of size gap.

@@ -3,9 +3,10 @@
 //! (an 8 × 8 matrix in [`Mat8`]) and spill to the heap only beyond, so that exp and log up to
 //! N = 6 never allocate while larger N keep working.
 //!
-//! The kernels are the textbook ones (Golub & Van Loan, *Matrix Computations*, 4th ed.): the
-//! cyclic Jacobi method for symmetric eigenproblems (§8.5), LU with partial pivoting (§3.4)
-//! and Householder reflections (§5.1).
+//! The kernels are the textbook ones (Golub & Van Loan, *Matrix Computations*, 4th ed.): LU
+//! with partial pivoting (§3.4), Householder reflections (§5.1), and for symmetric
+//! eigenproblems nalgebra's symmetric QR on fixed-size matrices with the cyclic Jacobi
+//! method (§8.5) as its fallback.
 
 use smallvec::SmallVec;
 use std::ops::{Index, IndexMut};
