@@ -364,6 +364,8 @@ pub(crate) fn unit_plane_vectors(n: usize, p: &[f64]) -> (SmallVec<[f64; 8]>, Sm
 }
 
 /// Deflation for N ≥ 5 (see the module documentation), on matrices held inline up to N = 8.
+// Kept out of line: its inline matrices would enlarge the stack frame of the small cases.
+#[inline(never)]
 fn planes_deflation(n: usize, comps: &[f64]) -> Planes {
     if n > 8 {
         return planes_deflation_heap(n, comps);

@@ -6,7 +6,7 @@
 //! |---|---|---|---|
 //! | [`Vector`] | x = Σ xᵢ eᵢ in Euclidean ℝᴺ | N components, inline up to N = 8 | N ≤ [`MAX_DIM`] |
 //! | [`Bivector`] | B = Σ_(i<j) B_ij eᵢ∧eⱼ: planes, angular velocity, momentum | N(N−1)/2, inline up to N = 8 | N ≤ [`MAX_DIM`] |
-//! | [`Rotor`] | an element of Spin(N), turning by R x R̃ | 2^(N−1) even coefficients, inline up to N = 6 | N ≤ [`MULTIVECTOR_MAX_DIM`] |
+//! | [`Rotor`] | an element of Spin(N), turning by R x R̃ | 2^(N−1) even coefficients, inline up to N = 5 | N ≤ [`MULTIVECTOR_MAX_DIM`] |
 //! | [`Multivector`] | any element of Cl(p, q, r) | 2^N coefficients, inline up to N = 4 | N ≤ [`MULTIVECTOR_MAX_DIM`] |
 //! | [`Signature`] | the metric Cl(p, q, r) | three small integers | p + q + r ≤ [`MAX_DIM`] |
 //! | [`Decomposition`] | a bivector's orthogonal simple planes | planes with magnitudes | as `Bivector` |

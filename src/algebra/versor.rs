@@ -217,10 +217,19 @@ impl Multivector {
         // relatively accurate (sin θ times the plane), which the closed form below does not
         // in a generic plane of Cl(5, 0, 0).
         if sig.is_euclidean() {
-            let r = euclidean_bivector(self)?.try_exp()?;
+            let n = self.dim();
             out.as_mut_slice().fill(0.0);
-            for (k, c) in r.terms() {
-                out.as_mut_slice()[k as usize] = c;
+            if n <= 4 {
+                let r = euclidean_bivector(self)?.try_exp()?;
+                for (k, c) in r.terms() {
+                    out.as_mut_slice()[k as usize] = c;
+                }
+            } else {
+                // The rotor's coefficients on the stack: a Rotor keeps only N ≤ 5 inline.
+                let r = super::rotor::exp_even(&euclidean_bivector(self)?)?;
+                for (i, &c) in r.iter().enumerate() {
+                    out.as_mut_slice()[super::rotor::even_blade(n, i) as usize] = c;
+                }
             }
             return Ok(());
         }
@@ -403,7 +412,16 @@ impl Multivector {
             }
         }
         if sig.is_euclidean() {
-            let b = Rotor::from_multivector_unchecked(self).log();
+            let n = self.dim();
+            let b = if n <= 4 {
+                Rotor::from_multivector_unchecked(self).log()
+            } else {
+                // The rotor's coefficients on the stack: a Rotor keeps only N ≤ 5 inline.
+                let r: super::rotor::EvenBuf = (0..super::rotor::even_len(n))
+                    .map(|i| self.coefficient(super::rotor::even_blade(n, i)))
+                    .collect();
+                super::rotor::log_even(n, &r)
+            };
             out.as_mut_slice().fill(0.0);
             for (i, j) in super::pairs(self.dim()) {
                 out.as_mut_slice()[(1usize << i) | (1usize << j)] = b.get(i, j);

@@ -26,84 +26,8 @@ impl Rotor {
     pub fn to_matrix(&self) -> DMatrix<f64> {
         let n = self.dim;
         let mut q = DMatrix::zeros(n, n);
-        self.fill_matrix(|i, j, x| q[(i, j)] = x);
+        fill_matrix(n, &self.coeffs, |i, j, x| q[(i, j)] = x);
         q
-    }
-
-    /// [`Rotor::to_matrix`] on inline storage (N ≤ 8 without the heap).
-    pub(crate) fn to_mat8(&self) -> Mat8 {
-        let n = self.dim;
-        let mut q = Mat8::zeros(n, n);
-        self.fill_matrix(|i, j, x| q[(i, j)] = x);
-        q
-    }
-
-    /// Calls `set(i, j, Qᵢⱼ)` for every entry of the rotation matrix (all zero entries
-    /// included, so `set` may write into any zeroed storage).
-    fn fill_matrix(&self, mut set: impl FnMut(usize, usize, f64)) {
-        let n = self.dim;
-        match n {
-            0 => {}
-            1 => set(0, 0, 1.0),
-            3 => {
-                // Quaternion formula with q = w − x e23 + y e13 − z e12 (see nalgebra.rs).
-                let w = self.coeffs[0];
-                let (e12, e13, e23) = (
-                    self.coeffs[even_index(3, 0b011)],
-                    self.coeffs[even_index(3, 0b101)],
-                    self.coeffs[even_index(3, 0b110)],
-                );
-                let (x, y, z) = (-e23, e13, -e12);
-                let m = [
-                    [
-                        w * w + x * x - y * y - z * z,
-                        2.0 * (x * y - w * z),
-                        2.0 * (x * z + w * y),
-                    ],
-                    [
-                        2.0 * (x * y + w * z),
-                        w * w - x * x + y * y - z * z,
-                        2.0 * (y * z - w * x),
-                    ],
-                    [
-                        2.0 * (x * z - w * y),
-                        2.0 * (y * z + w * x),
-                        w * w - x * x - y * y + z * z,
-                    ],
-                ];
-                for (i, row) in m.iter().enumerate() {
-                    for (j, &x) in row.iter().enumerate() {
-                        set(i, j, x);
-                    }
-                }
-            }
-            _ => {
-                // Q_ij = ⟨eᵢ R eⱼ R̃⟩₀ = Σ_a σ(i, j, a) R_a R_{a ⊕ eᵢ ⊕ eⱼ}: one pass over the
-                // even blades per entry, with the signs σ from a cached bit table.
-                let mask = (1u64 << (n - 1)) - 1;
-                let len = super::even_len(n);
-                let table = matrix_sign_table(n);
-                let blades = super::even_blades(n);
-                for i in 0..n {
-                    for j in 0..n {
-                        let m = (1u64 << i) ^ (1u64 << j);
-                        let mut acc = 0.0;
-                        for (ia, (&ra, &a)) in self.coeffs.iter().zip(blades).enumerate() {
-                            if ra == 0.0 {
-                                continue;
-                            }
-                            let rb = self.coeffs[((a ^ m) & mask) as usize];
-                            let negative = match &table {
-                                Some(t) => t[(i * n + j) * len + ia],
-                                None => matrix_sign_negative(a, i, j),
-                            };
-                            acc += if negative { -ra * rb } else { ra * rb };
-                        }
-                        set(i, j, acc);
-                    }
-                }
-            }
-        }
     }
 
     /// Returns the rotor of a rotation matrix (either of ±R; the one with non-negative scalar
@@ -334,6 +258,73 @@ fn nearest_orthogonal(m: &DMatrix<f64>) -> Option<DMatrix<f64>> {
     }
     let q = svd.u? * svd.v_t?;
     q.iter().all(|x| x.is_finite()).then_some(q)
+}
+
+/// Calls `set(i, j, Qᵢⱼ)` for every entry of the rotation matrix of the rotor with even
+/// coefficients `coeffs` in dimension `n`.
+pub(crate) fn fill_matrix(n: usize, coeffs: &[f64], mut set: impl FnMut(usize, usize, f64)) {
+    match n {
+        0 => {}
+        1 => set(0, 0, 1.0),
+        3 => {
+            // Quaternion formula with q = w − x e23 + y e13 − z e12 (see nalgebra.rs).
+            let w = coeffs[0];
+            let (e12, e13, e23) = (
+                coeffs[even_index(3, 0b011)],
+                coeffs[even_index(3, 0b101)],
+                coeffs[even_index(3, 0b110)],
+            );
+            let (x, y, z) = (-e23, e13, -e12);
+            let m = [
+                [
+                    w * w + x * x - y * y - z * z,
+                    2.0 * (x * y - w * z),
+                    2.0 * (x * z + w * y),
+                ],
+                [
+                    2.0 * (x * y + w * z),
+                    w * w - x * x + y * y - z * z,
+                    2.0 * (y * z - w * x),
+                ],
+                [
+                    2.0 * (x * z - w * y),
+                    2.0 * (y * z + w * x),
+                    w * w - x * x - y * y + z * z,
+                ],
+            ];
+            for (i, row) in m.iter().enumerate() {
+                for (j, &x) in row.iter().enumerate() {
+                    set(i, j, x);
+                }
+            }
+        }
+        _ => {
+            // Q_ij = ⟨eᵢ R eⱼ R̃⟩₀ = Σ_a σ(i, j, a) R_a R_{a ⊕ eᵢ ⊕ eⱼ}: one pass over the
+            // even blades per entry, with the signs σ from a cached bit table.
+            let mask = (1u64 << (n - 1)) - 1;
+            let len = super::even_len(n);
+            let table = matrix_sign_table(n);
+            let blades = super::even_blades(n);
+            for i in 0..n {
+                for j in 0..n {
+                    let m = (1u64 << i) ^ (1u64 << j);
+                    let mut acc = 0.0;
+                    for (ia, (&ra, &a)) in coeffs.iter().zip(blades).enumerate() {
+                        if ra == 0.0 {
+                            continue;
+                        }
+                        let rb = coeffs[((a ^ m) & mask) as usize];
+                        let negative = match &table {
+                            Some(t) => t[(i * n + j) * len + ia],
+                            None => matrix_sign_negative(a, i, j),
+                        };
+                        acc += if negative { -ra * rb } else { ra * rb };
+                    }
+                    set(i, j, acc);
+                }
+            }
+        }
+    }
 }
 
 /// The rotor of an orthogonal matrix with det +1 (non-negative scalar part).

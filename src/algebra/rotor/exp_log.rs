@@ -1,6 +1,9 @@
 //! Closed-form exponential and logarithm (never a truncated series).
 
-use super::{Rotor, even_index, get_4d, multiply_by_simple, set_4d};
+use super::{
+    EvenBuf, Rotor, even_index, even_len, even_product_into, get_4d, multiply_by_simple,
+    multiply_even_by_simple, set_4d,
+};
 use crate::algebra::bivector::pairs;
 use crate::algebra::decompose::{RawPlane, decompose_components, self_dual_join, self_dual_split};
 use crate::algebra::dense::{Mat8, Vec8};
@@ -101,6 +104,7 @@ impl Bivector {
 
 /// e^B = Πₖ (cos θₖ + sin θₖ uₖ vₖ) from the planes θₖ uₖ∧vₖ of B's invariant decomposition
 /// (how [`Bivector::exp`] forms it for N ≥ 5), for callers that need the planes too.
+#[inline(never)]
 pub(crate) fn exp_of_planes(n: usize, planes: &[RawPlane]) -> Rotor {
     let mut r = Rotor::identity(n);
     for p in planes {
@@ -109,6 +113,57 @@ pub(crate) fn exp_of_planes(n: usize, planes: &[RawPlane]) -> Rotor {
         multiply_by_simple(&mut r, co, s, &p.u, &p.v);
     }
     r
+}
+
+/// [`exp_of_planes`] on stack storage (N ≤ 6 without the heap).
+fn even_exp_of_planes(n: usize, planes: &[RawPlane]) -> EvenBuf {
+    let mut r = even_identity(n);
+    for p in planes {
+        let (s, co) = p.theta.sin_cos();
+        multiply_even_by_simple(n, &mut r, co, s, &p.u, &p.v);
+    }
+    r
+}
+
+/// The even coefficients of 1.
+fn even_identity(n: usize) -> EvenBuf {
+    let mut r: EvenBuf = SmallVec::from_elem(0.0, even_len(n));
+    r[0] = 1.0;
+    r
+}
+
+/// The even coefficients of e^B, exactly those of [`Bivector::try_exp`], on stack storage
+/// for N ≤ 6 (rotors keep only N ≤ 5 inline), with its errors.
+pub(crate) fn exp_even(b: &Bivector) -> Result<EvenBuf, AlgebraError> {
+    let n = b.dim();
+    if n <= 4 {
+        return Ok(SmallVec::from_slice(b.try_exp()?.as_slice()));
+    }
+    if n > MULTIVECTOR_MAX_DIM {
+        return Err(AlgebraError::DimensionTooLarge {
+            what: "rotor",
+            dim: n,
+            max: MULTIVECTOR_MAX_DIM,
+        });
+    }
+    check_finite(b.as_slice(), "bivector")?;
+    let norm = b.norm();
+    if !within(norm, f64::MAX / 2.0) {
+        return Err(AlgebraError::AngleTooLarge { norm });
+    }
+    Ok(even_exp_of_planes(
+        n,
+        &decompose_components(n, b.as_slice()),
+    ))
+}
+
+/// [`Rotor::log`] of the rotor with even coefficients `r` in dimension `n`, on stack storage
+/// for N ≤ 6.
+pub(crate) fn log_even(n: usize, r: &[f64]) -> Bivector {
+    if n <= 4 {
+        return Rotor::from_storage(n, SmallVec::from_slice(r)).log();
+    }
+    log_general(n, r)
 }
 
 /// 4D: B = aF + bG (self-dual and anti-self-dual halves, |α| = a, |β| = b) gives
@@ -267,7 +322,7 @@ impl Rotor {
                 }
             }
             4 => out = log_4d(self),
-            _ => out = log_general(self),
+            _ => out = log_general(n, &self.coeffs),
         }
         out
     }
@@ -357,14 +412,15 @@ fn log_4d(r: &Rotor) -> Bivector {
 /// as the logarithm of −R, where the planes are well conditioned (a rotor near −1 is −e^B′
 /// with B′ small), and only then is its largest plane moved from φ to φ − π, so that a plane
 /// at half-angle π − η keeps its direction to relative precision.
-fn log_general(r: &Rotor) -> Bivector {
-    let n = r.dim;
-    let (b0, negative) = log_from_matrix(r);
+// Kept out of line: its inline matrices would enlarge the stack frame of every Rotor::log.
+#[inline(never)]
+fn log_general(n: usize, r: &[f64]) -> Bivector {
+    let (b0, negative) = log_from_matrix(n, r);
     if !negative {
-        return refine_log(r, b0);
+        return refine_log(n, r, b0);
     }
-    let minus_r = r.clone().scaled(-1.0);
-    let b = refine_log(&minus_r, b0);
+    let minus_r: EvenBuf = r.iter().map(|c| c * -1.0).collect();
+    let b = refine_log(n, &minus_r, b0);
     let planes = decompose_components(n, b.as_slice());
     let Some(p) = planes.iter().max_by(|a, c| a.theta.total_cmp(&c.theta)) else {
         // R = −1: any plane at half-angle π.
@@ -387,14 +443,21 @@ fn log_general(r: &Rotor) -> Bivector {
 /// Δ = g(ad_B)⁻¹ δ with g(x) = sinh(x/2)/(x/2) (the symmetric form of dexp), applied in the
 /// frame of B's invariant decomposition where ad_B is block diagonal with eigenvalues
 /// ±2i(θₖ ± θₗ) and ±2iθₖ. A step is kept only if it lowers |δ|.
-fn refine_log(r: &Rotor, b0: Bivector) -> Bivector {
+fn refine_log(n: usize, r: &[f64], b0: Bivector) -> Bivector {
     let residual = |b: &Bivector| -> Option<(Bivector, f64)> {
-        let h = (b * -0.5).exp();
-        let m = h.compose(r).compose(&h);
-        if m.coeffs[0] <= 0.0 {
+        // e^B for N ≥ 5, as Bivector::exp forms it.
+        let h = even_exp_of_planes(n, &decompose_components(n, (b * -0.5).as_slice()));
+        let mut hr: EvenBuf = SmallVec::from_elem(0.0, r.len());
+        even_product_into(n, &h, r, &mut hr);
+        let mut m: EvenBuf = SmallVec::from_elem(0.0, r.len());
+        even_product_into(n, &hr, &h, &mut m);
+        if m[0] <= 0.0 {
             return None;
         }
-        let d = m.bivector_part();
+        let mut d = Bivector::zero(n);
+        for (k, (i, j)) in pairs(n).enumerate() {
+            d.as_mut_slice()[k] = m[even_index(n, (1 << i) | (1 << j))];
+        }
         let nd = d.norm();
         nd.is_finite().then_some((d, nd))
     };
@@ -515,24 +578,19 @@ fn inverse_symmetric_dexp(b: &Bivector, delta: &Bivector) -> Bivector {
 
 /// Logarithm through the planes of the rotation matrix (absolute precision): B with every
 /// half-angle in \[0, π/2\] and whether R = −e^B (else R = e^B).
-fn log_from_matrix(r: &Rotor) -> (Bivector, bool) {
-    let n = r.dim;
-    let q = r.to_mat8();
+fn log_from_matrix(n: usize, r: &[f64]) -> (Bivector, bool) {
+    let mut q = Mat8::zeros(n, n);
+    super::convert::fill_matrix(n, r, |i, j, x| q[(i, j)] = x);
     let planes = super::convert::planes_of_rotation(&q);
     // Candidate: half-angle θ/2 on each plane x→y, i.e. B = Σ (θ/2) y∧x.
-    let mut cand = Rotor::identity(n);
+    let mut cand = even_identity(n);
     for p in &planes {
         let (s, c) = (0.5 * p.theta).sin_cos();
         // exp((θ/2) y∧x) = cos + sin · y x.
-        multiply_by_simple(&mut cand, c, s, &p.u, &p.v);
+        multiply_even_by_simple(n, &mut cand, c, s, &p.u, &p.v);
     }
     // ⟨R̃′ R⟩₀ is the plain dot product of the coefficients in a Euclidean signature.
-    let d: f64 = cand
-        .coeffs
-        .iter()
-        .zip(r.coeffs.iter())
-        .map(|(a, b)| a * b)
-        .sum();
+    let d: f64 = cand.iter().zip(r.iter()).map(|(a, b)| a * b).sum();
     // Every half-angle in [0, π/2]: R = ±e^B with the sign of d.
     let mut out = Bivector::zero(n);
     for p in &planes {

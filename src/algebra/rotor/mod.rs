@@ -8,7 +8,7 @@
 mod convert;
 pub use convert::{NORMALIZE_TOLERANCE, ROTATION_TOLERANCE};
 mod exp_log;
-pub(crate) use exp_log::exp_of_planes;
+pub(crate) use exp_log::{exp_even, exp_of_planes, log_even};
 
 use super::bivector::pairs;
 use super::blade;
@@ -21,10 +21,13 @@ use smallvec::SmallVec;
 /// vector-preserving a multivector may be and still be accepted as a rotor.
 pub const ROTOR_TOLERANCE: f64 = 1e-10;
 
-/// Inline storage for rotors: the 2^(N−1) = 32 even coefficients of N ≤ 6 stay off the heap,
-/// so that the rotor exponential and logarithm of N ≤ 6 (and the versor exp and log of the
-/// Euclidean signatures built on them) never allocate.
-pub(crate) type RotorStorage = SmallVec<[f64; 32]>;
+/// Inline storage for rotors: the 2^(N−1) = 16 even coefficients of N ≤ 5 stay off the heap.
+pub(crate) type RotorStorage = SmallVec<[f64; 16]>;
+
+/// Even coefficients of N ≤ 6 (32 of them) on the stack: the working storage of the rotor
+/// exponential and logarithm for N ≥ 5, so that the versor exp and log of Cl(6, 0, 0) need
+/// no heap while [`Rotor`] itself stays small for the hot paths of N ≤ 4.
+pub(crate) type EvenBuf = SmallVec<[f64; 32]>;
 
 /// A rotor of Euclidean ℝᴺ: an even, unit element R of the Clifford algebra with
 /// R R̃ = 1 and R x R̃ a vector for every vector x, i.e. an element of Spin(N).
@@ -474,7 +477,7 @@ impl Rotor {
     /// R ← R (1 + D) for an even element D given by its 2^(N−1) coefficients in storage
     /// order (crate-internal: how the splitting applies the product of a drift's plane rotors,
     /// kept as its difference from 1, see `dynamics::attitude::PlaneProduct`). Each
-    /// coefficient of R is rounded once. No allocation for N ≤ 6.
+    /// coefficient of R is rounded once. No allocation for N ≤ 5.
     pub(crate) fn times_one_plus(&mut self, d: &[f64]) {
         debug_assert_eq!(d.len(), self.coeffs.len());
         let mut rd: RotorStorage = SmallVec::from_elem(0.0, self.coeffs.len());
@@ -528,12 +531,23 @@ pub(super) fn get_4d(r: &Rotor) -> (f64, [f64; 6], f64) {
 ///
 /// The sign of e_a eᵢ is bit i of `suffix_parity(a)`, computed once per blade.
 pub(crate) fn multiply_by_simple(r: &mut Rotor, c: f64, s: f64, u: &[f64], v: &[f64]) {
-    let n = r.dim;
+    multiply_even_by_simple(r.dim, &mut r.coeffs, c, s, u, v);
+}
+
+/// [`multiply_by_simple`] on the 2^(N−1) even coefficients of dimension `n`.
+pub(crate) fn multiply_even_by_simple(
+    n: usize,
+    r: &mut [f64],
+    c: f64,
+    s: f64,
+    u: &[f64],
+    v: &[f64],
+) {
     let len = even_len(n);
     let mask = (1u64 << (n - 1)) - 1;
     // t = R u (odd, indexed by low bits).
     let mut t: SmallVec<[f64; 32]> = SmallVec::from_elem(0.0, len);
-    for (&ra, &a) in r.coeffs.iter().zip(even_blades(n)) {
+    for (&ra, &a) in r.iter().zip(even_blades(n)) {
         if ra == 0.0 {
             continue;
         }
@@ -544,7 +558,7 @@ pub(crate) fn multiply_by_simple(r: &mut Rotor, c: f64, s: f64, u: &[f64], v: &[
         }
     }
     // R ← c R + s (t v).
-    r.coeffs.iter_mut().for_each(|x| *x *= c);
+    r.iter_mut().for_each(|x| *x *= c);
     for (&tb, &b) in t.iter().zip(odd_blades(n)) {
         if tb == 0.0 {
             continue;
@@ -553,7 +567,7 @@ pub(crate) fn multiply_by_simple(r: &mut Rotor, c: f64, s: f64, u: &[f64], v: &[
         let stb = s * tb;
         for (i, &vi) in v.iter().enumerate() {
             let sign = if sp >> i & 1 == 0 { stb } else { -stb };
-            r.coeffs[((b ^ (1 << i)) & mask) as usize] += sign * vi;
+            r[((b ^ (1 << i)) & mask) as usize] += sign * vi;
         }
     }
 }
@@ -728,7 +742,7 @@ fn even_product_fixed<const L: usize>(
 
 impl std::ops::MulAssign<&Rotor> for Rotor {
     /// In-place composition: `r *= s` sets r ← r s (apply `s` first). No allocation for
-    /// N ≤ 6: the product is formed on the stack and copied back.
+    /// N ≤ 5: the product is formed on the stack and copied back.
     #[track_caller]
     fn mul_assign(&mut self, rhs: &Rotor) {
         assert_same_dim(self.dim, rhs.dim);
