@@ -225,11 +225,7 @@ impl Multivector {
                     out.as_mut_slice()[k as usize] = c;
                 }
             } else {
-                // The rotor's coefficients on the stack: a Rotor keeps only N ≤ 5 inline.
-                let r = super::rotor::exp_even(&euclidean_bivector(self)?)?;
-                for (i, &c) in r.iter().enumerate() {
-                    out.as_mut_slice()[super::rotor::even_blade(n, i) as usize] = c;
-                }
+                exp_euclidean_wide(self, out)?;
             }
             return Ok(());
         }
@@ -385,7 +381,7 @@ impl Multivector {
         } else if self.dim() <= CLOSED_FORM_MAX_DIM {
             unit_deviation::<32>(self)
         } else if self.dim() <= SMALL_MAX_DIM {
-            unit_deviation::<64>(self)
+            unit_deviation_64(self)
         } else {
             let mut vv = self.geometric(&self.reverse());
             vv.as_mut_slice()[0] -= 1.0;
@@ -416,11 +412,7 @@ impl Multivector {
             let b = if n <= 4 {
                 Rotor::from_multivector_unchecked(self).log()
             } else {
-                // The rotor's coefficients on the stack: a Rotor keeps only N ≤ 5 inline.
-                let r: super::rotor::EvenBuf = (0..super::rotor::even_len(n))
-                    .map(|i| self.coefficient(super::rotor::even_blade(n, i)))
-                    .collect();
-                super::rotor::log_even(n, &r)
+                log_euclidean_wide(self)
             };
             out.as_mut_slice().fill(0.0);
             for (i, j) in super::pairs(self.dim()) {
@@ -494,6 +486,13 @@ fn unit_deviation<const L: usize>(v: &Multivector) -> f64 {
     let mut vv = v.geometric(&v.reverse());
     vv.as_mut_slice()[0] -= 1.0;
     vv.max_abs()
+}
+
+/// [`unit_deviation`] for N = 6, out of line so that its 64-coefficient products do not
+/// enlarge the stack frame of the smaller signatures' route.
+#[inline(never)]
+fn unit_deviation_64(v: &Multivector) -> f64 {
+    unit_deviation::<64>(v)
 }
 
 /// max |exp(B) − V| with exp by the closed form, for N ≤ 5.
@@ -676,7 +675,33 @@ fn exp_projective(b: &Multivector) -> Result<Multivector, AlgebraError> {
     Ok(&rm + &rm.geometric(&um))
 }
 
-/// [`exp_projective`] on the stack, for N ≤ 6.
+/// The Euclidean exp above N = 4 into `out` (zeroed), with the rotor's coefficients on the
+/// stack up to N = 6 (a Rotor keeps only N ≤ 5 inline). Out of line, so that its buffers do
+/// not enlarge the stack frame of the small signatures' route.
+#[inline(never)]
+fn exp_euclidean_wide(b: &Multivector, out: &mut Multivector) -> Result<(), AlgebraError> {
+    let n = b.dim();
+    let r = super::rotor::exp_even(&euclidean_bivector(b)?)?;
+    for (i, &c) in r.iter().enumerate() {
+        out.as_mut_slice()[super::rotor::even_blade(n, i) as usize] = c;
+    }
+    Ok(())
+}
+
+/// The Euclidean log above N = 4, with the rotor's coefficients on the stack up to N = 6. Out
+/// of line, for the reason of [`exp_euclidean_wide`].
+#[inline(never)]
+fn log_euclidean_wide(v: &Multivector) -> Bivector {
+    let n = v.dim();
+    let r: super::rotor::EvenBuf = (0..super::rotor::even_len(n))
+        .map(|i| v.coefficient(super::rotor::even_blade(n, i)))
+        .collect();
+    super::rotor::log_even(n, &r)
+}
+
+/// [`exp_projective`] on the stack, for N ≤ 6. Out of line, for the reason of
+/// [`exp_euclidean_wide`].
+#[inline(never)]
 fn exp_projective_small(b: &Multivector) -> Result<Small<64>, AlgebraError> {
     let sig = b.signature();
     let p = b.dim() - 1;

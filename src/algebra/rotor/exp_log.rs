@@ -132,13 +132,11 @@ fn even_identity(n: usize) -> EvenBuf {
     r
 }
 
-/// The even coefficients of e^B, exactly those of [`Bivector::try_exp`], on stack storage
-/// for N ≤ 6 (rotors keep only N ≤ 5 inline), with its errors.
+/// The even coefficients of e^B for N ≥ 5, exactly those of [`Bivector::try_exp`], on stack
+/// storage for N ≤ 6 (rotors keep only N ≤ 5 inline), with its errors.
 pub(crate) fn exp_even(b: &Bivector) -> Result<EvenBuf, AlgebraError> {
     let n = b.dim();
-    if n <= 4 {
-        return Ok(SmallVec::from_slice(b.try_exp()?.as_slice()));
-    }
+    debug_assert!(n >= 5, "the closed forms of N ≤ 4 are Bivector::exp's");
     if n > MULTIVECTOR_MAX_DIM {
         return Err(AlgebraError::DimensionTooLarge {
             what: "rotor",
@@ -157,12 +155,10 @@ pub(crate) fn exp_even(b: &Bivector) -> Result<EvenBuf, AlgebraError> {
     ))
 }
 
-/// [`Rotor::log`] of the rotor with even coefficients `r` in dimension `n`, on stack storage
-/// for N ≤ 6.
+/// [`Rotor::log`] for N ≥ 5 of the rotor with even coefficients `r` in dimension `n`, on
+/// stack storage for N ≤ 6.
 pub(crate) fn log_even(n: usize, r: &[f64]) -> Bivector {
-    if n <= 4 {
-        return Rotor::from_storage(n, SmallVec::from_slice(r)).log();
-    }
+    debug_assert!(n >= 5, "the closed forms of N ≤ 4 are Rotor::log's");
     log_general(n, r)
 }
 
