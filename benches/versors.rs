@@ -17,6 +17,10 @@
 //!     the regular representation, whose exponential's first column is the versor exp(B)
 //!     (checked in the setup): the same output as rotorflow's.
 //!
+//! - `versor_to/Cl(p,q,r)`: `Multivector::exp_to` and `Multivector::log_to` into reused
+//!   storage for N = 5 and 6 in Euclidean, projective, conformal and mixed signatures (no
+//!   baseline: these are the allocation-free entry points, measured for their own cost).
+//!
 //! Run `cargo bench --bench versors`; `BENCH_QUICK=1` shortens the run.
 
 use criterion::{BenchmarkId, Criterion, black_box, criterion_group, criterion_main};
@@ -234,9 +238,42 @@ fn bench_general(c: &mut Criterion) {
     );
 }
 
+/// A bivector of `sig` whose log exists on the principal branch: the dense bivector scaled so
+/// that the sum of its rotation angles stays below π in every signature.
+fn moderate_bivector(sig: Signature) -> Multivector {
+    let b = dense_bivector(sig);
+    &b * 0.3
+}
+
+fn bench_versor_to(c: &mut Criterion) {
+    for (p, q, r) in [
+        (5, 0, 0),
+        (4, 1, 0),
+        (6, 0, 0),
+        (5, 0, 1),
+        (5, 1, 0),
+        (3, 3, 0),
+    ] {
+        let sig = Signature::new(p, q, r).unwrap();
+        let b = moderate_bivector(sig);
+        let v = b.exp().unwrap();
+        let back = v.log().unwrap();
+        assert!((&back - &b).max_abs() <= 1e-12, "{sig:?}: log(exp(B)) = B");
+        let mut out = Multivector::zero(sig);
+        let mut g = c.benchmark_group(format!("versor_to/Cl({p},{q},{r})"));
+        g.bench_function("exp_to", |bench| {
+            bench.iter(|| black_box(&b).exp_to(&mut out).unwrap())
+        });
+        g.bench_function("log_to", |bench| {
+            bench.iter(|| black_box(&v).log_to(&mut out).unwrap())
+        });
+        g.finish();
+    }
+}
+
 criterion_group! {
     name = benches;
     config = configure();
-    targets = bench_pga3, bench_general
+    targets = bench_pga3, bench_general, bench_versor_to
 }
 criterion_main!(benches);

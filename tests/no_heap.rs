@@ -233,19 +233,40 @@ fn versor_exp_and_log_do_not_allocate_up_to_n4() {
     }
 }
 
-/// Heap allocations of one `exp_to` and one `log_to` into reused storage.
-fn versor_to_allocations(sig: rotorflow::algebra::Signature) -> (usize, usize) {
+/// A bivector of `sig` with every coefficient non-zero whose versor has a logarithm: the
+/// dense bivector, or in the two signatures where its joint rotation angles pass π
+/// (Cl(6, 0, 0) and Cl(0, 6, 0)) a quarter of it.
+fn loggable_bivector(sig: rotorflow::algebra::Signature) -> Multivector {
     let b = dense_bivector(sig);
+    if b.exp().unwrap().log().is_ok() {
+        b
+    } else {
+        &b * 0.25
+    }
+}
+
+/// Heap allocations of one `exp_to` and one `log_to` of `b` into reused storage (after a
+/// warm-up call that builds the cached tables), with both results checked against `exp` and
+/// against `b`, so that the count is of a call that did its work.
+fn versor_to_allocations(b: &Multivector) -> (usize, usize) {
+    let sig = b.signature();
     let v = b.exp().unwrap();
     let mut out = Multivector::zero(sig);
     b.exp_to(&mut out).unwrap();
     v.log_to(&mut out).unwrap();
     let exp = allocations_in(|| {
-        std::hint::black_box(&b).exp_to(&mut out).unwrap();
+        std::hint::black_box(b).exp_to(&mut out).unwrap();
     });
+    assert_eq!(out, v, "{sig}: exp_to = exp");
     let log = allocations_in(|| {
         std::hint::black_box(&v).log_to(&mut out).unwrap();
     });
+    let scale = b.max_abs().max(1.0);
+    assert!(
+        (&out - b).max_abs() <= 1e-9 * scale,
+        "{sig}: log_to(exp(B)) = B, off by {}",
+        (&out - b).max_abs()
+    );
     (exp, log)
 }
 
@@ -260,32 +281,22 @@ fn signatures(n: usize) -> Vec<rotorflow::algebra::Signature> {
 }
 
 #[test]
-fn versor_exp_to_and_log_to_do_not_allocate_up_to_n5() {
+fn versor_exp_to_and_log_to_do_not_allocate_up_to_n6() {
     let mut checked = 0;
-    for n in 2..=5 {
+    for n in 2..=6 {
         for sig in signatures(n) {
-            let (exp, log) = versor_to_allocations(sig);
-            if sig.is_euclidean() && n == 5 {
-                // The one exception: the Euclidean exponential at N = 5 goes through the
-                // rotor's eigen-decomposition (nalgebra matrices, measured 27 allocations),
-                // which keeps its bivector part accurate near π; its logarithm does not.
-                assert!(exp <= 32 && log == 0, "{sig}: ({exp}, {log}) allocations");
-                checked += 1;
-                continue;
-            }
+            let b = loggable_bivector(sig);
+            let (exp, log) = versor_to_allocations(&b);
+            eprintln!("{sig}: exp_to {exp}, log_to {log} heap allocations");
             assert_eq!(
                 (exp, log),
                 (0, 0),
                 "{sig}: heap allocations in (exp_to, log_to)"
             );
-            // `exp` and `log` themselves allocate only their result, and only from N = 5.
-            let b = dense_bivector(sig);
+            // `exp` and `log` themselves allocate only their result, and only from N = 5
+            // (multivectors keep 16 coefficients inline).
             let v = b.exp().unwrap();
-            let expected = usize::from(n == 5);
-            if sig.is_euclidean() && n == 5 {
-                checked += 1;
-                continue;
-            }
+            let expected = usize::from(n >= 5);
             let count = allocations_in(|| {
                 let _ = std::hint::black_box(std::hint::black_box(&b).exp());
             });
@@ -297,36 +308,79 @@ fn versor_exp_to_and_log_to_do_not_allocate_up_to_n5() {
             checked += 1;
         }
     }
-    assert_eq!(checked, 6 + 10 + 15 + 21);
+    assert_eq!(checked, 6 + 10 + 15 + 21 + 28);
 }
 
-/// N = 6: the exponential of the general route (scaling and squaring on the stack) allocates
-/// nothing; the projective route's Euclidean rotor of N = 5 and the Euclidean rotor of N = 6
-/// (eigen-decompositions) and every logarithm (Krylov matrices) still do. Asserted as
-/// measured (at most 59 and 1776 per call over the 28 signatures), so that a regression
-/// fails; `--nocapture` prints the counts.
-#[test]
-fn versor_exp_to_and_log_to_allocations_at_n6() {
-    let mut checked = 0;
-    for sig in signatures(6) {
-        let b = dense_bivector(sig);
-        let v = b.exp().unwrap();
-        if v.log().is_err() {
-            // A dense bivector of Cl(0, 6, 0) or Cl(6, 0, 0) has joint angles beyond π.
-            continue;
-        }
-        let (exp, log) = versor_to_allocations(sig);
-        eprintln!("{sig}: exp_to {exp}, log_to {log} heap allocations");
-        let rotor_route = sig.is_euclidean() || (sig.q() == 0 && sig.r() == 1);
-        if rotor_route {
-            assert!(exp <= 64, "{sig}: exp_to {exp}");
-        } else {
-            assert_eq!(exp, 0, "{sig}: exp_to");
-        }
-        assert!(log <= 2000, "{sig}: log_to {log}");
-        checked += 1;
+/// A bivector of `sig` from (i, j, coefficient) triples, 1-based like the blade names.
+fn bivector_of(sig: rotorflow::algebra::Signature, terms: &[(usize, usize, f64)]) -> Multivector {
+    let mut b = Multivector::zero(sig);
+    for &(i, j, c) in terms {
+        b.as_mut_slice()[(1usize << (i - 1)) | (1usize << (j - 1))] = c;
     }
-    assert!(checked >= 26, "{checked} signatures");
+    b
+}
+
+/// The routes the dense bivectors do not reach stay off the heap too: boosts large enough
+/// for the general logarithm's versor square roots (one and two halvings), translations
+/// large enough for its null-vector scaling, a Euclidean rotation by nearly π at N = 5,
+/// Euclidean and projective rotors on the negative sheet (a half-angle above π/2, which the
+/// rotor logarithm refines as the logarithm of −R), and a bivector with a single plane.
+#[test]
+fn versor_exp_to_and_log_to_special_routes_do_not_allocate() {
+    use rotorflow::algebra::Signature;
+    let pi = std::f64::consts::PI;
+    let cases = [
+        // Boosts of rapidity 6 and 4 beside a rotation: square roots before the logarithm.
+        (
+            Signature::new(5, 1, 0).unwrap(),
+            vec![(1, 6, 3.0), (2, 3, 0.4), (4, 5, 2.0)],
+        ),
+        (
+            Signature::new(3, 3, 0).unwrap(),
+            vec![(1, 4, 2.0), (2, 5, 1.5), (3, 6, 0.3), (1, 2, 0.2)],
+        ),
+        // Translations of 10⁶ beside rotations, with three null vectors: null scaling.
+        (
+            Signature::new(3, 0, 3).unwrap(),
+            vec![
+                (1, 2, 0.7),
+                (1, 4, 1e6),
+                (2, 5, -3e5),
+                (3, 6, 2e6),
+                (4, 5, 0.5),
+            ],
+        ),
+        (
+            Signature::new(2, 2, 2).unwrap(),
+            vec![(1, 5, 1e6), (3, 4, 0.6), (2, 6, -4e5), (1, 3, 0.3)],
+        ),
+        // A rotation by nearly π (half-angle near π/2), and two half-angles above π/2.
+        (
+            Signature::new(5, 0, 0).unwrap(),
+            vec![(1, 2, 0.5 * pi - 1e-3), (3, 4, 0.4), (2, 5, 0.1)],
+        ),
+        (
+            Signature::new(6, 0, 0).unwrap(),
+            vec![(1, 2, 0.5 * pi + 0.3), (3, 4, 1.2), (5, 6, 0.3)],
+        ),
+        (
+            Signature::new(5, 0, 1).unwrap(),
+            vec![
+                (1, 2, 0.5 * pi + 0.3),
+                (3, 4, 1.2),
+                (1, 6, 4.0),
+                (5, 6, -2.0),
+            ],
+        ),
+        // A single plane in 6D.
+        (Signature::new(4, 2, 0).unwrap(), vec![(2, 5, 0.8)]),
+    ];
+    for (sig, terms) in &cases {
+        let b = bivector_of(*sig, terms);
+        let (exp, log) = versor_to_allocations(&b);
+        eprintln!("{sig} {terms:?}: exp_to {exp}, log_to {log} heap allocations");
+        assert_eq!((exp, log), (0, 0), "{sig} {terms:?}");
+    }
 }
 
 mod moving_bodies {

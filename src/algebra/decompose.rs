@@ -17,15 +17,18 @@
 //! - N ≥ 5: deflation. Scale A by a power of two (exact), take the top eigenvector w of the
 //!   symmetric AᵀA, pair it with u = A w / |A w| (so A w = θ u exactly up to rounding, even
 //!   when w mixes nearly equal planes), split off the plane (w, u) with a Householder basis of
-//!   its complement, and recurse on the restricted matrix until N ≤ 4. Taking only the top
+//!   its complement, and recurse on the restricted matrix until N ≤ 4. Up to N = 8 the
+//!   matrices are inline and the eigenproblem runs on nalgebra's fixed-size matrices, so the
+//!   decomposition (and the rotor exponential of N ≤ 6 built on it) never allocates. Taking only the top
 //!   plane per level keeps the error at the level of eps·|B|: mixing between nearly equal
 //!   planes (error ε/gap) multiplies a residual of size gap.
 //!
 //! Planes whose magnitude falls below 8·N·ε times the largest are dropped (numerical rank).
 
 use super::bivector::{bivector_len, pairs};
+use super::dense::{self, Mat8, Vec8, householder_complement};
 use super::{Bivector, Vector};
-use crate::numeric::{exponent_of, householder_complement, ldexp};
+use crate::numeric::{exponent_of, householder_complement as householder_complement_heap, ldexp};
 use nalgebra::{DMatrix, DVector};
 use smallvec::{SmallVec, smallvec};
 
@@ -360,8 +363,92 @@ pub(crate) fn unit_plane_vectors(n: usize, p: &[f64]) -> (SmallVec<[f64; 8]>, Sm
     (u, v)
 }
 
-/// Deflation for N ≥ 5 (see the module documentation).
+/// Deflation for N ≥ 5 (see the module documentation), on matrices held inline up to N = 8.
+// Kept out of line: its inline matrices would enlarge the stack frame of the small cases.
+#[inline(never)]
 fn planes_deflation(n: usize, comps: &[f64]) -> Planes {
+    if n > 8 {
+        return planes_deflation_heap(n, comps);
+    }
+    let mut a = Mat8::zeros(n, n);
+    for ((i, j), &c) in pairs(n).zip(comps.iter()) {
+        a[(i, j)] = c;
+        a[(j, i)] = -c;
+    }
+    let mut basis = Mat8::identity(n);
+    let mut out = Planes::new();
+    let mut level_exp = 0i32; // a = 2^level_exp · (restriction of the scaled input)
+    loop {
+        let m = a.ncols();
+        let scale = a.amax();
+        if scale == 0.0 {
+            break;
+        }
+        // Rescale each level so that the small planes keep full relative precision.
+        let e = exponent_of(scale);
+        if e != 0 {
+            a = Mat8::from_fn(m, m, |i, j| ldexp(a[(i, j)], -e));
+            level_exp -= e;
+        }
+        if m <= 4 {
+            let packed: SmallVec<[f64; 6]> = pairs(m).map(|(i, j)| a[(i, j)]).collect();
+            let local = match m {
+                2 => plane_2d(&packed),
+                3 => plane_3d(&packed),
+                4 => planes_4d(&packed),
+                _ => Planes::new(),
+            };
+            for p in local {
+                out.push(lift(&basis, &p, level_exp));
+            }
+            break;
+        }
+        let s = a.transpose().mul(&a);
+        let (eigenvalues, eigenvectors) = s.symmetric_eigen();
+        let top = eigenvalues
+            .iter()
+            .enumerate()
+            .max_by(|x, y| x.1.total_cmp(y.1))
+            .map(|(i, _)| i)
+            .unwrap_or(0);
+        let w: Vec8 = SmallVec::from_slice(eigenvectors.column(top));
+        let x = a.mul_vec(&w);
+        let theta = dense::norm(&x);
+        if theta == 0.0 {
+            break;
+        }
+        let mut u: Vec8 = x.iter().map(|c| c / theta).collect();
+        let d = dense::dot(&u, &w);
+        u.iter_mut().zip(&w).for_each(|(ui, wi)| *ui -= wi * d);
+        let nu = dense::norm(&u);
+        u.iter_mut().for_each(|c| *c /= nu);
+        out.push(lift(
+            &basis,
+            &RawPlane {
+                theta,
+                u: u.clone(),
+                v: w.clone(),
+            },
+            level_exp,
+        ));
+        let h = householder_complement(&w, &u);
+        a = h.transpose().mul(&a).mul(&h);
+        basis = basis.mul(&h);
+    }
+    out
+}
+
+/// Maps a plane found in the coordinates of `basis` back to ℝᴺ and undoes the level scaling.
+fn lift(basis: &Mat8, p: &RawPlane, level_exp: i32) -> RawPlane {
+    RawPlane {
+        theta: ldexp(p.theta, -level_exp),
+        u: basis.mul_vec(&p.u),
+        v: basis.mul_vec(&p.v),
+    }
+}
+
+/// [`planes_deflation`] above N = 8, on heap matrices.
+fn planes_deflation_heap(n: usize, comps: &[f64]) -> Planes {
     let mut a = DMatrix::<f64>::zeros(n, n);
     for ((i, j), &c) in pairs(n).zip(comps.iter()) {
         a[(i, j)] = c;
@@ -391,7 +478,7 @@ fn planes_deflation(n: usize, comps: &[f64]) -> Planes {
                 _ => Planes::new(),
             };
             for p in local {
-                out.push(lift(&basis, &p, level_exp));
+                out.push(lift_heap(&basis, &p, level_exp));
             }
             break;
         }
@@ -413,7 +500,7 @@ fn planes_deflation(n: usize, comps: &[f64]) -> Planes {
         let d = u.dot(&w);
         u -= &w * d;
         u.normalize_mut();
-        out.push(lift(
+        out.push(lift_heap(
             &basis,
             &RawPlane {
                 theta,
@@ -422,15 +509,15 @@ fn planes_deflation(n: usize, comps: &[f64]) -> Planes {
             },
             level_exp,
         ));
-        let h = householder_complement(&w, &u);
+        let h = householder_complement_heap(&w, &u);
         a = h.transpose() * &a * &h;
         basis = &basis * &h;
     }
     out
 }
 
-/// Maps a plane found in the coordinates of `basis` back to ℝᴺ and undoes the level scaling.
-fn lift(basis: &DMatrix<f64>, p: &RawPlane, level_exp: i32) -> RawPlane {
+/// [`lift`] for [`planes_deflation_heap`].
+fn lift_heap(basis: &DMatrix<f64>, p: &RawPlane, level_exp: i32) -> RawPlane {
     let m = basis.ncols();
     let map = |x: &[f64]| -> SmallVec<[f64; 8]> {
         (0..basis.nrows())

@@ -64,6 +64,7 @@ mod bivector;
 pub(crate) mod blade;
 pub mod cga;
 pub mod decompose;
+mod dense;
 mod display;
 mod error;
 mod fixed;

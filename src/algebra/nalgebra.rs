@@ -130,7 +130,7 @@ impl From<UnitQuaternion<f64>> for Rotor {
     /// R = w − x e₂₃ + y e₁₃ − z e₁₂ (same rotation, same matrix).
     fn from(q: UnitQuaternion<f64>) -> Self {
         let q = q.quaternion();
-        let mut coeffs: smallvec::SmallVec<[f64; 16]> = smallvec::smallvec![0.0; 4];
+        let mut coeffs: super::rotor::RotorStorage = smallvec::smallvec![0.0; 4];
         coeffs[0] = q.w;
         coeffs[even_index(3, 0b011)] = -q.k;
         coeffs[even_index(3, 0b101)] = q.j;

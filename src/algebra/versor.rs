@@ -64,10 +64,10 @@
 //! `versor_general.rs`: scaling and squaring for exp, a Krylov space and the principal matrix
 //! logarithm for log. Beyond N = 8 they return [`AlgebraError::UnsupportedDimension`].
 
-use super::decompose::decompose_components;
+use super::decompose::{RawPlane, decompose_components};
 use super::error::{check_finite, within};
-use super::small::Small;
-use super::versor_general::{GENERAL_MAX_DIM, exp_general_to, log_general};
+use super::small::{SMALL_MAX_DIM, Small};
+use super::versor_general::{GENERAL_MAX_DIM, exp_general_to, log_general_to};
 use super::versor_n4 as n4;
 use super::versor_pga3 as pga3;
 use super::{AlgebraError, Bivector, Multivector, Rotor};
@@ -187,11 +187,12 @@ impl Multivector {
     }
 
     /// [`Multivector::exp`] written into `out`, an element of the same algebra whose storage
-    /// is reused: no heap allocation for N ≤ 5 in every signature but Euclidean Cl(5, 0, 0),
-    /// and for N = 6 in every signature neither Euclidean nor projective, where
-    /// [`Multivector::exp`] allocates only the result's storage (multivectors keep up to 16
-    /// coefficients inline). The Euclidean and projective routes above N = 4 allocate in
-    /// the rotor's eigen-decomposition. On an error `out` is unspecified.
+    /// is reused: no heap allocation for N ≤ 6 in every signature. Every route works there on
+    /// stack storage (multivectors of up to 64 coefficients, rotors of up to 32, the invariant
+    /// decomposition's matrices up to 8 × 8), so [`Multivector::exp`] allocates only the
+    /// result's storage, and only from N = 5 (multivectors keep up to 16 coefficients
+    /// inline). Above N = 6 the intermediate multivectors and rotors are on the heap. On an
+    /// error `out` is unspecified.
     ///
     /// ```
     /// use rotorflow::algebra::{Multivector, Signature};
@@ -227,15 +228,29 @@ impl Multivector {
         // relatively accurate (sin θ times the plane), which the closed form below does not
         // in a generic plane of Cl(5, 0, 0).
         if sig.is_euclidean() {
-            let r = euclidean_bivector(self)?.try_exp()?;
+            let n = self.dim();
             out.as_mut_slice().fill(0.0);
-            for (k, c) in r.terms() {
-                out.as_mut_slice()[k as usize] = c;
+            if n <= 4 {
+                let r = euclidean_bivector(self)?.try_exp()?;
+                for (k, c) in r.terms() {
+                    out.as_mut_slice()[k as usize] = c;
+                }
+            } else {
+                exp_euclidean_wide(self, out)?;
             }
             return Ok(());
         }
-        let result = if self.dim() > CLOSED_FORM_MAX_DIM && is_projective(sig) {
+        let result = if self.dim() > SMALL_MAX_DIM && is_projective(sig) {
             exp_projective(self)?
+        } else if self.dim() > CLOSED_FORM_MAX_DIM && is_projective(sig) {
+            let v = exp_projective_small(self)?;
+            if !v.as_slice().iter().all(|c| c.is_finite()) {
+                return Err(AlgebraError::Overflow {
+                    what: "the exponential",
+                });
+            }
+            v.write_to(out);
+            return Ok(());
         } else if self.dim() > CLOSED_FORM_MAX_DIM {
             if self.dim() > GENERAL_MAX_DIM {
                 return Err(AlgebraError::UnsupportedDimension {
@@ -336,8 +351,13 @@ impl Multivector {
     }
 
     /// [`Multivector::log`] written into `out`, an element of the same algebra whose storage
-    /// is reused: no heap allocation at all for N ≤ 5 in any signature. On an error `out` is
-    /// unspecified.
+    /// is reused: no heap allocation for N ≤ 6 in every signature. The closed forms, the
+    /// rotor logarithm (rotation matrix, eigen-decomposition and Newton refinement), the
+    /// projective route and the Krylov logarithm of the general route (its basis, the Krylov
+    /// matrix of at most 16 × 16, its square roots and logarithm, and the least-squares
+    /// polish) all work on stack storage there, so [`Multivector::log`] allocates only the
+    /// result's storage, and only from N = 5. Above N = 6 the intermediate multivectors,
+    /// rotors and matrices spill to the heap. On an error `out` is unspecified.
     ///
     /// # Errors
     /// [`AlgebraError::SignatureMismatch`] if `out` belongs to another algebra; those of
@@ -371,6 +391,8 @@ impl Multivector {
             unit_deviation::<16>(self)
         } else if self.dim() <= CLOSED_FORM_MAX_DIM {
             unit_deviation::<32>(self)
+        } else if self.dim() <= SMALL_MAX_DIM {
+            unit_deviation_64(self)
         } else {
             let mut vv = self.geometric(&self.reverse());
             vv.as_mut_slice()[0] -= 1.0;
@@ -397,7 +419,12 @@ impl Multivector {
             }
         }
         if sig.is_euclidean() {
-            let b = Rotor::from_multivector_unchecked(self).log();
+            let n = self.dim();
+            let b = if n <= 4 {
+                Rotor::from_multivector_unchecked(self).log()
+            } else {
+                log_euclidean_wide(self)
+            };
             out.as_mut_slice().fill(0.0);
             for (i, j) in super::pairs(self.dim()) {
                 out.as_mut_slice()[(1usize << i) | (1usize << j)] = b.get(i, j);
@@ -415,6 +442,10 @@ impl Multivector {
                 closed_form_residual::<16>(out, self)
             } else if self.dim() <= CLOSED_FORM_MAX_DIM {
                 closed_form_residual::<32>(out, self)
+            } else if self.dim() <= SMALL_MAX_DIM {
+                exp_projective_small(out).map_or(f64::INFINITY, |e| {
+                    (&e - &Small::<64>::from_multivector(self)).max_abs()
+                })
             } else {
                 exp_projective(out).map_or(f64::INFINITY, |e| (&e - self).max_abs())
             };
@@ -428,8 +459,7 @@ impl Multivector {
                     max: GENERAL_MAX_DIM,
                 });
             }
-            *out = log_general(self)?;
-            return Ok(());
+            return log_general_to(self, out);
         }
         if self.dim() <= 4 {
             log_small::<16>(self, out)
@@ -469,6 +499,13 @@ fn unit_deviation<const L: usize>(v: &Multivector) -> f64 {
     vv.max_abs()
 }
 
+/// [`unit_deviation`] for N = 6, out of line so that its 64-coefficient products do not
+/// enlarge the stack frame of the smaller signatures' route.
+#[inline(never)]
+fn unit_deviation_64(v: &Multivector) -> f64 {
+    unit_deviation::<64>(v)
+}
+
 /// max |exp(B) − V| with exp by the closed form, for N ≤ 5.
 fn closed_form_residual<const L: usize>(b: &Multivector, v: &Multivector) -> f64 {
     let e = exp_closed_form(&Small::<L>::from_multivector(b));
@@ -491,13 +528,7 @@ fn log_small<const L: usize>(v: &Multivector, out: &mut Multivector) -> Result<(
         if let Err(e) = check_log_residual(residual, given.max_abs(), b.max_abs()) {
             // The closed form's roots can be lost where the general route, which needs none,
             // still finds the logarithm; it checks its own result.
-            return match log_general(v_given) {
-                Ok(l) => {
-                    *out = l;
-                    Ok(())
-                }
-                Err(_) => Err(e),
-            };
+            return log_general_to(v_given, out).map_err(|_| e);
         }
         b.write_to(out);
         Ok(())
@@ -585,7 +616,13 @@ fn phi_projective(a: &Bivector, t: &[f64], inverse: bool) -> Result<Coords, Alge
         apply_plane(&mut out, &tk, xt.as_slice(), 2.0 * theta, inverse)?;
         return Ok(out);
     }
-    for plane in decompose_components(a.dim(), a.as_slice()) {
+    phi_of_planes(&decompose_components(a.dim(), a.as_slice()), t, inverse)
+}
+
+/// [`phi_projective`] for p ≥ 4 from the planes of A's invariant decomposition.
+fn phi_of_planes(planes: &[RawPlane], t: &[f64], inverse: bool) -> Result<Coords, AlgebraError> {
+    let mut out: Coords = SmallVec::from_slice(t);
+    for plane in planes {
         let (theta, u, v) = (plane.theta, &plane.u, &plane.v);
         let dot = |x: &[f64]| t.iter().zip(x).map(|(a, b)| a * b).sum::<f64>();
         let (cu, cv) = (dot(u), dot(v));
@@ -636,13 +673,71 @@ fn exp_projective(b: &Multivector) -> Result<Multivector, AlgebraError> {
     let p = b.dim() - 1;
     let null = 1u64 << p;
     let (a, t) = split_projective(b)?;
-    let r = a.try_exp()?.to_multivector();
+    let r = a.try_exp()?;
     let u = phi_projective(&a, &t, false)?;
     let mut rm = Multivector::zero(sig);
     for (k, c) in r.terms() {
         rm.as_mut_slice()[k as usize] = c;
     }
     let mut um = Multivector::zero(sig);
+    for (i, c) in u.iter().enumerate() {
+        um.as_mut_slice()[((1u64 << i) | null) as usize] = *c;
+    }
+    Ok(&rm + &rm.geometric(&um))
+}
+
+/// The Euclidean exp above N = 4 into `out` (zeroed), with the rotor's coefficients on the
+/// stack up to N = 6 (a Rotor keeps only N ≤ 5 inline). Out of line, so that its buffers do
+/// not enlarge the stack frame of the small signatures' route.
+#[inline(never)]
+fn exp_euclidean_wide(b: &Multivector, out: &mut Multivector) -> Result<(), AlgebraError> {
+    let n = b.dim();
+    let r = super::rotor::exp_even(&euclidean_bivector(b)?)?;
+    for (i, &c) in r.iter().enumerate() {
+        out.as_mut_slice()[super::rotor::even_blade(n, i) as usize] = c;
+    }
+    Ok(())
+}
+
+/// The Euclidean log above N = 4, with the rotor's coefficients on the stack up to N = 6. Out
+/// of line, for the reason of [`exp_euclidean_wide`].
+#[inline(never)]
+fn log_euclidean_wide(v: &Multivector) -> Bivector {
+    let n = v.dim();
+    let r: super::rotor::EvenBuf = (0..super::rotor::even_len(n))
+        .map(|i| v.coefficient(super::rotor::even_blade(n, i)))
+        .collect();
+    super::rotor::log_even(n, &r)
+}
+
+/// [`exp_projective`] on the stack, for N ≤ 6. Out of line, for the reason of
+/// [`exp_euclidean_wide`].
+#[inline(never)]
+fn exp_projective_small(b: &Multivector) -> Result<Small<64>, AlgebraError> {
+    let sig = b.signature();
+    let p = b.dim() - 1;
+    let null = 1u64 << p;
+    let (a, t) = split_projective(b)?;
+    let (r, u) = if p >= 5 {
+        // exp(A) and φ share A's invariant decomposition (Bivector::exp's route for p ≥ 5),
+        // formed once; the checks are those of Bivector::try_exp (A is finite here).
+        let norm = a.norm();
+        if !within(norm, f64::MAX / 2.0) {
+            return Err(AlgebraError::AngleTooLarge { norm });
+        }
+        let planes = decompose_components(p, a.as_slice());
+        (
+            super::rotor::exp_of_planes(p, &planes),
+            phi_of_planes(&planes, &t, false)?,
+        )
+    } else {
+        (a.try_exp()?, phi_projective(&a, &t, false)?)
+    };
+    let mut rm = Small::<64>::zero(sig);
+    for (k, c) in r.terms() {
+        rm.as_mut_slice()[k as usize] = c;
+    }
+    let mut um = Small::<64>::zero(sig);
     for (i, c) in u.iter().enumerate() {
         um.as_mut_slice()[((1u64 << i) | null) as usize] = *c;
     }

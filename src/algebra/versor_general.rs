@@ -38,7 +38,14 @@
 //! scaling and squaring (Higham, *Functions of Matrices*, 2008, §11.5): Denman–Beavers square
 //! roots until ‖X − I‖₁ ≤ ¼, then the 8-point Gauss–Legendre rule for
 //! log(I + Y) = ∫₀¹ Y (I + tY)⁻¹ dt (the diagonal Padé approximant), times 2^j. The grade-2
-//! part of the result is polished by Newton steps B ← B + ⟨exp(B)~ V⟩₂ against V itself.
+//! part of the result is polished by Gauss–Newton steps against V itself (a least-squares
+//! solve through the singular value decomposition).
+//!
+//! # Storage
+//! Up to N = 6 both routes run on stack multivectors of 64 coefficients and inline matrices
+//! (the Krylov matrix of at most 17 × 16, and the polish's least-squares system as a
+//! fixed-size 32 × 15 nalgebra matrix), so exp and log allocate nothing there; above, the
+//! same code spills to the heap.
 //!
 //! The eigenvalues of H are the joint eigenvalues of V, e^(±x₁ ± x₂ ± …) for the parts'
 //! √λᵢ = xᵢ, so the principal matrix logarithm gives the principal versor logarithm: every
@@ -48,11 +55,13 @@
 //! boost B, a joint angle of exactly π) there is no principal logarithm and
 //! [`AlgebraError::NoLogarithm`] is returned.
 
+use super::dense::Dense;
 use super::error::within;
 use super::small::{SMALL_MAX_DIM, Small};
 use super::{AlgebraError, Multivector, Signature};
 use crate::numeric::{exponent_of, ldexp, scaled_norm};
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DVector, SMatrix, SVector};
+use smallvec::SmallVec;
 
 /// The largest N for which [`Multivector::exp`] and [`Multivector::log`] accept every
 /// signature Cl(p, q, r). Euclidean and projective signatures go to
@@ -66,10 +75,25 @@ trait Mv: Clone {
     fn coeffs(&self) -> &[f64];
     fn coeffs_mut(&mut self) -> &mut [f64];
     fn one(sig: Signature) -> Self;
+    fn zero(sig: Signature) -> Self;
+    fn grade(&self, k: usize) -> Self;
+    fn minus(&self, other: &Self) -> Self;
     fn mul(&self, other: &Self) -> Self;
     fn rev(&self) -> Self;
     fn plus(&self, other: &Self) -> Self;
     fn times(&self, s: f64) -> Self;
+    /// self ← self + x · c in place, each coefficient rounded as self + (x · c).
+    fn add_times(&mut self, x: &Self, c: f64) {
+        for (a, b) in self.coeffs_mut().iter_mut().zip(x.coeffs()) {
+            *a += b * c;
+        }
+    }
+    /// self ← self − x · c in place, each coefficient rounded as self − (x · c).
+    fn sub_times(&mut self, x: &Self, c: f64) {
+        for (a, b) in self.coeffs_mut().iter_mut().zip(x.coeffs()) {
+            *a -= b * c;
+        }
+    }
     fn max_abs(&self) -> f64 {
         self.coeffs().iter().fold(0.0f64, |m, c| m.max(c.abs()))
     }
@@ -87,6 +111,15 @@ impl Mv for Multivector {
     }
     fn one(sig: Signature) -> Self {
         Multivector::scalar(sig, 1.0)
+    }
+    fn zero(sig: Signature) -> Self {
+        Multivector::zero(sig)
+    }
+    fn grade(&self, k: usize) -> Self {
+        Multivector::grade(self, k)
+    }
+    fn minus(&self, other: &Self) -> Self {
+        self - other
     }
     fn mul(&self, other: &Self) -> Self {
         self.geometric(other)
@@ -115,6 +148,15 @@ impl<const L: usize> Mv for Small<L> {
     fn one(sig: Signature) -> Self {
         Small::scalar(sig, 1.0)
     }
+    fn zero(sig: Signature) -> Self {
+        Small::zero(sig)
+    }
+    fn grade(&self, k: usize) -> Self {
+        Small::grade(self, k)
+    }
+    fn minus(&self, other: &Self) -> Self {
+        self - other
+    }
     fn mul(&self, other: &Self) -> Self {
         self.geometric(other)
     }
@@ -142,13 +184,8 @@ const RENORMALIZE_EVERY: i32 = 8;
 /// anticommutation, so exp(φ(B)) = φ(exp(B))): a blade with j null vectors is multiplied by
 /// 2^(jk). Without it a translation of 1e150 beside null–null parts would form products
 /// beyond f64 in the squarings although exp(B) itself is finite.
-pub(super) fn exp_general(b: &Multivector) -> Result<Multivector, AlgebraError> {
-    let mut out = Multivector::zero(b.signature());
-    exp_general_to(b, &mut out)?;
-    Ok(out)
-}
-
-/// [`exp_general`] into `out` (same algebra): on the stack, without allocating, up to N = 6.
+///
+/// Written into `out` (same algebra): on the stack, without allocating, up to N = 6.
 pub(super) fn exp_general_to(b: &Multivector, out: &mut Multivector) -> Result<(), AlgebraError> {
     if b.dim() <= SMALL_MAX_DIM {
         exp_any::<Small<64>>(&Small::from_multivector(b))?.write_to(out);
@@ -158,7 +195,7 @@ pub(super) fn exp_general_to(b: &Multivector, out: &mut Multivector) -> Result<(
     Ok(())
 }
 
-/// [`exp_general`] on either storage.
+/// [`exp_general_to`] on either storage.
 fn exp_any<T: Mv>(b: &T) -> Result<T, AlgebraError> {
     let k = null_scale(b);
     let v = exp_scaled(&scale_null(b, k))?;
@@ -344,9 +381,21 @@ fn scaled<T: Mv>(m: &T, e: i32) -> T {
 }
 
 /// log V for an even versor V (checked by the caller: even, finite, V Ṽ = 1) of any
-/// signature with N ≤ [`GENERAL_MAX_DIM`].
-pub(super) fn log_general(v: &Multivector) -> Result<Multivector, AlgebraError> {
-    // The null-vector automorphism of exp_general, for the same reason.
+/// signature with N ≤ [`GENERAL_MAX_DIM`], written into `out` (same algebra; untouched on an
+/// error). Up to N = 6 every step runs on the stack ([`Small`] multivectors and inline
+/// matrices), so nothing is allocated.
+pub(super) fn log_general_to(v: &Multivector, out: &mut Multivector) -> Result<(), AlgebraError> {
+    if v.dim() <= SMALL_MAX_DIM {
+        log_any(&Small::<64>::from_multivector(v))?.write_to(out);
+    } else {
+        *out = log_any(v)?;
+    }
+    Ok(())
+}
+
+/// [`log_general_to`] on either storage.
+fn log_any<T: Mv>(v: &T) -> Result<T, AlgebraError> {
+    // The null-vector automorphism of exp_general_to, for the same reason.
     let k = null_scale(v);
     let vs = scale_null(v, k);
     let b = log_scaled(&vs)?;
@@ -367,18 +416,14 @@ const LOG_RESIDUAL: f64 = 1e-10;
 
 /// The logarithm b of the scaled algebra taken back to V's (undoing the null scaling by
 /// 2^k), with its relative residual |exp(B) − V| / (max(1, |V|) · max(1, |B|)).
-fn unscaled_log(
-    v: &Multivector,
-    b: &Multivector,
-    k: i32,
-) -> Result<(Multivector, f64, f64), AlgebraError> {
+fn unscaled_log<T: Mv>(v: &T, b: &T, k: i32) -> Result<(T, f64, f64), AlgebraError> {
     let b = scale_null(b, -k);
-    if !b.as_slice().iter().all(|c| c.is_finite()) {
+    if !b.coeffs().iter().all(|c| c.is_finite()) {
         return Err(AlgebraError::Overflow {
             what: "the logarithm",
         });
     }
-    let residual = exp_general(&b).map_or(f64::INFINITY, |e| (&e - v).max_abs());
+    let residual = exp_any(&b).map_or(f64::INFINITY, |e| e.minus(v).max_abs());
     let scale = v.max_abs().max(1.0);
     // Relative, so that a huge V or B cannot make the bound infinite.
     let relative = residual / scale / b.max_abs().max(1.0);
@@ -386,9 +431,7 @@ fn unscaled_log(
 }
 
 /// The logarithm if its residual is within [`LOG_RESIDUAL`], else the error.
-fn finish_log(
-    (b, relative, residual): (Multivector, f64, f64),
-) -> Result<Multivector, AlgebraError> {
+fn finish_log<T: Mv>((b, relative, residual): (T, f64, f64)) -> Result<T, AlgebraError> {
     if within(relative, LOG_RESIDUAL) {
         Ok(b)
     } else {
@@ -397,12 +440,12 @@ fn finish_log(
 }
 
 /// log V for V with null parts no larger than the rest.
-fn log_scaled(v: &Multivector) -> Result<Multivector, AlgebraError> {
+fn log_scaled<T: Mv>(v: &T) -> Result<T, AlgebraError> {
     let no_log = AlgebraError::NoLogarithm {
         reason: "V has a joint eigenvalue on the negative real axis (−exp(B) for a boost B, or a joint rotation angle of π)",
     };
-    let sig = v.signature();
-    let one = Multivector::scalar(sig, 1.0);
+    let sig = v.sig();
+    let one = T::one(sig);
     // Boosts first: halve them by versor square roots until the joint eigenvalues of V
     // (those of the balanced Krylov matrix, whose entries bound them) are of moderate size.
     // Null and light-like parts, however large, leave the eigenvalues at 1 and need none.
@@ -416,22 +459,22 @@ fn log_scaled(v: &Multivector) -> Result<Multivector, AlgebraError> {
         if halvings == MAX_HALVINGS {
             return Err(no_log);
         }
-        let m = &(&(&one * 2.0) + &x) + &x.reverse();
+        let m = one.times(2.0).plus(&x).plus(&x.rev());
         let z = Krylov::new(&m)
             .apply(|h| sqrt_denman_beavers(h).map(|(_, inv)| inv))
             .ok_or(no_log.clone())?;
-        x = pull_to_group((&one + &x).geometric(&z));
+        x = pull_to_group(one.plus(&x).mul(&z));
         halvings += 1;
     };
     // Near π the square roots above may leave errors up to 10⁻⁴ (see
     // `sqrt_denman_beavers`), also outside grade 2; the polish and the final check decide.
     let bivector = b.grade(2);
-    let rest = (&b - &bivector).max_abs();
+    let rest = b.minus(&bivector).max_abs();
     if !within(rest, 1e-2 * bivector.max_abs().max(1.0)) {
         return Err(no_log);
     }
     let b = polish(v, scaled(&bivector, halvings))?;
-    let residual = (&exp_general(&b)? - v).max_abs();
+    let residual = exp_any(&b)?.minus(v).max_abs();
     if within(residual / v.max_abs().max(1.0) / b.max_abs().max(1.0), 1e-8) {
         Ok(b)
     } else {
@@ -443,16 +486,22 @@ fn log_scaled(v: &Multivector) -> Result<Multivector, AlgebraError> {
 /// a finite V has rapidities below 2¹⁰.
 const MAX_HALVINGS: i32 = 16;
 
+/// The Krylov matrices: at most 17 × 16 (N ≤ 7) inline.
+type KrylovMatrix = Dense<272>;
+
+/// A Krylov basis: at most 16 elements (N ≤ 7) inline.
+type Basis<T> = SmallVec<[T; 16]>;
+
 /// Left multiplication by x in the Krylov space of x from 1, balanced: the orthonormal
 /// basis, the matrix D⁻¹ H D and the exponents of D.
-struct Krylov {
-    basis: Vec<Multivector>,
-    h: DMatrix<f64>,
-    exponents: Vec<i32>,
+struct Krylov<T> {
+    basis: Basis<T>,
+    h: KrylovMatrix,
+    exponents: SmallVec<[i32; 16]>,
 }
 
-impl Krylov {
-    fn new(x: &Multivector) -> Self {
+impl<T: Mv> Krylov<T> {
+    fn new(x: &T) -> Self {
         let (basis, mut h) = arnoldi(x);
         let exponents = balance(&mut h);
         Krylov {
@@ -463,14 +512,14 @@ impl Krylov {
     }
 
     /// f(L_x) 1 for the matrix function f.
-    fn apply(&self, f: impl Fn(&DMatrix<f64>) -> Option<DMatrix<f64>>) -> Option<Multivector> {
+    fn apply(&self, f: impl Fn(&KrylovMatrix) -> Option<KrylovMatrix>) -> Option<T> {
         let fh = f(&self.h)?;
-        let mut out = Multivector::zero(self.basis[0].signature());
+        let mut out = T::zero(self.basis[0].sig());
         for (i, q) in self.basis.iter().enumerate() {
             let c = ldexp(fh[(i, 0)], self.exponents[i] - self.exponents[0]);
-            out = &out + &(q * c);
+            out.add_times(q, c);
         }
-        out.as_slice().iter().all(|c| c.is_finite()).then_some(out)
+        out.coeffs().iter().all(|c| c.is_finite()).then_some(out)
     }
 }
 
@@ -480,45 +529,71 @@ impl Krylov {
 /// joint eigenvalues e^(±φ) of a boost, and the small one is known only to ε e^(2φ)
 /// relative; this step uses V's coefficients directly, where a relative error ε of V moves
 /// B by about ε (the columns exp(B) eⱼ have the size of V).
-fn polish(v: &Multivector, mut b: Multivector) -> Result<Multivector, AlgebraError> {
-    let sig = v.signature();
-    let planes: Vec<u64> = (0..1u64 << v.dim())
-        .filter(|m| m.count_ones() == 2)
-        .collect();
-    let even: Vec<usize> = (0..1usize << v.dim())
+fn polish<T: Mv>(v: &T, mut b: T) -> Result<T, AlgebraError> {
+    let sig = v.sig();
+    let n = sig.dim();
+    let planes: SmallVec<[u64; 15]> = (0..1u64 << n).filter(|m| m.count_ones() == 2).collect();
+    let even: SmallVec<[usize; 32]> = (0..1usize << n)
         .filter(|m| m.count_ones() % 2 == 0)
         .collect();
-    let mut e = exp_general(&b)?;
-    let mut r = (v - &e).max_abs();
+    let mut e = exp_any(&b)?;
+    let mut r = v.minus(&e).max_abs();
     for _ in 0..3 {
         if r == 0.0 {
             break;
         }
-        let residual = v - &e;
-        let mut a = DMatrix::<f64>::zeros(even.len(), planes.len());
-        for (col, &m) in planes.iter().enumerate() {
-            let image = e.geometric(&Multivector::basis_blade(sig, m));
-            for (row, &k) in even.iter().enumerate() {
-                a[(row, col)] = image.as_slice()[k];
-            }
-        }
-        let rhs = nalgebra::DVector::from_iterator(
-            even.len(),
-            even.iter().map(|&k| residual.as_slice()[k]),
-        );
+        let residual = v.minus(&e);
+        let image = |m: u64| {
+            let mut blade = T::zero(sig);
+            blade.coeffs_mut()[m as usize] = 1.0;
+            e.mul(&blade)
+        };
         // Directions whose singular value is below 10⁻¹⁰ of the largest (the far side of a
         // boost: exp(B) e₁₂ and exp(B) e₂₆ nearly parallel) would only fit round-off.
-        let svd = a.svd(true, true);
-        let cut = 1e-10 * svd.singular_values.max();
-        let Ok(delta) = svd.solve(&rhs, cut) else {
-            break;
+        let delta: SmallVec<[f64; 28]> = if n <= SMALL_MAX_DIM {
+            // Up to N = 6 on the stack: 32 even blades and 15 planes at most, the rest of
+            // the fixed-size system zero (zero rows change no singular value, and zero
+            // columns give zero singular values, cut like the other null directions).
+            let mut a = SMatrix::<f64, 32, 15>::zeros();
+            for (col, &m) in planes.iter().enumerate() {
+                let image = image(m);
+                for (row, &k) in even.iter().enumerate() {
+                    a[(row, col)] = image.coeffs()[k];
+                }
+            }
+            let mut rhs = SVector::<f64, 32>::zeros();
+            for (row, &k) in even.iter().enumerate() {
+                rhs[row] = residual.coeffs()[k];
+            }
+            let svd = a.svd(true, true);
+            let cut = 1e-10 * svd.singular_values.max();
+            let Ok(x) = svd.solve(&rhs, cut) else {
+                break;
+            };
+            x.iter().take(planes.len()).copied().collect()
+        } else {
+            let mut a = DMatrix::<f64>::zeros(even.len(), planes.len());
+            for (col, &m) in planes.iter().enumerate() {
+                let image = image(m);
+                for (row, &k) in even.iter().enumerate() {
+                    a[(row, col)] = image.coeffs()[k];
+                }
+            }
+            let rhs =
+                DVector::from_iterator(even.len(), even.iter().map(|&k| residual.coeffs()[k]));
+            let svd = a.svd(true, true);
+            let cut = 1e-10 * svd.singular_values.max();
+            let Ok(x) = svd.solve(&rhs, cut) else {
+                break;
+            };
+            x.iter().copied().collect()
         };
         let mut b1 = b.clone();
         for (&m, d) in planes.iter().zip(delta.iter()) {
-            b1.as_mut_slice()[m as usize] += d;
+            b1.coeffs_mut()[m as usize] += d;
         }
-        let Ok(e1) = exp_general(&b1) else { break };
-        let r1 = (v - &e1).max_abs();
+        let Ok(e1) = exp_any(&b1) else { break };
+        let r1 = v.minus(&e1).max_abs();
         if r1.is_nan() || r1 >= r {
             break;
         }
@@ -530,13 +605,13 @@ fn polish(v: &Multivector, mut b: Multivector) -> Result<Multivector, AlgebraErr
 }
 
 /// The projection of `b` onto the grade-2 part of the algebra `v` generates: log V lies
-/// there, and what lies outside is round-off, which [`log_general`]'s undoing of the null
+/// there, and what lies outside is round-off, which [`log_general_to`]'s undoing of the null
 /// scaling would multiply by 2^(jk) on a blade with j null vectors (a logarithm off by 1e57
 /// in a plane of two null vectors beside a translation of 1e60).
-fn project_onto_algebra(v: &Multivector, b: &Multivector) -> Multivector {
-    let mut out = Multivector::zero(b.signature());
+fn project_onto_algebra<T: Mv>(v: &T, b: &T) -> T {
+    let mut out = T::zero(b.sig());
     for d in bivector_directions(v) {
-        out = &out + &(&d * dot(&d, b));
+        out.add_times(&d, dot(&d, b));
     }
     out
 }
@@ -547,15 +622,15 @@ fn project_onto_algebra(v: &Multivector, b: &Multivector) -> Multivector {
 /// The algebra is generated from W = (V − ⟨V⟩₀)/max |V − ⟨V⟩₀|, the same algebra with
 /// coefficients of size 1, so that Arnoldi's cut-off (relative to |W|) keeps a part of size
 /// 10⁻²⁰⁰ beside the scalar 1.
-fn bivector_directions(v: &Multivector) -> Vec<Multivector> {
+fn bivector_directions<T: Mv>(v: &T) -> Basis<T> {
     let mut w = v.clone();
-    w.as_mut_slice()[0] = 0.0;
+    w.coeffs_mut()[0] = 0.0;
     let size = w.max_abs();
+    let mut out = Basis::new();
     if size == 0.0 {
-        return Vec::new();
+        return out;
     }
     let (basis, _) = arnoldi(&scaled(&w, -exponent_of(size)));
-    let mut out: Vec<Multivector> = Vec::new();
     for q in basis {
         let mut g = q.grade(2);
         let size = g.max_abs();
@@ -564,56 +639,54 @@ fn bivector_directions(v: &Multivector) -> Vec<Multivector> {
         }
         for _ in 0..2 {
             for d in &out {
-                g = &g - &(d * dot(d, &g));
+                let c = dot(d, &g);
+                g.sub_times(d, c);
             }
         }
-        let norm = scaled_norm(g.as_slice());
+        let norm = scaled_norm(g.coeffs());
         if norm > 1e-8 * size {
-            out.push(g * (1.0 / norm));
+            out.push(g.times(1.0 / norm));
         }
     }
     out
 }
 
 /// Coefficient inner product.
-fn dot(a: &Multivector, b: &Multivector) -> f64 {
-    a.as_slice()
-        .iter()
-        .zip(b.as_slice())
-        .map(|(x, y)| x * y)
-        .sum()
+fn dot<T: Mv>(a: &T, b: &T) -> f64 {
+    a.coeffs().iter().zip(b.coeffs()).map(|(x, y)| x * y).sum()
 }
 
 /// An orthonormal basis of span{1, V, V², …} and the matrix of left multiplication by V in
 /// it. The dimension is at most 2^(⌊N/2⌋ + 1) (2^⌊N/2⌋ in exact arithmetic; one more power
 /// of two absorbs round-off), and the iteration stops where the next power adds no new
 /// direction beyond round-off of V.
-fn arnoldi(v: &Multivector) -> (Vec<Multivector>, DMatrix<f64>) {
-    let sig = v.signature();
-    let cap = (1usize << (v.dim() / 2 + 1)).min(1 << (v.dim() - 1));
-    let tolerance = 64.0 * f64::EPSILON * scaled_norm(v.as_slice());
-    let mut basis = vec![Multivector::scalar(sig, 1.0)];
-    let mut h = DMatrix::<f64>::zeros(cap + 1, cap);
+fn arnoldi<T: Mv>(v: &T) -> (Basis<T>, KrylovMatrix) {
+    let sig = v.sig();
+    let cap = (1usize << (sig.dim() / 2 + 1)).min(1 << (sig.dim() - 1));
+    let tolerance = 64.0 * f64::EPSILON * scaled_norm(v.coeffs());
+    let mut basis: Basis<T> = SmallVec::new();
+    basis.push(T::one(sig));
+    let mut h = KrylovMatrix::zeros(cap + 1, cap);
     let mut m = cap;
     for j in 0..cap {
-        let mut w = v.geometric(&basis[j]);
+        let mut w = v.mul(&basis[j]);
         for _ in 0..2 {
             for (i, q) in basis.iter().enumerate() {
                 let c = dot(q, &w);
                 h[(i, j)] += c;
-                w = &w - &(q * c);
+                w.sub_times(q, c);
             }
         }
-        let beta = scaled_norm(w.as_slice());
+        let beta = scaled_norm(w.coeffs());
         if beta <= tolerance || j + 1 == cap {
             m = j + 1;
             break;
         }
         h[(j + 1, j)] = beta;
-        basis.push(w * (1.0 / beta));
+        basis.push(w.times(1.0 / beta));
     }
     basis.truncate(m);
-    (basis, h.view((0, 0), (m, m)).into_owned())
+    (basis, h.leading(m))
 }
 
 /// Replaces H by D⁻¹ H D with D = diag(2^eᵢ) (exact) and returns the eᵢ, so that
@@ -622,9 +695,9 @@ fn arnoldi(v: &Multivector) -> (Vec<Multivector>, DMatrix<f64>) {
 /// to 1e308), whose other side is brought to the scale of the diagonal. Without it the
 /// inverse scaling and squaring would need log₂ a square roots, and each one halves the
 /// rotation angles until they drown in the round-off of I + Y.
-fn balance(h: &mut DMatrix<f64>) -> Vec<i32> {
+fn balance(h: &mut KrylovMatrix) -> SmallVec<[i32; 16]> {
     let n = h.nrows();
-    let mut e = vec![0i32; n];
+    let mut e: SmallVec<[i32; 16]> = SmallVec::from_elem(0, n);
     let scale = (0..n).map(|i| h[(i, i)].abs()).fold(1.0f64, f64::max);
     for _ in 0..200 {
         let mut changed = false;
@@ -666,27 +739,31 @@ fn balance(h: &mut DMatrix<f64>) -> Vec<i32> {
 
 /// The principal logarithm of a small real matrix by inverse scaling and squaring, or None
 /// if a square root does not converge (an eigenvalue on or next to the negative real axis).
-fn principal_log(a: &DMatrix<f64>) -> Option<DMatrix<f64>> {
+fn principal_log(a: &KrylovMatrix) -> Option<KrylovMatrix> {
     let n = a.nrows();
-    let eye = DMatrix::<f64>::identity(n, n);
+    let eye = KrylovMatrix::identity(n);
     let mut x = a.clone();
     let mut roots = 0;
-    while (&x - &eye).abs().column_sum().max() > 0.25 {
+    while x.norm1_minus_identity() > 0.25 {
         x = sqrt_denman_beavers(&x)?.0;
         roots += 1;
         if roots > 64 {
             return None;
         }
     }
-    let y = &x - &eye;
-    let mut out = DMatrix::<f64>::zeros(n, n);
+    let y = x.add_scaled(&eye, -1.0);
+    let mut out = KrylovMatrix::zeros(n, n);
     for (node, weight) in GAUSS_LEGENDRE_8 {
         let t = 0.5 * (1.0 + node);
-        let inv = (&eye + &y * t).try_inverse()?;
-        out += &y * inv * (0.5 * weight);
+        let (inv, _) = eye.add_scaled(&y, t).inverse_and_log_det()?;
+        let term = y.mul(&inv);
+        for (o, &x) in out.as_mut_slice().iter_mut().zip(term.as_slice()) {
+            *o += x * (0.5 * weight);
+        }
     }
     let scale = ldexp(1.0, roots);
-    Some(out * scale)
+    out.as_mut_slice().iter_mut().for_each(|x| *x *= scale);
+    Some(out)
 }
 
 /// The principal square root Y = A^(½) and Z = A^(−½) by the Denman–Beavers iteration with
@@ -702,29 +779,33 @@ fn principal_log(a: &DMatrix<f64>) -> Option<DMatrix<f64>> {
 /// So the check is loose: None unless Y² = A to a relative 10⁻², which still separates a
 /// converged root from an eigenvalue on the negative axis (no convergence at all, Y² − A of
 /// the size of A); the caller polishes the logarithm against V itself and checks exp(B) = V.
-fn sqrt_denman_beavers(a: &DMatrix<f64>) -> Option<(DMatrix<f64>, DMatrix<f64>)> {
+fn sqrt_denman_beavers(a: &KrylovMatrix) -> Option<(KrylovMatrix, KrylovMatrix)> {
     let n = a.nrows();
     let mut y = a.clone();
-    let mut z = DMatrix::<f64>::identity(n, n);
+    let mut z = KrylovMatrix::identity(n);
     let mut last = f64::INFINITY;
-    let log_abs_det = |lu: &nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>| -> f64 {
-        lu.u().diagonal().iter().map(|u| u.abs().ln()).sum()
-    };
     for _ in 0..100 {
-        let (ly, lz) = (y.clone().lu(), z.clone().lu());
-        let log_det = log_abs_det(&ly) + log_abs_det(&lz);
-        let (yi, zi) = (ly.try_inverse()?, lz.try_inverse()?);
+        let (yi, log_det_y) = y.inverse_and_log_det()?;
+        let (zi, log_det_z) = z.inverse_and_log_det()?;
+        let log_det = log_det_y + log_det_z;
         // Scaling only matters far from convergence; near it μ = 1 keeps the quadratic phase.
         let mu = if log_det.is_finite() && log_det.abs() > 1e-3 {
             (-log_det / (2 * n) as f64).exp()
         } else {
             1.0
         };
-        let y1 = (&y * mu + &zi / mu) * 0.5;
-        let z1 = (&z * mu + &yi / mu) * 0.5;
-        let change = (&y1 - &y).amax() / y1.amax();
-        y = y1;
-        z = z1;
+        // Y ← ½(μY + Z⁻¹/μ), Z ← ½(μZ + Y⁻¹/μ) in place, with the largest change of Y.
+        let (mut change, mut size) = (0.0f64, 0.0f64);
+        for (x, &w) in y.as_mut_slice().iter_mut().zip(zi.as_slice()) {
+            let next = (*x * mu + w / mu) * 0.5;
+            change = change.max((next - *x).abs());
+            size = size.max(next.abs());
+            *x = next;
+        }
+        for (x, &w) in z.as_mut_slice().iter_mut().zip(yi.as_slice()) {
+            *x = (*x * mu + w / mu) * 0.5;
+        }
+        let change = change / size;
         if !change.is_finite() {
             return None;
         }
@@ -733,7 +814,7 @@ fn sqrt_denman_beavers(a: &DMatrix<f64>) -> Option<(DMatrix<f64>, DMatrix<f64>)>
         }
         last = change;
     }
-    let residual = (&y * &y - a).amax() / a.amax();
+    let residual = y.mul(&y).add_scaled(a, -1.0).amax() / a.amax();
     (residual <= 1e-2).then_some((y, z))
 }
 
@@ -760,28 +841,29 @@ mod tests {
         // logarithm is within 10⁻³ of the rotation angle for the polish to finish.
         let d = 9.996416755532066e-13;
         let c = -0.9999999999999999;
-        let a = DMatrix::from_row_slice(2, 2, &[c, -d, d, c]);
+        let a = KrylovMatrix::from_fn(2, 2, |i, j| [[c, -d], [d, c]][i][j]);
         let (y, _) = sqrt_denman_beavers(&a).expect("accepted");
-        assert!((&y * &y - &a).amax() <= 1e-3, "{y}");
+        assert!(y.mul(&y).add_scaled(&a, -1.0).amax() <= 1e-3, "{y:?}");
         let l = principal_log(&a).expect("a logarithm");
         assert!(
             (l[(1, 0)] - (std::f64::consts::PI - d)).abs() <= 1e-3,
-            "{l}"
+            "{l:?}"
         );
-        assert!(l[(0, 0)].abs() <= 1e-6, "{l}");
+        assert!(l[(0, 0)].abs() <= 1e-6, "{l:?}");
     }
 
     #[test]
     fn square_root_near_minus_one() {
         let t = std::f64::consts::PI - 1e-9;
-        let a = DMatrix::from_row_slice(2, 2, &[t.cos(), -t.sin(), t.sin(), t.cos()]);
+        let rows = [[t.cos(), -t.sin()], [t.sin(), t.cos()]];
+        let a = KrylovMatrix::from_fn(2, 2, |i, j| rows[i][j]);
         // cos t rounds to −1: the root's cosine (5e-10) is not in the matrix's entries.
         let (y, _) = sqrt_denman_beavers(&a).expect("converges");
         let h = 0.5 * t;
-        assert!((y[(0, 0)] - h.cos()).abs() < 1e-9, "{y}");
-        assert!((y[(1, 0)] - h.sin()).abs() < 1e-15, "{y}");
+        assert!((y[(0, 0)] - h.cos()).abs() < 1e-9, "{y:?}");
+        assert!((y[(1, 0)] - h.sin()).abs() < 1e-15, "{y:?}");
         // An eigenvalue on the negative axis: no root.
-        let minus = DMatrix::from_row_slice(2, 2, &[-2.0, 0.0, 0.0, -0.5]);
+        let minus = KrylovMatrix::from_fn(2, 2, |i, j| [[-2.0, 0.0], [0.0, -0.5]][i][j]);
         assert!(sqrt_denman_beavers(&minus).is_none());
     }
 }

@@ -2,11 +2,12 @@
 
 use super::{Rotor, even_index, get_4d, multiply_by_simple, set_4d};
 use crate::algebra::bivector::{bivector_len, pairs};
-use crate::algebra::decompose::{RawPlane, decompose_components};
+use crate::algebra::decompose::{Planes, RawPlane, decompose_components};
+use crate::algebra::dense::{Mat8, Vec8, dot, norm};
 use crate::algebra::error::within;
 use crate::algebra::{AlgebraError, MULTIVECTOR_MAX_DIM};
 use crate::numeric::orthogonality_error;
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 use smallvec::SmallVec;
 
 /// Default tolerance on max |QᵀQ − 1| for [`Rotor::from_matrix`].
@@ -25,68 +26,7 @@ impl Rotor {
     pub fn to_matrix(&self) -> DMatrix<f64> {
         let n = self.dim;
         let mut q = DMatrix::zeros(n, n);
-        match n {
-            0 => {}
-            1 => q[(0, 0)] = 1.0,
-            3 => {
-                // Quaternion formula with q = w − x e23 + y e13 − z e12 (see nalgebra.rs).
-                let w = self.coeffs[0];
-                let (e12, e13, e23) = (
-                    self.coeffs[even_index(3, 0b011)],
-                    self.coeffs[even_index(3, 0b101)],
-                    self.coeffs[even_index(3, 0b110)],
-                );
-                let (x, y, z) = (-e23, e13, -e12);
-                let m = [
-                    [
-                        w * w + x * x - y * y - z * z,
-                        2.0 * (x * y - w * z),
-                        2.0 * (x * z + w * y),
-                    ],
-                    [
-                        2.0 * (x * y + w * z),
-                        w * w - x * x + y * y - z * z,
-                        2.0 * (y * z - w * x),
-                    ],
-                    [
-                        2.0 * (x * z - w * y),
-                        2.0 * (y * z + w * x),
-                        w * w - x * x - y * y + z * z,
-                    ],
-                ];
-                for i in 0..3 {
-                    for j in 0..3 {
-                        q[(i, j)] = m[i][j];
-                    }
-                }
-            }
-            _ => {
-                // Q_ij = ⟨eᵢ R eⱼ R̃⟩₀ = Σ_a σ(i, j, a) R_a R_{a ⊕ eᵢ ⊕ eⱼ}: one pass over the
-                // even blades per entry, with the signs σ from a cached bit table.
-                let mask = (1u64 << (n - 1)) - 1;
-                let len = super::even_len(n);
-                let table = matrix_sign_table(n);
-                let blades = super::even_blades(n);
-                for i in 0..n {
-                    for j in 0..n {
-                        let m = (1u64 << i) ^ (1u64 << j);
-                        let mut acc = 0.0;
-                        for (ia, (&ra, &a)) in self.coeffs.iter().zip(blades).enumerate() {
-                            if ra == 0.0 {
-                                continue;
-                            }
-                            let rb = self.coeffs[((a ^ m) & mask) as usize];
-                            let negative = match &table {
-                                Some(t) => t[(i * n + j) * len + ia],
-                                None => matrix_sign_negative(a, i, j),
-                            };
-                            acc += if negative { -ra * rb } else { ra * rb };
-                        }
-                        q[(i, j)] = acc;
-                    }
-                }
-            }
-        }
+        fill_matrix(n, &self.coeffs, |i, j, x| q[(i, j)] = x);
         q
     }
 
@@ -320,6 +260,73 @@ fn nearest_orthogonal(m: &DMatrix<f64>) -> Option<DMatrix<f64>> {
     q.iter().all(|x| x.is_finite()).then_some(q)
 }
 
+/// Calls `set(i, j, Qᵢⱼ)` for every entry of the rotation matrix of the rotor with even
+/// coefficients `coeffs` in dimension `n`.
+pub(crate) fn fill_matrix(n: usize, coeffs: &[f64], mut set: impl FnMut(usize, usize, f64)) {
+    match n {
+        0 => {}
+        1 => set(0, 0, 1.0),
+        3 => {
+            // Quaternion formula with q = w − x e23 + y e13 − z e12 (see nalgebra.rs).
+            let w = coeffs[0];
+            let (e12, e13, e23) = (
+                coeffs[even_index(3, 0b011)],
+                coeffs[even_index(3, 0b101)],
+                coeffs[even_index(3, 0b110)],
+            );
+            let (x, y, z) = (-e23, e13, -e12);
+            let m = [
+                [
+                    w * w + x * x - y * y - z * z,
+                    2.0 * (x * y - w * z),
+                    2.0 * (x * z + w * y),
+                ],
+                [
+                    2.0 * (x * y + w * z),
+                    w * w - x * x + y * y - z * z,
+                    2.0 * (y * z - w * x),
+                ],
+                [
+                    2.0 * (x * z - w * y),
+                    2.0 * (y * z + w * x),
+                    w * w - x * x - y * y + z * z,
+                ],
+            ];
+            for (i, row) in m.iter().enumerate() {
+                for (j, &x) in row.iter().enumerate() {
+                    set(i, j, x);
+                }
+            }
+        }
+        _ => {
+            // Q_ij = ⟨eᵢ R eⱼ R̃⟩₀ = Σ_a σ(i, j, a) R_a R_{a ⊕ eᵢ ⊕ eⱼ}: one pass over the
+            // even blades per entry, with the signs σ from a cached bit table.
+            let mask = (1u64 << (n - 1)) - 1;
+            let len = super::even_len(n);
+            let table = matrix_sign_table(n);
+            let blades = super::even_blades(n);
+            for i in 0..n {
+                for j in 0..n {
+                    let m = (1u64 << i) ^ (1u64 << j);
+                    let mut acc = 0.0;
+                    for (ia, (&ra, &a)) in coeffs.iter().zip(blades).enumerate() {
+                        if ra == 0.0 {
+                            continue;
+                        }
+                        let rb = coeffs[((a ^ m) & mask) as usize];
+                        let negative = match &table {
+                            Some(t) => t[(i * n + j) * len + ia],
+                            None => matrix_sign_negative(a, i, j),
+                        };
+                        acc += if negative { -ra * rb } else { ra * rb };
+                    }
+                    set(i, j, acc);
+                }
+            }
+        }
+    }
+}
+
 /// The rotor of an orthogonal matrix with det +1 (non-negative scalar part).
 fn rotor_of_orthogonal(q: &DMatrix<f64>) -> Rotor {
     let n = q.nrows();
@@ -337,7 +344,7 @@ fn rotor_of_orthogonal(q: &DMatrix<f64>) -> Rotor {
         3 => rotor_of_matrix_3d(q),
         _ => {
             let mut r = Rotor::identity(n);
-            for p in planes_of_rotation(q) {
+            for p in planes_of_rotation(&Mat8::from_fn(n, n, |i, j| q[(i, j)])) {
                 let (s, c) = (0.5 * p.theta).sin_cos();
                 multiply_by_simple(&mut r, c, s, &p.u, &p.v);
             }
@@ -396,30 +403,29 @@ fn rotor_of_matrix_3d(q: &DMatrix<f64>) -> Rotor {
 /// than π/2 they come from the skew part of −Q, which turns by π − θ < π/2. Either way the
 /// plane information is read from a well-conditioned rotation; directions left over in the
 /// second part are rotations by exactly π and are paired arbitrarily.
-pub(crate) fn planes_of_rotation(q: &DMatrix<f64>) -> Vec<RawPlane> {
+pub(crate) fn planes_of_rotation(q: &Mat8) -> Planes {
     let n = q.nrows();
-    let y = (q + q.transpose()) * 0.5;
-    let (eigenvalues, eigenvectors) = crate::numeric::symmetric_eigen(y);
-    let mut plus = Vec::new();
-    let mut minus = Vec::new();
+    let y = Mat8::from_fn(n, n, |i, j| (q[(i, j)] + q[(j, i)]) * 0.5);
+    let (eigenvalues, eigenvectors) = y.symmetric_eigen();
+    let mut plus: SmallVec<[usize; 8]> = SmallVec::new();
+    let mut minus: SmallVec<[usize; 8]> = SmallVec::new();
     for (k, &lambda) in eigenvalues.iter().enumerate() {
-        let col: DVector<f64> = eigenvectors.column(k).into_owned();
         if lambda >= 0.0 {
-            plus.push(col);
+            plus.push(k);
         } else {
-            minus.push(col);
+            minus.push(k);
         }
     }
-    let mut out = Vec::new();
-    for (basis, flip) in [(plus, false), (minus, true)] {
-        let m = basis.len();
+    let mut out = Planes::new();
+    for (columns, flip) in [(plus, false), (minus, true)] {
+        let m = columns.len();
         if m < 2 {
             continue;
         }
-        let v = DMatrix::from_columns(&basis);
-        let mut qs = v.transpose() * q * &v;
+        let v = Mat8::from_fn(n, m, |i, k| eigenvectors[(i, columns[k])]);
+        let mut qs = v.transpose().mul(q).mul(&v);
         if flip {
-            qs *= -1.0;
+            qs = qs.scaled(-1.0);
         }
         // Skew part → bivector components in the subspace basis.
         let comps: SmallVec<[f64; 28]> = pairs(m)
@@ -427,59 +433,51 @@ pub(crate) fn planes_of_rotation(q: &DMatrix<f64>) -> Vec<RawPlane> {
             .collect();
         debug_assert_eq!(comps.len(), bivector_len(m));
         let local = decompose_components(m, &comps);
-        let lift = |x: &[f64]| -> SmallVec<[f64; 8]> {
-            (0..n)
-                .map(|i| (0..m).map(|k| v[(i, k)] * x[k]).sum())
-                .collect()
-        };
-        let mut covered: Vec<DVector<f64>> = Vec::new();
+        let mut covered: SmallVec<[Vec8; 8]> = SmallVec::new();
         for p in &local {
-            let uu = DVector::from_column_slice(&p.u);
-            let vv = DVector::from_column_slice(&p.v);
             // qs turns v toward u by δ. sin δ is the plane's magnitude in the skew part (read
             // there, not as uᵀ qs v − vᵀ qs u, where the unit diagonal swamps tiny angles);
             // cos δ comes from the symmetric part.
             let s = p.theta;
-            let c = 0.5 * (uu.dot(&(&qs * &uu)) + vv.dot(&(&qs * &vv)));
+            let c = 0.5 * (dot(&p.u, &qs.mul_vec(&p.u)) + dot(&p.v, &qs.mul_vec(&p.v)));
             let delta = s.atan2(c);
             let (theta, pu, pv) = if flip {
                 // Q = −qs turns v toward u by π + δ, i.e. u toward v by π − δ.
-                (std::f64::consts::PI - delta, p.v.clone(), p.u.clone())
+                (std::f64::consts::PI - delta, &p.v, &p.u)
             } else {
-                (delta, p.u.clone(), p.v.clone())
+                (delta, &p.u, &p.v)
             };
-            covered.push(uu);
-            covered.push(vv);
+            covered.push(p.u.clone());
+            covered.push(p.v.clone());
             out.push(RawPlane {
                 theta,
-                u: lift(&pu),
-                v: lift(&pv),
+                u: v.mul_vec(pu),
+                v: v.mul_vec(pv),
             });
         }
         if flip {
             // Directions of the −1 eigenspace not covered: rotations by exactly π.
-            let mut rest: Vec<DVector<f64>> = Vec::new();
+            let mut rest: SmallVec<[Vec8; 8]> = SmallVec::new();
             for k in 0..m {
-                let mut x = DVector::<f64>::zeros(m);
+                let mut x: Vec8 = SmallVec::from_elem(0.0, m);
                 x[k] = 1.0;
-                for b in covered.iter().chain(rest.iter()) {
-                    let d = b.dot(&x);
-                    x -= b * d;
+                for _ in 0..2 {
+                    for b in covered.iter().chain(rest.iter()) {
+                        let d = dot(b, &x);
+                        x.iter_mut().zip(b).for_each(|(xi, bi)| *xi -= bi * d);
+                    }
                 }
-                for b in covered.iter().chain(rest.iter()) {
-                    let d = b.dot(&x);
-                    x -= b * d;
-                }
-                let nx = x.norm();
+                let nx = norm(&x);
                 if nx > 0.5 {
-                    rest.push(x / nx);
+                    x.iter_mut().for_each(|xi| *xi /= nx);
+                    rest.push(x);
                 }
             }
             for pair in rest.chunks_exact(2) {
                 out.push(RawPlane {
                     theta: std::f64::consts::PI,
-                    u: lift(pair[0].as_slice()),
-                    v: lift(pair[1].as_slice()),
+                    u: v.mul_vec(&pair[0]),
+                    v: v.mul_vec(&pair[1]),
                 });
             }
         }

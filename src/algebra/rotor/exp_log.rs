@@ -1,8 +1,12 @@
 //! Closed-form exponential and logarithm (never a truncated series).
 
-use super::{Rotor, even_index, get_4d, multiply_by_simple, set_4d};
+use super::{
+    EvenBuf, Rotor, even_index, even_len, even_product_into, get_4d, multiply_by_simple,
+    multiply_even_by_simple, set_4d,
+};
 use crate::algebra::bivector::pairs;
-use crate::algebra::decompose::{decompose_components, self_dual_join, self_dual_split};
+use crate::algebra::decompose::{RawPlane, decompose_components, self_dual_join, self_dual_split};
+use crate::algebra::dense::{Mat8, Vec8};
 use crate::algebra::error::{assert_same_dim, check_finite, within};
 use crate::algebra::{AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Vector};
 use nalgebra::DMatrix;
@@ -60,14 +64,7 @@ impl Bivector {
                 }
             }
             4 => exp_4d(c, &mut r),
-            _ => {
-                let planes = decompose_components(n, c);
-                for p in &planes {
-                    let (s, co) = p.theta.sin_cos();
-                    // e^{θ u∧v} = cos θ + sin θ u v (u ⟂ v): multiply on the right.
-                    multiply_by_simple(&mut r, co, s, &p.u, &p.v);
-                }
-            }
+            _ => r = exp_of_planes(n, &decompose_components(n, c)),
         }
         r
     }
@@ -103,6 +100,66 @@ impl Bivector {
         }
         Ok(self.exp())
     }
+}
+
+/// e^B = Πₖ (cos θₖ + sin θₖ uₖ vₖ) from the planes θₖ uₖ∧vₖ of B's invariant decomposition
+/// (how [`Bivector::exp`] forms it for N ≥ 5), for callers that need the planes too.
+#[inline(never)]
+pub(crate) fn exp_of_planes(n: usize, planes: &[RawPlane]) -> Rotor {
+    let mut r = Rotor::identity(n);
+    for p in planes {
+        let (s, co) = p.theta.sin_cos();
+        // e^{θ u∧v} = cos θ + sin θ u v (u ⟂ v): multiply on the right.
+        multiply_by_simple(&mut r, co, s, &p.u, &p.v);
+    }
+    r
+}
+
+/// [`exp_of_planes`] on stack storage (N ≤ 6 without the heap).
+fn even_exp_of_planes(n: usize, planes: &[RawPlane]) -> EvenBuf {
+    let mut r = even_identity(n);
+    for p in planes {
+        let (s, co) = p.theta.sin_cos();
+        multiply_even_by_simple(n, &mut r, co, s, &p.u, &p.v);
+    }
+    r
+}
+
+/// The even coefficients of 1.
+fn even_identity(n: usize) -> EvenBuf {
+    let mut r: EvenBuf = SmallVec::from_elem(0.0, even_len(n));
+    r[0] = 1.0;
+    r
+}
+
+/// The even coefficients of e^B for N ≥ 5, exactly those of [`Bivector::try_exp`], on stack
+/// storage for N ≤ 6 (rotors keep only N ≤ 5 inline), with its errors.
+pub(crate) fn exp_even(b: &Bivector) -> Result<EvenBuf, AlgebraError> {
+    let n = b.dim();
+    debug_assert!(n >= 5, "the closed forms of N ≤ 4 are Bivector::exp's");
+    if n > MULTIVECTOR_MAX_DIM {
+        return Err(AlgebraError::DimensionTooLarge {
+            what: "rotor",
+            dim: n,
+            max: MULTIVECTOR_MAX_DIM,
+        });
+    }
+    check_finite(b.as_slice(), "bivector")?;
+    let norm = b.norm();
+    if !within(norm, f64::MAX / 2.0) {
+        return Err(AlgebraError::AngleTooLarge { norm });
+    }
+    Ok(even_exp_of_planes(
+        n,
+        &decompose_components(n, b.as_slice()),
+    ))
+}
+
+/// [`Rotor::log`] for N ≥ 5 of the rotor with even coefficients `r` in dimension `n`, on
+/// stack storage for N ≤ 6.
+pub(crate) fn log_even(n: usize, r: &[f64]) -> Bivector {
+    debug_assert!(n >= 5, "the closed forms of N ≤ 4 are Rotor::log's");
+    log_general(n, r)
 }
 
 /// 4D: B = aF + bG (self-dual and anti-self-dual halves, |α| = a, |β| = b) gives
@@ -261,7 +318,7 @@ impl Rotor {
                 }
             }
             4 => out = log_4d(self),
-            _ => out = log_general(self),
+            _ => out = log_general(n, &self.coeffs),
         }
         out
     }
@@ -351,14 +408,15 @@ fn log_4d(r: &Rotor) -> Bivector {
 /// as the logarithm of −R, where the planes are well conditioned (a rotor near −1 is −e^B′
 /// with B′ small), and only then is its largest plane moved from φ to φ − π, so that a plane
 /// at half-angle π − η keeps its direction to relative precision.
-fn log_general(r: &Rotor) -> Bivector {
-    let n = r.dim;
-    let (b0, negative) = log_from_matrix(r);
+// Kept out of line: its inline matrices would enlarge the stack frame of every Rotor::log.
+#[inline(never)]
+fn log_general(n: usize, r: &[f64]) -> Bivector {
+    let (b0, negative) = log_from_matrix(n, r);
     if !negative {
-        return refine_log(r, b0);
+        return refine_log(n, r, b0);
     }
-    let minus_r = r.clone().scaled(-1.0);
-    let b = refine_log(&minus_r, b0);
+    let minus_r: EvenBuf = r.iter().map(|c| c * -1.0).collect();
+    let b = refine_log(n, &minus_r, b0);
     let planes = decompose_components(n, b.as_slice());
     let Some(p) = planes.iter().max_by(|a, c| a.theta.total_cmp(&c.theta)) else {
         // R = −1: any plane at half-angle π.
@@ -381,14 +439,21 @@ fn log_general(r: &Rotor) -> Bivector {
 /// Δ = g(ad_B)⁻¹ δ with g(x) = sinh(x/2)/(x/2) (the symmetric form of dexp), applied in the
 /// frame of B's invariant decomposition where ad_B is block diagonal with eigenvalues
 /// ±2i(θₖ ± θₗ) and ±2iθₖ. A step is kept only if it lowers |δ|.
-fn refine_log(r: &Rotor, b0: Bivector) -> Bivector {
+fn refine_log(n: usize, r: &[f64], b0: Bivector) -> Bivector {
     let residual = |b: &Bivector| -> Option<(Bivector, f64)> {
-        let h = (b * -0.5).exp();
-        let m = h.compose(r).compose(&h);
-        if m.coeffs[0] <= 0.0 {
+        // e^B for N ≥ 5, as Bivector::exp forms it.
+        let h = even_exp_of_planes(n, &decompose_components(n, (b * -0.5).as_slice()));
+        let mut hr: EvenBuf = SmallVec::from_elem(0.0, r.len());
+        even_product_into(n, &h, r, &mut hr);
+        let mut m: EvenBuf = SmallVec::from_elem(0.0, r.len());
+        even_product_into(n, &hr, &h, &mut m);
+        if m[0] <= 0.0 {
             return None;
         }
-        let d = m.bivector_part();
+        let mut d = Bivector::zero(n);
+        for (k, (i, j)) in pairs(n).enumerate() {
+            d.as_mut_slice()[k] = m[even_index(n, (1 << i) | (1 << j))];
+        }
         let nd = d.norm();
         nd.is_finite().then_some((d, nd))
     };
@@ -422,25 +487,26 @@ fn refine_log(r: &Rotor, b0: Bivector) -> Bivector {
 fn inverse_symmetric_dexp(b: &Bivector, delta: &Bivector) -> Bivector {
     let n = b.dim();
     let planes = decompose_components(n, b.as_slice());
-    // Frame columns and, per column, its plane (index, is-u) or None for the complement.
-    let mut frame: Vec<Vec<f64>> = Vec::with_capacity(n);
-    let mut role: Vec<Option<usize>> = Vec::with_capacity(n);
+    // Frame columns and, per column, its plane (index) or None for the complement.
+    let mut frame = Mat8::zeros(n, n);
+    let mut role: SmallVec<[Option<usize>; 8]> = SmallVec::new();
     for (k, p) in planes.iter().enumerate() {
-        frame.push(p.u.to_vec());
-        frame.push(p.v.to_vec());
+        frame.column_mut(role.len()).copy_from_slice(&p.u);
         role.push(Some(k));
+        frame.column_mut(role.len()).copy_from_slice(&p.v);
         role.push(Some(k));
     }
     for i in 0..n {
-        if frame.len() == n {
+        if role.len() == n {
             break;
         }
-        let mut x = vec![0.0; n];
+        let mut x: Vec8 = SmallVec::from_elem(0.0, n);
         x[i] = 1.0;
         for _ in 0..2 {
-            for f in &frame {
-                let d: f64 = f.iter().zip(&x).map(|(a, c)| a * c).sum();
-                for (xi, fi) in x.iter_mut().zip(f) {
+            for f in 0..role.len() {
+                let col = frame.column(f);
+                let d: f64 = col.iter().zip(&x).map(|(a, c)| a * c).sum();
+                for (xi, fi) in x.iter_mut().zip(col) {
                     *xi -= d * fi;
                 }
             }
@@ -448,20 +514,24 @@ fn inverse_symmetric_dexp(b: &Bivector, delta: &Bivector) -> Bivector {
         let nx = x.iter().map(|c| c * c).sum::<f64>().sqrt();
         if nx > 0.5 {
             x.iter_mut().for_each(|c| *c /= nx);
-            frame.push(x);
+            frame.column_mut(role.len()).copy_from_slice(&x);
             role.push(None);
         }
     }
-    let m = frame.len();
-    let f = DMatrix::from_fn(n, m, |i, j| frame[j][i]);
-    let a = delta.to_skew_matrix();
-    let x = f.transpose() * &a * &f;
+    let m = role.len();
+    let f = Mat8::from_fn(n, m, |i, j| frame[(i, j)]);
+    let mut a = Mat8::zeros(n, n);
+    for ((i, j), &c) in pairs(n).zip(delta.as_slice()) {
+        a[(i, j)] = c;
+        a[(j, i)] = -c;
+    }
+    let x = f.transpose().mul(&a).mul(&f);
     // sin φ / φ, clamped away from zero.
     let inv = |phi: f64| -> f64 {
         let g = if phi == 0.0 { 1.0 } else { phi.sin() / phi };
         if g.abs() < 0.05 { 1.0 } else { 1.0 / g }
     };
-    let mut y = DMatrix::zeros(m, m);
+    let mut y = Mat8::zeros(m, m);
     for i in 0..m {
         for j in (i + 1)..m {
             y[(i, j)] = match (role[i], role[j]) {
@@ -494,7 +564,7 @@ fn inverse_symmetric_dexp(b: &Bivector, delta: &Bivector) -> Bivector {
             y[(j, i)] = -y[(i, j)];
         }
     }
-    let s = &f * y * f.transpose();
+    let s = f.mul(&y).mul(&f.transpose());
     let mut out = Bivector::zero(n);
     for ((i, j), c) in pairs(n).zip(out.as_mut_slice().iter_mut()) {
         *c = 0.5 * (s[(i, j)] - s[(j, i)]);
@@ -504,24 +574,19 @@ fn inverse_symmetric_dexp(b: &Bivector, delta: &Bivector) -> Bivector {
 
 /// Logarithm through the planes of the rotation matrix (absolute precision): B with every
 /// half-angle in \[0, π/2\] and whether R = −e^B (else R = e^B).
-fn log_from_matrix(r: &Rotor) -> (Bivector, bool) {
-    let n = r.dim;
-    let q = r.to_matrix();
+fn log_from_matrix(n: usize, r: &[f64]) -> (Bivector, bool) {
+    let mut q = Mat8::zeros(n, n);
+    super::convert::fill_matrix(n, r, |i, j, x| q[(i, j)] = x);
     let planes = super::convert::planes_of_rotation(&q);
     // Candidate: half-angle θ/2 on each plane x→y, i.e. B = Σ (θ/2) y∧x.
-    let mut cand = Rotor::identity(n);
+    let mut cand = even_identity(n);
     for p in &planes {
         let (s, c) = (0.5 * p.theta).sin_cos();
         // exp((θ/2) y∧x) = cos + sin · y x.
-        multiply_by_simple(&mut cand, c, s, &p.u, &p.v);
+        multiply_even_by_simple(n, &mut cand, c, s, &p.u, &p.v);
     }
     // ⟨R̃′ R⟩₀ is the plain dot product of the coefficients in a Euclidean signature.
-    let d: f64 = cand
-        .coeffs
-        .iter()
-        .zip(r.coeffs.iter())
-        .map(|(a, b)| a * b)
-        .sum();
+    let d: f64 = cand.iter().zip(r.iter()).map(|(a, b)| a * b).sum();
     // Every half-angle in [0, π/2]: R = ±e^B with the sign of d.
     let mut out = Bivector::zero(n);
     for p in &planes {

@@ -8,6 +8,7 @@
 mod convert;
 pub use convert::{NORMALIZE_TOLERANCE, ROTATION_TOLERANCE};
 mod exp_log;
+pub(crate) use exp_log::{exp_even, exp_of_planes, log_even};
 
 use super::bivector::pairs;
 use super::blade;
@@ -16,12 +17,17 @@ use super::multivector::{Multivector, MvStorage};
 use super::{AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Signature, Vector};
 use smallvec::SmallVec;
 
-/// Inline storage for rotors: the 2^(N−1) = 16 even coefficients of N ≤ 5 stay off the heap.
 /// Default tolerance of [`Rotor::from_multivector`]: how far from even, unit and
 /// vector-preserving a multivector may be and still be accepted as a rotor.
 pub const ROTOR_TOLERANCE: f64 = 1e-10;
 
+/// Inline storage for rotors: the 2^(N−1) = 16 even coefficients of N ≤ 5 stay off the heap.
 pub(crate) type RotorStorage = SmallVec<[f64; 16]>;
+
+/// Even coefficients of N ≤ 6 (32 of them) on the stack: the working storage of the rotor
+/// exponential and logarithm for N ≥ 5, so that the versor exp and log of Cl(6, 0, 0) need
+/// no heap while [`Rotor`] itself stays small for the hot paths of N ≤ 4.
+pub(crate) type EvenBuf = SmallVec<[f64; 32]>;
 
 /// A rotor of Euclidean ℝᴺ: an even, unit element R of the Clifford algebra with
 /// R R̃ = 1 and R x R̃ a vector for every vector x, i.e. an element of Spin(N).
@@ -525,12 +531,23 @@ pub(super) fn get_4d(r: &Rotor) -> (f64, [f64; 6], f64) {
 ///
 /// The sign of e_a eᵢ is bit i of `suffix_parity(a)`, computed once per blade.
 pub(crate) fn multiply_by_simple(r: &mut Rotor, c: f64, s: f64, u: &[f64], v: &[f64]) {
-    let n = r.dim;
+    multiply_even_by_simple(r.dim, &mut r.coeffs, c, s, u, v);
+}
+
+/// [`multiply_by_simple`] on the 2^(N−1) even coefficients of dimension `n`.
+pub(crate) fn multiply_even_by_simple(
+    n: usize,
+    r: &mut [f64],
+    c: f64,
+    s: f64,
+    u: &[f64],
+    v: &[f64],
+) {
     let len = even_len(n);
     let mask = (1u64 << (n - 1)) - 1;
     // t = R u (odd, indexed by low bits).
     let mut t: SmallVec<[f64; 32]> = SmallVec::from_elem(0.0, len);
-    for (&ra, &a) in r.coeffs.iter().zip(even_blades(n)) {
+    for (&ra, &a) in r.iter().zip(even_blades(n)) {
         if ra == 0.0 {
             continue;
         }
@@ -541,7 +558,7 @@ pub(crate) fn multiply_by_simple(r: &mut Rotor, c: f64, s: f64, u: &[f64], v: &[
         }
     }
     // R ← c R + s (t v).
-    r.coeffs.iter_mut().for_each(|x| *x *= c);
+    r.iter_mut().for_each(|x| *x *= c);
     for (&tb, &b) in t.iter().zip(odd_blades(n)) {
         if tb == 0.0 {
             continue;
@@ -550,7 +567,7 @@ pub(crate) fn multiply_by_simple(r: &mut Rotor, c: f64, s: f64, u: &[f64], v: &[
         let stb = s * tb;
         for (i, &vi) in v.iter().enumerate() {
             let sign = if sp >> i & 1 == 0 { stb } else { -stb };
-            r.coeffs[((b ^ (1 << i)) & mask) as usize] += sign * vi;
+            r[((b ^ (1 << i)) & mask) as usize] += sign * vi;
         }
     }
 }
