@@ -4,7 +4,8 @@
 //! - `pga3_exp`, `pga3_log`: the motor of 3D projective GA Cl(3, 0, 1) through rotorflow's
 //!   general `Multivector` route versus a hand-written closed form on fixed-size arrays (the
 //!   formula klein and ganja.js use, written below). The setup asserts that both return the
-//!   same motor (bivector) to 1e-14, so both columns compute the same thing.
+//!   same motor (bivector) to 1e-14, so both columns compute the same thing. `exp_to` and
+//!   `log_to` write into a multivector the caller keeps (no result to move out).
 //! - `general_exp/Cl(p,q,r)`: exp of a bivector in Cl(3, 1, 0) (N = 4), Cl(4, 1, 0) (N = 5),
 //!   Cl(5, 0, 1) and Cl(5, 1, 0) (N = 6, projective and conformal) through
 //!   `Multivector::exp` versus two matrix exponentials of nalgebra:
@@ -132,6 +133,10 @@ fn bench_pga3(c: &mut Criterion) {
     g.bench_function("rotorflow_multivector_exp", |bench| {
         bench.iter(|| black_box(&bm).exp().unwrap())
     });
+    g.bench_function("rotorflow_multivector_exp_to", |bench| {
+        let mut out = Multivector::zero(sig);
+        bench.iter(|| black_box(&bm).exp_to(black_box(&mut out)).unwrap())
+    });
     g.bench_function("hand_written_closed_form", |bench| {
         bench.iter(|| pga_exp(black_box(&b)))
     });
@@ -140,6 +145,10 @@ fn bench_pga3(c: &mut Criterion) {
     let mut g = c.benchmark_group("pga3_log");
     g.bench_function("rotorflow_multivector_log", |bench| {
         bench.iter(|| black_box(&mm).log().unwrap())
+    });
+    g.bench_function("rotorflow_multivector_log_to", |bench| {
+        let mut out = Multivector::zero(sig);
+        bench.iter(|| black_box(&mm).log_to(black_box(&mut out)).unwrap())
     });
     g.bench_function("hand_written_closed_form", |bench| {
         bench.iter(|| pga_log(black_box(&m)))
