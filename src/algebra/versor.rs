@@ -1089,8 +1089,18 @@ fn check_log_residual(residual: f64, v_size: f64, b_size: f64) -> Result<(), Alg
     }
 }
 
-/// exp for the refinement: the closed form, or an error on overflow.
+/// exp for the refinement: the closed form, or an error on overflow. Up to N = 4 the
+/// fixed-size route of `versor_n4.rs`, which stays exact where the general closed form's
+/// scaling loses digits (a subnormal rotation beside a translation in Cl(p, q, 1)).
 fn exp_nonzero<const L: usize>(b: &Small<L>) -> Result<Small<L>, ()> {
+    if n4::applies(b.signature()) {
+        let mut m = Multivector::zero(b.signature());
+        b.write_to(&mut m);
+        let mut e = Multivector::zero(b.signature());
+        if n4::exp_to(&m, &mut e) {
+            return Ok(Small::from_multivector(&e));
+        }
+    }
     let e = exp_closed_form(b);
     if e.as_slice().iter().all(|c| c.is_finite()) {
         Ok(e)

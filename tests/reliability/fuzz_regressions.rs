@@ -387,3 +387,21 @@ fn fuzz_pga_exp_of_nan_is_an_error() {
     );
     assert!(matches!(b.exp(), Err(AlgebraError::NonFinite { .. })));
 }
+
+/// versor_bits: in Cl(0, 3, 1), B = 5e-317 e₁₂ + 1.3e-318 e₁₃ − 1.5 e₃₄ (a subnormal rotation
+/// beside a null plane): the logarithm's refinement took its exponential from the general
+/// closed form, whose scaling lost eight digits of the translation there, and "corrected"
+/// an exact logarithm to −1.50000002 e₃₄. The refinement now uses the exact N ≤ 4 route.
+#[test]
+fn fuzz_log_of_a_subnormal_rotation_beside_a_null_plane() {
+    let b = versor_input(
+        0,
+        3,
+        1,
+        &[(3, 4.9845576e-317), (5, 1.295163e-318), (12, -1.5)],
+    );
+    let v = b.exp().unwrap();
+    let l = v.log().unwrap();
+    assert_eq!(l.coefficient(12), -1.5);
+    assert!((&l.exp().unwrap() - &v).max_abs() <= 1e-15);
+}
