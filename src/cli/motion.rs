@@ -429,6 +429,33 @@ pub fn integrate_each(
     Ok(steps)
 }
 
+/// The CSV report's header line (with its newline): t, ω_ij, L_ij, energy, the Casimirs and
+/// the attitude row-major.
+pub fn csv_header(n: usize) -> String {
+    let names = plane_names(n);
+    let mut header = vec!["t".to_string()];
+    header.extend(names.iter().map(|p| format!("omega_{p}")));
+    header.extend(names.iter().map(|p| format!("momentum_{p}")));
+    header.push("energy".into());
+    header.extend((1..=n / 2).map(|k| format!("casimir_{k}")));
+    for r in 1..=n {
+        header.extend((1..=n).map(|c| format!("R_{r}_{c}")));
+    }
+    let mut out = header.join(",");
+    out.push('\n');
+    out
+}
+
+/// The text report's header line (with its newline): t, the ω components and the energy.
+pub fn text_header(n: usize) -> String {
+    let mut out = format!("{:>12}", "t");
+    for p in &plane_names(n) {
+        out.push_str(&format!(" {:>12}", format!("ω{p}")));
+    }
+    out.push_str(&format!(" {:>14}\n", "energy"));
+    out
+}
+
 /// The text report's last line: the largest relative drifts.
 pub fn drift_line(d: &Drift) -> String {
     format!(
@@ -551,17 +578,7 @@ impl Report {
     /// attitude matrix row-major (R_r_c).
     pub fn to_csv(&self) -> String {
         let n = self.dim;
-        let names = plane_names(n);
-        let mut header = vec!["t".to_string()];
-        header.extend(names.iter().map(|p| format!("omega_{p}")));
-        header.extend(names.iter().map(|p| format!("momentum_{p}")));
-        header.push("energy".into());
-        header.extend((1..=n / 2).map(|k| format!("casimir_{k}")));
-        for r in 1..=n {
-            header.extend((1..=n).map(|c| format!("R_{r}_{c}")));
-        }
-        let mut out = header.join(",");
-        out.push('\n');
+        let mut out = csv_header(n);
         for k in 0..self.times.len() {
             let mut row = vec![number(self.times[k])];
             row.extend(self.omega[k].as_slice().iter().map(|x| number(*x)));
@@ -580,12 +597,7 @@ impl Report {
 
     /// Returns a readable table of t, ω and energy, and a drift line.
     pub fn to_text(&self) -> String {
-        let names = plane_names(self.dim);
-        let mut out = format!("{:>12}", "t");
-        for p in &names {
-            out.push_str(&format!(" {:>12}", format!("ω{p}")));
-        }
-        out.push_str(&format!(" {:>14}\n", "energy"));
+        let mut out = text_header(self.dim);
         for k in 0..self.times.len() {
             out.push_str(&format!("{:>12.6}", self.times[k]));
             for x in self.omega[k].as_slice() {

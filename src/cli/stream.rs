@@ -6,7 +6,7 @@
 //! [`Report`](super::motion::Report)'s `to_json`, `to_csv` and `to_text` (a test checks it).
 
 use super::error::{CliError, CliResult};
-use super::motion::{State, drift_line};
+use super::motion::{State, csv_header, drift_line, text_header};
 use super::output::{Format, number, plane_names};
 use rotorflow::algebra::Bivector;
 use rotorflow::dynamics::{Attitude, Drift, Invariants, RigidBody};
@@ -141,27 +141,9 @@ impl ReportStream {
     }
 
     fn header(&mut self) -> std::io::Result<()> {
-        let names = plane_names(self.dim);
         match self.format {
-            Format::Csv => {
-                let n = self.dim;
-                let mut header = vec!["t".to_string()];
-                header.extend(names.iter().map(|p| format!("omega_{p}")));
-                header.extend(names.iter().map(|p| format!("momentum_{p}")));
-                header.push("energy".into());
-                header.extend((1..=n / 2).map(|k| format!("casimir_{k}")));
-                for r in 1..=n {
-                    header.extend((1..=n).map(|c| format!("R_{r}_{c}")));
-                }
-                writeln!(self.main, "{}", header.join(","))
-            }
-            Format::Text => {
-                write!(self.main, "{:>12}", "t")?;
-                for p in &names {
-                    write!(self.main, " {:>12}", format!("ω{p}"))?;
-                }
-                writeln!(self.main, " {:>14}", "energy")
-            }
+            Format::Csv => write!(self.main, "{}", csv_header(self.dim)),
+            Format::Text => write!(self.main, "{}", text_header(self.dim)),
             Format::Json => Ok(()),
         }
     }

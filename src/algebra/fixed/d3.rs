@@ -296,18 +296,12 @@ impl<T: Real> Rotor3<T> {
     /// [`AlgebraError::NonFinite`] for NaN or infinite entries; [`AlgebraError::NotARotation`]
     /// if max |QᵀQ − 1| exceeds [`crate::algebra::ROTATION_TOLERANCE`] or det Q < 0.
     pub fn from_matrix(m: &Matrix3<T>) -> Result<Self, AlgebraError> {
-        if !m.iter().all(|c| c.is_finite()) {
-            return Err(AlgebraError::NonFinite { what: "matrix" });
-        }
-        let error = (m.transpose() * m - Matrix3::identity()).amax().to_f64();
-        let det = m.determinant().to_f64();
-        if !(error <= crate::algebra::ROTATION_TOLERANCE && det > 0.0) {
-            return Err(AlgebraError::NotARotation {
-                orthogonality_error: error,
-                determinant: det,
-                tolerance: crate::algebra::ROTATION_TOLERANCE,
-            });
-        }
+        super::check_rotation(m.iter().copied(), || {
+            (
+                (m.transpose() * m - Matrix3::identity()).amax(),
+                m.determinant(),
+            )
+        })?;
         Ok(Self::from_matrix_unchecked(m))
     }
 

@@ -359,18 +359,12 @@ impl<T: Real> Rotor4<T> {
     /// [`AlgebraError::NonFinite`] for NaN or infinite entries; [`AlgebraError::NotARotation`]
     /// if max |QᵀQ − 1| exceeds [`crate::algebra::ROTATION_TOLERANCE`] or det Q < 0.
     pub fn from_matrix(q: &Matrix4<T>) -> Result<Self, AlgebraError> {
-        if !q.iter().all(|c| c.is_finite()) {
-            return Err(AlgebraError::NonFinite { what: "matrix" });
-        }
-        let error = (q.transpose() * q - Matrix4::identity()).amax().to_f64();
-        let det = q.determinant().to_f64();
-        if !(error <= crate::algebra::ROTATION_TOLERANCE && det > 0.0) {
-            return Err(AlgebraError::NotARotation {
-                orthogonality_error: error,
-                determinant: det,
-                tolerance: crate::algebra::ROTATION_TOLERANCE,
-            });
-        }
+        super::check_rotation(q.iter().copied(), || {
+            (
+                (q.transpose() * q - Matrix4::identity()).amax(),
+                q.determinant(),
+            )
+        })?;
         let unit = |i: usize| {
             let mut e = [T::zero(); 4];
             e[i] = T::one();

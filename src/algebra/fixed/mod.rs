@@ -98,6 +98,28 @@ fn norm<T: Real, const K: usize>(x: [T; K]) -> T {
     m * t.sqrt()
 }
 
+/// Ok for a finite matrix (its `entries`) whose (max |QᵀQ − 1|, det Q) from `measure` make
+/// it a rotation within [`super::ROTATION_TOLERANCE`], as the run-time `Rotor::from_matrix`
+/// requires.
+fn check_rotation<T: Real>(
+    mut entries: impl Iterator<Item = T>,
+    measure: impl FnOnce() -> (T, T),
+) -> Result<(), super::AlgebraError> {
+    if !entries.all(|c| c.is_finite()) {
+        return Err(super::AlgebraError::NonFinite { what: "matrix" });
+    }
+    let (error, det) = measure();
+    let (error, det) = (error.to_f64(), det.to_f64());
+    if !(error <= super::ROTATION_TOLERANCE && det > 0.0) {
+        return Err(super::AlgebraError::NotARotation {
+            orthogonality_error: error,
+            determinant: det,
+            tolerance: super::ROTATION_TOLERANCE,
+        });
+    }
+    Ok(())
+}
+
 /// A unit quaternion's Hamilton product, (w, x, y, z) order.
 #[inline(always)]
 fn quat_mul<T: Real>(a: [T; 4], b: [T; 4]) -> [T; 4] {
