@@ -103,7 +103,7 @@ impl Bivector {
         }
         Ok(Bivector {
             dim: n,
-            coeffs: SmallVec::from_elem(0.0, bivector_len(n)),
+            coeffs: crate::numeric::zeros(bivector_len(n)),
         })
     }
 

@@ -120,7 +120,7 @@ impl Multivector {
         }
         Ok(Multivector {
             sig,
-            coeffs: SmallVec::from_elem(0.0, 1 << n),
+            coeffs: crate::numeric::zeros(1 << n),
         })
     }
 
@@ -610,7 +610,7 @@ impl Multivector {
 /// interpreted rather than generated).
 fn product_kernel(a: &Multivector, b: &Multivector, kind: Product) -> Multivector {
     let sig = a.sig;
-    let mut out: MvStorage = SmallVec::from_elem(0.0, a.coeffs.len());
+    let mut out: MvStorage = crate::numeric::zeros(a.coeffs.len());
     let b_terms: SmallVec<[(u64, f64); 32]> = b.terms().collect();
     for (ba, ca) in a.terms() {
         for &(bb, cb) in &b_terms {

@@ -47,7 +47,7 @@ impl Vector {
             });
         }
         Ok(Vector {
-            coords: SmallVec::from_elem(0.0, n),
+            coords: crate::numeric::zeros(n),
         })
     }
 

@@ -188,9 +188,12 @@ fn study_deviation(x: &[f64; 16]) -> f64 {
 #[inline]
 pub(super) fn log(v: &Multivector, tolerance: f64) -> Option<Multivector> {
     let x: &[f64; 16] = v.as_slice().try_into().ok()?;
-    let mut out = Multivector::zero(v.signature());
-    let o: &mut [f64; 16] = out.as_mut_slice().try_into().ok()?;
-    log_coefficients(x, tolerance, o).then_some(out)
+    // Built on the stack and moved into the storage whole (no element-wise fill).
+    let mut o = [0.0; 16];
+    if !log_coefficients(x, tolerance, &mut o) {
+        return None;
+    }
+    Some(Multivector::from_storage(v.signature(), o.into()))
 }
 
 /// [`log`] into `out` (Cl(3, 0, 1) too): true if it was written.

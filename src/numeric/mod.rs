@@ -1,7 +1,7 @@
 //! The numeric toolbox: dense linear-algebra and scalar kernels that know nothing of
 //! geometric algebra.
 //!
-//! A leaf of the crate: it depends only on nalgebra, and `algebra`, `inertia` and `dynamics`
+//! A leaf of the crate: it depends only on nalgebra and smallvec, and `algebra`, `inertia` and `dynamics`
 //! build on it (numeric ← algebra ← inertia ← dynamics). Nothing here is public API; the
 //! public types re-export what users need (for instance [`crate::algebra::Rotor::to_matrix`]
 //! rather than the matrix exponential behind it).
@@ -28,6 +28,19 @@ pub(crate) use householder::householder_complement;
 pub(crate) use trig::sin_cos_minus_one;
 
 use nalgebra::{DMatrix, DMatrixView};
+use smallvec::SmallVec;
+
+/// `len` zeros, inline when they fit: the whole buffer is written at once (smallvec's
+/// `from_elem` fills element by element, which costs more than the small products and
+/// closed forms it feeds). Meant for inline capacities of a few cache lines.
+#[inline(always)]
+pub(crate) fn zeros<const K: usize>(len: usize) -> SmallVec<[f64; K]> {
+    if len <= K {
+        SmallVec::from_buf_and_len([0.0; K], len)
+    } else {
+        SmallVec::from_vec(vec![0.0; len])
+    }
+}
 
 /// Multiplies by 2^e exactly (barring overflow/underflow of the result), also for |e| > 1023.
 pub(crate) fn ldexp(mut x: f64, mut e: i32) -> f64 {

@@ -143,7 +143,7 @@ impl Rotor {
                 max: MULTIVECTOR_MAX_DIM,
             });
         }
-        let mut coeffs = SmallVec::from_elem(0.0, even_len(n));
+        let mut coeffs = crate::numeric::zeros(even_len(n));
         coeffs[0] = 1.0;
         Ok(Rotor { dim: n, coeffs })
     }
@@ -221,7 +221,7 @@ impl Rotor {
     /// Returns the rotor as a general multivector of Cl(N, 0, 0).
     pub fn to_multivector(&self) -> Multivector {
         let n = self.dim;
-        let mut m: MvStorage = SmallVec::from_elem(0.0, 1 << n);
+        let mut m: MvStorage = crate::numeric::zeros(1 << n);
         for (b, c) in self.terms() {
             m[b as usize] = c;
         }
@@ -333,7 +333,7 @@ impl Rotor {
         assert_same_dim(self.dim, other.dim);
         let mut out = Rotor {
             dim: self.dim,
-            coeffs: SmallVec::from_elem(0.0, self.coeffs.len()),
+            coeffs: crate::numeric::zeros(self.coeffs.len()),
         };
         even_product_into(self.dim, &self.coeffs, &other.coeffs, &mut out.coeffs);
         out
@@ -480,7 +480,7 @@ impl Rotor {
     /// coefficient of R is rounded once. No allocation for N ≤ 5.
     pub(crate) fn times_one_plus(&mut self, d: &[f64]) {
         debug_assert_eq!(d.len(), self.coeffs.len());
-        let mut rd: RotorStorage = SmallVec::from_elem(0.0, self.coeffs.len());
+        let mut rd: RotorStorage = crate::numeric::zeros(self.coeffs.len());
         even_product_into(self.dim, &self.coeffs, d, &mut rd);
         self.coeffs.iter_mut().zip(&rd).for_each(|(r, x)| *r += x);
     }
@@ -746,7 +746,7 @@ impl std::ops::MulAssign<&Rotor> for Rotor {
     #[track_caller]
     fn mul_assign(&mut self, rhs: &Rotor) {
         assert_same_dim(self.dim, rhs.dim);
-        let mut out: RotorStorage = SmallVec::from_elem(0.0, self.coeffs.len());
+        let mut out: RotorStorage = crate::numeric::zeros(self.coeffs.len());
         even_product_into(self.dim, &self.coeffs, &rhs.coeffs, &mut out);
         self.coeffs.copy_from_slice(&out);
     }
