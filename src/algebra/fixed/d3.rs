@@ -381,6 +381,7 @@ impl<T: Real> Rotor3<T> {
 
     /// The even element in the run-time rotor's storage order (s, e₁₃, e₂₃, e₁₂), any
     /// values (not only unit rotors).
+    #[inline(always)]
     pub(crate) fn from_even_layout(c: &[f64; 4]) -> Self
     where
         T: From<f64>,
@@ -389,6 +390,14 @@ impl<T: Real> Rotor3<T> {
             T::from(c[0]),
             Bivector3::new(T::from(c[3]), T::from(c[1]), T::from(c[2])),
         )
+    }
+
+    /// The even element in the run-time rotor's storage order, the inverse of
+    /// [`Rotor3::from_even_layout`].
+    #[inline(always)]
+    pub(crate) fn to_even_layout(self) -> [f64; 4] {
+        let [w, x, y, z] = self.q.map(Real::to_f64);
+        [w, y, -x, -z]
     }
 
     /// self + self · d, the update R ← R (1 + D) of an increment D.
@@ -414,6 +423,23 @@ impl<T: Real> Rotor3<T> {
 }
 
 impl Rotor3<f64> {
+    /// R x R̃ for an even element R in the run-time layout, unit or not: with q = (w, u),
+    /// (w² − u·u) x + 2(u·x) u + 2w u × x, which is the sandwich for every quaternion (the
+    /// unit-only form v + 2w u × v + 2u × (u × v) is not).
+    #[inline(always)]
+    pub(crate) fn sandwich_even_layout(c: &[f64; 4], x: &[f64; 3]) -> [f64; 3] {
+        let (w, u) = (c[0], [-c[2], c[1], -c[3]]);
+        let d = w * w - (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        let ux = 2.0 * (u[0] * x[0] + u[1] * x[1] + u[2] * x[2]);
+        let w2 = 2.0 * w;
+        let cross = [
+            u[1] * x[2] - u[2] * x[1],
+            u[2] * x[0] - u[0] * x[2],
+            u[0] * x[1] - u[1] * x[0],
+        ];
+        std::array::from_fn(|i| d * x[i] + ux * u[i] + w2 * cross[i])
+    }
+
     /// The fixed-size form of a run-time rotor.
     ///
     /// # Errors

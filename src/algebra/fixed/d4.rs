@@ -455,6 +455,7 @@ impl<T: Real> Rotor4<T> {
 
     /// The even element in the run-time rotor's storage order (s, e₁₄, e₂₄, e₁₂, e₃₄, e₁₃,
     /// e₂₃, e₁₂₃₄), any values (not only unit rotors).
+    #[inline(always)]
     pub(crate) fn from_even_layout(c: &[f64; 8]) -> Self
     where
         T: From<f64>,
@@ -465,6 +466,24 @@ impl<T: Real> Rotor4<T> {
             Bivector4::new(t(3), t(5), t(1), t(6), t(2), t(4)),
             t(7),
         )
+    }
+
+    /// The even element in the run-time rotor's storage order, the inverse of
+    /// [`Rotor4::from_even_layout`].
+    #[inline(always)]
+    pub(crate) fn to_even_layout(self) -> [f64; 8] {
+        let b = self.bivector_part();
+        let t = |x: T| x.to_f64();
+        [
+            t(self.scalar()),
+            t(b.b14),
+            t(b.b24),
+            t(b.b12),
+            t(b.b34),
+            t(b.b13),
+            t(b.b23),
+            t(self.pseudoscalar()),
+        ]
     }
 
     /// self + self · d, the update R ← R (1 + D) of an increment D.

@@ -266,6 +266,16 @@ pub(crate) fn fill_matrix(n: usize, coeffs: &[f64], mut set: impl FnMut(usize, u
     match n {
         0 => {}
         1 => set(0, 0, 1.0),
+        4 => {
+            // The product of the left- and right-isoclinic matrices of the quaternion pair.
+            let q =
+                crate::algebra::Rotor4::<f64>::from_even_layout(super::layout(coeffs)).to_matrix();
+            for j in 0..4 {
+                for i in 0..4 {
+                    set(i, j, q[(i, j)]);
+                }
+            }
+        }
         3 => {
             // Quaternion formula with q = w − x e23 + y e13 − z e12 (see nalgebra.rs).
             let w = coeffs[0];
@@ -298,31 +308,34 @@ pub(crate) fn fill_matrix(n: usize, coeffs: &[f64], mut set: impl FnMut(usize, u
                 }
             }
         }
-        _ => {
-            // Q_ij = ⟨eᵢ R eⱼ R̃⟩₀ = Σ_a σ(i, j, a) R_a R_{a ⊕ eᵢ ⊕ eⱼ}: one pass over the
-            // even blades per entry, with the signs σ from a cached bit table.
-            let mask = (1u64 << (n - 1)) - 1;
-            let len = super::even_len(n);
-            let table = matrix_sign_table(n);
-            let blades = super::even_blades(n);
-            for i in 0..n {
-                for j in 0..n {
-                    let m = (1u64 << i) ^ (1u64 << j);
-                    let mut acc = 0.0;
-                    for (ia, (&ra, &a)) in coeffs.iter().zip(blades).enumerate() {
-                        if ra == 0.0 {
-                            continue;
-                        }
-                        let rb = coeffs[((a ^ m) & mask) as usize];
-                        let negative = match &table {
-                            Some(t) => t[(i * n + j) * len + ia],
-                            None => matrix_sign_negative(a, i, j),
-                        };
-                        acc += if negative { -ra * rb } else { ra * rb };
-                    }
-                    set(i, j, acc);
+        _ => fill_matrix_blades(n, coeffs, set),
+    }
+}
+
+/// [`fill_matrix`] through the even blades, any N ≥ 2.
+pub(super) fn fill_matrix_blades(n: usize, coeffs: &[f64], mut set: impl FnMut(usize, usize, f64)) {
+    // Q_ij = ⟨eᵢ R eⱼ R̃⟩₀ = Σ_a σ(i, j, a) R_a R_{a ⊕ eᵢ ⊕ eⱼ}: one pass over the
+    // even blades per entry, with the signs σ from a cached bit table.
+    let mask = (1u64 << (n - 1)) - 1;
+    let len = super::even_len(n);
+    let table = matrix_sign_table(n);
+    let blades = super::even_blades(n);
+    for i in 0..n {
+        for j in 0..n {
+            let m = (1u64 << i) ^ (1u64 << j);
+            let mut acc = 0.0;
+            for (ia, (&ra, &a)) in coeffs.iter().zip(blades).enumerate() {
+                if ra == 0.0 {
+                    continue;
                 }
+                let rb = coeffs[((a ^ m) & mask) as usize];
+                let negative = match &table {
+                    Some(t) => t[(i * n + j) * len + ia],
+                    None => matrix_sign_negative(a, i, j),
+                };
+                acc += if negative { -ra * rb } else { ra * rb };
             }
+            set(i, j, acc);
         }
     }
 }

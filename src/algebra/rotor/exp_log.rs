@@ -2,7 +2,7 @@
 
 use super::{
     EvenBuf, Rotor, even_index, even_len, even_product_into, get_4d, multiply_by_simple,
-    multiply_even_by_simple, set_4d,
+    multiply_even_by_simple,
 };
 use crate::algebra::bivector::pairs;
 use crate::algebra::decompose::{RawPlane, decompose_components, self_dual_join, self_dual_split};
@@ -58,12 +58,15 @@ impl Bivector {
                 let theta = self.norm();
                 let (s, co) = theta.sin_cos();
                 let k = if theta > 0.0 { s / theta } else { 1.0 };
-                r.coeffs[0] = co;
-                for ((i, j), &b) in pairs(3).zip(c) {
-                    r.coeffs[even_index(3, (1 << i) | (1 << j))] = k * b;
-                }
+                // Storage order (s, e₁₃, e₂₃, e₁₂).
+                r.coeffs
+                    .copy_from_slice(&[co, k * c[1], k * c[2], k * c[0]]);
             }
-            4 => exp_4d(c, &mut r),
+            // The quaternion exponential of each self-dual half.
+            4 => {
+                let b = crate::algebra::Bivector4::from_array(*super::layout(c));
+                r.coeffs.copy_from_slice(&b.exp().to_even_layout());
+            }
             _ => r = exp_of_planes(n, &decompose_components(n, c)),
         }
         r
@@ -166,7 +169,8 @@ pub(crate) fn log_even(n: usize, r: &[f64]) -> Bivector {
 /// e^B = ½(cos 2a + cos 2b) + ½(cos 2b − cos 2a) I + ½ sin 2a F̂ + ½ sin 2b Ĝ, with F̂, Ĝ the unit
 /// directions (F̂² = −4P₋, Ĝ² = −4P₊, P± = (1 ± I)/2). No decomposition and no division by
 /// a − b.
-fn exp_4d(c: &[f64], r: &mut Rotor) {
+#[cfg(test)]
+pub(super) fn exp_4d(c: &[f64], r: &mut Rotor) {
     let (alpha, beta) = self_dual_split(c);
     let a = crate::numeric::scaled_norm(&alpha);
     let b = crate::numeric::scaled_norm(&beta);
@@ -177,7 +181,7 @@ fn exp_4d(c: &[f64], r: &mut Rotor) {
     let kb = if b > 0.0 { 0.5 * sb / b } else { 1.0 };
     let f = [ka * alpha[0], ka * alpha[1], ka * alpha[2]];
     let g = [kb * beta[0], kb * beta[1], kb * beta[2]];
-    set_4d(r, 0.5 * (ca + cb), self_dual_join(f, g), 0.5 * (cb - ca));
+    super::set_4d(r, 0.5 * (ca + cb), self_dual_join(f, g), 0.5 * (cb - ca));
 }
 
 impl Bivector {

@@ -14,7 +14,7 @@ use super::bivector::pairs;
 use super::blade;
 use super::error::{assert_same_dim, check_finite, check_same_dim, within};
 use super::multivector::{Multivector, MvStorage};
-use super::{AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Signature, Vector};
+use super::{AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Rotor3, Rotor4, Signature, Vector};
 use smallvec::SmallVec;
 
 /// Default tolerance of [`Rotor::from_multivector`]: how far from even, unit and
@@ -22,7 +22,10 @@ use smallvec::SmallVec;
 pub const ROTOR_TOLERANCE: f64 = 1e-10;
 
 /// Inline storage for rotors: the 2^(N−1) = 16 even coefficients of N ≤ 5 stay off the heap.
-pub(crate) type RotorStorage = SmallVec<[f64; 16]>;
+pub(crate) type RotorStorage = SmallVec<[f64; INLINE_LEN]>;
+
+/// The coefficients a rotor keeps inline (N ≤ 5).
+const INLINE_LEN: usize = 16;
 
 /// Even coefficients of N ≤ 6 (32 of them) on the stack: the working storage of the rotor
 /// exponential and logarithm for N ≥ 5, so that the versor exp and log of Cl(6, 0, 0) need
@@ -331,9 +334,19 @@ impl Rotor {
     #[track_caller]
     pub fn compose(&self, other: &Rotor) -> Rotor {
         assert_same_dim(self.dim, other.dim);
+        let len = self.coeffs.len();
+        if len <= INLINE_LEN {
+            // Formed in a stack buffer that becomes the inline storage whole.
+            let mut buf = [0.0; INLINE_LEN];
+            even_product_into(self.dim, &self.coeffs, &other.coeffs, &mut buf[..len]);
+            return Rotor {
+                dim: self.dim,
+                coeffs: SmallVec::from_buf_and_len(buf, len),
+            };
+        }
         let mut out = Rotor {
             dim: self.dim,
-            coeffs: crate::numeric::zeros(self.coeffs.len()),
+            coeffs: crate::numeric::zeros(len),
         };
         even_product_into(self.dim, &self.coeffs, &other.coeffs, &mut out.coeffs);
         out
@@ -375,6 +388,26 @@ impl Rotor {
 
     /// Writes R x R̃ into `out` (both of length N).
     pub(crate) fn sandwich_vector_into(&self, x: &[f64], out: &mut [f64]) {
+        let n = self.dim;
+        match n {
+            3 => {
+                let y = Rotor3::sandwich_even_layout(layout(&self.coeffs), layout(x));
+                out.copy_from_slice(&y);
+                return;
+            }
+            4 => {
+                let y = Rotor4::<f64>::from_even_layout(layout(&self.coeffs))
+                    .rotate_vector(nalgebra::Vector4::from(*layout::<4>(x)));
+                out.copy_from_slice(y.as_slice());
+                return;
+            }
+            _ => {}
+        }
+        self.sandwich_vector_tables(x, out);
+    }
+
+    /// [`Rotor::sandwich_vector_into`] through the blade loops, any N.
+    fn sandwich_vector_tables(&self, x: &[f64], out: &mut [f64]) {
         let n = self.dim;
         out.iter_mut().for_each(|o| *o = 0.0);
         if n == 0 {
@@ -656,6 +689,27 @@ pub(crate) fn plane_tables(n: usize) -> &'static [Vec<(u8, u8, f64, f64)>] {
 /// N ≤ 5 runs a kernel unrolled at compile time from a constant sign table (the general loop
 /// spends most of its time on the signs).
 pub(crate) fn even_product_into(n: usize, a: &[f64], b: &[f64], out: &mut [f64]) {
+    // N = 3: Hamilton's product (the layout is the quaternion up to signs and order, so
+    // this is exact where the tables are: R · 1 = R). N = 4 stays on the sign table: the
+    // quaternion pair would round s ± p on the way in and out.
+    if n == 3 {
+        let p =
+            Rotor3::<f64>::from_even_layout(layout(a)) * Rotor3::<f64>::from_even_layout(layout(b));
+        out.copy_from_slice(&p.to_even_layout());
+    } else {
+        even_product_tables(n, a, b, out);
+    }
+}
+
+/// The coefficients of an even element of length L as an array (the caller's dimension fixes
+/// the length).
+#[inline(always)]
+pub(crate) fn layout<const L: usize>(c: &[f64]) -> &[f64; L] {
+    c.try_into().expect("even element length")
+}
+
+/// [`even_product_into`] through the sign tables (N ≤ 5) or the blade loop.
+fn even_product_tables(n: usize, a: &[f64], b: &[f64], out: &mut [f64]) {
     match n {
         2 => return even_product_fixed(a, b, out, &EVEN_SIGNS_2),
         3 => return even_product_fixed(a, b, out, &EVEN_SIGNS_3),
@@ -808,5 +862,87 @@ mod tests {
         check(3, &EVEN_SIGNS_3);
         check(4, &EVEN_SIGNS_4);
         check(5, &EVEN_SIGNS_5);
+    }
+
+    /// max |a − b| in units of ε · max(1, max |b|).
+    fn ulps(a: &[f64], b: &[f64]) -> f64 {
+        let scale = b.iter().fold(1.0f64, |m, c| m.max(c.abs()));
+        let d = a
+            .iter()
+            .zip(b)
+            .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+        d / (f64::EPSILON * scale)
+    }
+
+    /// The N = 3, 4 routes through the fixed-size rotors (3D product, sandwich, rotation
+    /// matrix, 4D exponential) equal the blade and sign-table routes to 4 ulp, on random
+    /// bivectors of every size and on the hard ones: isoclinic and near-isoclinic 4D
+    /// rotations, angles at π, tiny and huge components.
+    #[test]
+    fn fixed_size_routes_equal_the_blade_routes() {
+        let mut s = 0x9e37_79b9_7f4a_7c15u64;
+        let mut r = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        };
+        let mut cases = 0;
+        let mut worst = [0.0f64; 4];
+        for n in [3usize, 4] {
+            let m = n * (n - 1) / 2;
+            let mut inputs: Vec<Vec<f64>> = Vec::new();
+            for scale in [1e-200, 1e-8, 0.3, 1.0, 3.0, 1e6, 1e150] {
+                for _ in 0..40 {
+                    inputs.push((0..m).map(|_| scale * r()).collect());
+                }
+            }
+            let pi = std::f64::consts::PI;
+            if n == 4 {
+                // (b12, b13, b14, b23, b24, b34): isoclinic b12 = ±b34, then gaps.
+                for gap in [0.0, 1e-15, 1e-9, 1e-6] {
+                    for a in [0.4, 1.5, pi / 2.0 - 1e-12] {
+                        inputs.push(vec![a, 0.0, 0.0, 0.0, 0.0, a + gap]);
+                        inputs.push(vec![a, 0.1, -0.2, 0.2, 0.1, -a - gap]);
+                    }
+                }
+            }
+            // Rotation angle π ± 1e-12 in the e₁₂ plane (the rotor's angle is half of it).
+            for d in [-1e-12, 0.0, 1e-12] {
+                let mut b = vec![0.0; m];
+                b[0] = pi / 2.0 + d;
+                inputs.push(b);
+            }
+            let x: Vec<f64> = (0..n).map(|_| r()).collect();
+            for pair in inputs.windows(2) {
+                let a = Bivector::from_components(n, &pair[0]).unwrap();
+                let b = Bivector::from_components(n, &pair[1]).unwrap();
+                let (ra, rb) = (a.exp(), b.exp());
+                let len = ra.coeffs.len();
+                let (mut fast, mut general) = (vec![0.0; len], vec![0.0; len]);
+                even_product_into(n, &ra.coeffs, &rb.coeffs, &mut fast);
+                even_product_tables(n, &ra.coeffs, &rb.coeffs, &mut general);
+                worst[0] = worst[0].max(ulps(&fast, &general));
+                let (mut y, mut yg) = (vec![0.0; n], vec![0.0; n]);
+                ra.sandwich_vector_into(&x, &mut y);
+                ra.sandwich_vector_tables(&x, &mut yg);
+                worst[1] = worst[1].max(ulps(&y, &yg));
+                let (mut q, mut qg) = (vec![0.0; n * n], vec![0.0; n * n]);
+                convert::fill_matrix(n, &ra.coeffs, |i, j, v| q[i * n + j] = v);
+                convert::fill_matrix_blades(n, &ra.coeffs, |i, j, v| qg[i * n + j] = v);
+                worst[2] = worst[2].max(ulps(&q, &qg));
+                // Above 2⁵³ the half sums b₁₂ ± b₃₄ round by more than 2π, so neither route
+                // determines the rotor there (each is exact for its own rounding).
+                if n == 4 && a.max_abs() < 1e15 {
+                    let mut rg = Rotor::identity(4);
+                    exp_log::exp_4d(a.as_slice(), &mut rg);
+                    worst[3] = worst[3].max(ulps(&ra.coeffs, &rg.coeffs));
+                }
+                cases += 1;
+            }
+        }
+        eprintln!("ulps (product, sandwich, matrix, 4D exp): {worst:?}");
+        assert!(worst.iter().all(|&w| w <= 4.0), "{worst:?}");
+        assert_eq!(cases, 282 + 306);
     }
 }
