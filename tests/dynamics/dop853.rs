@@ -375,6 +375,10 @@ fn bad_tolerances_and_bad_states_are_errors() {
         d.dense_samples(&body, &Free, &[0.0, f64::NAN]),
         Err(DynamicsError::InvalidSampling { .. })
     ));
+    assert!(matches!(
+        Dop853::fixed_step().dense_samples(&body, &Free, &[0.0, 1.0]),
+        Err(DynamicsError::InvalidSampling { .. })
+    ));
     // A stiff case ends on the step bound instead of looping.
     let inertia = InertiaMap::from_principal_second_moments(&[1e-4, 1.0, 1.0, 1.0]).unwrap();
     let w = Bivector::from_components(4, &[1e6, 1e3, 0.0, 1e3, 0.0, 1e6]).unwrap();

@@ -188,7 +188,8 @@ impl Dop853 {
     /// `times` (ascending, ≥ 0) from the dense output, without shortening steps to hit them.
     ///
     /// # Errors
-    /// [`DynamicsError::InvalidSampling`], [`DynamicsError::StepTooSmall`],
+    /// [`DynamicsError::InvalidSampling`] for bad times, or from [`Dop853::fixed_step`],
+    /// which has no step size of its own; [`DynamicsError::StepTooSmall`],
     /// [`DynamicsError::TooManySteps`], [`DynamicsError::NonFinite`].
     pub fn dense_samples(
         &mut self,
@@ -196,6 +197,11 @@ impl Dop853 {
         torque: &dyn Torque,
         times: &[f64],
     ) -> Result<Vec<(Attitude, Bivector)>, DynamicsError> {
+        if !self.adaptive {
+            return Err(DynamicsError::InvalidSampling {
+                reason: "dense samples need the adaptive integrator (Dop853::new)",
+            });
+        }
         if times.iter().any(|t| !t.is_finite() || *t < 0.0)
             || times.windows(2).any(|w| w[1] <= w[0])
         {
