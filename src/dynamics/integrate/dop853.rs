@@ -1,8 +1,8 @@
 //! Adaptive Dormand–Prince 8(5,3) on the group, with dense output of order 7.
 
 use super::dop853_tableau::{A, ALL_STAGES, B, BHH, C, D, E5, STAGES};
-use super::{DynamicsError, Integrator, dexp_inverse, momentum_rate};
-use crate::algebra::Bivector;
+use super::{DynamicsError, Integrator, dexp_inverse, momentum_rate_into};
+use crate::algebra::{Bivector, commutator_packed};
 use crate::dynamics::Attitude;
 use crate::dynamics::{RigidBody, Torque};
 use smallvec::SmallVec;
@@ -14,6 +14,47 @@ type Stages = SmallVec<[Bivector; ALL_STAGES]>;
 fn axpy(y: &mut Bivector, alpha: f64, x: &Bivector) {
     for (a, b) in y.as_mut_slice().iter_mut().zip(x.as_slice()) {
         *a += alpha * b;
+    }
+}
+
+/// Writes dexp⁻¹₋Ω(s·w) truncated for order 8, as [`dexp_inverse`] computes it, into `out`,
+/// with the commutator powers on the stack for N ≤ 8 (the stages' hot spot: six
+/// commutators each).
+fn dexp_inverse_8(omega_alg: &Bivector, w: &Bivector, s: f64, out: &mut Bivector) {
+    let n = w.dim();
+    let len = w.as_slice().len();
+    if len > 28 {
+        *out = dexp_inverse(omega_alg, &(w * s), 8);
+        return;
+    }
+    let mut power = [0.0f64; 28];
+    let mut next = [0.0f64; 28];
+    for ((o, p), x) in out
+        .as_mut_slice()
+        .iter_mut()
+        .zip(&mut power[..len])
+        .zip(w.as_slice())
+    {
+        *o = s * x;
+        *p = s * x;
+    }
+    // The coefficients of (Ω×)ᵏ, k = 1 … 6 (see dexp_inverse).
+    for coefficient in [1.0, 1.0 / 3.0, 0.0, -1.0 / 45.0, 0.0, 2.0 / 945.0] {
+        commutator_packed(n, omega_alg.as_slice(), &power[..len], &mut next[..len]);
+        std::mem::swap(&mut power, &mut next);
+        if coefficient != 0.0 {
+            for (o, p) in out.as_mut_slice().iter_mut().zip(&power[..len]) {
+                *o += coefficient * p;
+            }
+        }
+    }
+}
+
+/// Makes `stages` hold sixteen bivectors of dimension n, keeping them when they already do.
+fn ensure_stages(stages: &mut Stages, n: usize) {
+    if stages.len() != ALL_STAGES || stages[0].dim() != n {
+        stages.clear();
+        stages.extend((0..ALL_STAGES).map(|_| Bivector::zero(n)));
     }
 }
 
@@ -54,6 +95,8 @@ pub struct Dop853 {
 #[derive(Clone, Debug)]
 struct LastStep {
     valid: bool,
+    /// Whether stages 12–15 (the dense output's) are filled for this step.
+    extended: bool,
     t: f64,
     h: f64,
     r0: Option<Attitude>,
@@ -90,6 +133,7 @@ impl Dop853 {
             first: None,
             last: LastStep {
                 valid: false,
+                extended: false,
                 t: 0.0,
                 h: 0.0,
                 r0: None,
@@ -170,7 +214,7 @@ impl Dop853 {
                 reason: "dense output is defined inside the last step only",
             });
         }
-        if self.last.kl.len() < ALL_STAGES {
+        if !self.last.extended {
             let mut kl = std::mem::take(&mut self.last.kl);
             let mut ka = std::mem::take(&mut self.last.ka);
             self.extend_stages(body, torque, &mut kl, &mut ka);
@@ -289,15 +333,19 @@ impl Dop853 {
         let mut l1 = l0.clone();
         axpy(&mut l1, sign * h0, &dl0);
         let a1 = &a0 * (sign * h0);
-        let (dl1, w1) = self.rate(
+        let (mut dl1, mut w1) = (Bivector::zero(l0.dim()), Bivector::zero(l0.dim()));
+        self.rate(
             body,
             t + sign * h0,
             body.principal_frame_attitude(),
             &a1,
             &l1,
             torque,
+            &mut dl1,
+            &mut w1,
         );
-        let da1 = dexp_inverse(&a1, &(w1 * -0.5), 8);
+        let mut da1 = Bivector::zero(l0.dim());
+        dexp_inverse_8(&a1, &w1, -0.5, &mut da1);
         let d2 = rms(&|i| dl1.as_slice()[i] - dl0.as_slice()[i], &|i| {
             da1.as_slice()[i] - a0.as_slice()[i]
         }) / h0;
@@ -323,19 +371,23 @@ impl Dop853 {
             return (dl.clone(), w.clone());
         }
         let zero = Bivector::zero(body.dim());
-        let (dl, w) = self.rate(
+        let (mut dl, mut w) = (Bivector::zero(body.dim()), Bivector::zero(body.dim()));
+        self.rate(
             body,
             t,
             body.principal_frame_attitude(),
             &zero,
             body.momentum(),
             torque,
+            &mut dl,
+            &mut w,
         );
         self.first = Some((t, dl.clone(), w.clone()));
         (dl, w)
     }
 
-    /// (dL/dt, ω) at the stage state (R₀ exp(a), l), counted.
+    /// (dL/dt, ω) at the stage state (R₀ exp(a), l) into `dl` and `omega`, counted.
+    #[allow(clippy::too_many_arguments)] // the stage state and its two outputs
     fn rate(
         &mut self,
         body: &RigidBody,
@@ -344,13 +396,15 @@ impl Dop853 {
         a: &Bivector,
         l: &Bivector,
         torque: &dyn Torque,
-    ) -> (Bivector, Bivector) {
+        dl: &mut Bivector,
+        omega: &mut Bivector,
+    ) {
         self.rhs += 1;
         // Stage attitudes only matter to a torque; free motion skips their exponentials.
         if torque.is_zero() {
-            momentum_rate(body, t, r0, l, torque)
+            momentum_rate_into(body, t, r0, l, torque, dl, omega);
         } else {
-            momentum_rate(body, t, &r0.times_exp(a), l, torque)
+            momentum_rate_into(body, t, &r0.times_exp(a), l, torque, dl, omega);
         }
     }
 
@@ -368,25 +422,41 @@ impl Dop853 {
         let l0 = body.momentum();
         let n = body.dim();
         self.last.valid = false;
+        self.last.extended = false;
+        // The stages are written in place: no bivector moves in the loop.
         let mut kl = std::mem::take(&mut self.last.kl);
         let mut ka = std::mem::take(&mut self.last.ka);
-        kl.clear();
-        ka.clear();
+        ensure_stages(&mut kl, n);
+        ensure_stages(&mut ka, n);
         let (dl, w) = self.first_stage(body, t, torque);
-        kl.push(dl);
-        ka.push(w * -0.5);
+        kl[0].clone_from(&dl);
+        for (o, x) in ka[0].as_mut_slice().iter_mut().zip(w.as_slice()) {
+            *o = -0.5 * x;
+        }
+        let mut a_stage = Bivector::zero(n);
+        let mut l_stage = l0.clone();
+        let mut omega = Bivector::zero(n);
         for s in 1..STAGES {
-            let mut a_stage = Bivector::zero(n);
-            let mut l_stage = l0.clone();
+            a_stage.as_mut_slice().fill(0.0);
+            l_stage.as_mut_slice().copy_from_slice(l0.as_slice());
             for j in 0..s {
                 if A[s][j] != 0.0 {
                     axpy(&mut a_stage, h * A[s][j], &ka[j]);
                     axpy(&mut l_stage, h * A[s][j], &kl[j]);
                 }
             }
-            let (dl, omega) = self.rate(body, t + C[s] * h, r0, &a_stage, &l_stage, torque);
-            kl.push(dl);
-            ka.push(dexp_inverse(&a_stage, &(omega * -0.5), 8));
+            let (dl_s, ka_s) = (&mut kl[s], &mut ka[s]);
+            self.rate(
+                body,
+                t + C[s] * h,
+                r0,
+                &a_stage,
+                &l_stage,
+                torque,
+                dl_s,
+                &mut omega,
+            );
+            dexp_inverse_8(&a_stage, &omega, -0.5, ka_s);
         }
         let mut l1 = l0.clone();
         let mut a1 = Bivector::zero(n);
@@ -397,7 +467,7 @@ impl Dop853 {
             }
         }
         if self.adaptive {
-            let err = self.error(l0, &l1, &a1, &kl, &ka, h);
+            let err = self.error(l0, &l1, &a1, &kl[..STAGES], &ka[..STAGES], h);
             if !err.is_finite() {
                 return Err(DynamicsError::NonFinite { time: t });
             }
@@ -496,7 +566,6 @@ impl Dop853 {
         kl: &mut Stages,
         ka: &mut Stages,
     ) -> Bivector {
-        let mut omega_end = Bivector::zero(0);
         let n = body.dim();
         let (t, h) = (self.last.t, self.last.h);
         let r0 = self
@@ -504,29 +573,38 @@ impl Dop853 {
             .r0
             .clone()
             .expect("an accepted step has its attitude");
-        kl.truncate(STAGES);
-        ka.truncate(STAGES);
+        let mut a_stage = self.last.a1.clone();
+        let mut l_stage = self.last.l1.clone();
+        let mut omega = Bivector::zero(n);
+        let mut omega_end = Bivector::zero(n);
         for s in STAGES..ALL_STAGES {
-            let (a_stage, l_stage) = if s == STAGES {
-                (self.last.a1.clone(), self.last.l1.clone())
-            } else {
-                let mut a_stage = Bivector::zero(n);
-                let mut l_stage = self.last.l0.clone();
+            if s > STAGES {
+                a_stage.as_mut_slice().fill(0.0);
+                l_stage.clone_from(&self.last.l0);
                 for j in 0..s {
                     if A[s][j] != 0.0 {
                         axpy(&mut a_stage, h * A[s][j], &ka[j]);
                         axpy(&mut l_stage, h * A[s][j], &kl[j]);
                     }
                 }
-                (a_stage, l_stage)
-            };
-            let (dl, omega) = self.rate(body, t + C[s] * h, &r0, &a_stage, &l_stage, torque);
-            kl.push(dl);
-            ka.push(dexp_inverse(&a_stage, &(&omega * -0.5), 8));
+            }
+            let (dl_s, ka_s) = (&mut kl[s], &mut ka[s]);
+            self.rate(
+                body,
+                t + C[s] * h,
+                &r0,
+                &a_stage,
+                &l_stage,
+                torque,
+                dl_s,
+                &mut omega,
+            );
+            dexp_inverse_8(&a_stage, &omega, -0.5, ka_s);
             if s == STAGES {
-                omega_end = omega;
+                omega_end.clone_from(&omega);
             }
         }
+        self.last.extended = true;
         omega_end
     }
 }
@@ -641,5 +719,27 @@ impl Integrator for Dop853 {
             }
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The stack version is the series of `dexp_inverse`, term for term.
+    #[test]
+    fn dexp_inverse_8_is_dexp_inverse_of_order_8() {
+        for n in [3usize, 4, 5, 8, 9] {
+            let len = n * (n - 1) / 2;
+            let omega: Vec<f64> = (0..len).map(|k| 0.3 * (k as f64 + 0.5).sin()).collect();
+            let w: Vec<f64> = (0..len).map(|k| (1.7 * k as f64).cos()).collect();
+            let omega = Bivector::from_components(n, &omega).unwrap();
+            let w = Bivector::from_components(n, &w).unwrap();
+            let mut fast = Bivector::zero(n);
+            dexp_inverse_8(&omega, &w, -0.5, &mut fast);
+            let series = dexp_inverse(&omega, &(&w * -0.5), 8);
+            let gap = (&fast - &series).max_abs();
+            assert!(gap < 1e-15, "N = {n}: {gap:e}");
+        }
     }
 }

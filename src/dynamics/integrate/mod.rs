@@ -29,7 +29,7 @@ pub use rkmk::Rkmk4;
 pub use splitting::{Splitting, SplittingOrder};
 
 use super::{Attitude, RigidBody, Torque, TorqueInput};
-use crate::algebra::Bivector;
+use crate::algebra::{Bivector, commutator_packed};
 #[doc(no_inline)]
 pub use crate::dynamics::DynamicsError;
 
@@ -64,17 +64,34 @@ pub(crate) fn momentum_rate(
     l: &Bivector,
     torque: &dyn Torque,
 ) -> (Bivector, Bivector) {
-    let omega = body.inertia().apply_inverse(l);
-    let mut dl = omega.commutator(l);
+    let n = l.dim();
+    let (mut dl, mut omega) = (Bivector::zero(n), Bivector::zero(n));
+    momentum_rate_into(body, t, attitude, l, torque, &mut dl, &mut omega);
+    (dl, omega)
+}
+
+/// [`momentum_rate`] written into `dl` and `omega` (of the body's dimension), without
+/// temporaries for free motion.
+pub(crate) fn momentum_rate_into(
+    body: &RigidBody,
+    t: f64,
+    attitude: &Attitude,
+    l: &Bivector,
+    torque: &dyn Torque,
+    dl: &mut Bivector,
+    omega: &mut Bivector,
+) {
+    body.inertia()
+        .apply_inverse_into(l.as_slice(), omega.as_mut_slice());
+    commutator_packed(l.dim(), omega.as_slice(), l.as_slice(), dl.as_mut_slice());
     if !torque.is_zero() {
-        dl += &torque.torque(&TorqueInput {
+        *dl += &torque.torque(&TorqueInput {
             time: t,
             attitude,
             momentum: l,
-            omega: &omega,
+            omega,
         });
     }
-    (dl, omega)
 }
 
 /// An integrator of the rigid-body equations: advances a [`RigidBody`] by one step.
