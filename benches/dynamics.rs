@@ -1,12 +1,16 @@
 //! Criterion benches of one integrator step (with attitude), per N, beside
 //! (a) a hand-written fixed-size RK4 for N = 3 and 4, the speed limit, and (b) the same RK4 on
 //! nalgebra matrices (SMatrix for N ≤ 8, DMatrix for all): L as a skew matrix, the attitude
-//! as a rotation matrix. `BENCH_QUICK=1` shortens the run.
+//! as a rotation matrix; and the two adaptive Dormand–Prince integrators carrying the 4D
+//! cuboid to t = 10 at the tolerances that give both |Δω| ≈ 1e-11 at t = 100.
+//! `BENCH_QUICK=1` shortens the run.
 
 use criterion::{BenchmarkId, Criterion, black_box, criterion_group, criterion_main};
 use nalgebra::{DMatrix, SMatrix};
 use rotorflow::dynamics::torques::Free;
-use rotorflow::dynamics::{Attitude, Dopri5, Integrator, Midpoint, RigidBody, Rkmk4, Splitting};
+use rotorflow::dynamics::{
+    Attitude, Dop853, Dopri5, Integrator, Midpoint, RigidBody, Rkmk4, Splitting,
+};
 use rotorflow::prelude::*;
 
 #[path = "common/dmatrix_rk4.rs"]
@@ -120,6 +124,7 @@ fn bench_steps(c: &mut Criterion) {
             Box::new(Splitting::yoshida4()),
             Box::new(Midpoint::default()),
             Box::new(Dopri5::new(1e-8, 1e-8)),
+            Box::new(Dop853::new(1e-8, 1e-8).unwrap()),
         ];
         for integ in integrators.iter_mut() {
             let mut b = start.clone();
@@ -175,9 +180,41 @@ fn bench_steps(c: &mut Criterion) {
     }
 }
 
+/// Same work for both: the 4D cuboid `cuboid:1,1.3,1.7,2.2` (mass 1) from ω(0) =
+/// (0.3, −0.2, 0.5, 0.1, 0.4, −0.6) to t = 10, each at the tolerance that reaches
+/// |Δω| ≤ 1e-11 at t = 100 (tests/dynamics/dop853.rs).
+fn bench_tight_tolerance(c: &mut Criterion) {
+    let parsed = rotorflow::inertia::spec::parse_body("cuboid:1,1.3,1.7,2.2+mass=1").unwrap();
+    let omega = Bivector::from_components(4, &[0.3, -0.2, 0.5, 0.1, 0.4, -0.6]).unwrap();
+    let start =
+        RigidBody::from_body_velocity(parsed.inertia, Attitude::identity(4), &omega).unwrap();
+    let mut g = c.benchmark_group("cuboid4_to_t10");
+    let mut integrators: Vec<(&str, Box<dyn Integrator>)> = vec![
+        (
+            "rotorflow_dopri5_rtol1e-13",
+            Box::new(Dopri5::new(1e-13, 1e-15)),
+        ),
+        (
+            "rotorflow_dop853_rtol1e-12",
+            Box::new(Dop853::new(1e-12, 1e-14).unwrap()),
+        ),
+    ];
+    for (name, integ) in integrators.iter_mut() {
+        g.bench_function(*name, |bench| {
+            bench.iter(|| {
+                let mut b = start.clone();
+                integ.step(black_box(&mut b), 0.0, 10.0, &Free).unwrap();
+                b
+            })
+        });
+    }
+    g.finish();
+}
+
 fn benches(_: &mut Criterion) {
     let mut c = configure();
     bench_steps(&mut c);
+    bench_tight_tolerance(&mut c);
 }
 
 criterion_group!(dynamics, benches);

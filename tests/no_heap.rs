@@ -78,9 +78,9 @@ fn rotor_kernels_do_not_allocate_in_3d_and_4d() {
 #[test]
 fn integrator_steps_do_not_allocate() {
     use rotorflow::dynamics::torques::Free;
-    use rotorflow::dynamics::{Dopri5, Integrator, Midpoint, RigidBody, Rkmk4, Splitting};
+    use rotorflow::dynamics::{Dop853, Dopri5, Integrator, Midpoint, RigidBody, Rkmk4, Splitting};
     // Strang and Yoshida work in place on the attitude and momentum: no heap for N ≤ 8.
-    // RK4, the midpoint rule and Dopri5 too: rotor attitudes up to N = 4 (inline rotors,
+    // RK4, the midpoint rule, Dopri5 and Dop853 too: rotor attitudes up to N = 4 (inline rotors,
     // closed-form exp), inline matrix attitudes above, up to N = 8.
     for n in 2..=8 {
         let moments: Vec<f64> = (0..n).map(|k| 1.0 + k as f64).collect();
@@ -136,6 +136,23 @@ fn integrator_steps_do_not_allocate() {
         assert_eq!(
             count, 0,
             "midpoint and dopri5, N = {n}: {count} heap allocations in 100 steps"
+        );
+        // Dop853: sixteen stages inline, the dense output's included.
+        let mut dop853 = Dop853::new(1e-10, 1e-10).unwrap();
+        dop853.step(&mut body, 0.0, 0.01, &Free).unwrap();
+        let count = allocations_in(|| {
+            for k in 0..50 {
+                dop853
+                    .step(&mut body, k as f64 * 0.01, 0.01, &Free)
+                    .unwrap();
+                let (t0, h) = dop853.last_step().unwrap();
+                let state = dop853.dense_output(&body, &Free, t0 + 0.5 * h).unwrap();
+                assert!(state.0.is_finite());
+            }
+        });
+        assert_eq!(
+            count, 0,
+            "dop853, N = {n}: {count} heap allocations in 50 steps"
         );
     }
 }

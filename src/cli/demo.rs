@@ -433,6 +433,13 @@ fn integrator_table() -> CliResult<String> {
                 atol: 1e-12,
             },
         ),
+        (
+            "dop853 (rtol 1e-10, atol 1e-12)",
+            Stepping::Adaptive8 {
+                rtol: 1e-10,
+                atol: 1e-12,
+            },
+        ),
     ];
     let rows: Vec<String> = choices
         .par_iter()

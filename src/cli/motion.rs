@@ -9,8 +9,8 @@ use nalgebra::DMatrix;
 use rotorflow::algebra::{Bivector, bivector_len};
 use rotorflow::dynamics::torques::{BodyFrame, Free, LinearDamping, SpaceFrame};
 use rotorflow::dynamics::{
-    Attitude, Dopri5, Drift, Integrator, Invariants, Midpoint, RigidBody, Rkmk4, Splitting, Torque,
-    simulate,
+    Attitude, Dop853, Dopri5, Drift, Integrator, Invariants, Midpoint, RigidBody, Rkmk4, Splitting,
+    Torque, simulate,
 };
 use rotorflow::inertia::spec::{parse_list, parse_number};
 use serde_json::{Value, json};
@@ -145,6 +145,8 @@ pub enum IntegratorKind {
     Rk4,
     /// Adaptive Dormand–Prince 5(4) on the group (uses --rtol/--atol).
     Dopri5,
+    /// Adaptive Dormand–Prince 8(5,3) on the group (uses --rtol/--atol; tight tolerances).
+    Dop853,
     /// Lie–Poisson splitting, Strang (order 2, conserves the Casimirs).
     Strang,
     /// Lie–Poisson splitting, Yoshida (order 4, conserves the Casimirs).
@@ -159,6 +161,7 @@ impl IntegratorKind {
         match self {
             IntegratorKind::Rk4 => "rk4",
             IntegratorKind::Dopri5 => "dopri5",
+            IntegratorKind::Dop853 => "dop853",
             IntegratorKind::Strang => "strang",
             IntegratorKind::Yoshida4 => "yoshida4",
             IntegratorKind::Midpoint => "midpoint",
@@ -175,10 +178,10 @@ pub struct SteppingArgs {
     /// Largest step for the fixed-step integrators (default 0.01/max(1, |ω|)).
     #[arg(long, value_name = "H", value_parser = finite_number, allow_hyphen_values = true)]
     pub dt: Option<f64>,
-    /// Relative tolerance of dopri5 (default 1e-10).
+    /// Relative tolerance of dopri5 and dop853 (default 1e-10).
     #[arg(long, value_name = "R", value_parser = finite_number, allow_hyphen_values = true)]
     pub rtol: Option<f64>,
-    /// Absolute tolerance of dopri5 (default 1e-12).
+    /// Absolute tolerance of dopri5 and dop853 (default 1e-12).
     #[arg(long, value_name = "A", value_parser = finite_number, allow_hyphen_values = true)]
     pub atol: Option<f64>,
 }
@@ -204,8 +207,15 @@ pub enum Stepping {
         /// The largest step.
         dt: f64,
     },
-    /// Adaptive Dormand–Prince.
+    /// Adaptive Dormand–Prince 5(4).
     Adaptive {
+        /// Relative tolerance.
+        rtol: f64,
+        /// Absolute tolerance.
+        atol: f64,
+    },
+    /// Adaptive Dormand–Prince 8(5,3).
+    Adaptive8 {
         /// Relative tolerance.
         rtol: f64,
         /// Absolute tolerance.
@@ -235,11 +245,15 @@ impl SteppingArgs {
         positive("--dt", self.dt)?;
         positive("--rtol", self.rtol)?;
         positive("--atol", self.atol)?;
-        if self.integrator == IntegratorKind::Dopri5 {
+        if matches!(
+            self.integrator,
+            IntegratorKind::Dopri5 | IntegratorKind::Dop853
+        ) {
             if self.dt.is_some() {
-                return Err(CliError::input(
-                    "--dt applies to the fixed-step integrators; dopri5 takes --rtol R --atol A",
-                ));
+                return Err(CliError::input(format!(
+                    "--dt applies to the fixed-step integrators; {} takes --rtol R --atol A",
+                    self.integrator.name()
+                )));
             }
             let rtol = self.rtol.unwrap_or(1e-10);
             let atol = self.atol.unwrap_or(1e-12);
@@ -248,11 +262,15 @@ impl SteppingArgs {
                     "--rtol {rtol} is below what f64 arithmetic can meet (expected R >= 1e-15)"
                 )));
             }
-            return Ok(Stepping::Adaptive { rtol, atol });
+            return Ok(if self.integrator == IntegratorKind::Dop853 {
+                Stepping::Adaptive8 { rtol, atol }
+            } else {
+                Stepping::Adaptive { rtol, atol }
+            });
         }
         if self.rtol.is_some() || self.atol.is_some() {
             return Err(CliError::input(format!(
-                "--rtol/--atol apply to dopri5; {} takes --dt H",
+                "--rtol/--atol apply to dopri5 and dop853; {} takes --dt H",
                 self.integrator.name()
             )));
         }
@@ -374,7 +392,7 @@ pub fn integrate_each(
     let mut current = body.clone();
     let mut t0 = 0.0;
     let mut fixed: Option<Box<dyn Integrator>> = None;
-    let mut adaptive = None;
+    let mut adaptive: Option<Adaptive> = None;
     match stepping {
         Stepping::Fixed { kind, .. } => {
             fixed = Some(match kind {
@@ -382,10 +400,19 @@ pub fn integrate_each(
                 IntegratorKind::Strang => Box::new(Splitting::strang()),
                 IntegratorKind::Yoshida4 => Box::new(Splitting::yoshida4()),
                 IntegratorKind::Midpoint => Box::new(Midpoint::default()),
-                IntegratorKind::Dopri5 => unreachable!("dopri5 is adaptive"),
+                IntegratorKind::Dopri5 | IntegratorKind::Dop853 => {
+                    unreachable!("dopri5 and dop853 are adaptive")
+                }
             });
         }
-        Stepping::Adaptive { rtol, atol } => adaptive = Some(Dopri5::new(rtol, atol)),
+        Stepping::Adaptive { rtol, atol } => {
+            adaptive = Some(Adaptive::Dopri5(Dopri5::new(rtol, atol)));
+        }
+        Stepping::Adaptive8 { rtol, atol } => {
+            adaptive = Some(Adaptive::Dop853(Box::new(
+                Dop853::new(rtol, atol).map_err(fail)?,
+            )));
+        }
     }
     for block in times.chunks(chunk) {
         let relative: Vec<f64> = block.iter().map(|t| t - t0).collect();
@@ -399,12 +426,12 @@ pub fn integrate_each(
                     .map(|s| (s.attitude.clone(), s.momentum.clone()))
                     .collect()
             }
-            (_, Some(dopri), _) => {
-                let before = dopri.accepted_steps() + dopri.rejected_steps();
-                let out = dopri
+            (_, Some(adaptive), _) => {
+                let before = adaptive.steps();
+                let out = adaptive
                     .dense_samples(&current, torque, &relative)
                     .map_err(fail)?;
-                steps += dopri.accepted_steps() + dopri.rejected_steps() - before;
+                steps += adaptive.steps() - before;
                 out
             }
             _ => unreachable!("one integrator is set"),
@@ -427,6 +454,35 @@ pub fn integrate_each(
         progress.advance(block.len() as u64);
     }
     Ok(steps)
+}
+
+/// The adaptive integrators, sampled from their dense output (Dop853 keeps its sixteen
+/// stages inline, hence the box).
+enum Adaptive {
+    Dopri5(Dopri5),
+    Dop853(Box<Dop853>),
+}
+
+impl Adaptive {
+    /// The internal steps taken so far, rejected ones included.
+    fn steps(&self) -> usize {
+        match self {
+            Adaptive::Dopri5(d) => d.accepted_steps() + d.rejected_steps(),
+            Adaptive::Dop853(d) => d.accepted_steps() + d.rejected_steps(),
+        }
+    }
+
+    fn dense_samples(
+        &mut self,
+        body: &RigidBody,
+        torque: &dyn Torque,
+        times: &[f64],
+    ) -> Result<Vec<State>, rotorflow::dynamics::DynamicsError> {
+        match self {
+            Adaptive::Dopri5(d) => d.dense_samples(body, torque, times),
+            Adaptive::Dop853(d) => d.dense_samples(body, torque, times),
+        }
+    }
 }
 
 /// The CSV report's header line (with its newline): t, ω_ij, L_ij, energy, the Casimirs and

@@ -68,6 +68,18 @@ pub enum DynamicsError {
         /// The step count.
         steps: usize,
     },
+    /// The tolerances of an adaptive integrator cannot be met or make no sense.
+    ///
+    /// How to fix: finite, non-negative tolerances, at least one of them positive.
+    #[error(
+        "invalid tolerances rtol = {rtol:e}, atol = {atol:e}: both must be finite and non-negative, one positive"
+    )]
+    InvalidTolerance {
+        /// The relative tolerance given.
+        rtol: f64,
+        /// The absolute tolerance given.
+        atol: f64,
+    },
     /// The state became NaN or infinite during a step.
     ///
     /// How to fix: reduce the step; check the torque for singularities.

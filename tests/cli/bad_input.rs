@@ -110,7 +110,7 @@ cases! {
         refuses(&["simulate", "--body", "cuboid:1,2,3", "--omega", "1,0,0", "--t-end", "NaN", "--samples", "3"], "not a finite number")
     }
     non_positive_t_end => { simulate("cuboid:1,2,3", "1,0,0", &["--t-end", "0"], "--t-end must be positive") }
-    unknown_integrator => { simulate("cuboid:1,2,3", "1,0,0", &["--integrator", "euler"], "possible values: rk4, dopri5, strang, yoshida4, midpoint") }
+    unknown_integrator => { simulate("cuboid:1,2,3", "1,0,0", &["--integrator", "euler"], "possible values: rk4, dopri5, dop853, strang, yoshida4, midpoint") }
     times_not_increasing => {
         refuses(&["simulate", "--body", "cuboid:1,2,3", "--omega", "1,0,0", "--times", "0,2,1", "--output", "o.json"], "--times not increasing: 2 then 1")
     }
@@ -123,6 +123,7 @@ cases! {
     too_few_samples => { simulate("cuboid:1,2,3", "1,0,0", &["--samples", "1"], "--samples must be between 2") }
     negative_step => { simulate("cuboid:1,2,3", "1,0,0", &["--dt", "-0.1"], "--dt must be positive") }
     step_with_dopri5 => { simulate("cuboid:1,2,3", "1,0,0", &["--integrator", "dopri5", "--dt", "0.1"], "dopri5 takes --rtol") }
+    step_with_dop853 => { simulate("cuboid:1,2,3", "1,0,0", &["--integrator", "dop853", "--dt", "0.1"], "dop853 takes --rtol") }
     tolerance_with_rk4 => { simulate("cuboid:1,2,3", "1,0,0", &["--rtol", "1e-8"], "apply to dopri5") }
     too_many_steps => { simulate("cuboid:1,2,3", "1,0,0", &["--t-end", "1e9", "--dt", "1e-3"], "steps") }
     singular_body_moments => { simulate("principal:0,0,1", "1,0,0", &[], "singular") }

@@ -2,6 +2,7 @@
 
 mod conservation;
 mod contact_and_joints;
+mod dop853;
 mod equations;
 mod fixed;
 mod large_n;

@@ -6,6 +6,7 @@
 //! | [`Splitting`] Strang | 2 | every Casimir of L and the space-frame L to round-off; energy error bounded, O(h²), no drift (symplectic) |
 //! | [`Splitting`] Yoshida 4 | 4 | as Strang, energy error O(h⁴) |
 //! | [`Dopri5`] | 5 (adaptive, error estimate of order 4) | the rotor stays on Spin(N); invariants drift within the tolerance |
+//! | [`Dop853`] | 8 (adaptive, error estimates of orders 5 and 3) | as Dopri5; far fewer right-hand sides at tight tolerances |
 //! | [`Midpoint`] | 2 | energy and ‖L‖² exactly (solver tolerance); all Casimirs in N ≤ 4; implicit, bounded fixed-point solve |
 //!
 //! With a torque the splitting integrators use a kick–drift–kick composition (the kick is
@@ -13,26 +14,31 @@
 //! order for torques that do not depend on L; the Casimirs are then no longer invariants of
 //! the motion.
 
+mod dop853;
+mod dop853_tableau;
 mod dopri;
 mod midpoint;
 mod rkmk;
 mod splitting;
 pub(crate) use splitting::{strang_drift_3, strang_drift_4};
 
+pub use dop853::Dop853;
 pub use dopri::Dopri5;
 pub use midpoint::Midpoint;
 pub use rkmk::Rkmk4;
 pub use splitting::{Splitting, SplittingOrder};
 
 use super::{Attitude, RigidBody, Torque, TorqueInput};
-use crate::algebra::Bivector;
+use crate::algebra::{Bivector, commutator_packed};
 #[doc(no_inline)]
 pub use crate::dynamics::DynamicsError;
 
 /// Returns dexp⁻¹₋Ω(a), the Lie-algebra velocity of R = R₀ exp(Ω) under dR/dt = R a: the
-/// Bernoulli series a + Ω×a + ⅓ Ω×(Ω×a) − (1/45)(Ω×)⁴a + … ([X, Y] = 2 X×Y), truncated after
-/// the terms an integrator of the given order needs (B₃ = 0, so order 4 stops after the
-/// second term and order 5 adds the fourth).
+/// Bernoulli series a + Ω×a + ⅓ Ω×(Ω×a) − (1/45)(Ω×)⁴a + (2/945)(Ω×)⁶a − … ([X, Y] = 2 X×Y,
+/// so the coefficient of (Ω×)ᵏ is 2ᵏ|Bₖ|/k! with the signs of the series of x/(eˣ − 1) at
+/// −Ω), truncated after the terms an integrator of the given order p needs: (Ω×)ᵏa with
+/// k ≤ p − 1 (odd Bₖ vanish beyond B₁, so order 4 stops after the second term, order 5
+/// adds the fourth, order 8 the sixth).
 pub(crate) fn dexp_inverse(omega_alg: &Bivector, a: &Bivector, order: u32) -> Bivector {
     let c1 = omega_alg.commutator(a);
     let c2 = omega_alg.commutator(&c1);
@@ -40,6 +46,10 @@ pub(crate) fn dexp_inverse(omega_alg: &Bivector, a: &Bivector, order: u32) -> Bi
     out += &(&c2 * (1.0 / 3.0));
     if order >= 5 {
         let c4 = omega_alg.commutator(&omega_alg.commutator(&c2));
+        if order >= 7 {
+            let c6 = omega_alg.commutator(&omega_alg.commutator(&c4));
+            out += &(c6 * (2.0 / 945.0));
+        }
         out += &(c4 * (-1.0 / 45.0));
     }
     out
@@ -54,17 +64,34 @@ pub(crate) fn momentum_rate(
     l: &Bivector,
     torque: &dyn Torque,
 ) -> (Bivector, Bivector) {
-    let omega = body.inertia().apply_inverse(l);
-    let mut dl = omega.commutator(l);
+    let n = l.dim();
+    let (mut dl, mut omega) = (Bivector::zero(n), Bivector::zero(n));
+    momentum_rate_into(body, t, attitude, l, torque, &mut dl, &mut omega);
+    (dl, omega)
+}
+
+/// [`momentum_rate`] written into `dl` and `omega` (of the body's dimension), without
+/// temporaries for free motion.
+pub(crate) fn momentum_rate_into(
+    body: &RigidBody,
+    t: f64,
+    attitude: &Attitude,
+    l: &Bivector,
+    torque: &dyn Torque,
+    dl: &mut Bivector,
+    omega: &mut Bivector,
+) {
+    body.inertia()
+        .apply_inverse_into(l.as_slice(), omega.as_mut_slice());
+    commutator_packed(l.dim(), omega.as_slice(), l.as_slice(), dl.as_mut_slice());
     if !torque.is_zero() {
-        dl += &torque.torque(&TorqueInput {
+        *dl += &torque.torque(&TorqueInput {
             time: t,
             attitude,
             momentum: l,
-            omega: &omega,
+            omega,
         });
     }
-    (dl, omega)
 }
 
 /// An integrator of the rigid-body equations: advances a [`RigidBody`] by one step.
