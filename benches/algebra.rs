@@ -74,6 +74,31 @@ fn bench_exp(c: &mut Criterion) {
     }
 }
 
+/// The rotation matrix expm([B]) at N = 5 … 8, where a caller wants the matrix and not the
+/// spinor: `Bivector::exp_skew_matrix` against nalgebra's fixed-size `exp` of the same
+/// skew matrix (the setup asserts they agree).
+fn bench_rotation_matrix_exp(c: &mut Criterion) {
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    macro_rules! group {
+        ($($d:literal),*) => {$({
+            let b = random_bivector(&mut rng, $d);
+            let m: SMatrix<f64, $d, $d> = b.to_skew_smatrix::<$d>();
+            let ours = b.exp_skew_matrix();
+            let theirs = m.exp();
+            assert!((0..$d * $d).all(|k| (ours.as_slice()[k] - theirs.as_slice()[k]).abs() < 1e-13));
+            let mut g = c.benchmark_group(format!("rotation_matrix_exp/N={}", $d));
+            g.bench_function("rotorflow_exp_skew_matrix", |bench| {
+                bench.iter(|| black_box(&b).exp_skew_matrix())
+            });
+            g.bench_function("nalgebra_smatrix_expm", |bench| {
+                bench.iter(|| black_box(&m).exp())
+            });
+            g.finish();
+        })*};
+    }
+    group!(5, 6, 7, 8);
+}
+
 fn bench_log(c: &mut Criterion) {
     let mut rng = ChaCha8Rng::seed_from_u64(2);
     for n in DIMS {
@@ -212,6 +237,7 @@ fn benches(c: &mut Criterion) {
     let _ = c;
     let mut c = configure();
     bench_exp(&mut c);
+    bench_rotation_matrix_exp(&mut c);
     bench_log(&mut c);
     bench_commutator(&mut c);
     bench_sandwich(&mut c);
