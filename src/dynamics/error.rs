@@ -124,6 +124,15 @@ pub enum DynamicsError {
         /// What is wrong with it.
         reason: String,
     },
+    /// A heavy top is not a Lagrange top ([`LagrangeTop::new`](crate::dynamics::LagrangeTop::new)).
+    ///
+    /// How to fix: second moments equal on every body axis but one, and the centre of mass
+    /// on that axis.
+    #[error("not a Lagrange top: {reason}")]
+    NotALagrangeTop {
+        /// What breaks the symmetry.
+        reason: String,
+    },
     /// The rotation part of a moving body could not be built.
     #[error(transparent)]
     Inertia(#[from] InertiaError),
