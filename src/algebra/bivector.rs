@@ -56,7 +56,7 @@ pub fn bivector_len(n: usize) -> usize {
 /// Returns the position of the pair (i, j), i < j (0-based), in the lexicographic component
 /// order of dimension `n`.
 #[inline]
-pub fn pair_index(n: usize, i: usize, j: usize) -> usize {
+pub const fn pair_index(n: usize, i: usize, j: usize) -> usize {
     debug_assert!(i < j && j < n);
     i * (2 * n - i - 1) / 2 + (j - i - 1)
 }

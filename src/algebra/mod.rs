@@ -92,7 +92,7 @@ pub use error::AlgebraError;
 pub use fixed::{Bivector3, Bivector4, Real, Rotor3, Rotor4};
 pub use multivector::{INVERSE_TOLERANCE, Multivector, Product};
 pub use rotor::{NORMALIZE_TOLERANCE, ROTATION_TOLERANCE, ROTOR_TOLERANCE, Rotor};
-pub(crate) use rotor::{accumulate_plane_rotor, plane_tables};
+pub(crate) use rotor::{accumulate_plane_rotor, plane_table_const};
 pub use signature::Signature;
 pub use vector::Vector;
 pub use versor::{CLOSED_FORM_MAX_DIM, VERSOR_TOLERANCE};

@@ -741,22 +741,55 @@ const fn even_signs<const L: usize>(n: usize) -> [[f64; L]; L] {
     while i < L {
         let mut j = 0;
         while j < L {
-            let (a, b) = (even_blade_const(n, i), even_blade_const(n, j));
-            // Each basis vector of B passes every vector of A with a larger index.
-            let mut swaps = 0u32;
-            let mut k = 0;
-            while k < n {
-                if b & (1 << k) != 0 {
-                    swaps += (a >> (k + 1)).count_ones();
-                }
-                k += 1;
-            }
-            table[i][j] = if swaps.is_multiple_of(2) { 1.0 } else { -1.0 };
+            table[i][j] = reorder_sign_const(n, even_blade_const(n, i), even_blade_const(n, j));
             j += 1;
         }
         i += 1;
     }
     table
+}
+
+/// The sign of e_A e_B against the sorted blade e_(A⊕B) (up to the metric): each basis vector
+/// of B passes every vector of A with a larger index (`blade::reorder_sign` as a const fn, for
+/// blades of dimension `n`).
+pub(crate) const fn reorder_sign_const(n: usize, a: u64, b: u64) -> f64 {
+    let mut swaps = 0u32;
+    let mut k = 0;
+    while k < n {
+        if b & (1 << k) != 0 {
+            swaps += (a >> (k + 1)).count_ones();
+        }
+        k += 1;
+    }
+    if swaps.is_multiple_of(2) { 1.0 } else { -1.0 }
+}
+
+/// [`plane_tables`] for one plane (lo, hi) as a const fn with RP = 2^(n−2) entries.
+pub(crate) const fn plane_table_const<const RP: usize>(
+    n: usize,
+    lo: usize,
+    hi: usize,
+) -> [(usize, usize, f64, f64); RP] {
+    let mut out = [(0, 0, 0.0, 0.0); RP];
+    let m: u64 = (1 << lo) | (1 << hi);
+    let mask = (1u64 << (n - 1)) - 1;
+    let (mut ib, mut slot) = (0, 0);
+    while ib < 1 << (n - 1) {
+        let b = even_blade_const(n, ib);
+        let b2 = b ^ m;
+        let ib2 = (b2 & mask) as usize;
+        if ib2 > ib {
+            out[slot] = (
+                ib,
+                ib2,
+                reorder_sign_const(n, b2, m),
+                reorder_sign_const(n, b, m),
+            );
+            slot += 1;
+        }
+        ib += 1;
+    }
+    out
 }
 
 /// [`even_blade`] as a const fn.
@@ -862,6 +895,28 @@ mod tests {
         check(3, &EVEN_SIGNS_3);
         check(4, &EVEN_SIGNS_4);
         check(5, &EVEN_SIGNS_5);
+    }
+
+    /// The compile-time plane tables of the splittings equal the run-time ones.
+    #[test]
+    fn const_plane_tables_match_the_run_time_tables() {
+        fn check<const RP: usize>(n: usize) -> usize {
+            let mut planes = 0;
+            for (p, (lo, hi)) in super::super::bivector::pairs(n).enumerate() {
+                let c = plane_table_const::<RP>(n, lo, hi);
+                let r: Vec<(usize, usize, f64, f64)> = plane_tables(n)[p]
+                    .iter()
+                    .map(|&(a, b, s1, s2)| (a as usize, b as usize, s1, s2))
+                    .collect();
+                assert_eq!(c.as_slice(), r.as_slice(), "n = {n}, plane ({lo}, {hi})");
+                planes += 1;
+            }
+            planes
+        }
+        assert_eq!(
+            check::<1>(2) + check::<2>(3) + check::<4>(4) + check::<8>(5),
+            1 + 3 + 6 + 10
+        );
     }
 
     /// max |a − b| in units of ε · max(1, max |b|).

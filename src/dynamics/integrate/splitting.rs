@@ -127,46 +127,58 @@ struct RotorDrift<const K: usize, const LP: usize, const RP: usize> {
     blade: [usize; K],
 }
 
-/// The 3D tables, built once.
+/// The 3D tables, built at compile time so that every index and sign is a constant in the
+/// unrolled kernel.
+const DRIFT_3: RotorDrift<3, 1, 2> = RotorDrift::build(3);
+
+/// The 4D tables.
+const DRIFT_4: RotorDrift<6, 2, 4> = RotorDrift::build(4);
+
 fn rotor_drift_3() -> &'static RotorDrift<3, 1, 2> {
-    static TABLES: std::sync::OnceLock<RotorDrift<3, 1, 2>> = std::sync::OnceLock::new();
-    TABLES.get_or_init(|| RotorDrift::build(3))
+    &DRIFT_3
 }
 
-/// The 4D tables, built once.
 fn rotor_drift_4() -> &'static RotorDrift<6, 2, 4> {
-    static TABLES: std::sync::OnceLock<RotorDrift<6, 2, 4>> = std::sync::OnceLock::new();
-    TABLES.get_or_init(|| RotorDrift::build(4))
+    &DRIFT_4
 }
 
 impl<const K: usize, const LP: usize, const RP: usize> RotorDrift<K, LP, RP> {
     /// The tables for dimension `n` (K = n(n−1)/2 planes, LP = n − 2, RP = 2^(n−2)).
-    fn build(n: usize) -> Self {
+    const fn build(n: usize) -> Self {
         let mut t = RotorDrift {
             momentum: [[(0, 0, 0.0); LP]; K],
             rotor: [[(0, 0, 0.0, 0.0); RP]; K],
             blade: [0; K],
         };
-        let rotor_tables = crate::algebra::plane_tables(n);
-        for (p, (lo, hi)) in pairs(n).enumerate() {
-            // B_a,k as stored: the component of the ordered pair and its sign.
-            let stored = |a: usize, k: usize| {
-                if a < k {
-                    (pair_index(n, a, k), 1.0)
-                } else {
-                    (pair_index(n, k, a), -1.0)
+        // B_a,k as stored: the component of the ordered pair and its sign.
+        const fn stored(n: usize, a: usize, k: usize) -> (usize, f64) {
+            if a < k {
+                (pair_index(n, a, k), 1.0)
+            } else {
+                (pair_index(n, k, a), -1.0)
+            }
+        }
+        let mut p = 0;
+        let mut lo = 0;
+        while lo < n {
+            let mut hi = lo + 1;
+            while hi < n {
+                let (mut k, mut slot) = (0, 0);
+                while k < n {
+                    if k != lo && k != hi {
+                        let ((a, sa), (b, sb)) = (stored(n, lo, k), stored(n, hi, k));
+                        t.momentum[p][slot] = (a, b, sa * sb);
+                        slot += 1;
+                    }
+                    k += 1;
                 }
-            };
-            let others = (0..n).filter(|&k| k != lo && k != hi);
-            for (slot, k) in t.momentum[p].iter_mut().zip(others) {
-                let ((a, sa), (b, sb)) = (stored(lo, k), stored(hi, k));
-                *slot = (a, b, sa * sb);
+                t.rotor[p] = crate::algebra::plane_table_const::<RP>(n, lo, hi);
+                // e_lo e_hi is stored at the index of its low N−1 bits.
+                t.blade[p] = ((1usize << lo) | (1 << hi)) & ((1 << (n - 1)) - 1);
+                p += 1;
+                hi += 1;
             }
-            for (slot, &(a, b, s1, s2)) in t.rotor[p].iter_mut().zip(&rotor_tables[p]) {
-                *slot = (a as usize, b as usize, s1, s2);
-            }
-            // e_lo e_hi is stored at the index of its low N−1 bits.
-            t.blade[p] = ((1usize << lo) | (1 << hi)) & ((1 << (n - 1)) - 1);
+            lo += 1;
         }
         t
     }
