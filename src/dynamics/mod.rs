@@ -47,7 +47,7 @@ pub use attitude::Attitude;
 pub use body::RigidBody;
 pub use error::{DynamicsError, NoClosedFormReason};
 pub use fixed::{FreeBody3, FreeBody4};
-pub use integrate::{Dopri5, Integrator, Midpoint, Rkmk4, Splitting, SplittingOrder};
+pub use integrate::{Dopri5, Integrator, Midpoint, MoserVeselov, Rkmk4, Splitting, SplittingOrder};
 pub use invariants::{Drift, Invariants, MANAKOV_MAX_DIM, manakov_count, manakov_integrals};
 pub use torque::{Torque, TorqueInput, torques};
 pub use trajectory::{Sample, Trajectory, simulate};

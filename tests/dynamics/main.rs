@@ -6,6 +6,7 @@ mod equations;
 mod fixed;
 mod large_n;
 mod manakov;
+mod moser_veselov;
 mod motion;
 mod moving_bodies;
 mod names;
