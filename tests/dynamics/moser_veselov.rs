@@ -149,11 +149,11 @@ fn sampled_drifts(
     out
 }
 
-/// 10⁵ steps of h = 0.05 (t = 5000) in 4D. Measured: every Manakov integral within 1.6e-14
-/// relative, the Casimirs 1.5e-14, the energy 1.2e-14, the rotor within 4.5e-14 of unit,
-/// two Newton iterations per step; RK4 at the same step drifts linearly (energy 1.8e-10 at
-/// t = 500, 1.6e-9 at t = 5000; Manakov 2.7e-10 → 2.6e-9). The 10⁶-step run is in
-/// tests/reliability.
+/// 10⁵ steps of h = 0.05 (t = 5000) in 4D. Measured: every Manakov integral within 2.7e-14
+/// relative, the Casimirs 2.7e-14, the energy 2.6e-14 (a random walk of roundings), the rotor
+/// within 5.6e-14 of unit, two Newton iterations per step; RK4 at the same step drifts
+/// linearly (energy 1.8e-10 at t = 500, 1.6e-9 at t = 5000; Manakov 2.7e-10 → 2.6e-9). The
+/// 10⁶-step run is in tests/reliability.
 #[test]
 fn conserves_every_manakov_integral_over_1e5_steps_where_rk4_drifts() {
     let body = random_body(&mut rng(4242), 4);
