@@ -58,6 +58,24 @@ type Packed = SmallVec<[f64; 28]>;
 ///
 /// Needs a physical inertia map (built from a mass tensor or principal second moments);
 /// others return [`DynamicsError::NonPhysicalInertia`].
+///
+/// ```
+/// use rotorflow::prelude::*;
+/// use rotorflow::dynamics::{Invariants, MoserVeselov};
+/// let inertia = InertiaMap::from_principal_second_moments(&[0.5, 0.8, 1.3, 2.1, 2.6])?;
+/// let l = Bivector::from_components(5, &[0.9, -0.4, 0.3, 0.7, -0.2, 0.5, 0.1, -0.6, 0.8, 0.2])?;
+/// let mut body = RigidBody::from_body_momentum(inertia, Attitude::identity(5), &l)?;
+/// let start = Invariants::of(&body);
+/// let mut mv = MoserVeselov::new();
+/// for k in 0..1000 {
+///     mv.step(&mut body, k as f64 * 0.05, 0.05, &Free)?;
+/// }
+/// // Every Manakov integral (the Casimirs among them) and the energy, to round-off.
+/// let drift = Invariants::of(&body).drift_from(&start);
+/// assert!(drift.manakov < 1e-13 && drift.energy < 1e-13);
+/// assert_eq!(start.manakov.len(), 6);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Copy, Debug)]
 pub struct MoserVeselov {
     fourth_order: bool,
