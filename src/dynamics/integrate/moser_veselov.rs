@@ -31,8 +31,9 @@ type Packed = SmallVec<[f64; 28]>;
 /// same spectrum for every λ. So the spectrum of M + μJ² is the same before and after the
 /// step, for every μ: every Casimir of L and every Manakov integral
 /// ([`manakov_integrals`](crate::dynamics::manakov_integrals)) is conserved, to the solver's
-/// tolerance and round-off, and so is the energy, a combination of them; the space-frame
-/// momentum QMQᵀ is conserved because Uₖ is orthogonal.
+/// tolerance and round-off. The energy is kept as well (in 3D a combination of the two
+/// integrals; for N = 3 … 8 its drift is measured at round-off), and the space-frame momentum
+/// QMQᵀ because Uₖ is orthogonal.
 ///
 /// The rotation is solved for in the Cayley form U = (1 − A)⁻¹(1 + A), A skew, by Newton's
 /// method on the N(N−1)/2 components of A, starting from A = ½h Ω(Mₖ). The Cayley form keeps
