@@ -13,7 +13,7 @@
 use rotorflow::dynamics::torques::Free;
 use rotorflow::dynamics::trajectory::even_times;
 use rotorflow::dynamics::{
-    Attitude, Dopri5, Integrator, Midpoint, RigidBody, Rkmk4, Splitting, simulate,
+    Attitude, Dopri5, Integrator, Midpoint, MoserVeselov, RigidBody, Rkmk4, Splitting, simulate,
 };
 use rotorflow::prelude::*;
 use std::error::Error;
@@ -118,6 +118,16 @@ fn runs() -> Res<Vec<Run>> {
         let name = "implicit midpoint (`Midpoint`)";
         let mut run = measure(&body, &reference, name, h, &mut m, String::new())?;
         run.work = format!("{:.1} iterations (ω×L each)", m.mean_iterations());
+        out.push(run);
+    }
+    for &h in &STEPS {
+        let mut mv = MoserVeselov::new();
+        let name = "Moser–Veselov (`MoserVeselov`)";
+        let mut run = measure(&body, &reference, name, h, &mut mv, String::new())?;
+        run.work = format!(
+            "{:.1} Newton iterations (a 6×6 solve each)",
+            mv.mean_iterations()
+        );
         out.push(run);
     }
     Ok(out)
@@ -234,7 +244,7 @@ fn plot(runs: &[Run]) -> String {
         (top + h - bottom) / 2.0,
         (top + h - bottom) / 2.0
     );
-    let colours = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd"];
+    let colours = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e"];
     for (k, chunk) in runs.chunks(STEPS.len()).enumerate() {
         let c = colours[k % colours.len()];
         let points: Vec<String> = chunk

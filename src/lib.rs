@@ -119,8 +119,8 @@ pub mod special;
 /// [`Attitude`](crate::dynamics::Attitude), the integrators behind the
 /// [`Integrator`](crate::dynamics::Integrator) trait ([`Rkmk4`](crate::dynamics::Rkmk4),
 /// [`Splitting`](crate::dynamics::Splitting) (Strang and Yoshida),
-/// [`Midpoint`](crate::dynamics::Midpoint), [`Dopri5`](crate::dynamics::Dopri5),
-/// [`Dop853`](crate::dynamics::Dop853)),
+/// [`Midpoint`](crate::dynamics::Midpoint), [`MoserVeselov`](crate::dynamics::MoserVeselov),
+/// [`Dopri5`](crate::dynamics::Dopri5), [`Dop853`](crate::dynamics::Dop853)),
 /// [`simulate`](crate::dynamics::simulate) and its [`Trajectory`](crate::dynamics::Trajectory),
 /// the torques ([`Torque`](crate::dynamics::Torque), [`Free`](crate::dynamics::torques::Free)
 /// for free rotation, the module [`torques`](crate::dynamics::torques) for the others), and
@@ -155,8 +155,8 @@ pub mod prelude {
     };
     pub use crate::dynamics::torques::{self, Free};
     pub use crate::dynamics::{
-        Attitude, Dop853, Dopri5, DynamicsError, Integrator, Midpoint, RigidBody, Rkmk4, Splitting,
-        SplittingOrder, Torque, Trajectory, simulate,
+        Attitude, Dop853, Dopri5, DynamicsError, Integrator, Midpoint, MoserVeselov, RigidBody,
+        Rkmk4, Splitting, SplittingOrder, Torque, Trajectory, simulate,
     };
     #[allow(deprecated)]
     pub use crate::inertia::BodyError;

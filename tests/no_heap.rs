@@ -1,6 +1,7 @@
 //! Vectors and bivectors up to N = 8, rotors in 3D and 4D, and the integrator steps of the
-//! splitting and RK4 methods up to N = 8 never touch the heap: a counting global allocator
-//! asserts it for construction, the hot kernels and the steps.
+//! splitting, RK4, midpoint, Dopri5 and Moser–Veselov methods up to N = 8 never touch the
+//! heap: a counting global allocator asserts it for construction, the hot kernels and the
+//! steps.
 
 use rotorflow::prelude::*;
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -78,7 +79,9 @@ fn rotor_kernels_do_not_allocate_in_3d_and_4d() {
 #[test]
 fn integrator_steps_do_not_allocate() {
     use rotorflow::dynamics::torques::Free;
-    use rotorflow::dynamics::{Dop853, Dopri5, Integrator, Midpoint, RigidBody, Rkmk4, Splitting};
+    use rotorflow::dynamics::{
+        Dop853, Dopri5, Integrator, Midpoint, MoserVeselov, RigidBody, Rkmk4, Splitting,
+    };
     // Strang and Yoshida work in place on the attitude and momentum: no heap for N ≤ 8.
     // RK4, the midpoint rule, Dopri5 and Dop853 too: rotor attitudes up to N = 4 (inline rotors,
     // closed-form exp), inline matrix attitudes above, up to N = 8.
@@ -153,6 +156,18 @@ fn integrator_steps_do_not_allocate() {
         assert_eq!(
             count, 0,
             "dop853, N = {n}: {count} heap allocations in 50 steps"
+        );
+        // Moser–Veselov: the Newton solve on inline matrices (K ≤ 28 unknowns).
+        let mut mv = MoserVeselov::new();
+        mv.step(&mut body, 0.0, 0.01, &Free).unwrap();
+        let count = allocations_in(|| {
+            for k in 0..100 {
+                mv.step(&mut body, k as f64 * 0.01, 0.01, &Free).unwrap();
+            }
+        });
+        assert_eq!(
+            count, 0,
+            "moser-veselov, N = {n}: {count} heap allocations in 100 steps"
         );
     }
 }

@@ -427,6 +427,13 @@ fn integrator_table() -> CliResult<String> {
             },
         ),
         (
+            "moser-veselov",
+            Stepping::Fixed {
+                kind: IntegratorKind::MoserVeselov,
+                dt: DT,
+            },
+        ),
+        (
             "dopri5 (rtol 1e-10, atol 1e-12)",
             Stepping::Adaptive {
                 rtol: 1e-10,

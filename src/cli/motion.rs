@@ -9,8 +9,8 @@ use nalgebra::DMatrix;
 use rotorflow::algebra::{Bivector, bivector_len};
 use rotorflow::dynamics::torques::{BodyFrame, Free, LinearDamping, SpaceFrame};
 use rotorflow::dynamics::{
-    Attitude, Dop853, Dopri5, Drift, Integrator, Invariants, Midpoint, RigidBody, Rkmk4, Splitting,
-    Torque, simulate,
+    Attitude, Dop853, Dopri5, Drift, Integrator, Invariants, Midpoint, MoserVeselov, RigidBody,
+    Rkmk4, Splitting, Torque, simulate,
 };
 use rotorflow::inertia::spec::{parse_list, parse_number};
 use serde_json::{Value, json};
@@ -153,6 +153,10 @@ pub enum IntegratorKind {
     Yoshida4,
     /// Implicit midpoint rule (order 2, conserves the energy).
     Midpoint,
+    /// Discrete Moser–Veselov top (order 2, conserves the energy, the Casimirs and every
+    /// Manakov integral; physical inertia only).
+    #[value(alias = "mv")]
+    MoserVeselov,
 }
 
 impl IntegratorKind {
@@ -165,6 +169,7 @@ impl IntegratorKind {
             IntegratorKind::Strang => "strang",
             IntegratorKind::Yoshida4 => "yoshida4",
             IntegratorKind::Midpoint => "midpoint",
+            IntegratorKind::MoserVeselov => "moser-veselov",
         }
     }
 }
@@ -381,7 +386,15 @@ pub fn integrate_each(
     sink: &mut dyn FnMut(State) -> CliResult<()>,
 ) -> CliResult<usize> {
     let fail = |e: rotorflow::dynamics::DynamicsError| {
-        CliError::runtime(format!("integration failed: {e}"))
+        use rotorflow::dynamics::DynamicsError as E;
+        // The body or --dt the user chose does not suit the integrator: bad input, not a
+        // failure of the run.
+        match e {
+            E::NonPhysicalInertia { .. } | E::NoDiscreteSolution { .. } => {
+                CliError::input(format!("integration failed: {e}"))
+            }
+            _ => CliError::runtime(format!("integration failed: {e}")),
+        }
     };
     let not_finite =
         || CliError::runtime("integration failed: the state is no longer finite; reduce --dt");
@@ -400,6 +413,7 @@ pub fn integrate_each(
                 IntegratorKind::Strang => Box::new(Splitting::strang()),
                 IntegratorKind::Yoshida4 => Box::new(Splitting::yoshida4()),
                 IntegratorKind::Midpoint => Box::new(Midpoint::default()),
+                IntegratorKind::MoserVeselov => Box::new(MoserVeselov::new()),
                 IntegratorKind::Dopri5 | IntegratorKind::Dop853 => {
                     unreachable!("dopri5 and dop853 are adaptive")
                 }

@@ -348,6 +348,49 @@ impl Attitude {
         }
     }
 
+    /// R ← R r with r the rotor of the Cayley rotation U = (1 − A)⁻¹(1 + A) of the skew
+    /// matrix A (packed components `a`, Aᵢⱼ for i < j), given also as D = U − 1
+    /// (column-major N×N, `d`): a matrix attitude takes Q ← Q + Q D (one rounding of each
+    /// entry, as [`PlaneProduct::apply_to`]); a rotor takes r = (1 + B + ½B∧B)/|·| with
+    /// Bᵢⱼ = Aᵢⱼ, the product of (1 + tan(θₖ/2) Eₖ) over the invariant planes Eₖ of A (N ≤ 4
+    /// has at most two, and ½B∧B = Pf(B) e₁₂₃₄). No heap for N ≤ 8.
+    pub(crate) fn times_cayley_mut(&mut self, a: &[f64], d: &[f64]) {
+        let n = self.dim();
+        match &mut self.repr {
+            Repr::Rotor(r) => {
+                let pf = if n == 4 {
+                    a[0] * a[5] - a[1] * a[4] + a[2] * a[3]
+                } else {
+                    0.0
+                };
+                let norm = (1.0 + a.iter().map(|x| x * x).sum::<f64>() + pf * pf).sqrt();
+                let inc = Rotor::from_blades(n, |blade| {
+                    if blade == 0 {
+                        1.0 / norm
+                    } else if blade == 0b1111 {
+                        pf / norm
+                    } else {
+                        let (lo, hi) = (
+                            blade.trailing_zeros() as usize,
+                            63 - blade.leading_zeros() as usize,
+                        );
+                        a[crate::algebra::pair_index(n, lo, hi)] / norm
+                    }
+                });
+                *r *= &inc;
+            }
+            Repr::Matrix(q) => {
+                let q0: MatrixStorage = q.clone();
+                for (k, out) in q.chunks_exact_mut(n).enumerate() {
+                    for (l, &dlk) in d[k * n..(k + 1) * n].iter().enumerate() {
+                        let col = &q0[l * n..(l + 1) * n];
+                        out.iter_mut().zip(col).for_each(|(o, x)| *o += x * dlk);
+                    }
+                }
+            }
+        }
+    }
+
     /// Q ← Q expm(S) for a dense skew S = 2\[A\] (column-major N×N): [`Attitude::times_exp_mut`]
     /// for integrators that keep their generator dense (RK4 above N = 8). Small S (every
     /// integrator step) takes the Taylor form and one product, with `work` (2N²) as scratch;

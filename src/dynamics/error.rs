@@ -24,6 +24,37 @@ pub enum DynamicsError {
         /// The integrator.
         integrator: &'static str,
     },
+    /// The integrator needs a physical inertia map, I(ω) = Jω + ωJ with a mass tensor J.
+    ///
+    /// How to fix: build the inertia from a body, a mass tensor or principal second moments
+    /// (a map given by plane moments or a general SPD matrix has no J), or use
+    /// [`Rkmk4`](crate::dynamics::Rkmk4), which takes any map.
+    #[error(
+        "{integrator} needs a physical inertia map I(ω) = Jω + ωJ (this map has no mass tensor J)"
+    )]
+    NonPhysicalInertia {
+        /// The integrator.
+        integrator: &'static str,
+    },
+    /// The discrete step has no solution near the identity: the step is too large for the
+    /// angular momentum (the Moser–Veselov equation hM = UJ − JUᵀ needs |hM|_F ≤ 2|J|_F,
+    /// and its Newton iteration diverged or met a singular matrix).
+    ///
+    /// How to fix: reduce the step (h·|ω| well below 1).
+    #[error(
+        "{integrator}: no rotation near the identity solves the step at t = {time} (h = {step:e}, residual {residual:e}); reduce the step"
+    )]
+    NoDiscreteSolution {
+        /// The integrator.
+        integrator: &'static str,
+        /// The time of the step.
+        time: f64,
+        /// The step size.
+        step: f64,
+        /// The last absolute residual of the equation (infinite when the necessary bound
+        /// already fails).
+        residual: f64,
+    },
     /// The requested sampling makes no sense.
     ///
     /// How to fix: a positive finite step, and sample times that increase from 0.

@@ -110,7 +110,13 @@ cases! {
         refuses(&["simulate", "--body", "cuboid:1,2,3", "--omega", "1,0,0", "--t-end", "NaN", "--samples", "3"], "not a finite number")
     }
     non_positive_t_end => { simulate("cuboid:1,2,3", "1,0,0", &["--t-end", "0"], "--t-end must be positive") }
-    unknown_integrator => { simulate("cuboid:1,2,3", "1,0,0", &["--integrator", "euler"], "possible values: rk4, dopri5, dop853, strang, yoshida4, midpoint") }
+    unknown_integrator => { simulate("cuboid:1,2,3", "1,0,0", &["--integrator", "euler"], "possible values: rk4, dopri5, dop853, strang, yoshida4, midpoint, moser-veselov") }
+    moser_veselov_needs_a_physical_body => {
+        simulate("planes:0.6666666666666666,1,2", "0.3,0.2,1", &["--integrator", "mv", "--t-end", "1", "--samples", "2"], "needs a physical inertia map")
+    }
+    moser_veselov_step_too_large => {
+        simulate("principal:1,2,3", "30,20,10", &["--integrator", "moser-veselov", "--t-end", "10", "--samples", "2", "--dt", "5"], "reduce the step")
+    }
     times_not_increasing => {
         refuses(&["simulate", "--body", "cuboid:1,2,3", "--omega", "1,0,0", "--times", "0,2,1", "--output", "o.json"], "--times not increasing: 2 then 1")
     }

@@ -8,6 +8,7 @@ mod fixed;
 mod lagrange_top;
 mod large_n;
 mod manakov;
+mod moser_veselov;
 mod motion;
 mod moving_bodies;
 mod names;

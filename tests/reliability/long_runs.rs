@@ -113,3 +113,64 @@ fn stiff_adaptive_case_ends_with_an_answer_or_a_clear_error() {
     }
     assert!(seconds < 120.0, "took {seconds} s");
 }
+
+/// 10⁶ Moser–Veselov steps of a free 4-D body (h = 0.05, t = 5·10⁴), against RK4 at the
+/// same step: MV keeps every Manakov integral, the Casimirs and the energy at round-off
+/// (a random walk of roundings, no drift of order h); RK4's drift grows linearly with time.
+/// Measured (2.2 s): Manakov 8.3e-14, Casimirs 4.2e-14, energy 9.4e-14, attitude 3.2e-13,
+/// two Newton iterations per step; RK4 energy 4.3e-9 at 10⁵ steps, 4.2e-8 at 10⁶.
+#[test]
+#[ignore = "long run: cargo test --release --test reliability -- --ignored"]
+fn a_million_moser_veselov_steps_keep_every_manakov_integral_in_4d() {
+    use rotorflow::dynamics::{MoserVeselov, Rkmk4};
+    let b0 = body(&[0.5, 0.8, 1.3, 2.1], 1.0);
+    let (h, steps) = (0.05, 1_000_000);
+    let run = |integ: &mut dyn Integrator| {
+        let mut b = b0.clone();
+        let start = Invariants::of(&b);
+        let clock = Instant::now();
+        let mut tenth = None;
+        let mut worst = rotorflow::dynamics::Drift::default();
+        for k in 0..steps {
+            integ.step(&mut b, k as f64 * h, h, &Free).unwrap();
+            if (k + 1) % 10_000 == 0 {
+                let d = Invariants::of(&b).drift_from(&start);
+                worst = worst.max(d);
+                if k + 1 == steps / 10 {
+                    tenth = Some(d);
+                }
+            }
+        }
+        let seconds = clock.elapsed().as_secs_f64();
+        (
+            worst,
+            tenth.unwrap(),
+            Invariants::of(&b).drift_from(&start),
+            seconds,
+        )
+    };
+    let mut mv = MoserVeselov::new();
+    let (worst, tenth, last, seconds) = run(&mut mv);
+    println!(
+        "MV, 10^6 steps in {seconds:.1} s ({:.2} Newton iterations per step): max sampled \
+         Manakov {:.1e}, Casimirs {:.1e}, energy {:.1e}, space L {:.1e}, attitude {:.1e} \
+         (at 10^5 steps: Manakov {:.1e}, energy {:.1e})",
+        mv.mean_iterations(),
+        worst.manakov,
+        worst.casimirs,
+        worst.energy,
+        worst.space_momentum,
+        worst.attitude,
+        tenth.manakov,
+        tenth.energy
+    );
+    let (rk_worst, rk_tenth, rk_last, rk_seconds) = run(&mut Rkmk4);
+    println!(
+        "RK4, 10^6 steps in {rk_seconds:.1} s: Manakov {:.1e} at 10^5 steps, {:.1e} at 10^6; \
+         energy {:.1e} → {:.1e}",
+        rk_tenth.manakov, rk_last.manakov, rk_tenth.energy, rk_last.energy
+    );
+    assert!(worst.manakov < 1e-12 && worst.casimirs < 1e-12 && worst.energy < 1e-12);
+    assert!(worst.attitude < 1e-12 && last.space_momentum < 1e-12);
+    assert!(rk_last.energy > 5.0 * rk_tenth.energy && rk_worst.energy > 1e3 * worst.energy);
+}

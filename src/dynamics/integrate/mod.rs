@@ -8,8 +8,9 @@
 //! | [`Dopri5`] | 5 (adaptive, error estimate of order 4) | the rotor stays on Spin(N); invariants drift within the tolerance |
 //! | [`Dop853`] | 8 (adaptive, error estimates of orders 5 and 3) | as Dopri5; far fewer right-hand sides at tight tolerances |
 //! | [`Midpoint`] | 2 | energy and ‖L‖² exactly (solver tolerance); all Casimirs in N ≤ 4; implicit, bounded fixed-point solve |
+//! | [`MoserVeselov`] | 2 (4 composed) | every Casimir, every Manakov integral and the energy to round-off, the space-frame L; physical inertia only; implicit, Newton solve |
 //!
-//! With a torque the splitting integrators use a kick–drift–kick composition (the kick is
+//! With a torque the splitting and Moser–Veselov integrators use a kick–drift–kick composition (the kick is
 //! the torque's flow with the attitude frozen, taken by the midpoint rule), which keeps the
 //! order for torques that do not depend on L; the Casimirs are then no longer invariants of
 //! the motion.
@@ -18,6 +19,7 @@ mod dop853;
 mod dop853_tableau;
 mod dopri;
 mod midpoint;
+mod moser_veselov;
 mod rkmk;
 mod splitting;
 pub(crate) use splitting::{strang_drift_3, strang_drift_4};
@@ -25,6 +27,7 @@ pub(crate) use splitting::{strang_drift_3, strang_drift_4};
 pub use dop853::Dop853;
 pub use dopri::Dopri5;
 pub use midpoint::Midpoint;
+pub use moser_veselov::MoserVeselov;
 pub use rkmk::Rkmk4;
 pub use splitting::{Splitting, SplittingOrder};
 

@@ -250,7 +250,7 @@ pub(crate) fn strang_drift_4(l: &mut [f64; 6], moments: &[f64; 6], h: f64) -> [f
 }
 
 /// The torque's flow for time `h` with the attitude frozen, by the midpoint rule.
-fn kick(body: &mut RigidBody, torque: &dyn Torque, t: f64, h: f64) {
+pub(super) fn kick(body: &mut RigidBody, torque: &dyn Torque, t: f64, h: f64) {
     if torque.is_zero() {
         return;
     }
