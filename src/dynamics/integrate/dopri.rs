@@ -111,6 +111,35 @@ impl Dopri5 {
         self.rejected
     }
 
+    /// Returns the number of right-hand sides evaluated so far: seven per attempted step
+    /// (the seventh stage is the rate at the new solution; a step does not reuse the last
+    /// one, so the count compares directly with [`Dop853::rhs_evaluations`]).
+    ///
+    /// [`Dop853::rhs_evaluations`]: crate::dynamics::Dop853::rhs_evaluations
+    ///
+    /// ```
+    /// use rotorflow::dynamics::{Dopri5, Integrator, RigidBody, TorqueInput};
+    /// use rotorflow::prelude::*;
+    /// use std::cell::Cell;
+    /// let inertia = InertiaMap::from_principal_second_moments(&[1.0, 2.0, 3.0])?;
+    /// let omega = Bivector::from_components(3, &[0.3, 1.0, 0.2])?;
+    /// let mut body = RigidBody::from_body_velocity(inertia, Rotor::identity(3), &omega)?;
+    /// // A torque evaluated once per right-hand side counts them.
+    /// let calls = Cell::new(0);
+    /// let damping = |input: &TorqueInput<'_>| {
+    ///     calls.set(calls.get() + 1);
+    ///     input.omega * -0.1
+    /// };
+    /// let mut dopri = Dopri5::new(1e-10, 1e-12);
+    /// dopri.step(&mut body, 0.0, 1.0, &damping)?;
+    /// assert!(dopri.accepted_steps() > 1);
+    /// assert_eq!(dopri.rhs_evaluations(), calls.get());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn rhs_evaluations(&self) -> usize {
+        7 * (self.accepted + self.rejected)
+    }
+
     /// Integrates from t = 0 and returns the state (attitude, momentum) at every time in
     /// `times` (ascending, ≥ 0) from the dense output, without shortening steps to hit them.
     ///
