@@ -14,7 +14,7 @@
 
 use super::contact::ContactLog;
 use super::forques::Anchor;
-use super::placement::{Placements, attitudes_close, dot};
+use super::placement::{Placements, attitudes_close, dot, set_vector};
 use super::{BallJoint, ContactShape, HalfSpace, MovingBody};
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::Attitude;
@@ -204,48 +204,64 @@ impl BodyState {
         self.dl += &dl;
     }
 
-    /// Takes an impulse `j` at the point of a contact row with matrices `data`.
-    fn apply_with(&mut self, data: &[f64], l: &RowLayout, j: &[f64]) {
-        let (n, m) = (l.n, l.m);
-        for ((v, dp), x) in self
-            .v
-            .as_mut_slice()
+    /// Takes an impulse `j` at the point of a contact row with matrices `data` (`N` as in
+    /// [`dim`]).
+    #[inline]
+    fn apply_with<const N: usize>(&mut self, data: &[f64], l: &RowLayout, j: &[f64]) {
+        let n = dim::<N>(l.n);
+        let m = n * (n - 1) / 2;
+        let j = &j[..n];
+        for ((v, dp), x) in self.v.as_mut_slice()[..n]
             .iter_mut()
-            .zip(self.dp.as_mut_slice())
+            .zip(&mut self.dp.as_mut_slice()[..n])
             .zip(j)
         {
             *v += x * self.inv_mass;
             *dp += x;
         }
-        add_mat_vec(self.w.as_mut_slice(), &data[l.w..l.w + m * n], 1.0, j);
-        add_mat_vec(self.dl.as_mut_slice(), &data[l.r..l.r + m * n], 1.0, j);
+        add_mat_vec(
+            &mut self.w.as_mut_slice()[..m],
+            &data[l.w..l.w + m * n],
+            1.0,
+            j,
+        );
+        add_mat_vec(
+            &mut self.dl.as_mut_slice()[..m],
+            &data[l.r..l.r + m * n],
+            1.0,
+            j,
+        );
     }
 
-    /// Takes the normal impulse λ n at the point of a contact row with matrices `data`.
-    fn apply_normal(&mut self, data: &[f64], l: &RowLayout, nrm: &[f64], lambda: f64) {
-        for ((v, dp), x) in self
-            .v
-            .as_mut_slice()
+    /// Takes the normal impulse λ n at the point of a contact row with matrices `data` (`N`
+    /// as in [`dim`]).
+    #[inline]
+    fn apply_normal<const N: usize>(
+        &mut self,
+        data: &[f64],
+        l: &RowLayout,
+        nrm: &[f64],
+        lambda: f64,
+    ) {
+        let n = dim::<N>(l.n);
+        let m = n * (n - 1) / 2;
+        for ((v, dp), x) in self.v.as_mut_slice()[..n]
             .iter_mut()
-            .zip(self.dp.as_mut_slice())
-            .zip(nrm)
+            .zip(&mut self.dp.as_mut_slice()[..n])
+            .zip(&nrm[..n])
         {
             *v += lambda * x * self.inv_mass;
             *dp += lambda * x;
         }
-        for (w, x) in self
-            .w
-            .as_mut_slice()
+        for (w, x) in self.w.as_mut_slice()[..m]
             .iter_mut()
-            .zip(&data[l.wn..l.wn + l.m])
+            .zip(&data[l.wn..l.wn + m])
         {
             *w += lambda * x;
         }
-        for (d, x) in self
-            .dl
-            .as_mut_slice()
+        for (d, x) in self.dl.as_mut_slice()[..m]
             .iter_mut()
-            .zip(&data[l.rn..l.rn + l.m])
+            .zip(&data[l.rn..l.rn + m])
         {
             *d += lambda * x;
         }
@@ -421,11 +437,25 @@ struct RowKey {
     normal: SmallVec<[f64; 8]>,
 }
 
-/// u = v + C w at a row's point.
+/// The dimension of a kernel: `N` when it is fixed at compile time (3 and 4: loops of known
+/// length, unrolled), else `n` (`N` = 0).
+#[inline(always)]
+fn dim<const N: usize>(n: usize) -> usize {
+    debug_assert!(
+        N == 0 || N == n,
+        "rotorflow: kernel of dimension {N} for {n}"
+    );
+    if N == 0 { n } else { N }
+}
+
+/// u = v + C w at a row's point (`N` as in [`dim`]).
 #[inline]
-fn point_velocity(d: &[f64], l: &RowLayout, v: &[f64], w: &[f64], u: &mut [f64]) {
-    let c = &d[l.c..l.c + l.n * l.m];
-    for ((ui, vi), row) in u.iter_mut().zip(v).zip(c.chunks_exact(l.m)) {
+fn point_velocity<const N: usize>(d: &[f64], l: &RowLayout, v: &[f64], w: &[f64], u: &mut [f64]) {
+    let n = dim::<N>(l.n);
+    let m = n * (n - 1) / 2;
+    let c = &d[l.c..l.c + n * m];
+    let w = &w[..m];
+    for ((ui, vi), row) in u[..n].iter_mut().zip(&v[..n]).zip(c.chunks_exact(m)) {
         *ui = vi + dot(row, w);
     }
 }
@@ -515,8 +545,27 @@ pub(crate) struct Solver {
     pub residuals: Vec<Vector>,
     /// The impulses of the last solve, by (body, half-space, candidate), to start the next
     /// one from: a resting contact then needs one sweep.
-    warm: Vec<(usize, usize, usize, f64, Vector)>,
+    warm: Vec<WarmImpulse>,
+    /// The list the current solve writes the next `warm` into.
+    warm_next: Vec<WarmImpulse>,
+    /// True to use the kernels of run-time dimension in every dimension, also in 3D and 4D
+    /// where fixed-size kernels take the same steps in the same order (so that tests can
+    /// compare the two).
+    pub runtime_kernels: bool,
 }
+
+/// Contact rows solved together, and what their solve reads.
+struct Group<'a> {
+    range: std::ops::Range<usize>,
+    /// True if joints couple the rows (then every joint is swept with them).
+    coupled: bool,
+    half_spaces: &'a [HalfSpace],
+    layout: &'a RowLayout,
+}
+
+/// A contact's impulses kept for the next solve: body, half-space, candidate, normal
+/// impulse, friction impulse.
+type WarmImpulse = (usize, usize, usize, f64, Vector);
 
 impl Solver {
     /// Finds the contact points of `bodies` within `tolerance` × their radius of a
@@ -545,7 +594,6 @@ impl Solver {
                     if base + dot(nrm.as_slice(), r) > reach {
                         return;
                     }
-                    let r = Vector::from_storage(SmallVec::from_slice(r));
                     // The target is set when the solve starts, from the loaded velocities.
                     let target = 0.0;
                     if let Some(row) = self.contacts.get_mut(used) {
@@ -559,8 +607,8 @@ impl Solver {
                         row.body = i;
                         row.half_space = k;
                         row.index = index;
-                        row.point.clone_from(p);
-                        row.r = r;
+                        set_vector(&mut row.point, p.as_slice());
+                        set_vector(&mut row.r, r);
                         row.target = target;
                         row.position_impulse = 0.0;
                         row.knn = 0.0;
@@ -571,7 +619,7 @@ impl Solver {
                             half_space: k,
                             index,
                             point: p.clone(),
-                            r,
+                            r: Vector::from_storage(SmallVec::from_slice(r)),
                             target,
                             normal_impulse: 0.0,
                             friction_impulse: Vector::zero(n),
@@ -691,8 +739,85 @@ impl Solver {
         if self.row_keys.len() < rows {
             self.row_keys.resize_with(rows, RowKey::default);
         }
-        let mut u = Vector::zero(n);
-        for (k, row) in self.contacts.iter_mut().enumerate() {
+        // Bodies that no joint couples are solved apart (their contacts are consecutive), each
+        // from setup to record while its rows' matrices are in cache; with joints,
+        // everything is one problem.
+        let coupled = !self.joints.is_empty();
+        let last = std::mem::take(&mut self.warm);
+        let mut next = std::mem::take(&mut self.warm_next);
+        let mut kept = 0;
+        let mut cursor = 0;
+        let mut start = 0;
+        while start < rows {
+            let end = if coupled {
+                rows
+            } else {
+                let body = self.contacts[start].body;
+                start
+                    + self.contacts[start..]
+                        .iter()
+                        .take_while(|r| r.body == body)
+                        .count()
+            };
+            let group = Group {
+                range: start..end,
+                coupled,
+                half_spaces,
+                layout: &layout,
+            };
+            match (self.runtime_kernels, n) {
+                (false, 3) => self.solve_group::<3>(&group, resting_speed, &last, &mut cursor),
+                (false, 4) => self.solve_group::<4>(&group, resting_speed, &last, &mut cursor),
+                _ => self.solve_group::<0>(&group, resting_speed, &last, &mut cursor),
+            }
+            self.record_rows(
+                start..end,
+                half_spaces,
+                &layout,
+                record,
+                &mut next,
+                &mut kept,
+            );
+            start = end;
+        }
+        next.truncate(kept);
+        self.warm = next;
+        self.warm_next = last;
+        self.store(bodies);
+    }
+
+    /// The velocity solve of one group of contact rows (`N` as in [`dim`]): their matrices,
+    /// warm start and sweeps.
+    fn solve_group<const N: usize>(
+        &mut self,
+        group: &Group<'_>,
+        resting_speed: &[f64],
+        last: &[WarmImpulse],
+        cursor: &mut usize,
+    ) {
+        let range = group.range.clone();
+        self.prepare_rows::<N>(
+            range.clone(),
+            group.half_spaces,
+            resting_speed,
+            group.layout,
+        );
+        self.warm_start::<N>(range.clone(), last, cursor, group.half_spaces, group.layout);
+        self.sweep_rows::<N>(range, group.coupled, group.half_spaces, group.layout);
+    }
+
+    /// Computes (or keeps) the matrices of the contact rows `range` at the loaded states,
+    /// and sets their nᵀ K n, target and speed.
+    fn prepare_rows<const N: usize>(
+        &mut self,
+        range: std::ops::Range<usize>,
+        half_spaces: &[HalfSpace],
+        resting_speed: &[f64],
+        layout: &RowLayout,
+    ) {
+        let mut u = Vector::zero(layout.n);
+        for k in range {
+            let row = &mut self.contacts[k];
             let nrm = half_spaces[row.half_space].normal();
             let st = &self.states[row.body];
             let data = &mut self.row_data[k * layout.stride..(k + 1) * layout.stride];
@@ -704,7 +829,7 @@ impl Solver {
                 && key.r[..] == row.r.as_slice()[..]
                 && key.normal[..] == nrm.as_slice()[..];
             if !same {
-                row_matrices(st, &row.r, nrm, &layout, data);
+                row_matrices(st, &row.r, nrm, layout, data);
                 key.body = row.body;
                 key.half_space = row.half_space;
                 key.index = row.index;
@@ -715,9 +840,9 @@ impl Solver {
                 key.normal.extend_from_slice(nrm.as_slice());
             }
             row.knn = data[layout.knn];
-            point_velocity(
+            point_velocity::<N>(
                 data,
-                &layout,
+                layout,
                 st.v.as_slice(),
                 st.w.as_slice(),
                 u.as_mut_slice(),
@@ -730,22 +855,34 @@ impl Solver {
             };
             row.speed = u.max_abs().max(row.target.abs());
         }
-        // Start from the last solve's impulses where the same points touch again: kept in
-        // the row when it is in the same slot, else looked up.
-        let mut w = 0;
+    }
+
+    /// Starts the contact rows `range` from the last solve's impulses where the same points
+    /// touch again: kept in the row when it is in the same slot, else looked up in `last`
+    /// (sorted by point, searched from `cursor` on).
+    fn warm_start<const N: usize>(
+        &mut self,
+        range: std::ops::Range<usize>,
+        last: &[WarmImpulse],
+        cursor: &mut usize,
+        half_spaces: &[HalfSpace],
+        layout: &RowLayout,
+    ) {
+        let n = layout.n;
         let mut jt: Small = SmallVec::from_elem(0.0, n);
         let mut total: Small = SmallVec::from_elem(0.0, n);
-        for (k, row) in self.contacts.iter_mut().enumerate() {
+        for k in range {
+            let row = &mut self.contacts[k];
             let lambda = if row.warm {
                 jt.copy_from_slice(row.friction_impulse.as_slice());
                 row.normal_impulse
             } else {
                 let key = (row.body, row.half_space, row.index);
-                while w < self.warm.len() && (self.warm[w].0, self.warm[w].1, self.warm[w].2) < key
-                {
-                    w += 1;
+                let w = &mut *cursor;
+                while *w < last.len() && (last[*w].0, last[*w].1, last[*w].2) < key {
+                    *w += 1;
                 }
-                match self.warm.get(w).filter(|e| (e.0, e.1, e.2) == key) {
+                match last.get(*w).filter(|e| (e.0, e.1, e.2) == key) {
                     Some(e) => {
                         jt.copy_from_slice(e.4.as_slice());
                         e.3
@@ -770,80 +907,80 @@ impl Solver {
             row.normal_impulse = lambda;
             row.friction_impulse.as_mut_slice().copy_from_slice(&jt);
             let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
-            self.states[row.body].apply_with(data, &layout, &total);
+            self.states[row.body].apply_with::<N>(data, layout, &total);
         }
-        // Bodies that no joint couples are solved apart (their contacts are consecutive), each
-        // until no impulse changes one of its velocities by more than 1e-12 of its speeds;
-        // with joints, everything is one problem.
-        let coupled = !self.joints.is_empty();
-        let mut start = 0;
-        while start < self.contacts.len() {
-            let end = if coupled {
-                self.contacts.len()
-            } else {
-                let body = self.contacts[start].body;
-                start
-                    + self.contacts[start..]
-                        .iter()
-                        .take_while(|r| r.body == body)
-                        .count()
-            };
-            let speed = self.contacts[start..end]
-                .iter()
-                .map(|r| r.speed)
-                .fold(0.0, f64::max);
-            let tolerance = 1e-12 * speed.max(1e-300);
-            for _ in 0..MAX_SWEEPS {
-                let mut change = 0.0f64;
-                if coupled {
-                    for row in &mut self.joints {
-                        let u = row.velocity(&self.states);
-                        self.work.clear();
-                        self.work.extend_from_slice(&row.k);
-                        self.rhs.clear();
-                        self.rhs.extend(u.as_slice().iter().map(|x| -x));
-                        if !cholesky_solve(&mut self.work, n, &mut self.rhs) {
-                            continue;
-                        }
-                        let dj = Vector::from_storage(self.rhs.iter().copied().collect());
-                        row.apply(&mut self.states, &dj);
-                        row.impulse += &dj;
-                        change = change.max(u.max_abs());
+    }
+
+    /// Gauss–Seidel sweeps over the contact rows `range` (and every joint when `coupled`)
+    /// until no impulse changes one of their velocities by more than 1e-12 of their speeds.
+    fn sweep_rows<const N: usize>(
+        &mut self,
+        range: std::ops::Range<usize>,
+        coupled: bool,
+        half_spaces: &[HalfSpace],
+        layout: &RowLayout,
+    ) {
+        let n = layout.n;
+        let (start, end) = (range.start, range.end);
+        let speed = self.contacts[range]
+            .iter()
+            .map(|r| r.speed)
+            .fold(0.0, f64::max);
+        let tolerance = 1e-12 * speed.max(1e-300);
+        for _ in 0..MAX_SWEEPS {
+            let mut change = 0.0f64;
+            if coupled {
+                for row in &mut self.joints {
+                    let u = row.velocity(&self.states);
+                    self.work.clear();
+                    self.work.extend_from_slice(&row.k);
+                    self.rhs.clear();
+                    self.rhs.extend(u.as_slice().iter().map(|x| -x));
+                    if !cholesky_solve(&mut self.work, n, &mut self.rhs) {
+                        continue;
                     }
-                }
-                for (k, row) in self.contacts[start..end].iter_mut().enumerate() {
-                    let at = (start + k) * layout.stride;
-                    let data = &self.row_data[at..at + layout.stride];
-                    change = change.max(sweep_contact(
-                        row,
-                        data,
-                        &layout,
-                        half_spaces,
-                        &mut self.states,
-                    ));
-                }
-                if change <= tolerance {
-                    break;
+                    let dj = Vector::from_storage(self.rhs.iter().copied().collect());
+                    row.apply(&mut self.states, &dj);
+                    row.impulse += &dj;
+                    change = change.max(u.max_abs());
                 }
             }
-            start = end;
+            for (k, row) in self.contacts[start..end].iter_mut().enumerate() {
+                let at = (start + k) * layout.stride;
+                let data = &self.row_data[at..at + layout.stride];
+                change = change.max(sweep_contact::<N>(
+                    row,
+                    data,
+                    layout,
+                    half_spaces,
+                    &mut self.states,
+                ));
+            }
+            if change <= tolerance {
+                break;
+            }
         }
-        self.warm.clear();
-        self.warm.extend(self.contacts.iter().map(|r| {
-            (
-                r.body,
-                r.half_space,
-                r.index,
-                r.normal_impulse,
-                r.friction_impulse.clone(),
-            )
-        }));
-        for (k, row) in self.contacts.iter().enumerate() {
+    }
+
+    /// Records the contact rows `range` with their impulses and the velocities the solve
+    /// leaves at their points, and keeps their impulses in `warm` from entry `kept` on for
+    /// the next solve (over the entries there: a copy costs less than a new vector).
+    fn record_rows(
+        &self,
+        range: std::ops::Range<usize>,
+        half_spaces: &[HalfSpace],
+        layout: &RowLayout,
+        record: &mut ContactLog,
+        warm: &mut Vec<WarmImpulse>,
+        kept: &mut usize,
+    ) {
+        let mut u: Small = SmallVec::from_elem(0.0, layout.n);
+        for k in range {
+            let row = &self.contacts[k];
             let nrm = half_spaces[row.half_space].normal();
             let st = &self.states[row.body];
             let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
-            let mut u: Small = SmallVec::from_elem(0.0, n);
-            point_velocity(data, &layout, st.v.as_slice(), st.w.as_slice(), &mut u);
+            point_velocity::<0>(data, layout, st.v.as_slice(), st.w.as_slice(), &mut u);
             record.record(
                 (row.body, row.half_space),
                 &row.point,
@@ -852,8 +989,22 @@ impl Solver {
                 &u,
                 nrm.as_slice(),
             );
+            match warm.get_mut(*kept) {
+                Some(e) => {
+                    (e.0, e.1, e.2, e.3) =
+                        (row.body, row.half_space, row.index, row.normal_impulse);
+                    set_vector(&mut e.4, row.friction_impulse.as_slice());
+                }
+                None => warm.push((
+                    row.body,
+                    row.half_space,
+                    row.index,
+                    row.normal_impulse,
+                    row.friction_impulse.clone(),
+                )),
+            }
+            *kept += 1;
         }
-        self.store(bodies);
     }
 
     /// The position step of the joints at the placement the rows were found at: the
@@ -1023,68 +1174,73 @@ impl Solver {
 }
 
 /// One Gauss–Seidel update of a contact: the normal impulse, then the friction impulse,
-/// through the row's matrices `data` laid out by `l`. Returns the largest velocity change
-/// it made.
-fn sweep_contact(
+/// through the row's matrices `data` laid out by `l` (`N` as in [`dim`]). Returns the
+/// largest velocity change it made.
+#[inline]
+fn sweep_contact<const N: usize>(
     row: &mut ContactRow,
     data: &[f64],
     l: &RowLayout,
     half_spaces: &[HalfSpace],
     states: &mut [BodyState],
 ) -> f64 {
-    let n = l.n;
+    let n = dim::<N>(l.n);
+    let m = n * (n - 1) / 2;
     let mut change = 0.0f64;
     let plane = &half_spaces[row.half_space];
     let nrm = plane.normal();
-    let nv = nrm.as_slice();
+    let nv = &nrm.as_slice()[..n];
     let st = &mut states[row.body];
     // Normal: the smallest accumulated λ ≥ 0 reaching the target; u·n = v·n + (Cᵀn)·w.
-    let un = dot(nv, st.v.as_slice()) + dot(&data[l.cn..l.cn + l.m], st.w.as_slice());
+    let un = dot(nv, &st.v.as_slice()[..n]) + dot(&data[l.cn..l.cn + m], &st.w.as_slice()[..m]);
     let lambda = (row.normal_impulse + (row.target - un) / row.knn).max(0.0);
     let dl = lambda - row.normal_impulse;
     if dl != 0.0 {
-        st.apply_normal(data, l, nv, dl);
+        st.apply_normal::<N>(data, l, nv, dl);
         row.normal_impulse = lambda;
     }
     change = change.max((dl * row.knn).abs());
     // Friction: maximal dissipation in the disc |J_t| ≤ μλ.
     let limit = plane.friction() * row.normal_impulse;
-    let mut ut: Small = SmallVec::from_elem(0.0, n);
-    point_velocity(data, l, st.v.as_slice(), st.w.as_slice(), &mut ut);
-    let normal_part = dot(nv, &ut);
+    let mut ut = [0.0; 8];
+    let ut = &mut ut[..n];
+    point_velocity::<N>(data, l, st.v.as_slice(), st.w.as_slice(), ut);
+    let normal_part = dot(nv, ut);
     for (u, x) in ut.iter_mut().zip(nv) {
         *u -= normal_part * x;
     }
-    let mut new: Small = SmallVec::from_elem(0.0, n);
+    let mut new = [0.0; 8];
+    let new = &mut new[..n];
     // The sticking impulse old − K_t⁻¹ u_t when it lies in the disc (a resting contact),
     // else the one of maximal dissipation on its rim.
-    let old = row.friction_impulse.as_slice();
+    let old = &row.friction_impulse.as_slice()[..n];
     let kinv = &data[l.kinv..l.kinv + n * n];
     for ((x, o), k) in new.iter_mut().zip(old).zip(kinv.chunks_exact(n)) {
-        *x = o - dot(k, &ut);
+        *x = o - dot(k, ut);
     }
     if limit <= 0.0 {
         new.fill(0.0);
-    } else if dot(&new, &new) > limit * limit {
+    } else if dot(new, new) > limit * limit {
         friction_impulse(
             &data[l.values..l.values + n],
             &data[l.vectors..l.vectors + n * n],
             &data[l.kt..l.kt + n * n],
             row.friction_impulse.as_slice(),
-            &ut,
+            ut,
             limit,
-            &mut new,
+            new,
         );
     }
-    let mut dj: Small = SmallVec::from_elem(0.0, n);
+    let mut dj = [0.0; 8];
+    let dj = &mut dj[..n];
     let mut largest = 0.0f64;
-    for ((d, x), y) in dj.iter_mut().zip(&new).zip(row.friction_impulse.as_slice()) {
+    for ((d, x), y) in dj.iter_mut().zip(new.iter()).zip(old) {
         *d = x - y;
         largest = largest.max(d.abs());
     }
     if largest > 0.0 {
-        st.apply_with(data, l, &dj);
-        row.friction_impulse.as_mut_slice().copy_from_slice(&new);
+        st.apply_with::<N>(data, l, dj);
+        row.friction_impulse.as_mut_slice().copy_from_slice(new);
         change = change.max(largest * row.knn);
     }
     change

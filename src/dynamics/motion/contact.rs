@@ -1,6 +1,7 @@
 //! Contact of bodies with half-spaces: the shapes bodies touch with, the planes, and the
 //! contacts found at a step.
 
+use super::placement::set_vector;
 use crate::algebra::Vector;
 use crate::dynamics::DynamicsError;
 use crate::inertia::spec::Geometry;
@@ -327,9 +328,9 @@ impl ContactLog {
         let c = &mut self.entries[self.len];
         c.body = body;
         c.half_space = half_space;
-        c.point.clone_from(point);
+        set_vector(&mut c.point, point.as_slice());
         c.normal_impulse = normal_impulse;
-        c.friction_impulse.clone_from(friction_impulse);
+        set_vector(&mut c.friction_impulse, friction_impulse.as_slice());
         if c.slip.dim() != n {
             c.slip = Vector::zero(n);
         }

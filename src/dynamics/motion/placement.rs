@@ -112,6 +112,17 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
+/// Sets `v` to the components `x`, in place when the dimensions agree (a copy instead of a
+/// new vector).
+#[inline]
+pub(crate) fn set_vector(v: &mut Vector, x: &[f64]) {
+    if v.dim() == x.len() {
+        v.as_mut_slice().copy_from_slice(x);
+    } else {
+        *v = Vector::from_storage(SmallVec::from_slice(x));
+    }
+}
+
 /// The placements of all bodies of one system.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Placements {
