@@ -204,66 +204,19 @@ impl BodyState {
         self.dl += &dl;
     }
 
-    /// Takes an impulse `j` at the point of a contact row with matrices `data` (`N` as in
-    /// [`dim`]).
-    #[inline]
-    fn apply_with<const N: usize>(&mut self, data: &[f64], l: &RowLayout, j: &[f64]) {
-        let n = dim::<N>(l.n);
+    /// Its velocities and impulses as slices of length N and M (`N` as in [`dim`]): taken
+    /// once for all the rows of a body, they spare each row the checks of the vectors'
+    /// storage.
+    #[inline(always)]
+    fn view<const N: usize>(&mut self) -> BodyView<'_> {
+        let n = dim::<N>(self.v.dim());
         let m = n * (n - 1) / 2;
-        let j = &j[..n];
-        for ((v, dp), x) in self.v.as_mut_slice()[..n]
-            .iter_mut()
-            .zip(&mut self.dp.as_mut_slice()[..n])
-            .zip(j)
-        {
-            *v += x * self.inv_mass;
-            *dp += x;
-        }
-        add_mat_vec(
-            &mut self.w.as_mut_slice()[..m],
-            &data[l.w..l.w + m * n],
-            1.0,
-            j,
-        );
-        add_mat_vec(
-            &mut self.dl.as_mut_slice()[..m],
-            &data[l.r..l.r + m * n],
-            1.0,
-            j,
-        );
-    }
-
-    /// Takes the normal impulse λ n at the point of a contact row with matrices `data` (`N`
-    /// as in [`dim`]).
-    #[inline]
-    fn apply_normal<const N: usize>(
-        &mut self,
-        data: &[f64],
-        l: &RowLayout,
-        nrm: &[f64],
-        lambda: f64,
-    ) {
-        let n = dim::<N>(l.n);
-        let m = n * (n - 1) / 2;
-        for ((v, dp), x) in self.v.as_mut_slice()[..n]
-            .iter_mut()
-            .zip(&mut self.dp.as_mut_slice()[..n])
-            .zip(&nrm[..n])
-        {
-            *v += lambda * x * self.inv_mass;
-            *dp += lambda * x;
-        }
-        for (w, x) in self.w.as_mut_slice()[..m]
-            .iter_mut()
-            .zip(&data[l.wn..l.wn + m])
-        {
-            *w += lambda * x;
-        }
-        for (d, x) in self.dl.as_mut_slice()[..m]
-            .iter_mut()
-            .zip(&data[l.rn..l.rn + m])
-        {
-            *d += lambda * x;
+        BodyView {
+            inv_mass: self.inv_mass,
+            v: &mut self.v.as_mut_slice()[..n],
+            w: &mut self.w.as_mut_slice()[..m],
+            dp: &mut self.dp.as_mut_slice()[..n],
+            dl: &mut self.dl.as_mut_slice()[..m],
         }
     }
 
@@ -279,6 +232,56 @@ impl BodyState {
                 .sum::<f64>();
         }
         self.used = false;
+    }
+}
+
+/// A body's velocities and impulses during a contact solve ([`BodyState::view`]).
+struct BodyView<'a> {
+    inv_mass: f64,
+    v: &'a mut [f64],
+    w: &'a mut [f64],
+    dp: &'a mut [f64],
+    dl: &'a mut [f64],
+}
+
+impl BodyView<'_> {
+    /// Takes an impulse `j` at the point of a contact row with matrices `data` (`N` as in
+    /// [`dim`]).
+    #[inline(always)]
+    fn apply_with<const N: usize>(&mut self, data: &[f64], l: &RowLayout, j: &[f64]) {
+        let n = dim::<N>(self.v.len());
+        let m = n * (n - 1) / 2;
+        let j = &j[..n];
+        for ((v, dp), x) in self.v[..n].iter_mut().zip(&mut self.dp[..n]).zip(j) {
+            *v += x * self.inv_mass;
+            *dp += x;
+        }
+        add_mat_vec(&mut self.w[..m], &data[l.w..l.w + m * n], 1.0, j);
+        add_mat_vec(&mut self.dl[..m], &data[l.r..l.r + m * n], 1.0, j);
+    }
+
+    /// Takes the normal impulse λ n at the point of a contact row with matrices `data`
+    /// (`N` as in [`dim`]).
+    #[inline(always)]
+    fn apply_normal<const N: usize>(
+        &mut self,
+        data: &[f64],
+        l: &RowLayout,
+        nrm: &[f64],
+        lambda: f64,
+    ) {
+        let n = dim::<N>(self.v.len());
+        let m = n * (n - 1) / 2;
+        for ((v, dp), x) in self.v[..n].iter_mut().zip(&mut self.dp[..n]).zip(&nrm[..n]) {
+            *v += lambda * x * self.inv_mass;
+            *dp += lambda * x;
+        }
+        for (w, x) in self.w[..m].iter_mut().zip(&data[l.wn..l.wn + m]) {
+            *w += lambda * x;
+        }
+        for (d, x) in self.dl[..m].iter_mut().zip(&data[l.rn..l.rn + m]) {
+            *d += lambda * x;
+        }
     }
 }
 
@@ -449,7 +452,7 @@ fn dim<const N: usize>(n: usize) -> usize {
 }
 
 /// u = v + C w at a row's point (`N` as in [`dim`]).
-#[inline]
+#[inline(always)]
 fn point_velocity<const N: usize>(d: &[f64], l: &RowLayout, v: &[f64], w: &[f64], u: &mut [f64]) {
     let n = dim::<N>(l.n);
     let m = n * (n - 1) / 2;
@@ -461,7 +464,7 @@ fn point_velocity<const N: usize>(d: &[f64], l: &RowLayout, v: &[f64], w: &[f64]
 }
 
 /// y += a A x for an M × n row-major A.
-#[inline]
+#[inline(always)]
 fn add_mat_vec(y: &mut [f64], a_mat: &[f64], a: f64, x: &[f64]) {
     for (yp, row) in y.iter_mut().zip(a_mat.chunks_exact(x.len())) {
         *yp += a * dot(row, x);
@@ -562,6 +565,15 @@ struct Group<'a> {
     half_spaces: &'a [HalfSpace],
     layout: &'a RowLayout,
 }
+
+/// The impulses of the last solve with the place to search them from, and the list of the
+/// next with its length so far.
+type WarmLists<'a> = (
+    &'a [WarmImpulse],
+    &'a mut usize,
+    &'a mut Vec<WarmImpulse>,
+    &'a mut usize,
+);
 
 /// A contact's impulses kept for the next solve: body, half-space, candidate, normal
 /// impulse, friction impulse.
@@ -765,19 +777,12 @@ impl Solver {
                 half_spaces,
                 layout: &layout,
             };
+            let warm = (&last[..], &mut cursor, &mut next, &mut kept);
             match (self.runtime_kernels, n) {
-                (false, 3) => self.solve_group::<3>(&group, resting_speed, &last, &mut cursor),
-                (false, 4) => self.solve_group::<4>(&group, resting_speed, &last, &mut cursor),
-                _ => self.solve_group::<0>(&group, resting_speed, &last, &mut cursor),
+                (false, 3) => self.solve_group::<3>(&group, resting_speed, warm, record),
+                (false, 4) => self.solve_group::<4>(&group, resting_speed, warm, record),
+                _ => self.solve_group::<0>(&group, resting_speed, warm, record),
             }
-            self.record_rows(
-                start..end,
-                half_spaces,
-                &layout,
-                record,
-                &mut next,
-                &mut kept,
-            );
             start = end;
         }
         next.truncate(kept);
@@ -787,23 +792,20 @@ impl Solver {
     }
 
     /// The velocity solve of one group of contact rows (`N` as in [`dim`]): their matrices,
-    /// warm start and sweeps.
+    /// warm start from `last` (searched from `cursor` on), sweeps and record; their
+    /// impulses are kept in `next` from entry `kept` on.
     fn solve_group<const N: usize>(
         &mut self,
         group: &Group<'_>,
         resting_speed: &[f64],
-        last: &[WarmImpulse],
-        cursor: &mut usize,
+        (last, cursor, next, kept): WarmLists<'_>,
+        record: &mut ContactLog,
     ) {
-        let range = group.range.clone();
-        self.prepare_rows::<N>(
-            range.clone(),
-            group.half_spaces,
-            resting_speed,
-            group.layout,
-        );
-        self.warm_start::<N>(range.clone(), last, cursor, group.half_spaces, group.layout);
-        self.sweep_rows::<N>(range, group.coupled, group.half_spaces, group.layout);
+        let (range, half_spaces, layout) = (group.range.clone(), group.half_spaces, group.layout);
+        self.prepare_rows::<N>(range.clone(), half_spaces, resting_speed, layout);
+        self.warm_start::<N>(range.clone(), last, cursor, half_spaces, layout);
+        self.sweep_rows::<N>(range.clone(), group.coupled, half_spaces, layout);
+        self.record_rows::<N>(range, half_spaces, layout, record, next, kept);
     }
 
     /// Computes (or keeps) the matrices of the contact rows `range` at the loaded states,
@@ -815,7 +817,10 @@ impl Solver {
         resting_speed: &[f64],
         layout: &RowLayout,
     ) {
-        let mut u = Vector::zero(layout.n);
+        let n = dim::<N>(layout.n);
+        let m = n * (n - 1) / 2;
+        let mut u: Small = SmallVec::from_elem(0.0, n);
+        let u = &mut u[..n];
         for k in range {
             let row = &mut self.contacts[k];
             let nrm = half_spaces[row.half_space].normal();
@@ -843,17 +848,20 @@ impl Solver {
             point_velocity::<N>(
                 data,
                 layout,
-                st.v.as_slice(),
-                st.w.as_slice(),
-                u.as_mut_slice(),
+                &st.v.as_slice()[..n],
+                &st.w.as_slice()[..m],
+                u,
             );
-            let un = nrm.dot(&u);
+            let un = dot(&nrm.as_slice()[..n], u);
             row.target = if un < -resting_speed[row.body] {
                 -half_spaces[row.half_space].restitution() * un
             } else {
                 0.0
             };
-            row.speed = u.max_abs().max(row.target.abs());
+            row.speed = u
+                .iter()
+                .fold(0.0, |m: f64, c| m.max(c.abs()))
+                .max(row.target.abs());
         }
     }
 
@@ -868,13 +876,15 @@ impl Solver {
         half_spaces: &[HalfSpace],
         layout: &RowLayout,
     ) {
-        let n = layout.n;
+        let n = dim::<N>(layout.n);
         let mut jt: Small = SmallVec::from_elem(0.0, n);
+        let jt = &mut jt[..n];
         let mut total: Small = SmallVec::from_elem(0.0, n);
+        let total = &mut total[..n];
         for k in range {
             let row = &mut self.contacts[k];
             let lambda = if row.warm {
-                jt.copy_from_slice(row.friction_impulse.as_slice());
+                jt.copy_from_slice(&row.friction_impulse.as_slice()[..n]);
                 row.normal_impulse
             } else {
                 let key = (row.body, row.half_space, row.index);
@@ -884,30 +894,32 @@ impl Solver {
                 }
                 match last.get(*w).filter(|e| (e.0, e.1, e.2) == key) {
                     Some(e) => {
-                        jt.copy_from_slice(e.4.as_slice());
+                        jt.copy_from_slice(&e.4.as_slice()[..n]);
                         e.3
                     }
                     None => continue,
                 }
             };
             let plane = &half_spaces[row.half_space];
-            let nv = plane.normal().as_slice();
+            let nv = &plane.normal().as_slice()[..n];
             // Into the friction disc of the normal impulse, and into the plane.
             let limit = plane.friction() * lambda;
-            let norm = dot(&jt, &jt).sqrt();
+            let norm = dot(jt, jt).sqrt();
             let scale = if norm > limit { limit / norm } else { 1.0 };
             for x in jt.iter_mut() {
                 *x *= scale;
             }
-            let along = dot(nv, &jt);
+            let along = dot(nv, jt);
             for ((t, x), nx) in total.iter_mut().zip(jt.iter_mut()).zip(nv) {
                 *x -= nx * along;
                 *t = nx * lambda + *x;
             }
             row.normal_impulse = lambda;
-            row.friction_impulse.as_mut_slice().copy_from_slice(&jt);
+            row.friction_impulse.as_mut_slice().copy_from_slice(jt);
             let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
-            self.states[row.body].apply_with::<N>(data, layout, &total);
+            self.states[row.body]
+                .view::<N>()
+                .apply_with::<N>(data, layout, total);
         }
     }
 
@@ -945,16 +957,23 @@ impl Solver {
                     change = change.max(u.max_abs());
                 }
             }
-            for (k, row) in self.contacts[start..end].iter_mut().enumerate() {
-                let at = (start + k) * layout.stride;
-                let data = &self.row_data[at..at + layout.stride];
-                change = change.max(sweep_contact::<N>(
-                    row,
-                    data,
-                    layout,
-                    half_spaces,
-                    &mut self.states,
-                ));
+            if coupled {
+                for (k, row) in self.contacts[start..end].iter_mut().enumerate() {
+                    let at = (start + k) * layout.stride;
+                    let data = &self.row_data[at..at + layout.stride];
+                    let mut st = self.states[row.body].view::<N>();
+                    let plane = &half_spaces[row.half_space];
+                    change = change.max(sweep_contact::<N>(row, data, layout, plane, &mut st));
+                }
+            } else {
+                // One body: its view serves every row.
+                let mut st = self.states[self.contacts[start].body].view::<N>();
+                for (k, row) in self.contacts[start..end].iter_mut().enumerate() {
+                    let at = (start + k) * layout.stride;
+                    let data = &self.row_data[at..at + layout.stride];
+                    let plane = &half_spaces[row.half_space];
+                    change = change.max(sweep_contact::<N>(row, data, layout, plane, &mut st));
+                }
             }
             if change <= tolerance {
                 break;
@@ -965,7 +984,7 @@ impl Solver {
     /// Records the contact rows `range` with their impulses and the velocities the solve
     /// leaves at their points, and keeps their impulses in `warm` from entry `kept` on for
     /// the next solve (over the entries there: a copy costs less than a new vector).
-    fn record_rows(
+    fn record_rows<const N: usize>(
         &self,
         range: std::ops::Range<usize>,
         half_spaces: &[HalfSpace],
@@ -974,19 +993,23 @@ impl Solver {
         warm: &mut Vec<WarmImpulse>,
         kept: &mut usize,
     ) {
-        let mut u: Small = SmallVec::from_elem(0.0, layout.n);
+        let n = dim::<N>(layout.n);
+        let m = n * (n - 1) / 2;
+        let mut u: Small = SmallVec::from_elem(0.0, n);
+        let u = &mut u[..n];
         for k in range {
             let row = &self.contacts[k];
             let nrm = half_spaces[row.half_space].normal();
             let st = &self.states[row.body];
             let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
-            point_velocity::<0>(data, layout, st.v.as_slice(), st.w.as_slice(), &mut u);
+            let (v, w) = (&st.v.as_slice()[..n], &st.w.as_slice()[..m]);
+            point_velocity::<N>(data, layout, v, w, u);
             record.record(
                 (row.body, row.half_space),
                 &row.point,
                 row.normal_impulse,
                 &row.friction_impulse,
-                &u,
+                u,
                 nrm.as_slice(),
             );
             match warm.get_mut(*kept) {
@@ -1176,23 +1199,20 @@ impl Solver {
 /// One Gauss–Seidel update of a contact: the normal impulse, then the friction impulse,
 /// through the row's matrices `data` laid out by `l` (`N` as in [`dim`]). Returns the
 /// largest velocity change it made.
-#[inline]
+#[inline(always)]
 fn sweep_contact<const N: usize>(
     row: &mut ContactRow,
     data: &[f64],
     l: &RowLayout,
-    half_spaces: &[HalfSpace],
-    states: &mut [BodyState],
+    plane: &HalfSpace,
+    st: &mut BodyView<'_>,
 ) -> f64 {
     let n = dim::<N>(l.n);
     let m = n * (n - 1) / 2;
     let mut change = 0.0f64;
-    let plane = &half_spaces[row.half_space];
-    let nrm = plane.normal();
-    let nv = &nrm.as_slice()[..n];
-    let st = &mut states[row.body];
+    let nv = &plane.normal().as_slice()[..n];
     // Normal: the smallest accumulated λ ≥ 0 reaching the target; u·n = v·n + (Cᵀn)·w.
-    let un = dot(nv, &st.v.as_slice()[..n]) + dot(&data[l.cn..l.cn + m], &st.w.as_slice()[..m]);
+    let un = dot(nv, &st.v[..n]) + dot(&data[l.cn..l.cn + m], &st.w[..m]);
     let lambda = (row.normal_impulse + (row.target - un) / row.knn).max(0.0);
     let dl = lambda - row.normal_impulse;
     if dl != 0.0 {
@@ -1202,14 +1222,14 @@ fn sweep_contact<const N: usize>(
     change = change.max((dl * row.knn).abs());
     // Friction: maximal dissipation in the disc |J_t| ≤ μλ.
     let limit = plane.friction() * row.normal_impulse;
-    let mut ut = [0.0; 8];
+    let mut ut: Small = SmallVec::from_elem(0.0, n);
     let ut = &mut ut[..n];
-    point_velocity::<N>(data, l, st.v.as_slice(), st.w.as_slice(), ut);
+    point_velocity::<N>(data, l, &st.v[..n], &st.w[..m], ut);
     let normal_part = dot(nv, ut);
     for (u, x) in ut.iter_mut().zip(nv) {
         *u -= normal_part * x;
     }
-    let mut new = [0.0; 8];
+    let mut new: Small = SmallVec::from_elem(0.0, n);
     let new = &mut new[..n];
     // The sticking impulse old − K_t⁻¹ u_t when it lies in the disc (a resting contact),
     // else the one of maximal dissipation on its rim.
@@ -1231,7 +1251,7 @@ fn sweep_contact<const N: usize>(
             new,
         );
     }
-    let mut dj = [0.0; 8];
+    let mut dj: Small = SmallVec::from_elem(0.0, n);
     let dj = &mut dj[..n];
     let mut largest = 0.0f64;
     for ((d, x), y) in dj.iter_mut().zip(new.iter()).zip(old) {
