@@ -813,3 +813,111 @@ fn check_finite(system: &System, t: f64) -> Result<(), DynamicsError> {
         Err(DynamicsError::NonFinite { time: t })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebra::Rotor;
+    use crate::dynamics::motion::HalfSpace;
+    use crate::dynamics::motion::forques::Gravity;
+    use crate::inertia::spec::parse_body;
+
+    fn axis(n: usize, i: usize, x: f64) -> Vector {
+        let mut v = Vector::zero(n);
+        v.as_mut_slice()[i] = x;
+        v
+    }
+
+    /// Cuboids in N dimensions dropped and thrown onto the floor x_N = 0 beside a slope,
+    /// turning: impacts, sliding and rolling over happen within 60 steps.
+    fn scene(n: usize) -> System {
+        let half: Vec<String> = (0..n)
+            .map(|k| format!("{}", 0.5 + 0.1 * k as f64))
+            .collect();
+        let parsed = parse_body(&format!("cuboid:{}", half.join(","))).unwrap();
+        let mut bodies = Vec::new();
+        for k in 0..4 {
+            let mut x = axis(n, 0, 3.0 * k as f64);
+            x.as_mut_slice()[n - 1] = 1.2 + 0.3 * k as f64;
+            let w: Vec<f64> = (0..n * (n - 1) / 2)
+                .map(|p| (0.7 * (p + k) as f64 + 0.3).sin() * (1.0 + 0.3 * k as f64))
+                .collect();
+            let v = axis(n, 0, 1.5 - k as f64);
+            bodies.push(
+                MovingBody::new(
+                    parsed.mass,
+                    parsed.inertia.clone(),
+                    Rotor::identity(n),
+                    &x,
+                    &v,
+                    &Bivector::from_components(n, &w).unwrap(),
+                )
+                .unwrap(),
+            );
+        }
+        let mut system = System::new(bodies).unwrap();
+        for i in 0..4 {
+            system
+                .set_shape(i, ContactShape::from_geometry(&parsed.geometry))
+                .unwrap();
+        }
+        system.add_forque(Gravity(axis(n, n - 1, -9.81))).unwrap();
+        system
+            .add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
+            .unwrap();
+        let mut slope = axis(n, n - 1, 1.0);
+        slope.as_mut_slice()[0] = -0.3;
+        system
+            .add_half_space(HalfSpace::new(&slope, -4.0, 0.3, 0.5).unwrap())
+            .unwrap();
+        system
+    }
+
+    /// The fixed-size contact kernels of 3D and 4D take the steps of the run-time ones: the
+    /// two agree to round-off over a scene of impacts, sliding and resting contact.
+    #[test]
+    fn fixed_size_contact_kernels_match_the_runtime_ones() {
+        for n in [3usize, 4] {
+            let (mut fast, mut general) = (scene(n), scene(n));
+            let mut a = MotionSplitting::new();
+            let mut b = MotionSplitting::new();
+            b.solver.runtime_kernels = true;
+            let h = 0.01;
+            let mut touched = 0;
+            for k in 0..60 {
+                a.step(&mut fast, k as f64 * h, h).unwrap();
+                b.step(&mut general, k as f64 * h, h).unwrap();
+                touched += fast.contacts().len();
+                assert_eq!(fast.contacts().len(), general.contacts().len(), "N = {n}");
+            }
+            assert!(touched > 100, "N = {n}: the bodies touch the floor");
+            for (x, y) in fast.bodies().iter().zip(general.bodies()) {
+                let close = |p: &[f64], q: &[f64]| {
+                    p.iter()
+                        .zip(q)
+                        .all(|(u, v)| (u - v).abs() <= 1e-12 * (1.0 + v.abs()))
+                };
+                assert!(
+                    close(x.position().as_slice(), y.position().as_slice()),
+                    "N = {n}"
+                );
+                assert!(
+                    close(
+                        x.linear_momentum().as_slice(),
+                        y.linear_momentum().as_slice()
+                    ),
+                    "N = {n}"
+                );
+                assert!(
+                    close(
+                        x.rotation().momentum().as_slice(),
+                        y.rotation().momentum().as_slice()
+                    ),
+                    "N = {n}"
+                );
+                let (ra, rb) = (x.attitude().to_matrix(), y.attitude().to_matrix());
+                assert!((ra - rb).abs().max() <= 1e-12, "N = {n}");
+            }
+        }
+    }
+}
