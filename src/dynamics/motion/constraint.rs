@@ -396,6 +396,7 @@ struct RowLayout {
 }
 
 impl RowLayout {
+    #[inline(always)]
     fn new(n: usize) -> RowLayout {
         let m = n * (n - 1) / 2;
         let c = 0;
@@ -801,7 +802,9 @@ impl Solver {
         (last, cursor, next, kept): WarmLists<'_>,
         record: &mut ContactLog,
     ) {
-        let (range, half_spaces, layout) = (group.range.clone(), group.half_spaces, group.layout);
+        // The layout anew, so that in 3D and 4D its offsets are constants of the kernels.
+        let layout = &RowLayout::new(dim::<N>(group.layout.n));
+        let (range, half_spaces) = (group.range.clone(), group.half_spaces);
         self.prepare_rows::<N>(range.clone(), half_spaces, resting_speed, layout);
         self.warm_start::<N>(range.clone(), last, cursor, half_spaces, layout);
         self.sweep_rows::<N>(range.clone(), group.coupled, half_spaces, layout);
@@ -1004,19 +1007,20 @@ impl Solver {
             let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
             let (v, w) = (&st.v.as_slice()[..n], &st.w.as_slice()[..m]);
             point_velocity::<N>(data, layout, v, w, u);
+            let friction = &row.friction_impulse.as_slice()[..n];
             record.record(
                 (row.body, row.half_space),
-                &row.point,
+                &row.point.as_slice()[..n],
                 row.normal_impulse,
-                &row.friction_impulse,
+                friction,
                 u,
-                nrm.as_slice(),
+                &nrm.as_slice()[..n],
             );
             match warm.get_mut(*kept) {
                 Some(e) => {
                     (e.0, e.1, e.2, e.3) =
                         (row.body, row.half_space, row.index, row.normal_impulse);
-                    set_vector(&mut e.4, row.friction_impulse.as_slice());
+                    set_vector(&mut e.4, friction);
                 }
                 None => warm.push((
                     row.body,

@@ -2,7 +2,7 @@
 
 use super::constraint::Solver;
 use super::forques::Anchor;
-use super::placement::{Placements, dot};
+use super::placement::{Placements, dot, set_vector};
 use super::{ContactShape, MovingBody, System, Wrench};
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::torques::Free;
@@ -120,11 +120,11 @@ fn save(bodies: &[MovingBody], into: &mut Vec<SavedBody>) {
     for (i, b) in bodies.iter().enumerate() {
         match into.get_mut(i) {
             Some(s) => {
-                s.x.clone_from(b.position());
-                s.p.clone_from(b.linear_momentum());
+                set_vector(&mut s.x, b.position().as_slice());
+                set_vector(&mut s.p, b.linear_momentum().as_slice());
                 s.attitude
                     .clone_from(b.rotation().principal_frame_attitude());
-                s.l.clone_from(b.rotation().momentum());
+                copy_bivector(&mut s.l, b.rotation().momentum());
             }
             None => into.push(SavedBody {
                 x: b.position().clone(),
@@ -136,14 +136,23 @@ fn save(bodies: &[MovingBody], into: &mut Vec<SavedBody>) {
     }
 }
 
+/// Sets `to` to `from`, in place when the dimensions agree.
+fn copy_bivector(to: &mut Bivector, from: &Bivector) {
+    if to.dim() == from.dim() {
+        to.as_mut_slice().copy_from_slice(from.as_slice());
+    } else {
+        to.clone_from(from);
+    }
+}
+
 fn restore(bodies: &mut [MovingBody], from: &[SavedBody]) {
     for (b, s) in bodies.iter_mut().zip(from) {
         let (x, p, rotation) = b.state_mut();
-        x.clone_from(&s.x);
-        p.clone_from(&s.p);
+        set_vector(x, s.x.as_slice());
+        set_vector(p, s.p.as_slice());
         let (a, l) = rotation.state_mut();
         a.clone_from(&s.attitude);
-        l.clone_from(&s.l);
+        copy_bivector(l, &s.l);
     }
 }
 
@@ -181,16 +190,38 @@ impl MotionSplitting {
         self.wrenches = w;
     }
 
-    /// The speed below which contacts rest: what one step of the forques gives.
-    fn set_resting_speeds(&mut self, system: &System, h: f64) {
-        self.resting_speed.clear();
-        self.resting_speed.extend(
-            system
-                .bodies()
+    /// The speed below which contacts rest: what one step of the wrenches gives.
+    fn set_resting_speeds(
+        resting_speed: &mut Vec<f64>,
+        bodies: &[MovingBody],
+        wrenches: &[Wrench],
+        h: f64,
+    ) {
+        resting_speed.clear();
+        resting_speed.extend(
+            bodies
                 .iter()
-                .zip(&self.wrenches)
+                .zip(wrenches)
                 .map(|(b, w)| 2.0 * h * w.force.norm() / b.mass() + 1e-12),
         );
+    }
+
+    /// Half a kick (½h) by the wrenches at time `t`, after setting the resting speeds of a
+    /// substep of length h if `resting`. Constant wrenches are read where the system keeps
+    /// them instead of being copied.
+    fn half_kick(&mut self, system: &mut System, t: f64, h: f64, resting: bool) {
+        if let (bodies, Some(constant)) = system.bodies_and_constant_wrenches() {
+            if resting {
+                Self::set_resting_speeds(&mut self.resting_speed, bodies, &constant.wrenches, h);
+            }
+            Self::kick(bodies, &constant.wrenches, 0.5 * h);
+            return;
+        }
+        self.wrenches_at(system, t);
+        if resting {
+            Self::set_resting_speeds(&mut self.resting_speed, system.bodies(), &self.wrenches, h);
+        }
+        Self::kick(system.bodies_mut(), &self.wrenches, 0.5 * h);
     }
 
     /// The velocity solve of the contacts and joints at the current placement.
@@ -420,15 +451,12 @@ impl MotionSplitting {
     /// current state. Returns the least relative distance of the candidates not in contact
     /// at its start, before they are lifted back.
     fn substep(&mut self, system: &mut System, t: f64, h: f64) -> Result<f64, DynamicsError> {
-        self.wrenches_at(system, t);
-        self.set_resting_speeds(system, h);
-        Self::kick(system.bodies_mut(), &self.wrenches, 0.5 * h);
+        self.half_kick(system, t, h, true);
         self.solve_velocities(system);
         self.constrained_drift(system, t, h)?;
         let fresh = self.new_penetration(system);
         lift_out(system, &self.placements);
-        self.wrenches_at(system, t + h);
-        Self::kick(system.bodies_mut(), &self.wrenches, 0.5 * h);
+        self.half_kick(system, t + h, h, false);
         self.solve_velocities(system);
         Ok(fresh)
     }

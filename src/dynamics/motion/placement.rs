@@ -114,7 +114,7 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
 
 /// Sets `v` to the components `x`, in place when the dimensions agree (a copy instead of a
 /// new vector).
-#[inline]
+#[inline(always)]
 pub(crate) fn set_vector(v: &mut Vector, x: &[f64]) {
     if v.dim() == x.len() {
         v.as_mut_slice().copy_from_slice(x);
