@@ -257,7 +257,13 @@ impl BodyView<'_> {
             *dp += x;
         }
         add_mat_vec(&mut self.w[..m], &data[l.w..l.w + m * n], 1.0, j);
-        add_mat_vec(&mut self.dl[..m], &data[l.r..l.r + m * n], 1.0, j);
+        let r = &data[l.r..l.r + m * n];
+        for (p, (d, row)) in self.dl[..m].iter_mut().zip(r.chunks_exact(n)).enumerate() {
+            *d += match axes_of::<N>(p) {
+                Some(at) => sparse_dot(row, j, at),
+                None => dot(row, j),
+            };
+        }
     }
 
     /// Takes the normal impulse λ n at the point of a contact row with matrices `data`
@@ -452,15 +458,64 @@ fn dim<const N: usize>(n: usize) -> usize {
     if N == 0 { n } else { N }
 }
 
-/// u = v + C w at a row's point (`N` as in [`dim`]).
+/// The planes through each axis in 3D and 4D, in their order: the entries of row i of C
+/// (whose column p is r ⌋ e_p) that can be non-zero.
+const PLANES_THROUGH_3: [[usize; 2]; 3] = [[0, 1], [0, 2], [1, 2]];
+const PLANES_THROUGH_4: [[usize; 3]; 4] = [[0, 1, 2], [0, 3, 4], [1, 3, 5], [2, 4, 5]];
+
+/// The axes of each plane in 3D and 4D: the entries of row p of R (whose column j is
+/// r ∧ e_j) that can be non-zero.
+const AXES_OF_3: [[usize; 2]; 3] = [[0, 1], [0, 2], [1, 2]];
+const AXES_OF_4: [[usize; 2]; 6] = [[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]];
+
+/// a · b over the entries `at` (ascending): the dot product of a row whose other entries
+/// are zero, summed in the same order.
+#[inline(always)]
+fn sparse_dot(a: &[f64], b: &[f64], at: &[usize]) -> f64 {
+    at.iter().map(|&k| a[k] * b[k]).sum()
+}
+
+/// The entries of row `i` of an n × n(n−1)/2 matrix C (columns r ⌋ e_p) that can be
+/// non-zero, when the dimension is fixed at 3 or 4 (None: all of them).
+#[inline(always)]
+fn planes_through<const N: usize>(i: usize) -> Option<&'static [usize]> {
+    match N {
+        3 => Some(&PLANES_THROUGH_3[i]),
+        4 => Some(&PLANES_THROUGH_4[i]),
+        _ => None,
+    }
+}
+
+/// The entries of row `p` of an n(n−1)/2 × n matrix R (columns r ∧ e_j) that can be
+/// non-zero, when the dimension is fixed at 3 or 4 (None: all of them).
+#[inline(always)]
+fn axes_of<const N: usize>(p: usize) -> Option<&'static [usize]> {
+    match N {
+        3 => Some(&AXES_OF_3[p]),
+        4 => Some(&AXES_OF_4[p]),
+        _ => None,
+    }
+}
+
+/// u = v + C w at a row's point (`N` as in [`dim`]; in 3D and 4D only the entries of C
+/// that can be non-zero are read).
 #[inline(always)]
 fn point_velocity<const N: usize>(d: &[f64], l: &RowLayout, v: &[f64], w: &[f64], u: &mut [f64]) {
     let n = dim::<N>(l.n);
     let m = n * (n - 1) / 2;
     let c = &d[l.c..l.c + n * m];
     let w = &w[..m];
-    for ((ui, vi), row) in u[..n].iter_mut().zip(&v[..n]).zip(c.chunks_exact(m)) {
-        *ui = vi + dot(row, w);
+    for (i, ((ui, vi), row)) in u[..n]
+        .iter_mut()
+        .zip(&v[..n])
+        .zip(c.chunks_exact(m))
+        .enumerate()
+    {
+        *ui = vi
+            + match planes_through::<N>(i) {
+                Some(at) => sparse_dot(row, w, at),
+                None => dot(row, w),
+            };
     }
 }
 
