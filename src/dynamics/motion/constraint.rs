@@ -96,14 +96,16 @@ impl BodyState {
             }
         }
         self.inv_mass = 1.0 / b.mass();
-        self.v.clone_from(b.linear_momentum());
+        set_vector(&mut self.v, b.linear_momentum().as_slice());
         self.v *= self.inv_mass;
         match diagonal {
             // ω in space = P (I⁻¹ L), I⁻¹ diagonal in the principal frame.
             Some(inv) => {
-                let l = b.rotation().momentum().as_slice();
-                for (i, w) in self.w.as_mut_slice().iter_mut().enumerate() {
-                    *w = (0..m).map(|k| self.frame[i * m + k] * inv[k] * l[k]).sum();
+                let (l, w) = (b.rotation().momentum().as_slice(), self.w.as_mut_slice());
+                match m {
+                    3 => frame_diagonal::<3>(&self.frame, inv, l, w),
+                    6 => frame_diagonal::<6>(&self.frame, inv, l, w),
+                    _ => frame_diagonal::<0>(&self.frame, inv, l, w),
                 }
             }
             None => self.w = b.space_omega(),
@@ -226,12 +228,35 @@ impl BodyState {
         let (_, p, rotation) = b.state_mut();
         *p += &self.dp;
         let (_, l) = rotation.state_mut();
-        for (i, x) in l.as_mut_slice().iter_mut().enumerate() {
-            *x += (0..m)
-                .map(|k| self.frame[k * m + i] * self.dl.as_slice()[k])
-                .sum::<f64>();
+        let (dl, l) = (self.dl.as_slice(), l.as_mut_slice());
+        match m {
+            3 => add_frame_transpose::<3>(&self.frame, dl, l),
+            6 => add_frame_transpose::<6>(&self.frame, dl, l),
+            _ => add_frame_transpose::<0>(&self.frame, dl, l),
         }
         self.used = false;
+    }
+}
+
+/// w = F diag(`inv`) `l` for the rotation F of the planes (M × M row-major; `M` fixed, or 0
+/// for `w.len()`).
+#[inline(always)]
+fn frame_diagonal<const M: usize>(frame: &[f64], inv: &[f64], l: &[f64], w: &mut [f64]) {
+    let m = if M == 0 { w.len() } else { M };
+    let (frame, inv, l) = (&frame[..m * m], &inv[..m], &l[..m]);
+    for (i, w) in w[..m].iter_mut().enumerate() {
+        *w = (0..m).map(|k| frame[i * m + k] * inv[k] * l[k]).sum();
+    }
+}
+
+/// l += Fᵀ `dl` for the rotation F of the planes (M × M row-major; `M` fixed, or 0 for
+/// `l.len()`).
+#[inline(always)]
+fn add_frame_transpose<const M: usize>(frame: &[f64], dl: &[f64], l: &mut [f64]) {
+    let m = if M == 0 { l.len() } else { M };
+    let (frame, dl) = (&frame[..m * m], &dl[..m]);
+    for (i, x) in l[..m].iter_mut().enumerate() {
+        *x += (0..m).map(|k| frame[k * m + i] * dl[k]).sum::<f64>();
     }
 }
 
@@ -658,10 +683,7 @@ impl Solver {
             for (k, plane) in half_spaces.iter().enumerate() {
                 let nrm = plane.normal();
                 let base = plane.distance(b.position());
-                placed.candidates(shape, nrm, |index, p, r| {
-                    if base + dot(nrm.as_slice(), r) > reach {
-                        return;
-                    }
+                let mut put = |index: usize, p: &Vector, r: &[f64]| {
                     // The target is set when the solve starts, from the loaded velocities.
                     let target = 0.0;
                     if let Some(row) = self.contacts.get_mut(used) {
@@ -698,7 +720,23 @@ impl Solver {
                         });
                     }
                     used += 1;
-                });
+                };
+                if placed.vertex(shape, 1).is_some() {
+                    // Vertices: their heights are kept, and only those in reach are read.
+                    placed.candidate_heights(shape, (k, nrm), |index, h| {
+                        if base + h <= reach
+                            && let Some((p, r)) = placed.vertex(shape, index)
+                        {
+                            put(index, p, r);
+                        }
+                    });
+                } else {
+                    placed.candidates(shape, (k, nrm), |index, p, r| {
+                        if base + dot(nrm.as_slice(), r) <= reach {
+                            put(index, p, r);
+                        }
+                    });
+                }
             }
         }
         self.contacts.truncate(used);

@@ -2,7 +2,7 @@
 
 use super::constraint::Solver;
 use super::forques::Anchor;
-use super::placement::{Placements, dot, set_vector};
+use super::placement::{Placements, set_vector};
 use super::{ContactShape, MovingBody, System, Wrench};
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::torques::Free;
@@ -243,8 +243,12 @@ impl MotionSplitting {
     /// Places the bodies that turned since they were last placed.
     fn place(&mut self, system: &System) {
         if !system.half_spaces().is_empty() {
-            self.placements
-                .update(system.bodies(), system.shapes(), system.shape_key());
+            self.placements.update(
+                system.bodies(),
+                system.shapes(),
+                system.shape_key(),
+                system.half_spaces(),
+            );
         }
     }
 
@@ -349,7 +353,8 @@ impl MotionSplitting {
             self.distances.clear();
             let mut contacts_hold = true;
             if !self.solver.contacts.is_empty() {
-                self.placements.update(bodies, shapes, shape_key);
+                self.placements
+                    .update(bodies, shapes, shape_key, half_spaces);
             }
             for row in &self.solver.contacts {
                 let shape = &shapes[row.body];
@@ -357,7 +362,7 @@ impl MotionSplitting {
                 let d = plane.distance(bodies[row.body].position())
                     + self.placements.get(row.body).candidate_height(
                         shape,
-                        plane.normal(),
+                        (row.half_space, plane.normal()),
                         row.index,
                     );
                 let tolerance = 1e-12 * self.placements.get(row.body).radius;
@@ -549,11 +554,10 @@ fn for_each_candidate(
         }
         let placed = placements.get(i);
         let reach = CONTACT_TOLERANCE * placed.radius;
-        for plane in system.half_spaces() {
-            let n = plane.normal();
+        for (j, plane) in system.half_spaces().iter().enumerate() {
             let base = plane.distance(b.position());
-            placed.candidates(shape, n, |_, _, r| {
-                visit(k, base + dot(n.as_slice(), r), reach);
+            placed.candidate_heights(shape, (j, plane.normal()), |_, h| {
+                visit(k, base + h, reach);
                 k += 1;
             });
         }
@@ -600,12 +604,10 @@ fn lift_out(system: &mut System, placements: &Placements) {
             continue;
         }
         let placed = placements.get(i);
-        for plane in half_spaces.iter() {
+        for (j, plane) in half_spaces.iter().enumerate() {
             let n = plane.normal();
             let mut deepest = f64::INFINITY;
-            placed.candidates(shape, n, |_, _, r| {
-                deepest = deepest.min(dot(n.as_slice(), r))
-            });
+            placed.candidate_heights(shape, (j, n), |_, h| deepest = deepest.min(h));
             let d = plane.distance(b.position()) + deepest;
             if d < 0.0 {
                 let (x, _, _) = b.state_mut();
