@@ -401,6 +401,8 @@ pub(crate) struct ContactRow {
     speed: f64,
     /// True if the impulses are the last solve's at the same point (a warm start).
     warm: bool,
+    /// The generation of the placement `point` and `r` were copied from (0: none).
+    placed: u64,
 }
 
 /// Where the matrices of one contact row lie in the solver's `row_data` (N = n, M planes):
@@ -697,8 +699,12 @@ impl Solver {
                         row.body = i;
                         row.half_space = k;
                         row.index = index;
-                        set_vector(&mut row.point, p.as_slice());
-                        set_vector(&mut row.r, r);
+                        // The same point of the same placement is there already.
+                        if !(row.warm && row.placed == placed.generation) {
+                            set_vector(&mut row.point, p.as_slice());
+                            set_vector(&mut row.r, r);
+                            row.placed = placed.generation;
+                        }
                         row.target = target;
                         row.position_impulse = 0.0;
                         row.knn = 0.0;
@@ -717,6 +723,7 @@ impl Solver {
                             knn: 0.0,
                             speed: 0.0,
                             warm: false,
+                            placed: placed.generation,
                         });
                     }
                     used += 1;
