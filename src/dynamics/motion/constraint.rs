@@ -273,7 +273,13 @@ impl BodyView<'_> {
     /// Takes an impulse `j` at the point of a contact row with matrices `data` (`N` as in
     /// [`dim`]).
     #[inline(always)]
-    fn apply_with<const N: usize>(&mut self, data: &[f64], l: &RowLayout, j: &[f64]) {
+    fn apply_with<const N: usize>(
+        &mut self,
+        data: &[f64],
+        l: &RowLayout,
+        offset: &[f64],
+        j: &[f64],
+    ) {
         let n = dim::<N>(self.v.len());
         let m = n * (n - 1) / 2;
         let j = &j[..n];
@@ -282,12 +288,21 @@ impl BodyView<'_> {
             *dp += x;
         }
         add_mat_vec(&mut self.w[..m], &data[l.w..l.w + m * n], 1.0, j);
+        if let Some(axes) = axes_of::<N>() {
+            // Row p of R holds −r_b at a and r_a at b (plane p = (a, b)).
+            for (d, &[a, b]) in self.dl[..m].iter_mut().zip(axes) {
+                *d += [
+                    contraction_entry(offset, [a, b], a) * j[a],
+                    offset[a] * j[b],
+                ]
+                .iter()
+                .sum::<f64>();
+            }
+            return;
+        }
         let r = &data[l.r..l.r + m * n];
-        for (p, (d, row)) in self.dl[..m].iter_mut().zip(r.chunks_exact(n)).enumerate() {
-            *d += match axes_of::<N>(p) {
-                Some(at) => sparse_dot(row, j, at),
-                None => dot(row, j),
-            };
+        for (d, row) in self.dl[..m].iter_mut().zip(r.chunks_exact(n)) {
+            *d += dot(row, j);
         }
     }
 
@@ -432,17 +447,19 @@ impl RowLayout {
     #[inline(always)]
     fn new(n: usize) -> RowLayout {
         let m = n * (n - 1) / 2;
-        let c = 0;
-        let w = c + n * m;
-        let r = w + m * n;
-        let cn = r + m * n;
+        // What every sweep reads first and together (in 3D and 4D C and R are read through
+        // the offset instead), what only sliding contacts read last.
+        let w = 0;
+        let cn = w + m * n;
         let wn = cn + m;
         let rn = wn + m;
-        let kt = rn + m;
+        let knn = rn + m;
+        let kinv = knn + 1;
+        let c = kinv + n * n;
+        let r = c + n * m;
+        let kt = r + m * n;
         let values = kt + n * n;
         let vectors = values + n;
-        let knn = vectors + n * n;
-        let kinv = knn + 1;
         RowLayout {
             n,
             m,
@@ -457,7 +474,7 @@ impl RowLayout {
             vectors,
             knn,
             kinv,
-            stride: kinv + n * n,
+            stride: vectors + n * n,
         }
     }
 }
@@ -491,16 +508,9 @@ const PLANES_THROUGH_3: [[usize; 2]; 3] = [[0, 1], [0, 2], [1, 2]];
 const PLANES_THROUGH_4: [[usize; 3]; 4] = [[0, 1, 2], [0, 3, 4], [1, 3, 5], [2, 4, 5]];
 
 /// The axes of each plane in 3D and 4D: the entries of row p of R (whose column j is
-/// r ∧ e_j) that can be non-zero.
+/// r ∧ e_j) that can be non-zero, and the entries of column p of C.
 const AXES_OF_3: [[usize; 2]; 3] = [[0, 1], [0, 2], [1, 2]];
 const AXES_OF_4: [[usize; 2]; 6] = [[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]];
-
-/// a · b over the entries `at` (ascending): the dot product of a row whose other entries
-/// are zero, summed in the same order.
-#[inline(always)]
-fn sparse_dot(a: &[f64], b: &[f64], at: &[usize]) -> f64 {
-    at.iter().map(|&k| a[k] * b[k]).sum()
-}
 
 /// The entries of row `i` of an n × n(n−1)/2 matrix C (columns r ⌋ e_p) that can be
 /// non-zero, when the dimension is fixed at 3 or 4 (None: all of them).
@@ -513,37 +523,54 @@ fn planes_through<const N: usize>(i: usize) -> Option<&'static [usize]> {
     }
 }
 
-/// The entries of row `p` of an n(n−1)/2 × n matrix R (columns r ∧ e_j) that can be
-/// non-zero, when the dimension is fixed at 3 or 4 (None: all of them).
+/// The axes of every plane when the dimension is fixed at 3 or 4 (None: any other).
 #[inline(always)]
-fn axes_of<const N: usize>(p: usize) -> Option<&'static [usize]> {
+fn axes_of<const N: usize>() -> Option<&'static [[usize; 2]]> {
     match N {
-        3 => Some(&AXES_OF_3[p]),
-        4 => Some(&AXES_OF_4[p]),
+        3 => Some(&AXES_OF_3),
+        4 => Some(&AXES_OF_4),
         _ => None,
     }
 }
 
-/// u = v + C w at a row's point (`N` as in [`dim`]; in 3D and 4D only the entries of C
-/// that can be non-zero are read).
+/// u = v + C w at a row's point, at `offset` from the centre of mass (`N` as in [`dim`];
+/// in 3D and 4D C is read through the offset, as its entries that can be non-zero are
+/// ±rⱼ).
 #[inline(always)]
-fn point_velocity<const N: usize>(d: &[f64], l: &RowLayout, v: &[f64], w: &[f64], u: &mut [f64]) {
+fn point_velocity<const N: usize>(
+    d: &[f64],
+    l: &RowLayout,
+    offset: &[f64],
+    v: &[f64],
+    w: &[f64],
+    u: &mut [f64],
+) {
     let n = dim::<N>(l.n);
     let m = n * (n - 1) / 2;
-    let c = &d[l.c..l.c + n * m];
     let w = &w[..m];
-    for (i, ((ui, vi), row)) in u[..n]
-        .iter_mut()
-        .zip(&v[..n])
-        .zip(c.chunks_exact(m))
-        .enumerate()
-    {
-        *ui = vi
-            + match planes_through::<N>(i) {
-                Some(at) => sparse_dot(row, w, at),
-                None => dot(row, w),
-            };
+    if let Some(axes) = axes_of::<N>() {
+        for (i, (ui, vi)) in u[..n].iter_mut().zip(&v[..n]).enumerate() {
+            let through = planes_through::<N>(i).unwrap_or(&[]);
+            *ui = vi
+                + through
+                    .iter()
+                    .map(|&p| contraction_entry(offset, axes[p], i) * w[p])
+                    .sum::<f64>();
+        }
+        return;
     }
+    let c = &d[l.c..l.c + n * m];
+    for ((ui, vi), row) in u[..n].iter_mut().zip(&v[..n]).zip(c.chunks_exact(m)) {
+        *ui = vi + dot(row, w);
+    }
+}
+
+/// Entry (i, p) of C (column p: r ⌋ e_p) for the offset r and an axis i of plane p =
+/// (a, b), a < b: −r_b for i = a, r_a for i = b. Entry (p, j) of R (column j: r ∧ e_j) is
+/// the same for j the other axis of the plane.
+#[inline(always)]
+fn contraction_entry(offset: &[f64], [a, b]: [usize; 2], i: usize) -> f64 {
+    if i == a { -offset[b] } else { offset[a] }
 }
 
 /// y += a A x for an M × n row-major A.
@@ -951,6 +978,7 @@ impl Solver {
             point_velocity::<N>(
                 data,
                 layout,
+                &row.r.as_slice()[..n],
                 &st.v.as_slice()[..n],
                 &st.w.as_slice()[..m],
                 u,
@@ -1020,9 +1048,12 @@ impl Solver {
             row.normal_impulse = lambda;
             row.friction_impulse.as_mut_slice().copy_from_slice(jt);
             let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
-            self.states[row.body]
-                .view::<N>()
-                .apply_with::<N>(data, layout, total);
+            self.states[row.body].view::<N>().apply_with::<N>(
+                data,
+                layout,
+                &row.r.as_slice()[..n],
+                total,
+            );
         }
     }
 
@@ -1106,7 +1137,7 @@ impl Solver {
             let st = &self.states[row.body];
             let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
             let (v, w) = (&st.v.as_slice()[..n], &st.w.as_slice()[..m]);
-            point_velocity::<N>(data, layout, v, w, u);
+            point_velocity::<N>(data, layout, &row.r.as_slice()[..n], v, w, u);
             let friction = &row.friction_impulse.as_slice()[..n];
             record.record(
                 (row.body, row.half_space),
@@ -1328,7 +1359,8 @@ fn sweep_contact<const N: usize>(
     let limit = plane.friction() * row.normal_impulse;
     let mut ut: Small = SmallVec::from_elem(0.0, n);
     let ut = &mut ut[..n];
-    point_velocity::<N>(data, l, &st.v[..n], &st.w[..m], ut);
+    let offset = &row.r.as_slice()[..n];
+    point_velocity::<N>(data, l, offset, &st.v[..n], &st.w[..m], ut);
     let normal_part = dot(nv, ut);
     for (u, x) in ut.iter_mut().zip(nv) {
         *u -= normal_part * x;
@@ -1363,7 +1395,7 @@ fn sweep_contact<const N: usize>(
         largest = largest.max(d.abs());
     }
     if largest > 0.0 {
-        st.apply_with::<N>(data, l, dj);
+        st.apply_with::<N>(data, l, offset, dj);
         row.friction_impulse.as_mut_slice().copy_from_slice(new);
         change = change.max(largest * row.knn);
     }
