@@ -662,8 +662,8 @@ pub(crate) struct Solver {
     /// The list the current solve writes the next `warm` into.
     warm_next: Vec<WarmImpulse>,
     /// True to use the kernels of run-time dimension in every dimension, also in 3D and 4D
-    /// where fixed-size kernels take the same steps in the same order (so that tests can
-    /// compare the two).
+    /// where the fixed-size kernels do the same arithmetic in the same order, only without
+    /// the terms that are exact zeros (so that tests can compare the two).
     pub runtime_kernels: bool,
 }
 
