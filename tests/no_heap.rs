@@ -529,6 +529,54 @@ mod moving_bodies {
     }
 
     #[test]
+    fn motion_splitting_floor_of_resting_bodies_does_not_allocate() {
+        for n in 3..=8 {
+            // A row of cuboids set down on the floor x_N = 0 turning about the vertical (as
+            // the floor bench's), settled before counting.
+            let h_n = 0.5 + 0.1 * (n - 1) as f64;
+            let mut bodies = Vec::new();
+            let mut shapes = Vec::new();
+            for k in 0..10 {
+                let mut x = axis(n, 0, 2.5 * k as f64);
+                x.as_mut_slice()[n - 1] = h_n;
+                let mut w = Bivector::zero(n);
+                w.as_mut_slice()[0] = 0.5 * (k as f64 * 0.37).sin();
+                let (mut b, shape) = cuboid(n, x.clone(), Vector::zero(n), 0.0);
+                b = MovingBody::new(
+                    b.mass(),
+                    b.rotation().inertia().clone(),
+                    Rotor::identity(n),
+                    &x,
+                    &Vector::zero(n),
+                    &w,
+                )
+                .unwrap();
+                bodies.push(b);
+                shapes.push(shape);
+            }
+            let mut system = System::new(bodies).unwrap();
+            for (i, shape) in shapes.into_iter().enumerate() {
+                system.set_shape(i, shape).unwrap();
+            }
+            system.add_forque(Gravity(axis(n, n - 1, -9.81))).unwrap();
+            system
+                .add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
+                .unwrap();
+            let mut integrator = MotionSplitting::new();
+            for k in 0..50 {
+                integrator.step(&mut system, k as f64 * 0.01, 0.01).unwrap();
+            }
+            let count = step_allocations(&mut integrator, &mut system, 0.01, 20);
+            let mut touching = [false; 10];
+            for c in system.contacts() {
+                touching[c.body] = true;
+            }
+            assert!(touching.iter().all(|&t| t), "N = {n}: every body rests");
+            assert_eq!(count, 0, "N = {n}: {count} heap allocations in 20 steps");
+        }
+    }
+
+    #[test]
     fn motion_splitting_ball_joint_does_not_allocate() {
         for n in 3..=8 {
             // A pendulum: the body hangs from a point of space by a corner, and a second body

@@ -14,7 +14,7 @@
 
 use super::contact::ContactLog;
 use super::forques::Anchor;
-use super::placement::{Placements, attitudes_close, dot};
+use super::placement::{Placements, attitudes_close, dot, set_vector};
 use super::{BallJoint, ContactShape, HalfSpace, MovingBody};
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::Attitude;
@@ -96,14 +96,16 @@ impl BodyState {
             }
         }
         self.inv_mass = 1.0 / b.mass();
-        self.v.clone_from(b.linear_momentum());
+        set_vector(&mut self.v, b.linear_momentum().as_slice());
         self.v *= self.inv_mass;
         match diagonal {
             // ω in space = P (I⁻¹ L), I⁻¹ diagonal in the principal frame.
             Some(inv) => {
-                let l = b.rotation().momentum().as_slice();
-                for (i, w) in self.w.as_mut_slice().iter_mut().enumerate() {
-                    *w = (0..m).map(|k| self.frame[i * m + k] * inv[k] * l[k]).sum();
+                let (l, w) = (b.rotation().momentum().as_slice(), self.w.as_mut_slice());
+                match m {
+                    3 => frame_diagonal::<3>(&self.frame, inv, l, w),
+                    6 => frame_diagonal::<6>(&self.frame, inv, l, w),
+                    _ => frame_diagonal::<0>(&self.frame, inv, l, w),
                 }
             }
             None => self.w = b.space_omega(),
@@ -204,50 +206,19 @@ impl BodyState {
         self.dl += &dl;
     }
 
-    /// Takes an impulse `j` at the point of a contact row with matrices `data`.
-    fn apply_with(&mut self, data: &[f64], l: &RowLayout, j: &[f64]) {
-        let (n, m) = (l.n, l.m);
-        for ((v, dp), x) in self
-            .v
-            .as_mut_slice()
-            .iter_mut()
-            .zip(self.dp.as_mut_slice())
-            .zip(j)
-        {
-            *v += x * self.inv_mass;
-            *dp += x;
-        }
-        add_mat_vec(self.w.as_mut_slice(), &data[l.w..l.w + m * n], 1.0, j);
-        add_mat_vec(self.dl.as_mut_slice(), &data[l.r..l.r + m * n], 1.0, j);
-    }
-
-    /// Takes the normal impulse λ n at the point of a contact row with matrices `data`.
-    fn apply_normal(&mut self, data: &[f64], l: &RowLayout, nrm: &[f64], lambda: f64) {
-        for ((v, dp), x) in self
-            .v
-            .as_mut_slice()
-            .iter_mut()
-            .zip(self.dp.as_mut_slice())
-            .zip(nrm)
-        {
-            *v += lambda * x * self.inv_mass;
-            *dp += lambda * x;
-        }
-        for (w, x) in self
-            .w
-            .as_mut_slice()
-            .iter_mut()
-            .zip(&data[l.wn..l.wn + l.m])
-        {
-            *w += lambda * x;
-        }
-        for (d, x) in self
-            .dl
-            .as_mut_slice()
-            .iter_mut()
-            .zip(&data[l.rn..l.rn + l.m])
-        {
-            *d += lambda * x;
+    /// Its velocities and impulses as slices of length N and M (`N` as in [`dim`]): taken
+    /// once for all the rows of a body, they spare each row the checks of the vectors'
+    /// storage.
+    #[inline(always)]
+    fn view<const N: usize>(&mut self) -> BodyView<'_> {
+        let n = dim::<N>(self.v.dim());
+        let m = n * (n - 1) / 2;
+        BodyView {
+            inv_mass: self.inv_mass,
+            v: &mut self.v.as_mut_slice()[..n],
+            w: &mut self.w.as_mut_slice()[..m],
+            dp: &mut self.dp.as_mut_slice()[..n],
+            dl: &mut self.dl.as_mut_slice()[..m],
         }
     }
 
@@ -257,12 +228,106 @@ impl BodyState {
         let (_, p, rotation) = b.state_mut();
         *p += &self.dp;
         let (_, l) = rotation.state_mut();
-        for (i, x) in l.as_mut_slice().iter_mut().enumerate() {
-            *x += (0..m)
-                .map(|k| self.frame[k * m + i] * self.dl.as_slice()[k])
-                .sum::<f64>();
+        let (dl, l) = (self.dl.as_slice(), l.as_mut_slice());
+        match m {
+            3 => add_frame_transpose::<3>(&self.frame, dl, l),
+            6 => add_frame_transpose::<6>(&self.frame, dl, l),
+            _ => add_frame_transpose::<0>(&self.frame, dl, l),
         }
         self.used = false;
+    }
+}
+
+/// w = F diag(`inv`) `l` for the rotation F of the planes (M × M row-major; `M` fixed, or 0
+/// for `w.len()`).
+#[inline(always)]
+fn frame_diagonal<const M: usize>(frame: &[f64], inv: &[f64], l: &[f64], w: &mut [f64]) {
+    let m = if M == 0 { w.len() } else { M };
+    let (frame, inv, l) = (&frame[..m * m], &inv[..m], &l[..m]);
+    for (i, w) in w[..m].iter_mut().enumerate() {
+        *w = (0..m).map(|k| frame[i * m + k] * inv[k] * l[k]).sum();
+    }
+}
+
+/// l += Fᵀ `dl` for the rotation F of the planes (M × M row-major; `M` fixed, or 0 for
+/// `l.len()`).
+#[inline(always)]
+fn add_frame_transpose<const M: usize>(frame: &[f64], dl: &[f64], l: &mut [f64]) {
+    let m = if M == 0 { l.len() } else { M };
+    let (frame, dl) = (&frame[..m * m], &dl[..m]);
+    for (i, x) in l[..m].iter_mut().enumerate() {
+        *x += (0..m).map(|k| frame[k * m + i] * dl[k]).sum::<f64>();
+    }
+}
+
+/// A body's velocities and impulses during a contact solve ([`BodyState::view`]).
+struct BodyView<'a> {
+    inv_mass: f64,
+    v: &'a mut [f64],
+    w: &'a mut [f64],
+    dp: &'a mut [f64],
+    dl: &'a mut [f64],
+}
+
+impl BodyView<'_> {
+    /// Takes an impulse `j` at the point of a contact row with matrices `data` (`N` as in
+    /// [`dim`]).
+    #[inline(always)]
+    fn apply_with<const N: usize>(
+        &mut self,
+        data: &[f64],
+        l: &RowLayout,
+        offset: &[f64],
+        j: &[f64],
+    ) {
+        let n = dim::<N>(self.v.len());
+        let m = n * (n - 1) / 2;
+        let j = &j[..n];
+        for ((v, dp), x) in self.v[..n].iter_mut().zip(&mut self.dp[..n]).zip(j) {
+            *v += x * self.inv_mass;
+            *dp += x;
+        }
+        add_mat_vec(&mut self.w[..m], &data[l.w..l.w + m * n], 1.0, j);
+        if let Some(axes) = axes_of::<N>() {
+            // Row p of R holds −r_b at a and r_a at b (plane p = (a, b)).
+            for (d, &[a, b]) in self.dl[..m].iter_mut().zip(axes) {
+                *d += [
+                    contraction_entry(offset, [a, b], a) * j[a],
+                    offset[a] * j[b],
+                ]
+                .iter()
+                .sum::<f64>();
+            }
+            return;
+        }
+        let r = &data[l.r..l.r + m * n];
+        for (d, row) in self.dl[..m].iter_mut().zip(r.chunks_exact(n)) {
+            *d += dot(row, j);
+        }
+    }
+
+    /// Takes the normal impulse λ n at the point of a contact row with matrices `data`
+    /// (`N` as in [`dim`]).
+    #[inline(always)]
+    fn apply_normal<const N: usize>(
+        &mut self,
+        data: &[f64],
+        l: &RowLayout,
+        nrm: &[f64],
+        lambda: f64,
+    ) {
+        let n = dim::<N>(self.v.len());
+        let m = n * (n - 1) / 2;
+        for ((v, dp), x) in self.v[..n].iter_mut().zip(&mut self.dp[..n]).zip(&nrm[..n]) {
+            *v += lambda * x * self.inv_mass;
+            *dp += lambda * x;
+        }
+        for (w, x) in self.w[..m].iter_mut().zip(&data[l.wn..l.wn + m]) {
+            *w += lambda * x;
+        }
+        for (d, x) in self.dl[..m].iter_mut().zip(&data[l.rn..l.rn + m]) {
+            *d += lambda * x;
+        }
     }
 }
 
@@ -351,6 +416,8 @@ pub(crate) struct ContactRow {
     speed: f64,
     /// True if the impulses are the last solve's at the same point (a warm start).
     warm: bool,
+    /// The generation of the placement `point` and `r` were copied from (0: none).
+    placed: u64,
 }
 
 /// Where the matrices of one contact row lie in the solver's `row_data` (N = n, M planes):
@@ -377,19 +444,22 @@ struct RowLayout {
 }
 
 impl RowLayout {
+    #[inline(always)]
     fn new(n: usize) -> RowLayout {
         let m = n * (n - 1) / 2;
-        let c = 0;
-        let w = c + n * m;
-        let r = w + m * n;
-        let cn = r + m * n;
+        // What every sweep reads first and together (in 3D and 4D C and R are read through
+        // the offset instead), what only sliding contacts read last.
+        let w = 0;
+        let cn = w + m * n;
         let wn = cn + m;
         let rn = wn + m;
-        let kt = rn + m;
+        let knn = rn + m;
+        let kinv = knn + 1;
+        let c = kinv + n * n;
+        let r = c + n * m;
+        let kt = r + m * n;
         let values = kt + n * n;
         let vectors = values + n;
-        let knn = vectors + n * n;
-        let kinv = knn + 1;
         RowLayout {
             n,
             m,
@@ -404,7 +474,7 @@ impl RowLayout {
             vectors,
             knn,
             kinv,
-            stride: kinv + n * n,
+            stride: vectors + n * n,
         }
     }
 }
@@ -421,17 +491,90 @@ struct RowKey {
     normal: SmallVec<[f64; 8]>,
 }
 
-/// u = v + C w at a row's point.
-#[inline]
-fn point_velocity(d: &[f64], l: &RowLayout, v: &[f64], w: &[f64], u: &mut [f64]) {
-    let c = &d[l.c..l.c + l.n * l.m];
-    for ((ui, vi), row) in u.iter_mut().zip(v).zip(c.chunks_exact(l.m)) {
+/// The dimension of a kernel: `N` when it is fixed at compile time (3 and 4: loops of known
+/// length, unrolled), else `n` (`N` = 0).
+#[inline(always)]
+fn dim<const N: usize>(n: usize) -> usize {
+    debug_assert!(
+        N == 0 || N == n,
+        "rotorflow: kernel of dimension {N} for {n}"
+    );
+    if N == 0 { n } else { N }
+}
+
+/// The planes through each axis in 3D and 4D, in their order: the entries of row i of C
+/// (whose column p is r ⌋ e_p) that can be non-zero.
+const PLANES_THROUGH_3: [[usize; 2]; 3] = [[0, 1], [0, 2], [1, 2]];
+const PLANES_THROUGH_4: [[usize; 3]; 4] = [[0, 1, 2], [0, 3, 4], [1, 3, 5], [2, 4, 5]];
+
+/// The axes of each plane in 3D and 4D: the entries of row p of R (whose column j is
+/// r ∧ e_j) that can be non-zero, and the entries of column p of C.
+const AXES_OF_3: [[usize; 2]; 3] = [[0, 1], [0, 2], [1, 2]];
+const AXES_OF_4: [[usize; 2]; 6] = [[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]];
+
+/// The entries of row `i` of an n × n(n−1)/2 matrix C (columns r ⌋ e_p) that can be
+/// non-zero, when the dimension is fixed at 3 or 4 (None: all of them).
+#[inline(always)]
+fn planes_through<const N: usize>(i: usize) -> Option<&'static [usize]> {
+    match N {
+        3 => Some(&PLANES_THROUGH_3[i]),
+        4 => Some(&PLANES_THROUGH_4[i]),
+        _ => None,
+    }
+}
+
+/// The axes of every plane when the dimension is fixed at 3 or 4 (None: any other).
+#[inline(always)]
+fn axes_of<const N: usize>() -> Option<&'static [[usize; 2]]> {
+    match N {
+        3 => Some(&AXES_OF_3),
+        4 => Some(&AXES_OF_4),
+        _ => None,
+    }
+}
+
+/// u = v + C w at a row's point, at `offset` from the centre of mass (`N` as in [`dim`];
+/// in 3D and 4D C is read through the offset, as its entries that can be non-zero are
+/// ±rⱼ).
+#[inline(always)]
+fn point_velocity<const N: usize>(
+    d: &[f64],
+    l: &RowLayout,
+    offset: &[f64],
+    v: &[f64],
+    w: &[f64],
+    u: &mut [f64],
+) {
+    let n = dim::<N>(l.n);
+    let m = n * (n - 1) / 2;
+    let w = &w[..m];
+    if let Some(axes) = axes_of::<N>() {
+        for (i, (ui, vi)) in u[..n].iter_mut().zip(&v[..n]).enumerate() {
+            let through = planes_through::<N>(i).unwrap_or(&[]);
+            *ui = vi
+                + through
+                    .iter()
+                    .map(|&p| contraction_entry(offset, axes[p], i) * w[p])
+                    .sum::<f64>();
+        }
+        return;
+    }
+    let c = &d[l.c..l.c + n * m];
+    for ((ui, vi), row) in u[..n].iter_mut().zip(&v[..n]).zip(c.chunks_exact(m)) {
         *ui = vi + dot(row, w);
     }
 }
 
+/// Entry (i, p) of C (column p: r ⌋ e_p) for the offset r and an axis i of plane p =
+/// (a, b), a < b: −r_b for i = a, r_a for i = b. Entry (p, j) of R (column j: r ∧ e_j) is
+/// the same for j the other axis of the plane.
+#[inline(always)]
+fn contraction_entry(offset: &[f64], [a, b]: [usize; 2], i: usize) -> f64 {
+    if i == a { -offset[b] } else { offset[a] }
+}
+
 /// y += a A x for an M × n row-major A.
-#[inline]
+#[inline(always)]
 fn add_mat_vec(y: &mut [f64], a_mat: &[f64], a: f64, x: &[f64]) {
     for (yp, row) in y.iter_mut().zip(a_mat.chunks_exact(x.len())) {
         *yp += a * dot(row, x);
@@ -515,8 +658,36 @@ pub(crate) struct Solver {
     pub residuals: Vec<Vector>,
     /// The impulses of the last solve, by (body, half-space, candidate), to start the next
     /// one from: a resting contact then needs one sweep.
-    warm: Vec<(usize, usize, usize, f64, Vector)>,
+    warm: Vec<WarmImpulse>,
+    /// The list the current solve writes the next `warm` into.
+    warm_next: Vec<WarmImpulse>,
+    /// True to use the kernels of run-time dimension in every dimension, also in 3D and 4D
+    /// where the fixed-size kernels do the same arithmetic in the same order, only without
+    /// the terms that are exact zeros (so that tests can compare the two).
+    pub runtime_kernels: bool,
 }
+
+/// Contact rows solved together, and what their solve reads.
+struct Group<'a> {
+    range: std::ops::Range<usize>,
+    /// True if joints couple the rows (then every joint is swept with them).
+    coupled: bool,
+    half_spaces: &'a [HalfSpace],
+    layout: &'a RowLayout,
+}
+
+/// The impulses of the last solve with the place to search them from, and the list of the
+/// next with its length so far.
+type WarmLists<'a> = (
+    &'a [WarmImpulse],
+    &'a mut usize,
+    &'a mut Vec<WarmImpulse>,
+    &'a mut usize,
+);
+
+/// A contact's impulses kept for the next solve: body, half-space, candidate, normal
+/// impulse, friction impulse.
+type WarmImpulse = (usize, usize, usize, f64, Vector);
 
 impl Solver {
     /// Finds the contact points of `bodies` within `tolerance` × their radius of a
@@ -541,11 +712,7 @@ impl Solver {
             for (k, plane) in half_spaces.iter().enumerate() {
                 let nrm = plane.normal();
                 let base = plane.distance(b.position());
-                placed.candidates(shape, nrm, |index, p, r| {
-                    if base + dot(nrm.as_slice(), r) > reach {
-                        return;
-                    }
-                    let r = Vector::from_storage(SmallVec::from_slice(r));
+                let mut put = |index: usize, p: &Vector, r: &[f64]| {
                     // The target is set when the solve starts, from the loaded velocities.
                     let target = 0.0;
                     if let Some(row) = self.contacts.get_mut(used) {
@@ -559,8 +726,12 @@ impl Solver {
                         row.body = i;
                         row.half_space = k;
                         row.index = index;
-                        row.point.clone_from(p);
-                        row.r = r;
+                        // The same point of the same placement is there already.
+                        if !(row.warm && row.placed == placed.generation) {
+                            set_vector(&mut row.point, p.as_slice());
+                            set_vector(&mut row.r, r);
+                            row.placed = placed.generation;
+                        }
                         row.target = target;
                         row.position_impulse = 0.0;
                         row.knn = 0.0;
@@ -571,7 +742,7 @@ impl Solver {
                             half_space: k,
                             index,
                             point: p.clone(),
-                            r,
+                            r: Vector::from_storage(SmallVec::from_slice(r)),
                             target,
                             normal_impulse: 0.0,
                             friction_impulse: Vector::zero(n),
@@ -579,10 +750,27 @@ impl Solver {
                             knn: 0.0,
                             speed: 0.0,
                             warm: false,
+                            placed: placed.generation,
                         });
                     }
                     used += 1;
-                });
+                };
+                if placed.vertex(shape, 1).is_some() {
+                    // Vertices: their heights are kept, and only those in reach are read.
+                    placed.candidate_heights(shape, (k, nrm), |index, h| {
+                        if base + h <= reach
+                            && let Some((p, r)) = placed.vertex(shape, index)
+                        {
+                            put(index, p, r);
+                        }
+                    });
+                } else {
+                    placed.candidates(shape, (k, nrm), |index, p, r| {
+                        if base + dot(nrm.as_slice(), r) <= reach {
+                            put(index, p, r);
+                        }
+                    });
+                }
             }
         }
         self.contacts.truncate(used);
@@ -691,8 +879,80 @@ impl Solver {
         if self.row_keys.len() < rows {
             self.row_keys.resize_with(rows, RowKey::default);
         }
-        let mut u = Vector::zero(n);
-        for (k, row) in self.contacts.iter_mut().enumerate() {
+        // Bodies that no joint couples are solved apart (their contacts are consecutive), each
+        // from setup to record while its rows' matrices are in cache; with joints,
+        // everything is one problem.
+        let coupled = !self.joints.is_empty();
+        let last = std::mem::take(&mut self.warm);
+        let mut next = std::mem::take(&mut self.warm_next);
+        let mut kept = 0;
+        let mut cursor = 0;
+        let mut start = 0;
+        while start < rows {
+            let end = if coupled {
+                rows
+            } else {
+                let body = self.contacts[start].body;
+                start
+                    + self.contacts[start..]
+                        .iter()
+                        .take_while(|r| r.body == body)
+                        .count()
+            };
+            let group = Group {
+                range: start..end,
+                coupled,
+                half_spaces,
+                layout: &layout,
+            };
+            let warm = (&last[..], &mut cursor, &mut next, &mut kept);
+            match (self.runtime_kernels, n) {
+                (false, 3) => self.solve_group::<3>(&group, resting_speed, warm, record),
+                (false, 4) => self.solve_group::<4>(&group, resting_speed, warm, record),
+                _ => self.solve_group::<0>(&group, resting_speed, warm, record),
+            }
+            start = end;
+        }
+        next.truncate(kept);
+        self.warm = next;
+        self.warm_next = last;
+        self.store(bodies);
+    }
+
+    /// The velocity solve of one group of contact rows (`N` as in [`dim`]): their matrices,
+    /// warm start from `last` (searched from `cursor` on), sweeps and record; their
+    /// impulses are kept in `next` from entry `kept` on.
+    fn solve_group<const N: usize>(
+        &mut self,
+        group: &Group<'_>,
+        resting_speed: &[f64],
+        (last, cursor, next, kept): WarmLists<'_>,
+        record: &mut ContactLog,
+    ) {
+        // The layout anew, so that in 3D and 4D its offsets are constants of the kernels.
+        let layout = &RowLayout::new(dim::<N>(group.layout.n));
+        let (range, half_spaces) = (group.range.clone(), group.half_spaces);
+        self.prepare_rows::<N>(range.clone(), half_spaces, resting_speed, layout);
+        self.warm_start::<N>(range.clone(), last, cursor, half_spaces, layout);
+        self.sweep_rows::<N>(range.clone(), group.coupled, half_spaces, layout);
+        self.record_rows::<N>(range, half_spaces, layout, record, next, kept);
+    }
+
+    /// Computes (or keeps) the matrices of the contact rows `range` at the loaded states,
+    /// and sets their nᵀ K n, target and speed.
+    fn prepare_rows<const N: usize>(
+        &mut self,
+        range: std::ops::Range<usize>,
+        half_spaces: &[HalfSpace],
+        resting_speed: &[f64],
+        layout: &RowLayout,
+    ) {
+        let n = dim::<N>(layout.n);
+        let m = n * (n - 1) / 2;
+        let mut u: Small = SmallVec::from_elem(0.0, n);
+        let u = &mut u[..n];
+        for k in range {
+            let row = &mut self.contacts[k];
             let nrm = half_spaces[row.half_space].normal();
             let st = &self.states[row.body];
             let data = &mut self.row_data[k * layout.stride..(k + 1) * layout.stride];
@@ -704,7 +964,7 @@ impl Solver {
                 && key.r[..] == row.r.as_slice()[..]
                 && key.normal[..] == nrm.as_slice()[..];
             if !same {
-                row_matrices(st, &row.r, nrm, &layout, data);
+                row_matrices(st, &row.r, nrm, layout, data);
                 key.body = row.body;
                 key.half_space = row.half_space;
                 key.index = row.index;
@@ -715,145 +975,194 @@ impl Solver {
                 key.normal.extend_from_slice(nrm.as_slice());
             }
             row.knn = data[layout.knn];
-            point_velocity(
+            point_velocity::<N>(
                 data,
-                &layout,
-                st.v.as_slice(),
-                st.w.as_slice(),
-                u.as_mut_slice(),
+                layout,
+                &row.r.as_slice()[..n],
+                &st.v.as_slice()[..n],
+                &st.w.as_slice()[..m],
+                u,
             );
-            let un = nrm.dot(&u);
+            let un = dot(&nrm.as_slice()[..n], u);
             row.target = if un < -resting_speed[row.body] {
                 -half_spaces[row.half_space].restitution() * un
             } else {
                 0.0
             };
-            row.speed = u.max_abs().max(row.target.abs());
+            row.speed = u
+                .iter()
+                .fold(0.0, |m: f64, c| m.max(c.abs()))
+                .max(row.target.abs());
         }
-        // Start from the last solve's impulses where the same points touch again: kept in
-        // the row when it is in the same slot, else looked up.
-        let mut w = 0;
+    }
+
+    /// Starts the contact rows `range` from the last solve's impulses where the same points
+    /// touch again: kept in the row when it is in the same slot, else looked up in `last`
+    /// (sorted by point, searched from `cursor` on).
+    fn warm_start<const N: usize>(
+        &mut self,
+        range: std::ops::Range<usize>,
+        last: &[WarmImpulse],
+        cursor: &mut usize,
+        half_spaces: &[HalfSpace],
+        layout: &RowLayout,
+    ) {
+        let n = dim::<N>(layout.n);
         let mut jt: Small = SmallVec::from_elem(0.0, n);
+        let jt = &mut jt[..n];
         let mut total: Small = SmallVec::from_elem(0.0, n);
-        for (k, row) in self.contacts.iter_mut().enumerate() {
+        let total = &mut total[..n];
+        for k in range {
+            let row = &mut self.contacts[k];
             let lambda = if row.warm {
-                jt.copy_from_slice(row.friction_impulse.as_slice());
+                jt.copy_from_slice(&row.friction_impulse.as_slice()[..n]);
                 row.normal_impulse
             } else {
                 let key = (row.body, row.half_space, row.index);
-                while w < self.warm.len() && (self.warm[w].0, self.warm[w].1, self.warm[w].2) < key
-                {
-                    w += 1;
+                let w = &mut *cursor;
+                while *w < last.len() && (last[*w].0, last[*w].1, last[*w].2) < key {
+                    *w += 1;
                 }
-                match self.warm.get(w).filter(|e| (e.0, e.1, e.2) == key) {
+                match last.get(*w).filter(|e| (e.0, e.1, e.2) == key) {
                     Some(e) => {
-                        jt.copy_from_slice(e.4.as_slice());
+                        jt.copy_from_slice(&e.4.as_slice()[..n]);
                         e.3
                     }
                     None => continue,
                 }
             };
             let plane = &half_spaces[row.half_space];
-            let nv = plane.normal().as_slice();
+            let nv = &plane.normal().as_slice()[..n];
             // Into the friction disc of the normal impulse, and into the plane.
             let limit = plane.friction() * lambda;
-            let norm = dot(&jt, &jt).sqrt();
+            let norm = dot(jt, jt).sqrt();
             let scale = if norm > limit { limit / norm } else { 1.0 };
             for x in jt.iter_mut() {
                 *x *= scale;
             }
-            let along = dot(nv, &jt);
+            let along = dot(nv, jt);
             for ((t, x), nx) in total.iter_mut().zip(jt.iter_mut()).zip(nv) {
                 *x -= nx * along;
                 *t = nx * lambda + *x;
             }
             row.normal_impulse = lambda;
-            row.friction_impulse.as_mut_slice().copy_from_slice(&jt);
+            row.friction_impulse.as_mut_slice().copy_from_slice(jt);
             let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
-            self.states[row.body].apply_with(data, &layout, &total);
+            self.states[row.body].view::<N>().apply_with::<N>(
+                data,
+                layout,
+                &row.r.as_slice()[..n],
+                total,
+            );
         }
-        // Bodies that no joint couples are solved apart (their contacts are consecutive), each
-        // until no impulse changes one of its velocities by more than 1e-12 of its speeds;
-        // with joints, everything is one problem.
-        let coupled = !self.joints.is_empty();
-        let mut start = 0;
-        while start < self.contacts.len() {
-            let end = if coupled {
-                self.contacts.len()
-            } else {
-                let body = self.contacts[start].body;
-                start
-                    + self.contacts[start..]
-                        .iter()
-                        .take_while(|r| r.body == body)
-                        .count()
-            };
-            let speed = self.contacts[start..end]
-                .iter()
-                .map(|r| r.speed)
-                .fold(0.0, f64::max);
-            let tolerance = 1e-12 * speed.max(1e-300);
-            for _ in 0..MAX_SWEEPS {
-                let mut change = 0.0f64;
-                if coupled {
-                    for row in &mut self.joints {
-                        let u = row.velocity(&self.states);
-                        self.work.clear();
-                        self.work.extend_from_slice(&row.k);
-                        self.rhs.clear();
-                        self.rhs.extend(u.as_slice().iter().map(|x| -x));
-                        if !cholesky_solve(&mut self.work, n, &mut self.rhs) {
-                            continue;
-                        }
-                        let dj = Vector::from_storage(self.rhs.iter().copied().collect());
-                        row.apply(&mut self.states, &dj);
-                        row.impulse += &dj;
-                        change = change.max(u.max_abs());
+    }
+
+    /// Gauss–Seidel sweeps over the contact rows `range` (and every joint when `coupled`)
+    /// until no impulse changes one of their velocities by more than 1e-12 of their speeds.
+    fn sweep_rows<const N: usize>(
+        &mut self,
+        range: std::ops::Range<usize>,
+        coupled: bool,
+        half_spaces: &[HalfSpace],
+        layout: &RowLayout,
+    ) {
+        let n = layout.n;
+        let (start, end) = (range.start, range.end);
+        let speed = self.contacts[range]
+            .iter()
+            .map(|r| r.speed)
+            .fold(0.0, f64::max);
+        let tolerance = 1e-12 * speed.max(1e-300);
+        for _ in 0..MAX_SWEEPS {
+            let mut change = 0.0f64;
+            if coupled {
+                for row in &mut self.joints {
+                    let u = row.velocity(&self.states);
+                    self.work.clear();
+                    self.work.extend_from_slice(&row.k);
+                    self.rhs.clear();
+                    self.rhs.extend(u.as_slice().iter().map(|x| -x));
+                    if !cholesky_solve(&mut self.work, n, &mut self.rhs) {
+                        continue;
                     }
+                    let dj = Vector::from_storage(self.rhs.iter().copied().collect());
+                    row.apply(&mut self.states, &dj);
+                    row.impulse += &dj;
+                    change = change.max(u.max_abs());
                 }
+            }
+            if coupled {
                 for (k, row) in self.contacts[start..end].iter_mut().enumerate() {
                     let at = (start + k) * layout.stride;
                     let data = &self.row_data[at..at + layout.stride];
-                    change = change.max(sweep_contact(
-                        row,
-                        data,
-                        &layout,
-                        half_spaces,
-                        &mut self.states,
-                    ));
+                    let mut st = self.states[row.body].view::<N>();
+                    let plane = &half_spaces[row.half_space];
+                    change = change.max(sweep_contact::<N>(row, data, layout, plane, &mut st));
                 }
-                if change <= tolerance {
-                    break;
+            } else {
+                // One body: its view serves every row.
+                let mut st = self.states[self.contacts[start].body].view::<N>();
+                for (k, row) in self.contacts[start..end].iter_mut().enumerate() {
+                    let at = (start + k) * layout.stride;
+                    let data = &self.row_data[at..at + layout.stride];
+                    let plane = &half_spaces[row.half_space];
+                    change = change.max(sweep_contact::<N>(row, data, layout, plane, &mut st));
                 }
             }
-            start = end;
+            if change <= tolerance {
+                break;
+            }
         }
-        self.warm.clear();
-        self.warm.extend(self.contacts.iter().map(|r| {
-            (
-                r.body,
-                r.half_space,
-                r.index,
-                r.normal_impulse,
-                r.friction_impulse.clone(),
-            )
-        }));
-        for (k, row) in self.contacts.iter().enumerate() {
+    }
+
+    /// Records the contact rows `range` with their impulses and the velocities the solve
+    /// leaves at their points, and keeps their impulses in `warm` from entry `kept` on for
+    /// the next solve (over the entries there: a copy costs less than a new vector).
+    fn record_rows<const N: usize>(
+        &self,
+        range: std::ops::Range<usize>,
+        half_spaces: &[HalfSpace],
+        layout: &RowLayout,
+        record: &mut ContactLog,
+        warm: &mut Vec<WarmImpulse>,
+        kept: &mut usize,
+    ) {
+        let n = dim::<N>(layout.n);
+        let m = n * (n - 1) / 2;
+        let mut u: Small = SmallVec::from_elem(0.0, n);
+        let u = &mut u[..n];
+        for k in range {
+            let row = &self.contacts[k];
             let nrm = half_spaces[row.half_space].normal();
             let st = &self.states[row.body];
             let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
-            let mut u: Small = SmallVec::from_elem(0.0, n);
-            point_velocity(data, &layout, st.v.as_slice(), st.w.as_slice(), &mut u);
+            let (v, w) = (&st.v.as_slice()[..n], &st.w.as_slice()[..m]);
+            point_velocity::<N>(data, layout, &row.r.as_slice()[..n], v, w, u);
+            let friction = &row.friction_impulse.as_slice()[..n];
             record.record(
                 (row.body, row.half_space),
-                &row.point,
+                &row.point.as_slice()[..n],
                 row.normal_impulse,
-                &row.friction_impulse,
-                &u,
-                nrm.as_slice(),
+                friction,
+                u,
+                &nrm.as_slice()[..n],
             );
+            match warm.get_mut(*kept) {
+                Some(e) => {
+                    (e.0, e.1, e.2, e.3) =
+                        (row.body, row.half_space, row.index, row.normal_impulse);
+                    set_vector(&mut e.4, friction);
+                }
+                None => warm.push((
+                    row.body,
+                    row.half_space,
+                    row.index,
+                    row.normal_impulse,
+                    row.friction_impulse.clone(),
+                )),
+            }
+            *kept += 1;
         }
-        self.store(bodies);
     }
 
     /// The position step of the joints at the placement the rows were found at: the
@@ -1023,68 +1332,71 @@ impl Solver {
 }
 
 /// One Gauss–Seidel update of a contact: the normal impulse, then the friction impulse,
-/// through the row's matrices `data` laid out by `l`. Returns the largest velocity change
-/// it made.
-fn sweep_contact(
+/// through the row's matrices `data` laid out by `l` (`N` as in [`dim`]). Returns the
+/// largest velocity change it made.
+#[inline(always)]
+fn sweep_contact<const N: usize>(
     row: &mut ContactRow,
     data: &[f64],
     l: &RowLayout,
-    half_spaces: &[HalfSpace],
-    states: &mut [BodyState],
+    plane: &HalfSpace,
+    st: &mut BodyView<'_>,
 ) -> f64 {
-    let n = l.n;
+    let n = dim::<N>(l.n);
+    let m = n * (n - 1) / 2;
     let mut change = 0.0f64;
-    let plane = &half_spaces[row.half_space];
-    let nrm = plane.normal();
-    let nv = nrm.as_slice();
-    let st = &mut states[row.body];
+    let nv = &plane.normal().as_slice()[..n];
     // Normal: the smallest accumulated λ ≥ 0 reaching the target; u·n = v·n + (Cᵀn)·w.
-    let un = dot(nv, st.v.as_slice()) + dot(&data[l.cn..l.cn + l.m], st.w.as_slice());
+    let un = dot(nv, &st.v[..n]) + dot(&data[l.cn..l.cn + m], &st.w[..m]);
     let lambda = (row.normal_impulse + (row.target - un) / row.knn).max(0.0);
     let dl = lambda - row.normal_impulse;
     if dl != 0.0 {
-        st.apply_normal(data, l, nv, dl);
+        st.apply_normal::<N>(data, l, nv, dl);
         row.normal_impulse = lambda;
     }
     change = change.max((dl * row.knn).abs());
     // Friction: maximal dissipation in the disc |J_t| ≤ μλ.
     let limit = plane.friction() * row.normal_impulse;
     let mut ut: Small = SmallVec::from_elem(0.0, n);
-    point_velocity(data, l, st.v.as_slice(), st.w.as_slice(), &mut ut);
-    let normal_part = dot(nv, &ut);
+    let ut = &mut ut[..n];
+    let offset = &row.r.as_slice()[..n];
+    point_velocity::<N>(data, l, offset, &st.v[..n], &st.w[..m], ut);
+    let normal_part = dot(nv, ut);
     for (u, x) in ut.iter_mut().zip(nv) {
         *u -= normal_part * x;
     }
     let mut new: Small = SmallVec::from_elem(0.0, n);
+    let new = &mut new[..n];
     // The sticking impulse old − K_t⁻¹ u_t when it lies in the disc (a resting contact),
     // else the one of maximal dissipation on its rim.
-    let old = row.friction_impulse.as_slice();
+    let old = &row.friction_impulse.as_slice()[..n];
     let kinv = &data[l.kinv..l.kinv + n * n];
     for ((x, o), k) in new.iter_mut().zip(old).zip(kinv.chunks_exact(n)) {
-        *x = o - dot(k, &ut);
+        *x = o - dot(k, ut);
     }
     if limit <= 0.0 {
         new.fill(0.0);
-    } else if dot(&new, &new) > limit * limit {
+    } else if dot(new, new) > limit * limit {
         friction_impulse(
             &data[l.values..l.values + n],
             &data[l.vectors..l.vectors + n * n],
             &data[l.kt..l.kt + n * n],
             row.friction_impulse.as_slice(),
-            &ut,
+            ut,
             limit,
-            &mut new,
+            new,
         );
     }
     let mut dj: Small = SmallVec::from_elem(0.0, n);
+    let dj = &mut dj[..n];
     let mut largest = 0.0f64;
-    for ((d, x), y) in dj.iter_mut().zip(&new).zip(row.friction_impulse.as_slice()) {
+    for ((d, x), y) in dj.iter_mut().zip(new.iter()).zip(old) {
         *d = x - y;
         largest = largest.max(d.abs());
     }
     if largest > 0.0 {
-        st.apply_with(data, l, &dj);
-        row.friction_impulse.as_mut_slice().copy_from_slice(&new);
+        st.apply_with::<N>(data, l, offset, dj);
+        row.friction_impulse.as_mut_slice().copy_from_slice(new);
         change = change.max(largest * row.knn);
     }
     change

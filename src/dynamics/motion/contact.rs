@@ -1,6 +1,7 @@
 //! Contact of bodies with half-spaces: the shapes bodies touch with, the planes, and the
 //! contacts found at a step.
 
+use super::placement::set_vector;
 use crate::algebra::Vector;
 use crate::dynamics::DynamicsError;
 use crate::inertia::spec::Geometry;
@@ -303,33 +304,34 @@ impl ContactLog {
 
     /// Records a contact: the point of body `body` (own axes) touching half-space
     /// `half_space`, its impulses, and `slip`, its velocity after them (projected into the
-    /// plane of unit normal `normal` here).
+    /// plane of unit normal `normal` here). All slices have the length N.
+    #[inline(always)]
     pub(crate) fn record(
         &mut self,
         (body, half_space): (usize, usize),
-        point: &Vector,
+        point: &[f64],
         normal_impulse: f64,
-        friction_impulse: &Vector,
+        friction_impulse: &[f64],
         slip: &[f64],
         normal: &[f64],
     ) {
-        let n = point.dim();
+        let n = point.len();
         if self.len == self.entries.len() {
             self.entries.push(Contact {
                 body,
                 half_space,
-                point: point.clone(),
+                point: Vector::zero(n),
                 normal_impulse,
-                friction_impulse: friction_impulse.clone(),
+                friction_impulse: Vector::zero(n),
                 slip: Vector::zero(n),
             });
         }
         let c = &mut self.entries[self.len];
         c.body = body;
         c.half_space = half_space;
-        c.point.clone_from(point);
+        set_vector(&mut c.point, point);
         c.normal_impulse = normal_impulse;
-        c.friction_impulse.clone_from(friction_impulse);
+        set_vector(&mut c.friction_impulse, friction_impulse);
         if c.slip.dim() != n {
             c.slip = Vector::zero(n);
         }

@@ -7,7 +7,7 @@
 //! turns from one step to the next: placing its vertices once per attitude, instead of once
 //! per question, is most of the work saved.
 
-use super::{ContactShape, MovingBody};
+use super::{ContactShape, HalfSpace, MovingBody};
 use crate::algebra::Vector;
 use crate::dynamics::Attitude;
 use smallvec::SmallVec;
@@ -50,17 +50,54 @@ pub(crate) struct Placement {
     pub q: SmallVec<[f64; 64]>,
     /// For a shape of vertices, Q r of each vertex r (N numbers each).
     offsets: Vec<f64>,
+    /// For a shape of vertices, n · (Q r) of each vertex r for the normal n of each
+    /// half-space in turn: the candidates' heights above their centre of mass, which every
+    /// contact question of a step asks for.
+    heights: Vec<f64>,
     /// The shape's radius ([`ContactShape::radius`]), which contact tolerances scale with.
     pub radius: f64,
 }
 
 impl Placement {
-    /// Calls `visit(index, r, r_space)` for each candidate of `shape` against a half-space
-    /// of unit normal `normal`, as [`ContactShape::candidates`] and numbered from 1.
+    /// The heights n · (Q r) of the vertices of `shape` against half-space `plane`, if
+    /// they are kept.
+    #[inline]
+    fn heights(&self, shape: &ContactShape, plane: usize) -> Option<&[f64]> {
+        match shape {
+            ContactShape::Vertices(v) => self.heights.get(plane * v.len()..(plane + 1) * v.len()),
+            _ => None,
+        }
+    }
+
+    /// Calls `visit(index, height)` for each candidate of `shape` against half-space
+    /// `plane` of unit normal `normal`, numbered from 1 as [`ContactShape::candidates`],
+    /// with its height n · (Q r) above the centre of mass.
+    #[inline]
+    pub(crate) fn candidate_heights(
+        &self,
+        shape: &ContactShape,
+        (plane, normal): (usize, &Vector),
+        mut visit: impl FnMut(usize, f64),
+    ) {
+        match self.heights(shape, plane) {
+            Some(heights) => {
+                for (k, &h) in heights.iter().enumerate() {
+                    visit(k + 1, h);
+                }
+            }
+            None => self.candidates(shape, (plane, normal), |k, _, r| {
+                visit(k, dot(normal.as_slice(), r))
+            }),
+        }
+    }
+
+    /// Calls `visit(index, r, r_space)` for each candidate of `shape` against half-space
+    /// `plane` of unit normal `normal`, as [`ContactShape::candidates`] and numbered from
+    /// 1.
     pub(crate) fn candidates(
         &self,
         shape: &ContactShape,
-        normal: &Vector,
+        (_, normal): (usize, &Vector),
         mut visit: impl FnMut(usize, &Vector, &[f64]),
     ) {
         let n = normal.dim();
@@ -80,24 +117,37 @@ impl Placement {
         }
     }
 
-    /// n · (Q r) for candidate `index` (from 1) of `shape` against the unit normal `normal`
-    /// (+∞ if there is no such candidate).
+    /// Vertex `index` (from 1) of `shape`, in own axes and in space, when it is placed.
+    #[inline]
+    pub(crate) fn vertex<'a>(
+        &'a self,
+        shape: &'a ContactShape,
+        index: usize,
+    ) -> Option<(&'a Vector, &'a [f64])> {
+        let ContactShape::Vertices(v) = shape else {
+            return None;
+        };
+        let r = v.get(index.checked_sub(1)?)?;
+        let n = r.dim();
+        Some((r, self.offsets.get((index - 1) * n..index * n)?))
+    }
+
+    /// n · (Q r) for candidate `index` (from 1) of `shape` against half-space `plane` of
+    /// unit normal `normal` (+∞ if there is no such candidate).
     pub(crate) fn candidate_height(
         &self,
         shape: &ContactShape,
-        normal: &Vector,
+        (plane, normal): (usize, &Vector),
         index: usize,
     ) -> f64 {
-        let n = normal.dim();
-        if let ContactShape::Vertices(v) = shape
-            && self.offsets.len() == v.len() * n
-            && (1..=v.len()).contains(&index)
+        if let Some(h) = self
+            .heights(shape, plane)
+            .and_then(|h| h.get(index.checked_sub(1)?))
         {
-            let r = &self.offsets[(index - 1) * n..index * n];
-            return dot(normal.as_slice(), r);
+            return *h;
         }
         let mut out = f64::INFINITY;
-        self.candidates(shape, normal, |k, _, r| {
+        self.candidates(shape, (plane, normal), |k, _, r| {
             if k == index {
                 out = dot(normal.as_slice(), r);
             }
@@ -106,10 +156,33 @@ impl Placement {
     }
 }
 
+impl Placement {
+    /// Computes the vertices' heights against the normals of `half_spaces`.
+    fn set_heights(&mut self, n: usize, half_spaces: &[HalfSpace]) {
+        self.heights.clear();
+        for plane in half_spaces {
+            let normal = plane.normal().as_slice();
+            self.heights
+                .extend(self.offsets.chunks_exact(n).map(|r| dot(normal, r)));
+        }
+    }
+}
+
 /// a · b.
-#[inline]
+#[inline(always)]
 pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// Sets `v` to the components `x`, in place when the dimensions agree (a copy instead of a
+/// new vector).
+#[inline(always)]
+pub(crate) fn set_vector(v: &mut Vector, x: &[f64]) {
+    if v.dim() == x.len() {
+        v.as_mut_slice().copy_from_slice(x);
+    } else {
+        *v = Vector::from_storage(SmallVec::from_slice(x));
+    }
 }
 
 /// The placements of all bodies of one system.
@@ -124,13 +197,15 @@ pub(crate) struct Placements {
 
 impl Placements {
     /// Places every body with a shape whose attitude moved since it was last placed
-    /// (beyond [`SAME_ATTITUDE`]). `owner` names the system and its shapes' version: for
-    /// another, everything is placed anew.
+    /// (beyond [`SAME_ATTITUDE`]), with its vertices' heights against `half_spaces`.
+    /// `owner` names the system and its shapes' version: for another, everything is placed
+    /// anew.
     pub(crate) fn update(
         &mut self,
         bodies: &[MovingBody],
         shapes: &[ContactShape],
         owner: (u64, u64),
+        half_spaces: &[HalfSpace],
     ) {
         if self.owner != Some(owner) || self.bodies.len() != bodies.len() {
             self.owner = Some(owner);
@@ -149,6 +224,12 @@ impl Placements {
                 .as_ref()
                 .is_some_and(|a| attitudes_close(a, attitude))
             {
+                if let ContactShape::Vertices(v) = shape
+                    && p.heights.len() != v.len() * half_spaces.len()
+                {
+                    // A half-space joined since.
+                    p.set_heights(b.dim(), half_spaces);
+                }
                 continue;
             }
             let n = b.dim();
@@ -164,6 +245,7 @@ impl Placements {
                     }
                 }
             }
+            p.set_heights(n, half_spaces);
             match &mut p.attitude {
                 Some(a) => a.clone_from(attitude),
                 None => p.attitude = Some(attitude.clone()),
