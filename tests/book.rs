@@ -54,6 +54,8 @@ mod mesh_body;
 #[allow(dead_code)]
 #[path = "../examples/other_signatures.rs"]
 mod other_signatures;
+#[path = "../examples/reaction_wheels_4d.rs"]
+mod reaction_wheels_4d;
 #[path = "../examples/rolling_ball.rs"]
 mod rolling_ball;
 #[allow(dead_code)]
@@ -74,6 +76,7 @@ const RUN_EXAMPLES: &[&str] = &[
     "heavy_top_4d",
     "mesh_body",
     "other_signatures",
+    "reaction_wheels_4d",
     "rolling_ball",
     "torque_closure",
 ];
@@ -187,6 +190,7 @@ fn included_examples_run() {
     custom_integrator::main().expect("custom_integrator");
     other_signatures::main().expect("other_signatures");
     rolling_ball::main().expect("rolling_ball");
+    reaction_wheels_4d::main().expect("reaction_wheels_4d");
     book_inertia_tables::render().expect("book_inertia_tables");
 }
 

@@ -36,6 +36,9 @@ pub struct RigidBody {
     principal_frame: Attitude,
     attitude: Attitude,
     momentum: Bivector,
+    /// The momentum h of internal rotors spinning at a constant rate relative to the body
+    /// (a gyrostat), principal frame; `None` for a rigid body.
+    gyrostatic: Option<Bivector>,
 }
 
 impl RigidBody {
@@ -88,6 +91,7 @@ impl RigidBody {
             principal_frame,
             attitude,
             momentum,
+            gyrostatic: None,
         };
         // A finite L can still overflow in the principal frame or in ω = I⁻¹(L) (tiny plane
         // moments): refuse the state rather than hand out a body whose ω is not finite.
@@ -221,7 +225,77 @@ impl RigidBody {
 
     /// Returns the body-frame angular velocity ω = I⁻¹(L) (principal frame).
     pub fn omega(&self) -> Bivector {
-        self.inertia.apply_inverse(&self.momentum)
+        self.omega_of(&self.momentum)
+    }
+
+    /// ω = I⁻¹(L − h) for a body-frame momentum `l` (h the gyrostatic momentum, if any).
+    pub(crate) fn omega_of(&self, l: &Bivector) -> Bivector {
+        match &self.gyrostatic {
+            None => self.inertia.apply_inverse(l),
+            Some(h) => self.inertia.apply_inverse(&(l - h)),
+        }
+    }
+
+    /// Makes the body a gyrostat: it carries internal rotors (flywheels, reaction wheels)
+    /// whose angular momentum relative to the body is the constant bivector `h`, given in
+    /// the body's own axes. The body's momentum [`RigidBody::momentum`] is then the total
+    /// L = I(ω) + h, and Euler's equations become dL/dt = ω × L with ω = I⁻¹(L − h)
+    /// (Zhukovsky and Volterra's free gyrostat: the Casimirs of L and the energy
+    /// ½⟨ω, I(ω)⟩ are its integrals). The state keeps the total momentum (ω changes).
+    ///
+    /// [`Rkmk4`](crate::dynamics::Rkmk4), [`Dopri5`](crate::dynamics::Dopri5),
+    /// [`Dop853`](crate::dynamics::Dop853) and [`Midpoint`](crate::dynamics::Midpoint)
+    /// integrate gyrostats; the splittings, the Moser–Veselov map, the fixed-size bodies, the
+    /// moving bodies and the closed forms, whose formulas assume h = 0, refuse them with
+    /// [`DynamicsError::Gyrostat`](crate::dynamics::DynamicsError::Gyrostat). A zero `h`
+    /// makes an ordinary rigid body.
+    ///
+    /// # Errors
+    /// [`InertiaError::DimensionMismatch`] or [`InertiaError::NonFinite`] for a bivector of
+    /// another dimension or with a non-finite component, or if ω becomes non-finite.
+    pub fn with_gyrostatic_momentum(mut self, h: &Bivector) -> Result<Self, InertiaError> {
+        self.set_gyrostatic_momentum(h)?;
+        Ok(self)
+    }
+
+    /// Changes the gyrostatic momentum h (body's own axes) between steps, keeping the
+    /// total momentum L: what a reaction-wheel controller does when it spins its wheels up
+    /// or down (the body's ω = I⁻¹(L − h) takes the difference). See
+    /// [`RigidBody::with_gyrostatic_momentum`].
+    ///
+    /// # Errors
+    /// As [`RigidBody::with_gyrostatic_momentum`]; the body is then unchanged.
+    pub fn set_gyrostatic_momentum(&mut self, h: &Bivector) -> Result<(), InertiaError> {
+        let n = self.dim();
+        if h.dim() != n {
+            return Err(InertiaError::DimensionMismatch {
+                quantity: "gyrostatic momentum",
+                expected: n,
+                found: h.dim(),
+            });
+        }
+        check_finite("gyrostatic momentum", h)?;
+        let h = self.principal_frame.inverse_rotate_bivector(h);
+        let before = std::mem::replace(&mut self.gyrostatic, (h.max_abs() > 0.0).then_some(h));
+        if let Err(e) = check_finite("angular velocity I⁻¹(L − h)", &self.omega()) {
+            self.gyrostatic = before;
+            return Err(e);
+        }
+        Ok(())
+    }
+
+    /// The gyrostatic momentum h in the principal frame (the frame of
+    /// [`RigidBody::momentum`]); `None` for a rigid body.
+    pub fn gyrostatic_momentum(&self) -> Option<&Bivector> {
+        self.gyrostatic.as_ref()
+    }
+
+    /// Refuses a gyrostat where `what` assumes h = 0.
+    pub(crate) fn refuse_gyrostat(&self, what: &'static str) -> Result<(), super::DynamicsError> {
+        match self.gyrostatic {
+            None => Ok(()),
+            Some(_) => Err(super::DynamicsError::Gyrostat { what }),
+        }
     }
 
     /// Returns the space-frame angular momentum L_s = R L R̃ (constant without torque).
@@ -234,9 +308,13 @@ impl RigidBody {
         self.attitude.rotate_bivector(&self.omega())
     }
 
-    /// Returns the kinetic energy T = ½⟨ω, L⟩.
+    /// Returns the kinetic energy T = ½⟨ω, L⟩ (of a gyrostat, ½⟨ω, L − h⟩ = ½⟨ω, I(ω)⟩,
+    /// which with |L|² is conserved in free motion).
     pub fn energy(&self) -> f64 {
-        0.5 * self.omega().inner(&self.momentum)
+        match &self.gyrostatic {
+            None => 0.5 * self.omega().inner(&self.momentum),
+            Some(h) => 0.5 * self.omega().inner(&(&self.momentum - h)),
+        }
     }
 
     /// Returns mutable access to the state for integrators (attitude, momentum).

@@ -155,6 +155,16 @@ pub enum DynamicsError {
         /// What is wrong with it.
         reason: String,
     },
+    /// The integrator or closed form assumes a rigid body and was given a gyrostat.
+    ///
+    /// How to fix: integrate gyrostats with `Rkmk4`, `Dopri5`, `Dop853` or `Midpoint`.
+    #[error(
+        "{what} assumes a rigid body without internal rotors; integrate a gyrostat with rk4, dopri5, dop853 or midpoint"
+    )]
+    Gyrostat {
+        /// What refused it.
+        what: &'static str,
+    },
     /// A heavy top is not a Lagrange top ([`LagrangeTop::new`](crate::dynamics::LagrangeTop::new)).
     ///
     /// How to fix: second moments equal on every body axis but one, and the centre of mass

@@ -80,6 +80,7 @@ macro_rules! free_body {
             /// [`DynamicsError::UnsupportedInertia`] unless its inertia map is diagonal on the
             /// principal planes (every physical body).
             pub fn from_rigid_body(body: &RigidBody) -> Result<Self, DynamicsError> {
+                body.refuse_gyrostat(stringify!($name))?;
                 if body.dim() != $n {
                     return Err(crate::algebra::AlgebraError::DimensionMismatch {
                         left: $n,

@@ -121,8 +121,10 @@ impl Invariants {
         let c = l.characteristic_coefficients();
         let attitude_error = body.principal_frame_attitude().unit_error();
         let n = body.dim();
+        // A gyrostat's flow does not keep Manakov's integrals.
+        let rigid = body.gyrostatic_momentum().is_none();
         let (manakov, manakov_scales) = match body.inertia().principal_second_moments() {
-            Some(j) if n <= MANAKOV_MAX_DIM => (
+            Some(j) if rigid && n <= MANAKOV_MAX_DIM => (
                 manakov_integrals(l, j),
                 manakov_scales(n, l.norm_squared(), j),
             ),

@@ -5,6 +5,7 @@ mod contact_and_joints;
 mod dop853;
 mod equations;
 mod fixed;
+mod gyrostat;
 mod lagrange_top;
 mod large_n;
 mod manakov;

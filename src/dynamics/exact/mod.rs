@@ -66,6 +66,7 @@ impl ExactSolution {
     /// # Errors
     /// [`DynamicsError::NoClosedForm`] with the reasons of every form tried.
     pub fn new(body: &RigidBody) -> Result<Self, DynamicsError> {
+        body.refuse_gyrostat("the closed-form motion")?;
         let mut reasons = Vec::new();
         if body.dim() == 3 {
             match AsymmetricTop::new(body) {

@@ -260,6 +260,7 @@ impl AsymmetricTop {
     /// planes; [`DynamicsError::NonFiniteArgument`] for a non-finite momentum; [`DynamicsError::Special`]
     /// if an elliptic function fails (not expected for valid input).
     pub fn new(body: &RigidBody) -> Result<Self, DynamicsError> {
+        body.refuse_gyrostat("the closed-form 3D top")?;
         if body.dim() != 3 {
             return Err(DynamicsError::no_closed_form(
                 NoClosedFormReason::WrongDimension {
@@ -302,6 +303,7 @@ impl AsymmetricTop {
     /// plane outside the subspace (exact zeros are required); the errors of
     /// [`AsymmetricTop::new`].
     pub fn embedded(body: &RigidBody, axes: [usize; 3]) -> Result<EmbeddedTop, DynamicsError> {
+        body.refuse_gyrostat("the closed-form 3D top")?;
         EmbeddedTop::new(body, axes)
     }
 

@@ -145,6 +145,7 @@ impl TwoMomentSolution {
     /// the reason otherwise (more than two distinct principal values, plane moments not of
     /// the Jᵢ + Jⱼ form, a map not diagonal on the basis planes), unless steady.
     pub fn new(body: &RigidBody) -> Result<Self, DynamicsError> {
+        body.refuse_gyrostat("the two-moment closed form")?;
         let l = body.momentum();
         if let Some(&x) = l.as_slice().iter().find(|x| !x.is_finite()) {
             return Err(DynamicsError::NonFiniteArgument {

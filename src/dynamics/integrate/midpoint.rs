@@ -91,7 +91,7 @@ impl Integrator for Midpoint {
         let scale = l0.max_abs().max(f64::MIN_POSITIVE);
         // The torque sees the attitude at the half step, R₀ exp(−¼ h ω_mid).
         let rate = |l_mid: &Bivector| -> (Bivector, Bivector) {
-            let omega = body.inertia().apply_inverse(l_mid);
+            let omega = body.omega_of(l_mid);
             let r_mid = if torque.is_zero() {
                 r0.clone()
             } else {
@@ -126,7 +126,7 @@ impl Integrator for Midpoint {
             });
         }
         let mid = (&l0 + &l1) * 0.5;
-        let omega_mid = body.inertia().apply_inverse(&mid);
+        let omega_mid = body.omega_of(&mid);
         let r1 = r0.times_exp(&(omega_mid * (-0.5 * h)));
         // The residual's max ignores NaN, so check the state itself.
         if !l1.as_slice().iter().all(|x| x.is_finite()) || !r1.is_finite() {

@@ -84,8 +84,19 @@ pub(crate) fn momentum_rate_into(
     dl: &mut Bivector,
     omega: &mut Bivector,
 ) {
-    body.inertia()
-        .apply_inverse_into(l.as_slice(), omega.as_mut_slice());
+    match body.gyrostatic_momentum() {
+        None => body
+            .inertia()
+            .apply_inverse_into(l.as_slice(), omega.as_mut_slice()),
+        // A gyrostat: ω = I⁻¹(L − h), and the total L turns (dl = ω × L).
+        Some(h) => {
+            omega.as_mut_slice().copy_from_slice(l.as_slice());
+            *omega -= h;
+            let own = omega.clone();
+            body.inertia()
+                .apply_inverse_into(own.as_slice(), omega.as_mut_slice());
+        }
+    }
     commutator_packed(l.dim(), omega.as_slice(), l.as_slice(), dl.as_mut_slice());
     if !torque.is_zero() {
         *dl += &torque.torque(&TorqueInput {

@@ -178,6 +178,7 @@ impl Integrator for MoserVeselov {
         h: f64,
         torque: &dyn Torque,
     ) -> Result<(), DynamicsError> {
+        body.refuse_gyrostat("moser-veselov")?;
         let inertia = body.inertia();
         let (Some(moments), Some(_)) = (
             inertia.principal_second_moments(),

@@ -43,7 +43,8 @@ impl Integrator for Rkmk4 {
         h: f64,
         torque: &dyn Torque,
     ) -> Result<(), DynamicsError> {
-        if torque.is_zero() && free_step_packed(body, h) {
+        // The packed free step assumes ω = I⁻¹(L); a gyrostat takes the general stages.
+        if torque.is_zero() && body.gyrostatic_momentum().is_none() && free_step_packed(body, h) {
             return finish(body, t);
         }
         let r0 = body.principal_frame_attitude().clone();

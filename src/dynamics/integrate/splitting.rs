@@ -296,6 +296,7 @@ impl Integrator for Splitting {
         h: f64,
         torque: &dyn Torque,
     ) -> Result<(), DynamicsError> {
+        body.refuse_gyrostat(self.name())?;
         let Some(moments) = body.inertia().diagonal_plane_moments() else {
             return Err(DynamicsError::UnsupportedInertia {
                 integrator: self.name(),

@@ -79,6 +79,7 @@ impl MovingBody {
         position: &Vector,
         velocity: &Vector,
     ) -> Result<Self, DynamicsError> {
+        rotation.refuse_gyrostat("a moving body")?;
         if !(mass.is_finite() && mass > 0.0) {
             return Err(DynamicsError::InvalidMotion {
                 what: "mass",
