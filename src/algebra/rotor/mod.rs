@@ -381,7 +381,14 @@ impl Rotor {
     #[track_caller]
     pub fn rotate_vector(&self, x: &Vector) -> Vector {
         assert_same_dim(self.dim, x.dim());
-        let mut out = Vector::zero(self.dim);
+        let n = self.dim;
+        if n <= 8 {
+            // Formed in a stack buffer that becomes the inline storage whole.
+            let mut buf = [0.0; 8];
+            self.sandwich_vector_into(x.as_slice(), &mut buf[..n]);
+            return Vector::from_storage(SmallVec::from_buf_and_len(buf, n));
+        }
+        let mut out = Vector::zero(n);
         self.sandwich_vector_into(x.as_slice(), out.as_mut_slice());
         out
     }
