@@ -229,6 +229,12 @@ fn bench_geometric_product(c: &mut Criterion) {
             bench.iter(|| black_box(&qa) * black_box(&qb))
         });
         for_fixed_dim!(n, compose_smatrix, &mut g, &qa, &qb);
+        // The composition of attitudes, which are rotation matrices above N = 4: what a caller
+        // who does not need the spinor pays.
+        let (aa, ab) = (Attitude::from(&ra), Attitude::from(&rb));
+        g.bench_function(BenchmarkId::new("rotorflow_attitude_compose", n), |bench| {
+            bench.iter(|| black_box(&aa).compose(black_box(&ab)))
+        });
         g.finish();
     }
 }

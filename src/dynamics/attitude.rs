@@ -193,8 +193,24 @@ impl Attitude {
         match (&self.repr, &other.repr) {
             (Repr::Rotor(a), Repr::Rotor(b)) => a.compose(b).into(),
             (Repr::Matrix(a), Repr::Matrix(b)) => {
-                // Column j of AB is Σₖ A[:, k] B[k, j], column-major, on the stack up to N = 8.
                 let n = side(a);
+                // N = 5 … 8: nalgebra's unrolled fixed-size product on views of the storage.
+                macro_rules! fixed {
+                    ($($d:literal),*) => {
+                        match n {
+                            $($d => {
+                                type View<'a> = nalgebra::MatrixView<'a, f64, nalgebra::Const<$d>, nalgebra::Const<$d>>;
+                                let p = View::from_slice(a) * View::from_slice(b);
+                                return Attitude {
+                                    repr: Repr::Matrix(MatrixStorage::from_slice(p.as_slice())),
+                                };
+                            })*
+                            _ => {}
+                        }
+                    };
+                }
+                fixed!(5, 6, 7, 8);
+                // Column j of AB is Σₖ A[:, k] B[k, j], column-major, on the stack up to N = 8.
                 let mut c = MatrixStorage::from_elem(0.0, n * n);
                 for (j, col) in c.chunks_exact_mut(n).enumerate() {
                     for (k, &bkj) in b[j * n..(j + 1) * n].iter().enumerate() {
