@@ -306,8 +306,12 @@ fn dense_free_rk4_matches_the_bivector_path() {
 fn attitudes_compose_as_their_matrices() {
     let mut r = rng(97);
     for n in 2..=10 {
-        let a = Attitude::from(&Rotor::from_rotation_bivector(&random_bivector(&mut r, n, 1.5)));
-        let b = Attitude::from(&Rotor::from_rotation_bivector(&random_bivector(&mut r, n, 1.5)));
+        let a = Attitude::from(&Rotor::from_rotation_bivector(&random_bivector(
+            &mut r, n, 1.5,
+        )));
+        let b = Attitude::from(&Rotor::from_rotation_bivector(&random_bivector(
+            &mut r, n, 1.5,
+        )));
         let err = (a.compose(&b).to_matrix() - a.to_matrix() * b.to_matrix()).amax();
         assert!(err < 1e-14, "N = {n}: {err:e}");
     }
