@@ -565,7 +565,20 @@ fn polish<T: Mv>(v: &T, mut b: T) -> Result<T, AlgebraError> {
             for (row, &k) in even.iter().enumerate() {
                 rhs[row] = residual.coeffs()[k];
             }
-            let svd = a.svd(true, true);
+            // An overflowed image or residual leaves nothing to fit (and NaN would reach
+            // the singular values' sort); huge finite entries overflow inside the SVD, so
+            // the system is scaled to entries of at most 1 (the same solution).
+            let Some(scale) = system_scale(a.iter().chain(rhs.iter())) else {
+                break;
+            };
+            a /= scale;
+            rhs /= scale;
+            // Unordered: the solve does not need the order, and the ordered form panics on
+            // a NaN singular value, which extreme (finite) systems can still produce.
+            let svd = a.svd_unordered(true, true);
+            if !svd.singular_values.iter().all(|x| x.is_finite()) {
+                break;
+            }
             let cut = 1e-10 * svd.singular_values.max();
             let Ok(x) = svd.solve(&rhs, cut) else {
                 break;
@@ -579,9 +592,19 @@ fn polish<T: Mv>(v: &T, mut b: T) -> Result<T, AlgebraError> {
                     a[(row, col)] = image.coeffs()[k];
                 }
             }
-            let rhs =
+            let mut rhs =
                 DVector::from_iterator(even.len(), even.iter().map(|&k| residual.coeffs()[k]));
-            let svd = a.svd(true, true);
+            let Some(scale) = system_scale(a.iter().chain(rhs.iter())) else {
+                break;
+            };
+            a /= scale;
+            rhs /= scale;
+            // Unordered: the solve does not need the order, and the ordered form panics on
+            // a NaN singular value, which extreme (finite) systems can still produce.
+            let svd = a.svd_unordered(true, true);
+            if !svd.singular_values.iter().all(|x| x.is_finite()) {
+                break;
+            }
             let cut = 1e-10 * svd.singular_values.max();
             let Ok(x) = svd.solve(&rhs, cut) else {
                 break;
@@ -602,6 +625,19 @@ fn polish<T: Mv>(v: &T, mut b: T) -> Result<T, AlgebraError> {
         r = r1;
     }
     Ok(b)
+}
+
+/// The largest magnitude of a least-squares system's entries, to scale it by; `None` when an
+/// entry is not finite or all are zero (nothing to fit).
+fn system_scale<'a>(entries: impl Iterator<Item = &'a f64>) -> Option<f64> {
+    let mut top = 0.0f64;
+    for &x in entries {
+        if !x.is_finite() {
+            return None;
+        }
+        top = top.max(x.abs());
+    }
+    (top > 0.0).then_some(top)
 }
 
 /// The projection of `b` onto the grade-2 part of the algebra `v` generates: log V lies

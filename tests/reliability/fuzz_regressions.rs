@@ -405,3 +405,29 @@ fn fuzz_log_of_a_subnormal_rotation_beside_a_null_plane() {
     assert_eq!(l.coefficient(12), -1.5);
     assert!((&l.exp().unwrap() - &v).max_abs() <= 1e-15);
 }
+
+/// versor_bits: the logarithm of a raw bivector of Cl(1, 2, 3) (a 40 e₁₂ beside components of
+/// 1e-204 and 3e-60) reached the least-squares polish with a system whose SVD produced a NaN
+/// singular value, and nalgebra's ordered SVD panicked sorting it. The polish now scales its
+/// system, takes the unordered SVD and stops on a non-finite singular value.
+#[test]
+fn fuzz_log_polish_with_a_nan_singular_value() {
+    let b = versor_input(
+        1,
+        2,
+        3,
+        &[
+            (3, f64::from_bits(0x40442409544c0000)),
+            (5, f64::from_bits(0x95950000002100fb)),
+            (9, f64::from_bits(0x9595959595959595)),
+            (17, f64::from_bits(0x9595959595959595)),
+            (33, f64::from_bits(0x9595959595959595)),
+            (6, f64::from_bits(0x3395000500049595)),
+        ],
+    );
+    // Any answer but a panic; an accepted one is a finite bivector.
+    if let Ok(l) = b.log() {
+        assert!(l.as_slice().iter().all(|x| x.is_finite()), "{l:?}");
+        assert!(l.terms().all(|(m, c)| c == 0.0 || m.count_ones() == 2));
+    }
+}
