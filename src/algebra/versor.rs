@@ -170,7 +170,9 @@ impl Multivector {
     /// part of a projective B above N = 5);
     /// [`AlgebraError::Overflow`] when a coefficient of the result exceeds `f64::MAX` (a boost
     /// of rapidity above ≈ 710), or, for N ≥ 6 with two or more null vectors, when the
-    /// squarings do (rotation angles of 10¹⁰⁰ and more beside null parts of that size).
+    /// squarings do (rotation angles of 10¹⁰⁰ and more beside null parts of that size), or,
+    /// for N ≥ 6 outside the Euclidean and projective signatures, when they leave the group
+    /// without overflowing (⟨V Ṽ⟩₀ off 1 by more than 10⁻⁹ |B|, components near 10⁹⁰).
     pub fn exp(&self) -> Result<Multivector, AlgebraError> {
         // 3D PGA on fixed-size arrays; everything else (and every error) below.
         if pga3::is_pga3(self.signature())
@@ -259,7 +261,17 @@ impl Multivector {
                     max: GENERAL_MAX_DIM,
                 });
             }
-            return exp_general_to(self, out);
+            exp_general_to(self, out)?;
+            // The squarings of a huge B can leave the group without overflowing (coefficients
+            // that underflow while V Ṽ should stay 1); the scalar part of V Ṽ catches it in
+            // O(2ᴺ), at the accuracy exp has there (about 2⁻⁵³ |B| relative).
+            let b_top = self.max_abs().max(1.0);
+            if scalar_of_v_reverse_v_error(out) > 1e-9 * b_top {
+                return Err(AlgebraError::Overflow {
+                    what: "the exponential",
+                });
+            }
+            return Ok(());
         } else {
             return if self.dim() <= 4 {
                 exp_small::<16>(self, out)
@@ -1169,4 +1181,31 @@ fn log_closed_form<const L: usize>(v: &Small<L>) -> Result<Small<L>, AlgebraErro
         }
         Ok(&(&bv * g.re) + &(&vj * g.im))
     }
+}
+
+/// |⟨V Ṽ⟩₀ − 1| / max |Vᵢ|²: ⟨V Ṽ⟩₀ = Σ_A V_A² e_A ẽ_A, where e_A ẽ_A is the product of the
+/// squares of A's basis vectors (+1 positive, −1 negative, 0 null). Infinite when V is zero or
+/// not finite.
+fn scalar_of_v_reverse_v_error(v: &Multivector) -> f64 {
+    let sig = v.signature();
+    let negative = ((1u64 << sig.q()) - 1) << sig.p();
+    let null = ((1u64 << sig.r()) - 1) << (sig.p() + sig.q());
+    let top = v.max_abs();
+    if !(top.is_finite() && top > 0.0) {
+        return f64::INFINITY;
+    }
+    let mut s = 0.0;
+    for (k, &c) in v.as_slice().iter().enumerate() {
+        let k = k as u64;
+        if k & null != 0 || c == 0.0 {
+            continue;
+        }
+        let x = c / top;
+        s += if (k & negative).count_ones().is_multiple_of(2) {
+            x * x
+        } else {
+            -x * x
+        };
+    }
+    (s - 1.0 / top / top).abs()
 }

@@ -267,11 +267,13 @@ fn general_route_reproduces_the_closed_form_on_the_hard_families() {
     let mut worst_exp = 0.0f64;
     let mut worst_log = 0.0f64;
     let mut worst_round_trip = 0.0f64;
+    let mut refused_light_like = 0;
     for (family, b, check_log) in &cases {
         let small = b.exp().unwrap();
         let small_log = check_log.then(|| small.log().unwrap());
         let mut round_trips = 0;
         let mut embedded = 0;
+        let mut refused = 0;
         let size = b.max_abs().max(1.0);
         for &(a, q, c) in &embeddings {
             let big_b = embed(b, a, q, c);
@@ -280,9 +282,18 @@ fn general_route_reproduces_the_closed_form_on_the_hard_families() {
             if !general {
                 continue;
             }
-            let e = big_b
-                .exp()
-                .unwrap_or_else(|err| panic!("{family} in {s}: {err}"));
+            let e = match big_b.exp() {
+                Ok(e) => e,
+                // A light-like B of size 10¹⁵⁰ loses the group in the general route's
+                // squarings; exp reports it (see versor_reference.rs, `OVERFLOWS`).
+                Err(AlgebraError::Overflow { .. })
+                    if *family == "light-like" && b.max_abs() >= 1e150 =>
+                {
+                    refused += 1;
+                    continue;
+                }
+                Err(err) => panic!("{family} in {s}: {err}"),
+            };
             let err = rel_diff(&e, &embed(&small, a, q, c)) / size;
             worst_exp = worst_exp.max(err);
             assert!(
@@ -316,15 +327,21 @@ fn general_route_reproduces_the_closed_form_on_the_hard_families() {
         }
         // N = 4 families reach N ≥ 6 through the two larger embeddings, N = 5 through all.
         assert!(
-            embedded >= 2,
+            embedded + refused >= 2,
             "{family}: only {embedded} embeddings for B = {b}"
         );
         assert!(*check_log || round_trips > 0);
+        refused_light_like += refused;
     }
     eprintln!(
         "general route vs closed form: {checked} embedded cases, exp {worst_exp:.1e}, log {worst_log:.1e}, exp(log V) {worst_round_trip:.1e}"
     );
-    assert!(checked >= 2 * cases.len(), "{checked} embedded cases");
+    eprintln!("light-like B of size 1e150 refused with Overflow: {refused_light_like}");
+    assert!(refused_light_like <= 10, "{refused_light_like} refused");
+    assert!(
+        checked + refused_light_like >= 2 * cases.len(),
+        "{checked} embedded cases"
+    );
 }
 
 #[test]

@@ -431,3 +431,42 @@ fn fuzz_log_polish_with_a_nan_singular_value() {
         assert!(l.terms().all(|(m, c)| c == 0.0 || m.count_ones() == 2));
     }
 }
+
+/// versor_bits: in Cl(1, 5, 0), B with a −6.3e92 component beside components of 1e16: the
+/// general route's squarings left the group without overflowing (every coefficient of the
+/// "exponential" below 1e-60, V Ṽ far from 1). The exponential now checks the scalar part of
+/// V Ṽ and reports `Overflow` there.
+#[test]
+fn fuzz_exp_of_a_huge_bivector_that_left_the_group() {
+    let b = versor_input(
+        1,
+        5,
+        0,
+        &[
+            (3, f64::from_bits(0x33f7ff0090040000)),
+            (5, f64::from_bits(0x330001ffffffff33)),
+            (9, f64::from_bits(0x3fd3d33333333333)),
+            (17, f64::from_bits(0x4343432533333333)),
+            (33, f64::from_bits(0x3300050004434343)),
+            (6, f64::from_bits(0x333fd33333333333)),
+            (10, f64::from_bits(0xd333333333333333)),
+            (18, f64::from_bits(0x43434b333333333f)),
+            (34, f64::from_bits(0x4343434343434343)),
+            (12, f64::from_bits(0x29333f43d3363143)),
+            (20, f64::from_bits(0x4343434333333333)),
+            (36, f64::from_bits(0x213fd333337c0043)),
+            (24, f64::from_bits(0x333333)),
+        ],
+    );
+    match b.exp() {
+        Err(rotorflow::algebra::AlgebraError::Overflow { .. }) => {}
+        Ok(v) => {
+            let top = v.max_abs();
+            let w = &v * (1.0 / top);
+            let mut ww = &w * &w.reverse();
+            ww.as_mut_slice()[0] -= 1.0 / top / top;
+            assert!(ww.max_abs() <= 1e-12 * b.max_abs(), "not a versor: {v:?}");
+        }
+        Err(e) => panic!("unexpected error {e}"),
+    }
+}
