@@ -23,6 +23,11 @@
 //! relative error is that of any scaling and squaring, a small multiple of ε |B|, which is
 //! also how well exp(B) is determined by a B known to ε.
 //!
+//! A nilpotent B (B² = 0, or B⁴ = 0 where light-like parts meet) is not scaled: its series
+//! terminates and is summed as it stands, 1 + B for a light-like B of any size (squaring
+//! 1 + Y for a nilpotent Y of size y forms the scalar 1 − y² + y², which loses the 1 beyond
+//! y ≈ 10⁸).
+//!
 //! With two or more null vectors the squarings multiply parts that hold different null
 //! vectors. At rotation angles of 10¹⁰⁰ and more beside null parts of the same size (in
 //! Cl(3, 0, 3), say) those products exceed f64 although they cancel in exp(B), whose
@@ -255,6 +260,9 @@ fn exp_scaled<T: Mv>(b: &T) -> Result<T, AlgebraError> {
     if top == 0.0 {
         return Ok(one);
     }
+    if let Some(v) = terminating_series(b, top) {
+        return Ok(v);
+    }
     let s = squarings(b, top);
     let x = scaled(b, -s);
     let mut v = one.clone();
@@ -273,6 +281,30 @@ fn exp_scaled<T: Mv>(b: &T) -> Result<T, AlgebraError> {
         }
     }
     Ok(pull_to_group(v))
+}
+
+/// exp(B) as its finite series when B is nilpotent in floating point: B² = 0 (a light-like
+/// B, or a translation) gives 1 + B, and B² with no scalar part and B⁴ = 0 gives
+/// 1 + B + B²/2 + B³/6. Scaling and squaring cannot be used there: squaring 1 + Y with Y
+/// nilpotent forms the scalar 1 − y² + y² (y the size of Y), which loses the 1 once y² > 2⁵³,
+/// and the next squaring of the remaining Y is zero (a light-like B of size 10¹⁵⁰ would come
+/// out as 0). The powers are formed from B scaled to max |Bᵢ| in [1, 2), exactly, so that
+/// they neither overflow nor underflow before they vanish; `top` = max |Bᵢ| > 0.
+fn terminating_series<T: Mv>(b: &T, top: f64) -> Option<T> {
+    let e = exponent_of(top);
+    let bp = scaled(b, -e);
+    let b2 = bp.mul(&bp);
+    let zero = |m: &T| m.coeffs().iter().all(|&c| c == 0.0);
+    let mut v = T::one(b.sig()).plus(b);
+    if zero(&b2) {
+        return Some(v);
+    }
+    if b2.coeffs()[0] != 0.0 || !zero(&b2.mul(&b2)) {
+        return None;
+    }
+    v.add_times(&scaled(&b2, 2 * e), 0.5);
+    v.add_times(&scaled(&b2.mul(&bp), 3 * e), 1.0 / 6.0);
+    Some(v)
 }
 
 /// The number s of squarings: the least s ≥ 0 with ‖X‖₁ ≤ 2 and a Taylor remainder below
