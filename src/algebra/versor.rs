@@ -173,6 +173,7 @@ impl Multivector {
     /// squarings do (rotation angles of 10¹⁰⁰ and more beside null parts of that size), or,
     /// for N ≥ 6 outside the Euclidean and projective signatures, when they leave the group
     /// without overflowing (⟨V Ṽ⟩₀ off 1 by more than 10⁻⁹ |B|, components near 10⁹⁰).
+    #[inline]
     pub fn exp(&self) -> Result<Multivector, AlgebraError> {
         // 3D PGA on fixed-size arrays; everything else (and every error) below.
         if pga3::is_pga3(self.signature())
@@ -350,6 +351,7 @@ impl Multivector {
     /// assert!((&back - &b).max_abs() < 1e-15);
     /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
     /// ```
+    #[inline]
     pub fn log(&self) -> Result<Multivector, AlgebraError> {
         // 3D PGA on fixed-size arrays; everything else (and every error) below.
         if pga3::is_pga3(self.signature())

@@ -47,15 +47,15 @@ fn zero(c: &[f64; 16], blades: impl IntoIterator<Item = usize>) -> bool {
     blades.into_iter().fold(0u64, |a, k| a | c[k].to_bits()) << 1 == 0
 }
 
-/// True when the coefficients at `blades` are all finite, by a pairwise sum (NaN or ±∞ as
-/// soon as one is): no branch per blade and a short dependency chain. A sum of finite
-/// coefficients near f64::MAX may overflow too; the caller then leaves the case to the
-/// general route, which is exact about it.
+/// True when the numbers are all finite, by a pairwise sum (NaN or ±∞ as soon as one is):
+/// no branch per number and a short dependency chain. A sum of finite numbers near f64::MAX
+/// may overflow too; the caller then leaves the case to the general route, which is exact
+/// about it.
 #[inline(always)]
-fn finite<const K: usize>(c: &[f64; 16], blades: [usize; K]) -> bool {
+fn all_finite<const K: usize>(x: &[f64; K]) -> bool {
     let mut lanes = [0.0; 4];
-    for (i, &k) in blades.iter().enumerate() {
-        lanes[i % 4] += c[k];
+    for (i, &c) in x.iter().enumerate() {
+        lanes[i % 4] += c;
     }
     ((lanes[0] + lanes[1]) + (lanes[2] + lanes[3])).is_finite()
 }
@@ -98,15 +98,16 @@ fn sinc_minus_cos(theta: f64, sin: f64, cos: f64) -> f64 {
 }
 
 /// exp(B) for a multivector B of Cl(3, 0, 1), or None unless B is a finite bivector with a
-/// finite exponential (the general route then reports what is wrong). One pass checks the
-/// input; the result is built in place.
+/// finite exponential (the general route then reports what is wrong).
 #[inline]
 pub(super) fn exp(b: &Multivector) -> Option<Multivector> {
     let c: &[f64; 16] = b.as_slice().try_into().ok()?;
-    let mut o = [0.0; 16];
-    if !exp_coefficients(c, &mut o) {
-        return None;
-    }
+    let [s, a12, a13, a23, t14, t24, t34, q] = exp_motor(c)?;
+    // One array expression, stored once into the result (a zeroed array written blade by
+    // blade and then moved would be read back before its stores have landed).
+    let o = [
+        s, 0.0, 0.0, a12, 0.0, a13, a23, 0.0, 0.0, t14, t24, 0.0, t34, 0.0, 0.0, q,
+    ];
     Some(Multivector::from_storage(b.signature(), o.into()))
 }
 
@@ -119,48 +120,53 @@ pub(super) fn exp_to(b: &Multivector, out: &mut Multivector) -> bool {
     ) else {
         return false;
     };
+    let Some(motor) = exp_motor(c) else {
+        return false;
+    };
     *o = [0.0; 16];
-    exp_coefficients(c, o)
+    for (k, x) in MOTOR.iter().zip(motor) {
+        o[*k] = x;
+    }
+    true
 }
 
-/// The motor's coefficients into `o` (all zero on entry); false unless B is a finite
-/// bivector with a finite exponential.
+/// The motor's even coefficients (1, e₁₂, e₁₃, e₂₃, e₁₄, e₂₄, e₃₄, e₁₂₃₄); None unless B is a
+/// finite bivector with a finite exponential.
 #[inline(always)]
-fn exp_coefficients(c: &[f64; 16], o: &mut [f64; 16]) -> bool {
+fn exp_motor(c: &[f64; 16]) -> Option<[f64; 8]> {
     // A NaN or infinite plane coefficient makes the result non-finite (checked at the end).
     if !zero(c, NOT_GRADE_2) {
-        return false;
+        return None;
     }
     let (a12, a13, a23, t14, t24, t34) = (c[3], c[5], c[6], c[9], c[10], c[12]);
     let theta = norm3(a12, a13, a23);
-    if theta == 0.0 {
-        o[0] = 1.0;
-        o[0b1001] = t14;
-        o[0b1010] = t24;
-        o[0b1100] = t34;
-        return finite(o, MOTOR);
-    }
-    let inv = 1.0 / theta;
-    let (n12, n13, n23) = (a12 * inv, a13 * inv, a23 * inv);
-    let pi = n12 * t34 - n13 * t24 + n23 * t14;
-    let (sin, cos) = theta.sin_cos();
-    // sin θ/θ, and 1 − θ²/6 where θ underflows its own square (1/θ may overflow there).
-    let sc = if theta < 1e-8 {
-        1.0 - theta * theta / 6.0
+    let motor = if theta == 0.0 {
+        [1.0, 0.0, 0.0, 0.0, t14, t24, t34, 0.0]
     } else {
-        sin * inv
+        let inv = 1.0 / theta;
+        let (n12, n13, n23) = (a12 * inv, a13 * inv, a23 * inv);
+        let pi = n12 * t34 - n13 * t24 + n23 * t14;
+        let (sin, cos) = theta.sin_cos();
+        // sin θ/θ, and 1 − θ²/6 where θ underflows its own square (1/θ may overflow there).
+        let sc = if theta < 1e-8 {
+            1.0 - theta * theta * (1.0 / 6.0)
+        } else {
+            sin * inv
+        };
+        // The translation: sin θ/θ T + π (sin θ/θ − cos θ) u, u = (−â₂₃, â₁₃, −â₁₂).
+        let k = pi * sinc_minus_cos(theta, sin, cos);
+        [
+            cos,
+            sc * a12,
+            sc * a13,
+            sc * a23,
+            sc * t14 - k * n23,
+            sc * t24 + k * n13,
+            sc * t34 - k * n12,
+            pi * sin,
+        ]
     };
-    // The translation: sin θ/θ T + π (sin θ/θ − cos θ) u, u = (−â₂₃, â₁₃, −â₁₂).
-    let k = pi * sinc_minus_cos(theta, sin, cos);
-    o[0] = cos;
-    o[0b0011] = sc * a12;
-    o[0b0101] = sc * a13;
-    o[0b0110] = sc * a23;
-    o[0b1001] = sc * t14 - k * n23;
-    o[0b1010] = sc * t24 + k * n13;
-    o[0b1100] = sc * t34 - k * n12;
-    o[PSEUDO] = pi * sin;
-    finite(o, MOTOR)
+    all_finite(&motor).then_some(motor)
 }
 
 /// max |V Ṽ − 1| for an even V of Cl(3, 0, 1): V Ṽ = c² + |b|² + 2(cq − b∧m) e₁₂₃₄ (the
@@ -188,11 +194,12 @@ fn study_deviation(x: &[f64; 16]) -> f64 {
 #[inline]
 pub(super) fn log(v: &Multivector, tolerance: f64) -> Option<Multivector> {
     let x: &[f64; 16] = v.as_slice().try_into().ok()?;
-    // Built on the stack and moved into the storage whole (no element-wise fill).
-    let mut o = [0.0; 16];
-    if !log_coefficients(x, tolerance, &mut o) {
-        return None;
-    }
+    let [a12, a13, a23, t14, t24, t34] = log_planes(x, tolerance)?;
+    // One array expression, stored once into the result (a zeroed array written blade by
+    // blade and then moved would be read back before its stores have landed).
+    let o = [
+        0.0, 0.0, 0.0, a12, 0.0, a13, a23, 0.0, 0.0, t14, t24, 0.0, t34, 0.0, 0.0, 0.0,
+    ];
     Some(Multivector::from_storage(v.signature(), o.into()))
 }
 
@@ -205,16 +212,22 @@ pub(super) fn log_to(v: &Multivector, tolerance: f64, out: &mut Multivector) -> 
     ) else {
         return false;
     };
+    let Some(planes) = log_planes(x, tolerance) else {
+        return false;
+    };
     *o = [0.0; 16];
-    log_coefficients(x, tolerance, o)
+    for (k, c) in PLANES.iter().zip(planes) {
+        o[*k] = c;
+    }
+    true
 }
 
-/// The logarithm's coefficients into `o` (all zero on entry); false where the general route
-/// decides.
+/// The logarithm's plane coefficients (e₁₂, e₁₃, e₂₃, e₁₄, e₂₄, e₃₄); None where the
+/// general route decides.
 #[inline(always)]
-fn log_coefficients(x: &[f64; 16], tolerance: f64, o: &mut [f64; 16]) -> bool {
+fn log_planes(x: &[f64; 16], tolerance: f64) -> Option<[f64; 6]> {
     if !zero(x, ODD) {
-        return false;
+        return None;
     }
     // The general check max |V Ṽ − 1| ≤ tolerance · max(1, max |Vᵢ|²); the scale is needed
     // only when the deviation exceeds the tolerance itself. NaN fails every comparison, and
@@ -224,7 +237,7 @@ fn log_coefficients(x: &[f64; 16], tolerance: f64, o: &mut [f64; 16]) -> bool {
         let top = MOTOR.iter().fold(0.0f64, |a, &k| a.max(x[k].abs()));
         let scale = top * top;
         if !(scale.is_finite() && deviation <= tolerance * scale) {
-            return false;
+            return None;
         }
     }
     let (b12, b13, b23, m14, m24, m34) = (x[3], x[5], x[6], x[9], x[10], x[12]);
@@ -232,7 +245,7 @@ fn log_coefficients(x: &[f64; 16], tolerance: f64, o: &mut [f64; 16]) -> bool {
     let s = norm3(b12, b13, b23);
     // Subnormal |b| (no reciprocal) and |b| = 0 go to the general route.
     if s < f64::MIN_POSITIVE {
-        return false;
+        return None;
     }
     let theta = s.atan2(c);
     let inv_s = 1.0 / s;
@@ -240,27 +253,31 @@ fn log_coefficients(x: &[f64; 16], tolerance: f64, o: &mut [f64; 16]) -> bool {
     // sin θ = |b| and cos θ = c: V Ṽ = 1 within the tolerance (an accepted V off the group by
     // δ moves the result by O(δ), as it would any closed form).
     let (sin, cos) = (s, c);
-    // θ / sin θ, with the series where θ is tiny.
+    // θ / sin θ, with the series where θ is tiny (θ²/6 is below half an ulp of 1 there, so a
+    // product by the rounded 1/6 gives the same result as the quotient, without a division
+    // on the path from atan2 to the result).
     let inv_sc = if theta < 1e-8 {
-        1.0 + theta * theta / 6.0
+        1.0 + theta * theta * (1.0 / 6.0)
     } else {
         theta * inv_s
     };
     if !(inv_sc.is_finite() && inv_sc < 1e300) {
-        return false;
+        return None;
     }
     // u = (−â₂₃, â₁₃, −â₁₂) on (e₁₄, e₂₄, e₃₄); m = m⊥ + ⟨m, u⟩ u.
     let m_axis = -m14 * n23 + m24 * n13 - m34 * n12;
     let pi = q * sin - m_axis * cos;
     let (p14, p24, p34) = (m14 + m_axis * n23, m24 - m_axis * n13, m34 + m_axis * n12);
-    o[0b0011] = theta * n12;
-    o[0b0101] = theta * n13;
-    o[0b0110] = theta * n23;
     // T = T⊥ − π u.
-    o[0b1001] = inv_sc * p14 + pi * n23;
-    o[0b1010] = inv_sc * p24 - pi * n13;
-    o[0b1100] = inv_sc * p34 + pi * n12;
-    finite(o, PLANES)
+    let planes = [
+        theta * n12,
+        theta * n13,
+        theta * n23,
+        inv_sc * p14 + pi * n23,
+        inv_sc * p24 - pi * n13,
+        inv_sc * p34 + pi * n12,
+    ];
+    all_finite(&planes).then_some(planes)
 }
 
 #[cfg(test)]
