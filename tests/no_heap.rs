@@ -172,6 +172,56 @@ fn integrator_steps_do_not_allocate() {
     }
 }
 
+/// Above N = 8 bivectors spill to the heap; a step then allocates a fixed handful (its
+/// stage and scratch blocks, the attitude's exponential), never per stage, per iteration
+/// or per term.
+#[test]
+fn integrator_steps_allocate_a_constant_handful_above_n8() {
+    use rotorflow::dynamics::torques::Free;
+    use rotorflow::dynamics::{
+        Dop853, Dopri5, Integrator, Midpoint, MoserVeselov, RigidBody, Rkmk4, Splitting,
+    };
+    let mut checked = 0;
+    for n in [9usize, 12, 16] {
+        let moments: Vec<f64> = (0..n).map(|k| 1.0 + k as f64).collect();
+        let l: Vec<f64> = (0..n * (n - 1) / 2).map(|k| (k as f64).cos()).collect();
+        let inertia = InertiaMap::from_principal_second_moments(&moments).unwrap();
+        let start = RigidBody::from_body_momentum(
+            inertia,
+            Rotor::identity(n),
+            &Bivector::from_components(n, &l).unwrap(),
+        )
+        .unwrap();
+        let mut all: Vec<(&str, Box<dyn Integrator>, usize)> = vec![
+            ("strang", Box::new(Splitting::strang()), 24),
+            ("yoshida", Box::new(Splitting::yoshida4()), 24),
+            ("rk4", Box::new(Rkmk4), 24),
+            ("midpoint", Box::new(Midpoint::default()), 24),
+            ("dopri5", Box::new(Dopri5::new(1e-8, 1e-8)), 24),
+            ("dop853", Box::new(Dop853::new(1e-10, 1e-10).unwrap()), 40),
+            ("moser-veselov", Box::new(MoserVeselov::new()), 24),
+        ];
+        for (name, integ, handful) in all.iter_mut() {
+            let mut body = start.clone();
+            integ.step(&mut body, 0.0, 1e-3, &Free).unwrap();
+            let steps = 20;
+            let count = allocations_in(|| {
+                for k in 0..steps {
+                    integ.step(&mut body, k as f64 * 1e-3, 1e-3, &Free).unwrap();
+                }
+            });
+            let per_step = count as f64 / steps as f64;
+            eprintln!("N = {n}, {name}: {per_step} allocations per step");
+            assert!(
+                per_step <= *handful as f64,
+                "{name}, N = {n}: {per_step} allocations per step"
+            );
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 21);
+}
+
 #[test]
 fn fixed_size_body_steps_and_rotor_kernels_do_not_allocate() {
     use rotorflow::algebra::{Bivector3, Bivector4};

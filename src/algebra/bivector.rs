@@ -561,6 +561,28 @@ pub(crate) fn commutator_packed(n: usize, a: &[f64], b: &[f64], out: &mut [f64])
         6 => commutator_fixed::<6>(a, b, out),
         7 => commutator_fixed::<7>(a, b, out),
         8 => commutator_fixed::<8>(a, b, out),
+        // Up to N = 16 the product on the stack, in 16 × 16 arrays padded with zeros so that
+        // every row operation has a fixed length the compiler unrolls and vectorises (gemm
+        // would allocate its packing buffers on every call).
+        _ if n > COMMUTATOR_GEMM_MIN_DIM && n <= 16 => {
+            let (mut da, mut db) = ([[0.0f64; 16]; 16], [[0.0f64; 16]; 16]);
+            for ((i, j), (&x, &y)) in pairs(n).zip(a.iter().zip(b)) {
+                (da[i][j], da[j][i]) = (x, -x);
+                (db[i][j], db[j][i]) = (y, -y);
+            }
+            // C = AB by rows, then [A × B] = C − Cᵀ as in `commutator_gemm`.
+            let mut dc = [[0.0f64; 16]; 16];
+            for (row, ai) in dc.iter_mut().zip(&da).take(n) {
+                for (x, bt) in ai.iter().zip(&db).take(n) {
+                    for (c, y) in row.iter_mut().zip(bt) {
+                        *c += x * y;
+                    }
+                }
+            }
+            for ((i, j), o) in pairs(n).zip(out.iter_mut()) {
+                *o = dc[i][j] - dc[j][i];
+            }
+        }
         _ if n > COMMUTATOR_GEMM_MIN_DIM => {
             let mut scratch = vec![0.0; 3 * n * n];
             commutator_gemm(n, a, b, out, &mut scratch);

@@ -1,8 +1,8 @@
 //! Adaptive Dormand–Prince 8(5,3) on the group, with dense output of order 7.
 
 use super::dop853_tableau::{A, ALL_STAGES, B, BHH, C, D, E5, STAGES};
-use super::{DynamicsError, Integrator, dexp_inverse, momentum_rate_into};
-use crate::algebra::{Bivector, commutator_packed};
+use super::{DEXP_INVERSE_8, DynamicsError, Integrator, dexp_inverse_packed, momentum_rate_into};
+use crate::algebra::Bivector;
 use crate::dynamics::Attitude;
 use crate::dynamics::{RigidBody, Torque};
 use smallvec::SmallVec;
@@ -17,36 +17,27 @@ fn axpy(y: &mut Bivector, alpha: f64, x: &Bivector) {
     }
 }
 
-/// Writes dexp⁻¹₋Ω(s·w) truncated for order 8, as [`dexp_inverse`] computes it, into `out`,
+/// Writes dexp⁻¹₋Ω(s·w) truncated for order 8 ([`dexp_inverse_packed`]) into `out`,
 /// with the commutator powers on the stack for N ≤ 8 (the stages' hot spot: six
-/// commutators each).
-fn dexp_inverse_8(omega_alg: &Bivector, w: &Bivector, s: f64, out: &mut Bivector) {
+/// commutators each) and in `scratch` above (sized once, then reused).
+fn dexp_inverse_8(
+    omega_alg: &Bivector,
+    w: &Bivector,
+    s: f64,
+    out: &mut Bivector,
+    scratch: &mut Vec<f64>,
+) {
     let n = w.dim();
     let len = w.as_slice().len();
-    if len > 28 {
-        *out = dexp_inverse(omega_alg, &(w * s), 8);
-        return;
-    }
-    let mut power = [0.0f64; 28];
-    let mut next = [0.0f64; 28];
-    for ((o, p), x) in out
-        .as_mut_slice()
-        .iter_mut()
-        .zip(&mut power[..len])
-        .zip(w.as_slice())
-    {
-        *o = s * x;
-        *p = s * x;
-    }
-    // The coefficients of (Ω×)ᵏ, k = 1 … 6 (see dexp_inverse).
-    for coefficient in [1.0, 1.0 / 3.0, 0.0, -1.0 / 45.0, 0.0, 2.0 / 945.0] {
-        commutator_packed(n, omega_alg.as_slice(), &power[..len], &mut next[..len]);
-        std::mem::swap(&mut power, &mut next);
-        if coefficient != 0.0 {
-            for (o, p) in out.as_mut_slice().iter_mut().zip(&power[..len]) {
-                *o += coefficient * p;
-            }
-        }
+    let (alg, w, out) = (omega_alg.as_slice(), w.as_slice(), out.as_mut_slice());
+    if len <= 28 {
+        let (mut power, mut next) = ([0.0f64; 28], [0.0f64; 28]);
+        let pair = (&mut power[..len], &mut next[..len]);
+        dexp_inverse_packed(n, alg, w, s, &DEXP_INVERSE_8, out, pair);
+    } else {
+        scratch.resize(2 * len, 0.0);
+        let (power, next) = scratch.split_at_mut(len);
+        dexp_inverse_packed(n, alg, w, s, &DEXP_INVERSE_8, out, (power, next));
     }
 }
 
@@ -89,6 +80,9 @@ pub struct Dop853 {
     /// f at the start of the next step (time, dL/dt, ω), valid within one call.
     first: Option<(f64, Bivector, Bivector)>,
     last: LastStep,
+    /// The commutator powers of dexp⁻¹ above N = 8 (kept, so that steps do not allocate
+    /// them).
+    scratch: Vec<f64>,
 }
 
 /// The last accepted step: what its dense output needs.
@@ -143,6 +137,7 @@ impl Dop853 {
                 kl: SmallVec::new(),
                 ka: SmallVec::new(),
             },
+            scratch: Vec::new(),
         })
     }
 
@@ -345,7 +340,7 @@ impl Dop853 {
             &mut w1,
         );
         let mut da1 = Bivector::zero(l0.dim());
-        dexp_inverse_8(&a1, &w1, -0.5, &mut da1);
+        dexp_inverse_8(&a1, &w1, -0.5, &mut da1, &mut self.scratch);
         let d2 = rms(&|i| dl1.as_slice()[i] - dl0.as_slice()[i], &|i| {
             da1.as_slice()[i] - a0.as_slice()[i]
         }) / h0;
@@ -456,7 +451,7 @@ impl Dop853 {
                 dl_s,
                 &mut omega,
             );
-            dexp_inverse_8(&a_stage, &omega, -0.5, ka_s);
+            dexp_inverse_8(&a_stage, &omega, -0.5, ka_s, &mut self.scratch);
         }
         let mut l1 = l0.clone();
         let mut a1 = Bivector::zero(n);
@@ -599,7 +594,7 @@ impl Dop853 {
                 dl_s,
                 &mut omega,
             );
-            dexp_inverse_8(&a_stage, &omega, -0.5, ka_s);
+            dexp_inverse_8(&a_stage, &omega, -0.5, ka_s, &mut self.scratch);
             if s == STAGES {
                 omega_end.clone_from(&omega);
             }
@@ -724,6 +719,7 @@ impl Integrator for Dop853 {
 
 #[cfg(test)]
 mod tests {
+    use super::super::dexp_inverse;
     use super::*;
 
     /// The stack version is the series of `dexp_inverse`, term for term.
@@ -736,7 +732,7 @@ mod tests {
             let omega = Bivector::from_components(n, &omega).unwrap();
             let w = Bivector::from_components(n, &w).unwrap();
             let mut fast = Bivector::zero(n);
-            dexp_inverse_8(&omega, &w, -0.5, &mut fast);
+            dexp_inverse_8(&omega, &w, -0.5, &mut fast, &mut Vec::new());
             let series = dexp_inverse(&omega, &(&w * -0.5), 8);
             let gap = (&fast - &series).max_abs();
             assert!(gap < 1e-15, "N = {n}: {gap:e}");

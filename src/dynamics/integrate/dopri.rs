@@ -1,6 +1,8 @@
 //! Adaptive Dormand–Prince 5(4) on the group, with dense output.
 
-use super::{DynamicsError, Integrator, dexp_inverse, momentum_rate};
+use super::{
+    DEXP_INVERSE_5, DynamicsError, Integrator, axpy, dexp_inverse_packed, momentum_rate_into,
+};
 use crate::algebra::Bivector;
 use crate::dynamics::Attitude;
 use crate::dynamics::{RigidBody, Torque};
@@ -214,57 +216,68 @@ impl Dopri5 {
         let r0 = body.principal_frame_attitude();
         let l0 = body.momentum();
         let n = body.dim();
-        // The seven stages inline: no heap for N ≤ 8, where bivectors are inline too.
-        let mut kl: Stages = SmallVec::new();
-        let mut ka: Stages = SmallVec::new();
+        let len = l0.as_slice().len();
+        // The seven stages of L and of A, packed; inline (no heap) for N ≤ 8, one block each
+        // above, and every stage sum is written in place.
+        let mut kl: Flat = SmallVec::from_elem(0.0, 7 * len);
+        let mut ka: Flat = SmallVec::from_elem(0.0, 7 * len);
+        let mut scratch: SmallVec<[f64; 2 * 28]> = SmallVec::from_elem(0.0, 2 * len);
+        let (power, next) = scratch.split_at_mut(len);
         let mut a_stage = Bivector::zero(n);
         let mut l_stage = l0.clone();
+        let (mut dl, mut omega) = (Bivector::zero(n), Bivector::zero(n));
         for s in 0..7 {
             if s > 0 {
-                a_stage = Bivector::zero(n);
-                l_stage = l0.clone();
-                for j in 0..s {
-                    if A[s][j] != 0.0 {
-                        a_stage += &(&ka[j] * (h * A[s][j]));
-                        l_stage += &(&kl[j] * (h * A[s][j]));
+                a_stage.as_mut_slice().fill(0.0);
+                l_stage.as_mut_slice().copy_from_slice(l0.as_slice());
+                for (j, &c) in A[s][..s].iter().enumerate() {
+                    if c != 0.0 {
+                        let stage = j * len..(j + 1) * len;
+                        axpy(a_stage.as_mut_slice(), h * c, &ka[stage.clone()]);
+                        axpy(l_stage.as_mut_slice(), h * c, &kl[stage]);
                     }
                 }
             }
             // Stage attitudes only matter to a torque; free motion skips their exponentials.
+            let turned;
             let r_stage = if torque.is_zero() {
-                r0.clone()
+                r0
             } else {
-                r0.times_exp(&a_stage)
+                turned = r0.times_exp(&a_stage);
+                &turned
             };
-            let (dl, omega) = momentum_rate(body, t + C[s] * h, &r_stage, &l_stage, torque);
-            kl.push(dl);
-            ka.push(dexp_inverse(&a_stage, &(omega * -0.5), 5));
+            let time = t + C[s] * h;
+            momentum_rate_into(body, time, r_stage, &l_stage, torque, &mut dl, &mut omega);
+            let stage = s * len..(s + 1) * len;
+            kl[stage.clone()].copy_from_slice(dl.as_slice());
+            dexp_inverse_packed(
+                n,
+                a_stage.as_slice(),
+                omega.as_slice(),
+                -0.5,
+                &DEXP_INVERSE_5,
+                &mut ka[stage],
+                (&mut *power, &mut *next),
+            );
         }
         // Stage 7 was evaluated at the 5th-order solution (FSAL).
         let (a1, l1) = (a_stage, l_stage);
-        let mut err_l = Bivector::zero(n);
-        let mut err_a = Bivector::zero(n);
-        for s in 0..7 {
-            if E[s] != 0.0 {
-                err_l += &(&kl[s] * (h * E[s]));
-                err_a += &(&ka[s] * (h * E[s]));
-            }
-        }
+        // The embedded error of each component, Σₛ h Eₛ kₛ, over L and then A.
+        let error = |k: &[f64], i: usize| {
+            (0..7)
+                .filter(|&s| E[s] != 0.0)
+                .fold(0.0, |e, s| e + k[s * len + i] * (h * E[s]))
+        };
         let mut sum = 0.0;
         let mut count = 0.0f64;
-        for ((e, y0), y1) in err_l
-            .as_slice()
-            .iter()
-            .zip(l0.as_slice())
-            .zip(l1.as_slice())
-        {
+        for (i, (y0, y1)) in l0.as_slice().iter().zip(l1.as_slice()).enumerate() {
             let sc = self.atol + self.rtol * y0.abs().max(y1.abs());
-            sum += (e / sc).powi(2);
+            sum += (error(&kl, i) / sc).powi(2);
             count += 1.0;
         }
-        for (e, y1) in err_a.as_slice().iter().zip(a1.as_slice()) {
+        for (i, y1) in a1.as_slice().iter().enumerate() {
             let sc = self.atol + self.rtol * y1.abs().max(1.0);
-            sum += (e / sc).powi(2);
+            sum += (error(&ka, i) / sc).powi(2);
             count += 1.0;
         }
         let err = (sum / count.max(1.0)).sqrt();
@@ -299,7 +312,6 @@ impl Dopri5 {
         Ok(Some(StepResult {
             h,
             l0: l0.clone(),
-            l1: l1.clone(),
             a1,
             kl,
             ka,
@@ -309,18 +321,18 @@ impl Dopri5 {
     }
 }
 
-/// The stage values of one step.
-type Stages = SmallVec<[Bivector; 7]>;
+/// The seven stage values of one step, packed (7 × 28 inline: N ≤ 8).
+type Flat = SmallVec<[f64; 7 * 28]>;
 
 /// An accepted step with what its dense output needs.
 struct StepResult {
     h: f64,
     l0: Bivector,
-    l1: Bivector,
     a1: Bivector,
-    kl: Stages,
-    ka: Stages,
+    kl: Flat,
+    ka: Flat,
     attitude: Attitude,
+    /// L at the end of the step.
     momentum: Bivector,
 }
 
@@ -328,27 +340,37 @@ impl StepResult {
     /// The state at t₀ + θh (θ ∈ [0, 1]) from Hairer's 4th-order continuous extension,
     /// applied to L and to the algebra increment A (A(0) = 0).
     fn dense(&self, r0: &Attitude, theta: f64) -> (Attitude, Bivector) {
-        let interp = |y0: &Bivector, y1: &Bivector, k: &[Bivector]| -> Bivector {
+        let len = self.l0.as_slice().len();
+        // One component of y(θ) = r1 + θ(r2 + (1−θ)(r3 + θ(r4 + (1−θ) r5))).
+        let interp = |y0: f64, y1: f64, k: &[f64], i: usize| -> f64 {
             let h = self.h;
-            let r1 = y0.clone();
+            let r1 = y0;
             let r2 = y1 - y0;
-            let r3 = &(&k[0] * h) - &r2;
-            let r4 = &(&r2 - &(&k[6] * h)) - &r3;
-            let mut r5 = Bivector::zero(y0.dim());
-            for (ks, d) in k.iter().zip(D) {
-                if d != 0.0 {
-                    r5 += &(ks * (h * d));
-                }
-            }
-            // y(θ) = r1 + θ(r2 + (1−θ)(r3 + θ(r4 + (1−θ) r5)))
-            let inner = &r4 + &(r5 * (1.0 - theta));
-            let inner = &r3 + &(inner * theta);
-            let inner = &r2 + &(inner * (1.0 - theta));
-            &r1 + &(inner * theta)
+            let r3 = k[i] * h - r2;
+            let r4 = (r2 - k[6 * len + i] * h) - r3;
+            let r5 = (0..7)
+                .filter(|&s| D[s] != 0.0)
+                .fold(0.0, |acc, s| acc + k[s * len + i] * (h * D[s]));
+            let inner = r4 + r5 * (1.0 - theta);
+            let inner = r3 + inner * theta;
+            let inner = r2 + inner * (1.0 - theta);
+            r1 + inner * theta
         };
-        let l = interp(&self.l0, &self.l1, &self.kl);
-        let zero = Bivector::zero(self.l0.dim());
-        let a = interp(&zero, &self.a1, &self.ka);
+        let n = self.l0.dim();
+        let mut l = Bivector::zero(n);
+        let mut a = Bivector::zero(n);
+        let pairs = self.l0.as_slice().iter().zip(self.momentum.as_slice());
+        for (i, (out, (y0, y1))) in l.as_mut_slice().iter_mut().zip(pairs).enumerate() {
+            *out = interp(*y0, *y1, &self.kl, i);
+        }
+        for (i, (out, y1)) in a
+            .as_mut_slice()
+            .iter_mut()
+            .zip(self.a1.as_slice())
+            .enumerate()
+        {
+            *out = interp(0.0, *y1, &self.ka, i);
+        }
         (r0.times_exp(&a), l)
     }
 }

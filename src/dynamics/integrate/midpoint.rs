@@ -1,6 +1,6 @@
 //! The implicit midpoint rule: energy-conserving, second order.
 
-use super::{DynamicsError, Integrator, momentum_rate};
+use super::{DynamicsError, Integrator, axpy, momentum_rate_into};
 use crate::algebra::Bivector;
 use crate::dynamics::{RigidBody, Torque};
 
@@ -86,31 +86,53 @@ impl Integrator for Midpoint {
         h: f64,
         torque: &dyn Torque,
     ) -> Result<(), DynamicsError> {
+        let n = body.dim();
         let l0 = body.momentum().clone();
         let r0 = body.principal_frame_attitude().clone();
         let scale = l0.max_abs().max(f64::MIN_POSITIVE);
+        // The iteration works in place on these (no allocation per iteration for free
+        // motion at any N).
+        let (mut f, mut omega, mut mid) = (Bivector::zero(n), Bivector::zero(n), l0.clone());
         // The torque sees the attitude at the half step, R₀ exp(−¼ h ω_mid).
-        let rate = |l_mid: &Bivector| -> (Bivector, Bivector) {
-            let omega = body.omega_of(l_mid);
-            let r_mid = if torque.is_zero() {
-                r0.clone()
+        let rate = |l_mid: &Bivector, f: &mut Bivector, omega: &mut Bivector| {
+            if torque.is_zero() {
+                momentum_rate_into(body, t + 0.5 * h, &r0, l_mid, torque, f, omega);
             } else {
-                r0.times_exp(&(&omega * (-0.25 * h)))
-            };
-            momentum_rate(body, t + 0.5 * h, &r_mid, l_mid, torque)
+                let r_mid = r0.times_exp(&(&body.omega_of(l_mid) * (-0.25 * h)));
+                momentum_rate_into(body, t + 0.5 * h, &r_mid, l_mid, torque, f, omega);
+            }
         };
         // Explicit Euler start, then fixed-point iteration on L₁.
-        let (f0, _) = rate(&l0);
-        let mut l1 = &l0 + &(f0 * h);
+        rate(&l0, &mut f, &mut omega);
+        let mut l1 = l0.clone();
+        axpy(l1.as_mut_slice(), h, f.as_slice());
         let mut iterations = 0;
         let mut residual = f64::INFINITY;
         while iterations < self.max_iterations {
             iterations += 1;
-            let mid = (&l0 + &l1) * 0.5;
-            let (f, _) = rate(&mid);
-            let next = &l0 + &(f * h);
-            residual = (&next - &l1).max_abs() / scale;
-            l1 = next;
+            for ((m, a), b) in mid
+                .as_mut_slice()
+                .iter_mut()
+                .zip(l0.as_slice())
+                .zip(l1.as_slice())
+            {
+                *m = (a + b) * 0.5;
+            }
+            rate(&mid, &mut f, &mut omega);
+            // L₁ ← L₀ + h f, and the largest change (a NaN is skipped here, as by max_abs:
+            // the state is checked below).
+            let mut change = 0.0f64;
+            for ((x, a), d) in l1
+                .as_mut_slice()
+                .iter_mut()
+                .zip(l0.as_slice())
+                .zip(f.as_slice())
+            {
+                let next = a + d * h;
+                change = change.max((next - *x).abs());
+                *x = next;
+            }
+            residual = change / scale;
             if residual <= self.tolerance {
                 break;
             }
