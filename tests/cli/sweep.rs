@@ -116,3 +116,14 @@ fn sweep_grid_of_two_parameters_writes_csv_and_plot() {
     let plot = std::fs::read_to_string(&svg).unwrap();
     assert!(plot.contains("ω₁₃") && plot.contains("against the parameter b"));
 }
+
+#[test]
+fn sweep_reports_the_drift_of_the_manakov_integrals() {
+    let csv = sweep_csv(&[]);
+    let manakov = column(&csv, "manakov_drift");
+    assert_eq!(manakov.len(), 5);
+    for m in manakov {
+        // A physical body has them; the default integrator keeps them to its accuracy.
+        assert!(m > 0.0 && m < 1e-6, "manakov_drift {m:e}");
+    }
+}

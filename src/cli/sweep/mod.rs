@@ -69,10 +69,12 @@ pub struct SweepArgs {
     /// column per --param, named by it (its value); then for each plane ab of the 3D
     /// projection (the three planes of --axes, lexicographic, e.g. 12, 13, 23): freq_ab (the
     /// angular frequency of ω_ab about its mean, from its mean crossings; 0 if it does not
-    /// oscillate), amp_ab (half its peak-to-peak range), mean_ab (its mean); then flips
-    /// (sign changes of the largest of the three components), first_flip (the time of the
-    /// first, empty if none), energy_drift and casimir_drift (the largest relative drifts of
-    /// the energy and of the Casimirs over the run). Numbers are in shortest round-trip form.
+    /// oscillate), amp_ab (half its peak-to-peak range), mean_ab (its mean); then
+    /// manakov_drift (the largest relative drift of the Manakov integrals over the run, 0
+    /// for a body without them: a non-physical inertia map or a gyrostat), flips (sign
+    /// changes of the largest of the three components), first_flip (the time of the first,
+    /// empty if none), energy_drift and casimir_drift (the largest relative drifts of the
+    /// energy and of the Casimirs over the run). Numbers are in shortest round-trip form.
     #[arg(long, value_name = "FILE")]
     pub csv: Option<PathBuf>,
     /// Continue an interrupted sweep: the runs recorded in FILE.partial (of `--csv FILE`) are
@@ -250,6 +252,7 @@ pub fn run(args: &SweepArgs, quiet: bool) -> CliResult<()> {
                 run: *run,
                 values: values.clone(),
                 observables: observables(&report, axes)?,
+                manakov_drift: report.drift.manakov,
                 energy_drift: report.drift.energy,
                 casimir_drift: report.drift.casimirs,
             };

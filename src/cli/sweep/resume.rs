@@ -178,7 +178,7 @@ pub(super) fn read_progress(
 /// text (numbers are written as their shortest round-trip form, so this is exact).
 fn parse_row(line: &str, planes: [(usize, usize); 3]) -> Option<Row> {
     let fields: Vec<&str> = line.split(',').collect();
-    let n_values = fields.len().checked_sub(1 + 9 + 4)?;
+    let n_values = fields.len().checked_sub(1 + 9 + 5)?;
     let float = |s: &str| s.parse::<f64>().ok();
     let at = |k: usize| float(fields[1 + n_values + k]);
     let tail = &fields[1 + n_values + 9..];
@@ -193,15 +193,16 @@ fn parse_row(line: &str, planes: [(usize, usize); 3]) -> Option<Row> {
             frequency: [at(0)?, at(3)?, at(6)?],
             amplitude: [at(1)?, at(4)?, at(7)?],
             mean: [at(2)?, at(5)?, at(8)?],
-            flips: tail[0].parse().ok()?,
-            first_flip: if tail[1].is_empty() {
+            flips: tail[1].parse().ok()?,
+            first_flip: if tail[2].is_empty() {
                 None
             } else {
-                Some(float(tail[1])?)
+                Some(float(tail[2])?)
             },
         },
-        energy_drift: float(tail[2])?,
-        casimir_drift: float(tail[3])?,
+        manakov_drift: float(tail[0])?,
+        energy_drift: float(tail[3])?,
+        casimir_drift: float(tail[4])?,
     };
     (row_line(&row) == line).then_some(row)
 }

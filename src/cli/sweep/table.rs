@@ -15,6 +15,8 @@ pub(super) struct Row {
     pub values: Vec<f64>,
     /// The observables of the 3D projection.
     pub observables: ProjectedObservables,
+    /// The largest relative drift of the Manakov integrals (0 where there are none).
+    pub manakov_drift: f64,
     /// The largest relative drift of the energy.
     pub energy_drift: f64,
     /// The largest relative drift of the Casimirs.
@@ -38,10 +40,18 @@ pub(super) fn table_csv(
             h.push(format!("amp_{p}"));
             h.push(format!("mean_{p}"));
         }
+        // The drifts that end the table keep their places; the Manakov integrals' comes
+        // before the flips.
         h.extend(
-            ["flips", "first_flip", "energy_drift", "casimir_drift"]
-                .iter()
-                .map(|s| s.to_string()),
+            [
+                "manakov_drift",
+                "flips",
+                "first_flip",
+                "energy_drift",
+                "casimir_drift",
+            ]
+            .iter()
+            .map(|s| s.to_string()),
         );
         out.push_str(&h.join(","));
         out.push('\n');
@@ -63,6 +73,7 @@ pub(super) fn row_line(r: &Row) -> String {
         row.push(number(o.amplitude[k]));
         row.push(number(o.mean[k]));
     }
+    row.push(number(r.manakov_drift));
     row.push(o.flips.to_string());
     row.push(o.first_flip.map(number).unwrap_or_default());
     row.push(number(r.energy_drift));
