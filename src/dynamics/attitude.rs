@@ -622,8 +622,7 @@ fn conjugate(q: &[f64], n: usize, b: &Bivector, transposed: bool) -> Bivector {
     out
 }
 
-/// Q ← Q expm(2\[A\]) for a literal N, on the stack (a macro rather than a const generic:
-/// nalgebra's LU needs the size as a type-level number).
+/// Q ← Q expm(2\[A\]) for a literal N, on the stack.
 macro_rules! times_exp_fixed {
     ($n:literal, $q:expr, $a:expr) => {{
         let (q, a): (&mut [f64], &Bivector) = ($q, $a);
@@ -635,7 +634,7 @@ macro_rules! times_exp_fixed {
         let norm = crate::numeric::norm1(&s);
         if norm != 0.0 {
             let e = match crate::numeric::expm_skew_taylor(&s, norm)
-                .or_else(|| crate::numeric::expm_skew(&s, norm))
+                .or_else(|| crate::numeric::expm_skew_fixed(&s, norm))
             {
                 Some(e) => e,
                 None => SMatrix::from_column_slice((a * 2.0).exp_skew_matrix().as_slice()),

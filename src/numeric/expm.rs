@@ -1,7 +1,7 @@
 //! The matrix exponential of skew matrices, for any fixed or run-time size: the rotation
 //! matrix of a rotor exponential without the rotor (attitudes above N = 4, N > 16).
 
-use nalgebra::{DMatrix, DefaultAllocator, Dim, DimMin, OMatrix, allocator::Allocator};
+use nalgebra::{DMatrix, DefaultAllocator, Dim, DimMin, OMatrix, SMatrix, allocator::Allocator};
 
 /// Higham's Padé coefficients b₀…b_m (Higham, SIAM J. Matrix Anal. Appl. 26 (2005) 1179,
 /// eq. 2.3 / Table 2.2).
@@ -63,13 +63,89 @@ pub(crate) const PADE_MAX_NORM: f64 = THETA_13;
 /// on its own and stays orthogonal to ε at any angle. Also `None` if the denominator is
 /// numerically singular (not expected).
 ///
-/// Generic over the size so that fixed sizes (N ≤ 8) run on the stack.
+/// Generic over the size so that fixed sizes run on the stack; for N ≤ 8 known at compile
+/// time [`expm_skew_fixed`] solves faster.
 pub(crate) fn expm_skew<D: Dim + DimMin<D, Output = D>>(
     a: &OMatrix<f64, D, D>,
     norm1: f64,
 ) -> Option<OMatrix<f64, D, D>>
 where
     DefaultAllocator: Allocator<D, D> + Allocator<D>,
+{
+    let (u, v) = pade_skew(a, norm1)?;
+    (&v - &u).lu().solve(&(&v + &u))
+}
+
+/// [`expm_skew`] for a size N known at compile time: the same approximant, and the system
+/// q_m(A) X = p_m(A) solved by [`solve_fixed`].
+pub(crate) fn expm_skew_fixed<const N: usize>(
+    a: &SMatrix<f64, N, N>,
+    norm1: f64,
+) -> Option<SMatrix<f64, N, N>> {
+    let (u, v) = pade_skew(a, norm1)?;
+    let mut q = [[0.0f64; N]; N];
+    let mut x = [[0.0f64; N]; N];
+    for i in 0..N {
+        for j in 0..N {
+            q[i][j] = v[(i, j)] - u[(i, j)];
+            x[i][j] = v[(i, j)] + u[(i, j)];
+        }
+    }
+    solve_fixed(&mut q, &mut x).then(|| SMatrix::from_fn(|i, j| x[i][j]))
+}
+
+/// Solves Q X = P in place (`x` holds P on entry, X on return; both row-major) by Gaussian
+/// elimination with partial pivoting, what an LU solve does, with every row operation a
+/// loop of the fixed length N that the compiler unrolls and vectorises. False when a pivot
+/// is zero or not finite.
+fn solve_fixed<const N: usize>(q: &mut [[f64; N]; N], x: &mut [[f64; N]; N]) -> bool {
+    for k in 0..N {
+        let mut pivot = k;
+        for i in k + 1..N {
+            if q[i][k].abs() > q[pivot][k].abs() {
+                pivot = i;
+            }
+        }
+        let d = q[pivot][k];
+        if !(d != 0.0 && d.is_finite()) {
+            return false;
+        }
+        q.swap(k, pivot);
+        x.swap(k, pivot);
+        let (top_q, top_x) = (q[k], x[k]);
+        for i in k + 1..N {
+            let f = q[i][k] / d;
+            for j in 0..N {
+                q[i][j] -= f * top_q[j];
+                x[i][j] -= f * top_x[j];
+            }
+        }
+    }
+    for k in (0..N).rev() {
+        let mut row = x[k];
+        for l in k + 1..N {
+            let u = q[k][l];
+            for j in 0..N {
+                row[j] -= u * x[l][j];
+            }
+        }
+        let d = q[k][k];
+        for r in &mut row {
+            *r /= d;
+        }
+        x[k] = row;
+    }
+    true
+}
+
+/// A square matrix of size D.
+type Square<D> = OMatrix<f64, D, D>;
+
+/// The numerator and denominator parts (U, V) of [`expm_skew`]'s approximant,
+/// p_m(A) = V + U and q_m(A) = V − U; None above θ₁₃.
+fn pade_skew<D: Dim>(a: &OMatrix<f64, D, D>, norm1: f64) -> Option<(Square<D>, Square<D>)>
+where
+    DefaultAllocator: Allocator<D, D>,
 {
     if norm1 > THETA_13 {
         return None;
@@ -84,27 +160,47 @@ where
             7 => &PADE_7,
             _ => &PADE_9,
         };
-        // U = A Σ_odd b_k A^{k−1}, V = Σ_even b_k A^k.
+        // U = A Σ_odd b_k A^{k−1}, V = Σ_even b_k A^k, from the powers A², A⁴, … (the first
+        // is A² itself: no product with the identity).
         let mut u_inner = &id * b[1];
         let mut v = &id * b[0];
-        let mut power = id.clone();
+        let mut power = a2.clone();
         for k in (2..b.len()).step_by(2) {
-            power = &power * &a2;
-            v += &power * b[k];
-            u_inner += &power * b[k + 1];
+            if k > 2 {
+                power = &power * &a2;
+            }
+            let entries = v.as_mut_slice().iter_mut().zip(u_inner.as_mut_slice());
+            for ((x, y), p) in entries.zip(power.as_slice()) {
+                *x += b[k] * p;
+                *y += b[k + 1] * p;
+            }
         }
         (a * u_inner, v)
     } else {
         let a4 = &a2 * &a2;
         let a6 = &a4 * &a2;
         let b = &PADE_13;
-        let u_high = &a6 * (&a6 * b[13] + &a4 * b[11] + &a2 * b[9]);
-        let u = a * (u_high + &a6 * b[7] + &a4 * b[5] + &a2 * b[3] + &id * b[1]);
-        let v_high = &a6 * (&a6 * b[12] + &a4 * b[10] + &a2 * b[8]);
-        let v = v_high + &a6 * b[6] + &a4 * b[4] + &a2 * b[2] + &id * b[0];
-        (u, v)
+        // Each linear combination of the three powers in one pass over the entries, and the
+        // products with A⁶ accumulated in place (gemm).
+        let comb = |x: f64, y: f64, z: f64| {
+            let mut out = a2.clone();
+            let powers = a6.as_slice().iter().zip(a4.as_slice());
+            for (o, (p, q)) in out.as_mut_slice().iter_mut().zip(powers) {
+                *o = x * p + y * q + z * *o;
+            }
+            out
+        };
+        let mut u_inner = comb(b[7], b[5], b[3]);
+        u_inner.gemm(1.0, &a6, &comb(b[13], b[11], b[9]), 1.0);
+        let mut v = comb(b[6], b[4], b[2]);
+        v.gemm(1.0, &a6, &comb(b[12], b[10], b[8]), 1.0);
+        for d in 0..a.nrows() {
+            u_inner[(d, d)] += b[1];
+            v[(d, d)] += b[0];
+        }
+        (a * u_inner, v)
     };
-    (&v - &u).lu().solve(&(&v + &u))
+    Some((u, v))
 }
 
 /// Taylor degrees for [`expm_skew_taylor`]: (m, s, θ_m) with θ_m the largest ‖A‖₂ at which
@@ -147,6 +243,11 @@ where
     DefaultAllocator: Allocator<D, D>,
 {
     let n = a.nrows();
+    // ‖A²‖₁ ≥ maxⱼ |(A²)ⱼⱼ| = maxⱼ ‖aⱼ‖₂² ≥ (‖A‖₁/√N)², so no degree applies when
+    // ‖A‖₁/√N > θ₁₆: known without forming A².
+    if norm1 / (n as f64).sqrt() > TAYLOR[TAYLOR.len() - 1].2 {
+        return None;
+    }
     let mut out = a.clone();
     let done = if D::try_to_usize().is_some() {
         // Fixed sizes (N ≤ 8 in this crate): the scratch stays on the stack.
@@ -341,6 +442,62 @@ mod tests {
         }
         let big = skew(1e6);
         assert!(expm_skew(&big, norm1(&big)).is_none());
+    }
+
+    /// The fixed-size solve gives the LU solve's exponential, orthogonal, at every degree
+    /// and every fixed N (5 … 8), and the solve itself matches nalgebra's LU on a matrix
+    /// that needs pivoting.
+    #[test]
+    fn fixed_size_solve_matches_the_lu_solve() {
+        fn check<const N: usize>(checked: &mut usize) {
+            for scale in [1e-3, 0.1, 1.0, 2.0, 4.0, 5.3] {
+                let mut a = SMatrix::<f64, N, N>::zeros();
+                for i in 0..N {
+                    for j in i + 1..N {
+                        let x = ((i * 7 + j * 3) as f64).sin();
+                        a[(i, j)] = x;
+                        a[(j, i)] = -x;
+                    }
+                }
+                let a = a * (scale / norm1(&a));
+                let fixed = expm_skew_fixed(&a, norm1(&a)).expect("within θ₁₃");
+                let dense = DMatrix::from_column_slice(N, N, a.as_slice());
+                let lu = expm_skew(&dense, norm1(&dense)).expect("within θ₁₃");
+                let err = (DMatrix::from_column_slice(N, N, fixed.as_slice()) - lu).amax();
+                assert!(err < 1e-15, "N = {N}, ‖A‖₁ = {scale}: {err:e}");
+                let orth = (fixed.transpose() * fixed - SMatrix::<f64, N, N>::identity()).amax();
+                assert!(orth < 1e-14, "N = {N}: |QᵀQ − 1| = {orth:e}");
+                *checked += 1;
+            }
+            // A zero leading entry forces a row exchange.
+            let q = SMatrix::<f64, N, N>::from_fn(|i, j| {
+                if i == j && i == 0 {
+                    0.0
+                } else {
+                    ((i * N + j) as f64 * 0.61).cos() + if i == j { 3.0 } else { 0.0 }
+                }
+            });
+            let p = SMatrix::<f64, N, N>::from_fn(|i, j| ((i + 2 * j) as f64).sin());
+            let (mut qr, mut x) = ([[0.0; N]; N], [[0.0; N]; N]);
+            for i in 0..N {
+                for j in 0..N {
+                    (qr[i][j], x[i][j]) = (q[(i, j)], p[(i, j)]);
+                }
+            }
+            assert!(solve_fixed(&mut qr, &mut x));
+            let dense = |m: &SMatrix<f64, N, N>| DMatrix::from_column_slice(N, N, m.as_slice());
+            let want = dense(&q).lu().solve(&dense(&p)).unwrap();
+            let got = SMatrix::<f64, N, N>::from_fn(|i, j| x[i][j]);
+            let err = (dense(&got) - want).amax();
+            assert!(err < 1e-13, "N = {N}: solve off by {err:e}");
+            *checked += 1;
+        }
+        let mut checked = 0;
+        check::<5>(&mut checked);
+        check::<6>(&mut checked);
+        check::<7>(&mut checked);
+        check::<8>(&mut checked);
+        assert_eq!(checked, 28);
     }
 
     /// The Taylor form agrees with the spectral form at every degree, is orthogonal, and

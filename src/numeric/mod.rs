@@ -21,8 +21,8 @@ pub(crate) mod trig;
 
 pub(crate) use eigen::{RobustEigen, sorted_symmetric_eigen, symmetric_eigen};
 pub(crate) use expm::{
-    PADE_MAX_NORM, expm_skew, expm_skew_taylor, expm_skew_taylor_dense, expm_spectral, norm1,
-    norm1_slice,
+    PADE_MAX_NORM, expm_skew, expm_skew_fixed, expm_skew_taylor, expm_skew_taylor_dense,
+    expm_spectral, norm1, norm1_slice,
 };
 pub(crate) use householder::householder_complement;
 pub(crate) use trig::sin_cos_minus_one;

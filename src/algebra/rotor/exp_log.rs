@@ -9,7 +9,7 @@ use crate::algebra::decompose::{RawPlane, decompose_components, self_dual_join, 
 use crate::algebra::dense::{Mat8, Vec8};
 use crate::algebra::error::{assert_same_dim, check_finite, within};
 use crate::algebra::{AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Vector};
-use nalgebra::{DMatrix, SMatrix};
+use nalgebra::DMatrix;
 use smallvec::SmallVec;
 
 impl Bivector {
@@ -216,23 +216,18 @@ impl Bivector {
     /// ```
     pub fn exp_skew_matrix(&self) -> DMatrix<f64> {
         let n = self.dim();
-        // N = 5 … 8 on stack matrices (nalgebra's unrolled fixed-size products and LU);
-        // the same forms and the same choices.
-        macro_rules! fixed {
-            ($($d:literal),*) => {
-                match n {
-                    $($d => {
-                        if let Some(q) = self.exp_skew_matrix_fixed::<$d>(|a, norm1| {
-                            crate::numeric::expm_skew(a, norm1)
-                        }) {
-                            return q;
-                        }
-                    })*
-                    _ => {}
-                }
-            };
+        // N = 5 … 8 on stack matrices (nalgebra's unrolled fixed-size products, the solve
+        // on fixed-length rows); the same forms and the same choices.
+        let fixed = match n {
+            5 => self.exp_skew_matrix_fixed::<5>(),
+            6 => self.exp_skew_matrix_fixed::<6>(),
+            7 => self.exp_skew_matrix_fixed::<7>(),
+            8 => self.exp_skew_matrix_fixed::<8>(),
+            _ => None,
+        };
+        if let Some(q) = fixed {
+            return q;
         }
-        fixed!(5, 6, 7, 8);
         let a = self.to_skew_matrix();
         let norm1 = crate::numeric::norm1(&a);
         if norm1 == 0.0 {
@@ -250,19 +245,16 @@ impl Bivector {
         crate::numeric::expm_skew(&a, norm1).unwrap_or_else(|| crate::numeric::expm_spectral(&a))
     }
 
-    /// [`Bivector::exp_skew_matrix`] for N = D on the stack, with the Padé form `pade` (which
-    /// needs a size nalgebra can factor); `None` where the run-time route decides (zero,
-    /// beyond the Padé range, a singular denominator).
-    fn exp_skew_matrix_fixed<const D: usize>(
-        &self,
-        pade: impl Fn(&SMatrix<f64, D, D>, f64) -> Option<SMatrix<f64, D, D>>,
-    ) -> Option<DMatrix<f64>> {
+    /// [`Bivector::exp_skew_matrix`] for N = D on the stack; `None` where the run-time route
+    /// decides (zero, beyond the Padé range, a singular denominator).
+    fn exp_skew_matrix_fixed<const D: usize>(&self) -> Option<DMatrix<f64>> {
         let a = self.to_skew_smatrix::<D>();
         let norm1 = crate::numeric::norm1(&a);
         if norm1 == 0.0 || !norm1.is_finite() || norm1 > crate::numeric::PADE_MAX_NORM {
             return None;
         }
-        let q = crate::numeric::expm_skew_taylor(&a, norm1).or_else(|| pade(&a, norm1))?;
+        let q = crate::numeric::expm_skew_taylor(&a, norm1)
+            .or_else(|| crate::numeric::expm_skew_fixed(&a, norm1))?;
         Some(DMatrix::from_column_slice(D, D, q.as_slice()))
     }
 
