@@ -376,6 +376,9 @@ impl Attitude {
             return;
         }
         match &mut self.repr {
+            Repr::Rotor(r) if r.dim() == 4 => {
+                *r *= &a.exp_and_reverse_sandwich_4(l.as_mut_slice());
+            }
             Repr::Rotor(r) => {
                 *r *= &a.exp();
                 coadjoint_small(a.as_slice(), l.as_mut_slice());
@@ -588,39 +591,14 @@ impl From<&Rotor> for Attitude {
     }
 }
 
-/// L ← Eᵀ\[L\]E with E = expm(2\[A\]) for N ≤ 4 (packed components), by 3D rotations:
-/// in 3D L's dual vector (L₂₃, −L₁₃, L₁₂) turns by the rotation vector 2·(dual of A); in 4D
-/// the self-dual and anti-self-dual parts, (L₁₂ ± L₃₄, L₁₃ ∓ L₂₄, L₁₄ ± L₂₃), turn
-/// independently by ±2 times those of A (so(4) = so(3) ⊕ so(3)). Cheaper than forming E.
+/// L ← Eᵀ\[L\]E with E = expm(2\[A\]) for N ≤ 3 (packed components): in 3D L's dual vector
+/// (L₂₃, −L₁₃, L₁₂) turns by the rotation vector 2·(dual of A). Cheaper than forming E.
 fn coadjoint_small(a: &[f64], l: &mut [f64]) {
-    match l.len() {
-        3 => {
-            let v = rotate3([2.0 * a[2], -2.0 * a[1], 2.0 * a[0]], [l[2], -l[1], l[0]]);
-            (l[0], l[1], l[2]) = (v[2], -v[1], v[0]);
-        }
-        6 => {
-            let (ap, am) = self_dual_parts(a);
-            let (lp, lm) = self_dual_parts(l);
-            let p = rotate3(ap.map(|x| 2.0 * x), lp);
-            let m = rotate3(am.map(|x| -2.0 * x), lm);
-            l[0] = 0.5 * (p[0] + m[0]);
-            l[5] = 0.5 * (p[0] - m[0]);
-            l[1] = 0.5 * (p[1] + m[1]);
-            l[4] = 0.5 * (m[1] - p[1]);
-            l[2] = 0.5 * (p[2] + m[2]);
-            l[3] = 0.5 * (p[2] - m[2]);
-        }
-        // N ≤ 2: a single plane, which the rotation leaves as it is.
-        _ => {}
+    if let ([a12, a13, a23], [l12, l13, l23]) = (a, &mut *l) {
+        let v = rotate3([2.0 * a23, -2.0 * a13, 2.0 * a12], [*l23, -*l13, *l12]);
+        (*l12, *l13, *l23) = (v[2], -v[1], v[0]);
     }
-}
-
-/// The self-dual and anti-self-dual parts of a packed 4D bivector.
-fn self_dual_parts(b: &[f64]) -> ([f64; 3], [f64; 3]) {
-    (
-        [b[0] + b[5], b[1] - b[4], b[2] + b[3]],
-        [b[0] - b[5], b[1] + b[4], b[2] - b[3]],
-    )
+    // N ≤ 2: a single plane, which the rotation leaves as it is.
 }
 
 /// x turned by the angle |v| about the axis v (right-handed; Rodrigues' formula with

@@ -18,13 +18,6 @@ fn p4() -> RigidBody {
     RigidBody::from_body_velocity(parsed.inertia, Attitude::identity(4), &omega).unwrap()
 }
 
-/// ω of P4 at t = 100 with fixed steps h.
-fn p4_omega_at_100(integrator: &mut dyn Integrator, h: f64) -> Bivector {
-    let mut b = p4();
-    run(&mut b, integrator, &Free, h, (100.0 / h).round() as usize);
-    b.omega()
-}
-
 /// The reference ω of P4 at t = 100.
 fn p4_reference() -> Bivector {
     let mut b = p4();
@@ -35,75 +28,64 @@ fn p4_reference() -> Bivector {
     b.omega()
 }
 
-/// The step each method needs on P4 for |Δω| ≤ 1e-8 at t = 100, the error there and the wall
-/// time (the fastest of alternating rounds). Run with `--ignored --nocapture`.
+/// ω of P4 at t = 100 after `steps` equal steps.
+fn p4_omega_in_steps(integrator: &mut dyn Integrator, steps: usize) -> Bivector {
+    let mut b = p4();
+    run(&mut b, integrator, &Free, 100.0 / steps as f64, steps);
+    b.omega()
+}
+
+/// The fewest steps (to 1%) each method needs on P4 for |Δω| ≤ 1e-8 at t = 100, and the wall
+/// time there, the fastest of nine alternating rounds, as a multiple of RK4's. Run with
+/// `cargo test --release --all-features --test dynamics p4_cost_at_1e_8 -- --ignored
+/// --nocapture`.
 #[test]
 #[ignore = "a measurement, printed"]
 fn p4_cost_at_1e_8_survey() {
     use std::time::Instant;
     let reference = p4_reference();
     type Make = fn() -> Box<dyn Integrator>;
-    let methods: [(&str, Make, &[f64]); 5] = [
-        (
-            "rk4",
-            || Box::new(Rkmk4),
-            &[0.05, 0.04, 0.03125, 0.025, 0.02],
-        ),
-        (
-            "lie-poisson-rk4",
-            || Box::new(LiePoissonRk4),
-            &[0.04, 0.03125, 0.025, 0.02, 0.0125],
-        ),
-        (
-            "yoshida4",
-            || Box::new(Splitting::yoshida4()),
-            &[0.01, 0.005, 0.0025, 0.00125],
-        ),
-        (
-            "mv-yoshida4",
-            || Box::new(MoserVeselov::yoshida4()),
-            &[0.02, 0.01, 0.005, 0.0025],
-        ),
-        ("strang", || Box::new(Splitting::strang()), &[1e-3, 1e-4]),
+    // Each method with a step count that is known to be enough (the search halves below it).
+    let methods: [(&str, Make, usize); 5] = [
+        ("rk4", || Box::new(Rkmk4), 8_000),
+        ("lie-poisson-rk4", || Box::new(LiePoissonRk4), 8_000),
+        ("yoshida4", || Box::new(Splitting::yoshida4()), 40_000),
+        ("mv-yoshida4", || Box::new(MoserVeselov::yoshida4()), 40_000),
+        ("strang", || Box::new(Splitting::strang()), 2_000_000),
     ];
-    let mut best: Vec<(String, f64)> = Vec::new();
-    for (name, make, hs) in methods {
-        let mut chosen = None;
-        for &h in hs {
-            let e = (&p4_omega_at_100(&mut *make(), h) - &reference).max_abs();
-            eprintln!(
-                "{name} h {h:e}: |Δω| {e:.2e}, {} steps",
-                (100.0 / h).round()
-            );
-            if e <= 1e-8 && chosen.is_none() {
-                chosen = Some(h);
+    let error =
+        |make: Make, steps: usize| (&p4_omega_in_steps(&mut *make(), steps) - &reference).max_abs();
+    let mut found = Vec::new();
+    for (name, make, enough) in methods {
+        let (mut lo, mut hi) = (enough / 8, enough);
+        assert!(
+            error(make, hi) <= 1e-8,
+            "{name}: {enough} steps are not enough"
+        );
+        while hi - lo > hi / 100 {
+            let mid = (lo + hi) / 2;
+            if error(make, mid) <= 1e-8 {
+                hi = mid;
+            } else {
+                lo = mid;
             }
         }
-        if let Some(h) = chosen {
-            best.push((name.to_string(), h));
-        }
+        eprintln!("{name}: {hi} steps, |Δω| {:.2e}", error(make, hi));
+        found.push((name, make, hi));
     }
-    let mut times = vec![f64::INFINITY; best.len()];
+    let mut times = vec![f64::INFINITY; found.len()];
     for _round in 0..9 {
-        for (k, (name, h)) in best.iter().enumerate() {
-            let make: Make = match name.as_str() {
-                "rk4" => || Box::new(Rkmk4),
-                "lie-poisson-rk4" => || Box::new(LiePoissonRk4),
-                "yoshida4" => || Box::new(Splitting::yoshida4()),
-                "mv-yoshida4" => || Box::new(MoserVeselov::yoshida4()),
-                _ => || Box::new(Splitting::strang()),
-            };
+        for (k, &(_, make, steps)) in found.iter().enumerate() {
             let clock = Instant::now();
-            std::hint::black_box(p4_omega_at_100(&mut *make(), *h));
+            std::hint::black_box(p4_omega_in_steps(&mut *make(), steps));
             times[k] = times[k].min(clock.elapsed().as_secs_f64());
         }
     }
-    let rk4 = times[0];
-    for ((name, h), s) in best.iter().zip(&times) {
+    for (&(name, _, steps), s) in found.iter().zip(&times) {
         eprintln!(
-            "at 1e-8: {name} h {h:e}, {} steps, {s:.4} s, {:.2}× rk4",
-            (100.0 / h).round(),
-            s / rk4
+            "at 1e-8: {name}: {steps} steps, {:.2} ms, {:.2}× rk4",
+            s * 1e3,
+            s / times[0]
         );
     }
 }

@@ -304,6 +304,17 @@ impl<T: Real> Rotor4<T> {
         }
     }
 
+    /// R̃ B R for a bivector B: each half, a pure quaternion, turns as Q̄ α Q.
+    #[inline]
+    pub(crate) fn reverse_sandwich(self, b: Bivector4<T>) -> Bivector4<T> {
+        let (a, m) = b.halves();
+        let turn = |q: [T; 4], x: [T; 3]| {
+            let p = quat_mul(quat_mul(quat_conj(q), [T::zero(), x[0], x[1], x[2]]), q);
+            [p[1], p[2], p[3]]
+        };
+        Bivector4::from_halves(turn(self.plus, a), turn(self.minus, m))
+    }
+
     /// The geometric product self · other (two quaternion products).
     #[inline]
     pub fn compose(self, other: Self) -> Self {

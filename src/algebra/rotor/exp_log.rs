@@ -72,6 +72,18 @@ impl Bivector {
         r
     }
 
+    /// e^B for N = 4 with the sandwich R̃ C R of the 4D bivector `c` by it, from the same
+    /// quaternion pair (no second evaluation of the angles): the update of a Lie–Poisson
+    /// integrator, which turns the attitude and the momentum by one rotation.
+    pub(crate) fn exp_and_reverse_sandwich_4(&self, c: &mut [f64]) -> Rotor {
+        let e = crate::algebra::Bivector4::from_array(*super::layout(self.as_slice())).exp();
+        let turned = e.reverse_sandwich(crate::algebra::Bivector4::from_array(*super::layout(c)));
+        c.copy_from_slice(&turned.to_array());
+        let mut r = Rotor::identity(4);
+        r.coeffs.copy_from_slice(&e.to_even_layout());
+        r
+    }
+
     /// [`Bivector::exp`], or an error where it would panic or return NaN.
     ///
     /// ```
