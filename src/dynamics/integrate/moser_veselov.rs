@@ -360,7 +360,17 @@ fn solve(n: usize, j: &[f64], hm: &[f64], max_iterations: usize) -> Result<Solut
         if !residual.is_finite() {
             return Err(Failure::NoSolution { residual });
         }
-        if residual <= 4.0 * f64::EPSILON * size {
+        // A chord correction (N > 5) contracts the residual only linearly, so its first
+        // residual under the round-off bound may still be a few ulps: a bias of that size
+        // every step adds up over 10⁶ steps (1.5e-12 in the Manakov integrals at N = 6). It
+        // is accepted only once it reaches an ulp or stops contracting; Newton's (N ≤ 5)
+        // lands far below at once.
+        let floor = residual <= 4.0 * f64::EPSILON * size;
+        let settled = k <= 10
+            || residual <= f64::EPSILON * size
+            || residual > 0.25 * previous_residual
+            || iteration == max_iterations;
+        if floor && settled {
             return Ok(Solution {
                 c,
                 a,
@@ -588,7 +598,10 @@ mod tests {
                     "N = {n}, h = {h}: relative residual {rel:e} ({} iterations)",
                     s.iterations
                 );
-                assert!(s.iterations <= 5, "N = {n}, h = {h}: {}", s.iterations);
+                // Above N = 5 the chord iteration may take one more correction to settle
+                // at an ulp (see `solve`).
+                let bound = if n > 5 { 6 } else { 5 };
+                assert!(s.iterations <= bound, "N = {n}, h = {h}: {}", s.iterations);
             }
         }
     }
