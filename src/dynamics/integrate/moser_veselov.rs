@@ -39,9 +39,12 @@ type Packed = SmallVec<[f64; 28]>;
 /// method on the N(N−1)/2 components of A, starting from A = ½h Ω(Mₖ). The Cayley form keeps
 /// U orthogonal to round-off whatever the iterate, and U − 1 = 2(1 − A)⁻¹A is formed without
 /// cancellation, so the residual h M − (UJ − JUᵀ) is measured relative to hM rather than to
-/// J. It reaches a few ulps of hM in two iterations at h|ω| = 0.01 and 2–4 at
-/// h|ω| = 0.5 (measured for N = 3 … 8); above N = 5 the Newton matrix is reused between
-/// iterations while they contract fast (the chord method). No heap for N ≤ 8.
+/// J. It reaches a few ulps of hM in two iterations at h|ω| = 0.01 and 3–4 at
+/// h|ω| = 0.5 (measured for N = 3 … 5); above N = 5 the Newton matrix is reused between
+/// iterations while they contract fast (the chord method), and the iteration goes on until
+/// the residual reaches an ulp or stops contracting (a residual of a few ulps left every step
+/// biases the integrals by as much, which adds up over 10⁶ steps): three iterations at
+/// h|ω| = 0.01 and about four at 0.5 for N = 6 … 8. No heap for N ≤ 8.
 ///
 /// A solution exists only for steps small against the momentum: |hM|_F ≤ 2|J|_F is
 /// necessary (|UJ − JUᵀ|_F ≤ 2|J|_F), and Newton's method is required to converge from
