@@ -126,10 +126,10 @@ impl Integrator for Rkmk4 {
 /// Ω = h/2 (a₋ + a₊) + (√3/6) h² a₋ × a₊.
 ///
 /// The interpolant is accurate to O(h⁴) at the nodes, so the quadrature keeps order 4. Six
-/// right-hand-side
-/// commutators per step against RK4's five (dL/dt at the end of the step, and the Magnus
-/// commutator instead of RK4's correction), one exponential, and one conjugation of L by it
-/// (in 3D and 4D two Rodrigues rotations of 3-vectors, so(4) = so(3) ⊕ so(3)).
+/// right-hand-side commutators per step against RK4's five (dL/dt at the end of the step, and
+/// the Magnus commutator instead of RK4's correction), one exponential, and one conjugation
+/// of L by it (in 3D a Rodrigues rotation; in 4D each half of L turns by the quaternion of
+/// the exponential's pair, so(4) = so(3) ⊕ so(3); above by the increment's matrix).
 ///
 /// Any inertia map, and gyrostats (the total momentum is what the rotation carries). With a
 /// torque τ the step takes [`Rkmk4`]'s stages with their attitudes R₀gᵢ, forms Ω from them as
