@@ -616,3 +616,24 @@ mod moving_bodies {
         }
     }
 }
+
+#[test]
+fn preprocessed_moser_veselov_steps_do_not_allocate() {
+    use rotorflow::dynamics::torques::Free;
+    use rotorflow::dynamics::{Integrator, MoserVeselov, RigidBody};
+    let inertia = InertiaMap::from_principal_second_moments(&[0.4, 1.1, 1.9]).unwrap();
+    let mut body = RigidBody::from_body_momentum(
+        inertia,
+        Rotor::identity(3),
+        &Bivector::from_components(3, &[0.8, -0.5, 1.2]).unwrap(),
+    )
+    .unwrap();
+    let mut mv = MoserVeselov::preprocessed(6).unwrap();
+    mv.step(&mut body, 0.0, 0.01, &Free).unwrap();
+    let count = allocations_in(|| {
+        for k in 0..100 {
+            mv.step(&mut body, k as f64 * 0.01, 0.01, &Free).unwrap();
+        }
+    });
+    assert_eq!(count, 0, "{count} heap allocations in 100 steps");
+}
