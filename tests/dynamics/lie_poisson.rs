@@ -201,13 +201,23 @@ fn casimirs_and_space_momentum_stay_at_round_off_over_1e5_steps() {
 
 #[test]
 fn agrees_with_rk4_beyond_the_stack_sizes_and_for_gyrostats() {
-    // N = 9 (the bivector path) and a 4D gyrostat: both reach the fine Rkmk4 solution.
+    // N = 9 (the bivector path), a 4D gyrostat and a general SPD map on the planes of 4D
+    // (not diagonal on them): each reaches the fine Rkmk4 solution.
     let body9 = random_body(&mut rng(320), 9);
     let mut r = rng(321);
     let gyrostat = random_body(&mut r, 4)
         .with_gyrostatic_momentum(&crate::random_bivector(&mut r, 4, 0.5))
         .unwrap();
-    for start in [body9, gyrostat] {
+    let mut spd =
+        nalgebra::DMatrix::<f64>::from_fn(6, 6, |i, j| 0.1 * ((i * 7 + j * 3) as f64).sin());
+    spd = &spd * spd.transpose() + nalgebra::DMatrix::<f64>::identity(6, 6);
+    let general = RigidBody::from_body_momentum(
+        InertiaMap::from_matrix(4, &spd).unwrap(),
+        Attitude::identity(4),
+        &crate::random_bivector(&mut r, 4, 1.0),
+    )
+    .unwrap();
+    for start in [body9, gyrostat, general] {
         let n = start.dim();
         let reference = advanced(&start, &mut Rkmk4, &Free, 1e-3, 1.0);
         let b = advanced(&start, &mut LiePoissonRk4, &Free, 0.01, 1.0);
