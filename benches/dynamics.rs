@@ -2,14 +2,15 @@
 //! (a) a hand-written fixed-size RK4 for N = 3 and 4, the speed limit, and (b) the same RK4 on
 //! nalgebra matrices (SMatrix for N ≤ 8, DMatrix for all): L as a skew matrix, the attitude
 //! as a rotation matrix; and the two adaptive Dormand–Prince integrators carrying the 4D
-//! cuboid to t = 10 at the tolerances that give both |Δω| ≈ 1e-11 at t = 100.
-//! `BENCH_QUICK=1` shortens the run.
+//! cuboid to t = 10 at the tolerances that give both |Δω| ≈ 1e-11 at t = 100; and RK4 beside
+//! the Casimir-preserving Lie–Poisson RK4 carrying the same cuboid to t = 100 at the step
+//! counts that give each |Δω| ≤ 1e-8 there. `BENCH_QUICK=1` shortens the run.
 
 use criterion::{BenchmarkId, Criterion, black_box, criterion_group, criterion_main};
 use nalgebra::{DMatrix, SMatrix};
 use rotorflow::dynamics::torques::Free;
 use rotorflow::dynamics::{
-    Attitude, Dop853, Dopri5, Integrator, Midpoint, RigidBody, Rkmk4, Splitting,
+    Attitude, Dop853, Dopri5, Integrator, LiePoissonRk4, Midpoint, RigidBody, Rkmk4, Splitting,
 };
 use rotorflow::prelude::*;
 
@@ -211,10 +212,45 @@ fn bench_tight_tolerance(c: &mut Criterion) {
     g.finish();
 }
 
+/// RK4 and the Lie–Poisson RK4 on the 4D cuboid (as above) to t = 100, each with the fewest
+/// equal steps (to 1%) that give |Δω| ≤ 1e-8 at t = 100 against Dop853 at rtol 1e-15: the
+/// counts `p4_cost_at_1e_8_survey` in tests/dynamics/lie_poisson.rs finds.
+fn bench_casimir_preserving(c: &mut Criterion) {
+    let parsed = rotorflow::inertia::spec::parse_body("cuboid:1,1.3,1.7,2.2+mass=1").unwrap();
+    let omega = Bivector::from_components(4, &[0.3, -0.2, 0.5, 0.1, 0.4, -0.6]).unwrap();
+    let start =
+        RigidBody::from_body_velocity(parsed.inertia, Attitude::identity(4), &omega).unwrap();
+    let mut g = c.benchmark_group("cuboid4_to_t100_at_1e-8");
+    let mut integrators: Vec<(&str, Box<dyn Integrator>, usize)> = vec![
+        ("rotorflow_rk4_2750_steps", Box::new(Rkmk4), 2750),
+        (
+            "rotorflow_lie_poisson_rk4_3788_steps",
+            Box::new(LiePoissonRk4),
+            3788,
+        ),
+    ];
+    for (name, integ, steps) in integrators.iter_mut() {
+        let h = 100.0 / *steps as f64;
+        g.bench_function(*name, |bench| {
+            bench.iter(|| {
+                let mut b = start.clone();
+                for k in 0..*steps {
+                    integ
+                        .step(black_box(&mut b), k as f64 * h, h, &Free)
+                        .unwrap();
+                }
+                b
+            })
+        });
+    }
+    g.finish();
+}
+
 fn benches(_: &mut Criterion) {
     let mut c = configure();
     bench_steps(&mut c);
     bench_tight_tolerance(&mut c);
+    bench_casimir_preserving(&mut c);
 }
 
 criterion_group!(dynamics, benches);

@@ -155,8 +155,8 @@ pub mod prelude {
     };
     pub use crate::dynamics::torques::{self, Free};
     pub use crate::dynamics::{
-        Attitude, Dop853, Dopri5, DynamicsError, Integrator, Midpoint, MoserVeselov, RigidBody,
-        Rkmk4, Splitting, SplittingOrder, Torque, Trajectory, simulate,
+        Attitude, Dop853, Dopri5, DynamicsError, Integrator, LiePoissonRk4, Midpoint, MoserVeselov,
+        RigidBody, Rkmk4, Splitting, SplittingOrder, Torque, Trajectory, simulate,
     };
     #[allow(deprecated)]
     pub use crate::inertia::BodyError;

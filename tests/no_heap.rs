@@ -1,6 +1,6 @@
 //! Vectors and bivectors up to N = 8, rotors in 3D and 4D, and the integrator steps of the
-//! splitting, RK4, midpoint, Dopri5 and Moser–Veselov methods up to N = 8 never touch the
-//! heap: a counting global allocator asserts it for construction, the hot kernels and the
+//! splitting, RK4 (plain and Lie–Poisson), midpoint, Dopri5 and Moser–Veselov methods up to
+//! N = 8 never touch the heap: a counting global allocator asserts it for construction, the hot kernels and the
 //! steps.
 
 use rotorflow::prelude::*;
@@ -80,7 +80,8 @@ fn rotor_kernels_do_not_allocate_in_3d_and_4d() {
 fn integrator_steps_do_not_allocate() {
     use rotorflow::dynamics::torques::Free;
     use rotorflow::dynamics::{
-        Dop853, Dopri5, Integrator, Midpoint, MoserVeselov, RigidBody, Rkmk4, Splitting,
+        Dop853, Dopri5, Integrator, LiePoissonRk4, Midpoint, MoserVeselov, RigidBody, Rkmk4,
+        Splitting,
     };
     // Strang and Yoshida work in place on the attitude and momentum: no heap for N ≤ 8.
     // RK4, the midpoint rule, Dopri5 and Dop853 too: rotor attitudes up to N = 4 (inline rotors,
@@ -111,6 +112,17 @@ fn integrator_steps_do_not_allocate() {
         assert_eq!(
             count, 0,
             "splitting, N = {n}: {count} heap allocations in 200 steps"
+        );
+        let mut lp = LiePoissonRk4;
+        lp.step(&mut body, 0.0, 0.01, &Free).unwrap();
+        let count = allocations_in(|| {
+            for k in 0..100 {
+                lp.step(&mut body, k as f64 * 0.01, 0.01, &Free).unwrap();
+            }
+        });
+        assert_eq!(
+            count, 0,
+            "lie-poisson-rk4, N = {n}: {count} heap allocations in 100 steps"
         );
         let mut rk = Rkmk4;
         rk.step(&mut body, 0.0, 0.01, &Free).unwrap();
@@ -653,4 +665,25 @@ mod moving_bodies {
             assert_eq!(count, 0, "N = {n}: {count} heap allocations in 50 steps");
         }
     }
+}
+
+#[test]
+fn preprocessed_moser_veselov_steps_do_not_allocate() {
+    use rotorflow::dynamics::torques::Free;
+    use rotorflow::dynamics::{Integrator, MoserVeselov, RigidBody};
+    let inertia = InertiaMap::from_principal_second_moments(&[0.4, 1.1, 1.9]).unwrap();
+    let mut body = RigidBody::from_body_momentum(
+        inertia,
+        Rotor::identity(3),
+        &Bivector::from_components(3, &[0.8, -0.5, 1.2]).unwrap(),
+    )
+    .unwrap();
+    let mut mv = MoserVeselov::preprocessed(6).unwrap();
+    mv.step(&mut body, 0.0, 0.01, &Free).unwrap();
+    let count = allocations_in(|| {
+        for k in 0..100 {
+            mv.step(&mut body, k as f64 * 0.01, 0.01, &Free).unwrap();
+        }
+    });
+    assert_eq!(count, 0, "{count} heap allocations in 100 steps");
 }

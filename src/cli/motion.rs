@@ -9,8 +9,8 @@ use nalgebra::DMatrix;
 use rotorflow::algebra::{Bivector, bivector_len};
 use rotorflow::dynamics::torques::{BodyFrame, Free, LinearDamping, SpaceFrame};
 use rotorflow::dynamics::{
-    Attitude, Dop853, Dopri5, Drift, Integrator, Invariants, Midpoint, MoserVeselov, RigidBody,
-    Rkmk4, Splitting, Torque, simulate,
+    Attitude, Dop853, Dopri5, Drift, Integrator, Invariants, LiePoissonRk4, Midpoint, MoserVeselov,
+    RigidBody, Rkmk4, Splitting, Torque, simulate,
 };
 use rotorflow::inertia::spec::{parse_list, parse_number};
 use serde_json::{Value, json};
@@ -143,6 +143,10 @@ pub fn initial_body(parsed: &ParsedBody, initial: &InitialArgs) -> CliResult<Rig
 pub enum IntegratorKind {
     /// Runge–Kutta–Munthe-Kaas, order 4 (any inertia).
     Rk4,
+    /// RK4 in Lie–Poisson form, order 4: L moves by the step's rotation, so the Casimirs
+    /// and the space-frame momentum hold to round-off (any inertia).
+    #[value(alias = "lp-rk4")]
+    LiePoissonRk4,
     /// Adaptive Dormand–Prince 5(4) on the group (uses --rtol/--atol).
     Dopri5,
     /// Adaptive Dormand–Prince 8(5,3) on the group (uses --rtol/--atol; tight tolerances).
@@ -164,6 +168,7 @@ impl IntegratorKind {
     pub fn name(self) -> &'static str {
         match self {
             IntegratorKind::Rk4 => "rk4",
+            IntegratorKind::LiePoissonRk4 => "lie-poisson-rk4",
             IntegratorKind::Dopri5 => "dopri5",
             IntegratorKind::Dop853 => "dop853",
             IntegratorKind::Strang => "strang",
@@ -410,6 +415,7 @@ pub fn integrate_each(
         Stepping::Fixed { kind, .. } => {
             fixed = Some(match kind {
                 IntegratorKind::Rk4 => Box::new(Rkmk4),
+                IntegratorKind::LiePoissonRk4 => Box::new(LiePoissonRk4),
                 IntegratorKind::Strang => Box::new(Splitting::strang()),
                 IntegratorKind::Yoshida4 => Box::new(Splitting::yoshida4()),
                 IntegratorKind::Midpoint => Box::new(Midpoint::default()),

@@ -177,6 +177,19 @@ pub enum DynamicsError {
     /// The rotation part of a moving body could not be built.
     #[error(transparent)]
     Inertia(#[from] InertiaError),
+    /// An integrator option that does not apply: a preprocessing order without coefficients,
+    /// or a body of a dimension the option is not defined in.
+    ///
+    /// How to fix: what `reason` says (the preprocessed Moser–Veselov step takes orders 2, 4
+    /// and 6 and bodies in 3D; [`MoserVeselov::new`](crate::dynamics::MoserVeselov::new)
+    /// takes any N).
+    #[error("{integrator}: {reason}")]
+    UnsupportedOption {
+        /// The integrator.
+        integrator: &'static str,
+        /// What does not apply, and what would.
+        reason: String,
+    },
 }
 
 impl DynamicsError {

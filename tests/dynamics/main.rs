@@ -8,6 +8,7 @@ mod fixed;
 mod gyrostat;
 mod lagrange_top;
 mod large_n;
+mod lie_poisson;
 mod manakov;
 mod moser_veselov;
 mod motion;

@@ -129,6 +129,69 @@ fn agrees_with_the_exact_3d_top_to_second_order() {
     assert!((p - 2.0).abs() < 0.05, "measured order {p}");
 }
 
+#[test]
+fn preprocessed_steps_reach_orders_four_and_six_against_the_exact_3d_top() {
+    let inertia = InertiaMap::from_principal_second_moments(&[0.4, 1.1, 1.9]).unwrap();
+    let start = RigidBody::from_body_momentum(
+        inertia,
+        Rotor::from_plane_angle(3, 0, 2, 0.3).unwrap(),
+        &Bivector::from_components(3, &[0.8, -0.5, 1.2]).unwrap(),
+    )
+    .unwrap();
+    let reference = start.exact_solution().unwrap().body_at(3.0).unwrap();
+    for (order, hs) in [(4, [0.2, 0.1, 0.05]), (6, [0.3, 0.15, 0.075])] {
+        let make = || MoserVeselov::preprocessed(order).unwrap();
+        assert_eq!(make().order(), order);
+        let es: Vec<f64> = hs
+            .iter()
+            .map(|&h| error(&start, &mut make(), &Free, 3.0, h, &reference))
+            .collect();
+        let p = slope(&hs, &es);
+        eprintln!(
+            "preprocessed, order {order}: measured {p:.3}, errors {}",
+            show(&es)
+        );
+        assert!(
+            (p - order as f64).abs() < 0.25,
+            "order {order}: measured {p}"
+        );
+        // Far below the plain step's error at the same step.
+        let plain = error(
+            &start,
+            &mut MoserVeselov::new(),
+            &Free,
+            3.0,
+            hs[2],
+            &reference,
+        );
+        eprintln!("plain step at h = {}: {plain:.2e}", hs[2]);
+        assert!(
+            es[2] < 1e-2 * plain,
+            "order {order}: {} against {plain}",
+            es[2]
+        );
+    }
+}
+
+#[test]
+fn preprocessing_is_refused_outside_3d_and_for_orders_without_coefficients() {
+    for order in [0, 3, 8] {
+        let err = MoserVeselov::preprocessed(order).unwrap_err();
+        assert!(
+            matches!(err, DynamicsError::UnsupportedOption { .. }),
+            "{err}"
+        );
+    }
+    let mut body = random_body(&mut rng(951), 4);
+    let before = body.clone();
+    let err = MoserVeselov::preprocessed(4)
+        .unwrap()
+        .step(&mut body, 0.0, 0.01, &Free)
+        .unwrap_err();
+    assert!(err.to_string().contains("3D"), "{err}");
+    assert_eq!(body.momentum(), before.momentum());
+}
+
 /// The drifts of one run, sampled every `every` steps: the largest of each.
 fn sampled_drifts(
     body: &RigidBody,

@@ -304,6 +304,32 @@ impl<T: Real> Rotor4<T> {
         }
     }
 
+    /// R̃ B R for a bivector B: each half, a pure quaternion, turns as Q̄ α Q, written for a
+    /// unit Q = (w, v) as α + w t − v × t with t = 2 α × v (two cross products instead of two
+    /// quaternion products).
+    #[inline]
+    pub(crate) fn reverse_sandwich(self, b: Bivector4<T>) -> Bivector4<T> {
+        let (a, m) = b.halves();
+        let cross = |x: [T; 3], y: [T; 3]| {
+            [
+                x[1] * y[2] - x[2] * y[1],
+                x[2] * y[0] - x[0] * y[2],
+                x[0] * y[1] - x[1] * y[0],
+            ]
+        };
+        let turn = |q: [T; 4], x: [T; 3]| {
+            let (w, v) = (q[0], [q[1], q[2], q[3]]);
+            let t = cross(x, v).map(|c| c + c);
+            let vt = cross(v, t);
+            [
+                x[0] + w * t[0] - vt[0],
+                x[1] + w * t[1] - vt[1],
+                x[2] + w * t[2] - vt[2],
+            ]
+        };
+        Bivector4::from_halves(turn(self.plus, a), turn(self.minus, m))
+    }
+
     /// The geometric product self · other (two quaternion products).
     #[inline]
     pub fn compose(self, other: Self) -> Self {

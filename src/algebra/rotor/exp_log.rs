@@ -72,6 +72,18 @@ impl Bivector {
         r
     }
 
+    /// For N = 4: `rotor` ← `rotor` · e^B, and the 4D bivector `c` ← R̃ C R with R = e^B, all
+    /// through the quaternion pair of e^B (its angles evaluated once, the products as
+    /// quaternion products): the update of a Lie–Poisson integrator, which turns the
+    /// attitude and the momentum by one rotation.
+    pub(crate) fn times_exp_and_reverse_sandwich_4(&self, rotor: &mut Rotor, c: &mut [f64]) {
+        let e = crate::algebra::Bivector4::from_array(*super::layout(self.as_slice())).exp();
+        let turned = e.reverse_sandwich(crate::algebra::Bivector4::from_array(*super::layout(c)));
+        c.copy_from_slice(&turned.to_array());
+        let r = crate::algebra::Rotor4::<f64>::from_even_layout(super::layout(&rotor.coeffs));
+        rotor.coeffs.copy_from_slice(&r.compose(e).to_even_layout());
+    }
+
     /// [`Bivector::exp`], or an error where it would panic or return NaN.
     ///
     /// ```

