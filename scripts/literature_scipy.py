@@ -428,7 +428,7 @@ def header():
         f"# python: {platform.python_version()}, scipy {scipy.__version__}, numpy {np.__version__}, "
         f"mpmath {mpmath.__version__}\n"
         f"# method: solve_ivp(method='DOP853', rtol, atol = rtol/100), fastest wall time of "
-        f"repeated solves (at least 3, for at least {REPEATS_SECONDS:g} s); references by a Taylor "
+        f"repeated solves (until {REPEATS_SECONDS:g} s, at least 3 and at most 50 solves); references by a Taylor "
         f"series method of order {ORDER} in mpmath at {mpmath.mp.dps} digits\n"
     )
 
