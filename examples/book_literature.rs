@@ -8,7 +8,8 @@
 //! scripts/literature_scipy.py --write`: scipy's DOP853 on the same problems, and the
 //! high-precision references every error here is measured against). `tests/book.rs`
 //! re-renders the committed data and fails when the committed files differ. `--errors`
-//! skips the timing and prints the errors and counts alone.
+//! skips the timing and prints the errors and counts alone; `--render` rewrites the tables
+//! and plots from the recorded data without measuring.
 //!
 //! The problems (defined once more, with the same numbers, in the Python script):
 //!
@@ -1248,8 +1249,8 @@ fn order_table(md: &mut String, points: &[Point]) -> Res<()> {
 
 /// A log-log plot of error against time per solve, one line per method.
 fn plot(problem: &str, points: &[Point]) -> String {
-    let (w, h) = (640.0, 400.0);
-    let (left, right, top, bottom) = (70.0, 250.0, 20.0, 50.0);
+    let (w, h) = (800.0, 400.0);
+    let (left, right, top, bottom) = (70.0, 340.0, 20.0, 50.0);
     let finite: Vec<&Point> = points
         .iter()
         .filter(|p| p.error.is_finite() && p.error > 0.0)
@@ -1357,6 +1358,17 @@ pub fn main() -> Res<()> {
     let scipy = std::fs::read_to_string(dir.join("literature_scipy.tsv")).map_err(|e| {
         format!("literature_scipy.tsv ({e}): run python3 scripts/literature_scipy.py --write first")
     })?;
+    // `--render` re-renders the tables and plots from the recorded data, measuring nothing.
+    if std::env::args().any(|a| a == "--render") {
+        let tsv = std::fs::read_to_string(dir.join("literature.tsv"))?;
+        let (md, plots) = render(&tsv, &scipy)?;
+        std::fs::write(dir.join("literature.md"), &md)?;
+        for (name, svg) in &plots {
+            std::fs::write(dir.join(name), svg)?;
+        }
+        println!("wrote {}", dir.join("literature.md").display());
+        return Ok(());
+    }
     let refs = references(&scipy)?;
     let mut tsv = provenance::header();
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
