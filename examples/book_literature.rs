@@ -1016,7 +1016,8 @@ pub fn render(rust: &str, scipy: &str) -> Res<(String, Vec<(String, String)>)> {
         "\n### Equal accuracy: rotorflow's fastest method against scipy's DOP853\n\n\
          Wall time per solve at the accuracy of the row, interpolated in log-log between \
          the measured settings (\"–\": not reached by the settings measured; \"≤\": the \
-         cheapest setting measured is already more accurate, so its time is an upper bound).\n"
+         cheapest setting measured is already more accurate, so its time is an upper bound, and \
+         a ratio of two such bounds is marked \"≈\").\n"
     )?;
     writeln!(
         md,
@@ -1029,15 +1030,19 @@ pub fn render(rust: &str, scipy: &str) -> Res<(String, Vec<(String, String)>)> {
         };
         for target in TARGETS {
             if let Some((best, t, s)) = versus_scipy(points, target) {
-                let (le, ge) = if bounded(points, &best, target) {
-                    ("≤ ", "≥ ")
-                } else {
-                    ("", "")
-                };
-                let sle = if bounded(points, "scipy", target) {
-                    "≤ "
-                } else {
-                    ""
+                // Either time may be an upper bound; the ratio is then bounded on one side,
+                // or on neither when both are.
+                let (ours, theirs) = (
+                    bounded(points, &best, target),
+                    bounded(points, "scipy", target),
+                );
+                let le = if ours { "≤ " } else { "" };
+                let sle = if theirs { "≤ " } else { "" };
+                let ge = match (ours, theirs) {
+                    (true, false) => "≥ ",
+                    (false, true) => "≤ ",
+                    (true, true) => "≈ ",
+                    (false, false) => "",
                 };
                 writeln!(
                     md,
