@@ -313,6 +313,20 @@ fn generated_literature_benchmarks_are_rendered_from_their_data() {
             "literature_scipy.tsv has no reference for {problem}"
         );
     }
+    // Each reference's two Taylor runs agree far beyond the errors measured against it.
+    let spreads: Vec<f64> = scipy
+        .lines()
+        .filter_map(|l| l.strip_prefix("ref_spread\t"))
+        .map(|l| {
+            l.split('\t')
+                .nth(1)
+                .expect("spread")
+                .parse()
+                .expect("a number")
+        })
+        .collect();
+    assert_eq!(spreads.len(), 4, "one spread per reference");
+    assert!(spreads.iter().all(|s| *s < 1e-20), "spreads {spreads:?}");
     // The Taylor-series reference of the HLW body against rotorflow's closed form.
     let gap = book_literature::hlw_closed_form_gap(&scipy).expect("closed form");
     assert!(
