@@ -485,8 +485,8 @@ fn adaptive_run(problem: &'static str, eighth: bool, rtol: f64) -> Res<Solve> {
 fn step_sizes(problem: &str, order: usize) -> Vec<f64> {
     let (largest, count) = match problem {
         "hlw" | "p4" => (0.2, if order >= 4 { 8 } else { 13 }),
-        "simo_wong" => (0.01, if order >= 4 { 7 } else { 10 }),
-        "bruls" => (0.004, if order >= 4 { 7 } else { 10 }),
+        "simo_wong" => (0.01, if order >= 4 { 8 } else { 10 }),
+        "bruls" => (0.004, if order >= 4 { 9 } else { 10 }),
         _ => (0.8, if order >= 4 { 9 } else { 12 }),
     };
     (0..count).map(|k| largest / f64::powi(2.0, k)).collect()
