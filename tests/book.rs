@@ -38,6 +38,9 @@ mod book_inertia_tables;
 #[path = "../examples/book_integrators.rs"]
 mod book_integrators;
 #[allow(dead_code)]
+#[path = "../examples/book_literature.rs"]
+mod book_literature;
+#[allow(dead_code)]
 #[path = "../examples/book_moving_bodies.rs"]
 mod book_moving_bodies;
 #[allow(dead_code)]
@@ -91,6 +94,14 @@ const GENERATED: &[&str] = &[
     "inertia_tables.md",
     "integrators.md",
     "integrators_error.svg",
+    "literature.md",
+    "literature_bruls.svg",
+    "literature_free4.svg",
+    "literature_free6.svg",
+    "literature_free8.svg",
+    "literature_hlw.svg",
+    "literature_p4.svg",
+    "literature_simo_wong.svg",
     "moving_bodies.md",
     "peer_versors.md",
     "step_ratio.md",
@@ -269,6 +280,59 @@ fn generated_step_ratios_are_rendered_from_their_data() {
     for key in ["# date: ", "# commit: ", "# machine: ", "# compiler: "] {
         assert!(data.contains(key), "step_ratio.tsv lacks `{key}`");
     }
+}
+
+/// The benchmarks from the literature: the tables and plots are the rendering of the
+/// recorded data (rotorflow's and scipy's), both say where and when they were measured, and
+/// the references they are measured against are recorded with their spread.
+#[test]
+fn generated_literature_benchmarks_are_rendered_from_their_data() {
+    let rust = read(&root().join("book/src/generated/literature.tsv"));
+    let scipy = read(&root().join("book/src/generated/literature_scipy.tsv"));
+    let (md, plots) = book_literature::render(&rust, &scipy).expect("render");
+    let command = "cargo run --release --example book_literature -- --write (after python3 \
+                   scripts/literature_scipy.py --write for new scipy data or references)";
+    assert_current("literature.md", &md, command);
+    assert_eq!(plots.len(), book_literature::PROBLEMS.len());
+    for (name, svg) in &plots {
+        assert!(
+            GENERATED.contains(&name.as_str()),
+            "{name} is not in GENERATED"
+        );
+        assert_current(name, svg, command);
+    }
+    for key in ["# date: ", "# commit: ", "# machine: ", "# compiler: "] {
+        assert!(rust.contains(key), "literature.tsv lacks `{key}`");
+    }
+    for key in ["# date: ", "# commit: ", "# machine: ", "# python: "] {
+        assert!(scipy.contains(key), "literature_scipy.tsv lacks `{key}`");
+    }
+    for problem in ["hlw", "p4", "simo_wong", "bruls"] {
+        assert!(
+            scipy.contains(&format!("ref\t{problem}\t")),
+            "literature_scipy.tsv has no reference for {problem}"
+        );
+    }
+    // Each reference's two Taylor runs agree far beyond the errors measured against it.
+    let spreads: Vec<f64> = scipy
+        .lines()
+        .filter_map(|l| l.strip_prefix("ref_spread\t"))
+        .map(|l| {
+            l.split('\t')
+                .nth(1)
+                .expect("spread")
+                .parse()
+                .expect("a number")
+        })
+        .collect();
+    assert_eq!(spreads.len(), 4, "one spread per reference");
+    assert!(spreads.iter().all(|s| *s < 1e-20), "spreads {spreads:?}");
+    // The Taylor-series reference of the HLW body against rotorflow's closed form.
+    let gap = book_literature::hlw_closed_form_gap(&scipy).expect("closed form");
+    assert!(
+        gap < 1e-12,
+        "HLW reference and closed form differ by {gap:e}"
+    );
 }
 
 /// The validation of moving bodies (chapter "Bodies that move"): the tables are the rendering
