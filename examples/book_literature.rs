@@ -30,8 +30,8 @@ use nalgebra::{Matrix3, SMatrix, Vector3};
 use rotorflow::algebra::Vector;
 use rotorflow::dynamics::torques::{Free, Gravity};
 use rotorflow::dynamics::{
-    Attitude, Dop853, Dopri5, FreeBody3, FreeBody4, Integrator, Invariants, Midpoint, MoserVeselov,
-    RigidBody, Rkmk4, Splitting, Torque,
+    Attitude, Dop853, Dopri5, FreeBody3, FreeBody4, Integrator, Invariants, LiePoissonRk4,
+    Midpoint, MoserVeselov, RigidBody, Rkmk4, Splitting, Torque,
 };
 use rotorflow::inertia::spec::parse_body;
 use rotorflow::prelude::*;
@@ -507,6 +507,7 @@ fn settings(problem: &'static str) -> Res<Vec<Setting>> {
         ("strang", || Box::new(Splitting::strang()), 0, 2),
         ("yoshida4", || Box::new(Splitting::yoshida4()), 0, 4),
         ("midpoint", || Box::new(Midpoint::default()), 0, 2),
+        ("lprk4", || Box::new(LiePoissonRk4), 4, 4),
     ];
     if physical {
         fixed.push(("mv", || Box::new(MoserVeselov::new()), 0, 2));
@@ -761,6 +762,7 @@ fn display(method: &str, problem: &str) -> String {
         "strang" => "Strang (`Splitting::strang`)".into(),
         "yoshida4" => "Yoshida 4 (`Splitting::yoshida4`)".into(),
         "midpoint" => "implicit midpoint (`Midpoint`)".into(),
+        "lprk4" => "Lie–Poisson RK4 (`LiePoissonRk4`)".into(),
         "mv" => "Moser–Veselov (`MoserVeselov`)".into(),
         "mv4" => "Moser–Veselov, Yoshida 4 (`MoserVeselov::yoshida4`)".into(),
         "dopri5" => "`Dopri5`".into(),
@@ -783,7 +785,7 @@ fn is_rotorflow(method: &str) -> bool {
 fn keeps_casimirs(method: &str, problem: &str) -> bool {
     matches!(
         method,
-        "strang" | "yoshida4" | "mv" | "mv4" | "fixed_strang"
+        "strang" | "yoshida4" | "mv" | "mv4" | "fixed_strang" | "lprk4"
     ) || (method == "midpoint" && (problem == "p4" || problem == "hlw" || problem == "free4"))
 }
 
