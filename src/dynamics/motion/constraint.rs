@@ -953,16 +953,21 @@ impl Solver {
         let u = &mut u[..n];
         for k in range {
             let row = &mut self.contacts[k];
-            let nrm = half_spaces[row.half_space].normal();
+            let plane = &half_spaces[row.half_space];
+            let nrm = plane.normal();
             let st = &self.states[row.body];
             let data = &mut self.row_data[k * layout.stride..(k + 1) * layout.stride];
             let key = &mut self.row_keys[k];
+            // Slices of length N, so that in 3D and 4D the comparisons below are unrolled.
+            let (r, nv) = (&row.r.as_slice()[..n], &nrm.as_slice()[..n]);
             let same = key.body == row.body
                 && key.half_space == row.half_space
                 && key.index == row.index
                 && key.generation == st.generation
-                && key.r[..] == row.r.as_slice()[..]
-                && key.normal[..] == nrm.as_slice()[..];
+                && key.r.len() == n
+                && key.normal.len() == n
+                && key.r[..n] == *r
+                && key.normal[..n] == *nv;
             if !same {
                 row_matrices(st, &row.r, nrm, layout, data);
                 key.body = row.body;
@@ -975,17 +980,18 @@ impl Solver {
                 key.normal.extend_from_slice(nrm.as_slice());
             }
             row.knn = data[layout.knn];
+            let r = &row.r.as_slice()[..n];
             point_velocity::<N>(
                 data,
                 layout,
-                &row.r.as_slice()[..n],
+                r,
                 &st.v.as_slice()[..n],
                 &st.w.as_slice()[..m],
                 u,
             );
             let un = dot(&nrm.as_slice()[..n], u);
             row.target = if un < -resting_speed[row.body] {
-                -half_spaces[row.half_space].restitution() * un
+                -plane.restitution() * un
             } else {
                 0.0
             };
@@ -1099,6 +1105,35 @@ impl Solver {
                     let plane = &half_spaces[row.half_space];
                     change = change.max(sweep_contact::<N>(row, data, layout, plane, &mut st));
                 }
+            } else if N != 0 {
+                // One body in 3D or 4D: its velocities and impulses are copied into locals
+                // for the sweep, so that they stay in registers from one row to the next
+                // instead of going through the body's storage after every impulse.
+                let st = self.states[self.contacts[start].body].view::<N>();
+                let (n, m) = (st.v.len(), st.w.len());
+                let (mut v, mut dp, mut w, mut dl) = ([0.0; 4], [0.0; 4], [0.0; 6], [0.0; 6]);
+                v[..n].copy_from_slice(st.v);
+                dp[..n].copy_from_slice(st.dp);
+                w[..m].copy_from_slice(st.w);
+                dl[..m].copy_from_slice(st.dl);
+                let mut local = BodyView {
+                    inv_mass: st.inv_mass,
+                    v: &mut v[..n],
+                    w: &mut w[..m],
+                    dp: &mut dp[..n],
+                    dl: &mut dl[..m],
+                };
+                for (k, row) in self.contacts[start..end].iter_mut().enumerate() {
+                    let at = (start + k) * layout.stride;
+                    let data = &self.row_data[at..at + layout.stride];
+                    let plane = &half_spaces[row.half_space];
+                    let c = sweep_contact::<N>(row, data, layout, plane, &mut local);
+                    change = change.max(c);
+                }
+                st.v.copy_from_slice(&v[..n]);
+                st.dp.copy_from_slice(&dp[..n]);
+                st.w.copy_from_slice(&w[..m]);
+                st.dl.copy_from_slice(&dl[..m]);
             } else {
                 // One body: its view serves every row.
                 let mut st = self.states[self.contacts[start].body].view::<N>();
