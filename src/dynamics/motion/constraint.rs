@@ -331,6 +331,60 @@ impl BodyView<'_> {
     }
 }
 
+/// A body's velocities and impulses copied out of its state in 3D or 4D, so that over the
+/// rows of a one-body group they stay in registers instead of going through the state's
+/// storage after every impulse.
+struct LocalBody {
+    inv_mass: f64,
+    n: usize,
+    m: usize,
+    v: [f64; 4],
+    w: [f64; 6],
+    dp: [f64; 4],
+    dl: [f64; 6],
+}
+
+impl LocalBody {
+    #[inline(always)]
+    fn new(st: &BodyView<'_>) -> LocalBody {
+        let (n, m) = (st.v.len(), st.w.len());
+        let mut b = LocalBody {
+            inv_mass: st.inv_mass,
+            n,
+            m,
+            v: [0.0; 4],
+            w: [0.0; 6],
+            dp: [0.0; 4],
+            dl: [0.0; 6],
+        };
+        b.v[..n].copy_from_slice(st.v);
+        b.w[..m].copy_from_slice(st.w);
+        b.dp[..n].copy_from_slice(st.dp);
+        b.dl[..m].copy_from_slice(st.dl);
+        b
+    }
+
+    #[inline(always)]
+    fn view(&mut self) -> BodyView<'_> {
+        BodyView {
+            inv_mass: self.inv_mass,
+            v: &mut self.v[..self.n],
+            w: &mut self.w[..self.m],
+            dp: &mut self.dp[..self.n],
+            dl: &mut self.dl[..self.m],
+        }
+    }
+
+    /// Writes the velocities and impulses back.
+    #[inline(always)]
+    fn store(&self, st: &mut BodyView<'_>) {
+        st.v.copy_from_slice(&self.v[..self.n]);
+        st.w.copy_from_slice(&self.w[..self.m]);
+        st.dp.copy_from_slice(&self.dp[..self.n]);
+        st.dl.copy_from_slice(&self.dl[..self.m]);
+    }
+}
+
 /// The effective inverse mass of a body state at offset `r`, added to `k` (n × n, row-major).
 fn add_inverse_mass(b: &BodyState, r: &Vector, k: &mut [f64]) {
     let n = r.dim();
@@ -933,7 +987,14 @@ impl Solver {
         let layout = &RowLayout::new(dim::<N>(group.layout.n));
         let (range, half_spaces) = (group.range.clone(), group.half_spaces);
         self.prepare_rows::<N>(range.clone(), half_spaces, resting_speed, layout);
-        self.warm_start::<N>(range.clone(), last, cursor, half_spaces, layout);
+        self.warm_start::<N>(
+            range.clone(),
+            last,
+            cursor,
+            half_spaces,
+            layout,
+            group.coupled,
+        );
         self.sweep_rows::<N>(range.clone(), group.coupled, half_spaces, layout);
         self.record_rows::<N>(range, half_spaces, layout, record, next, kept);
     }
@@ -1012,13 +1073,19 @@ impl Solver {
         cursor: &mut usize,
         half_spaces: &[HalfSpace],
         layout: &RowLayout,
+        coupled: bool,
     ) {
         let n = dim::<N>(layout.n);
         let mut jt: Small = SmallVec::from_elem(0.0, n);
         let jt = &mut jt[..n];
         let mut total: Small = SmallVec::from_elem(0.0, n);
         let total = &mut total[..n];
-        for k in range {
+        // One body in 3D or 4D: the rows' starting impulses are set first, and then applied
+        // in the same order to the body's velocities and impulses in locals (the rows that
+        // start, one bit each).
+        let apart = !coupled && N != 0 && range.len() <= 64;
+        let mut started = 0u64;
+        for k in range.clone() {
             let row = &mut self.contacts[k];
             let lambda = if row.warm {
                 jt.copy_from_slice(&row.friction_impulse.as_slice()[..n]);
@@ -1053,6 +1120,10 @@ impl Solver {
             }
             row.normal_impulse = lambda;
             row.friction_impulse.as_mut_slice().copy_from_slice(jt);
+            if apart {
+                started |= 1 << (k - range.start);
+                continue;
+            }
             let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
             self.states[row.body].view::<N>().apply_with::<N>(
                 data,
@@ -1061,6 +1132,26 @@ impl Solver {
                 total,
             );
         }
+        if started == 0 {
+            return;
+        }
+        let mut st = self.states[self.contacts[range.start].body].view::<N>();
+        let mut local = LocalBody::new(&st);
+        let mut view = local.view();
+        for k in range.clone() {
+            if started & (1 << (k - range.start)) == 0 {
+                continue;
+            }
+            let row = &self.contacts[k];
+            let nv = &half_spaces[row.half_space].normal().as_slice()[..n];
+            let (lambda, jt) = (row.normal_impulse, &row.friction_impulse.as_slice()[..n]);
+            for ((t, x), nx) in total.iter_mut().zip(jt).zip(nv) {
+                *t = nx * lambda + *x;
+            }
+            let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
+            view.apply_with::<N>(data, layout, &row.r.as_slice()[..n], total);
+        }
+        local.store(&mut st);
     }
 
     /// Gauss–Seidel sweeps over the contact rows `range` (and every joint when `coupled`)
@@ -1106,34 +1197,18 @@ impl Solver {
                     change = change.max(sweep_contact::<N>(row, data, layout, plane, &mut st));
                 }
             } else if N != 0 {
-                // One body in 3D or 4D: its velocities and impulses are copied into locals
-                // for the sweep, so that they stay in registers from one row to the next
-                // instead of going through the body's storage after every impulse.
-                let st = self.states[self.contacts[start].body].view::<N>();
-                let (n, m) = (st.v.len(), st.w.len());
-                let (mut v, mut dp, mut w, mut dl) = ([0.0; 4], [0.0; 4], [0.0; 6], [0.0; 6]);
-                v[..n].copy_from_slice(st.v);
-                dp[..n].copy_from_slice(st.dp);
-                w[..m].copy_from_slice(st.w);
-                dl[..m].copy_from_slice(st.dl);
-                let mut local = BodyView {
-                    inv_mass: st.inv_mass,
-                    v: &mut v[..n],
-                    w: &mut w[..m],
-                    dp: &mut dp[..n],
-                    dl: &mut dl[..m],
-                };
+                // One body in 3D or 4D: its velocities and impulses in locals.
+                let mut st = self.states[self.contacts[start].body].view::<N>();
+                let mut local = LocalBody::new(&st);
+                let mut view = local.view();
                 for (k, row) in self.contacts[start..end].iter_mut().enumerate() {
                     let at = (start + k) * layout.stride;
                     let data = &self.row_data[at..at + layout.stride];
                     let plane = &half_spaces[row.half_space];
-                    let c = sweep_contact::<N>(row, data, layout, plane, &mut local);
+                    let c = sweep_contact::<N>(row, data, layout, plane, &mut view);
                     change = change.max(c);
                 }
-                st.v.copy_from_slice(&v[..n]);
-                st.dp.copy_from_slice(&dp[..n]);
-                st.w.copy_from_slice(&w[..m]);
-                st.dl.copy_from_slice(&dl[..m]);
+                local.store(&mut st);
             } else {
                 // One body: its view serves every row.
                 let mut st = self.states[self.contacts[start].body].view::<N>();
