@@ -1241,12 +1241,16 @@ impl Solver {
         let m = n * (n - 1) / 2;
         let mut u: Small = SmallVec::from_elem(0.0, n);
         let u = &mut u[..n];
+        // The velocities of the last row's body (the rows of a body are consecutive).
+        let (mut body, mut v, mut w): (usize, &[f64], &[f64]) = (usize::MAX, &[], &[]);
         for k in range {
             let row = &self.contacts[k];
             let nrm = half_spaces[row.half_space].normal();
-            let st = &self.states[row.body];
+            if row.body != body {
+                let st = &self.states[row.body];
+                (body, v, w) = (row.body, &st.v.as_slice()[..n], &st.w.as_slice()[..m]);
+            }
             let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
-            let (v, w) = (&st.v.as_slice()[..n], &st.w.as_slice()[..m]);
             point_velocity::<N>(data, layout, &row.r.as_slice()[..n], v, w, u);
             let friction = &row.friction_impulse.as_slice()[..n];
             record.record(
