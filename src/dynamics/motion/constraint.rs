@@ -1010,8 +1010,8 @@ impl Solver {
     ) {
         let n = dim::<N>(layout.n);
         let m = n * (n - 1) / 2;
-        let mut u: Small = SmallVec::from_elem(0.0, n);
-        let u = &mut u[..n];
+        let (mut u_fixed, mut u_any) = ([0.0; 4], Small::new());
+        let u = scratch::<N>(&mut u_fixed, &mut u_any, n);
         for k in range {
             let row = &mut self.contacts[k];
             let plane = &half_spaces[row.half_space];
@@ -1076,10 +1076,10 @@ impl Solver {
         coupled: bool,
     ) {
         let n = dim::<N>(layout.n);
-        let mut jt: Small = SmallVec::from_elem(0.0, n);
-        let jt = &mut jt[..n];
-        let mut total: Small = SmallVec::from_elem(0.0, n);
-        let total = &mut total[..n];
+        let (mut jt_fixed, mut jt_any) = ([0.0; 4], Small::new());
+        let jt = scratch::<N>(&mut jt_fixed, &mut jt_any, n);
+        let (mut total_fixed, mut total_any) = ([0.0; 4], Small::new());
+        let total = scratch::<N>(&mut total_fixed, &mut total_any, n);
         // One body in 3D or 4D: the rows' starting impulses are set first, and then applied
         // in the same order to the body's velocities and impulses in locals (the rows that
         // start, one bit each).
@@ -1239,8 +1239,8 @@ impl Solver {
     ) {
         let n = dim::<N>(layout.n);
         let m = n * (n - 1) / 2;
-        let mut u: Small = SmallVec::from_elem(0.0, n);
-        let u = &mut u[..n];
+        let (mut u_fixed, mut u_any) = ([0.0; 4], Small::new());
+        let u = scratch::<N>(&mut u_fixed, &mut u_any, n);
         // The velocities of the last row's body (the rows of a body are consecutive).
         let (mut body, mut v, mut w): (usize, &[f64], &[f64]) = (usize::MAX, &[], &[]);
         for k in range {
@@ -1471,16 +1471,16 @@ fn sweep_contact<const N: usize>(
     change = change.max((dl * row.knn).abs());
     // Friction: maximal dissipation in the disc |J_t| ≤ μλ.
     let limit = plane.friction() * row.normal_impulse;
-    let mut ut: Small = SmallVec::from_elem(0.0, n);
-    let ut = &mut ut[..n];
+    let (mut ut_fixed, mut ut_any) = ([0.0; 4], Small::new());
+    let ut = scratch::<N>(&mut ut_fixed, &mut ut_any, n);
     let offset = &row.r.as_slice()[..n];
     point_velocity::<N>(data, l, offset, &st.v[..n], &st.w[..m], ut);
     let normal_part = dot(nv, ut);
     for (u, x) in ut.iter_mut().zip(nv) {
         *u -= normal_part * x;
     }
-    let mut new: Small = SmallVec::from_elem(0.0, n);
-    let new = &mut new[..n];
+    let (mut new_fixed, mut new_any) = ([0.0; 4], Small::new());
+    let new = scratch::<N>(&mut new_fixed, &mut new_any, n);
     // The sticking impulse old − K_t⁻¹ u_t when it lies in the disc (a resting contact),
     // else the one of maximal dissipation on its rim.
     let old = &row.friction_impulse.as_slice()[..n];
@@ -1501,8 +1501,8 @@ fn sweep_contact<const N: usize>(
             new,
         );
     }
-    let mut dj: Small = SmallVec::from_elem(0.0, n);
-    let dj = &mut dj[..n];
+    let (mut dj_fixed, mut dj_any) = ([0.0; 4], Small::new());
+    let dj = scratch::<N>(&mut dj_fixed, &mut dj_any, n);
     let mut largest = 0.0f64;
     for ((d, x), y) in dj.iter_mut().zip(new.iter()).zip(old) {
         *d = x - y;
@@ -1518,6 +1518,22 @@ fn sweep_contact<const N: usize>(
 
 /// A short vector on the stack (N ≤ 8).
 type Small = SmallVec<[f64; 8]>;
+
+/// A zero scratch vector of length n (`N` as in [`dim`]): `fixed` in 3D and 4D, where its
+/// length is known and it needs no check of its storage, else `any`.
+#[inline(always)]
+fn scratch<'a, const N: usize>(
+    fixed: &'a mut [f64; 4],
+    any: &'a mut Small,
+    n: usize,
+) -> &'a mut [f64] {
+    if N != 0 {
+        &mut fixed[..n]
+    } else {
+        any.resize(n, 0.0);
+        &mut any[..n]
+    }
+}
 
 /// Computes a contact row's matrices ([`RowLayout`]) for a body state `st`, the offset `r`
 /// of the point and the unit normal `nrm`.
