@@ -1012,11 +1012,16 @@ impl Solver {
         let m = n * (n - 1) / 2;
         let (mut u_fixed, mut u_any) = ([0.0; 4], Small::new());
         let u = scratch::<N>(&mut u_fixed, &mut u_any, n);
+        // The velocities of the last row's body (the rows of a body are consecutive).
+        let (mut body, mut v, mut w): (usize, &[f64], &[f64]) = (usize::MAX, &[], &[]);
         for k in range {
             let row = &mut self.contacts[k];
             let plane = &half_spaces[row.half_space];
             let nrm = plane.normal();
             let st = &self.states[row.body];
+            if row.body != body {
+                (body, v, w) = (row.body, &st.v.as_slice()[..n], &st.w.as_slice()[..m]);
+            }
             let data = &mut self.row_data[k * layout.stride..(k + 1) * layout.stride];
             let key = &mut self.row_keys[k];
             // Slices of length N, so that in 3D and 4D the comparisons below are unrolled.
@@ -1042,14 +1047,7 @@ impl Solver {
             }
             row.knn = data[layout.knn];
             let r = &row.r.as_slice()[..n];
-            point_velocity::<N>(
-                data,
-                layout,
-                r,
-                &st.v.as_slice()[..n],
-                &st.w.as_slice()[..m],
-                u,
-            );
+            point_velocity::<N>(data, layout, r, v, w, u);
             let un = dot(&nrm.as_slice()[..n], u);
             row.target = if un < -resting_speed[row.body] {
                 -plane.restitution() * un
