@@ -331,6 +331,60 @@ impl BodyView<'_> {
     }
 }
 
+/// A body's velocities and impulses copied out of its state in 3D or 4D, so that over the
+/// rows of a one-body group they stay in registers instead of going through the state's
+/// storage after every impulse.
+struct LocalBody {
+    inv_mass: f64,
+    n: usize,
+    m: usize,
+    v: [f64; 4],
+    w: [f64; 6],
+    dp: [f64; 4],
+    dl: [f64; 6],
+}
+
+impl LocalBody {
+    #[inline(always)]
+    fn new(st: &BodyView<'_>) -> LocalBody {
+        let (n, m) = (st.v.len(), st.w.len());
+        let mut b = LocalBody {
+            inv_mass: st.inv_mass,
+            n,
+            m,
+            v: [0.0; 4],
+            w: [0.0; 6],
+            dp: [0.0; 4],
+            dl: [0.0; 6],
+        };
+        b.v[..n].copy_from_slice(st.v);
+        b.w[..m].copy_from_slice(st.w);
+        b.dp[..n].copy_from_slice(st.dp);
+        b.dl[..m].copy_from_slice(st.dl);
+        b
+    }
+
+    #[inline(always)]
+    fn view(&mut self) -> BodyView<'_> {
+        BodyView {
+            inv_mass: self.inv_mass,
+            v: &mut self.v[..self.n],
+            w: &mut self.w[..self.m],
+            dp: &mut self.dp[..self.n],
+            dl: &mut self.dl[..self.m],
+        }
+    }
+
+    /// Writes the velocities and impulses back.
+    #[inline(always)]
+    fn store(&self, st: &mut BodyView<'_>) {
+        st.v.copy_from_slice(&self.v[..self.n]);
+        st.w.copy_from_slice(&self.w[..self.m]);
+        st.dp.copy_from_slice(&self.dp[..self.n]);
+        st.dl.copy_from_slice(&self.dl[..self.m]);
+    }
+}
+
 /// The effective inverse mass of a body state at offset `r`, added to `k` (n × n, row-major).
 fn add_inverse_mass(b: &BodyState, r: &Vector, k: &mut [f64]) {
     let n = r.dim();
@@ -933,7 +987,14 @@ impl Solver {
         let layout = &RowLayout::new(dim::<N>(group.layout.n));
         let (range, half_spaces) = (group.range.clone(), group.half_spaces);
         self.prepare_rows::<N>(range.clone(), half_spaces, resting_speed, layout);
-        self.warm_start::<N>(range.clone(), last, cursor, half_spaces, layout);
+        self.warm_start::<N>(
+            range.clone(),
+            last,
+            cursor,
+            half_spaces,
+            layout,
+            group.coupled,
+        );
         self.sweep_rows::<N>(range.clone(), group.coupled, half_spaces, layout);
         self.record_rows::<N>(range, half_spaces, layout, record, next, kept);
     }
@@ -949,20 +1010,30 @@ impl Solver {
     ) {
         let n = dim::<N>(layout.n);
         let m = n * (n - 1) / 2;
-        let mut u: Small = SmallVec::from_elem(0.0, n);
-        let u = &mut u[..n];
+        let (mut u_fixed, mut u_any) = ([0.0; 4], Small::new());
+        let u = scratch::<N>(&mut u_fixed, &mut u_any, n);
+        // The velocities of the last row's body (the rows of a body are consecutive).
+        let (mut body, mut v, mut w): (usize, &[f64], &[f64]) = (usize::MAX, &[], &[]);
         for k in range {
             let row = &mut self.contacts[k];
-            let nrm = half_spaces[row.half_space].normal();
+            let plane = &half_spaces[row.half_space];
+            let nrm = plane.normal();
             let st = &self.states[row.body];
+            if row.body != body {
+                (body, v, w) = (row.body, &st.v.as_slice()[..n], &st.w.as_slice()[..m]);
+            }
             let data = &mut self.row_data[k * layout.stride..(k + 1) * layout.stride];
             let key = &mut self.row_keys[k];
+            // Slices of length N, so that in 3D and 4D the comparisons below are unrolled.
+            let (r, nv) = (&row.r.as_slice()[..n], &nrm.as_slice()[..n]);
             let same = key.body == row.body
                 && key.half_space == row.half_space
                 && key.index == row.index
                 && key.generation == st.generation
-                && key.r[..] == row.r.as_slice()[..]
-                && key.normal[..] == nrm.as_slice()[..];
+                && key.r.len() == n
+                && key.normal.len() == n
+                && key.r[..n] == *r
+                && key.normal[..n] == *nv;
             if !same {
                 row_matrices(st, &row.r, nrm, layout, data);
                 key.body = row.body;
@@ -975,17 +1046,11 @@ impl Solver {
                 key.normal.extend_from_slice(nrm.as_slice());
             }
             row.knn = data[layout.knn];
-            point_velocity::<N>(
-                data,
-                layout,
-                &row.r.as_slice()[..n],
-                &st.v.as_slice()[..n],
-                &st.w.as_slice()[..m],
-                u,
-            );
+            let r = &row.r.as_slice()[..n];
+            point_velocity::<N>(data, layout, r, v, w, u);
             let un = dot(&nrm.as_slice()[..n], u);
             row.target = if un < -resting_speed[row.body] {
-                -half_spaces[row.half_space].restitution() * un
+                -plane.restitution() * un
             } else {
                 0.0
             };
@@ -1006,13 +1071,19 @@ impl Solver {
         cursor: &mut usize,
         half_spaces: &[HalfSpace],
         layout: &RowLayout,
+        coupled: bool,
     ) {
         let n = dim::<N>(layout.n);
-        let mut jt: Small = SmallVec::from_elem(0.0, n);
-        let jt = &mut jt[..n];
-        let mut total: Small = SmallVec::from_elem(0.0, n);
-        let total = &mut total[..n];
-        for k in range {
+        let (mut jt_fixed, mut jt_any) = ([0.0; 4], Small::new());
+        let jt = scratch::<N>(&mut jt_fixed, &mut jt_any, n);
+        let (mut total_fixed, mut total_any) = ([0.0; 4], Small::new());
+        let total = scratch::<N>(&mut total_fixed, &mut total_any, n);
+        // One body in 3D or 4D: the rows' starting impulses are set first, and then applied
+        // in the same order to the body's velocities and impulses in locals (the rows that
+        // start, one bit each).
+        let apart = !coupled && N != 0 && range.len() <= 64;
+        let mut started = 0u64;
+        for k in range.clone() {
             let row = &mut self.contacts[k];
             let lambda = if row.warm {
                 jt.copy_from_slice(&row.friction_impulse.as_slice()[..n]);
@@ -1047,6 +1118,10 @@ impl Solver {
             }
             row.normal_impulse = lambda;
             row.friction_impulse.as_mut_slice().copy_from_slice(jt);
+            if apart {
+                started |= 1 << (k - range.start);
+                continue;
+            }
             let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
             self.states[row.body].view::<N>().apply_with::<N>(
                 data,
@@ -1055,6 +1130,26 @@ impl Solver {
                 total,
             );
         }
+        if started == 0 {
+            return;
+        }
+        let mut st = self.states[self.contacts[range.start].body].view::<N>();
+        let mut local = LocalBody::new(&st);
+        let mut view = local.view();
+        for k in range.clone() {
+            if started & (1 << (k - range.start)) == 0 {
+                continue;
+            }
+            let row = &self.contacts[k];
+            let nv = &half_spaces[row.half_space].normal().as_slice()[..n];
+            let (lambda, jt) = (row.normal_impulse, &row.friction_impulse.as_slice()[..n]);
+            for ((t, x), nx) in total.iter_mut().zip(jt).zip(nv) {
+                *t = nx * lambda + *x;
+            }
+            let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
+            view.apply_with::<N>(data, layout, &row.r.as_slice()[..n], total);
+        }
+        local.store(&mut st);
     }
 
     /// Gauss–Seidel sweeps over the contact rows `range` (and every joint when `coupled`)
@@ -1099,6 +1194,19 @@ impl Solver {
                     let plane = &half_spaces[row.half_space];
                     change = change.max(sweep_contact::<N>(row, data, layout, plane, &mut st));
                 }
+            } else if N != 0 {
+                // One body in 3D or 4D: its velocities and impulses in locals.
+                let mut st = self.states[self.contacts[start].body].view::<N>();
+                let mut local = LocalBody::new(&st);
+                let mut view = local.view();
+                for (k, row) in self.contacts[start..end].iter_mut().enumerate() {
+                    let at = (start + k) * layout.stride;
+                    let data = &self.row_data[at..at + layout.stride];
+                    let plane = &half_spaces[row.half_space];
+                    let c = sweep_contact::<N>(row, data, layout, plane, &mut view);
+                    change = change.max(c);
+                }
+                local.store(&mut st);
             } else {
                 // One body: its view serves every row.
                 let mut st = self.states[self.contacts[start].body].view::<N>();
@@ -1129,14 +1237,18 @@ impl Solver {
     ) {
         let n = dim::<N>(layout.n);
         let m = n * (n - 1) / 2;
-        let mut u: Small = SmallVec::from_elem(0.0, n);
-        let u = &mut u[..n];
+        let (mut u_fixed, mut u_any) = ([0.0; 4], Small::new());
+        let u = scratch::<N>(&mut u_fixed, &mut u_any, n);
+        // The velocities of the last row's body (the rows of a body are consecutive).
+        let (mut body, mut v, mut w): (usize, &[f64], &[f64]) = (usize::MAX, &[], &[]);
         for k in range {
             let row = &self.contacts[k];
             let nrm = half_spaces[row.half_space].normal();
-            let st = &self.states[row.body];
+            if row.body != body {
+                let st = &self.states[row.body];
+                (body, v, w) = (row.body, &st.v.as_slice()[..n], &st.w.as_slice()[..m]);
+            }
             let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
-            let (v, w) = (&st.v.as_slice()[..n], &st.w.as_slice()[..m]);
             point_velocity::<N>(data, layout, &row.r.as_slice()[..n], v, w, u);
             let friction = &row.friction_impulse.as_slice()[..n];
             record.record(
@@ -1357,16 +1469,16 @@ fn sweep_contact<const N: usize>(
     change = change.max((dl * row.knn).abs());
     // Friction: maximal dissipation in the disc |J_t| ≤ μλ.
     let limit = plane.friction() * row.normal_impulse;
-    let mut ut: Small = SmallVec::from_elem(0.0, n);
-    let ut = &mut ut[..n];
+    let (mut ut_fixed, mut ut_any) = ([0.0; 4], Small::new());
+    let ut = scratch::<N>(&mut ut_fixed, &mut ut_any, n);
     let offset = &row.r.as_slice()[..n];
     point_velocity::<N>(data, l, offset, &st.v[..n], &st.w[..m], ut);
     let normal_part = dot(nv, ut);
     for (u, x) in ut.iter_mut().zip(nv) {
         *u -= normal_part * x;
     }
-    let mut new: Small = SmallVec::from_elem(0.0, n);
-    let new = &mut new[..n];
+    let (mut new_fixed, mut new_any) = ([0.0; 4], Small::new());
+    let new = scratch::<N>(&mut new_fixed, &mut new_any, n);
     // The sticking impulse old − K_t⁻¹ u_t when it lies in the disc (a resting contact),
     // else the one of maximal dissipation on its rim.
     let old = &row.friction_impulse.as_slice()[..n];
@@ -1387,8 +1499,8 @@ fn sweep_contact<const N: usize>(
             new,
         );
     }
-    let mut dj: Small = SmallVec::from_elem(0.0, n);
-    let dj = &mut dj[..n];
+    let (mut dj_fixed, mut dj_any) = ([0.0; 4], Small::new());
+    let dj = scratch::<N>(&mut dj_fixed, &mut dj_any, n);
     let mut largest = 0.0f64;
     for ((d, x), y) in dj.iter_mut().zip(new.iter()).zip(old) {
         *d = x - y;
@@ -1404,6 +1516,22 @@ fn sweep_contact<const N: usize>(
 
 /// A short vector on the stack (N ≤ 8).
 type Small = SmallVec<[f64; 8]>;
+
+/// A zero scratch vector of length n (`N` as in [`dim`]): `fixed` in 3D and 4D, where its
+/// length is known and it needs no check of its storage, else `any`.
+#[inline(always)]
+fn scratch<'a, const N: usize>(
+    fixed: &'a mut [f64; 4],
+    any: &'a mut Small,
+    n: usize,
+) -> &'a mut [f64] {
+    if N != 0 {
+        &mut fixed[..n]
+    } else {
+        any.resize(n, 0.0);
+        &mut any[..n]
+    }
+}
 
 /// Computes a contact row's matrices ([`RowLayout`]) for a body state `st`, the offset `r`
 /// of the point and the unit normal `nrm`.
