@@ -621,8 +621,9 @@ fn rotate3(v: [f64; 3], x: [f64; 3]) -> [f64; 3] {
 }
 
 /// The side N of the stored N×N matrix.
+#[inline]
 fn side(q: &MatrixStorage) -> usize {
-    (q.len() as f64).sqrt().round() as usize
+    q.len().isqrt()
 }
 
 /// Q x (or Qᵀ x when `transposed`) for the stored column-major Q, without a heap matrix.
