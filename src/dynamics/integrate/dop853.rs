@@ -12,9 +12,7 @@ type Stages = SmallVec<[Bivector; ALL_STAGES]>;
 
 /// y ← y + α x.
 fn axpy(y: &mut Bivector, alpha: f64, x: &Bivector) {
-    for (a, b) in y.as_mut_slice().iter_mut().zip(x.as_slice()) {
-        *a += alpha * b;
-    }
+    super::axpy(y.as_mut_slice(), alpha, x.as_slice());
 }
 
 /// Writes dexp⁻¹₋Ω(s·w) truncated for order 8 ([`dexp_inverse_packed`]) into `out`,

@@ -95,6 +95,7 @@ pub(crate) fn dexp_inverse_packed(
 }
 
 /// y ← y + α x on packed components.
+#[inline]
 pub(crate) fn axpy(y: &mut [f64], alpha: f64, x: &[f64]) {
     for (a, b) in y.iter_mut().zip(x) {
         *a += alpha * b;

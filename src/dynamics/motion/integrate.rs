@@ -5,6 +5,7 @@ use super::forques::Anchor;
 use super::placement::{Placements, set_vector};
 use super::{ContactShape, MovingBody, System, Wrench};
 use crate::algebra::{Bivector, Vector};
+use crate::dynamics::integrate::axpy;
 use crate::dynamics::torques::Free;
 use crate::dynamics::{Attitude, DynamicsError, Integrator, Splitting};
 
@@ -529,14 +530,6 @@ impl MotionSplitting {
             }
         }
         Ok(())
-    }
-}
-
-/// y += a x, in place.
-#[inline]
-fn axpy(y: &mut [f64], a: f64, x: &[f64]) {
-    for (y, x) in y.iter_mut().zip(x) {
-        *y += a * x;
     }
 }
 
