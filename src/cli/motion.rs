@@ -155,6 +155,15 @@ pub enum IntegratorKind {
     Strang,
     /// Lie–Poisson splitting, Yoshida (order 4, conserves the Casimirs).
     Yoshida4,
+    /// Lie–Poisson splitting, Suzuki's five steps (order 4, a smaller error than yoshida4's
+    /// at equal cost; conserves the Casimirs).
+    Suzuki4,
+    /// Lie–Poisson splitting, Kahan–Li (order 6, conserves the Casimirs).
+    #[value(name = "kahan-li6")]
+    KahanLi6,
+    /// Lie–Poisson splitting, Kahan–Li (order 8, conserves the Casimirs).
+    #[value(name = "kahan-li8")]
+    KahanLi8,
     /// Implicit midpoint rule (order 2, conserves the energy).
     Midpoint,
     /// Discrete Moser–Veselov top (order 2, conserves the energy, the Casimirs and every
@@ -173,6 +182,9 @@ impl IntegratorKind {
             IntegratorKind::Dop853 => "dop853",
             IntegratorKind::Strang => "strang",
             IntegratorKind::Yoshida4 => "yoshida4",
+            IntegratorKind::Suzuki4 => "suzuki4",
+            IntegratorKind::KahanLi6 => "kahan-li6",
+            IntegratorKind::KahanLi8 => "kahan-li8",
             IntegratorKind::Midpoint => "midpoint",
             IntegratorKind::MoserVeselov => "moser-veselov",
         }
@@ -418,6 +430,9 @@ pub fn integrate_each(
                 IntegratorKind::LiePoissonRk4 => Box::new(LiePoissonRk4),
                 IntegratorKind::Strang => Box::new(Splitting::strang()),
                 IntegratorKind::Yoshida4 => Box::new(Splitting::yoshida4()),
+                IntegratorKind::Suzuki4 => Box::new(Splitting::suzuki4()),
+                IntegratorKind::KahanLi6 => Box::new(Splitting::kahan_li6()),
+                IntegratorKind::KahanLi8 => Box::new(Splitting::kahan_li8()),
                 IntegratorKind::Midpoint => Box::new(Midpoint::default()),
                 IntegratorKind::MoserVeselov => Box::new(MoserVeselov::new()),
                 IntegratorKind::Dopri5 | IntegratorKind::Dop853 => {

@@ -110,7 +110,7 @@ cases! {
         refuses(&["simulate", "--body", "cuboid:1,2,3", "--omega", "1,0,0", "--t-end", "NaN", "--samples", "3"], "not a finite number")
     }
     non_positive_t_end => { simulate("cuboid:1,2,3", "1,0,0", &["--t-end", "0"], "--t-end must be positive") }
-    unknown_integrator => { simulate("cuboid:1,2,3", "1,0,0", &["--integrator", "euler"], "possible values: rk4, lie-poisson-rk4, dopri5, dop853, strang, yoshida4, midpoint, moser-veselov") }
+    unknown_integrator => { simulate("cuboid:1,2,3", "1,0,0", &["--integrator", "euler"], "possible values: rk4, lie-poisson-rk4, dopri5, dop853, strang, yoshida4, suzuki4, kahan-li6, kahan-li8, midpoint, moser-veselov") }
     moser_veselov_needs_a_physical_body => {
         simulate("planes:0.6666666666666666,1,2", "0.3,0.2,1", &["--integrator", "mv", "--t-end", "1", "--samples", "2"], "needs a physical inertia map")
     }
