@@ -246,8 +246,8 @@ fn starting_step<const N: usize, const K: usize>(
     let scale_a = atol + rtol;
     let rms = |l: &dyn Fn(usize) -> f64, a: &dyn Fn(usize) -> f64| -> f64 {
         let mut sum = 0.0;
-        for i in 0..K {
-            sum += (l(i) / scale_l(l0[i])).powi(2);
+        for (i, y) in l0.iter().enumerate() {
+            sum += (l(i) / scale_l(*y)).powi(2);
             sum += (a(i) / scale_a).powi(2);
         }
         (sum / (2 * K).max(1) as f64).sqrt()
