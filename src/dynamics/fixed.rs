@@ -478,19 +478,21 @@ macro_rules! free_body {
             }
 
             /// Advances the body by `duration` (either sign) with the adaptive Dormand–Prince
-            /// 8(5,3) method of [`Dop853`](super::Dop853), applied to this body's stack
-            /// arrays: the same algorithm (RKMK on the group, the attitude R₀ exp(A) with A
-            /// integrated in the Lie algebra, the 5th/3rd-order blended error on (L, A) with
-            /// the mixed tolerance atol + rtol·|y|, the same step-size control and Hairer's
-            /// starting step), so that it takes the steps the run-time integrator takes on
-            /// [`Self::write_to`]'s body in one [`Integrator::step`](super::Integrator::step)
-            /// over `duration`, and ends exactly there. Each call starts with the
-            /// starting-step heuristic: advance over a whole interval in one call.
+            /// 8(5,3) method of [`Dop853`](super::Dop853) on this body's stack arrays, with
+            /// relative and absolute tolerances `rtol` and `atol`, and returns the step counts.
+            /// The algorithm is the run-time one: RKMK on the group (the attitude R₀ exp(A),
+            /// A integrated in the Lie algebra), the blended 5th/3rd-order error on (L, A)
+            /// with the mixed tolerance atol + rtol·|y|, the same step-size control and
+            /// Hairer's starting step. It takes the steps `Dop853::new(rtol, atol)` takes in
+            /// one [`Integrator::step`](super::Integrator::step) of `duration` on the
+            /// run-time body, and ends exactly at `duration`. Every call starts with the
+            /// starting-step heuristic, so advance over a whole interval in one call.
             ///
             /// Cost: twelve right-hand sides per accepted step and eleven per rejected one,
-            /// each a commutator for dL/dt and six for dexp⁻¹, all on the stack (no heap);
-            /// for a trajectory to 10⁻⁸…10⁻¹³ this is far cheaper than [`Self::step_rk4`] at
-            /// the step that accuracy needs.
+            /// each one commutator for dL/dt and six for dexp⁻¹, all on the stack (no heap).
+            /// From about 10⁻⁸ down it beats [`Self::step_rk4`] at the step that accuracy
+            /// needs (on the 4D cuboid of the book's benchmarks to t = 100, about 1.7 times
+            /// at 10⁻⁸ and 4.5 times at 10⁻¹¹).
             ///
             /// # Errors
             /// [`DynamicsError::InvalidTolerance`] unless both tolerances are finite and
