@@ -1,8 +1,9 @@
 //! Criterion benches of one integrator step (with attitude), per N, beside
 //! (a) a hand-written fixed-size RK4 for N = 3 and 4, the speed limit, and (b) the same RK4 on
 //! nalgebra matrices (SMatrix for N ≤ 8, DMatrix for all): L as a skew matrix, the attitude
-//! as a rotation matrix; and the two adaptive Dormand–Prince integrators carrying the 4D
-//! cuboid to t = 10 at the tolerances that give both |Δω| ≈ 1e-11 at t = 100; and RK4 beside
+//! as a rotation matrix; and the two adaptive Dormand–Prince integrators (and Dop853's
+//! fixed-size twin, `FreeBody4::advance_dop853`) carrying the 4D cuboid to t = 10 at the
+//! tolerances that give both |Δω| ≈ 1e-11 at t = 100; and RK4 beside
 //! the Casimir-preserving Lie–Poisson RK4 carrying the same cuboid to t = 100 at the step
 //! counts that give each |Δω| ≤ 1e-8 there. `BENCH_QUICK=1` shortens the run.
 
@@ -10,7 +11,8 @@ use criterion::{BenchmarkId, Criterion, black_box, criterion_group, criterion_ma
 use nalgebra::{DMatrix, SMatrix};
 use rotorflow::dynamics::torques::Free;
 use rotorflow::dynamics::{
-    Attitude, Dop853, Dopri5, Integrator, LiePoissonRk4, Midpoint, RigidBody, Rkmk4, Splitting,
+    Attitude, Dop853, Dopri5, FreeBody4, Integrator, LiePoissonRk4, Midpoint, RigidBody, Rkmk4,
+    Splitting,
 };
 use rotorflow::prelude::*;
 
@@ -209,6 +211,15 @@ fn bench_tight_tolerance(c: &mut Criterion) {
             })
         });
     }
+    // The same steps as Dop853 at rtol 1e-12, on the fixed-size body.
+    let fixed = FreeBody4::from_rigid_body(&start).unwrap();
+    g.bench_function("rotorflow_fixed_dop853_rtol1e-12", |bench| {
+        bench.iter(|| {
+            let mut b = black_box(fixed);
+            b.advance_dop853(10.0, 1e-12, 1e-14).unwrap();
+            b
+        })
+    });
     g.finish();
 }
 

@@ -600,6 +600,43 @@ fn settings(problem: &'static str) -> Res<Vec<Setting>> {
             }
         }
     }
+    // The adaptive Dormand–Prince 8(5,3) on the fixed-size free bodies: Dop853's steps.
+    if problem == "hlw" || problem == "p4" {
+        let t = t_end(problem);
+        let (start, _) = setup(problem)?;
+        for rtol in TOLERANCES {
+            let run: Solve = if problem == "hlw" {
+                let b0 = FreeBody3::from_rigid_body(&start)?;
+                Box::new(move || {
+                    let mut b = b0;
+                    let stats = b.advance_dop853(t, rtol, rtol * 1e-2)?;
+                    let l = b.momentum().to_array();
+                    Ok((
+                        vec![l[2], -l[1], l[0]],
+                        stats.accepted,
+                        stats.rhs_evaluations,
+                    ))
+                })
+            } else {
+                let b0 = FreeBody4::from_rigid_body(&start)?;
+                Box::new(move || {
+                    let mut b = b0;
+                    let stats = b.advance_dop853(t, rtol, rtol * 1e-2)?;
+                    Ok((
+                        b.omega().to_array().to_vec(),
+                        stats.accepted,
+                        stats.rhs_evaluations,
+                    ))
+                })
+            };
+            out.push(Setting {
+                method: "fixed_dop853",
+                setting: format!("rtol={rtol:e}"),
+                run,
+                drifts: None,
+            });
+        }
+    }
     // The baselines of this file.
     for h in step_sizes(problem, 4) {
         let steps = (t_end(problem) / h).round() as usize;
@@ -784,6 +821,7 @@ fn display(method: &str, problem: &str) -> String {
         "dop853" => "`Dop853`".into(),
         "fixed_rk4" => format!("`{fixed}::step_rk4`"),
         "fixed_strang" => format!("`{fixed}::step_strang`"),
+        "fixed_dop853" => format!("`{fixed}::advance_dop853`"),
         "nalgebra_rk4" => "RK4 on nalgebra fixed-size types (baseline)".into(),
         "unrolled_rk4" => "RK4 on ω, unrolled by hand (baseline)".into(),
         "scipy" => "scipy DOP853 (`solve_ivp`)".into(),
@@ -1351,7 +1389,7 @@ fn plot(problem: &str, points: &[Point]) -> String {
     );
     let colours = [
         "#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#7f7f7f",
-        "#bcbd22", "#17becf", "#393b79", "#637939", "#000000",
+        "#bcbd22", "#17becf", "#393b79", "#637939", "#000000", "#e6550d",
     ];
     for (k, method) in methods(points).iter().enumerate() {
         let c = colours[k % colours.len()];

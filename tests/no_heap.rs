@@ -1,7 +1,7 @@
 //! Vectors and bivectors up to N = 8, rotors in 3D and 4D, and the integrator steps of the
 //! splitting, RK4 (plain and Lie–Poisson), midpoint, Dopri5 and Moser–Veselov methods up to
-//! N = 8 never touch the heap: a counting global allocator asserts it for construction, the hot kernels and the
-//! steps.
+//! N = 8, and the fixed-size bodies' steps and adaptive runs, never touch the heap: a counting
+//! global allocator asserts it for construction, the hot kernels and the steps.
 
 use rotorflow::prelude::*;
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -259,6 +259,8 @@ fn fixed_size_body_steps_and_rotor_kernels_do_not_allocate() {
             b3.step_strang(0.01);
             b4.step_rk4(0.01);
             b4.step_strang(0.01);
+            let _ = std::hint::black_box(b3.advance_dop853(0.05, 1e-10, 1e-12));
+            let _ = std::hint::black_box(b4.advance_dop853(0.05, 1e-10, 1e-12));
             let r = b4.attitude();
             let _ = std::hint::black_box((r * r).log().exp().to_matrix());
             let mut x = [1.0f64; 8];
@@ -268,7 +270,10 @@ fn fixed_size_body_steps_and_rotor_kernels_do_not_allocate() {
             r.rotate_soa(a, b, c, d);
         }
     });
-    assert_eq!(count, 0, "{count} heap allocations in 100 steps");
+    assert_eq!(
+        count, 0,
+        "{count} heap allocations in 100 steps and adaptive runs"
+    );
 }
 
 /// A bivector of `sig` with every coefficient non-zero.
@@ -685,5 +690,8 @@ fn preprocessed_moser_veselov_steps_do_not_allocate() {
             mv.step(&mut body, k as f64 * 0.01, 0.01, &Free).unwrap();
         }
     });
-    assert_eq!(count, 0, "{count} heap allocations in 100 steps");
+    assert_eq!(
+        count, 0,
+        "{count} heap allocations in 100 steps and adaptive runs"
+    );
 }

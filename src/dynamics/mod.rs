@@ -47,7 +47,7 @@ pub mod trajectory;
 pub use attitude::Attitude;
 pub use body::RigidBody;
 pub use error::{DynamicsError, NoClosedFormReason};
-pub use fixed::{FreeBody3, FreeBody4};
+pub use fixed::{Dop853Stats, FreeBody3, FreeBody4};
 pub use integrate::{
     Dop853, Dopri5, Integrator, LiePoissonRk4, Midpoint, MoserVeselov, Rkmk4, Splitting,
     SplittingOrder,

@@ -1,11 +1,14 @@
 //! The fixed-size free bodies against the run-time integrators: the same step to a few ulp,
-//! the splitting's invariants over long runs, and the batch and parallel forms.
+//! the splitting's invariants over long runs, the batch and parallel forms, and the adaptive
+//! Dormand–Prince run against `Dop853` and the 3D top's closed form.
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rotorflow::algebra::{Bivector, Bivector3, Bivector4, Rotor, Rotor4};
 use rotorflow::dynamics::torques::Free;
-use rotorflow::dynamics::{FreeBody3, FreeBody4, Integrator, RigidBody, Rkmk4, Splitting};
+use rotorflow::dynamics::{
+    Dop853, DynamicsError, FreeBody3, FreeBody4, Integrator, RigidBody, Rkmk4, Splitting,
+};
 use rotorflow::inertia::InertiaMap;
 
 /// max |a − b| / (ε max(1, max |b|)).
@@ -185,4 +188,179 @@ fn bad_bodies_are_refused() {
         FreeBody4::from_rigid_body(&b).unwrap().momentum(),
         f.momentum()
     );
+}
+
+/// (momentum, attitude coefficients, stats) after the fixed-size adaptive run on `start`.
+fn adaptive_fixed(
+    start: &RigidBody,
+    duration: f64,
+    rtol: f64,
+    atol: f64,
+) -> (Vec<f64>, Vec<f64>, rotorflow::dynamics::Dop853Stats) {
+    if start.dim() == 3 {
+        let mut f = FreeBody3::from_rigid_body(start).unwrap();
+        let stats = f.advance_dop853(duration, rtol, atol).unwrap();
+        (
+            f.momentum().to_array().to_vec(),
+            rotor_coefficients(&f.attitude().to_rotor()),
+            stats,
+        )
+    } else {
+        let mut f = FreeBody4::from_rigid_body(start).unwrap();
+        let stats = f.advance_dop853(duration, rtol, atol).unwrap();
+        (
+            f.momentum().to_array().to_vec(),
+            rotor_coefficients(&f.attitude().to_rotor()),
+            stats,
+        )
+    }
+}
+
+/// max |a − b| / max(1, max |b|).
+fn relative(a: &[f64], b: &[f64]) -> f64 {
+    ulps(a, b) * f64::EPSILON
+}
+
+#[test]
+fn adaptive_run_takes_the_steps_of_the_run_time_dop853() {
+    let mut rng = ChaCha8Rng::seed_from_u64(55);
+    let mut worst = [0.0f64; 2];
+    let mut steps = 0;
+    for n in [3, 4] {
+        for k in 0..20 {
+            let start = body(n, &mut rng);
+            let rtol = [1e-6, 1e-9, 1e-12][k % 3];
+            // Both directions of time.
+            let duration = if k % 4 == 3 { -7.5 } else { 10.0 };
+            let mut rt = start.clone();
+            let mut d = Dop853::new(rtol, rtol * 1e-2).unwrap();
+            d.step(&mut rt, 0.0, duration, &Free).unwrap();
+            let (fl, fr, stats) = adaptive_fixed(&start, duration, rtol, rtol * 1e-2);
+            assert_eq!(stats.accepted, d.accepted_steps(), "N = {n}, case {k}");
+            assert_eq!(stats.rejected, d.rejected_steps(), "N = {n}, case {k}");
+            assert_eq!(
+                stats.rhs_evaluations,
+                d.rhs_evaluations(),
+                "N = {n}, case {k}"
+            );
+            let (l, r) = state(&rt);
+            worst[0] = worst[0].max(relative(&fl, &l));
+            worst[1] = worst[1].max(relative(&fr, &r));
+            steps += stats.accepted;
+        }
+    }
+    eprintln!("relative gaps (L, attitude): {worst:?} over {steps} steps");
+    // The momentum takes the same arithmetic; the attitudes' products round differently.
+    assert!(worst[0] <= 1e-13, "{worst:?}");
+    assert!(worst[1] <= 1e-12, "{worst:?}");
+    assert!(steps > 1000);
+}
+
+#[test]
+fn adaptive_run_keeps_the_sign_of_the_run_time_integrator_in_3d() {
+    // About a principal plane ω is constant and the attitude is R₀ exp(−½ ω t): a sign slip
+    // in the algebra increment would turn the body the other way.
+    let inertia = InertiaMap::from_principal_second_moments(&[0.5, 1.0, 2.0]).unwrap();
+    let omega = Bivector::from_components(3, &[0.0, 0.7, 0.0]).unwrap();
+    let r0 = Bivector::from_components(3, &[0.2, -0.1, 0.4])
+        .unwrap()
+        .exp();
+    let start = RigidBody::from_body_velocity(inertia, r0, &omega).unwrap();
+    let t = 3.0;
+    let mut f = FreeBody3::from_rigid_body(&start).unwrap();
+    f.advance_dop853(t, 1e-12, 1e-14).unwrap();
+    let expected = f_start_attitude(&start) * Bivector3::new(0.0, 0.7 * -0.5 * t, 0.0).exp();
+    let got = rotor_coefficients(&f.attitude().to_rotor());
+    let want = rotor_coefficients(&expected.to_rotor());
+    assert!(relative(&got, &want) < 1e-12, "{got:?} against {want:?}");
+    let mut rt = start.clone();
+    Dop853::new(1e-12, 1e-14)
+        .unwrap()
+        .step(&mut rt, 0.0, t, &Free)
+        .unwrap();
+    let (_, r) = state(&rt);
+    assert!(relative(&got, &r) < 1e-13, "{got:?} against {r:?}");
+    // The momentum is the constant L about that plane.
+    assert!(relative(&f.momentum().to_array(), start.momentum().as_slice()) < 1e-14);
+}
+
+/// The fixed-size attitude of a run-time body.
+fn f_start_attitude(start: &RigidBody) -> rotorflow::algebra::Rotor3 {
+    FreeBody3::from_rigid_body(start).unwrap().attitude()
+}
+
+#[test]
+fn adaptive_run_reaches_the_tolerance_against_the_closed_form_of_the_3d_top() {
+    let inertia = InertiaMap::from_principal_second_moments(&[0.2, 0.5, 1.0]).unwrap();
+    let omega = Bivector::from_components(3, &[0.4, -0.9, 1.2]).unwrap();
+    let start = RigidBody::from_body_velocity(inertia, Rotor::identity(3), &omega).unwrap();
+    let t_end = 20.0;
+    let exact = start.exact_solution().unwrap().body_at(t_end).unwrap();
+    let (l, r) = state(&exact);
+    let mut last = f64::INFINITY;
+    for rtol in [1e-6, 1e-9, 1e-12] {
+        let (fl, fr, stats) = adaptive_fixed(&start, t_end, rtol, rtol * 1e-2);
+        let error = relative(&fl, &l).max(relative(&fr, &r));
+        eprintln!("rtol {rtol:e}: error {error:e}, {stats:?}");
+        // The global error over 20 time units stays at the tolerance's scale and falls with it.
+        assert!(error < 20.0 * rtol, "rtol {rtol:e}: error {error:e}");
+        assert!(error < last);
+        last = error;
+    }
+}
+
+#[test]
+fn adaptive_run_keeps_the_attitude_unit() {
+    let mut rng = ChaCha8Rng::seed_from_u64(56);
+    let mut f4 = FreeBody4::from_rigid_body(&body(4, &mut rng)).unwrap();
+    let mut f3 = FreeBody3::from_rigid_body(&body(3, &mut rng)).unwrap();
+    let stats = f4.advance_dop853(200.0, 1e-12, 1e-14).unwrap();
+    f3.advance_dop853(200.0, 1e-12, 1e-14).unwrap();
+    assert!(stats.accepted > 500, "{stats:?}");
+    assert!(
+        f4.attitude().unit_error() < 1e-13,
+        "{:e}",
+        f4.attitude().unit_error()
+    );
+    assert!(
+        f3.attitude().unit_error() < 1e-13,
+        "{:e}",
+        f3.attitude().unit_error()
+    );
+}
+
+#[test]
+fn adaptive_run_refuses_bad_input_and_leaves_the_body() {
+    let mut rng = ChaCha8Rng::seed_from_u64(57);
+    let start = FreeBody4::from_rigid_body(&body(4, &mut rng)).unwrap();
+    let mut f = start;
+    for (rtol, atol) in [
+        (f64::NAN, 1e-8),
+        (1e-8, f64::INFINITY),
+        (-1e-8, 1e-8),
+        (1e-8, -1e-10),
+        (0.0, 0.0),
+    ] {
+        let err = f.advance_dop853(1.0, rtol, atol).unwrap_err();
+        assert!(
+            matches!(err, DynamicsError::InvalidTolerance { .. }),
+            "{rtol}, {atol}: {err}"
+        );
+    }
+    for duration in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+        let err = f.advance_dop853(duration, 1e-8, 1e-10).unwrap_err();
+        assert!(
+            matches!(err, DynamicsError::InvalidSampling { .. }),
+            "{duration}: {err}"
+        );
+    }
+    assert_eq!(f, start);
+    // A zero duration is no step.
+    assert_eq!(f.advance_dop853(0.0, 1e-8, 1e-10).unwrap().accepted, 0);
+    assert_eq!(f, start);
+    let mut b3 = FreeBody3::from_rigid_body(&body(3, &mut rng)).unwrap();
+    let before = b3;
+    assert!(b3.advance_dop853(f64::NAN, 1e-8, 1e-8).is_err());
+    assert!(b3.advance_dop853(1.0, 1e-8, f64::NAN).is_err());
+    assert_eq!(b3, before);
 }

@@ -8,12 +8,12 @@
 #![allow(clippy::excessive_precision)]
 
 /// The number of stages of one step.
-pub(super) const STAGES: usize = 12;
+pub(crate) const STAGES: usize = 12;
 /// The stages the dense output adds (f at the new solution and three more).
-pub(super) const ALL_STAGES: usize = 16;
+pub(crate) const ALL_STAGES: usize = 16;
 
 /// Nodes c₀ … c₁₅.
-pub(super) const C: [f64; ALL_STAGES] = [
+pub(crate) const C: [f64; ALL_STAGES] = [
     0.0,
     0.526001519587677318785587544488e-01,
     0.789002279381515978178381316732e-01,
@@ -33,7 +33,7 @@ pub(super) const C: [f64; ALL_STAGES] = [
 ];
 
 /// The coupling coefficients a_sj (j < s); row 12 is unused (stage 12 is the solution).
-pub(super) const A: [[f64; ALL_STAGES - 1]; ALL_STAGES] = {
+pub(crate) const A: [[f64; ALL_STAGES - 1]; ALL_STAGES] = {
     let mut a = [[0.0; ALL_STAGES - 1]; ALL_STAGES];
     a[1][0] = 5.26001519587677318785587544488e-2;
 
@@ -126,7 +126,7 @@ pub(super) const A: [[f64; ALL_STAGES - 1]; ALL_STAGES] = {
 };
 
 /// The weights of the 8th-order solution.
-pub(super) const B: [f64; STAGES] = [
+pub(crate) const B: [f64; STAGES] = [
     5.42937341165687622380535766363e-2,
     0.0,
     0.0,
@@ -142,7 +142,7 @@ pub(super) const B: [f64; STAGES] = [
 ];
 
 /// The weights of the 3rd-order comparison solution (stages 0, 8 and 11).
-pub(super) const BHH: [f64; STAGES] = [
+pub(crate) const BHH: [f64; STAGES] = [
     0.244094488188976377952755905512e+00,
     0.0,
     0.0,
@@ -158,7 +158,7 @@ pub(super) const BHH: [f64; STAGES] = [
 ];
 
 /// The 5th-order error weights.
-pub(super) const E5: [f64; STAGES] = [
+pub(crate) const E5: [f64; STAGES] = [
     0.1312004499419488073250102996e-01,
     0.0,
     0.0,
@@ -174,7 +174,7 @@ pub(super) const E5: [f64; STAGES] = [
 ];
 
 /// The dense-output weights d₄ … d₇ over all sixteen stages.
-pub(super) const D: [[f64; ALL_STAGES]; 4] = [
+pub(crate) const D: [[f64; ALL_STAGES]; 4] = [
     [
         -0.84289382761090128651353491142e+01,
         0.0,

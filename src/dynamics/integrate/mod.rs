@@ -17,7 +17,7 @@
 //! the motion.
 
 mod dop853;
-mod dop853_tableau;
+pub(crate) mod dop853_tableau;
 mod dopri;
 mod midpoint;
 mod moser_veselov;
