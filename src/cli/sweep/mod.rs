@@ -1,6 +1,7 @@
 //! `rotorflow sweep`: a grid of simulations in parallel, with the observables of the 3D
 //! projection of each run.
 
+mod batch;
 mod resume;
 mod table;
 
@@ -241,32 +242,52 @@ pub fn run(args: &SweepArgs, quiet: bool) -> CliResult<()> {
     if let Ok(mut p) = progress.lock() {
         p.advance(finished.len() as u64);
     }
-    let new_rows: Vec<Row> = todo
+    let finish = |run: &GridRun, report: Report| -> CliResult<Row> {
+        let row = Row {
+            run: run.0,
+            values: run.1.clone(),
+            observables: observables(&report, axes)?,
+            manakov_drift: report.drift.manakov,
+            energy_drift: report.drift.energy,
+            casimir_drift: report.drift.casimirs,
+        };
+        if let Some(log) = &log {
+            log.lock()
+                .map_err(|_| CliError::runtime("the progress file is unusable"))?
+                .append(&row)?;
+        }
+        if let Ok(mut p) = progress.lock() {
+            p.advance(1);
+        }
+        Ok(row)
+    };
+    // Free 3D and 4D bodies under rk4 or strang step together on the batch kernels, in
+    // groups that share the step; every other run integrates alone.
+    let (groups, single) = batch_groups(todo);
+    let grouped: Vec<Vec<Row>> = groups
         .par_iter()
-        .map(|(run, values, start, stepping)| {
-            let mut silent = Progress::new(0, true, "");
-            let (states, _) = integrate(start, &Free, *stepping, &times, &mut silent)
-                .map_err(|e| CliError::runtime(format!("run {run}: {e}")))?;
-            let report = Report::from_states(start, &times, states.into_iter().map(Ok))?;
-            let row = Row {
-                run: *run,
-                values: values.clone(),
-                observables: observables(&report, axes)?,
-                manakov_drift: report.drift.manakov,
-                energy_drift: report.drift.energy,
-                casimir_drift: report.drift.casimirs,
-            };
-            if let Some(log) = &log {
-                log.lock()
-                    .map_err(|_| CliError::runtime("the progress file is unusable"))?
-                    .append(&row)?;
-            }
-            if let Ok(mut p) = progress.lock() {
-                p.advance(1);
-            }
-            Ok(row)
+        .map(|(kernel, group)| {
+            let reports = batch::reports(group, *kernel, &times)?;
+            group
+                .iter()
+                .zip(reports)
+                .map(|(run, report)| finish(run, report))
+                .collect()
         })
         .collect::<CliResult<_>>()?;
+    let alone: Vec<Row> = single
+        .par_iter()
+        .map(|run| {
+            let mut silent = Progress::new(0, true, "");
+            let (states, _) = integrate(&run.2, &Free, run.3, &times, &mut silent)
+                .map_err(|e| CliError::runtime(format!("run {}: {e}", run.0)))?;
+            finish(
+                run,
+                Report::from_states(&run.2, &times, states.into_iter().map(Ok))?,
+            )
+        })
+        .collect::<CliResult<_>>()?;
+    let new_rows = grouped.into_iter().flatten().chain(alone);
     if let Ok(p) = progress.into_inner() {
         p.finish();
     }
@@ -293,6 +314,33 @@ pub fn run(args: &SweepArgs, quiet: bool) -> CliResult<()> {
         }
     }
     Ok(())
+}
+
+/// Splits the runs into groups for the batch kernels (at most [`batch::GROUP`] runs that
+/// share a kernel and its step) and the runs that integrate alone.
+fn batch_groups(runs: Vec<&GridRun>) -> (Vec<(batch::Kernel, Vec<&GridRun>)>, Vec<&GridRun>) {
+    let mut groups: Vec<(batch::Kernel, Vec<&GridRun>)> = Vec::new();
+    let mut single = Vec::new();
+    // The group still filling for each kernel.
+    let mut open: std::collections::HashMap<_, usize> = std::collections::HashMap::new();
+    for run in runs {
+        let Some(kernel) = batch::kernel(run) else {
+            single.push(run);
+            continue;
+        };
+        match open.get_mut(&kernel.key()) {
+            Some(g) if groups[*g].1.len() < batch::GROUP => groups[*g].1.push(run),
+            Some(g) => {
+                *g = groups.len();
+                groups.push((kernel, vec![run]));
+            }
+            None => {
+                open.insert(kernel.key(), groups.len());
+                groups.push((kernel, vec![run]));
+            }
+        }
+    }
+    (groups, single)
 }
 
 /// Returns the observables of `report` in the 3D projection along `axes` (0-based).
