@@ -5,15 +5,15 @@
 //! run-time integrators' (`tests/dynamics/fixed.rs`), so the rows are those of the run-time
 //! path, which every other run takes.
 
-use super::GridRun;
 use super::super::error::{CliError, CliResult};
 use super::super::motion::{IntegratorKind, Report, State, Stepping};
+use super::GridRun;
 use rotorflow::algebra::{Bivector3, Bivector4, Rotor3, Rotor4};
 use rotorflow::dynamics::{Attitude, FreeBody3, FreeBody4};
 
 /// Runs per group: enough to fill the kernels, few enough that the groups spread over the
 /// threads and their samples stay small (one group's samples: 112 bytes per run and time).
-pub(super) const GROUP: usize = 32;
+pub(super) const GROUP: usize = 8;
 
 /// The most samples integrated between two block restarts, as in `motion::integrate_each`
 /// (whose step plan [`step_plan`] reproduces).
@@ -86,7 +86,7 @@ enum Swarm {
 }
 
 /// A run's samples: the attitude's and the momentum's fixed-size values.
-enum Samples {
+pub(super) enum Samples {
     D3(Vec<(Rotor3, Bivector3)>),
     D4(Vec<(Rotor4, Bivector4)>),
 }
@@ -110,7 +110,16 @@ impl Samples {
         }
     }
 
-    /// The run-time states, converted one at a time as the report reads them.
+    /// The run's report (from `start`, sampled at `times`): the run-time states, converted
+    /// one at a time as the report reads them.
+    pub(super) fn report(
+        self,
+        start: &rotorflow::dynamics::RigidBody,
+        times: &[f64],
+    ) -> CliResult<Report> {
+        Report::from_states(start, times, self.states())
+    }
+
     fn states(self) -> Box<dyn Iterator<Item = CliResult<State>>> {
         match self {
             Samples::D3(s) => Box::new(
@@ -125,12 +134,17 @@ impl Samples {
     }
 }
 
-/// Integrates a group of runs that share `kernel` and returns each run's report, in the
-/// group's order.
+/// Integrates a group of runs that share `kernel` and returns each run's samples, in the
+/// group's order (the reports are made one at a time from them: a report holds much more
+/// per sample).
 ///
 /// # Errors
 /// [`CliError::Runtime`] naming the first run whose state stops being finite.
-pub(super) fn reports(group: &[&GridRun], kernel: Kernel, times: &[f64]) -> CliResult<Vec<Report>> {
+pub(super) fn integrate_group(
+    group: &[&GridRun],
+    kernel: Kernel,
+    times: &[f64],
+) -> CliResult<Vec<Samples>> {
     let convert = |e: rotorflow::dynamics::DynamicsError| CliError::runtime(e.to_string());
     let mut swarm = match kernel.dim {
         3 => Swarm::D3(
@@ -178,18 +192,14 @@ pub(super) fn reports(group: &[&GridRun], kernel: Kernel, times: &[f64]) -> CliR
             )));
         }
     }
-    group
-        .iter()
-        .zip(samples)
-        .map(|(run, s)| Report::from_states(&run.2, times, s.states()))
-        .collect()
+    Ok(samples)
 }
 
 #[cfg(test)]
 mod tests {
-    use super::*;
     use super::super::super::motion::integrate;
     use super::super::super::output::Progress;
+    use super::*;
     use rotorflow::algebra::Bivector;
     use rotorflow::dynamics::RigidBody;
     use rotorflow::dynamics::torques::Free;
@@ -226,8 +236,9 @@ mod tests {
                 let group: Vec<&GridRun> = runs.iter().collect();
                 let k = kernel(&runs[0]).expect("a free 3D/4D body under rk4 or strang");
                 assert!(runs.iter().all(|r| kernel(r) == Some(k)));
-                let batch = reports(&group, k, &times).unwrap();
-                for (run, fast) in runs.iter().zip(&batch) {
+                let batch = integrate_group(&group, k, &times).unwrap();
+                for (run, samples) in runs.iter().zip(batch) {
+                    let fast = samples.report(&run.2, &times).unwrap();
                     let (states, _) = integrate(
                         &run.2,
                         &Free,

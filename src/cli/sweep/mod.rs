@@ -1,5 +1,6 @@
 //! `rotorflow sweep`: a grid of simulations in parallel, with the observables of the 3D
-//! projection of each run.
+//! projection of each run. Free 3D and 4D bodies under `rk4` or `strang` step in groups on
+//! the fixed-size batch kernels ([`batch`]); every other run integrates alone.
 
 mod batch;
 mod resume;
@@ -267,11 +268,11 @@ pub fn run(args: &SweepArgs, quiet: bool) -> CliResult<()> {
     let grouped: Vec<Vec<Row>> = groups
         .par_iter()
         .map(|(kernel, group)| {
-            let reports = batch::reports(group, *kernel, &times)?;
+            let samples = batch::integrate_group(group, *kernel, &times)?;
             group
                 .iter()
-                .zip(reports)
-                .map(|(run, report)| finish(run, report))
+                .zip(samples)
+                .map(|(run, s)| finish(run, s.report(&run.2, &times)?))
                 .collect()
         })
         .collect::<CliResult<_>>()?;
