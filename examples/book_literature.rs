@@ -31,7 +31,7 @@ use rotorflow::algebra::Vector;
 use rotorflow::dynamics::torques::{Free, Gravity};
 use rotorflow::dynamics::{
     Attitude, Dop853, Dopri5, FreeBody3, FreeBody4, Integrator, Invariants, LiePoissonRk4,
-    Midpoint, MoserVeselov, RigidBody, Rkmk4, Splitting, Torque,
+    Midpoint, MoserVeselov, RigidBody, Rkmk4, Splitting, SplittingOrder, Torque,
 };
 use rotorflow::inertia::spec::parse_body;
 use rotorflow::prelude::*;
@@ -524,6 +524,12 @@ fn settings(problem: &'static str) -> Res<Vec<Setting>> {
     if physical {
         fixed.push(("mv", || Box::new(MoserVeselov::new()), 0, 2));
         fixed.push(("mv4", || Box::new(MoserVeselov::yoshida4()), 0, 4));
+        fixed.push((
+            "mv8",
+            || Box::new(MoserVeselov::composed(SplittingOrder::KahanLi8)),
+            0,
+            8,
+        ));
     }
     for (method, make, stages, order) in fixed {
         for h in step_sizes(problem, order) {
@@ -817,6 +823,7 @@ fn display(method: &str, problem: &str) -> String {
         "lprk4" => "Lie–Poisson RK4 (`LiePoissonRk4`)".into(),
         "mv" => "Moser–Veselov (`MoserVeselov`)".into(),
         "mv4" => "Moser–Veselov, Yoshida 4 (`MoserVeselov::yoshida4`)".into(),
+        "mv8" => "Moser–Veselov, Kahan–Li 8 (`MoserVeselov::composed`)".into(),
         "dopri5" => "`Dopri5`".into(),
         "dop853" => "`Dop853`".into(),
         "fixed_rk4" => format!("`{fixed}::step_rk4`"),
@@ -845,6 +852,7 @@ fn keeps_casimirs(method: &str, problem: &str) -> bool {
             | "kahan_li8"
             | "mv"
             | "mv4"
+            | "mv8"
             | "fixed_strang"
             | "lprk4"
     ) || (method == "midpoint" && (problem == "p4" || problem == "hlw" || problem == "free4"))

@@ -205,3 +205,51 @@ fn the_weights_sum_to_one_are_symmetric_and_meet_the_third_order_condition() {
         }
     }
 }
+
+#[test]
+fn moser_veselov_compositions_have_their_orders_and_keep_every_manakov_integral() {
+    use rotorflow::dynamics::MoserVeselov;
+    let mut checked = 0;
+    for (n, seed) in [(4, 361), (5, 362)] {
+        let start = random_body(&mut rng(seed), n);
+        let t_end = 4.8;
+        let mut reference = start.clone();
+        Dop853::new(1e-14, 1e-16)
+            .unwrap()
+            .step(&mut reference, 0.0, t_end, &Free)
+            .unwrap();
+        let integrals = Invariants::of(&start);
+        for order in [
+            SplittingOrder::Yoshida4,
+            SplittingOrder::Suzuki4,
+            SplittingOrder::KahanLi6,
+            SplittingOrder::KahanLi8,
+        ] {
+            let hs = match order.order() {
+                4 => [0.08, 0.04, 0.02],
+                6 => [0.32, 0.16, 0.08],
+                _ => [0.4, 0.3, 0.2],
+            };
+            let mut es = Vec::new();
+            for &h in &hs {
+                let mut b = start.clone();
+                let mut mv = MoserVeselov::composed(order);
+                run(&mut b, &mut mv, &Free, h, (t_end / h).round() as usize);
+                es.push(distance(&b, &reference));
+                let drift = Invariants::of(&b).drift_from(&integrals);
+                let worst = drift.manakov.max(drift.energy);
+                assert!(worst < 1e-13, "N = {n}, {order:?}, h = {h}: {drift:?}");
+            }
+            let p = slope(&hs, &es);
+            eprintln!("MV N = {n} {order:?}: errors {es:?}, measured order {p:.3}");
+            assert_eq!(MoserVeselov::composed(order).order(), order.order());
+            assert!(es[2] > 1e-12, "N = {n}, {order:?}: {es:?}");
+            assert!(
+                (p - order.order() as f64).abs() < 0.3,
+                "N = {n}, {order:?}: measured order {p} ({es:?})"
+            );
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 8);
+}

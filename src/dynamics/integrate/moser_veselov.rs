@@ -1,7 +1,7 @@
 //! The discrete Moser–Veselov top: an integrable discretisation of the free body in any N.
 
 use super::splitting::kick;
-use super::{DynamicsError, Integrator};
+use super::{DynamicsError, Integrator, SplittingOrder};
 use crate::algebra::pairs;
 use crate::dynamics::{RigidBody, Torque};
 use smallvec::SmallVec;
@@ -57,8 +57,9 @@ type Packed = SmallVec<[f64; 28]>;
 /// order 2 for torques that do not depend on L; the integrals are then no longer invariants
 /// of the motion.
 ///
-/// [`MoserVeselov::yoshida4`] composes three steps (Yoshida's triple jump) for order 4; each
-/// substep conserves the same integrals.
+/// [`MoserVeselov::yoshida4`] composes three steps (Yoshida's triple jump) for order 4, and
+/// [`MoserVeselov::composed`] any composition of [`SplittingOrder`] (orders 4, 6 and 8 in
+/// any N); each substep conserves the same integrals.
 ///
 /// Needs a physical inertia map (built from a mass tensor or principal second moments);
 /// others return [`DynamicsError::NonPhysicalInertia`].
@@ -82,7 +83,8 @@ type Packed = SmallVec<[f64; 28]>;
 /// ```
 #[derive(Clone, Copy, Debug)]
 pub struct MoserVeselov {
-    fourth_order: bool,
+    /// The symmetric composition of steps (Strang's single step for the plain map).
+    composition: SplittingOrder,
     /// The order of the preprocessed step (modified moments of inertia, 3D): 2 for none.
     preprocessed: u32,
     max_iterations: usize,
@@ -95,7 +97,7 @@ impl Default for MoserVeselov {
     /// The second-order step, at most 30 Newton iterations per step.
     fn default() -> Self {
         MoserVeselov {
-            fourth_order: false,
+            composition: SplittingOrder::Strang,
             preprocessed: 2,
             max_iterations: 30,
             last_iterations: 0,
@@ -114,8 +116,17 @@ impl MoserVeselov {
     /// Returns Yoshida's fourth-order composition of three Moser–Veselov steps (Yoshida,
     /// Phys. Lett. A 150 (1990) 262).
     pub fn yoshida4() -> Self {
+        Self::composed(SplittingOrder::Yoshida4)
+    }
+
+    /// Returns the symmetric composition `composition` of Moser–Veselov steps: order 4
+    /// ([`SplittingOrder::Yoshida4`], [`SplittingOrder::Suzuki4`]), 6
+    /// ([`SplittingOrder::KahanLi6`]) or 8 ([`SplittingOrder::KahanLi8`]) in any N. Every
+    /// substep is the integrable map, so the composition keeps every Manakov integral, the
+    /// Casimirs and the energy to round-off, as the single step does.
+    pub fn composed(composition: SplittingOrder) -> Self {
         MoserVeselov {
-            fourth_order: true,
+            composition,
             ..Self::default()
         }
     }
@@ -203,18 +214,20 @@ impl MoserVeselov {
 
 impl Integrator for MoserVeselov {
     fn order(&self) -> u32 {
-        if self.fourth_order {
-            4
-        } else {
-            self.preprocessed
+        match self.composition {
+            SplittingOrder::Strang => self.preprocessed,
+            other => other.order(),
         }
     }
 
     fn name(&self) -> &'static str {
-        match (self.fourth_order, self.preprocessed) {
-            (true, _) => "mv-yoshida4",
-            (false, 4) => "mv-preprocessed4",
-            (false, 6) => "mv-preprocessed6",
+        match (self.composition, self.preprocessed) {
+            (SplittingOrder::Yoshida4, _) => "mv-yoshida4",
+            (SplittingOrder::Suzuki4, _) => "mv-suzuki4",
+            (SplittingOrder::KahanLi6, _) => "mv-kahan-li6",
+            (SplittingOrder::KahanLi8, _) => "mv-kahan-li8",
+            (SplittingOrder::Strang, 4) => "mv-preprocessed4",
+            (SplittingOrder::Strang, 6) => "mv-preprocessed6",
             _ => "moser-veselov",
         }
     }
@@ -260,17 +273,17 @@ impl Integrator for MoserVeselov {
             body.principal_frame_attitude().clone(),
             body.momentum().clone(),
         );
-        let outcome = if self.fourth_order {
-            let w1 = 1.0 / (2.0 - 2f64.cbrt());
-            let w0 = 1.0 - 2.0 * w1;
-            self.kdk(body, &moments, torque, t, w1 * h).and_then(|a| {
-                let b = self.kdk(body, &moments, torque, t + w1 * h, w0 * h)?;
-                let c = self.kdk(body, &moments, torque, t + (w1 + w0) * h, w1 * h)?;
-                Ok(a + b + c)
-            })
-        } else {
-            self.kdk(body, &moments, torque, t, h)
-        };
+        let mut weights = [0.0; 17];
+        let stages = self.composition.weights_into(&mut weights);
+        let mut time = t;
+        let mut outcome = Ok(0);
+        for &g in &weights[..stages] {
+            outcome = outcome.and_then(|sum| {
+                let iterations = self.kdk(body, &moments, torque, time, g * h)?;
+                Ok(sum + iterations)
+            });
+            time += g * h;
+        }
         let outcome = outcome.and_then(|iterations| {
             if body.momentum().as_slice().iter().all(|x| x.is_finite())
                 && body.principal_frame_attitude().is_finite()

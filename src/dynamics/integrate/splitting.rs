@@ -73,7 +73,7 @@ impl SplittingOrder {
     }
 
     /// Writes the weights into `w` and returns their number (no heap: the step's hot path).
-    fn weights_into(self, w: &mut [f64; 17]) -> usize {
+    pub(crate) fn weights_into(self, w: &mut [f64; 17]) -> usize {
         // A symmetric sequence from its first half and middle.
         fn mirror(half: &[f64], w: &mut [f64; 17]) -> usize {
             let s = 2 * half.len() - 1;
