@@ -335,6 +335,28 @@ impl Rotor {
     pub fn compose(&self, other: &Rotor) -> Rotor {
         assert_same_dim(self.dim, other.dim);
         let len = self.coeffs.len();
+        // N = 3, 4: the product in an array of its own length, copied into the inline
+        // storage (zeroing and moving a buffer of the whole inline length, or a copy of a
+        // length known only at run time, cost more than a 3D product).
+        match self.dim {
+            3 => {
+                let p = Rotor3::<f64>::from_even_layout(layout(&self.coeffs))
+                    * Rotor3::<f64>::from_even_layout(layout(&other.coeffs));
+                return Rotor {
+                    dim: 3,
+                    coeffs: SmallVec::from_slice(&p.to_even_layout()),
+                };
+            }
+            4 => {
+                let mut p = [0.0; 8];
+                even_product_into(4, &self.coeffs, &other.coeffs, &mut p);
+                return Rotor {
+                    dim: 4,
+                    coeffs: SmallVec::from_slice(&p),
+                };
+            }
+            _ => {}
+        }
         if len <= INLINE_LEN {
             // Formed in a stack buffer that becomes the inline storage whole.
             let mut buf = [0.0; INLINE_LEN];
@@ -382,6 +404,19 @@ impl Rotor {
     pub fn rotate_vector(&self, x: &Vector) -> Vector {
         assert_same_dim(self.dim, x.dim());
         let n = self.dim;
+        // N = 3, 4: as in `compose`, an array of the vector's own length.
+        match n {
+            3 => {
+                let y = Rotor3::sandwich_even_layout(layout(&self.coeffs), layout(x.as_slice()));
+                return Vector::from_storage(SmallVec::from_slice(&y));
+            }
+            4 => {
+                let y = Rotor4::<f64>::from_even_layout(layout(&self.coeffs))
+                    .rotate_vector(nalgebra::Vector4::from(*layout::<4>(x.as_slice())));
+                return Vector::from_storage(SmallVec::from_slice(&[y.x, y.y, y.z, y.w]));
+            }
+            _ => {}
+        }
         if n <= 8 {
             // Formed in a stack buffer that becomes the inline storage whole.
             let mut buf = [0.0; 8];
