@@ -20,6 +20,7 @@
 //! [`Dop853`]: super::Dop853
 
 use super::integrate::dop853_tableau::{A, B, BHH, E5, STAGES};
+use super::integrate::first_step_estimate;
 use super::integrate::{DEXP_INVERSE_8, strang_drift_3, strang_drift_4};
 use super::{DynamicsError, RigidBody};
 use crate::algebra::{Bivector3, Bivector4, Rotor3, Rotor4, commutator_packed};
@@ -268,13 +269,7 @@ fn starting_step<const N: usize, const K: usize>(
     free_rate::<N, K>(inverse, &l1, &mut dl1, &mut w1);
     dexp_inverse_8::<N, K>(&a1, &w1, &mut da1);
     let d2 = rms(&|i| dl1[i] - dl0[i], &|i| da1[i] - a0[i]) / h0;
-    let d = d1.max(d2);
-    let h1 = if d <= 1e-15 {
-        (h0 * 1e-3).max(1e-6)
-    } else {
-        (0.01 / d).powf(1.0 / 8.0)
-    };
-    (100.0 * h0).min(h1)
+    first_step_estimate(h0, d1, d2)
 }
 
 /// The scaled error of a step: dop853's blend of the 5th- and 3rd-order estimates,

@@ -2,7 +2,7 @@
 //! Kahan & Li's orders 6 and 8. Orders measured against the closed form of the 3D top and a
 //! tight Dop853 run in 4D; the Casimirs at round-off; the weights' order conditions.
 
-use crate::{attitude_distance, random_body, rng, run};
+use crate::{random_body, rng, run, slope, state_distance as distance};
 use rotorflow::dynamics::torques::Free;
 use rotorflow::dynamics::{
     Attitude, Dop853, Integrator, Invariants, RigidBody, Splitting, SplittingOrder,
@@ -18,26 +18,6 @@ fn compositions() -> [(Splitting, u32); 5] {
         (Splitting::kahan_li6(), 6),
         (Splitting::kahan_li8(), 8),
     ]
-}
-
-/// The largest difference in L and in the attitude.
-fn distance(a: &RigidBody, b: &RigidBody) -> f64 {
-    let dl = (a.momentum() - b.momentum()).max_abs();
-    dl.max(attitude_distance(
-        a.principal_frame_attitude(),
-        b.principal_frame_attitude(),
-    ))
-}
-
-/// Least-squares slope of log e against log h.
-fn slope(hs: &[f64], es: &[f64]) -> f64 {
-    let xs: Vec<f64> = hs.iter().map(|h| h.ln()).collect();
-    let ys: Vec<f64> = es.iter().map(|e| e.ln()).collect();
-    let k = xs.len() as f64;
-    let (mx, my) = (xs.iter().sum::<f64>() / k, ys.iter().sum::<f64>() / k);
-    let num: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
-    let den: f64 = xs.iter().map(|x| (x - mx).powi(2)).sum();
-    num / den
 }
 
 /// Errors at `t_end` for the step sizes `hs`.

@@ -2,33 +2,13 @@
 //! top's closed form and against a fine Yoshida reference), its cost against Dopri5 on the
 //! 4D cuboid P4, its invariants, its dense output and its errors.
 
-use crate::{attitude_distance, random_body, rng, run};
+use crate::{attitude_distance, random_body, rng, run, slope, state_distance as distance};
 use rotorflow::dynamics::torques::{Free, Gravity};
 use rotorflow::dynamics::{
     Attitude, Dop853, Dopri5, DynamicsError, Integrator, Invariants, RigidBody, Rkmk4, Splitting,
 };
 use rotorflow::inertia::spec::parse_body;
 use rotorflow::prelude::*;
-
-/// Least-squares slope of log e against log h.
-fn slope(hs: &[f64], es: &[f64]) -> f64 {
-    let xs: Vec<f64> = hs.iter().map(|h| h.ln()).collect();
-    let ys: Vec<f64> = es.iter().map(|e| e.ln()).collect();
-    let k = xs.len() as f64;
-    let (mx, my) = (xs.iter().sum::<f64>() / k, ys.iter().sum::<f64>() / k);
-    let num: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
-    let den: f64 = xs.iter().map(|x| (x - mx).powi(2)).sum();
-    num / den
-}
-
-/// The largest difference in L and in the attitude.
-fn distance(a: &RigidBody, b: &RigidBody) -> f64 {
-    let dl = (a.momentum() - b.momentum()).max_abs();
-    dl.max(attitude_distance(
-        a.principal_frame_attitude(),
-        b.principal_frame_attitude(),
-    ))
-}
 
 /// `body` turning `k` times faster (L scaled by k): errors of an 8th-order method fall to
 /// round-off within a few halvings, so the measurements start from large steps.

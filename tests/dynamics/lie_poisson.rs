@@ -2,7 +2,7 @@
 //! runs, its sign against the 3D top's closed form, torques, and its cost against RK4 on the
 //! 4D cuboid P4.
 
-use crate::{attitude_distance, random_body, rng, run};
+use crate::{random_body, rng, run, slope, state_distance as distance};
 use rotorflow::dynamics::torques::Free;
 use rotorflow::dynamics::{
     Attitude, Dop853, Integrator, Invariants, LiePoissonRk4, MoserVeselov, RigidBody, Rkmk4,
@@ -88,26 +88,6 @@ fn p4_cost_at_1e_8_survey() {
             s / times[0]
         );
     }
-}
-
-/// Least-squares slope of log e against log h.
-fn slope(hs: &[f64], es: &[f64]) -> f64 {
-    let xs: Vec<f64> = hs.iter().map(|h| h.ln()).collect();
-    let ys: Vec<f64> = es.iter().map(|e| e.ln()).collect();
-    let k = xs.len() as f64;
-    let (mx, my) = (xs.iter().sum::<f64>() / k, ys.iter().sum::<f64>() / k);
-    let num: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
-    let den: f64 = xs.iter().map(|x| (x - mx).powi(2)).sum();
-    num / den
-}
-
-/// The largest difference in L and in the attitude.
-fn distance(a: &RigidBody, b: &RigidBody) -> f64 {
-    let dl = (a.momentum() - b.momentum()).max_abs();
-    dl.max(attitude_distance(
-        a.principal_frame_attitude(),
-        b.principal_frame_attitude(),
-    ))
 }
 
 /// `start` after fixed steps h up to `t_end`.

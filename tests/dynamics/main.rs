@@ -48,6 +48,26 @@ pub fn run(
     }
 }
 
+/// Least-squares slope of log e against log h: the measured order of a convergence run.
+pub fn slope(hs: &[f64], es: &[f64]) -> f64 {
+    let xs: Vec<f64> = hs.iter().map(|h| h.ln()).collect();
+    let ys: Vec<f64> = es.iter().map(|e| e.ln()).collect();
+    let k = xs.len() as f64;
+    let (mx, my) = (xs.iter().sum::<f64>() / k, ys.iter().sum::<f64>() / k);
+    let num: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let den: f64 = xs.iter().map(|x| (x - mx).powi(2)).sum();
+    num / den
+}
+
+/// The largest difference between two bodies' momenta and attitudes.
+pub fn state_distance(a: &RigidBody, b: &RigidBody) -> f64 {
+    let dl = (a.momentum() - b.momentum()).max_abs();
+    dl.max(attitude_distance(
+        a.principal_frame_attitude(),
+        b.principal_frame_attitude(),
+    ))
+}
+
 /// Distance between two attitudes: the largest rotor-coefficient difference when both are
 /// rotors (N ≤ 4, sign included), the largest rotation-matrix entry difference otherwise.
 pub fn attitude_distance(a: &Attitude, b: &Attitude) -> f64 {

@@ -1,7 +1,7 @@
 //! The discrete Moser–Veselov top: its order against independent integrators and the closed
 //! 3D form, its conservation of every Manakov integral where RK4 drifts, and its refusals.
 
-use crate::{attitude_distance, random_body, rng, run};
+use crate::{attitude_distance, random_body, rng, run, slope};
 use rotorflow::dynamics::torques::{BodyFrame, Free};
 use rotorflow::dynamics::{
     Dopri5, DynamicsError, Integrator, Invariants, MoserVeselov, RigidBody, Rkmk4, Torque,
@@ -33,17 +33,6 @@ fn show(es: &[f64]) -> String {
         .map(|e| format!("{e:.2e}"))
         .collect::<Vec<_>>()
         .join(", ")
-}
-
-/// Least-squares slope of log e against log h.
-fn slope(hs: &[f64], es: &[f64]) -> f64 {
-    let xs: Vec<f64> = hs.iter().map(|h| h.ln()).collect();
-    let ys: Vec<f64> = es.iter().map(|e| e.ln()).collect();
-    let k = xs.len() as f64;
-    let (mx, my) = (xs.iter().sum::<f64>() / k, ys.iter().sum::<f64>() / k);
-    let num: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
-    let den: f64 = xs.iter().map(|x| (x - mx).powi(2)).sum();
-    num / den
 }
 
 /// The measured order of `make()` on a random body in dimension `n` at t = 2, against

@@ -39,6 +39,19 @@ fn dexp_inverse_8(
     }
 }
 
+/// The last stage of Hairer's starting-step heuristic for order 8: from the trial step h₀,
+/// the scaled size d₁ of the first derivative and d₂ of the second (estimated from an Euler
+/// step of h₀), h = min(100 h₀, (0.01 / max(d₁, d₂))^(1/8)).
+pub(crate) fn first_step_estimate(h0: f64, d1: f64, d2: f64) -> f64 {
+    let d = d1.max(d2);
+    let h1 = if d <= 1e-15 {
+        (h0 * 1e-3).max(1e-6)
+    } else {
+        (0.01 / d).powf(1.0 / 8.0)
+    };
+    (100.0 * h0).min(h1)
+}
+
 /// Makes `stages` hold sixteen bivectors of dimension n, keeping them when they already do.
 fn ensure_stages(stages: &mut Stages, n: usize) {
     if stages.len() != ALL_STAGES || stages[0].dim() != n {
@@ -342,13 +355,7 @@ impl Dop853 {
         let d2 = rms(&|i| dl1.as_slice()[i] - dl0.as_slice()[i], &|i| {
             da1.as_slice()[i] - a0.as_slice()[i]
         }) / h0;
-        let d = d1.max(d2);
-        let h1 = if d <= 1e-15 {
-            (h0 * 1e-3).max(1e-6)
-        } else {
-            (0.01 / d).powf(1.0 / 8.0)
-        };
-        (100.0 * h0).min(h1)
+        first_step_estimate(h0, d1, d2)
     }
 
     /// f at the start of a step, from the cache when the previous attempt began there.

@@ -17,6 +17,7 @@
 //! the motion.
 
 mod dop853;
+pub(crate) use dop853::first_step_estimate;
 pub(crate) mod dop853_tableau;
 mod dopri;
 mod midpoint;
