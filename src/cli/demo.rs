@@ -420,6 +420,13 @@ fn integrator_table() -> CliResult<String> {
             },
         ),
         (
+            "kahan-li8",
+            Stepping::Fixed {
+                kind: IntegratorKind::KahanLi8,
+                dt: DT,
+            },
+        ),
+        (
             "midpoint",
             Stepping::Fixed {
                 kind: IntegratorKind::Midpoint,
