@@ -31,7 +31,8 @@ use rotorflow::algebra::Vector;
 use rotorflow::dynamics::torques::{Free, Gravity};
 use rotorflow::dynamics::{
     Attitude, Dop853, Dopri5, FreeBody3, FreeBody4, Integrator, Invariants, LiePoissonRk4,
-    Midpoint, MoserVeselov, RigidBody, Rkmk4, Splitting, SplittingOrder, Torque,
+    Midpoint, MoserVeselov, ProcessedOrder, ProcessedSplitting, RigidBody, Rkmk4, Splitting,
+    SplittingOrder, Torque,
 };
 use rotorflow::inertia::spec::parse_body;
 use rotorflow::prelude::*;
@@ -545,6 +546,30 @@ fn settings(problem: &'static str) -> Res<Vec<Setting>> {
             });
         }
     }
+    // The processed compositions run whole stretches (the processor once before and once
+    // after), on the free bodies.
+    if !tops {
+        for (method, order) in [
+            ("processed6", ProcessedOrder::Six),
+            ("processed8", ProcessedOrder::Eight),
+        ] {
+            let method_order = ProcessedSplitting::new(order).order() as usize;
+            for h in step_sizes(problem, method_order) {
+                let steps = (t_end(problem) / h).round() as usize;
+                let (start, _) = setup(problem)?;
+                out.push(Setting {
+                    method,
+                    setting: format!("h={h}"),
+                    run: Box::new(move || {
+                        let mut body = start.clone();
+                        ProcessedSplitting::new(order).advance(&mut body, h, steps)?;
+                        Ok((observe(problem, &body), steps, 0))
+                    }),
+                    drifts: None,
+                });
+            }
+        }
+    }
     for (method, eighth) in [("dopri5", false), ("dop853", true)] {
         for rtol in TOLERANCES {
             out.push(Setting {
@@ -824,6 +849,8 @@ fn display(method: &str, problem: &str) -> String {
         "mv" => "Moser–Veselov (`MoserVeselov`)".into(),
         "mv4" => "Moser–Veselov, Yoshida 4 (`MoserVeselov::yoshida4`)".into(),
         "mv8" => "Moser–Veselov, Kahan–Li 8 (`MoserVeselov::composed`)".into(),
+        "processed6" => "processed, order 6 (`ProcessedSplitting`)".into(),
+        "processed8" => "processed, order 8 (`ProcessedSplitting`)".into(),
         "dopri5" => "`Dopri5`".into(),
         "dop853" => "`Dop853`".into(),
         "fixed_rk4" => format!("`{fixed}::step_rk4`"),
@@ -853,6 +880,8 @@ fn keeps_casimirs(method: &str, problem: &str) -> bool {
             | "mv"
             | "mv4"
             | "mv8"
+            | "processed6"
+            | "processed8"
             | "fixed_strang"
             | "lprk4"
     ) || (method == "midpoint" && (problem == "p4" || problem == "hlw" || problem == "free4"))

@@ -49,8 +49,8 @@ pub use body::RigidBody;
 pub use error::{DynamicsError, NoClosedFormReason};
 pub use fixed::{Dop853Stats, FreeBody3, FreeBody4};
 pub use integrate::{
-    Dop853, Dopri5, Integrator, LiePoissonRk4, Midpoint, MoserVeselov, Rkmk4, Splitting,
-    SplittingOrder,
+    Dop853, Dopri5, Integrator, LiePoissonRk4, Midpoint, MoserVeselov, ProcessedOrder,
+    ProcessedSplitting, Rkmk4, Splitting, SplittingOrder,
 };
 pub use invariants::{Drift, Invariants, MANAKOV_MAX_DIM, manakov_count, manakov_integrals};
 pub use lagrange_top::LagrangeTop;

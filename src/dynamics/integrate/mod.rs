@@ -22,6 +22,7 @@ pub(crate) mod dop853_tableau;
 mod dopri;
 mod midpoint;
 mod moser_veselov;
+mod processed;
 mod rkmk;
 mod splitting;
 pub(crate) use splitting::{strang_drift_3, strang_drift_4};
@@ -30,6 +31,7 @@ pub use dop853::Dop853;
 pub use dopri::Dopri5;
 pub use midpoint::Midpoint;
 pub use moser_veselov::MoserVeselov;
+pub use processed::{ProcessedOrder, ProcessedSplitting};
 pub use rkmk::{LiePoissonRk4, Rkmk4};
 pub use splitting::{Splitting, SplittingOrder};
 

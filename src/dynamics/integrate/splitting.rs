@@ -196,7 +196,7 @@ fn plane_flow(
 /// The free flow for time `h` by Strang's symmetric composition over the planes. The
 /// attitude is turned once, by the product of the planes' rotations (see [`PlaneProduct`]
 /// for why: it keeps |R R̃ − 1| at round-off over 10⁷ steps without renormalising).
-fn strang_drift(body: &mut RigidBody, moments: &[f64], h: f64) {
+pub(super) fn strang_drift(body: &mut RigidBody, moments: &[f64], h: f64) {
     let n = body.dim();
     let k = moments.len();
     if k == 0 {
