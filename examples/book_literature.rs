@@ -519,6 +519,18 @@ fn settings(problem: &'static str) -> Res<Vec<Setting>> {
         ("suzuki4", || Box::new(Splitting::suzuki4()), 0, 4),
         ("kahan_li6", || Box::new(Splitting::kahan_li6()), 0, 6),
         ("kahan_li8", || Box::new(Splitting::kahan_li8()), 0, 8),
+        (
+            "suzuki4_sym",
+            || Box::new(Splitting::suzuki4().with_symmetric_part()),
+            0,
+            4,
+        ),
+        (
+            "kahan_li8_sym",
+            || Box::new(Splitting::kahan_li8().with_symmetric_part()),
+            0,
+            8,
+        ),
         ("midpoint", || Box::new(Midpoint::default()), 0, 2),
         ("lprk4", || Box::new(LiePoissonRk4), 4, 4),
     ];
@@ -844,6 +856,8 @@ fn display(method: &str, problem: &str) -> String {
         "suzuki4" => "Suzuki 4 (`Splitting::suzuki4`)".into(),
         "kahan_li6" => "Kahan–Li 6 (`Splitting::kahan_li6`)".into(),
         "kahan_li8" => "Kahan–Li 8 (`Splitting::kahan_li8`)".into(),
+        "suzuki4_sym" => "Suzuki 4, symmetric part split off (`with_symmetric_part`)".into(),
+        "kahan_li8_sym" => "Kahan–Li 8, symmetric part split off (`with_symmetric_part`)".into(),
         "midpoint" => "implicit midpoint (`Midpoint`)".into(),
         "lprk4" => "Lie–Poisson RK4 (`LiePoissonRk4`)".into(),
         "mv" => "Moser–Veselov (`MoserVeselov`)".into(),
@@ -877,6 +891,8 @@ fn keeps_casimirs(method: &str, problem: &str) -> bool {
             | "suzuki4"
             | "kahan_li6"
             | "kahan_li8"
+            | "suzuki4_sym"
+            | "kahan_li8_sym"
             | "mv"
             | "mv4"
             | "mv8"

@@ -322,3 +322,54 @@ fn processed_runs_refuse_what_they_cannot_run() {
         assert!(m.processor().iter().sum::<f64>().abs() < 1e-15);
     }
 }
+
+#[test]
+fn splitting_off_the_symmetric_part_keeps_the_order_and_the_casimirs_and_shrinks_the_error() {
+    let mut checked = 0;
+    for (n, seed) in [(3, 391), (4, 392), (5, 393), (6, 394)] {
+        let start = random_body(&mut rng(seed), n);
+        let t_end = 4.8;
+        let mut reference = start.clone();
+        Dop853::new(1e-14, 1e-16)
+            .unwrap()
+            .step(&mut reference, 0.0, t_end, &Free)
+            .unwrap();
+        let casimirs = Invariants::of(&start);
+        for (split, order) in [(Splitting::strang(), 2), (Splitting::suzuki4(), 4)] {
+            let symmetric = split.with_symmetric_part();
+            // Steps four times those of the plain orders' measurements: the symmetric part
+            // split off, the errors would otherwise reach round-off.
+            let hs = steps_for(order).map(|h| 4.0 * h);
+            let plain = errors(&start, split, &hs, t_end, &reference);
+            let es = errors(&start, symmetric, &hs, t_end, &reference);
+            let p = slope(&hs, &es);
+            eprintln!(
+                "N = {n}, {}: {es:?} (order {p:.3}) against {}: {plain:?}",
+                symmetric.name(),
+                split.name()
+            );
+            assert!(
+                (p - order as f64).abs() < 0.3,
+                "N = {n}, {}: {p}",
+                symmetric.name()
+            );
+            // Measured 4.6× (6D Strang) to 1300× (4D Suzuki) smaller at equal steps.
+            assert!(
+                es.iter().zip(&plain).all(|(s, p)| *s < 0.5 * p),
+                "N = {n}, {}: {es:?} against {plain:?}",
+                symmetric.name()
+            );
+            let mut b = start.clone();
+            let mut s = symmetric;
+            run(&mut b, &mut s, &Free, 0.1, 2_000);
+            let drift = Invariants::of(&b).drift_from(&casimirs);
+            assert!(
+                drift.casimirs < 1e-12 && drift.space_momentum < 1e-12,
+                "N = {n}, {}: {drift:?}",
+                symmetric.name()
+            );
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 8);
+}
