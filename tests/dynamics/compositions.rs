@@ -20,6 +20,16 @@ fn compositions() -> [(Splitting, u32); 5] {
     ]
 }
 
+/// `start` at `t_end` by Dop853 at rtol 1e-14: the reference of the order measurements.
+fn tight_reference(start: &RigidBody, t_end: f64) -> RigidBody {
+    let mut reference = start.clone();
+    Dop853::new(1e-14, 1e-16)
+        .unwrap()
+        .step(&mut reference, 0.0, t_end, &Free)
+        .unwrap();
+    reference
+}
+
 /// Errors at `t_end` for the step sizes `hs`.
 fn errors(
     start: &RigidBody,
@@ -78,9 +88,7 @@ fn compositions_have_their_orders_against_the_closed_form_of_the_3d_top() {
 fn compositions_have_their_orders_in_4d_against_a_tight_dop853_run() {
     let start = random_body(&mut rng(331), 4);
     let t_end = 4.8;
-    let mut reference = start.clone();
-    let mut tight = Dop853::new(1e-14, 1e-16).unwrap();
-    tight.step(&mut reference, 0.0, t_end, &Free).unwrap();
+    let reference = tight_reference(&start, t_end);
     let mut checked = 0;
     for (split, order) in compositions() {
         // This body's order-8 error constant is small: longer steps keep it above round-off.
@@ -110,11 +118,7 @@ fn suzuki_is_more_accurate_than_the_triple_jump_at_equal_cost() {
     for (n, seed) in [(3, 341), (4, 342), (5, 343)] {
         let start = random_body(&mut rng(seed), n);
         let t_end = 4.0;
-        let mut reference = start.clone();
-        Dop853::new(1e-14, 1e-16)
-            .unwrap()
-            .step(&mut reference, 0.0, t_end, &Free)
-            .unwrap();
+        let reference = tight_reference(&start, t_end);
         let h = 0.02;
         let yoshida = errors(&start, Splitting::yoshida4(), &[h], t_end, &reference)[0];
         let suzuki = errors(
@@ -193,11 +197,7 @@ fn moser_veselov_compositions_have_their_orders_and_keep_every_manakov_integral(
     for (n, seed) in [(4, 361), (5, 362)] {
         let start = random_body(&mut rng(seed), n);
         let t_end = 4.8;
-        let mut reference = start.clone();
-        Dop853::new(1e-14, 1e-16)
-            .unwrap()
-            .step(&mut reference, 0.0, t_end, &Free)
-            .unwrap();
+        let reference = tight_reference(&start, t_end);
         let integrals = Invariants::of(&start);
         for order in [
             SplittingOrder::Yoshida4,
@@ -241,11 +241,7 @@ fn processed_compositions_have_their_effective_orders_and_keep_the_casimirs() {
     for (n, seed) in [(4, 372), (5, 373), (6, 374)] {
         let start = random_body(&mut rng(seed), n);
         let t_end = 4.8;
-        let mut reference = start.clone();
-        Dop853::new(1e-14, 1e-16)
-            .unwrap()
-            .step(&mut reference, 0.0, t_end, &Free)
-            .unwrap();
+        let reference = tight_reference(&start, t_end);
         let casimirs = Invariants::of(&start);
         for (order, composition) in [
             (ProcessedOrder::Six, Splitting::kahan_li6()),
@@ -329,11 +325,7 @@ fn splitting_off_the_symmetric_part_keeps_the_order_and_the_casimirs_and_shrinks
     for (n, seed) in [(3, 391), (4, 392), (5, 393), (6, 394)] {
         let start = random_body(&mut rng(seed), n);
         let t_end = 4.8;
-        let mut reference = start.clone();
-        Dop853::new(1e-14, 1e-16)
-            .unwrap()
-            .step(&mut reference, 0.0, t_end, &Free)
-            .unwrap();
+        let reference = tight_reference(&start, t_end);
         let casimirs = Invariants::of(&start);
         for (split, order) in [(Splitting::strang(), 2), (Splitting::suzuki4(), 4)] {
             let symmetric = split.with_symmetric_part();
