@@ -19,8 +19,9 @@
 //!   V Ṽ − 1 is then about 10⁻¹⁶ |B| too, so beyond |B| ≈ 10¹² the check says little);
 //! - log(V) of that V returns either an error (`NoLogarithm` on a branch cut, `NotAVersor`,
 //!   `LogarithmInaccurate` where V's coefficients span more orders of magnitude than f64
-//!   resolves) or a finite bivector L with exp(L) = V to
-//!   1e-9 · max(1, max |Vᵢ|) · max(1, max |Lᵢ|);
+//!   resolves, `Overflow` where checking the logarithm needs an exponential that overflows)
+//!   or a finite bivector L with exp(L) = V to
+//!   1e-9 · max(1, max |Vᵢ|) · max(1, max |Lᵢ|), or exp(L) = `Overflow` as for B itself;
 //! - log of the raw input never panics, and an accepted one is a finite bivector.
 #![no_main]
 
@@ -144,9 +145,15 @@ fuzz_target!(|data: &[u8]| {
         Ok(l) => {
             assert!(finite(l.as_slice()), "log {v:?} = {l:?}");
             assert!(is_bivector(&l), "log {v:?} = {l:?} is not a bivector");
-            let back = l.exp().unwrap_or_else(|e| {
-                panic!("exp(log V) for V = exp {b:?} = {v:?}, log V = {l:?}: {e}")
-            });
+            let back = match l.exp() {
+                Ok(back) => back,
+                // As for B itself above: at extreme magnitudes in a degenerate signature,
+                // the rounding noise of log V makes it no longer exactly nilpotent, and
+                // scaling and squaring then overflows where the result would be finite.
+                // That is an honest error, not a wrong answer.
+                Err(AlgebraError::Overflow { .. }) => return,
+                Err(e) => panic!("exp(log V) for V = exp {b:?} = {v:?}, log V = {l:?}: {e}"),
+            };
             // exp at L is accurate to about 2⁻⁵³ |L| relative (see above); relative, so that
             // the bound cannot overflow to ∞.
             let d = (&back - &v).max_abs() / v.max_abs().max(1.0) / l.max_abs().max(1.0);
@@ -158,7 +165,9 @@ fuzz_target!(|data: &[u8]| {
         Err(
             AlgebraError::NoLogarithm { .. }
             | AlgebraError::NotAVersor { .. }
-            | AlgebraError::LogarithmInaccurate { .. },
+            | AlgebraError::LogarithmInaccurate { .. }
+            // The check of a logarithm of such a size needs its exponential (see above).
+            | AlgebraError::Overflow { .. },
         ) => {}
         Err(e) => panic!("log(exp {b:?}): unexpected error {e}"),
     }

@@ -68,6 +68,10 @@ use crate::numeric::{exponent_of, ldexp, scaled_norm};
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use smallvec::SmallVec;
 
+/// The most sweeps of the polish's SVD before it gives up (a few per singular value suffice
+/// for any well-scaled system).
+const SVD_MAX_ITERATIONS: usize = 1000;
+
 /// The largest N for which [`Multivector::exp`] and [`Multivector::log`] accept every
 /// signature Cl(p, q, r). Euclidean and projective signatures go to
 /// [`super::MULTIVECTOR_MAX_DIM`].
@@ -606,8 +610,12 @@ fn polish<T: Mv>(v: &T, mut b: T) -> Result<T, AlgebraError> {
             a /= scale;
             rhs /= scale;
             // Unordered: the solve does not need the order, and the ordered form panics on
-            // a NaN singular value, which extreme (finite) systems can still produce.
-            let svd = a.svd_unordered(true, true);
+            // a NaN singular value, which extreme (finite) systems can still produce; and
+            // bounded, since on such systems the iteration can also fail to converge.
+            let Some(svd) = a.try_svd_unordered(true, true, f64::EPSILON, SVD_MAX_ITERATIONS)
+            else {
+                break;
+            };
             if !svd.singular_values.iter().all(|x| x.is_finite()) {
                 break;
             }
@@ -632,8 +640,12 @@ fn polish<T: Mv>(v: &T, mut b: T) -> Result<T, AlgebraError> {
             a /= scale;
             rhs /= scale;
             // Unordered: the solve does not need the order, and the ordered form panics on
-            // a NaN singular value, which extreme (finite) systems can still produce.
-            let svd = a.svd_unordered(true, true);
+            // a NaN singular value, which extreme (finite) systems can still produce; and
+            // bounded, since on such systems the iteration can also fail to converge.
+            let Some(svd) = a.try_svd_unordered(true, true, f64::EPSILON, SVD_MAX_ITERATIONS)
+            else {
+                break;
+            };
             if !svd.singular_values.iter().all(|x| x.is_finite()) {
                 break;
             }
