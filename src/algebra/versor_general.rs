@@ -72,6 +72,32 @@ use smallvec::SmallVec;
 /// for any well-scaled system).
 const SVD_MAX_ITERATIONS: usize = 1000;
 
+/// The polish's least-squares step on a filled system a x = rhs, fixed-size or dynamic (the
+/// same steps on both): `None` where there is nothing to fit.
+///
+/// An overflowed image or residual leaves nothing to fit (and NaN would reach the singular
+/// values); huge finite entries overflow inside the SVD, so the system is scaled to entries
+/// of at most 1 (the same solution). The SVD is unordered (the solve does not need the
+/// order, and the ordered form panics on a NaN singular value, which extreme finite systems
+/// can still produce) and bounded (on such systems the iteration can also fail to
+/// converge). Directions whose singular value is below 10⁻¹⁰ of the largest would only fit
+/// round-off and are cut.
+macro_rules! scaled_least_squares {
+    ($a:expr, $rhs:expr) => {{
+        let (mut a, mut rhs) = ($a, $rhs);
+        system_scale(a.iter().chain(rhs.iter())).and_then(|scale| {
+            a /= scale;
+            rhs /= scale;
+            a.try_svd_unordered(true, true, f64::EPSILON, SVD_MAX_ITERATIONS)
+                .filter(|svd| svd.singular_values.iter().all(|x| x.is_finite()))
+                .and_then(|svd| {
+                    let cut = 1e-10 * svd.singular_values.max();
+                    svd.solve(&rhs, cut).ok()
+                })
+        })
+    }};
+}
+
 /// The largest N for which [`Multivector::exp`] and [`Multivector::log`] accept every
 /// signature Cl(p, q, r). Euclidean and projective signatures go to
 /// [`super::MULTIVECTOR_MAX_DIM`].
@@ -601,26 +627,7 @@ fn polish<T: Mv>(v: &T, mut b: T) -> Result<T, AlgebraError> {
             for (row, &k) in even.iter().enumerate() {
                 rhs[row] = residual.coeffs()[k];
             }
-            // An overflowed image or residual leaves nothing to fit (and NaN would reach
-            // the singular values' sort); huge finite entries overflow inside the SVD, so
-            // the system is scaled to entries of at most 1 (the same solution).
-            let Some(scale) = system_scale(a.iter().chain(rhs.iter())) else {
-                break;
-            };
-            a /= scale;
-            rhs /= scale;
-            // Unordered: the solve does not need the order, and the ordered form panics on
-            // a NaN singular value, which extreme (finite) systems can still produce; and
-            // bounded, since on such systems the iteration can also fail to converge.
-            let Some(svd) = a.try_svd_unordered(true, true, f64::EPSILON, SVD_MAX_ITERATIONS)
-            else {
-                break;
-            };
-            if !svd.singular_values.iter().all(|x| x.is_finite()) {
-                break;
-            }
-            let cut = 1e-10 * svd.singular_values.max();
-            let Ok(x) = svd.solve(&rhs, cut) else {
+            let Some(x) = scaled_least_squares!(a, rhs) else {
                 break;
             };
             x.iter().take(planes.len()).copied().collect()
@@ -632,25 +639,9 @@ fn polish<T: Mv>(v: &T, mut b: T) -> Result<T, AlgebraError> {
                     a[(row, col)] = image.coeffs()[k];
                 }
             }
-            let mut rhs =
+            let rhs =
                 DVector::from_iterator(even.len(), even.iter().map(|&k| residual.coeffs()[k]));
-            let Some(scale) = system_scale(a.iter().chain(rhs.iter())) else {
-                break;
-            };
-            a /= scale;
-            rhs /= scale;
-            // Unordered: the solve does not need the order, and the ordered form panics on
-            // a NaN singular value, which extreme (finite) systems can still produce; and
-            // bounded, since on such systems the iteration can also fail to converge.
-            let Some(svd) = a.try_svd_unordered(true, true, f64::EPSILON, SVD_MAX_ITERATIONS)
-            else {
-                break;
-            };
-            if !svd.singular_values.iter().all(|x| x.is_finite()) {
-                break;
-            }
-            let cut = 1e-10 * svd.singular_values.max();
-            let Ok(x) = svd.solve(&rhs, cut) else {
+            let Some(x) = scaled_least_squares!(a, rhs) else {
                 break;
             };
             x.iter().copied().collect()
