@@ -388,6 +388,12 @@ pub fn integrate(
 /// time, so memory stays flat however many samples a run asks for.
 const BLOCK_MAX: usize = 128;
 
+/// Samples per block of [`integrate_each`] for a run of `samples`: about a hundredth of
+/// them, so that the progress bar moves, and at most [`BLOCK_MAX`].
+pub fn sample_block_len(samples: usize) -> usize {
+    samples.div_ceil(100).clamp(1, BLOCK_MAX)
+}
+
 /// [`integrate`] handing each state to `sink` in time order instead of keeping them, and
 /// returning the number of steps taken.
 ///
@@ -418,7 +424,7 @@ pub fn integrate_each(
     let mut steps = 0;
     // Blocks of samples, so that the progress bar moves; each block restarts from the last
     // state with times relative to it (the torques offered here do not depend on time).
-    let chunk = times.len().div_ceil(100).clamp(1, BLOCK_MAX);
+    let chunk = sample_block_len(times.len());
     let mut current = body.clone();
     let mut t0 = 0.0;
     let mut fixed: Option<Box<dyn Integrator>> = None;

@@ -55,4 +55,4 @@ pub use integrate::{
 pub use invariants::{Drift, Invariants, MANAKOV_MAX_DIM, manakov_count, manakov_integrals};
 pub use lagrange_top::LagrangeTop;
 pub use torque::{Torque, TorqueInput, torques};
-pub use trajectory::{Sample, Trajectory, simulate};
+pub use trajectory::{Sample, Trajectory, equal_steps, simulate};

@@ -49,6 +49,15 @@ impl Trajectory {
     }
 }
 
+/// The steps [`simulate`] takes over `span` with largest step `dt`: `count` equal steps of
+/// size `h` = span / count, at most dt each, landing exactly on the end (no sliver step
+/// from accumulated round-off; a span within 1e-12 relative of a multiple of dt takes that
+/// multiple). For callers that step by other means and must take the same steps.
+pub fn equal_steps(span: f64, dt: f64) -> (usize, f64) {
+    let count = (span / dt * (1.0 - 1e-12)).ceil() as usize;
+    (count, if count > 0 { span / count as f64 } else { 0.0 })
+}
+
 /// Integrates from t = 0 with steps of at most `dt`, sampling at `times` (ascending, from 0):
 /// each interval between samples is split into equal steps that land on the sample time.
 ///
@@ -79,12 +88,8 @@ pub fn simulate(
     let mut t = 0.0;
     let mut steps = 0;
     for &target in times {
-        // Equal steps of at most dt that land exactly on the sample time (no sliver steps
-        // from accumulated round-off).
-        let span = target - t;
-        let count = (span / dt * (1.0 - 1e-12)).ceil() as usize;
+        let (count, h) = equal_steps(target - t, dt);
         if count > 0 {
-            let h = span / count as f64;
             for k in 0..count {
                 integrator.step(&mut b, t + k as f64 * h, h, torque)?;
             }

@@ -6,18 +6,14 @@
 //! path, which every other run takes.
 
 use super::super::error::{CliError, CliResult};
-use super::super::motion::{IntegratorKind, Report, State, Stepping};
+use super::super::motion::{IntegratorKind, Report, State, Stepping, sample_block_len};
 use super::GridRun;
 use rotorflow::algebra::{Bivector3, Bivector4, Rotor3, Rotor4};
-use rotorflow::dynamics::{Attitude, FreeBody3, FreeBody4};
+use rotorflow::dynamics::{Attitude, FreeBody3, FreeBody4, equal_steps};
 
 /// Runs per group: enough to fill the kernels, few enough that the groups spread over the
 /// threads and their samples stay small (one group's samples: 112 bytes per run and time).
 pub(super) const GROUP: usize = 8;
-
-/// The most samples integrated between two block restarts, as in `motion::integrate_each`
-/// (whose step plan [`step_plan`] reproduces).
-const BLOCK_MAX: usize = 128;
 
 /// How a group steps: the integrator and the largest step, which every run of the group
 /// shares.
@@ -57,21 +53,18 @@ pub(super) fn kernel(run: &GridRun) -> Option<Kernel> {
     })
 }
 
-/// The steps before each sample time: (count, h). The same arithmetic as
-/// `motion::integrate_each` (blocks of samples with times relative to the block's start)
-/// and `dynamics::simulate` (equal steps of at most dt landing on each time), so that the
-/// steps, and with them the states, are the run-time path's.
+/// The steps before each sample time: (count, h), those of `motion::integrate_each`
+/// (blocks of samples with times relative to the block's start) and of
+/// `dynamics::simulate` within a block ([`equal_steps`]), so that the states are the
+/// run-time path's.
 fn step_plan(times: &[f64], dt: f64) -> Vec<(usize, f64)> {
-    let chunk = times.len().div_ceil(100).clamp(1, BLOCK_MAX);
     let mut plan = Vec::with_capacity(times.len());
     let mut t0 = 0.0;
-    for block in times.chunks(chunk) {
+    for block in times.chunks(sample_block_len(times.len())) {
         let mut t = 0.0;
         for &time in block {
             let target = time - t0;
-            let span = target - t;
-            let count = (span / dt * (1.0 - 1e-12)).ceil() as usize;
-            plan.push((count, if count > 0 { span / count as f64 } else { 0.0 }));
+            plan.push(equal_steps(target - t, dt));
             t = target;
         }
         t0 = *block.last().expect("chunks are not empty");

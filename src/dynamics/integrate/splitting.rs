@@ -446,7 +446,6 @@ enum Moments {
 
 impl Moments {
     fn new(moments: &[f64], symmetric_part: bool) -> Self {
-        let planes = moments.iter().copied().collect();
         match moments.last() {
             Some(&last) if symmetric_part => Moments::SymmetricPart {
                 differences: moments
@@ -455,7 +454,7 @@ impl Moments {
                     .collect(),
                 last,
             },
-            _ => Moments::Planes(planes),
+            _ => Moments::Planes(moments.iter().copied().collect()),
         }
     }
 }
