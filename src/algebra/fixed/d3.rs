@@ -1,5 +1,6 @@
 //! [`Bivector3`] and [`Rotor3`]: 3D rotation at the cost of a quaternion.
 
+use super::sealed::Sealed;
 use super::{Real, norm, quat_conj, quat_exp_with_norm, quat_log, quat_mul, quat_unit_error};
 use crate::algebra::{AlgebraError, Bivector, Rotor};
 use nalgebra::{Matrix3, Vector3};
@@ -81,9 +82,7 @@ impl<T: Real> Bivector3<T> {
     /// [`Rotor3::from_rotation_bivector`] for the rotation by an angle).
     #[inline]
     pub fn exp(self) -> Rotor3<T> {
-        Rotor3 {
-            q: quat_exp_with_norm(self.quaternion_vector(), self.norm()),
-        }
+        Rotor3::from_q(quat_exp_with_norm(self.quaternion_vector(), self.norm()))
     }
 
     /// The vector part of the pure quaternion with the same geometric product.
@@ -168,8 +167,10 @@ impl<T: Real> Mul<T> for Bivector3<T> {
 /// assert!((m - a.to_matrix() * b.to_matrix()).amax() < 1e-15);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Rotor3<T = f64> {
-    q: [T; 4],
+pub struct Rotor3<T: Real = f64> {
+    /// The quaternion (w, x, y, z), stored as the scalar type keeps quaternions (four SSE
+    /// lanes for f32 on x86, an array otherwise).
+    lanes: <T as Sealed>::Quat,
 }
 
 impl<T: Real> Default for Rotor3<T> {
@@ -179,45 +180,55 @@ impl<T: Real> Default for Rotor3<T> {
 }
 
 impl<T: Real> Rotor3<T> {
+    /// The rotor of the quaternion (w, x, y, z).
+    #[inline(always)]
+    fn from_q(q: [T; 4]) -> Self {
+        Self {
+            lanes: T::quat_lanes(q),
+        }
+    }
+
+    /// Its quaternion (w, x, y, z).
+    #[inline(always)]
+    fn q(self) -> [T; 4] {
+        T::quat_array(self.lanes)
+    }
+
     /// The identity rotor 1.
     #[inline]
     pub fn identity() -> Self {
-        Self {
-            q: [T::one(), T::zero(), T::zero(), T::zero()],
-        }
+        Self::from_q([T::one(), T::zero(), T::zero(), T::zero()])
     }
 
     /// The rotor s + B from its scalar and bivector parts, as given (not normalised).
     #[inline]
     pub fn from_parts(s: T, b: Bivector3<T>) -> Self {
-        Self {
-            q: [s, -b.b23, b.b13, -b.b12],
-        }
+        Self::from_q([s, -b.b23, b.b13, -b.b12])
     }
 
     /// The rotor of the unit quaternion (w, x, y, z) (w + xi + yj + zk with i = −e₂₃,
     /// j = e₁₃, k = −e₁₂), as given.
     #[inline]
     pub fn from_quaternion(w: T, x: T, y: T, z: T) -> Self {
-        Self { q: [w, x, y, z] }
+        Self::from_q([w, x, y, z])
     }
 
     /// The quaternion (w, x, y, z) of this rotor.
     #[inline]
     pub fn to_quaternion(self) -> [T; 4] {
-        self.q
+        self.q()
     }
 
     /// The scalar part s.
     #[inline]
     pub fn scalar(self) -> T {
-        self.q[0]
+        self.q()[0]
     }
 
     /// The bivector part.
     #[inline]
     pub fn bivector_part(self) -> Bivector3<T> {
-        Bivector3::new(-self.q[3], self.q[2], -self.q[1])
+        Bivector3::new(-self.q()[3], self.q()[2], -self.q()[1])
     }
 
     /// The rotor exp(−Θ/2) of the rotation bivector Θ: the rotation by |Θ| in the plane Θ̂,
@@ -236,22 +247,20 @@ impl<T: Real> Rotor3<T> {
     /// The principal logarithm (half-angle in \[0, π\]), as [`Rotor::log`]: R = −1 gives π e₁₂.
     #[inline]
     pub fn log(self) -> Bivector3<T> {
-        Bivector3::from_quaternion_vector(quat_log(self.q))
+        Bivector3::from_quaternion_vector(quat_log(self.q()))
     }
 
     /// The reverse R̃ (the inverse of a unit rotor).
     #[inline]
     pub fn reverse(self) -> Self {
-        Self {
-            q: quat_conj(self.q),
-        }
+        Self::from_q(quat_conj(self.q()))
     }
 
     /// The geometric product self · other: the rotation `other` first, then `self`.
     #[inline]
     pub fn compose(self, other: Self) -> Self {
         Self {
-            q: quat_mul(self.q, other.q),
+            lanes: T::quat_product(self.lanes, other.lanes),
         }
     }
 
@@ -259,7 +268,7 @@ impl<T: Real> Rotor3<T> {
     #[inline]
     pub fn rotate_vector(self, x: Vector3<T>) -> Vector3<T> {
         // v + 2w (u × v) + 2 u × (u × v) with u the quaternion's vector part.
-        let [w, ux, uy, uz] = self.q;
+        let [w, ux, uy, uz] = self.q();
         let two = T::lit(2.0);
         let tx = two * (uy * x.z - uz * x.y);
         let ty = two * (uz * x.x - ux * x.z);
@@ -274,7 +283,7 @@ impl<T: Real> Rotor3<T> {
     /// The rotation matrix Q (Q x = R x R̃), as [`Rotor::to_matrix`].
     #[inline]
     pub fn to_matrix(self) -> Matrix3<T> {
-        let [w, x, y, z] = self.q;
+        let [w, x, y, z] = self.q();
         let two = T::lit(2.0);
         Matrix3::new(
             w * w + x * x - y * y - z * z,
@@ -340,23 +349,19 @@ impl<T: Real> Rotor3<T> {
         }
         let sign = if w < T::zero() { -one } else { one };
         let k = sign / (w * w + x * x + y * y + z * z).sqrt();
-        Self {
-            q: [k * w, k * x, k * y, k * z],
-        }
+        Self::from_q([k * w, k * x, k * y, k * z])
     }
 
     /// The rotation a fraction `t` of the way from `self` to `other` along the shorter arc,
     /// as [`Rotor::slerp`].
     #[inline]
     pub fn slerp(self, other: Self, t: T) -> Self {
-        let d = self.q[0] * other.q[0]
-            + self.q[1] * other.q[1]
-            + self.q[2] * other.q[2]
-            + self.q[3] * other.q[3];
+        let d = self.q()[0] * other.q()[0]
+            + self.q()[1] * other.q()[1]
+            + self.q()[2] * other.q()[2]
+            + self.q()[3] * other.q()[3];
         let other = if d < T::zero() {
-            Self {
-                q: other.q.map(|c| -c),
-            }
+            Self::from_q(other.q().map(|c| -c))
         } else {
             other
         };
@@ -367,16 +372,14 @@ impl<T: Real> Rotor3<T> {
     /// R / |R|: back onto the group after drift.
     #[inline]
     pub fn normalize(self) -> Self {
-        let k = T::one() / norm(self.q);
-        Self {
-            q: self.q.map(|c| c * k),
-        }
+        let k = T::one() / norm(self.q());
+        Self::from_q(self.q().map(|c| c * k))
     }
 
     /// max |R R̃ − 1|, as [`Rotor::unit_error`].
     #[inline]
     pub fn unit_error(self) -> T {
-        quat_unit_error(self.q)
+        quat_unit_error(self.q())
     }
 
     /// The even element in the run-time rotor's storage order (s, e₁₃, e₂₃, e₁₂), any
@@ -396,17 +399,15 @@ impl<T: Real> Rotor3<T> {
     /// [`Rotor3::from_even_layout`].
     #[inline(always)]
     pub(crate) fn to_even_layout(self) -> [f64; 4] {
-        let [w, x, y, z] = self.q.map(Real::to_f64);
+        let [w, x, y, z] = self.q().map(Real::to_f64);
         [w, y, -x, -z]
     }
 
     /// self + self · d, the update R ← R (1 + D) of an increment D.
     #[inline]
     pub(crate) fn plus_product(self, d: Self) -> Self {
-        let p = quat_mul(self.q, d.q);
-        Self {
-            q: std::array::from_fn(|i| self.q[i] + p[i]),
-        }
+        let p = quat_mul(self.q(), d.q());
+        Self::from_q(std::array::from_fn(|i| self.q()[i] + p[i]))
     }
 
     /// The run-time [`Rotor`] (N = 3).

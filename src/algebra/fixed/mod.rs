@@ -18,6 +18,10 @@
 //! form), and exp and log are the quaternion exp and log of each half, which is why isoclinic
 //! rotations (one half the identity) need no special case.
 //!
+//! In f32 on x86 a `Rotor3` keeps its quaternion in the four lanes of an SSE register and
+//! multiplies lane-wise (through the safe wrappers of `safe_arch`), as glam's `Quat` does;
+//! elsewhere, and in f64, it is an array and the product the scalar formula.
+//!
 //! Every operation agrees with the run-time types to a few ulp (`tests/algebra/fixed.rs`);
 //! conversions both ways are `to_rotor`/`from_rotor` and `to_bivector`/`from_bivector`.
 
@@ -28,10 +32,164 @@ mod d4;
 pub use d3::{Bivector3, Rotor3};
 pub use d4::{Bivector4, Rotor4};
 
-mod sealed {
-    pub trait Sealed {}
-    impl Sealed for f32 {}
-    impl Sealed for f64 {}
+pub(crate) mod sealed {
+    /// What differs between the two scalar types beyond [`super::Real`]: how a quaternion
+    /// is kept and multiplied. f32 on x86 keeps it in the four lanes of an SSE register and
+    /// multiplies lane-wise, as glam's `Quat` does; f64, and f32 elsewhere, keep an array.
+    pub trait Sealed: Sized {
+        /// A quaternion (w, x, y, z) as this type keeps it.
+        type Quat: Copy + core::fmt::Debug + PartialEq + Send + Sync;
+        /// The quaternion of the array (w, x, y, z).
+        fn quat_lanes(q: [Self; 4]) -> Self::Quat;
+        /// The array (w, x, y, z) of the quaternion.
+        fn quat_array(q: Self::Quat) -> [Self; 4];
+        /// Hamilton's product of two quaternions, (w, x, y, z) order.
+        fn quat_mul(a: [Self; 4], b: [Self; 4]) -> [Self; 4];
+        /// Hamilton's product of two quaternions as this type keeps them.
+        fn quat_product(a: Self::Quat, b: Self::Quat) -> Self::Quat;
+    }
+
+    impl Sealed for f64 {
+        type Quat = [f64; 4];
+        #[inline(always)]
+        fn quat_lanes(q: [f64; 4]) -> [f64; 4] {
+            q
+        }
+        #[inline(always)]
+        fn quat_array(q: [f64; 4]) -> [f64; 4] {
+            q
+        }
+        #[inline(always)]
+        fn quat_mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
+            super::quat_mul_scalar(a, b)
+        }
+        #[inline(always)]
+        fn quat_product(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
+            super::quat_mul_scalar(a, b)
+        }
+    }
+
+    #[cfg(all(
+        any(target_arch = "x86", target_arch = "x86_64"),
+        target_feature = "sse"
+    ))]
+    impl Sealed for f32 {
+        type Quat = super::lanes::Lanes;
+        #[inline(always)]
+        fn quat_lanes(q: [f32; 4]) -> Self::Quat {
+            super::lanes::Lanes::new(q)
+        }
+        #[inline(always)]
+        fn quat_array(q: Self::Quat) -> [f32; 4] {
+            q.array()
+        }
+        #[inline(always)]
+        fn quat_mul(a: [f32; 4], b: [f32; 4]) -> [f32; 4] {
+            super::lanes::Lanes::new(a)
+                .product(super::lanes::Lanes::new(b))
+                .array()
+        }
+        #[inline(always)]
+        fn quat_product(a: Self::Quat, b: Self::Quat) -> Self::Quat {
+            a.product(b)
+        }
+    }
+
+    #[cfg(not(all(
+        any(target_arch = "x86", target_arch = "x86_64"),
+        target_feature = "sse"
+    )))]
+    impl Sealed for f32 {
+        type Quat = [f32; 4];
+        #[inline(always)]
+        fn quat_lanes(q: [f32; 4]) -> [f32; 4] {
+            q
+        }
+        #[inline(always)]
+        fn quat_array(q: [f32; 4]) -> [f32; 4] {
+            q
+        }
+        #[inline(always)]
+        fn quat_mul(a: [f32; 4], b: [f32; 4]) -> [f32; 4] {
+            super::quat_mul_scalar(a, b)
+        }
+        #[inline(always)]
+        fn quat_product(a: [f32; 4], b: [f32; 4]) -> [f32; 4] {
+            super::quat_mul_scalar(a, b)
+        }
+    }
+}
+
+/// An f32 quaternion in the four lanes of an SSE register.
+#[cfg(all(
+    any(target_arch = "x86", target_arch = "x86_64"),
+    target_feature = "sse"
+))]
+mod lanes {
+    use safe_arch::{add_m128, m128, mul_m128, shuffle_abi_f32_all_m128 as shuffle};
+
+    /// The quaternion (w, x, y, z) in lanes 0 … 3.
+    #[derive(Clone, Copy)]
+    pub struct Lanes(m128);
+
+    impl Lanes {
+        #[inline(always)]
+        pub fn new(q: [f32; 4]) -> Lanes {
+            Lanes(m128::from_array(q))
+        }
+
+        #[inline(always)]
+        pub fn array(self) -> [f32; 4] {
+            self.0.to_array()
+        }
+
+        /// Hamilton's product: a's four coefficients, each splat across the lanes, times b
+        /// with its coefficients permuted and signed so that lane k collects the terms of
+        /// coefficient k, (w₁b + x₁b′) + (y₁b″ + z₁b‴). It is glam's formulation for its
+        /// `Quat`; the sum's order differs from the scalar formula's, so the two agree to a
+        /// few ulp.
+        #[inline(always)]
+        pub fn product(self, other: Lanes) -> Lanes {
+            let (a, b) = (self.0, other.0);
+            // Lane k of shuffle::<M>(x, x) is x[(M >> 2k) & 3]: splats 0b00.., 0b01.., …;
+            // b′ = (x, w, z, y), b″ = (y, z, w, x), b‴ = (z, y, x, w).
+            let (aw, ax) = (
+                shuffle::<0b00_00_00_00>(a, a),
+                shuffle::<0b01_01_01_01>(a, a),
+            );
+            let (ay, az) = (
+                shuffle::<0b10_10_10_10>(a, a),
+                shuffle::<0b11_11_11_11>(a, a),
+            );
+            let b1 = mul_m128(
+                shuffle::<0b10_11_00_01>(b, b),
+                m128::from_array([-1.0, 1.0, -1.0, 1.0]),
+            );
+            let b2 = mul_m128(
+                shuffle::<0b01_00_11_10>(b, b),
+                m128::from_array([-1.0, 1.0, 1.0, -1.0]),
+            );
+            let b3 = mul_m128(
+                shuffle::<0b00_01_10_11>(b, b),
+                m128::from_array([-1.0, -1.0, 1.0, 1.0]),
+            );
+            let first = add_m128(mul_m128(aw, b), mul_m128(ax, b1));
+            let second = add_m128(mul_m128(ay, b2), mul_m128(az, b3));
+            Lanes(add_m128(first, second))
+        }
+    }
+
+    impl core::fmt::Debug for Lanes {
+        fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+            self.array().fmt(f)
+        }
+    }
+
+    impl PartialEq for Lanes {
+        fn eq(&self, other: &Lanes) -> bool {
+            self.array() == other.array()
+        }
+    }
 }
 
 /// The scalar types of the fixed-size rotors: `f64` and `f32` (sealed).
@@ -120,9 +278,16 @@ fn check_rotation<T: Real>(
     Ok(())
 }
 
-/// A unit quaternion's Hamilton product, (w, x, y, z) order.
+/// A unit quaternion's Hamilton product, (w, x, y, z) order: in f32 on x86 with SSE four
+/// lanes at once, else the scalar formula.
 #[inline(always)]
 fn quat_mul<T: Real>(a: [T; 4], b: [T; 4]) -> [T; 4] {
+    <T as sealed::Sealed>::quat_mul(a, b)
+}
+
+/// [`quat_mul`] written out.
+#[inline(always)]
+fn quat_mul_scalar<T: Real>(a: [T; 4], b: [T; 4]) -> [T; 4] {
     let [w1, x1, y1, z1] = a;
     let [w2, x2, y2, z2] = b;
     [
