@@ -113,8 +113,10 @@ fn solve_fixed<const N: usize>(q: &mut [[f64; N]; N], x: &mut [[f64; N]; N]) -> 
         q.swap(k, pivot);
         x.swap(k, pivot);
         let (top_q, top_x) = (q[k], x[k]);
+        // One division per pivot: the rows' factors and the back substitution multiply.
+        let inv = 1.0 / d;
         for i in k + 1..N {
-            let f = q[i][k] / d;
+            let f = q[i][k] * inv;
             for j in 0..N {
                 q[i][j] -= f * top_q[j];
                 x[i][j] -= f * top_x[j];
@@ -129,9 +131,9 @@ fn solve_fixed<const N: usize>(q: &mut [[f64; N]; N], x: &mut [[f64; N]; N]) -> 
                 row[j] -= u * x[l][j];
             }
         }
-        let d = q[k][k];
+        let inv = 1.0 / q[k][k];
         for r in &mut row {
-            *r /= d;
+            *r *= inv;
         }
         x[k] = row;
     }

@@ -349,7 +349,7 @@ impl Rotor {
             }
             4 => {
                 let mut p = [0.0; 8];
-                even_product_into(4, &self.coeffs, &other.coeffs, &mut p);
+                even_product_fixed(&self.coeffs, &other.coeffs, &mut p, &EVEN_SIGNS_4);
                 return Rotor {
                     dim: 4,
                     coeffs: SmallVec::from_slice(&p),
@@ -860,11 +860,15 @@ fn even_product_fixed<const L: usize>(
     );
     // out[k] = Σᵢ ± a[i] b[i ^ k]: one dot product per output, no scattered writes.
     let acc: [f64; L] = std::array::from_fn(|k| {
-        let mut sum = 0.0;
-        for i in 0..L {
-            sum += signs[i][i ^ k] * a[i] * b[i ^ k];
+        let mut terms: [f64; L] = std::array::from_fn(|i| signs[i][i ^ k] * a[i] * b[i ^ k]);
+        let mut width = L;
+        while width > 1 {
+            width /= 2;
+            for i in 0..width {
+                terms[i] = terms[2 * i] + terms[2 * i + 1];
+            }
         }
-        sum
+        terms[0]
     });
     out.copy_from_slice(&acc);
 }
