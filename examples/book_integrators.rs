@@ -19,6 +19,10 @@ use rotorflow::prelude::*;
 use std::error::Error;
 use std::fmt::Write as _;
 
+#[path = "support/log_plot.rs"]
+mod log_plot;
+use log_plot::LogPlot;
+
 type Res<T> = Result<T, Box<dyn Error>>;
 
 const T_END: f64 = 20.0;
@@ -195,84 +199,26 @@ pub fn render() -> Res<(String, String)> {
 
 /// A log-log plot of the error of L(T) against the number of steps, one line per integrator.
 fn plot(runs: &[Run]) -> String {
-    let (w, h) = (560.0, 360.0);
-    let (left, right, top, bottom) = (70.0, 170.0, 20.0, 50.0);
-    let (x0, x1) = (100f64.log10(), 2000f64.log10());
-    let (y0, y1) = (-10.0, 0.0);
-    let px = |steps: f64| left + (steps.log10() - x0) / (x1 - x0) * (w - left - right);
-    let py = |err: f64| {
-        let e = err.max(1e-16).log10().clamp(y0, y1);
-        top + (y1 - e) / (y1 - y0) * (h - top - bottom)
-    };
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif" font-size="12">"#
+    let mut plot = LogPlot::new(
+        (560.0, 360.0),
+        (70.0, 170.0, 20.0, 50.0),
+        (100f64.log10(), 2000f64.log10()),
+        (-10.0, 0.0),
+        12,
     );
-    let _ = writeln!(
-        s,
-        r#"<rect x="0" y="0" width="{w}" height="{h}" fill="white"/>"#
-    );
-    for k in y0 as i32..=y1 as i32 {
-        let y = py(10f64.powi(k));
-        let _ = writeln!(
-            s,
-            r##"<line x1="{left}" y1="{y:.1}" x2="{:.1}" y2="{y:.1}" stroke="#ddd"/><text x="{:.1}" y="{:.1}" text-anchor="end">1e{k}</text>"##,
-            w - right,
-            left - 6.0,
-            y + 4.0
-        );
-    }
-    for steps in [100.0, 200.0, 500.0, 1000.0, 2000.0] {
-        let x = px(steps);
-        let _ = writeln!(
-            s,
-            r##"<line x1="{x:.1}" y1="{top}" x2="{x:.1}" y2="{:.1}" stroke="#ddd"/><text x="{x:.1}" y="{:.1}" text-anchor="middle">{steps}</text>"##,
-            h - bottom,
-            h - bottom + 16.0
-        );
-    }
-    let _ = writeln!(
-        s,
-        r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">steps to T = {T_END}</text>"#,
-        (left + w - right) / 2.0,
-        h - 10.0
-    );
-    let _ = writeln!(
-        s,
-        r#"<text x="14" y="{:.1}" transform="rotate(-90 14 {:.1})" text-anchor="middle">relative error of L(T)</text>"#,
-        (top + h - bottom) / 2.0,
-        (top + h - bottom) / 2.0
-    );
+    plot.y_grid(-10..=0);
+    plot.x_grid([100.0, 200.0, 500.0, 1000.0, 2000.0].map(|s| (s, format!("{s}"))));
+    plot.titles(&format!("steps to T = {T_END}"), "relative error of L(T)");
     let colours = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e"];
     for (k, chunk) in runs.chunks(STEPS.len()).enumerate() {
-        let c = colours[k % colours.len()];
-        let points: Vec<String> = chunk
+        let points: Vec<(f64, f64)> = chunk
             .iter()
-            .map(|r| format!("{:.1},{:.1}", px(r.steps as f64), py(r.momentum_error)))
+            .map(|r| (r.steps as f64, r.momentum_error))
             .collect();
-        let _ = writeln!(
-            s,
-            r#"<polyline points="{}" fill="none" stroke="{c}" stroke-width="2"/>"#,
-            points.join(" ")
-        );
-        for p in &points {
-            let (x, y) = p.split_once(',').unwrap_or(("0", "0"));
-            let _ = writeln!(s, r#"<circle cx="{x}" cy="{y}" r="3" fill="{c}"/>"#);
-        }
         let label = chunk[0].name.split(" (").next().unwrap_or(chunk[0].name);
-        let ly = top + 16.0 + 18.0 * k as f64;
-        let _ = writeln!(
-            s,
-            r#"<line x1="{:.1}" y1="{ly:.1}" x2="{:.1}" y2="{ly:.1}" stroke="{c}" stroke-width="2"/><text x="{:.1}" y="{:.1}">{label}</text>"#,
-            w - right + 10.0,
-            w - right + 30.0,
-            w - right + 34.0,
-            ly + 4.0
-        );
+        plot.line(&points, colours[k % colours.len()], false, label);
     }
-    s.push_str("</svg>\n");
-    s
+    plot.finish()
 }
 
 /// Prints the table, or writes the table and the plot into the book with `--write`.

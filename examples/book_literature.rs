@@ -44,8 +44,11 @@ use std::time::Instant;
 
 // tests/book.rs compiles this file and other examples that load it.
 #[allow(clippy::duplicate_mod)]
+#[path = "support/log_plot.rs"]
+mod log_plot;
 #[path = "support/provenance.rs"]
 mod provenance;
+use log_plot::LogPlot;
 
 type Res<T> = Result<T, Box<dyn Error>>;
 
@@ -1381,10 +1384,9 @@ fn order_table(md: &mut String, points: &[Point]) -> Res<()> {
     Ok(())
 }
 
-/// A log-log plot of error against time per solve, one line per method.
+/// A log-log plot of error against time per solve, one line per method (rotorflow's solid,
+/// the baselines dashed).
 fn plot(problem: &str, points: &[Point]) -> String {
-    let (w, h) = (800.0, 400.0);
-    let (left, right, top, bottom) = (70.0, 340.0, 20.0, 50.0);
     let finite: Vec<&Point> = points
         .iter()
         .filter(|p| p.error.is_finite() && p.error > 0.0)
@@ -1392,94 +1394,37 @@ fn plot(problem: &str, points: &[Point]) -> String {
     let lo_t = finite.iter().map(|p| p.ns).fold(f64::MAX, f64::min);
     let hi_t = finite.iter().map(|p| p.ns).fold(0.0, f64::max);
     let (x0, x1) = (lo_t.log10().floor(), hi_t.log10().ceil());
-    let (y0, y1) = (-16.0, 0.0);
-    let px = |ns: f64| left + (ns.log10() - x0) / (x1 - x0) * (w - left - right);
-    let py = |err: f64| {
-        let e = err.max(1e-16).log10().clamp(y0, y1);
-        top + (y1 - e) / (y1 - y0) * (h - top - bottom)
-    };
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif" font-size="11">"#
+    let mut plot = LogPlot::new(
+        (800.0, 400.0),
+        (70.0, 340.0, 20.0, 50.0),
+        (x0, x1),
+        (-16.0, 0.0),
+        11,
     );
-    let _ = writeln!(
-        s,
-        r#"<rect x="0" y="0" width="{w}" height="{h}" fill="white"/>"#
-    );
-    for k in (y0 as i32..=y1 as i32).step_by(2) {
-        let y = py(10f64.powi(k));
-        let _ = writeln!(
-            s,
-            r##"<line x1="{left}" y1="{y:.1}" x2="{:.1}" y2="{y:.1}" stroke="#ddd"/><text x="{:.1}" y="{:.1}" text-anchor="end">1e{k}</text>"##,
-            w - right,
-            left - 6.0,
-            y + 4.0
-        );
-    }
-    for k in x0 as i32..=x1 as i32 {
-        let x = px(10f64.powi(k));
-        // The axis is in nanoseconds; the labels in seconds.
-        let label = format!("1e{}", k - 9);
-        let _ = writeln!(
-            s,
-            r##"<line x1="{x:.1}" y1="{top}" x2="{x:.1}" y2="{:.1}" stroke="#ddd"/><text x="{x:.1}" y="{:.1}" text-anchor="middle">{label}</text>"##,
-            h - bottom,
-            h - bottom + 16.0
-        );
-    }
-    let _ = writeln!(
-        s,
-        r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">wall time per solve (s)</text>"#,
-        (left + w - right) / 2.0,
-        h - 10.0
-    );
-    let _ = writeln!(
-        s,
-        r#"<text x="14" y="{:.1}" transform="rotate(-90 14 {:.1})" text-anchor="middle">error</text>"#,
-        (top + h - bottom) / 2.0,
-        (top + h - bottom) / 2.0
-    );
+    plot.y_grid((-16..=0).step_by(2));
+    // The axis is in nanoseconds; the labels in seconds.
+    plot.x_grid((x0 as i32..=x1 as i32).map(|k| (10f64.powi(k), format!("1e{}", k - 9))));
+    plot.titles("wall time per solve (s)", "error");
     let colours = [
         "#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#7f7f7f",
         "#bcbd22", "#17becf", "#393b79", "#637939", "#000000", "#e6550d",
     ];
     for (k, method) in methods(points).iter().enumerate() {
-        let c = colours[k % colours.len()];
-        let mut pts: Vec<&&Point> = finite.iter().filter(|p| &p.method == method).collect();
-        pts.sort_by(|a, b| a.ns.total_cmp(&b.ns));
-        let line: Vec<String> = pts
+        let mut pts: Vec<(f64, f64)> = finite
             .iter()
-            .map(|p| format!("{:.1},{:.1}", px(p.ns), py(p.error)))
+            .filter(|p| &p.method == method)
+            .map(|p| (p.ns, p.error))
             .collect();
-        let dash = if is_rotorflow(method) {
-            ""
-        } else {
-            r#" stroke-dasharray="5,3""#
-        };
-        let _ = writeln!(
-            s,
-            r#"<polyline fill="none" stroke="{c}" stroke-width="1.5"{dash} points="{}"/>"#,
-            line.join(" ")
-        );
-        for p in &line {
-            let (x, y) = p.split_once(',').unwrap_or(("0", "0"));
-            let _ = writeln!(s, r#"<circle cx="{x}" cy="{y}" r="2" fill="{c}"/>"#);
-        }
-        let ly = top + 8.0 + 16.0 * k as f64;
+        pts.sort_by(|a, b| a.0.total_cmp(&b.0));
         let name = display(method, problem).replace('`', "");
-        let _ = writeln!(
-            s,
-            r#"<line x1="{:.1}" y1="{ly:.1}" x2="{:.1}" y2="{ly:.1}" stroke="{c}" stroke-width="2"{dash}/><text x="{:.1}" y="{:.1}">{}</text>"#,
-            w - right + 8.0,
-            w - right + 24.0,
-            w - right + 28.0,
-            ly + 4.0,
-            name.replace('&', "&amp;").replace('<', "&lt;")
+        plot.line(
+            &pts,
+            colours[k % colours.len()],
+            !is_rotorflow(method),
+            &name,
         );
     }
-    let _ = writeln!(s, "</svg>");
-    s
+    plot.finish()
 }
 
 /// Measures (with `--write`: records) and prints the tables.
