@@ -19,6 +19,9 @@ use rotorflow::prelude::*;
 use std::error::Error;
 use std::fmt::Write as _;
 
+// tests/book.rs compiles this file beside book_literature.rs, so it loads this module more
+// than once.
+#[allow(clippy::duplicate_mod)]
 #[path = "support/log_plot.rs"]
 mod log_plot;
 use log_plot::LogPlot;

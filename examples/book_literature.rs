@@ -42,10 +42,11 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
 
-// tests/book.rs compiles this file and other examples that load it.
+// tests/book.rs compiles this file and other examples that load these modules.
 #[allow(clippy::duplicate_mod)]
 #[path = "support/log_plot.rs"]
 mod log_plot;
+#[allow(clippy::duplicate_mod)]
 #[path = "support/provenance.rs"]
 mod provenance;
 use log_plot::LogPlot;
