@@ -43,44 +43,31 @@ pub(crate) mod sealed {
         fn quat_lanes(q: [Self; 4]) -> Self::Quat;
         /// The array (w, x, y, z) of the quaternion.
         fn quat_array(q: Self::Quat) -> [Self; 4];
+        /// Hamilton's product of two quaternions, (w, x, y, z) order.
+        fn quat_mul(a: [Self; 4], b: [Self; 4]) -> [Self; 4];
         /// Hamilton's product of two quaternions as this type keeps them.
         fn quat_product(a: Self::Quat, b: Self::Quat) -> Self::Quat;
+    }
 
-        /// Hamilton's product of two quaternions given as arrays (w, x, y, z).
+    impl Sealed for f64 {
+        type Quat = [f64; 4];
         #[inline(always)]
-        fn quat_mul(a: [Self; 4], b: [Self; 4]) -> [Self; 4] {
-            Self::quat_array(Self::quat_product(Self::quat_lanes(a), Self::quat_lanes(b)))
+        fn quat_lanes(q: [f64; 4]) -> [f64; 4] {
+            q
+        }
+        #[inline(always)]
+        fn quat_array(q: [f64; 4]) -> [f64; 4] {
+            q
+        }
+        #[inline(always)]
+        fn quat_mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
+            super::quat_mul_scalar(a, b)
+        }
+        #[inline(always)]
+        fn quat_product(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
+            super::quat_mul_scalar(a, b)
         }
     }
-
-    /// A type that keeps its quaternions as arrays and multiplies them by the scalar formula.
-    macro_rules! array_quaternion {
-        ($t:ty) => {
-            impl Sealed for $t {
-                type Quat = [$t; 4];
-                #[inline(always)]
-                fn quat_lanes(q: [$t; 4]) -> [$t; 4] {
-                    q
-                }
-                #[inline(always)]
-                fn quat_array(q: [$t; 4]) -> [$t; 4] {
-                    q
-                }
-                #[inline(always)]
-                fn quat_product(a: [$t; 4], b: [$t; 4]) -> [$t; 4] {
-                    super::quat_mul_scalar(a, b)
-                }
-            }
-        };
-    }
-
-    array_quaternion!(f64);
-
-    #[cfg(not(all(
-        any(target_arch = "x86", target_arch = "x86_64"),
-        target_feature = "sse"
-    )))]
-    array_quaternion!(f32);
 
     #[cfg(all(
         any(target_arch = "x86", target_arch = "x86_64"),
@@ -97,8 +84,38 @@ pub(crate) mod sealed {
             q.array()
         }
         #[inline(always)]
+        fn quat_mul(a: [f32; 4], b: [f32; 4]) -> [f32; 4] {
+            super::lanes::Lanes::new(a)
+                .product(super::lanes::Lanes::new(b))
+                .array()
+        }
+        #[inline(always)]
         fn quat_product(a: Self::Quat, b: Self::Quat) -> Self::Quat {
             a.product(b)
+        }
+    }
+
+    #[cfg(not(all(
+        any(target_arch = "x86", target_arch = "x86_64"),
+        target_feature = "sse"
+    )))]
+    impl Sealed for f32 {
+        type Quat = [f32; 4];
+        #[inline(always)]
+        fn quat_lanes(q: [f32; 4]) -> [f32; 4] {
+            q
+        }
+        #[inline(always)]
+        fn quat_array(q: [f32; 4]) -> [f32; 4] {
+            q
+        }
+        #[inline(always)]
+        fn quat_mul(a: [f32; 4], b: [f32; 4]) -> [f32; 4] {
+            super::quat_mul_scalar(a, b)
+        }
+        #[inline(always)]
+        fn quat_product(a: [f32; 4], b: [f32; 4]) -> [f32; 4] {
+            super::quat_mul_scalar(a, b)
         }
     }
 }
