@@ -858,7 +858,9 @@ fn even_product_fixed<const L: usize>(
         a.try_into().expect("even element length"),
         b.try_into().expect("even element length"),
     );
-    // out[k] = Σᵢ ± a[i] b[i ^ k]: one dot product per output, no scattered writes.
+    // out[k] = Σᵢ ± a[i] b[i ^ k]: one dot product per output, no scattered writes, summed
+    // pairwise (log₂ L additions deep instead of L, so the outputs' sums overlap in the
+    // pipeline). Only the term with b's scalar survives a product with 1: R · 1 = R exactly.
     let acc: [f64; L] = std::array::from_fn(|k| {
         let mut terms: [f64; L] = std::array::from_fn(|i| signs[i][i ^ k] * a[i] * b[i ^ k]);
         let mut width = L;
