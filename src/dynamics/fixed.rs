@@ -468,7 +468,7 @@ macro_rules! free_body {
             /// [`super::Splitting::strang`]: every plane's flow is an exact rotation.
             #[inline]
             pub fn step_strang(&mut self, h: f64) {
-                let d = $drift(&mut self.momentum, &self.moments, h);
+                let d = $drift(&mut self.momentum, &self.inverse, h);
                 self.attitude = self.attitude.plus_product($rotor::from_even_layout(&d));
             }
 

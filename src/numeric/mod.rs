@@ -25,7 +25,7 @@ pub(crate) use expm::{
     expm_spectral, norm1, norm1_slice,
 };
 pub(crate) use householder::householder_complement;
-pub(crate) use trig::sin_cos_minus_one;
+pub(crate) use trig::{sin_cos_minus_one, small_angle_factors};
 
 use nalgebra::{DMatrix, DMatrixView};
 use smallvec::SmallVec;

@@ -6,48 +6,72 @@
 //! ε (the rounding of cos x near 1), and millions of such rotations random-walk the norm. With
 //! s and m each accurate to a few ε *relative to themselves*, it holds to O(ε x²).
 
+// sin x = x Σ (−y)^k / (2k+1)!, cos x − 1 = y Σ (−1)^(k+1) y^k / (2k+2)!, k = 0 … 8.
+const S: [f64; 9] = [
+    1.0,
+    -1.0 / 6.0,
+    1.0 / 120.0,
+    -1.0 / 5040.0,
+    1.0 / 362_880.0,
+    -1.0 / 39_916_800.0,
+    1.0 / 6_227_020_800.0,
+    -1.0 / 1_307_674_368_000.0,
+    1.0 / 355_687_428_096_000.0,
+];
+const C: [f64; 9] = [
+    -1.0 / 2.0,
+    1.0 / 24.0,
+    -1.0 / 720.0,
+    1.0 / 40_320.0,
+    -1.0 / 3_628_800.0,
+    1.0 / 479_001_600.0,
+    -1.0 / 87_178_291_200.0,
+    1.0 / 20_922_789_888_000.0,
+    -1.0 / 6_402_373_705_728_000.0,
+];
+
 /// Returns (sin x, cos x − 1), each to a few ulps relative to itself.
 ///
 /// For |x| ≤ π/4 the Taylor series in y = x², truncated after y⁸ (the first omitted terms are
-/// below 1e-19 relative; after y⁴ for |x| ≤ 1/16), evaluated by Estrin's scheme (a short dependency chain: this sits on
-/// the critical path of the splitting integrators). Beyond, libm's sin_cos, where cos x − 1
-/// ≤ −0.29 has no cancellation.
+/// below 1e-19 relative; after y⁴ for |x| ≤ 1/16 and after y² for |x| ≤ 1/128, see
+/// [`small_angle_factors`]), evaluated by Estrin's scheme (a short dependency chain: this
+/// sits on the critical path of the splitting integrators). Beyond, libm's sin_cos, where
+/// cos x − 1 ≤ −0.29 has no cancellation.
 #[inline]
 pub(crate) fn sin_cos_minus_one(x: f64) -> (f64, f64) {
     if x.abs() > std::f64::consts::FRAC_PI_4 || x.is_nan() {
         let (s, c) = x.sin_cos();
         return (s, c - 1.0);
     }
-    // sin x = x Σ (−y)^k / (2k+1)!, cos x − 1 = y Σ (−1)^(k+1) y^k / (2k+2)!, k = 0 … 8.
-    const S: [f64; 9] = [
-        1.0,
-        -1.0 / 6.0,
-        1.0 / 120.0,
-        -1.0 / 5040.0,
-        1.0 / 362_880.0,
-        -1.0 / 39_916_800.0,
-        1.0 / 6_227_020_800.0,
-        -1.0 / 1_307_674_368_000.0,
-        1.0 / 355_687_428_096_000.0,
-    ];
-    const C: [f64; 9] = [
-        -1.0 / 2.0,
-        1.0 / 24.0,
-        -1.0 / 720.0,
-        1.0 / 40_320.0,
-        -1.0 / 3_628_800.0,
-        1.0 / 479_001_600.0,
-        -1.0 / 87_178_291_200.0,
-        1.0 / 20_922_789_888_000.0,
-        -1.0 / 6_402_373_705_728_000.0,
-    ];
-    let y = x * x;
-    if x.abs() <= 0.0625 {
-        // The step angles of the splitting integrators: through y⁴ the first omitted terms
-        // are below 3e-20 relative.
-        return (x * estrin4(&S, y), y * estrin4(&C, y));
+    if let Some((y, ps, pc)) = small_angle_factors(x) {
+        return (x * ps, y * pc);
     }
+    let y = x * x;
     (x * estrin8(&S, y), y * estrin8(&C, y))
+}
+
+/// For |x| ≤ 1/16: (x², P_s, P_c) with sin x = x P_s and cos x − 1 = x² P_c, so that a caller
+/// can multiply x and x² into its operands while the polynomials are evaluated (a shorter
+/// dependency chain). `None` for larger |x| (and NaN).
+#[inline(always)]
+pub(crate) fn small_angle_factors(x: f64) -> Option<(f64, f64, f64)> {
+    let y = x * x;
+    let a = x.abs();
+    if a <= 1.0 / 128.0 {
+        // y ≤ 2⁻¹⁴: the first omitted terms, y³/5040 and y³/40320 against 1 and 1/2, are
+        // below 0.41 and 0.1 units of the last place.
+        let y2 = y * y;
+        return Some((
+            y,
+            (S[0] + S[1] * y) + S[2] * y2,
+            (C[0] + C[1] * y) + C[2] * y2,
+        ));
+    }
+    if a <= 0.0625 {
+        // Through y⁴ the first omitted terms are below 3e-20 relative.
+        return Some((y, estrin4(&S, y), estrin4(&C, y)));
+    }
+    None
 }
 
 /// Σₖ aₖ yᵏ, k = 0 … 4, by Estrin's scheme.
