@@ -338,9 +338,8 @@ impl<const K: usize, const LP: usize, const RP: usize> RotorDrift<K, LP, RP> {
     /// after it, `next` = (q, rate_q), θ_q = L_q · rate_q. The planes form a chain of
     /// dependent updates, and only θ_q sits on it: for small angles it is turned on its own
     /// from the scaled rate_q L, with sin θ = θ P_s(θ²) and cos θ − 1 = θ² P_c(θ²) and the
-    /// products by θ and θ² formed while the polynomials are evaluated (the same quantity
-    /// as rate_q times the turned L_q, rounded otherwise, one multiplication and one
-    /// polynomial step sooner).
+    /// products by θ and θ² formed while the polynomials are evaluated. That is rate_q
+    /// times the turned L_q up to rounding, ready a few operations sooner.
     #[inline(always)]
     fn plane(
         &self,
