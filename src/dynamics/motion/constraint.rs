@@ -1723,3 +1723,68 @@ fn friction_impulse(
         *x = scale * dot(&v[i * n..(i + 1) * n], &c);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Off the disc, the friction impulse is the trust-region step of Coulomb's law: |J| is
+    /// the limit and the slip left after it, K_t (J − old) + ut, is −σ J with σ > 0 (exactly
+    /// opposite to the friction), for a limit near zero, small and near the sticking size.
+    #[test]
+    fn rim_impulse_leaves_the_slip_opposite_to_it() {
+        let n = 4;
+        // K_t = V diag(d) Vᵀ, V a rotation of 4-space (two plane rotations), the normal
+        // (the last axis) kept apart with eigenvalue 1 as `tangent_block` keeps it.
+        let (c1, s1, c2, s2) = (0.8f64, 0.6f64, 0.28f64, 0.96f64);
+        let v = [
+            c1,
+            -s1,
+            0.0,
+            0.0, //
+            s1 * c2,
+            c1 * c2,
+            -s2,
+            0.0, //
+            s1 * s2,
+            c1 * s2,
+            c2,
+            0.0, //
+            0.0,
+            0.0,
+            0.0,
+            1.0,
+        ];
+        let d = [0.7, 1.9, 3.1, 1.0];
+        let mut kt = [0.0; 16];
+        for i in 0..n {
+            for j in 0..n {
+                kt[i * n + j] = (0..n).map(|k| v[i * n + k] * d[k] * v[j * n + k]).sum();
+            }
+        }
+        let (old, ut) = ([0.3, -0.2, 0.1, 0.0], [1.1, 0.4, -0.7, 0.0]);
+        let mut checked = 0;
+        for limit in [1e-6, 0.05, 0.4] {
+            let mut j = [0.0; 4];
+            friction_impulse(&d, &v, &kt, &old, &ut, limit, &mut j);
+            let norm = dot(&j, &j).sqrt();
+            assert!(
+                (norm - limit).abs() <= 1e-13 * limit,
+                "limit {limit}: |J| = {norm}"
+            );
+            let slip: Vec<f64> = (0..n)
+                .map(|i| (0..n).map(|k| kt[i * n + k] * (j[k] - old[k])).sum::<f64>() + ut[i])
+                .collect();
+            let sigma = -dot(&slip, &j) / (norm * norm);
+            assert!(sigma > 0.0, "limit {limit}: σ = {sigma}");
+            for i in 0..n {
+                assert!(
+                    (slip[i] + sigma * j[i]).abs() <= 1e-12 * (1.0 + sigma * limit),
+                    "limit {limit}, row {i}: slip {slip:?}, J {j:?}"
+                );
+            }
+            checked += 1;
+        }
+        assert_eq!(checked, 3);
+    }
+}
