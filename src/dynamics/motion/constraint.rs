@@ -1737,23 +1737,12 @@ mod tests {
         // K_t = V diag(d) Vᵀ, V a rotation of 4-space (two plane rotations), the normal
         // (the last axis) kept apart with eigenvalue 1 as `tangent_block` keeps it.
         let (c1, s1, c2, s2) = (0.8f64, 0.6f64, 0.28f64, 0.96f64);
+        #[rustfmt::skip]
         let v = [
-            c1,
-            -s1,
-            0.0,
-            0.0, //
-            s1 * c2,
-            c1 * c2,
-            -s2,
-            0.0, //
-            s1 * s2,
-            c1 * s2,
-            c2,
-            0.0, //
-            0.0,
-            0.0,
-            0.0,
-            1.0,
+            c1, -s1, 0.0, 0.0,
+            s1 * c2, c1 * c2, -s2, 0.0,
+            s1 * s2, c1 * s2, c2, 0.0,
+            0.0, 0.0, 0.0, 1.0,
         ];
         let d = [0.7, 1.9, 3.1, 1.0];
         let mut kt = [0.0; 16];
