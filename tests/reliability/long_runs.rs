@@ -66,7 +66,7 @@ fn long_strang(moments: &[f64], steps: usize, h: f64, attitude_bound: f64, energ
 
 /// 10⁷ steps of a free 4-D body. Each Strang step turns the rotor once, by the product of
 /// its 11 plane rotors kept as a difference from 1 (`PlaneProduct`), so |R R̃ − 1| is a random
-/// walk of one rounding per step, ~√(10⁷)·ε/4 ≈ 1e-13 (measured 2.6e-13). No renormalisation.
+/// walk of one rounding per step, ~√(10⁷)·ε/4 ≈ 1e-13 (measured 2.0e-13). No renormalisation.
 /// Energy: measured 1.8e-6 = 0.018·h² (sampled every 10⁴ steps); bound 3× that.
 #[test]
 #[ignore = "long run: cargo test --release --test reliability -- --ignored"]
