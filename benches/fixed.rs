@@ -474,12 +474,20 @@ fn bench_bodies(c: &mut Criterion) {
         let mut f = f3;
         b.iter(|| black_box(&mut f).step_strang(h))
     });
+    g.bench_function("rotorflow_freebody3_strang_symmetric", |b| {
+        let mut f = f3;
+        b.iter(|| black_box(&mut f).step_strang_symmetric(h))
+    });
     g.bench_function("rotorflow_rigidbody_rkmk4", |b| {
         let mut r = r3.clone();
         b.iter(|| Rkmk4.step(black_box(&mut r), 0.0, h, &Free).unwrap())
     });
     g.bench_function("rotorflow_rigidbody_strang", |b| {
         let (mut r, mut s) = (r3.clone(), Splitting::strang());
+        b.iter(|| s.step(black_box(&mut r), 0.0, h, &Free).unwrap())
+    });
+    g.bench_function("rotorflow_rigidbody_strang_symmetric", |b| {
+        let (mut r, mut s) = (r3.clone(), Splitting::strang().with_symmetric_part());
         b.iter(|| s.step(black_box(&mut r), 0.0, h, &Free).unwrap())
     });
     g.finish();
@@ -512,12 +520,20 @@ fn bench_bodies(c: &mut Criterion) {
         let mut f = f4;
         b.iter(|| black_box(&mut f).step_strang(h))
     });
+    g.bench_function("rotorflow_freebody4_strang_symmetric", |b| {
+        let mut f = f4;
+        b.iter(|| black_box(&mut f).step_strang_symmetric(h))
+    });
     g.bench_function("rotorflow_rigidbody_rkmk4", |b| {
         let mut r = r4.clone();
         b.iter(|| Rkmk4.step(black_box(&mut r), 0.0, h, &Free).unwrap())
     });
     g.bench_function("rotorflow_rigidbody_strang", |b| {
         let (mut r, mut s) = (r4.clone(), Splitting::strang());
+        b.iter(|| s.step(black_box(&mut r), 0.0, h, &Free).unwrap())
+    });
+    g.bench_function("rotorflow_rigidbody_strang_symmetric", |b| {
+        let (mut r, mut s) = (r4.clone(), Splitting::strang().with_symmetric_part());
         b.iter(|| s.step(black_box(&mut r), 0.0, h, &Free).unwrap())
     });
     g.finish();

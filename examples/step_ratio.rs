@@ -1,5 +1,6 @@
 //! Paired timing of one RK4 step, rotorflow against the nalgebra DMatrix baseline of the
-//! dynamics benches, and of the Strang step against rotorflow's RK4:
+//! dynamics benches, and of the Strang step against rotorflow's RK4, for the run-time
+//! `RigidBody` and for the fixed-size `FreeBody3` and `FreeBody4` (both Strang steps):
 //! `cargo run --release --example step_ratio` prints the table;
 //! `cargo run --release --example step_ratio -- --write` also records the measurements with
 //! the date, the commit, the machine and the compiler in
@@ -14,7 +15,9 @@
 
 use nalgebra::DMatrix;
 use rotorflow::dynamics::torques::Free;
-use rotorflow::dynamics::{Attitude, Integrator, RigidBody, Rkmk4, Splitting};
+use rotorflow::dynamics::{
+    Attitude, FreeBody3, FreeBody4, Integrator, RigidBody, Rkmk4, Splitting,
+};
 use rotorflow::prelude::*;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -58,9 +61,10 @@ const ROUNDS: usize = 25;
 /// The step size.
 const H: f64 = 0.01;
 
-/// Renders the markdown table from the data file's text (`# key: value` header lines, then
+/// Renders the markdown tables from the data file's text (`# key: value` header lines, then
 /// tab-separated N and the fastest round's ns per step of rotorflow's RK4, the DMatrix RK4
-/// and rotorflow's Strang step).
+/// and rotorflow's Strang step; then lines `fixed`, N and the fixed-size body's RK4, Strang
+/// and Strang with the symmetric part split off).
 pub fn render(tsv: &str) -> Result<String, Box<dyn std::error::Error>> {
     let mut out = String::new();
     writeln!(
@@ -69,9 +73,26 @@ pub fn render(tsv: &str) -> Result<String, Box<dyn std::error::Error>> {
          step_ratio.tsv; do not edit. -->\n"
     )?;
     let mut rows = Vec::new();
+    let mut fixed = Vec::new();
     for line in tsv.lines() {
         if let Some(m) = line.strip_prefix("# ") {
             writeln!(out, "- {m}")?;
+        } else if let Some(rest) = line.strip_prefix("fixed\t") {
+            let f: Vec<&str> = rest.split('\t').collect();
+            if f.len() != 4 {
+                return Err(format!("bad data line: {line}").into());
+            }
+            if f[0] == "n" {
+                continue;
+            }
+            let n: usize = f[0].parse()?;
+            let (rk4, strang, symmetric): (f64, f64, f64) =
+                (f[1].parse()?, f[2].parse()?, f[3].parse()?);
+            fixed.push(format!(
+                "| `FreeBody{n}` | {rk4:.1} ns | {strang:.1} ns | {:.2} | {symmetric:.1} ns | {:.2} |",
+                strang / rk4,
+                symmetric / rk4
+            ));
         } else if !line.trim().is_empty() && !line.starts_with("n\t") {
             let f: Vec<&str> = line.split('\t').collect();
             if f.len() != 4 {
@@ -96,6 +117,18 @@ pub fn render(tsv: &str) -> Result<String, Box<dyn std::error::Error>> {
     writeln!(out, "|---|---|---|---|---|---|")?;
     for row in rows {
         writeln!(out, "{row}")?;
+    }
+    if !fixed.is_empty() {
+        writeln!(
+            out,
+            "\nThe fixed-size bodies (`step_rk4`, `step_strang`, `step_strang_symmetric`, each \
+             with its attitude):\n\n\
+             | body | RK4 | Strang | Strang / RK4 | Strang, symmetric part split off | ratio to RK4 |\n\
+             |---|---|---|---|---|---|"
+        )?;
+        for row in fixed {
+            writeln!(out, "{row}")?;
+        }
     }
     Ok(out)
 }
@@ -123,6 +156,37 @@ fn measure() -> Result<String, Box<dyn std::error::Error>> {
             }));
         }
         writeln!(data, "{n}\t{t_rk4:.1}\t{t_dm:.1}\t{t_strang:.1}")?;
+    }
+    writeln!(data, "fixed\tn\trk4_ns\tstrang_ns\tstrang_symmetric_ns")?;
+    let calls = 100_000;
+    let mut b3 = FreeBody3::from_rigid_body(&body(3)?)?;
+    let mut t3 = [f64::MAX; 3];
+    let mut b4 = FreeBody4::from_rigid_body(&body(4)?)?;
+    let mut t4 = [f64::MAX; 3];
+    for _ in 0..ROUNDS {
+        let b = &mut b3;
+        t3[0] = t3[0].min(per_call(calls, || {
+            std::hint::black_box(&mut *b).step_rk4(H)
+        }));
+        t3[1] = t3[1].min(per_call(calls, || {
+            std::hint::black_box(&mut *b).step_strang(H)
+        }));
+        t3[2] = t3[2].min(per_call(calls, || {
+            std::hint::black_box(&mut *b).step_strang_symmetric(H)
+        }));
+        let b = &mut b4;
+        t4[0] = t4[0].min(per_call(calls, || {
+            std::hint::black_box(&mut *b).step_rk4(H)
+        }));
+        t4[1] = t4[1].min(per_call(calls, || {
+            std::hint::black_box(&mut *b).step_strang(H)
+        }));
+        t4[2] = t4[2].min(per_call(calls, || {
+            std::hint::black_box(&mut *b).step_strang_symmetric(H)
+        }));
+    }
+    for (n, t) in [(3, t3), (4, t4)] {
+        writeln!(data, "fixed\t{n}\t{:.2}\t{:.2}\t{:.2}", t[0], t[1], t[2])?;
     }
     Ok(data)
 }

@@ -102,13 +102,53 @@ fn one_step_equals_the_run_time_integrators() {
     assert_eq!(checked, 800);
 }
 
+/// The step with the symmetric part split off is the run-time
+/// `Splitting::strang().with_symmetric_part()`: the same flows, to a few ulp (the rates are
+/// formed in another order, and the attitude's products differ in rounding).
+#[test]
+fn symmetric_strang_equals_the_run_time_splitting() {
+    let mut rng = ChaCha8Rng::seed_from_u64(54);
+    let (mut worst_l, mut worst_r) = (0.0f64, 0.0f64);
+    let mut checked = 0;
+    for n in [3, 4] {
+        for _ in 0..200 {
+            let start = body(n, &mut rng);
+            let h = rng.gen_range(0.001..0.1);
+            let mut rt = start.clone();
+            Splitting::strang()
+                .with_symmetric_part()
+                .step(&mut rt, 0.0, h, &Free)
+                .unwrap();
+            let (l, r) = state(&rt);
+            let (fl, fr) = if n == 3 {
+                let mut f = FreeBody3::from_rigid_body(&start).unwrap();
+                f.step_strang_symmetric(h);
+                let a = f.attitude().to_rotor();
+                (f.momentum().to_array().to_vec(), rotor_coefficients(&a))
+            } else {
+                let mut f = FreeBody4::from_rigid_body(&start).unwrap();
+                f.step_strang_symmetric(h);
+                let a = f.attitude().to_rotor();
+                (f.momentum().to_array().to_vec(), rotor_coefficients(&a))
+            };
+            worst_l = worst_l.max(ulps(&fl, &l));
+            worst_r = worst_r.max(ulps(&fr, &r));
+            checked += 1;
+        }
+    }
+    eprintln!("ulps (L, R): {worst_l}, {worst_r}");
+    assert!(worst_l <= 8.0 && worst_r <= 8.0, "{worst_l}, {worst_r}");
+    assert_eq!(checked, 400);
+}
+
+/// Both Strang steps keep |L|, the space-frame momentum and the unit attitude over 10⁵ steps
+/// with a bounded energy error, the symmetric part split off with the smaller one (measured:
+/// 1.8e-5 and 4.3e-7).
 #[test]
 fn strang_keeps_the_invariants_over_long_runs() {
     let mut rng = ChaCha8Rng::seed_from_u64(52);
     let start = body(4, &mut rng);
-    let mut f = FreeBody4::from_rigid_body(&start).unwrap();
     let norm = |b: Bivector4| b.norm();
-    let (l0, e0) = (norm(f.momentum()), f.energy());
     // The space-frame momentum R L R̃ through the matrices: Q [L] Qᵀ.
     let space = |f: &FreeBody4| {
         let q = f.attitude().to_matrix();
@@ -116,17 +156,95 @@ fn strang_keeps_the_invariants_over_long_runs() {
         let l = nalgebra::Matrix4::from_column_slice(l.as_slice());
         q * l * q.transpose()
     };
-    let s0 = space(&f);
-    let mut worst_e = 0.0f64;
-    for _ in 0..100_000 {
-        f.step_strang(0.01);
-        worst_e = worst_e.max((f.energy() - e0).abs() / e0);
+    let mut energy_errors = Vec::new();
+    // The plain step's attitude is a product of plane rotations, unit to round-off over any
+    // run; the Casimir piece's exponential walks it by about an ulp per step.
+    type Step = fn(&mut FreeBody4, f64);
+    let steps: [(Step, f64); 2] = [
+        (FreeBody4::step_strang, 1e-14),
+        (FreeBody4::step_strang_symmetric, 1e-13),
+    ];
+    for (step, unit) in steps {
+        let mut f = FreeBody4::from_rigid_body(&start).unwrap();
+        let (l0, e0) = (norm(f.momentum()), f.energy());
+        let s0 = space(&f);
+        let mut worst_e = 0.0f64;
+        for _ in 0..100_000 {
+            step(&mut f, 0.01);
+            worst_e = worst_e.max((f.energy() - e0).abs() / e0);
+        }
+        eprintln!(
+            "|L| {:e}, space L {:e}, unit {:e}, energy {worst_e:e}",
+            (norm(f.momentum()) - l0).abs() / l0,
+            (space(&f) - s0).amax() / l0,
+            f.attitude().unit_error()
+        );
+        assert!((norm(f.momentum()) - l0).abs() <= 1e-13 * l0);
+        assert!((space(&f) - s0).amax() <= 1e-12 * l0);
+        assert!(f.attitude().unit_error() <= unit);
+        // Bounded, not drifting: the splitting's energy error at h = 0.01 stays small.
+        assert!(worst_e < 1e-3, "{worst_e:e}");
+        energy_errors.push(worst_e);
     }
-    assert!((norm(f.momentum()) - l0).abs() <= 1e-13 * l0);
-    assert!((space(&f) - s0).amax() <= 1e-12 * l0);
-    assert!(f.attitude().unit_error() <= 1e-14);
-    // Bounded, not drifting: the splitting's energy error at h = 0.01 stays small.
-    assert!(worst_e < 1e-3, "{worst_e:e}");
+    eprintln!("worst relative energy errors (plain, symmetric part): {energy_errors:?}");
+    assert!(energy_errors[1] < energy_errors[0], "{energy_errors:?}");
+}
+
+/// At equal steps the symmetric part split off is the more accurate Strang step on most
+/// bodies (its error scales with the body's asymmetry about the last plane's moment),
+/// against the adaptive Dormand–Prince run at 1e-13: the error of L after 100 steps of 0.01
+/// on ten random bodies in 3D and in 4D is a median 62 and 19 times smaller (measured; from
+/// 0.3 to 2300 times in 3D, 3.9 to 250 times in 4D).
+#[test]
+fn symmetric_strang_is_more_accurate_than_the_plain_step() {
+    let mut rng = ChaCha8Rng::seed_from_u64(55);
+    let (h, steps) = (0.01, 100);
+    let mut ratios = Vec::new();
+    for n in [3, 4] {
+        for _ in 0..10 {
+            let start = body(n, &mut rng);
+            let error = |symmetric: bool| -> f64 {
+                if n == 3 {
+                    let mut f = FreeBody3::from_rigid_body(&start).unwrap();
+                    let mut reference = f;
+                    reference
+                        .advance_dop853(h * steps as f64, 1e-13, 1e-15)
+                        .unwrap();
+                    for _ in 0..steps {
+                        if symmetric {
+                            f.step_strang_symmetric(h)
+                        } else {
+                            f.step_strang(h)
+                        }
+                    }
+                    (f.momentum() - reference.momentum()).norm()
+                } else {
+                    let mut f = FreeBody4::from_rigid_body(&start).unwrap();
+                    let mut reference = f;
+                    reference
+                        .advance_dop853(h * steps as f64, 1e-13, 1e-15)
+                        .unwrap();
+                    for _ in 0..steps {
+                        if symmetric {
+                            f.step_strang_symmetric(h)
+                        } else {
+                            f.step_strang(h)
+                        }
+                    }
+                    (f.momentum() - reference.momentum()).norm()
+                }
+            };
+            ratios.push((n, error(false) / error(true)));
+        }
+    }
+    eprintln!("error of the plain step / error with the symmetric part split off: {ratios:?}");
+    assert_eq!(ratios.len(), 20);
+    for n in [3, 4] {
+        let mut r: Vec<f64> = ratios.iter().filter(|e| e.0 == n).map(|e| e.1).collect();
+        r.sort_by(f64::total_cmp);
+        let median = 0.5 * (r[4] + r[5]);
+        assert!(median > 10.0, "N = {n}: median {median}, {r:?}");
+    }
 }
 
 #[test]
@@ -138,10 +256,12 @@ fn batches_and_threads_step_like_one_body() {
     let mut batch = bodies.clone();
     FreeBody4::step_all_rk4(&mut batch, 0.01);
     FreeBody4::step_all_strang(&mut batch, 0.01);
+    FreeBody4::step_all_strang_symmetric(&mut batch, 0.01);
     let mut one = bodies.clone();
     for b in &mut one {
         b.step_rk4(0.01);
         b.step_strang(0.01);
+        b.step_strang_symmetric(0.01);
     }
     assert_eq!(batch, one);
     #[cfg(feature = "parallel")]
@@ -149,6 +269,7 @@ fn batches_and_threads_step_like_one_body() {
         let mut par = bodies.clone();
         FreeBody4::par_step_all_rk4(&mut par, 0.01);
         FreeBody4::par_step_all_strang(&mut par, 0.01);
+        FreeBody4::par_step_all_strang_symmetric(&mut par, 0.01);
         assert_eq!(par, one);
     }
     let b3: Vec<FreeBody3> = (0..10)

@@ -1,7 +1,10 @@
 //! [`Bivector3`] and [`Rotor3`]: 3D rotation at the cost of a quaternion.
 
 use super::sealed::Sealed;
-use super::{Real, norm, quat_conj, quat_exp_with_norm, quat_log, quat_mul, quat_unit_error};
+use super::{
+    Real, norm, quat_conj, quat_exp_minus_one, quat_exp_with_norm, quat_log, quat_mul,
+    quat_unit_error,
+};
 use crate::algebra::{AlgebraError, Bivector, Rotor};
 use nalgebra::{Matrix3, Vector3};
 use std::ops::{Add, Mul, Neg, Sub};
@@ -116,6 +119,15 @@ impl Bivector3<f64> {
                 right: b.dim(),
             }),
         }
+    }
+
+    /// exp(B) − 1 in the run-time rotor's storage order ([`Rotor3::to_even_layout`]): the
+    /// increment of [`Self::exp`], without a square root or libm call below the angle π/4
+    /// and with its scalar part cos θ − 1 accurate relative to itself, for step kernels
+    /// (an increment R ← R (1 + D) then keeps |R| as well as the plane rotations do).
+    #[inline(always)]
+    pub(crate) fn exp_minus_one_even_layout(self) -> [f64; 4] {
+        Rotor3::from_q(quat_exp_minus_one(self.quaternion_vector())).to_even_layout()
     }
 }
 

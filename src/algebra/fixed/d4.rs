@@ -12,7 +12,7 @@
 //! turns as ξ ↦ Q̄₋′ ξ Q̄₊ with Q₋′ the quaternion Q₋ with its k component negated (the
 //! left and right isoclinic factors of SO(4)).
 
-use super::{Real, norm, quat_conj, quat_exp, quat_log, quat_mul};
+use super::{Real, norm, quat_conj, quat_exp, quat_exp_minus_one, quat_log, quat_mul};
 use crate::algebra::{AlgebraError, Bivector, Rotor};
 use nalgebra::{Matrix4, Vector4};
 use std::ops::{Add, Mul, Neg, Sub};
@@ -164,6 +164,21 @@ impl Bivector4<f64> {
                 right: b.dim(),
             })?;
         Ok(Self::from_array(c))
+    }
+
+    /// exp(B) − 1 in the run-time rotor's storage order ([`Rotor4::to_even_layout`]): the
+    /// increment of [`Self::exp`], without a square root or libm call below the angle π/4
+    /// in each half and with the parts near 1 formed as cos θ − 1, for step kernels. The
+    /// storage order is linear in the quaternion pair, and 1 is the pair (1, 1), so the
+    /// pair minus (1, 1) gives it.
+    #[inline(always)]
+    pub(crate) fn exp_minus_one_even_layout(self) -> [f64; 8] {
+        let (a, b) = self.halves();
+        Rotor4 {
+            plus: quat_exp_minus_one(a),
+            minus: quat_exp_minus_one(b),
+        }
+        .to_even_layout()
     }
 }
 

@@ -317,6 +317,18 @@ fn quat_exp_with_norm<T: Real>(v: [T; 3], theta: T) -> [T; 4] {
     [c, k * v[0], k * v[1], k * v[2]]
 }
 
+/// [`quat_exp`] minus 1 in f64, with cos θ − 1 and sin θ/θ from θ²
+/// ([`cos_minus_one_sinc_of_square`]): no square root or libm call at the small angles of a
+/// step, and no rounding of 1 + (cos θ − 1) to take back.
+///
+/// [`cos_minus_one_sinc_of_square`]: crate::numeric::trig::cos_minus_one_sinc_of_square
+#[inline(always)]
+fn quat_exp_minus_one(v: [f64; 3]) -> [f64; 4] {
+    let y = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    let (m, k) = crate::numeric::trig::cos_minus_one_sinc_of_square(y);
+    [m, k * v[0], k * v[1], k * v[2]]
+}
+
 /// The principal log of a unit quaternion: atan2(|v|, w) v/|v| (angle in [0, π]; −1 gives
 /// π along the first axis).
 #[inline(always)]

@@ -231,9 +231,34 @@ pub(super) fn strang_drift(body: &mut RigidBody, moments: &[f64], h: f64) {
         return;
     }
     match n {
-        3 => rotor_drift_3().drift(body, moments, h),
-        4 => rotor_drift_4().drift(body, moments, h),
+        3 => rotor_drift_3().drift(body, moments, h, None),
+        4 => rotor_drift_4().drift(body, moments, h, None),
         _ => strang_drift_planes(body, moments, h),
+    }
+}
+
+/// The attitude turned by exp(`a`) and then [`strang_drift`]: in 3D and 4D the exponential
+/// (through the fixed-size types, its parts near 1 formed as cos θ − 1) seeds the planes'
+/// rotor increment, one rotor product for both.
+fn strang_drift_after_exp(body: &mut RigidBody, a: &Bivector, moments: &[f64], h: f64) {
+    use crate::algebra::{Bivector3, Bivector4};
+    let seeded = match *a.as_slice() {
+        [b12, b13, b23] => {
+            let start = Bivector3::new(b12, b13, b23).exp_minus_one_even_layout();
+            rotor_drift_3().drift(body, moments, h, Some(&start));
+            true
+        }
+        [b12, b13, b14, b23, b24, b34] => {
+            let start = Bivector4::new(b12, b13, b14, b23, b24, b34).exp_minus_one_even_layout();
+            rotor_drift_4().drift(body, moments, h, Some(&start));
+            true
+        }
+        _ => false,
+    };
+    if !seeded {
+        let (attitude, _) = body.state_mut();
+        attitude.times_exp_mut(a);
+        strang_drift(body, moments, h);
     }
 }
 
@@ -390,20 +415,24 @@ impl<const K: usize, const LP: usize, const RP: usize> RotorDrift<K, LP, RP> {
         }
     }
 
-    /// The Strang drift for time `h` ([`strang_drift`]).
-    fn drift(&self, body: &mut RigidBody, moments: &[f64], h: f64) {
+    /// The Strang drift for time `h` ([`strang_drift`]), the rotor increment starting from
+    /// `start` (0 if none).
+    fn drift(&self, body: &mut RigidBody, moments: &[f64], h: f64, start: Option<&[f64]>) {
         let (attitude, momentum) = body.state_mut();
         let mut turn = PlaneProduct::identity_for(attitude);
         let d = turn
             .rotor_increment_mut()
             .expect("a rotor attitude for N ≤ 4");
+        if let Some(start) = start {
+            d.copy_from_slice(start);
+        }
         let inverse: [f64; K] = std::array::from_fn(|p| 1.0 / moments[p]);
         self.drift_slices(momentum.as_mut_slice(), d, &inverse, h);
         turn.apply_to(attitude);
     }
 
-    /// The drift on the momentum `l` and the rotor increment `d` (zero on entry; the
-    /// attitude's update is R ← R (1 + D)), given the planes' inverse moments (a division
+    /// The drift on the momentum `l` and the rotor increment `d` (the attitude's update is
+    /// R ← R (1 + D); the planes' rotations multiply 1 + D on the right), given the planes' inverse moments (a division
     /// would delay the first plane).
     #[inline(always)]
     fn drift_slices(&self, l: &mut [f64], d: &mut [f64], inverse: &[f64], h: f64) {
@@ -425,6 +454,27 @@ impl<const K: usize, const LP: usize, const RP: usize> RotorDrift<K, LP, RP> {
             }};
         }
         let r: &[f64] = &rates;
+        if inverse[K - 1] == 0.0 {
+            // The last plane's flow is the identity (the symmetric part split off, see
+            // `Splitting::with_symmetric_part`): its two neighbours' halves are one flow,
+            // and the chain is two planes shorter.
+            match K {
+                3 => chain!((0, r[0]), (1, 2.0 * r[1]), (0, r[0])),
+                6 => chain!(
+                    (0, r[0]),
+                    (1, r[1]),
+                    (2, r[2]),
+                    (3, r[3]),
+                    (4, 2.0 * r[4]),
+                    (3, r[3]),
+                    (2, r[2]),
+                    (1, r[1]),
+                    (0, r[0])
+                ),
+                _ => unreachable!("the unrolled drift is built for N = 3 and 4"),
+            }
+            return;
+        }
         match K {
             3 => chain!((0, r[0]), (1, r[1]), (2, 2.0 * r[2]), (1, r[1]), (0, r[0])),
             6 => chain!(
@@ -447,16 +497,31 @@ impl<const K: usize, const LP: usize, const RP: usize> RotorDrift<K, LP, RP> {
 
 /// The 3D Strang drift of the fixed-size free body with inverse plane moments `inverse`
 /// (1/I_p): `l` updated, the attitude increment D (rotor storage order) returned, the same
-/// updates as [`Splitting::strang`]'s.
-pub(crate) fn strang_drift_3(l: &mut [f64; 3], inverse: &[f64; 3], h: f64) -> [f64; 4] {
-    let mut d = [0.0; 4];
+/// updates as [`Splitting::strang`]'s. D starts from `start` (the increment of an update
+/// applied before the planes, 0 for none): 1 + D is then (1 + start) times the planes'
+/// rotations. A last inverse moment of 0 is the symmetric part split off
+/// ([`Splitting::with_symmetric_part`]: that plane's flow is the identity).
+#[inline]
+pub(crate) fn strang_drift_3(
+    l: &mut [f64; 3],
+    inverse: &[f64; 3],
+    h: f64,
+    start: [f64; 4],
+) -> [f64; 4] {
+    let mut d = start;
     rotor_drift_3().drift_slices(l, &mut d, inverse, h);
     d
 }
 
 /// [`strang_drift_3`] in 4D.
-pub(crate) fn strang_drift_4(l: &mut [f64; 6], inverse: &[f64; 6], h: f64) -> [f64; 8] {
-    let mut d = [0.0; 8];
+#[inline]
+pub(crate) fn strang_drift_4(
+    l: &mut [f64; 6],
+    inverse: &[f64; 6],
+    h: f64,
+    start: [f64; 8],
+) -> [f64; 8] {
+    let mut d = start;
     rotor_drift_4().drift_slices(l, &mut d, inverse, h);
     d
 }
@@ -479,18 +544,23 @@ pub(super) fn kick(body: &mut RigidBody, torque: &dyn Torque, t: f64, h: f64) {
     *momentum += &(tau2 * h);
 }
 
-/// One kick–drift–kick Strang step.
-fn kdk(body: &mut RigidBody, moments: &Moments, torque: &dyn Torque, t: f64, h: f64) {
+/// One kick–drift–kick Strang step, the attitude turned first by exp(`turn`) if given.
+fn kdk(
+    body: &mut RigidBody,
+    moments: &Moments,
+    torque: &dyn Torque,
+    (t, h): (f64, f64),
+    turn: Option<Bivector>,
+) {
     kick(body, torque, t, 0.5 * h);
-    match moments {
-        Moments::Planes(m) => strang_drift(body, m, h),
-        Moments::SymmetricPart { differences, last } => {
+    match (moments, turn) {
+        (Moments::Planes(m), None) => strang_drift(body, m, h),
+        (Moments::Planes(m), Some(a)) => strang_drift_after_exp(body, &a, m, h),
+        (Moments::SymmetricPart { differences, last }, _) => {
             // Under a torque: the Casimir piece first (it commutes with the planes), then
             // the planes with the differences of their rates; the last plane's rate is 0.
             let a = body.momentum() * (-0.5 * h / last);
-            let (attitude, _) = body.state_mut();
-            attitude.times_exp_mut(&a);
-            strang_drift(body, differences, h);
+            strang_drift_after_exp(body, &a, differences, h);
         }
     }
     kick(body, torque, t + 0.5 * h, 0.5 * h);
@@ -558,18 +628,18 @@ impl Integrator for Splitting {
         // The moments live in the map; copy them (k ≤ 28 stays on the stack).
         let mut moments = Moments::new(moments, self.symmetric_part);
         // Without a torque the Casimir piece commutes with every substep, so the step turns
-        // the attitude about L once, by the whole step (one exponential per step, as RKMK4's).
+        // the attitude about L once, by the whole step (one exponential per step, as RKMK4's),
+        // before the first substep's planes.
+        let mut turn = None;
         if let (Moments::SymmetricPart { differences, last }, true) = (&moments, torque.is_zero()) {
-            let a = body.momentum() * (-0.5 * h / last);
-            let (attitude, _) = body.state_mut();
-            attitude.times_exp_mut(&a);
+            turn = Some(body.momentum() * (-0.5 * h / last));
             moments = Moments::Planes(differences.clone());
         }
         let mut weights = [0.0; 17];
         let stages = self.order.weights_into(&mut weights);
         let mut time = t;
         for &g in &weights[..stages] {
-            kdk(body, &moments, torque, time, g * h);
+            kdk(body, &moments, torque, (time, g * h), turn.take());
             time += g * h;
         }
         // An angle h L_p / I_p that overflows leaves L finite (N = 2) but not the attitude.
@@ -605,23 +675,32 @@ mod tests {
             )
             .unwrap();
             let plane_moments = body.inertia().diagonal_plane_moments().unwrap().to_vec();
-            let (mut fast, mut general) = (body.clone(), body.clone());
-            for _ in 0..50 {
-                strang_drift(&mut fast, &plane_moments, 0.05);
-                strang_drift_planes(&mut general, &plane_moments, 0.05);
+            // The plain planes, and the symmetric part split off (the last plane's flow the
+            // identity, which the unrolled kernel leaves out of its chain).
+            let Moments::SymmetricPart { differences, .. } = Moments::new(&plane_moments, true)
+            else {
+                unreachable!("the symmetric part is split off")
+            };
+            assert_eq!(differences.last(), Some(&f64::INFINITY));
+            for moments in [&plane_moments[..], &differences[..]] {
+                let (mut fast, mut general) = (body.clone(), body.clone());
+                for _ in 0..50 {
+                    strang_drift(&mut fast, moments, 0.05);
+                    strang_drift_planes(&mut general, moments, 0.05);
+                }
+                // The unrolled kernel turns the next plane's angle on its own (see
+                // `RotorDrift::plane`), so the two agree to round-off; a wrong index, sign or
+                // order would differ by O(h).
+                let dl = (fast.momentum() - general.momentum()).norm();
+                let da = (fast.principal_frame_attitude().to_matrix()
+                    - general.principal_frame_attitude().to_matrix())
+                .amax();
+                assert!(
+                    dl < 1e-14 && da < 1e-14,
+                    "N = {n}: L {dl:e}, attitude {da:e}"
+                );
+                assert_ne!(fast.momentum(), body.momentum());
             }
-            // The unrolled kernel turns the next plane's angle on its own (see
-            // `RotorDrift::plane`), so the two agree to round-off; a wrong index, sign or
-            // order would differ by O(h).
-            let dl = (fast.momentum() - general.momentum()).norm();
-            let da = (fast.principal_frame_attitude().to_matrix()
-                - general.principal_frame_attitude().to_matrix())
-            .amax();
-            assert!(
-                dl < 1e-14 && da < 1e-14,
-                "N = {n}: L {dl:e}, attitude {da:e}"
-            );
-            assert_ne!(fast.momentum(), body.momentum());
         }
     }
 }
