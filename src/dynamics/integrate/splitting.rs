@@ -418,6 +418,12 @@ impl<const K: usize, const LP: usize, const RP: usize> RotorDrift<K, LP, RP> {
     /// The Strang drift for time `h` ([`strang_drift`]), the rotor increment starting from
     /// `start` (0 if none).
     fn drift(&self, body: &mut RigidBody, moments: &[f64], h: f64, start: Option<&[f64]>) {
+        let inverse: [f64; K] = std::array::from_fn(|p| 1.0 / moments[p]);
+        self.drift_inverse(body, &inverse, h, start);
+    }
+
+    /// [`Self::drift`] given the planes' inverse moments (or rates 1/I_p − 1/I_K).
+    fn drift_inverse(&self, body: &mut RigidBody, inverse: &[f64], h: f64, start: Option<&[f64]>) {
         let (attitude, momentum) = body.state_mut();
         let mut turn = PlaneProduct::identity_for(attitude);
         let d = turn
@@ -426,8 +432,7 @@ impl<const K: usize, const LP: usize, const RP: usize> RotorDrift<K, LP, RP> {
         if let Some(start) = start {
             d.copy_from_slice(start);
         }
-        let inverse: [f64; K] = std::array::from_fn(|p| 1.0 / moments[p]);
-        self.drift_slices(momentum.as_mut_slice(), d, &inverse, h);
+        self.drift_slices(momentum.as_mut_slice(), d, inverse, h);
         turn.apply_to(attitude);
     }
 
@@ -625,6 +630,17 @@ impl Integrator for Splitting {
                 integrator: self.name(),
             });
         };
+        if self.symmetric_part && torque.is_zero() && matches!(body.dim(), 3 | 4) {
+            // The rates 1/I_p − 1/I_K from the inverse moments, the last exactly 0.
+            let k = moments.len();
+            let last = 1.0 / moments[k - 1];
+            let mut rates = [0.0; 6];
+            for (x, m) in rates.iter_mut().zip(moments) {
+                *x = 1.0 / m - last;
+            }
+            self.free_symmetric_part_3d_4d(body, &rates[..k], last, h);
+            return finite_or_error(body, t);
+        }
         // The moments live in the map; copy them (k ≤ 28 stays on the stack).
         let mut moments = Moments::new(moments, self.symmetric_part);
         // Without a torque the Casimir piece commutes with every substep, so the step turns
@@ -642,14 +658,53 @@ impl Integrator for Splitting {
             kdk(body, &moments, torque, (time, g * h), turn.take());
             time += g * h;
         }
-        // An angle h L_p / I_p that overflows leaves L finite (N = 2) but not the attitude.
-        if !body.momentum().as_slice().iter().all(|x| x.is_finite())
-            || !body.principal_frame_attitude().is_finite()
-        {
-            return Err(DynamicsError::NonFinite { time: t });
-        }
-        Ok(())
+        finite_or_error(body, t)
     }
+}
+
+impl Splitting {
+    /// A torque-free step with the symmetric part split off in 3D and 4D, the arithmetic of
+    /// `FreeBody3::step_strang_symmetric` and `FreeBody4::step_strang_symmetric` for every
+    /// composition: the planes' `rates` 1/I_p − 1/I_K (the last 0; `last` = 1/I_K), and the
+    /// Casimir turn exp(−h L/(2I_K)) seeding the first substep's rotor increment.
+    fn free_symmetric_part_3d_4d(&self, body: &mut RigidBody, rates: &[f64], last: f64, h: f64) {
+        use crate::algebra::{Bivector3, Bivector4};
+        let k = rates.len();
+        let scale = -0.5 * h * last;
+        let l = body.momentum().as_slice();
+        // The rotor's even coefficients: 4 in 3D, 8 in 4D.
+        let (mut start, len) = ([0.0; 8], if k == 3 { 4 } else { 8 });
+        match *l {
+            [b12, b13, b23] => start[..4].copy_from_slice(
+                &(Bivector3::new(b12, b13, b23) * scale).exp_minus_one_even_layout(),
+            ),
+            [b12, b13, b14, b23, b24, b34] => start.copy_from_slice(
+                &(Bivector4::new(b12, b13, b14, b23, b24, b34) * scale).exp_minus_one_even_layout(),
+            ),
+            _ => unreachable!("N = 3 or 4"),
+        }
+        let mut weights = [0.0; 17];
+        let stages = self.order.weights_into(&mut weights);
+        for (i, &g) in weights[..stages].iter().enumerate() {
+            let seed = (i == 0).then_some(&start[..len]);
+            if k == 3 {
+                rotor_drift_3().drift_inverse(body, rates, g * h, seed);
+            } else {
+                rotor_drift_4().drift_inverse(body, rates, g * h, seed);
+            }
+        }
+    }
+}
+
+/// `Ok` if the step left the body finite, else the error at time `t`.
+fn finite_or_error(body: &RigidBody, t: f64) -> Result<(), DynamicsError> {
+    // An angle h L_p / I_p that overflows leaves L finite (N = 2) but not the attitude.
+    if !body.momentum().as_slice().iter().all(|x| x.is_finite())
+        || !body.principal_frame_attitude().is_finite()
+    {
+        return Err(DynamicsError::NonFinite { time: t });
+    }
+    Ok(())
 }
 
 #[cfg(test)]
