@@ -151,9 +151,13 @@ impl Splitting {
     /// split off: T = |L|²/(2I_K) + Σₚ (1/I_p − 1/I_K) L_p²/2, with K the last plane.
     ///
     /// The first piece is a Casimir: L stays, and the attitude turns about L by the exact
-    /// R ← R exp(−h L/(2I_K)), which commutes with every other piece (without a torque it is
-    /// applied once per step; the attitude then keeps the unit norm as RKMK4's does, to about
-    /// an ulp per step, rather than to round-off over any run). What remains are the
+    /// R ← R exp(−h L/(2I_K)), which commutes with every other piece. Without a torque it is
+    /// applied once per step; in 3D and 4D it then seeds the planes' rotor increment (its
+    /// parts near 1 formed as cos θ − 1), so the attitude keeps its unit norm to round-off
+    /// as the plain splitting's does, and elsewhere as RKMK4's does (about an ulp per step).
+    /// The fixed-size step
+    /// [`FreeBody3::step_strang_symmetric`](crate::dynamics::FreeBody3::step_strang_symmetric)
+    /// and its 4D twin are the same step. What remains are the
     /// planes' flows with the differences of the inverse moments as rates, so the splitting
     /// error scales with how far the body is from symmetric (it vanishes for a body with
     /// equal moments) rather than with the moments themselves, one plane fewer. Same order,
