@@ -200,42 +200,37 @@ fn strang_keeps_the_invariants_over_long_runs() {
 fn symmetric_strang_is_more_accurate_than_the_plain_step() {
     let mut rng = ChaCha8Rng::seed_from_u64(55);
     let (h, steps) = (0.01, 100);
+    // The error of L after the steps, plain over symmetric part split off.
+    macro_rules! plain_over_symmetric {
+        ($body:ty, $start:expr) => {{
+            let error = |symmetric: bool| -> f64 {
+                let mut f = <$body>::from_rigid_body($start).unwrap();
+                let mut reference = f;
+                reference
+                    .advance_dop853(h * steps as f64, 1e-13, 1e-15)
+                    .unwrap();
+                for _ in 0..steps {
+                    if symmetric {
+                        f.step_strang_symmetric(h)
+                    } else {
+                        f.step_strang(h)
+                    }
+                }
+                (f.momentum() - reference.momentum()).norm()
+            };
+            error(false) / error(true)
+        }};
+    }
     let mut ratios = Vec::new();
     for n in [3, 4] {
         for _ in 0..10 {
             let start = body(n, &mut rng);
-            let error = |symmetric: bool| -> f64 {
-                if n == 3 {
-                    let mut f = FreeBody3::from_rigid_body(&start).unwrap();
-                    let mut reference = f;
-                    reference
-                        .advance_dop853(h * steps as f64, 1e-13, 1e-15)
-                        .unwrap();
-                    for _ in 0..steps {
-                        if symmetric {
-                            f.step_strang_symmetric(h)
-                        } else {
-                            f.step_strang(h)
-                        }
-                    }
-                    (f.momentum() - reference.momentum()).norm()
-                } else {
-                    let mut f = FreeBody4::from_rigid_body(&start).unwrap();
-                    let mut reference = f;
-                    reference
-                        .advance_dop853(h * steps as f64, 1e-13, 1e-15)
-                        .unwrap();
-                    for _ in 0..steps {
-                        if symmetric {
-                            f.step_strang_symmetric(h)
-                        } else {
-                            f.step_strang(h)
-                        }
-                    }
-                    (f.momentum() - reference.momentum()).norm()
-                }
+            let ratio = if n == 3 {
+                plain_over_symmetric!(FreeBody3, &start)
+            } else {
+                plain_over_symmetric!(FreeBody4, &start)
             };
-            ratios.push((n, error(false) / error(true)));
+            ratios.push((n, ratio));
         }
     }
     eprintln!("error of the plain step / error with the symmetric part split off: {ratios:?}");
