@@ -263,6 +263,14 @@ fn bench_4d(c: &mut Criterion) {
     g.bench_function("rotorflow_rotor_n4", |x| {
         x.iter(|| black_box(&ra).to_matrix())
     });
+    // The same conversion into a matrix the caller keeps (no heap allocation per call).
+    g.bench_function("rotorflow_rotor_n4_matrix_to", |x| {
+        let mut q = nalgebra::DMatrix::zeros(4, 4);
+        x.iter(|| {
+            black_box(&ra).matrix_to(&mut q).unwrap();
+            black_box(&q);
+        })
+    });
     g.finish();
 }
 

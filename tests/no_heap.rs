@@ -64,12 +64,14 @@ fn rotor_kernels_do_not_allocate_in_3d_and_4d() {
         let _ = b.exp().compose(&b.exp()).rotate_vector(&x);
         // Warm-up: the per-plane table of the plane rotation is built once per N.
         Rotor::identity(n).rotate_in_plane_mut(0, 1, 0.1);
+        let mut q = nalgebra::DMatrix::zeros(n, n);
         let count = allocations_in(|| {
             let r = b.exp();
             let mut s = r.compose(&r);
             s.rotate_in_plane_mut(0, 1, 0.1);
             let y = s.rotate_vector(&x);
             let l = s.log();
+            s.matrix_to(&mut q).unwrap();
             let _ = std::hint::black_box((y, l, s.unit_error()));
         });
         assert_eq!(count, 0, "N = {n}: {count} heap allocations");

@@ -110,6 +110,31 @@ fn rotate_in_plane_mut_equals_right_multiplication() {
     }
 }
 
+/// `matrix_to` writes what `to_matrix` returns, bit for bit, into a matrix reused across
+/// rotors, and refuses a matrix of another shape.
+#[test]
+fn matrix_to_writes_the_matrix_of_to_matrix() {
+    let mut r = rng(35);
+    let mut checked = 0;
+    for n in 1..=10 {
+        let mut q = DMatrix::from_element(n, n, f64::NAN);
+        for _ in 0..5 {
+            let rot = random_rotor(&mut r, n);
+            rot.matrix_to(&mut q).unwrap();
+            assert_eq!(q, rot.to_matrix(), "n={n}");
+            checked += 1;
+        }
+        for (rows, cols) in [(n + 1, n + 1), (n, n + 1), (n + 1, n)] {
+            let mut wrong = DMatrix::zeros(rows, cols);
+            assert!(matches!(
+                Rotor::identity(n).matrix_to(&mut wrong),
+                Err(AlgebraError::DimensionMismatch { left, .. }) if left == n
+            ));
+        }
+    }
+    assert_eq!(checked, 50);
+}
+
 #[test]
 fn matrix_to_rotor_round_trip_up_to_sign() {
     let mut r = rng(34);

@@ -26,15 +26,49 @@ impl Rotor {
     pub fn to_matrix(&self) -> DMatrix<f64> {
         let n = self.dim;
         if n == 4 {
-            // The quaternion pair's matrix, moved into the heap matrix whole (no zeroed
-            // matrix filled entry by entry: at N = 4 that costs a third of the conversion).
-            let q = crate::algebra::Rotor4::<f64>::from_even_layout(super::layout(&self.coeffs))
-                .to_matrix();
-            return DMatrix::from_column_slice(4, 4, q.as_slice());
+            // Moved into the heap matrix whole (no zeroed matrix filled entry by entry: at
+            // N = 4 that cost a third of the conversion).
+            return DMatrix::from_column_slice(4, 4, matrix_4d(&self.coeffs).as_slice());
         }
         let mut q = DMatrix::zeros(n, n);
         fill_matrix(n, &self.coeffs, |i, j, x| q[(i, j)] = x);
         q
+    }
+
+    /// [`Rotor::to_matrix`] written into `out`, an N × N matrix the caller keeps, without
+    /// allocating: for a loop that needs the matrix of a run-time rotor every step (at N = 4
+    /// the heap allocation of a new matrix costs about as much as the conversion itself).
+    ///
+    /// ```
+    /// use rotorflow::algebra::Bivector;
+    /// let r = Bivector::from_components(4, &[0.3, -0.2, 0.5, 0.1, 0.4, -0.6])?.exp();
+    /// let mut q = nalgebra::DMatrix::zeros(4, 4);
+    /// r.matrix_to(&mut q)?;
+    /// assert_eq!(q, r.to_matrix());
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionMismatch`] unless `out` is N × N.
+    pub fn matrix_to(&self, out: &mut DMatrix<f64>) -> Result<(), AlgebraError> {
+        let n = self.dim;
+        if out.shape() != (n, n) {
+            return Err(AlgebraError::DimensionMismatch {
+                left: n,
+                right: if out.nrows() != n {
+                    out.nrows()
+                } else {
+                    out.ncols()
+                },
+            });
+        }
+        if n == 4 {
+            out.as_mut_slice()
+                .copy_from_slice(matrix_4d(&self.coeffs).as_slice());
+        } else {
+            fill_matrix(n, &self.coeffs, |i, j, x| out[(i, j)] = x);
+        }
+        Ok(())
     }
 
     /// Returns the rotor of a rotation matrix (either of ±R; the one with non-negative scalar
@@ -267,6 +301,13 @@ fn nearest_orthogonal(m: &DMatrix<f64>) -> Option<DMatrix<f64>> {
     q.iter().all(|x| x.is_finite()).then_some(q)
 }
 
+/// The 4D rotation matrix of the even coefficients: the product of the left- and
+/// right-isoclinic matrices of the quaternion pair.
+#[inline]
+fn matrix_4d(coeffs: &[f64]) -> nalgebra::Matrix4<f64> {
+    crate::algebra::Rotor4::<f64>::from_even_layout(super::layout(coeffs)).to_matrix()
+}
+
 /// Calls `set(i, j, Qᵢⱼ)` for every entry of the rotation matrix of the rotor with even
 /// coefficients `coeffs` in dimension `n`.
 pub(crate) fn fill_matrix(n: usize, coeffs: &[f64], mut set: impl FnMut(usize, usize, f64)) {
@@ -274,9 +315,7 @@ pub(crate) fn fill_matrix(n: usize, coeffs: &[f64], mut set: impl FnMut(usize, u
         0 => {}
         1 => set(0, 0, 1.0),
         4 => {
-            // The product of the left- and right-isoclinic matrices of the quaternion pair.
-            let q =
-                crate::algebra::Rotor4::<f64>::from_even_layout(super::layout(coeffs)).to_matrix();
+            let q = matrix_4d(coeffs);
             for j in 0..4 {
                 for i in 0..4 {
                     set(i, j, q[(i, j)]);
