@@ -37,17 +37,28 @@ const C: [f64; 9] = [
 /// [`small_angle_factors`]), evaluated by Estrin's scheme (a short dependency chain: this
 /// sits on the critical path of the splitting integrators). Beyond, libm's sin_cos, where
 /// cos x − 1 ≤ −0.29 has no cancellation.
-#[inline]
+///
+/// Inlined, with the libm call out of line: a call in a step kernel makes the caller save
+/// every vector register around it (all are caller-saved), which cost a 3D Strang step more
+/// than the series themselves.
+#[inline(always)]
 pub(crate) fn sin_cos_minus_one(x: f64) -> (f64, f64) {
-    if x.abs() > std::f64::consts::FRAC_PI_4 || x.is_nan() {
-        let (s, c) = x.sin_cos();
-        return (s, c - 1.0);
-    }
     if let Some((y, ps, pc)) = small_angle_factors(x) {
         return (x * ps, y * pc);
     }
+    if x.abs() > std::f64::consts::FRAC_PI_4 || x.is_nan() {
+        return sin_cos_minus_one_libm(x);
+    }
     let y = x * x;
     (x * estrin8(&S, y), y * estrin8(&C, y))
+}
+
+/// [`sin_cos_minus_one`] beyond π/4 (and NaN), from libm.
+#[cold]
+#[inline(never)]
+fn sin_cos_minus_one_libm(x: f64) -> (f64, f64) {
+    let (s, c) = x.sin_cos();
+    (s, c - 1.0)
 }
 
 /// For |x| ≤ 1/16: (x², P_s, P_c) with sin x = x P_s and cos x − 1 = x² P_c, so that a caller
