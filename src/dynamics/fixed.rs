@@ -8,8 +8,8 @@
 //! Which step to use: [`FreeBody4::step_strang_symmetric`] (and its 3D twin) is the step for
 //! real-time use. Like [`FreeBody4::step_strang`] it keeps |L|, every Casimir and the
 //! space-frame momentum to round-off at any step and the energy bounded (both are
-//! symplectic), and it costs little more than an RK4 step in 3D and less than 1.5 times one
-//! in 4D, where the plain splitting costs about 1.5 times or more (the book's Performance
+//! symplectic), and it costs about as much as an RK4 step in 3D and a fifth more in 4D,
+//! where the plain splitting costs about 1.3 to 1.6 times RK4's (the book's Performance
 //! chapter): the attitude's turn about L is one exponential, and two planes fewer remain in
 //! the chain of exact rotations. Its error scales with how far the body is from symmetric:
 //! on random bodies it is typically tens of times smaller than the plain splitting's at the
