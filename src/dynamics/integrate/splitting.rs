@@ -241,28 +241,36 @@ pub(super) fn strang_drift(body: &mut RigidBody, moments: &[f64], h: f64) {
     }
 }
 
-/// The attitude turned by exp(`a`) and then [`strang_drift`]: in 3D and 4D the exponential
-/// (through the fixed-size types, its parts near 1 formed as cos θ − 1) seeds the planes'
-/// rotor increment, one rotor product for both.
-fn strang_drift_after_exp(body: &mut RigidBody, a: &Bivector, moments: &[f64], h: f64) {
+/// exp(`a`) − 1 in the rotor's storage order for N = 3 and 4 (its first 4 or 8 entries,
+/// through the fixed-size types, the parts near 1 formed as cos θ − 1): the seed of a
+/// drift's rotor increment. None for other N.
+fn exp_seed_3d_4d(a: &[f64]) -> Option<([f64; 8], usize)> {
     use crate::algebra::{Bivector3, Bivector4};
-    let seeded = match *a.as_slice() {
+    let mut seed = [0.0; 8];
+    match *a {
         [b12, b13, b23] => {
-            let start = Bivector3::new(b12, b13, b23).exp_minus_one_even_layout();
-            rotor_drift_3().drift(body, moments, h, Some(&start));
-            true
+            seed[..4].copy_from_slice(&Bivector3::new(b12, b13, b23).exp_minus_one_even_layout());
+            Some((seed, 4))
         }
         [b12, b13, b14, b23, b24, b34] => {
-            let start = Bivector4::new(b12, b13, b14, b23, b24, b34).exp_minus_one_even_layout();
-            rotor_drift_4().drift(body, moments, h, Some(&start));
-            true
+            seed = Bivector4::new(b12, b13, b14, b23, b24, b34).exp_minus_one_even_layout();
+            Some((seed, 8))
         }
-        _ => false,
-    };
-    if !seeded {
-        let (attitude, _) = body.state_mut();
-        attitude.times_exp_mut(a);
-        strang_drift(body, moments, h);
+        _ => None,
+    }
+}
+
+/// The attitude turned by exp(`a`) and then [`strang_drift`]: in 3D and 4D the exponential
+/// seeds the planes' rotor increment ([`exp_seed_3d_4d`]), one rotor product for both.
+fn strang_drift_after_exp(body: &mut RigidBody, a: &Bivector, moments: &[f64], h: f64) {
+    match (exp_seed_3d_4d(a.as_slice()), body.dim()) {
+        (Some((seed, len)), 3) => rotor_drift_3().drift(body, moments, h, Some(&seed[..len])),
+        (Some((seed, len)), _) => rotor_drift_4().drift(body, moments, h, Some(&seed[..len])),
+        (None, _) => {
+            let (attitude, _) = body.state_mut();
+            attitude.times_exp_mut(a);
+            strang_drift(body, moments, h);
+        }
     }
 }
 
@@ -441,8 +449,8 @@ impl<const K: usize, const LP: usize, const RP: usize> RotorDrift<K, LP, RP> {
     }
 
     /// The drift on the momentum `l` and the rotor increment `d` (the attitude's update is
-    /// R ← R (1 + D); the planes' rotations multiply 1 + D on the right), given the planes' inverse moments (a division
-    /// would delay the first plane).
+    /// R ← R (1 + D); the planes' rotations multiply 1 + D on the right), given the planes'
+    /// inverse moments (a division would delay the first plane).
     #[inline(always)]
     fn drift_slices(&self, l: &mut [f64], d: &mut [f64], inverse: &[f64], h: f64) {
         let half = 0.5 * h;
@@ -672,21 +680,9 @@ impl Splitting {
     /// composition: the planes' `rates` 1/I_p − 1/I_K (the last 0; `last` = 1/I_K), and the
     /// Casimir turn exp(−h L/(2I_K)) seeding the first substep's rotor increment.
     fn free_symmetric_part_3d_4d(&self, body: &mut RigidBody, rates: &[f64], last: f64, h: f64) {
-        use crate::algebra::{Bivector3, Bivector4};
         let k = rates.len();
-        let scale = -0.5 * h * last;
-        let l = body.momentum().as_slice();
-        // The rotor's even coefficients: 4 in 3D, 8 in 4D.
-        let (mut start, len) = ([0.0; 8], if k == 3 { 4 } else { 8 });
-        match *l {
-            [b12, b13, b23] => start[..4].copy_from_slice(
-                &(Bivector3::new(b12, b13, b23) * scale).exp_minus_one_even_layout(),
-            ),
-            [b12, b13, b14, b23, b24, b34] => start.copy_from_slice(
-                &(Bivector4::new(b12, b13, b14, b23, b24, b34) * scale).exp_minus_one_even_layout(),
-            ),
-            _ => unreachable!("N = 3 or 4"),
-        }
+        let turn = body.momentum() * (-0.5 * h * last);
+        let (start, len) = exp_seed_3d_4d(turn.as_slice()).expect("N = 3 or 4");
         let mut weights = [0.0; 17];
         let stages = self.order.weights_into(&mut weights);
         for (i, &g) in weights[..stages].iter().enumerate() {
