@@ -496,10 +496,15 @@ fn exp_small<const L: usize>(b: &Multivector, out: &mut Multivector) -> Result<(
     // The roots λ of the closed form come from ⟨B²⟩₀ and (B∧B)², whose discriminant cancels
     // for a huge, nearly isoclinic B (|B| ≈ 10⁹ beside a part of size 1): no f64 formula in
     // those two numbers recovers them, and V is then no versor at all. Scaling and squaring
-    // needs no roots. Where it overflows (huge null parts beside several null vectors) the
-    // closed form's V stands: its error is then within the ε |B| that bounds any exp(B).
+    // needs no roots. Where it overflows (huge null parts beside several null vectors), or
+    // leaves the group without overflowing (rotation angles of 1e175 beside boosts of 1e18:
+    // the squarings underflow every coefficient), the closed form's V stands: its error is
+    // then within the ε |B| that bounds any exp(B).
     if defect > 1e-8 && exp_general_to(b, out).is_ok() {
-        return Ok(());
+        let top = out.max_abs();
+        if unit_deviation::<L>(out) / (top * top).max(1.0) <= defect {
+            return Ok(());
+        }
     }
     v.write_to(out);
     Ok(())

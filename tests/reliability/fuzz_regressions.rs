@@ -573,3 +573,42 @@ fn fuzz_log_whose_check_overflows_is_a_result_or_overflow() {
         Err(e) => panic!("unexpected error {e}"),
     }
 }
+
+/// versor_bits: in Cl(4, 1), B with a rotation of 4.3e175 in e₁₂ beside rotations and boosts
+/// of 2.8e18 (closed form: V Ṽ − 1 of 1e-2 relative, above its 1e-8 threshold): scaling and
+/// squaring, the exponential's second route, underflowed every coefficient to ~1e-167 and
+/// its V Ṽ was 0, yet it was returned. The second route's result is now kept only when it
+/// is nearer the group than the closed form's.
+#[test]
+fn fuzz_exp_whose_squarings_underflow_returns_the_nearer_versor() {
+    let b = versor_input(
+        4,
+        1,
+        0,
+        &[
+            (3, f64::from_bits(0x64659b92154ef7ac)),
+            (5, f64::from_bits(0x6364000000000024)),
+            (9, f64::from_bits(0x4049404016fc188b)),
+            (17, f64::from_bits(0x9b0000055a006364)),
+            (6, f64::from_bits(0x9b20000000009b9b)),
+            (10, f64::from_bits(0xc3c3929b9b9b8b9b)),
+            (18, f64::from_bits(0xc3c3c3c3c3c3c3c3)),
+            (12, f64::from_bits(0xc3c3c3c3c3c3c3c3)),
+            (20, f64::from_bits(0x000000c3c3c3c3c3)),
+            (24, f64::from_bits(0xc3c3c30a00000000)),
+        ],
+    );
+    let v = b.exp().unwrap();
+    assert!(v.as_slice().iter().all(|c| c.is_finite()));
+    let top = v.max_abs();
+    assert!(top >= 1.0, "max |Vᵢ| = {top:e}: V Ṽ cannot be 1");
+    let w = &v * (1.0 / top);
+    let mut ww = &w * &w.reverse();
+    ww.as_mut_slice()[0] -= 1.0 / (top * top);
+    // The closed form's defect; any exp at |B| = 4e175 is known only to ε |B|.
+    assert!(ww.max_abs() <= 1e-1, "V Ṽ − 1 = {:e}", ww.max_abs());
+    match v.log() {
+        Ok(_) | Err(rotorflow::algebra::AlgebraError::NotAVersor { .. }) => {}
+        Err(e) => panic!("unexpected error {e}"),
+    }
+}
