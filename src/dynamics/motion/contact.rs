@@ -259,8 +259,9 @@ impl HalfSpace {
     }
 }
 
-/// One contact of the last step: where a body touched a half-space and the impulse the
-/// half-space gave it there.
+/// One contact of a velocity solve of the last step: where a body touched a half-space,
+/// the impulse the half-space gave it there in that solve, and the slip it left (see
+/// [`System::contacts`](super::System::contacts)).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Contact {
     /// The body, by index.
@@ -269,11 +270,11 @@ pub struct Contact {
     pub half_space: usize,
     /// The contact point, in the body's own axes.
     pub point: Vector,
-    /// The normal impulse (≥ 0) over the step.
+    /// The normal impulse (≥ 0) of the solve.
     pub normal_impulse: f64,
-    /// The friction impulse over the step (space frame, in the plane).
+    /// The friction impulse of the solve (space frame, in the plane).
     pub friction_impulse: Vector,
-    /// The sliding velocity of the contact point in the plane after the step's impulses
+    /// The sliding velocity of the contact point in the plane after the solve's impulses
     /// (space frame): zero while the contact sticks or rolls.
     pub slip: Vector,
 }

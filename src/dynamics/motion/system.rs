@@ -219,7 +219,13 @@ impl System {
         &self.joints
     }
 
-    /// Returns the contacts of the last step, with their impulses.
+    /// Returns the contacts of the last step, with their impulses: one entry per touching
+    /// point and velocity solve. [`MotionSplitting`](super::MotionSplitting) solves after
+    /// each half kick, so a resting point appears twice a step (more where the step is cut
+    /// at an impact), and the impulses of a point's entries add up to what the velocity
+    /// solves gave it over the step. Impulses that only keep a point from ending the free
+    /// flight inside its half-space (the position step of a contact that would sink) are
+    /// not among them.
     pub fn contacts(&self) -> &[Contact] {
         self.contacts.as_slice()
     }
