@@ -336,10 +336,11 @@ impl Multivector {
     /// at angle π described above (which includes −exp(B) for a boost B in Cl(1, 3));
     /// [`AlgebraError::LogarithmInaccurate`] where V's coefficients span more orders of
     /// magnitude than f64 resolves (boosts of rapidity beyond about 25 beside rotations,
-    /// huge null parts beside others with several null vectors): every logarithm returned
-    /// outside the Euclidean signatures is checked to give back V,
-    /// max |exp(log V) − V| ≤ 10⁻¹⁰ · max(1, max |Vᵢ|) · max(1, max |(log V)ᵢ|), and refused
-    /// otherwise, so that no wrong bivector is returned.
+    /// huge null parts beside others with several null vectors, a rotation in a nearly null
+    /// plane whose angle is lost in the difference of two large squares): every logarithm
+    /// returned outside the Euclidean signatures is checked to give back V through
+    /// [`Multivector::exp`], max |exp(log V) − V| ≤ 10⁻¹⁰ · max(1, max |Vᵢ|) ·
+    /// max(1, max |(log V)ᵢ|), and refused otherwise, so that no wrong bivector is returned.
     ///
     /// ```
     /// use rotorflow::algebra::{Multivector, Signature};
@@ -546,8 +547,16 @@ fn log_small<const L: usize>(v: &Multivector, out: &mut Multivector) -> Result<(
         let residual = exp_nonzero(&b).map_or(f64::INFINITY, |e| (&e - &given).max_abs());
         if let Err(e) = check_log_residual(residual, given.max_abs(), b.max_abs()) {
             // The closed form's roots can be lost where the general route, which needs none,
-            // still finds the logarithm; it checks its own result.
-            return log_general_to(v_given, out).map_err(|_| e);
+            // still finds the logarithm. It checks its result with its own exponential
+            // (scaling and squaring); the one that counts is the one `exp` takes here. The
+            // two differ where L is ill-conditioned (a rotation in a nearly null plane,
+            // whose angle is the difference of two large squares), and such an L is refused.
+            if log_general_to(v_given, out).is_err() {
+                return Err(e);
+            }
+            let l = Small::<L>::from_multivector(out);
+            let residual = exp_nonzero(&l).map_or(f64::INFINITY, |e| (&e - &given).max_abs());
+            return check_log_residual(residual, given.max_abs(), l.max_abs()).map_err(|_| e);
         }
         b.write_to(out);
         Ok(())
