@@ -129,7 +129,8 @@ impl Multivector {
     /// any N ≤ 16. Other signatures with 6 ≤ N ≤ [`GENERAL_MAX_DIM`] = 8 (a bivector then
     /// has three or more simple parts and these closed forms no longer apply), conformal GA
     /// of 4D space Cl(5, 1, 0) among them, use scaling and squaring in the algebra, accurate
-    /// to a small multiple of ε |B| relative; beyond N = 8 they return
+    /// to a small multiple of ε |B| relative for a normal B (one whose exponential f64 can
+    /// resolve: see `Overflow` below); beyond N = 8 they return
     /// [`AlgebraError::UnsupportedDimension`].
     ///
     /// A translation in 3D projective GA:
@@ -172,7 +173,10 @@ impl Multivector {
     /// of rapidity above ≈ 710), or, for N ≥ 6 with two or more null vectors, when the
     /// squarings do (rotation angles of 10¹⁰⁰ and more beside null parts of that size), or,
     /// for N ≥ 6 outside the Euclidean and projective signatures, when they leave the group
-    /// without overflowing (⟨V Ṽ⟩₀ off 1 by more than 10⁻⁹ |B|, components near 10⁹⁰).
+    /// without overflowing: V Ṽ off 1 by more than 10⁻¹² |B| relative to max |Vᵢ|², which
+    /// happens beside components near 10⁹⁰ and for a B far from normal (nearly null planes
+    /// of size 10⁶ beside each other), whose exponential grows with a power of |B| and
+    /// loses as many digits.
     #[inline]
     pub fn exp(&self) -> Result<Multivector, AlgebraError> {
         // 3D PGA on fixed-size arrays; everything else (and every error) below.
@@ -263,11 +267,13 @@ impl Multivector {
                 });
             }
             exp_general_to(self, out)?;
-            // The squarings of a huge B can leave the group without overflowing (coefficients
-            // that underflow while V Ṽ should stay 1); the scalar part of V Ṽ catches it in
-            // O(2ᴺ), at the accuracy exp has there (about 2⁻⁵³ |B| relative).
+            // The squarings can leave the group without overflowing: coefficients that
+            // underflow beside a huge B, or a B far from normal (nearly null planes of 1e6
+            // beside each other in Cl(4, 2)), whose exponential grows with a power of |B| and
+            // loses digits with it. V Ṽ = 1 to the accuracy exp has for a normal B (about
+            // 2⁻⁵³ |B| relative) is checked, with one product of the grades V Ṽ can have.
             let b_top = self.max_abs().max(1.0);
-            if scalar_of_v_reverse_v_error(out) > 1e-9 * b_top {
+            if versor_defect(out) > 1e-12 * b_top {
                 return Err(AlgebraError::Overflow {
                     what: "the exponential",
                 });
@@ -1199,29 +1205,26 @@ fn log_closed_form<const L: usize>(v: &Small<L>) -> Result<Small<L>, AlgebraErro
     }
 }
 
-/// |⟨V Ṽ⟩₀ − 1| / max |Vᵢ|²: ⟨V Ṽ⟩₀ = Σ_A V_A² e_A ẽ_A, where e_A ẽ_A is the product of the
-/// squares of A's basis vectors (+1 positive, −1 negative, 0 null). Infinite when V is zero or
-/// not finite.
-fn scalar_of_v_reverse_v_error(v: &Multivector) -> f64 {
-    let sig = v.signature();
-    let negative = ((1u64 << sig.q()) - 1) << sig.p();
-    let null = ((1u64 << sig.r()) - 1) << (sig.p() + sig.q());
+/// max |V Ṽ − 1| / max |Vᵢ|² of an even V of N ≥ 6, on V / max |Vᵢ| so that nothing
+/// overflows (the grades 0, 4 and 8 of V Ṽ, the only ones it has). Infinite when V is zero or
+/// not finite. Out of line, so that its 64-coefficient product does not enlarge the stack
+/// frame of the smaller signatures' route.
+#[inline(never)]
+fn versor_defect(v: &Multivector) -> f64 {
     let top = v.max_abs();
     if !(top.is_finite() && top > 0.0) {
         return f64::INFINITY;
     }
-    let mut s = 0.0;
-    for (k, &c) in v.as_slice().iter().enumerate() {
-        let k = k as u64;
-        if k & null != 0 || c == 0.0 {
-            continue;
-        }
-        let x = c / top;
-        s += if (k & negative).count_ones().is_multiple_of(2) {
-            x * x
-        } else {
-            -x * x
-        };
+    let one = (1.0 / top) / top;
+    if v.dim() <= SMALL_MAX_DIM {
+        let w = &Small::<64>::from_multivector(v) * (1.0 / top);
+        let mut ww = w.geometric_grades(&w.reverse(), 1 | 1 << 4);
+        ww.as_mut_slice()[0] -= one;
+        ww.max_abs()
+    } else {
+        let w = v * (1.0 / top);
+        let mut ww = &w * &w.reverse();
+        ww.as_mut_slice()[0] -= one;
+        ww.max_abs()
     }
-    (s - 1.0 / top / top).abs()
 }

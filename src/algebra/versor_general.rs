@@ -21,7 +21,10 @@
 //! and at the end by the Newton step V ← (1 − E/2) V, E = V Ṽ − 1, which squares E; without
 //! it V Ṽ − 1 would double with every squaring (2^s ε at a rotation angle of 2^s). The
 //! relative error is that of any scaling and squaring, a small multiple of ε |B|, which is
-//! also how well exp(B) is determined by a B known to ε.
+//! also how well exp(B) is determined by a B known to ε — for a normal B. A B far from
+//! normal (several nearly null planes of a large size) has an exponential that grows with a
+//! power of |B| and is determined to as many digits fewer; `Multivector::exp` checks
+//! V Ṽ = 1 to 10⁻¹² |B| and returns `Overflow` beyond.
 //!
 //! A nilpotent B (B² = 0, or B⁴ = 0 where light-like parts meet) is not scaled: its series
 //! terminates and is summed as it stands, 1 + B for a light-like B of any size (squaring

@@ -636,3 +636,45 @@ fn fuzz_log_in_a_nearly_null_plane_is_checked_with_the_public_exponential() {
     );
     log_is_honest(&b.exp().unwrap());
 }
+
+/// versor_bits: in Cl(4, 2), B with components of 2.26e6 in eight planes, boosts and
+/// rotations that nearly cancel (a B far from normal, whose exponential, of size 7.6e7, grows
+/// with a power of |B|): scaling and squaring gave V with V Ṽ − 1 of 3.3e-5 relative to
+/// max |Vᵢ|², 65,000 times the ε |B| that bounds the exponential of a normal B, and only the
+/// scalar part of V Ṽ was checked, against 1e-9 |B|. Every grade of V Ṽ is now checked against
+/// 1e-12 |B|, and such a B returns `Overflow` (the result leaves the group without
+/// overflowing, as documented).
+#[test]
+fn fuzz_exp_of_a_bivector_far_from_normal_is_a_versor_or_an_error() {
+    use rotorflow::algebra::AlgebraError;
+    let b = versor_input(
+        4,
+        2,
+        0,
+        &[
+            (3, f64::from_bits(0x4141414141414141)),
+            (5, f64::from_bits(0x4141414141414041)),
+            (9, f64::from_bits(0xc141414141414141)),
+            (17, f64::from_bits(0x4141414141414141)),
+            (33, f64::from_bits(0x4141414141414141)),
+            (6, f64::from_bits(0x4141414141414141)),
+            (10, f64::from_bits(0x4141414141414141)),
+            (18, f64::from_bits(0x0000005500004141)),
+        ],
+    );
+    match b.exp() {
+        Ok(v) => {
+            let top = v.max_abs();
+            let w = &v * (1.0 / top);
+            let mut ww = &w * &w.reverse();
+            ww.as_mut_slice()[0] -= 1.0 / (top * top);
+            assert!(
+                ww.max_abs() <= 1e-12 * b.max_abs(),
+                "V Ṽ − 1 = {:e}",
+                ww.max_abs()
+            );
+        }
+        Err(AlgebraError::Overflow { .. }) => {}
+        Err(e) => panic!("unexpected error {e}"),
+    }
+}
