@@ -224,22 +224,33 @@ const RENORMALIZE_EVERY: i32 = 8;
 /// beyond f64 in the squarings although exp(B) itself is finite.
 ///
 /// Written into `out` (same algebra): on the stack, without allocating, up to N = 6.
-pub(super) fn exp_general_to(b: &Multivector, out: &mut Multivector) -> Result<(), AlgebraError> {
-    if b.dim() <= SMALL_MAX_DIM {
-        exp_any::<Small<64>>(&Small::from_multivector(b))?.write_to(out);
+/// Returns max |V Ṽ − 1| of the result where the last pull onto the group measured it (a
+/// bounded V in a signature without null vectors), else ∞: the caller checks it then.
+pub(super) fn exp_general_to(b: &Multivector, out: &mut Multivector) -> Result<f64, AlgebraError> {
+    let (v, defect) = if b.dim() <= SMALL_MAX_DIM {
+        let (v, defect) = exp_any_with_defect::<Small<64>>(&Small::from_multivector(b))?;
+        v.write_to(out);
+        return Ok(defect);
     } else {
-        *out = exp_any(b)?;
-    }
-    Ok(())
+        exp_any_with_defect(b)?
+    };
+    *out = v;
+    Ok(defect)
 }
 
 /// [`exp_general_to`] on either storage.
 fn exp_any<T: Mv>(b: &T) -> Result<T, AlgebraError> {
+    exp_any_with_defect(b).map(|(v, _)| v)
+}
+
+/// [`exp_any`] with the defect of [`exp_general_to`].
+fn exp_any_with_defect<T: Mv>(b: &T) -> Result<(T, f64), AlgebraError> {
     let k = null_scale(b);
-    let v = exp_scaled(&scale_null(b, k))?;
+    let (v, defect) = exp_scaled(&scale_null(b, k))?;
     let v = scale_null(&v, -k);
     if v.coeffs().iter().all(|c| c.is_finite()) {
-        Ok(v)
+        // Measured in the scaled algebra, it says nothing of V's unless nothing was scaled.
+        Ok((v, if k == 0 { defect } else { f64::INFINITY }))
     } else {
         Err(AlgebraError::Overflow {
             what: "the exponential",
@@ -287,14 +298,14 @@ fn scale_null<T: Mv>(m: &T, k: i32) -> T {
 }
 
 /// exp(B) by scaling and squaring, for B with null parts no larger than the rest.
-fn exp_scaled<T: Mv>(b: &T) -> Result<T, AlgebraError> {
+fn exp_scaled<T: Mv>(b: &T) -> Result<(T, f64), AlgebraError> {
     let one = T::one(b.sig());
     let top = b.max_abs();
     if top == 0.0 {
-        return Ok(one);
+        return Ok((one, 0.0));
     }
     if let Some(v) = terminating_series(b, top) {
-        return Ok(v);
+        return Ok((v, f64::INFINITY));
     }
     let s = squarings(b, top);
     let x = scaled(b, -s);
@@ -313,7 +324,7 @@ fn exp_scaled<T: Mv>(b: &T) -> Result<T, AlgebraError> {
             v = pull_to_group(v);
         }
     }
-    Ok(pull_to_group(v))
+    Ok(pull_to_group_with_defect(v))
 }
 
 /// exp(B) as its finite series when B is nilpotent in floating point: B² = 0 (a light-like
@@ -389,7 +400,13 @@ fn taylor_remainder(x1: f64, d: f64) -> f64 {
 /// 10⁻² there. Larger V (boosts) carry a round-off ~ε |V|² in E that the step would multiply
 /// by |V|, so they are left as computed. Null parts may be of any size (a translation by
 /// 1e99): their products vanish exactly, so their round-off in E is only ε |V|.
-fn pull_to_group<T: Mv>(mut v: T) -> T {
+fn pull_to_group<T: Mv>(v: T) -> T {
+    pull_to_group_with_defect(v).0
+}
+
+/// [`pull_to_group`], with max |V Ṽ − 1| of the V returned where it was measured over every
+/// blade (a bounded V in a signature without null vectors), else ∞.
+fn pull_to_group_with_defect<T: Mv>(mut v: T) -> (T, f64) {
     let null = null_mask(&v);
     // max |xᵢ| over the blades without a null vector.
     let non_null = move |x: &T| {
@@ -400,7 +417,7 @@ fn pull_to_group<T: Mv>(mut v: T) -> T {
             .fold(0.0f64, |a, (_, c)| a.max(c.abs()))
     };
     if non_null(&v) > 4.0 {
-        return v;
+        return (v, f64::INFINITY);
     }
     let defect = |v: &T| {
         let mut e = v.mul(&v.rev());
@@ -426,7 +443,7 @@ fn pull_to_group<T: Mv>(mut v: T) -> T {
         e = e1;
         dev = d;
     }
-    v
+    (v, if null == 0 { dev } else { f64::INFINITY })
 }
 
 /// The bits of the null basis vectors (the last r).
