@@ -172,11 +172,13 @@ impl Multivector {
     /// [`AlgebraError::Overflow`] when a coefficient of the result exceeds `f64::MAX` (a boost
     /// of rapidity above ≈ 710), or, for N ≥ 6 with two or more null vectors, when the
     /// squarings do (rotation angles of 10¹⁰⁰ and more beside null parts of that size), or,
-    /// for N ≥ 6 outside the Euclidean and projective signatures, when they leave the group
-    /// without overflowing: V Ṽ off 1 by more than 10⁻¹² |B| relative to max |Vᵢ|², which
-    /// happens beside components near 10⁹⁰ and for a B far from normal (nearly null planes
-    /// of size 10⁶ beside each other), whose exponential grows with a power of |B| and
-    /// loses as many digits.
+    /// outside the Euclidean and projective signatures, when the result leaves the group
+    /// without overflowing: V Ṽ off 1 by more than 10⁻¹² |B| relative to max |Vᵢ|². For
+    /// N ≥ 6 that happens beside components near 10⁹⁰ and for a B far from normal (nearly
+    /// null planes of size 10⁶ beside each other), whose exponential grows with a power of
+    /// |B| and loses as many digits; for N ≤ 5 where neither the closed form nor scaling and
+    /// squaring keeps the group (a rotation of 10¹⁶ and more in a nearly null plane beside
+    /// other parts).
     #[inline]
     pub fn exp(&self) -> Result<Multivector, AlgebraError> {
         // 3D PGA on fixed-size arrays; everything else (and every error) below.
@@ -495,28 +497,45 @@ impl Multivector {
 /// The closed-form exponential of a finite bivector of N ≤ 5 on stack storage of L ≥ 2^N
 /// coefficients, written into `out`.
 fn exp_small<const L: usize>(b: &Multivector, out: &mut Multivector) -> Result<(), AlgebraError> {
+    // A fallback's result is kept only in the group, to the ε |B| that bounds any exp(B).
+    let bound = 1e-12 * b.max_abs().max(1.0);
+    let in_group = |out: &Multivector| {
+        if unit_error(&Small::<L>::from_multivector(out)) <= bound {
+            Ok(())
+        } else {
+            Err(AlgebraError::Overflow {
+                what: "the exponential",
+            })
+        }
+    };
     let v = exp_closed_form(&Small::<L>::from_multivector(b));
     if !v.as_slice().iter().all(|c| c.is_finite()) {
         // The closed form's intermediate products can overflow beside null parts of 1e100
         // and more where exp(B) itself is finite; the general route scales the null vectors.
-        return exp_general_to(b, out).map(|_| ());
+        exp_general_to(b, out)?;
+        return in_group(out);
     }
     let (v, defect) = renormalize(v);
+    if defect <= 1e-8 {
+        v.write_to(out);
+        return Ok(());
+    }
     // The roots λ of the closed form come from ⟨B²⟩₀ and (B∧B)², whose discriminant cancels
     // for a huge, nearly isoclinic B (|B| ≈ 10⁹ beside a part of size 1): no f64 formula in
     // those two numbers recovers them, and V is then no versor at all. Scaling and squaring
     // needs no roots. Where it overflows (huge null parts beside several null vectors), or
     // leaves the group without overflowing (rotation angles of 1e175 beside boosts of 1e18:
-    // the squarings underflow every coefficient), the closed form's V stands: its error is
-    // then within the ε |B| that bounds any exp(B).
-    if defect > 1e-8 && exp_general_to(b, out).is_ok() {
+    // the squarings underflow every coefficient), the closed form's V stands if it is in the
+    // group to the bound above; where neither is (a rotation of 1e16 in a nearly null
+    // plane), the exponential is an error.
+    if exp_general_to(b, out).is_ok() {
         let top = out.max_abs();
         if unit_deviation::<L>(out) / (top * top).max(1.0) <= defect {
-            return Ok(());
+            return in_group(out);
         }
     }
     v.write_to(out);
-    Ok(())
+    in_group(out)
 }
 
 /// max |V Ṽ − 1| of an element of N ≤ 5 on stack storage.
@@ -1207,26 +1226,34 @@ fn log_closed_form<const L: usize>(v: &Small<L>) -> Result<Small<L>, AlgebraErro
     }
 }
 
-/// max |V Ṽ − 1| / max |Vᵢ|² of an even V of N ≥ 6, on V / max |Vᵢ| so that nothing
-/// overflows (the grades 0, 4 and 8 of V Ṽ, the only ones it has). Infinite when V is zero or
-/// not finite. Out of line, so that its 64-coefficient product does not enlarge the stack
-/// frame of the smaller signatures' route.
-#[inline(never)]
-fn versor_defect(v: &Multivector) -> f64 {
+/// max |V Ṽ − 1| / max |Vᵢ|² of an even V of N ≤ 6 on stack storage, on V / max |Vᵢ| so
+/// that nothing overflows (the grades 0 and 4 of V Ṽ, the only ones it has). Infinite when V
+/// is zero or not finite.
+fn unit_error<const L: usize>(v: &Small<L>) -> f64 {
     let top = v.max_abs();
     if !(top.is_finite() && top > 0.0) {
         return f64::INFINITY;
     }
-    let one = (1.0 / top) / top;
+    let w = v * (1.0 / top);
+    let mut ww = w.geometric_grades(&w.reverse(), 1 | 1 << 4);
+    ww.as_mut_slice()[0] -= (1.0 / top) / top;
+    ww.max_abs()
+}
+
+/// [`unit_error`] of an even V of N ≥ 6 (for N = 7, 8 on the heap, with the grade 8 of
+/// V Ṽ). Out of line, so that its 64-coefficient product does not enlarge the stack frame of
+/// the smaller signatures' route.
+#[inline(never)]
+fn versor_defect(v: &Multivector) -> f64 {
     if v.dim() <= SMALL_MAX_DIM {
-        let w = &Small::<64>::from_multivector(v) * (1.0 / top);
-        let mut ww = w.geometric_grades(&w.reverse(), 1 | 1 << 4);
-        ww.as_mut_slice()[0] -= one;
-        ww.max_abs()
-    } else {
-        let w = v * (1.0 / top);
-        let mut ww = &w * &w.reverse();
-        ww.as_mut_slice()[0] -= one;
-        ww.max_abs()
+        return unit_error(&Small::<64>::from_multivector(v));
     }
+    let top = v.max_abs();
+    if !(top.is_finite() && top > 0.0) {
+        return f64::INFINITY;
+    }
+    let w = v * (1.0 / top);
+    let mut ww = &w * &w.reverse();
+    ww.as_mut_slice()[0] -= (1.0 / top) / top;
+    ww.max_abs()
 }

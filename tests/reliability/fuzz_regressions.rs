@@ -668,3 +668,37 @@ fn fuzz_exp_of_a_bivector_far_from_normal_is_a_versor_or_an_error() {
         Err(e) => panic!("unexpected error {e}"),
     }
 }
+
+/// versor_bits: in Cl(4, 1), B = 32.2 e₁₄ − 2.848e18 (e₂₄ + e₂₅) beside subnormal parts (a
+/// rotation of about 5e16 in the nearly null plane e₂ ∧ (e₄ + e₅)): the closed form missed the
+/// group and scaling and squaring underflowed every coefficient (to 1e-207), and of the two
+/// the nearer was returned, no versor at all. A fallback's result is now kept only in the
+/// group to 1e-12 |B|, and such a B returns `Overflow` (the result leaves the group without
+/// overflowing, as documented).
+#[test]
+fn fuzz_exp_where_neither_route_keeps_the_group_is_an_error() {
+    use rotorflow::algebra::AlgebraError;
+    let b = versor_input(
+        4,
+        1,
+        0,
+        &[
+            (3, f64::from_bits(0x0002154e0100f7ac)),
+            (5, f64::from_bits(0x0009333fd3330001)),
+            (9, f64::from_bits(0x404016fc188b6364)),
+            (17, f64::from_bits(0x009b8b9b9b204049)),
+            (6, f64::from_bits(0x0001002fc370fe00)),
+            (10, f64::from_bits(0xc3c3c3c3c3333333)),
+            (18, f64::from_bits(0xc3c3c32425c3c3c3)),
+            (12, f64::from_bits(0x0016ffff688192c3)),
+        ],
+    );
+    match b.exp() {
+        Ok(v) => {
+            let e = unit_error(&v);
+            assert!(e <= 1e-12 * b.max_abs(), "V Ṽ − 1 = {e:e}");
+        }
+        Err(AlgebraError::Overflow { .. }) => {}
+        Err(e) => panic!("unexpected error {e}"),
+    }
+}
