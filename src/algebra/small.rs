@@ -74,6 +74,13 @@ impl<const L: usize> Small<L> {
         out
     }
 
+    /// The same element on storage of M ≥ 2^N coefficients.
+    pub(super) fn resized<const M: usize>(&self) -> Small<M> {
+        let mut out = Small::<M>::zero(self.sig);
+        out.c[..self.len()].copy_from_slice(self.as_slice());
+        out
+    }
+
     /// Writes the coefficients into a multivector of the same algebra.
     pub(super) fn write_to(&self, out: &mut Multivector) {
         let n = out.as_slice().len();

@@ -67,7 +67,7 @@
 use super::decompose::{RawPlane, decompose_components};
 use super::error::{check_finite, within};
 use super::small::{SMALL_MAX_DIM, Small};
-use super::versor_general::{GENERAL_MAX_DIM, exp_general_to, log_general_to};
+use super::versor_general::{GENERAL_MAX_DIM, exp_general_small, exp_general_to, log_general_to};
 use super::versor_n4 as n4;
 use super::versor_pga3 as pga3;
 use super::{AlgebraError, Bivector, Multivector, Rotor};
@@ -497,28 +497,32 @@ impl Multivector {
 /// The closed-form exponential of a finite bivector of N ≤ 5 on stack storage of L ≥ 2^N
 /// coefficients, written into `out`.
 fn exp_small<const L: usize>(b: &Multivector, out: &mut Multivector) -> Result<(), AlgebraError> {
+    exp_small_core(&Small::<L>::from_multivector(b))?.write_to(out);
+    Ok(())
+}
+
+/// [`exp_small`] on stack storage.
+fn exp_small_core<const L: usize>(b: &Small<L>) -> Result<Small<L>, AlgebraError> {
     // A fallback's result is kept only in the group, to the ε |B| that bounds any exp(B).
     let bound = 1e-12 * b.max_abs().max(1.0);
-    let in_group = |out: &Multivector| {
-        if unit_error(&Small::<L>::from_multivector(out)) <= bound {
-            Ok(())
+    let in_group = |v: Small<L>| {
+        if unit_error(&v) <= bound {
+            Ok(v)
         } else {
             Err(AlgebraError::Overflow {
                 what: "the exponential",
             })
         }
     };
-    let v = exp_closed_form(&Small::<L>::from_multivector(b));
+    let v = exp_closed_form(b);
     if !v.as_slice().iter().all(|c| c.is_finite()) {
         // The closed form's intermediate products can overflow beside null parts of 1e100
         // and more where exp(B) itself is finite; the general route scales the null vectors.
-        exp_general_to(b, out)?;
-        return in_group(out);
+        return in_group(exp_general_small(b)?);
     }
     let (v, defect) = renormalize(v);
     if defect <= 1e-8 {
-        v.write_to(out);
-        return Ok(());
+        return Ok(v);
     }
     // The roots λ of the closed form come from ⟨B²⟩₀ and (B∧B)², whose discriminant cancels
     // for a huge, nearly isoclinic B (|B| ≈ 10⁹ beside a part of size 1): no f64 formula in
@@ -528,19 +532,44 @@ fn exp_small<const L: usize>(b: &Multivector, out: &mut Multivector) -> Result<(
     // the squarings underflow every coefficient), the closed form's V stands if it is in the
     // group to the bound above; where neither is (a rotation of 1e16 in a nearly null
     // plane), the exponential is an error.
-    if exp_general_to(b, out).is_ok() {
-        let top = out.max_abs();
-        if unit_deviation::<L>(out) / (top * top).max(1.0) <= defect {
-            return in_group(out);
+    if let Ok(g) = exp_general_small(b) {
+        let top = g.max_abs();
+        if unit_deviation_of(&g) / (top * top).max(1.0) <= defect {
+            return in_group(g);
         }
     }
-    v.write_to(out);
-    in_group(out)
+    in_group(v)
+}
+
+/// [`Multivector::exp`] of a finite bivector of N ≤ 5 outside the Euclidean signatures, on
+/// stack storage and by the same route (3D PGA's fixed-size form, the fixed-size route of
+/// N ≤ 4, the closed form with its fallbacks), or None where it returns an error: the
+/// logarithm is checked with it, so that exp(log V) is what was checked.
+fn exp_public<const L: usize>(b: &Small<L>) -> Option<Small<L>> {
+    let sig = b.signature();
+    if sig.dim() <= 4 {
+        let mut m = Multivector::zero(sig);
+        b.write_to(&mut m);
+        if pga3::is_pga3(sig)
+            && let Some(v) = pga3::exp(&m)
+        {
+            return Some(Small::from_multivector(&v));
+        }
+        let mut e = Multivector::zero(sig);
+        if n4::applies(sig) && n4::exp_to(&m, &mut e) {
+            return Some(Small::from_multivector(&e));
+        }
+    }
+    exp_small_core(b).ok()
 }
 
 /// max |V Ṽ − 1| of an element of N ≤ 5 on stack storage.
 fn unit_deviation<const L: usize>(v: &Multivector) -> f64 {
-    let v = Small::<L>::from_multivector(v);
+    unit_deviation_of(&Small::<L>::from_multivector(v))
+}
+
+/// [`unit_deviation`] of an element already on stack storage.
+fn unit_deviation_of<const L: usize>(v: &Small<L>) -> f64 {
     let mut vv = v.geometric(&v.reverse());
     vv.as_mut_slice()[0] -= 1.0;
     vv.max_abs()
@@ -571,19 +600,21 @@ fn log_small<const L: usize>(v: &Multivector, out: &mut Multivector) -> Result<(
     let b = log_closed_form(&v)?;
     if b.as_slice().iter().all(|c| c.is_finite()) {
         let (b, _) = refine(&v, b);
-        let residual = exp_nonzero(&b).map_or(f64::INFINITY, |e| (&e - &given).max_abs());
-        if let Err(e) = check_log_residual(residual, given.max_abs(), b.max_abs()) {
+        // Every logarithm returned is checked with the exponential `exp` takes here, so that
+        // exp(log V) is what was checked: the refinement's closed form and the general
+        // route's scaling and squaring differ from it where L is ill-conditioned (a rotation
+        // in a nearly null plane, whose angle is the difference of two large squares).
+        let check = |l: &Small<L>| {
+            let residual = exp_public(l).map_or(f64::INFINITY, |e| (&e - &given).max_abs());
+            check_log_residual(residual, given.max_abs(), l.max_abs())
+        };
+        if let Err(e) = check(&b) {
             // The closed form's roots can be lost where the general route, which needs none,
-            // still finds the logarithm. It checks its result with its own exponential
-            // (scaling and squaring); the one that counts is the one `exp` takes here. The
-            // two differ where L is ill-conditioned (a rotation in a nearly null plane,
-            // whose angle is the difference of two large squares), and such an L is refused.
+            // still finds the logarithm.
             if log_general_to(v_given, out).is_err() {
                 return Err(e);
             }
-            let l = Small::<L>::from_multivector(out);
-            let residual = exp_nonzero(&l).map_or(f64::INFINITY, |e| (&e - &given).max_abs());
-            return check_log_residual(residual, given.max_abs(), l.max_abs()).map_err(|_| e);
+            return check(&Small::<L>::from_multivector(out)).map_err(|_| e);
         }
         b.write_to(out);
         Ok(())

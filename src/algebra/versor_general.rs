@@ -238,6 +238,11 @@ pub(super) fn exp_general_to(b: &Multivector, out: &mut Multivector) -> Result<f
     Ok(defect)
 }
 
+/// [`exp_general_to`] of an element of N ≤ 6 on stack storage of L coefficients.
+pub(super) fn exp_general_small<const L: usize>(b: &Small<L>) -> Result<Small<L>, AlgebraError> {
+    exp_any(&b.resized::<64>()).map(|v| v.resized::<L>())
+}
+
 /// [`exp_general_to`] on either storage.
 fn exp_any<T: Mv>(b: &T) -> Result<T, AlgebraError> {
     exp_any_with_defect(b).map(|(v, _)| v)
