@@ -642,6 +642,14 @@ mod moving_bodies {
             }
             assert!(touching.iter().all(|&t| t), "N = {n}: every body rests");
             assert_eq!(count, 0, "N = {n}: {count} heap allocations in 20 steps");
+            // The same steps taken together (one velocity solve per step).
+            let count = allocations_in(|| {
+                integrator.advance(&mut system, 0.0, 0.01, 20).unwrap();
+            });
+            assert_eq!(
+                count, 0,
+                "N = {n}: {count} heap allocations in advance by 20 steps"
+            );
         }
     }
 
@@ -668,8 +676,16 @@ mod moving_bodies {
                     other: Anchor::Body(1, axis(n, 0, -0.5)),
                 })
                 .unwrap();
-            let count = step_allocations(&mut MotionSplitting::new(), &mut system, 0.01, 50);
+            let mut integrator = MotionSplitting::new();
+            let count = step_allocations(&mut integrator, &mut system, 0.01, 50);
             assert_eq!(count, 0, "N = {n}: {count} heap allocations in 50 steps");
+            let count = allocations_in(|| {
+                integrator.advance(&mut system, 0.0, 0.01, 20).unwrap();
+            });
+            assert_eq!(
+                count, 0,
+                "N = {n}: {count} heap allocations in advance by 20 steps"
+            );
         }
     }
 }

@@ -645,3 +645,172 @@ fn kept_placements_follow_new_shapes_and_other_systems() {
         assert!((total - weight).abs() <= 1e-9 * weight, "{total} {weight}");
     }
 }
+
+/// The largest difference of position, velocity and angular velocity between two systems of
+/// the same bodies.
+fn state_difference(a: &System, b: &System) -> f64 {
+    a.bodies()
+        .iter()
+        .zip(b.bodies())
+        .map(|(x, y)| {
+            (x.position() - y.position())
+                .max_abs()
+                .max((x.velocity() - y.velocity()).max_abs())
+                .max((x.omega() - y.omega()).max_abs())
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Runs `steps` single steps of h on one copy of a system and the same steps in calls of
+/// `MotionSplitting::advance` by `batch` on another; returns the largest state difference at
+/// the ends of the batches, and both systems.
+fn single_and_joined(
+    make: impl Fn() -> System,
+    h: f64,
+    steps: usize,
+    batch: usize,
+) -> (f64, System, System) {
+    let (mut single, mut joined) = (make(), make());
+    let (mut a, mut b) = (MotionSplitting::new(), MotionSplitting::new());
+    let mut worst = 0.0f64;
+    for c in 0..steps / batch {
+        let t = (c * batch) as f64 * h;
+        for k in 0..batch {
+            a.step(&mut single, t + k as f64 * h, h).unwrap();
+        }
+        b.advance(&mut joined, t, h, batch).unwrap();
+        worst = worst.max(state_difference(&single, &joined));
+    }
+    (worst, single, joined)
+}
+
+/// `MotionSplitting::advance` joins the closing half kick and velocity solve of a step with
+/// the opening ones of the next under constant forques: one solve per step instead of two.
+/// A solve is a projection of the velocities, linear and idempotent while contacts rest,
+/// stick or slide one way and for joints, so the trajectories are those of single steps to
+/// round-off there; through bounces and stick–slip transitions they agree to the solver's
+/// tolerance (the impacts are still located: a step with one is taken singly). Measured:
+/// sliding balls 6e-15 (3D) and 4e-14 (4D), elastic bounces 1e-13 and 5e-13, a tilted box
+/// dropped with friction and restitution 2e-8 (3D) and 2e-13 (4D), the double pendulum
+/// 1e-10 over 5,000 steps (a chaotic motion). The last step's contacts are listed as after
+/// single steps.
+#[test]
+fn advancing_by_many_steps_matches_single_steps() {
+    let mut cases = 0;
+    for n in [3usize, 4] {
+        let spec = if n == 3 {
+            "cuboid:0.5,0.7,0.9"
+        } else {
+            "cuboid:0.5,0.6,0.7,0.8"
+        };
+        let mut tilt = Bivector::zero(n);
+        tilt.as_mut_slice()[0] = 0.3;
+        tilt.as_mut_slice()[n * (n - 1) / 2 - 1] = -0.2;
+        let dropped = || {
+            let parsed = parse_body(spec).unwrap();
+            let shape = ContactShape::from_geometry(&parsed.geometry);
+            let b = MovingBody::new(
+                parsed.mass,
+                parsed.inertia.clone(),
+                Rotor::from_rotation_bivector(&tilt),
+                &axis(n, n - 1, 2.0),
+                &axis(n, 0, 0.3),
+                &Bivector::zero(n),
+            )
+            .unwrap();
+            let mut s = System::new(vec![b]).unwrap();
+            s.set_shape(0, shape).unwrap();
+            s.add_forque(Gravity(axis(n, n - 1, -9.81))).unwrap();
+            s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.6, 0.3).unwrap())
+                .unwrap();
+            s
+        };
+        let sliding = || {
+            on_floor(
+                &format!("ball:{n},0.5+mass=1.5"),
+                axis(n, n - 1, 0.5),
+                axis(n, 0, 2.0),
+                Bivector::zero(n),
+                0.3,
+                0.0,
+            )
+        };
+        let elastic = || {
+            on_floor(
+                &format!("ball:{n},0.1"),
+                axis(n, n - 1, 3.0),
+                axis(n, 0, 0.4),
+                Bivector::zero(n),
+                0.0,
+                1.0,
+            )
+        };
+        let cases_n: [(&str, &dyn Fn() -> System, usize, f64); 3] = [
+            ("dropped box", &dropped, 8000, 1e-7),
+            ("sliding ball", &sliding, 1500, 1e-12),
+            ("elastic ball", &elastic, 8000, 1e-11),
+        ];
+        for (name, make, steps, bound) in cases_n {
+            let (worst, single, joined) = single_and_joined(make, 1e-3, steps, 100);
+            assert!(worst <= bound, "{name}, N = {n}: {worst:e}");
+            assert!(
+                clearance(&joined) >= -1e-9 * joined.shapes()[0].radius(),
+                "{name}, N = {n}: sank to {:e}",
+                clearance(&joined)
+            );
+            // The same points; their total impulse (the share of each point of a resting
+            // face is not unique, the total is).
+            let (a, b) = (single.contacts(), joined.contacts());
+            assert_eq!(a.len(), b.len(), "{name}, N = {n}: contacts");
+            for (x, y) in a.iter().zip(b) {
+                assert_eq!((x.body, x.half_space), (y.body, y.half_space));
+                assert!((&x.point - &y.point).max_abs() <= 1e-9, "{name}, N = {n}");
+            }
+            let total = |c: &[rotorflow::dynamics::motion::Contact]| {
+                c.iter().map(|x| x.normal_impulse).sum::<f64>()
+            };
+            assert!(
+                (total(a) - total(b)).abs() <= 1e-9 * total(a).max(1e-3),
+                "{name}, N = {n}: impulses {} and {}",
+                total(a),
+                total(b)
+            );
+            cases += 1;
+        }
+    }
+    // Ball joints: the double pendulum of the energy test.
+    let n = 3;
+    let pendulum = || {
+        let (upper, _) = body(
+            "cuboid:0.5,0.05,0.05+mass=1",
+            axis(n, 0, 0.5),
+            Vector::zero(n),
+            Bivector::from_components(3, &[0.0, 0.0, 0.3]).unwrap(),
+        );
+        let (lower, _) = body(
+            "cuboid:0.5,0.05,0.05+mass=1",
+            axis(n, 0, 1.5),
+            Vector::zero(n),
+            Bivector::from_components(3, &[0.0, 0.2, 0.0]).unwrap(),
+        );
+        let mut s = System::new(vec![upper, lower]).unwrap();
+        s.add_forque(Gravity(axis(n, n - 1, -9.81))).unwrap();
+        s.add_ball_joint(BallJoint {
+            body: 0,
+            point: axis(n, 0, -0.5),
+            other: Anchor::World(Vector::zero(n)),
+        })
+        .unwrap();
+        s.add_ball_joint(BallJoint {
+            body: 1,
+            point: axis(n, 0, -0.5),
+            other: Anchor::Body(0, axis(n, 0, 0.5)),
+        })
+        .unwrap();
+        s
+    };
+    let (worst, _, _) = single_and_joined(pendulum, 1e-3, 5000, 100);
+    assert!(worst <= 1e-8, "double pendulum: {worst:e}");
+    cases += 1;
+    assert_eq!(cases, 7);
+}

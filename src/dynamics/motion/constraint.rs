@@ -534,15 +534,18 @@ impl RowLayout {
 }
 
 /// What a contact row's matrices were computed for: the row's point (body, half-space,
-/// candidate), its offset and normal, and the generation of its body's inverse inertia.
+/// candidate), the generation of the placement its offset was taken from, and the generation
+/// of its body's inverse inertia. A placement's generation changes whenever the body's
+/// offsets in space change and when the placements are redone for another system, so that
+/// with the half-space's number (a system's half-spaces do not change) it fixes the offset
+/// and the normal.
 #[derive(Clone, Debug, Default)]
 struct RowKey {
     body: usize,
     half_space: usize,
     index: usize,
+    placed: u64,
     generation: u64,
-    r: SmallVec<[f64; 8]>,
-    normal: SmallVec<[f64; 8]>,
 }
 
 /// The dimension of a kernel: `N` when it is fixed at compile time (3 and 4: loops of known
@@ -715,6 +718,10 @@ pub(crate) struct Solver {
     warm: Vec<WarmImpulse>,
     /// The list the current solve writes the next `warm` into.
     warm_next: Vec<WarmImpulse>,
+    /// The length of the kick before the last solve (0: none yet). A resting contact's
+    /// impulse is its force times that length, so the next solve starts from the last
+    /// impulses scaled by the ratio of the kicks.
+    warm_kick: f64,
     /// True to use the kernels of run-time dimension in every dimension, also in 3D and 4D
     /// where the fixed-size kernels do the same arithmetic in the same order, only without
     /// the terms that are exact zeros (so that tests can compare the two).
@@ -728,6 +735,8 @@ struct Group<'a> {
     coupled: bool,
     half_spaces: &'a [HalfSpace],
     layout: &'a RowLayout,
+    /// The factor on the last solve's impulses to start from.
+    warm_scale: f64,
 }
 
 /// The impulses of the last solve with the place to search them from, and the list of the
@@ -891,20 +900,28 @@ impl Solver {
 
     /// The velocity solve: impulses such that every joint's ends move together and every
     /// contact point leaves its half-space at its target speed or faster, with friction in
-    /// Coulomb's cone. Appends the contacts and their impulses to `record`.
+    /// Coulomb's cone. Appends the contacts and their impulses to `record` (if any).
     ///
     /// A contact's target is restitution e for a point approaching faster than
-    /// `resting_speed[i]` (body i), none below (a resting contact).
+    /// `resting_speed[i]` (body i), none below (a resting contact). `kick` is the length of
+    /// the kick of the forques before the solve.
     pub(crate) fn solve_velocities(
         &mut self,
         bodies: &mut [MovingBody],
         half_spaces: &[HalfSpace],
         resting_speed: &[f64],
-        record: &mut ContactLog,
+        kick: f64,
+        mut record: Option<&mut ContactLog>,
     ) {
         if self.contacts.is_empty() && self.joints.is_empty() {
             return;
         }
+        let warm_scale = if self.warm_kick > 0.0 && kick > 0.0 {
+            kick / self.warm_kick
+        } else {
+            1.0
+        };
+        self.warm_kick = kick;
         self.load(bodies);
         let n = bodies[0].dim();
         if self.contacts.is_empty() {
@@ -958,12 +975,17 @@ impl Solver {
                 coupled,
                 half_spaces,
                 layout: &layout,
+                warm_scale,
             };
             let warm = (&last[..], &mut cursor, &mut next, &mut kept);
             match (self.runtime_kernels, n) {
-                (false, 3) => self.solve_group::<3>(&group, resting_speed, warm, record),
-                (false, 4) => self.solve_group::<4>(&group, resting_speed, warm, record),
-                _ => self.solve_group::<0>(&group, resting_speed, warm, record),
+                (false, 3) => {
+                    self.solve_group::<3>(&group, resting_speed, warm, record.as_deref_mut())
+                }
+                (false, 4) => {
+                    self.solve_group::<4>(&group, resting_speed, warm, record.as_deref_mut())
+                }
+                _ => self.solve_group::<0>(&group, resting_speed, warm, record.as_deref_mut()),
             }
             start = end;
         }
@@ -981,7 +1003,7 @@ impl Solver {
         group: &Group<'_>,
         resting_speed: &[f64],
         (last, cursor, next, kept): WarmLists<'_>,
-        record: &mut ContactLog,
+        record: Option<&mut ContactLog>,
     ) {
         // The layout anew, so that in 3D and 4D its offsets are constants of the kernels.
         let layout = &RowLayout::new(dim::<N>(group.layout.n));
@@ -989,11 +1011,10 @@ impl Solver {
         self.prepare_rows::<N>(range.clone(), half_spaces, resting_speed, layout);
         self.warm_start::<N>(
             range.clone(),
-            last,
-            cursor,
+            (last, cursor),
             half_spaces,
             layout,
-            group.coupled,
+            (group.coupled, group.warm_scale),
         );
         self.sweep_rows::<N>(range.clone(), group.coupled, half_spaces, layout);
         self.record_rows::<N>(range, half_spaces, layout, record, next, kept);
@@ -1024,26 +1045,20 @@ impl Solver {
             }
             let data = &mut self.row_data[k * layout.stride..(k + 1) * layout.stride];
             let key = &mut self.row_keys[k];
-            // Slices of length N, so that in 3D and 4D the comparisons below are unrolled.
-            let (r, nv) = (&row.r.as_slice()[..n], &nrm.as_slice()[..n]);
             let same = key.body == row.body
                 && key.half_space == row.half_space
                 && key.index == row.index
-                && key.generation == st.generation
-                && key.r.len() == n
-                && key.normal.len() == n
-                && key.r[..n] == *r
-                && key.normal[..n] == *nv;
+                && key.placed == row.placed
+                && key.generation == st.generation;
             if !same {
                 row_matrices(st, &row.r, nrm, layout, data);
-                key.body = row.body;
-                key.half_space = row.half_space;
-                key.index = row.index;
-                key.generation = st.generation;
-                key.r.clear();
-                key.r.extend_from_slice(row.r.as_slice());
-                key.normal.clear();
-                key.normal.extend_from_slice(nrm.as_slice());
+                *key = RowKey {
+                    body: row.body,
+                    half_space: row.half_space,
+                    index: row.index,
+                    placed: row.placed,
+                    generation: st.generation,
+                };
             }
             row.knn = data[layout.knn];
             let r = &row.r.as_slice()[..n];
@@ -1061,17 +1076,16 @@ impl Solver {
         }
     }
 
-    /// Starts the contact rows `range` from the last solve's impulses where the same points
-    /// touch again: kept in the row when it is in the same slot, else looked up in `last`
-    /// (sorted by point, searched from `cursor` on).
+    /// Starts the contact rows `range` from the last solve's impulses times `scale` where
+    /// the same points touch again: kept in the row when it is in the same slot, else looked
+    /// up in `last` (sorted by point, searched from `cursor` on).
     fn warm_start<const N: usize>(
         &mut self,
         range: std::ops::Range<usize>,
-        last: &[WarmImpulse],
-        cursor: &mut usize,
+        (last, cursor): (&[WarmImpulse], &mut usize),
         half_spaces: &[HalfSpace],
         layout: &RowLayout,
-        coupled: bool,
+        (coupled, scale): (bool, f64),
     ) {
         let n = dim::<N>(layout.n);
         let (mut jt_fixed, mut jt_any) = ([0.0; 4], Small::new());
@@ -1104,12 +1118,14 @@ impl Solver {
             };
             let plane = &half_spaces[row.half_space];
             let nv = &plane.normal().as_slice()[..n];
-            // Into the friction disc of the normal impulse, and into the plane.
+            // Scaled to this solve's kick, into the friction disc of the normal impulse, and
+            // into the plane.
+            let lambda = lambda * scale;
             let limit = plane.friction() * lambda;
-            let norm = dot(jt, jt).sqrt();
-            let scale = if norm > limit { limit / norm } else { 1.0 };
+            let norm = dot(jt, jt).sqrt() * scale;
+            let fit = if norm > limit { limit / norm } else { 1.0 };
             for x in jt.iter_mut() {
-                *x *= scale;
+                *x *= scale * fit;
             }
             let along = dot(nv, jt);
             for ((t, x), nx) in total.iter_mut().zip(jt.iter_mut()).zip(nv) {
@@ -1224,14 +1240,15 @@ impl Solver {
     }
 
     /// Records the contact rows `range` with their impulses and the velocities the solve
-    /// leaves at their points, and keeps their impulses in `warm` from entry `kept` on for
-    /// the next solve (over the entries there: a copy costs less than a new vector).
+    /// leaves at their points (if there is a `record`), and keeps their impulses in `warm`
+    /// from entry `kept` on for the next solve (over the entries there: a copy costs less
+    /// than a new vector).
     fn record_rows<const N: usize>(
         &self,
         range: std::ops::Range<usize>,
         half_spaces: &[HalfSpace],
         layout: &RowLayout,
-        record: &mut ContactLog,
+        mut record: Option<&mut ContactLog>,
         warm: &mut Vec<WarmImpulse>,
         kept: &mut usize,
     ) {
@@ -1243,22 +1260,24 @@ impl Solver {
         let (mut body, mut v, mut w): (usize, &[f64], &[f64]) = (usize::MAX, &[], &[]);
         for k in range {
             let row = &self.contacts[k];
-            let nrm = half_spaces[row.half_space].normal();
-            if row.body != body {
-                let st = &self.states[row.body];
-                (body, v, w) = (row.body, &st.v.as_slice()[..n], &st.w.as_slice()[..m]);
-            }
-            let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
-            point_velocity::<N>(data, layout, &row.r.as_slice()[..n], v, w, u);
             let friction = &row.friction_impulse.as_slice()[..n];
-            record.record(
-                (row.body, row.half_space),
-                &row.point.as_slice()[..n],
-                row.normal_impulse,
-                friction,
-                u,
-                &nrm.as_slice()[..n],
-            );
+            if let Some(record) = record.as_deref_mut() {
+                let nrm = half_spaces[row.half_space].normal();
+                if row.body != body {
+                    let st = &self.states[row.body];
+                    (body, v, w) = (row.body, &st.v.as_slice()[..n], &st.w.as_slice()[..m]);
+                }
+                let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
+                point_velocity::<N>(data, layout, &row.r.as_slice()[..n], v, w, u);
+                record.record(
+                    (row.body, row.half_space),
+                    &row.point.as_slice()[..n],
+                    row.normal_impulse,
+                    friction,
+                    u,
+                    &nrm.as_slice()[..n],
+                );
+            }
             match warm.get_mut(*kept) {
                 Some(e) => {
                     (e.0, e.1, e.2, e.3) =

@@ -23,6 +23,25 @@ pub trait MotionIntegrator {
     /// [`DynamicsError::NonFinite`] if the state leaves f64; the errors of the rotation
     /// integrator.
     fn step(&mut self, system: &mut System, t: f64, h: f64) -> Result<(), DynamicsError>;
+
+    /// Advances `system` from time `t` by `steps` steps of h (the k-th from t + k h): the
+    /// same as that many calls of [`MotionIntegrator::step`], which is what this default
+    /// does. An integrator may share work between consecutive steps here.
+    ///
+    /// # Errors
+    /// Those of [`MotionIntegrator::step`], at the step that fails.
+    fn advance(
+        &mut self,
+        system: &mut System,
+        t: f64,
+        h: f64,
+        steps: usize,
+    ) -> Result<(), DynamicsError> {
+        for k in 0..steps {
+            self.step(system, t + k as f64 * h, h)?;
+        }
+        Ok(())
+    }
 }
 
 /// The symplectic Strang splitting of H = T + V: half a kick by the forques (p += ½h F,
@@ -225,9 +244,15 @@ impl MotionSplitting {
         Self::kick(system.bodies_mut(), &self.wrenches, 0.5 * h);
     }
 
-    /// The velocity solve of the contacts and joints at the current placement.
-    fn solve_velocities(&mut self, system: &mut System) {
+    /// The velocity solve of the contacts and joints at the current placement, after a kick
+    /// of length `kick`; its contacts are recorded in the system's list if `record`.
+    fn solve_velocities(&mut self, system: &mut System, kick: f64, record: bool) {
         self.place(system);
+        self.solve_placed(system, kick, record);
+    }
+
+    /// [`Self::solve_velocities`] with the bodies placed already.
+    fn solve_placed(&mut self, system: &mut System, kick: f64, record: bool) {
         let (bodies, shapes, half_spaces, joints, contacts) = system.parts_mut();
         self.solver.find_contacts(
             bodies,
@@ -237,8 +262,13 @@ impl MotionSplitting {
             &self.placements,
         );
         self.solver.find_joints(bodies, joints);
-        self.solver
-            .solve_velocities(bodies, half_spaces, &self.resting_speed, contacts);
+        self.solver.solve_velocities(
+            bodies,
+            half_spaces,
+            &self.resting_speed,
+            kick,
+            record.then_some(contacts),
+        );
     }
 
     /// Places the bodies that turned since they were last placed.
@@ -432,6 +462,11 @@ impl MotionSplitting {
     /// Marks the contact candidates within the contact tolerance now.
     fn mark_active(&mut self, system: &System) {
         self.place(system);
+        self.mark_placed_active(system);
+    }
+
+    /// [`Self::mark_active`] with the bodies placed already.
+    fn mark_placed_active(&mut self, system: &System) {
         self.active.clear();
         let mut active = std::mem::take(&mut self.active);
         for_each_candidate(system, &self.placements, |_, d, reach| {
@@ -454,36 +489,64 @@ impl MotionSplitting {
     }
 
     /// One kick–drift–kick step of length h with the contact and joint impulses, from the
-    /// current state. Returns the least relative distance of the candidates not in contact
-    /// at its start, before they are lifted back.
-    fn substep(&mut self, system: &mut System, t: f64, h: f64) -> Result<f64, DynamicsError> {
+    /// current state, without its closing half kick and solve if `close` is false. Returns
+    /// the least relative distance of the candidates not in contact at its start, before
+    /// they are lifted back.
+    fn substep(
+        &mut self,
+        system: &mut System,
+        t: f64,
+        h: f64,
+        close: bool,
+    ) -> Result<f64, DynamicsError> {
         self.half_kick(system, t, h, true);
-        self.solve_velocities(system);
-        self.constrained_drift(system, t, h)?;
-        let fresh = self.new_penetration(system);
-        lift_out(system, &self.placements);
-        self.half_kick(system, t + h, h, false);
-        self.solve_velocities(system);
+        self.solve_velocities(system, 0.5 * h, true);
+        let fresh = self.flight(system, t, h)?;
+        if close {
+            self.close(system, t + h, h);
+        }
         Ok(fresh)
     }
 
-    /// A step with contacts and joints: substeps cut at the impacts.
+    /// The constrained free flight of a substep and the lift back onto the planes; returns
+    /// the least relative distance of the fresh candidates before the lift.
+    fn flight(&mut self, system: &mut System, t: f64, h: f64) -> Result<f64, DynamicsError> {
+        self.constrained_drift(system, t, h)?;
+        let fresh = self.new_penetration(system);
+        lift_out(system, &self.placements);
+        Ok(fresh)
+    }
+
+    /// The closing half kick (at the end `t` of a substep of length h) and velocity solve.
+    fn close(&mut self, system: &mut System, t: f64, h: f64) {
+        self.half_kick(system, t, h, false);
+        self.solve_velocities(system, 0.5 * h, true);
+    }
+
+    /// A step with contacts and joints: substeps cut at the impacts. With `leave_open`, the
+    /// last substep's closing half kick and solve are left to the caller, and the substep's
+    /// length is returned (None when the step was closed).
     fn constrained_step(
         &mut self,
         system: &mut System,
         t: f64,
         h: f64,
-    ) -> Result<(), DynamicsError> {
+        leave_open: bool,
+    ) -> Result<Option<f64>, DynamicsError> {
         system.clear_contacts();
         let (mut t, mut remaining) = (t, h);
         for events in 0..=MAX_EVENTS {
             self.mark_active(system);
             let mut saved = std::mem::take(&mut self.saved);
             save(system.bodies(), &mut saved);
-            let f_end = self.substep(system, t, remaining)?;
+            let f_end = self.substep(system, t, remaining, false)?;
             if f_end >= -1.0 || events == MAX_EVENTS {
                 self.saved = saved;
-                return Ok(());
+                if leave_open {
+                    return Ok(Some(remaining));
+                }
+                self.close(system, t + remaining, remaining);
+                return Ok(None);
             }
             // An impact inside the step: find where the fresh candidates reach the plane.
             let (mut a, mut fa) = (0.0, {
@@ -500,7 +563,7 @@ impl MotionSplitting {
                 }
                 restore(system.bodies_mut(), &saved);
                 let contacts_before = system.contacts().len();
-                let f = self.substep(system, t, s)?;
+                let f = self.substep(system, t, s, true)?;
                 system.truncate_contacts(contacts_before);
                 if f.abs() <= 0.25 {
                     break;
@@ -521,15 +584,87 @@ impl MotionSplitting {
             }
             // Take the located substep for real, recording its contacts.
             restore(system.bodies_mut(), &saved);
-            self.substep(system, t, s)?;
+            self.substep(system, t, s, true)?;
             self.saved = saved;
             t += s;
             remaining -= s;
             if remaining <= 1e-14 * h {
-                return Ok(());
+                return Ok(None);
             }
         }
+        Ok(None)
+    }
+
+    /// `steps` steps of h from t with contacts or joints under constant forques, in leapfrog
+    /// form: the closing half kick and solve of a step and the opening ones of the next are
+    /// one kick of h and one solve. Both half kicks are the same constant wrench at the same
+    /// placement, and a solve at a placement is a projection of the velocities (linear and
+    /// idempotent while the contacts rest or stick and for joints), so joining them changes
+    /// the result only at round-off there. A step in which a fresh candidate would enter a
+    /// half-space (an impact) is taken back and taken by [`Self::constrained_step`], which
+    /// locates the impact; so is the last step, so that the contacts listed are those of a
+    /// single step.
+    fn joined_steps(
+        &mut self,
+        system: &mut System,
+        t: f64,
+        h: f64,
+        steps: usize,
+    ) -> Result<(), DynamicsError> {
+        // The length of the substep whose closing half kick and solve are pending.
+        let mut open: Option<f64> = None;
+        for k in 0..steps {
+            let (tk, last) = (t + k as f64 * h, k + 1 == steps);
+            if let Some(before) = open {
+                if !last && self.joined_step(system, tk, before, h)? {
+                    check_finite(system, tk)?;
+                    open = Some(h);
+                    continue;
+                }
+                self.close(system, tk, before);
+            }
+            open = self.constrained_step(system, tk, h, !last)?;
+            check_finite(system, tk)?;
+        }
         Ok(())
+    }
+
+    /// The closing half kick and solve of the substep of length `before` that ended at t,
+    /// joined with the opening ones of the step of h from t, and that step's flight. Returns
+    /// false, with the state as it was, if a fresh candidate would enter a half-space.
+    fn joined_step(
+        &mut self,
+        system: &mut System,
+        t: f64,
+        before: f64,
+        h: f64,
+    ) -> Result<bool, DynamicsError> {
+        system.clear_contacts();
+        // The step before ended with its flight, which placed the bodies, and the kick turns
+        // none of them: the placements hold until this step's flight.
+        self.mark_placed_active(system);
+        let mut saved = std::mem::take(&mut self.saved);
+        save(system.bodies(), &mut saved);
+        self.joined_kick(system, before, h);
+        // The step's contacts are not recorded: only the last step's are listed, and the
+        // last step is a single one.
+        self.solve_placed(system, 0.5 * (before + h), false);
+        let fresh = self.flight(system, t, h)?;
+        if fresh < -1.0 {
+            restore(system.bodies_mut(), &saved);
+        }
+        self.saved = saved;
+        Ok(fresh >= -1.0)
+    }
+
+    /// The closing half kick of a substep of length `before` and the opening half kick of
+    /// one of length h as one kick (constant wrenches), setting the resting speeds for h.
+    fn joined_kick(&mut self, system: &mut System, before: f64, h: f64) {
+        let (bodies, Some(constant)) = system.bodies_and_constant_wrenches() else {
+            unreachable!("joined steps run under constant wrenches only")
+        };
+        Self::set_resting_speeds(&mut self.resting_speed, bodies, &constant.wrenches, h);
+        Self::kick(bodies, &constant.wrenches, 0.5 * (before + h));
     }
 }
 
@@ -621,7 +756,7 @@ impl MotionIntegrator for MotionSplitting {
 
     fn step(&mut self, system: &mut System, t: f64, h: f64) -> Result<(), DynamicsError> {
         if !system.joints().is_empty() || !system.half_spaces().is_empty() {
-            self.constrained_step(system, t, h)?;
+            self.constrained_step(system, t, h, false)?;
             return check_finite(system, t);
         }
         if let (bodies, Some(constant)) = system.bodies_and_constant_wrenches() {
@@ -662,6 +797,33 @@ impl MotionIntegrator for MotionSplitting {
         self.wrenches_at(system, t + h);
         Self::kick(system.bodies_mut(), &self.wrenches, 0.5 * h);
         check_finite(system, t)
+    }
+
+    /// Under constant forques (gravity, constant forces and torques) with contacts or
+    /// joints, consecutive steps share a velocity solve: the closing half kick and solve of
+    /// one step and the opening ones of the next are one kick and one solve, the leapfrog
+    /// form of the same splitting. While contacts rest or stick (and for joints) the result
+    /// is that of `steps` calls of [`MotionIntegrator::step`] up to round-off and the
+    /// solver's tolerance; where a contact slides, the friction of the two half kicks is
+    /// projected once instead of twice, which differs by O(h²) per step. A step with an
+    /// impact is taken step by step, and the state after the last step is closed as after
+    /// [`MotionIntegrator::step`]. [`System::contacts`] then lists the last step's contacts,
+    /// of its opening (joined) solve and its closing one.
+    fn advance(
+        &mut self,
+        system: &mut System,
+        t: f64,
+        h: f64,
+        steps: usize,
+    ) -> Result<(), DynamicsError> {
+        let constrained = !system.joints().is_empty() || !system.half_spaces().is_empty();
+        if constrained && steps > 1 && system.bodies_and_constant_wrenches().1.is_some() {
+            return self.joined_steps(system, t, h, steps);
+        }
+        for k in 0..steps {
+            self.step(system, t + k as f64 * h, h)?;
+        }
+        Ok(())
     }
 }
 
