@@ -85,6 +85,7 @@ pub fn render(tsv: &str) -> Res<String> {
     };
     write_step_summary(&mut out, &median)?;
     write_versor_summary(&mut out, &median)?;
+    write_floor_summary(&mut out, &median)?;
     writeln!(out, "\n**All measurements**")?;
     writeln!(
         out,
@@ -181,6 +182,46 @@ fn write_step_summary(out: &mut String, median: &dyn Fn(&str, &str) -> Option<f6
         let num: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
         let den: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
         writeln!(out, "| {function} | {:.2} |", num / den)?;
+    }
+    Ok(())
+}
+
+/// The throughput of the floor scene (`benches/motion.rs`): 1,000 4D cuboids resting on a
+/// floor, in body-steps per second (1,000 over the median time of one step).
+fn write_floor_summary(out: &mut String, median: &dyn Fn(&str, &str) -> Option<f64>) -> Res<()> {
+    let group = "floor_contact/N=4";
+    let rows = [
+        (
+            "1000_cuboids_resting",
+            "single steps (`MotionIntegrator::step`)",
+        ),
+        (
+            "1000_cuboids_resting_advance_by_10",
+            "`MotionIntegrator::advance` by 10 steps",
+        ),
+        (
+            "1000_cuboids_resting_advance_by_100",
+            "`MotionIntegrator::advance` by 100 steps",
+        ),
+    ];
+    if median(group, rows[0].0).is_none() {
+        return Ok(());
+    }
+    writeln!(
+        out,
+        "\n**1,000 4D cuboids resting on a floor, one core** (`MotionSplitting`, 8 contacts per body, attitudes included)\n"
+    )?;
+    writeln!(out, "| stepping | time per step | body-steps per second |")?;
+    writeln!(out, "|---|---|---|")?;
+    for (function, label) in rows {
+        if let Some(t) = median(group, function) {
+            writeln!(
+                out,
+                "| {label} | {} | {:.2e} |",
+                time(t),
+                1000.0 / (t * 1e-9)
+            )?;
+        }
     }
     Ok(())
 }

@@ -36,9 +36,27 @@ type MatrixStorage = SmallVec<[f64; 64]>;
 /// assert!(big.as_rotor().is_none() && big.unit_error() == 0.0);
 /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
 /// ```
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct Attitude {
     repr: Repr,
+}
+
+impl Clone for Attitude {
+    fn clone(&self) -> Self {
+        Attitude {
+            repr: self.repr.clone(),
+        }
+    }
+
+    /// Copies the rotor's or the matrix's entries into the storage already there when both
+    /// are of the same kind (a new attitude would move the whole inline matrix buffer).
+    fn clone_from(&mut self, source: &Self) {
+        match (&mut self.repr, &source.repr) {
+            (Repr::Rotor(a), Repr::Rotor(b)) => a.clone_from(b),
+            (Repr::Matrix(a), Repr::Matrix(b)) => a.clone_from(b),
+            (repr, other) => *repr = other.clone(),
+        }
+    }
 }
 
 // The matrix variant is large on purpose: inline storage keeps N ≤ 8 steps off the heap.
@@ -740,6 +758,42 @@ use coadjoint_fixed;
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `clone_from` in place gives what `clone` gives, between rotors and matrices of any
+    /// of the dimensions and in either direction.
+    #[test]
+    fn clone_from_equals_clone_between_every_kind_and_dimension() {
+        let attitudes: Vec<Attitude> = [2usize, 3, 4, 5, 8]
+            .iter()
+            .map(|&n| {
+                let b: Vec<f64> = (0..n * (n - 1) / 2)
+                    .map(|k| (0.3 + k as f64).sin())
+                    .collect();
+                let b = Bivector::from_components(n, &b).unwrap();
+                Attitude::identity(n).times_exp(&b)
+            })
+            .collect();
+        assert!(attitudes.iter().any(|a| a.as_rotor().is_some()));
+        assert!(attitudes.iter().any(|a| a.as_rotor().is_none()));
+        let mut cases = 0;
+        for source in &attitudes {
+            for start in &attitudes {
+                let mut target = start.clone();
+                target.clone_from(source);
+                assert_eq!(&target, source);
+                let mut rotor = source
+                    .as_rotor()
+                    .cloned()
+                    .unwrap_or_else(|| Rotor::identity(3));
+                if let Some(r) = start.as_rotor() {
+                    rotor.clone_from(r);
+                    assert_eq!(Some(&rotor), start.as_rotor());
+                }
+                cases += 1;
+            }
+        }
+        assert_eq!(cases, 25);
+    }
 
     /// The 3D and 4D closed forms of the coadjoint update agree with the matrix conjugation,
     /// for small and large turns and for A = 0, and the attitude update with the rotor

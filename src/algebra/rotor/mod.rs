@@ -66,10 +66,26 @@ pub(crate) type EvenBuf = SmallVec<[f64; 32]>;
 /// assert!((x[1] - 1.0).abs() < 1e-15 && x[0].abs() < 1e-15);
 /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
 /// ```
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct Rotor {
     dim: usize,
     coeffs: RotorStorage,
+}
+
+impl Clone for Rotor {
+    fn clone(&self) -> Self {
+        Rotor {
+            dim: self.dim,
+            coeffs: self.coeffs.clone(),
+        }
+    }
+
+    /// Copies the coefficients into the storage already there (a new rotor would move the
+    /// whole inline buffer).
+    fn clone_from(&mut self, source: &Self) {
+        self.dim = source.dim;
+        self.coeffs.clone_from(&source.coeffs);
+    }
 }
 
 /// Number of even blades in dimension `n`: 2^(n−1) (1 for n = 0).

@@ -464,9 +464,10 @@ pub(crate) struct ContactRow {
     pub friction_impulse: Vector,
     /// The normal impulse added in the free flight to keep the point out (position level).
     pub position_impulse: f64,
-    /// nᵀ K n and the point's speed (set when the solve starts; the rest of K is in the
+    /// nᵀ K n, its inverse and the point's speed (set when the solve starts; the rest of K is in the
     /// solver's row matrices).
     pub knn: f64,
+    inv_knn: f64,
     speed: f64,
     /// True if the impulses are the last solve's at the same point (a warm start).
     warm: bool,
@@ -478,7 +479,7 @@ pub(crate) struct ContactRow {
 /// C (n × M: the velocity at the point per angular velocity, u = v + C w), W (M × n: the
 /// angular velocity per impulse, I⁻¹ (r ∧ ·)), R (M × n: the angular impulse, r ∧ ·), their
 /// products with the normal (Cᵀn, W n, R n), the tangent block K_t of K with its
-/// eigen-decomposition, nᵀ K n, and K_t⁻¹ (for the sticking impulse).
+/// eigen-decomposition, nᵀ K n and its inverse, and K_t⁻¹ (for the sticking impulse).
 #[derive(Clone, Copy, Debug)]
 struct RowLayout {
     n: usize,
@@ -493,6 +494,7 @@ struct RowLayout {
     values: usize,
     vectors: usize,
     knn: usize,
+    inv_knn: usize,
     kinv: usize,
     stride: usize,
 }
@@ -508,7 +510,8 @@ impl RowLayout {
         let wn = cn + m;
         let rn = wn + m;
         let knn = rn + m;
-        let kinv = knn + 1;
+        let inv_knn = knn + 1;
+        let kinv = inv_knn + 1;
         let c = kinv + n * n;
         let r = c + n * m;
         let kt = r + m * n;
@@ -527,6 +530,7 @@ impl RowLayout {
             values,
             vectors,
             knn,
+            inv_knn,
             kinv,
             stride: vectors + n * n,
         }
@@ -798,6 +802,7 @@ impl Solver {
                         row.target = target;
                         row.position_impulse = 0.0;
                         row.knn = 0.0;
+                        row.inv_knn = 0.0;
                         row.speed = 0.0;
                     } else {
                         self.contacts.push(ContactRow {
@@ -811,6 +816,7 @@ impl Solver {
                             friction_impulse: Vector::zero(n),
                             position_impulse: 0.0,
                             knn: 0.0,
+                            inv_knn: 0.0,
                             speed: 0.0,
                             warm: false,
                             placed: placed.generation,
@@ -1060,7 +1066,7 @@ impl Solver {
                     generation: st.generation,
                 };
             }
-            row.knn = data[layout.knn];
+            (row.knn, row.inv_knn) = (data[layout.knn], data[layout.inv_knn]);
             let r = &row.r.as_slice()[..n];
             point_velocity::<N>(data, layout, r, v, w, u);
             let un = dot(&nrm.as_slice()[..n], u);
@@ -1479,7 +1485,7 @@ fn sweep_contact<const N: usize>(
     let nv = &plane.normal().as_slice()[..n];
     // Normal: the smallest accumulated λ ≥ 0 reaching the target; u·n = v·n + (Cᵀn)·w.
     let un = dot(nv, &st.v[..n]) + dot(&data[l.cn..l.cn + m], &st.w[..m]);
-    let lambda = (row.normal_impulse + (row.target - un) / row.knn).max(0.0);
+    let lambda = (row.normal_impulse + (row.target - un) * row.inv_knn).max(0.0);
     let dl = lambda - row.normal_impulse;
     if dl != 0.0 {
         st.apply_normal::<N>(data, l, nv, dl);
@@ -1596,6 +1602,8 @@ fn row_matrices(st: &BodyState, r: &Vector, nrm: &Vector, l: &RowLayout, data: &
     data[l.knn] = (0..n)
         .map(|i| (0..n).map(|j| nv[i] * k[i * n + j] * nv[j]).sum::<f64>())
         .sum();
+    // The sweeps multiply by it: a division would lengthen the chain from one row to the next.
+    data[l.inv_knn] = 1.0 / data[l.knn];
     tangent_block(&mut k, nrm);
     let (mut values, mut vectors) = (Dense::new(), Dense::new());
     symmetric_eigen(&k, n, &mut values, &mut vectors);
