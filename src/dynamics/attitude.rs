@@ -53,7 +53,7 @@ impl Clone for Attitude {
     fn clone_from(&mut self, source: &Self) {
         match (&mut self.repr, &source.repr) {
             (Repr::Rotor(a), Repr::Rotor(b)) => a.clone_from(b),
-            (Repr::Matrix(a), Repr::Matrix(b)) => a.clone_from(b),
+            (Repr::Matrix(a), Repr::Matrix(b)) if a.len() == b.len() => a.copy_from_slice(b),
             (repr, other) => *repr = other.clone(),
         }
     }

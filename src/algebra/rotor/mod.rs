@@ -84,7 +84,11 @@ impl Clone for Rotor {
     /// whole inline buffer).
     fn clone_from(&mut self, source: &Self) {
         self.dim = source.dim;
-        self.coeffs.clone_from(&source.coeffs);
+        if self.coeffs.len() == source.coeffs.len() {
+            self.coeffs.copy_from_slice(&source.coeffs);
+        } else {
+            self.coeffs.clone_from(&source.coeffs);
+        }
     }
 }
 

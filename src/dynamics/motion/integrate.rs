@@ -5,9 +5,8 @@ use super::forques::Anchor;
 use super::placement::{Placements, set_vector};
 use super::{ContactShape, MovingBody, System, Wrench};
 use crate::algebra::{Bivector, Vector};
-use crate::dynamics::integrate::axpy;
-use crate::dynamics::torques::Free;
-use crate::dynamics::{Attitude, DynamicsError, Integrator, Splitting};
+use crate::dynamics::integrate::{axpy, free_strang_step};
+use crate::dynamics::{Attitude, DynamicsError};
 
 /// An integrator of Newton–Euler for a [`System`]: advances every body by one step.
 pub trait MotionIntegrator {
@@ -46,14 +45,14 @@ pub trait MotionIntegrator {
 
 /// The symplectic Strang splitting of H = T + V: half a kick by the forques (p += ½h F,
 /// L += ½h τ at fixed positions and attitudes), free flight for h (x += h p/m exactly, the
-/// rotation by the Lie–Poisson splitting of [`Splitting::strang`], which keeps every Casimir
+/// rotation by the Lie–Poisson splitting of [`Splitting::strang`](crate::dynamics::Splitting::strang), which keeps every Casimir
 /// and |L| to round-off), half a kick. Order 2.
 ///
 /// For conservative forques (gravity, undamped springs) it is a symplectic map, so the
 /// energy error stays bounded over any number of steps instead of drifting; linear and
 /// angular momentum are kept to round-off when the forques conserve them. Under uniform
 /// gravity alone the centre of mass follows its parabola exactly (the kicks are exact for a
-/// constant force), and the rotation is the free rotation of [`Splitting::strang`].
+/// constant force), and the rotation is the free rotation of [`Splitting::strang`](crate::dynamics::Splitting::strang).
 ///
 /// **Joints** are kept as RATTLE keeps holonomic constraints: the first half kick carries
 /// the joint impulses that make the free flight end with every joint closed (solved by
@@ -71,9 +70,8 @@ pub trait MotionIntegrator {
 /// forques gives, a contact is resting (e = 0), so that bouncing dies out instead of
 /// ringing. Resting contacts that sink by the curvature of their path are lifted back onto
 /// the plane.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct MotionSplitting {
-    rotation: Splitting,
     solver: Solver,
     saved: Vec<SavedBody>,
     pre_drift: Vec<SavedBody>,
@@ -95,28 +93,6 @@ pub struct MotionSplitting {
     joint_ends: Vec<(Vector, Vector)>,
     /// The bodies' own axes and vertices in space, kept while they do not turn.
     placements: Placements,
-}
-
-impl Default for MotionSplitting {
-    fn default() -> Self {
-        MotionSplitting {
-            rotation: Splitting::strang(),
-            solver: Solver::default(),
-            saved: Vec::new(),
-            pre_drift: Vec::new(),
-            wrenches: Vec::new(),
-            resting_speed: Vec::new(),
-            active: Vec::new(),
-            gaps: Vec::new(),
-            distances: Vec::new(),
-            sharing: Vec::new(),
-            joint_force: Vec::new(),
-            joint_force_before: Vec::new(),
-            joint_total: Vec::new(),
-            joint_ends: Vec::new(),
-            placements: Placements::default(),
-        }
-    }
 }
 
 /// The contact tolerance, relative to a body's radius.
@@ -198,7 +174,7 @@ impl MotionSplitting {
             let m = b.mass();
             let (x, p, rotation) = b.state_mut();
             axpy(x.as_mut_slice(), h / m, p.as_slice());
-            self.rotation.step(rotation, t, h, &Free)?;
+            free_strang_step(rotation, t, h)?;
         }
         Ok(())
     }
@@ -479,6 +455,11 @@ impl MotionSplitting {
     /// contact at the start of the step (+∞ if there are none).
     fn new_penetration(&mut self, system: &System) -> f64 {
         self.place(system);
+        self.placed_penetration(system)
+    }
+
+    /// [`Self::new_penetration`] with the bodies placed already.
+    fn placed_penetration(&self, system: &System) -> f64 {
         let mut worst = f64::INFINITY;
         for_each_candidate(system, &self.placements, |k, d, reach| {
             if !self.active[k] {
@@ -512,7 +493,12 @@ impl MotionSplitting {
     /// the least relative distance of the fresh candidates before the lift.
     fn flight(&mut self, system: &mut System, t: f64, h: f64) -> Result<f64, DynamicsError> {
         self.constrained_drift(system, t, h)?;
-        let fresh = self.new_penetration(system);
+        // Where there were contacts to check, the flight has placed the bodies at its end.
+        let fresh = if self.solver.contacts.is_empty() {
+            self.new_penetration(system)
+        } else {
+            self.placed_penetration(system)
+        };
         lift_out(system, &self.placements);
         Ok(fresh)
     }
@@ -802,13 +788,14 @@ impl MotionIntegrator for MotionSplitting {
     /// Under constant forques (gravity, constant forces and torques) with contacts or
     /// joints, consecutive steps share a velocity solve: the closing half kick and solve of
     /// one step and the opening ones of the next are one kick and one solve, the leapfrog
-    /// form of the same splitting. While contacts rest or stick (and for joints) the result
-    /// is that of `steps` calls of [`MotionIntegrator::step`] up to round-off and the
-    /// solver's tolerance; where a contact slides, the friction of the two half kicks is
-    /// projected once instead of twice, which differs by O(h²) per step. A step with an
-    /// impact is taken step by step, and the state after the last step is closed as after
-    /// [`MotionIntegrator::step`]. [`System::contacts`] then lists the last step's contacts,
-    /// of its opening (joined) solve and its closing one.
+    /// form of the same splitting (one solve per step instead of two). A solve is a
+    /// projection of the velocities, linear and idempotent while the contacts rest, stick
+    /// or slide one way and for joints, so the result is that of `steps` calls of
+    /// [`MotionIntegrator::step`] to round-off there; through bounces and stick–slip
+    /// transitions the two agree to the solver's tolerance. A step with an impact, and the
+    /// last step, are taken singly, so the impacts are located and [`System::contacts`]
+    /// lists what it lists after [`MotionIntegrator::step`]. Other systems take their steps
+    /// one by one.
     fn advance(
         &mut self,
         system: &mut System,
