@@ -149,33 +149,40 @@ fn a_rolling_ball_turns_with_the_right_sign_in_3d() {
     assert!(w.as_slice()[0].abs() <= 1e-12 && w.as_slice()[2].abs() <= 1e-12);
 }
 
+/// The box `spec` released tilted from height 2 with a sideways velocity 0.3 over the floor
+/// x_N = 0 (friction 0.6, restitution 0.3), under gravity.
+fn dropped_box(spec: &str) -> System {
+    let parsed = parse_body(spec).unwrap();
+    let n = parsed.dim;
+    let mut tilt = Bivector::zero(n);
+    tilt.as_mut_slice()[0] = 0.3;
+    tilt.as_mut_slice()[n * (n - 1) / 2 - 1] = -0.2;
+    let b = MovingBody::new(
+        parsed.mass,
+        parsed.inertia.clone(),
+        Rotor::from_rotation_bivector(&tilt),
+        &axis(n, n - 1, 2.0),
+        &axis(n, 0, 0.3),
+        &Bivector::zero(n),
+    )
+    .unwrap();
+    let mut s = System::new(vec![b]).unwrap();
+    s.set_shape(0, ContactShape::from_geometry(&parsed.geometry))
+        .unwrap();
+    s.add_forque(Gravity(axis(n, n - 1, -9.81))).unwrap();
+    s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.6, 0.3).unwrap())
+        .unwrap();
+    s
+}
+
 /// A body dropped on the floor comes to rest on it and stays: no sinking beyond 1e-9 of its
 /// size and no jitter in its energy, for a tesseract falling tilted (it lands on a corner,
 /// tips and settles on a face) and a 3D box.
 #[test]
 fn a_dropped_body_comes_to_rest_and_stays() {
-    for (spec, n) in [("cuboid:0.5,0.7,0.9", 3), ("cuboid:0.5,0.6,0.7,0.8", 4)] {
-        let parsed = parse_body(spec).unwrap();
-        let shape = ContactShape::from_geometry(&parsed.geometry);
-        let size = shape.radius();
-        let mut tilt = Bivector::zero(n);
-        tilt.as_mut_slice()[0] = 0.3;
-        tilt.as_mut_slice()[n * (n - 1) / 2 - 1] = -0.2;
-        let rotor = Rotor::from_rotation_bivector(&tilt);
-        let b = MovingBody::new(
-            parsed.mass,
-            parsed.inertia.clone(),
-            rotor,
-            &axis(n, n - 1, 2.0),
-            &axis(n, 0, 0.3),
-            &Bivector::zero(n),
-        )
-        .unwrap();
-        let mut s = System::new(vec![b]).unwrap();
-        s.set_shape(0, shape).unwrap();
-        s.add_forque(Gravity(axis(n, n - 1, -9.81))).unwrap();
-        s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.6, 0.3).unwrap())
-            .unwrap();
+    for spec in ["cuboid:0.5,0.7,0.9", "cuboid:0.5,0.6,0.7,0.8"] {
+        let mut s = dropped_box(spec);
+        let size = s.shapes()[0].radius();
         let mut stepper = MotionSplitting::new();
         let h = 1e-3;
         let mut lowest = f64::INFINITY;
@@ -446,12 +453,10 @@ fn an_ellipsoid_rocks_on_the_floor_without_sinking() {
     }
 }
 
-/// A 3D double pendulum of two bars on ball joints (the upper hung from a point of space)
-/// under gravity: RATTLE keeps both joints closed to 1e-12 at every step, and its energy
-/// error stays bounded over 10⁶ steps — the largest error over the second half is within
-/// 1.5 times the largest over the first (a drift would grow it in proportion to time).
-#[test]
-fn a_double_pendulum_on_ball_joints_keeps_a_bounded_energy_error() {
+/// Two bars of 1 × 0.1 × 0.1 under gravity in 3D on ball joints: the first hung from the
+/// origin by its end (−0.5 e₁ in its axes), the second by that end from the first's other
+/// end, both turning a little.
+fn double_pendulum() -> System {
     let n = 3;
     let (upper, _) = body(
         "cuboid:0.5,0.05,0.05+mass=1",
@@ -476,10 +481,22 @@ fn a_double_pendulum_on_ball_joints_keeps_a_bounded_energy_error() {
     .unwrap();
     s.add_ball_joint(BallJoint {
         body: 1,
-        point: inner.clone(),
-        other: Anchor::Body(0, outer.clone()),
+        point: inner,
+        other: Anchor::Body(0, outer),
     })
     .unwrap();
+    s
+}
+
+/// A 3D double pendulum of two bars on ball joints (the upper hung from a point of space)
+/// under gravity: RATTLE keeps both joints closed to 1e-12 at every step, and its energy
+/// error stays bounded over 10⁶ steps — the largest error over the second half is within
+/// 1.5 times the largest over the first (a drift would grow it in proportion to time).
+#[test]
+fn a_double_pendulum_on_ball_joints_keeps_a_bounded_energy_error() {
+    let n = 3;
+    let mut s = double_pendulum();
+    let (inner, outer) = (axis(n, 0, -0.5), axis(n, 0, 0.5));
     let mut stepper = MotionSplitting::new();
     let h = 1e-3;
     // One step makes the joints' velocities consistent; measure from there.
@@ -703,28 +720,7 @@ fn advancing_by_many_steps_matches_single_steps() {
         } else {
             "cuboid:0.5,0.6,0.7,0.8"
         };
-        let mut tilt = Bivector::zero(n);
-        tilt.as_mut_slice()[0] = 0.3;
-        tilt.as_mut_slice()[n * (n - 1) / 2 - 1] = -0.2;
-        let dropped = || {
-            let parsed = parse_body(spec).unwrap();
-            let shape = ContactShape::from_geometry(&parsed.geometry);
-            let b = MovingBody::new(
-                parsed.mass,
-                parsed.inertia.clone(),
-                Rotor::from_rotation_bivector(&tilt),
-                &axis(n, n - 1, 2.0),
-                &axis(n, 0, 0.3),
-                &Bivector::zero(n),
-            )
-            .unwrap();
-            let mut s = System::new(vec![b]).unwrap();
-            s.set_shape(0, shape).unwrap();
-            s.add_forque(Gravity(axis(n, n - 1, -9.81))).unwrap();
-            s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.6, 0.3).unwrap())
-                .unwrap();
-            s
-        };
+        let dropped = || dropped_box(spec);
         let sliding = || {
             on_floor(
                 &format!("ball:{n},0.5+mass=1.5"),
@@ -779,37 +775,7 @@ fn advancing_by_many_steps_matches_single_steps() {
         }
     }
     // Ball joints: the double pendulum of the energy test.
-    let n = 3;
-    let pendulum = || {
-        let (upper, _) = body(
-            "cuboid:0.5,0.05,0.05+mass=1",
-            axis(n, 0, 0.5),
-            Vector::zero(n),
-            Bivector::from_components(3, &[0.0, 0.0, 0.3]).unwrap(),
-        );
-        let (lower, _) = body(
-            "cuboid:0.5,0.05,0.05+mass=1",
-            axis(n, 0, 1.5),
-            Vector::zero(n),
-            Bivector::from_components(3, &[0.0, 0.2, 0.0]).unwrap(),
-        );
-        let mut s = System::new(vec![upper, lower]).unwrap();
-        s.add_forque(Gravity(axis(n, n - 1, -9.81))).unwrap();
-        s.add_ball_joint(BallJoint {
-            body: 0,
-            point: axis(n, 0, -0.5),
-            other: Anchor::World(Vector::zero(n)),
-        })
-        .unwrap();
-        s.add_ball_joint(BallJoint {
-            body: 1,
-            point: axis(n, 0, -0.5),
-            other: Anchor::Body(0, axis(n, 0, 0.5)),
-        })
-        .unwrap();
-        s
-    };
-    let (worst, _, _) = single_and_joined(pendulum, 1e-3, 5000, 100);
+    let (worst, _, _) = single_and_joined(double_pendulum, 1e-3, 5000, 100);
     assert!(worst <= 1e-8, "double pendulum: {worst:e}");
     cases += 1;
     assert_eq!(cases, 7);

@@ -36,11 +36,21 @@ pub trait MotionIntegrator {
         h: f64,
         steps: usize,
     ) -> Result<(), DynamicsError> {
-        for k in 0..steps {
-            self.step(system, t + k as f64 * h, h)?;
-        }
-        Ok(())
+        one_by_one(self, system, (t, h), steps)
     }
+}
+
+/// `steps` calls of `integrator.step`, the k-th from t + k h.
+fn one_by_one<I: MotionIntegrator + ?Sized>(
+    integrator: &mut I,
+    system: &mut System,
+    (t, h): (f64, f64),
+    steps: usize,
+) -> Result<(), DynamicsError> {
+    for k in 0..steps {
+        integrator.step(system, t + k as f64 * h, h)?;
+    }
+    Ok(())
 }
 
 /// The symplectic Strang splitting of H = T + V: half a kick by the forques (p += ½h F,
@@ -807,10 +817,7 @@ impl MotionIntegrator for MotionSplitting {
         if constrained && steps > 1 && system.bodies_and_constant_wrenches().1.is_some() {
             return self.joined_steps(system, t, h, steps);
         }
-        for k in 0..steps {
-            self.step(system, t + k as f64 * h, h)?;
-        }
-        Ok(())
+        one_by_one(self, system, (t, h), steps)
     }
 }
 
