@@ -464,8 +464,8 @@ pub(crate) struct ContactRow {
     pub friction_impulse: Vector,
     /// The normal impulse added in the free flight to keep the point out (position level).
     pub position_impulse: f64,
-    /// nᵀ K n, its inverse and the point's speed (set when the solve starts; the rest of K is in the
-    /// solver's row matrices).
+    /// nᵀ K n, its inverse and the point's speed (set when the solve starts; the rest of K
+    /// is in the solver's row matrices).
     pub knn: f64,
     inv_knn: f64,
     speed: f64,

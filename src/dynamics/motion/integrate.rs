@@ -55,14 +55,14 @@ fn one_by_one<I: MotionIntegrator + ?Sized>(
 
 /// The symplectic Strang splitting of H = T + V: half a kick by the forques (p += ½h F,
 /// L += ½h τ at fixed positions and attitudes), free flight for h (x += h p/m exactly, the
-/// rotation by the Lie–Poisson splitting of [`Splitting::strang`](crate::dynamics::Splitting::strang), which keeps every Casimir
-/// and |L| to round-off), half a kick. Order 2.
+/// rotation by the Lie–Poisson splitting of [`Splitting::strang`], which keeps every
+/// Casimir and |L| to round-off), half a kick. Order 2.
 ///
 /// For conservative forques (gravity, undamped springs) it is a symplectic map, so the
 /// energy error stays bounded over any number of steps instead of drifting; linear and
 /// angular momentum are kept to round-off when the forques conserve them. Under uniform
 /// gravity alone the centre of mass follows its parabola exactly (the kicks are exact for a
-/// constant force), and the rotation is the free rotation of [`Splitting::strang`](crate::dynamics::Splitting::strang).
+/// constant force), and the rotation is the free rotation of [`Splitting::strang`].
 ///
 /// **Joints** are kept as RATTLE keeps holonomic constraints: the first half kick carries
 /// the joint impulses that make the free flight end with every joint closed (solved by
@@ -80,6 +80,8 @@ fn one_by_one<I: MotionIntegrator + ?Sized>(
 /// forques gives, a contact is resting (e = 0), so that bouncing dies out instead of
 /// ringing. Resting contacts that sink by the curvature of their path are lifted back onto
 /// the plane.
+///
+/// [`Splitting::strang`]: crate::dynamics::Splitting::strang
 #[derive(Clone, Debug, Default)]
 pub struct MotionSplitting {
     solver: Solver,
