@@ -717,11 +717,11 @@ pub(crate) struct Solver {
     /// the position solve of the same placement reuses it.
     joint_factor: bool,
     pub residuals: Vec<Vector>,
-    /// The impulses of the last solve, by (body, half-space, candidate), to start the next
-    /// one from: a resting contact then needs one sweep.
+    /// The last solve's impulses of the rows that left their slots, by (body, half-space,
+    /// candidate), to start the next solve from (a row that stays in its slot keeps its
+    /// own): a resting contact then needs one sweep. Filled by `find_contacts` from the
+    /// first slot whose point changes, before it is overwritten.
     warm: Vec<WarmImpulse>,
-    /// The list the current solve writes the next `warm` into.
-    warm_next: Vec<WarmImpulse>,
     /// The length of the kick before the last solve (0: none yet). A resting contact's
     /// impulse is its force times that length, so the next solve starts from the last
     /// impulses scaled by the ratio of the kicks.
@@ -743,14 +743,8 @@ struct Group<'a> {
     warm_scale: f64,
 }
 
-/// The impulses of the last solve with the place to search them from, and the list of the
-/// next with its length so far.
-type WarmLists<'a> = (
-    &'a [WarmImpulse],
-    &'a mut usize,
-    &'a mut Vec<WarmImpulse>,
-    &'a mut usize,
-);
+/// The impulses of the last solve with the place to search them from.
+type WarmList<'a> = (&'a [WarmImpulse], &'a mut usize);
 
 /// A contact's impulses kept for the next solve: body, half-space, candidate, normal
 /// impulse, friction impulse.
@@ -770,6 +764,8 @@ impl Solver {
         // Rows are overwritten in place (a row is large: moving it costs more than its setup).
         let mut used = 0;
         let n = bodies[0].dim();
+        self.warm.clear();
+        let mut listed = false;
         for (i, (b, shape)) in bodies.iter().zip(shapes).enumerate() {
             if matches!(shape, ContactShape::None) {
                 continue;
@@ -782,6 +778,24 @@ impl Solver {
                 let mut put = |index: usize, p: &Vector, r: &[f64]| {
                     // The target is set when the solve starts, from the loaded velocities.
                     let target = 0.0;
+                    let stays = self.contacts.get(used).is_some_and(|row| {
+                        row.body == i && row.half_space == k && row.index == index
+                    });
+                    if !stays && !listed {
+                        // The points change from this slot on: the rows from here keep their
+                        // impulses in the list (in the order of their points) before they are
+                        // overwritten.
+                        self.warm.extend(self.contacts[used..].iter().map(|row| {
+                            (
+                                row.body,
+                                row.half_space,
+                                row.index,
+                                row.normal_impulse,
+                                row.friction_impulse.clone(),
+                            )
+                        }));
+                        listed = true;
+                    }
                     if let Some(row) = self.contacts.get_mut(used) {
                         // The same point in the same slot keeps its impulses of the last
                         // solve, to start from.
@@ -961,8 +975,6 @@ impl Solver {
         // everything is one problem.
         let coupled = !self.joints.is_empty();
         let last = std::mem::take(&mut self.warm);
-        let mut next = std::mem::take(&mut self.warm_next);
-        let mut kept = 0;
         let mut cursor = 0;
         let mut start = 0;
         while start < rows {
@@ -983,7 +995,7 @@ impl Solver {
                 layout: &layout,
                 warm_scale,
             };
-            let warm = (&last[..], &mut cursor, &mut next, &mut kept);
+            let warm = (&last[..], &mut cursor);
             match (self.runtime_kernels, n) {
                 (false, 3) => {
                     self.solve_group::<3>(&group, resting_speed, warm, record.as_deref_mut())
@@ -995,20 +1007,19 @@ impl Solver {
             }
             start = end;
         }
-        next.truncate(kept);
-        self.warm = next;
-        self.warm_next = last;
+        // Kept for its room: the next `find_contacts` clears it.
+        self.warm = last;
         self.store(bodies);
     }
 
     /// The velocity solve of one group of contact rows (`N` as in [`dim`]): their matrices,
-    /// warm start from `last` (searched from `cursor` on), sweeps and record; their
-    /// impulses are kept in `next` from entry `kept` on.
+    /// warm start from their own impulses or from `last` (searched from `cursor` on), sweeps
+    /// and the record if there is one.
     fn solve_group<const N: usize>(
         &mut self,
         group: &Group<'_>,
         resting_speed: &[f64],
-        (last, cursor, next, kept): WarmLists<'_>,
+        (last, cursor): WarmList<'_>,
         record: Option<&mut ContactLog>,
     ) {
         // The layout anew, so that in 3D and 4D its offsets are constants of the kernels.
@@ -1023,7 +1034,9 @@ impl Solver {
             (group.coupled, group.warm_scale),
         );
         self.sweep_rows::<N>(range.clone(), group.coupled, half_spaces, layout);
-        self.record_rows::<N>(range, half_spaces, layout, record, next, kept);
+        if let Some(record) = record {
+            self.record_rows::<N>(range, half_spaces, layout, record);
+        }
     }
 
     /// Computes (or keeps) the matrices of the contact rows `range` at the loaded states,
@@ -1246,17 +1259,13 @@ impl Solver {
     }
 
     /// Records the contact rows `range` with their impulses and the velocities the solve
-    /// leaves at their points (if there is a `record`), and keeps their impulses in `warm`
-    /// from entry `kept` on for the next solve (over the entries there: a copy costs less
-    /// than a new vector).
+    /// leaves at their points.
     fn record_rows<const N: usize>(
         &self,
         range: std::ops::Range<usize>,
         half_spaces: &[HalfSpace],
         layout: &RowLayout,
-        mut record: Option<&mut ContactLog>,
-        warm: &mut Vec<WarmImpulse>,
-        kept: &mut usize,
+        record: &mut ContactLog,
     ) {
         let n = dim::<N>(layout.n);
         let m = n * (n - 1) / 2;
@@ -1266,39 +1275,21 @@ impl Solver {
         let (mut body, mut v, mut w): (usize, &[f64], &[f64]) = (usize::MAX, &[], &[]);
         for k in range {
             let row = &self.contacts[k];
-            let friction = &row.friction_impulse.as_slice()[..n];
-            if let Some(record) = record.as_deref_mut() {
-                let nrm = half_spaces[row.half_space].normal();
-                if row.body != body {
-                    let st = &self.states[row.body];
-                    (body, v, w) = (row.body, &st.v.as_slice()[..n], &st.w.as_slice()[..m]);
-                }
-                let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
-                point_velocity::<N>(data, layout, &row.r.as_slice()[..n], v, w, u);
-                record.record(
-                    (row.body, row.half_space),
-                    &row.point.as_slice()[..n],
-                    row.normal_impulse,
-                    friction,
-                    u,
-                    &nrm.as_slice()[..n],
-                );
+            let nrm = half_spaces[row.half_space].normal();
+            if row.body != body {
+                let st = &self.states[row.body];
+                (body, v, w) = (row.body, &st.v.as_slice()[..n], &st.w.as_slice()[..m]);
             }
-            match warm.get_mut(*kept) {
-                Some(e) => {
-                    (e.0, e.1, e.2, e.3) =
-                        (row.body, row.half_space, row.index, row.normal_impulse);
-                    set_vector(&mut e.4, friction);
-                }
-                None => warm.push((
-                    row.body,
-                    row.half_space,
-                    row.index,
-                    row.normal_impulse,
-                    row.friction_impulse.clone(),
-                )),
-            }
-            *kept += 1;
+            let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
+            point_velocity::<N>(data, layout, &row.r.as_slice()[..n], v, w, u);
+            record.record(
+                (row.body, row.half_space),
+                &row.point.as_slice()[..n],
+                row.normal_impulse,
+                &row.friction_impulse.as_slice()[..n],
+                u,
+                &nrm.as_slice()[..n],
+            );
         }
     }
 
