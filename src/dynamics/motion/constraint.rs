@@ -464,10 +464,9 @@ pub(crate) struct ContactRow {
     pub friction_impulse: Vector,
     /// The normal impulse added in the free flight to keep the point out (position level).
     pub position_impulse: f64,
-    /// nᵀ K n, its inverse and the point's speed (set when the solve starts; the rest of K
-    /// is in the solver's row matrices).
+    /// nᵀ K n and the point's speed (set when the solve starts; the rest of K is in the
+    /// solver's row matrices).
     pub knn: f64,
-    inv_knn: f64,
     speed: f64,
     /// True if the impulses are the last solve's at the same point (a warm start).
     warm: bool,
@@ -816,7 +815,6 @@ impl Solver {
                         row.target = target;
                         row.position_impulse = 0.0;
                         row.knn = 0.0;
-                        row.inv_knn = 0.0;
                         row.speed = 0.0;
                     } else {
                         self.contacts.push(ContactRow {
@@ -830,7 +828,6 @@ impl Solver {
                             friction_impulse: Vector::zero(n),
                             position_impulse: 0.0,
                             knn: 0.0,
-                            inv_knn: 0.0,
                             speed: 0.0,
                             warm: false,
                             placed: placed.generation,
@@ -1079,7 +1076,7 @@ impl Solver {
                     generation: st.generation,
                 };
             }
-            (row.knn, row.inv_knn) = (data[layout.knn], data[layout.inv_knn]);
+            row.knn = data[layout.knn];
             let r = &row.r.as_slice()[..n];
             point_velocity::<N>(data, layout, r, v, w, u);
             let un = dot(&nrm.as_slice()[..n], u);
@@ -1476,7 +1473,7 @@ fn sweep_contact<const N: usize>(
     let nv = &plane.normal().as_slice()[..n];
     // Normal: the smallest accumulated λ ≥ 0 reaching the target; u·n = v·n + (Cᵀn)·w.
     let un = dot(nv, &st.v[..n]) + dot(&data[l.cn..l.cn + m], &st.w[..m]);
-    let lambda = (row.normal_impulse + (row.target - un) * row.inv_knn).max(0.0);
+    let lambda = (row.normal_impulse + (row.target - un) * data[l.inv_knn]).max(0.0);
     let dl = lambda - row.normal_impulse;
     if dl != 0.0 {
         st.apply_normal::<N>(data, l, nv, dl);
