@@ -7,20 +7,19 @@
 
 use rotorflow::dynamics::motion::forques::Gravity;
 use rotorflow::dynamics::motion::{
-    ContactShape, HalfSpace, MotionIntegrator, MotionSplitting, MovingBody, System,
+    HalfSpace, MotionIntegrator, MotionSplitting, MovingBody, System,
 };
 use rotorflow::inertia::spec::parse_body;
 use rotorflow::prelude::*;
 
 pub fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (n, a, v0) = (4, 0.5, 2.0);
-    // 1. The body: a solid 4D ball of mass 1.5 (the SPEC grammar of the command line gives
-    //    its inertia and the shape it touches the floor with).
+    // 1. The body: a solid 4D ball of mass 1.5. A catalogue body of the SPEC grammar brings
+    //    its mass, its inertia and the shape it touches with (here the ball itself).
     let ball = parse_body("ball:4,0.5+mass=1.5")?;
     let up = Vector::from_components(&[0.0, 0.0, 0.0, 1.0])?;
-    let body = MovingBody::new(
-        ball.mass,
-        ball.inertia.clone(),
+    let body = MovingBody::from_parsed(
+        &ball,
         Rotor::identity(n),
         &(&up * a),                                      // resting on the floor x₄ = 0
         &Vector::from_components(&[v0, 0.0, 0.0, 0.0])?, // sliding along e₁
@@ -29,7 +28,6 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     // 2. The system: gravity along −e₄ and the floor x₄ ≤ 0 with friction 0.3, no bounce.
     let mut system = System::new(vec![body])?;
-    system.set_shape(0, ContactShape::from_geometry(&ball.geometry))?;
     system.add_forque(Gravity(&up * -9.81))?;
     system.add_half_space(HalfSpace::new(&up, 0.0, 0.3, 0.0)?)?;
 

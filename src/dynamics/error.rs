@@ -2,6 +2,7 @@
 //! closed forms), and [`NoClosedFormReason`], why a body has no closed-form motion.
 
 use crate::algebra::AlgebraError;
+use crate::dynamics::motion::MotionError;
 use crate::inertia::InertiaError;
 use crate::special::EllipticError;
 use thiserror::Error;
@@ -144,17 +145,10 @@ pub enum DynamicsError {
     /// An algebra operation failed (e.g. N above the rotor limit).
     #[error(transparent)]
     Algebra(#[from] AlgebraError),
-    /// A body or system of moving bodies was given inconsistent or unphysical data.
-    ///
-    /// How to fix: the message names the quantity (a mass that is not positive, a vector of
-    /// the wrong length, a force on a body the system does not have).
-    #[error("invalid {what}: {reason}")]
-    InvalidMotion {
-        /// The quantity.
-        what: &'static str,
-        /// What is wrong with it.
-        reason: String,
-    },
+    /// A moving body, a system of them or one of its steps was refused: the variant names
+    /// the quantity and the body or half-space.
+    #[error(transparent)]
+    Motion(#[from] MotionError),
     /// The integrator or closed form assumes a rigid body and was given a gyrostat.
     ///
     /// How to fix: integrate gyrostats with `Rkmk4`, `Dopri5`, `Dop853` or `Midpoint`.

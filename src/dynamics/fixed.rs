@@ -29,6 +29,7 @@
 use super::integrate::dop853_tableau::{A, B, BHH, E5, STAGES};
 use super::integrate::first_step_estimate;
 use super::integrate::{DEXP_INVERSE_8, strang_drift_3, strang_drift_4};
+use super::motion::MotionError;
 use super::{DynamicsError, RigidBody};
 use crate::algebra::{Bivector3, Bivector4, Rotor3, Rotor4, commutator_packed};
 
@@ -341,30 +342,34 @@ macro_rules! free_body {
             /// `momentum`.
             ///
             /// # Errors
-            /// [`DynamicsError::InvalidMotion`] for a moment that is not positive and finite
-            /// or a momentum or attitude that is not finite.
+            /// [`MotionError::OutOfRange`] for a moment that is not positive and finite,
+            /// [`DynamicsError::NonFiniteArgument`] for a momentum or attitude that is not
+            /// finite.
             pub fn new(
                 moments: [f64; $k],
                 attitude: $rotor,
                 momentum: $biv,
             ) -> Result<Self, DynamicsError> {
-                if !moments.iter().all(|m| m.is_finite() && *m > 0.0) {
-                    return Err(DynamicsError::InvalidMotion {
-                        what: "plane moments",
-                        reason: "must be positive and finite".into(),
-                    });
+                if let Some(&m) = moments.iter().find(|m| !(m.is_finite() && **m > 0.0)) {
+                    return Err(MotionError::OutOfRange {
+                        what: "plane moment",
+                        value: m,
+                        expected: "a finite positive number",
+                    }
+                    .into());
                 }
                 let momentum = momentum.to_array();
-                if !momentum.iter().all(|x| x.is_finite()) {
-                    return Err(DynamicsError::InvalidMotion {
-                        what: "momentum",
-                        reason: "must be finite".into(),
+                if let Some(&x) = momentum.iter().find(|x| !x.is_finite()) {
+                    return Err(DynamicsError::NonFiniteArgument {
+                        name: "momentum",
+                        value: x,
                     });
                 }
-                if !attitude.unit_error().is_finite() {
-                    return Err(DynamicsError::InvalidMotion {
-                        what: "attitude",
-                        reason: "must be finite".into(),
+                let unit_error = attitude.unit_error();
+                if !unit_error.is_finite() {
+                    return Err(DynamicsError::NonFiniteArgument {
+                        name: "attitude",
+                        value: unit_error,
                     });
                 }
                 Ok(Self {

@@ -13,6 +13,7 @@ mod lie_poisson;
 mod manakov;
 mod moser_veselov;
 mod motion;
+mod motion_checks;
 mod moving_bodies;
 mod names;
 mod orders;

@@ -1,11 +1,13 @@
 //! [`MovingBody`]: a rigid body that moves as well as turns.
 
-use super::Wrench;
+use super::{ContactShape, MotionError, Wrench};
 use crate::algebra::pga::Motor;
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::{Attitude, DynamicsError, RigidBody};
 use crate::inertia::InertiaMap;
+use crate::inertia::spec::ParsedBody;
 use nalgebra::DMatrix;
+use std::sync::Arc;
 
 /// A rigid body in ℝᴺ that moves and turns: its centre of mass x and linear momentum
 /// p = m v in space, and its rotation about the centre of mass as a [`RigidBody`] (attitude
@@ -44,6 +46,15 @@ pub struct MovingBody {
     mass: f64,
     position: Vector,
     momentum: Vector,
+    /// What the body touches with, shared by its copies (a step's saved states copy
+    /// bodies, and a shape of many vertices should not be copied with them).
+    shape: Arc<ContactShape>,
+    /// Its Coulomb friction coefficient and restitution against other bodies (None: the
+    /// other body's, see [`MovingBody::with_friction`]).
+    friction: Option<f64>,
+    restitution: Option<f64>,
+    /// False if it touches nothing.
+    collides: bool,
 }
 
 impl MovingBody {
@@ -53,8 +64,9 @@ impl MovingBody {
     /// (bivector, in its own axes).
     ///
     /// # Errors
-    /// [`DynamicsError::InvalidMotion`] for a mass that is not finite and positive or
-    /// vectors of another dimension than the inertia; [`DynamicsError::Inertia`] as
+    /// [`MotionError::OutOfRange`] for a mass that is not finite and positive,
+    /// [`MotionError::WrongDimension`] or [`MotionError::NonFinite`] for vectors of another
+    /// dimension than the inertia or not finite; [`DynamicsError::Inertia`] as
     /// [`RigidBody::from_body_velocity`].
     pub fn new(
         mass: f64,
@@ -81,10 +93,12 @@ impl MovingBody {
     ) -> Result<Self, DynamicsError> {
         rotation.refuse_gyrostat("a moving body")?;
         if !(mass.is_finite() && mass > 0.0) {
-            return Err(DynamicsError::InvalidMotion {
+            return Err(MotionError::OutOfRange {
                 what: "mass",
-                reason: format!("{mass} is not a finite positive number"),
-            });
+                value: mass,
+                expected: "a finite positive number",
+            }
+            .into());
         }
         let n = rotation.dim();
         for (what, v) in [("position", position), ("velocity", velocity)] {
@@ -97,7 +111,144 @@ impl MovingBody {
             mass,
             position: position.clone(),
             momentum,
+            shape: Arc::new(ContactShape::None),
+            friction: None,
+            restitution: None,
+            collides: true,
         })
+    }
+
+    /// Returns the body described by `body`, a body of the catalogue parsed from the SPEC
+    /// grammar ([`crate::inertia::spec::parse_body`]), with the mass, the inertia and the
+    /// contact shape that description gives it (the vertices of boxes, point sets and
+    /// meshes, the ellipsoid of `ellipsoid:`, `ball:` and `sphere:`; no shape for `principal:`,
+    /// `tensor:` and `planes:`, which describe no surface), placed and moving as in
+    /// [`MovingBody::new`]. Mass, inertia and shape come from one description, so they
+    /// cannot disagree.
+    ///
+    /// # Errors
+    /// As [`MovingBody::new`].
+    ///
+    /// ```
+    /// use rotorflow::prelude::*;
+    /// use rotorflow::dynamics::motion::{ContactShape, MovingBody};
+    /// use rotorflow::inertia::spec::parse_body;
+    /// let cube = parse_body("cuboid:0.5,0.5,0.5+mass=2")?;
+    /// let body = MovingBody::from_parsed(
+    ///     &cube,
+    ///     Rotor::identity(3),
+    ///     &Vector::from_components(&[0.0, 0.0, 0.5])?,
+    ///     &Vector::zero(3),
+    ///     &Bivector::zero(3),
+    /// )?;
+    /// assert_eq!(body.mass(), 2.0);
+    /// assert!(matches!(body.shape(), ContactShape::Vertices(v) if v.len() == 8));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn from_parsed(
+        body: &ParsedBody,
+        attitude: impl Into<Attitude>,
+        position: &Vector,
+        velocity: &Vector,
+        omega: &Bivector,
+    ) -> Result<Self, DynamicsError> {
+        let moving = Self::new(
+            body.mass,
+            body.inertia.clone(),
+            attitude,
+            position,
+            velocity,
+            omega,
+        )?;
+        moving.with_shape(ContactShape::from_geometry(&body.geometry))
+    }
+
+    /// Returns the body with the contact shape `shape` (in its own axes about its centre of
+    /// mass) instead of its own.
+    ///
+    /// # Errors
+    /// [`MotionError`] for a shape of another dimension or with bad numbers.
+    pub fn with_shape(mut self, shape: ContactShape) -> Result<Self, DynamicsError> {
+        shape.check(self.dim())?;
+        self.shape = Arc::new(shape);
+        Ok(self)
+    }
+
+    /// Returns what the body touches with ([`ContactShape::None`] unless it was built from
+    /// a catalogue body or given one).
+    pub fn shape(&self) -> &ContactShape {
+        &self.shape
+    }
+
+    /// Returns the body with the Coulomb friction coefficient `friction` (≥ 0) for its
+    /// contacts with other bodies. Two bodies touch with μ = √(μ₁ μ₂) when both give one,
+    /// with the one given when only one does, and with
+    /// [`MovingBody::DEFAULT_FRICTION`] when neither does (the mixing rule of Box2D and
+    /// Rapier's default coefficient). Contacts with a half-space use the half-space's.
+    ///
+    /// # Errors
+    /// [`MotionError::OutOfRange`] for a negative or non-finite coefficient.
+    pub fn with_friction(mut self, friction: f64) -> Result<Self, DynamicsError> {
+        if !(friction.is_finite() && friction >= 0.0) {
+            return Err(MotionError::OutOfRange {
+                what: "friction",
+                value: friction,
+                expected: "a finite number ≥ 0",
+            }
+            .into());
+        }
+        self.friction = Some(friction);
+        Ok(self)
+    }
+
+    /// Returns the body with the restitution `restitution` (in [0, 1]) for its contacts
+    /// with other bodies. Two bodies bounce with e = max(e₁, e₂) of those given (so that a
+    /// bouncy ball bounces off anything), 0 when neither gives one. Contacts with a
+    /// half-space use the half-space's.
+    ///
+    /// # Errors
+    /// [`MotionError::OutOfRange`] for a restitution outside [0, 1].
+    pub fn with_restitution(mut self, restitution: f64) -> Result<Self, DynamicsError> {
+        if !(0.0..=1.0).contains(&restitution) {
+            return Err(MotionError::OutOfRange {
+                what: "restitution",
+                value: restitution,
+                expected: "in [0, 1]",
+            }
+            .into());
+        }
+        self.restitution = Some(restitution);
+        Ok(self)
+    }
+
+    /// Returns the body touching nothing (`false`: neither other bodies nor half-spaces; it
+    /// keeps its shape, for drawing) or touching with its shape (`true`, the default).
+    pub fn with_collisions(mut self, collides: bool) -> Self {
+        self.collides = collides;
+        self
+    }
+
+    /// The friction coefficient of two bodies touching when neither gives one.
+    pub const DEFAULT_FRICTION: f64 = 0.5;
+
+    /// Returns the friction coefficient given with [`MovingBody::with_friction`].
+    pub fn friction(&self) -> Option<f64> {
+        self.friction
+    }
+
+    /// Returns the restitution given with [`MovingBody::with_restitution`].
+    pub fn restitution(&self) -> Option<f64> {
+        self.restitution
+    }
+
+    /// Returns false if the body touches nothing.
+    pub fn collides(&self) -> bool {
+        self.collides
+    }
+
+    /// Sets the shape, checked by the caller.
+    pub(crate) fn set_shape_checked(&mut self, shape: ContactShape) {
+        self.shape = Arc::new(shape);
     }
 
     /// Returns the body placed by the homogeneous matrix `placement` = [[Q, x], [0, 1]]
@@ -269,17 +420,33 @@ impl MovingBody {
 
 /// Refuses a vector of the wrong dimension or with a non-finite component.
 pub(crate) fn check_vector(what: &'static str, v: &Vector, n: usize) -> Result<(), DynamicsError> {
-    if v.dim() != n {
-        return Err(DynamicsError::InvalidMotion {
+    check_slice(what, v.as_slice(), n)
+}
+
+/// Refuses components of the wrong count or not finite.
+pub(crate) fn check_slice(what: &'static str, v: &[f64], n: usize) -> Result<(), DynamicsError> {
+    if v.len() != n {
+        return Err(MotionError::WrongDimension {
             what,
-            reason: format!("{} components for a body in {n} dimensions", v.dim()),
-        });
+            expected: n,
+            found: v.len(),
+        }
+        .into());
     }
-    if let Some(x) = v.as_slice().iter().find(|x| !x.is_finite()) {
-        return Err(DynamicsError::InvalidMotion {
-            what,
-            reason: format!("component {x} is not finite"),
-        });
+    if let Some(&value) = v.iter().find(|x| !x.is_finite()) {
+        return Err(MotionError::NonFinite { what, value }.into());
     }
     Ok(())
+}
+
+/// The friction coefficient and restitution of a contact between bodies `a` and `b`: see
+/// [`MovingBody::with_friction`] and [`MovingBody::with_restitution`].
+pub(crate) fn contact_material(a: &MovingBody, b: &MovingBody) -> (f64, f64) {
+    let friction = match (a.friction, b.friction) {
+        (Some(x), Some(y)) => (x * y).sqrt(),
+        (Some(x), None) | (None, Some(x)) => x,
+        (None, None) => MovingBody::DEFAULT_FRICTION,
+    };
+    let restitution = a.restitution.unwrap_or(0.0).max(b.restitution.unwrap_or(0.0));
+    (friction, restitution)
 }

@@ -1,6 +1,7 @@
 //! Contact of bodies with half-spaces: the shapes bodies touch with, the planes, and the
 //! contacts found at a step.
 
+use super::MotionError;
 use super::placement::set_vector;
 use crate::algebra::Vector;
 use crate::dynamics::DynamicsError;
@@ -102,17 +103,11 @@ impl ContactShape {
 
     /// Checks the shape against the dimension `n`.
     pub(crate) fn check(&self, n: usize) -> Result<(), DynamicsError> {
-        let bad = |reason: String| {
-            Err(DynamicsError::InvalidMotion {
-                what: "shape",
-                reason,
-            })
-        };
         match self {
             ContactShape::None => Ok(()),
             ContactShape::Vertices(v) => {
                 if v.is_empty() {
-                    return bad("no vertex".into());
+                    return Err(MotionError::EmptyShape { what: "shape" }.into());
                 }
                 for p in v {
                     super::body::check_vector("shape vertex", p, n)?;
@@ -120,14 +115,14 @@ impl ContactShape {
                 Ok(())
             }
             ContactShape::Ellipsoid(a) => {
-                if a.len() != n {
-                    return bad(format!(
-                        "{} semi-axes for a body in {n} dimensions",
-                        a.len()
-                    ));
-                }
-                match a.iter().find(|x| !(x.is_finite() && **x > 0.0)) {
-                    Some(x) => bad(format!("semi-axis {x} is not a finite positive number")),
+                super::body::check_slice("ellipsoid semi-axes", a, n)?;
+                match a.iter().find(|x| **x <= 0.0) {
+                    Some(&x) => Err(MotionError::OutOfRange {
+                        what: "semi-axis",
+                        value: x,
+                        expected: "a finite positive number",
+                    }
+                    .into()),
                     None => Ok(()),
                 }
             }
@@ -198,32 +193,50 @@ impl HalfSpace {
     /// coefficient `friction` (≥ 0) and restitution `restitution` (in [0, 1]).
     ///
     /// # Errors
-    /// [`DynamicsError::InvalidMotion`] naming the bad parameter: a zero or non-finite
-    /// normal, a non-finite offset, a negative friction, a restitution outside [0, 1].
+    /// [`MotionError`] naming the bad parameter: a zero or non-finite normal
+    /// ([`MotionError::ZeroVector`], [`MotionError::NonFinite`]), a non-finite offset, a
+    /// negative friction, a restitution outside [0, 1] ([`MotionError::OutOfRange`]).
     pub fn new(
         normal: &Vector,
         offset: f64,
         friction: f64,
         restitution: f64,
     ) -> Result<HalfSpace, DynamicsError> {
-        let bad =
-            |what: &'static str, reason: String| Err(DynamicsError::InvalidMotion { what, reason });
         let s = normal.norm();
+        if let Some(&value) = normal.as_slice().iter().find(|x| !x.is_finite()) {
+            return Err(MotionError::NonFinite {
+                what: "normal",
+                value,
+            }
+            .into());
+        }
         if !(s.is_finite() && s > 0.0) {
-            return bad(
-                "normal",
-                format!("{:?} is not a finite non-zero vector", normal.as_slice()),
-            );
+            return Err(MotionError::ZeroVector { what: "normal" }.into());
         }
-        if !offset.is_finite() {
-            return bad("offset", format!("{offset} is not finite"));
-        }
-        if !(friction.is_finite() && friction >= 0.0) {
-            return bad("friction", format!("{friction} is not a finite number ≥ 0"));
-        }
-        if !(0.0..=1.0).contains(&restitution) {
-            return bad("restitution", format!("{restitution} is not in [0, 1]"));
-        }
+        let range = |what, value: f64, ok: bool, expected| {
+            if ok {
+                Ok(())
+            } else {
+                Err(MotionError::OutOfRange {
+                    what,
+                    value,
+                    expected,
+                })
+            }
+        };
+        range("offset", offset, offset.is_finite(), "finite")?;
+        range(
+            "friction",
+            friction,
+            friction.is_finite() && friction >= 0.0,
+            "a finite number ≥ 0",
+        )?;
+        range(
+            "restitution",
+            restitution,
+            (0.0..=1.0).contains(&restitution),
+            "in [0, 1]",
+        )?;
         Ok(HalfSpace {
             normal: normal * (1.0 / s),
             offset: offset / s,

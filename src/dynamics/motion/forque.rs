@@ -45,7 +45,10 @@ pub struct ForqueInput<'a> {
 /// the system's order). A conservative forque also returns its potential energy, which the
 /// system's energy includes. Any closure `Fn(&ForqueInput, &mut [Wrench])` is a forque
 /// (without a potential).
-pub trait Forque {
+///
+/// Forques are `Send + Sync`, so that a [`System`](super::System) can move to another
+/// thread (a batch of scenes stepped by a thread pool, a simulation behind a GUI).
+pub trait Forque: Send + Sync {
     /// Adds this forque's force and torque on every body to `wrenches`.
     fn apply(&self, input: &ForqueInput<'_>, wrenches: &mut [Wrench]);
 
@@ -66,11 +69,20 @@ pub trait Forque {
     fn is_constant(&self) -> bool {
         false
     }
+
+    /// True if the wrenches depend on the bodies' velocities or angular velocities (damping,
+    /// drag). [`MotionSplitting`](super::MotionSplitting) then takes its closing half kick
+    /// implicitly, so that the step stays of order 2. True by default, which is always
+    /// correct: a forque that reads only positions and attitudes costs one more evaluation
+    /// per step if it says so.
+    fn reads_velocities(&self) -> bool {
+        true
+    }
 }
 
 impl<F> Forque for F
 where
-    F: Fn(&ForqueInput<'_>, &mut [Wrench]),
+    F: Fn(&ForqueInput<'_>, &mut [Wrench]) + Send + Sync,
 {
     fn apply(&self, input: &ForqueInput<'_>, wrenches: &mut [Wrench]) {
         self(input, wrenches)
@@ -87,6 +99,9 @@ pub mod forques {
     pub struct Gravity(pub Vector);
 
     impl Forque for Gravity {
+        fn reads_velocities(&self) -> bool {
+            false
+        }
         fn apply(&self, input: &ForqueInput<'_>, wrenches: &mut [Wrench]) {
             for (b, w) in input.bodies.iter().zip(wrenches.iter_mut()) {
                 let m = b.mass();
@@ -156,6 +171,9 @@ pub mod forques {
     }
 
     impl Forque for Spring {
+        fn reads_velocities(&self) -> bool {
+            self.damping != 0.0
+        }
         fn apply(&self, input: &ForqueInput<'_>, wrenches: &mut [Wrench]) {
             let (x, v, a, va) = self.ends(input.bodies);
             let d = &x - &a;
@@ -236,6 +254,9 @@ pub mod forques {
     }
 
     impl Forque for ConstantForce {
+        fn reads_velocities(&self) -> bool {
+            false
+        }
         fn apply(&self, input: &ForqueInput<'_>, wrenches: &mut [Wrench]) {
             let b = &input.bodies[self.body];
             let f = match self.frame {
@@ -265,6 +286,9 @@ pub mod forques {
     }
 
     impl Forque for ConstantTorque {
+        fn reads_velocities(&self) -> bool {
+            false
+        }
         fn apply(&self, input: &ForqueInput<'_>, wrenches: &mut [Wrench]) {
             let b = &input.bodies[self.body];
             let space = match self.frame {

@@ -62,17 +62,20 @@
 //! ```
 
 mod body;
-mod constraint;
 mod contact;
+mod error;
 mod forque;
 mod integrate;
 mod joint;
 mod placement;
+mod solve;
 mod system;
 
 pub use body::MovingBody;
 pub use contact::{Contact, ContactShape, HalfSpace};
+pub use error::MotionError;
 pub use forque::{Forque, ForqueInput, Wrench, forques};
 pub use integrate::{MotionIntegrator, MotionRk4, MotionSplitting};
 pub use joint::BallJoint;
+pub use solve::SolverReport;
 pub use system::System;

@@ -1,5 +1,6 @@
 //! [`System`]: moving bodies and the forques between them.
 
+use super::MotionError;
 use super::contact::ContactLog;
 use super::forques::Anchor;
 use super::{BallJoint, Contact, ContactShape, Forque, ForqueInput, HalfSpace, MovingBody, Wrench};
@@ -26,6 +27,8 @@ pub struct System {
     /// The wrenches when every forque is constant ([`Forque::is_constant`]), evaluated when
     /// a forque joins.
     constant: Option<ConstantWrenches>,
+    /// True if a forque reads velocities ([`Forque::reads_velocities`]).
+    reads_velocities: bool,
     /// This system among all (for the integrators' caches), and the version of its shapes.
     id: u64,
     shapes_version: u64,
@@ -53,33 +56,34 @@ impl std::fmt::Debug for System {
 }
 
 impl System {
-    /// Returns the system of `bodies`, without forques.
+    /// Returns the system of `bodies`, without forques; each body touches with its own
+    /// [`MovingBody::shape`].
     ///
     /// # Errors
-    /// [`DynamicsError::InvalidMotion`] if there is no body or the bodies live in spaces of
-    /// different dimension.
+    /// [`MotionError::NoBody`] if there is no body, [`MotionError::MixedDimensions`] if
+    /// the bodies live in spaces of different dimension.
     pub fn new(bodies: Vec<MovingBody>) -> Result<System, DynamicsError> {
         let Some(first) = bodies.first() else {
-            return Err(DynamicsError::InvalidMotion {
-                what: "system",
-                reason: "no body".into(),
-            });
+            return Err(MotionError::NoBody.into());
         };
         let n = first.dim();
-        if let Some(b) = bodies.iter().find(|b| b.dim() != n) {
-            return Err(DynamicsError::InvalidMotion {
-                what: "system",
-                reason: format!("a body in {} dimensions beside one in {n}", b.dim()),
-            });
+        if let Some((body, b)) = bodies.iter().enumerate().find(|(_, b)| b.dim() != n) {
+            return Err(MotionError::MixedDimensions {
+                body,
+                expected: n,
+                found: b.dim(),
+            }
+            .into());
         }
         let mut system = System {
-            shapes: vec![ContactShape::None; bodies.len()],
+            shapes: bodies.iter().map(touching_shape).collect(),
             bodies,
             forques: Vec::new(),
             half_spaces: Vec::new(),
             joints: Vec::new(),
             contacts: ContactLog::default(),
             constant: None,
+            reads_velocities: false,
             id: {
                 static SYSTEMS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
                 SYSTEMS.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
@@ -93,6 +97,7 @@ impl System {
     /// Evaluates the forques once if they are all constant (no forque at all is constant
     /// too: zero wrenches).
     fn refresh_constant(&mut self) {
+        self.reads_velocities = self.forques.iter().any(|f| f.reads_velocities());
         self.constant = None;
         if !self.forques.iter().all(|f| f.is_constant()) {
             return;
@@ -106,6 +111,11 @@ impl System {
         });
     }
 
+    /// True if a forque reads the bodies' velocities (damping, drag).
+    pub(crate) fn reads_velocities(&self) -> bool {
+        self.reads_velocities
+    }
+
     /// The bodies, and the wrenches on them if the forques are all constant.
     pub(crate) fn bodies_and_constant_wrenches(
         &mut self,
@@ -116,20 +126,19 @@ impl System {
     /// Adds a forque.
     ///
     /// # Errors
-    /// [`DynamicsError::InvalidMotion`] if it refers to a body the system does not have.
+    /// [`MotionError::NoSuchBody`] if it refers to a body the system does not have.
     pub fn add_forque(&mut self, forque: impl Forque + 'static) -> Result<(), DynamicsError> {
         if let Some(i) = forque
             .bodies()
             .into_iter()
             .find(|&i| i >= self.bodies.len())
         {
-            return Err(DynamicsError::InvalidMotion {
+            return Err(MotionError::NoSuchBody {
                 what: "forque",
-                reason: format!(
-                    "body {i} does not exist (the system has {} bodies, numbered from 0)",
-                    self.bodies.len()
-                ),
-            });
+                body: i,
+                count: self.bodies.len(),
+            }
+            .into());
         }
         self.forques.push(Box::new(forque));
         self.refresh_constant();
@@ -141,23 +150,25 @@ impl System {
         if i < self.bodies.len() {
             return Ok(());
         }
-        Err(DynamicsError::InvalidMotion {
+        Err(MotionError::NoSuchBody {
             what,
-            reason: format!(
-                "body {i} does not exist (the system has {} bodies, numbered from 0)",
-                self.bodies.len()
-            ),
-        })
+            body: i,
+            count: self.bodies.len(),
+        }
+        .into())
     }
 
-    /// Gives body `body` the shape it touches half-spaces with (by default it has none).
+    /// Gives body `body` the shape it touches with, in place of its own
+    /// ([`MovingBody::shape`]).
     ///
     /// # Errors
-    /// [`DynamicsError::InvalidMotion`] for a missing body or a shape of another dimension.
+    /// [`MotionError::NoSuchBody`] for a missing body, [`MotionError`] for a shape of another
+    /// dimension or with bad numbers.
     pub fn set_shape(&mut self, body: usize, shape: ContactShape) -> Result<(), DynamicsError> {
         self.check_body("shape", body)?;
         shape.check(self.dim())?;
-        self.shapes[body] = shape;
+        self.bodies[body].set_shape_checked(shape);
+        self.shapes[body] = touching_shape(&self.bodies[body]);
         self.shapes_version += 1;
         Ok(())
     }
@@ -165,7 +176,7 @@ impl System {
     /// Adds a half-space of solid world (floor, wall, slope) that the bodies' shapes touch.
     ///
     /// # Errors
-    /// [`DynamicsError::InvalidMotion`] for a normal of another dimension.
+    /// [`MotionError::WrongDimension`] for a normal of another dimension.
     pub fn add_half_space(&mut self, half_space: HalfSpace) -> Result<(), DynamicsError> {
         super::body::check_vector("normal", half_space.normal(), self.dim())?;
         self.half_spaces.push(half_space);
@@ -175,8 +186,8 @@ impl System {
     /// Adds a ball joint.
     ///
     /// # Errors
-    /// [`DynamicsError::InvalidMotion`] for a missing body, a body jointed to itself or
-    /// points of another dimension.
+    /// [`MotionError::NoSuchBody`] for a missing body, [`MotionError::JointToItself`],
+    /// [`MotionError::WrongDimension`] for points of another dimension.
     pub fn add_ball_joint(&mut self, joint: BallJoint) -> Result<(), DynamicsError> {
         let n = self.dim();
         self.check_body("joint", joint.body)?;
@@ -186,10 +197,11 @@ impl System {
             Anchor::Body(j, p) => {
                 self.check_body("joint", *j)?;
                 if *j == joint.body {
-                    return Err(DynamicsError::InvalidMotion {
-                        what: "joint",
-                        reason: format!("body {j} is jointed to itself"),
-                    });
+                    return Err(MotionError::JointToItself {
+                        joint: self.joints.len(),
+                        body: *j,
+                    }
+                    .into());
                 }
                 super::body::check_vector("joint point", p, n)?;
             }
@@ -198,13 +210,73 @@ impl System {
         Ok(())
     }
 
+    /// Checks that the system can start moving: if it has half-spaces, some body has a
+    /// contact shape ([`MotionError::NothingTouches`]), and no body starts inside a
+    /// half-space by more than [`System::TOUCHING`] of its shape's radius
+    /// ([`MotionError::StartsInside`], naming the body, the half-space and the depth).
+    /// [`MotionSplitting`](super::MotionSplitting) checks this before its first step of a
+    /// system, and again whenever shapes or half-spaces are added.
+    ///
+    /// # Errors
+    /// The two above.
+    pub fn check_contacts(&self) -> Result<(), DynamicsError> {
+        if self.half_spaces.is_empty() {
+            return Ok(());
+        }
+        if self.shapes.iter().all(|s| matches!(s, ContactShape::None)) {
+            return Err(MotionError::NothingTouches {
+                half_spaces: self.half_spaces.len(),
+            }
+            .into());
+        }
+        let n = self.dim();
+        let mut q = smallvec::SmallVec::<[f64; 64]>::from_elem(0.0, n * n);
+        for (body, (b, shape)) in self.bodies.iter().zip(&self.shapes).enumerate() {
+            if matches!(shape, ContactShape::None) {
+                continue;
+            }
+            b.attitude().write_matrix(&mut q);
+            let tolerance = Self::TOUCHING * shape.radius();
+            for (half_space, plane) in self.half_spaces.iter().enumerate() {
+                let mut lowest = f64::INFINITY;
+                shape.candidates(&q, plane.normal(), |_, r| {
+                    lowest = lowest.min(plane.normal().dot(r));
+                });
+                let depth = -(plane.distance(b.position()) + lowest);
+                if depth > tolerance {
+                    return Err(MotionError::StartsInside {
+                        body,
+                        half_space,
+                        depth,
+                        tolerance,
+                    }
+                    .into());
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The depth inside a half-space, relative to the radius of the body's shape, that
+    /// still counts as touching when a system starts: round-off of placing a body on a
+    /// plane is far below it, a body placed inside by mistake far above.
+    pub const TOUCHING: f64 = 1e-6;
+
+    /// What [`System::check_contacts`] depends on: the system, its shapes' version and its
+    /// number of half-spaces.
+    pub(crate) fn contacts_key(&self) -> (u64, u64, usize) {
+        (self.id, self.shapes_version, self.half_spaces.len())
+    }
+
     /// Names this system and the version of its shapes: the integrators keep the bodies'
     /// placements for as long as both stay the same.
     pub(crate) fn shape_key(&self) -> (u64, u64) {
         (self.id, self.shapes_version)
     }
 
-    /// Returns the bodies' contact shapes, in the order of the bodies.
+    /// Returns the shapes the bodies touch with, in the order of the bodies: each body's
+    /// [`MovingBody::shape`], or [`ContactShape::None`] for a body that touches nothing
+    /// ([`MovingBody::with_collisions`]).
     pub fn shapes(&self) -> &[ContactShape] {
         &self.shapes
     }
@@ -352,5 +424,14 @@ impl System {
             l += &b.angular_momentum();
         }
         l
+    }
+}
+
+/// The shape `body` touches with: its own, or none if it touches nothing.
+fn touching_shape(body: &MovingBody) -> ContactShape {
+    if body.collides() {
+        body.shape().clone()
+    } else {
+        ContactShape::None
     }
 }

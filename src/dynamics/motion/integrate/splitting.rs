@@ -1,57 +1,13 @@
-//! Integrators for systems of moving bodies.
+//! [`MotionSplitting`]: kicks, free flight, impacts located in time, contacts and joints.
 
-use super::constraint::Solver;
-use super::forques::Anchor;
-use super::placement::{Placements, set_vector};
-use super::{ContactShape, MovingBody, System, Wrench};
+use super::{MotionIntegrator, check_finite, one_by_one};
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::integrate::{axpy, free_strang_step};
+use crate::dynamics::motion::forques::Anchor;
+use crate::dynamics::motion::placement::{Placements, set_vector};
+use crate::dynamics::motion::solve::{Solver, SolverReport};
+use crate::dynamics::motion::{ContactShape, MotionError, MovingBody, System, Wrench};
 use crate::dynamics::{Attitude, DynamicsError};
-
-/// An integrator of Newton–Euler for a [`System`]: advances every body by one step.
-pub trait MotionIntegrator {
-    /// Returns the order of accuracy.
-    fn order(&self) -> u32;
-
-    /// Returns a short name.
-    fn name(&self) -> &'static str;
-
-    /// Advances `system` from time `t` by a step `h`.
-    ///
-    /// # Errors
-    /// [`DynamicsError::NonFinite`] if the state leaves f64; the errors of the rotation
-    /// integrator.
-    fn step(&mut self, system: &mut System, t: f64, h: f64) -> Result<(), DynamicsError>;
-
-    /// Advances `system` from time `t` by `steps` steps of h (the k-th from t + k h): the
-    /// same as that many calls of [`MotionIntegrator::step`], which is what this default
-    /// does. An integrator may share work between consecutive steps here.
-    ///
-    /// # Errors
-    /// Those of [`MotionIntegrator::step`], at the step that fails.
-    fn advance(
-        &mut self,
-        system: &mut System,
-        t: f64,
-        h: f64,
-        steps: usize,
-    ) -> Result<(), DynamicsError> {
-        one_by_one(self, system, (t, h), steps)
-    }
-}
-
-/// `steps` calls of `integrator.step`, the k-th from t + k h.
-fn one_by_one<I: MotionIntegrator + ?Sized>(
-    integrator: &mut I,
-    system: &mut System,
-    (t, h): (f64, f64),
-    steps: usize,
-) -> Result<(), DynamicsError> {
-    for k in 0..steps {
-        integrator.step(system, t + k as f64 * h, h)?;
-    }
-    Ok(())
-}
 
 /// The symplectic Strang splitting of H = T + V: half a kick by the forques (p += ½h F,
 /// L += ½h τ at fixed positions and attitudes), free flight for h (x += h p/m exactly, the
@@ -71,7 +27,7 @@ fn one_by_one<I: MotionIntegrator + ?Sized>(
 /// time-reversible on the constrained system, so its energy error stays bounded too.
 ///
 /// **Contacts** with half-spaces are impulses after each half kick (see
-/// [`HalfSpace`](super::HalfSpace)): a point in contact (within 10⁻⁹ of the body's radius)
+/// [`HalfSpace`](crate::dynamics::motion::HalfSpace)): a point in contact (within 10⁻⁹ of the body's radius)
 /// may not approach the half-space, friction stays in Coulomb's cone and opposes the slip.
 /// A point that was free and would end the step inside a half-space is an impact: the step
 /// is cut at the instant it reaches the plane (located by the Illinois method to a
@@ -105,10 +61,19 @@ pub struct MotionSplitting {
     joint_ends: Vec<(Vector, Vector)>,
     /// The bodies' own axes and vertices in space, kept while they do not turn.
     placements: Placements,
+    /// The system whose start was checked last ([`System::check_contacts`]).
+    checked: Option<(u64, u64, usize)>,
+    /// Refuse steps whose solves did not converge.
+    strict: bool,
+    /// The momenta before an implicit closing kick.
+    kick_start: Vec<SavedBody>,
 }
 
 /// The contact tolerance, relative to a body's radius.
 const CONTACT_TOLERANCE: f64 = 1e-9;
+
+/// Fixed-point iterations of an implicit closing kick, at most.
+const MAX_KICK_ITERATIONS: usize = 50;
 
 /// Impacts located within one step, at most (then the rest of the step is resting contact).
 const MAX_EVENTS: usize = 16;
@@ -230,6 +195,51 @@ impl MotionSplitting {
             Self::set_resting_speeds(&mut self.resting_speed, system.bodies(), &self.wrenches, h);
         }
         Self::kick(system.bodies_mut(), &self.wrenches, 0.5 * h);
+    }
+
+    /// The closing half kick (½h) at time `t`. Where a forque reads velocities it is
+    /// implicit in the momenta, p₁ = p + ½h F(x, p₁) and L₁ = L + ½h τ(x, L₁), the adjoint of
+    /// the explicit opening kick: the step is then symmetric, and a symmetric consistent
+    /// step is of order 2, with damping and drag as without (explicit closing kicks made it
+    /// order 1 there). Solved by fixed-point iteration, which contracts by about
+    /// ½h c/m for a damping c and converges to round-off in a few evaluations for steps
+    /// that resolve the damping.
+    fn closing_kick(&mut self, system: &mut System, t: f64, h: f64) {
+        if system.bodies_and_constant_wrenches().1.is_some() || !system.reads_velocities() {
+            self.half_kick(system, t, h, false);
+            return;
+        }
+        save(system.bodies(), &mut self.kick_start);
+        self.wrenches_at(system, t);
+        Self::kick(system.bodies_mut(), &self.wrenches, 0.5 * h);
+        for _ in 0..MAX_KICK_ITERATIONS {
+            self.wrenches_at(system, t);
+            let (mut change, mut size) = (0.0f64, 0.0f64);
+            for ((b, start), w) in system
+                .bodies_mut()
+                .iter_mut()
+                .zip(&self.kick_start)
+                .zip(&self.wrenches)
+            {
+                let (_, p, rotation) = b.state_mut();
+                let (_, l) = rotation.state_mut();
+                let parts = [
+                    (p.as_mut_slice(), start.p.as_slice(), w.force.as_slice()),
+                    (l.as_mut_slice(), start.l.as_slice(), w.torque.as_slice()),
+                ];
+                for (now, from, rate) in parts {
+                    for ((x, x0), f) in now.iter_mut().zip(from).zip(rate) {
+                        let next = x0 + 0.5 * h * f;
+                        change = change.max((next - *x).abs());
+                        size = size.max(next.abs());
+                        *x = next;
+                    }
+                }
+            }
+            if change <= 4.0 * f64::EPSILON * size {
+                break;
+            }
+        }
     }
 
     /// The velocity solve of the contacts and joints at the current placement, after a kick
@@ -517,7 +527,7 @@ impl MotionSplitting {
 
     /// The closing half kick (at the end `t` of a substep of length h) and velocity solve.
     fn close(&mut self, system: &mut System, t: f64, h: f64) {
-        self.half_kick(system, t, h, false);
+        self.closing_kick(system, t, h);
         self.solve_velocities(system, 0.5 * h, true);
     }
 
@@ -673,6 +683,10 @@ fn for_each_candidate(
     placements: &Placements,
     mut visit: impl FnMut(usize, f64, f64),
 ) {
+    if system.half_spaces().is_empty() {
+        // Nothing to touch, and nothing placed (placements are kept for contacts).
+        return;
+    }
     let mut k = 0;
     for (i, (b, shape)) in system.bodies().iter().zip(system.shapes()).enumerate() {
         if matches!(shape, ContactShape::None) {
@@ -693,7 +707,7 @@ fn for_each_candidate(
 /// Writes into `gap` the gap between the two ends of `joint` (zero when it holds), its
 /// points given by `ends` as in `MotionSplitting::joint_ends`.
 fn joint_gap(
-    joint: &super::BallJoint,
+    joint: &crate::dynamics::motion::BallJoint,
     (point, other): &(Vector, Vector),
     bodies: &[MovingBody],
     gap: &mut Vector,
@@ -725,6 +739,10 @@ fn push(b: &mut MovingBody, r: &Vector, j: &Vector) {
 /// (the bodies placed by `placements`; lifting does not turn them).
 fn lift_out(system: &mut System, placements: &Placements) {
     let (bodies, shapes, half_spaces, _, _) = system.parts_mut();
+    if half_spaces.is_empty() {
+        // Nothing to lift out of, and nothing placed (placements are kept for contacts).
+        return;
+    }
     for (i, (b, shape)) in bodies.iter_mut().zip(shapes.iter()).enumerate() {
         if matches!(shape, ContactShape::None) {
             continue;
@@ -753,6 +771,97 @@ impl MotionIntegrator for MotionSplitting {
     }
 
     fn step(&mut self, system: &mut System, t: f64, h: f64) -> Result<(), DynamicsError> {
+        self.check_start(system)?;
+        let before = self.solver.report;
+        self.step_checked(system, t, h)?;
+        self.check_solves(&before, t)
+    }
+
+    /// Under constant forques (gravity, constant forces and torques) with contacts or
+    /// joints, consecutive steps share a velocity solve: the closing half kick and solve of
+    /// one step and the opening ones of the next are one kick and one solve, the leapfrog
+    /// form of the same splitting (one solve per step instead of two). A solve is a
+    /// projection of the velocities, linear and idempotent while the contacts rest, stick
+    /// or slide one way and for joints, so the result is that of `steps` calls of
+    /// [`MotionIntegrator::step`] to round-off there; through bounces and stick–slip
+    /// transitions the two agree to the solver's tolerance. A step with an impact, and the
+    /// last step, are taken singly, so the impacts are located and [`System::contacts`]
+    /// lists what it lists after [`MotionIntegrator::step`]. Other systems take their steps
+    /// one by one.
+    fn advance(
+        &mut self,
+        system: &mut System,
+        t: f64,
+        h: f64,
+        steps: usize,
+    ) -> Result<(), DynamicsError> {
+        self.check_start(system)?;
+        let constrained = !system.joints().is_empty() || !system.half_spaces().is_empty();
+        if constrained && steps > 1 && system.bodies_and_constant_wrenches().1.is_some() {
+            let before = self.solver.report;
+            self.joined_steps(system, t, h, steps)?;
+            return self.check_solves(&before, t);
+        }
+        one_by_one(self, system, (t, h), steps)
+    }
+}
+
+impl MotionSplitting {
+    /// Returns this splitting refusing every step whose contact solve stops unconverged or
+    /// whose joint system is singular ([`MotionError::SolveNotConverged`],
+    /// [`MotionError::SingularJoints`]) instead of going on and counting it in
+    /// [`MotionSplitting::solver_report`].
+    pub fn strict(mut self) -> Self {
+        self.strict = true;
+        self
+    }
+
+    /// Returns what the velocity and joint solves met since this integrator was made or its
+    /// report reset: solves, those that stopped unconverged and their worst residual, the
+    /// most sweeps one took, singular joint systems.
+    pub fn solver_report(&self) -> SolverReport {
+        self.solver.report
+    }
+
+    /// Starts the counts of [`MotionSplitting::solver_report`] anew.
+    pub fn reset_solver_report(&mut self) {
+        self.solver.report = SolverReport::default();
+    }
+
+    /// Checks the system before its first step, and again after shapes or half-spaces were
+    /// added ([`System::check_contacts`]).
+    fn check_start(&mut self, system: &System) -> Result<(), DynamicsError> {
+        let key = system.contacts_key();
+        if self.checked != Some(key) {
+            system.check_contacts()?;
+            self.checked = Some(key);
+        }
+        Ok(())
+    }
+
+    /// Under [`MotionSplitting::strict`], refuses a step whose solves did worse than the
+    /// report `before` it says.
+    fn check_solves(&self, before: &SolverReport, t: f64) -> Result<(), DynamicsError> {
+        let now = &self.solver.report;
+        if !self.strict {
+            return Ok(());
+        }
+        if now.singular_joint_solves > before.singular_joint_solves {
+            return Err(MotionError::SingularJoints { time: t }.into());
+        }
+        if now.unconverged > before.unconverged {
+            return Err(MotionError::SolveNotConverged {
+                time: t,
+                sweeps: now.max_sweeps,
+                residual: now.worst_residual,
+            }
+            .into());
+        }
+        Ok(())
+    }
+
+    /// One step, the system checked.
+    fn step_checked(&mut self, system: &mut System, t: f64, h: f64) -> Result<(), DynamicsError> {
         if !system.joints().is_empty() || !system.half_spaces().is_empty() {
             self.constrained_step(system, t, h, false)?;
             return check_finite(system, t);
@@ -792,206 +901,8 @@ impl MotionIntegrator for MotionSplitting {
         self.wrenches_at(system, t);
         Self::kick(system.bodies_mut(), &self.wrenches, 0.5 * h);
         self.drift(system.bodies_mut(), t, h)?;
-        self.wrenches_at(system, t + h);
-        Self::kick(system.bodies_mut(), &self.wrenches, 0.5 * h);
+        self.closing_kick(system, t + h, h);
         check_finite(system, t)
-    }
-
-    /// Under constant forques (gravity, constant forces and torques) with contacts or
-    /// joints, consecutive steps share a velocity solve: the closing half kick and solve of
-    /// one step and the opening ones of the next are one kick and one solve, the leapfrog
-    /// form of the same splitting (one solve per step instead of two). A solve is a
-    /// projection of the velocities, linear and idempotent while the contacts rest, stick
-    /// or slide one way and for joints, so the result is that of `steps` calls of
-    /// [`MotionIntegrator::step`] to round-off there; through bounces and stick–slip
-    /// transitions the two agree to the solver's tolerance. A step with an impact, and the
-    /// last step, are taken singly, so the impacts are located and [`System::contacts`]
-    /// lists what it lists after [`MotionIntegrator::step`]. Other systems take their steps
-    /// one by one.
-    fn advance(
-        &mut self,
-        system: &mut System,
-        t: f64,
-        h: f64,
-        steps: usize,
-    ) -> Result<(), DynamicsError> {
-        let constrained = !system.joints().is_empty() || !system.half_spaces().is_empty();
-        if constrained && steps > 1 && system.bodies_and_constant_wrenches().1.is_some() {
-            return self.joined_steps(system, t, h, steps);
-        }
-        one_by_one(self, system, (t, h), steps)
-    }
-}
-
-/// Runge–Kutta–Munthe-Kaas of order 4 on the whole state: classical RK4 on the positions and
-/// momenta, the attitudes advanced on Spin(N) (or SO(N)) by one exponential per step with
-/// the commutator correction of [`crate::dynamics::Rkmk4`], so that each attitude stays on
-/// its group. Any forques, dissipative ones included.
-///
-/// It keeps the stage states and rates between steps, so that after the first step a step
-/// does not touch the heap (N ≤ 8); make one with [`MotionRk4::new`] (or `default()`) and
-/// reuse it.
-#[derive(Clone, Debug, Default)]
-pub struct MotionRk4 {
-    /// The bodies at the current stage (their mass and inertia are the system's).
-    stage: Vec<MovingBody>,
-    /// The rates k₁ … k₄ of every body.
-    k: [Vec<Rates>; 4],
-    wrenches: Vec<Wrench>,
-}
-
-/// The rates of one body: dx/dt, dp/dt, dL/dt and a = −½ω (the attitude's generator).
-#[derive(Clone, Debug)]
-struct Rates {
-    dx: Vector,
-    dp: Vector,
-    dl: Bivector,
-    a: Bivector,
-}
-
-impl Rates {
-    fn zero(n: usize) -> Rates {
-        Rates {
-            dx: Vector::zero(n),
-            dp: Vector::zero(n),
-            dl: Bivector::zero(n),
-            a: Bivector::zero(n),
-        }
-    }
-}
-
-/// Writes the rates of `bodies` under `wrenches` into `out`.
-fn rates_into(bodies: &[MovingBody], wrenches: &[Wrench], out: &mut Vec<Rates>) {
-    let n = bodies[0].dim();
-    out.resize_with(bodies.len(), || Rates::zero(n));
-    for ((b, w), k) in bodies.iter().zip(wrenches).zip(out.iter_mut()) {
-        let l = b.rotation().momentum();
-        let omega = b.rotation().inertia().apply_inverse(l);
-        let mut dl = omega.commutator(l);
-        dl += &w.torque;
-        k.dx = b.linear_momentum() * (1.0 / b.mass());
-        k.dp.clone_from(&w.force);
-        k.dl = dl;
-        k.a = omega * -0.5;
-    }
-}
-
-/// Sets the bodies `out` at a stage: x₀ + c dx, p₀ + c dp, L₀ + c dL, R₀ exp(u(i)).
-fn set_stage(
-    start: &[MovingBody],
-    k: &[Rates],
-    c: f64,
-    attitude_step: impl Fn(usize) -> Bivector,
-    out: &mut [MovingBody],
-) {
-    for (i, ((b0, k), b)) in start.iter().zip(k).zip(out.iter_mut()).enumerate() {
-        let (x, p, rotation) = b.state_mut();
-        x.clone_from(b0.position());
-        *x += &(&k.dx * c);
-        p.clone_from(b0.linear_momentum());
-        *p += &(&k.dp * c);
-        let (r, l) = rotation.state_mut();
-        r.clone_from(b0.rotation().principal_frame_attitude());
-        r.times_exp_mut(&attitude_step(i));
-        l.clone_from(b0.rotation().momentum());
-        *l += &(&k.dl * c);
-    }
-}
-
-impl MotionRk4 {
-    /// Returns the integrator, with empty buffers (the first step sizes them).
-    pub fn new() -> Self {
-        Self::default()
-    }
-
-    /// Makes the stage bodies copies of `bodies` (mass, inertia and frames; the state is set
-    /// at each stage), cloning only when they are not already.
-    fn prepare(&mut self, bodies: &[MovingBody]) {
-        let same = self.stage.len() == bodies.len()
-            && self.stage.iter().zip(bodies).all(|(s, b)| {
-                s.mass() == b.mass()
-                    && s.rotation().inertia() == b.rotation().inertia()
-                    && s.rotation().principal_frame() == b.rotation().principal_frame()
-            });
-        if !same {
-            self.stage.clear();
-            self.stage.extend_from_slice(bodies);
-        }
-    }
-}
-
-impl MotionIntegrator for MotionRk4 {
-    fn order(&self) -> u32 {
-        4
-    }
-
-    fn name(&self) -> &'static str {
-        "rk4"
-    }
-
-    fn step(&mut self, system: &mut System, t: f64, h: f64) -> Result<(), DynamicsError> {
-        if !system.joints().is_empty() || !system.half_spaces().is_empty() {
-            return Err(DynamicsError::InvalidMotion {
-                what: "integrator",
-                reason: "RKMK4 integrates forques only: joints and contact need the splitting"
-                    .into(),
-            });
-        }
-        self.prepare(system.bodies());
-        let MotionRk4 { stage, k, wrenches } = self;
-        let [k1, k2, k3, k4] = k;
-        let b0 = system.bodies();
-        system.wrenches_for_into(t, b0, wrenches);
-        rates_into(b0, wrenches, k1);
-        set_stage(b0, k1, 0.5 * h, |i| &k1[i].a * (0.5 * h), stage);
-        system.wrenches_for_into(t + 0.5 * h, stage, wrenches);
-        rates_into(stage, wrenches, k2);
-        set_stage(
-            b0,
-            k2,
-            0.5 * h,
-            |i| &(&k2[i].a * (0.5 * h)) + &(k1[i].a.commutator(&k2[i].a) * (0.25 * h * h)),
-            stage,
-        );
-        system.wrenches_for_into(t + 0.5 * h, stage, wrenches);
-        rates_into(stage, wrenches, k3);
-        set_stage(b0, k3, h, |i| &k3[i].a * h, stage);
-        system.wrenches_for_into(t + h, stage, wrenches);
-        rates_into(stage, wrenches, k4);
-        for (i, b) in system.bodies_mut().iter_mut().enumerate() {
-            let (x, p, rotation) = b.state_mut();
-            let sum = |f: &dyn Fn(&Rates) -> &Vector| -> Vector {
-                let mut s = f(&k1[i]).clone();
-                s += &(f(&k2[i]) * 2.0);
-                s += &(f(&k3[i]) * 2.0);
-                s += f(&k4[i]);
-                s
-            };
-            *x += &(&sum(&|k: &Rates| &k.dx) * (h / 6.0));
-            *p += &(&sum(&|k: &Rates| &k.dp) * (h / 6.0));
-            let mut dl = k1[i].dl.clone();
-            dl += &(&k2[i].dl * 2.0);
-            dl += &(&k3[i].dl * 2.0);
-            dl += &k4[i].dl;
-            let mut u = k1[i].a.clone();
-            u += &(&k2[i].a * 2.0);
-            u += &(&k3[i].a * 2.0);
-            u += &k4[i].a;
-            u *= h / 6.0;
-            u += &(k1[i].a.commutator(&k4[i].a) * (h * h / 6.0));
-            let (r, l) = rotation.state_mut();
-            r.times_exp_mut(&u);
-            *l += &(&dl * (h / 6.0));
-        }
-        check_finite(system, t)
-    }
-}
-
-fn check_finite(system: &System, t: f64) -> Result<(), DynamicsError> {
-    if system.bodies().iter().all(MovingBody::is_finite) {
-        Ok(())
-    } else {
-        Err(DynamicsError::NonFinite { time: t })
     }
 }
 

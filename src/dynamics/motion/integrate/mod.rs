@@ -1,0 +1,66 @@
+//! Integrators for systems of moving bodies.
+//!
+//! - [`splitting`]: [`MotionSplitting`], the symplectic splitting with contacts and joints;
+//! - [`rk4`]: [`MotionRk4`], Runge–Kutta–Munthe-Kaas of order 4 without contacts.
+
+mod rk4;
+mod splitting;
+
+pub use rk4::MotionRk4;
+pub use splitting::MotionSplitting;
+
+use crate::dynamics::DynamicsError;
+use crate::dynamics::motion::{MovingBody, System};
+
+/// An integrator of Newton–Euler for a [`System`]: advances every body by one step.
+pub trait MotionIntegrator {
+    /// Returns the order of accuracy.
+    fn order(&self) -> u32;
+
+    /// Returns a short name.
+    fn name(&self) -> &'static str;
+
+    /// Advances `system` from time `t` by a step `h`.
+    ///
+    /// # Errors
+    /// [`DynamicsError::NonFinite`] if the state leaves f64; the errors of the rotation
+    /// integrator.
+    fn step(&mut self, system: &mut System, t: f64, h: f64) -> Result<(), DynamicsError>;
+
+    /// Advances `system` from time `t` by `steps` steps of h (the k-th from t + k h): the
+    /// same as that many calls of [`MotionIntegrator::step`], which is what this default
+    /// does. An integrator may share work between consecutive steps here.
+    ///
+    /// # Errors
+    /// Those of [`MotionIntegrator::step`], at the step that fails.
+    fn advance(
+        &mut self,
+        system: &mut System,
+        t: f64,
+        h: f64,
+        steps: usize,
+    ) -> Result<(), DynamicsError> {
+        one_by_one(self, system, (t, h), steps)
+    }
+}
+
+/// `steps` calls of `integrator.step`, the k-th from t + k h.
+fn one_by_one<I: MotionIntegrator + ?Sized>(
+    integrator: &mut I,
+    system: &mut System,
+    (t, h): (f64, f64),
+    steps: usize,
+) -> Result<(), DynamicsError> {
+    for k in 0..steps {
+        integrator.step(system, t + k as f64 * h, h)?;
+    }
+    Ok(())
+}
+
+fn check_finite(system: &System, t: f64) -> Result<(), DynamicsError> {
+    if system.bodies().iter().all(MovingBody::is_finite) {
+        Ok(())
+    } else {
+        Err(DynamicsError::NonFinite { time: t })
+    }
+}

@@ -1,0 +1,378 @@
+//! One contact point of a velocity solve: its matrices and its Gauss–Seidel update.
+
+use super::Dense;
+use super::body::{BodyState, BodyView};
+use super::friction::{friction_impulse, symmetric_eigen};
+use crate::algebra::{Bivector, Vector};
+use crate::dynamics::motion::HalfSpace;
+use crate::dynamics::motion::placement::dot;
+use smallvec::SmallVec;
+
+/// One contact point in a solve.
+#[derive(Clone, Debug)]
+pub(crate) struct ContactRow {
+    pub body: usize,
+    pub half_space: usize,
+    /// The candidate's number on its body and half-space (from 1).
+    pub index: usize,
+    /// The point in own axes and its offset from the centre of mass in space.
+    pub point: Vector,
+    pub r: Vector,
+    /// The normal velocity wanted after the impulse (0, or −e u⁻ for an impact).
+    pub target: f64,
+    pub normal_impulse: f64,
+    pub friction_impulse: Vector,
+    /// The normal impulse added in the free flight to keep the point out (position level).
+    pub position_impulse: f64,
+    /// nᵀ K n and the point's speed (set when the solve starts; the rest of K is in the
+    /// solver's row matrices).
+    pub knn: f64,
+    pub(super) speed: f64,
+    /// True if the impulses are the last solve's at the same point (a warm start).
+    pub(super) warm: bool,
+    /// The generation of the placement `point` and `r` were copied from (0: none).
+    pub(super) placed: u64,
+}
+
+/// Where the matrices of one contact row lie in the solver's `row_data` (N = n, M planes):
+/// C (n × M: the velocity at the point per angular velocity, u = v + C w), W (M × n: the
+/// angular velocity per impulse, I⁻¹ (r ∧ ·)), R (M × n: the angular impulse, r ∧ ·), their
+/// products with the normal (Cᵀn, W n, R n), the tangent block K_t of K with its
+/// eigen-decomposition, nᵀ K n and its inverse, and K_t⁻¹ (for the sticking impulse).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct RowLayout {
+    pub(super) n: usize,
+    pub(super) m: usize,
+    pub(super) c: usize,
+    pub(super) w: usize,
+    pub(super) r: usize,
+    pub(super) cn: usize,
+    pub(super) wn: usize,
+    pub(super) rn: usize,
+    pub(super) kt: usize,
+    pub(super) values: usize,
+    pub(super) vectors: usize,
+    pub(super) knn: usize,
+    pub(super) inv_knn: usize,
+    pub(super) kinv: usize,
+    pub(super) stride: usize,
+}
+
+impl RowLayout {
+    #[inline(always)]
+    pub(super) fn new(n: usize) -> RowLayout {
+        let m = n * (n - 1) / 2;
+        // What every sweep reads first and together (in 3D and 4D C and R are read through
+        // the offset instead), what only sliding contacts read last.
+        let w = 0;
+        let cn = w + m * n;
+        let wn = cn + m;
+        let rn = wn + m;
+        let knn = rn + m;
+        let inv_knn = knn + 1;
+        let kinv = inv_knn + 1;
+        let c = kinv + n * n;
+        let r = c + n * m;
+        let kt = r + m * n;
+        let values = kt + n * n;
+        let vectors = values + n;
+        RowLayout {
+            n,
+            m,
+            c,
+            w,
+            r,
+            cn,
+            wn,
+            rn,
+            kt,
+            values,
+            vectors,
+            knn,
+            inv_knn,
+            kinv,
+            stride: vectors + n * n,
+        }
+    }
+}
+
+/// What a contact row's matrices were computed for: the row's point (body, half-space,
+/// candidate), the generation of the placement its offset was taken from, and the generation
+/// of its body's inverse inertia. A placement's generation changes whenever the body's
+/// offsets in space change and when the placements are redone for another system, so that
+/// with the half-space's number (a system's half-spaces do not change) it fixes the offset
+/// and the normal.
+#[derive(Clone, Debug, Default)]
+pub(super) struct RowKey {
+    pub(super) body: usize,
+    pub(super) half_space: usize,
+    pub(super) index: usize,
+    pub(super) placed: u64,
+    pub(super) generation: u64,
+}
+
+/// The dimension of a kernel: `N` when it is fixed at compile time (3 and 4: loops of known
+/// length, unrolled), else `n` (`N` = 0).
+#[inline(always)]
+pub(super) fn dim<const N: usize>(n: usize) -> usize {
+    debug_assert!(
+        N == 0 || N == n,
+        "rotorflow: kernel of dimension {N} for {n}"
+    );
+    if N == 0 { n } else { N }
+}
+
+/// The planes through each axis in 3D and 4D, in their order: the entries of row i of C
+/// (whose column p is r ⌋ e_p) that can be non-zero.
+pub(super) const PLANES_THROUGH_3: [[usize; 2]; 3] = [[0, 1], [0, 2], [1, 2]];
+pub(super) const PLANES_THROUGH_4: [[usize; 3]; 4] = [[0, 1, 2], [0, 3, 4], [1, 3, 5], [2, 4, 5]];
+
+/// The axes of each plane in 3D and 4D: the entries of row p of R (whose column j is
+/// r ∧ e_j) that can be non-zero, and the entries of column p of C.
+pub(super) const AXES_OF_3: [[usize; 2]; 3] = [[0, 1], [0, 2], [1, 2]];
+pub(super) const AXES_OF_4: [[usize; 2]; 6] = [[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]];
+
+/// The entries of row `i` of an n × n(n−1)/2 matrix C (columns r ⌋ e_p) that can be
+/// non-zero, when the dimension is fixed at 3 or 4 (None: all of them).
+#[inline(always)]
+pub(super) fn planes_through<const N: usize>(i: usize) -> Option<&'static [usize]> {
+    match N {
+        3 => Some(&PLANES_THROUGH_3[i]),
+        4 => Some(&PLANES_THROUGH_4[i]),
+        _ => None,
+    }
+}
+
+/// The axes of every plane when the dimension is fixed at 3 or 4 (None: any other).
+#[inline(always)]
+pub(super) fn axes_of<const N: usize>() -> Option<&'static [[usize; 2]]> {
+    match N {
+        3 => Some(&AXES_OF_3),
+        4 => Some(&AXES_OF_4),
+        _ => None,
+    }
+}
+
+/// u = v + C w at a row's point, at `offset` from the centre of mass (`N` as in [`dim`];
+/// in 3D and 4D C is read through the offset, as its entries that can be non-zero are
+/// ±rⱼ).
+#[inline(always)]
+pub(super) fn point_velocity<const N: usize>(
+    d: &[f64],
+    l: &RowLayout,
+    offset: &[f64],
+    v: &[f64],
+    w: &[f64],
+    u: &mut [f64],
+) {
+    let n = dim::<N>(l.n);
+    let m = n * (n - 1) / 2;
+    let w = &w[..m];
+    if let Some(axes) = axes_of::<N>() {
+        for (i, (ui, vi)) in u[..n].iter_mut().zip(&v[..n]).enumerate() {
+            let through = planes_through::<N>(i).unwrap_or(&[]);
+            *ui = vi
+                + through
+                    .iter()
+                    .map(|&p| contraction_entry(offset, axes[p], i) * w[p])
+                    .sum::<f64>();
+        }
+        return;
+    }
+    let c = &d[l.c..l.c + n * m];
+    for ((ui, vi), row) in u[..n].iter_mut().zip(&v[..n]).zip(c.chunks_exact(m)) {
+        *ui = vi + dot(row, w);
+    }
+}
+
+/// Entry (i, p) of C (column p: r ⌋ e_p) for the offset r and an axis i of plane p =
+/// (a, b), a < b: −r_b for i = a, r_a for i = b. Entry (p, j) of R (column j: r ∧ e_j) is
+/// the same for j the other axis of the plane.
+#[inline(always)]
+pub(super) fn contraction_entry(offset: &[f64], [a, b]: [usize; 2], i: usize) -> f64 {
+    if i == a { -offset[b] } else { offset[a] }
+}
+
+/// y += a A x for an M × n row-major A.
+#[inline(always)]
+pub(super) fn add_mat_vec(y: &mut [f64], a_mat: &[f64], a: f64, x: &[f64]) {
+    for (yp, row) in y.iter_mut().zip(a_mat.chunks_exact(x.len())) {
+        *yp += a * dot(row, x);
+    }
+}
+
+/// One Gauss–Seidel update of a contact: the normal impulse, then the friction impulse,
+/// through the row's matrices `data` laid out by `l` (`N` as in [`dim`]). Returns the
+/// largest velocity change it made.
+#[inline(always)]
+pub(super) fn sweep_contact<const N: usize>(
+    row: &mut ContactRow,
+    data: &[f64],
+    l: &RowLayout,
+    plane: &HalfSpace,
+    st: &mut BodyView<'_>,
+) -> f64 {
+    let n = dim::<N>(l.n);
+    let m = n * (n - 1) / 2;
+    let mut change = 0.0f64;
+    let nv = &plane.normal().as_slice()[..n];
+    // Normal: the smallest accumulated λ ≥ 0 reaching the target; u·n = v·n + (Cᵀn)·w.
+    let un = dot(nv, &st.v[..n]) + dot(&data[l.cn..l.cn + m], &st.w[..m]);
+    let lambda = (row.normal_impulse + (row.target - un) * data[l.inv_knn]).max(0.0);
+    let dl = lambda - row.normal_impulse;
+    if dl != 0.0 {
+        st.apply_normal::<N>(data, l, nv, dl);
+        row.normal_impulse = lambda;
+    }
+    change = change.max((dl * row.knn).abs());
+    // Friction: maximal dissipation in the disc |J_t| ≤ μλ.
+    let limit = plane.friction() * row.normal_impulse;
+    let (mut ut_fixed, mut ut_any) = ([0.0; 4], Small::new());
+    let ut = scratch::<N>(&mut ut_fixed, &mut ut_any, n);
+    let offset = &row.r.as_slice()[..n];
+    point_velocity::<N>(data, l, offset, &st.v[..n], &st.w[..m], ut);
+    let normal_part = dot(nv, ut);
+    for (u, x) in ut.iter_mut().zip(nv) {
+        *u -= normal_part * x;
+    }
+    let (mut new_fixed, mut new_any) = ([0.0; 4], Small::new());
+    let new = scratch::<N>(&mut new_fixed, &mut new_any, n);
+    // The sticking impulse old − K_t⁻¹ u_t when it lies in the disc (a resting contact),
+    // else the one of maximal dissipation on its rim.
+    let old = &row.friction_impulse.as_slice()[..n];
+    let kinv = &data[l.kinv..l.kinv + n * n];
+    for ((x, o), k) in new.iter_mut().zip(old).zip(kinv.chunks_exact(n)) {
+        *x = o - dot(k, ut);
+    }
+    if limit <= 0.0 {
+        new.fill(0.0);
+    } else if dot(new, new) > limit * limit {
+        friction_impulse(
+            &data[l.values..l.values + n],
+            &data[l.vectors..l.vectors + n * n],
+            &data[l.kt..l.kt + n * n],
+            row.friction_impulse.as_slice(),
+            ut,
+            limit,
+            new,
+        );
+    }
+    let (mut dj_fixed, mut dj_any) = ([0.0; 4], Small::new());
+    let dj = scratch::<N>(&mut dj_fixed, &mut dj_any, n);
+    let mut largest = 0.0f64;
+    for ((d, x), y) in dj.iter_mut().zip(new.iter()).zip(old) {
+        *d = x - y;
+        largest = largest.max(d.abs());
+    }
+    if largest > 0.0 {
+        st.apply_with::<N>(data, l, offset, dj);
+        row.friction_impulse.as_mut_slice().copy_from_slice(new);
+        change = change.max(largest * row.knn);
+    }
+    change
+}
+
+/// A short vector on the stack (N ≤ 8).
+pub(super) type Small = SmallVec<[f64; 8]>;
+
+/// A zero scratch vector of length n (`N` as in [`dim`]): `fixed` in 3D and 4D, where its
+/// length is known and it needs no check of its storage, else `any`.
+#[inline(always)]
+pub(super) fn scratch<'a, const N: usize>(
+    fixed: &'a mut [f64; 4],
+    any: &'a mut Small,
+    n: usize,
+) -> &'a mut [f64] {
+    if N != 0 {
+        &mut fixed[..n]
+    } else {
+        any.resize(n, 0.0);
+        &mut any[..n]
+    }
+}
+
+/// Computes a contact row's matrices ([`RowLayout`]) for a body state `st`, the offset `r`
+/// of the point and the unit normal `nrm`.
+pub(super) fn row_matrices(
+    st: &BodyState,
+    r: &Vector,
+    nrm: &Vector,
+    l: &RowLayout,
+    data: &mut [f64],
+) {
+    let (n, m) = (l.n, l.m);
+    // C: column p is r ⌋ e_p (the velocity at r of a unit angular velocity in plane p).
+    let mut e = Bivector::zero(n);
+    for p in 0..m {
+        e.as_mut_slice().fill(0.0);
+        e.as_mut_slice()[p] = 1.0;
+        for (i, x) in r.left_contract(&e).as_slice().iter().enumerate() {
+            data[l.c + i * m + p] = *x;
+        }
+    }
+    // R: column j is r ∧ e_j; W = I⁻¹ R.
+    for j in 0..n {
+        let rj = r.wedge(&Vector::basis(n, j));
+        let wj = st.inverse_inertia(&rj);
+        for p in 0..m {
+            data[l.r + p * n + j] = rj.as_slice()[p];
+            data[l.w + p * n + j] = wj.as_slice()[p];
+        }
+    }
+    let nv = nrm.as_slice();
+    for p in 0..m {
+        data[l.cn + p] = (0..n).map(|i| data[l.c + i * m + p] * nv[i]).sum();
+        data[l.wn + p] = dot(&data[l.w + p * n..l.w + (p + 1) * n], nv);
+        data[l.rn + p] = dot(&data[l.r + p * n..l.r + (p + 1) * n], nv);
+    }
+    // K = 1/m + C W.
+    let mut k: Dense = SmallVec::from_elem(0.0, n * n);
+    for i in 0..n {
+        for j in 0..n {
+            let mut x: f64 = (0..m)
+                .map(|p| data[l.c + i * m + p] * data[l.w + p * n + j])
+                .sum();
+            if i == j {
+                x += st.inv_mass;
+            }
+            k[i * n + j] = x;
+        }
+    }
+    data[l.knn] = (0..n)
+        .map(|i| (0..n).map(|j| nv[i] * k[i * n + j] * nv[j]).sum::<f64>())
+        .sum();
+    // The sweeps multiply by it: a division would lengthen the chain from one row to the next.
+    data[l.inv_knn] = 1.0 / data[l.knn];
+    tangent_block(&mut k, nrm);
+    let (mut values, mut vectors) = (Dense::new(), Dense::new());
+    symmetric_eigen(&k, n, &mut values, &mut vectors);
+    data[l.kt..l.kt + n * n].copy_from_slice(&k);
+    data[l.values..l.values + n].copy_from_slice(&values);
+    data[l.vectors..l.vectors + n * n].copy_from_slice(&vectors);
+    // K_t⁻¹ = V diag(1/d) Vᵀ.
+    for i in 0..n {
+        for j in 0..n {
+            data[l.kinv + i * n + j] = (0..n)
+                .map(|k| vectors[i * n + k] * vectors[j * n + k] / values[k])
+                .sum();
+        }
+    }
+}
+
+/// Turns the inverse mass k into its tangent block P k P + n nᵀ (P = 1 − n nᵀ), which maps
+/// the tangent space to itself and keeps the normal apart.
+pub(super) fn tangent_block(k: &mut [f64], nrm: &Vector) {
+    let n = nrm.dim();
+    let nv = nrm.as_slice();
+    // k n and nᵀ k n.
+    let kn: SmallVec<[f64; 8]> = (0..n)
+        .map(|i| (0..n).map(|j| k[i * n + j] * nv[j]).sum())
+        .collect();
+    let nkn: f64 = (0..n).map(|i| nv[i] * kn[i]).sum();
+    for i in 0..n {
+        for j in 0..n {
+            // P k P = k − n (kn)ᵀ − (kn) nᵀ + (nᵀkn) n nᵀ
+            k[i * n + j] += -nv[i] * kn[j] - kn[i] * nv[j] + nkn * nv[i] * nv[j] + nv[i] * nv[j];
+        }
+    }
+}

@@ -1,0 +1,173 @@
+//! Coulomb's law at one contact: the friction impulse of maximal dissipation.
+
+use super::Dense;
+use super::contact_row::Small;
+use crate::dynamics::motion::placement::dot;
+use smallvec::SmallVec;
+
+/// The eigen-decomposition K = V diag(d) Vᵀ of a small symmetric matrix by cyclic Jacobi
+/// rotations (row-major; V's columns are the eigenvectors).
+pub(super) fn symmetric_eigen(k: &[f64], n: usize, d: &mut Dense, v: &mut Dense) {
+    let mut a: Dense = k.iter().copied().collect();
+    v.clear();
+    v.resize(n * n, 0.0);
+    for i in 0..n {
+        v[i * n + i] = 1.0;
+    }
+    for _ in 0..30 {
+        let off: f64 = (0..n)
+            .flat_map(|i| (0..n).filter(move |&j| j != i).map(move |j| (i, j)))
+            .map(|(i, j)| a[i * n + j] * a[i * n + j])
+            .sum();
+        let diag: f64 = (0..n).map(|i| a[i * n + i] * a[i * n + i]).sum();
+        if off <= 1e-32 * diag {
+            break;
+        }
+        for p in 0..n {
+            for q in p + 1..n {
+                let apq = a[p * n + q];
+                if apq == 0.0 {
+                    continue;
+                }
+                let theta = (a[q * n + q] - a[p * n + p]) / (2.0 * apq);
+                let t = theta.signum().max(0.0) * 2.0 - 1.0;
+                let t = t / (theta.abs() + (theta * theta + 1.0).sqrt());
+                let c = 1.0 / (t * t + 1.0).sqrt();
+                let s = t * c;
+                for r in 0..n {
+                    let (arp, arq) = (a[r * n + p], a[r * n + q]);
+                    a[r * n + p] = c * arp - s * arq;
+                    a[r * n + q] = s * arp + c * arq;
+                }
+                for r in 0..n {
+                    let (apr, aqr) = (a[p * n + r], a[q * n + r]);
+                    a[p * n + r] = c * apr - s * aqr;
+                    a[q * n + r] = s * apr + c * aqr;
+                }
+                for r in 0..n {
+                    let (vrp, vrq) = (v[r * n + p], v[r * n + q]);
+                    v[r * n + p] = c * vrp - s * vrq;
+                    v[r * n + q] = s * vrp + c * vrq;
+                }
+            }
+        }
+    }
+    d.clear();
+    d.extend((0..n).map(|i| a[i * n + i]));
+}
+
+/// The friction impulse of maximal dissipation: with slip `ut` under the impulse `old`,
+/// the sticking impulse old − K_t⁻¹ ut when |·| ≤ `limit`, else the J on the rim |J| = limit
+/// with (K_t + σ) J = K_t old − ut for the σ ≥ 0 that puts it there, so that the slip left,
+/// K_t (J − old) + ut = −σ J, is exactly opposite to J. K_t = V diag(d) Vᵀ is given by its
+/// eigen-decomposition; σ comes from Newton's method on 1/|J(σ)| − 1/limit, which is
+/// nearly linear in σ and converges from σ = 0 without overshooting (Moré–Sorensen).
+pub(super) fn friction_impulse(
+    d: &[f64],
+    v: &[f64],
+    kt: &[f64],
+    old: &[f64],
+    ut: &[f64],
+    limit: f64,
+    out: &mut [f64],
+) {
+    let n = d.len();
+    // c = Vᵀ b, b = K_t old − ut.
+    let mut b: Small = SmallVec::from_elem(0.0, n);
+    for (i, x) in b.iter_mut().enumerate() {
+        *x = dot(&kt[i * n..(i + 1) * n], old) - ut[i];
+    }
+    let mut c: Small = SmallVec::from_elem(0.0, n);
+    for (row, bi) in v.chunks_exact(n).zip(&b) {
+        for (x, vik) in c.iter_mut().zip(row) {
+            *x += vik * bi;
+        }
+    }
+    let size = |sigma: f64| -> (f64, f64) {
+        let (mut s2, mut s3) = (0.0, 0.0);
+        for k in 0..n {
+            let q = c[k] / (d[k] + sigma);
+            s2 += q * q;
+            s3 += q * q / (d[k] + sigma);
+        }
+        (s2.sqrt(), s3)
+    };
+    let (norm0, _) = size(0.0);
+    let sigma = if norm0 <= limit {
+        0.0
+    } else {
+        let mut sigma = 0.0f64;
+        for _ in 0..60 {
+            let (norm, s3) = size(sigma);
+            let psi = 1.0 / norm - 1.0 / limit;
+            let step = psi * norm * norm * norm / s3;
+            sigma -= step;
+            if step.abs() <= 1e-15 * sigma.abs() {
+                break;
+            }
+        }
+        sigma.max(0.0)
+    };
+    let (norm, _) = size(sigma);
+    let scale = if sigma > 0.0 { limit / norm } else { 1.0 };
+    for (k, x) in c.iter_mut().enumerate() {
+        *x /= d[k] + sigma;
+    }
+    for (i, x) in out.iter_mut().enumerate() {
+        *x = scale * dot(&v[i * n..(i + 1) * n], &c);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Off the disc, the friction impulse is the trust-region step of Coulomb's law: |J| is
+    /// the limit and the slip left after it, K_t (J − old) + ut, is −σ J with σ > 0 (exactly
+    /// opposite to the friction), for a limit near zero, small and near the sticking size.
+    #[test]
+    fn rim_impulse_leaves_the_slip_opposite_to_it() {
+        let n = 4;
+        // K_t = V diag(d) Vᵀ, V a rotation of 4-space (two plane rotations), the normal
+        // (the last axis) kept apart with eigenvalue 1 as `tangent_block` keeps it.
+        let (c1, s1, c2, s2) = (0.8f64, 0.6f64, 0.28f64, 0.96f64);
+        #[rustfmt::skip]
+        let v = [
+            c1, -s1, 0.0, 0.0,
+            s1 * c2, c1 * c2, -s2, 0.0,
+            s1 * s2, c1 * s2, c2, 0.0,
+            0.0, 0.0, 0.0, 1.0,
+        ];
+        let d = [0.7, 1.9, 3.1, 1.0];
+        let mut kt = [0.0; 16];
+        for i in 0..n {
+            for j in 0..n {
+                kt[i * n + j] = (0..n).map(|k| v[i * n + k] * d[k] * v[j * n + k]).sum();
+            }
+        }
+        let (old, ut) = ([0.3, -0.2, 0.1, 0.0], [1.1, 0.4, -0.7, 0.0]);
+        let mut checked = 0;
+        for limit in [1e-6, 0.05, 0.4] {
+            let mut j = [0.0; 4];
+            friction_impulse(&d, &v, &kt, &old, &ut, limit, &mut j);
+            let norm = dot(&j, &j).sqrt();
+            assert!(
+                (norm - limit).abs() <= 1e-13 * limit,
+                "limit {limit}: |J| = {norm}"
+            );
+            let slip: Vec<f64> = (0..n)
+                .map(|i| (0..n).map(|k| kt[i * n + k] * (j[k] - old[k])).sum::<f64>() + ut[i])
+                .collect();
+            let sigma = -dot(&slip, &j) / (norm * norm);
+            assert!(sigma > 0.0, "limit {limit}: σ = {sigma}");
+            for i in 0..n {
+                assert!(
+                    (slip[i] + sigma * j[i]).abs() <= 1e-12 * (1.0 + sigma * limit),
+                    "limit {limit}, row {i}: slip {slip:?}, J {j:?}"
+                );
+            }
+            checked += 1;
+        }
+        assert_eq!(checked, 3);
+    }
+}

@@ -1,0 +1,678 @@
+//! Impulses that keep joints together and bodies out of half-spaces: the velocity-level
+//! solve (Signorini's condition with restitution and Coulomb's friction cone at each
+//! contact, the ball joints' relative velocity) and the position-level solve of the joints.
+//!
+//! Each contact or joint acts on body points through impulses J; the point's velocity
+//! answers linearly, Δu = K J, with the contact's effective inverse mass
+//! K = (1/m) 1 + (r ⌋ I_s⁻¹ (r ∧ ·)) (for a joint between two bodies the sum of both). The
+//! solve is projected Gauss–Seidel over the contacts and joints, each solved exactly as a
+//! block: the normal impulse is the smallest λ ≥ 0 that stops the approach (or reverses it
+//! by e for an impact), and the friction impulse is the one of maximal dissipation in the
+//! disc |J_t| ≤ μ λ — the sticking impulse when it fits, else the one on the rim whose
+//! remaining slip is exactly opposite to it (a trust-region problem in the (N−1)-dimensional
+//! tangent space, solved by Newton's method on its multiplier, Moré–Sorensen).
+
+use crate::algebra::Vector;
+use crate::dynamics::motion::contact::ContactLog;
+use crate::dynamics::motion::placement::{Placements, dot, set_vector};
+use crate::dynamics::motion::{ContactShape, HalfSpace, MovingBody};
+use body::{BodyState, LocalBody, add_inverse_mass};
+use contact_row::{
+    RowKey, RowLayout, Small, dim, point_velocity, row_matrices, scratch, sweep_contact,
+};
+use smallvec::SmallVec;
+
+/// Up to N = 8 the matrices live on the stack.
+type Dense = SmallVec<[f64; 64]>;
+
+/// Gauss–Seidel sweeps of the velocity solve, at most.
+const MAX_SWEEPS: usize = 20_000;
+
+mod body;
+mod contact_row;
+mod friction;
+mod joint_row;
+
+pub(crate) use contact_row::ContactRow;
+pub(crate) use joint_row::{JointRow, cholesky_solve};
+
+/// The reusable work space of the solves.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Solver {
+    pub contacts: Vec<ContactRow>,
+    pub joints: Vec<JointRow>,
+    states: Vec<BodyState>,
+    work: Dense,
+    rhs: Dense,
+    big: Vec<f64>,
+    big_rhs: Vec<f64>,
+    /// Each joint end's contraction and inverse-inertia matrices (for K).
+    end_c: Vec<f64>,
+    end_w: Vec<f64>,
+    /// The contact rows' matrices ([`RowLayout`]), slot k for row k, and what they were
+    /// computed for: a row that touches again at the same placement keeps them.
+    row_data: Vec<f64>,
+    row_keys: Vec<RowKey>,
+    /// The last generation handed to a body's inverse inertia.
+    generations: u64,
+    /// True while `big` holds the Cholesky factor of the joints' K at the bodies' current
+    /// attitudes (the rows' offsets): a velocity solve of joints alone leaves it there, and
+    /// the position solve of the same placement reuses it.
+    joint_factor: bool,
+    pub residuals: Vec<Vector>,
+    /// The last solve's impulses of the rows that left their slots, by (body, half-space,
+    /// candidate), to start the next solve from (a row that stays in its slot keeps its
+    /// own): a resting contact then needs one sweep. Filled by `find_contacts` from the
+    /// first slot whose point changes, before it is overwritten.
+    warm: Vec<WarmImpulse>,
+    /// The length of the kick before the last solve (0: none yet). A resting contact's
+    /// impulse is its force times that length, so the next solve starts from the last
+    /// impulses scaled by the ratio of the kicks.
+    warm_kick: f64,
+    /// True to use the kernels of run-time dimension in every dimension, also in 3D and 4D
+    /// where the fixed-size kernels do the same arithmetic in the same order, only without
+    /// the terms that are exact zeros (so that tests can compare the two).
+    pub runtime_kernels: bool,
+    /// What the solves met: sweeps, unconverged solves, singular joint systems.
+    pub report: SolverReport,
+}
+
+/// What the velocity and joint solves of an integrator met since it was made (or since
+/// [`MotionSplitting::reset_solver_report`](crate::dynamics::motion::MotionSplitting::reset_solver_report)).
+///
+/// The projected Gauss–Seidel solve of the contacts stops after a fixed number of sweeps
+/// whether or not it has converged, and a joint system whose matrix cannot be factored is
+/// skipped; both go on with the best impulses they have, which is what a simulation wants
+/// mid-run, and both are counted here so that they are seen.
+/// [`MotionSplitting::strict`](crate::dynamics::motion::MotionSplitting::strict) turns
+/// them into errors instead.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SolverReport {
+    /// Contact solves (each group of contact rows solved together counts once).
+    pub solves: u64,
+    /// Those that stopped at the sweep limit before converging.
+    pub unconverged: u64,
+    /// The most sweeps one solve took.
+    pub max_sweeps: usize,
+    /// The largest velocity change of the last sweep of an unconverged solve, relative to
+    /// the speed of its contacts (0 while every solve converged).
+    pub worst_residual: f64,
+    /// Joint solves skipped because the joints' matrix was singular (a joint whose two ends
+    /// cannot move apart, or joints that hold the same freedom twice).
+    pub singular_joint_solves: u64,
+}
+
+impl SolverReport {
+    /// True if every solve converged and no joint system was singular.
+    pub fn converged(&self) -> bool {
+        self.unconverged == 0 && self.singular_joint_solves == 0
+    }
+}
+
+/// Contact rows solved together, and what their solve reads.
+struct Group<'a> {
+    range: std::ops::Range<usize>,
+    /// True if joints couple the rows (then every joint is swept with them).
+    coupled: bool,
+    half_spaces: &'a [HalfSpace],
+    layout: &'a RowLayout,
+    /// The factor on the last solve's impulses to start from.
+    warm_scale: f64,
+}
+
+/// The impulses of the last solve with the place to search them from.
+type WarmList<'a> = (&'a [WarmImpulse], &'a mut usize);
+
+/// A contact's impulses kept for the next solve: body, half-space, candidate, normal
+/// impulse, friction impulse.
+type WarmImpulse = (usize, usize, usize, f64, Vector);
+
+impl Solver {
+    /// Finds the contact points of `bodies` within `tolerance` × their radius of a
+    /// half-space, the bodies placed by `placements`.
+    pub(crate) fn find_contacts(
+        &mut self,
+        bodies: &[MovingBody],
+        shapes: &[ContactShape],
+        half_spaces: &[HalfSpace],
+        tolerance: f64,
+        placements: &Placements,
+    ) {
+        // Rows are overwritten in place (a row is large: moving it costs more than its setup).
+        let mut used = 0;
+        let n = bodies[0].dim();
+        self.warm.clear();
+        let mut listed = false;
+        for (i, (b, shape)) in bodies.iter().zip(shapes).enumerate() {
+            if matches!(shape, ContactShape::None) || half_spaces.is_empty() {
+                continue;
+            }
+            let placed = placements.get(i);
+            let reach = tolerance * placed.radius;
+            for (k, plane) in half_spaces.iter().enumerate() {
+                let nrm = plane.normal();
+                let base = plane.distance(b.position());
+                let mut put = |index: usize, p: &Vector, r: &[f64]| {
+                    // The target is set when the solve starts, from the loaded velocities.
+                    let target = 0.0;
+                    let stays = self.contacts.get(used).is_some_and(|row| {
+                        row.body == i && row.half_space == k && row.index == index
+                    });
+                    if !stays && !listed {
+                        // The points change from this slot on: the rows from here keep their
+                        // impulses in the list (in the order of their points) before they are
+                        // overwritten.
+                        self.warm.extend(self.contacts[used..].iter().map(|row| {
+                            (
+                                row.body,
+                                row.half_space,
+                                row.index,
+                                row.normal_impulse,
+                                row.friction_impulse.clone(),
+                            )
+                        }));
+                        listed = true;
+                    }
+                    if let Some(row) = self.contacts.get_mut(used) {
+                        // The same point in the same slot keeps its impulses of the last
+                        // solve, to start from.
+                        row.warm = row.body == i && row.half_space == k && row.index == index;
+                        if !row.warm {
+                            row.normal_impulse = 0.0;
+                            row.friction_impulse.as_mut_slice().fill(0.0);
+                        }
+                        row.body = i;
+                        row.half_space = k;
+                        row.index = index;
+                        // The same point of the same placement is there already.
+                        if !(row.warm && row.placed == placed.generation) {
+                            set_vector(&mut row.point, p.as_slice());
+                            set_vector(&mut row.r, r);
+                            row.placed = placed.generation;
+                        }
+                        row.target = target;
+                        row.position_impulse = 0.0;
+                        row.knn = 0.0;
+                        row.speed = 0.0;
+                    } else {
+                        self.contacts.push(ContactRow {
+                            body: i,
+                            half_space: k,
+                            index,
+                            point: p.clone(),
+                            r: Vector::from_storage(SmallVec::from_slice(r)),
+                            target,
+                            normal_impulse: 0.0,
+                            friction_impulse: Vector::zero(n),
+                            position_impulse: 0.0,
+                            knn: 0.0,
+                            speed: 0.0,
+                            warm: false,
+                            placed: placed.generation,
+                        });
+                    }
+                    used += 1;
+                };
+                if placed.vertex(shape, 1).is_some() {
+                    // Vertices: their heights are kept, and only those in reach are read.
+                    placed.candidate_heights(shape, (k, nrm), |index, h| {
+                        if base + h <= reach
+                            && let Some((p, r)) = placed.vertex(shape, index)
+                        {
+                            put(index, p, r);
+                        }
+                    });
+                } else {
+                    placed.candidates(shape, (k, nrm), |index, p, r| {
+                        if base + dot(nrm.as_slice(), r) <= reach {
+                            put(index, p, r);
+                        }
+                    });
+                }
+            }
+        }
+        self.contacts.truncate(used);
+    }
+
+    /// Loads the bodies the rows act on.
+    fn load(&mut self, bodies: &[MovingBody]) {
+        let n = bodies[0].dim();
+        self.states
+            .resize_with(bodies.len(), || BodyState::empty(n));
+        let mut work = std::mem::take(&mut self.work);
+        let touched = self.contacts.iter().map(|c| c.body).chain(
+            self.joints
+                .iter()
+                .flat_map(|j| std::iter::once(j.body).chain(j.other.iter().map(|(b, _)| *b))),
+        );
+        let mut placed = false;
+        for i in touched {
+            if !self.states[i].used && self.states[i].load(&bodies[i], &mut work) {
+                placed = true;
+                self.generations += 1;
+                self.states[i].generation = self.generations;
+            }
+        }
+        self.work = work;
+        if placed {
+            // A body turned: the joints' K is another.
+            self.joint_factor = false;
+        }
+    }
+
+    /// Hands the impulses of the solve to the bodies.
+    fn store(&mut self, bodies: &mut [MovingBody]) {
+        for (s, b) in self.states.iter_mut().zip(bodies) {
+            if s.used {
+                s.store(b);
+            }
+        }
+    }
+
+    /// The velocity solve: impulses such that every joint's ends move together and every
+    /// contact point leaves its half-space at its target speed or faster, with friction in
+    /// Coulomb's cone. Appends the contacts and their impulses to `record` (if any).
+    ///
+    /// A contact's target is restitution e for a point approaching faster than
+    /// `resting_speed[i]` (body i), none below (a resting contact). `kick` is the length of
+    /// the kick of the forques before the solve.
+    pub(crate) fn solve_velocities(
+        &mut self,
+        bodies: &mut [MovingBody],
+        half_spaces: &[HalfSpace],
+        resting_speed: &[f64],
+        kick: f64,
+        mut record: Option<&mut ContactLog>,
+    ) {
+        if self.contacts.is_empty() && self.joints.is_empty() {
+            return;
+        }
+        let warm_scale = if self.warm_kick > 0.0 && kick > 0.0 {
+            kick / self.warm_kick
+        } else {
+            1.0
+        };
+        self.warm_kick = kick;
+        self.load(bodies);
+        let n = bodies[0].dim();
+        if self.contacts.is_empty() {
+            // Equalities only: one dense solve is exact.
+            let mut u = std::mem::take(&mut self.residuals);
+            u.clear();
+            u.extend(self.joints.iter().map(|row| row.velocity(&self.states)));
+            self.solve_joints_dense_loaded(&u, 1.0);
+            self.residuals = u;
+            self.store(bodies);
+            return;
+        }
+        for row in &mut self.joints {
+            row.k.clear();
+            row.k.resize(n * n, 0.0);
+            add_inverse_mass(&self.states[row.body], &row.r, &mut row.k);
+            if let Some((j, q)) = &row.other {
+                add_inverse_mass(&self.states[*j], q, &mut row.k);
+            }
+        }
+        let layout = RowLayout::new(n);
+        let rows = self.contacts.len();
+        if self.row_data.len() < rows * layout.stride {
+            self.row_data.resize(rows * layout.stride, 0.0);
+        }
+        if self.row_keys.len() < rows {
+            self.row_keys.resize_with(rows, RowKey::default);
+        }
+        // Bodies that no joint couples are solved apart (their contacts are consecutive), each
+        // from setup to record while its rows' matrices are in cache; with joints,
+        // everything is one problem.
+        let coupled = !self.joints.is_empty();
+        let last = std::mem::take(&mut self.warm);
+        let mut cursor = 0;
+        let mut start = 0;
+        while start < rows {
+            let end = if coupled {
+                rows
+            } else {
+                let body = self.contacts[start].body;
+                start
+                    + self.contacts[start..]
+                        .iter()
+                        .take_while(|r| r.body == body)
+                        .count()
+            };
+            let group = Group {
+                range: start..end,
+                coupled,
+                half_spaces,
+                layout: &layout,
+                warm_scale,
+            };
+            let warm = (&last[..], &mut cursor);
+            match (self.runtime_kernels, n) {
+                (false, 3) => {
+                    self.solve_group::<3>(&group, resting_speed, warm, record.as_deref_mut())
+                }
+                (false, 4) => {
+                    self.solve_group::<4>(&group, resting_speed, warm, record.as_deref_mut())
+                }
+                _ => self.solve_group::<0>(&group, resting_speed, warm, record.as_deref_mut()),
+            }
+            start = end;
+        }
+        // Kept for its room: the next `find_contacts` clears it.
+        self.warm = last;
+        self.store(bodies);
+    }
+
+    /// The velocity solve of one group of contact rows (`N` as in [`dim`]): their matrices,
+    /// warm start from their own impulses or from `last` (searched from `cursor` on), sweeps
+    /// and the record if there is one.
+    fn solve_group<const N: usize>(
+        &mut self,
+        group: &Group<'_>,
+        resting_speed: &[f64],
+        (last, cursor): WarmList<'_>,
+        record: Option<&mut ContactLog>,
+    ) {
+        // The layout anew, so that in 3D and 4D its offsets are constants of the kernels.
+        let layout = &RowLayout::new(dim::<N>(group.layout.n));
+        let (range, half_spaces) = (group.range.clone(), group.half_spaces);
+        self.prepare_rows::<N>(range.clone(), half_spaces, resting_speed, layout);
+        self.warm_start::<N>(
+            range.clone(),
+            (last, cursor),
+            half_spaces,
+            layout,
+            (group.coupled, group.warm_scale),
+        );
+        self.sweep_rows::<N>(range.clone(), group.coupled, half_spaces, layout);
+        if let Some(record) = record {
+            self.record_rows::<N>(range, half_spaces, layout, record);
+        }
+    }
+
+    /// Computes (or keeps) the matrices of the contact rows `range` at the loaded states,
+    /// and sets their nᵀ K n, target and speed.
+    fn prepare_rows<const N: usize>(
+        &mut self,
+        range: std::ops::Range<usize>,
+        half_spaces: &[HalfSpace],
+        resting_speed: &[f64],
+        layout: &RowLayout,
+    ) {
+        let n = dim::<N>(layout.n);
+        let m = n * (n - 1) / 2;
+        let (mut u_fixed, mut u_any) = ([0.0; 4], Small::new());
+        let u = scratch::<N>(&mut u_fixed, &mut u_any, n);
+        // The velocities of the last row's body (the rows of a body are consecutive).
+        let (mut body, mut v, mut w): (usize, &[f64], &[f64]) = (usize::MAX, &[], &[]);
+        for k in range {
+            let row = &mut self.contacts[k];
+            let plane = &half_spaces[row.half_space];
+            let nrm = plane.normal();
+            let st = &self.states[row.body];
+            if row.body != body {
+                (body, v, w) = (row.body, &st.v.as_slice()[..n], &st.w.as_slice()[..m]);
+            }
+            let data = &mut self.row_data[k * layout.stride..(k + 1) * layout.stride];
+            let key = &mut self.row_keys[k];
+            let same = key.body == row.body
+                && key.half_space == row.half_space
+                && key.index == row.index
+                && key.placed == row.placed
+                && key.generation == st.generation;
+            if !same {
+                row_matrices(st, &row.r, nrm, layout, data);
+                *key = RowKey {
+                    body: row.body,
+                    half_space: row.half_space,
+                    index: row.index,
+                    placed: row.placed,
+                    generation: st.generation,
+                };
+            }
+            row.knn = data[layout.knn];
+            let r = &row.r.as_slice()[..n];
+            point_velocity::<N>(data, layout, r, v, w, u);
+            let un = dot(&nrm.as_slice()[..n], u);
+            row.target = if un < -resting_speed[row.body] {
+                -plane.restitution() * un
+            } else {
+                0.0
+            };
+            row.speed = u
+                .iter()
+                .fold(0.0, |m: f64, c| m.max(c.abs()))
+                .max(row.target.abs());
+        }
+    }
+
+    /// Starts the contact rows `range` from the last solve's impulses times `scale` where
+    /// the same points touch again: kept in the row when it is in the same slot, else looked
+    /// up in `last` (sorted by point, searched from `cursor` on).
+    fn warm_start<const N: usize>(
+        &mut self,
+        range: std::ops::Range<usize>,
+        (last, cursor): (&[WarmImpulse], &mut usize),
+        half_spaces: &[HalfSpace],
+        layout: &RowLayout,
+        (coupled, scale): (bool, f64),
+    ) {
+        let n = dim::<N>(layout.n);
+        let (mut jt_fixed, mut jt_any) = ([0.0; 4], Small::new());
+        let jt = scratch::<N>(&mut jt_fixed, &mut jt_any, n);
+        let (mut total_fixed, mut total_any) = ([0.0; 4], Small::new());
+        let total = scratch::<N>(&mut total_fixed, &mut total_any, n);
+        // One body in 3D or 4D: the rows' starting impulses are set first, and then applied
+        // in the same order to the body's velocities and impulses in locals (the rows that
+        // start, one bit each).
+        let apart = !coupled && N != 0 && range.len() <= 64;
+        let mut started = 0u64;
+        for k in range.clone() {
+            let row = &mut self.contacts[k];
+            let lambda = if row.warm {
+                jt.copy_from_slice(&row.friction_impulse.as_slice()[..n]);
+                row.normal_impulse
+            } else {
+                let key = (row.body, row.half_space, row.index);
+                let w = &mut *cursor;
+                while *w < last.len() && (last[*w].0, last[*w].1, last[*w].2) < key {
+                    *w += 1;
+                }
+                match last.get(*w).filter(|e| (e.0, e.1, e.2) == key) {
+                    Some(e) => {
+                        jt.copy_from_slice(&e.4.as_slice()[..n]);
+                        e.3
+                    }
+                    None => continue,
+                }
+            };
+            let plane = &half_spaces[row.half_space];
+            let nv = &plane.normal().as_slice()[..n];
+            // Scaled to this solve's kick, into the friction disc of the normal impulse, and
+            // into the plane.
+            let lambda = lambda * scale;
+            let limit = plane.friction() * lambda;
+            let norm = dot(jt, jt).sqrt() * scale;
+            let fit = if norm > limit { limit / norm } else { 1.0 };
+            for x in jt.iter_mut() {
+                *x *= scale * fit;
+            }
+            let along = dot(nv, jt);
+            for ((t, x), nx) in total.iter_mut().zip(jt.iter_mut()).zip(nv) {
+                *x -= nx * along;
+                *t = nx * lambda + *x;
+            }
+            row.normal_impulse = lambda;
+            row.friction_impulse.as_mut_slice().copy_from_slice(jt);
+            if apart {
+                started |= 1 << (k - range.start);
+                continue;
+            }
+            let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
+            self.states[row.body].view::<N>().apply_with::<N>(
+                data,
+                layout,
+                &row.r.as_slice()[..n],
+                total,
+            );
+        }
+        if started == 0 {
+            return;
+        }
+        let mut st = self.states[self.contacts[range.start].body].view::<N>();
+        let mut local = LocalBody::new(&st);
+        let mut view = local.view();
+        for k in range.clone() {
+            if started & (1 << (k - range.start)) == 0 {
+                continue;
+            }
+            let row = &self.contacts[k];
+            let nv = &half_spaces[row.half_space].normal().as_slice()[..n];
+            let (lambda, jt) = (row.normal_impulse, &row.friction_impulse.as_slice()[..n]);
+            for ((t, x), nx) in total.iter_mut().zip(jt).zip(nv) {
+                *t = nx * lambda + *x;
+            }
+            let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
+            view.apply_with::<N>(data, layout, &row.r.as_slice()[..n], total);
+        }
+        local.store(&mut st);
+    }
+
+    /// Gauss–Seidel sweeps over the contact rows `range` (and every joint when `coupled`)
+    /// until no impulse changes one of their velocities by more than 1e-12 of their speeds.
+    fn sweep_rows<const N: usize>(
+        &mut self,
+        range: std::ops::Range<usize>,
+        coupled: bool,
+        half_spaces: &[HalfSpace],
+        layout: &RowLayout,
+    ) {
+        let n = layout.n;
+        let (start, end) = (range.start, range.end);
+        let speed = self.contacts[range]
+            .iter()
+            .map(|r| r.speed)
+            .fold(0.0, f64::max);
+        let tolerance = 1e-12 * speed.max(1e-300);
+        self.report.solves += 1;
+        let mut sweeps = 0;
+        let mut change = 0.0f64;
+        while sweeps < MAX_SWEEPS {
+            sweeps += 1;
+            change = 0.0;
+            if coupled {
+                for row in &mut self.joints {
+                    let u = row.velocity(&self.states);
+                    self.work.clear();
+                    self.work.extend_from_slice(&row.k);
+                    self.rhs.clear();
+                    self.rhs.extend(u.as_slice().iter().map(|x| -x));
+                    if !cholesky_solve(&mut self.work, n, &mut self.rhs) {
+                        self.report.singular_joint_solves += 1;
+                        continue;
+                    }
+                    let dj = Vector::from_storage(self.rhs.iter().copied().collect());
+                    row.apply(&mut self.states, &dj);
+                    row.impulse += &dj;
+                    change = change.max(u.max_abs());
+                }
+            }
+            if coupled {
+                for (k, row) in self.contacts[start..end].iter_mut().enumerate() {
+                    let at = (start + k) * layout.stride;
+                    let data = &self.row_data[at..at + layout.stride];
+                    let mut st = self.states[row.body].view::<N>();
+                    let plane = &half_spaces[row.half_space];
+                    change = change.max(sweep_contact::<N>(row, data, layout, plane, &mut st));
+                }
+            } else if N != 0 {
+                // One body in 3D or 4D: its velocities and impulses in locals.
+                let mut st = self.states[self.contacts[start].body].view::<N>();
+                let mut local = LocalBody::new(&st);
+                let mut view = local.view();
+                for (k, row) in self.contacts[start..end].iter_mut().enumerate() {
+                    let at = (start + k) * layout.stride;
+                    let data = &self.row_data[at..at + layout.stride];
+                    let plane = &half_spaces[row.half_space];
+                    let c = sweep_contact::<N>(row, data, layout, plane, &mut view);
+                    change = change.max(c);
+                }
+                local.store(&mut st);
+            } else {
+                // One body: its view serves every row.
+                let mut st = self.states[self.contacts[start].body].view::<N>();
+                for (k, row) in self.contacts[start..end].iter_mut().enumerate() {
+                    let at = (start + k) * layout.stride;
+                    let data = &self.row_data[at..at + layout.stride];
+                    let plane = &half_spaces[row.half_space];
+                    change = change.max(sweep_contact::<N>(row, data, layout, plane, &mut st));
+                }
+            }
+            if change <= tolerance {
+                break;
+            }
+        }
+        self.report.max_sweeps = self.report.max_sweeps.max(sweeps);
+        if change > tolerance {
+            self.report.unconverged += 1;
+            let residual = change / speed.max(1e-300);
+            self.report.worst_residual = self.report.worst_residual.max(residual);
+        }
+    }
+
+    /// Records the contact rows `range` with their impulses and the velocities the solve
+    /// leaves at their points.
+    fn record_rows<const N: usize>(
+        &self,
+        range: std::ops::Range<usize>,
+        half_spaces: &[HalfSpace],
+        layout: &RowLayout,
+        record: &mut ContactLog,
+    ) {
+        let n = dim::<N>(layout.n);
+        let m = n * (n - 1) / 2;
+        let (mut u_fixed, mut u_any) = ([0.0; 4], Small::new());
+        let u = scratch::<N>(&mut u_fixed, &mut u_any, n);
+        // The velocities of the last row's body (the rows of a body are consecutive).
+        let (mut body, mut v, mut w): (usize, &[f64], &[f64]) = (usize::MAX, &[], &[]);
+        for k in range {
+            let row = &self.contacts[k];
+            let nrm = half_spaces[row.half_space].normal();
+            if row.body != body {
+                let st = &self.states[row.body];
+                (body, v, w) = (row.body, &st.v.as_slice()[..n], &st.w.as_slice()[..m]);
+            }
+            let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
+            point_velocity::<N>(data, layout, &row.r.as_slice()[..n], v, w, u);
+            record.record(
+                (row.body, row.half_space),
+                &row.point.as_slice()[..n],
+                row.normal_impulse,
+                &row.friction_impulse.as_slice()[..n],
+                u,
+                &nrm.as_slice()[..n],
+            );
+        }
+    }
+
+    /// Hands the impulses so far to the bodies, keeping them loaded.
+    fn store_loaded(&mut self, bodies: &mut [MovingBody]) {
+        for (s, b) in self.states.iter_mut().zip(bodies.iter_mut()) {
+            if s.used {
+                s.store(b);
+                // Stay loaded for the next call.
+                s.used = true;
+                s.dp.as_mut_slice().fill(0.0);
+                s.dl.as_mut_slice().fill(0.0);
+            }
+        }
+    }
+
+    /// Forgets the loaded bodies and the joints' factor (the placement is about to change).
+    pub(crate) fn release(&mut self) {
+        self.joint_factor = false;
+        for s in &mut self.states {
+            s.used = false;
+        }
+    }
+}
