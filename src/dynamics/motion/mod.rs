@@ -64,10 +64,12 @@
 mod body;
 mod constraint;
 mod contact;
+pub mod detect;
 mod forque;
 mod integrate;
 mod joint;
 mod placement;
+pub mod shape;
 mod system;
 
 pub use body::MovingBody;
