@@ -63,11 +63,13 @@
 
 mod body;
 mod contact;
+pub mod detect;
 mod error;
 mod forque;
 mod integrate;
 mod joint;
 mod placement;
+pub mod shape;
 mod solve;
 mod system;
 

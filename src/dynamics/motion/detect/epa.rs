@@ -1,0 +1,675 @@
+//! Penetration depth and contact normal of overlapping convex shapes in any dimension: the
+//! expanding polytope algorithm (EPA, van den Bergen, "Collision Detection in Interactive
+//! 3D Environments") with facets that are (N − 1)-simplices.
+//!
+//! The depth of two overlapping shapes is the distance from the origin to the boundary of
+//! K = B − A. EPA grows a polytope inside K from GJK's final simplex: it takes the facet
+//! nearest the origin, asks K for its support point along that facet's normal, and either
+//! stops (the support point lies on the facet: the facet is on K's boundary) or replaces
+//! every facet that sees the new point by the cone from it over their horizon.
+//!
+//! The known failures of EPA are met as follows. GJK may end with fewer than N + 1 points
+//! (the origin on a face of its simplex, which box pairs produce): the simplex is completed
+//! with support points along directions orthogonal to it, and a direction in which K has
+//! no extent (a capsule's segment against a ball's point) is itself the answer, depth 0
+//! for the cores. Facet normals are oriented away from a point strictly inside the first
+//! simplex, never by the origin, so the origin on a facet (touching shapes) gives depth 0
+//! rather than a flipped normal. A new facet that would be degenerate (a support point
+//! that repeats, parallel closest faces) ends the expansion with the current nearest
+//! facet instead of looping, and the iterations are bounded. Every division is guarded,
+//! so no NaN comes out.
+//!
+//! Margins: EPA runs on the cores and the radii are added to the depth, which is exact
+//! for rounded shapes (K's boundary moves out by the sum of the radii). Ball–ball and
+//! ball–cuboid pairs have closed forms.
+
+use super::gjk::{
+    GjkResult, PlacedShape, Points, Simplex, centre_direction, check_pair, gjk, nearest_point,
+    support_difference,
+};
+use crate::algebra::Vector;
+use crate::dynamics::motion::shape::{ConvexCore, Coords, ShapeError};
+use smallvec::SmallVec;
+
+/// EPA iterations at most (each adds one support point).
+pub(crate) const MAX_EPA_ITERATIONS: usize = 256;
+/// EPA stops when the support point along the nearest facet's normal lies within this
+/// fraction of the problem's size beyond the facet.
+const CONVERGED: f64 = 1e-12;
+/// A facet sees a point that lies beyond its plane by more than this fraction of the size.
+const VISIBLE: f64 = 1e-13;
+/// A facet whose normal is this ill-determined (relative to its size) is degenerate.
+const FLAT_FACET: f64 = 1e-12;
+
+/// The contact of two placed shapes, from [`penetration`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Penetration {
+    /// The signed depth: > 0 how far the shapes overlap (moving B by `depth` along
+    /// `normal` separates them), ≤ 0 minus their distance.
+    pub depth: f64,
+    /// The unit contact normal, from A to B.
+    pub normal: Vector,
+    /// The point of A deepest inside B (or nearest B when separated), space frame.
+    pub witness_a: Vector,
+    /// The point of B deepest inside A (or nearest A), space frame:
+    /// witness_a − witness_b = depth · normal.
+    pub witness_b: Vector,
+    /// GJK and EPA iterations taken together (0 for the closed forms).
+    pub iterations: usize,
+}
+
+/// Scratch memory of EPA, kept between queries so that they do not allocate once it has
+/// grown to the polytopes met.
+#[derive(Clone, Debug, Default)]
+pub struct EpaWorkspace {
+    /// Vertices of the polytope: w, and the support points on A and B (N numbers each).
+    w: Vec<f64>,
+    a: Vec<f64>,
+    b: Vec<f64>,
+    /// Each facet's N vertex indices (ascending), unit outward normal and offset.
+    facets: Vec<u32>,
+    normals: Vec<f64>,
+    offsets: Vec<f64>,
+    /// Facets seen from the new point, and the horizon's ridges (N − 1 indices each) with
+    /// their counts.
+    visible: Vec<usize>,
+    ridges: Vec<u32>,
+    ridge_counts: Vec<u32>,
+    new_facets: Vec<u32>,
+    new_normals: Vec<f64>,
+    new_offsets: Vec<f64>,
+}
+
+impl EpaWorkspace {
+    /// Returns an empty workspace.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    fn clear(&mut self) {
+        self.w.clear();
+        self.a.clear();
+        self.b.clear();
+        self.facets.clear();
+        self.normals.clear();
+        self.offsets.clear();
+    }
+
+    fn push_vertex(&mut self, w: &[f64], a: &[f64], b: &[f64]) -> u32 {
+        let index = self.w.len() / w.len();
+        self.w.extend_from_slice(w);
+        self.a.extend_from_slice(a);
+        self.b.extend_from_slice(b);
+        index as u32
+    }
+}
+
+/// The unit normal of the facet through the points `vertices` (N indices), oriented away
+/// from `inside`, and its offset; None if the facet is degenerate.
+fn facet_plane(
+    w: &[f64],
+    n: usize,
+    vertices: &[u32],
+    inside: &[f64],
+    scale: f64,
+    normal: &mut [f64],
+) -> Option<f64> {
+    let point = |k: u32| &w[k as usize * n..(k as usize + 1) * n];
+    let y0 = point(vertices[0]);
+    let mut basis: SmallVec<[f64; 64]> = SmallVec::from_elem(0.0, (n - 1) * n);
+    let mut e = Coords::from_elem(0.0, n);
+    for (j, &k) in vertices[1..].iter().enumerate() {
+        let mut length = 0.0;
+        for ((x, p), q) in e.iter_mut().zip(point(k)).zip(y0) {
+            *x = p - q;
+            length += *x * *x;
+        }
+        let length = length.sqrt();
+        for _ in 0..2 {
+            for l in 0..j {
+                let ql = &basis[l * n..(l + 1) * n];
+                let c: f64 = ql.iter().zip(&e).map(|(p, q)| p * q).sum();
+                e.iter_mut().zip(ql).for_each(|(x, y)| *x -= c * y);
+            }
+        }
+        let r = e.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if !(r > FLAT_FACET * length && r > FLAT_FACET * scale) {
+            return None;
+        }
+        basis[j * n..(j + 1) * n]
+            .iter_mut()
+            .zip(&e)
+            .for_each(|(b, x)| *b = x / r);
+    }
+    for ((x, p), q) in normal.iter_mut().zip(y0).zip(inside) {
+        *x = p - q;
+    }
+    for _ in 0..2 {
+        for l in 0..n - 1 {
+            let ql = &basis[l * n..(l + 1) * n];
+            let c: f64 = ql.iter().zip(normal.iter()).map(|(p, q)| p * q).sum();
+            normal.iter_mut().zip(ql).for_each(|(x, y)| *x -= c * y);
+        }
+    }
+    let r = normal.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if !(r > FLAT_FACET * scale) {
+        return None;
+    }
+    normal.iter_mut().for_each(|x| *x /= r);
+    // The offset from the mean of the vertices, to spread the rounding evenly.
+    let mut offset = 0.0;
+    for &k in vertices {
+        offset += normal.iter().zip(point(k)).map(|(p, q)| p * q).sum::<f64>();
+    }
+    Some(offset / n as f64)
+}
+
+/// What EPA found on the cores: the depth of the origin inside K, the outward normal of K
+/// there (the contact normal is its opposite), and the core witnesses.
+struct CoreContact {
+    depth: f64,
+    normal_k: Coords,
+    witness_a: Coords,
+    witness_b: Coords,
+    iterations: usize,
+}
+
+/// Completes GJK's simplex to N + 1 affinely independent points of K in the workspace;
+/// returns Err with the flat direction if K has no extent orthogonal to the simplex.
+fn initial_simplex(
+    ws: &mut EpaWorkspace,
+    a: &PlacedShape,
+    b: &PlacedShape,
+    simplex: &Simplex,
+    scale: f64,
+) -> Result<(), Coords> {
+    let n = simplex.n;
+    ws.clear();
+    // An orthonormal basis of the differences from the first point, built as points join.
+    let mut basis: SmallVec<[f64; 64]> = SmallVec::new();
+    let mut rank = 0;
+    let mut e = Coords::from_elem(0.0, n);
+    let mut try_add = |ws: &mut EpaWorkspace,
+                       basis: &mut SmallVec<[f64; 64]>,
+                       rank: &mut usize,
+                       w: &[f64],
+                       sa: &[f64],
+                       sb: &[f64]|
+     -> bool {
+        if ws.w.is_empty() {
+            ws.push_vertex(w, sa, sb);
+            return true;
+        }
+        let y0 = &ws.w[..n];
+        for ((x, p), q) in e.iter_mut().zip(w).zip(y0) {
+            *x = p - q;
+        }
+        for _ in 0..2 {
+            for l in 0..*rank {
+                let ql = &basis[l * n..(l + 1) * n];
+                let c: f64 = ql.iter().zip(&e).map(|(p, q)| p * q).sum();
+                e.iter_mut().zip(ql).for_each(|(x, y)| *x -= c * y);
+            }
+        }
+        let r = e.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if r > 1e-10 * scale {
+            basis.extend(e.iter().map(|x| x / r));
+            *rank += 1;
+            ws.push_vertex(w, sa, sb);
+            true
+        } else {
+            false
+        }
+    };
+    for k in 0..simplex.count {
+        let range = k * n..(k + 1) * n;
+        try_add(
+            ws,
+            &mut basis,
+            &mut rank,
+            &simplex.w[range.clone()],
+            &simplex.a[range.clone()],
+            &simplex.b[range],
+        );
+    }
+    let (mut w, mut sa, mut sb) = (
+        Coords::from_elem(0.0, n),
+        Coords::from_elem(0.0, n),
+        Coords::from_elem(0.0, n),
+    );
+    let mut u = Coords::from_elem(0.0, n);
+    while rank < n {
+        // The coordinate axis farthest from the span, made orthogonal to it.
+        let mut best = (0.0, 0);
+        for axis in 0..n {
+            let mut s = 1.0;
+            for l in 0..rank {
+                s -= basis[l * n + axis] * basis[l * n + axis];
+            }
+            if s > best.0 {
+                best = (s, axis);
+            }
+        }
+        u.iter_mut().for_each(|x| *x = 0.0);
+        u[best.1] = 1.0;
+        for _ in 0..2 {
+            for l in 0..rank {
+                let ql = &basis[l * n..(l + 1) * n];
+                let c: f64 = ql.iter().zip(&u).map(|(p, q)| p * q).sum();
+                u.iter_mut().zip(ql).for_each(|(x, y)| *x -= c * y);
+            }
+        }
+        let r = u.iter().map(|x| x * x).sum::<f64>().sqrt();
+        u.iter_mut().for_each(|x| *x /= r);
+        let mut added = false;
+        // Both ways along u, the farther first.
+        support_difference(a, b, &u, &mut w, &mut sa, &mut sb);
+        let reach_up: f64 = u.iter().zip(&w).zip(&ws.w[..n]).map(|((p, q), y)| p * (q - y)).sum();
+        let (mut w2, mut sa2, mut sb2) = (w.clone(), sa.clone(), sb.clone());
+        u.iter_mut().for_each(|x| *x = -*x);
+        support_difference(a, b, &u, &mut w2, &mut sa2, &mut sb2);
+        let reach_down: f64 = u
+            .iter()
+            .zip(&w2)
+            .zip(&ws.w[..n])
+            .map(|((p, q), y)| p * (q - y))
+            .sum();
+        let order = if reach_up >= reach_down {
+            [(&w, &sa, &sb), (&w2, &sa2, &sb2)]
+        } else {
+            [(&w2, &sa2, &sb2), (&w, &sa, &sb)]
+        };
+        for (p, q, s) in order {
+            if try_add(ws, &mut basis, &mut rank, p, q, s) {
+                added = true;
+                break;
+            }
+        }
+        if !added {
+            return Err(u);
+        }
+    }
+    Ok(())
+}
+
+/// EPA on the cores, from GJK's result.
+fn epa_cores(
+    ws: &mut EpaWorkspace,
+    a: &PlacedShape,
+    b: &PlacedShape,
+    result: &GjkResult,
+) -> CoreContact {
+    let n = result.simplex.n;
+    let scale = result.scale.max(f64::MIN_POSITIVE);
+    let simplex = &result.simplex;
+    if let Err(flat) = initial_simplex(ws, a, b, simplex, scale) {
+        // K is flat across `flat`: the cores separate by any move along it.
+        let mut witness_a = Coords::from_elem(0.0, n);
+        let mut witness_b = Coords::from_elem(0.0, n);
+        simplex.witnesses(&mut witness_a, &mut witness_b);
+        return CoreContact {
+            depth: 0.0,
+            normal_k: flat,
+            witness_a,
+            witness_b,
+            iterations: 0,
+        };
+    }
+    // A point strictly inside the first simplex (and so inside every later polytope).
+    let mut inside = Coords::from_elem(0.0, n);
+    for k in 0..=n {
+        for (x, y) in inside.iter_mut().zip(&ws.w[k * n..(k + 1) * n]) {
+            *x += y / (n + 1) as f64;
+        }
+    }
+    let mut normal = Coords::from_elem(0.0, n);
+    let mut vertices: SmallVec<[u32; 9]> = SmallVec::new();
+    for skip in 0..=n as u32 {
+        vertices.clear();
+        vertices.extend((0..=n as u32).filter(|k| *k != skip));
+        let offset = facet_plane(&ws.w, n, &vertices, &inside, scale, &mut normal)
+            .expect("the first simplex is affinely independent");
+        ws.facets.extend_from_slice(&vertices);
+        ws.normals.extend_from_slice(&normal);
+        ws.offsets.push(offset);
+    }
+    let (mut w, mut sa, mut sb) = (
+        Coords::from_elem(0.0, n),
+        Coords::from_elem(0.0, n),
+        Coords::from_elem(0.0, n),
+    );
+    let mut iterations = 0;
+    let nearest_facet = |ws: &EpaWorkspace| {
+        let mut best = (f64::INFINITY, 0);
+        for (f, &o) in ws.offsets.iter().enumerate() {
+            if o < best.0 {
+                best = (o, f);
+            }
+        }
+        best.1
+    };
+    let mut f = nearest_facet(ws);
+    while iterations < MAX_EPA_ITERATIONS {
+        let nf = Coords::from_slice(&ws.normals[f * n..(f + 1) * n]);
+        let offset = ws.offsets[f];
+        support_difference(a, b, &nf, &mut w, &mut sa, &mut sb);
+        let reach: f64 = nf.iter().zip(&w).map(|(p, q)| p * q).sum();
+        if reach - offset <= CONVERGED * scale {
+            break;
+        }
+        iterations += 1;
+        // The facets that see w, and their horizon.
+        ws.visible.clear();
+        for g in 0..ws.offsets.len() {
+            let ng = &ws.normals[g * n..(g + 1) * n];
+            let height = ng.iter().zip(&w).map(|(p, q)| p * q).sum::<f64>() - ws.offsets[g];
+            if height > VISIBLE * scale {
+                ws.visible.push(g);
+            }
+        }
+        if !ws.visible.contains(&f) {
+            break;
+        }
+        ws.ridges.clear();
+        ws.ridge_counts.clear();
+        for vi in 0..ws.visible.len() {
+            let g = ws.visible[vi];
+            for skip in 0..n {
+                let start = ws.ridges.len();
+                for k in 0..n {
+                    if k != skip {
+                        let x = ws.facets[g * n + k];
+                        ws.ridges.push(x);
+                    }
+                }
+                let ridge_count = start / (n - 1);
+                let found = (0..ridge_count).find(|&r| {
+                    ws.ridges[r * (n - 1)..(r + 1) * (n - 1)] == ws.ridges[start..start + n - 1]
+                });
+                match found {
+                    Some(r) => {
+                        ws.ridges.truncate(start);
+                        ws.ridge_counts[r] += 1;
+                    }
+                    None => ws.ridge_counts.push(1),
+                }
+            }
+        }
+        // The cone from w over the horizon; a degenerate facet ends the expansion.
+        let new_index = (ws.w.len() / n) as u32;
+        ws.new_facets.clear();
+        ws.new_normals.clear();
+        ws.new_offsets.clear();
+        ws.w.extend_from_slice(&w);
+        let mut degenerate = false;
+        for r in 0..ws.ridge_counts.len() {
+            if ws.ridge_counts[r] != 1 {
+                continue;
+            }
+            vertices.clear();
+            vertices.extend_from_slice(&ws.ridges[r * (n - 1)..(r + 1) * (n - 1)]);
+            vertices.push(new_index);
+            match facet_plane(&ws.w, n, &vertices, &inside, scale, &mut normal) {
+                Some(o) => {
+                    ws.new_facets.extend_from_slice(&vertices);
+                    ws.new_normals.extend_from_slice(&normal);
+                    ws.new_offsets.push(o);
+                }
+                None => {
+                    degenerate = true;
+                    break;
+                }
+            }
+        }
+        if degenerate || ws.new_offsets.is_empty() {
+            ws.w.truncate(new_index as usize * n);
+            break;
+        }
+        ws.a.extend_from_slice(&sa);
+        ws.b.extend_from_slice(&sb);
+        // Remove the visible facets (in decreasing order, by swapping in the last) and
+        // add the new ones.
+        ws.visible.sort_unstable();
+        for vi in (0..ws.visible.len()).rev() {
+            let g = ws.visible[vi];
+            let last = ws.offsets.len() - 1;
+            if g != last {
+                for k in 0..n {
+                    ws.facets[g * n + k] = ws.facets[last * n + k];
+                    ws.normals[g * n + k] = ws.normals[last * n + k];
+                }
+                ws.offsets[g] = ws.offsets[last];
+            }
+            ws.facets.truncate(last * n);
+            ws.normals.truncate(last * n);
+            ws.offsets.truncate(last);
+        }
+        ws.facets.extend_from_slice(&ws.new_facets);
+        ws.normals.extend_from_slice(&ws.new_normals);
+        ws.offsets.extend_from_slice(&ws.new_offsets);
+        f = nearest_facet(ws);
+    }
+    // The witnesses: the point of the nearest facet nearest the origin, as weights of its
+    // vertices.
+    let mut points: Points = Points::from_elem(0.0, n * n);
+    for k in 0..n {
+        let v = ws.facets[f * n + k] as usize;
+        points[k * n..(k + 1) * n].copy_from_slice(&ws.w[v * n..(v + 1) * n]);
+    }
+    let nearest = nearest_point(&points, n, n);
+    let mut witness_a = Coords::from_elem(0.0, n);
+    let mut witness_b = Coords::from_elem(0.0, n);
+    for k in 0..n {
+        let v = ws.facets[f * n + k] as usize;
+        let l = nearest.lambda[k];
+        for j in 0..n {
+            witness_a[j] += l * ws.a[v * n + j];
+            witness_b[j] += l * ws.b[v * n + j];
+        }
+    }
+    CoreContact {
+        depth: ws.offsets[f].max(0.0),
+        normal_k: Coords::from_slice(&ws.normals[f * n..(f + 1) * n]),
+        witness_a,
+        witness_b,
+        iterations,
+    }
+}
+
+fn vector(x: &[f64]) -> Vector {
+    Vector::from_storage(Coords::from_slice(x))
+}
+
+/// Ball (core a point) against ball, or against a cuboid; None for other pairs.
+fn closed_form(a: &PlacedShape, b: &PlacedShape) -> Option<Penetration> {
+    let n = a.shape().dim();
+    let (ra, rb) = (a.shape().margin(), b.shape().margin());
+    match (a.shape().core(), b.shape().core()) {
+        (ConvexCore::Point, ConvexCore::Point) => {
+            let normal = centre_direction(a, b);
+            let gap: f64 = normal
+                .as_slice()
+                .iter()
+                .zip(b.position().iter().zip(a.position()))
+                .map(|(m, (p, q))| m * (p - q))
+                .sum();
+            let depth = ra + rb - gap;
+            let mut witness_a = vector(a.position());
+            let mut witness_b = vector(b.position());
+            for ((p, q), m) in witness_a
+                .as_mut_slice()
+                .iter_mut()
+                .zip(witness_b.as_mut_slice())
+                .zip(normal.as_slice())
+            {
+                *p += ra * m;
+                *q -= rb * m;
+            }
+            Some(Penetration {
+                depth,
+                normal,
+                witness_a,
+                witness_b,
+                iterations: 0,
+            })
+        }
+        (ConvexCore::Cuboid(h), ConvexCore::Point) => Some(box_ball(a, h, b, n)),
+        (ConvexCore::Point, ConvexCore::Cuboid(h)) => {
+            let mut p = box_ball(b, h, a, n);
+            p.normal.as_mut_slice().iter_mut().for_each(|x| *x = -*x);
+            std::mem::swap(&mut p.witness_a, &mut p.witness_b);
+            Some(p)
+        }
+        _ => None,
+    }
+}
+
+/// A cuboid (A, half-lengths `h`, any margin) against a ball (B).
+fn box_ball(a: &PlacedShape, h: &[f64], b: &PlacedShape, n: usize) -> Penetration {
+    let (ra, rb) = (a.shape().margin(), b.shape().margin());
+    let q = a.rotation();
+    // The ball's centre in the box's axes.
+    let mut c = Coords::from_elem(0.0, n);
+    for i in 0..n {
+        let d = b.position()[i] - a.position()[i];
+        for (j, x) in c.iter_mut().enumerate() {
+            *x += q[i * n + j] * d;
+        }
+    }
+    let mut nearest = Coords::from_elem(0.0, n);
+    for ((p, x), hi) in nearest.iter_mut().zip(&c).zip(h) {
+        *p = x.clamp(-hi, *hi);
+    }
+    let outside: f64 = c
+        .iter()
+        .zip(&nearest)
+        .map(|(x, p)| (x - p) * (x - p))
+        .sum::<f64>()
+        .sqrt();
+    let mut normal_own = Coords::from_elem(0.0, n);
+    let core_depth;
+    if outside > 0.0 {
+        for ((m, x), p) in normal_own.iter_mut().zip(&c).zip(&nearest) {
+            *m = (x - p) / outside;
+        }
+        core_depth = -outside;
+    } else {
+        // Inside: out through the nearest face.
+        let (mut axis, mut room) = (0, f64::INFINITY);
+        for (i, (x, hi)) in c.iter().zip(h).enumerate() {
+            if hi - x.abs() < room {
+                room = hi - x.abs();
+                axis = i;
+            }
+        }
+        let side = if c[axis] < 0.0 { -1.0 } else { 1.0 };
+        normal_own[axis] = side;
+        nearest[axis] = side * h[axis];
+        core_depth = room;
+    }
+    let mut normal = Vector::zero(n);
+    let mut witness_a = vector(a.position());
+    for i in 0..n {
+        let row = &q[i * n..(i + 1) * n];
+        normal.as_mut_slice()[i] = row.iter().zip(&normal_own).map(|(p, m)| p * m).sum();
+        witness_a.as_mut_slice()[i] += row.iter().zip(&nearest).map(|(p, m)| p * m).sum::<f64>();
+    }
+    let mut witness_b = vector(b.position());
+    for ((p, q), m) in witness_a
+        .as_mut_slice()
+        .iter_mut()
+        .zip(witness_b.as_mut_slice())
+        .zip(normal.as_slice())
+    {
+        *p += ra * m;
+        *q -= rb * m;
+    }
+    Penetration {
+        depth: core_depth + ra + rb,
+        normal,
+        witness_a,
+        witness_b,
+        iterations: 0,
+    }
+}
+
+/// Returns the signed penetration depth of two placed shapes, the contact normal from A
+/// to B and the witness points, with a fresh workspace (see [`penetration_with`] to
+/// reuse one).
+///
+/// # Errors
+/// [`ShapeError::DimensionMismatch`] if the shapes differ in dimension.
+pub fn penetration(a: &PlacedShape, b: &PlacedShape) -> Result<Penetration, ShapeError> {
+    penetration_with(&mut EpaWorkspace::new(), a, b)
+}
+
+/// Returns the signed penetration depth of two placed shapes (> 0 overlap, ≤ 0 minus the
+/// distance), the contact normal from A to B and the witness points: closed forms for
+/// ball–ball and ball–cuboid, GJK for separated cores, EPA on the cores for overlapping
+/// ones, the margins added. Bounded (at most 128 GJK and 256 EPA iterations), never NaN.
+///
+/// ```
+/// use rotorflow::dynamics::motion::detect::{EpaWorkspace, PlacedShape, penetration_with};
+/// use rotorflow::dynamics::motion::shape::ConvexShape;
+/// let tesseract = ConvexShape::cuboid(&[1.0; 4])?;
+/// let identity: Vec<f64> = (0..16).map(|k| if k % 5 == 0 { 1.0 } else { 0.0 }).collect();
+/// let a = PlacedShape::new(&tesseract, &[0.0; 4], &identity)?;
+/// let b = PlacedShape::new(&tesseract, &[0.0, 0.0, 1.75, 0.1], &identity)?;
+/// let mut workspace = EpaWorkspace::new();
+/// let contact = penetration_with(&mut workspace, &a, &b)?;
+/// assert!((contact.depth - 0.25).abs() < 1e-12);
+/// assert!((contact.normal.as_slice()[2] - 1.0).abs() < 1e-12);
+/// # Ok::<(), rotorflow::dynamics::motion::shape::ShapeError>(())
+/// ```
+///
+/// # Errors
+/// [`ShapeError::DimensionMismatch`] if the shapes differ in dimension.
+pub fn penetration_with(
+    workspace: &mut EpaWorkspace,
+    a: &PlacedShape,
+    b: &PlacedShape,
+) -> Result<Penetration, ShapeError> {
+    let n = check_pair(a, b)?;
+    if let Some(p) = closed_form(a, b) {
+        return Ok(p);
+    }
+    let (ra, rb) = (a.shape().margin(), b.shape().margin());
+    let result = gjk(a, b);
+    let mut normal = Vector::zero(n);
+    let mut witness_a = Vector::zero(n);
+    let mut witness_b = Vector::zero(n);
+    let (core_depth, iterations) = if result.intersecting {
+        let core = epa_cores(workspace, a, b, &result);
+        for (x, y) in normal.as_mut_slice().iter_mut().zip(&core.normal_k) {
+            *x = -y;
+        }
+        witness_a.as_mut_slice().copy_from_slice(&core.witness_a);
+        witness_b.as_mut_slice().copy_from_slice(&core.witness_b);
+        (core.depth, result.iterations + core.iterations)
+    } else {
+        let length = result.vv.sqrt();
+        for (x, y) in normal.as_mut_slice().iter_mut().zip(&result.v) {
+            *x = y / length;
+        }
+        result
+            .simplex
+            .witnesses(witness_a.as_mut_slice(), witness_b.as_mut_slice());
+        (-length, result.iterations)
+    };
+    for ((p, q), m) in witness_a
+        .as_mut_slice()
+        .iter_mut()
+        .zip(witness_b.as_mut_slice())
+        .zip(normal.as_slice())
+    {
+        *p += ra * m;
+        *q -= rb * m;
+    }
+    Ok(Penetration {
+        depth: core_depth + ra + rb,
+        normal,
+        witness_a,
+        witness_b,
+        iterations,
+    })
+}
