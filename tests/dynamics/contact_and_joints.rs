@@ -2,9 +2,11 @@
 //! bouncing, sliding into rolling at the velocity the N-D moments predict, Coulomb's law at
 //! every contact, and joints that hold without storing energy.
 
+use rotorflow::dynamics::DynamicsError;
 use rotorflow::dynamics::motion::forques::{Anchor, Gravity};
 use rotorflow::dynamics::motion::{
-    BallJoint, ContactShape, HalfSpace, MotionIntegrator, MotionSplitting, MovingBody, System,
+    BallJoint, ContactShape, HalfSpace, MotionError, MotionIntegrator, MotionSplitting, MovingBody,
+    System,
 };
 use rotorflow::inertia::spec::parse_body;
 use rotorflow::prelude::*;
@@ -589,7 +591,8 @@ fn support_points_are_the_furthest_points() {
 
 /// The integrator keeps each body's placed vertices and contact matrices while the body
 /// does not turn; they must follow a new shape and another system. A 4D box resting on the
-/// floor is given a larger shape (half-lengths doubled): the next step lifts it onto the
+/// floor is given a larger shape (half-lengths doubled): the next step is refused, as the
+/// new vertices start inside the floor; given a smaller one, it falls and rests on the
 /// floor by the new vertices, not the old. And one integrator stepping two systems in turn
 /// (a resting box, and a box twice as heavy resting lower) must keep each on its own floor.
 #[test]
@@ -618,13 +621,26 @@ fn kept_placements_follow_new_shapes_and_other_systems() {
         clearance(&s) < -0.7,
         "the new shape starts inside the floor"
     );
-    settle(&mut s, &mut stepper, 1);
+    // A shape that puts the body inside the floor is refused before the step, with the
+    // depth of the new vertices (the old ones would give none).
+    match stepper.step(&mut s, 0.5, 0.01).unwrap_err() {
+        DynamicsError::Motion(MotionError::StartsInside { depth, .. }) => {
+            assert!((depth - 0.8).abs() <= 1e-9, "depth {depth}")
+        }
+        other => panic!("{other}"),
+    }
+    // A smaller shape: the box falls onto the floor and rests on its new vertices.
+    let smaller =
+        ContactShape::from_geometry(&parse_body("cuboid:0.25,0.3,0.35,0.4").unwrap().geometry);
+    s.set_shape(0, smaller).unwrap();
+    assert!(clearance(&s) > 0.39);
+    settle(&mut s, &mut stepper, 100);
     assert!(
-        clearance(&s) >= -1e-12,
-        "lifted by the new vertices: {:e}",
+        clearance(&s).abs() <= 1e-9,
+        "rests on the new vertices: {:e}",
         clearance(&s)
     );
-    assert!((s.bodies()[0].position().as_slice()[n - 1] - 1.6).abs() <= 1e-9);
+    assert!((s.bodies()[0].position().as_slice()[n - 1] - 0.4).abs() <= 1e-9);
 
     // Two systems, one integrator: the second floor is at x₄ = −1.
     let mut high = on_floor(

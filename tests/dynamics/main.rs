@@ -1,5 +1,6 @@
 //! Tests of the dynamics layer: Euler's equations as rotor/bivector flows.
 
+mod body_contact;
 mod compositions;
 mod conservation;
 mod contact_and_joints;

@@ -447,6 +447,9 @@ pub(crate) fn contact_material(a: &MovingBody, b: &MovingBody) -> (f64, f64) {
         (Some(x), None) | (None, Some(x)) => x,
         (None, None) => MovingBody::DEFAULT_FRICTION,
     };
-    let restitution = a.restitution.unwrap_or(0.0).max(b.restitution.unwrap_or(0.0));
+    let restitution = a
+        .restitution
+        .unwrap_or(0.0)
+        .max(b.restitution.unwrap_or(0.0));
     (friction, restitution)
 }

@@ -264,7 +264,12 @@ fn initial_simplex(
         let mut added = false;
         // Both ways along u, the farther first.
         support_difference(a, b, &u, &mut w, &mut sa, &mut sb);
-        let reach_up: f64 = u.iter().zip(&w).zip(&ws.w[..n]).map(|((p, q), y)| p * (q - y)).sum();
+        let reach_up: f64 = u
+            .iter()
+            .zip(&w)
+            .zip(&ws.w[..n])
+            .map(|((p, q), y)| p * (q - y))
+            .sum();
         let (mut w2, mut sa2, mut sb2) = (w.clone(), sa.clone(), sb.clone());
         u.iter_mut().for_each(|x| *x = -*x);
         support_difference(a, b, &u, &mut w2, &mut sa2, &mut sb2);

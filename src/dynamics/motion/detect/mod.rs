@@ -4,6 +4,7 @@
 //!   sub-algorithm, `gjk.rs`), [`penetration`] (EPA in N dimensions and closed forms,
 //!   `epa.rs`), on [`PlacedShape`]s of [`super::shape`].
 
+pub(crate) mod bodies;
 mod epa;
 mod gjk;
 

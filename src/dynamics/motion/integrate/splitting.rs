@@ -3,6 +3,7 @@
 use super::{MotionIntegrator, check_finite, one_by_one};
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::integrate::{axpy, free_strang_step};
+use crate::dynamics::motion::detect::bodies::Touching;
 use crate::dynamics::motion::forques::Anchor;
 use crate::dynamics::motion::placement::{Placements, set_vector};
 use crate::dynamics::motion::solve::{Solver, SolverReport};
@@ -67,6 +68,10 @@ pub struct MotionSplitting {
     strict: bool,
     /// The momenta before an implicit closing kick.
     kick_start: Vec<SavedBody>,
+    /// The bodies' convex shapes and the pairs of bodies found touching.
+    touching: Touching,
+    /// The pairs of bodies in contact at the start of the substep.
+    active_pairs: Vec<(usize, usize)>,
 }
 
 /// The contact tolerance, relative to a body's radius.
@@ -260,6 +265,17 @@ impl MotionSplitting {
             &self.placements,
         );
         self.solver.find_joints(bodies, joints);
+        if self.touching.any_pairs() {
+            let (touching, placements) = (&mut self.touching, &self.placements);
+            touching.scan(
+                bodies,
+                |i| &placements.get(i).q,
+                |a, b| CONTACT_TOLERANCE * touching_radii(placements, a, b),
+            );
+            self.solver.set_pairs(self.touching.found(), bodies);
+        } else {
+            self.solver.pairs.clear();
+        }
         self.solver.solve_velocities(
             bodies,
             half_spaces,
@@ -271,7 +287,9 @@ impl MotionSplitting {
 
     /// Places the bodies that turned since they were last placed.
     fn place(&mut self, system: &System) {
-        if !system.half_spaces().is_empty() {
+        self.touching
+            .update_shapes(system.shapes(), system.dim(), system.shape_key());
+        if !system.half_spaces().is_empty() || self.touching.any_pairs() {
             self.placements.update(
                 system.bodies(),
                 system.shapes(),
@@ -471,6 +489,70 @@ impl MotionSplitting {
             active.push(d <= reach)
         });
         self.active = active;
+        self.active_pairs.clear();
+        if self.touching.any_pairs() {
+            let placements = &self.placements;
+            self.touching.scan(
+                system.bodies(),
+                |i| &placements.get(i).q,
+                |a, b| CONTACT_TOLERANCE * touching_radii(placements, a, b),
+            );
+            self.active_pairs
+                .extend(self.touching.found().iter().map(|c| (c.a, c.b)));
+        }
+    }
+
+    /// The least gap, relative to the pair's reach, of the pairs of bodies that were not in
+    /// contact at the start of the step and come within their radii of each other (+∞ if
+    /// there are none).
+    fn pair_penetration(&mut self, system: &System) -> f64 {
+        if !self.touching.any_pairs() {
+            return f64::INFINITY;
+        }
+        let placements = &self.placements;
+        self.touching.scan(
+            system.bodies(),
+            |i| &placements.get(i).q,
+            |a, b| touching_radii(placements, a, b),
+        );
+        let mut worst = f64::INFINITY;
+        for c in self.touching.found() {
+            if !self.active_pairs.contains(&(c.a, c.b)) {
+                let reach = CONTACT_TOLERANCE * touching_radii(&self.placements, c.a, c.b);
+                worst = worst.min(c.gap / reach);
+            }
+        }
+        worst
+    }
+
+    /// Pushes apart the pairs of bodies in contact at the start of the substep that overlap
+    /// by more than their reach after its flight (the curvature of their paths), along the
+    /// contact normal and in inverse proportion to their masses, as `lift_out` lifts points
+    /// back onto their half-spaces.
+    fn separate_pairs(&mut self, system: &mut System) {
+        if self.active_pairs.is_empty() {
+            return;
+        }
+        let placements = &self.placements;
+        self.touching.scan(
+            system.bodies(),
+            |i| &placements.get(i).q,
+            |a, b| -CONTACT_TOLERANCE * touching_radii(placements, a, b),
+        );
+        let bodies = system.bodies_mut();
+        for c in self.touching.found() {
+            if !self.active_pairs.contains(&(c.a, c.b)) {
+                continue;
+            }
+            let (wa, wb) = (1.0 / bodies[c.a].mass(), 1.0 / bodies[c.b].mass());
+            let depth = -c.gap;
+            for (body, share) in [(c.a, -wa / (wa + wb)), (c.b, wb / (wa + wb))] {
+                let (x, _, _) = bodies[body].state_mut();
+                for (xi, ni) in x.as_mut_slice().iter_mut().zip(&c.normal) {
+                    *xi += share * depth * ni;
+                }
+            }
+        }
     }
 
     /// The least distance, relative to the reach, of the candidates that were not in
@@ -481,14 +563,14 @@ impl MotionSplitting {
     }
 
     /// [`Self::new_penetration`] with the bodies placed already.
-    fn placed_penetration(&self, system: &System) -> f64 {
+    fn placed_penetration(&mut self, system: &System) -> f64 {
         let mut worst = f64::INFINITY;
         for_each_candidate(system, &self.placements, |k, d, reach| {
             if !self.active[k] {
                 worst = worst.min(d / reach);
             }
         });
-        worst
+        worst.min(self.pair_penetration(system))
     }
 
     /// One kick–drift–kick step of length h with the contact and joint impulses, from the
@@ -522,6 +604,7 @@ impl MotionSplitting {
             self.placed_penetration(system)
         };
         lift_out(system, &self.placements);
+        self.separate_pairs(system);
         Ok(fresh)
     }
 
@@ -704,6 +787,12 @@ fn for_each_candidate(
     }
 }
 
+/// The sum of the radii of the contact shapes of bodies `a` and `b`, which the contact
+/// tolerance between them scales with.
+fn touching_radii(placements: &Placements, a: usize, b: usize) -> f64 {
+    placements.get(a).radius + placements.get(b).radius
+}
+
 /// Writes into `gap` the gap between the two ends of `joint` (zero when it holds), its
 /// points given by `ends` as in `MotionSplitting::joint_ends`.
 fn joint_gap(
@@ -796,8 +885,10 @@ impl MotionIntegrator for MotionSplitting {
         steps: usize,
     ) -> Result<(), DynamicsError> {
         self.check_start(system)?;
-        let constrained = !system.joints().is_empty() || !system.half_spaces().is_empty();
-        if constrained && steps > 1 && system.bodies_and_constant_wrenches().1.is_some() {
+        if self.constrained(system)
+            && steps > 1
+            && system.bodies_and_constant_wrenches().1.is_some()
+        {
             let before = self.solver.report;
             self.joined_steps(system, t, h, steps)?;
             return self.check_solves(&before, t);
@@ -860,9 +951,16 @@ impl MotionSplitting {
         Ok(())
     }
 
+    /// True if the system has joints, half-spaces or bodies that can touch each other.
+    fn constrained(&mut self, system: &System) -> bool {
+        self.touching
+            .update_shapes(system.shapes(), system.dim(), system.shape_key());
+        !system.joints().is_empty() || !system.half_spaces().is_empty() || self.touching.any_pairs()
+    }
+
     /// One step, the system checked.
     fn step_checked(&mut self, system: &mut System, t: f64, h: f64) -> Result<(), DynamicsError> {
-        if !system.joints().is_empty() || !system.half_spaces().is_empty() {
+        if self.constrained(system) {
             self.constrained_step(system, t, h, false)?;
             return check_finite(system, t);
         }

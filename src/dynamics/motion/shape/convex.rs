@@ -116,7 +116,12 @@ pub(crate) fn affine_rank(points: &[f64], n: usize) -> usize {
     let p0 = &points[..n];
     let extent = points
         .chunks_exact(n)
-        .map(|p| p.iter().zip(p0).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max))
+        .map(|p| {
+            p.iter()
+                .zip(p0)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max)
+        })
         .fold(0.0, f64::max);
     if extent == 0.0 {
         return 0;
@@ -235,6 +240,17 @@ impl ConvexShape {
             core: ConvexCore::Hull(flat),
             margin: 0.0,
         })
+    }
+
+    /// The hull of `points` (row-major, `dim` numbers each, finite) without the rank check:
+    /// a body's contact shape of vertices may be flat (the vertices of a plane figure), and
+    /// GJK and EPA answer for flat hulls too.
+    pub(crate) fn hull_unchecked(points: Vec<f64>, dim: usize) -> Self {
+        ConvexShape {
+            dim,
+            core: ConvexCore::Hull(points),
+            margin: 0.0,
+        }
     }
 
     /// Returns the regular simplex (N + 1 vertices: the triangle, the tetrahedron, the

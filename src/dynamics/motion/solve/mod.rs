@@ -13,7 +13,9 @@
 //! tangent space, solved by Newton's method on its multiplier, Moré–Sorensen).
 
 use crate::algebra::Vector;
+use crate::dynamics::motion::body::contact_material;
 use crate::dynamics::motion::contact::ContactLog;
+use crate::dynamics::motion::detect::bodies::PairContact;
 use crate::dynamics::motion::placement::{Placements, dot, set_vector};
 use crate::dynamics::motion::{ContactShape, HalfSpace, MovingBody};
 use body::{BodyState, LocalBody, add_inverse_mass};
@@ -32,14 +34,18 @@ mod body;
 mod contact_row;
 mod friction;
 mod joint_row;
+mod pair_row;
 
 pub(crate) use contact_row::ContactRow;
 pub(crate) use joint_row::{JointRow, cholesky_solve};
+pub(crate) use pair_row::PairRow;
 
 /// The reusable work space of the solves.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Solver {
     pub contacts: Vec<ContactRow>,
+    /// Contacts between two bodies.
+    pub pairs: Vec<PairRow>,
     pub joints: Vec<JointRow>,
     states: Vec<BodyState>,
     work: Dense,
@@ -240,11 +246,16 @@ impl Solver {
         self.states
             .resize_with(bodies.len(), || BodyState::empty(n));
         let mut work = std::mem::take(&mut self.work);
-        let touched = self.contacts.iter().map(|c| c.body).chain(
-            self.joints
-                .iter()
-                .flat_map(|j| std::iter::once(j.body).chain(j.other.iter().map(|(b, _)| *b))),
-        );
+        let touched = self
+            .contacts
+            .iter()
+            .map(|c| c.body)
+            .chain(
+                self.joints
+                    .iter()
+                    .flat_map(|j| std::iter::once(j.body).chain(j.other.iter().map(|(b, _)| *b))),
+            )
+            .chain(self.pairs.iter().flat_map(|p| [p.a, p.b]));
         let mut placed = false;
         for i in touched {
             if !self.states[i].used && self.states[i].load(&bodies[i], &mut work) {
@@ -284,7 +295,7 @@ impl Solver {
         kick: f64,
         mut record: Option<&mut ContactLog>,
     ) {
-        if self.contacts.is_empty() && self.joints.is_empty() {
+        if self.contacts.is_empty() && self.joints.is_empty() && self.pairs.is_empty() {
             return;
         }
         let warm_scale = if self.warm_kick > 0.0 && kick > 0.0 {
@@ -295,7 +306,7 @@ impl Solver {
         self.warm_kick = kick;
         self.load(bodies);
         let n = bodies[0].dim();
-        if self.contacts.is_empty() {
+        if self.contacts.is_empty() && self.pairs.is_empty() {
             // Equalities only: one dense solve is exact.
             let mut u = std::mem::take(&mut self.residuals);
             u.clear();
@@ -321,10 +332,20 @@ impl Solver {
         if self.row_keys.len() < rows {
             self.row_keys.resize_with(rows, RowKey::default);
         }
-        // Bodies that no joint couples are solved apart (their contacts are consecutive), each
-        // from setup to record while its rows' matrices are in cache; with joints,
-        // everything is one problem.
-        let coupled = !self.joints.is_empty();
+        // Bodies that no joint or contact couples are solved apart (their contacts are
+        // consecutive), each from setup to record while its rows' matrices are in cache; with
+        // joints or contacts between bodies, everything is one problem.
+        let coupled = !self.joints.is_empty() || !self.pairs.is_empty();
+        for pair in &mut self.pairs {
+            let resting = resting_speed[pair.a].max(resting_speed[pair.b]);
+            pair.prepare(&self.states, resting);
+            pair.normal_impulse *= warm_scale;
+            pair.friction_impulse *= warm_scale;
+            pair.apply_accumulated(&mut self.states);
+        }
+        if rows == 0 {
+            self.sweep_rows::<0>(0..0, true, half_spaces, &layout);
+        }
         let last = std::mem::take(&mut self.warm);
         let mut cursor = 0;
         let mut start = 0;
@@ -552,6 +573,7 @@ impl Solver {
         let speed = self.contacts[range]
             .iter()
             .map(|r| r.speed)
+            .chain(self.pairs.iter().map(|p| p.speed.max(p.target.abs())))
             .fold(0.0, f64::max);
         let tolerance = 1e-12 * speed.max(1e-300);
         self.report.solves += 1;
@@ -578,6 +600,9 @@ impl Solver {
                 }
             }
             if coupled {
+                for pair in &mut self.pairs {
+                    change = change.max(pair.sweep(&mut self.states));
+                }
                 for (k, row) in self.contacts[start..end].iter_mut().enumerate() {
                     let at = (start + k) * layout.stride;
                     let data = &self.row_data[at..at + layout.stride];
@@ -669,6 +694,36 @@ impl Solver {
     }
 
     /// Forgets the loaded bodies and the joints' factor (the placement is about to change).
+    /// Takes the contacts between bodies that detection found, starting each from the
+    /// impulses of the last solve's contact of the same pair of bodies.
+    pub(crate) fn set_pairs(&mut self, found: &[PairContact], bodies: &[MovingBody]) {
+        let old = std::mem::take(&mut self.pairs);
+        let mut rows = Vec::with_capacity(found.len());
+        for c in found {
+            let (a, b) = (c.a, c.b);
+            let mut row = PairRow::new(
+                (a, b),
+                &c.normal,
+                (
+                    bodies[a].position().as_slice(),
+                    bodies[b].position().as_slice(),
+                ),
+                &c.point,
+                contact_material(&bodies[a], &bodies[b]),
+            );
+            if let Some(last) = old.iter().find(|r| r.a == a && r.b == b) {
+                // The normal turns little between solves: keep the impulse along the new one
+                // and the tangent part of the old friction impulse.
+                row.normal_impulse = last.normal_impulse;
+                row.friction_impulse.clone_from(&last.friction_impulse);
+                let along = row.normal.dot(&row.friction_impulse);
+                row.friction_impulse -= &(&row.normal * along);
+            }
+            rows.push(row);
+        }
+        self.pairs = rows;
+    }
+
     pub(crate) fn release(&mut self) {
         self.joint_factor = false;
         for s in &mut self.states {

@@ -1,0 +1,138 @@
+//! Which bodies touch which: the convex shapes of the bodies' contact shapes, the pairs
+//! whose bounding balls come within reach (the broad phase), and for each such pair the
+//! signed distance, the contact normal and the contact point (the narrow phase).
+
+use super::{EpaWorkspace, PlacedShape, penetration_with};
+use crate::dynamics::motion::shape::ConvexShape;
+use crate::dynamics::motion::{ContactShape, MovingBody};
+use smallvec::SmallVec;
+
+/// The convex shape a body collides with other bodies by: the hull of a shape's vertices,
+/// its ellipsoid. None for a body without a shape.
+pub(crate) fn convex_of(shape: &ContactShape, n: usize) -> Option<ConvexShape> {
+    match shape {
+        ContactShape::None => None,
+        ContactShape::Ellipsoid(a) => ConvexShape::ellipsoid(a).ok(),
+        ContactShape::Vertices(v) => {
+            let flat: Vec<f64> = v
+                .iter()
+                .flat_map(|p| p.as_slice().iter().copied())
+                .collect();
+            Some(ConvexShape::hull_unchecked(flat, n))
+        }
+    }
+}
+
+/// Where two bodies come closest or overlap most.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct PairContact {
+    /// The two bodies, by index (a < b).
+    pub a: usize,
+    pub b: usize,
+    /// The signed distance (negative: overlap depth).
+    pub gap: f64,
+    /// The unit normal from body `a` to body `b`.
+    pub normal: SmallVec<[f64; 8]>,
+    /// The contact point in space: midway between the two witness points.
+    pub point: SmallVec<[f64; 8]>,
+}
+
+/// The bodies' convex shapes and what was found of their pairs, kept from one question to
+/// the next.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Touching {
+    /// The system and the version of its shapes the convex shapes are of.
+    owner: Option<(u64, u64)>,
+    convex: Vec<Option<ConvexShape>>,
+    radius: Vec<f64>,
+    workspace: EpaWorkspace,
+    /// The pairs found by the last [`Touching::scan`]; entries past `len` keep their room.
+    found: Vec<PairContact>,
+    len: usize,
+}
+
+impl Touching {
+    /// Takes the convex shapes of `shapes` if they are not those of `owner` already.
+    pub(crate) fn update_shapes(&mut self, shapes: &[ContactShape], n: usize, owner: (u64, u64)) {
+        if self.owner == Some(owner) && self.convex.len() == shapes.len() {
+            return;
+        }
+        self.owner = Some(owner);
+        self.convex = shapes.iter().map(|s| convex_of(s, n)).collect();
+        self.radius = self
+            .convex
+            .iter()
+            .map(|c| c.as_ref().map_or(0.0, ConvexShape::bounding_radius))
+            .collect();
+    }
+
+    /// True if at least two bodies can touch each other.
+    pub(crate) fn any_pairs(&self) -> bool {
+        self.convex.iter().filter(|c| c.is_some()).count() >= 2
+    }
+
+    /// Finds the pairs of bodies whose signed distance is at most `within` (an absolute
+    /// length), with each body's own axes `q(i)` (row-major, own axes → space). Pairs whose
+    /// bounding balls are farther apart are not asked (the broad phase).
+    pub(crate) fn scan<'q>(
+        &mut self,
+        bodies: &[MovingBody],
+        q: impl Fn(usize) -> &'q [f64],
+        within: impl Fn(usize, usize) -> f64,
+    ) {
+        self.len = 0;
+        for a in 0..bodies.len() {
+            let Some(ca) = &self.convex[a] else {
+                continue;
+            };
+            let xa = bodies[a].position().as_slice();
+            for b in a + 1..bodies.len() {
+                let Some(cb) = &self.convex[b] else {
+                    continue;
+                };
+                let xb = bodies[b].position().as_slice();
+                let reach = within(a, b);
+                let centres: f64 = xa.iter().zip(xb).map(|(p, q)| (p - q) * (p - q)).sum();
+                let bound = self.radius[a] + self.radius[b] + reach;
+                if centres > bound * bound {
+                    continue;
+                }
+                let (Ok(pa), Ok(pb)) = (
+                    PlacedShape::new(ca, xa, q(a)),
+                    PlacedShape::new(cb, xb, q(b)),
+                ) else {
+                    continue;
+                };
+                let Ok(p) = penetration_with(&mut self.workspace, &pa, &pb) else {
+                    continue;
+                };
+                if -p.depth > reach {
+                    continue;
+                }
+                if self.len == self.found.len() {
+                    self.found.push(PairContact::default());
+                }
+                let c = &mut self.found[self.len];
+                c.a = a;
+                c.b = b;
+                c.gap = -p.depth;
+                c.normal.clear();
+                c.normal.extend_from_slice(p.normal.as_slice());
+                c.point.clear();
+                c.point.extend(
+                    p.witness_a
+                        .as_slice()
+                        .iter()
+                        .zip(p.witness_b.as_slice())
+                        .map(|(x, y)| 0.5 * (x + y)),
+                );
+                self.len += 1;
+            }
+        }
+    }
+
+    /// The pairs the last [`Touching::scan`] found.
+    pub(crate) fn found(&self) -> &[PairContact] {
+        &self.found[..self.len]
+    }
+}

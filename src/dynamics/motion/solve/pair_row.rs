@@ -1,0 +1,199 @@
+//! One contact point between two bodies in a velocity solve: both bodies' effective inverse
+//! masses in one K, the normal impulse with restitution and Coulomb's cone of maximal
+//! dissipation, as for a half-space but with the relative velocity of the two points.
+
+use super::Dense;
+use super::body::{BodyState, add_inverse_mass};
+use super::contact_row::tangent_block;
+use super::friction::{friction_impulse, symmetric_eigen};
+use crate::algebra::Vector;
+use crate::dynamics::motion::placement::{dot, set_vector};
+
+/// A contact between bodies `a` and `b`: body `b` takes the impulse J at its point, body `a`
+/// takes −J at its own. The normal n points from `a` to `b`; the relative velocity is
+/// u = u_b − u_a, approaching while n·u < 0.
+#[derive(Clone, Debug)]
+pub(crate) struct PairRow {
+    pub a: usize,
+    pub b: usize,
+    /// The unit normal, from `a` to `b`, in space.
+    pub normal: Vector,
+    /// The offsets of the contact point from the two centres of mass, in space.
+    pub ra: Vector,
+    pub rb: Vector,
+    pub friction: f64,
+    pub restitution: f64,
+    /// The normal relative velocity wanted after the impulse (0, or −e u⁻ for an impact).
+    pub target: f64,
+    pub normal_impulse: f64,
+    pub friction_impulse: Vector,
+    /// K = K_a + K_b at the two offsets, its tangent block and that block's
+    /// eigen-decomposition and inverse on the tangent space, nᵀ K n and its inverse.
+    k: Dense,
+    kt: Dense,
+    values: Dense,
+    vectors: Dense,
+    kinv: Dense,
+    knn: f64,
+    inv_knn: f64,
+    /// The relative normal speed before the solve, which tolerances scale with.
+    pub(super) speed: f64,
+}
+
+impl PairRow {
+    /// A row for bodies `a` and `b` touching at `point` (space) with unit normal `normal`
+    /// (from `a` to `b`), the bodies at `xa` and `xb`.
+    pub(crate) fn new(
+        (a, b): (usize, usize),
+        normal: &[f64],
+        (xa, xb): (&[f64], &[f64]),
+        point: &[f64],
+        (friction, restitution): (f64, f64),
+    ) -> PairRow {
+        let n = normal.len();
+        let offset = |x: &[f64]| {
+            let mut r = Vector::zero(n);
+            for ((o, p), c) in r.as_mut_slice().iter_mut().zip(point).zip(x) {
+                *o = p - c;
+            }
+            r
+        };
+        let mut nv = Vector::zero(n);
+        set_vector(&mut nv, normal);
+        PairRow {
+            a,
+            b,
+            normal: nv,
+            ra: offset(xa),
+            rb: offset(xb),
+            friction,
+            restitution,
+            target: 0.0,
+            normal_impulse: 0.0,
+            friction_impulse: Vector::zero(n),
+            k: Dense::new(),
+            kt: Dense::new(),
+            values: Dense::new(),
+            vectors: Dense::new(),
+            kinv: Dense::new(),
+            knn: 0.0,
+            inv_knn: 0.0,
+            speed: 0.0,
+        }
+    }
+
+    /// The relative velocity u_b − u_a of the two points.
+    pub(crate) fn relative_velocity(&self, states: &[BodyState]) -> Vector {
+        let mut u = states[self.b].velocity_at(&self.rb);
+        u -= &states[self.a].velocity_at(&self.ra);
+        u
+    }
+
+    /// Computes K and its parts at the loaded states, and the target: −e u⁻ for a point
+    /// approaching faster than `resting` (an impact), 0 below (resting).
+    pub(crate) fn prepare(&mut self, states: &[BodyState], resting: f64) {
+        let n = self.normal.dim();
+        self.k.clear();
+        self.k.resize(n * n, 0.0);
+        add_inverse_mass(&states[self.a], &self.ra, &mut self.k);
+        add_inverse_mass(&states[self.b], &self.rb, &mut self.k);
+        let nv = self.normal.as_slice();
+        self.knn = (0..n)
+            .map(|i| {
+                (0..n)
+                    .map(|j| nv[i] * self.k[i * n + j] * nv[j])
+                    .sum::<f64>()
+            })
+            .sum();
+        self.inv_knn = 1.0 / self.knn;
+        self.kt.clear();
+        self.kt.extend_from_slice(&self.k);
+        tangent_block(&mut self.kt, &self.normal);
+        symmetric_eigen(&self.kt, n, &mut self.values, &mut self.vectors);
+        self.kinv.clear();
+        self.kinv.resize(n * n, 0.0);
+        for i in 0..n {
+            for j in 0..n {
+                self.kinv[i * n + j] = (0..n)
+                    .map(|k| self.vectors[i * n + k] * self.vectors[j * n + k] / self.values[k])
+                    .sum();
+            }
+        }
+        let un = dot(nv, self.relative_velocity(states).as_slice());
+        self.speed = un.abs();
+        self.target = if un < -resting {
+            -self.restitution * un
+        } else {
+            0.0
+        };
+    }
+
+    /// Gives body `b` the impulse `j` at its point and body `a` the opposite.
+    fn apply(&self, states: &mut [BodyState], j: &Vector) {
+        states[self.b].apply(&self.rb, j);
+        states[self.a].apply(&self.ra, &(j * -1.0));
+    }
+
+    /// Gives the accumulated impulses to the loaded states (a warm start).
+    pub(crate) fn apply_accumulated(&self, states: &mut [BodyState]) {
+        let mut j = &self.normal * self.normal_impulse;
+        j += &self.friction_impulse;
+        if j.max_abs() > 0.0 {
+            self.apply(states, &j);
+        }
+    }
+
+    /// One Gauss–Seidel update: the normal impulse (the smallest accumulated λ ≥ 0 that
+    /// reaches the target), then the friction impulse of maximal dissipation in the disc
+    /// |J_t| ≤ μλ. Returns the largest velocity change it made.
+    pub(crate) fn sweep(&mut self, states: &mut [BodyState]) -> f64 {
+        let n = self.normal.dim();
+        let mut change = 0.0f64;
+        let un = dot(
+            self.normal.as_slice(),
+            self.relative_velocity(states).as_slice(),
+        );
+        let lambda = (self.normal_impulse + (self.target - un) * self.inv_knn).max(0.0);
+        let dl = lambda - self.normal_impulse;
+        if dl != 0.0 {
+            self.apply(states, &(&self.normal * dl));
+            self.normal_impulse = lambda;
+        }
+        change = change.max((dl * self.knn).abs());
+        let limit = self.friction * self.normal_impulse;
+        let mut ut = self.relative_velocity(states);
+        let along = dot(self.normal.as_slice(), ut.as_slice());
+        ut -= &(&self.normal * along);
+        let old = self.friction_impulse.clone();
+        let mut new = Vector::zero(n);
+        for ((x, o), k) in new
+            .as_mut_slice()
+            .iter_mut()
+            .zip(old.as_slice())
+            .zip(self.kinv.chunks_exact(n))
+        {
+            *x = o - dot(k, ut.as_slice());
+        }
+        if limit <= 0.0 {
+            new.as_mut_slice().fill(0.0);
+        } else if new.norm_squared() > limit * limit {
+            friction_impulse(
+                &self.values,
+                &self.vectors,
+                &self.kt,
+                old.as_slice(),
+                ut.as_slice(),
+                limit,
+                new.as_mut_slice(),
+            );
+        }
+        let dj = &new - &old;
+        let largest = dj.max_abs();
+        if largest > 0.0 {
+            self.apply(states, &dj);
+            self.friction_impulse = new;
+            change = change.max(largest * self.knn);
+        }
+        change
+    }
+}
