@@ -158,8 +158,6 @@ pub mod prelude {
         Attitude, Dop853, Dopri5, DynamicsError, Integrator, LiePoissonRk4, Midpoint, MoserVeselov,
         RigidBody, Rkmk4, Splitting, SplittingOrder, Torque, Trajectory, simulate,
     };
-    #[allow(deprecated)]
-    pub use crate::inertia::BodyError;
     pub use crate::inertia::{Body, InertiaError, InertiaMap};
 }
 

@@ -26,10 +26,9 @@
 //! Planes whose magnitude falls below 8·N·ε times the largest are dropped (numerical rank).
 
 use super::bivector::{bivector_len, pairs};
-use super::dense::{self, Mat8, Vec8, householder_complement};
 use super::{Bivector, Vector};
-use crate::numeric::{exponent_of, householder_complement as householder_complement_heap, ldexp};
-use nalgebra::{DMatrix, DVector};
+use crate::numeric::dense::{self, Mat8, Vec8};
+use crate::numeric::{exponent_of, householder_complement, ldexp};
 use smallvec::{SmallVec, smallvec};
 
 /// One simple component θ u∧v of a bivector: a magnitude θ > 0 and an orthonormal pair
@@ -363,13 +362,11 @@ pub(crate) fn unit_plane_vectors(n: usize, p: &[f64]) -> (SmallVec<[f64; 8]>, Sm
     (u, v)
 }
 
-/// Deflation for N ≥ 5 (see the module documentation), on matrices held inline up to N = 8.
+/// Deflation for N ≥ 5 (see the module documentation), on matrices held inline up to N = 8
+/// (they spill to the heap above).
 // Kept out of line: its inline matrices would enlarge the stack frame of the small cases.
 #[inline(never)]
 fn planes_deflation(n: usize, comps: &[f64]) -> Planes {
-    if n > 8 {
-        return planes_deflation_heap(n, comps);
-    }
     let mut a = Mat8::zeros(n, n);
     for ((i, j), &c) in pairs(n).zip(comps.iter()) {
         a[(i, j)] = c;
@@ -444,89 +441,5 @@ fn lift(basis: &Mat8, p: &RawPlane, level_exp: i32) -> RawPlane {
         theta: ldexp(p.theta, -level_exp),
         u: basis.mul_vec(&p.u),
         v: basis.mul_vec(&p.v),
-    }
-}
-
-/// [`planes_deflation`] above N = 8, on heap matrices.
-fn planes_deflation_heap(n: usize, comps: &[f64]) -> Planes {
-    let mut a = DMatrix::<f64>::zeros(n, n);
-    for ((i, j), &c) in pairs(n).zip(comps.iter()) {
-        a[(i, j)] = c;
-        a[(j, i)] = -c;
-    }
-    let mut basis = DMatrix::<f64>::identity(n, n);
-    let mut out = Planes::new();
-    let mut level_exp = 0i32; // a = 2^level_exp · (restriction of the scaled input)
-    loop {
-        let m = a.ncols();
-        let scale = a.iter().fold(0.0f64, |s, x| s.max(x.abs()));
-        if scale == 0.0 {
-            break;
-        }
-        // Rescale each level so that the small planes keep full relative precision.
-        let e = exponent_of(scale);
-        if e != 0 {
-            a.iter_mut().for_each(|x| *x = ldexp(*x, -e));
-            level_exp -= e;
-        }
-        if m <= 4 {
-            let packed: SmallVec<[f64; 6]> = pairs(m).map(|(i, j)| a[(i, j)]).collect();
-            let local = match m {
-                2 => plane_2d(&packed),
-                3 => plane_3d(&packed),
-                4 => planes_4d(&packed),
-                _ => Planes::new(),
-            };
-            for p in local {
-                out.push(lift_heap(&basis, &p, level_exp));
-            }
-            break;
-        }
-        let s = a.transpose() * &a;
-        let (eigenvalues, eigenvectors) = crate::numeric::symmetric_eigen(s);
-        let top = eigenvalues
-            .iter()
-            .enumerate()
-            .max_by(|x, y| x.1.total_cmp(y.1))
-            .map(|(i, _)| i)
-            .unwrap_or(0);
-        let w: DVector<f64> = eigenvectors.column(top).into_owned();
-        let x = &a * &w;
-        let theta = x.norm();
-        if theta == 0.0 {
-            break;
-        }
-        let mut u = x / theta;
-        let d = u.dot(&w);
-        u -= &w * d;
-        u.normalize_mut();
-        out.push(lift_heap(
-            &basis,
-            &RawPlane {
-                theta,
-                u: u.iter().copied().collect(),
-                v: w.iter().copied().collect(),
-            },
-            level_exp,
-        ));
-        let h = householder_complement_heap(&w, &u);
-        a = h.transpose() * &a * &h;
-        basis = &basis * &h;
-    }
-    out
-}
-
-/// [`lift`] for [`planes_deflation_heap`].
-fn lift_heap(basis: &DMatrix<f64>, p: &RawPlane, level_exp: i32) -> RawPlane {
-    let m = basis.ncols();
-    let map = |x: &[f64]| -> SmallVec<[f64; 8]> {
-        (0..basis.nrows())
-            .map(|i| (0..m).map(|k| basis[(i, k)] * x[k]).sum())
-            .collect()
-    };
-    RawPlane {
-        theta: ldexp(p.theta, -level_exp),
-        u: map(&p.u),
-        v: map(&p.v),
     }
 }

@@ -64,7 +64,6 @@ mod bivector;
 pub(crate) mod blade;
 pub mod cga;
 pub mod decompose;
-mod dense;
 mod display;
 mod error;
 mod fixed;

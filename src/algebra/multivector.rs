@@ -256,18 +256,6 @@ impl Multivector {
         &mut self.coeffs
     }
 
-    /// Returns all 2^N coefficients, indexed by blade bit mask.
-    #[deprecated(note = "use Multivector::as_slice (the same name on every type)")]
-    pub fn coefficients(&self) -> &[f64] {
-        self.as_slice()
-    }
-
-    /// Returns the coefficients mutably, indexed by blade bit mask.
-    #[deprecated(note = "use Multivector::as_mut_slice (the same name on every type)")]
-    pub fn coefficients_mut(&mut self) -> &mut [f64] {
-        self.as_mut_slice()
-    }
-
     /// Returns the coefficient of basis blade `blade` (0 if the mask is out of range).
     #[inline]
     pub fn coefficient(&self, blade: u64) -> f64 {

@@ -51,13 +51,6 @@ impl Vector {
         })
     }
 
-    /// Returns the zero vector of ℝⁿ.
-    #[deprecated(note = "use Vector::zero (one name for the zero element of every type)")]
-    #[track_caller]
-    pub fn zeros(n: usize) -> Self {
-        Self::zero(n)
-    }
-
     /// Returns the basis vector eᵢ₊₁ of ℝⁿ (`i` is 0-based).
     ///
     /// # Panics

@@ -63,10 +63,10 @@
 //! boost B, a joint angle of exactly π) there is no principal logarithm and
 //! [`AlgebraError::NoLogarithm`] is returned.
 
-use super::dense::Dense;
 use super::error::within;
 use super::small::{SMALL_MAX_DIM, Small};
 use super::{AlgebraError, Multivector, Signature};
+use crate::numeric::Dense;
 use crate::numeric::{exponent_of, ldexp, scaled_norm};
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use smallvec::SmallVec;

@@ -204,20 +204,6 @@ impl RigidBody {
         self.attitude.compose(&self.principal_frame.inverse())
     }
 
-    /// Returns the attitude of the principal frame (principal axes → space).
-    #[deprecated(
-        note = "use `principal_frame_attitude` (principal axes → space) or `body_axes_attitude` (the body's own axes → space, to render it)"
-    )]
-    pub fn attitude(&self) -> &Attitude {
-        self.principal_frame_attitude()
-    }
-
-    /// Returns the attitude of the body's own axes.
-    #[deprecated(note = "use `body_axes_attitude`")]
-    pub fn attitude_of_own_axes(&self) -> Attitude {
-        self.body_axes_attitude()
-    }
-
     /// Returns the body-frame angular momentum L (principal frame).
     pub fn momentum(&self) -> &Bivector {
         &self.momentum

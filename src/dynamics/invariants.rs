@@ -104,9 +104,6 @@ pub struct Invariants {
     /// How far the attitude has left its group ([`crate::dynamics::Attitude::unit_error`]):
     /// max |R R̃ − 1| for a rotor (N ≤ 4), max |QᵀQ − 1| for a matrix (N > 4).
     pub attitude_error: f64,
-    /// The same value as [`Invariants::attitude_error`], under its former name.
-    #[deprecated(note = "use `attitude_error` (above N = 4 it is a matrix error, not a rotor's)")]
-    pub rotor_error: f64,
     /// The integrals of Manakov's top ([`manakov_integrals`]) for a physical inertia map
     /// with N ≤ [`MANAKOV_MAX_DIM`]; empty otherwise (a general map has no J).
     pub manakov: Vec<f64>,
@@ -130,14 +127,12 @@ impl Invariants {
             ),
             _ => (Vec::new(), Vec::new()),
         };
-        #[allow(deprecated)] // the former name stays filled for existing readers
         Invariants {
             energy: body.energy(),
             casimirs: c[1..].to_vec(),
             pfaffian: n.is_multiple_of(2).then(|| l.pfaffian()),
             space_momentum: body.space_momentum(),
             attitude_error,
-            rotor_error: attitude_error,
             manakov,
             manakov_scales,
         }
@@ -194,24 +189,19 @@ pub struct Drift {
     /// The attitude's distance from its group ([`crate::dynamics::Attitude::unit_error`]):
     /// max |R R̃ − 1| for a rotor (N ≤ 4), max |QᵀQ − 1| for a matrix (N > 4).
     pub attitude: f64,
-    /// The same value as [`Drift::attitude`], under its former name.
-    #[deprecated(note = "use `attitude` (above N = 4 it is a matrix error, not a rotor's)")]
-    pub rotor: f64,
     /// The largest relative drift of the Manakov integrals ([`Invariants::manakov_drifts`]);
     /// 0 where there are none.
     pub manakov: f64,
 }
 
 impl Drift {
-    /// Returns the drifts with these values (the deprecated `rotor` field mirrors `attitude`).
+    /// Returns the drifts with these values.
     pub fn new(energy: f64, casimirs: f64, space_momentum: f64, attitude: f64) -> Self {
-        #[allow(deprecated)] // the former name stays filled for existing readers
         Drift {
             energy,
             casimirs,
             space_momentum,
             attitude,
-            rotor: attitude,
             manakov: 0.0,
         }
     }

@@ -30,15 +30,9 @@
 //!   [`Body::check_inertia_invertible`].
 
 #[doc(inline)]
-#[allow(deprecated)]
-pub use super::catalogue::pentachoron_eq73_positions;
-#[doc(inline)]
 pub use super::catalogue::{
     pentachoron_vertices, regular_simplex_positions, unit_ball_volume, unit_sphere_area,
 };
-#[doc(inline)]
-#[allow(deprecated)]
-pub use super::error::{BodyError, MassTensorDefect};
 #[doc(inline)]
 pub use super::tolerance::{DEGENERACY_TOLERANCE, FLATNESS_TOLERANCE, ORTHOGONALITY_TOLERANCE};
 #[doc(inline)]

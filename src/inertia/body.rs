@@ -291,15 +291,6 @@ impl Body {
         sorted_eigen(&self.mass_tensor).0
     }
 
-    /// Returns the principal second moments Jᵢ (the eigenvalues of J), not the moments of
-    /// inertia.
-    #[deprecated(
-        note = "use principal_second_moments (the same Jᵢ) or, for the 3D moments of inertia Iᵢ = Jⱼ + Jₖ, principal_moments_of_inertia_3d"
-    )]
-    pub fn principal_moments(&self) -> DVector<f64> {
-        self.principal_second_moments()
-    }
-
     /// Returns the classical principal moments of inertia of a 3D body,
     /// I₁ = J₂ + J₃, I₂ = J₁ + J₃, I₃ = J₁ + J₂, about the principal axes of
     /// [`Body::principal_frame`] (Jᵢ ascending, so I₁ ≥ I₂ ≥ I₃); `None` unless N = 3.

@@ -188,15 +188,6 @@ impl Body {
         Body::point_masses(&[1.0; 5], &positions)
     }
 
-    /// The paper's 5-cell of eq. (73).
-    ///
-    /// # Errors
-    /// As [`Body::pentachoron`].
-    #[deprecated(note = "use Body::pentachoron (the paper's eq. 73)")]
-    pub fn pentachoron_eq73(a: f64, b: f64, c: f64, d: f64) -> Result<Body, InertiaError> {
-        Body::pentachoron(a, b, c, d)
-    }
-
     /// Returns 2N equal point masses `vertex_mass` at the vertices ±r eᵢ of the
     /// cross-polytope (orthoplex) centred at the origin.
     ///
@@ -343,18 +334,4 @@ impl Body {
         j *= mass / ((nf + 1.0) * (nf + 2.0));
         Body::new_checked(mass, center, j, Some(volume))
     }
-}
-
-/// The five vertices of the paper's 5-cell, eq. (73).
-///
-/// # Errors
-/// As [`pentachoron_vertices`].
-#[deprecated(note = "use pentachoron_vertices (the paper's eq. 73)")]
-pub fn pentachoron_eq73_positions(
-    a: f64,
-    b: f64,
-    c: f64,
-    d: f64,
-) -> Result<Vec<DVector<f64>>, InertiaError> {
-    pentachoron_vertices(a, b, c, d)
 }

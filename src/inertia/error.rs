@@ -378,26 +378,6 @@ pub enum InertiaError {
     Algebra(#[from] AlgebraError),
 }
 
-/// The former name of [`InertiaError`] for bodies.
-#[deprecated(note = "use InertiaError: the inertia layer has one error type")]
-pub type BodyError = InertiaError;
-
-/// The former name of [`InertiaError`] for the tensor views.
-#[deprecated(note = "use InertiaError: the inertia layer has one error type")]
-pub type TensorError = InertiaError;
-
-/// Which check a mass tensor failed; the checks are now the variants
-/// [`InertiaError::NotSymmetric`] and [`InertiaError::NegativeMoment`].
-#[deprecated(note = "match InertiaError::NotSymmetric or InertiaError::NegativeMoment")]
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum MassTensorDefect {
-    /// The matrix is not symmetric.
-    NotSymmetric,
-    /// The matrix has a negative eigenvalue.
-    NotPositiveSemidefinite,
-}
-
 fn fmt_index(index: Option<usize>) -> String {
     match index {
         Some(i) => format!("[{i}]"),

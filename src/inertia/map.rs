@@ -168,18 +168,6 @@ impl InertiaMap {
         )))
     }
 
-    /// Returns the inertia map of the principal second moments Jᵢ (the eigenvalues of J),
-    /// which in 3D are not the moments of inertia.
-    ///
-    /// # Errors
-    /// As [`InertiaMap::from_principal_second_moments`].
-    #[deprecated(
-        note = "use from_principal_second_moments (the same Jᵢ) or, for the 3D moments of inertia Iᵢ = Jⱼ + Jₖ, from_principal_moments_of_inertia_3d"
-    )]
-    pub fn from_principal_moments(moments: &[f64]) -> Result<Self, InertiaError> {
-        Self::from_principal_second_moments(moments)
-    }
-
     /// Returns the inertia map of a 3D body from its classical principal moments of inertia
     /// (I₁, I₂, I₃) about e₁, e₂, e₃ (the body frame is the principal frame).
     ///
@@ -449,13 +437,6 @@ impl InertiaMap {
             Kind::Physical { moments, .. } => Some(moments),
             Kind::General { .. } => None,
         }
-    }
-
-    /// Returns the principal second moments Jᵢ (eigenvalues of J), not the moments of
-    /// inertia.
-    #[deprecated(note = "use principal_second_moments (the same Jᵢ)")]
-    pub fn principal_moments(&self) -> Option<&[f64]> {
-        self.principal_second_moments()
     }
 
     /// Returns the principal axes as the columns of a rotation matrix P (det +1), with

@@ -33,7 +33,6 @@ pub mod tolerance;
 mod validate;
 
 pub use body::{Body, plane_index_pairs};
-#[allow(deprecated)]
-pub use error::{BodyError, InertiaError, TensorError};
+pub use error::InertiaError;
 pub use map::InertiaMap;
 pub use mesh::SimplexOrientation;

@@ -51,9 +51,6 @@ use nalgebra::{DMatrix, DVector};
 /// literal Levi-Civita sum (cost grows like 6 N! N²; N = 8 takes about 2·10⁷ steps).
 pub const MAX_LITERAL_CONTRACTION_DIM: usize = 8;
 
-/// The former name of [`InertiaError`] for the tensor views.
-#[allow(deprecated)]
-pub use super::error::TensorError;
 #[doc(inline)]
 pub use super::tolerance::SYMMETRY_TOLERANCE;
 

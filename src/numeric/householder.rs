@@ -1,40 +1,41 @@
-//! Householder reflections: an orthonormal basis of the complement of two orthonormal
-//! vectors, stable even when they are near basis vectors.
+//! Householder reflections (Golub & Van Loan, *Matrix Computations*, §5.1): an orthonormal
+//! basis of the complement of two orthonormal vectors, stable even when they are near basis
+//! vectors.
 
-use nalgebra::{DMatrix, DVector};
+use super::dense::{Mat8, Vec8, dot};
+use smallvec::SmallVec;
 
-/// Returns an m×(m−2) matrix whose orthonormal columns span the complement of the orthonormal
-/// pair (w, u), from two Householder reflections (stable even when w, u are near basis vectors).
-pub(crate) fn householder_complement(w: &DVector<f64>, u: &DVector<f64>) -> DMatrix<f64> {
+/// Returns an m × (m − 2) matrix whose orthonormal columns span the complement of the
+/// orthonormal pair (w, u), from two Householder reflections (stable even when w and u are
+/// near basis vectors). Inline, with no allocation, up to m = 9.
+pub(crate) fn householder_complement(w: &[f64], u: &[f64]) -> Mat8 {
     let m = w.len();
-    let mut q = DMatrix::<f64>::identity(m, m);
+    debug_assert!(m >= 2 && u.len() == m);
     // H1 maps w to ±e1.
-    let h1 = householder(w.as_slice(), 0);
+    let h1 = householder(w, 0);
     // H2 acts on coordinates 1.. and maps (H1 u)[1..] to ±e2.
-    let mut hu: Vec<f64> = u.iter().copied().collect();
+    let mut hu: Vec8 = SmallVec::from_slice(u);
     apply_householder(&h1, &mut hu);
     let h2 = householder(&hu, 1);
-    // Q = H1 H2: apply H2 then H1 to each column of the identity.
-    for c in 0..m {
-        let mut col: Vec<f64> = q.column(c).iter().copied().collect();
-        apply_householder(&h2, &mut col);
-        apply_householder(&h1, &mut col);
-        q.column_mut(c).copy_from_slice(&col);
+    // Q = H1 H2: apply H2 then H1 to each column of the identity; keep columns 2...
+    let mut q = Mat8::zeros(m, m - 2);
+    for c in 2..m {
+        let col = q.column_mut(c - 2);
+        col[c] = 1.0;
+        apply_householder(&h2, col);
+        apply_householder(&h1, col);
     }
-    q.columns(2, m - 2).into_owned()
+    q
 }
 
-/// A Householder reflection I − 2 h hᵀ (|h| = 1, h zero before `start`); identity if h = 0.
-struct Householder {
-    h: Vec<f64>,
-}
-
-fn householder(x: &[f64], start: usize) -> Householder {
+/// The unit vector h of the reflection I − 2 h hᵀ (h zero before `start`) that maps x to a
+/// multiple of e_start; zero (the identity) if x vanishes from `start` on.
+fn householder(x: &[f64], start: usize) -> Vec8 {
     let m = x.len();
-    let mut h = vec![0.0; m];
+    let mut h: Vec8 = SmallVec::from_elem(0.0, m);
     let tail_norm = x[start..].iter().map(|a| a * a).sum::<f64>().sqrt();
     if tail_norm == 0.0 {
-        return Householder { h };
+        return h;
     }
     // h ∝ x − σ|x| e_start with σ = −sign(x_start), avoiding cancellation.
     let sigma = if x[start] >= 0.0 { -1.0 } else { 1.0 };
@@ -44,47 +45,47 @@ fn householder(x: &[f64], start: usize) -> Householder {
     if hn > 0.0 {
         h.iter_mut().for_each(|a| *a /= hn);
     }
-    Householder { h }
+    h
 }
 
-fn apply_householder(hh: &Householder, x: &mut [f64]) {
-    let d: f64 = hh.h.iter().zip(x.iter()).map(|(a, b)| a * b).sum();
+/// x ← (I − 2 h hᵀ) x.
+fn apply_householder(h: &[f64], x: &mut [f64]) {
+    let d = dot(h, x);
     if d != 0.0 {
-        x.iter_mut()
-            .zip(hh.h.iter())
-            .for_each(|(xi, hi)| *xi -= 2.0 * d * hi);
+        x.iter_mut().zip(h).for_each(|(xi, hi)| *xi -= 2.0 * d * hi);
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::DMatrix;
 
-    /// The columns are orthonormal and orthogonal to w and u, also when w and u are basis
-    /// vectors (where a naive reflection divides by zero).
+    /// The columns are orthonormal and orthogonal to w and u (checked with nalgebra's
+    /// products), also when w and u are basis vectors, where a naive reflection divides by
+    /// zero; sizes 3 … 12, inline and spilled.
     #[test]
     fn complement_is_orthonormal_and_orthogonal_to_the_pair() {
-        let m = 5;
         let c = std::f64::consts::FRAC_1_SQRT_2;
-        let pairs = [
-            (DVector::from_element(m, 1.0).normalize(), {
-                let mut u = DVector::zeros(m);
-                u[0] = c;
-                u[1] = -c;
-                u
-            }),
-            (
-                DVector::from_fn(m, |i, _| if i == 0 { 1.0 } else { 0.0 }),
-                DVector::from_fn(m, |i, _| if i == 1 { 1.0 } else { 0.0 }),
-            ),
-        ];
-        for (w, u) in pairs {
-            let q = householder_complement(&w, &u);
-            assert_eq!(q.shape(), (m, m - 2));
-            let gram = q.transpose() * &q;
-            assert!((gram - DMatrix::<f64>::identity(m - 2, m - 2)).amax() < 1e-15);
-            assert!((q.transpose() * &w).amax() < 1e-15);
-            assert!((q.transpose() * &u).amax() < 1e-15);
+        let mut checked = 0;
+        for m in 3..=12 {
+            let e = |k: usize| -> Vec8 { (0..m).map(|i| f64::from(u8::from(i == k))).collect() };
+            let w: Vec8 = (0..m).map(|_| 1.0 / (m as f64).sqrt()).collect();
+            let mut u: Vec8 = SmallVec::from_elem(0.0, m);
+            u[0] = c;
+            u[1] = -c;
+            for (w, u) in [(w, u), (e(0), e(1)), (e(m - 3), e(m - 1))] {
+                let q = householder_complement(&w, &u);
+                assert_eq!((q.nrows(), q.ncols()), (m, m - 2));
+                let q = DMatrix::from_column_slice(m, m - 2, q.as_slice());
+                let gram = q.transpose() * &q;
+                let identity = DMatrix::<f64>::identity(m - 2, m - 2);
+                assert!((gram - identity).amax() < 1e-15, "m = {m}");
+                let pair = DMatrix::from_fn(m, 2, |i, j| if j == 0 { w[i] } else { u[i] });
+                assert!((q.transpose() * pair).amax() < 1e-15, "m = {m}");
+                checked += 1;
+            }
         }
+        assert_eq!(checked, 30);
     }
 }

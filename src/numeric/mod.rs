@@ -6,7 +6,11 @@
 //! public types re-export what users need (for instance [`crate::algebra::Rotor::to_matrix`]
 //! rather than the matrix exponential behind it).
 //!
-//! - [`eigen`]: a symmetric eigen-decomposition that never returns NaN for finite input;
+//! - [`dense`]: small dense matrices with inline storage (`Mat8`), for allocation-free
+//!   callers up to N = 8;
+//! - [`eigen`]: a symmetric eigen-decomposition that never returns NaN for finite input, and
+//!   the one cyclic Jacobi kernel;
+//! - [`solve`]: LU with partial pivoting and Cholesky, on slices;
 //! - [`expm`]: the matrix exponential of skew matrices (scaling and squaring, Padé, Taylor);
 //! - [`trig`]: sin x and cos x − 1 without cancellation;
 //! - [`householder`]: the complement of two orthonormal vectors by Householder reflections;
@@ -14,17 +18,21 @@
 //!   orthogonality error), each the
 //!   one copy the crate uses.
 
+pub(crate) mod dense;
 pub(crate) mod eigen;
 pub(crate) mod expm;
 pub(crate) mod householder;
+pub(crate) mod solve;
 pub(crate) mod trig;
 
+pub(crate) use dense::{Dense, Mat8, Vec8};
 pub(crate) use eigen::{RobustEigen, sorted_symmetric_eigen, symmetric_eigen};
 pub(crate) use expm::{
     PADE_MAX_NORM, expm_skew, expm_skew_fixed, expm_skew_taylor, expm_skew_taylor_dense,
     expm_spectral, norm1, norm1_slice,
 };
 pub(crate) use householder::householder_complement;
+pub(crate) use solve::{lu_apply, lu_factor, lu_solve};
 pub(crate) use trig::{sin_cos_minus_one, small_angle_factors};
 
 use nalgebra::{DMatrix, DMatrixView};

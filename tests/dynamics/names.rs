@@ -1,5 +1,4 @@
-//! The two attitudes of a body, the attitude error of the invariants, and the former names
-//! (deprecated) that must keep returning the same values.
+//! The two attitudes of a body and the attitude error of the invariants.
 
 use super::{attitude_distance, random_bivector, rng, run};
 use rotorflow::dynamics::{Attitude, Invariants, RigidBody, Splitting, simulate};
@@ -57,7 +56,7 @@ fn body_axes_attitude_is_the_attitude_given_and_places_vertices() {
 }
 
 #[test]
-fn attitude_error_is_a_matrix_error_above_n4_and_the_former_names_agree() {
+fn attitude_error_is_a_matrix_error_above_n4() {
     let mut r = rng(8);
     for n in [3, 4, 5, 6] {
         let omega = random_bivector(&mut r, n, 1.0);
@@ -96,12 +95,5 @@ fn attitude_error_is_a_matrix_error_above_n4_and_the_former_names_agree() {
             "N = {n}: {:e}",
             d.attitude
         );
-        #[allow(deprecated)]
-        {
-            assert_eq!(d.rotor, d.attitude);
-            assert_eq!(inv.rotor_error, inv.attitude_error);
-            assert_eq!(later.attitude(), later.principal_frame_attitude());
-            assert_eq!(later.attitude_of_own_axes(), later.body_axes_attitude());
-        }
     }
 }

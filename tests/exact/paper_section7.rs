@@ -568,35 +568,3 @@ fn paper_eq_110_does_not_follow_from_the_printed_eq_53() {
     assert!(close(printed_53, 0.024, 1e-15), "{printed_53}");
     assert!(omega_rate(&j, &biv(&w)).get(0, 1).abs() < 1e-16);
 }
-
-/// The former names (with the paper's equation numbers) still answer, with the same values.
-#[test]
-#[allow(deprecated)]
-fn former_equation_numbered_names_return_the_same_values() {
-    use rotorflow::dynamics::exact::paper;
-    let (w72, w73) = (biv(&OMEGA_72), biv(&OMEGA_73));
-    assert_eq!(
-        paper::eq_109_principal_moments(2.0),
-        paper::three_equal_second_moments(2.0)
-    );
-    assert_eq!(
-        paper::eq_121_principal_moments(1.5),
-        paper::two_equal_pairs_second_moments(1.5)
-    );
-    assert_eq!(paper::eq_119_factor(2.0), paper::frequency_factor(2.0));
-    assert_eq!(
-        paper::eq_108_omega(&w72, 3.0),
-        paper::isotropic_omega(&w72, 3.0)
-    );
-    let p = ThreeEqualMoments::new(2.0, &w72).unwrap();
-    assert_eq!(p.eq_110_to_112_constants(), p.constants_c1_to_c3());
-    assert_eq!(p.eq_116_to_118_constants(), p.constants_c4_to_c6());
-    assert_eq!(p.eq_119_frequency(), p.frequency());
-    let q = TwoEqualPairs::new(1.5, &w73).unwrap();
-    assert_eq!(q.eq_122_123_constants(), q.constants_c1_c2());
-    assert_eq!(q.eq_128_to_131_constants(), q.constants_c3_to_c6());
-    assert_eq!(q.eq_134_frequencies(), q.frequencies());
-    // The closed forms' former error type is the layer's.
-    let e: rotorflow::dynamics::exact::ExactError = TwoEqualPairs::new(0.0, &w73).unwrap_err();
-    assert!(e.to_string().starts_with("no closed form: κ = 0"), "{e}");
-}

@@ -115,30 +115,6 @@ fn moments_of_inertia_3d_refuse_what_no_body_has() {
 }
 
 #[test]
-#[allow(deprecated)]
-fn deprecated_names_keep_their_behaviour() {
-    let j = [1.0, 4.0, 9.0];
-    assert_eq!(
-        InertiaMap::from_principal_moments(&j).unwrap(),
-        InertiaMap::from_principal_second_moments(&j).unwrap()
-    );
-    let map = InertiaMap::from_principal_second_moments(&j).unwrap();
-    assert_eq!(map.principal_moments(), map.principal_second_moments());
-    let body = cuboid_12();
-    assert_eq!(body.principal_moments(), body.principal_second_moments());
-    assert_eq!(
-        Body::pentachoron_eq73(1.0, 2.0, 3.0, 4.0).unwrap(),
-        Body::pentachoron(1.0, 2.0, 3.0, 4.0).unwrap()
-    );
-    assert_eq!(
-        rotorflow::inertia::bodies::pentachoron_eq73_positions(1.0, 2.0, 3.0, 4.0).unwrap(),
-        rotorflow::inertia::bodies::pentachoron_vertices(1.0, 2.0, 3.0, 4.0).unwrap()
-    );
-    let e: rotorflow::inertia::BodyError = InertiaError::Empty { quantity: "x" };
-    assert_eq!(e.to_string(), "`x` is empty");
-}
-
-#[test]
 fn body_takes_rotors_and_vectors_like_matrices() {
     let body = Body::solid_cuboid(&[1.0, 2.0, 3.0], 0.7)
         .unwrap()

@@ -3,9 +3,9 @@
 use super::{Rotor, even_index, get_4d, multiply_by_simple, set_4d};
 use crate::algebra::bivector::{bivector_len, pairs};
 use crate::algebra::decompose::{Planes, RawPlane, decompose_components};
-use crate::algebra::dense::{Mat8, Vec8, dot, norm};
 use crate::algebra::error::within;
 use crate::algebra::{AlgebraError, MULTIVECTOR_MAX_DIM};
+use crate::numeric::dense::{Mat8, Vec8, dot, norm};
 use crate::numeric::orthogonality_error;
 use nalgebra::DMatrix;
 use smallvec::SmallVec;

@@ -6,9 +6,9 @@ use super::{
 };
 use crate::algebra::bivector::pairs;
 use crate::algebra::decompose::{RawPlane, decompose_components, self_dual_join, self_dual_split};
-use crate::algebra::dense::{Mat8, Vec8};
 use crate::algebra::error::{assert_same_dim, check_finite, within};
 use crate::algebra::{AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Vector};
+use crate::numeric::{Mat8, Vec8};
 use nalgebra::DMatrix;
 use smallvec::SmallVec;
 

@@ -591,12 +591,6 @@ impl Rotor {
         &self.coeffs
     }
 
-    /// Returns the 2^(N−1) even coefficients in storage order.
-    #[deprecated(note = "use Rotor::as_slice (the same name on every type)")]
-    pub fn raw_coefficients(&self) -> &[f64] {
-        self.as_slice()
-    }
-
     /// Multiplies by a scalar (crate-internal: used by normalisation and sign flips).
     pub(crate) fn scaled(mut self, s: f64) -> Self {
         self.coeffs.iter_mut().for_each(|c| *c *= s);

@@ -23,13 +23,6 @@ use embedded::EmbeddedTop;
 use top3d::AsymmetricTop;
 use two_moments::TwoMomentSolution;
 
-/// The closed forms' error type under its former name: an alias of [`DynamicsError`], the
-/// one error type of the dynamics layer.
-#[deprecated(
-    note = "use `rotorflow::dynamics::DynamicsError` (one error type for the dynamics layer)"
-)]
-pub type ExactError = DynamicsError;
-
 /// The closed-form free motion of a body, whichever form applies.
 ///
 /// ```

@@ -103,15 +103,6 @@ pub fn principal_second_moments_from_half_axes(
         .collect()
 }
 
-/// The principal second moments Jᵢ = aᵢ² of a body with half-axes aᵢ.
-///
-/// # Errors
-/// As [`principal_second_moments_from_half_axes`].
-#[deprecated(note = "use principal_second_moments_from_half_axes (the values are the Jᵢ)")]
-pub fn principal_moments_from_half_axes(half_axes: &[f64]) -> Result<Vec<f64>, DynamicsError> {
-    principal_second_moments_from_half_axes(half_axes)
-}
-
 /// Eq. (109), "a = b = c = 1, d = κ": the principal values J = (1, 1, 1, κ²).
 ///
 /// # Errors
@@ -372,69 +363,5 @@ impl TwoEqualPairs {
         let w23 = c4 * f1 - c3 * f2 + c6 * f3 - c5 * f4;
         let w24 = -c3 * f1 - c4 * f2 + c5 * f3 + c6 * f4;
         Ok(Bivector::from_components(4, &[c1, w13, w14, w23, w24, c2])?)
-    }
-}
-
-/// Former name of [`three_equal_second_moments`].
-#[deprecated(note = "use `three_equal_second_moments` (no equation number in names)")]
-pub fn eq_109_principal_moments(kappa: f64) -> Result<[f64; 4], DynamicsError> {
-    three_equal_second_moments(kappa)
-}
-
-/// Former name of [`two_equal_pairs_second_moments`].
-#[deprecated(note = "use `two_equal_pairs_second_moments` (no equation number in names)")]
-pub fn eq_121_principal_moments(kappa: f64) -> Result<[f64; 4], DynamicsError> {
-    two_equal_pairs_second_moments(kappa)
-}
-
-/// Former name of [`frequency_factor`].
-#[deprecated(note = "use `frequency_factor` (no equation number in names)")]
-pub fn eq_119_factor(kappa: f64) -> Result<f64, DynamicsError> {
-    frequency_factor(kappa)
-}
-
-/// Former name of [`isotropic_omega`].
-#[deprecated(note = "use `isotropic_omega` (no equation number in names)")]
-pub fn eq_108_omega(omega0: &Bivector, t: f64) -> Result<Bivector, DynamicsError> {
-    isotropic_omega(omega0, t)
-}
-
-impl ThreeEqualMoments {
-    /// Former name of [`ThreeEqualMoments::constants_c1_to_c3`].
-    #[deprecated(note = "use `constants_c1_to_c3` (no equation number in names)")]
-    pub fn eq_110_to_112_constants(&self) -> [f64; 3] {
-        self.constants_c1_to_c3()
-    }
-
-    /// Former name of [`ThreeEqualMoments::constants_c4_to_c6`].
-    #[deprecated(note = "use `constants_c4_to_c6` (no equation number in names)")]
-    pub fn eq_116_to_118_constants(&self) -> Result<[f64; 3], DynamicsError> {
-        self.constants_c4_to_c6()
-    }
-
-    /// Former name of [`ThreeEqualMoments::frequency`].
-    #[deprecated(note = "use `frequency` (no equation number in names)")]
-    pub fn eq_119_frequency(&self) -> f64 {
-        self.frequency()
-    }
-}
-
-impl TwoEqualPairs {
-    /// Former name of [`TwoEqualPairs::constants_c1_c2`].
-    #[deprecated(note = "use `constants_c1_c2` (no equation number in names)")]
-    pub fn eq_122_123_constants(&self) -> [f64; 2] {
-        self.constants_c1_c2()
-    }
-
-    /// Former name of [`TwoEqualPairs::constants_c3_to_c6`].
-    #[deprecated(note = "use `constants_c3_to_c6` (no equation number in names)")]
-    pub fn eq_128_to_131_constants(&self) -> [f64; 4] {
-        self.constants_c3_to_c6()
-    }
-
-    /// Former name of [`TwoEqualPairs::frequencies`].
-    #[deprecated(note = "use `frequencies` (no equation number in names)")]
-    pub fn eq_134_frequencies(&self) -> [f64; 2] {
-        self.frequencies()
     }
 }

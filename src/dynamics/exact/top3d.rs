@@ -86,9 +86,7 @@
 //! thin set of states with ℓ almost in the plane of the two close axes, q → ∞), both of
 //! which the special functions handle.
 
-// Re-exported so that the former path `top3d::EmbeddedTop` keeps working.
-#[doc(no_inline)]
-pub use super::embedded::EmbeddedTop;
+use super::embedded::EmbeddedTop;
 use crate::algebra::{Bivector, Multivector, Rotor, Signature, pairs};
 use crate::dynamics::RigidBody;
 use crate::dynamics::{DynamicsError, NoClosedFormReason};

@@ -39,6 +39,12 @@ impl Default for Midpoint {
 }
 
 impl Midpoint {
+    /// Returns the integrator with relative tolerance 4ε on the momentum and at most 100
+    /// iterations per step (the same as `Midpoint::default()`).
+    pub fn new() -> Self {
+        Self::default()
+    }
+
     /// Returns the integrator with a relative tolerance on the momentum and an iteration
     /// bound per step.
     pub fn with_tolerance(tolerance: f64, max_iterations: usize) -> Self {

@@ -15,6 +15,25 @@
 //! the torque's flow with the attitude frozen, taken by the midpoint rule), which keeps the
 //! order for torques that do not depend on L; the Casimirs are then no longer invariants of
 //! the motion.
+//!
+//! Every integrator is built the same way: `new` takes what it cannot do without (the
+//! tolerances of [`Dopri5::new`] and [`Dop853::new`], the composition of [`Splitting::new`]
+//! and [`ProcessedSplitting::new`]) and nothing else; an integrator without such parameters
+//! ([`Rkmk4::new`], [`LiePoissonRk4::new`], [`Midpoint::new`], [`MoserVeselov::new`]) also
+//! implements `Default`, which is the same value. Options beyond that are `with_*` methods
+//! on the value ([`Dopri5::with_max_steps`], [`MoserVeselov::with_max_iterations`], …) or
+//! named constructors ([`Splitting::strang`], [`MoserVeselov::yoshida4`],
+//! [`Midpoint::with_tolerance`]).
+//!
+//! ```
+//! use rotorflow::dynamics::{Dop853, Dopri5, LiePoissonRk4, Midpoint, MoserVeselov, Rkmk4};
+//! use rotorflow::dynamics::{Splitting, SplittingOrder};
+//! let _ = (Rkmk4::new(), LiePoissonRk4::new(), Midpoint::new(), MoserVeselov::new());
+//! let _ = (Dopri5::new(1e-10, 1e-12), Dop853::new(1e-10, 1e-12)?);
+//! let _ = Splitting::new(SplittingOrder::Yoshida4);
+//! assert_eq!(Midpoint::new().max_iterations(), Midpoint::default().max_iterations());
+//! # Ok::<(), rotorflow::dynamics::DynamicsError>(())
+//! ```
 
 mod dop853;
 pub(crate) use dop853::first_step_estimate;

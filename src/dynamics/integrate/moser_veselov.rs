@@ -4,6 +4,7 @@ use super::splitting::kick;
 use super::{DynamicsError, Integrator, SplittingOrder};
 use crate::algebra::pairs;
 use crate::dynamics::{RigidBody, Torque};
+use crate::numeric::{lu_apply, lu_factor, lu_solve};
 use smallvec::SmallVec;
 
 /// An N×N matrix, column-major; inline (no heap) up to N = 8.
@@ -561,75 +562,6 @@ fn cayley_increment(n: usize, a: &[f64], c: &mut Mat, work: &mut Mat) -> bool {
         work[d * n + d] = 1.0;
     }
     lu_solve(n, work, c, n)
-}
-
-/// Solves X·Y = B in place (B ← Y) for the column-major m×m X (destroyed) and `rhs` columns
-/// of B. False if X is singular to working precision.
-fn lu_solve(m: usize, x: &mut [f64], b: &mut [f64], rhs: usize) -> bool {
-    let mut pivots: SmallVec<[usize; 28]> = SmallVec::from_elem(0, m);
-    lu_factor(m, x, &mut pivots) && {
-        lu_apply(m, x, &pivots, b, rhs);
-        true
-    }
-}
-
-/// Factors the column-major m×m X in place as P X = L U (Gaussian elimination with partial
-/// pivoting; `pivots[c]` is the row swapped with row c). False if a pivot is zero or not
-/// finite.
-fn lu_factor(m: usize, x: &mut [f64], pivots: &mut [usize]) -> bool {
-    for col in 0..m {
-        let (pivot_row, pivot) = (col..m)
-            .map(|r| (r, x[col * m + r].abs()))
-            .fold((col, -1.0), |best, c| if c.1 > best.1 { c } else { best });
-        if pivot <= 0.0 || !pivot.is_finite() {
-            return false;
-        }
-        pivots[col] = pivot_row;
-        if pivot_row != col {
-            for c in 0..m {
-                x.swap(c * m + col, c * m + pivot_row);
-            }
-        }
-        let d = x[col * m + col];
-        for r in col + 1..m {
-            x[col * m + r] /= d;
-        }
-        for c in col + 1..m {
-            let top = x[c * m + col];
-            if top == 0.0 {
-                continue;
-            }
-            for r in col + 1..m {
-                x[c * m + r] -= x[col * m + r] * top;
-            }
-        }
-    }
-    true
-}
-
-/// Solves with the factors of [`lu_factor`]: B ← X⁻¹B for `rhs` columns of B.
-fn lu_apply(m: usize, x: &[f64], pivots: &[usize], b: &mut [f64], rhs: usize) {
-    for y in b.chunks_exact_mut(m).take(rhs) {
-        for (col, &p) in pivots.iter().enumerate() {
-            y.swap(col, p);
-        }
-        // L (unit diagonal), then U.
-        for col in 0..m {
-            let v = y[col];
-            if v != 0.0 {
-                for r in col + 1..m {
-                    y[r] -= x[col * m + r] * v;
-                }
-            }
-        }
-        for col in (0..m).rev() {
-            y[col] /= x[col * m + col];
-            let v = y[col];
-            for r in 0..col {
-                y[r] -= x[col * m + r] * v;
-            }
-        }
-    }
 }
 
 /// out = x·y for column-major N×N matrices.

@@ -28,6 +28,13 @@ use nalgebra::{DMatrixView, DMatrixViewMut};
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Rkmk4;
 
+impl Rkmk4 {
+    /// Returns the integrator (it has no parameters; the same as `Rkmk4::default()`).
+    pub const fn new() -> Self {
+        Rkmk4
+    }
+}
+
 impl Integrator for Rkmk4 {
     fn order(&self) -> u32 {
         4
@@ -146,7 +153,7 @@ impl Integrator for Rkmk4 {
 /// let l = Bivector::from_components(4, &[0.9, -0.4, 0.3, 0.7, -0.2, 0.5])?;
 /// let mut body = RigidBody::from_body_momentum(inertia, Attitude::identity(4), &l)?;
 /// let (norm, pfaffian) = (body.momentum().norm(), body.momentum().pfaffian());
-/// let mut lp = LiePoissonRk4;
+/// let mut lp = LiePoissonRk4::new();
 /// for k in 0..1000 {
 ///     lp.step(&mut body, k as f64 * 0.05, 0.05, &Free)?;
 /// }
@@ -157,6 +164,13 @@ impl Integrator for Rkmk4 {
 /// ```
 #[derive(Clone, Copy, Debug, Default)]
 pub struct LiePoissonRk4;
+
+impl LiePoissonRk4 {
+    /// Returns the integrator (it has no parameters; the same as `LiePoissonRk4::default()`).
+    pub const fn new() -> Self {
+        LiePoissonRk4
+    }
+}
 
 impl Integrator for LiePoissonRk4 {
     fn order(&self) -> u32 {
