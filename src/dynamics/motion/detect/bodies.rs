@@ -12,6 +12,11 @@ use smallvec::SmallVec;
 pub(crate) fn convex_of(shape: &ContactShape, n: usize) -> Option<ConvexShape> {
     match shape {
         ContactShape::None => None,
+        // A ball as a point with a margin: distances and normals between balls are then
+        // closed forms, exact to round-off.
+        ContactShape::Ellipsoid(a) if a.iter().all(|x| *x == a[0]) => {
+            ConvexShape::ball(n, a[0]).ok()
+        }
         ContactShape::Ellipsoid(a) => ConvexShape::ellipsoid(a).ok(),
         ContactShape::Vertices(v) => {
             let flat: Vec<f64> = v

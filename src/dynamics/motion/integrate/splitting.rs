@@ -525,36 +525,6 @@ impl MotionSplitting {
         worst
     }
 
-    /// Pushes apart the pairs of bodies in contact at the start of the substep that overlap
-    /// by more than their reach after its flight (the curvature of their paths), along the
-    /// contact normal and in inverse proportion to their masses, as `lift_out` lifts points
-    /// back onto their half-spaces.
-    fn separate_pairs(&mut self, system: &mut System) {
-        if self.active_pairs.is_empty() {
-            return;
-        }
-        let placements = &self.placements;
-        self.touching.scan(
-            system.bodies(),
-            |i| &placements.get(i).q,
-            |a, b| -CONTACT_TOLERANCE * touching_radii(placements, a, b),
-        );
-        let bodies = system.bodies_mut();
-        for c in self.touching.found() {
-            if !self.active_pairs.contains(&(c.a, c.b)) {
-                continue;
-            }
-            let (wa, wb) = (1.0 / bodies[c.a].mass(), 1.0 / bodies[c.b].mass());
-            let depth = -c.gap;
-            for (body, share) in [(c.a, -wa / (wa + wb)), (c.b, wb / (wa + wb))] {
-                let (x, _, _) = bodies[body].state_mut();
-                for (xi, ni) in x.as_mut_slice().iter_mut().zip(&c.normal) {
-                    *xi += share * depth * ni;
-                }
-            }
-        }
-    }
-
     /// The least distance, relative to the reach, of the candidates that were not in
     /// contact at the start of the step (+∞ if there are none).
     fn new_penetration(&mut self, system: &System) -> f64 {
@@ -604,7 +574,6 @@ impl MotionSplitting {
             self.placed_penetration(system)
         };
         lift_out(system, &self.placements);
-        self.separate_pairs(system);
         Ok(fresh)
     }
 
