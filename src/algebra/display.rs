@@ -6,20 +6,27 @@
 //! scalar term is printed plain (`0.8 + 0.6·e12`). Blade names read back with
 //! [`super::Multivector::blade_by_name`].
 
-use super::{Bivector, Multivector, Rotor, Vector, blade};
+use super::{
+    Bivector, Bivector3, Bivector4, Multivector, Real, Rotor, Rotor3, Rotor4, Vector, blade,
+};
 use std::fmt;
 
-/// Writes Σ cₖ·nameₖ with signs folded into the separators.
-fn write_terms<'a>(
+/// Writes Σ cₖ·nameₖ with signs folded into the separators, for coefficients of either
+/// scalar type (an f32 prints as its own shortest form, not as the f64 it widens to).
+fn write_terms<'a, C>(
     f: &mut fmt::Formatter<'_>,
-    terms: impl Iterator<Item = (f64, String)> + 'a,
-) -> fmt::Result {
+    terms: impl Iterator<Item = (C, String)> + 'a,
+) -> fmt::Result
+where
+    C: Copy + PartialOrd + Default + std::ops::Neg<Output = C> + fmt::Display,
+{
+    let zero = C::default();
     let mut first = true;
     for (c, name) in terms {
-        if c == 0.0 {
+        if c == zero {
             continue;
         }
-        let (sep, mag) = match (first, c < 0.0) {
+        let (sep, mag) = match (first, c < zero) {
             (true, false) => ("", c),
             (true, true) => ("-", -c),
             (false, false) => (" + ", c),
@@ -92,5 +99,65 @@ impl fmt::Display for Multivector {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let n = self.dim();
         write_terms(f, sorted_terms(n, self.terms().collect()).into_iter())
+    }
+}
+
+/// The named terms of a fixed-size element, (coefficient, 0-based basis indices) in the
+/// order of the run-time types' `Display` (by grade, then lexicographically).
+fn fixed_terms<T: Real>(n: usize, terms: &[(T, u64)]) -> impl Iterator<Item = (T, String)> + '_ {
+    terms
+        .iter()
+        .map(move |&(c, mask)| (c, blade::name(mask, n)))
+}
+
+impl<T: Real + Default + fmt::Display> fmt::Display for Bivector3<T> {
+    /// Formats as [`Bivector`] does: `0.5·e12 - 1.25·e23`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let terms = [(self.b12, 0b011), (self.b13, 0b101), (self.b23, 0b110)];
+        write_terms(f, fixed_terms(3, &terms))
+    }
+}
+
+impl<T: Real + Default + fmt::Display> fmt::Display for Rotor3<T> {
+    /// Formats as [`Rotor`] does: `0.8 + 0.6·e12`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let b = self.bivector_part();
+        let terms = [
+            (self.scalar(), 0),
+            (b.b12, 0b011),
+            (b.b13, 0b101),
+            (b.b23, 0b110),
+        ];
+        write_terms(f, fixed_terms(3, &terms))
+    }
+}
+
+/// The six planes of 4D with their masks, in lexicographic order.
+fn planes4<T: Real>(b: Bivector4<T>) -> [(T, u64); 6] {
+    [
+        (b.b12, 0b0011),
+        (b.b13, 0b0101),
+        (b.b14, 0b1001),
+        (b.b23, 0b0110),
+        (b.b24, 0b1010),
+        (b.b34, 0b1100),
+    ]
+}
+
+impl<T: Real + Default + fmt::Display> fmt::Display for Bivector4<T> {
+    /// Formats as [`Bivector`] does: `0.5·e12 - 1.25·e34`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write_terms(f, fixed_terms(4, &planes4(*self)))
+    }
+}
+
+impl<T: Real + Default + fmt::Display> fmt::Display for Rotor4<T> {
+    /// Formats as [`Rotor`] does: `0.8 + 0.6·e12 + 0.1·e1234`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut terms = [(T::zero(), 0); 8];
+        terms[0] = (self.scalar(), 0);
+        terms[1..7].copy_from_slice(&planes4(self.bivector_part()));
+        terms[7] = (self.pseudoscalar(), 0b1111);
+        write_terms(f, fixed_terms(4, &terms))
     }
 }

@@ -90,6 +90,10 @@ pub use bivector::{Bivector, SKEW_TOLERANCE, bivector_len, pair_index, pairs, pl
 pub use decompose::{Decomposition, SimplePlane};
 pub use error::AlgebraError;
 pub use fixed::{Bivector3, Bivector4, Real, Rotor3, Rotor4};
+// nalgebra's fixed-size types that the fixed-size rotors take and return, so that a user
+// needs no nalgebra dependency of a matching version (the crate itself is re-exported at the
+// crate root).
+pub use ::nalgebra::{Matrix3, Matrix4, Vector3, Vector4};
 pub use multivector::{INVERSE_TOLERANCE, Multivector, Product};
 pub use rotor::{NORMALIZE_TOLERANCE, ROTATION_TOLERANCE, ROTOR_TOLERANCE, Rotor};
 pub(crate) use rotor::{accumulate_plane_rotor, plane_table_const};

@@ -8,6 +8,7 @@ mod cga;
 mod decompose;
 mod exp_log;
 mod fixed;
+mod fixed_api;
 mod multivector;
 mod nalgebra_interop;
 mod outermorphism;
