@@ -7,7 +7,8 @@
 //! [`super::Multivector::blade_by_name`].
 
 use super::{
-    Bivector, Bivector3, Bivector4, Multivector, Real, Rotor, Rotor3, Rotor4, Vector, blade,
+    Bivector, Bivector3, Bivector4, Multivector, Real, Rotor, Rotor3, Rotor4, Vector, blade, cga,
+    pga,
 };
 use std::fmt;
 
@@ -159,5 +160,112 @@ impl<T: Real + Default + fmt::Display> fmt::Display for Rotor4<T> {
         terms[1..7].copy_from_slice(&planes4(self.bivector_part()));
         terms[7] = (self.pseudoscalar(), 0b1111);
         write_terms(f, fixed_terms(4, &terms))
+    }
+}
+
+/// Writes the numbers as a tuple `(1, 2, 3)`, with the formatter's precision.
+fn write_tuple(f: &mut fmt::Formatter<'_>, x: &[f64]) -> fmt::Result {
+    f.write_str("(")?;
+    for (k, c) in x.iter().enumerate() {
+        if k > 0 {
+            f.write_str(", ")?;
+        }
+        // + 0.0 prints a −0.0 of a sign flip as 0.
+        write_number(f, c + 0.0)?;
+    }
+    f.write_str(")")
+}
+
+fn write_number(f: &mut fmt::Formatter<'_>, c: f64) -> fmt::Result {
+    match f.precision() {
+        Some(p) => write!(f, "{c:.p$}"),
+        None => write!(f, "{c}"),
+    }
+}
+
+impl fmt::Display for pga::Point {
+    /// Formats as `point(1, 2, 3)`, or `direction(0, 0, 1)` for an ideal point.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.coordinates() {
+            Ok(x) => {
+                f.write_str("point")?;
+                write_tuple(f, &x)
+            }
+            Err(_) => {
+                f.write_str("direction")?;
+                write_tuple(f, &self.direction())
+            }
+        }
+    }
+}
+
+impl fmt::Display for pga::Plane {
+    /// Formats as `plane((0, 0, 1)·x = 2)`: the equation a·x = d as stored.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (a, d) = self.equation();
+        f.write_str("plane(")?;
+        write_tuple(f, &a)?;
+        f.write_str("·x = ")?;
+        write_number(f, d + 0.0)?;
+        f.write_str(")")
+    }
+}
+
+impl fmt::Display for pga::Line {
+    /// Formats as `line(through (1, 2, 0), direction (0, 0, 1))`, through the point nearest
+    /// the origin.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("line(through ")?;
+        write_tuple(f, &self.point_nearest_origin())?;
+        f.write_str(", direction ")?;
+        write_tuple(f, &self.direction())?;
+        f.write_str(")")
+    }
+}
+
+impl fmt::Display for pga::Motor {
+    /// Formats as `motor(rotation 0.8 - 0.6·e12, translation (1, 0, 2))`: the motion
+    /// x ↦ Q x + t with R the rotor of Q.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("motor(rotation ")?;
+        fmt::Display::fmt(&self.rotor(), f)?;
+        f.write_str(", translation ")?;
+        write_tuple(f, &self.translation())?;
+        f.write_str(")")
+    }
+}
+
+impl fmt::Display for cga::Point {
+    /// Formats as `point(1, 2, 3)`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.coordinates() {
+            Ok(x) => {
+                f.write_str("point")?;
+                write_tuple(f, &x)
+            }
+            Err(_) => f.write_str("point at infinity"),
+        }
+    }
+}
+
+impl fmt::Display for cga::Sphere {
+    /// Formats as `sphere(centre (1, 2, 3), radius 2)`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("sphere(centre ")?;
+        write_tuple(f, self.centre())?;
+        f.write_str(", radius ")?;
+        write_number(f, self.radius())?;
+        f.write_str(")")
+    }
+}
+
+impl fmt::Display for cga::Circle {
+    /// Formats as `circle(centre (0, 0, 5), radius 2)`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("circle(centre ")?;
+        write_tuple(f, self.centre())?;
+        f.write_str(", radius ")?;
+        write_number(f, self.radius())?;
+        f.write_str(")")
     }
 }

@@ -15,6 +15,7 @@ mod outermorphism;
 mod pga;
 mod properties;
 mod rotor;
+mod typed_objects;
 mod versor_general;
 mod versor_reference;
 mod versor_sqrt;

@@ -376,6 +376,17 @@ impl<T: Real> Rotor3<T> {
         )
     }
 
+    /// R B R̃: the bivector turned with the space (an angular velocity or a plane seen in
+    /// the turned frame), as [`Rotor::rotate_bivector`].
+    #[inline]
+    pub fn rotate_bivector(self, b: Bivector3<T>) -> Bivector3<T> {
+        // Under the quaternion map B is the pure quaternion u and R B R̃ is q u q̄, the
+        // formula of `rotate_vector` on u's components.
+        let u = b.quaternion_vector();
+        let v = self.rotate_vector(Vector3::new(u[0], u[1], u[2]));
+        Bivector3::from_quaternion_vector([v.x, v.y, v.z])
+    }
+
     /// The rotation matrix Q (Q x = R x R̃), as [`Rotor::to_matrix`].
     #[inline]
     pub fn to_matrix(self) -> Matrix3<T> {

@@ -432,6 +432,12 @@ impl<T: Real> Rotor4<T> {
         Bivector4::from_halves(turn(self.plus, a), turn(self.minus, m))
     }
 
+    /// R B R̃: the bivector turned with the space, as [`Rotor::rotate_bivector`].
+    #[inline]
+    pub fn rotate_bivector(self, b: Bivector4<T>) -> Bivector4<T> {
+        self.reverse().reverse_sandwich(b)
+    }
+
     /// The geometric product self · other (two quaternion products).
     #[inline]
     pub fn compose(self, other: Self) -> Self {
