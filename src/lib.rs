@@ -107,6 +107,10 @@
 #![forbid(unsafe_code)]
 
 pub mod algebra;
+/// The nalgebra crate rotorflow is built on (its matrices and the vectors of the fixed-size
+/// rotors), re-exported so that no second nalgebra dependency of a matching version is
+/// needed.
+pub use nalgebra;
 pub mod dynamics;
 pub mod inertia;
 mod numeric;

@@ -1,8 +1,25 @@
 //! Conformal geometric algebra Cl(N + 1, 1, 0) of Euclidean ℝᴺ: points as null vectors,
 //! spheres and planes as vectors, and the conformal maps (translations, rotations, dilations,
-//! transversions) as even versors acting by the sandwich X ↦ V X Ṽ, as thin functions over
-//! [`Multivector`] (Hestenes, Li & Rockwood, *New algebraic tools for classical geometry*,
-//! 2001; Dorst, Fontijne & Mann, *Geometric Algebra for Computer Science*, 2007, ch. 13–16).
+//! transversions) as even versors acting by the sandwich X ↦ V X Ṽ (Hestenes, Li &
+//! Rockwood, *New algebraic tools for classical geometry*, 2001; Dorst, Fontijne & Mann,
+//! *Geometric Algebra for Computer Science*, 2007, ch. 13–16).
+//!
+//! The functions here work on plain [`Multivector`]s (a versor is an ordinary even
+//! multivector, so it goes straight into [`Multivector::exp`], `log` and `sqrt`); the types
+//! [`Point`], [`Sphere`] and [`Circle`] hold what a geometric question needs to be asked
+//! once: [`Sphere::through`] N + 1 points and [`Circle::through`] three, with their
+//! [`centre`](Sphere::centre) and [`radius`](Sphere::radius). A versor V moves each of them
+//! with `V.apply(&x)` ([`super::Versor`]).
+//!
+//! ```
+//! use rotorflow::algebra::{Versor, cga};
+//! let p = |x: &[f64]| cga::Point::new(x);
+//! let c = cga::Circle::through(&p(&[1.0, 0.0])?, &p(&[0.0, 1.0])?, &p(&[-1.0, 0.0])?)?;
+//! let moved = cga::translator(&[3.0, 4.0])?.apply(&c)?;
+//! assert!((moved.centre()[0] - 3.0).abs() < 1e-15 && (moved.centre()[1] - 4.0).abs() < 1e-15);
+//! assert!((moved.radius() - 1.0).abs() < 1e-15);
+//! # Ok::<(), rotorflow::algebra::AlgebraError>(())
+//! ```
 //!
 //! # Basis and the two null vectors
 //! rotorflow orders basis vectors positive first, so in Cl(N + 1, 1, 0) e₁ … e_N span ℝᴺ,
@@ -545,4 +562,376 @@ fn vector_part(x: &Multivector, what: &'static str) -> Result<Multivector, Algeb
         return Err(check_grade(x, 1, what).expect_err("other grades are present"));
     }
     Ok(v)
+}
+
+/// A point of ℝᴺ as a null vector of Cl(N + 1, 1, 0), [`up`]`(x)` (or any non-zero multiple
+/// of it: a versor keeps it null and may scale it).
+///
+/// ```
+/// use rotorflow::algebra::cga::Point;
+/// let p = Point::new(&[1.0, 2.0, 3.0])?;
+/// assert_eq!(p.coordinates()?, vec![1.0, 2.0, 3.0]);
+/// assert_eq!(p.to_string(), "point(1, 2, 3)");
+/// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Point(Multivector);
+
+impl Point {
+    /// The point at Euclidean coordinates `x` (N = `x.len()`).
+    ///
+    /// # Errors
+    /// As [`up`].
+    pub fn new(x: &[f64]) -> Result<Point, AlgebraError> {
+        Ok(Point(up(x)?))
+    }
+
+    /// Wraps a null vector of Cl(N + 1, 1, 0) of any non-zero weight (round-off of other
+    /// grades, as a sandwich leaves it, is dropped).
+    ///
+    /// # Errors
+    /// As [`down`]: not a conformal vector, not null, or a multiple of n∞.
+    pub fn from_multivector(m: Multivector) -> Result<Point, AlgebraError> {
+        down(&m)?;
+        Ok(Point(m.grade(1)))
+    }
+
+    /// The Euclidean dimension N.
+    pub fn dim(&self) -> usize {
+        self.0.dim() - 2
+    }
+
+    /// The Euclidean coordinates x (divided by the weight), [`down`].
+    ///
+    /// # Errors
+    /// [`AlgebraError::PointAtInfinity`] for a weight so small that a coordinate overflows.
+    pub fn coordinates(&self) -> Result<Vec<f64>, AlgebraError> {
+        down(&self.0)
+    }
+
+    /// The underlying null vector.
+    pub fn as_multivector(&self) -> &Multivector {
+        &self.0
+    }
+
+    /// The underlying null vector, by value.
+    pub fn into_multivector(self) -> Multivector {
+        self.0
+    }
+}
+
+impl AsRef<Multivector> for Point {
+    fn as_ref(&self) -> &Multivector {
+        &self.0
+    }
+}
+
+/// The centre and radius of a round: the direct blade X of a circle (grade 3) or a
+/// sphere (grade N + 1) spanned by points. X n∞ X is a multiple of the centre (n∞ reflected
+/// in the round), and ρ² = X X̂ / (n∞ ⌋ X)² (Dorst, Fontijne & Mann, *Geometric Algebra for
+/// Computer Science*, §14.2) with X̂ the grade involution.
+fn round_centre_radius(
+    x: &Multivector,
+    grade: usize,
+    what: &'static str,
+) -> Result<(Vec<f64>, f64), AlgebraError> {
+    let n = x.dim() - 2;
+    let inf = ninf(n)?;
+    let scale = x.max_abs();
+    if scale == 0.0 {
+        return Err(AlgebraError::Degenerate {
+            operation: what,
+            reason: "the points are not in general position (two coincide, or they lie on a \
+                     smaller round)",
+        });
+    }
+    let carrier = inf.left_contract(x);
+    let flat = x.wedge(&inf);
+    if negligible(flat.max_abs(), 4.0 * scale) {
+        return Err(AlgebraError::Degenerate {
+            operation: what,
+            reason: "the points lie on a flat (a line or a hyperplane: a round of infinite \
+                     radius)",
+        });
+    }
+    let sign = if grade % 2 == 0 { 1.0 } else { -1.0 };
+    let r2 = sign * x.scalar_product(x) / carrier.scalar_product(&carrier);
+    let centre = down(&x.geometric(&inf).geometric(x).grade(1))?;
+    if !r2.is_finite() || r2 <= 0.0 {
+        return Err(AlgebraError::NotASphere {
+            reason: "its squared radius is not positive",
+            deviation: r2,
+        });
+    }
+    Ok((centre, r2.sqrt()))
+}
+
+/// The points moved so that their mean is the origin, and the mean: the blade of points
+/// near the origin has no large ½ x² terms to cancel, so a round is read from it to the
+/// precision of the points' spread rather than of their distance from the origin.
+fn centred(points: &[&Point]) -> Result<(Vec<Multivector>, Vec<f64>), AlgebraError> {
+    let coords = points
+        .iter()
+        .map(|p| p.coordinates())
+        .collect::<Result<Vec<_>, _>>()?;
+    let n = coords[0].len();
+    let k = coords.len() as f64;
+    let mean: Vec<f64> = (0..n)
+        .map(|i| coords.iter().map(|x| x[i]).sum::<f64>() / k)
+        .collect();
+    let local = coords
+        .iter()
+        .map(|x| {
+            up(&x
+                .iter()
+                .zip(&mean)
+                .map(|(a, m)| a - m)
+                .collect::<Vec<f64>>())
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok((local, mean))
+}
+
+/// x + m.
+fn shifted(x: &[f64], m: &[f64]) -> Vec<f64> {
+    x.iter().zip(m).map(|(a, b)| a + b).collect()
+}
+
+/// Checks that the points share one Euclidean dimension and returns it.
+fn common_dim(points: &[&Point]) -> Result<usize, AlgebraError> {
+    let n = points[0].dim();
+    for p in points {
+        check_same_dim(n, p.dim())?;
+    }
+    Ok(n)
+}
+
+/// A hypersphere of ℝᴺ (a circle in 2D, a sphere in 3D) with its centre and radius, held as
+/// the dual vector σ = up(c) − ½ r² n∞ of Cl(N + 1, 1, 0) ([`sphere`]): a point X lies on it
+/// exactly when X · σ = 0.
+///
+/// ```
+/// use rotorflow::algebra::cga::{Point, Sphere};
+/// // The unit circle of the plane through three of its points.
+/// let pts = [[1.0, 0.0], [0.0, 1.0], [-0.6, -0.8]].map(|x| Point::new(&x).unwrap());
+/// let s = Sphere::through(&pts)?;
+/// assert!(s.centre().iter().all(|c| c.abs() < 1e-15) && (s.radius() - 1.0).abs() < 1e-15);
+/// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sphere {
+    vector: Multivector,
+    centre: Vec<f64>,
+    radius: f64,
+}
+
+impl Sphere {
+    /// The sphere with `centre` and `radius`.
+    ///
+    /// # Errors
+    /// As [`sphere`].
+    pub fn new(centre: &[f64], radius: f64) -> Result<Sphere, AlgebraError> {
+        Ok(Sphere {
+            vector: sphere(centre, radius)?,
+            centre: centre.to_vec(),
+            radius,
+        })
+    }
+
+    /// The sphere through N + 1 points of ℝᴺ: their outer product P₁ ∧ … ∧ P_(N+1), the
+    /// direct sphere, read as a round (centre and radius).
+    ///
+    /// # Errors
+    /// [`AlgebraError::WrongComponentCount`] unless there are N + 1 points;
+    /// [`AlgebraError::DimensionMismatch`] for points of different dimensions;
+    /// [`AlgebraError::Degenerate`] when the points are not independent (two coincide) or
+    /// lie on one hyperplane (the "sphere" is flat).
+    pub fn through(points: &[Point]) -> Result<Sphere, AlgebraError> {
+        let refs: Vec<&Point> = points.iter().collect();
+        let first = refs.first().ok_or(AlgebraError::WrongComponentCount {
+            what: "points of a sphere",
+            expected: 3,
+            found: 0,
+        })?;
+        let n = first.dim();
+        if refs.len() != n + 1 {
+            return Err(AlgebraError::WrongComponentCount {
+                what: "points of a sphere",
+                expected: n + 1,
+                found: refs.len(),
+            });
+        }
+        common_dim(&refs)?;
+        let (local, mean) = centred(&refs)?;
+        let mut blade = local[0].clone();
+        for p in &local[1..] {
+            blade = blade.wedge(p);
+        }
+        let (centre, radius) = round_centre_radius(&blade, n + 1, "the sphere through points")?;
+        Sphere::new(&shifted(&centre, &mean), radius)
+    }
+
+    /// Wraps a dual sphere vector of any weight and sign (a [`sphere`] moved by a versor).
+    ///
+    /// # Errors
+    /// As [`signed_distance`]; [`AlgebraError::NotASphere`] for a plane (a sphere of
+    /// infinite radius).
+    pub fn from_multivector(m: &Multivector) -> Result<Sphere, AlgebraError> {
+        match surface(m)? {
+            Surface::Sphere { center, radius } => Sphere::new(&center, radius),
+            Surface::Plane { .. } => Err(AlgebraError::NotASphere {
+                reason: "it is a plane (a sphere of infinite radius)",
+                deviation: 0.0,
+            }),
+        }
+    }
+
+    /// The Euclidean dimension N.
+    pub fn dim(&self) -> usize {
+        self.centre.len()
+    }
+
+    /// The centre.
+    pub fn centre(&self) -> &[f64] {
+        &self.centre
+    }
+
+    /// The radius.
+    pub fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    /// The signed distance |x − c| − r of the point `x` (negative inside), [`signed_distance`].
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionMismatch`]; [`AlgebraError::NonFinite`].
+    pub fn signed_distance(&self, x: &[f64]) -> Result<f64, AlgebraError> {
+        signed_distance(&self.vector, x)
+    }
+
+    /// The dual vector σ = up(c) − ½ r² n∞.
+    pub fn as_multivector(&self) -> &Multivector {
+        &self.vector
+    }
+}
+
+impl AsRef<Multivector> for Sphere {
+    fn as_ref(&self) -> &Multivector {
+        &self.vector
+    }
+}
+
+/// A circle of ℝᴺ (N ≥ 2) held as the direct 3-blade P₁ ∧ P₂ ∧ P₃ of three of its points,
+/// with its centre and radius.
+///
+/// ```
+/// use rotorflow::algebra::cga::{Circle, Point};
+/// // The circle of radius 2 about (0, 0, 5) in the plane x₃ = 5.
+/// let p = |x: [f64; 3]| Point::new(&x);
+/// let c = Circle::through(&p([2.0, 0.0, 5.0])?, &p([0.0, 2.0, 5.0])?, &p([-2.0, 0.0, 5.0])?)?;
+/// let centre = c.centre();
+/// assert!(centre[0].abs() < 1e-15 && centre[1].abs() < 1e-15 && (centre[2] - 5.0).abs() < 1e-14);
+/// assert!((c.radius() - 2.0).abs() < 1e-15);
+/// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Circle {
+    blade: Multivector,
+    centre: Vec<f64>,
+    radius: f64,
+}
+
+impl Circle {
+    /// The circle through three points: the outer product P₁ ∧ P₂ ∧ P₃, read as a round.
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionMismatch`] for points of different dimensions;
+    /// [`AlgebraError::Degenerate`] when two points coincide or the three are collinear.
+    pub fn through(p1: &Point, p2: &Point, p3: &Point) -> Result<Circle, AlgebraError> {
+        let refs = [p1, p2, p3];
+        common_dim(&refs)?;
+        // The centre and radius are read about the points' mean (their ½ x² terms small
+        // there), and the blade kept is the one of the points as given.
+        let (local, mean) = centred(&refs)?;
+        let local_blade = local[0].wedge(&local[1]).wedge(&local[2]);
+        let (centre, radius) = round_centre_radius(&local_blade, 3, "the circle through points")?;
+        Ok(Circle {
+            blade: p1.0.wedge(&p2.0).wedge(&p3.0),
+            centre: shifted(&centre, &mean),
+            radius,
+        })
+    }
+
+    /// A circle of its direct 3-blade, with the centre and radius read from it.
+    fn from_blade(blade: Multivector) -> Result<Circle, AlgebraError> {
+        let (centre, radius) = round_centre_radius(&blade, 3, "the circle through points")?;
+        Ok(Circle {
+            blade,
+            centre,
+            radius,
+        })
+    }
+
+    /// The Euclidean dimension N.
+    pub fn dim(&self) -> usize {
+        self.centre.len()
+    }
+
+    /// The centre.
+    pub fn centre(&self) -> &[f64] {
+        &self.centre
+    }
+
+    /// The radius.
+    pub fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    /// The direct 3-blade P₁ ∧ P₂ ∧ P₃ (a point X lies on the circle exactly when
+    /// X ∧ C = 0).
+    pub fn as_multivector(&self) -> &Multivector {
+        &self.blade
+    }
+}
+
+impl AsRef<Multivector> for Circle {
+    fn as_ref(&self) -> &Multivector {
+        &self.blade
+    }
+}
+
+impl super::Versor<Point> for Multivector {
+    type Output = Result<Point, AlgebraError>;
+    /// The point moved by the conformal versor V: V X Ṽ.
+    ///
+    /// # Errors
+    /// [`AlgebraError::SignatureMismatch`]; as [`Point::from_multivector`] when the image
+    /// is not a finite point (a transversion sends one point to infinity).
+    fn apply(&self, p: &Point) -> Self::Output {
+        Point::from_multivector(super::Versor::<Multivector>::apply(self, &p.0)?)
+    }
+}
+
+impl super::Versor<Sphere> for Multivector {
+    type Output = Result<Sphere, AlgebraError>;
+    /// The sphere moved by the conformal versor V: V σ Ṽ.
+    ///
+    /// # Errors
+    /// [`AlgebraError::SignatureMismatch`]; [`AlgebraError::NotASphere`] when the image is
+    /// a plane (a transversion can flatten a sphere through the point it sends to infinity).
+    fn apply(&self, s: &Sphere) -> Self::Output {
+        Sphere::from_multivector(&super::Versor::<Multivector>::apply(self, &s.vector)?)
+    }
+}
+
+impl super::Versor<Circle> for Multivector {
+    type Output = Result<Circle, AlgebraError>;
+    /// The circle moved by the conformal versor V: V C Ṽ.
+    ///
+    /// # Errors
+    /// [`AlgebraError::SignatureMismatch`]; [`AlgebraError::Degenerate`] when the image is
+    /// a line.
+    fn apply(&self, c: &Circle) -> Self::Output {
+        Circle::from_blade(super::Versor::<Multivector>::apply(self, &c.blade)?.grade(3))
+    }
 }

@@ -6,20 +6,28 @@
 //! scalar term is printed plain (`0.8 + 0.6·e12`). Blade names read back with
 //! [`super::Multivector::blade_by_name`].
 
-use super::{Bivector, Multivector, Rotor, Vector, blade};
+use super::{
+    Bivector, Bivector3, Bivector4, Multivector, Real, Rotor, Rotor3, Rotor4, Vector, blade, cga,
+    pga,
+};
 use std::fmt;
 
-/// Writes Σ cₖ·nameₖ with signs folded into the separators.
-fn write_terms<'a>(
+/// Writes Σ cₖ·nameₖ with signs folded into the separators, for coefficients of either
+/// scalar type (an f32 prints as its own shortest form, not as the f64 it widens to).
+fn write_terms<'a, C>(
     f: &mut fmt::Formatter<'_>,
-    terms: impl Iterator<Item = (f64, String)> + 'a,
-) -> fmt::Result {
+    terms: impl Iterator<Item = (C, String)> + 'a,
+) -> fmt::Result
+where
+    C: Copy + PartialOrd + Default + std::ops::Neg<Output = C> + fmt::Display,
+{
+    let zero = C::default();
     let mut first = true;
     for (c, name) in terms {
-        if c == 0.0 {
+        if c == zero {
             continue;
         }
-        let (sep, mag) = match (first, c < 0.0) {
+        let (sep, mag) = match (first, c < zero) {
             (true, false) => ("", c),
             (true, true) => ("-", -c),
             (false, false) => (" + ", c),
@@ -92,5 +100,172 @@ impl fmt::Display for Multivector {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let n = self.dim();
         write_terms(f, sorted_terms(n, self.terms().collect()).into_iter())
+    }
+}
+
+/// The named terms of a fixed-size element, (coefficient, 0-based basis indices) in the
+/// order of the run-time types' `Display` (by grade, then lexicographically).
+fn fixed_terms<T: Real>(n: usize, terms: &[(T, u64)]) -> impl Iterator<Item = (T, String)> + '_ {
+    terms
+        .iter()
+        .map(move |&(c, mask)| (c, blade::name(mask, n)))
+}
+
+impl<T: Real + Default + fmt::Display> fmt::Display for Bivector3<T> {
+    /// Formats as [`Bivector`] does: `0.5·e12 - 1.25·e23`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let terms = [(self.b12, 0b011), (self.b13, 0b101), (self.b23, 0b110)];
+        write_terms(f, fixed_terms(3, &terms))
+    }
+}
+
+impl<T: Real + Default + fmt::Display> fmt::Display for Rotor3<T> {
+    /// Formats as [`Rotor`] does: `0.8 + 0.6·e12`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let b = self.bivector_part();
+        let terms = [
+            (self.scalar(), 0),
+            (b.b12, 0b011),
+            (b.b13, 0b101),
+            (b.b23, 0b110),
+        ];
+        write_terms(f, fixed_terms(3, &terms))
+    }
+}
+
+/// The six planes of 4D with their masks, in lexicographic order.
+fn planes4<T: Real>(b: Bivector4<T>) -> [(T, u64); 6] {
+    [
+        (b.b12, 0b0011),
+        (b.b13, 0b0101),
+        (b.b14, 0b1001),
+        (b.b23, 0b0110),
+        (b.b24, 0b1010),
+        (b.b34, 0b1100),
+    ]
+}
+
+impl<T: Real + Default + fmt::Display> fmt::Display for Bivector4<T> {
+    /// Formats as [`Bivector`] does: `0.5·e12 - 1.25·e34`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write_terms(f, fixed_terms(4, &planes4(*self)))
+    }
+}
+
+impl<T: Real + Default + fmt::Display> fmt::Display for Rotor4<T> {
+    /// Formats as [`Rotor`] does: `0.8 + 0.6·e12 + 0.1·e1234`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut terms = [(T::zero(), 0); 8];
+        terms[0] = (self.scalar(), 0);
+        terms[1..7].copy_from_slice(&planes4(self.bivector_part()));
+        terms[7] = (self.pseudoscalar(), 0b1111);
+        write_terms(f, fixed_terms(4, &terms))
+    }
+}
+
+/// Writes the numbers as a tuple `(1, 2, 3)`, with the formatter's precision.
+fn write_tuple(f: &mut fmt::Formatter<'_>, x: &[f64]) -> fmt::Result {
+    f.write_str("(")?;
+    for (k, c) in x.iter().enumerate() {
+        if k > 0 {
+            f.write_str(", ")?;
+        }
+        // + 0.0 prints a −0.0 of a sign flip as 0.
+        write_number(f, c + 0.0)?;
+    }
+    f.write_str(")")
+}
+
+fn write_number(f: &mut fmt::Formatter<'_>, c: f64) -> fmt::Result {
+    match f.precision() {
+        Some(p) => write!(f, "{c:.p$}"),
+        None => write!(f, "{c}"),
+    }
+}
+
+impl fmt::Display for pga::Point {
+    /// Formats as `point(1, 2, 3)`, or `direction(0, 0, 1)` for an ideal point.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.coordinates() {
+            Ok(x) => {
+                f.write_str("point")?;
+                write_tuple(f, &x)
+            }
+            Err(_) => {
+                f.write_str("direction")?;
+                write_tuple(f, &self.direction())
+            }
+        }
+    }
+}
+
+impl fmt::Display for pga::Plane {
+    /// Formats as `plane((0, 0, 1)·x = 2)`: the equation a·x = d as stored.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (a, d) = self.equation();
+        f.write_str("plane(")?;
+        write_tuple(f, &a)?;
+        f.write_str("·x = ")?;
+        write_number(f, d + 0.0)?;
+        f.write_str(")")
+    }
+}
+
+impl fmt::Display for pga::Line {
+    /// Formats as `line(through (1, 2, 0), direction (0, 0, 1))`, through the point nearest
+    /// the origin.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("line(through ")?;
+        write_tuple(f, &self.point_nearest_origin())?;
+        f.write_str(", direction ")?;
+        write_tuple(f, &self.direction())?;
+        f.write_str(")")
+    }
+}
+
+impl fmt::Display for pga::Motor {
+    /// Formats as `motor(rotation 0.8 - 0.6·e12, translation (1, 0, 2))`: the motion
+    /// x ↦ Q x + t with R the rotor of Q.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("motor(rotation ")?;
+        fmt::Display::fmt(&self.rotor(), f)?;
+        f.write_str(", translation ")?;
+        write_tuple(f, &self.translation())?;
+        f.write_str(")")
+    }
+}
+
+impl fmt::Display for cga::Point {
+    /// Formats as `point(1, 2, 3)`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.coordinates() {
+            Ok(x) => {
+                f.write_str("point")?;
+                write_tuple(f, &x)
+            }
+            Err(_) => f.write_str("point at infinity"),
+        }
+    }
+}
+
+impl fmt::Display for cga::Sphere {
+    /// Formats as `sphere(centre (1, 2, 3), radius 2)`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("sphere(centre ")?;
+        write_tuple(f, self.centre())?;
+        f.write_str(", radius ")?;
+        write_number(f, self.radius())?;
+        f.write_str(")")
+    }
+}
+
+impl fmt::Display for cga::Circle {
+    /// Formats as `circle(centre (0, 0, 5), radius 2)`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("circle(centre ")?;
+        write_tuple(f, self.centre())?;
+        f.write_str(", radius ")?;
+        write_number(f, self.radius())?;
+        f.write_str(")")
     }
 }

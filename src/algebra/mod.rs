@@ -14,8 +14,9 @@
 //! The graded types ([`Vector`], [`Bivector`], [`Rotor`]) model Euclidean ℝᴺ, the setting of
 //! rigid-body rotation: they carry no signature, so their kernels are tight and their API is
 //! infallible. Any signature Cl(p, q, r), projective and conformal algebras included, is
-//! available through [`Multivector`]; the modules [`pga`] (points, lines, planes, motors),
-//! [`cga`] (conformal points, spheres, planes and versors) and [`sta`] (Lorentz boosts) add
+//! available through [`Multivector`] (built from components with [`Multivector::vector`] and
+//! [`Multivector::bivector`]); the modules [`pga`] (points, lines, planes, motors), [`cga`]
+//! (conformal points, spheres, circles, planes and versors) and [`sta`] (Lorentz boosts) add
 //! the geometry of the three most used ones.
 //!
 //! # Conventions
@@ -32,18 +33,34 @@
 //! - A × B = ½(AB − BA) is the commutator product ([`Bivector::commutator`]).
 //!
 //! # Operators
-//! Operators panic only on mismatched dimensions; each has a checked `try_` method.
+//! Each operator has one meaning across the crate: the product of the algebra it names,
+//! whatever type it is written between. Operators panic only on mismatched dimensions or
+//! signatures; each has a checked method.
 //!
 //! | expression | meaning | types |
 //! |---|---|---|
-//! | `a + b`, `a - b`, `-a` | sum, difference, negation | `Vector`, `Bivector`, `Multivector` |
-//! | `a * s`, `s * a`, `a / s` | scaling by an `f64` | `Vector`, `Bivector`, `Multivector` |
-//! | `a * b` | geometric product | `Multivector`; `Rotor * Rotor` composes |
-//! | `a ^ b` | outer product a ∧ b | `Multivector`; `&Vector ^ &Vector → Bivector` |
+//! | `a + b`, `a - b`, `-a` | sum, difference, negation | `Vector`, `Bivector`, `Multivector`; the fixed-size bivectors |
+//! | `a * s`, `s * a`, `a / s` | scaling by a scalar | `Vector`, `Bivector`, `Multivector`; the fixed-size bivectors |
+//! | `a * b` | geometric product a b | `Multivector`; between versors it composes (`Rotor`, `Rotor3`, `Rotor4`, [`pga::Motor`]: `a * b` is b first, then a); a fixed-size rotor times a vector turns it (R x R̃) |
+//! | `a ^ b` | outer product a ∧ b | `Multivector`, every typed PGA/CGA object (→ `Multivector`); `&Vector ^ &Vector → Bivector` |
+//! | `a & b` | regressive product a ∨ b | `Multivector`, every typed PGA/CGA object (→ `Multivector`) |
+//! | `a \| b` | inner product Σ ⟨A_r B_s⟩_\|r−s\| ([`Multivector::inner`]) | `Multivector`, every typed PGA/CGA object (→ `Multivector`); `&Vector \| &Vector → f64` |
 //! | `a << b` | left contraction a ⌋ b | `Multivector`; `&Vector << &Bivector → Vector` |
 //! | `a >> b` | right contraction a ⌊ b | `Multivector` |
-//! | `a & b` | regressive product a ∨ b (meet) | `Multivector` |
 //! | `a += b`, `a -= b`, `a *= s` | in place | `Vector`, `Bivector`, `Multivector` |
+//!
+//! What ∧ and ∨ do geometrically depends on what a vector stands for, not on the operator.
+//! Where blades stand for the subspaces they span (the Euclidean algebra, conformal points:
+//! [`cga::Circle::through`] is P₁ ∧ P₂ ∧ P₃), ∧ spans (joins) and ∨ intersects (meets).
+//! In plane-based projective GA a vector is a hyperplane, so the same products swap roles:
+//! ∧ meets ([`pga::Plane::meet`]) and ∨ joins ([`pga::Point::join`]), as in klein and
+//! ganja.js. The operators on typed objects return the plain product; the typed methods
+//! say which object results and refuse the special positions where it does not exist.
+//!
+//! The sandwich X ↦ V X Ṽ of every versor is one trait, [`Versor`]: `V.apply(&x)` for the
+//! rotors (on vectors, bivectors and rotors), motors (on points, lines, planes, motors) and
+//! conformal versors (on [`cga::Point`], [`cga::Sphere`], [`cga::Circle`] and any
+//! multivector).
 //!
 //! # Example
 //! ```
@@ -89,7 +106,12 @@ pub use bivector::{Bivector, SKEW_TOLERANCE, bivector_len, pair_index, pairs, pl
 pub use decompose::{Decomposition, SimplePlane};
 pub use error::AlgebraError;
 pub use fixed::{Bivector3, Bivector4, Real, Rotor3, Rotor4};
+// nalgebra's fixed-size types that the fixed-size rotors take and return, so that a user
+// needs no nalgebra dependency of a matching version (the crate itself is re-exported at the
+// crate root).
+pub use ::nalgebra::{Matrix3, Matrix4, Vector3, Vector4};
 pub use multivector::{INVERSE_TOLERANCE, Multivector, Product};
+pub use ops::Versor;
 pub use rotor::{NORMALIZE_TOLERANCE, ROTATION_TOLERANCE, ROTOR_TOLERANCE, Rotor};
 pub(crate) use rotor::{accumulate_plane_rotor, plane_table_const};
 pub use signature::Signature;

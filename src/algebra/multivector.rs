@@ -89,8 +89,8 @@ pub enum Product {
     Commutator,
     /// The anticommutator product ½(ab + ba).
     Anticommutator,
-    /// The regressive product a ∨ b (meet), metric-free: the left complement of the outer
-    /// product of the right complements.
+    /// The regressive product a ∨ b, metric-free: the left complement of the outer product
+    /// of the right complements.
     Regressive,
 }
 
@@ -226,6 +226,70 @@ impl Multivector {
         Ok(m)
     }
 
+    /// The vector Σ cᵢ eᵢ₊₁ of the algebra `sig` from its N components (the basis order of
+    /// the signature: positive, negative, then null vectors).
+    ///
+    /// ```
+    /// use rotorflow::algebra::{Multivector, Signature};
+    /// let pga3 = Signature::new(3, 0, 1)?;
+    /// let plane = Multivector::vector(pga3, &[0.0, 0.0, 1.0, 2.0])?; // e₃ + 2e₄
+    /// assert_eq!(plane.coefficient(0b0100), 1.0);
+    /// assert_eq!(plane.coefficient(0b1000), 2.0);
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`AlgebraError::WrongComponentCount`] unless there are N components;
+    /// [`AlgebraError::NonFinite`]; [`AlgebraError::DimensionTooLarge`].
+    pub fn vector(sig: Signature, components: &[f64]) -> Result<Self, AlgebraError> {
+        let n = sig.dim();
+        let mut m = Self::graded(sig, components, n, "vector")?;
+        for (i, &c) in components.iter().enumerate() {
+            m.coeffs[1 << i] = c;
+        }
+        Ok(m)
+    }
+
+    /// The bivector Σ cᵢⱼ eᵢⱼ of the algebra `sig` from its N(N − 1)/2 components in the
+    /// lexicographic order of [`super::Bivector`]: e₁₂, e₁₃, …, e₁N, e₂₃, …
+    ///
+    /// ```
+    /// use rotorflow::algebra::{Multivector, Signature};
+    /// let b = Multivector::bivector(Signature::new(2, 1, 0)?, &[1.0, 0.0, 3.0])?;
+    /// assert_eq!(b.to_string(), "1·e12 + 3·e23");
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`AlgebraError::WrongComponentCount`] unless there are N(N − 1)/2 components;
+    /// [`AlgebraError::NonFinite`]; [`AlgebraError::DimensionTooLarge`].
+    pub fn bivector(sig: Signature, components: &[f64]) -> Result<Self, AlgebraError> {
+        let n = sig.dim();
+        let mut m = Self::graded(sig, components, n * n.saturating_sub(1) / 2, "bivector")?;
+        for ((i, j), &c) in super::bivector::pairs(n).zip(components) {
+            m.coeffs[(1 << i) | (1 << j)] = c;
+        }
+        Ok(m)
+    }
+
+    /// The zero element of `sig`, after checking `components` (`expected` of them, finite).
+    fn graded(
+        sig: Signature,
+        components: &[f64],
+        expected: usize,
+        what: &'static str,
+    ) -> Result<Self, AlgebraError> {
+        if components.len() != expected {
+            return Err(AlgebraError::WrongComponentCount {
+                what,
+                expected,
+                found: components.len(),
+            });
+        }
+        check_finite(components, what)?;
+        Self::try_zero(sig)
+    }
+
     /// Builds from raw storage without checks (crate-internal).
     pub(crate) fn from_storage(sig: Signature, coeffs: MvStorage) -> Self {
         debug_assert_eq!(coeffs.len(), 1 << sig.dim());
@@ -351,6 +415,21 @@ impl Multivector {
         self.product(other, Product::Scalar).scalar_part()
     }
 
+    /// Returns the inner product `self · other` = Σ ⟨A_r B_s⟩_|r−s| over the grades of both
+    /// (Dorst's "fat dot", kingdon's `|`), the operator `|`: the left contraction where
+    /// r ≤ s, the right one where r ≥ s, so A · B = A ⌋ B + A ⌊ B − ⟨A B⟩₀. For two vectors
+    /// it is the metric's dot product.
+    ///
+    /// # Panics
+    /// If the operands belong to different algebras.
+    #[track_caller]
+    pub fn inner(&self, other: &Self) -> Self {
+        let mut m = self.left_contract(other);
+        m += &self.right_contract(other);
+        m.coeffs[0] -= self.scalar_product(other);
+        m
+    }
+
     /// Returns the commutator product `self × other = ½(self·other − other·self)`.
     ///
     /// # Panics
@@ -369,10 +448,13 @@ impl Multivector {
         self.product(other, Product::Anticommutator)
     }
 
-    /// Returns the regressive product `self ∨ other` (the meet; keeps grade r + s − N).
+    /// Returns the regressive product `self ∨ other` (keeps grade r + s − N), the operator
+    /// `&`: it intersects blades read as the subspaces they span (and joins them in
+    /// projective GA, where vectors are hyperplanes; see the operator table of
+    /// [`crate::algebra`]).
     ///
     /// Metric-free: `A ∨ B = lc(rc(A) ∧ rc(B))` with the right and left complements. In 3D,
-    /// `e12 ∨ e23 = e2`: two planes meet in a line.
+    /// `e12 ∨ e23 = e2`: the planes e₁₂ and e₂₃ through the origin intersect in the e₂ axis.
     ///
     /// # Panics
     /// If the operands belong to different algebras.

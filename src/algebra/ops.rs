@@ -1,21 +1,14 @@
-//! Operator overloads. Every operator panics on mismatched dimensions (documented in the
-//! table of [`crate::algebra`]); the checked versions are the `try_` methods.
-//!
-//! | expression | meaning | types |
-//! |---|---|---|
-//! | `a + b`, `a - b`, `-a` | sum, difference, negation | `Vector`, `Bivector`, `Multivector` |
-//! | `a * s`, `s * a`, `a / s` | scaling by an `f64` | `Vector`, `Bivector`, `Multivector` |
-//! | `a * b` | geometric product | `Multivector`; `Rotor` (composition) |
-//! | `a ^ b` | outer product a ∧ b | `Multivector`; `Vector ^ Vector → Bivector` |
-//! | `a << b` | left contraction a ⌋ b | `Multivector`; `Vector << Bivector → Vector` |
-//! | `a >> b` | right contraction a ⌊ b | `Multivector` |
-//! | `a & b` | regressive product a ∨ b (meet) | `Multivector` |
-//! | `a += b`, `a -= b`, `a *= s` | in place | `Vector`, `Bivector`, `Multivector` |
+//! Operator overloads and the [`Versor`] trait. Every operator panics on mismatched
+//! dimensions or signatures (documented in the table of [`crate::algebra`], which states the
+//! one meaning of each operator across the crate); the checked versions are the methods.
 
-use super::error::assert_same_dim;
-use super::{Bivector, Multivector, Vector};
+use super::error::{assert_same_dim, check_same_dim};
+use super::{
+    AlgebraError, Bivector, Bivector3, Bivector4, Multivector, Real, Rotor, Rotor3, Rotor4, Vector,
+    Vector3, Vector4, cga, pga,
+};
 use std::ops::{
-    Add, AddAssign, BitAnd, BitXor, Div, Mul, MulAssign, Neg, Shl, Shr, Sub, SubAssign,
+    Add, AddAssign, BitAnd, BitOr, BitXor, Div, Mul, MulAssign, Neg, Shl, Shr, Sub, SubAssign,
 };
 
 /// Implements the linear-space operators (+, −, neg, scaling) for a type with
@@ -239,6 +232,82 @@ mv_product_op!(BitXor, bitxor, wedge);
 mv_product_op!(Shl, shl, left_contract);
 mv_product_op!(Shr, shr, right_contract);
 mv_product_op!(BitAnd, bitand, regressive);
+mv_product_op!(BitOr, bitor, inner);
+
+/// The algebra's products on the multivectors under typed geometric objects: `&`, `^` and
+/// `|` mean what they mean for [`Multivector`] and return one (which geometric object comes
+/// out, and whether it exists, is what the typed methods such as [`pga::Point::join`] and
+/// [`cga::Sphere::through`] decide).
+macro_rules! typed_products {
+    ($($t:ty),*) => {$(
+        impl<B: AsRef<Multivector>> BitAnd<&B> for &$t {
+            type Output = Multivector;
+            /// The regressive product ∨ of the underlying multivectors.
+            #[track_caller]
+            fn bitand(self, rhs: &B) -> Multivector {
+                self.as_ref().regressive(rhs.as_ref())
+            }
+        }
+        impl<B: AsRef<Multivector>> BitXor<&B> for &$t {
+            type Output = Multivector;
+            /// The outer product ∧ of the underlying multivectors.
+            #[track_caller]
+            fn bitxor(self, rhs: &B) -> Multivector {
+                self.as_ref().wedge(rhs.as_ref())
+            }
+        }
+        impl<B: AsRef<Multivector>> BitOr<&B> for &$t {
+            type Output = Multivector;
+            /// The inner product of the underlying multivectors ([`Multivector::inner`]).
+            #[track_caller]
+            fn bitor(self, rhs: &B) -> Multivector {
+                self.as_ref().inner(rhs.as_ref())
+            }
+        }
+    )*};
+}
+
+typed_products!(
+    pga::Point,
+    pga::Line,
+    pga::Plane,
+    pga::Motor,
+    cga::Point,
+    cga::Sphere,
+    cga::Circle
+);
+
+impl Mul<&pga::Motor> for &pga::Motor {
+    type Output = pga::Motor;
+    /// The composition `self · rhs`: the motion `rhs` first, then `self`
+    /// (`a * b` is `b.then(&a)`).
+    ///
+    /// # Panics
+    /// If the motors move spaces of different dimensions ([`pga::Motor::then`] returns the
+    /// error instead).
+    #[track_caller]
+    fn mul(self, rhs: &pga::Motor) -> pga::Motor {
+        pga::Motor::product(self, rhs)
+    }
+}
+
+impl Mul<pga::Motor> for pga::Motor {
+    type Output = pga::Motor;
+    /// As `&a * &b`.
+    #[track_caller]
+    fn mul(self, rhs: pga::Motor) -> pga::Motor {
+        &self * &rhs
+    }
+}
+
+impl BitOr<&Vector> for &Vector {
+    type Output = f64;
+    /// `a | b` is the inner product a · b (a scalar for two vectors).
+    #[track_caller]
+    fn bitor(self, rhs: &Vector) -> f64 {
+        self.dot(rhs)
+    }
+}
 
 impl BitXor<&Vector> for &Vector {
     type Output = Bivector;
@@ -255,5 +324,142 @@ impl Shl<&Bivector> for &Vector {
     #[track_caller]
     fn shl(self, rhs: &Bivector) -> Vector {
         self.left_contract(rhs)
+    }
+}
+
+/// A versor V acting on the elements of its algebra by the sandwich X ↦ V X Ṽ (V X V⁻¹ for a
+/// unit versor, as every rotor, motor and CGA versor built by rotorflow is): the rotors turn,
+/// motors move rigidly, CGA versors map conformally. `V.apply(&x)` returns the element of
+/// the same kind, and a `Result` only where the operands can come from different spaces
+/// (the run-time types); the fixed-size rotors cannot fail.
+///
+/// ```
+/// use rotorflow::algebra::pga::{Motor, Point};
+/// use rotorflow::algebra::{Rotor3, Vector3, Versor};
+/// let r = Rotor3::from_rotation_z(std::f64::consts::FRAC_PI_2);
+/// assert!((r.apply(&Vector3::x()) - Vector3::y()).amax() < 1e-15);
+/// let m = Motor::from_translation(&[1.0, 2.0, 3.0])?;
+/// let p = m.apply(&Point::new(&[0.0, 0.0, 0.0])?)?;
+/// assert_eq!(p.coordinates()?, vec![1.0, 2.0, 3.0]);
+/// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+/// ```
+pub trait Versor<X: ?Sized> {
+    /// The moved element (in a `Result` where the sandwich can fail).
+    type Output;
+    /// The sandwich V X Ṽ.
+    fn apply(&self, x: &X) -> Self::Output;
+}
+
+impl<T: Real> Versor<Vector3<T>> for Rotor3<T> {
+    type Output = Vector3<T>;
+    /// [`Rotor3::rotate_vector`].
+    #[inline]
+    fn apply(&self, x: &Vector3<T>) -> Vector3<T> {
+        self.rotate_vector(*x)
+    }
+}
+
+impl<T: Real> Versor<Bivector3<T>> for Rotor3<T> {
+    type Output = Bivector3<T>;
+    /// [`Rotor3::rotate_bivector`].
+    #[inline]
+    fn apply(&self, b: &Bivector3<T>) -> Bivector3<T> {
+        self.rotate_bivector(*b)
+    }
+}
+
+impl<T: Real> Versor<Rotor3<T>> for Rotor3<T> {
+    type Output = Rotor3<T>;
+    /// R S R̃: the rotation S carried by R (the same rotation in the turned frame).
+    #[inline]
+    fn apply(&self, s: &Rotor3<T>) -> Rotor3<T> {
+        *self * *s * self.reverse()
+    }
+}
+
+impl<T: Real> Versor<Vector4<T>> for Rotor4<T> {
+    type Output = Vector4<T>;
+    /// [`Rotor4::rotate_vector`].
+    #[inline]
+    fn apply(&self, x: &Vector4<T>) -> Vector4<T> {
+        self.rotate_vector(*x)
+    }
+}
+
+impl<T: Real> Versor<Bivector4<T>> for Rotor4<T> {
+    type Output = Bivector4<T>;
+    /// [`Rotor4::rotate_bivector`].
+    #[inline]
+    fn apply(&self, b: &Bivector4<T>) -> Bivector4<T> {
+        self.rotate_bivector(*b)
+    }
+}
+
+impl<T: Real> Versor<Rotor4<T>> for Rotor4<T> {
+    type Output = Rotor4<T>;
+    /// R S R̃.
+    #[inline]
+    fn apply(&self, s: &Rotor4<T>) -> Rotor4<T> {
+        *self * *s * self.reverse()
+    }
+}
+
+impl Versor<Vector> for Rotor {
+    type Output = Result<Vector, AlgebraError>;
+    /// [`Rotor::rotate_vector`], checked.
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionMismatch`].
+    fn apply(&self, x: &Vector) -> Self::Output {
+        check_same_dim(self.dim(), x.dim())?;
+        Ok(self.rotate_vector(x))
+    }
+}
+
+impl Versor<Bivector> for Rotor {
+    type Output = Result<Bivector, AlgebraError>;
+    /// [`Rotor::rotate_bivector`], checked.
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionMismatch`].
+    fn apply(&self, b: &Bivector) -> Self::Output {
+        check_same_dim(self.dim(), b.dim())?;
+        Ok(self.rotate_bivector(b))
+    }
+}
+
+impl Versor<Rotor> for Rotor {
+    type Output = Result<Rotor, AlgebraError>;
+    /// R S R̃, checked.
+    ///
+    /// # Errors
+    /// [`AlgebraError::DimensionMismatch`].
+    fn apply(&self, s: &Rotor) -> Self::Output {
+        check_same_dim(self.dim(), s.dim())?;
+        Ok(self.compose(s).compose(&self.reverse()))
+    }
+}
+
+impl Versor<Multivector> for Rotor {
+    type Output = Result<Multivector, AlgebraError>;
+    /// [`Rotor::rotate_multivector`].
+    ///
+    /// # Errors
+    /// As [`Rotor::rotate_multivector`].
+    fn apply(&self, m: &Multivector) -> Self::Output {
+        self.rotate_multivector(m)
+    }
+}
+
+impl Versor<Multivector> for Multivector {
+    type Output = Result<Multivector, AlgebraError>;
+    /// V X Ṽ for an even versor V of any signature (a CGA translator, dilator or
+    /// transversor, a boost of the spacetime algebra, a motor as a plain multivector).
+    ///
+    /// # Errors
+    /// [`AlgebraError::SignatureMismatch`].
+    fn apply(&self, x: &Multivector) -> Self::Output {
+        let vx = self.try_product(x, super::Product::Geometric)?;
+        Ok(vx.geometric(&self.reverse()))
     }
 }

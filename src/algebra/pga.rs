@@ -294,6 +294,18 @@ impl Point {
         Ok(x)
     }
 
+    /// The direction d of an ideal point (the inverse of [`Point::ideal`]); for a finite
+    /// point of weight w, the weighted coordinates w x.
+    pub fn direction(&self) -> Vec<f64> {
+        let (n, sig) = (self.dim(), self.0.signature());
+        (0..n)
+            .map(|i| {
+                let (mask, sign) = point_blade(sig, n, i);
+                sign * self.0.coefficient(mask) + 0.0
+            })
+            .collect()
+    }
+
     /// The underlying N-vector.
     pub fn as_multivector(&self) -> &Multivector {
         &self.0
@@ -849,7 +861,10 @@ impl Motor {
     /// [`Motor::from_translation`].
     pub fn from_rotation_translation(r: &Rotor, t: &[f64]) -> Result<Motor, AlgebraError> {
         super::error::check_same_dim(r.dim(), t.len())?;
-        Motor::from_rotor(r)?.then(&Motor::from_translation(t)?)
+        Ok(Motor::product(
+            &Motor::from_translation(t)?,
+            &Motor::from_rotor(r)?,
+        ))
     }
 
     /// The motor exp(B) of a bivector B of Cl(N, 0, 1) (ganja.js's `Exp`, klein's `exp`):
@@ -876,7 +891,10 @@ impl Motor {
         self.0.dim() - 1
     }
 
-    /// This motion followed by `next`: the motor `next · self`.
+    /// This motion followed by `next`: the motor `next · self`, which is `next * self`.
+    /// The product of two motors of one space is always a motor; the only failure is two
+    /// motors of different dimensions, which this method reports and the operator `*`
+    /// (like every operator) panics on.
     ///
     /// # Errors
     /// [`AlgebraError::SignatureMismatch`] for motors of different dimensions.
@@ -886,16 +904,40 @@ impl Motor {
         ))
     }
 
+    /// The geometric product a · b of two motors of one space (the operator `*`).
+    #[track_caller]
+    pub(crate) fn product(a: &Motor, b: &Motor) -> Motor {
+        Motor(a.0.geometric(&b.0))
+    }
+
     /// The inverse motion M̃.
     pub fn inverse(&self) -> Motor {
         Motor(self.0.reverse())
     }
 
-    /// M X M̃ for any element X of the same algebra (point, plane, line, motor …).
+    /// M X M̃ for any element X of the same algebra, typed or not: a [`Point`], [`Line`],
+    /// [`Plane`] or [`Motor`] comes back as the same type, a [`Multivector`] as a
+    /// multivector (the [`Versor`](super::Versor) trait, callable without importing it).
+    ///
+    /// ```
+    /// use rotorflow::algebra::pga::{Motor, Plane};
+    /// let m = Motor::from_translation(&[0.0, 0.0, 2.0])?;
+    /// let (normal, d) = m.apply(&Plane::new(&[0.0, 0.0, 1.0], 1.0)?)?.equation();
+    /// assert_eq!((normal, d), (vec![0.0, 0.0, 1.0], 3.0));
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
     ///
     /// # Errors
-    /// [`AlgebraError::SignatureMismatch`].
-    pub fn apply(&self, x: &Multivector) -> Result<Multivector, AlgebraError> {
+    /// [`AlgebraError::SignatureMismatch`] for an element of another dimension.
+    pub fn apply<X>(&self, x: &X) -> <Motor as super::Versor<X>>::Output
+    where
+        Motor: super::Versor<X>,
+    {
+        <Motor as super::Versor<X>>::apply(self, x)
+    }
+
+    /// M X M̃ on a multivector of the same algebra.
+    fn sandwich(&self, x: &Multivector) -> Result<Multivector, AlgebraError> {
         let mx = self.0.try_product(x, super::Product::Geometric)?;
         Ok(mx.geometric(&self.0.reverse()))
     }
@@ -905,7 +947,7 @@ impl Motor {
     /// # Errors
     /// [`AlgebraError::SignatureMismatch`].
     pub fn apply_point(&self, p: &Point) -> Result<Point, AlgebraError> {
-        Ok(Point(self.apply(&p.0)?.grade(self.dim())))
+        Ok(Point(self.sandwich(&p.0)?.grade(self.dim())))
     }
 
     /// The moved hyperplane.
@@ -913,7 +955,7 @@ impl Motor {
     /// # Errors
     /// [`AlgebraError::SignatureMismatch`].
     pub fn apply_plane(&self, p: &Plane) -> Result<Plane, AlgebraError> {
-        Ok(Plane(self.apply(&p.0)?.grade(1)))
+        Ok(Plane(self.sandwich(&p.0)?.grade(1)))
     }
 
     /// The moved line.
@@ -931,7 +973,7 @@ impl Motor {
     /// # Errors
     /// [`AlgebraError::SignatureMismatch`].
     pub fn apply_line(&self, l: &Line) -> Result<Line, AlgebraError> {
-        Ok(Line(self.apply(&l.0)?.grade(self.dim() - 1)))
+        Ok(Line(self.sandwich(&l.0)?.grade(self.dim() - 1)))
     }
 
     /// The rotation part R, a Euclidean rotor of ℝᴺ (the terms without e₀).
@@ -1039,5 +1081,60 @@ impl AsRef<Multivector> for Multivector {
     /// beside the typed points, planes and motors.
     fn as_ref(&self) -> &Multivector {
         self
+    }
+}
+
+impl super::Versor<Multivector> for Motor {
+    type Output = Result<Multivector, AlgebraError>;
+    /// M X M̃ for any element X of the algebra.
+    ///
+    /// # Errors
+    /// [`AlgebraError::SignatureMismatch`].
+    fn apply(&self, x: &Multivector) -> Self::Output {
+        self.sandwich(x)
+    }
+}
+
+impl super::Versor<Point> for Motor {
+    type Output = Result<Point, AlgebraError>;
+    /// [`Motor::apply_point`].
+    ///
+    /// # Errors
+    /// [`AlgebraError::SignatureMismatch`].
+    fn apply(&self, p: &Point) -> Self::Output {
+        self.apply_point(p)
+    }
+}
+
+impl super::Versor<Line> for Motor {
+    type Output = Result<Line, AlgebraError>;
+    /// [`Motor::apply_line`].
+    ///
+    /// # Errors
+    /// [`AlgebraError::SignatureMismatch`].
+    fn apply(&self, l: &Line) -> Self::Output {
+        self.apply_line(l)
+    }
+}
+
+impl super::Versor<Plane> for Motor {
+    type Output = Result<Plane, AlgebraError>;
+    /// [`Motor::apply_plane`].
+    ///
+    /// # Errors
+    /// [`AlgebraError::SignatureMismatch`].
+    fn apply(&self, p: &Plane) -> Self::Output {
+        self.apply_plane(p)
+    }
+}
+
+impl super::Versor<Motor> for Motor {
+    type Output = Result<Motor, AlgebraError>;
+    /// M N M̃: the motion N carried by M (the same motion in the moved frame).
+    ///
+    /// # Errors
+    /// [`AlgebraError::SignatureMismatch`].
+    fn apply(&self, n: &Motor) -> Self::Output {
+        Ok(Motor(self.sandwich(&n.0)?.even()))
     }
 }

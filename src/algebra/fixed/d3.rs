@@ -2,8 +2,8 @@
 
 use super::sealed::Sealed;
 use super::{
-    Real, norm, quat_conj, quat_exp_minus_one, quat_exp_with_norm, quat_log, quat_mul,
-    quat_unit_error,
+    Real, norm, plane_slot, quat_conj, quat_exp_minus_one, quat_exp_with_norm, quat_inverse,
+    quat_log, quat_mul, quat_unit_error,
 };
 use crate::algebra::{AlgebraError, Bivector, Rotor};
 use nalgebra::{Matrix3, Vector3};
@@ -212,6 +212,90 @@ impl<T: Real> Rotor3<T> {
         Self::from_q([T::one(), T::zero(), T::zero(), T::zero()])
     }
 
+    /// The rotation by `angle` (radians) about `axis`, right-handed: glam's
+    /// `Quat::from_axis_angle` and nalgebra's `UnitQuaternion::from_axis_angle`, whose
+    /// quaternion it is, (cos ½θ, sin ½θ â). About e₃ it turns e₁ toward e₂, about e₁ it
+    /// turns e₂ toward e₃, about e₂ it turns e₃ toward e₁. The axis need not be a unit
+    /// vector; it is normalised here.
+    ///
+    /// ```
+    /// use rotorflow::algebra::{Rotor3, Vector3};
+    /// let r = Rotor3::from_axis_angle(Vector3::new(0.0, 0.0, 2.0), std::f64::consts::FRAC_PI_2)?;
+    /// assert!((r * Vector3::x() - Vector3::y()).amax() < 1e-15);
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`AlgebraError::NonFinite`] for a NaN or infinite axis or angle;
+    /// [`AlgebraError::ZeroLength`] for a zero axis.
+    pub fn from_axis_angle(axis: Vector3<T>, angle: T) -> Result<Self, AlgebraError> {
+        let a = [axis.x, axis.y, axis.z];
+        if !a.iter().all(|c| c.is_finite()) {
+            return Err(AlgebraError::NonFinite {
+                what: "rotation axis",
+            });
+        }
+        if !angle.is_finite() {
+            return Err(AlgebraError::NonFinite {
+                what: "rotation angle",
+            });
+        }
+        let len = norm(a);
+        if len == T::zero() {
+            return Err(AlgebraError::ZeroLength {
+                what: "rotation axis",
+            });
+        }
+        let (s, c) = (angle * T::lit(0.5)).sin_cos();
+        let k = s / len;
+        Ok(Self::from_q([c, k * a[0], k * a[1], k * a[2]]))
+    }
+
+    /// The rotation by `angle` about e₁ (x), turning e₂ toward e₃ (glam's
+    /// `Quat::from_rotation_x`).
+    #[inline]
+    pub fn from_rotation_x(angle: T) -> Self {
+        let (s, c) = (angle * T::lit(0.5)).sin_cos();
+        Self::from_q([c, s, T::zero(), T::zero()])
+    }
+
+    /// The rotation by `angle` about e₂ (y), turning e₃ toward e₁ (glam's
+    /// `Quat::from_rotation_y`).
+    #[inline]
+    pub fn from_rotation_y(angle: T) -> Self {
+        let (s, c) = (angle * T::lit(0.5)).sin_cos();
+        Self::from_q([c, T::zero(), s, T::zero()])
+    }
+
+    /// The rotation by `angle` about e₃ (z), turning e₁ toward e₂ (glam's
+    /// `Quat::from_rotation_z`).
+    #[inline]
+    pub fn from_rotation_z(angle: T) -> Self {
+        let (s, c) = (angle * T::lit(0.5)).sin_cos();
+        Self::from_q([c, T::zero(), T::zero(), s])
+    }
+
+    /// The rotation by `angle` in the plane eᵢ∧eⱼ (0-based indices), turning eᵢ toward eⱼ:
+    /// cos ½θ − sin ½θ eᵢⱼ, as [`Rotor::from_plane_angle`]. Swapping i and j reverses the
+    /// sense, so `from_plane_angle(2, 0, θ)` is [`Rotor3::from_rotation_y`]`(θ)`.
+    ///
+    /// # Errors
+    /// [`AlgebraError::IndexOutOfRange`] for an index above 2;
+    /// [`AlgebraError::RepeatedIndex`] for i = j.
+    pub fn from_plane_angle(i: usize, j: usize, angle: T) -> Result<Self, AlgebraError> {
+        let (slot, sign) = plane_slot(3, i, j)?;
+        let mut b = [T::zero(); 3];
+        b[slot] = angle * T::lit(sign);
+        Ok(Self::from_rotation_bivector(Bivector3::from_array(b)))
+    }
+
+    /// The inverse R⁻¹ = R̃ / (R R̃), for any non-zero R (the reverse for a unit rotor, up to
+    /// round-off; glam's `inverse` is the conjugate alone).
+    #[inline]
+    pub fn inverse(self) -> Self {
+        Self::from_q(quat_inverse(self.q()))
+    }
+
     /// The rotor s + B from its scalar and bivector parts, as given (not normalised).
     #[inline]
     pub fn from_parts(s: T, b: Bivector3<T>) -> Self {
@@ -290,6 +374,17 @@ impl<T: Real> Rotor3<T> {
             x.y + w * ty + (uz * tx - ux * tz),
             x.z + w * tz + (ux * ty - uy * tx),
         )
+    }
+
+    /// R B R̃: the bivector turned with the space (an angular velocity or a plane seen in
+    /// the turned frame), as [`Rotor::rotate_bivector`].
+    #[inline]
+    pub fn rotate_bivector(self, b: Bivector3<T>) -> Bivector3<T> {
+        // Under the quaternion map B is the pure quaternion u and R B R̃ is q u q̄, the
+        // formula of `rotate_vector` on u's components.
+        let u = b.quaternion_vector();
+        let v = self.rotate_vector(Vector3::new(u[0], u[1], u[2]));
+        Bivector3::from_quaternion_vector([v.x, v.y, v.z])
     }
 
     /// The rotation matrix Q (Q x = R x R̃), as [`Rotor::to_matrix`].

@@ -12,7 +12,10 @@
 //! turns as ξ ↦ Q̄₋′ ξ Q̄₊ with Q₋′ the quaternion Q₋ with its k component negated (the
 //! left and right isoclinic factors of SO(4)).
 
-use super::{Real, norm, quat_conj, quat_exp, quat_exp_minus_one, quat_log, quat_mul};
+use super::{
+    Real, norm, plane_slot, quat_conj, quat_exp, quat_exp_minus_one, quat_inverse, quat_log,
+    quat_mul,
+};
 use crate::algebra::{AlgebraError, Bivector, Rotor};
 use nalgebra::{Matrix4, Vector4};
 use std::ops::{Add, Mul, Neg, Sub};
@@ -250,6 +253,90 @@ impl<T: Real> Rotor4<T> {
         }
     }
 
+    /// The rotation by `angle` (radians) in the plane eᵢ∧eⱼ (0-based indices; x, y, z, w
+    /// are 0, 1, 2, 3), turning eᵢ toward eⱼ: cos ½θ − sin ½θ eᵢⱼ, as
+    /// [`Rotor::from_plane_angle`]. Swapping i and j reverses the sense. The named forms
+    /// [`Rotor4::from_rotation_xy`] … [`Rotor4::from_rotation_zw`] are the six planes with
+    /// i < j.
+    ///
+    /// ```
+    /// use rotorflow::algebra::{Rotor4, Vector4};
+    /// let r = Rotor4::from_plane_angle(3, 1, std::f64::consts::FRAC_PI_2)?; // w toward y
+    /// assert!((r * Vector4::w() - Vector4::y()).amax() < 1e-15);
+    /// assert_eq!(r, Rotor4::from_rotation_yw(-std::f64::consts::FRAC_PI_2));
+    /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`AlgebraError::IndexOutOfRange`] for an index above 3;
+    /// [`AlgebraError::RepeatedIndex`] for i = j.
+    pub fn from_plane_angle(i: usize, j: usize, angle: T) -> Result<Self, AlgebraError> {
+        let (slot, sign) = plane_slot(4, i, j)?;
+        let mut b = [T::zero(); 6];
+        b[slot] = angle * T::lit(sign);
+        Ok(Self::from_rotation_bivector(Bivector4::from_array(b)))
+    }
+
+    /// [`Rotor4::from_plane_angle`] for indices known to be valid.
+    #[inline(always)]
+    fn plane_rotation(i: usize, j: usize, angle: T) -> Self {
+        let mut b = [T::zero(); 6];
+        b[crate::algebra::pair_index(4, i, j)] = angle;
+        Self::from_rotation_bivector(Bivector4::from_array(b))
+    }
+
+    /// The rotation by `angle` in the plane e₁∧e₂ (xy), turning e₁ (x) toward e₂ (y):
+    /// [`Rotor4::from_plane_angle`]`(0, 1, angle)`.
+    #[inline]
+    pub fn from_rotation_xy(angle: T) -> Self {
+        Self::plane_rotation(0, 1, angle)
+    }
+
+    /// The rotation by `angle` in the plane e₁∧e₃ (xz), turning e₁ (x) toward e₃ (z):
+    /// [`Rotor4::from_plane_angle`]`(0, 2, angle)`.
+    #[inline]
+    pub fn from_rotation_xz(angle: T) -> Self {
+        Self::plane_rotation(0, 2, angle)
+    }
+
+    /// The rotation by `angle` in the plane e₁∧e₄ (xw), turning e₁ (x) toward e₄ (w):
+    /// [`Rotor4::from_plane_angle`]`(0, 3, angle)`.
+    #[inline]
+    pub fn from_rotation_xw(angle: T) -> Self {
+        Self::plane_rotation(0, 3, angle)
+    }
+
+    /// The rotation by `angle` in the plane e₂∧e₃ (yz), turning e₂ (y) toward e₃ (z):
+    /// [`Rotor4::from_plane_angle`]`(1, 2, angle)`.
+    #[inline]
+    pub fn from_rotation_yz(angle: T) -> Self {
+        Self::plane_rotation(1, 2, angle)
+    }
+
+    /// The rotation by `angle` in the plane e₂∧e₄ (yw), turning e₂ (y) toward e₄ (w):
+    /// [`Rotor4::from_plane_angle`]`(1, 3, angle)`.
+    #[inline]
+    pub fn from_rotation_yw(angle: T) -> Self {
+        Self::plane_rotation(1, 3, angle)
+    }
+
+    /// The rotation by `angle` in the plane e₃∧e₄ (zw), turning e₃ (z) toward e₄ (w):
+    /// [`Rotor4::from_plane_angle`]`(2, 3, angle)`.
+    #[inline]
+    pub fn from_rotation_zw(angle: T) -> Self {
+        Self::plane_rotation(2, 3, angle)
+    }
+
+    /// The inverse R⁻¹ = R̃ / (R R̃) of a rotor with R R̃ a non-zero scalar (each quaternion
+    /// half inverted; the reverse for a unit rotor, up to round-off).
+    #[inline]
+    pub fn inverse(self) -> Self {
+        Self {
+            plus: quat_inverse(self.plus),
+            minus: quat_inverse(self.minus),
+        }
+    }
+
     /// The rotor s + B + p e₁₂₃₄ from its grades, as given (not normalised).
     #[inline]
     pub fn from_parts(s: T, b: Bivector4<T>, p: T) -> Self {
@@ -343,6 +430,12 @@ impl<T: Real> Rotor4<T> {
             ]
         };
         Bivector4::from_halves(turn(self.plus, a), turn(self.minus, m))
+    }
+
+    /// R B R̃: the bivector turned with the space, as [`Rotor::rotate_bivector`].
+    #[inline]
+    pub fn rotate_bivector(self, b: Bivector4<T>) -> Bivector4<T> {
+        self.reverse().reverse_sandwich(b)
     }
 
     /// The geometric product self · other (two quaternion products).

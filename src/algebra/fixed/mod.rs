@@ -28,6 +28,8 @@
 mod batch;
 mod d3;
 mod d4;
+#[cfg(feature = "glam")]
+mod glam_impls;
 
 pub use d3::{Bivector3, Rotor3};
 pub use d4::{Bivector4, Rotor4};
@@ -276,6 +278,28 @@ fn check_rotation<T: Real>(
         });
     }
     Ok(())
+}
+
+/// The slot of the plane eᵢ∧eⱼ among the lexicographic components of dimension `n`, and
+/// the sign of eᵢⱼ there (−1 when i > j: eᵢⱼ = −eⱼᵢ).
+fn plane_slot(n: usize, i: usize, j: usize) -> Result<(usize, f64), super::AlgebraError> {
+    for k in [i, j] {
+        if k >= n {
+            return Err(super::AlgebraError::IndexOutOfRange { index: k, dim: n });
+        }
+    }
+    match i.cmp(&j) {
+        std::cmp::Ordering::Less => Ok((super::pair_index(n, i, j), 1.0)),
+        std::cmp::Ordering::Greater => Ok((super::pair_index(n, j, i), -1.0)),
+        std::cmp::Ordering::Equal => Err(super::AlgebraError::RepeatedIndex { index: i }),
+    }
+}
+
+/// The inverse q̄ / |q|² of a quaternion (q̄ itself for a unit one, up to round-off).
+#[inline(always)]
+fn quat_inverse<T: Real>(q: [T; 4]) -> [T; 4] {
+    let k = T::one() / (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    quat_conj(q).map(|c| c * k)
 }
 
 /// A unit quaternion's Hamilton product, (w, x, y, z) order: in f32 on x86 with SSE four
