@@ -55,6 +55,8 @@ pub struct MovingBody {
     restitution: Option<f64>,
     /// False if it touches nothing.
     collides: bool,
+    /// True for a body that never moves (infinite mass and inertia).
+    fixed: bool,
 }
 
 impl MovingBody {
@@ -115,7 +117,57 @@ impl MovingBody {
             friction: None,
             restitution: None,
             collides: true,
+            fixed: false,
         })
+    }
+
+    /// Returns a fixed body: solid world of the shape `shape` (own axes), placed with
+    /// `attitude` at `position`, that never moves and needs no mass. Other bodies touch it
+    /// as they touch a moving one, and its infinite mass and inertia take any impulse
+    /// without a change of velocity; forques do not move it (gravity leaves it out). Its
+    /// [`MovingBody::mass`] is +∞, its momenta are zero.
+    ///
+    /// # Errors
+    /// [`MotionError`] for a position of another dimension than the shape or not finite, or
+    /// a bad shape; [`MotionError::EmptyShape`] for [`ContactShape::None`] (a fixed body
+    /// that touches nothing has no effect).
+    pub fn fixed(
+        shape: ContactShape,
+        attitude: impl Into<Attitude>,
+        position: &Vector,
+    ) -> Result<Self, DynamicsError> {
+        let n = position.dim();
+        if matches!(shape, ContactShape::None) {
+            return Err(MotionError::EmptyShape { what: "fixed body" }.into());
+        }
+        check_vector("position", position, n)?;
+        shape.check(n)?;
+        let inertia = InertiaMap::from_principal_second_moments(&vec![1.0; n])?;
+        let rotation = RigidBody::from_body_velocity(inertia, attitude, &Bivector::zero(n))?;
+        if rotation.dim() != n {
+            return Err(MotionError::WrongDimension {
+                what: "attitude",
+                expected: n,
+                found: rotation.dim(),
+            }
+            .into());
+        }
+        Ok(MovingBody {
+            rotation,
+            mass: f64::INFINITY,
+            position: position.clone(),
+            momentum: Vector::zero(n),
+            shape: Arc::new(shape),
+            friction: None,
+            restitution: None,
+            collides: true,
+            fixed: true,
+        })
+    }
+
+    /// Returns true for a body made by [`MovingBody::fixed`].
+    pub fn is_fixed(&self) -> bool {
+        self.fixed
     }
 
     /// Returns the body described by `body`, a body of the catalogue parsed from the SPEC

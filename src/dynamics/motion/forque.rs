@@ -104,6 +104,9 @@ pub mod forques {
         }
         fn apply(&self, input: &ForqueInput<'_>, wrenches: &mut [Wrench]) {
             for (b, w) in input.bodies.iter().zip(wrenches.iter_mut()) {
+                if b.is_fixed() {
+                    continue;
+                }
                 let m = b.mass();
                 for (f, g) in w.force.as_mut_slice().iter_mut().zip(self.0.as_slice()) {
                     *f += m * g;
@@ -115,6 +118,7 @@ pub mod forques {
                 input
                     .bodies
                     .iter()
+                    .filter(|b| !b.is_fixed())
                     .map(|b| -b.mass() * self.0.dot(b.position()))
                     .sum(),
             )

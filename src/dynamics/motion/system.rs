@@ -232,7 +232,7 @@ impl System {
         let n = self.dim();
         let mut q = smallvec::SmallVec::<[f64; 64]>::from_elem(0.0, n * n);
         for (body, (b, shape)) in self.bodies.iter().zip(&self.shapes).enumerate() {
-            if matches!(shape, ContactShape::None) {
+            if matches!(shape, ContactShape::None) || b.is_fixed() {
                 continue;
             }
             b.attitude().write_matrix(&mut q);

@@ -95,6 +95,9 @@ impl Touching {
                 let Some(cb) = &self.convex[b] else {
                     continue;
                 };
+                if bodies[a].is_fixed() && bodies[b].is_fixed() {
+                    continue;
+                }
                 let xb = bodies[b].position().as_slice();
                 let reach = within(a, b);
                 let centres: f64 = xa.iter().zip(xb).map(|(p, q)| (p - q) * (p - q)).sum();

@@ -47,6 +47,10 @@ fn rates_into(bodies: &[MovingBody], wrenches: &[Wrench], out: &mut Vec<Rates>) 
     let n = bodies[0].dim();
     out.resize_with(bodies.len(), || Rates::zero(n));
     for ((b, w), k) in bodies.iter().zip(wrenches).zip(out.iter_mut()) {
+        if b.is_fixed() {
+            *k = Rates::zero(n);
+            continue;
+        }
         let l = b.rotation().momentum();
         let omega = b.rotation().inertia().apply_inverse(l);
         let mut dl = omega.commutator(l);

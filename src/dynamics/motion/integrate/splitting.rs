@@ -143,6 +143,9 @@ impl MotionSplitting {
     /// Adds h of each wrench to the momenta.
     fn kick(bodies: &mut [MovingBody], wrenches: &[Wrench], h: f64) {
         for (b, w) in bodies.iter_mut().zip(wrenches) {
+            if b.is_fixed() {
+                continue;
+            }
             let (_, p, rotation) = b.state_mut();
             axpy(p.as_mut_slice(), h, w.force.as_slice());
             let (_, l) = rotation.state_mut();
@@ -152,7 +155,7 @@ impl MotionSplitting {
 
     /// Free flight of every body for h.
     fn drift(&mut self, bodies: &mut [MovingBody], t: f64, h: f64) -> Result<(), DynamicsError> {
-        for b in bodies {
+        for b in bodies.iter_mut().filter(|b| !b.is_fixed()) {
             let m = b.mass();
             let (x, p, rotation) = b.state_mut();
             axpy(x.as_mut_slice(), h / m, p.as_slice());
@@ -226,6 +229,9 @@ impl MotionSplitting {
                 .zip(&self.kick_start)
                 .zip(&self.wrenches)
             {
+                if b.is_fixed() {
+                    continue;
+                }
                 let (_, p, rotation) = b.state_mut();
                 let (_, l) = rotation.state_mut();
                 let parts = [
@@ -741,7 +747,7 @@ fn for_each_candidate(
     }
     let mut k = 0;
     for (i, (b, shape)) in system.bodies().iter().zip(system.shapes()).enumerate() {
-        if matches!(shape, ContactShape::None) {
+        if matches!(shape, ContactShape::None) || b.is_fixed() {
             continue;
         }
         let placed = placements.get(i);
@@ -802,7 +808,7 @@ fn lift_out(system: &mut System, placements: &Placements) {
         return;
     }
     for (i, (b, shape)) in bodies.iter_mut().zip(shapes.iter()).enumerate() {
-        if matches!(shape, ContactShape::None) {
+        if matches!(shape, ContactShape::None) || b.is_fixed() {
             continue;
         }
         let placed = placements.get(i);
@@ -938,6 +944,9 @@ impl MotionSplitting {
             // forques joined the system; the halves that are zero change nothing.
             let kick = |bodies: &mut [MovingBody]| {
                 for (b, w) in bodies.iter_mut().zip(&constant.wrenches) {
+                    if b.is_fixed() {
+                        continue;
+                    }
                     let (_, p, rotation) = b.state_mut();
                     if constant.any_force {
                         axpy(p.as_mut_slice(), 0.5 * h, w.force.as_slice());

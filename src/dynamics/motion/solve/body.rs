@@ -68,6 +68,10 @@ impl BodyState {
         };
         if !same {
             self.place(b, work);
+            if b.is_fixed() {
+                // Infinite inertia: no impulse turns it.
+                self.inv_inertia.iter_mut().for_each(|x| *x = 0.0);
+            }
             match diagonal {
                 Some(inv) => {
                     self.key = Some((attitude.clone(), b.mass()));
@@ -206,6 +210,11 @@ impl BodyState {
 
     /// Hands the impulses to body `b`: p += Σ J, L += Pᵀ (Σ r ∧ J) in the principal frame.
     pub(super) fn store(&mut self, b: &mut MovingBody) {
+        self.used = false;
+        if b.is_fixed() {
+            // The world takes the impulses without moving.
+            return;
+        }
         let m = self.dl.as_slice().len();
         let (_, p, rotation) = b.state_mut();
         *p += &self.dp;

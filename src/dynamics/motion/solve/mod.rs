@@ -150,7 +150,7 @@ impl Solver {
         self.warm.clear();
         let mut listed = false;
         for (i, (b, shape)) in bodies.iter().zip(shapes).enumerate() {
-            if matches!(shape, ContactShape::None) || half_spaces.is_empty() {
+            if matches!(shape, ContactShape::None) || half_spaces.is_empty() || b.is_fixed() {
                 continue;
             }
             let placed = placements.get(i);
