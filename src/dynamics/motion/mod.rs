@@ -27,7 +27,11 @@
 //!   planes of solid world, with restitution and Coulomb friction of maximal dissipation
 //!   (the impulse in the (N−1)-dimensional disc |J_t| ≤ μλ that removes the most energy);
 //!   impacts are located in time within a step, so nothing tunnels. [`Contact`] reports
-//!   the impulses of the last step. Bodies do not yet collide with each other.
+//!   the impulses of the last step.
+//! - Bodies touch each other too: [`shape`] (convex shapes with their support functions)
+//!   and [`detect`] (GJK distance and EPA penetration in any N) find the pairs, and the
+//!   solver takes them with the half-spaces and the joints (one point per pair).
+//!   [`MovingBody::fixed`] is solid world of any shape.
 //! - The integrators ([`MotionIntegrator`]): [`MotionSplitting`] (symplectic, order 2: the
 //!   free flight exact and the rotation by the Lie–Poisson splitting; the only one with
 //!   joints and contact) and [`MotionRk4`] (order 4, attitudes on their group, any forques).
