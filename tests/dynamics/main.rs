@@ -15,6 +15,7 @@ mod moser_veselov;
 mod motion;
 mod moving_bodies;
 mod names;
+mod narrow_phase;
 mod orders;
 mod paper_errata;
 mod torqued;

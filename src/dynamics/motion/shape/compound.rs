@@ -32,8 +32,7 @@ impl Piece {
         let q = nalgebra::DMatrix::from_row_slice(n, n, rotation);
         let error = (q.transpose() * &q - nalgebra::DMatrix::identity(n, n)).amax();
         let determinant = q.determinant();
-        if error > ROTATION_TOLERANCE || (determinant - 1.0).abs() > ROTATION_TOLERANCE * n as f64
-        {
+        if error > ROTATION_TOLERANCE || (determinant - 1.0).abs() > ROTATION_TOLERANCE * n as f64 {
             return Err(ShapeError::NotARotation {
                 what: "piece rotation",
                 error,
@@ -99,11 +98,14 @@ impl Piece {
         }
         for i in 0..n {
             let row = &rotation[i * n..(i + 1) * n];
-            piece_position[i] =
-                position[i] + row.iter().zip(&self.offset).map(|(a, b)| a * b).sum::<f64>();
+            piece_position[i] = position[i]
+                + row
+                    .iter()
+                    .zip(&self.offset)
+                    .map(|(a, b)| a * b)
+                    .sum::<f64>();
             for j in 0..n {
-                piece_rotation[i * n + j] =
-                    (0..n).map(|k| row[k] * self.rotation[k * n + j]).sum();
+                piece_rotation[i * n + j] = (0..n).map(|k| row[k] * self.rotation[k * n + j]).sum();
             }
         }
         Ok(())
@@ -125,11 +127,7 @@ impl CompoundShape {
     /// [`ShapeError::EmptyCompound`] for no piece, [`ShapeError::DimensionMismatch`] if
     /// the pieces differ in dimension.
     pub fn new(pieces: Vec<Piece>) -> Result<Self, ShapeError> {
-        let dim = pieces
-            .first()
-            .ok_or(ShapeError::EmptyCompound)?
-            .shape
-            .dim();
+        let dim = pieces.first().ok_or(ShapeError::EmptyCompound)?.shape.dim();
         if let Some(p) = pieces.iter().find(|p| p.shape.dim() != dim) {
             return Err(ShapeError::DimensionMismatch {
                 what: "piece",
@@ -155,9 +153,7 @@ impl CompoundShape {
     pub fn bounding_radius(&self) -> f64 {
         self.pieces
             .iter()
-            .map(|p| {
-                p.offset.iter().map(|x| x * x).sum::<f64>().sqrt() + p.shape.bounding_radius()
-            })
+            .map(|p| p.offset.iter().map(|x| x * x).sum::<f64>().sqrt() + p.shape.bounding_radius())
             .fold(0.0, f64::max)
     }
 }

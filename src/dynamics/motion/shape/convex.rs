@@ -116,7 +116,12 @@ pub(crate) fn affine_rank(points: &[f64], n: usize) -> usize {
     let p0 = &points[..n];
     let extent = points
         .chunks_exact(n)
-        .map(|p| p.iter().zip(p0).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max))
+        .map(|p| {
+            p.iter()
+                .zip(p0)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max)
+        })
         .fold(0.0, f64::max);
     if extent == 0.0 {
         return 0;
