@@ -713,3 +713,66 @@ fn preprocessed_moser_veselov_steps_do_not_allocate() {
         "{count} heap allocations in 100 steps and adaptive runs"
     );
 }
+
+/// The narrow phase: GJK distances and EPA penetrations of turned boxes, hulls, ellipsoids
+/// and capsules up to N = 8, with a workspace that has grown on the same pair once.
+#[test]
+fn narrow_phase_queries_do_not_allocate_up_to_n8() {
+    use rotorflow::dynamics::motion::detect::{
+        EpaWorkspace, PlacedShape, distance, penetration_with,
+    };
+    use rotorflow::dynamics::motion::shape::ConvexShape;
+    let mut checked = 0;
+    for n in 2..=8 {
+        // A turn in every coordinate plane.
+        let mut q: Vec<f64> = (0..n * n)
+            .map(|k| if k % (n + 1) == 0 { 1.0 } else { 0.0 })
+            .collect();
+        for i in 0..n {
+            for j in i + 1..n {
+                let (s, c) = (0.3 + 0.1 * (i + j) as f64).sin_cos();
+                for row in 0..n {
+                    let (x, y) = (q[row * n + i], q[row * n + j]);
+                    q[row * n + i] = c * x - s * y;
+                    q[row * n + j] = s * x + c * y;
+                }
+            }
+        }
+        let corners: Vec<Vec<f64>> = (0..1usize << n)
+            .map(|m| {
+                (0..n)
+                    .map(|i| if m >> i & 1 == 1 { 0.5 } else { -0.4 })
+                    .collect()
+            })
+            .collect();
+        let shapes = [
+            ConvexShape::cuboid(&vec![0.5; n]).unwrap(),
+            ConvexShape::hull(&corners).unwrap(),
+            ConvexShape::ellipsoid(&(0..n).map(|k| 0.3 + 0.1 * k as f64).collect::<Vec<_>>())
+                .unwrap(),
+            ConvexShape::capsule(n, 0.4, 0.2).unwrap(),
+        ];
+        let pa = vec![0.0; n];
+        let mut workspace = EpaWorkspace::new();
+        for sa in &shapes {
+            for sb in &shapes {
+                for gap in [0.5, 1.5] {
+                    let mut pb = vec![0.05; n];
+                    pb[0] = gap;
+                    let a = PlacedShape::new(sa, &pa, &q).unwrap();
+                    let b = PlacedShape::new(sb, &pb, &q).unwrap();
+                    let _ = penetration_with(&mut workspace, &a, &b).unwrap();
+                    let count = allocations_in(|| {
+                        let d = distance(&a, &b).unwrap();
+                        let p = penetration_with(&mut workspace, &a, &b).unwrap();
+                        std::hint::black_box((d, p));
+                    });
+                    assert_eq!(count, 0, "N = {n}: {count} heap allocations");
+                    checked += 1;
+                }
+            }
+        }
+    }
+    println!("narrow-phase pairs without allocation: {checked}");
+    assert_eq!(checked, 7 * 4 * 4 * 2);
+}

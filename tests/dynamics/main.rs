@@ -17,6 +17,7 @@ mod motion;
 mod motion_checks;
 mod moving_bodies;
 mod names;
+mod narrow_phase;
 mod orders;
 mod paper_errata;
 mod torqued;

@@ -5,3 +5,4 @@ mod adversarial;
 mod fuzz_regressions;
 mod hostile;
 mod long_runs;
+mod narrow_phase;

@@ -25,7 +25,7 @@
 
 use super::gjk::{
     GjkResult, PlacedShape, Points, Simplex, centre_direction, check_pair, gjk, nearest_point,
-    support_difference,
+    project_onto_face, support_difference,
 };
 use crate::algebra::Vector;
 use crate::dynamics::motion::shape::{ConvexCore, Coords, ShapeError};
@@ -454,19 +454,53 @@ fn epa_cores(
         ws.offsets.extend_from_slice(&ws.new_offsets);
         f = nearest_facet(ws);
     }
-    // The witnesses: the point of the nearest facet nearest the origin, as weights of its
-    // vertices.
+    // The witnesses: the weights of the origin's projection onto the nearest facet's
+    // plane. Coplanar facets share the plane and the projection lies in one of them; the
+    // facet where it lies deepest gives weights ≥ 0 (clamped against round-off), so the
+    // witnesses are points of the shapes and witness_a − witness_b = depth · normal.
     let mut points: Points = Points::from_elem(0.0, n * n);
-    for k in 0..n {
-        let v = ws.facets[f * n + k] as usize;
-        points[k * n..(k + 1) * n].copy_from_slice(&ws.w[v * n..(v + 1) * n]);
+    let mut best: Option<(f64, usize, super::gjk::Weights)> = None;
+    let nf = Coords::from_slice(&ws.normals[f * n..(f + 1) * n]);
+    for g in 0..ws.offsets.len() {
+        let parallel: f64 = ws.normals[g * n..(g + 1) * n]
+            .iter()
+            .zip(&nf)
+            .map(|(p, q)| p * q)
+            .sum();
+        if g != f && (parallel < 1.0 - 1e-9 || ws.offsets[g] > ws.offsets[f] + CONVERGED * scale) {
+            continue;
+        }
+        for k in 0..n {
+            let v = ws.facets[g * n + k] as usize;
+            points[k * n..(k + 1) * n].copy_from_slice(&ws.w[v * n..(v + 1) * n]);
+        }
+        if let Some((lambda, _)) = project_onto_face(&points, n, (1u128 << n) - 1) {
+            let least = lambda.iter().copied().fold(f64::INFINITY, f64::min);
+            if best.as_ref().is_none_or(|(l, _, _)| least > *l) {
+                best = Some((least, g, lambda));
+            }
+        }
     }
-    let nearest = nearest_point(&points, n, n);
+    let (g, lambda) = match best {
+        Some((_, g, mut lambda)) => {
+            lambda.iter_mut().for_each(|l| *l = l.max(0.0));
+            let total: f64 = lambda.iter().sum();
+            lambda.iter_mut().for_each(|l| *l /= total);
+            (g, lambda)
+        }
+        None => {
+            for k in 0..n {
+                let v = ws.facets[f * n + k] as usize;
+                points[k * n..(k + 1) * n].copy_from_slice(&ws.w[v * n..(v + 1) * n]);
+            }
+            (f, nearest_point(&points, n, n).lambda)
+        }
+    };
     let mut witness_a = Coords::from_elem(0.0, n);
     let mut witness_b = Coords::from_elem(0.0, n);
     for k in 0..n {
-        let v = ws.facets[f * n + k] as usize;
-        let l = nearest.lambda[k];
+        let v = ws.facets[g * n + k] as usize;
+        let l = lambda[k];
         for j in 0..n {
             witness_a[j] += l * ws.a[v * n + j];
             witness_b[j] += l * ws.b[v * n + j];

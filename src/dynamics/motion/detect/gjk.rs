@@ -212,7 +212,7 @@ pub(crate) struct Nearest {
 /// The projection of the origin onto the affine hull of the face `mask` of `points`, as
 /// barycentric weights (in the order of the mask's bits) and the point; None if the face
 /// is degenerate.
-fn project_onto_face(points: &[f64], n: usize, mask: u128) -> Option<(Weights, Coords)> {
+pub(crate) fn project_onto_face(points: &[f64], n: usize, mask: u128) -> Option<(Weights, Coords)> {
     let mut index: SmallVec<[usize; 9]> = SmallVec::new();
     for i in 0..128 {
         if mask >> i & 1 == 1 {
