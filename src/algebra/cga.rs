@@ -654,7 +654,7 @@ fn round_centre_radius(
                      radius)",
         });
     }
-    let sign = if grade % 2 == 0 { 1.0 } else { -1.0 };
+    let sign = if grade.is_multiple_of(2) { 1.0 } else { -1.0 };
     let r2 = sign * x.scalar_product(x) / carrier.scalar_product(&carrier);
     let centre = down(&x.geometric(&inf).geometric(x).grade(1))?;
     if !r2.is_finite() || r2 <= 0.0 {

@@ -130,7 +130,8 @@ fn plane_rotations_match_the_run_time_rotor_and_turn_i_toward_j() {
     }
     assert_eq!(pairs, 12 + 6);
     // The named forms are the planes with i < j, exactly.
-    let named: [(fn(f64) -> Rotor4, usize, usize); 6] = [
+    type PlaneRotation = fn(f64) -> Rotor4;
+    let named: [(PlaneRotation, usize, usize); 6] = [
         (Rotor4::from_rotation_xy, 0, 1),
         (Rotor4::from_rotation_xz, 0, 2),
         (Rotor4::from_rotation_xw, 0, 3),

@@ -477,3 +477,28 @@ fn display_of_typed_objects() {
         .collect();
     assert_eq!(centre, vec![0.0, 0.0]);
 }
+
+/// A spacetime boost's `apply` is the closed-form Lorentz boost: e₁ ↦ cosh φ e₁ + sinh φ n̂,
+/// n̂ ↦ sinh φ e₁ + cosh φ n̂, the directions across n̂ fixed.
+#[test]
+fn boosts_apply_as_lorentz_transformations() {
+    let mut r = rng(46);
+    for _ in 0..100 {
+        let phi = r.gen_range(-2.0..2.0);
+        let n = random_unit(&mut r, 3);
+        let x: Vec<f64> = (0..4).map(|_| r.gen_range(-1.0..1.0)).collect();
+        let v = rotorflow::algebra::sta::boost(phi, &n).unwrap();
+        let moved = v
+            .apply(&Multivector::vector(v.signature(), &x).unwrap())
+            .unwrap();
+        let s: f64 = (0..3).map(|k| n[k] * x[k + 1]).sum();
+        let (c, h) = (phi.cosh(), phi.sinh());
+        let mut want = vec![c * x[0] + h * s];
+        for k in 0..3 {
+            want.push(x[k + 1] + (h * x[0] + (c - 1.0) * s) * n[k]);
+        }
+        let got: Vec<f64> = (0..4).map(|i| moved.coefficient(1 << i)).collect();
+        assert!(max_diff(&got, &want) < 1e-13, "{got:?} {want:?}");
+        assert!((&moved - &moved.grade(1)).max_abs() < 1e-13);
+    }
+}

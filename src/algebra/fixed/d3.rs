@@ -220,8 +220,15 @@ impl<T: Real> Rotor3<T> {
     ///
     /// ```
     /// use rotorflow::algebra::{Rotor3, Vector3};
+    /// // nalgebra itself, re-exported: no second nalgebra dependency to keep in step.
+    /// use rotorflow::nalgebra::{Unit, UnitQuaternion};
     /// let r = Rotor3::from_axis_angle(Vector3::new(0.0, 0.0, 2.0), std::f64::consts::FRAC_PI_2)?;
     /// assert!((r * Vector3::x() - Vector3::y()).amax() < 1e-15);
+    /// let axis = Unit::new_normalize(Vector3::new(1.0, -2.0, 0.5));
+    /// let q = UnitQuaternion::from_axis_angle(&axis, 0.7);
+    /// let v = Vector3::new(0.3, 0.1, -0.4);
+    /// let r = Rotor3::from_axis_angle(axis.into_inner(), 0.7)?;
+    /// assert!((r * v - q * v).amax() < 1e-15);
     /// # Ok::<(), rotorflow::algebra::AlgebraError>(())
     /// ```
     ///
