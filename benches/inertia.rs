@@ -7,7 +7,7 @@ use criterion::{BenchmarkId, Criterion, Throughput, black_box, criterion_group, 
 use nalgebra::{DMatrix, DVector};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rotorflow::inertia::bodies::SimplexOrientation;
+use rotorflow::inertia::SimplexOrientation;
 use rotorflow::prelude::*;
 
 #[path = "common/configure.rs"]

@@ -9,7 +9,7 @@ use nalgebra::DVector;
 use rotorflow::dynamics::torques::Free;
 use rotorflow::dynamics::trajectory::even_times;
 use rotorflow::dynamics::{RigidBody, Splitting, simulate};
-use rotorflow::inertia::bodies::SimplexOrientation;
+use rotorflow::inertia::SimplexOrientation;
 use rotorflow::prelude::*;
 
 /// All permutations of 0..n (Heap's algorithm would do; n ≤ 4 here).

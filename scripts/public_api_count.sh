@@ -10,8 +10,9 @@
 # Only the library counts (the binary's modules are not API). A method counts on the page of
 # the type that has it, from the inherent impls only: trait implementations (Clone, Debug,
 # operators, …) are the traits' API, not the crate's. Required and provided methods of the
-# crate's own traits count on the trait's page. An item reachable by two public paths has
-# two pages and counts twice, which is what a reader of the docs meets.
+# crate's own traits count on the trait's page. Pages that only redirect (an item of a
+# private module, documented at its public path) do not count; an item reachable by two
+# public paths has two full pages and counts twice, which is what a reader of the docs meets.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=1
@@ -24,6 +25,8 @@ for arg in "$@"; do
     esac
 done
 if [[ $build == 1 ]]; then
+    # rustdoc never deletes the pages of items that are gone: start from an empty directory.
+    rm -rf target/doc/rotorflow
     cargo doc --no-deps --all-features --lib >/dev/null
 fi
 doc=target/doc/rotorflow
@@ -41,10 +44,14 @@ for dirpath, _, files in os.walk(root):
         kind = f.split(".", 1)[0]
         if kind not in counts or not f.endswith(".html"):
             continue
+        text = open(os.path.join(dirpath, f), encoding="utf-8").read()
+        # An item of a private module re-exported elsewhere gets a page that only redirects
+        # to its public path: not a second item.
+        if 'http-equiv="refresh"' in text[:1000]:
+            continue
         counts[kind] += 1
         path = os.path.relpath(os.path.join(dirpath, f), root)
         listing.append(path)
-        text = open(os.path.join(dirpath, f), encoding="utf-8").read()
         # Inherent items come before the trait implementations; a trait's own page lists
         # its required and provided methods before its implementors.
         for stop in ('id="trait-implementations"', 'id="synthetic-implementations"',

@@ -102,7 +102,8 @@ mod versor_pga3;
 mod versor_sqrt;
 
 pub(crate) use bivector::commutator_packed;
-pub use bivector::{Bivector, SKEW_TOLERANCE, bivector_len, pair_index, pairs, plane_name};
+pub(crate) use bivector::pair_index;
+pub use bivector::{Bivector, SKEW_TOLERANCE, bivector_len, pairs, plane_name};
 pub use decompose::{Decomposition, SimplePlane};
 pub use error::AlgebraError;
 pub use fixed::{Bivector3, Bivector4, Real, Rotor3, Rotor4};

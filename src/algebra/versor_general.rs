@@ -137,77 +137,50 @@ trait Mv: Clone {
     }
 }
 
-impl Mv for Multivector {
-    fn sig(&self) -> Signature {
-        self.signature()
-    }
-    fn coeffs(&self) -> &[f64] {
-        self.as_slice()
-    }
-    fn coeffs_mut(&mut self) -> &mut [f64] {
-        self.as_mut_slice()
-    }
-    fn one(sig: Signature) -> Self {
-        Multivector::scalar(sig, 1.0)
-    }
-    fn zero(sig: Signature) -> Self {
-        Multivector::zero(sig)
-    }
-    fn grade(&self, k: usize) -> Self {
-        Multivector::grade(self, k)
-    }
-    fn minus(&self, other: &Self) -> Self {
-        self - other
-    }
-    fn mul(&self, other: &Self) -> Self {
-        self.geometric(other)
-    }
-    fn rev(&self) -> Self {
-        self.reverse()
-    }
-    fn plus(&self, other: &Self) -> Self {
-        self + other
-    }
-    fn times(&self, s: f64) -> Self {
-        self * s
-    }
+/// [`Mv`] for an element type whose inherent methods have the trait's meanings: the heap
+/// [`Multivector`] and the stack [`Small`] share every name, so one body serves both.
+macro_rules! impl_mv {
+    ([$($generics:tt)*] $ty:ty) => {
+        impl<$($generics)*> Mv for $ty {
+            fn sig(&self) -> Signature {
+                self.signature()
+            }
+            fn coeffs(&self) -> &[f64] {
+                self.as_slice()
+            }
+            fn coeffs_mut(&mut self) -> &mut [f64] {
+                self.as_mut_slice()
+            }
+            fn one(sig: Signature) -> Self {
+                <$ty>::scalar(sig, 1.0)
+            }
+            fn zero(sig: Signature) -> Self {
+                <$ty>::zero(sig)
+            }
+            fn grade(&self, k: usize) -> Self {
+                <$ty>::grade(self, k)
+            }
+            fn minus(&self, other: &Self) -> Self {
+                self - other
+            }
+            fn mul(&self, other: &Self) -> Self {
+                self.geometric(other)
+            }
+            fn rev(&self) -> Self {
+                self.reverse()
+            }
+            fn plus(&self, other: &Self) -> Self {
+                self + other
+            }
+            fn times(&self, s: f64) -> Self {
+                self * s
+            }
+        }
+    };
 }
 
-impl<const L: usize> Mv for Small<L> {
-    fn sig(&self) -> Signature {
-        self.signature()
-    }
-    fn coeffs(&self) -> &[f64] {
-        self.as_slice()
-    }
-    fn coeffs_mut(&mut self) -> &mut [f64] {
-        self.as_mut_slice()
-    }
-    fn one(sig: Signature) -> Self {
-        Small::scalar(sig, 1.0)
-    }
-    fn zero(sig: Signature) -> Self {
-        Small::zero(sig)
-    }
-    fn grade(&self, k: usize) -> Self {
-        Small::grade(self, k)
-    }
-    fn minus(&self, other: &Self) -> Self {
-        self - other
-    }
-    fn mul(&self, other: &Self) -> Self {
-        self.geometric(other)
-    }
-    fn rev(&self) -> Self {
-        self.reverse()
-    }
-    fn plus(&self, other: &Self) -> Self {
-        self + other
-    }
-    fn times(&self, s: f64) -> Self {
-        self * s
-    }
-}
+impl_mv!([] Multivector);
+impl_mv!([const L: usize] Small<L>);
 
 /// Degree of the Taylor polynomial after scaling (see [`squarings`]).
 const TAYLOR_DEGREE: usize = 16;

@@ -196,7 +196,7 @@ pub struct Drift {
 
 impl Drift {
     /// Returns the drifts with these values.
-    pub fn new(energy: f64, casimirs: f64, space_momentum: f64, attitude: f64) -> Self {
+    pub(crate) fn new(energy: f64, casimirs: f64, space_momentum: f64, attitude: f64) -> Self {
         Drift {
             energy,
             casimirs,
@@ -207,7 +207,7 @@ impl Drift {
     }
 
     /// The same drifts with the Manakov integrals' largest drift set to `manakov`.
-    pub fn with_manakov(mut self, manakov: f64) -> Self {
+    pub(crate) fn with_manakov(mut self, manakov: f64) -> Self {
         self.manakov = manakov;
         self
     }

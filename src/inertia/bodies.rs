@@ -1,7 +1,7 @@
-//! The bodies of the inertia layer under one path: [`Body`], the catalogue's free functions,
-//! the mesh options and the tolerances. The items live in `body.rs` (the type), `catalogue.rs`
-//! (named bodies), `mesh.rs` (simplicial meshes) and `tolerance.rs`; everything here is also
-//! re-exported from [`crate::inertia`].
+//! The catalogue's free functions (vertex sets and the volumes of unit balls and spheres),
+//! and a table of contents of [`Body`], which lives at [`crate::inertia::Body`]; the mesh
+//! options are [`crate::inertia::SimplexOrientation`] and the tolerances are in
+//! [`crate::inertia::tolerance`].
 //!
 //! A [`Body`] holds the mass m, the centre of mass c and the mass tensor
 //! J = ∫ (x − c)(x − c)ᵀ dm about the centre of mass (see the Conventions chapter of the
@@ -29,11 +29,9 @@
 //!   [`Body::flat_directions`], [`Body::check_full_rank`],
 //!   [`Body::check_inertia_invertible`].
 
+#[cfg(doc)]
+use super::Body;
 #[doc(inline)]
 pub use super::catalogue::{
     pentachoron_vertices, regular_simplex_positions, unit_ball_volume, unit_sphere_area,
 };
-#[doc(inline)]
-pub use super::tolerance::{DEGENERACY_TOLERANCE, FLATNESS_TOLERANCE, ORTHOGONALITY_TOLERANCE};
-#[doc(inline)]
-pub use super::{Body, InertiaError, SimplexOrientation, plane_index_pairs};

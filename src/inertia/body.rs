@@ -32,22 +32,6 @@ pub struct Body {
     volume: Option<f64>,
 }
 
-/// Returns the planes (i, j), i < j, of N-space in lexicographic order, 0-based:
-/// (0,1), (0,2), …, (0,N−1), (1,2), ….
-///
-/// This is the storage order of bivector components (see the Conventions chapter of the
-/// rotorflow book), shown 1-based in
-/// text as 12, 13, …, 1N, 23, ….
-pub fn plane_index_pairs(dim: usize) -> Vec<(usize, usize)> {
-    let mut pairs = Vec::with_capacity(dim * dim.saturating_sub(1) / 2);
-    for i in 0..dim {
-        for j in i + 1..dim {
-            pairs.push((i, j));
-        }
-    }
-    pairs
-}
-
 impl Body {
     /// Checks the computed fields for overflow, symmetrizes J and builds the body.
     pub(super) fn new_checked(
@@ -96,7 +80,7 @@ impl Body {
     ///
     /// # Example
     /// ```
-    /// use rotorflow::inertia::bodies::Body;
+    /// use rotorflow::inertia::Body;
     /// use nalgebra::DVector;
     /// let rod = Body::point_masses(
     ///     &[1.0, 1.0],
@@ -104,7 +88,7 @@ impl Body {
     /// )?;
     /// assert_eq!(rod.mass_tensor()[(0, 0)], 2.0);
     /// assert_eq!(rod.mass_tensor()[(1, 1)], 0.0);
-    /// # Ok::<(), rotorflow::inertia::bodies::InertiaError>(())
+    /// # Ok::<(), rotorflow::inertia::InertiaError>(())
     /// ```
     pub fn point_masses(masses: &[f64], positions: &[DVector<f64>]) -> Result<Body, InertiaError> {
         let dim = check_points("positions", positions)?;
@@ -327,13 +311,13 @@ impl Body {
     }
 
     /// Returns the plane moments Jᵢᵢ + Jⱼⱼ in the body's own axes, one per plane (i, j),
-    /// i < j, in lexicographic order 12, 13, …, 1N, 23, … ([`plane_index_pairs`]).
+    /// i < j, in lexicographic order 12, 13, …, 1N, 23, … ([`crate::algebra::pairs`]).
     ///
     /// In the principal frame these are the eigenvalues of the inertia map on bivectors,
     /// I(eᵢ ∧ eⱼ) = (Jᵢ + Jⱼ) eᵢ ∧ eⱼ (see the Conventions chapter of the rotorflow book). In a general frame they
     /// are its diagonal entries ⟨eᵢ∧eⱼ, I(eᵢ∧eⱼ)⟩. Empty for N = 1.
     pub fn plane_moments(&self) -> DVector<f64> {
-        let pairs = plane_index_pairs(self.dim);
+        let pairs: Vec<(usize, usize)> = crate::algebra::pairs(self.dim).collect();
         DVector::from_iterator(
             pairs.len(),
             pairs
@@ -348,7 +332,7 @@ impl Body {
     /// In 4D they satisfy I₁₂ + I₃₄ = I₁₃ + I₂₄ = I₁₄ + I₂₃ = tr J.
     pub fn principal_plane_moments(&self) -> DVector<f64> {
         let moments = self.principal_second_moments();
-        let pairs = plane_index_pairs(self.dim);
+        let pairs: Vec<(usize, usize)> = crate::algebra::pairs(self.dim).collect();
         DVector::from_iterator(
             pairs.len(),
             pairs.iter().map(|&(i, j)| moments[i] + moments[j]),

@@ -372,7 +372,7 @@ impl InertiaMap {
 
     /// Returns the number of planes k = N(N−1)/2, the size of the map's matrix.
     #[inline]
-    pub fn plane_count(&self) -> usize {
+    pub(crate) fn plane_count(&self) -> usize {
         bivector_len(self.dim)
     }
 

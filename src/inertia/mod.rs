@@ -32,7 +32,7 @@ pub mod tensor;
 pub mod tolerance;
 mod validate;
 
-pub use body::{Body, plane_index_pairs};
+pub use body::Body;
 pub use error::InertiaError;
 pub use map::InertiaMap;
 pub use mesh::SimplexOrientation;

@@ -46,7 +46,8 @@
 //! assert!(err.to_string().contains("+mass=5"));
 //! ```
 
-use super::bodies::{self, SimplexOrientation};
+use super::SimplexOrientation;
+use super::bodies;
 use super::{Body, InertiaMap};
 use crate::algebra::MULTIVECTOR_MAX_DIM;
 use nalgebra::{DMatrix, DVector};

@@ -51,8 +51,7 @@ use nalgebra::{DMatrix, DVector};
 /// literal Levi-Civita sum (cost grows like 6 N! N²; N = 8 takes about 2·10⁷ steps).
 pub const MAX_LITERAL_CONTRACTION_DIM: usize = 8;
 
-#[doc(inline)]
-pub use super::tolerance::SYMMETRY_TOLERANCE;
+use super::tolerance::SYMMETRY_TOLERANCE;
 
 fn check_square(quantity: &'static str, m: &DMatrix<f64>) -> Result<usize, InertiaError> {
     if m.nrows() != m.ncols() {
@@ -358,7 +357,7 @@ impl ContractionNormalization {
 /// The paper's 5-cell (eq. 73) with a = b = c = d = 1 has J = 5/4 · 1, so the literal
 /// eq. (24) gives 𝕀_α = 4 · 3 · 5/4 = 15 = 5 (b² + c² + d²), as in eq. (75):
 /// ```
-/// use rotorflow::inertia::bodies::Body;
+/// use rotorflow::inertia::Body;
 /// use rotorflow::inertia::tensor::{ContractedInertia, ContractionNormalization};
 /// let cell = Body::pentachoron(1.0, 1.0, 1.0, 1.0)?;
 /// let inertia = ContractedInertia::from_mass_tensor(

@@ -270,14 +270,8 @@ pub(crate) fn dot(x: &[f64], y: &[f64]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::numeric::tests::random;
     use nalgebra::DMatrix;
-
-    fn random(seed: &mut u64) -> f64 {
-        *seed ^= *seed << 13;
-        *seed ^= *seed >> 7;
-        *seed ^= *seed << 17;
-        (*seed >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
 
     #[test]
     fn kernels_match_nalgebra() {

@@ -114,8 +114,16 @@ pub(crate) fn orthogonality_error(q: DMatrixView<'_, f64>) -> f64 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
+
+    /// A uniform number in [−1, 1) from a xorshift generator: reproducible test matrices.
+    pub(crate) fn random(seed: &mut u64) -> f64 {
+        *seed ^= *seed << 13;
+        *seed ^= *seed >> 7;
+        *seed ^= *seed << 17;
+        (*seed >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
 
     /// Against the plain formula where it cannot overflow, and against the exact value where
     /// it would.

@@ -135,14 +135,8 @@ pub(crate) fn cholesky_solve(a: &mut [f64], n: usize, b: &mut [f64]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::numeric::tests::random;
     use nalgebra::{DMatrix, DVector};
-
-    fn random(seed: &mut u64) -> f64 {
-        *seed ^= *seed << 13;
-        *seed ^= *seed >> 7;
-        *seed ^= *seed << 17;
-        (*seed >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
 
     /// LU solves match nalgebra's LU on random systems of sizes 1 … 12 with three right-hand
     /// sides, and the factors rebuild P X; a singular matrix is refused.

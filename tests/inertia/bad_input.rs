@@ -1,10 +1,9 @@
 //! Bad input gives a clear error variant, never a panic or NaN; flat bodies are reported
 //! with the degenerate direction or plane.
 use nalgebra::{DMatrix, DVector};
-use rotorflow::inertia::bodies::{
-    Body, FLATNESS_TOLERANCE, InertiaError, SimplexOrientation, pentachoron_vertices,
-    regular_simplex_positions,
-};
+use rotorflow::inertia::bodies::{pentachoron_vertices, regular_simplex_positions};
+use rotorflow::inertia::tolerance::FLATNESS_TOLERANCE;
+use rotorflow::inertia::{Body, InertiaError, SimplexOrientation};
 
 fn v(x: &[f64]) -> DVector<f64> {
     DVector::from_vec(x.to_vec())

@@ -5,9 +5,9 @@ use crate::common::{
     EPS, gamma_half, gaussian, kuhn_triangulation, max_abs, max_abs_diff, random_rotation, rng,
 };
 use nalgebra::{DMatrix, DVector};
-use rotorflow::inertia::bodies::{
-    Body, SimplexOrientation, plane_index_pairs, regular_simplex_positions, unit_ball_volume,
-};
+use rotorflow::algebra::pairs;
+use rotorflow::inertia::bodies::{regular_simplex_positions, unit_ball_volume};
+use rotorflow::inertia::{Body, SimplexOrientation};
 use std::f64::consts::PI;
 
 /// All 2ᴺ sign patterns (±a₁, …, ±a_N).
@@ -284,14 +284,15 @@ fn unit_ball_volume_matches_gamma_formula_and_known_values() {
 }
 
 #[test]
-fn plane_index_pairs_are_lexicographic() {
+fn planes_are_lexicographic() {
+    let planes = |n| pairs(n).collect::<Vec<_>>();
     assert_eq!(
-        plane_index_pairs(4),
+        planes(4),
         vec![(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)]
     );
-    assert_eq!(plane_index_pairs(3), vec![(0, 1), (0, 2), (1, 2)]);
-    assert_eq!(plane_index_pairs(5).len(), 10);
-    assert!(plane_index_pairs(1).is_empty());
+    assert_eq!(planes(3), vec![(0, 1), (0, 2), (1, 2)]);
+    assert_eq!(planes(5).len(), 10);
+    assert!(planes(1).is_empty());
 }
 
 /// A varied set of bodies in dimension n, all in general position (rotated and moved).

@@ -4,7 +4,7 @@
 use crate::common::{max_abs, random_rotation, rng};
 use nalgebra::{DMatrix, DVector};
 use proptest::prelude::*;
-use rotorflow::inertia::bodies::Body;
+use rotorflow::inertia::Body;
 
 /// A random point cloud: dimension 2…6, 1…12 points with coordinates in [−10, 10] and
 /// masses in [0.1, 10], plus a seed for a random rotation.

@@ -3,7 +3,7 @@
 //! ball under refinement.
 use crate::common::{EPS, kuhn_triangulation, max_abs, max_abs_diff};
 use nalgebra::{DMatrix, DVector};
-use rotorflow::inertia::bodies::{Body, InertiaError, SimplexOrientation};
+use rotorflow::inertia::{Body, InertiaError, SimplexOrientation};
 
 fn half_edges(n: usize) -> Vec<f64> {
     (0..n).map(|i| 0.75 + 0.5 * i as f64).collect()

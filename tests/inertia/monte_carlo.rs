@@ -11,7 +11,7 @@
 use crate::common::{MomentEstimator, gamma_half, gaussian, rng, uniform};
 use nalgebra::{DMatrix, DVector};
 use rand::Rng;
-use rotorflow::inertia::bodies::Body;
+use rotorflow::inertia::Body;
 
 const SAMPLES: usize = 100_000;
 const K: f64 = 5.0;

@@ -12,7 +12,8 @@
 //! difference above 1e-3 (the paper's errors are factors of 2 or more, or wrong signs).
 use crate::common::{gamma_half, gauss_legendre, rng, simpson, uniform};
 use nalgebra::{DMatrix, DVector};
-use rotorflow::inertia::bodies::{Body, pentachoron_vertices, unit_ball_volume};
+use rotorflow::inertia::Body;
+use rotorflow::inertia::bodies::{pentachoron_vertices, unit_ball_volume};
 use rotorflow::inertia::tensor::{ContractedInertia, ContractionNormalization, RankFourTensor};
 use std::f64::consts::PI;
 

@@ -3,8 +3,8 @@
 //! equals 2 (N − 2)! (tr J · 1 − J); gyration radii (eq. 27) and trace (eq. 29).
 use crate::common::{EPS, max_abs, random_rotation, random_skew, random_spd, rng};
 use nalgebra::{DMatrix, DVector};
+use rotorflow::inertia::Body;
 use rotorflow::inertia::InertiaError;
-use rotorflow::inertia::bodies::Body;
 use rotorflow::inertia::tensor::{ContractedInertia, ContractionNormalization, RankFourTensor};
 
 #[test]
