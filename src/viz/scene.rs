@@ -11,7 +11,7 @@
 //! the single-body page does.
 
 use super::Shape;
-use super::projection::escape;
+use super::html::{page, round};
 use nalgebra::DMatrix;
 use serde_json::json;
 
@@ -80,10 +80,6 @@ pub fn default_axes(extent: &[f64], up: Option<usize>) -> [usize; 3] {
         chosen.push(u);
     }
     [chosen[0], chosen[1], chosen[2]]
-}
-
-fn round(x: f64) -> f64 {
-    (x * 1e9).round() / 1e9
 }
 
 /// Embeds a point of dimension `n` < 3 in 3D (zeros after).
@@ -193,13 +189,10 @@ pub fn scene_html(a: &SceneAnimation<'_>) -> String {
         "bodies": bodies,
         "planes": planes,
         "axes": axes,
+        "projection": "orthographic",
         "up": a.up.filter(|&u| u < shown),
     });
-    // `</` must not appear inside a <script> element; `<\/` is the same JSON string.
-    let data = data.to_string().replace("</", "<\\/");
-    TEMPLATE
-        .replace("{{TITLE}}", &escape(a.title))
-        .replace("{{DATA}}", &data)
+    page(TEMPLATE, a.title, &data)
 }
 
 const TEMPLATE: &str = r##"<!DOCTYPE html>
@@ -209,31 +202,13 @@ const TEMPLATE: &str = r##"<!DOCTYPE html>
 <meta name="viewport" content="width=device-width, initial-scale=1">
 <title>rotorflow scene: {{TITLE}}</title>
 <style>
-  body { font-family: sans-serif; margin: 12px; background: #f4f5f7; color: #222; }
-  #controls { display: flex; flex-wrap: wrap; gap: 10px; align-items: center; margin: 8px 0; }
-  #controls label { font-size: 14px; }
-  canvas { background: #ffffff; border: 1px solid #bbb; cursor: grab; touch-action: none; max-width: 100%; }
-  #time { font-variant-numeric: tabular-nums; min-width: 8em; display: inline-block; }
-  #slider { width: 320px; }
+{{STYLE}}
   #legend span { margin-right: 12px; font-size: 13px; }
-  #selftest { display: none; }
 </style>
 </head>
 <body>
 <h3 id="heading">rotorflow scene: {{TITLE}}</h3>
-<div id="controls">
-  <button id="play" type="button">Pause</button>
-  <input id="slider" type="range" min="0" max="0" value="0" aria-label="time">
-  <span id="time"></span>
-  <label>axes <select id="axes"></select></label>
-  <label>projection <select id="projection">
-    <option value="perspective">perspective</option>
-    <option value="orthographic" selected>orthographic</option>
-  </select></label>
-  <label>speed <select id="speed">
-    <option value="0.5">0.5×</option><option value="1" selected>1×</option><option value="2">2×</option><option value="4">4×</option>
-  </select></label>
-</div>
+{{CONTROLS}}
 <div id="legend"></div>
 <canvas id="view" width="720" height="540"></canvas>
 <p style="font-size:13px;color:#555">Drag to turn the 3D view. The vertical axis (that of gravity) is drawn upwards. Planes are the translucent squares: each plane's
@@ -244,24 +219,8 @@ trace in the three shown coordinates, the others held at the scene's centre. The
 <script>
 "use strict";
 (function () {
-  const errors = [];
-  window.addEventListener("error", function (e) { errors.push(String(e.message)); });
-  const D = JSON.parse(document.getElementById("data").textContent);
-  const n = D.dim;
-  const canvas = document.getElementById("view");
-  const selftest = window.location.hash === "#selftest";
-  const ctx = canvas.getContext("2d", { willReadFrequently: selftest });
-  const slider = document.getElementById("slider");
-  const timeLabel = document.getElementById("time");
-  const playButton = document.getElementById("play");
-  const axesSelect = document.getElementById("axes");
-  const projSelect = document.getElementById("projection");
-  const speedSelect = document.getElementById("speed");
+{{SETUP}}
   const colours = ["#1f4e9c", "#c0392b", "#27864a", "#8e44ad", "#d35400", "#16a085", "#7f8c8d", "#b7950b"];
-  const state = { frame: 0, playing: true, yaw: 0.6, pitch: 0.35, axes: D.axes.slice(),
-                  perspective: false, last: null, acc: 0 };
-  const count = D.times.length;
-  slider.max = String(Math.max(0, count - 1));
   const legend = document.getElementById("legend");
   D.bodies.forEach(function (b, i) {
     const s = document.createElement("span");
@@ -269,13 +228,6 @@ trace in the three shown coordinates, the others held at the scene's centre. The
     s.textContent = "■ " + b.name;
     legend.appendChild(s);
   });
-  for (let i = 0; i < n; i++) for (let j = i + 1; j < n; j++) for (let k = j + 1; k < n; k++) {
-    const o = document.createElement("option");
-    o.value = i + "," + j + "," + k;
-    o.textContent = (i + 1) + "-" + (j + 1) + "-" + (k + 1);
-    if (state.axes.slice().sort(function (x, y) { return x - y; }).join(",") === o.value) o.selected = true;
-    axesSelect.appendChild(o);
-  }
   // A space point (N coordinates, relative to the centre) → 3D.
   function project(y) {
     const a = state.axes;
@@ -290,14 +242,7 @@ trace in the three shown coordinates, the others held at the scene's centre. The
     }
     return v;
   }
-  function view(v) {
-    const sy = Math.sin(state.yaw), cy = Math.cos(state.yaw);
-    const sp = Math.sin(state.pitch), cp = Math.cos(state.pitch);
-    const x1 = cy * v[0] + sy * v[1], y1 = -sy * v[0] + cy * v[1], z1 = v[2];
-    const depth = cp * y1 + sp * z1, up = -sp * y1 + cp * z1;
-    const f = 4 * D.radius / (4 * D.radius + depth);
-    return [x1 * f, -up * f, depth];
-  }
+{{VIEW}}
   // The square patch of a plane in the shown coordinates, relative to the centre (3D).
   function patch(p) {
     const a = state.axes;
@@ -376,63 +321,7 @@ trace in the three shown coordinates, the others held at the scene's centre. The
     slider.value = String(state.frame);
     timeLabel.textContent = "t = " + D.times[state.frame].toFixed(3);
   }
-  function tick(now) {
-    if (state.playing && count > 1) {
-      if (state.last !== null) {
-        state.acc += (now - state.last) / 1000 * 30 * Number(speedSelect.value);
-        const steps = Math.floor(state.acc);
-        if (steps > 0) { state.acc -= steps; state.frame = (state.frame + steps) % count; draw(); }
-      }
-      state.last = now;
-    } else { state.last = null; }
-    window.requestAnimationFrame(tick);
-  }
-  playButton.addEventListener("click", function () {
-    state.playing = !state.playing;
-    playButton.textContent = state.playing ? "Pause" : "Play";
-  });
-  slider.addEventListener("input", function () { state.frame = Number(slider.value); draw(); });
-  // The vertical axis, when shown, is drawn upwards (last).
-  function upLast(a) {
-    if (D.up === null || a.indexOf(D.up) < 0) return a;
-    return a.filter(function (k) { return k !== D.up; }).concat([D.up]);
-  }
-  axesSelect.addEventListener("change", function () { state.axes = upLast(axesSelect.value.split(",").map(Number)); draw(); });
-  projSelect.addEventListener("change", function () { state.perspective = projSelect.value === "perspective"; draw(); });
-  let drag = null;
-  canvas.addEventListener("pointerdown", function (e) { drag = [e.clientX, e.clientY]; canvas.setPointerCapture(e.pointerId); });
-  canvas.addEventListener("pointermove", function (e) {
-    if (!drag) return;
-    state.yaw += (e.clientX - drag[0]) * 0.01;
-    state.pitch = Math.max(-1.5, Math.min(1.5, state.pitch + (e.clientY - drag[1]) * 0.01));
-    drag = [e.clientX, e.clientY];
-    draw();
-  });
-  canvas.addEventListener("pointerup", function () { drag = null; });
-  function pixels() { return ctx.getImageData(0, 0, canvas.width, canvas.height).data; }
-  function nonBlank(d) {
-    let c = 0;
-    for (let i = 0; i < d.length; i += 4) if (d[i] < 250 || d[i + 1] < 250 || d[i + 2] < 250) c++;
-    return c;
-  }
-  if (selftest) {
-    state.playing = false;
-    state.frame = 0; draw();
-    const first = pixels();
-    state.frame = Math.floor((count - 1) / 2); draw();
-    const later = pixels();
-    let changed = 0;
-    for (let i = 0; i < first.length; i += 4) {
-      if (first[i] !== later[i] || first[i + 1] !== later[i + 1] || first[i + 2] !== later[i + 2]) changed++;
-    }
-    const pre = document.getElementById("selftest");
-    pre.textContent = JSON.stringify({ frames: count, nonblank_first: nonBlank(first), nonblank_later: nonBlank(later),
-                                       changed: changed, later_frame: state.frame, errors: errors });
-    pre.style.display = "block";
-  } else {
-    draw();
-    window.requestAnimationFrame(tick);
-  }
+{{PLAYER}}
 })();
 </script>
 </body>
