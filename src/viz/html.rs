@@ -69,9 +69,9 @@ pub(super) fn round(x: f64) -> f64 {
 }
 
 /// Returns the page of `template` with `title`, `data` and the parts every animation page
-/// shares: the style, the controls and the player's script (set-up, the 3D view, playing,
-/// dragging and the `#selftest` report). The page's own script defines `project` and
-/// `draw` between `{{SETUP}}`, `{{VIEW}}` and `{{PLAYER}}`.
+/// shares: the style, the controls and the player's script (set-up, N-D → 3D → page, playing,
+/// dragging and the `#selftest` report). The page's own script defines `draw` between
+/// `{{SETUP}}`, `{{VIEW}}` (`project` and `view`) and `{{PLAYER}}`.
 pub(super) fn page(template: &str, title: &str, data: &serde_json::Value) -> String {
     // `</` must not appear inside a <script> element; `<\/` is the same JSON string.
     let data = data.to_string().replace("</", "<\\/");
@@ -141,7 +141,23 @@ const SETUP: &str = r##"  const errors = [];
     return a.filter(function (k) { return k !== D.up; }).concat([D.up]);
   }"##;
 
-const VIEW: &str = r##"  function view(v) {
+const VIEW: &str = r##"  // A point of space (N coordinates, about the page's centre) → 3D: the shown coordinates,
+  // scaled by a perspective from each left-out axis in turn, or not (orthographic).
+  function project(y) {
+    const a = state.axes;
+    let v = [y[a[0]], y[a[1]], y[a[2]]];
+    if (state.perspective) {
+      const dist = 3 * D.radius;
+      for (let k = 0; k < n; k++) {
+        if (k === a[0] || k === a[1] || k === a[2]) continue;
+        const f = dist / Math.max(dist - y[k], 1e-3 * dist);
+        v = [v[0] * f, v[1] * f, v[2] * f];
+      }
+    }
+    return v;
+  }
+  // 3D → the page: turned by the drag's yaw and pitch, with a mild perspective.
+  function view(v) {
     const sy = Math.sin(state.yaw), cy = Math.cos(state.yaw);
     const sp = Math.sin(state.pitch), cp = Math.cos(state.pitch);
     const x1 = cy * v[0] + sy * v[1], y1 = -sy * v[0] + cy * v[1], z1 = v[2];
@@ -196,7 +212,8 @@ const PLAYER: &str = r##"  function tick(now) {
     }
     const pre = document.getElementById("selftest");
     pre.textContent = JSON.stringify({ frames: count, nonblank_first: nonBlank(first), nonblank_later: nonBlank(later),
-                                       changed: changed, later_frame: state.frame, errors: errors });
+                                       changed: changed, later_frame: state.frame, errors: errors,
+                                       drawn: state.drawn });
     pre.style.display = "block";
   } else {
     draw();
@@ -225,20 +242,11 @@ removed by a perspective from each of them in turn (the paper's figures 1–3) o
 "use strict";
 (function () {
 {{SETUP}}
-  function project(q, p) {
+  // The body point p (own axes) turned by q into space.
+  function turned(q, p) {
     const x = new Array(n).fill(0);
     for (let r = 0; r < n; r++) { let s = 0; for (let c = 0; c < n; c++) s += q[r * n + c] * p[c]; x[r] = s; }
-    const a = state.axes;
-    let v = [x[a[0]], x[a[1]], x[a[2]]];
-    if (state.perspective) {
-      const dist = 3 * D.radius;
-      for (let k = 0; k < n; k++) {
-        if (k === a[0] || k === a[1] || k === a[2]) continue;
-        const f = dist / Math.max(dist - x[k], 1e-3 * dist);
-        v = [v[0] * f, v[1] * f, v[2] * f];
-      }
-    }
-    return v;
+    return x;
   }
 {{VIEW}}
   function draw() {
@@ -249,7 +257,7 @@ removed by a perspective from each of them in turn (the paper's figures 1–3) o
     const q = D.frames[state.frame];
     const scale = 0.36 * Math.min(w, h) / D.radius;
     const pts = D.points.map(function (p) {
-      const s = view(project(q, p));
+      const s = view(project(turned(q, p)));
       return [w / 2 + scale * s[0], h / 2 + scale * s[1], s[2]];
     });
     // Space axes of the view, faint.

@@ -902,3 +902,40 @@ fn scene_html_draws_and_animates_in_headless_chromium() {
     assert!(report["changed"].as_u64().unwrap() > 100, "{report}");
     assert_eq!(report["errors"], serde_json::json!([]), "{report}");
 }
+
+/// The scene page draws the triad at the origin, the springs, the ball joints and their
+/// anchors, and round bodies as wire frames; the page's self-test counts what it drew.
+#[test]
+fn scene_html_draws_springs_joints_anchors_triad_and_wire_frames() {
+    // Under CI `chromium()` fails when there is no browser; locally it says it skips.
+    let Some(browser) = super::render::chromium() else {
+        return;
+    };
+    let text = format!(
+        "{TWO_BODIES}\n[[spring]]\nbody = \"b\"\nanchor = [0, 0, 2]\nstiffness = 5\n\
+         [[joint]]\nbody = \"a\"\npoint = [-0.5, 0, 0]\nanchor = [-1.5, 0, 0]\n"
+    );
+    let (dir, _) = scene_file(&text);
+    run_ok(
+        dir.path(),
+        &["scene.toml", "--samples", "11", "--html", "a.html"],
+    );
+    let url = format!("file://{}#selftest", dir.path().join("a.html").display());
+    let out = super::render::chromium_command(&browser, &dir.path().join("profile"))
+        .arg("--dump-dom")
+        .arg(url)
+        .output()
+        .expect("chromium runs");
+    let dom = String::from_utf8_lossy(&out.stdout);
+    let start = dom.find("<pre id=\"selftest\"").expect("a selftest report");
+    let json_start = start + dom[start..].find('>').unwrap() + 1;
+    let json_end = json_start + dom[json_start..].find("</pre>").unwrap();
+    let report: Value = serde_json::from_str(&dom[json_start..json_end]).unwrap();
+    assert_eq!(report["errors"], serde_json::json!([]), "{report}");
+    // Two springs (a to b, b to its anchor), one joint, two anchors, one ellipsoid (b).
+    assert_eq!(
+        report["drawn"],
+        serde_json::json!({ "triad": 3, "wireframes": 1, "springs": 2, "joints": 1, "anchors": 2 }),
+        "{report}"
+    );
+}

@@ -792,11 +792,63 @@ fn read_ends(
     [body, point, anchor, other, other_point]: [&Option<Value>; 5],
     dim: usize,
     names: &[&str],
-) -> CliResult<(usize, Vec<f64>, SceneAnchor)> {
+) -> CliResult<LinkEnds> {
     let body = body_index(place, "body", place.required("body", body)?, names)?;
     let point = place.vector("point", point, dim)?;
     let other = read_anchor(place, body, anchor, other, other_point, dim, names)?;
     Ok((body, point, other))
+}
+
+/// The keys of a spring or a joint that name its ends.
+trait Ends {
+    /// `[body, point, anchor, other, other_point]` as in the file.
+    fn ends(&self) -> [&Option<Value>; 5];
+}
+
+impl Ends for RawSpring {
+    fn ends(&self) -> [&Option<Value>; 5] {
+        [
+            &self.body,
+            &self.point,
+            &self.anchor,
+            &self.other,
+            &self.other_point,
+        ]
+    }
+}
+
+impl Ends for RawJoint {
+    fn ends(&self) -> [&Option<Value>; 5] {
+        [
+            &self.body,
+            &self.point,
+            &self.anchor,
+            &self.other,
+            &self.other_point,
+        ]
+    }
+}
+
+/// The ends of a spring or a joint: the body (by index), its point and the other end.
+type LinkEnds = (usize, Vec<f64>, SceneAnchor);
+
+/// Reads the `k`-th `[[what]]` (a spring or a joint): its place in the file, its keys and
+/// its ends.
+fn read_linked<'a, T: for<'de> Deserialize<'de> + Ends>(
+    file: &'a str,
+    what: &str,
+    k: usize,
+    t: &Value,
+    dim: usize,
+    names: &[&str],
+) -> CliResult<(Place<'a>, T, LinkEnds)> {
+    let place = Place {
+        file,
+        section: format!("{what} {}", k + 1),
+    };
+    let raw: T = place.table(t, what)?;
+    let ends = read_ends(&place, raw.ends(), dim, names)?;
+    Ok((place, raw, ends))
 }
 
 fn read_spring(
@@ -806,19 +858,8 @@ fn read_spring(
     dim: usize,
     names: &[&str],
 ) -> CliResult<SceneSpring> {
-    let place = Place {
-        file,
-        section: format!("spring {}", k + 1),
-    };
-    let raw: RawSpring = place.table(t, "spring")?;
-    let ends = [
-        &raw.body,
-        &raw.point,
-        &raw.anchor,
-        &raw.other,
-        &raw.other_point,
-    ];
-    let (body, point, anchor) = read_ends(&place, ends, dim, names)?;
+    let (place, raw, (body, point, anchor)) =
+        read_linked::<RawSpring>(file, "spring", k, t, dim, names)?;
     Ok(SceneSpring {
         body,
         point,
@@ -841,18 +882,6 @@ fn read_joint(
     dim: usize,
     names: &[&str],
 ) -> CliResult<SceneJoint> {
-    let place = Place {
-        file,
-        section: format!("joint {}", k + 1),
-    };
-    let raw: RawJoint = place.table(t, "joint")?;
-    let ends = [
-        &raw.body,
-        &raw.point,
-        &raw.anchor,
-        &raw.other,
-        &raw.other_point,
-    ];
-    let (body, point, other) = read_ends(&place, ends, dim, names)?;
+    let (_, _, (body, point, other)) = read_linked::<RawJoint>(file, "joint", k, t, dim, names)?;
     Ok(SceneJoint { body, point, other })
 }

@@ -4,8 +4,8 @@
 use super::super::error::{CliError, CliResult};
 use super::super::output::{matrix_json, number, plane_names, to_json_text};
 use super::super::viz::plot::{PlotSpec, Series, stacked_plot, subscript};
-use super::super::viz::scene::{SceneAnimation, SceneBodyFrames, scene_html, up_axis};
-use super::format::Scene;
+use super::super::viz::scene::{SceneAnimation, SceneBodyFrames, SceneLink, scene_html, up_axis};
+use super::format::{Scene, SceneAnchor};
 use super::run::Record;
 use serde_json::{Value, json};
 
@@ -155,12 +155,38 @@ pub fn html(scene: &Scene, record: &Record, title: &str) -> String {
         .iter()
         .map(|p| (p.normal.clone(), p.offset))
         .collect();
+    let ends = |a: &SceneAnchor| match a {
+        SceneAnchor::World(x) => (None, x.clone()),
+        SceneAnchor::Body(j, p) => (Some(*j), p.clone()),
+    };
+    let springs = scene
+        .springs
+        .iter()
+        .map(|s| (true, s.body, &s.point, &s.anchor));
+    let joints = scene
+        .joints
+        .iter()
+        .map(|j| (false, j.body, &j.point, &j.other));
+    let links: Vec<SceneLink> = springs
+        .chain(joints)
+        .map(|(spring, body, point, anchor)| {
+            let (other, end) = ends(anchor);
+            SceneLink {
+                spring,
+                body,
+                point: point.clone(),
+                other,
+                end,
+            }
+        })
+        .collect();
     scene_html(&SceneAnimation {
         title,
         dim: scene.dim,
         times: &record.times,
         bodies: &bodies,
         planes: &planes,
+        links: &links,
         up: up_axis(&scene.gravity),
     })
 }
