@@ -44,8 +44,8 @@ use std::time::Instant;
 #[derive(Args, Debug, Clone)]
 pub struct DemoArgs {
     /// The folder to write into (created if missing).
-    #[arg(long, value_name = "DIR", default_value = "out", alias = "out")]
-    pub output: PathBuf,
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub output_dir: PathBuf,
 }
 
 /// One case of the demo.
@@ -182,7 +182,7 @@ struct CaseResult {
 /// [`CliError::Runtime`] if DIR cannot be written or a run fails.
 pub fn run(args: &DemoArgs, quiet: bool) -> CliResult<()> {
     let clock = Instant::now();
-    let dir = &args.output;
+    let dir = &args.output_dir;
     std::fs::create_dir_all(dir)
         .map_err(|e| CliError::runtime(format!("cannot create `{}`: {e}", dir.display())))?;
     let progress = Mutex::new(Progress::new(
@@ -195,27 +195,24 @@ pub fn run(args: &DemoArgs, quiet: bool) -> CliResult<()> {
             p.advance(1);
         }
     };
+    // Runs `run` on every item in parallel, counting each one done.
+    fn each<T: Sync, R: Send>(
+        items: &[T],
+        run: impl Fn(&T) -> CliResult<R> + Sync,
+        done: &(impl Fn() + Sync),
+    ) -> CliResult<Vec<R>> {
+        items
+            .par_iter()
+            .map(|item| {
+                let r = run(item);
+                done();
+                r
+            })
+            .collect()
+    }
     let (results, scenes) = rayon::join(
-        || {
-            CASES
-                .par_iter()
-                .map(|case| {
-                    let r = run_case(case, dir);
-                    step();
-                    r
-                })
-                .collect::<CliResult<Vec<CaseResult>>>()
-        },
-        || {
-            SCENES
-                .par_iter()
-                .map(|s| {
-                    let r = run_scene(s, dir);
-                    step();
-                    r
-                })
-                .collect::<CliResult<Vec<SceneResult>>>()
-        },
+        || each(&CASES, |case| run_case(case, dir), &step),
+        || each(&SCENES, |s| run_scene(s, dir), &step),
     );
     let (results, scenes) = (results?, scenes?);
     let integrators = integrator_table()?;
@@ -641,44 +638,7 @@ fn run_scene(s: &DemoScene, dir: &Path) -> CliResult<SceneResult> {
     let seconds = clock.elapsed().as_secs_f64();
     let html = scene::output::html(&scene, &record, s.title);
     write_atomic(&dir.join(format!("{}.html", s.name)), html.as_bytes())?;
-    let norms = |rows: &[Vec<f64>]| -> Vec<(f64, f64)> {
-        record
-            .times
-            .iter()
-            .zip(rows)
-            .map(|(t, v)| (*t, norm(v)))
-            .collect()
-    };
-    let series = vec![
-        Series {
-            name: "energy E".into(),
-            points: record
-                .times
-                .iter()
-                .copied()
-                .zip(record.energy.iter().copied())
-                .collect(),
-        },
-        Series {
-            name: "|p| (linear momentum)".into(),
-            points: norms(&record.momentum),
-        },
-        Series {
-            name: "|L| (angular momentum about the origin)".into(),
-            points: norms(&record.angular_momentum),
-        },
-    ];
-    let svg = line_plot(
-        &PlotSpec {
-            title: &format!("energy and momenta: {} ({})", s.title, s.file),
-            x_label: "time t",
-            y_label: "E, |p|, |L|",
-            log_y: false,
-            markers: false,
-        },
-        &series,
-    )
-    .map_err(|e| CliError::runtime(format!("cannot draw the plot: {e}")))?;
+    let svg = scene::output::plot(&scene, &record, &format!("{} ({})", s.title, s.file))?;
     write_atomic(&dir.join(format!("energy_{}.svg", s.name)), svg.as_bytes())?;
     Ok(SceneResult {
         steps: record.steps,

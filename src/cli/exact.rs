@@ -6,15 +6,14 @@
 use super::error::{CliError, CliResult};
 use super::motion::{InitialArgs, Report, State, initial_body};
 use super::simulate::{ReportArgs, TimeArgs};
-use super::spec::{GRAMMAR, parse_body};
+use super::spec::parse_body;
 use clap::Args;
 use rotorflow::dynamics::RigidBody;
 
 /// Arguments of `exact`.
 #[derive(Args, Debug, Clone)]
-#[command(after_long_help = GRAMMAR)]
 pub struct ExactArgs {
-    /// The body (see the grammar below). A closed form exists for N = 3 (any body), for any N
+    /// The body (the grammar: `rotorflow help bodies`). A closed form exists for N = 3 (any body), for any N
     /// with at most two distinct second moments Jᵢ, for steady rotations (ω × L = 0) and for a
     /// momentum in the planes of three principal axes (the 3D top inside N-D).
     #[arg(long, value_name = "SPEC")]

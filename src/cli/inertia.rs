@@ -4,7 +4,7 @@ use super::error::{CliError, CliResult};
 use super::output::{
     Format, emit, matrix_json, plane_names, report_format, to_json_text, vector_json,
 };
-use super::spec::{GRAMMAR, ParsedBody, parse_body};
+use super::spec::{ParsedBody, parse_body};
 use clap::Args;
 use nalgebra::DVector;
 use rotorflow::inertia::tensor::{ContractedInertia, ContractionNormalization, RankFourTensor};
@@ -13,9 +13,8 @@ use std::path::PathBuf;
 
 /// Arguments of `inertia`.
 #[derive(Args, Debug, Clone)]
-#[command(after_long_help = GRAMMAR)]
 pub struct InertiaArgs {
-    /// The body (see the grammar below), e.g. `tesseract:1,1.2,1.5,2`.
+    /// The body, e.g. `tesseract:1,1.2,1.5,2` (the grammar: `rotorflow help bodies`).
     #[arg(long, value_name = "SPEC")]
     pub body: String,
     /// Print JSON. Keys: dim, spec, mass, volume, center_of_mass; mass_tensor (J = ∫ x xᵀ dm,

@@ -11,6 +11,7 @@
 //! | `render` | an HTML animation or an SVG strip of the body turning in N-D, projected to 3D |
 //! | `sweep` | a grid of simulations in parallel, with the observables of the 3D projection |
 //! | `scene` | bodies that move and turn together, from a TOML scene file: JSON, CSV, animation |
+//! | `help` | the help of a subcommand, or `help bodies`: the body grammar |
 //!
 //! Bad input (a malformed body SPEC, wrong component counts, non-finite numbers, an unknown
 //! integrator, times not increasing, a singular body) ends with one line on standard error
@@ -37,6 +38,7 @@ use error::CliResult;
 use super::viz;
 
 use clap::{Parser, Subcommand};
+use std::io::Write as _;
 use std::process::ExitCode;
 
 /// Geometric algebra for rotating rigid bodies in N dimensions.
@@ -53,7 +55,8 @@ axial vector (x, y, z) of the right-hand rule is the bivector x e₂∧e₃ + y 
 (ω₁₂, ω₁₃, ω₂₃) = (z, −y, x), and `--axial` reads --omega, --momentum and constant torques \
 as x,y,z.\n\n\
 Quote body SPECs on a shell command line (`--body 'cuboid:1,2,3+mass=5'`).",
-    after_long_help = spec::GRAMMAR,
+    after_long_help = spec::GRAMMAR_POINTER,
+    disable_help_subcommand = true,
 )]
 pub struct Cli {
     /// No progress bar.
@@ -82,10 +85,61 @@ pub enum Command {
     /// Bodies that move and turn together, from a TOML scene file: gravity, springs, planes
     /// and ball joints; JSON, CSV per body and an HTML animation.
     Scene(scene::SceneArgs),
+    /// Print the help of a subcommand, or of a topic: `bodies` (the body SPEC grammar).
+    Help(HelpArgs),
 }
 
-/// Returns the clap description of the `rotorflow` command: every subcommand with its flags,
-/// help texts and the body grammar. Render it with clap (e.g.
+/// Arguments of `help`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct HelpArgs {
+    /// `bodies` (the grammar of `--body SPEC` and of a scene's `shape`) or a subcommand;
+    /// without it, the help of `rotorflow`.
+    #[arg(value_name = "TOPIC")]
+    pub topic: Option<String>,
+}
+
+/// The help topics that are not subcommands.
+pub const HELP_TOPICS: [&str; 1] = ["bodies"];
+
+/// Prints the help of `topic`: the body grammar, a subcommand's `--help`, or `rotorflow`'s.
+///
+/// # Errors
+/// [`error::CliError::Input`] for a topic that is neither a topic nor a subcommand.
+pub fn help(topic: Option<&str>) -> CliResult<()> {
+    let mut argv = vec!["rotorflow"];
+    match topic {
+        Some("bodies") => {
+            // A closed pipe (`| head`) is not an error worth a message.
+            let _ = writeln!(std::io::stdout(), "{}", spec::GRAMMAR);
+            return Ok(());
+        }
+        Some(name) if name != "help" && command().find_subcommand(name).is_some() => {
+            argv.push(name);
+        }
+        Some(other) => {
+            let subcommands: Vec<String> = command()
+                .get_subcommands()
+                .map(|c| c.get_name().to_string())
+                .filter(|n| n != "help")
+                .collect();
+            return Err(error::CliError::input(format!(
+                "help: no topic `{other}` (expected {} or a subcommand: {})",
+                HELP_TOPICS.join(", "),
+                subcommands.join(", ")
+            )));
+        }
+        None => {}
+    }
+    argv.push("--help");
+    if let Err(e) = command().try_get_matches_from(argv) {
+        // A closed pipe (`| head`) is not an error worth a message.
+        let _ = e.print();
+    }
+    Ok(())
+}
+
+/// Returns the clap description of the `rotorflow` command: every subcommand with its flags
+/// and help texts (the body grammar is [`spec::GRAMMAR`], printed by `rotorflow help bodies`). Render it with clap (e.g.
 /// `command().render_long_help()`, or `try_get_matches_from(["rotorflow", "simulate",
 /// "--help"])` for a subcommand's help exactly as the binary prints it); the book's
 /// command-line reference is generated this way (`examples/book_cli_help.rs`).
@@ -134,6 +188,7 @@ pub fn dispatch(cli: Cli) -> CliResult<()> {
         Command::Render(a) => render::run(&a, quiet),
         Command::Sweep(a) => sweep::run(&a, quiet),
         Command::Scene(a) => scene::run(&a, quiet),
+        Command::Help(a) => help(a.topic.as_deref()),
     }
 }
 

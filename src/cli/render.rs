@@ -4,7 +4,7 @@
 use super::error::{CliError, CliResult};
 use super::motion::{InitialArgs, Report, SteppingArgs, finite_number, initial_body, integrate};
 use super::output::{Progress, check_extension, write_atomic};
-use super::spec::{GRAMMAR, ParsedBody, parse_body};
+use super::spec::{ParsedBody, parse_body};
 use super::viz::html::{Animation, animation_html};
 use super::viz::projection::svg_strip;
 use super::viz::{Projection, Shape};
@@ -34,9 +34,8 @@ impl From<ProjectionArg> for Projection {
 
 /// Arguments of `render`.
 #[derive(Args, Debug, Clone)]
-#[command(after_long_help = GRAMMAR)]
 pub struct RenderArgs {
-    /// The body (see the grammar below).
+    /// The body, e.g. `tesseract:1,1.2,1.5,2` (the grammar: `rotorflow help bodies`).
     #[arg(long, value_name = "SPEC")]
     pub body: String,
     /// The initial condition.
@@ -46,7 +45,7 @@ pub struct RenderArgs {
     #[arg(long, value_name = "T", value_parser = finite_number, allow_hyphen_values = true)]
     pub t_end: f64,
     /// The output: FILE.html (animation) or FILE.svg (a strip of frames).
-    #[arg(long, value_name = "FILE", alias = "out")]
+    #[arg(long, value_name = "FILE")]
     pub output: PathBuf,
     /// How the axes left out of the 3D view are removed.
     #[arg(long, value_enum, default_value = "perspective")]

@@ -8,7 +8,7 @@ use super::motion::{
 use super::output::{
     Format, Progress, check_extension, emit, plane_names, report_format, to_json_text, write_atomic,
 };
-use super::spec::{GRAMMAR, parse_body};
+use super::spec::parse_body;
 use super::stream::ReportStream;
 use super::viz::plot::{PlotSpec, Series, line_plot, subscript};
 use clap::Args;
@@ -107,9 +107,8 @@ impl ReportArgs {
 
 /// Arguments of `simulate`.
 #[derive(Args, Debug, Clone)]
-#[command(after_long_help = GRAMMAR)]
 pub struct SimulateArgs {
-    /// The body (see the grammar below).
+    /// The body, e.g. `ellipsoid:1,1.5,2,2.5` (the grammar: `rotorflow help bodies`).
     #[arg(long, value_name = "SPEC")]
     pub body: String,
     /// The initial condition.

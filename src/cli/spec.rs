@@ -6,7 +6,8 @@ use super::viz::Shape;
 pub use rotorflow::inertia::spec::ParsedBody;
 use rotorflow::inertia::spec::{self, Geometry};
 
-/// The grammar, printed in `--help` and in error messages.
+/// The grammar, printed by `rotorflow help bodies` (and nowhere else: the helps that take a
+/// SPEC point to it with [`GRAMMAR_POINTER`]).
 pub const GRAMMAR: &str = "\
 Body SPEC grammar: KIND:ARGS[+mass=M|+density=D]  (lengths are half-lengths / semi-axes / radii; density 1 by default)
   principal:J1,...,JN        diagonal mass tensor J, i.e. its eigenvalues, the second moments (N >= 2)
@@ -27,6 +28,10 @@ Body SPEC grammar: KIND:ARGS[+mass=M|+density=D]  (lengths are half-lengths / se
   +density=D applies to solids and shells. ';' also separates options, but the shell ends the
   command at an unquoted ';': quote the SPEC then. Examples: 'tesseract:1,1.2,1.5,2'
   'cuboid:1,2,3,4+mass=5'  'cuboid:1,2,3,4;mass=5'";
+
+/// The one line with which a help points to the grammar.
+pub const GRAMMAR_POINTER: &str =
+    "Body SPEC grammar (--body, a scene's shape): rotorflow help bodies";
 
 /// Parses a body SPEC, reading `points:` and `mesh:` files from the file system.
 ///

@@ -1,4 +1,5 @@
-//! SVG line plots drawn with plotters: time series of ω, drifts, sweeps.
+//! SVG line plots drawn with plotters: time series of ω, drifts, sweeps, and stacked panels
+//! (a scene's energies, momenta and positions).
 
 use plotters::prelude::*;
 
@@ -65,97 +66,123 @@ fn padded(lo: f64, hi: f64) -> (f64, f64) {
 /// # Errors
 /// A message if plotters fails (it does not for finite input) or nothing is finite.
 pub fn line_plot(spec: &PlotSpec<'_>, series: &[Series]) -> Result<String, String> {
-    let all = || series.iter().flat_map(|s| s.points.iter());
-    let (x0, x1) = range(all().map(|p| p.0)).ok_or("nothing to plot")?;
-    let (x0, x1) = if x1 > x0 { (x0, x1) } else { padded(x0, x1) };
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (960, 540)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| format!("{e:?}"))?;
-        let mut builder = ChartBuilder::on(&root);
-        builder
-            .caption(spec.title, ("sans-serif", 22))
-            .margin(16)
-            .x_label_area_size(48)
-            .y_label_area_size(84);
-        if spec.log_y {
-            // The range of the positive values; zeros are drawn on the bottom edge.
-            let (y0, y1) =
-                range(all().map(|p| p.1).filter(|y| *y >= LOG_FLOOR)).unwrap_or((LOG_FLOOR, 1.0));
-            let (y0, y1) = (y0 / 3.0, (y1 * 3.0).max(y0 * 10.0));
-            let mut chart = builder
-                .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
-                .map_err(|e| format!("{e:?}"))?;
-            chart
-                .configure_mesh()
-                .x_desc(spec.x_label)
-                .y_desc(spec.y_label)
-                .y_label_formatter(&|y| format!("{y:.0e}"))
-                .draw()
-                .map_err(|e| format!("{e:?}"))?;
-            for (k, s) in series.iter().enumerate() {
-                let color = Palette99::pick(k).to_rgba();
-                let pts: Vec<(f64, f64)> = s
-                    .points
-                    .iter()
-                    .filter(|p| p.0.is_finite() && p.1.is_finite())
-                    .map(|p| (p.0, p.1.max(y0)))
-                    .collect();
-                chart
-                    .draw_series(LineSeries::new(pts, color.stroke_width(2)))
-                    .map_err(|e| format!("{e:?}"))?
-                    .label(s.name.clone())
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                    });
-            }
-            chart
-                .configure_series_labels()
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .draw()
-                .map_err(|e| format!("{e:?}"))?;
-        } else {
-            let (y0, y1) = range(all().map(|p| p.1)).ok_or("nothing to plot")?;
-            let (y0, y1) = padded(y0, y1);
-            let mut chart = builder
-                .build_cartesian_2d(x0..x1, y0..y1)
-                .map_err(|e| format!("{e:?}"))?;
-            chart
-                .configure_mesh()
-                .x_desc(spec.x_label)
-                .y_desc(spec.y_label)
-                .draw()
-                .map_err(|e| format!("{e:?}"))?;
-            for (k, s) in series.iter().enumerate() {
-                let color = Palette99::pick(k).to_rgba();
-                let pts: Vec<(f64, f64)> = s
-                    .points
-                    .iter()
-                    .copied()
-                    .filter(|p| p.0.is_finite() && p.1.is_finite())
-                    .collect();
-                if spec.markers {
-                    chart
-                        .draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.filled())))
-                        .map_err(|e| format!("{e:?}"))?;
-                }
-                chart
-                    .draw_series(LineSeries::new(pts, color.stroke_width(2)))
-                    .map_err(|e| format!("{e:?}"))?
-                    .label(s.name.clone())
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                    });
-            }
-            chart
-                .configure_series_labels()
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .draw()
-                .map_err(|e| format!("{e:?}"))?;
+        chart(&root, spec, series)?;
+        root.present().map_err(|e| format!("{e:?}"))?;
+    }
+    Ok(svg)
+}
+
+/// Returns the SVG text of plots stacked one above the other under one `title`, sharing
+/// nothing but the page: one panel per `(spec, series)`, each with its own axes and legend.
+///
+/// # Errors
+/// As [`line_plot`], for any panel.
+pub fn stacked_plot(title: &str, panels: &[(PlotSpec<'_>, Vec<Series>)]) -> Result<String, String> {
+    let height = 48 + 400 * panels.len().max(1) as u32;
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (960, height)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| format!("{e:?}"))?;
+        let body = root
+            .titled(title, ("sans-serif", 24))
+            .map_err(|e| format!("{e:?}"))?;
+        for (area, (spec, series)) in body.split_evenly((panels.len(), 1)).iter().zip(panels) {
+            chart(area, spec, series)?;
         }
         root.present().map_err(|e| format!("{e:?}"))?;
     }
     Ok(svg)
+}
+
+/// Draws one chart of `series` into `area`: axes, curves and legend.
+fn chart<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    spec: &PlotSpec<'_>,
+    series: &[Series],
+) -> Result<(), String> {
+    let all = || series.iter().flat_map(|s| s.points.iter());
+    let (x0, x1) = range(all().map(|p| p.0)).ok_or("nothing to plot")?;
+    let (x0, x1) = if x1 > x0 { (x0, x1) } else { padded(x0, x1) };
+    let mut builder = ChartBuilder::on(area);
+    builder
+        .caption(spec.title, ("sans-serif", 22))
+        .margin(16)
+        .x_label_area_size(48)
+        .y_label_area_size(84);
+    if spec.log_y {
+        // The range of the positive values; zeros are drawn on the bottom edge.
+        let (y0, y1) =
+            range(all().map(|p| p.1).filter(|y| *y >= LOG_FLOOR)).unwrap_or((LOG_FLOOR, 1.0));
+        let (y0, y1) = (y0 / 3.0, (y1 * 3.0).max(y0 * 10.0));
+        let mut chart = builder
+            .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
+            .map_err(|e| format!("{e:?}"))?;
+        chart
+            .configure_mesh()
+            .x_desc(spec.x_label)
+            .y_desc(spec.y_label)
+            .y_label_formatter(&|y| format!("{y:.0e}"))
+            .draw()
+            .map_err(|e| format!("{e:?}"))?;
+        curves(&mut chart, spec, series, |y| y.max(y0))
+    } else {
+        let (y0, y1) = range(all().map(|p| p.1)).ok_or("nothing to plot")?;
+        let (y0, y1) = padded(y0, y1);
+        let mut chart = builder
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(|e| format!("{e:?}"))?;
+        chart
+            .configure_mesh()
+            .x_desc(spec.x_label)
+            .y_desc(spec.y_label)
+            .draw()
+            .map_err(|e| format!("{e:?}"))?;
+        curves(&mut chart, spec, series, |y| y)
+    }
+}
+
+/// Draws the curves of `series` (their finite points, `y` mapped by `clamp`) and the legend.
+fn curves<'a, DB, X, Y>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    spec: &PlotSpec<'_>,
+    series: &[Series],
+    clamp: impl Fn(f64) -> f64,
+) -> Result<(), String>
+where
+    DB: DrawingBackend + 'a,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    for (k, s) in series.iter().enumerate() {
+        let color = Palette99::pick(k).to_rgba();
+        let pts: Vec<(f64, f64)> = s
+            .points
+            .iter()
+            .filter(|p| p.0.is_finite() && p.1.is_finite())
+            .map(|p| (p.0, clamp(p.1)))
+            .collect();
+        if spec.markers {
+            chart
+                .draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.filled())))
+                .map_err(|e| format!("{e:?}"))?;
+        }
+        chart
+            .draw_series(LineSeries::new(pts, color.stroke_width(2)))
+            .map_err(|e| format!("{e:?}"))?
+            .label(s.name.clone())
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+            });
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()
+        .map_err(|e| format!("{e:?}"))?;
+    Ok(())
 }

@@ -7,11 +7,15 @@
 //! of the box that holds every body at every frame), so the perspective from each left-out
 //! axis is about the scene's centre. A plane n·x = d is drawn as a translucent square: its
 //! trace in the three shown coordinates, with the left-out coordinates at the centre's,
-//! around the bodies' region. Opened with `#selftest` the page reports pixel statistics as
-//! the single-body page does.
+//! around the bodies' region. Springs are zigzags from the body point to the other end, ball
+//! joints rings at the jointed point, anchors (points of space) small squares; a triad marks
+//! the origin of space. An ellipsoid or a ball is drawn as the meridians and parallels of the
+//! 3D ellipsoid its projection is (from the semi-axes, [`Shape::ellipsoid`]), not as points.
+//! Opened with `#selftest` the page reports pixel statistics as the single-body page does,
+//! and what it drew (`drawn`: the triad's axes, wire frames, springs, joints, anchors).
 
 use super::Shape;
-use super::projection::escape;
+use super::html::{page, round};
 use nalgebra::DMatrix;
 use serde_json::json;
 
@@ -28,6 +32,21 @@ pub struct SceneBodyFrames {
     pub matrices: Vec<DMatrix<f64>>,
 }
 
+/// A spring or a ball joint, drawn between a body point and its other end.
+#[derive(Clone, Debug)]
+pub struct SceneLink {
+    /// True for a spring (a zigzag), false for a ball joint (a ring at the jointed point).
+    pub spring: bool,
+    /// The body, by index into the bodies.
+    pub body: usize,
+    /// Its point, own axes.
+    pub point: Vec<f64>,
+    /// The other end's body (by index), or `None` for a point of space (an anchor).
+    pub other: Option<usize>,
+    /// The other end: a point of the other body (own axes) or of space.
+    pub end: Vec<f64>,
+}
+
 /// What the scene page shows.
 #[derive(Clone, Debug)]
 pub struct SceneAnimation<'a> {
@@ -41,6 +60,8 @@ pub struct SceneAnimation<'a> {
     pub bodies: &'a [SceneBodyFrames],
     /// The planes n·x = d as (n, d).
     pub planes: &'a [(Vec<f64>, f64)],
+    /// The springs and ball joints.
+    pub links: &'a [SceneLink],
     /// The vertical axis (0-based), drawn upwards and always among the axes shown first:
     /// the axis of the gravity, if any.
     pub up: Option<usize>,
@@ -80,10 +101,6 @@ pub fn default_axes(extent: &[f64], up: Option<usize>) -> [usize; 3] {
         chosen.push(u);
     }
     [chosen[0], chosen[1], chosen[2]]
-}
-
-fn round(x: f64) -> f64 {
-    (x * 1e9).round() / 1e9
 }
 
 /// Embeds a point of dimension `n` < 3 in 3D (zeros after).
@@ -154,8 +171,20 @@ pub fn scene_html(a: &SceneAnimation<'_>) -> String {
                     q
                 })
                 .collect();
+            // The semi-axes as columns, padded like the points: the page draws the surface of
+            // the projected ellipsoid.
+            let ellipsoid = b.shape.ellipsoid.as_ref().map(|e| {
+                let mut flat = vec![0.0; shown * shown];
+                for r in 0..n.min(e.nrows()) {
+                    for c in 0..n.min(e.ncols()) {
+                        flat[r * shown + c] = round(e[(r, c)]);
+                    }
+                }
+                flat
+            });
             json!({
                 "name": b.name,
+                "ellipsoid": ellipsoid,
                 "points": b.shape.points.iter().map(|p| pad(p, shown)).collect::<Vec<_>>(),
                 "edges": b.shape.edges,
                 "cloud": b.shape.cloud,
@@ -184,7 +213,21 @@ pub fn scene_html(a: &SceneAnimation<'_>) -> String {
         .iter()
         .map(|(normal, offset)| json!({ "normal": pad(normal, shown), "offset": round(*offset) }))
         .collect();
+    let links: Vec<_> = a
+        .links
+        .iter()
+        .map(|l| {
+            json!({
+                "spring": l.spring,
+                "body": l.body,
+                "point": pad(&l.point, shown),
+                "other": l.other,
+                "end": pad(&l.end, shown),
+            })
+        })
+        .collect();
     let data = json!({
+        "links": links,
         "dim": shown,
         "title": a.title,
         "times": a.times,
@@ -193,13 +236,10 @@ pub fn scene_html(a: &SceneAnimation<'_>) -> String {
         "bodies": bodies,
         "planes": planes,
         "axes": axes,
+        "projection": "orthographic",
         "up": a.up.filter(|&u| u < shown),
     });
-    // `</` must not appear inside a <script> element; `<\/` is the same JSON string.
-    let data = data.to_string().replace("</", "<\\/");
-    TEMPLATE
-        .replace("{{TITLE}}", &escape(a.title))
-        .replace("{{DATA}}", &data)
+    page(TEMPLATE, a.title, &data)
 }
 
 const TEMPLATE: &str = r##"<!DOCTYPE html>
@@ -209,34 +249,17 @@ const TEMPLATE: &str = r##"<!DOCTYPE html>
 <meta name="viewport" content="width=device-width, initial-scale=1">
 <title>rotorflow scene: {{TITLE}}</title>
 <style>
-  body { font-family: sans-serif; margin: 12px; background: #f4f5f7; color: #222; }
-  #controls { display: flex; flex-wrap: wrap; gap: 10px; align-items: center; margin: 8px 0; }
-  #controls label { font-size: 14px; }
-  canvas { background: #ffffff; border: 1px solid #bbb; cursor: grab; touch-action: none; max-width: 100%; }
-  #time { font-variant-numeric: tabular-nums; min-width: 8em; display: inline-block; }
-  #slider { width: 320px; }
+{{STYLE}}
   #legend span { margin-right: 12px; font-size: 13px; }
-  #selftest { display: none; }
 </style>
 </head>
 <body>
 <h3 id="heading">rotorflow scene: {{TITLE}}</h3>
-<div id="controls">
-  <button id="play" type="button">Pause</button>
-  <input id="slider" type="range" min="0" max="0" value="0" aria-label="time">
-  <span id="time"></span>
-  <label>axes <select id="axes"></select></label>
-  <label>projection <select id="projection">
-    <option value="perspective">perspective</option>
-    <option value="orthographic" selected>orthographic</option>
-  </select></label>
-  <label>speed <select id="speed">
-    <option value="0.5">0.5×</option><option value="1" selected>1×</option><option value="2">2×</option><option value="4">4×</option>
-  </select></label>
-</div>
+{{CONTROLS}}
 <div id="legend"></div>
 <canvas id="view" width="720" height="540"></canvas>
-<p style="font-size:13px;color:#555">Drag to turn the 3D view. The vertical axis (that of gravity) is drawn upwards. Planes are the translucent squares: each plane's
+<p style="font-size:13px;color:#555">Drag to turn the 3D view. The vertical axis (that of gravity) is drawn upwards; the triad x<sub>i</sub> is at the origin of space.
+Round bodies are the wire frames of their 3D projections; springs are zigzags, ball joints rings, anchors squares. Planes are the translucent squares: each plane's
 trace in the three shown coordinates, the others held at the scene's centre. The N−3 axes left out are dropped
 (orthographic) or removed by a perspective from each of them in turn about the scene's centre.</p>
 <pre id="selftest"></pre>
@@ -244,24 +267,8 @@ trace in the three shown coordinates, the others held at the scene's centre. The
 <script>
 "use strict";
 (function () {
-  const errors = [];
-  window.addEventListener("error", function (e) { errors.push(String(e.message)); });
-  const D = JSON.parse(document.getElementById("data").textContent);
-  const n = D.dim;
-  const canvas = document.getElementById("view");
-  const selftest = window.location.hash === "#selftest";
-  const ctx = canvas.getContext("2d", { willReadFrequently: selftest });
-  const slider = document.getElementById("slider");
-  const timeLabel = document.getElementById("time");
-  const playButton = document.getElementById("play");
-  const axesSelect = document.getElementById("axes");
-  const projSelect = document.getElementById("projection");
-  const speedSelect = document.getElementById("speed");
+{{SETUP}}
   const colours = ["#1f4e9c", "#c0392b", "#27864a", "#8e44ad", "#d35400", "#16a085", "#7f8c8d", "#b7950b"];
-  const state = { frame: 0, playing: true, yaw: 0.6, pitch: 0.35, axes: D.axes.slice(),
-                  perspective: false, last: null, acc: 0 };
-  const count = D.times.length;
-  slider.max = String(Math.max(0, count - 1));
   const legend = document.getElementById("legend");
   D.bodies.forEach(function (b, i) {
     const s = document.createElement("span");
@@ -269,35 +276,7 @@ trace in the three shown coordinates, the others held at the scene's centre. The
     s.textContent = "■ " + b.name;
     legend.appendChild(s);
   });
-  for (let i = 0; i < n; i++) for (let j = i + 1; j < n; j++) for (let k = j + 1; k < n; k++) {
-    const o = document.createElement("option");
-    o.value = i + "," + j + "," + k;
-    o.textContent = (i + 1) + "-" + (j + 1) + "-" + (k + 1);
-    if (state.axes.slice().sort(function (x, y) { return x - y; }).join(",") === o.value) o.selected = true;
-    axesSelect.appendChild(o);
-  }
-  // A space point (N coordinates, relative to the centre) → 3D.
-  function project(y) {
-    const a = state.axes;
-    let v = [y[a[0]], y[a[1]], y[a[2]]];
-    if (state.perspective) {
-      const dist = 3 * D.radius;
-      for (let k = 0; k < n; k++) {
-        if (k === a[0] || k === a[1] || k === a[2]) continue;
-        const f = dist / Math.max(dist - y[k], 1e-3 * dist);
-        v = [v[0] * f, v[1] * f, v[2] * f];
-      }
-    }
-    return v;
-  }
-  function view(v) {
-    const sy = Math.sin(state.yaw), cy = Math.cos(state.yaw);
-    const sp = Math.sin(state.pitch), cp = Math.cos(state.pitch);
-    const x1 = cy * v[0] + sy * v[1], y1 = -sy * v[0] + cy * v[1], z1 = v[2];
-    const depth = cp * y1 + sp * z1, up = -sp * y1 + cp * z1;
-    const f = 4 * D.radius / (4 * D.radius + depth);
-    return [x1 * f, -up * f, depth];
-  }
+{{VIEW}}
   // The square patch of a plane in the shown coordinates, relative to the centre (3D).
   function patch(p) {
     const a = state.axes;
@@ -340,99 +319,121 @@ trace in the three shown coordinates, the others held at the scene's centre. The
       for (let i = 1; i < 4; i++) ctx.lineTo(q[i][0], q[i][1]);
       ctx.closePath(); ctx.fill(); ctx.stroke();
     }
-    ctx.lineWidth = 1;
-    ["#d33", "#3a3", "#33d"].forEach(function (col, k) {
-      const e = [0, 0, 0]; e[k] = 0.4 * D.radius;
-      const o = page(view([0, 0, 0])), t = page(view(e));
-      ctx.strokeStyle = col; ctx.globalAlpha = 0.35;
-      ctx.beginPath(); ctx.moveTo(o[0], o[1]); ctx.lineTo(t[0], t[1]); ctx.stroke();
-      ctx.globalAlpha = 1;
-      ctx.fillStyle = col; ctx.font = "13px sans-serif";
-      ctx.fillText(String(state.axes[k] + 1), t[0] + 3, t[1]);
-    });
     const f = state.frame;
+    const drawn = { triad: 0, wireframes: 0, springs: 0, joints: 0, anchors: 0 };
+    // A point of body b (own axes) at this frame, in space relative to the centre.
+    function placed(b, p) {
+      const q = b.frames[f], x = b.positions[f], y = new Array(n).fill(0);
+      for (let r = 0; r < n; r++) {
+        let s = x[r] - D.centre[r];
+        for (let c = 0; c < n; c++) s += q[r * n + c] * p[c];
+        y[r] = s;
+      }
+      return y;
+    }
+    const onPage = function (y) { return page(view(project(y))); };
+    function line(a, b) { ctx.beginPath(); ctx.moveTo(a[0], a[1]); ctx.lineTo(b[0], b[1]); ctx.stroke(); }
+    // The coordinate triad at the origin of space: the three shown axes, labelled.
+    const origin = D.centre.map(function (c) { return -c; });
+    const o = onPage(origin);
+    ctx.lineWidth = 2;
+    ["#d33", "#3a3", "#33d"].forEach(function (col, k) {
+      const e = origin.slice(); e[state.axes[k]] += 0.4 * D.radius;
+      const t = onPage(e);
+      ctx.strokeStyle = col; line(o, t);
+      ctx.fillStyle = col; ctx.font = "13px sans-serif";
+      ctx.fillText("x" + (state.axes[k] + 1), t[0] + 3, t[1]);
+      drawn.triad++;
+    });
     D.bodies.forEach(function (b, i) {
-      const q = b.frames[f], x = b.positions[f];
-      const pts = b.points.map(function (p) {
-        const y = new Array(n).fill(0);
-        for (let r = 0; r < n; r++) {
-          let s = x[r] - D.centre[r];
-          for (let c = 0; c < n; c++) s += q[r * n + c] * p[c];
-          y[r] = s;
-        }
-        return page(view(project(y)));
-      });
       const colour = colours[i % colours.length];
       ctx.strokeStyle = colour; ctx.fillStyle = colour;
       ctx.lineWidth = 1.4; ctx.globalAlpha = 0.85;
-      for (const e of b.edges) {
-        const p = pts[e[0]], r = pts[e[1]];
-        ctx.beginPath(); ctx.moveTo(p[0], p[1]); ctx.lineTo(r[0], r[1]); ctx.stroke();
+      if (b.ellipsoid) {
+        // The projection of {x + Q E u : |u| ≤ 1} on the shown axes is the 3D ellipsoid
+        // {c + L v : |v| ≤ 1} with L Lᵀ = M Mᵀ, M the shown rows of Q E (Cholesky, with
+        // a flat direction kept flat): its meridians and parallels.
+        const q = b.frames[f], a = state.axes, c = placed(b, new Array(n).fill(0));
+        const M = a.map(function (r) {
+          const row = new Array(n).fill(0);
+          for (let k = 0; k < n; k++) for (let m = 0; m < n; m++) row[m] += q[r * n + k] * b.ellipsoid[k * n + m];
+          return row;
+        });
+        const S = M.map(function (u) { return M.map(function (v) { let s = 0; for (let k = 0; k < n; k++) s += u[k] * v[k]; return s; }); });
+        const L = [[0, 0, 0], [0, 0, 0], [0, 0, 0]];
+        const tiny = 1e-24 * (S[0][0] + S[1][1] + S[2][2]);
+        for (let j = 0; j < 3; j++) {
+          let d = S[j][j];
+          for (let k = 0; k < j; k++) d -= L[j][k] * L[j][k];
+          L[j][j] = d > tiny ? Math.sqrt(d) : 0;
+          for (let r = j + 1; r < 3; r++) {
+            let s = S[r][j];
+            for (let k = 0; k < j; k++) s -= L[r][k] * L[j][k];
+            L[r][j] = L[j][j] > 0 ? s / L[j][j] : 0;
+          }
+        }
+        const at = function (v) {
+          const y = c.slice();
+          for (let r = 0; r < 3; r++) y[a[r]] += L[r][0] * v[0] + L[r][1] * v[1] + L[r][2] * v[2];
+          return onPage(y);
+        };
+        const ring = function (point) {
+          ctx.beginPath();
+          for (let s = 0; s <= 48; s++) {
+            const p = at(point(2 * Math.PI * s / 48));
+            if (s === 0) ctx.moveTo(p[0], p[1]); else ctx.lineTo(p[0], p[1]);
+          }
+          ctx.stroke();
+        };
+        for (let m = 0; m < 6; m++) {
+          const phi = Math.PI * m / 6;
+          ring(function (t) { return [Math.cos(phi) * Math.sin(t), Math.sin(phi) * Math.sin(t), Math.cos(t)]; });
+        }
+        for (const z of [-0.8660254, -0.5, 0, 0.5, 0.8660254]) {
+          const rho = Math.sqrt(1 - z * z);
+          ring(function (t) { return [rho * Math.cos(t), rho * Math.sin(t), z]; });
+        }
+        drawn.wireframes++;
+        ctx.globalAlpha = 1;
+        return;
       }
+      const pts = b.points.map(function (p) { return onPage(placed(b, p)); });
+      for (const e of b.edges) line(pts[e[0]], pts[e[1]]);
       ctx.globalAlpha = 1;
       const rad = b.cloud ? 1.4 : 3;
       for (const p of pts) { ctx.beginPath(); ctx.arc(p[0], p[1], rad, 0, 2 * Math.PI); ctx.fill(); }
     });
+    // Springs as zigzags, ball joints as rings at the jointed point, anchors (points of
+    // space) as small squares.
+    ctx.globalAlpha = 1;
+    for (const l of D.links) {
+      const p = onPage(placed(D.bodies[l.body], l.point));
+      const e = l.other === null ? l.end.map(function (v, k) { return v - D.centre[k]; })
+                                 : placed(D.bodies[l.other], l.end);
+      const r = onPage(e);
+      ctx.strokeStyle = "#333"; ctx.fillStyle = "#333"; ctx.lineWidth = 1.2;
+      if (l.spring) {
+        const dx = r[0] - p[0], dy = r[1] - p[1], len = Math.hypot(dx, dy) || 1;
+        const nx = -dy / len * 5, ny = dx / len * 5;
+        ctx.beginPath(); ctx.moveTo(p[0], p[1]);
+        for (let s = 1; s < 16; s++) {
+          const t = s / 16, side = s % 2 === 0 ? -1 : 1;
+          ctx.lineTo(p[0] + t * dx + side * nx, p[1] + t * dy + side * ny);
+        }
+        ctx.lineTo(r[0], r[1]); ctx.stroke();
+        drawn.springs++;
+      } else {
+        line(p, r);
+        ctx.beginPath(); ctx.arc(p[0], p[1], 5, 0, 2 * Math.PI); ctx.stroke();
+        drawn.joints++;
+      }
+      if (l.other === null) { ctx.fillRect(r[0] - 4, r[1] - 4, 8, 8); drawn.anchors++; }
+    }
+    state.drawn = drawn;
     slider.value = String(state.frame);
     timeLabel.textContent = "t = " + D.times[state.frame].toFixed(3);
   }
-  function tick(now) {
-    if (state.playing && count > 1) {
-      if (state.last !== null) {
-        state.acc += (now - state.last) / 1000 * 30 * Number(speedSelect.value);
-        const steps = Math.floor(state.acc);
-        if (steps > 0) { state.acc -= steps; state.frame = (state.frame + steps) % count; draw(); }
-      }
-      state.last = now;
-    } else { state.last = null; }
-    window.requestAnimationFrame(tick);
-  }
-  playButton.addEventListener("click", function () {
-    state.playing = !state.playing;
-    playButton.textContent = state.playing ? "Pause" : "Play";
-  });
-  slider.addEventListener("input", function () { state.frame = Number(slider.value); draw(); });
-  // The vertical axis, when shown, is drawn upwards (last).
-  function upLast(a) {
-    if (D.up === null || a.indexOf(D.up) < 0) return a;
-    return a.filter(function (k) { return k !== D.up; }).concat([D.up]);
-  }
-  axesSelect.addEventListener("change", function () { state.axes = upLast(axesSelect.value.split(",").map(Number)); draw(); });
-  projSelect.addEventListener("change", function () { state.perspective = projSelect.value === "perspective"; draw(); });
-  let drag = null;
-  canvas.addEventListener("pointerdown", function (e) { drag = [e.clientX, e.clientY]; canvas.setPointerCapture(e.pointerId); });
-  canvas.addEventListener("pointermove", function (e) {
-    if (!drag) return;
-    state.yaw += (e.clientX - drag[0]) * 0.01;
-    state.pitch = Math.max(-1.5, Math.min(1.5, state.pitch + (e.clientY - drag[1]) * 0.01));
-    drag = [e.clientX, e.clientY];
-    draw();
-  });
-  canvas.addEventListener("pointerup", function () { drag = null; });
-  function pixels() { return ctx.getImageData(0, 0, canvas.width, canvas.height).data; }
-  function nonBlank(d) {
-    let c = 0;
-    for (let i = 0; i < d.length; i += 4) if (d[i] < 250 || d[i + 1] < 250 || d[i + 2] < 250) c++;
-    return c;
-  }
-  if (selftest) {
-    state.playing = false;
-    state.frame = 0; draw();
-    const first = pixels();
-    state.frame = Math.floor((count - 1) / 2); draw();
-    const later = pixels();
-    let changed = 0;
-    for (let i = 0; i < first.length; i += 4) {
-      if (first[i] !== later[i] || first[i + 1] !== later[i + 1] || first[i + 2] !== later[i + 2]) changed++;
-    }
-    const pre = document.getElementById("selftest");
-    pre.textContent = JSON.stringify({ frames: count, nonblank_first: nonBlank(first), nonblank_later: nonBlank(later),
-                                       changed: changed, later_frame: state.frame, errors: errors });
-    pre.style.display = "block";
-  } else {
-    draw();
-    window.requestAnimationFrame(tick);
-  }
+{{PLAYER}}
 })();
 </script>
 </body>

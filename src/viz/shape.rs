@@ -15,6 +15,10 @@ pub struct Shape {
     /// True for a sampled solid or shell (draw small dots), false for a wireframe or a set of
     /// point masses (draw vertex markers).
     pub cloud: bool,
+    /// For an ellipsoid or a ball: the N × N matrix whose columns are its semi-axes (own
+    /// axes), so that the body is {E u : |u| ≤ 1}. A page draws the surface of its 3D
+    /// projection as a wire frame instead of the points.
+    pub ellipsoid: Option<DMatrix<f64>>,
 }
 
 /// The largest number of points a shape keeps; bigger point sets are thinned evenly.
@@ -75,6 +79,7 @@ impl Shape {
             points,
             edges,
             cloud: false,
+            ellipsoid: None,
         }
     }
 
@@ -91,6 +96,7 @@ impl Shape {
             points,
             edges: Vec::new(),
             cloud: true,
+            ellipsoid: None,
         }
     }
 
@@ -126,7 +132,14 @@ impl Shape {
                 }
             })
             .collect();
-        Shape::cloud(n, points)
+        let semi = DMatrix::from_diagonal(&nalgebra::DVector::from_column_slice(semi_axes));
+        Shape {
+            ellipsoid: Some(match axes {
+                Some(p) => p * semi,
+                None => semi,
+            }),
+            ..Shape::cloud(n, points)
+        }
     }
 
     /// Returns the 2N points ±r e_i joined like a cross-polytope (every pair but antipodes).

@@ -97,7 +97,7 @@ cases! {
     }
     wrong_count_torque => { simulate("cuboid:1,2,3", "1,2,3", &["--torque", "body:1"], "1 components given, N = 3 needs 3") }
     wrong_count_axes => {
-        refuses(&["render", "--body", "cuboid:1,2,3,4", "--omega", "1,0,0,0,0,0", "--t-end", "1", "--out", "a.html", "--axes", "1,2"], "2 axes given")
+        refuses(&["render", "--body", "cuboid:1,2,3,4", "--omega", "1,0,0,0,0,0", "--t-end", "1", "--output", "a.html", "--axes", "1,2"], "2 axes given")
     }
     negative_half_length => { inertia("cuboid:1,-2,3", "must be positive, got -2") }
     negative_radius => { inertia("ball:3,-1", "radius must be positive") }
@@ -160,25 +160,25 @@ cases! {
     }
     plot_not_svg => { simulate("cuboid:1,2,3", "1,0,0", &["--plot", "x.png"], "--plot `x.png`: expected a file name ending in .svg") }
     render_output_not_html_or_svg => {
-        refuses(&["render", "--body", "cuboid:1,2,3", "--omega", "1,0,0", "--t-end", "1", "--out", "a.png"], "ending in .html or .svg")
+        refuses(&["render", "--body", "cuboid:1,2,3", "--omega", "1,0,0", "--t-end", "1", "--output", "a.png"], "ending in .html or .svg")
     }
     render_repeated_axes => {
-        refuses(&["render", "--body", "cuboid:1,2,3,4", "--omega", "1,0,0,0,0,0", "--t-end", "1", "--out", "a.html", "--axes", "1,1,2"], "the axes repeat")
+        refuses(&["render", "--body", "cuboid:1,2,3,4", "--omega", "1,0,0,0,0,0", "--t-end", "1", "--output", "a.html", "--axes", "1,1,2"], "the axes repeat")
     }
     render_axis_out_of_range => {
-        refuses(&["render", "--body", "cuboid:1,2,3", "--omega", "1,0,0", "--t-end", "1", "--out", "a.html", "--axes", "1,2,4"], "out of range")
+        refuses(&["render", "--body", "cuboid:1,2,3", "--omega", "1,0,0", "--t-end", "1", "--output", "a.html", "--axes", "1,2,4"], "out of range")
     }
     sweep_bad_shard => {
-        refuses(&["sweep", "--body", "cuboid:1,2,{a}", "--param", "a=1:2:1", "--omega", "1,0,0", "--t-end", "1", "--samples", "3", "--shard", "4/3", "--csv", "o.csv"], "expected I/N")
+        refuses(&["sweep", "--body", "cuboid:1,2,{a}", "--param", "a=1:2:1", "--omega", "1,0,0", "--t-end", "1", "--samples", "3", "--shard", "4/3", "--output", "o.csv"], "expected I/N")
     }
     sweep_bad_param => {
-        refuses(&["sweep", "--body", "cuboid:1,2,{a}", "--param", "a=1:2", "--omega", "1,0,0", "--t-end", "1", "--samples", "3", "--csv", "o.csv"], "expected NAME=START:STOP:STEP")
+        refuses(&["sweep", "--body", "cuboid:1,2,{a}", "--param", "a=1:2", "--omega", "1,0,0", "--t-end", "1", "--samples", "3", "--output", "o.csv"], "expected NAME=START:STOP:STEP")
     }
     sweep_unknown_template_name => {
-        refuses(&["sweep", "--body", "cuboid:1,2,{b}", "--param", "a=1:2:1", "--omega", "1,0,0", "--t-end", "1", "--samples", "3", "--csv", "o.csv"], "`{b}` names no --param")
+        refuses(&["sweep", "--body", "cuboid:1,2,{b}", "--param", "a=1:2:1", "--omega", "1,0,0", "--t-end", "1", "--samples", "3", "--output", "o.csv"], "`{b}` names no --param")
     }
     sweep_bad_grid_point => {
-        refuses(&["sweep", "--body", "cuboid:1,2,{a}", "--param", "a=-1:1:1", "--omega", "1,0,0", "--t-end", "1", "--samples", "3", "--csv", "o.csv", "--plot", "o.svg"], "run 0 (a=-1)")
+        refuses(&["sweep", "--body", "cuboid:1,2,{a}", "--param", "a=-1:1:1", "--omega", "1,0,0", "--t-end", "1", "--samples", "3", "--output", "o.csv", "--plot", "o.svg"], "run 0 (a=-1)")
     }
     exact_bad_body => {
         refuses(&["exact", "--body", "cuboid:1,-2,3", "--omega", "1,0,0", "--t-end", "1", "--samples", "3", "--output", "o.json"], "must be positive")
@@ -187,18 +187,25 @@ cases! {
     // Fuzz finding (target times_list): a STEP so small that the count of values overflowed
     // an integer (a panic in debug builds, an empty grid and a division by zero in release).
     fuzz_sweep_param_tiny_step => {
-        refuses(&["sweep", "--body", "cuboid:1,2,{a}", "--param", "a=1:2:0.0000000000000000000000000000000000000000000000000000000000025", "--omega", "1,0,0", "--t-end", "1", "--samples", "3", "--csv", "o.csv"], "values are too many (at most 100000)")
+        refuses(&["sweep", "--body", "cuboid:1,2,{a}", "--param", "a=1:2:0.0000000000000000000000000000000000000000000000000000000000025", "--omega", "1,0,0", "--t-end", "1", "--samples", "3", "--output", "o.csv"], "values are too many (at most 100000)")
     }
     fuzz_sweep_param_step_below_the_smallest_double => {
-        refuses(&["sweep", "--body", "cuboid:1,2,{a}", "--param", "a=-1e308:1e308:5e-324", "--omega", "1,0,0", "--t-end", "1", "--samples", "3", "--csv", "o.csv"], "values are too many")
+        refuses(&["sweep", "--body", "cuboid:1,2,{a}", "--param", "a=-1e308:1e308:5e-324", "--omega", "1,0,0", "--t-end", "1", "--samples", "3", "--output", "o.csv"], "values are too many")
     }
     sweep_resume_without_csv => {
-        refuses(&["sweep", "--body", "cuboid:1,2,{a}", "--param", "a=1:2:1", "--omega", "1,0,0", "--t-end", "1", "--samples", "3", "--resume"], "--csv")
+        refuses(&["sweep", "--body", "cuboid:1,2,{a}", "--param", "a=1:2:1", "--omega", "1,0,0", "--t-end", "1", "--samples", "3", "--resume"], "--output")
     }
 }
 
 #[test]
-fn help_documents_every_option_and_the_grammar() {
+fn help_documents_every_option_and_points_to_the_grammar_once() {
+    let help = |args: &[&str]| {
+        let out = rotorflow().args(args).output().unwrap();
+        assert!(out.status.success(), "{args:?}");
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let grammar = |text: &str| text.contains("tesseract:a,b,c") && text.contains("mesh:FILE");
+    let mut checked = 0;
     for (sub, options) in [
         (
             "simulate",
@@ -230,16 +237,18 @@ fn help_documents_every_option_and_the_grammar() {
                 "--t-end",
                 "--times",
                 "--json",
+                "--csv",
+                "--output",
             ][..],
         ),
-        ("inertia", &["--body", "--json"][..]),
+        ("inertia", &["--body", "--json", "--output"][..]),
         (
             "render",
             &[
                 "--body",
                 "--omega",
                 "--t-end",
-                "--out",
+                "--output",
                 "--projection",
                 "--axes",
             ][..],
@@ -247,22 +256,89 @@ fn help_documents_every_option_and_the_grammar() {
         (
             "sweep",
             &[
-                "--body", "--param", "--shard", "--csv", "--plot", "--resume",
+                "--body", "--param", "--shard", "--output", "--plot", "--resume",
             ][..],
         ),
-        ("demo", &["--out"][..]),
+        (
+            "scene",
+            &["--output", "--csv-dir", "--html", "--plot", "--check"][..],
+        ),
+        ("demo", &["--output-dir"][..]),
     ] {
-        let out = rotorflow().args([sub, "--help"]).output().unwrap();
-        assert!(out.status.success());
-        let text = String::from_utf8(out.stdout).unwrap();
+        let text = help(&[sub, "--help"]);
         for o in options {
             assert!(text.contains(o), "`{sub} --help` lacks {o}");
         }
-        if sub != "demo" {
+        // The grammar is printed by `help bodies` alone; a help that takes a body points there.
+        assert!(!grammar(&text), "`{sub} --help` repeats the grammar");
+        if options.contains(&"--body") || sub == "scene" {
             assert!(
-                text.contains("tesseract:a,b,c") && text.contains("mesh:FILE"),
-                "`{sub} --help` lacks the grammar"
+                text.contains("rotorflow help bodies"),
+                "`{sub} --help` does not point to the grammar"
             );
         }
+        // `help SUB` prints the same as `SUB --help`.
+        assert_eq!(help(&["help", sub]), text, "help {sub}");
+        checked += 1;
     }
+    assert_eq!(checked, 7);
+    assert!(grammar(&help(&["help", "bodies"])));
+    let top = help(&["--help"]);
+    assert!(
+        !grammar(&top) && top.contains("rotorflow help bodies"),
+        "{top}"
+    );
+    refuses(
+        &["help", "bodie"],
+        "no topic `bodie` (expected bodies or a subcommand",
+    );
+}
+
+/// One name means one thing in every subcommand: `--output` is a file, a folder option says
+/// that it is one (`--output-dir`, `--csv-dir`), and `--csv` is the flag that asks for CSV.
+#[test]
+fn one_option_name_has_one_meaning_across_subcommands() {
+    let subcommands = [
+        "demo", "inertia", "simulate", "exact", "render", "sweep", "scene",
+    ];
+    let (mut outputs, mut csv_flags, mut dirs) = (0, 0, 0);
+    for sub in subcommands {
+        let out = rotorflow().args([sub, "--help"]).output().unwrap();
+        let text = String::from_utf8(out.stdout).unwrap();
+        for line in text.lines().map(str::trim_start) {
+            let Some(rest) = line.strip_prefix("--") else {
+                continue;
+            };
+            let name = rest.split([' ', '=']).next().unwrap();
+            let value = rest[name.len()..]
+                .trim_start()
+                .strip_prefix('<')
+                .map(|v| v.split('>').next().unwrap().to_string());
+            match name {
+                "output" => {
+                    let v = value.clone().unwrap_or_default();
+                    assert!(
+                        v.starts_with("FILE"),
+                        "`{sub} --output <{v}>` is not a file"
+                    );
+                    outputs += 1;
+                }
+                "csv" => {
+                    assert_eq!(value, None, "`{sub} --csv` takes a value");
+                    csv_flags += 1;
+                }
+                _ => {}
+            }
+            if value.as_deref() == Some("DIR") {
+                assert!(
+                    name.ends_with("-dir"),
+                    "`{sub} --{name} <DIR>` does not say it is a folder"
+                );
+                dirs += 1;
+            }
+        }
+    }
+    // --output in inertia, simulate, exact, render, sweep and scene; --csv in simulate and
+    // exact; folders in demo and scene.
+    assert_eq!((outputs, csv_flags, dirs), (6, 2, 2));
 }

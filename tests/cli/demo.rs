@@ -68,7 +68,7 @@ fn demo_writes_every_promised_file() {
     let out = dir.path().join("out");
     let clock = Instant::now();
     rotorflow()
-        .args(["demo", "--output"])
+        .args(["demo", "--output-dir"])
         .arg(&out)
         .assert()
         .success();

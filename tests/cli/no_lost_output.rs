@@ -159,7 +159,7 @@ fn sweep_args<'a>(range: &'a str, csv: &'a str) -> Vec<&'a str> {
         "yoshida4",
         "--dt",
         "0.01",
-        "--csv",
+        "--output",
         csv,
     ]
 }
@@ -263,7 +263,7 @@ fn resume_refuses_the_progress_of_another_sweep() {
     // Something that is not a progress file at all.
     std::fs::write(&partial, "run,k\n1,2\n").unwrap();
     refused_resume(dir.path(), &sweep_args(GRID, "sweep.csv"));
-    // --resume needs --csv.
+    // --resume needs --output.
     refused_resume(dir.path(), &sweep_args(GRID, "x.csv")[..17]);
 }
 
@@ -305,7 +305,7 @@ fn resume_without_progress_runs_everything() {
     assert_eq!(names.len(), 2, "{names:?}");
 }
 
-/// `sweep --csv` killed around the moment it writes the table (right after its last run),
+/// `sweep --output` killed around the moment it writes the table (right after its last run),
 /// and at delays over its run: the CSV is absent or equal to an uninterrupted run's.
 #[test]
 fn killed_sweep_leaves_its_table_whole_or_absent() {

@@ -1,5 +1,5 @@
 //! Options shared by several subcommands: `--output` (its name and the format its file name
-//! implies), `--axial` in 3D, points files with a header, the sweep's documented columns.
+//! implies; the old names are gone), `--axial` in 3D, points files with a header, the sweep's documented columns.
 
 use super::{assert_close, floats, matrix, rotorflow, run_json};
 
@@ -68,17 +68,16 @@ fn output_format_follows_the_file_name() {
 }
 
 #[test]
-fn render_and_demo_take_output_and_the_old_out() {
+fn render_takes_output_and_demo_output_dir_without_the_old_names() {
     let help = run_in(std::path::Path::new("."), &["render", "--help"]);
     assert!(help.contains("--output <FILE>"), "{help}");
-    assert!(!help.contains("--out <"), "the old name is hidden: {help}");
     let help = run_in(std::path::Path::new("."), &["demo", "--help"]);
-    assert!(help.contains("--output <DIR>"), "{help}");
+    assert!(help.contains("--output-dir <DIR>"), "{help}");
     let dir = tempfile::tempdir().unwrap();
-    for (flag, name) in [("--output", "a.svg"), ("--out", "b.svg")] {
-        run_in(
-            dir.path(),
-            &[
+    let render = |flag: &str, name: &str| {
+        rotorflow()
+            .current_dir(dir.path())
+            .args([
                 "render",
                 "--body",
                 "cuboid:1,2,3",
@@ -90,11 +89,39 @@ fn render_and_demo_take_output_and_the_old_out() {
                 "2",
                 flag,
                 name,
-            ],
-        );
-        let svg = std::fs::read_to_string(dir.path().join(name)).unwrap();
-        assert!(svg.starts_with("<svg"), "{flag}");
+            ])
+            .output()
+            .unwrap()
+    };
+    assert!(render("--output", "a.svg").status.success());
+    let svg = std::fs::read_to_string(dir.path().join("a.svg")).unwrap();
+    assert!(svg.starts_with("<svg"));
+    // The old names are gone, not aliases: exit 2, one line, no file.
+    let old = [
+        vec!["render", "--out", "b.svg"],
+        vec!["demo", "--out", "d"],
+        vec!["demo", "--output", "d"],
+        vec!["scene", "x.toml", "--out", "b.json"],
+        vec!["scene", "x.toml", "--csv", "d"],
+        vec!["sweep", "--csv", "b.csv"],
+    ];
+    for args in &old {
+        let out = if args[0] == "render" {
+            render(args[1], args[2])
+        } else {
+            rotorflow()
+                .current_dir(dir.path())
+                .args(args)
+                .output()
+                .unwrap()
+        };
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+        assert!(err.contains("unexpected argument"), "{args:?}: {err}");
     }
+    let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+    assert_eq!(names.len(), 1, "only a.svg is written");
 }
 
 /// The axial vector (x, y, z) is x e₂∧e₃ + y e₃∧e₁ + z e₁∧e₂: the components 12, 13, 23 are

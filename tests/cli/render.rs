@@ -16,7 +16,7 @@ fn render(dir: &Path, name: &str, extra: &[&str]) -> PathBuf {
         "1,0.05,0.02,0.03,0.04,0.7",
         "--t-end",
         "20",
-        "--out",
+        "--output",
     ])
     .arg(&out)
     .args(extra);
@@ -85,7 +85,7 @@ fn render_solids_and_2d_bodies() {
         rotorflow()
             .args([
                 "render", "--body", body, "--omega", omega, "--t-end", "3", "--frames", "20",
-                "--out",
+                "--output",
             ])
             .arg(&out)
             .assert()

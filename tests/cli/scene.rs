@@ -57,7 +57,7 @@ fn scene_free_flight_follows_the_parabola() {
     let (dir, _) = scene_file(FREE_FLIGHT);
     run_ok(
         dir.path(),
-        &["scene.toml", "--samples", "21", "--out", "run.json"],
+        &["scene.toml", "--samples", "21", "--output", "run.json"],
     );
     let json = read_json(&dir.path().join("run.json"));
     for key in [
@@ -130,7 +130,13 @@ fn scene_rk4_free_flight_follows_the_parabola() {
     let (dir, _) = scene_file(&text);
     run_ok(
         dir.path(),
-        &["scene.toml", "--times", "0,0.5,1.25", "--out", "run.json"],
+        &[
+            "scene.toml",
+            "--times",
+            "0,0.5,1.25",
+            "--output",
+            "run.json",
+        ],
     );
     let json = read_json(&dir.path().join("run.json"));
     assert_eq!(floats(&json["times"]), vec![0.0, 0.5, 1.25]);
@@ -173,7 +179,7 @@ damping = 0.3
 #[test]
 fn scene_two_body_spring_keeps_the_linear_momentum() {
     let (dir, _) = scene_file(TWO_BODIES);
-    run_ok(dir.path(), &["scene.toml", "--out", "run.json"]);
+    run_ok(dir.path(), &["scene.toml", "--output", "run.json"]);
     let json = read_json(&dir.path().join("run.json"));
     let p = matrix(&json["momentum"]);
     assert!(p.len() > 100);
@@ -208,11 +214,11 @@ fn scene_writes_csv_per_body_and_html() {
             "scene.toml",
             "--samples",
             "11",
-            "--csv",
+            "--csv-dir",
             "csv",
             "--html",
             "anim.html",
-            "--out",
+            "--output",
             "run.json",
         ],
     );
@@ -242,6 +248,141 @@ fn scene_writes_csv_per_body_and_html() {
     assert!(html.starts_with("<!DOCTYPE html>"));
     assert!(html.contains("\"bodies\"") && html.contains("\"name\":\"b\""));
     assert!(!html.contains("http://") && !html.contains("https://"));
+}
+
+/// Every number of the CSV files is the shortest text that reads back exactly: it equals the
+/// JSON's number bit for bit (serde_json writes and reads floats exactly), and has at most 17
+/// significant digits.
+#[test]
+fn scene_csv_numbers_are_short_and_read_back_exactly() {
+    let (dir, _) = scene_file(TWO_BODIES);
+    run_ok(
+        dir.path(),
+        &[
+            "scene.toml",
+            "--samples",
+            "31",
+            "--csv-dir",
+            "csv",
+            "--output",
+            "run.json",
+        ],
+    );
+    let json = read_json(&dir.path().join("run.json"));
+    let rows = |name: &str| -> Vec<Vec<String>> {
+        let text = std::fs::read_to_string(dir.path().join("csv").join(name)).unwrap();
+        text.lines()
+            .skip(1)
+            .map(|l| l.split(',').map(str::to_string).collect())
+            .collect()
+    };
+    let mut compared = 0;
+    let mut same = |field: &str, expected: f64| {
+        let x: f64 = field.parse().unwrap();
+        assert_eq!(
+            x.to_bits(),
+            expected.to_bits(),
+            "{field} against {expected:e}"
+        );
+        let mantissa = field.trim_start_matches('-').split('e').next().unwrap();
+        let digits: String = mantissa.chars().filter(char::is_ascii_digit).collect();
+        assert!(digits.trim_start_matches('0').len() <= 17, "{field}");
+        // Plain only where that is short: no runs of leading zeros, no padding to the point.
+        assert!(
+            field.contains('e') || x == 0.0 || (1e-5..1e16).contains(&x.abs()),
+            "{field} is not in its shortest form"
+        );
+        compared += 1;
+    };
+    for (b, name) in ["a.csv", "b.csv"].into_iter().enumerate() {
+        let body = &json["bodies"][b];
+        for (k, row) in rows(name).iter().enumerate() {
+            same(&row[0], json["times"][k].as_f64().unwrap());
+            for i in 0..3 {
+                same(&row[1 + i], body["position"][k][i].as_f64().unwrap());
+                same(&row[4 + i], body["velocity"][k][i].as_f64().unwrap());
+                same(&row[16 + i], body["omega"][k][i].as_f64().unwrap());
+            }
+            for r in 0..3 {
+                for c in 0..3 {
+                    same(
+                        &row[7 + 3 * r + c],
+                        body["attitude"][k][r][c].as_f64().unwrap(),
+                    );
+                }
+            }
+        }
+    }
+    for (k, row) in rows("system.csv").iter().enumerate() {
+        same(&row[1], json["energy"][k].as_f64().unwrap());
+        for i in 0..3 {
+            same(&row[2 + i], json["momentum"][k][i].as_f64().unwrap());
+            same(
+                &row[5 + i],
+                json["angular_momentum"][k][i].as_f64().unwrap(),
+            );
+        }
+    }
+    // 31 rows of 19 numbers for each body, 31 of 7 for the system.
+    assert_eq!(compared, 31 * 19 * 2 + 31 * 7);
+}
+
+/// `--plot`: one SVG with the energies, the momenta and the positions, each series named,
+/// and no non-finite number drawn; the energies add up in the JSON it is drawn from.
+#[test]
+fn scene_plot_draws_energies_momenta_and_positions() {
+    let (dir, _) = scene_file(TWO_BODIES);
+    let out = run_ok(
+        dir.path(),
+        &[
+            "scene.toml",
+            "--samples",
+            "61",
+            "--plot",
+            "run.svg",
+            "--output",
+            "run.json",
+        ],
+    );
+    assert!(out.is_empty(), "{out}");
+    let svg = std::fs::read_to_string(dir.path().join("run.svg")).unwrap();
+    assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+    for series in [
+        "kinetic T",
+        "potential V",
+        "total E = T + V",
+        "|p| (linear momentum)",
+        "|L| (angular momentum about the origin)",
+        "a x₁",
+        "a x₃",
+        "b x₂",
+    ] {
+        assert!(svg.contains(series), "the plot lacks {series}");
+    }
+    assert!(!svg.contains("NaN") && !svg.contains("inf"));
+    let json = read_json(&dir.path().join("run.json"));
+    let (t, v, e) = (
+        floats(&json["kinetic_energy"]),
+        floats(&json["potential_energy"]),
+        floats(&json["energy"]),
+    );
+    assert_eq!(e.len(), 61);
+    for k in 0..61 {
+        assert!((t[k] + v[k] - e[k]).abs() <= 1e-12 * e[k].abs().max(1.0));
+        assert!(t[k] >= 0.0);
+    }
+    // The two bodies exchange energy through the spring: V is not constant.
+    assert!(v.iter().any(|x| (x - v[0]).abs() > 1e-3));
+}
+
+#[test]
+fn scene_accepts_a_step_within_a_tenth_of_the_spring_period() {
+    // 2π√(16/600) = 1.026: ten steps of 0.1 fit in it.
+    let (dir, _) = scene_file(&format!(
+        "{HEAD}{CUBE}[[spring]]\nbody = \"cube\"\nanchor = [0,0,0,1]\nstiffness = 600\n"
+    ));
+    let out = run_ok(dir.path(), &["scene.toml", "--check"]);
+    assert!(out.contains("1 spring"), "{out}");
 }
 
 #[test]
@@ -278,7 +419,7 @@ fn scene_example_files_are_valid() {
     assert!(count >= 5, "only {count} example scenes");
 }
 
-/// Runs the example scene `scenes/<file>` with `--out run.json` and `extra` options and
+/// Runs the example scene `scenes/<file>` with `--output run.json` and `extra` options and
 /// returns the JSON.
 fn run_example(file: &str, extra: &[&str]) -> Value {
     let dir = tempfile::tempdir().unwrap();
@@ -289,7 +430,7 @@ fn run_example(file: &str, extra: &[&str]) -> Value {
         .current_dir(dir.path())
         .arg("scene")
         .arg(&path)
-        .args(["--out", "run.json"])
+        .args(["--output", "run.json"])
         .args(extra)
         .output()
         .unwrap();
@@ -565,12 +706,14 @@ fn refuses(text: &str, needles: &[&str]) {
         .args([
             "scene",
             "scene.toml",
-            "--out",
+            "--output",
             "run.json",
-            "--csv",
+            "--csv-dir",
             "csv",
             "--html",
             "run.html",
+            "--plot",
+            "run.svg",
         ])
         .output()
         .unwrap();
@@ -645,6 +788,19 @@ bad_scenes! {
     scene_refuses_rk4_with_joints => (format!("{HEAD}integrator = \"rk4\"\n{CUBE}[[joint]]\nbody = \"cube\"\nanchor = [0,0,0,0]\n"), ["rk4", "splitting"])
     scene_refuses_wrong_type => (format!("{HEAD}{CUBE}position = \"up\"\n"), ["body \"cube\"", "position must be a list of numbers"])
     scene_refuses_toml_syntax_errors => (format!("{HEAD}{CUBE}position = [1, 2\n"), ["scene.toml:"])
+    scene_refuses_a_single_body_table => (format!("{HEAD}[body]\nname = \"cube\"\nshape = \"tesseract:1,1,1,1\"\n"), ["scene.toml:4: `[body]` is a single table; write `[[body]]`"])
+    scene_refuses_a_single_plane_table => (format!("{HEAD}{CUBE}[plane]  # the floor\nnormal = [0,0,0,1]\n"), ["scene.toml:7: `[plane]` is a single table; write `[[plane]]`"])
+    scene_refuses_a_single_spring_table => (format!("{HEAD}{CUBE}[spring]\nbody = \"cube\"\nanchor = [0,0,0,0]\nstiffness = 1\n"), ["scene.toml:7: `[spring]` is a single table; write `[[spring]]`"])
+    scene_refuses_a_single_joint_table => (format!("{HEAD}{CUBE}[joint]\nbody = \"cube\"\nanchor = [0,0,0,0]\n"), ["scene.toml:7: `[joint]` is a single table; write `[[joint]]`"])
+    scene_refuses_a_body_that_is_not_a_table => (format!("{HEAD}body = 3\n"), ["body must be an array of tables (`[[body]]`, one per body), got an integer"])
+    scene_refuses_a_step_as_long_as_the_run => ("dim = 4\nt_end = 1.0\ndt = 1.0\n".to_string() + CUBE, ["dt = 1 is not less than t_end = 1", "a single step"])
+    scene_refuses_a_step_longer_than_the_run => ("dim = 4\nt_end = 1.0\ndt = 2.5\n".to_string() + CUBE, ["dt = 2.5 is not less than t_end = 1"])
+    // tesseract:1,1,1,1 is 16 unit masses: the period 2π√(16/1000) = 0.795 is less than ten
+    // steps of 0.1.
+    scene_refuses_a_step_too_long_for_a_spring => (format!("{HEAD}{CUBE}[[spring]]\nbody = \"cube\"\nanchor = [0,0,0,1]\nstiffness = 1000\n"), ["spring 1: dt = 0.1 is more than 1/10 of the spring's period 2π√(m_eff/k) = 7.947" , "m_eff = 16, k = 1000", "take dt ≤ 7.948e-2"])
+    // Between two bodies of 16 the reduced mass is 8: 2π√(8/400) = 0.889 < 10 dt, though
+    // 2π√(16/400) = 1.257 would pass.
+    scene_refuses_a_step_too_long_for_a_spring_between_bodies => (format!("{HEAD}{CUBE}[[body]]\nname = \"bar\"\nshape = \"tesseract:1,1,1,1\"\nposition = [3,0,0,0]\n[[spring]]\nbody = \"cube\"\nother = \"bar\"\nstiffness = 400\n"), ["spring 1", "m_eff = 8, k = 400", "period 2π√(m_eff/k) = 8.885"])
     scene_refuses_a_body_jointed_to_itself => (format!("{HEAD}{CUBE}[[joint]]\nbody = \"cube\"\nother = \"cube\"\n"), ["joint 1", "the body itself"])
 }
 
@@ -653,10 +809,14 @@ fn scene_refuses_bad_options_before_running() {
     let (dir, _) = scene_file(&format!("{HEAD}{CUBE}"));
     for (args, needle) in [
         (
-            vec!["--out", "run.txt"],
-            "--out `run.txt`: expected a file name ending in .json",
+            vec!["--output", "run.txt"],
+            "--output `run.txt`: expected a file name ending in .json",
         ),
         (vec!["--html", "run.svg"], "--html `run.svg`"),
+        (
+            vec!["--plot", "run.png"],
+            "--plot `run.png`: expected a file name ending in .svg",
+        ),
         (vec!["--times", "0,2"], "beyond t_end 1"),
         (vec!["--samples", "1"], "--samples must be between 2"),
     ] {
@@ -683,22 +843,26 @@ fn scene_refuses_bad_options_before_running() {
 
 #[test]
 fn scene_failed_run_exits_1_and_writes_nothing() {
-    // A stiff spring stepped far too coarsely blows up.
+    // A spring whose period 2π√(8/1) = 17.8 allows dt = 1, but whose damping is far too
+    // strong for the step (c dt/m = 1250: each step turns the velocity round and multiplies
+    // it): the run blows up.
     let text = "dim = 3\nt_end = 1000\ndt = 1\n[[body]]\nname = \"a\"\nshape = \"cuboid:1,1,1\"\n\
-         position = [3, 0, 0]\n[[spring]]\nbody = \"a\"\npoint = [1, 1, 1]\nanchor = [0, 0, 0]\n\
-         stiffness = 1e6\n";
+         position = [3, 0, 0]\n[[spring]]\nbody = \"a\"\nanchor = [0, 0, 0]\nstiffness = 1\n\
+         damping = 1e4\n";
     let (dir, _) = scene_file(text);
     let out = rotorflow()
         .current_dir(dir.path())
         .args([
             "scene",
             "scene.toml",
-            "--out",
+            "--output",
             "run.json",
-            "--csv",
+            "--csv-dir",
             "csv",
             "--html",
             "a.html",
+            "--plot",
+            "a.svg",
         ])
         .output()
         .unwrap();
@@ -737,4 +901,41 @@ fn scene_html_draws_and_animates_in_headless_chromium() {
     assert!(report["nonblank_first"].as_u64().unwrap() > 500, "{report}");
     assert!(report["changed"].as_u64().unwrap() > 100, "{report}");
     assert_eq!(report["errors"], serde_json::json!([]), "{report}");
+}
+
+/// The scene page draws the triad at the origin, the springs, the ball joints and their
+/// anchors, and round bodies as wire frames; the page's self-test counts what it drew.
+#[test]
+fn scene_html_draws_springs_joints_anchors_triad_and_wire_frames() {
+    // Under CI `chromium()` fails when there is no browser; locally it says it skips.
+    let Some(browser) = super::render::chromium() else {
+        return;
+    };
+    let text = format!(
+        "{TWO_BODIES}\n[[spring]]\nbody = \"b\"\nanchor = [0, 0, 2]\nstiffness = 5\n\
+         [[joint]]\nbody = \"a\"\npoint = [-0.5, 0, 0]\nanchor = [-1.5, 0, 0]\n"
+    );
+    let (dir, _) = scene_file(&text);
+    run_ok(
+        dir.path(),
+        &["scene.toml", "--samples", "11", "--html", "a.html"],
+    );
+    let url = format!("file://{}#selftest", dir.path().join("a.html").display());
+    let out = super::render::chromium_command(&browser, &dir.path().join("profile"))
+        .arg("--dump-dom")
+        .arg(url)
+        .output()
+        .expect("chromium runs");
+    let dom = String::from_utf8_lossy(&out.stdout);
+    let start = dom.find("<pre id=\"selftest\"").expect("a selftest report");
+    let json_start = start + dom[start..].find('>').unwrap() + 1;
+    let json_end = json_start + dom[json_start..].find("</pre>").unwrap();
+    let report: Value = serde_json::from_str(&dom[json_start..json_end]).unwrap();
+    assert_eq!(report["errors"], serde_json::json!([]), "{report}");
+    // Two springs (a to b, b to its anchor), one joint, two anchors, one ellipsoid (b).
+    assert_eq!(
+        report["drawn"],
+        serde_json::json!({ "triad": 3, "wireframes": 1, "springs": 2, "joints": 1, "anchors": 2 }),
+        "{report}"
+    );
 }

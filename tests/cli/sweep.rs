@@ -99,7 +99,7 @@ fn sweep_grid_of_two_parameters_writes_csv_and_plot() {
             "40",
             "--samples",
             "401",
-            "--csv",
+            "--output",
         ])
         .arg(&csv)
         .arg("--plot")

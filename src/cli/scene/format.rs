@@ -200,8 +200,8 @@ impl Place<'_> {
     fn table<T: for<'de> Deserialize<'de>>(&self, value: &Value, what: &str) -> CliResult<T> {
         if !value.is_table() {
             return Err(self.error(format!(
-                "expected a table ([[{what}]]), got {}",
-                value.type_str()
+                "expected a table (`[[{what}]]`), got {}",
+                a_type(value)
             )));
         }
         value.clone().try_into::<T>().map_err(|e| {
@@ -220,10 +220,7 @@ impl Place<'_> {
             Value::Integer(i) => *i as f64,
             Value::Float(x) => *x,
             other => {
-                return Err(self.error(format!(
-                    "{key} must be a number, got a {}",
-                    other.type_str()
-                )));
+                return Err(self.error(format!("{key} must be a number, got {}", a_type(other))));
             }
         };
         if !x.is_finite() {
@@ -254,8 +251,8 @@ impl Place<'_> {
     fn list(&self, key: &str, v: &Value, expected: &str) -> CliResult<Vec<f64>> {
         let Value::Array(items) = v else {
             return Err(self.error(format!(
-                "{key} must be a list of numbers ({expected}), got a {}",
-                v.type_str()
+                "{key} must be a list of numbers ({expected}), got {}",
+                a_type(v)
             )));
         };
         items
@@ -282,20 +279,47 @@ impl Place<'_> {
 
     fn string<'v>(&self, key: &str, v: &'v Value) -> CliResult<&'v str> {
         v.as_str()
-            .ok_or_else(|| self.error(format!("{key} must be a string, got a {}", v.type_str())))
+            .ok_or_else(|| self.error(format!("{key} must be a string, got {}", a_type(v))))
     }
 
-    /// An array of tables (`[[body]]`), or none.
-    fn tables<'v>(&self, key: &str, v: &'v Option<Value>) -> CliResult<&'v [Value]> {
+    /// An array of tables (`[[body]]`), or none. `text` is the file, to find the line of a
+    /// single table `[body]` written where `[[body]]` was meant.
+    fn tables<'v>(&self, text: &str, key: &str, v: &'v Option<Value>) -> CliResult<&'v [Value]> {
         match v {
             None => Ok(&[]),
             Some(Value::Array(a)) => Ok(a),
+            Some(Value::Table(_)) => {
+                let header = format!("[{key}]");
+                let line = text.lines().position(|l| {
+                    l.trim_start()
+                        .strip_prefix(header.as_str())
+                        .map(str::trim_start)
+                        .is_some_and(|rest| rest.is_empty() || rest.starts_with('#'))
+                });
+                let at = line.map_or(String::new(), |l| format!(":{}", l + 1));
+                Err(CliError::input(format!(
+                    "{}{at}: `[{key}]` is a single table; write `[[{key}]]` (double brackets, one \
+                     `[[{key}]]` per {key})",
+                    self.file
+                )))
+            }
             Some(other) => Err(self.error(format!(
-                "{key} must be an array of tables ([[{key}]]), got a {}",
-                other.type_str()
+                "{key} must be an array of tables (`[[{key}]]`, one per {key}), got {}",
+                a_type(other)
             ))),
         }
     }
+}
+
+/// The TOML type of `v` with its article: "an integer", "a string", ….
+fn a_type(v: &Value) -> String {
+    let t = v.type_str();
+    let article = if t.starts_with(['a', 'e', 'i', 'o', 'u']) {
+        "an"
+    } else {
+        "a"
+    };
+    format!("{article} {t}")
 }
 
 fn positive(x: f64) -> bool {
@@ -321,7 +345,11 @@ fn one_line(text: &str) -> String {
 
 /// Returns the 1-based line and column of byte `offset` of `text`.
 fn line_column(text: &str, offset: usize) -> (usize, usize) {
-    let before = &text[..offset.min(text.len())];
+    let mut end = offset.min(text.len());
+    while !text.is_char_boundary(end) {
+        end -= 1;
+    }
+    let before = &text[..end];
     let line = before.matches('\n').count() + 1;
     let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
     (line, column)
@@ -341,8 +369,29 @@ pub fn load(path: &std::path::Path) -> CliResult<Scene> {
 /// Parses and checks the scene `text` (read from `file`, named in messages).
 ///
 /// # Errors
-/// [`CliError::Input`] naming the file, the section and the key.
+/// [`CliError::Input`] naming the file, the section and the key, in one line: names and
+/// strings quoted from the file have their control characters escaped.
 pub fn parse(text: &str, file: &str) -> CliResult<Scene> {
+    read_scene(text, file).map_err(|e| match e {
+        CliError::Input(message) => CliError::Input(printable(&message)),
+        other => other,
+    })
+}
+
+/// Returns `text` with its control characters (line breaks among them) escaped.
+fn printable(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_control() {
+                c.escape_default().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
+}
+
+fn read_scene(text: &str, file: &str) -> CliResult<Scene> {
     let top = Place {
         file,
         section: String::new(),
@@ -371,8 +420,8 @@ pub fn parse(text: &str, file: &str) -> CliResult<Scene> {
         }
         other => {
             return Err(top.error(format!(
-                "dim must be an integer from 2 to {max}, got a {}",
-                other.type_str()
+                "dim must be an integer from 2 to {max}, got {}",
+                a_type(other)
             )));
         }
     };
@@ -398,7 +447,7 @@ pub fn parse(text: &str, file: &str) -> CliResult<Scene> {
         },
     };
 
-    let body_tables = top.tables("body", &raw.body)?;
+    let body_tables = top.tables(text, "body", &raw.body)?;
     if body_tables.is_empty() {
         return Err(top.error("no [[body]]: a scene needs at least one body"));
     }
@@ -417,23 +466,24 @@ pub fn parse(text: &str, file: &str) -> CliResult<Scene> {
     let names: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
 
     let planes = top
-        .tables("plane", &raw.plane)?
+        .tables(text, "plane", &raw.plane)?
         .iter()
         .enumerate()
         .map(|(k, t)| read_plane(file, k, t, dim))
         .collect::<CliResult<Vec<_>>>()?;
     let springs = top
-        .tables("spring", &raw.spring)?
+        .tables(text, "spring", &raw.spring)?
         .iter()
         .enumerate()
         .map(|(k, t)| read_spring(file, k, t, dim, &names))
         .collect::<CliResult<Vec<_>>>()?;
     let joints = top
-        .tables("joint", &raw.joint)?
+        .tables(text, "joint", &raw.joint)?
         .iter()
         .enumerate()
         .map(|(k, t)| read_joint(file, k, t, dim, &names))
         .collect::<CliResult<Vec<_>>>()?;
+    check_step(&top, dt, t_end, &bodies, &springs)?;
     if integrator == IntegratorKind::Rk4 && !(planes.is_empty() && joints.is_empty()) {
         return Err(top.error(
             "integrator \"rk4\" integrates forces and springs only; a scene with [[plane]] or \
@@ -451,6 +501,55 @@ pub fn parse(text: &str, file: &str) -> CliResult<Scene> {
         springs,
         joints,
     })
+}
+
+/// The largest step a scene may take, as a fraction of the period 2π√(m_eff/k) of its
+/// stiffest spring. The splitting is stable up to a third of the period (ω dt < 2), but the
+/// energy of an undamped spring swings by about (ω dt)²/4 of itself: 10 % at a tenth of the
+/// period (ω dt ≈ 0.63); beyond that a run says little about the scene.
+pub const MAX_STEP_PER_PERIOD: f64 = 0.1;
+
+/// Refuses a step the scene cannot take: one that reaches `t_end` (the run would be a single
+/// step), or one longer than [`MAX_STEP_PER_PERIOD`] of a spring's period. The period is the
+/// one of the spring's translational mode, 2π√(m_eff/k) with m_eff the body's mass (a spring
+/// to a point of space) or the reduced mass m₁m₂/(m₁ + m₂) of two bodies.
+fn check_step(
+    top: &Place<'_>,
+    dt: f64,
+    t_end: f64,
+    bodies: &[SceneBody],
+    springs: &[SceneSpring],
+) -> CliResult<()> {
+    if dt >= t_end {
+        return Err(top.error(format!(
+            "dt = {dt} is not less than t_end = {t_end}: the run would be a single step; \
+             take dt < t_end"
+        )));
+    }
+    for (k, s) in springs.iter().enumerate() {
+        if s.stiffness <= 0.0 {
+            continue;
+        }
+        let m = bodies[s.body].mass;
+        let m_eff = match &s.anchor {
+            SceneAnchor::World(_) => m,
+            // m₁m₂/(m₁ + m₂), written so that it does not overflow for huge masses.
+            SceneAnchor::Body(j, _) => m / (1.0 + m / bodies[*j].mass),
+        };
+        let period = std::f64::consts::TAU * (m_eff / s.stiffness).sqrt();
+        let largest = MAX_STEP_PER_PERIOD * period;
+        if dt > largest {
+            return Err(CliError::input(format!(
+                "{}: spring {}: dt = {dt} is more than 1/{} of the spring's period \
+                 2π√(m_eff/k) = {period:.6e} (m_eff = {m_eff}, k = {}); take dt ≤ {largest:.3e}",
+                top.file,
+                k + 1,
+                1.0 / MAX_STEP_PER_PERIOD,
+                s.stiffness
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// True if the SPEC carries a `mass=` option.
@@ -553,8 +652,8 @@ fn read_attitude(place: &Place<'_>, v: &Value, n: usize) -> CliResult<DMatrix<f6
     let expected = format!("{} numbers row-major or {n} rows of {n}", n * n);
     let Value::Array(items) = v else {
         return Err(place.error(format!(
-            "attitude must be a list ({expected}), got a {}",
-            v.type_str()
+            "attitude must be a list ({expected}), got {}",
+            a_type(v)
         )));
     };
     let entries: Vec<f64> = if items.iter().all(Value::is_array) && !items.is_empty() {
@@ -686,6 +785,72 @@ fn read_anchor(
     }
 }
 
+/// The ends of a spring or a joint, `[body, point, anchor, other, other_point]` as in the
+/// file: the body (by index), its point (own axes) and the other end.
+fn read_ends(
+    place: &Place<'_>,
+    [body, point, anchor, other, other_point]: [&Option<Value>; 5],
+    dim: usize,
+    names: &[&str],
+) -> CliResult<LinkEnds> {
+    let body = body_index(place, "body", place.required("body", body)?, names)?;
+    let point = place.vector("point", point, dim)?;
+    let other = read_anchor(place, body, anchor, other, other_point, dim, names)?;
+    Ok((body, point, other))
+}
+
+/// The keys of a spring or a joint that name its ends.
+trait Ends {
+    /// `[body, point, anchor, other, other_point]` as in the file.
+    fn ends(&self) -> [&Option<Value>; 5];
+}
+
+impl Ends for RawSpring {
+    fn ends(&self) -> [&Option<Value>; 5] {
+        [
+            &self.body,
+            &self.point,
+            &self.anchor,
+            &self.other,
+            &self.other_point,
+        ]
+    }
+}
+
+impl Ends for RawJoint {
+    fn ends(&self) -> [&Option<Value>; 5] {
+        [
+            &self.body,
+            &self.point,
+            &self.anchor,
+            &self.other,
+            &self.other_point,
+        ]
+    }
+}
+
+/// The ends of a spring or a joint: the body (by index), its point and the other end.
+type LinkEnds = (usize, Vec<f64>, SceneAnchor);
+
+/// Reads the `k`-th `[[what]]` (a spring or a joint): its place in the file, its keys and
+/// its ends.
+fn read_linked<'a, T: for<'de> Deserialize<'de> + Ends>(
+    file: &'a str,
+    what: &str,
+    k: usize,
+    t: &Value,
+    dim: usize,
+    names: &[&str],
+) -> CliResult<(Place<'a>, T, LinkEnds)> {
+    let place = Place {
+        file,
+        section: format!("{what} {}", k + 1),
+    };
+    let raw: T = place.table(t, what)?;
+    let ends = read_ends(&place, raw.ends(), dim, names)?;
+    Ok((place, raw, ends))
+}
+
 fn read_spring(
     file: &str,
     k: usize,
@@ -693,22 +858,8 @@ fn read_spring(
     dim: usize,
     names: &[&str],
 ) -> CliResult<SceneSpring> {
-    let place = Place {
-        file,
-        section: format!("spring {}", k + 1),
-    };
-    let raw: RawSpring = place.table(t, "spring")?;
-    let body = body_index(&place, "body", place.required("body", &raw.body)?, names)?;
-    let point = place.vector("point", &raw.point, dim)?;
-    let anchor = read_anchor(
-        &place,
-        body,
-        &raw.anchor,
-        &raw.other,
-        &raw.other_point,
-        dim,
-        names,
-    )?;
+    let (place, raw, (body, point, anchor)) =
+        read_linked::<RawSpring>(file, "spring", k, t, dim, names)?;
     Ok(SceneSpring {
         body,
         point,
@@ -731,21 +882,6 @@ fn read_joint(
     dim: usize,
     names: &[&str],
 ) -> CliResult<SceneJoint> {
-    let place = Place {
-        file,
-        section: format!("joint {}", k + 1),
-    };
-    let raw: RawJoint = place.table(t, "joint")?;
-    let body = body_index(&place, "body", place.required("body", &raw.body)?, names)?;
-    let point = place.vector("point", &raw.point, dim)?;
-    let other = read_anchor(
-        &place,
-        body,
-        &raw.anchor,
-        &raw.other,
-        &raw.other_point,
-        dim,
-        names,
-    )?;
+    let (_, _, (body, point, other)) = read_linked::<RawJoint>(file, "joint", k, t, dim, names)?;
     Ok(SceneJoint { body, point, other })
 }

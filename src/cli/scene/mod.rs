@@ -1,6 +1,6 @@
 //! `rotorflow scene FILE`: bodies that move and turn together, read from a TOML scene file
 //! (bodies by their SPEC, gravity, springs, planes, ball joints), integrated by the
-//! library's `dynamics::motion`, written as JSON, CSV and an HTML animation.
+//! library's `dynamics::motion`, written as JSON, CSV, an HTML animation and an SVG plot.
 //!
 //! - [`format`]: the file, every key checked, one-line errors naming the key;
 //! - [`run`]: the system, stepped from 0 to t_end with every sample time hit exactly;
@@ -34,19 +34,24 @@ pub struct SceneArgs {
     /// Explicit sample times, comma-separated, strictly increasing, in [0, t_end].
     #[arg(long, value_name = "t1,t2,...", allow_hyphen_values = true)]
     pub times: Option<String>,
-    /// Write the samples as JSON to FILE.json (keys dim, times, bodies, energy, momentum,
-    /// angular_momentum, planes).
-    #[arg(long, value_name = "FILE.json", alias = "output")]
-    pub out: Option<PathBuf>,
-    /// Write one CSV per body (DIR/<name>.csv) and DIR/system.csv; DIR is created if needed.
+    /// Write the samples as JSON to FILE.json (keys dim, times, bodies, energy,
+    /// kinetic_energy, potential_energy, momentum, angular_momentum, planes).
+    #[arg(long, value_name = "FILE.json")]
+    pub output: Option<PathBuf>,
+    /// Write one CSV per body (DIR/<name>.csv) and DIR/system.csv into the folder DIR,
+    /// created if needed.
     #[arg(long, value_name = "DIR")]
-    pub csv: Option<PathBuf>,
+    pub csv_dir: Option<PathBuf>,
     /// Write the HTML animation of the bodies and planes to FILE.html.
     #[arg(long, value_name = "FILE.html")]
     pub html: Option<PathBuf>,
-    /// Only check the scene file (every key, the bodies, springs, planes and joints) and
-    /// say what it holds; run nothing and write nothing.
-    #[arg(long, conflicts_with_all = ["out", "csv", "html"])]
+    /// Plot the energies (kinetic, potential, total), the linear and angular momentum and
+    /// the positions over time, in one SVG.
+    #[arg(long, value_name = "FILE.svg")]
+    pub plot: Option<PathBuf>,
+    /// Only check the scene file (every key, the bodies, springs, planes and joints, the
+    /// step) and say what it holds; run nothing and write nothing.
+    #[arg(long, conflicts_with_all = ["output", "csv_dir", "html", "plot"])]
     pub check: bool,
 }
 
@@ -55,14 +60,14 @@ pub const SCENE_HELP: &str = "\
 Scene file keys (TOML; unknown keys are errors):
   dim = N (required), gravity = [g1,...,gN], t_end = T (required), dt = h (required),
   integrator = \"splitting\" (default: symplectic, contact and joints) | \"rk4\" (forces only)
-  [[body]]   name, shape (body SPEC), mass, position, velocity, omega (own axes, planes 12,13,...),
+  [[body]]   name, shape (body SPEC: rotorflow help bodies), mass, position, velocity, omega (own axes, planes 12,13,...),
              attitude (N*N numbers row-major or N rows; a rotation)
   [[plane]]  normal, offset (the plane normal.x = offset, solid opposite the normal), friction,
              restitution
   [[spring]] body, point (own axes), anchor (a point of space) | other (a body) + other_point,
              stiffness, rest_length, damping
   [[joint]]  body, point, anchor | other + other_point  (ball joint)
-Without --out, --csv or --html a summary is printed: energy drift, momentum change, final
+Without --output, --csv-dir, --html or --plot a summary is printed: energy drift, momentum change, final
 positions. Outputs are written only after a run succeeds, each whole or not at all.";
 
 /// Returns the sample times of a scene.
@@ -88,18 +93,21 @@ pub fn times(args: &SceneArgs, scene: &format::Scene) -> CliResult<Vec<f64>> {
 /// # Errors
 /// [`CliError::Input`] for bad input, [`CliError::Runtime`] if the run or a write fails.
 pub fn run(args: &SceneArgs, quiet: bool) -> CliResult<()> {
-    if let Some(p) = &args.out {
-        check_extension("--out", p, &["json"])?;
+    if let Some(p) = &args.output {
+        check_extension("--output", p, &["json"])?;
     }
     if let Some(p) = &args.html {
         check_extension("--html", p, &["html"])?;
     }
-    if let Some(d) = &args.csv
+    if let Some(p) = &args.plot {
+        check_extension("--plot", p, &["svg"])?;
+    }
+    if let Some(d) = &args.csv_dir
         && d.exists()
         && !d.is_dir()
     {
         return Err(CliError::input(format!(
-            "--csv `{}` is a file, expected a folder",
+            "--csv-dir `{}` is a file, expected a folder",
             d.display()
         )));
     }
@@ -116,11 +124,11 @@ pub fn run(args: &SceneArgs, quiet: bool) -> CliResult<()> {
     progress.finish();
 
     // Everything is rendered before the first file is written.
-    let json = match &args.out {
+    let json = match &args.output {
         Some(_) => Some(output::json_text(&scene, &record)?),
         None => None,
     };
-    let csv = match &args.csv {
+    let csv = match &args.csv_dir {
         Some(_) => Some(output::csv_files(&scene, &record)?),
         None => None,
     };
@@ -132,16 +140,24 @@ pub fn run(args: &SceneArgs, quiet: bool) -> CliResult<()> {
         .html
         .as_ref()
         .map(|_| output::html(&scene, &record, &title));
-    if let (Some(p), Some(text)) = (&args.out, &json) {
+    let plot = match &args.plot {
+        Some(_) => Some(output::plot(&scene, &record, &title)?),
+        None => None,
+    };
+    if let (Some(p), Some(text)) = (&args.output, &json) {
         write_atomic(p, text.as_bytes())?;
     }
-    if let (Some(dir), Some(files)) = (&args.csv, &csv) {
+    if let (Some(dir), Some(files)) = (&args.csv_dir, &csv) {
         write_csv_dir(dir, files)?;
     }
     if let (Some(p), Some(text)) = (&args.html, &html) {
         write_atomic(p, text.as_bytes())?;
     }
-    if args.out.is_none() && args.csv.is_none() && args.html.is_none() {
+    if let (Some(p), Some(text)) = (&args.plot, &plot) {
+        write_atomic(p, text.as_bytes())?;
+    }
+    if args.output.is_none() && args.csv_dir.is_none() && args.html.is_none() && args.plot.is_none()
+    {
         print!("{}", output::summary(&scene, &record, &file));
     }
     Ok(())

@@ -1,17 +1,18 @@
 //! What a scene run writes: JSON, one CSV per body and one for the system, the HTML
-//! animation, and the summary on standard output.
+//! animation, the SVG plot, and the summary on standard output.
 
 use super::super::error::{CliError, CliResult};
 use super::super::output::{matrix_json, number, plane_names, to_json_text};
-use super::super::viz::scene::{SceneAnimation, SceneBodyFrames, scene_html, up_axis};
-use super::format::Scene;
+use super::super::viz::plot::{PlotSpec, Series, stacked_plot, subscript};
+use super::super::viz::scene::{SceneAnimation, SceneBodyFrames, SceneLink, scene_html, up_axis};
+use super::format::{Scene, SceneAnchor};
 use super::run::Record;
 use serde_json::{Value, json};
 
 /// Returns the JSON of a run: `dim`, `integrator`, `dt`, `t_end`, `plane_names` (the
 /// bivector components), `planes` (the half-spaces), `times`, `bodies` (each with `name`,
 /// `shape`, `mass`, `position`, `velocity`, `attitude` as N rows per sample, `omega`),
-/// `energy`, `momentum`, `angular_momentum`.
+/// `energy`, `kinetic_energy`, `potential_energy`, `momentum`, `angular_momentum`.
 pub fn to_json(scene: &Scene, record: &Record) -> Value {
     let bodies: Vec<Value> = scene
         .bodies
@@ -52,6 +53,8 @@ pub fn to_json(scene: &Scene, record: &Record) -> Value {
         "times": record.times,
         "bodies": bodies,
         "energy": record.energy,
+        "kinetic_energy": record.kinetic_energy,
+        "potential_energy": record.potential_energy,
         "momentum": record.momentum,
         "angular_momentum": record.angular_momentum,
     })
@@ -152,14 +155,112 @@ pub fn html(scene: &Scene, record: &Record, title: &str) -> String {
         .iter()
         .map(|p| (p.normal.clone(), p.offset))
         .collect();
+    let ends = |a: &SceneAnchor| match a {
+        SceneAnchor::World(x) => (None, x.clone()),
+        SceneAnchor::Body(j, p) => (Some(*j), p.clone()),
+    };
+    let springs = scene
+        .springs
+        .iter()
+        .map(|s| (true, s.body, &s.point, &s.anchor));
+    let joints = scene
+        .joints
+        .iter()
+        .map(|j| (false, j.body, &j.point, &j.other));
+    let links: Vec<SceneLink> = springs
+        .chain(joints)
+        .map(|(spring, body, point, anchor)| {
+            let (other, end) = ends(anchor);
+            SceneLink {
+                spring,
+                body,
+                point: point.clone(),
+                other,
+                end,
+            }
+        })
+        .collect();
     scene_html(&SceneAnimation {
         title,
         dim: scene.dim,
         times: &record.times,
         bodies: &bodies,
         planes: &planes,
+        links: &links,
         up: up_axis(&scene.gravity),
     })
+}
+
+/// Returns the SVG plot of a run: the energies (kinetic, potential, total), the linear and
+/// angular momentum (their magnitudes) and the positions of the centres of mass over time,
+/// in three panels of one page.
+///
+/// # Errors
+/// [`CliError::Runtime`] if a panel has nothing finite to draw.
+pub fn plot(scene: &Scene, record: &Record, title: &str) -> CliResult<String> {
+    let over_time = |values: &[f64]| -> Vec<(f64, f64)> {
+        record
+            .times
+            .iter()
+            .copied()
+            .zip(values.iter().copied())
+            .collect()
+    };
+    let norms = |rows: &[Vec<f64>]| -> Vec<(f64, f64)> {
+        record
+            .times
+            .iter()
+            .zip(rows)
+            .map(|(t, v)| (*t, norm(v)))
+            .collect()
+    };
+    let series = |name: &str, points| Series {
+        name: name.to_string(),
+        points,
+    };
+    let energies = vec![
+        series("kinetic T", over_time(&record.kinetic_energy)),
+        series("potential V", over_time(&record.potential_energy)),
+        series("total E = T + V", over_time(&record.energy)),
+    ];
+    let momenta = vec![
+        series("|p| (linear momentum)", norms(&record.momentum)),
+        series(
+            "|L| (angular momentum about the origin)",
+            norms(&record.angular_momentum),
+        ),
+    ];
+    let mut positions = Vec::with_capacity(scene.bodies.len() * scene.dim);
+    for (b, track) in scene.bodies.iter().zip(&record.bodies) {
+        for i in 0..scene.dim {
+            let points = record
+                .times
+                .iter()
+                .zip(&track.position)
+                .map(|(t, x)| (*t, x[i]))
+                .collect();
+            positions.push(series(
+                &format!("{} x{}", b.name, subscript(&(i + 1).to_string())),
+                points,
+            ));
+        }
+    }
+    let panel = |title, y_label| PlotSpec {
+        title,
+        x_label: "time t",
+        y_label,
+        log_y: false,
+        markers: false,
+    };
+    stacked_plot(
+        title,
+        &[
+            (panel("energy", "T, V, E"), energies),
+            (panel("momentum", "|p|, |L|"), momenta),
+            (panel("centre of mass of each body", "xᵢ"), positions),
+        ],
+    )
+    .map_err(|e| CliError::runtime(format!("cannot draw the plot: {e}")))
 }
 
 fn norm(v: &[f64]) -> f64 {

@@ -35,6 +35,10 @@ pub struct Record {
     pub bodies: Vec<BodyTrack>,
     /// The energy per sample.
     pub energy: Vec<f64>,
+    /// The kinetic energy per sample.
+    pub kinetic_energy: Vec<f64>,
+    /// The potential energy (gravity and springs) per sample.
+    pub potential_energy: Vec<f64>,
     /// The linear momentum per sample.
     pub momentum: Vec<Vec<f64>>,
     /// The angular momentum about the origin per sample.
@@ -134,6 +138,8 @@ fn sample(system: &System, t: f64, record: &mut Record) {
         track.omega.push(b.omega().as_slice().to_vec());
     }
     record.energy.push(system.energy(t));
+    record.kinetic_energy.push(system.kinetic_energy());
+    record.potential_energy.push(system.potential_energy(t));
     record
         .momentum
         .push(system.linear_momentum().as_slice().to_vec());
@@ -162,6 +168,8 @@ pub fn run(
         times: Vec::with_capacity(times.len()),
         bodies: vec![BodyTrack::default(); scene.bodies.len()],
         energy: Vec::with_capacity(times.len()),
+        kinetic_energy: Vec::with_capacity(times.len()),
+        potential_energy: Vec::with_capacity(times.len()),
         momentum: Vec::with_capacity(times.len()),
         angular_momentum: Vec::with_capacity(times.len()),
         steps: 0,

@@ -14,7 +14,7 @@ use super::motion::{
 use super::output::{Progress, check_extension, emit, number, write_atomic};
 use super::render::parse_axes;
 use super::simulate::TimeArgs;
-use super::spec::{GRAMMAR, parse_body};
+use super::spec::parse_body;
 use clap::Args;
 use rayon::prelude::*;
 use resume::{ProgressLog, progress_path, read_progress, sweep_fingerprint};
@@ -31,10 +31,9 @@ type GridRun = (usize, Vec<f64>, RigidBody, Stepping);
 
 /// Arguments of `sweep`.
 #[derive(Args, Debug, Clone)]
-#[command(after_long_help = GRAMMAR)]
 pub struct SweepArgs {
     /// The body template: a SPEC in which `{NAME}` is replaced by each value of the parameter
-    /// NAME, e.g. `tesseract:1,1,1,{d}`.
+    /// NAME, e.g. `tesseract:1,1,1,{d}` (the grammar: `rotorflow help bodies`).
     #[arg(long, value_name = "TEMPLATE")]
     pub body: String,
     /// A parameter and its values START, START+STEP, … up to STOP inclusive; repeat for a
@@ -63,7 +62,7 @@ pub struct SweepArgs {
     /// header).
     #[arg(long, value_name = "I/N")]
     pub shard: Option<String>,
-    /// Write the table as CSV to FILE (standard output otherwise). FILE appears whole or
+    /// Write the table (CSV, the only format of a sweep) to FILE (standard output otherwise). FILE appears whole or
     /// not at all; while the sweep runs, each finished run is also appended to the progress
     /// file FILE.partial, which `--resume` reads and which is removed once FILE is written.
     ///
@@ -78,14 +77,14 @@ pub struct SweepArgs {
     /// empty if none), energy_drift and casimir_drift (the largest relative drifts of the
     /// energy and of the Casimirs over the run). Numbers are in shortest round-trip form.
     #[arg(long, value_name = "FILE")]
-    pub csv: Option<PathBuf>,
-    /// Continue an interrupted sweep: the runs recorded in FILE.partial (of `--csv FILE`) are
+    pub output: Option<PathBuf>,
+    /// Continue an interrupted sweep: the runs recorded in FILE.partial (of `--output FILE`) are
     /// not run again, and FILE comes out byte for byte as an uninterrupted run writes it.
     /// The progress file carries a fingerprint of the sweep (body, grid, initial condition,
     /// times, integrator, axes, shard); one from a different sweep is refused. Without a
     /// progress file every run is done. (Without `--resume` an old progress file is
     /// replaced.)
-    #[arg(long, requires = "csv")]
+    #[arg(long, requires = "output")]
     pub resume: bool,
     /// Plot the observed frequencies against the first parameter (SVG).
     #[arg(long, value_name = "FILE.svg")]
@@ -120,6 +119,17 @@ pub fn substitute(template: &str, names: &[String], values: &[f64]) -> CliResult
 pub fn run(args: &SweepArgs, quiet: bool) -> CliResult<()> {
     if let Some(p) = &args.plot {
         check_extension("--plot", p, &["svg"])?;
+    }
+    // The table is CSV whatever the name, except a name that says it is something else.
+    if let Some(p) = &args.output
+        && p.extension().is_some_and(|e| {
+            ["json", "svg", "html"].contains(&e.to_string_lossy().to_ascii_lowercase().as_str())
+        })
+    {
+        return Err(CliError::input(format!(
+            "--output `{}`: sweep writes its table as CSV; expected a .csv (or .txt) name",
+            p.display()
+        )));
     }
     let params: Vec<Param> = args
         .params
@@ -210,7 +220,7 @@ pub fn run(args: &SweepArgs, quiet: bool) -> CliResult<()> {
     }
     let planes = projection_planes(axes);
     let fingerprint = sweep_fingerprint(args, &names, &times, axes, (begin, end, total), &runs);
-    let log_path = args.csv.as_deref().map(progress_path);
+    let log_path = args.output.as_deref().map(progress_path);
     let mut finished: BTreeMap<usize, Row> = BTreeMap::new();
     if args.resume
         && let Some(path) = &log_path
@@ -302,7 +312,7 @@ pub fn run(args: &SweepArgs, quiet: bool) -> CliResult<()> {
         let svg = sweep_plot(&names, runs.first().map_or(3, |r| r.2.dim()), &rows)?;
         write_atomic(p, svg.as_bytes())?;
     }
-    emit(args.csv.as_deref(), &csv)?;
+    emit(args.output.as_deref(), &csv)?;
     if let Some(path) = &log_path {
         match std::fs::remove_file(path) {
             Err(e) if e.kind() != std::io::ErrorKind::NotFound => {

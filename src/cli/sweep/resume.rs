@@ -1,4 +1,4 @@
-//! The progress file of `sweep --csv FILE` (FILE.partial) and `--resume`: a fingerprint of
+//! The progress file of `sweep --output FILE` (FILE.partial) and `--resume`: a fingerprint of
 //! the sweep, then one finished row per line in completion order.
 
 use super::super::error::{CliError, CliResult};
@@ -10,7 +10,7 @@ use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-/// Returns the progress file of `--csv FILE`: FILE.partial beside it.
+/// Returns the progress file of `--output FILE`: FILE.partial beside it.
 pub fn progress_path(csv: &Path) -> PathBuf {
     let mut name = csv.as_os_str().to_owned();
     name.push(".partial");
