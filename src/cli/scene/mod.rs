@@ -60,15 +60,19 @@ pub const SCENE_HELP: &str = "\
 Scene file keys (TOML; unknown keys are errors):
   dim = N (required), gravity = [g1,...,gN], t_end = T (required), dt = h (required),
   integrator = \"splitting\" (default: symplectic, contact and joints) | \"rk4\" (forces only)
-  [[body]]   name, shape (body SPEC: rotorflow help bodies), mass, position, velocity, omega (own axes, planes 12,13,...),
-             attitude (N*N numbers row-major or N rows; a rotation)
+  [[body]]   name, shape (body SPEC: rotorflow help bodies), mass, position, velocity,
+             omega (own axes, planes 12,13,...), attitude (N*N numbers row-major or N rows;
+             a rotation)
   [[plane]]  normal, offset (the plane normal.x = offset, solid opposite the normal), friction,
              restitution
   [[spring]] body, point (own axes), anchor (a point of space) | other (a body) + other_point,
              stiffness, rest_length, damping
   [[joint]]  body, point, anchor | other + other_point  (ball joint)
-Without --output, --csv-dir, --html or --plot a summary is printed: energy drift, momentum change, final
-positions. Outputs are written only after a run succeeds, each whole or not at all.";
+  (one [[body]] per body, double brackets; dt < t_end and at most a tenth of each spring's
+  period 2π√(m_eff/k))
+Without --output, --csv-dir, --html or --plot a summary is printed: energy drift, momentum
+change, final positions. Outputs are written only after a run succeeds, each whole or not at
+all.";
 
 /// Returns the sample times of a scene.
 ///
