@@ -205,6 +205,73 @@ fn scene_two_body_spring_keeps_the_linear_momentum() {
     assert!(!text.contains("NaN"), "{text}");
 }
 
+/// Two balls of a scene file meet head on: with `restitution = 1` on one of them (the pair
+/// takes the larger) and no friction they exchange velocities, and a fixed ball bounces a
+/// third one back; a body with `collide = false` passes through the fixed one.
+#[test]
+fn scene_bodies_collide_exchange_velocities_and_bounce_off_fixed_bodies() {
+    let text = r#"
+dim = 3
+t_end = 2.0
+dt = 0.01
+
+[[body]]
+name = "left"
+shape = "ball:3,0.5"
+mass = 1
+position = [-1.5, 0, 0]
+velocity = [1, 0, 0]
+restitution = 1
+friction = 0
+
+[[body]]
+name = "right"
+shape = "ball:3,0.5"
+mass = 1
+position = [0, 0, 0]
+friction = 0
+
+[[body]]
+name = "wall"
+shape = "ball:3,0.5"
+position = [0, 5, 0]
+fixed = true
+restitution = 1
+
+[[body]]
+name = "thrown"
+shape = "ball:3,0.5"
+mass = 2
+position = [0, 3.5, 0]
+velocity = [0, 1, 0]
+
+[[body]]
+name = "ghost"
+shape = "ball:3,0.5"
+mass = 1
+position = [3, 5, 0]
+velocity = [-2, 0, 0]
+collide = false
+"#;
+    let (dir, _) = scene_file(text);
+    run_ok(dir.path(), &["scene.toml", "--output", "run.json"]);
+    let json = read_json(&dir.path().join("run.json"));
+    let last = |b: usize| {
+        matrix(&json["bodies"][b]["velocity"])
+            .last()
+            .unwrap()
+            .clone()
+    };
+    assert!(last(0)[0].abs() <= 1e-9, "left {:?}", last(0));
+    assert!((last(1)[0] - 1.0).abs() <= 1e-9, "right {:?}", last(1));
+    // The thrown ball meets the fixed one after 0.5 s and comes back at full speed.
+    assert!((last(3)[1] + 1.0).abs() <= 1e-9, "thrown {:?}", last(3));
+    let wall = matrix(&json["bodies"][2]["position"]);
+    assert_eq!(wall.last().unwrap(), &vec![0.0, 5.0, 0.0]);
+    // The ghost keeps its velocity through the wall.
+    assert!((last(4)[0] + 2.0).abs() <= 1e-12, "ghost {:?}", last(4));
+}
+
 #[test]
 fn scene_writes_csv_per_body_and_html() {
     let (dir, _) = scene_file(TWO_BODIES);
@@ -801,6 +868,13 @@ bad_scenes! {
     // Between two bodies of 16 the reduced mass is 8: 2π√(8/400) = 0.889 < 10 dt, though
     // 2π√(16/400) = 1.257 would pass.
     scene_refuses_a_step_too_long_for_a_spring_between_bodies => (format!("{HEAD}{CUBE}[[body]]\nname = \"bar\"\nshape = \"tesseract:1,1,1,1\"\nposition = [3,0,0,0]\n[[spring]]\nbody = \"cube\"\nother = \"bar\"\nstiffness = 400\n"), ["spring 1", "m_eff = 8, k = 400", "period 2π√(m_eff/k) = 8.885"])
+    scene_refuses_a_body_inside_a_plane => (format!("{HEAD}{CUBE}[[plane]]\nnormal = [0,0,0,1]\n"), ["body \"cube\" starts 1.000e0 inside plane 1", "on or above the plane"])
+    scene_refuses_overlapping_bodies => (format!("{HEAD}{CUBE}[[body]]\nname = \"bar\"\nshape = \"cuboid:1,1,1,1\"\nposition = [0.5,0,0,0]\n"), ["body \"cube\" and body \"bar\" start overlapping by", "place them apart"])
+    scene_refuses_a_fixed_body_with_velocity => (format!("{HEAD}{CUBE}fixed = true\nvelocity = [1,0,0,0]\n"), ["body \"cube\"", "a fixed body never moves: remove its velocity"])
+    scene_refuses_a_fixed_body_that_touches_nothing => (format!("{HEAD}{CUBE}fixed = true\ncollide = false\n"), ["body \"cube\"", "touches nothing"])
+    scene_refuses_a_fixed_flag_that_is_not_a_boolean => (format!("{HEAD}{CUBE}fixed = 1\n"), ["body \"cube\"", "fixed must be true or false"])
+    scene_refuses_negative_body_friction => (format!("{HEAD}{CUBE}friction = -0.5\n"), ["body \"cube\"", "friction must be ≥ 0"])
+    scene_refuses_body_restitution_above_one => (format!("{HEAD}{CUBE}restitution = 2\n"), ["body \"cube\"", "restitution must be in [0, 1]"])
     scene_refuses_a_body_jointed_to_itself => (format!("{HEAD}{CUBE}[[joint]]\nbody = \"cube\"\nother = \"cube\"\n"), ["joint 1", "the body itself"])
 }
 

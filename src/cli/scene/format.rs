@@ -43,6 +43,13 @@ pub struct SceneBody {
     pub omega: Vec<f64>,
     /// The attitude at t = 0 (own axes → space).
     pub attitude: DMatrix<f64>,
+    /// Its friction coefficient and restitution against other bodies (None: the other's).
+    pub friction: Option<f64>,
+    pub restitution: Option<f64>,
+    /// True for a body that never moves.
+    pub fixed: bool,
+    /// False for a body that touches nothing.
+    pub collide: bool,
 }
 
 /// A plane n·x = d bounding solid world on the side opposite to n.
@@ -147,6 +154,10 @@ struct RawBody {
     velocity: Option<Value>,
     omega: Option<Value>,
     attitude: Option<Value>,
+    friction: Option<Value>,
+    restitution: Option<Value>,
+    fixed: Option<Value>,
+    collide: Option<Value>,
 }
 
 #[derive(Deserialize)]
@@ -636,6 +647,38 @@ fn read_body(file: &str, k: usize, t: &Value, dim: usize) -> CliResult<SceneBody
         None => DMatrix::identity(dim, dim),
         Some(v) => read_attitude(&place, v, dim)?,
     };
+    let optional = |key: &str, v: &Option<Value>, range| match v {
+        None => Ok(None),
+        Some(_) => place.number_in(key, v, None, range).map(Some),
+    };
+    let friction = optional("friction", &raw.friction, ("≥ 0", non_negative))?;
+    let restitution = optional(
+        "restitution",
+        &raw.restitution,
+        ("in [0, 1]", unit_interval),
+    )?;
+    let flag = |key: &str, v: &Option<Value>, default: bool| match v {
+        None => Ok(default),
+        Some(Value::Boolean(b)) => Ok(*b),
+        Some(other) => Err(place.error(format!(
+            "{key} must be true or false, got {}",
+            a_type(other)
+        ))),
+    };
+    let fixed = flag("fixed", &raw.fixed, false)?;
+    let collide = flag("collide", &raw.collide, true)?;
+    if fixed {
+        for (key, given) in [("velocity", &raw.velocity), ("omega", &raw.omega)] {
+            if given.is_some() {
+                return Err(place.error(format!("a fixed body never moves: remove its {key}")));
+            }
+        }
+        if !collide {
+            return Err(place.error(
+                "a fixed body that touches nothing has no effect: remove `collide = false` or the body",
+            ));
+        }
+    }
     Ok(SceneBody {
         name: name.to_string(),
         mass: parsed.mass,
@@ -644,6 +687,10 @@ fn read_body(file: &str, k: usize, t: &Value, dim: usize) -> CliResult<SceneBody
         velocity,
         omega,
         attitude,
+        friction,
+        restitution,
+        fixed,
+        collide,
     })
 }
 

@@ -71,15 +71,28 @@ pub fn build_system(scene: &Scene, file: &str) -> CliResult<System> {
         };
         let attitude = Attitude::from_matrix(&b.attitude).map_err(|e| fail(&e))?;
         let omega = Bivector::from_components(n, &b.omega).map_err(|e| fail(&e))?;
-        let body = MovingBody::new(
-            b.mass,
-            b.parsed.inertia.clone(),
-            attitude,
-            &vector(&b.position)?,
-            &vector(&b.velocity)?,
-            &omega,
-        )
-        .map_err(|e| fail(&e))?;
+        let shape = ContactShape::from_geometry(&b.parsed.geometry);
+        let mut body = if b.fixed {
+            MovingBody::fixed(shape, attitude, &vector(&b.position)?)
+        } else {
+            MovingBody::new(
+                b.mass,
+                b.parsed.inertia.clone(),
+                attitude,
+                &vector(&b.position)?,
+                &vector(&b.velocity)?,
+                &omega,
+            )
+            .and_then(|m| m.with_shape(shape))
+        }
+        .map_err(|e| fail(&e))?
+        .with_collisions(b.collide);
+        if let Some(mu) = b.friction {
+            body = body.with_friction(mu).map_err(|e| fail(&e))?;
+        }
+        if let Some(e) = b.restitution {
+            body = body.with_restitution(e).map_err(|e| fail(&e))?;
+        }
         bodies.push(body);
     }
     let fail =
@@ -102,13 +115,6 @@ pub fn build_system(scene: &Scene, file: &str) -> CliResult<System> {
             })
             .map_err(|e| fail(format!("spring {}", k + 1), &e))?;
     }
-    if !scene.planes.is_empty() {
-        for (i, b) in scene.bodies.iter().enumerate() {
-            system
-                .set_shape(i, ContactShape::from_geometry(&b.parsed.geometry))
-                .map_err(|e| fail(format!("body \"{}\"", b.name), &e))?;
-        }
-    }
     for (k, p) in scene.planes.iter().enumerate() {
         let h = HalfSpace::new(&vector(&p.normal)?, p.offset, p.friction, p.restitution)
             .map_err(|e| fail(format!("plane {}", k + 1), &e))?;
@@ -125,7 +131,35 @@ pub fn build_system(scene: &Scene, file: &str) -> CliResult<System> {
             })
             .map_err(|e| fail(format!("joint {}", k + 1), &e))?;
     }
+    system
+        .check_contacts()
+        .map_err(|e| CliError::input(format!("{file}: {}", start_problem(scene, &e))))?;
     Ok(system)
+}
+
+/// What [`System::check_contacts`] refused, with the scene's names for bodies and planes.
+fn start_problem(scene: &Scene, e: &rotorflow::dynamics::DynamicsError) -> String {
+    use rotorflow::dynamics::DynamicsError;
+    use rotorflow::dynamics::motion::MotionError;
+    let name = |i: usize| format!("body \"{}\"", scene.bodies[i].name);
+    match e {
+        DynamicsError::Motion(MotionError::StartsInside {
+            body,
+            half_space,
+            depth,
+            ..
+        }) => format!(
+            "{} starts {depth:.3e} inside plane {} (its lowest point below the plane); place it on or above the plane",
+            name(*body),
+            half_space + 1
+        ),
+        DynamicsError::Motion(MotionError::StartsOverlapping { a, b, depth, .. }) => format!(
+            "{} and {} start overlapping by {depth:.3e}; place them apart, or set collide = false on one",
+            name(*a),
+            name(*b)
+        ),
+        other => other.to_string(),
+    }
 }
 
 /// Appends the state of `system` at time `t` to `record`.

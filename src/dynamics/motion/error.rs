@@ -107,6 +107,24 @@ pub enum MotionError {
         /// The depth that still counts as touching.
         tolerance: f64,
     },
+    /// Two bodies start overlapping by more than the touching tolerance: the first step
+    /// would push them apart at whatever speed that takes.
+    ///
+    /// How to fix: place the bodies apart (or touching), or hold them by a joint (jointed
+    /// bodies do not touch each other), or let one of them touch nothing.
+    #[error(
+        "bodies {a} and {b} start overlapping by {depth:.3e} (touching allows {tolerance:.1e}); place them apart"
+    )]
+    StartsOverlapping {
+        /// The first body.
+        a: usize,
+        /// The second body.
+        b: usize,
+        /// How deep their shapes overlap.
+        depth: f64,
+        /// The depth that still counts as touching.
+        tolerance: f64,
+    },
     /// The system has half-spaces but no body has a contact shape: every body would pass
     /// through them.
     ///

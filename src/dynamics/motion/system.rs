@@ -2,6 +2,8 @@
 
 use super::MotionError;
 use super::contact::ContactLog;
+use super::detect::bodies::convex_of;
+use super::detect::{EpaWorkspace, PlacedShape, penetration_with};
 use super::forques::Anchor;
 use super::{BallJoint, Contact, ContactShape, Forque, ForqueInput, HalfSpace, MovingBody, Wrench};
 use crate::algebra::{Bivector, Vector};
@@ -210,8 +212,10 @@ impl System {
         Ok(())
     }
 
-    /// Checks that the system can start moving: if it has half-spaces, some body has a
-    /// contact shape ([`MotionError::NothingTouches`]), and no body starts inside a
+    /// Checks that the system can start moving: no two bodies overlap by more than
+    /// [`System::TOUCHING`] of their radii ([`MotionError::StartsOverlapping`]); if it has
+    /// half-spaces, some body has a contact shape ([`MotionError::NothingTouches`]), and no
+    /// body starts inside a
     /// half-space by more than [`System::TOUCHING`] of its shape's radius
     /// ([`MotionError::StartsInside`], naming the body, the half-space and the depth).
     /// [`MotionSplitting`](super::MotionSplitting) checks this before its first step of a
@@ -220,6 +224,7 @@ impl System {
     /// # Errors
     /// The two above.
     pub fn check_contacts(&self) -> Result<(), DynamicsError> {
+        self.check_overlaps()?;
         if self.half_spaces.is_empty() {
             return Ok(());
         }
@@ -248,6 +253,72 @@ impl System {
                         body,
                         half_space,
                         depth,
+                        tolerance,
+                    }
+                    .into());
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Refuses two bodies that start overlapping by more than [`System::TOUCHING`] of the sum
+    /// of their shapes' radii (pairs held by a joint, and two fixed bodies, excepted).
+    fn check_overlaps(&self) -> Result<(), DynamicsError> {
+        let n = self.dim();
+        let convex: Vec<_> = self.shapes.iter().map(|s| convex_of(s, n)).collect();
+        if convex.iter().filter(|c| c.is_some()).count() < 2 {
+            return Ok(());
+        }
+        let rotations: Vec<Vec<f64>> = self
+            .bodies
+            .iter()
+            .map(|b| {
+                let mut q = vec![0.0; n * n];
+                b.attitude().write_matrix(&mut q);
+                q
+            })
+            .collect();
+        let joined = |a: usize, b: usize| {
+            self.joints.iter().any(|j| match &j.other {
+                Anchor::Body(k, _) => (j.body, *k) == (a, b) || (j.body, *k) == (b, a),
+                Anchor::World(_) => false,
+            })
+        };
+        let mut workspace = EpaWorkspace::new();
+        for a in 0..convex.len() {
+            for b in a + 1..convex.len() {
+                let (Some(ca), Some(cb)) = (&convex[a], &convex[b]) else {
+                    continue;
+                };
+                let (ba, bb) = (&self.bodies[a], &self.bodies[b]);
+                if ba.is_fixed() && bb.is_fixed() || joined(a, b) {
+                    continue;
+                }
+                let apart = ba
+                    .position()
+                    .as_slice()
+                    .iter()
+                    .zip(bb.position().as_slice());
+                let centres = apart.map(|(p, q)| (p - q) * (p - q)).sum::<f64>().sqrt();
+                if centres > ca.bounding_radius() + cb.bounding_radius() {
+                    continue;
+                }
+                let (Ok(pa), Ok(pb)) = (
+                    PlacedShape::new(ca, ba.position().as_slice(), &rotations[a]),
+                    PlacedShape::new(cb, bb.position().as_slice(), &rotations[b]),
+                ) else {
+                    continue;
+                };
+                let Ok(p) = penetration_with(&mut workspace, &pa, &pb) else {
+                    continue;
+                };
+                let tolerance = Self::TOUCHING * (ca.bounding_radius() + cb.bounding_radius());
+                if p.depth > tolerance {
+                    return Err(MotionError::StartsOverlapping {
+                        a,
+                        b,
+                        depth: p.depth,
                         tolerance,
                     }
                     .into());

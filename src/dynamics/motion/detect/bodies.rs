@@ -3,8 +3,9 @@
 //! signed distance, the contact normal and the contact point (the narrow phase).
 
 use super::{EpaWorkspace, PlacedShape, penetration_with};
+use crate::dynamics::motion::forques::Anchor;
 use crate::dynamics::motion::shape::ConvexShape;
-use crate::dynamics::motion::{ContactShape, MovingBody};
+use crate::dynamics::motion::{BallJoint, ContactShape, MovingBody};
 use smallvec::SmallVec;
 
 /// The convex shape a body collides with other bodies by: the hull of a shape's vertices,
@@ -51,14 +52,32 @@ pub(crate) struct Touching {
     convex: Vec<Option<ConvexShape>>,
     radius: Vec<f64>,
     workspace: EpaWorkspace,
+    /// The pairs of bodies held together by a joint (a < b), which do not touch each other:
+    /// their shapes meet at the joint by design.
+    joined: Vec<(usize, usize)>,
     /// The pairs found by the last [`Touching::scan`]; entries past `len` keep their room.
     found: Vec<PairContact>,
     len: usize,
 }
 
 impl Touching {
-    /// Takes the convex shapes of `shapes` if they are not those of `owner` already.
-    pub(crate) fn update_shapes(&mut self, shapes: &[ContactShape], n: usize, owner: (u64, u64)) {
+    /// Takes the convex shapes of `shapes` if they are not those of `owner` already, and
+    /// the pairs that `joints` hold together.
+    pub(crate) fn update_shapes(
+        &mut self,
+        shapes: &[ContactShape],
+        joints: &[BallJoint],
+        n: usize,
+        owner: (u64, u64),
+    ) {
+        if self.joined.len() != joints.len() || self.owner.is_none() {
+            self.joined.clear();
+            self.joined.extend(joints.iter().map(|j| match &j.other {
+                Anchor::Body(k, _) => (j.body.min(*k), j.body.max(*k)),
+                // A joint to space pairs the body with no other.
+                Anchor::World(_) => (usize::MAX, usize::MAX),
+            }));
+        }
         if self.owner == Some(owner) && self.convex.len() == shapes.len() {
             return;
         }
@@ -95,7 +114,7 @@ impl Touching {
                 let Some(cb) = &self.convex[b] else {
                     continue;
                 };
-                if bodies[a].is_fixed() && bodies[b].is_fixed() {
+                if bodies[a].is_fixed() && bodies[b].is_fixed() || self.joined.contains(&(a, b)) {
                     continue;
                 }
                 let xb = bodies[b].position().as_slice();

@@ -293,8 +293,12 @@ impl MotionSplitting {
 
     /// Places the bodies that turned since they were last placed.
     fn place(&mut self, system: &System) {
-        self.touching
-            .update_shapes(system.shapes(), system.dim(), system.shape_key());
+        self.touching.update_shapes(
+            system.shapes(),
+            system.joints(),
+            system.dim(),
+            system.shape_key(),
+        );
         if !system.half_spaces().is_empty() || self.touching.any_pairs() {
             self.placements.update(
                 system.bodies(),
@@ -928,8 +932,12 @@ impl MotionSplitting {
 
     /// True if the system has joints, half-spaces or bodies that can touch each other.
     fn constrained(&mut self, system: &System) -> bool {
-        self.touching
-            .update_shapes(system.shapes(), system.dim(), system.shape_key());
+        self.touching.update_shapes(
+            system.shapes(),
+            system.joints(),
+            system.dim(),
+            system.shape_key(),
+        );
         !system.joints().is_empty() || !system.half_spaces().is_empty() || self.touching.any_pairs()
     }
 
