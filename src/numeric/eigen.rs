@@ -9,6 +9,7 @@
 //! method, which only ever applies exact plane rotations and cannot produce NaN.
 
 use nalgebra::{DMatrix, DVector};
+use smallvec::SmallVec;
 
 /// The result of [`symmetric_eigen`], shaped like nalgebra's `SymmetricEigen`.
 pub(crate) struct RobustEigen {
@@ -136,6 +137,30 @@ pub(crate) fn jacobi_eigen(a: &mut [f64], n: usize, v: &mut [f64]) {
     }
 }
 
+/// The eigen-decomposition K = V diag(d) Vᵀ of a small symmetric n × n matrix `k`
+/// (row-major) by [`jacobi_eigen`]: `d` receives the n eigenvalues and `v` the eigenvectors
+/// as its columns, row-major (`v[i * n + j]` is component i of eigenvector j). No heap for
+/// n ≤ 8.
+pub(crate) fn symmetric_eigen_rows(
+    k: &[f64],
+    n: usize,
+    d: &mut SmallVec<[f64; 64]>,
+    v: &mut SmallVec<[f64; 64]>,
+) {
+    let mut a: SmallVec<[f64; 64]> = SmallVec::from_slice(&k[..n * n]);
+    v.clear();
+    v.resize(n * n, 0.0);
+    jacobi_eigen(&mut a, n, v);
+    // The kernel leaves V by columns; by rows it is the transpose.
+    for i in 0..n {
+        for j in i + 1..n {
+            v.swap(i * n + j, j * n + i);
+        }
+    }
+    d.clear();
+    d.extend((0..n).map(|i| a[i * n + i]));
+}
+
 /// Columns p < q of a matrix stored by columns of `rows` entries:
 /// (x, y) ← (c x − s y, s x + c y).
 #[inline]
@@ -251,5 +276,36 @@ mod tests {
             }
         }
         assert_eq!(checked, 18);
+    }
+
+    /// The row-major form: K v_j = d_j v_j for every column j of V read by rows, against a
+    /// matrix with known eigenvalues, sizes 1 … 8.
+    #[test]
+    fn row_major_form_gives_eigenpairs_by_columns() {
+        let mut checked = 0;
+        for n in 1..=8 {
+            let q = nalgebra::SymmetricEigen::new(DMatrix::from_fn(n, n, |i, j| {
+                ((i * 5 + j * 2) as f64).cos() + ((j * 5 + i * 2) as f64).cos()
+            }))
+            .eigenvectors;
+            let want: Vec<f64> = (0..n).map(|i| 0.5 + i as f64).collect();
+            let m = &q * DMatrix::from_diagonal(&DVector::from_vec(want.clone())) * q.transpose();
+            let k: Vec<f64> = (0..n * n).map(|x| m[(x / n, x % n)]).collect();
+            let (mut d, mut v) = (SmallVec::new(), SmallVec::new());
+            symmetric_eigen_rows(&k, n, &mut d, &mut v);
+            for j in 0..n {
+                for i in 0..n {
+                    let kv: f64 = (0..n).map(|c| k[i * n + c] * v[c * n + j]).sum();
+                    assert!((kv - d[j] * v[i * n + j]).abs() < 1e-13, "n = {n}");
+                }
+            }
+            let mut sorted = d.to_vec();
+            sorted.sort_by(f64::total_cmp);
+            for (x, y) in sorted.iter().zip(&want) {
+                assert!((x - y).abs() < 1e-13, "n = {n}");
+            }
+            checked += 1;
+        }
+        assert_eq!(checked, 8);
     }
 }

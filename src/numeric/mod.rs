@@ -26,13 +26,17 @@ pub(crate) mod solve;
 pub(crate) mod trig;
 
 pub(crate) use dense::{Dense, Mat8, Vec8};
-pub(crate) use eigen::{RobustEigen, sorted_symmetric_eigen, symmetric_eigen};
+pub(crate) use eigen::{
+    RobustEigen, sorted_symmetric_eigen, symmetric_eigen, symmetric_eigen_rows,
+};
 pub(crate) use expm::{
     PADE_MAX_NORM, expm_skew, expm_skew_fixed, expm_skew_taylor, expm_skew_taylor_dense,
     expm_spectral, norm1, norm1_slice,
 };
 pub(crate) use householder::householder_complement;
-pub(crate) use solve::{lu_apply, lu_factor, lu_solve};
+pub(crate) use solve::{
+    cholesky_factor, cholesky_solve, cholesky_substitute, lu_apply, lu_factor, lu_solve,
+};
 pub(crate) use trig::{sin_cos_minus_one, small_angle_factors};
 
 use nalgebra::{DMatrix, DMatrixView};

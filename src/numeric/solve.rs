@@ -79,7 +79,6 @@ pub(crate) fn lu_solve(m: usize, x: &mut [f64], b: &mut [f64], rhs: usize) -> bo
 /// Overwrites the lower triangle of the symmetric positive definite n × n `a` (row-major:
 /// entry (i, j) at `a[i * n + j]`) by its Cholesky factor L, A = L Lᵀ; the strict upper
 /// triangle is not read. False if `a` is not positive definite (a pivot ≤ 0 or NaN).
-#[allow(dead_code)] // the contact solver's kernel
 pub(crate) fn cholesky_factor(a: &mut [f64], n: usize) -> bool {
     for j in 0..n {
         let mut d = a[j * n + j];
@@ -103,7 +102,6 @@ pub(crate) fn cholesky_factor(a: &mut [f64], n: usize) -> bool {
 }
 
 /// Solves L Lᵀ x = b in place, L the factor [`cholesky_factor`] left in `l`.
-#[allow(dead_code)] // the contact solver's kernel
 pub(crate) fn cholesky_substitute(l: &[f64], n: usize, b: &mut [f64]) {
     for i in 0..n {
         let mut s = b[i];
@@ -123,7 +121,6 @@ pub(crate) fn cholesky_substitute(l: &[f64], n: usize, b: &mut [f64]) {
 
 /// Solves A x = b in place for the symmetric positive definite n × n `a` (row-major,
 /// overwritten by its Cholesky factor). False if `a` is not positive definite.
-#[allow(dead_code)] // the contact solver's kernel
 pub(crate) fn cholesky_solve(a: &mut [f64], n: usize, b: &mut [f64]) -> bool {
     if !cholesky_factor(a, n) {
         return false;

@@ -2,10 +2,11 @@
 
 use super::Dense;
 use super::body::{BodyState, BodyView};
-use super::friction::{friction_impulse, symmetric_eigen};
+use super::friction::friction_impulse;
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::motion::HalfSpace;
 use crate::dynamics::motion::placement::dot;
+use crate::numeric::symmetric_eigen_rows as symmetric_eigen;
 use smallvec::SmallVec;
 
 /// One contact point in a solve.

@@ -1,60 +1,8 @@
 //! Coulomb's law at one contact: the friction impulse of maximal dissipation.
 
-use super::Dense;
 use super::contact_row::Small;
 use crate::dynamics::motion::placement::dot;
 use smallvec::SmallVec;
-
-/// The eigen-decomposition K = V diag(d) Vᵀ of a small symmetric matrix by cyclic Jacobi
-/// rotations (row-major; V's columns are the eigenvectors).
-pub(super) fn symmetric_eigen(k: &[f64], n: usize, d: &mut Dense, v: &mut Dense) {
-    let mut a: Dense = k.iter().copied().collect();
-    v.clear();
-    v.resize(n * n, 0.0);
-    for i in 0..n {
-        v[i * n + i] = 1.0;
-    }
-    for _ in 0..30 {
-        let off: f64 = (0..n)
-            .flat_map(|i| (0..n).filter(move |&j| j != i).map(move |j| (i, j)))
-            .map(|(i, j)| a[i * n + j] * a[i * n + j])
-            .sum();
-        let diag: f64 = (0..n).map(|i| a[i * n + i] * a[i * n + i]).sum();
-        if off <= 1e-32 * diag {
-            break;
-        }
-        for p in 0..n {
-            for q in p + 1..n {
-                let apq = a[p * n + q];
-                if apq == 0.0 {
-                    continue;
-                }
-                let theta = (a[q * n + q] - a[p * n + p]) / (2.0 * apq);
-                let t = theta.signum().max(0.0) * 2.0 - 1.0;
-                let t = t / (theta.abs() + (theta * theta + 1.0).sqrt());
-                let c = 1.0 / (t * t + 1.0).sqrt();
-                let s = t * c;
-                for r in 0..n {
-                    let (arp, arq) = (a[r * n + p], a[r * n + q]);
-                    a[r * n + p] = c * arp - s * arq;
-                    a[r * n + q] = s * arp + c * arq;
-                }
-                for r in 0..n {
-                    let (apr, aqr) = (a[p * n + r], a[q * n + r]);
-                    a[p * n + r] = c * apr - s * aqr;
-                    a[q * n + r] = s * apr + c * aqr;
-                }
-                for r in 0..n {
-                    let (vrp, vrq) = (v[r * n + p], v[r * n + q]);
-                    v[r * n + p] = c * vrp - s * vrq;
-                    v[r * n + q] = s * vrp + c * vrq;
-                }
-            }
-        }
-    }
-    d.clear();
-    d.extend((0..n).map(|i| a[i * n + i]));
-}
 
 /// The friction impulse of maximal dissipation: with slip `ut` under the impulse `old`,
 /// the sticking impulse old − K_t⁻¹ ut when |·| ≤ `limit`, else the J on the rim |J| = limit

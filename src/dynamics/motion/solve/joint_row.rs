@@ -5,58 +5,7 @@ use super::{Dense, Solver};
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::motion::forques::Anchor;
 use crate::dynamics::motion::{BallJoint, MovingBody};
-
-/// Solves a x = b in place for a symmetric positive definite n × n `a` (row-major,
-/// overwritten by its Cholesky factor). Returns false if `a` is not positive definite.
-pub(crate) fn cholesky_solve(a: &mut [f64], n: usize, b: &mut [f64]) -> bool {
-    if !cholesky_factor(a, n) {
-        return false;
-    }
-    cholesky_substitute(a, n, b);
-    true
-}
-
-/// Overwrites the lower triangle of a symmetric positive definite n × n `a` (row-major) by
-/// its Cholesky factor. Returns false if `a` is not positive definite.
-pub(super) fn cholesky_factor(a: &mut [f64], n: usize) -> bool {
-    for j in 0..n {
-        let mut d = a[j * n + j];
-        for k in 0..j {
-            d -= a[j * n + k] * a[j * n + k];
-        }
-        if d.is_nan() || d <= 0.0 {
-            return false;
-        }
-        let d = d.sqrt();
-        a[j * n + j] = d;
-        for i in j + 1..n {
-            let mut s = a[i * n + j];
-            for k in 0..j {
-                s -= a[i * n + k] * a[j * n + k];
-            }
-            a[i * n + j] = s / d;
-        }
-    }
-    true
-}
-
-/// Solves L Lᵀ x = b in place, L the factor [`cholesky_factor`] left in `l`.
-pub(super) fn cholesky_substitute(l: &[f64], n: usize, b: &mut [f64]) {
-    for i in 0..n {
-        let mut s = b[i];
-        for k in 0..i {
-            s -= l[i * n + k] * b[k];
-        }
-        b[i] = s / l[i * n + i];
-    }
-    for i in (0..n).rev() {
-        let mut s = b[i];
-        for k in i + 1..n {
-            s -= l[k * n + i] * b[k];
-        }
-        b[i] = s / l[i * n + i];
-    }
-}
+use crate::numeric::{cholesky_factor, cholesky_substitute};
 
 /// One ball joint in a solve: the offsets of its two ends.
 #[derive(Clone, Debug)]

@@ -36,8 +36,9 @@ mod friction;
 mod joint_row;
 mod pair_row;
 
+use crate::numeric::cholesky_solve;
 pub(crate) use contact_row::ContactRow;
-pub(crate) use joint_row::{JointRow, cholesky_solve};
+pub(crate) use joint_row::JointRow;
 pub(crate) use pair_row::PairRow;
 
 /// The reusable work space of the solves.

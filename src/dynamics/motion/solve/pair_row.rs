@@ -5,9 +5,10 @@
 use super::Dense;
 use super::body::{BodyState, add_inverse_mass};
 use super::contact_row::tangent_block;
-use super::friction::{friction_impulse, symmetric_eigen};
+use super::friction::friction_impulse;
 use crate::algebra::Vector;
 use crate::dynamics::motion::placement::{dot, set_vector};
+use crate::numeric::symmetric_eigen_rows as symmetric_eigen;
 
 /// A contact between bodies `a` and `b`: body `b` takes the impulse J at its point, body `a`
 /// takes −J at its own. The normal n points from `a` to `b`; the relative velocity is
