@@ -4,7 +4,9 @@
 //! - 3D, f64 and f32: glam's `DQuat`/`Quat` (product, rotating a vector, the rotation matrix,
 //!   `from_scaled_axis`/`to_scaled_axis` against `from_rotation_bivector`/
 //!   `rotation_bivector`, which compute the same rotation: the axis is the dual of the
-//!   plane), and the run-time `Rotor` at N = 3.
+//!   plane, and `from_axis_angle` against glam's after normalising the axis), and the
+//!   run-time `Rotor` at N = 3; the `Versor::apply` form of the rotation beside
+//!   `rotate_vector`.
 //! - 4D, f64: a hand-written quaternion-pair product and closed-form exponential (the same
 //!   arithmetic written out below), nalgebra's `Matrix4` product and `Matrix4 * Vector4`, and
 //!   the run-time `Rotor` at N = 4.
@@ -16,7 +18,7 @@
 use criterion::{Criterion, Throughput, black_box, criterion_group, criterion_main};
 use glam::{DMat3, DQuat, DVec3, Mat3, Quat, Vec3};
 use nalgebra::{Vector3, Vector4};
-use rotorflow::algebra::{Bivector, Bivector3, Bivector4, Rotor3, Vector};
+use rotorflow::algebra::{Bivector, Bivector3, Bivector4, Rotor3, Vector, Versor};
 
 #[path = "common/configure.rs"]
 mod configure;
@@ -73,6 +75,24 @@ fn bench_3d(c: &mut Criterion) {
     });
     g.bench_function("rotorflow_rotor_n3", |x| {
         x.iter(|| black_box(&ra).rotate_vector(black_box(&vv)))
+    });
+    g.bench_function("rotorflow_rotor3_versor_apply", |x| {
+        x.iter(|| Versor::apply(&black_box(a), &black_box(v)))
+    });
+    g.finish();
+    // From an axis of any length and an angle: glam's from_axis_angle wants a unit axis,
+    // so its fair form normalises first; rotorflow's also checks the input is finite.
+    let (axis_in, angle) = (Vector3::new(0.3, -1.2, 2.0), 0.7);
+    let daxis = DVec3::new(0.3, -1.2, 2.0);
+    let want = DQuat::from_axis_angle(daxis.normalize(), angle) * dv;
+    let got = Rotor3::from_axis_angle(axis_in, angle).unwrap() * v;
+    assert!(close(want, got) < 1e-14);
+    let mut g = c.benchmark_group("fixed3_f64_from_axis_angle");
+    g.bench_function("glam_dquat_normalize_then_from_axis_angle", |x| {
+        x.iter(|| DQuat::from_axis_angle(black_box(daxis).normalize(), black_box(angle)))
+    });
+    g.bench_function("rotorflow_rotor3", |x| {
+        x.iter(|| Rotor3::from_axis_angle(black_box(axis_in), black_box(angle)))
     });
     g.finish();
     let mut g = c.benchmark_group("fixed3_f64_to_matrix");
