@@ -87,8 +87,8 @@ fn sat_depth<const N: usize>(
             best = overlap;
         }
     };
-    for k in 0..2 * N {
-        test(&axes[k]);
+    for axis in axes.iter().take(2 * N) {
+        test(axis);
     }
     // The complement of N − 1 axes by cofactors (3D: the cross product).
     let complement = |v: &[[f64; N]]| -> [f64; N] {

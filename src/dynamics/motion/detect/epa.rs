@@ -133,7 +133,7 @@ fn facet_plane(
             }
         }
         let r = e.iter().map(|x| x * x).sum::<f64>().sqrt();
-        if !(r > FLAT_FACET * length && r > FLAT_FACET * scale) {
+        if r.is_nan() || r <= FLAT_FACET * length || r <= FLAT_FACET * scale {
             return None;
         }
         basis[j * n..(j + 1) * n]
@@ -152,7 +152,7 @@ fn facet_plane(
         }
     }
     let r = normal.iter().map(|x| x * x).sum::<f64>().sqrt();
-    if !(r > FLAT_FACET * scale) {
+    if r.is_nan() || r <= FLAT_FACET * scale {
         return None;
     }
     normal.iter_mut().for_each(|x| *x /= r);

@@ -171,14 +171,14 @@ impl Simplex {
     fn keep(&mut self, mask: u128, lambda: &[f64]) {
         let n = self.n;
         let mut k = 0;
-        for i in 0..self.count {
+        for (i, &weight) in lambda.iter().enumerate().take(self.count) {
             if mask >> i & 1 == 1 {
                 if k != i {
                     self.w.copy_within(i * n..(i + 1) * n, k * n);
                     self.a.copy_within(i * n..(i + 1) * n, k * n);
                     self.b.copy_within(i * n..(i + 1) * n, k * n);
                 }
-                self.lambda[k] = lambda[i];
+                self.lambda[k] = weight;
                 k += 1;
             }
         }
@@ -242,7 +242,7 @@ pub(crate) fn project_onto_face(points: &[f64], n: usize, mask: u128) -> Option<
             }
         }
         let rjj = e.iter().map(|x| x * x).sum::<f64>().sqrt();
-        if !(rjj > DEGENERATE * length) {
+        if rjj.is_nan() || rjj <= DEGENERATE * length {
             return None;
         }
         r[j * m1 + j] = rjj;
