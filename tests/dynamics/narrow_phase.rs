@@ -220,12 +220,12 @@ fn box_penetration_matches_separating_axes_in_2_to_6_dimensions() {
     let mut checked = 0;
     let mut largest_iterations = 0;
     let axes_expected = [0, 0, 4, 15, 56, 210, 792];
-    for (n, &axes_of_n) in axes_expected.iter().enumerate().skip(2) {
+    for (n, &axes_promised) in axes_expected.iter().enumerate().skip(2) {
         let cases = if n <= 4 { 300 } else { 60 };
         for _ in 0..cases {
             let (pa, pb) = overlapping_boxes(&mut r, n);
             let (expected, axes) = box_box_sat(&pa, &pb);
-            assert_eq!(axes, axes_of_n);
+            assert_eq!(axes, axes_promised);
             let size = pa.shape.bounding_radius() + pb.shape.bounding_radius();
             let got = penetration_with(&mut workspace, &placed(&pa), &placed(&pb)).unwrap();
             let swapped = penetration_with(&mut workspace, &placed(&pb), &placed(&pa)).unwrap();

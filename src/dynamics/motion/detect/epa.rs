@@ -33,6 +33,11 @@ use smallvec::SmallVec;
 
 /// EPA iterations at most (each adds one support point).
 pub(crate) const MAX_EPA_ITERATIONS: usize = 256;
+/// The polytope's facets at most. A polytope of V vertices in N dimensions can have of the
+/// order of V^(N/2) facets, so above N = 5 the expansion would otherwise be bounded in
+/// iterations but not in time or memory; at the cap EPA stops with the nearest facet so
+/// far, whose distance is a lower bound of the depth.
+pub(crate) const MAX_EPA_FACETS: usize = 4096;
 /// EPA stops when the support point along the nearest facet's normal lies within this
 /// fraction of the problem's size beyond the facet.
 const CONVERGED: f64 = 1e-12;
@@ -133,7 +138,7 @@ fn facet_plane(
             }
         }
         let r = e.iter().map(|x| x * x).sum::<f64>().sqrt();
-        if !(r > FLAT_FACET * length && r > FLAT_FACET * scale) {
+        if r.is_nan() || r <= FLAT_FACET * length || r <= FLAT_FACET * scale {
             return None;
         }
         basis[j * n..(j + 1) * n]
@@ -426,7 +431,8 @@ fn epa_cores(
                 }
             }
         }
-        if degenerate || ws.new_offsets.is_empty() {
+        let facets_after = ws.offsets.len() - ws.visible.len() + ws.new_offsets.len();
+        if degenerate || ws.new_offsets.is_empty() || facets_after > MAX_EPA_FACETS {
             ws.w.truncate(new_index as usize * n);
             break;
         }
@@ -645,7 +651,9 @@ pub fn penetration(a: &PlacedShape, b: &PlacedShape) -> Result<Penetration, Shap
 /// Returns the signed penetration depth of two placed shapes (> 0 overlap, ≤ 0 minus the
 /// distance), the contact normal from A to B and the witness points: closed forms for
 /// ball–ball and ball–cuboid, GJK for separated cores, EPA on the cores for overlapping
-/// ones, the margins added. Bounded (at most 128 GJK and 256 EPA iterations), never NaN.
+/// ones, the margins added. Bounded (at most 128 GJK and 256 EPA iterations, 4096 facets),
+/// never NaN. EPA is exact for polytopes; on smooth cores (ellipsoids) it stops at those
+/// bounds with a lower bound of the depth, within a few per cent of the size above N = 4.
 ///
 /// ```
 /// use rotorflow::dynamics::motion::detect::{EpaWorkspace, PlacedShape, penetration_with};
