@@ -1,5 +1,6 @@
 //! Tests of the dynamics layer: Euler's equations as rotor/bivector flows.
 
+mod broad_phase;
 mod compositions;
 mod conservation;
 mod contact_and_joints;
@@ -11,6 +12,7 @@ mod lagrange_top;
 mod large_n;
 mod lie_poisson;
 mod manakov;
+mod manifolds;
 mod moser_veselov;
 mod motion;
 mod moving_bodies;

@@ -64,6 +64,7 @@
 mod body;
 mod constraint;
 mod contact;
+pub mod detect;
 mod forque;
 mod integrate;
 mod joint;
