@@ -61,7 +61,7 @@ fn box_queries_and_manifolds_do_not_allocate_up_to_8d() {
         let mut face = vec![0.1; n];
         face[n - 1] = ha[n - 1] + hb[n - 1] - 0.01;
         let qf = if n >= 3 {
-            turned(n - 1, 0.3).iter().copied().collect::<Vec<f64>>()
+            turned(n - 1, 0.3)
         } else {
             qa.clone()
         };

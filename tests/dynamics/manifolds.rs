@@ -138,12 +138,15 @@ fn flat_boxes_give_finite_answers() {
     assert_eq!(count, 80);
 }
 
+/// A region vertex: point on A, point on B, plane coordinates, depth.
+type Vertex = (Vec<f64>, Vec<f64>, Vec<f64>, f64);
+
 fn region_of(
     a: &TestBox,
     b: &TestBox,
     margin: f64,
 ) -> (
-    Vec<(Vec<f64>, Vec<f64>, Vec<f64>, f64)>,
+    Vec<Vertex>,
     rotorflow::dynamics::motion::detect::BoxPairAxis,
 ) {
     let mut region = Vec::new();

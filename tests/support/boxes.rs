@@ -287,9 +287,9 @@ pub fn random_pair(r: &mut impl Rng, n: usize, pose: Pose) -> (TestBox, TestBox)
                     .map(|(x, m)| x + reach * m)
                     .collect();
             // A lateral offset along the face, within the sizes.
-            for t in 0..n {
+            for (t, ht) in h.iter().enumerate() {
                 if t != face {
-                    let shift = r.gen_range(-0.8..0.8) * a.h[t].min(h[t]);
+                    let shift = r.gen_range(-0.8..0.8) * a.h[t].min(*ht);
                     let ax = a.axis(t);
                     c.iter_mut().zip(&ax).for_each(|(x, y)| *x += shift * y);
                 }
@@ -480,8 +480,10 @@ pub fn brute_face_region(
     loop {
         let mat = DMatrix::from_fn(d, d, |i, j| rows[subset[i]].0[j]);
         let rhs = DVector::from_fn(d, |i, _| rows[subset[i]].1);
-        if mat.determinant().abs() > 1e-10 {
-            if let Some(y) = mat.lu().solve(&rhs) {
+        if mat.determinant().abs() > 1e-10
+            && let Some(y) = mat.lu().solve(&rhs)
+        {
+            {
                 let feasible = rows
                     .iter()
                     .all(|(row, r)| dot(row, y.as_slice()) <= r + 1e-9);

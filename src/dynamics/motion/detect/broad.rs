@@ -9,8 +9,10 @@
 //! on one (Baraff, "Dynamic Simulation of Non-Penetrating Rigid Bodies", 1992; Cohen, Lin,
 //! Manocha and Ponamgi, "I-COLLIDE", 1995). A step thus costs O(nN + swaps + pairs), with
 //! no pair test that a swap did not call for, in any dimension. The first update (and any
-//! update after the number of bodies changed) sorts every axis and sweeps the axis of
-//! largest spread of the centres with an active list.
+//! update after the number of bodies changed) sorts every axis and finds the pairs with a
+//! hierarchy of boxes built by median splits along the axis of largest spread, querying
+//! each body in it: O(n log n + pairs) for bodies of comparable sizes, where a single sweep
+//! would meet every pair overlapping on its axis (about n^(2 − 1/N) at constant density).
 //!
 //! Intervals are closed: boxes that touch overlap. At equal values lower ends sort before
 //! upper ends, so that order and overlap agree exactly.
@@ -100,7 +102,6 @@ pub struct BroadPhase {
     pairs: PairSet,
     excluded: PairSet,
     out: Vec<(usize, usize)>,
-    active: Vec<usize>,
     built: bool,
     swaps: usize,
 }
@@ -126,7 +127,6 @@ impl BroadPhase {
             pairs: PairSet::default(),
             excluded: PairSet::default(),
             out: Vec::new(),
-            active: Vec::new(),
             built: false,
             swaps: 0,
         })
@@ -179,7 +179,7 @@ impl BroadPhase {
         let n = self.dim;
         let bad =
             |what: &'static str, reason: String| Err(DynamicsError::InvalidMotion { what, reason });
-        if lower.len() != upper.len() || lower.len() % n != 0 {
+        if lower.len() != upper.len() || !lower.len().is_multiple_of(n) {
             return bad(
                 "bounding boxes",
                 format!(
@@ -264,48 +264,26 @@ impl BroadPhase {
                     .then((x.is_upper() as u8).cmp(&(y.is_upper() as u8)))
             });
         }
-        // The axis along which the centres spread most.
-        let mut widest = 0;
-        let mut widest_variance = -1.0;
-        for a in 0..n {
-            let (mut s, mut s2) = (0.0, 0.0);
-            for b in 0..bodies {
-                let c = 0.5 * (self.lower[b * n + a] + self.upper[b * n + a]);
-                s += c;
-                s2 += c * c;
-            }
-            let m = bodies.max(1) as f64;
-            let variance = s2 / m - (s / m) * (s / m);
-            if variance > widest_variance {
-                widest_variance = variance;
-                widest = a;
-            }
-        }
-        // Sweep: a lower end meets every interval still open.
-        let mut active = std::mem::take(&mut self.active);
-        active.clear();
-        let mut slot = vec![usize::MAX; bodies];
-        for k in 0..self.ends[widest].len() {
-            let e = self.ends[widest][k];
-            let b = e.body();
-            if e.is_upper() {
-                let s = slot[b];
-                let last = *active.last().unwrap_or(&b);
-                active.swap_remove(s);
-                if last != b {
-                    slot[last] = s;
-                }
-            } else {
-                for &other in &active {
-                    if self.overlap(b, other) {
+        // The pairs: a hierarchy of boxes by median splits, each body queried in it.
+        let mut order: Vec<u32> = (0..bodies as u32).collect();
+        let mut tree = Hierarchy::default();
+        tree.build(n, &self.lower, &self.upper, &mut order);
+        let mut stack = Vec::new();
+        for b in 0..bodies {
+            tree.query(
+                n,
+                &self.lower,
+                &self.upper,
+                &order,
+                b,
+                &mut stack,
+                |other| {
+                    if other > b {
                         self.pairs.insert(key(b, other));
                     }
-                }
-                slot[b] = active.len();
-                active.push(b);
-            }
+                },
+            );
         }
-        self.active = active;
     }
 
     /// Restores the order of every axis by insertion sort, updating the pairs at each swap
@@ -357,4 +335,115 @@ fn checked_key(i: usize, j: usize) -> Result<u64, DynamicsError> {
         });
     }
     Ok(key(i, j))
+}
+
+/// A bounding-volume hierarchy over the bodies, for the first update: nodes split at the
+/// median centre along the axis of largest spread, leaves of at most [`LEAF`] bodies.
+#[derive(Default)]
+struct Hierarchy {
+    /// Per node: the box (N lower bounds, then N upper bounds).
+    bounds: Vec<f64>,
+    /// Per node: the range of `order` it holds, and its children (0 for a leaf).
+    nodes: Vec<(u32, u32, u32, u32)>,
+}
+
+const LEAF: usize = 8;
+
+impl Hierarchy {
+    fn build(&mut self, n: usize, lower: &[f64], upper: &[f64], order: &mut [u32]) {
+        self.bounds.clear();
+        self.nodes.clear();
+        if !order.is_empty() {
+            self.node(n, lower, upper, order, 0);
+        }
+    }
+
+    /// Builds the node over `order[start..start + len]` (passed as the slice) and returns
+    /// its index.
+    fn node(
+        &mut self,
+        n: usize,
+        lower: &[f64],
+        upper: &[f64],
+        order: &mut [u32],
+        start: usize,
+    ) -> u32 {
+        let index = self.nodes.len();
+        self.nodes
+            .push((start as u32, (start + order.len()) as u32, 0, 0));
+        let base = self.bounds.len();
+        self.bounds.extend(std::iter::repeat_n(f64::INFINITY, n));
+        self.bounds
+            .extend(std::iter::repeat_n(f64::NEG_INFINITY, n));
+        let mut spread_lo = vec![f64::INFINITY; n];
+        let mut spread_hi = vec![f64::NEG_INFINITY; n];
+        for &b in order.iter() {
+            let b = b as usize;
+            for a in 0..n {
+                self.bounds[base + a] = self.bounds[base + a].min(lower[b * n + a]);
+                self.bounds[base + n + a] = self.bounds[base + n + a].max(upper[b * n + a]);
+                let c = lower[b * n + a] + upper[b * n + a];
+                spread_lo[a] = spread_lo[a].min(c);
+                spread_hi[a] = spread_hi[a].max(c);
+            }
+        }
+        if order.len() <= LEAF {
+            return index as u32;
+        }
+        let axis = (0..n)
+            .max_by(|&x, &y| {
+                (spread_hi[x] - spread_lo[x]).total_cmp(&(spread_hi[y] - spread_lo[y]))
+            })
+            .unwrap_or(0);
+        let mid = order.len() / 2;
+        let centre = |b: &u32| lower[*b as usize * n + axis] + upper[*b as usize * n + axis];
+        order.select_nth_unstable_by(mid, |x, y| centre(x).total_cmp(&centre(y)));
+        let (left, right) = order.split_at_mut(mid);
+        let l = self.node(n, lower, upper, left, start);
+        let r = self.node(n, lower, upper, right, start + mid);
+        self.nodes[index].2 = l;
+        self.nodes[index].3 = r;
+        index as u32
+    }
+
+    /// Calls `visit(j)` for every body j ≠ b whose box overlaps body b's.
+    #[allow(clippy::too_many_arguments)]
+    fn query(
+        &self,
+        n: usize,
+        lower: &[f64],
+        upper: &[f64],
+        order: &[u32],
+        b: usize,
+        stack: &mut Vec<u32>,
+        mut visit: impl FnMut(usize),
+    ) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let (lo, hi) = (&lower[b * n..(b + 1) * n], &upper[b * n..(b + 1) * n]);
+        stack.clear();
+        stack.push(0);
+        while let Some(k) = stack.pop() {
+            let k = k as usize;
+            let bounds = &self.bounds[2 * n * k..2 * n * (k + 1)];
+            if (0..n).any(|a| bounds[a] > hi[a] || lo[a] > bounds[n + a]) {
+                continue;
+            }
+            let (start, end, l, r) = self.nodes[k];
+            if l == 0 {
+                for &j in &order[start as usize..end as usize] {
+                    let j = j as usize;
+                    if j != b
+                        && (0..n).all(|a| lower[j * n + a] <= hi[a] && lo[a] <= upper[j * n + a])
+                    {
+                        visit(j);
+                    }
+                }
+            } else {
+                stack.push(l);
+                stack.push(r);
+            }
+        }
+    }
 }

@@ -395,7 +395,7 @@ fn face_region(
                         rhs.push(target - g[t] - fixed);
                     }
                     lu_solve(&lu, k, &perm, &mut rhs);
-                    if rhs.iter().any(|v| !(v.abs() <= 1.0 + y_tol)) {
+                    if rhs.iter().any(|v| v.is_nan() || v.abs() > 1.0 + y_tol) {
                         continue;
                     }
                     for (c, &u) in cols.iter().enumerate() {
@@ -467,7 +467,7 @@ fn lu_factor(m: &mut [f64], k: usize, perm: &mut SmallVec<[usize; 8]>, tol: f64)
                 p = r;
             }
         }
-        if !(m[p * k + c].abs() > tol) {
+        if m[p * k + c].is_nan() || m[p * k + c].abs() <= tol {
             return false;
         }
         perm.push(p);
@@ -488,8 +488,8 @@ fn lu_factor(m: &mut [f64], k: usize, perm: &mut SmallVec<[usize; 8]>, tol: f64)
 }
 
 fn lu_solve(m: &[f64], k: usize, perm: &[usize], b: &mut [f64]) {
-    for c in 0..k {
-        b.swap(c, perm[c]);
+    for (c, &p) in perm.iter().enumerate().take(k) {
+        b.swap(c, p);
     }
     for r in 0..k {
         for j in 0..r {
@@ -775,7 +775,7 @@ impl PlacedHull<'_> {
         if n < 2 {
             return bad("hull position", format!("{n} numbers: hulls have N ≥ 2"));
         }
-        if self.vertices.is_empty() || self.vertices.len() % n != 0 {
+        if self.vertices.is_empty() || !self.vertices.len().is_multiple_of(n) {
             return bad(
                 "hull vertices",
                 format!(
@@ -1151,7 +1151,7 @@ fn least_squares(
         }
         let qj = &mut columns[j * d..(j + 1) * d];
         let len = dot(qj, qj).sqrt();
-        if !(len > 1e-9 * original.max(tol)) {
+        if len.is_nan() || len <= 1e-9 * original.max(tol) {
             return false;
         }
         qj.iter_mut().for_each(|x| *x /= len);
@@ -1165,7 +1165,8 @@ fn least_squares(
         z.push(p);
         rhs.iter_mut().zip(q).for_each(|(x, y)| *x -= p * y);
     }
-    if !(dot(rhs, rhs).sqrt() <= tol) {
+    let residual = dot(rhs, rhs).sqrt();
+    if residual.is_nan() || residual > tol {
         return false;
     }
     for j in (0..m).rev() {

@@ -77,7 +77,7 @@ impl PlacedBox<'_> {
         let n = self.dim();
         let bad =
             |what: &'static str, reason: String| Err(DynamicsError::InvalidMotion { what, reason });
-        if n < 2 || n > MAX_BOX_DIM {
+        if !(2..=MAX_BOX_DIM).contains(&n) {
             return bad(
                 "box",
                 format!("{n} half-lengths: boxes have 2 to {MAX_BOX_DIM} dimensions"),
@@ -139,7 +139,7 @@ pub(crate) fn check_rotation(n: usize, rotation: &[f64]) -> Result<(), DynamicsE
             worst = worst.max((dot - expected).abs());
         }
     }
-    if !(worst <= ROTATION_TOLERANCE) {
+    if worst.is_nan() || worst > ROTATION_TOLERANCE {
         return Err(DynamicsError::InvalidMotion {
             what: "rotation",
             reason: format!("not orthogonal: |QᵀQ − I| = {worst:e} > {ROTATION_TOLERANCE:e}"),
@@ -234,9 +234,9 @@ impl Relative {
         let n = self.n;
         let mut ra = 0.0;
         let mut along = 0.0;
-        for i in 0..n {
-            ra += a.half_lengths[i] * u[i].abs();
-            along += u[i] * self.d[i];
+        for ((h, x), d) in a.half_lengths.iter().zip(u).zip(&self.d) {
+            ra += h * x.abs();
+            along += x * d;
         }
         let mut rb = 0.0;
         for j in 0..n {
@@ -281,7 +281,7 @@ pub(crate) fn cell_axis(rel: &Relative, axes_a: u32, axes_b: u32, u: &mut [f64])
         }
         let after = norm(&v);
         volume *= after;
-        if !(volume >= PARALLEL_TOLERANCE) {
+        if volume.is_nan() || volume < PARALLEL_TOLERANCE {
             return 0.0;
         }
         for x in v.iter_mut() {
