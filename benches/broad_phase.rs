@@ -4,9 +4,9 @@
 //! - `broad_phase_4d`: 10³, 10⁴ and 10⁵ random 4D boxes at constant density (about 2.4
 //!   overlapping neighbours per body), half-sizes in [0.25, 0.5]. `incremental_update` is one
 //!   [`BroadPhase::update`] after every body moved by a random step of up to 0.005 per axis
-//!   (the scene alternates between two such states, so each call re-sorts nearly sorted
-//!   ends); `full_rebuild` is the same update on a fresh broad phase (sort every axis, then
-//!   sweep the widest), the baseline a non-incremental sweep and prune pays every step;
+//!   (1 % of a box's size; the scene alternates between two such states);
+//!   `full_rebuild` is the same update on a fresh broad phase (the hierarchy built and every
+//!   body queried in it), what a non-incremental broad phase pays every step;
 //!   `brute_force` tests all n(n − 1)/2 pairs (10³ and 10⁴ only). After the group the bench
 //!   prints the growth exponent of the incremental update (the least-squares slope of
 //!   log time against log n, from Criterion's medians) and the rebuild/incremental ratios.
@@ -86,8 +86,8 @@ fn bench_broad_phase(c: &mut Criterion) {
         let pairs = broad.update(&states[0].0, &states[0].1).unwrap().len();
         broad.update(&states[1].0, &states[1].1).unwrap();
         println!(
-            "{bodies} bodies: {pairs} overlapping pairs, {} swaps per update",
-            broad.last_swaps()
+            "{bodies} bodies: {pairs} overlapping pairs, {} bodies out of their fat boxes per update",
+            broad.last_moved()
         );
         let mut k = 0;
         g.bench_with_input(

@@ -90,11 +90,11 @@ fn broad_phase_finds_exactly_the_overlapping_pairs_as_bodies_move() {
             assert_eq!(got, want, "N = {n}, step {step}");
             updates += 1;
             pairs_seen += got.len();
-            swaps += broad.last_swaps();
+            swaps += broad.last_moved();
             move_bodies(&mut r, n, &mut lower, &mut upper, 0.05 * size, side);
         }
         println!(
-            "N = {n}: {updates} updates of {bodies} bodies, {pairs_seen} pairs in all, {swaps} swaps"
+            "N = {n}: {updates} updates of {bodies} bodies, {pairs_seen} pairs in all, {swaps} fat boxes renewed"
         );
         assert_eq!(updates, 40);
         assert!(
