@@ -10,7 +10,7 @@
 //! are dropped, and the pairs returned are those of the set whose actual boxes overlap. A
 //! step thus costs O(nN) for the containment checks and the refit, O(log n + pairs) per body
 //! that left its fat box, O(pairs) for the set and O(k log k) to sort the k pairs returned;
-//! the hierarchy is rebuilt, O(n log n), once as many fat boxes as there are bodies have
+//! the hierarchy is rebuilt, O(n log n), once [`REBUILD_AFTER`] fat boxes per body have
 //! been renewed since it was built, so that its boxes stay tight (the dynamic trees of
 //! Box2D and Bullet; van den Bergen, "Efficient Collision Detection of Complex Deformable
 //! Models using AABB Trees", 1997, for refitting).
@@ -29,6 +29,11 @@ use std::hash::{BuildHasherDefault, Hasher};
 /// The margin of the fat boxes, relative to the bodies' mean half-width at the last
 /// rebuild.
 pub const FAT_MARGIN: f64 = 0.2;
+
+/// The hierarchy is rebuilt once this many fat boxes per body have been renewed since it
+/// was built (refitted node boxes grow as bodies drift apart from their leaf mates; a
+/// rebuild costs about as much as renewing every body's box once).
+pub const REBUILD_AFTER: usize = 8;
 
 /// A multiplicative hasher for pair keys (two body indices packed in a u64): the keys are
 /// not adversarial, and a fixed hasher keeps runs reproducible.
@@ -211,7 +216,7 @@ impl BroadPhase {
         self.lower.extend_from_slice(lower);
         self.upper.clear();
         self.upper.extend_from_slice(upper);
-        if !self.built || bodies != self.bodies || self.renewed >= bodies.max(1) {
+        if !self.built || bodies != self.bodies || self.renewed >= REBUILD_AFTER * bodies.max(1) {
             self.rebuild(bodies);
         } else {
             self.refresh();
