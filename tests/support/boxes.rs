@@ -212,12 +212,10 @@ pub fn alternating_distance(a: &TestBox, b: &TestBox, iterations: usize) -> f64 
     let mut p = a.c.clone();
     let mut q = b.project(&p);
     for _ in 0..iterations {
-        let next = a.project(&q);
-        let settled = dist(&next, &p) <= 1e-16 * (1.0 + dist(&p, &q));
-        p = next;
+        p = a.project(&q);
         q = b.project(&p);
-        // A common point, or a fixed point of the two projections: the distance.
-        if dist(&p, &q) == 0.0 || settled {
+        // A common point.
+        if dist(&p, &q) == 0.0 {
             break;
         }
     }
