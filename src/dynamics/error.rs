@@ -3,6 +3,7 @@
 
 use crate::algebra::AlgebraError;
 use crate::dynamics::motion::MotionError;
+use crate::dynamics::motion::shape::ShapeError;
 use crate::inertia::InertiaError;
 use crate::special::EllipticError;
 use thiserror::Error;
@@ -149,6 +150,9 @@ pub enum DynamicsError {
     /// the quantity and the body or half-space.
     #[error(transparent)]
     Motion(#[from] MotionError),
+    /// A shape or a detection query was refused.
+    #[error(transparent)]
+    Shape(#[from] ShapeError),
     /// The integrator or closed form assumes a rigid body and was given a gyrostat.
     ///
     /// How to fix: integrate gyrostats with `Rkmk4`, `Dopri5`, `Dop853` or `Midpoint`.

@@ -1,6 +1,7 @@
 //! Tests of the dynamics layer: Euler's equations as rotor/bivector flows.
 
 mod body_contact;
+mod broad_phase;
 mod compositions;
 mod conservation;
 mod contact_and_joints;
@@ -12,6 +13,7 @@ mod lagrange_top;
 mod large_n;
 mod lie_poisson;
 mod manakov;
+mod manifolds;
 mod moser_veselov;
 mod motion;
 mod motion_checks;

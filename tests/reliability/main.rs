@@ -2,6 +2,7 @@
 //! magnitudes, and long runs (ignored by default; `.ci/run` runs them with a time bound).
 
 mod adversarial;
+mod detection;
 mod fuzz_regressions;
 mod hostile;
 mod long_runs;

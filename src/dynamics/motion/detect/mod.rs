@@ -1,12 +1,30 @@
-//! Collision detection between placed convex shapes.
+//! Collision detection between bodies: which pairs may touch (the broad phase), whether and
+//! how deep two shapes overlap (the narrow phase), and where they touch (contact manifolds).
 //!
 //! - Narrow phase: [`distance`] and [`intersects`] (GJK with an exact simplex
 //!   sub-algorithm, `gjk.rs`), [`penetration`] (EPA in N dimensions and closed forms,
-//!   `epa.rs`), on [`PlacedShape`]s of [`super::shape`].
+//!   `epa.rs`), on [`PlacedShape`]s of [`super::shape`]; boxes by separating axes
+//!   ([`box_box`], `sat.rs`).
+//! - Contact manifolds of several points ([`box_manifold`], [`hull_manifold`],
+//!   `manifold.rs`) and the broad phase ([`BroadPhase`], `broad.rs`).
+//! - Which bodies of a system touch which (`bodies.rs`, used by the integrators).
+//!
+//! Shapes are placed by plain data: a centre `position` (N numbers, space) and a `rotation`
+//! (N × N, row-major, own axes → space). Normals point from body A to body B, depth > 0
+//! means overlap, and witness points are in space.
 
 pub(crate) mod bodies;
+pub mod broad;
 mod epa;
 mod gjk;
+pub mod manifold;
+pub mod sat;
 
+pub use broad::BroadPhase;
 pub use epa::{EpaWorkspace, Penetration, penetration, penetration_with};
 pub use gjk::{PlacedShape, Separation, distance, intersects};
+pub use manifold::{
+    ContactManifold, ContactPoint, FeatureId, PlacedHull, RegionVertex, box_contact_vertices,
+    box_manifold, hull_contact_vertices, hull_manifold,
+};
+pub use sat::{AxisFeature, BoxPairAxis, PlacedBox, box_box, candidate_axis_count};

@@ -92,4 +92,14 @@ pub enum ShapeError {
     /// How to fix: give at least one piece.
     #[error("a compound shape needs at least one piece")]
     EmptyCompound,
+    /// A detection query on plain data (placed boxes and hulls, bounding boxes, a contact
+    /// margin or normal, body pairs of the broad phase) was given data it cannot use; the
+    /// message names the part and what is wrong with it.
+    #[error("invalid {what}: {reason}")]
+    InvalidQuery {
+        /// The part of the query.
+        what: &'static str,
+        /// What is wrong with it.
+        reason: String,
+    },
 }

@@ -1,0 +1,1183 @@
+//! Contact manifolds: the several points at which two bodies touch, so that a box resting
+//! on a box is held at the corners of its contact region rather than at one point.
+//!
+//! For boxes ([`box_manifold`]) the separating-axis query ([`super::box_box`]) names the
+//! features in contact. A face axis makes that face the *reference face* and the face of
+//! the other box most anti-parallel to it the *incident face*, an (N − 1)-cube. The contact
+//! region is the part of the incident face over the reference face: the incident cube cut
+//! by the 2(N − 1) side half-spaces of the reference face. Each vertex of that polytope is
+//! where a k-face of the incident cube meets an (N − 1 − k)-face of the reference face
+//! (k = 0: incident vertices over the face; k = N − 1: reference vertices under the
+//! incident face; in between, edges through side planes, and from 4D on, 2-faces through
+//! reference edges and so on). All these pairs are solved, so every vertex of the region is
+//! found in every dimension ([`box_contact_vertices`]); the points below the reference face
+//! (depth ≥ −margin) are kept. A cell axis (an edge–edge axis in 3D) means two cells of
+//! complementary dimensions cross: one point, the crossing.
+//!
+//! For convex hulls given by their vertices ([`hull_manifold`]) the same region is the
+//! intersection of the two *support sets* (the vertices within a tolerance of each body's
+//! supporting plane across the normal) projected into the contact plane; its vertices are
+//! the crossings of simplices of one set with simplices of the other whose dimensions add
+//! up to at most N − 1 (brute force over the few points a support set has).
+//!
+//! **Reduction.** The region may have many vertices; a manifold keeps at most
+//! [`manifold_capacity`] of them (4 in 3D, 8 in 4D, 16 from 5D on): the extremes of the
+//! region along fixed directions of the contact plane, the diagonals (±1, …, ±1) scaled to
+//! the reference face up to 4D (the corners of the face), and from 5D the axes and the main
+//! diagonal. The directions come in opposite pairs, so for a centrally symmetric region (an
+//! incident face wholly over the reference face, or the reverse) the kept points hold its
+//! centre, which is where a resting box presses; and the deepest point of the region is
+//! kept too (replacing the extreme nearest to it) when it is markedly deeper than every kept
+//! point, so that a box landing on a corner is pushed back where it penetrates.
+
+use super::sat::{
+    AxisFeature, BoxPairAxis, PlacedBox, Relative, box_box_unchecked, cell_axis, dot,
+};
+use crate::dynamics::DynamicsError;
+use crate::dynamics::motion::shape::ShapeError;
+use smallvec::SmallVec;
+
+/// The most points a manifold holds in any dimension.
+pub const MAX_MANIFOLD_POINTS: usize = 16;
+
+/// The most points a manifold holds in `n` dimensions: 2^(N−1) up to 5D (4 in 3D, 8 in 4D),
+/// then [`MAX_MANIFOLD_POINTS`].
+pub fn manifold_capacity(n: usize) -> usize {
+    if n <= 5 {
+        1usize << n.saturating_sub(1)
+    } else {
+        MAX_MANIFOLD_POINTS
+    }
+}
+
+/// Identifies a contact point by the features of the two shapes that make it, so that a
+/// solver can match a point with the point of the previous step and start from its impulse.
+///
+/// Two manifolds of the same pair of shapes give equal ids to points made by the same
+/// features, as long as the same features are in contact:
+///
+/// - **box faces** (top bits `01`): which box holds the reference face (bit 61), the
+///   reference face (own axis in bits 56–59, bit 60 set for the negative side), the
+///   incident face (axis in bits 51–54, bit 55 for the negative side), and for each of the
+///   N − 1 side axes of the reference face (bits 2t, 2t + 1) and of the incident face (bits
+///   2(N−1) + 2u, …): 0 if the point is free along it, 1 or 2 if it lies on the positive or
+///   negative side plane (reference) or face (incident);
+/// - **box cells** (top bits `10`): the own axes along A's cell (bits 0–9) and B's cell
+///   (bits 10–19), and the sides of the fixed coordinates (bits 20–29 for A, 30–39 for B);
+/// - **hulls** (top bits `11`): a 62-bit hash of the vertex indices of the two simplices
+///   that cross at the point (equal for equal simplices; distinct ones collide with
+///   probability about 2⁻⁶²).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct FeatureId(pub u64);
+
+const KIND_FACE: u64 = 1 << 62;
+const KIND_CELLS: u64 = 2 << 62;
+const KIND_HULL: u64 = 3 << 62;
+
+/// One point of a [`ContactManifold`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactPoint<'a> {
+    /// The witness point on A, in space.
+    pub point_a: &'a [f64],
+    /// The witness point on B, in space.
+    pub point_b: &'a [f64],
+    /// The penetration depth along the normal, n · (point_a − point_b): > 0 overlap.
+    pub depth: f64,
+    /// The features that make the point.
+    pub id: FeatureId,
+}
+
+/// The contact of two shapes: one normal (unit, from A to B) and up to
+/// [`manifold_capacity`] points, each with its witness points on A and B (space), its depth
+/// and its [`FeatureId`]. Stored inline (no heap) for N ≤ 8.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactManifold {
+    dim: usize,
+    normal: SmallVec<[f64; 8]>,
+    points_a: SmallVec<[f64; 128]>,
+    points_b: SmallVec<[f64; 128]>,
+    depths: SmallVec<[f64; 16]>,
+    ids: SmallVec<[FeatureId; 16]>,
+}
+
+impl ContactManifold {
+    fn new(normal: &[f64]) -> ContactManifold {
+        ContactManifold {
+            dim: normal.len(),
+            normal: SmallVec::from_slice(normal),
+            points_a: SmallVec::new(),
+            points_b: SmallVec::new(),
+            depths: SmallVec::new(),
+            ids: SmallVec::new(),
+        }
+    }
+
+    fn push(&mut self, point_a: &[f64], point_b: &[f64], depth: f64, id: FeatureId) {
+        self.points_a.extend_from_slice(point_a);
+        self.points_b.extend_from_slice(point_b);
+        self.depths.push(depth);
+        self.ids.push(id);
+    }
+
+    /// The dimension N.
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// The unit normal in space, from A towards B.
+    pub fn normal(&self) -> &[f64] {
+        &self.normal
+    }
+
+    /// The number of points.
+    pub fn len(&self) -> usize {
+        self.depths.len()
+    }
+
+    /// True if the manifold has no point.
+    pub fn is_empty(&self) -> bool {
+        self.depths.is_empty()
+    }
+
+    /// Point `k` (0-based).
+    ///
+    /// # Panics
+    /// If `k ≥ len()`.
+    pub fn point(&self, k: usize) -> ContactPoint<'_> {
+        let n = self.dim;
+        ContactPoint {
+            point_a: &self.points_a[k * n..(k + 1) * n],
+            point_b: &self.points_b[k * n..(k + 1) * n],
+            depth: self.depths[k],
+            id: self.ids[k],
+        }
+    }
+
+    /// The points in order.
+    pub fn points(&self) -> impl Iterator<Item = ContactPoint<'_>> + '_ {
+        (0..self.len()).map(|k| self.point(k))
+    }
+
+    /// The largest depth (−∞ when empty).
+    pub fn max_depth(&self) -> f64 {
+        self.depths
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+}
+
+/// A vertex of the contact region, as [`box_contact_vertices`] reports it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RegionVertex<'a> {
+    /// The witness point on A, in space.
+    pub point_a: &'a [f64],
+    /// The witness point on B, in space.
+    pub point_b: &'a [f64],
+    /// Its coordinates in the contact plane (N − 1 numbers; for face contacts, along the
+    /// reference face's own side axes from the reference box's centre).
+    pub plane: &'a [f64],
+    /// n · (point_a − point_b).
+    pub depth: f64,
+    /// The features that make it.
+    pub id: FeatureId,
+}
+
+/// Checks a pair of boxes.
+fn check_pair(a: &PlacedBox<'_>, b: &PlacedBox<'_>, margin: f64) -> Result<(), DynamicsError> {
+    a.check()?;
+    b.check()?;
+    if a.dim() != b.dim() {
+        return Err(ShapeError::InvalidQuery {
+            what: "box pair",
+            reason: format!("boxes in {} and {} dimensions", a.dim(), b.dim()),
+        }
+        .into());
+    }
+    if !(margin.is_finite() && margin >= 0.0) {
+        return Err(ShapeError::InvalidQuery {
+            what: "contact margin",
+            reason: format!("{margin} is not a finite number ≥ 0"),
+        }
+        .into());
+    }
+    Ok(())
+}
+
+/// Returns the contact manifold of two boxes, or None when they are apart by more than
+/// `margin` (points up to `margin` apart are kept, with negative depth, so that a solver
+/// can treat contacts about to close).
+///
+/// # Errors
+/// [`ShapeError::InvalidQuery`](crate::dynamics::motion::shape::ShapeError::InvalidQuery) if a box is malformed ([`PlacedBox::check`]), the
+/// dimensions differ, or the margin is negative or not finite.
+pub fn box_manifold(
+    a: &PlacedBox<'_>,
+    b: &PlacedBox<'_>,
+    margin: f64,
+) -> Result<Option<ContactManifold>, DynamicsError> {
+    check_pair(a, b, margin)?;
+    let axis = box_box_unchecked(a, b);
+    if axis.depth < -margin {
+        return Ok(None);
+    }
+    let n = a.dim();
+    let mut reducer = Reducer::new(n, &axis.normal);
+    let scale = a.size().max(b.size()).max(f64::MIN_POSITIVE);
+    region(a, b, &axis, margin, &mut |v| reducer.offer(v, scale));
+    Ok(Some(reducer.finish(scale)))
+}
+
+/// Calls `visit` for every vertex of the contact region of two boxes that lies at depth
+/// ≥ −`margin` (all of them, before any reduction), and returns the axis the region was
+/// built on; nothing is visited when the boxes are apart by more than `margin`.
+///
+/// # Errors
+/// As [`box_manifold`].
+pub fn box_contact_vertices(
+    a: &PlacedBox<'_>,
+    b: &PlacedBox<'_>,
+    margin: f64,
+    mut visit: impl FnMut(RegionVertex<'_>),
+) -> Result<BoxPairAxis, DynamicsError> {
+    check_pair(a, b, margin)?;
+    let axis = box_box_unchecked(a, b);
+    if axis.depth >= -margin {
+        region(a, b, &axis, margin, &mut visit);
+    }
+    Ok(axis)
+}
+
+fn region(
+    a: &PlacedBox<'_>,
+    b: &PlacedBox<'_>,
+    axis: &BoxPairAxis,
+    margin: f64,
+    visit: &mut dyn FnMut(RegionVertex<'_>),
+) {
+    match axis.feature {
+        AxisFeature::FaceOfA { axis: i } => {
+            face_region(a, b, false, i, &axis.normal, margin, visit)
+        }
+        AxisFeature::FaceOfB { axis: j } => face_region(b, a, true, j, &axis.normal, margin, visit),
+        AxisFeature::Cells { axes_a, axes_b } => {
+            cell_point(a, b, axes_a, axes_b, &axis.normal, margin, visit)
+        }
+    }
+}
+
+type Small = SmallVec<[f64; 8]>;
+type Square = SmallVec<[f64; 64]>;
+
+/// The vertices of the region between the reference face of `r` across own axis `ir` and
+/// the most anti-parallel face of `inc`; `normal` is the manifold normal (A → B),
+/// `ref_is_b` says which box is the reference.
+#[allow(clippy::too_many_arguments)]
+fn face_region(
+    r: &PlacedBox<'_>,
+    inc: &PlacedBox<'_>,
+    ref_is_b: bool,
+    ir: usize,
+    normal: &[f64],
+    margin: f64,
+    visit: &mut dyn FnMut(RegionVertex<'_>),
+) {
+    let n = r.dim();
+    let d = n - 1;
+    // The reference face's outward normal: the manifold normal for A, its opposite for B.
+    let flip = if ref_is_b { -1.0 } else { 1.0 };
+    let n_ref: Small = normal.iter().map(|x| flip * x).collect();
+    let along_ir: f64 = (0..n).map(|k| r.axis(ir, k) * n_ref[k]).sum();
+    let sr = if along_ir < 0.0 { -1.0 } else { 1.0 };
+    // The incident face: the own axis of `inc` most parallel to the reference normal, on
+    // the side facing it.
+    let mut ji = 0;
+    let mut best = -1.0;
+    let mut si = 1.0;
+    for j in 0..n {
+        let c: f64 = (0..n).map(|k| inc.axis(j, k) * n_ref[k]).sum();
+        if c.abs() > best {
+            best = c.abs();
+            ji = j;
+            si = if c > 0.0 { -1.0 } else { 1.0 };
+        }
+    }
+    let sides: SmallVec<[usize; 8]> = (0..n).filter(|&t| t != ir).collect();
+    let inc_axes: SmallVec<[usize; 8]> = (0..n).filter(|&u| u != ji).collect();
+    // The incident face's centre and its points p(y) = g_c + Σ y_u h_u b_u, y ∈ [−1, 1]^d.
+    let g_c: Small = (0..n)
+        .map(|k| inc.position[k] + si * inc.half_lengths[ji] * inc.axis(ji, k))
+        .collect();
+    let offset: Small = (0..n).map(|k| g_c[k] - r.position[k]).collect();
+    // Side coordinates x_t = g_t + Σ G_tu y_u; depth = D0 − Σ Dy_u y_u.
+    let mut g: Small = SmallVec::from_elem(0.0, d);
+    let mut gm: Square = SmallVec::from_elem(0.0, d * d);
+    let mut dy: Small = SmallVec::from_elem(0.0, d);
+    for (row, &t) in sides.iter().enumerate() {
+        g[row] = (0..n).map(|k| r.axis(t, k) * offset[k]).sum();
+        for (col, &u) in inc_axes.iter().enumerate() {
+            gm[row * d + col] =
+                inc.half_lengths[u] * (0..n).map(|k| r.axis(t, k) * inc.axis(u, k)).sum::<f64>();
+        }
+    }
+    let d0 = r.half_lengths[ir] - sr * (0..n).map(|k| r.axis(ir, k) * offset[k]).sum::<f64>();
+    for (col, &u) in inc_axes.iter().enumerate() {
+        dy[col] =
+            sr * inc.half_lengths[u] * (0..n).map(|k| r.axis(ir, k) * inc.axis(u, k)).sum::<f64>();
+    }
+    let h: Small = sides.iter().map(|&t| r.half_lengths[t]).collect();
+    let scale = r.size().max(inc.size()).max(f64::MIN_POSITIVE);
+    let x_tol = 1e-9 * scale;
+    let y_tol = 1e-9;
+    let g_max = gm.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let pivot_tol = 1e-12 * g_max.max(f64::MIN_POSITIVE);
+    let ref_bits = KIND_FACE
+        | (ref_is_b as u64) << 61
+        | ((sr < 0.0) as u64) << 60
+        | (ir as u64) << 56
+        | ((si < 0.0) as u64) << 55
+        | (ji as u64) << 51;
+
+    let full = 1u32 << d;
+    let mut y: Small = SmallVec::from_elem(0.0, d);
+    let mut x: Small = SmallVec::from_elem(0.0, d);
+    let mut lu: Square = SmallVec::new();
+    let mut perm: SmallVec<[usize; 8]> = SmallVec::new();
+    let mut rows: SmallVec<[usize; 8]> = SmallVec::new();
+    let mut cols: SmallVec<[usize; 8]> = SmallVec::new();
+    let mut rhs: Small = SmallVec::new();
+    let mut pa: Small = SmallVec::from_elem(0.0, n);
+    let mut pb: Small = SmallVec::from_elem(0.0, n);
+    // T: the side planes the vertex lies on; F: the incident coordinates fixed at ±1.
+    for t_mask in 0..full {
+        let k = t_mask.count_ones() as usize;
+        rows.clear();
+        rows.extend((0..d).filter(|&t| t_mask >> t & 1 == 1));
+        for f_mask in 0..full {
+            if f_mask.count_ones() as usize != d - k {
+                continue;
+            }
+            cols.clear();
+            cols.extend((0..d).filter(|&u| f_mask >> u & 1 == 0));
+            // The k × k system G[T, free] y_free = rhs, factored once for all sides.
+            lu.clear();
+            for &t in &rows {
+                for &u in &cols {
+                    lu.push(gm[t * d + u]);
+                }
+            }
+            if !lu_factor(&mut lu, k, &mut perm, pivot_tol) {
+                continue;
+            }
+            for t_signs in 0..(1u32 << k) {
+                // A side plane out of reach of the incident face cannot hold a vertex.
+                let reach = rows.iter().enumerate().all(|(c, &t)| {
+                    let target = if t_signs >> c & 1 == 1 { -h[t] } else { h[t] };
+                    let spread: f64 = (0..d).map(|u| gm[t * d + u].abs()).sum();
+                    (target - g[t]).abs() <= spread + x_tol
+                });
+                if !reach {
+                    continue;
+                }
+                for f_signs in 0..(1u32 << (d - k)) {
+                    // Fixed coordinates.
+                    let mut bit = 0;
+                    for u in 0..d {
+                        if f_mask >> u & 1 == 1 {
+                            y[u] = if f_signs >> bit & 1 == 1 { -1.0 } else { 1.0 };
+                            bit += 1;
+                        }
+                    }
+                    rhs.clear();
+                    for (c, &t) in rows.iter().enumerate() {
+                        let target = if t_signs >> c & 1 == 1 { -h[t] } else { h[t] };
+                        let fixed: f64 = (0..d)
+                            .filter(|&u| f_mask >> u & 1 == 1)
+                            .map(|u| gm[t * d + u] * y[u])
+                            .sum();
+                        rhs.push(target - g[t] - fixed);
+                    }
+                    lu_solve(&lu, k, &perm, &mut rhs);
+                    if rhs.iter().any(|v| v.is_nan() || v.abs() > 1.0 + y_tol) {
+                        continue;
+                    }
+                    for (c, &u) in cols.iter().enumerate() {
+                        y[u] = rhs[c].clamp(-1.0, 1.0);
+                    }
+                    let mut inside = true;
+                    for t in 0..d {
+                        x[t] = g[t] + (0..d).map(|u| gm[t * d + u] * y[u]).sum::<f64>();
+                        if x[t].abs() > h[t] + x_tol {
+                            inside = false;
+                            break;
+                        }
+                    }
+                    if !inside {
+                        continue;
+                    }
+                    let depth = d0 - dot(&dy, &y);
+                    if depth < -margin {
+                        continue;
+                    }
+                    // The id: which side planes and incident faces hold the point.
+                    let mut id = ref_bits;
+                    for (c, &t) in rows.iter().enumerate() {
+                        id |= (1 + (t_signs >> c & 1) as u64) << (2 * t);
+                    }
+                    for u in 0..d {
+                        if f_mask >> u & 1 == 1 {
+                            id |= (if y[u] < 0.0 { 2 } else { 1 }) << (2 * d + 2 * u);
+                        }
+                    }
+                    // p on the incident face; its projection on the reference face.
+                    for kk in 0..n {
+                        let p = g_c[kk]
+                            + inc_axes
+                                .iter()
+                                .enumerate()
+                                .map(|(c, &u)| y[c] * inc.half_lengths[u] * inc.axis(u, kk))
+                                .sum::<f64>();
+                        let q = p + depth * n_ref[kk];
+                        if ref_is_b {
+                            pa[kk] = p;
+                            pb[kk] = q;
+                        } else {
+                            pa[kk] = q;
+                            pb[kk] = p;
+                        }
+                    }
+                    visit(RegionVertex {
+                        point_a: &pa,
+                        point_b: &pb,
+                        plane: &x,
+                        depth,
+                        id: FeatureId(id),
+                    });
+                }
+            }
+        }
+    }
+}
+
+/// LU factorisation with partial pivoting of the k × k row-major `m`; false if a pivot is
+/// below `tol` (the cells are parallel: their vertices come from other pairs).
+fn lu_factor(m: &mut [f64], k: usize, perm: &mut SmallVec<[usize; 8]>, tol: f64) -> bool {
+    perm.clear();
+    for c in 0..k {
+        let mut p = c;
+        for r in c + 1..k {
+            if m[r * k + c].abs() > m[p * k + c].abs() {
+                p = r;
+            }
+        }
+        if m[p * k + c].is_nan() || m[p * k + c].abs() <= tol {
+            return false;
+        }
+        perm.push(p);
+        if p != c {
+            for j in 0..k {
+                m.swap(c * k + j, p * k + j);
+            }
+        }
+        for r in c + 1..k {
+            let f = m[r * k + c] / m[c * k + c];
+            m[r * k + c] = f;
+            for j in c + 1..k {
+                m[r * k + j] -= f * m[c * k + j];
+            }
+        }
+    }
+    true
+}
+
+fn lu_solve(m: &[f64], k: usize, perm: &[usize], b: &mut [f64]) {
+    for (c, &p) in perm.iter().enumerate().take(k) {
+        b.swap(c, p);
+    }
+    for r in 0..k {
+        for j in 0..r {
+            b[r] -= m[r * k + j] * b[j];
+        }
+    }
+    for r in (0..k).rev() {
+        for j in r + 1..k {
+            b[r] -= m[r * k + j] * b[j];
+        }
+        b[r] /= m[r * k + r];
+    }
+}
+
+/// The crossing of A's cell along `axes_a` and B's cell along `axes_b` (the supporting
+/// cells across the cell axis): one point.
+fn cell_point(
+    a: &PlacedBox<'_>,
+    b: &PlacedBox<'_>,
+    axes_a: u32,
+    axes_b: u32,
+    normal: &[f64],
+    margin: f64,
+    visit: &mut dyn FnMut(RegionVertex<'_>),
+) {
+    let n = a.dim();
+    let rel = Relative::new(a, b);
+    let mut u: Small = SmallVec::from_elem(0.0, n);
+    cell_axis(&rel, axes_a, axes_b, &mut u);
+    // Orient u (A's frame) as the normal.
+    let un: f64 = (0..n)
+        .map(|k| normal[k] * (0..n).map(|i| a.axis(i, k) * u[i]).sum::<f64>())
+        .sum();
+    if un < 0.0 {
+        u.iter_mut().for_each(|x| *x = -*x);
+    }
+    // B's axes in A's frame seen along u.
+    let w: Small = (0..n)
+        .map(|j| (0..n).map(|i| rel.r[i * n + j] * u[i]).sum())
+        .collect();
+    // A's supporting cell along +u and B's along −u, in A's frame: fixed coordinates.
+    let mut sign_bits = 0u64;
+    let mut pa0: Small = SmallVec::from_elem(0.0, n);
+    for i in 0..n {
+        if axes_a >> i & 1 == 0 {
+            let s = if u[i] < 0.0 { -1.0 } else { 1.0 };
+            pa0[i] = s * a.half_lengths[i];
+            sign_bits |= ((s < 0.0) as u64) << (20 + i);
+        }
+    }
+    let mut pb0: Small = rel.d.clone();
+    for j in 0..n {
+        if axes_b >> j & 1 == 0 {
+            let s = if w[j] > 0.0 { -1.0 } else { 1.0 };
+            for i in 0..n {
+                pb0[i] += s * b.half_lengths[j] * rel.r[i * n + j];
+            }
+            sign_bits |= ((s < 0.0) as u64) << (30 + j);
+        }
+    }
+    // pa0 + Σ s_i e_i − pb0 − Σ t_j r_j − λ u = 0: N equations in (s, t, λ).
+    let mut m: Square = SmallVec::from_elem(0.0, n * n);
+    let mut col = 0;
+    let mut which: SmallVec<[(bool, usize); 8]> = SmallVec::new();
+    for i in 0..n {
+        if axes_a >> i & 1 == 1 {
+            m[i * n + col] = 1.0;
+            which.push((true, i));
+            col += 1;
+        }
+    }
+    for j in 0..n {
+        if axes_b >> j & 1 == 1 {
+            for i in 0..n {
+                m[i * n + col] = -rel.r[i * n + j];
+            }
+            which.push((false, j));
+            col += 1;
+        }
+    }
+    for i in 0..n {
+        m[i * n + col] = -u[i];
+    }
+    let mut rhs: Small = (0..n).map(|i| pb0[i] - pa0[i]).collect();
+    let mut perm = SmallVec::new();
+    let mut pa = pa0.clone();
+    let mut pb = pb0.clone();
+    if lu_factor(&mut m, n, &mut perm, 1e-12) {
+        lu_solve(&m, n, &perm, &mut rhs);
+        for (c, &(on_a, k)) in which.iter().enumerate() {
+            if on_a {
+                let s = rhs[c].clamp(-a.half_lengths[k], a.half_lengths[k]);
+                pa[k] += s;
+            } else {
+                let t = rhs[c].clamp(-b.half_lengths[k], b.half_lengths[k]);
+                for i in 0..n {
+                    pb[i] += t * rel.r[i * n + k];
+                }
+            }
+        }
+    }
+    let depth = dot(&u, &pa) - dot(&u, &pb);
+    if depth < -margin {
+        return;
+    }
+    // To space.
+    let space = |p: &Small| -> Small {
+        (0..n)
+            .map(|k| a.position[k] + (0..n).map(|i| a.axis(i, k) * p[i]).sum::<f64>())
+            .collect()
+    };
+    let (sa, sb) = (space(&pa), space(&pb));
+    let plane: Small = SmallVec::from_elem(0.0, n - 1);
+    visit(RegionVertex {
+        point_a: &sa,
+        point_b: &sb,
+        plane: &plane,
+        depth,
+        id: FeatureId(KIND_CELLS | axes_a as u64 | (axes_b as u64) << 10 | sign_bits),
+    });
+}
+
+/// One kept candidate of the reduction.
+#[derive(Clone)]
+struct Candidate {
+    pa: Small,
+    pb: Small,
+    depth: f64,
+    id: FeatureId,
+    score: f64,
+}
+
+/// Keeps the extremes of the region along fixed directions of the contact plane, and its
+/// deepest point, as vertices stream in.
+struct Reducer {
+    n: usize,
+    normal: Small,
+    slots: SmallVec<[Option<Candidate>; 16]>,
+    deepest: Option<Candidate>,
+    shallowest: f64,
+    /// The contact-plane scale of each coordinate (set by the first vertex's frame).
+    directions: usize,
+}
+
+impl Reducer {
+    fn new(n: usize, normal: &[f64]) -> Reducer {
+        let d = n - 1;
+        let directions = if d <= 4 { 1usize << d } else { 2 * d + 2 };
+        Reducer {
+            n,
+            normal: SmallVec::from_slice(normal),
+            slots: SmallVec::from_elem(None, directions),
+            deepest: None,
+            shallowest: f64::INFINITY,
+            directions,
+        }
+    }
+
+    /// The score of plane coordinates `x` along direction `k`.
+    fn score(&self, k: usize, x: &[f64]) -> f64 {
+        let d = self.n - 1;
+        if d <= 4 {
+            (0..d)
+                .map(|t| if k >> t & 1 == 1 { -x[t] } else { x[t] })
+                .sum()
+        } else if k < 2 * d {
+            let (t, s) = (k / 2, if k % 2 == 1 { -1.0 } else { 1.0 });
+            // The axis, tilted slightly to the diagonal so that a face of ties gives a corner.
+            s * (x[t] + 1e-2 * x.iter().sum::<f64>())
+        } else {
+            let s = if k % 2 == 1 { -1.0 } else { 1.0 };
+            s * x.iter().sum::<f64>()
+        }
+    }
+
+    fn offer(&mut self, v: RegionVertex<'_>, scale: f64) {
+        let tie = 1e-12 * scale;
+        let make = |score| Candidate {
+            pa: SmallVec::from_slice(v.point_a),
+            pb: SmallVec::from_slice(v.point_b),
+            depth: v.depth,
+            id: v.id,
+            score,
+        };
+        self.shallowest = self.shallowest.min(v.depth);
+        for k in 0..self.directions {
+            let s = self.score(k, v.plane);
+            let better = match &self.slots[k] {
+                None => true,
+                Some(c) => s > c.score + tie || (s >= c.score - tie && v.depth > c.depth),
+            };
+            if better {
+                self.slots[k] = Some(make(s));
+            }
+        }
+        if self.deepest.as_ref().is_none_or(|c| v.depth > c.depth) {
+            self.deepest = Some(make(0.0));
+        }
+    }
+
+    fn finish(self, scale: f64) -> ContactManifold {
+        let same = |p: &Candidate, q: &Candidate| {
+            p.pa.iter()
+                .zip(&q.pa)
+                .all(|(x, y)| (x - y).abs() <= 1e-9 * scale)
+                && p.pb
+                    .iter()
+                    .zip(&q.pb)
+                    .all(|(x, y)| (x - y).abs() <= 1e-9 * scale)
+        };
+        let mut kept: SmallVec<[Candidate; 17]> = SmallVec::new();
+        for c in self.slots.into_iter().flatten() {
+            if !kept.iter().any(|k| same(k, &c)) {
+                kept.push(c);
+            }
+        }
+        if let Some(deep) = self.deepest {
+            let kept_depth = kept
+                .iter()
+                .map(|c| c.depth)
+                .fold(f64::NEG_INFINITY, f64::max);
+            let markedly =
+                deep.depth - kept_depth > 0.25 * (deep.depth - self.shallowest) + 1e-9 * scale;
+            if !kept.iter().any(|k| same(k, &deep)) && markedly {
+                let capacity = manifold_capacity(self.n);
+                if kept.len() >= capacity {
+                    // Replace the extreme nearest to the deepest point.
+                    let dist = |c: &Candidate| {
+                        c.pb.iter()
+                            .zip(&deep.pb)
+                            .map(|(x, y)| (x - y) * (x - y))
+                            .sum::<f64>()
+                    };
+                    let nearest = (0..kept.len())
+                        .min_by(|&i, &j| dist(&kept[i]).total_cmp(&dist(&kept[j])))
+                        .unwrap_or(0);
+                    kept[nearest] = deep;
+                } else {
+                    kept.push(deep);
+                }
+            }
+        }
+        kept.truncate(manifold_capacity(self.n));
+        let mut manifold = ContactManifold::new(&self.normal);
+        for c in &kept {
+            manifold.push(&c.pa, &c.pb, c.depth, c.id);
+        }
+        manifold
+    }
+}
+
+/// A convex hull placed in space: its vertices in its own axes (`vertices`, k × N numbers,
+/// vertex after vertex), its centre and its rotation (N × N, row-major, own axes → space).
+#[derive(Clone, Copy, Debug)]
+pub struct PlacedHull<'a> {
+    /// The vertices in own axes, flat (k × N numbers).
+    pub vertices: &'a [f64],
+    /// The position of the own origin in space (N numbers).
+    pub position: &'a [f64],
+    /// The rotation own axes → space, row-major N × N.
+    pub rotation: &'a [f64],
+}
+
+impl PlacedHull<'_> {
+    /// The dimension N.
+    pub fn dim(&self) -> usize {
+        self.position.len()
+    }
+
+    /// The number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.vertices.len() / self.dim().max(1)
+    }
+
+    /// Checks lengths, finiteness and orthogonality.
+    ///
+    /// # Errors
+    /// [`ShapeError::InvalidQuery`](crate::dynamics::motion::shape::ShapeError::InvalidQuery) naming the bad part.
+    pub fn check(&self) -> Result<(), DynamicsError> {
+        let n = self.dim();
+        let bad = |what: &'static str, reason: String| {
+            Err(ShapeError::InvalidQuery { what, reason }.into())
+        };
+        if n < 2 {
+            return bad("hull position", format!("{n} numbers: hulls have N ≥ 2"));
+        }
+        if self.vertices.is_empty() || !self.vertices.len().is_multiple_of(n) {
+            return bad(
+                "hull vertices",
+                format!(
+                    "{} numbers, not a positive multiple of N = {n}",
+                    self.vertices.len()
+                ),
+            );
+        }
+        if self.rotation.len() != n * n {
+            return bad(
+                "hull rotation",
+                format!(
+                    "{} numbers, {} expected (N × N)",
+                    self.rotation.len(),
+                    n * n
+                ),
+            );
+        }
+        if let Some(x) = self
+            .vertices
+            .iter()
+            .chain(self.position)
+            .chain(self.rotation)
+            .find(|x| !x.is_finite())
+        {
+            return bad("hull", format!("{x} is not finite"));
+        }
+        super::sat::check_rotation(n, self.rotation)
+    }
+
+    /// Vertex `k` in space.
+    fn place(&self, k: usize, out: &mut [f64]) {
+        let n = self.dim();
+        let v = &self.vertices[k * n..(k + 1) * n];
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = self.position[i] + (0..n).map(|j| self.rotation[i * n + j] * v[j]).sum::<f64>();
+        }
+    }
+
+    /// The largest distance of a vertex from the own origin.
+    fn radius(&self) -> f64 {
+        let n = self.dim();
+        self.vertices
+            .chunks_exact(n)
+            .map(|v| dot(v, v).sqrt())
+            .fold(0.0, f64::max)
+    }
+}
+
+/// Vertices within this fraction of a hull's radius of its supporting plane belong to its
+/// support set (a face tilted by less than about this angle counts as flat on the other).
+pub const SUPPORT_TOLERANCE: f64 = 1e-3;
+
+/// The most vertices of a support set the hull manifold takes (2^(N−1) up to 4D, then 8):
+/// the crossings are found by brute force over subsets of them.
+pub fn support_set_capacity(n: usize) -> usize {
+    if n <= 4 { 1usize << (n - 1) } else { 8 }
+}
+
+/// A support set: up to [`support_set_capacity`] placed vertices with their indices.
+struct SupportSet {
+    n: usize,
+    points: SmallVec<[f64; 64]>,
+    heights: SmallVec<[f64; 8]>,
+    indices: SmallVec<[usize; 8]>,
+}
+
+impl SupportSet {
+    /// The vertices of `hull` within `tolerance` of its support plane along `sign`·`normal`,
+    /// the nearest ones to it when there are more than fit.
+    fn new(hull: &PlacedHull<'_>, normal: &[f64], sign: f64, tolerance: f64) -> (SupportSet, f64) {
+        let n = hull.dim();
+        let mut p: Small = SmallVec::from_elem(0.0, n);
+        let mut top = f64::NEG_INFINITY;
+        for k in 0..hull.vertex_count() {
+            hull.place(k, &mut p);
+            top = top.max(sign * dot(normal, &p));
+        }
+        let capacity = support_set_capacity(n);
+        let mut set = SupportSet {
+            n,
+            points: SmallVec::new(),
+            heights: SmallVec::new(),
+            indices: SmallVec::new(),
+        };
+        for k in 0..hull.vertex_count() {
+            hull.place(k, &mut p);
+            let below = top - sign * dot(normal, &p);
+            if below > tolerance {
+                continue;
+            }
+            if set.indices.len() < capacity {
+                set.points.extend_from_slice(&p);
+                set.heights.push(below);
+                set.indices.push(k);
+            } else {
+                let (worst, &h) = set
+                    .heights
+                    .iter()
+                    .enumerate()
+                    .max_by(|x, y| x.1.total_cmp(y.1))
+                    .unwrap_or((0, &0.0));
+                if below < h {
+                    set.points[worst * n..(worst + 1) * n].copy_from_slice(&p);
+                    set.heights[worst] = below;
+                    set.indices[worst] = k;
+                }
+            }
+        }
+        (set, sign * top)
+    }
+
+    fn point(&self, k: usize) -> &[f64] {
+        &self.points[k * self.n..(k + 1) * self.n]
+    }
+
+    fn len(&self) -> usize {
+        self.indices.len()
+    }
+}
+
+/// Coordinates of `p` in the contact plane of unit normal `normal`, through the Householder
+/// reflection that maps e_k to −sign(n_k) n: its other columns are an orthonormal basis of
+/// the plane.
+fn plane_coordinates(normal: &[f64], p: &[f64], out: &mut Small) {
+    let n = normal.len();
+    let k = (0..n)
+        .max_by(|&i, &j| normal[i].abs().total_cmp(&normal[j].abs()))
+        .unwrap_or(0);
+    let mut v: Small = SmallVec::from_slice(normal);
+    v[k] += if normal[k] < 0.0 { -1.0 } else { 1.0 };
+    let vv = dot(&v, &v);
+    let vp = dot(&v, p);
+    out.clear();
+    for j in 0..n {
+        if j != k {
+            out.push(p[j] - 2.0 * v[j] * vp / vv);
+        }
+    }
+}
+
+/// Returns the contact manifold of two convex hulls along the contact normal `normal` (from
+/// A towards B, as a narrow phase such as GJK–EPA reports it; it need not be unit), or None
+/// when their supports along it are apart by more than `margin`.
+///
+/// # Errors
+/// [`ShapeError::InvalidQuery`](crate::dynamics::motion::shape::ShapeError::InvalidQuery) if a hull is malformed ([`PlacedHull::check`]), the
+/// dimensions differ, the normal is zero or not finite, or the margin is negative.
+pub fn hull_manifold(
+    a: &PlacedHull<'_>,
+    b: &PlacedHull<'_>,
+    normal: &[f64],
+    margin: f64,
+) -> Result<Option<ContactManifold>, DynamicsError> {
+    let mut reducer = None;
+    let scale = a.radius().max(b.radius()).max(f64::MIN_POSITIVE);
+    let touching = hull_vertices(a, b, normal, margin, &mut |unit, v| {
+        reducer
+            .get_or_insert_with(|| Reducer::new(unit.len(), unit))
+            .offer(v, scale)
+    })?;
+    Ok(match (touching, reducer) {
+        (Some(_), Some(r)) => Some(r.finish(scale)),
+        (Some(unit), None) => Some(ContactManifold::new(&unit)),
+        (None, _) => None,
+    })
+}
+
+/// Calls `visit` for every vertex of the contact region of two hulls along `normal` (all
+/// of them, before any reduction), at depth ≥ −`margin`.
+///
+/// # Errors
+/// As [`hull_manifold`].
+pub fn hull_contact_vertices(
+    a: &PlacedHull<'_>,
+    b: &PlacedHull<'_>,
+    normal: &[f64],
+    margin: f64,
+    mut visit: impl FnMut(RegionVertex<'_>),
+) -> Result<(), DynamicsError> {
+    hull_vertices(a, b, normal, margin, &mut |_, v| visit(v)).map(|_| ())
+}
+
+/// Checks, finds the support sets and visits the region's vertices with the unit normal;
+/// returns the unit normal, or None when the supports are apart by more than `margin`.
+fn hull_vertices(
+    a: &PlacedHull<'_>,
+    b: &PlacedHull<'_>,
+    normal: &[f64],
+    margin: f64,
+    visit: &mut dyn FnMut(&[f64], RegionVertex<'_>),
+) -> Result<Option<Small>, DynamicsError> {
+    a.check()?;
+    b.check()?;
+    let n = a.dim();
+    let bad =
+        |what: &'static str, reason: String| Err(ShapeError::InvalidQuery { what, reason }.into());
+    if b.dim() != n || normal.len() != n {
+        return bad(
+            "hull pair",
+            format!(
+                "dimensions {}, {} and normal of {}",
+                n,
+                b.dim(),
+                normal.len()
+            ),
+        );
+    }
+    let length = dot(normal, normal).sqrt();
+    if !(length.is_finite() && length > 0.0) {
+        return bad(
+            "contact normal",
+            format!("{normal:?} is not a finite non-zero vector"),
+        );
+    }
+    if !(margin.is_finite() && margin >= 0.0) {
+        return bad(
+            "contact margin",
+            format!("{margin} is not a finite number ≥ 0"),
+        );
+    }
+    let unit: Small = normal.iter().map(|x| x / length).collect();
+    let (sa, top_a) = SupportSet::new(a, &unit, 1.0, SUPPORT_TOLERANCE * a.radius());
+    let (sb, bottom_b) = SupportSet::new(b, &unit, -1.0, SUPPORT_TOLERANCE * b.radius());
+    if top_a - bottom_b < -margin {
+        return Ok(None);
+    }
+    let scale = a.radius().max(b.radius()).max(f64::MIN_POSITIVE);
+    hull_region(&sa, &sb, &unit, margin, scale, &mut |v| visit(&unit, v));
+    Ok(Some(unit))
+}
+
+/// The crossings of simplices of `sa` with simplices of `sb` in the contact plane.
+fn hull_region(
+    sa: &SupportSet,
+    sb: &SupportSet,
+    normal: &[f64],
+    margin: f64,
+    scale: f64,
+    visit: &mut dyn FnMut(RegionVertex<'_>),
+) {
+    let n = normal.len();
+    let d = n - 1;
+    let mut xa: SmallVec<[f64; 64]> = SmallVec::new();
+    let mut xb: SmallVec<[f64; 64]> = SmallVec::new();
+    let mut c: Small = SmallVec::new();
+    for k in 0..sa.len() {
+        plane_coordinates(normal, sa.point(k), &mut c);
+        xa.extend_from_slice(&c);
+    }
+    for k in 0..sb.len() {
+        plane_coordinates(normal, sb.point(k), &mut c);
+        xb.extend_from_slice(&c);
+    }
+    let tol = 1e-9 * scale;
+    let bary_tol = 1e-9;
+    let mut columns: SmallVec<[f64; 64]> = SmallVec::new();
+    let mut rhs: Small = SmallVec::new();
+    let mut z: Small = SmallVec::new();
+    let (mut pa, mut pb): (Small, Small) =
+        (SmallVec::from_elem(0.0, n), SmallVec::from_elem(0.0, n));
+    let mut x: Small = SmallVec::from_elem(0.0, d);
+    for mask_a in 1u32..(1 << sa.len()) {
+        let ka = mask_a.count_ones() as usize;
+        if ka > d + 1 {
+            continue;
+        }
+        for mask_b in 1u32..(1 << sb.len()) {
+            let kb = mask_b.count_ones() as usize;
+            if ka + kb > d + 2 {
+                continue;
+            }
+            let ia: SmallVec<[usize; 8]> = (0..sa.len()).filter(|i| mask_a >> i & 1 == 1).collect();
+            let ib: SmallVec<[usize; 8]> = (0..sb.len()).filter(|i| mask_b >> i & 1 == 1).collect();
+            let a0 = &xa[ia[0] * d..(ia[0] + 1) * d];
+            let b0 = &xb[ib[0] * d..(ib[0] + 1) * d];
+            // Columns: a_i − a_0 (i ≥ 1), −(b_j − b_0) (j ≥ 1); right side b_0 − a_0.
+            columns.clear();
+            for &i in &ia[1..] {
+                columns.extend((0..d).map(|t| xa[i * d + t] - a0[t]));
+            }
+            for &j in &ib[1..] {
+                columns.extend((0..d).map(|t| -(xb[j * d + t] - b0[t])));
+            }
+            rhs.clear();
+            rhs.extend((0..d).map(|t| b0[t] - a0[t]));
+            let m = ka + kb - 2;
+            if !least_squares(&mut columns, d, m, &mut rhs, &mut z, tol) {
+                continue;
+            }
+            // Barycentric coordinates within both simplices.
+            let sum_a: f64 = z[..ka - 1].iter().sum();
+            let sum_b: f64 = z[ka - 1..].iter().sum();
+            if z.iter().any(|w| *w < -bary_tol) || sum_a > 1.0 + bary_tol || sum_b > 1.0 + bary_tol
+            {
+                continue;
+            }
+            for k in 0..n {
+                pa[k] = (1.0 - sum_a) * sa.point(ia[0])[k]
+                    + ia[1..]
+                        .iter()
+                        .zip(&z[..ka - 1])
+                        .map(|(&i, w)| w * sa.point(i)[k])
+                        .sum::<f64>();
+                pb[k] = (1.0 - sum_b) * sb.point(ib[0])[k]
+                    + ib[1..]
+                        .iter()
+                        .zip(&z[ka - 1..])
+                        .map(|(&j, w)| w * sb.point(j)[k])
+                        .sum::<f64>();
+            }
+            let depth = dot(normal, &pa) - dot(normal, &pb);
+            if depth < -margin {
+                continue;
+            }
+            for t in 0..d {
+                x[t] = (1.0 - sum_a) * a0[t]
+                    + ia[1..]
+                        .iter()
+                        .zip(&z[..ka - 1])
+                        .map(|(&i, w)| w * xa[i * d + t])
+                        .sum::<f64>();
+            }
+            // A full-dimensional simplex only says "inside": leave it out of the id, so that
+            // the id does not depend on which of the simplices holding the point found it.
+            let mut hash = 0xcbf2_9ce4_8422_2325u64;
+            let mut mix = |v: u64| {
+                hash ^= v;
+                hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
+            };
+            if ka <= d {
+                ia.iter().for_each(|&i| mix(sa.indices[i] as u64 + 1));
+            }
+            mix(u64::MAX);
+            if kb <= d {
+                ib.iter().for_each(|&j| mix(sb.indices[j] as u64 + 1));
+            }
+            visit(RegionVertex {
+                point_a: &pa,
+                point_b: &pb,
+                plane: &x,
+                depth,
+                id: FeatureId(KIND_HULL | hash >> 2),
+            });
+        }
+    }
+}
+
+/// Solves the d × m least-squares problem (columns flat, column after column) by
+/// Gram–Schmidt QR; false when the columns are dependent (relative to `tol`) or the residual
+/// exceeds `tol` (the flats do not meet).
+fn least_squares(
+    columns: &mut SmallVec<[f64; 64]>,
+    d: usize,
+    m: usize,
+    rhs: &mut Small,
+    z: &mut Small,
+    tol: f64,
+) -> bool {
+    // R, upper triangular m × m, from modified Gram–Schmidt twice.
+    let mut r: SmallVec<[f64; 64]> = SmallVec::from_elem(0.0, m * m);
+    for j in 0..m {
+        let original = dot(&columns[j * d..(j + 1) * d], &columns[j * d..(j + 1) * d]).sqrt();
+        for _ in 0..2 {
+            for i in 0..j {
+                let (qi, qj) = columns.split_at_mut(j * d);
+                let qi = &qi[i * d..(i + 1) * d];
+                let qj = &mut qj[..d];
+                let p = dot(qi, qj);
+                r[i * m + j] += p;
+                qj.iter_mut().zip(qi).for_each(|(x, y)| *x -= p * y);
+            }
+        }
+        let qj = &mut columns[j * d..(j + 1) * d];
+        let len = dot(qj, qj).sqrt();
+        if len.is_nan() || len <= 1e-9 * original.max(tol) {
+            return false;
+        }
+        qj.iter_mut().for_each(|x| *x /= len);
+        r[j * m + j] = len;
+    }
+    // z = R⁻¹ Qᵀ rhs, residual = rhs − Q Qᵀ rhs.
+    z.clear();
+    for j in 0..m {
+        let q = &columns[j * d..(j + 1) * d];
+        let p = dot(q, rhs);
+        z.push(p);
+        rhs.iter_mut().zip(q).for_each(|(x, y)| *x -= p * y);
+    }
+    let residual = dot(rhs, rhs).sqrt();
+    if residual.is_nan() || residual > tol {
+        return false;
+    }
+    for j in (0..m).rev() {
+        for k in j + 1..m {
+            z[j] -= r[j * m + k] * z[k];
+        }
+        z[j] /= r[j * m + j];
+    }
+    true
+}
