@@ -108,7 +108,7 @@ impl BroadPhase {
     /// Returns an empty broad phase for boxes in `dim` dimensions.
     ///
     /// # Errors
-    /// [`ShapeError::InvalidQuery`](crate::dynamics::motion::shape::ShapeError::InvalidQuery) if `dim` is 0.
+    /// [`ShapeError::InvalidQuery`] if `dim` is 0.
     pub fn new(dim: usize) -> Result<BroadPhase, DynamicsError> {
         if dim == 0 {
             return Err(ShapeError::InvalidQuery {
@@ -146,7 +146,7 @@ impl BroadPhase {
     /// bodies held by a joint).
     ///
     /// # Errors
-    /// [`ShapeError::InvalidQuery`](crate::dynamics::motion::shape::ShapeError::InvalidQuery) if i = j or an index does not fit in 31 bits.
+    /// [`ShapeError::InvalidQuery`] if i = j or an index does not fit in 31 bits.
     pub fn exclude_pair(&mut self, i: usize, j: usize) -> Result<(), DynamicsError> {
         self.excluded.insert(checked_key(i, j)?);
         Ok(())
@@ -174,7 +174,7 @@ impl BroadPhase {
     /// passed each time for that (another number starts afresh).
     ///
     /// # Errors
-    /// [`ShapeError::InvalidQuery`](crate::dynamics::motion::shape::ShapeError::InvalidQuery) if the lengths are not equal multiples of N, a
+    /// [`ShapeError::InvalidQuery`] if the lengths are not equal multiples of N, a
     /// bound is not finite, a lower bound exceeds its upper bound, or there are 2³¹ bodies
     /// or more.
     pub fn update(

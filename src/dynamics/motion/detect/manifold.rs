@@ -209,7 +209,7 @@ fn check_pair(a: &PlacedBox<'_>, b: &PlacedBox<'_>, margin: f64) -> Result<(), D
 /// can treat contacts about to close).
 ///
 /// # Errors
-/// [`ShapeError::InvalidQuery`](crate::dynamics::motion::shape::ShapeError::InvalidQuery) if a box is malformed ([`PlacedBox::check`]), the
+/// [`ShapeError::InvalidQuery`] if a box is malformed ([`PlacedBox::check`]), the
 /// dimensions differ, or the margin is negative or not finite.
 pub fn box_manifold(
     a: &PlacedBox<'_>,
@@ -770,7 +770,7 @@ impl PlacedHull<'_> {
     /// Checks lengths, finiteness and orthogonality.
     ///
     /// # Errors
-    /// [`ShapeError::InvalidQuery`](crate::dynamics::motion::shape::ShapeError::InvalidQuery) naming the bad part.
+    /// [`ShapeError::InvalidQuery`] naming the bad part.
     pub fn check(&self) -> Result<(), DynamicsError> {
         let n = self.dim();
         let bad = |what: &'static str, reason: String| {
@@ -926,7 +926,7 @@ fn plane_coordinates(normal: &[f64], p: &[f64], out: &mut Small) {
 /// when their supports along it are apart by more than `margin`.
 ///
 /// # Errors
-/// [`ShapeError::InvalidQuery`](crate::dynamics::motion::shape::ShapeError::InvalidQuery) if a hull is malformed ([`PlacedHull::check`]), the
+/// [`ShapeError::InvalidQuery`] if a hull is malformed ([`PlacedHull::check`]), the
 /// dimensions differ, the normal is zero or not finite, or the margin is negative.
 pub fn hull_manifold(
     a: &PlacedHull<'_>,

@@ -73,7 +73,7 @@ impl PlacedBox<'_> {
     /// Checks lengths, finiteness, signs and orthogonality.
     ///
     /// # Errors
-    /// [`ShapeError::InvalidQuery`](crate::dynamics::motion::shape::ShapeError::InvalidQuery) naming the bad part.
+    /// [`ShapeError::InvalidQuery`] naming the bad part.
     pub fn check(&self) -> Result<(), DynamicsError> {
         let n = self.dim();
         let bad = |what: &'static str, reason: String| {
@@ -387,7 +387,7 @@ pub(crate) fn for_each_axis(
 /// give depth 0 (to round-off).
 ///
 /// # Errors
-/// [`ShapeError::InvalidQuery`](crate::dynamics::motion::shape::ShapeError::InvalidQuery) if a box is malformed ([`PlacedBox::check`]) or the
+/// [`ShapeError::InvalidQuery`] if a box is malformed ([`PlacedBox::check`]) or the
 /// dimensions differ.
 pub fn box_box(a: &PlacedBox<'_>, b: &PlacedBox<'_>) -> Result<BoxPairAxis, DynamicsError> {
     a.check()?;
