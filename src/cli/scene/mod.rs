@@ -62,14 +62,15 @@ Scene file keys (TOML; unknown keys are errors):
   integrator = \"splitting\" (default: symplectic, contact and joints) | \"rk4\" (forces only)
   [[body]]   name, shape (body SPEC: rotorflow help bodies), mass, position, velocity,
              omega (own axes, planes 12,13,...), attitude (N*N numbers row-major or N rows;
-             a rotation)
+             a rotation), friction, restitution (against other bodies: mu = sqrt(mu1 mu2),
+             e = max(e1, e2)), fixed (never moves), collide (false: touches nothing)
   [[plane]]  normal, offset (the plane normal.x = offset, solid opposite the normal), friction,
              restitution
   [[spring]] body, point (own axes), anchor (a point of space) | other (a body) + other_point,
              stiffness, rest_length, damping
   [[joint]]  body, point, anchor | other + other_point  (ball joint)
-  (one [[body]] per body, double brackets; dt < t_end and at most a tenth of each spring's
-  period 2π√(m_eff/k))
+  (one [[body]] per body, double brackets; every pair of bodies collides but jointed ones;
+  dt < t_end and at most a tenth of each spring's period 2π√(m_eff/k))
 Without --output, --csv-dir, --html or --plot a summary is printed: energy drift, momentum
 change, final positions. Outputs are written only after a run succeeds, each whole or not at
 all.";
