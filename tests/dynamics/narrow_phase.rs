@@ -183,13 +183,21 @@ fn random_polytope_distances_match_wolfe_in_2_to_6_dimensions() {
     let per_dimension = [3000, 3000, 2000, 1200, 800];
     let mut total = 0;
     for (n, &pairs) in (2..=6).zip(&per_dimension) {
-        let [overlapping, separated, wrong, nonfinite, iterations] =
-            polytope_distance_run(100 + n as u64, n, pairs);
+        let [
+            overlapping,
+            separated,
+            wrong,
+            nonfinite,
+            iterations,
+            uncertified,
+        ] = polytope_distance_run(100 + n as u64, n, pairs);
         println!(
             "N = {n}: {pairs} pairs, {overlapping} overlapping, {separated} separated, \
-             {wrong} wrong beyond 1e-9, {nonfinite} non-finite, at most {iterations} GJK iterations"
+             {wrong} wrong beyond 1e-9, {nonfinite} non-finite, at most {iterations} GJK \
+             iterations, {uncertified} left unchecked by the reference"
         );
-        assert_eq!(overlapping + separated + nonfinite, pairs);
+        assert_eq!(overlapping + separated + nonfinite + uncertified, pairs);
+        assert_eq!(uncertified, 0);
         assert!(overlapping > pairs / 10 && separated > pairs / 10);
         assert_eq!((wrong, nonfinite), (0, 0));
         total += pairs;
