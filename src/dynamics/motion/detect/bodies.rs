@@ -55,6 +55,11 @@ pub(crate) struct Touching {
     /// The pairs of bodies held together by a joint (a < b), which do not touch each other:
     /// their shapes meet at the joint by design.
     joined: Vec<(usize, usize)>,
+    /// The bodies with a shape, sorted by the low end of their bounding interval on the
+    /// first axis (kept for its room).
+    order: Vec<usize>,
+    /// Each body's bounding interval on the first axis (kept for its room).
+    ends: Vec<(f64, f64)>,
     /// The pairs found by the last [`Touching::scan`]; entries past `len` keep their room.
     found: Vec<PairContact>,
     len: usize,
@@ -95,67 +100,104 @@ impl Touching {
         self.convex.iter().filter(|c| c.is_some()).count() >= 2
     }
 
-    /// Finds the pairs of bodies whose signed distance is at most `within` (an absolute
-    /// length), with each body's own axes `q(i)` (row-major, own axes → space). Pairs whose
-    /// bounding balls are farther apart are not asked (the broad phase).
+    /// Finds the pairs of bodies whose signed distance is at most `factor` times the sum of
+    /// their bounding radii, with each body's own axes `q(i)` (row-major, own axes → space).
+    /// The broad phase sweeps the bodies' bounding intervals along the first axis (sorted
+    /// in place, so n log n for bodies spread along it), and pairs whose bounding balls are
+    /// farther apart are not asked.
     pub(crate) fn scan<'q>(
         &mut self,
         bodies: &[MovingBody],
         q: impl Fn(usize) -> &'q [f64],
-        within: impl Fn(usize, usize) -> f64,
+        factor: f64,
     ) {
         self.len = 0;
-        for a in 0..bodies.len() {
-            let Some(ca) = &self.convex[a] else {
-                continue;
-            };
-            let xa = bodies[a].position().as_slice();
-            for b in a + 1..bodies.len() {
-                let Some(cb) = &self.convex[b] else {
-                    continue;
-                };
-                if bodies[a].is_fixed() && bodies[b].is_fixed() || self.joined.contains(&(a, b)) {
-                    continue;
+        // Each body's bounding interval on the first axis, taken out of `self` while the
+        // pairs are asked.
+        let mut ends = std::mem::take(&mut self.ends);
+        ends.clear();
+        ends.extend(bodies.iter().zip(&self.radius).map(|(b, r)| {
+            let (x, e) = (b.position().as_slice()[0], r * (1.0 + factor));
+            (x - e, x + e)
+        }));
+        let mut order = std::mem::take(&mut self.order);
+        order.clear();
+        order.extend((0..bodies.len()).filter(|&i| self.convex[i].is_some()));
+        order.sort_unstable_by(|&i, &j| ends[i].0.total_cmp(&ends[j].0));
+        for (k, &first) in order.iter().enumerate() {
+            for &second in &order[k + 1..] {
+                if ends[second].0 > ends[first].1 {
+                    break;
                 }
-                let xb = bodies[b].position().as_slice();
-                let reach = within(a, b);
-                let centres: f64 = xa.iter().zip(xb).map(|(p, q)| (p - q) * (p - q)).sum();
-                let bound = self.radius[a] + self.radius[b] + reach;
-                if centres > bound * bound {
-                    continue;
-                }
-                let (Ok(pa), Ok(pb)) = (
-                    PlacedShape::new(ca, xa, q(a)),
-                    PlacedShape::new(cb, xb, q(b)),
-                ) else {
-                    continue;
-                };
-                let Ok(p) = penetration_with(&mut self.workspace, &pa, &pb) else {
-                    continue;
-                };
-                if -p.depth > reach {
-                    continue;
-                }
-                if self.len == self.found.len() {
-                    self.found.push(PairContact::default());
-                }
-                let c = &mut self.found[self.len];
-                c.a = a;
-                c.b = b;
-                c.gap = -p.depth;
-                c.normal.clear();
-                c.normal.extend_from_slice(p.normal.as_slice());
-                c.point.clear();
-                c.point.extend(
-                    p.witness_a
-                        .as_slice()
-                        .iter()
-                        .zip(p.witness_b.as_slice())
-                        .map(|(x, y)| 0.5 * (x + y)),
-                );
-                self.len += 1;
+                let (a, b) = (first.min(second), first.max(second));
+                self.pair(bodies, &q, (a, b), factor);
             }
         }
+        self.order = order;
+        self.ends = ends;
+    }
+
+    /// Asks the narrow phase for the pair (a, b), a < b, and records it if its signed
+    /// distance is at most `factor` times the sum of their bounding radii.
+    fn pair<'q>(
+        &mut self,
+        bodies: &[MovingBody],
+        q: &impl Fn(usize) -> &'q [f64],
+        (a, b): (usize, usize),
+        factor: f64,
+    ) {
+        let (Some(ca), Some(cb)) = (&self.convex[a], &self.convex[b]) else {
+            return;
+        };
+        if bodies[a].is_fixed() && bodies[b].is_fixed() || self.joined.contains(&(a, b)) {
+            return;
+        }
+        let (xa, xb) = (
+            bodies[a].position().as_slice(),
+            bodies[b].position().as_slice(),
+        );
+        let reach = self.reach((a, b), factor);
+        let centres: f64 = xa.iter().zip(xb).map(|(p, q)| (p - q) * (p - q)).sum();
+        let bound = self.radius[a] + self.radius[b] + reach;
+        if centres > bound * bound {
+            return;
+        }
+        let (Ok(pa), Ok(pb)) = (
+            PlacedShape::new(ca, xa, q(a)),
+            PlacedShape::new(cb, xb, q(b)),
+        ) else {
+            return;
+        };
+        let Ok(p) = penetration_with(&mut self.workspace, &pa, &pb) else {
+            return;
+        };
+        if -p.depth > reach {
+            return;
+        }
+        if self.len == self.found.len() {
+            self.found.push(PairContact::default());
+        }
+        let c = &mut self.found[self.len];
+        c.a = a;
+        c.b = b;
+        c.gap = -p.depth;
+        c.normal.clear();
+        c.normal.extend_from_slice(p.normal.as_slice());
+        c.point.clear();
+        c.point.extend(
+            p.witness_a
+                .as_slice()
+                .iter()
+                .zip(p.witness_b.as_slice())
+                .map(|(x, y)| 0.5 * (x + y)),
+        );
+        self.len += 1;
+    }
+
+    /// `factor` times the sum of the bounding radii of bodies `a` and `b`: the distance
+    /// within which [`Touching::scan`] with that factor reports the pair.
+    pub(crate) fn reach(&self, (a, b): (usize, usize), factor: f64) -> f64 {
+        factor * (self.radius[a] + self.radius[b])
     }
 
     /// The pairs the last [`Touching::scan`] found.

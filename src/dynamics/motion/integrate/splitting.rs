@@ -273,11 +273,7 @@ impl MotionSplitting {
         self.solver.find_joints(bodies, joints);
         if self.touching.any_pairs() {
             let (touching, placements) = (&mut self.touching, &self.placements);
-            touching.scan(
-                bodies,
-                |i| &placements.get(i).q,
-                |a, b| CONTACT_TOLERANCE * touching_radii(placements, a, b),
-            );
+            touching.scan(bodies, |i| &placements.get(i).q, CONTACT_TOLERANCE);
             self.solver.set_pairs(self.touching.found(), bodies);
         } else {
             self.solver.pairs.clear();
@@ -502,11 +498,8 @@ impl MotionSplitting {
         self.active_pairs.clear();
         if self.touching.any_pairs() {
             let placements = &self.placements;
-            self.touching.scan(
-                system.bodies(),
-                |i| &placements.get(i).q,
-                |a, b| CONTACT_TOLERANCE * touching_radii(placements, a, b),
-            );
+            self.touching
+                .scan(system.bodies(), |i| &placements.get(i).q, CONTACT_TOLERANCE);
             self.active_pairs
                 .extend(self.touching.found().iter().map(|c| (c.a, c.b)));
         }
@@ -520,15 +513,12 @@ impl MotionSplitting {
             return f64::INFINITY;
         }
         let placements = &self.placements;
-        self.touching.scan(
-            system.bodies(),
-            |i| &placements.get(i).q,
-            |a, b| touching_radii(placements, a, b),
-        );
+        self.touching
+            .scan(system.bodies(), |i| &placements.get(i).q, 1.0);
         let mut worst = f64::INFINITY;
         for c in self.touching.found() {
             if !self.active_pairs.contains(&(c.a, c.b)) {
-                let reach = CONTACT_TOLERANCE * touching_radii(&self.placements, c.a, c.b);
+                let reach = self.touching.reach((c.a, c.b), CONTACT_TOLERANCE);
                 worst = worst.min(c.gap / reach);
             }
         }
@@ -764,12 +754,6 @@ fn for_each_candidate(
             });
         }
     }
-}
-
-/// The sum of the radii of the contact shapes of bodies `a` and `b`, which the contact
-/// tolerance between them scales with.
-fn touching_radii(placements: &Placements, a: usize, b: usize) -> f64 {
-    placements.get(a).radius + placements.get(b).radius
 }
 
 /// Writes into `gap` the gap between the two ends of `joint` (zero when it holds), its
