@@ -34,7 +34,7 @@ use super::sat::{
     AxisFeature, BoxPairAxis, PlacedBox, Relative, box_box_unchecked, cell_axis, dot,
 };
 use crate::dynamics::DynamicsError;
-use crate::dynamics::motion::shape::ShapeError;
+use crate::dynamics::motion::shape::{ShapeError, check_placement};
 use smallvec::SmallVec;
 
 /// The most points a manifold holds in any dimension.
@@ -788,24 +788,9 @@ impl PlacedHull<'_> {
                 ),
             );
         }
-        if self.rotation.len() != n * n {
-            return bad(
-                "hull rotation",
-                format!(
-                    "{} numbers, {} expected (N × N)",
-                    self.rotation.len(),
-                    n * n
-                ),
-            );
-        }
-        if let Some(x) = self
-            .vertices
-            .iter()
-            .chain(self.position)
-            .chain(self.rotation)
-            .find(|x| !x.is_finite())
-        {
-            return bad("hull", format!("{x} is not finite"));
+        check_placement(n, self.position, self.rotation)?;
+        if let Some(x) = self.vertices.iter().find(|x| !x.is_finite()) {
+            return bad("hull vertices", format!("{x} is not finite"));
         }
         super::sat::check_rotation(n, self.rotation)
     }

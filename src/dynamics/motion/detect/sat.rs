@@ -22,7 +22,7 @@
 //! [`MAX_BOX_DIM`] dimensions (above it, a support-function method such as GJK applies).
 
 use crate::dynamics::DynamicsError;
-use crate::dynamics::motion::shape::ShapeError;
+use crate::dynamics::motion::shape::{ShapeError, check_placement};
 use smallvec::SmallVec;
 
 /// The largest dimension of the box queries: C(2N, N − 1) axes is 167,960 at N = 10.
@@ -85,39 +85,14 @@ impl PlacedBox<'_> {
                 format!("{n} half-lengths: boxes have 2 to {MAX_BOX_DIM} dimensions"),
             );
         }
-        if self.position.len() != n {
-            return bad(
-                "box position",
-                format!(
-                    "{} numbers for a box in {n} dimensions",
-                    self.position.len()
-                ),
-            );
-        }
-        if self.rotation.len() != n * n {
-            return bad(
-                "box rotation",
-                format!(
-                    "{} numbers, {} expected (N × N)",
-                    self.rotation.len(),
-                    n * n
-                ),
-            );
-        }
+        // The placement as every detection query checks it (lengths, finite numbers).
+        check_placement(n, self.position, self.rotation)?;
         if let Some(h) = self
             .half_lengths
             .iter()
             .find(|h| !(h.is_finite() && **h >= 0.0))
         {
             return bad("box half-length", format!("{h} is not a finite number ≥ 0"));
-        }
-        if let Some(x) = self
-            .position
-            .iter()
-            .chain(self.rotation)
-            .find(|x| !x.is_finite())
-        {
-            return bad("box placement", format!("{x} is not finite"));
         }
         check_rotation(n, self.rotation)?;
         Ok(())
