@@ -1,39 +1,11 @@
 //! Collision detection between bodies (`dynamics::motion::detect`) never touches the heap
 //! for N ≤ 8: box–box separating axes, box and hull contact manifolds, and the broad
-//! phase's updates after its first call. A counting global allocator asserts it, as in
-//! `tests/no_heap.rs`.
+//! phase's updates after its first call (counted by the allocator of `tests/no_heap.rs`).
 
+use super::allocations_in;
 use rotorflow::dynamics::motion::detect::{
     BroadPhase, PlacedBox, PlacedHull, box_box, box_manifold, hull_manifold,
 };
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
-
-struct Counting;
-
-thread_local! {
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-// SAFETY: forwards to the system allocator and only counts calls.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.with(|c| c.set(c.get() + 1));
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-}
-
-#[global_allocator]
-static GLOBAL: Counting = Counting;
-
-fn allocations_in(f: impl FnOnce()) -> usize {
-    let before = ALLOCATIONS.with(Cell::get);
-    f();
-    ALLOCATIONS.with(Cell::get) - before
-}
 
 /// The rotation by `angle` in the planes (0, 1), (2, 3), …, row-major.
 fn turned(n: usize, angle: f64) -> Vec<f64> {
