@@ -20,6 +20,7 @@ mod motion_checks;
 mod moving_bodies;
 mod names;
 mod narrow_phase;
+mod stacks;
 mod orders;
 mod paper_errata;
 mod torqued;

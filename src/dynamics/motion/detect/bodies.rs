@@ -2,9 +2,9 @@
 //! whose bounding balls come within reach (the broad phase), and for each such pair the
 //! signed distance, the contact normal and the contact point (the narrow phase).
 
-use super::{EpaWorkspace, PlacedShape, penetration_with};
+use super::{EpaWorkspace, PlacedHull, PlacedShape, hull_manifold, penetration_with};
 use crate::dynamics::motion::forques::Anchor;
-use crate::dynamics::motion::shape::ConvexShape;
+use crate::dynamics::motion::shape::{ConvexCore, ConvexShape};
 use crate::dynamics::motion::{BallJoint, ContactShape, MovingBody};
 use smallvec::SmallVec;
 
@@ -29,14 +29,22 @@ pub(crate) fn convex_of(shape: &ContactShape, n: usize) -> Option<ConvexShape> {
     }
 }
 
-/// Where two bodies come closest or overlap most.
+/// A point where two bodies touch: where they come closest or overlap most, or one point of
+/// the contact manifold of two polytopes.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct PairContact {
     /// The two bodies, by index (a < b).
     pub a: usize,
     pub b: usize,
-    /// The signed distance (negative: overlap depth).
+    /// The features of the two shapes that make the point (see
+    /// [`FeatureId`](super::FeatureId); 0 for the single point of curved shapes), so that a
+    /// solve can start from the impulse of the same point in the last solve.
+    pub feature: u64,
+    /// The signed distance at the point (negative: overlap depth).
     pub gap: f64,
+    /// The distance within which the pair counts as touching (the scan's factor times the
+    /// sum of the bounding radii).
+    pub reach: f64,
     /// The unit normal from body `a` to body `b`.
     pub normal: SmallVec<[f64; 8]>,
     /// The contact point in space: midway between the two witness points.
@@ -105,11 +113,17 @@ impl Touching {
     /// The broad phase sweeps the bodies' bounding intervals along the first axis (sorted
     /// in place, so n log n for bodies spread along it), and pairs whose bounding balls are
     /// farther apart are not asked.
+    ///
+    /// With `manifold: Some(slop)`, two polytopes in contact are reported by the points of
+    /// their contact manifold (up to `slop` times the sum of their bounding radii apart:
+    /// points about to close are kept with their positive gap, so that a box tilting onto
+    /// its face is caught by its corner); otherwise, and for curved shapes, by one point.
     pub(crate) fn scan<'q>(
         &mut self,
         bodies: &[MovingBody],
         q: impl Fn(usize) -> &'q [f64],
         factor: f64,
+        manifold: Option<f64>,
     ) {
         self.len = 0;
         // Each body's bounding interval on the first axis, taken out of `self` while the
@@ -130,7 +144,7 @@ impl Touching {
                     break;
                 }
                 let (a, b) = (first.min(second), first.max(second));
-                self.pair(bodies, &q, (a, b), factor);
+                self.pair(bodies, &q, (a, b), factor, manifold);
             }
         }
         self.order = order;
@@ -145,6 +159,7 @@ impl Touching {
         q: &impl Fn(usize) -> &'q [f64],
         (a, b): (usize, usize),
         factor: f64,
+        manifold: Option<f64>,
     ) {
         let (Some(ca), Some(cb)) = (&self.convex[a], &self.convex[b]) else {
             return;
@@ -174,16 +189,40 @@ impl Touching {
         if -p.depth > reach {
             return;
         }
-        if self.len == self.found.len() {
-            self.found.push(PairContact::default());
+        if let (Some(slop), ConvexCore::Hull(va), ConvexCore::Hull(vb)) =
+            (manifold, ca.core(), cb.core())
+            && ca.margin() == 0.0
+            && cb.margin() == 0.0
+        {
+            let placed = |vertices, x, q| PlacedHull {
+                vertices,
+                position: x,
+                rotation: q,
+            };
+            let margin = slop * (self.radius[a] + self.radius[b]);
+            if let Ok(Some(m)) = hull_manifold(
+                &placed(va, xa, q(a)),
+                &placed(vb, xb, q(b)),
+                p.normal.as_slice(),
+                margin,
+            ) && !m.is_empty()
+            {
+                for point in m.points() {
+                    let c = self.next((a, b), point.id.0, -point.depth, m.normal());
+                    c.reach = reach;
+                    c.point.extend(
+                        point
+                            .point_a
+                            .iter()
+                            .zip(point.point_b)
+                            .map(|(x, y)| 0.5 * (x + y)),
+                    );
+                }
+                return;
+            }
         }
-        let c = &mut self.found[self.len];
-        c.a = a;
-        c.b = b;
-        c.gap = -p.depth;
-        c.normal.clear();
-        c.normal.extend_from_slice(p.normal.as_slice());
-        c.point.clear();
+        let c = self.next((a, b), 0, -p.depth, p.normal.as_slice());
+        c.reach = reach;
         c.point.extend(
             p.witness_a
                 .as_slice()
@@ -191,7 +230,30 @@ impl Touching {
                 .zip(p.witness_b.as_slice())
                 .map(|(x, y)| 0.5 * (x + y)),
         );
+    }
+
+    /// The next entry of the found pairs, set to the pair, feature, gap and normal given and
+    /// an empty point.
+    fn next(
+        &mut self,
+        (a, b): (usize, usize),
+        feature: u64,
+        gap: f64,
+        normal: &[f64],
+    ) -> &mut PairContact {
+        if self.len == self.found.len() {
+            self.found.push(PairContact::default());
+        }
+        let c = &mut self.found[self.len];
         self.len += 1;
+        c.a = a;
+        c.b = b;
+        c.feature = feature;
+        c.gap = gap;
+        c.normal.clear();
+        c.normal.extend_from_slice(normal);
+        c.point.clear();
+        c
     }
 
     /// `factor` times the sum of the bounding radii of bodies `a` and `b`: the distance
