@@ -20,9 +20,9 @@ mod motion_checks;
 mod moving_bodies;
 mod names;
 mod narrow_phase;
-mod stacks;
 mod orders;
 mod paper_errata;
+mod stacks;
 mod torqued;
 
 #[path = "../support/mod.rs"]

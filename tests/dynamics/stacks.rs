@@ -17,6 +17,7 @@ fn axis(n: usize, i: usize, x: f64) -> Vector {
 }
 
 /// A cube of half-length `half` and mass 1 in N dimensions at `x`, at rest.
+#[allow(dead_code)]
 fn cube(n: usize, half: f64, x: &[f64], friction: f64) -> MovingBody {
     turned_cube(n, half, x, friction, Rotor::identity(n))
 }
@@ -51,7 +52,13 @@ struct Outcome {
 /// alternating) and dropped from `drop` above the one below, run for `seconds` with step h.
 /// The top box's sink is measured from its resting height, its slide from where it was
 /// dropped.
-fn tower(n: usize, count: usize, (offset, turn, drop): (f64, f64, f64), h: f64, seconds: f64) -> Outcome {
+fn tower(
+    n: usize,
+    count: usize,
+    (offset, turn, drop): (f64, f64, f64),
+    h: f64,
+    seconds: f64,
+) -> Outcome {
     let bodies: Vec<MovingBody> = (0..count)
         .map(|k| {
             let mut x = vec![0.0; n];
@@ -116,7 +123,12 @@ fn a_tower_of_six_cubes_stands() {
 /// turned alternately by ±3° in the plane of the first two axes.
 #[test]
 fn three_offset_hypercubes_stand() {
-    for (h, turn) in [(1.0 / 60.0, 0.0), (1e-3, 0.0), (1.0 / 60.0, 3.0), (1e-3, 3.0)] {
+    for (h, turn) in [
+        (1.0 / 60.0, 0.0),
+        (1e-3, 0.0),
+        (1.0 / 60.0, 3.0),
+        (1e-3, 3.0),
+    ] {
         let o = tower(4, 3, (0.05, f64::to_radians(turn), 0.01), h, 10.0);
         println!("three hypercubes, h = {h}, turned {turn}°: {o:?}");
         assert_stands(&format!("three hypercubes, h = {h}, turned {turn}°"), &o);
@@ -141,7 +153,13 @@ fn a_box_on_a_fixed_ramp_slides_with_the_coulomb_acceleration_or_sticks() {
             let corners = (0..1usize << n)
                 .map(|bits| {
                     let c: Vec<f64> = (0..n)
-                        .map(|i| if bits >> i & 1 == 1 { halves[i] } else { -halves[i] })
+                        .map(|i| {
+                            if bits >> i & 1 == 1 {
+                                halves[i]
+                            } else {
+                                -halves[i]
+                            }
+                        })
                         .collect();
                     Vector::from_components(&c).unwrap()
                 })
@@ -174,7 +192,11 @@ fn a_box_on_a_fixed_ramp_slides_with_the_coulomb_acceleration_or_sticks() {
             );
             // It neither sinks into the ramp nor leaves it.
             let normal = tilt.rotate_vector(&axis(n, n - 1, 1.0));
-            assert!(moved.dot(&normal).abs() < 1e-4, "N = {n}: off the ramp by {}", moved.dot(&normal));
+            assert!(
+                moved.dot(&normal).abs() < 1e-4,
+                "N = {n}: off the ramp by {}",
+                moved.dot(&normal)
+            );
             cases += 1;
         }
     }

@@ -2,7 +2,11 @@
 //! whose bounding balls come within reach (the broad phase), and for each such pair the
 //! signed distance, the contact normal and the contact point (the narrow phase).
 
-use super::{EpaWorkspace, PlacedHull, PlacedShape, hull_manifold, penetration_with};
+use super::sat::box_box_unchecked;
+use super::{
+    ContactManifold, EpaWorkspace, PlacedBox, PlacedHull, PlacedShape, hull_manifold,
+    penetration_with,
+};
 use crate::dynamics::motion::forques::Anchor;
 use crate::dynamics::motion::shape::{ConvexCore, ConvexShape};
 use crate::dynamics::motion::{BallJoint, ContactShape, MovingBody};
@@ -27,6 +31,39 @@ pub(crate) fn convex_of(shape: &ContactShape, n: usize) -> Option<ConvexShape> {
             Some(ConvexShape::hull_unchecked(flat, n))
         }
     }
+}
+
+/// How far apart (relative to the sum of the bounding radii) the points of a manifold count
+/// as touching.
+const MANIFOLD_TOUCHING: f64 = 1e-6;
+
+/// The half-lengths of the box whose corners `v` are (each own axis with ±h on it, all 2^N
+/// sign patterns once), or None if they are not a box's corners: boxes are then met by
+/// separating axes and face clipping, which are exact where a general hull's penetration
+/// normal is ill-conditioned (two faces just touching).
+fn box_half_lengths(v: &[crate::algebra::Vector], n: usize) -> Option<Vec<f64>> {
+    if n >= usize::BITS as usize || v.len() != 1usize << n || v.iter().any(|p| p.dim() != n) {
+        return None;
+    }
+    let h: Vec<f64> = (0..n)
+        .map(|i| v.iter().map(|p| p.as_slice()[i].abs()).fold(0.0, f64::max))
+        .collect();
+    let mut seen = vec![false; v.len()];
+    for p in v {
+        let mut pattern = 0usize;
+        for (i, (&x, &hi)) in p.as_slice().iter().zip(&h).enumerate() {
+            if !(hi > 0.0 && (x.abs() - hi).abs() <= 1e-12 * hi) {
+                return None;
+            }
+            if x > 0.0 {
+                pattern |= 1 << i;
+            }
+        }
+        if std::mem::replace(&mut seen[pattern], true) {
+            return None;
+        }
+    }
+    Some(h)
 }
 
 /// A point where two bodies touch: where they come closest or overlap most, or one point of
@@ -59,6 +96,9 @@ pub(crate) struct Touching {
     owner: Option<(u64, u64)>,
     convex: Vec<Option<ConvexShape>>,
     radius: Vec<f64>,
+    /// The half-lengths of the bodies whose shapes are boxes (their corners), which find
+    /// their contact normal by separating axes.
+    boxes: Vec<Option<Vec<f64>>>,
     workspace: EpaWorkspace,
     /// The pairs of bodies held together by a joint (a < b), which do not touch each other:
     /// their shapes meet at the joint by design.
@@ -96,6 +136,13 @@ impl Touching {
         }
         self.owner = Some(owner);
         self.convex = shapes.iter().map(|s| convex_of(s, n)).collect();
+        self.boxes = shapes
+            .iter()
+            .map(|s| match s {
+                ContactShape::Vertices(v) => box_half_lengths(v, n),
+                _ => None,
+            })
+            .collect();
         self.radius = self
             .convex
             .iter()
@@ -177,6 +224,52 @@ impl Touching {
         if centres > bound * bound {
             return;
         }
+        if let (Some(ha), Some(hb)) = (&self.boxes[a], &self.boxes[b]) {
+            // Two boxes: the normal and gap by separating axes, exact also where two faces
+            // just touch and the depth along every nearby direction is nearly the same (a
+            // general penetration query's normal is ill-conditioned there).
+            let placed = |half_lengths, position, rotation| PlacedBox {
+                half_lengths,
+                position,
+                rotation,
+            };
+            let axis = box_box_unchecked(&placed(ha, xa, q(a)), &placed(hb, xb, q(b)));
+            if -axis.depth > reach {
+                return;
+            }
+            let points = match (manifold, ca.core(), cb.core()) {
+                (Some(slop), ConvexCore::Hull(va), ConvexCore::Hull(vb)) => {
+                    let hull = |vertices, position, rotation| PlacedHull {
+                        vertices,
+                        position,
+                        rotation,
+                    };
+                    let margin = slop * (self.radius[a] + self.radius[b]);
+                    hull_manifold(
+                        &hull(va, xa, q(a)),
+                        &hull(vb, xb, q(b)),
+                        &axis.normal,
+                        margin,
+                    )
+                    .ok()
+                    .flatten()
+                    .filter(|m| !m.is_empty())
+                }
+                _ => None,
+            };
+            if let Some(m) = points {
+                self.push_manifold((a, b), &m, reach);
+                return;
+            }
+            if manifold.is_none() {
+                // The gap alone is asked for: the point is the midpoint of the centres.
+                let c = self.next((a, b), 0, -axis.depth, &axis.normal);
+                c.reach = reach;
+                c.point
+                    .extend(xa.iter().zip(xb).map(|(x, y)| 0.5 * (x + y)));
+                return;
+            }
+        }
         let (Ok(pa), Ok(pb)) = (
             PlacedShape::new(ca, xa, q(a)),
             PlacedShape::new(cb, xb, q(b)),
@@ -207,17 +300,7 @@ impl Touching {
                 margin,
             ) && !m.is_empty()
             {
-                for point in m.points() {
-                    let c = self.next((a, b), point.id.0, -point.depth, m.normal());
-                    c.reach = reach;
-                    c.point.extend(
-                        point
-                            .point_a
-                            .iter()
-                            .zip(point.point_b)
-                            .map(|(x, y)| 0.5 * (x + y)),
-                    );
-                }
+                self.push_manifold((a, b), &m, reach);
                 return;
             }
         }
@@ -230,6 +313,25 @@ impl Touching {
                 .zip(p.witness_b.as_slice())
                 .map(|(x, y)| 0.5 * (x + y)),
         );
+    }
+
+    /// Records the points of the manifold `m` of the pair (a, b).
+    fn push_manifold(&mut self, (a, b): (usize, usize), m: &ContactManifold, reach: f64) {
+        // A face resting on a face touches at all its points, but a tilt of round-off size
+        // lifts some of them by more than the pair's reach: points this close count as
+        // touching, so that they hold (a resting contact) instead of waiting to land.
+        let reach = reach.max(MANIFOLD_TOUCHING * (self.radius[a] + self.radius[b]));
+        for point in m.points() {
+            let c = self.next((a, b), point.id.0, -point.depth, m.normal());
+            c.reach = reach;
+            c.point.extend(
+                point
+                    .point_a
+                    .iter()
+                    .zip(point.point_b)
+                    .map(|(x, y)| 0.5 * (x + y)),
+            );
+        }
     }
 
     /// The next entry of the found pairs, set to the pair, feature, gap and normal given and

@@ -440,7 +440,9 @@ impl MotionSplitting {
             self.pair_distances.clear();
             for row in &self.solver.pairs {
                 let d = pair_distance(row, bodies);
-                let tolerance = 1e-3 * row.reach;
+                // Points within the pair's touching distance hold: a gap of round-off size
+                // left by the last step is not pushed on again.
+                let tolerance = row.reach;
                 contacts_hold &= d >= -tolerance && (row.position_impulse == 0.0 || d <= tolerance);
                 self.pair_distances.push(d);
             }
@@ -474,6 +476,11 @@ impl MotionSplitting {
                 }
                 let sharing = self.sharing[row.a].max(self.sharing[row.b]) as f64;
                 let want = (row.position_impulse - d / (h * row.knn() * sharing)).max(0.0);
+                if !want.is_finite() {
+                    // A flight too short to close anything in (an impact located at its
+                    // start): the gap is left to the next flight.
+                    continue;
+                }
                 let dl = want - row.position_impulse;
                 row.position_impulse = want;
                 let j = &row.normal * dl;
@@ -542,8 +549,12 @@ impl MotionSplitting {
         self.active_pairs.clear();
         if self.touching.any_pairs() {
             let placements = &self.placements;
-            self.touching
-                .scan(system.bodies(), |i| &placements.get(i).q, CONTACT_TOLERANCE, None);
+            self.touching.scan(
+                system.bodies(),
+                |i| &placements.get(i).q,
+                CONTACT_TOLERANCE,
+                None,
+            );
             self.active_pairs
                 .extend(self.touching.found().iter().map(|c| (c.a, c.b)));
         }
@@ -664,6 +675,13 @@ impl MotionSplitting {
                 s = (a * fb - b * fa) / (fb - fa);
                 if !(s > a && s < b) {
                     s = 0.5 * (a + b);
+                }
+                if s <= 1e-9 * remaining {
+                    // Entering at once (an overlap that the step's own contacts push a body
+                    // into): nothing to locate; the rest of the step is taken whole and the
+                    // new contact is held from the next step on.
+                    s = remaining;
+                    break;
                 }
                 restore(system.bodies_mut(), &saved);
                 let contacts_before = system.contacts().len();

@@ -6,8 +6,8 @@ use super::Dense;
 use super::body::{BodyState, add_inverse_mass};
 use super::contact_row::tangent_block;
 use super::friction::friction_impulse;
-use crate::dynamics::motion::detect::bodies::PairContact;
 use crate::algebra::Vector;
+use crate::dynamics::motion::detect::bodies::PairContact;
 use crate::dynamics::motion::placement::{dot, set_vector};
 use crate::numeric::symmetric_eigen_rows as symmetric_eigen;
 
@@ -149,10 +149,22 @@ impl PairRow {
         self.speed = un.abs();
         self.target = if self.gap > self.reach {
             -self.gap / flight
-        } else if un < -resting {
-            -self.restitution * un
         } else {
-            0.0
+            let target = if un < -resting {
+                -self.restitution * un
+            } else {
+                0.0
+            };
+            if self.gap < -self.reach {
+                // Overlapping by more than the touching distance (a contact that sank while
+                // others held it, or bodies placed so): leave at the speed that closes the
+                // overlap within the flight, so that the position step starts from a
+                // solution of its linearisation, but no faster than one step of the forques
+                // would make it approach (a short flight gets no kick out of proportion).
+                target.max((-self.gap / flight).min(resting))
+            } else {
+                target
+            }
         };
     }
 
