@@ -94,13 +94,7 @@ impl Bivector {
     /// # Errors
     /// [`AlgebraError::DimensionTooLarge`] if `n > MAX_DIM`.
     pub fn try_zero(n: usize) -> Result<Self, AlgebraError> {
-        if n > MAX_DIM {
-            return Err(AlgebraError::DimensionTooLarge {
-                what: "bivector",
-                dim: n,
-                max: MAX_DIM,
-            });
-        }
+        AlgebraError::check_dimension("bivector", n, MAX_DIM)?;
         Ok(Bivector {
             dim: n,
             coeffs: crate::numeric::zeros(bivector_len(n)),
@@ -114,13 +108,7 @@ impl Bivector {
     /// [`AlgebraError::WrongComponentCount`], [`AlgebraError::NonFinite`],
     /// [`AlgebraError::DimensionTooLarge`].
     pub fn from_components(n: usize, components: &[f64]) -> Result<Self, AlgebraError> {
-        if n > MAX_DIM {
-            return Err(AlgebraError::DimensionTooLarge {
-                what: "bivector",
-                dim: n,
-                max: MAX_DIM,
-            });
-        }
+        AlgebraError::check_dimension("bivector", n, MAX_DIM)?;
         if components.len() != bivector_len(n) {
             return Err(AlgebraError::WrongComponentCount {
                 what: "bivector",
@@ -252,13 +240,7 @@ impl Bivector {
             return Err(AlgebraError::NotSquare { rows, cols });
         }
         let n = rows;
-        if n > MAX_DIM {
-            return Err(AlgebraError::DimensionTooLarge {
-                what: "bivector",
-                dim: n,
-                max: MAX_DIM,
-            });
-        }
+        AlgebraError::check_dimension("bivector", n, MAX_DIM)?;
         let mut scale = 0.0f64;
         let mut deviation = 0.0f64;
         for i in 0..n {

@@ -102,13 +102,7 @@ pub const POINT_TOLERANCE: f64 = 1e-8;
 /// [`AlgebraError::WrongSignature`] for n < 2; [`AlgebraError::DimensionTooLarge`] for
 /// n > 14.
 pub fn conformal(n: usize) -> Result<Signature, AlgebraError> {
-    if n + 2 > MULTIVECTOR_MAX_DIM {
-        return Err(AlgebraError::DimensionTooLarge {
-            what: "conformal algebra",
-            dim: n + 2,
-            max: MULTIVECTOR_MAX_DIM,
-        });
-    }
+    AlgebraError::check_dimension("conformal algebra", n + 2, MULTIVECTOR_MAX_DIM)?;
     if n < 2 {
         return Err(AlgebraError::WrongSignature {
             operation: "conformal geometry",

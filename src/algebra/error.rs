@@ -422,6 +422,21 @@ pub(crate) fn check_finite(values: &[f64], what: &'static str) -> Result<(), Alg
     }
 }
 
+impl AlgebraError {
+    /// Returns `Err(DimensionTooLarge)` for a `what` of dimension `dim` above `max`.
+    pub(crate) fn check_dimension(
+        what: &'static str,
+        dim: usize,
+        max: usize,
+    ) -> Result<(), AlgebraError> {
+        if dim > max {
+            Err(AlgebraError::DimensionTooLarge { what, dim, max })
+        } else {
+            Ok(())
+        }
+    }
+}
+
 /// Panics with a clear message when two dimensions differ; used by the operators.
 #[track_caller]
 #[inline]

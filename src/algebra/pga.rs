@@ -71,13 +71,7 @@ use nalgebra::DMatrix;
 
 /// The projective algebra Cl(n, 0, 1) of Euclidean ℝⁿ, for 2 ≤ n < [`MULTIVECTOR_MAX_DIM`].
 fn pga(n: usize) -> Result<Signature, AlgebraError> {
-    if n >= MULTIVECTOR_MAX_DIM {
-        return Err(AlgebraError::DimensionTooLarge {
-            what: "projective algebra",
-            dim: n + 1,
-            max: MULTIVECTOR_MAX_DIM,
-        });
-    }
+    AlgebraError::check_dimension("projective algebra", n + 1, MULTIVECTOR_MAX_DIM)?;
     if n < 2 {
         return Err(AlgebraError::WrongSignature {
             operation: "projective geometry",

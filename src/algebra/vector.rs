@@ -39,13 +39,7 @@ impl Vector {
     /// # Errors
     /// [`AlgebraError::DimensionTooLarge`] if `n > MAX_DIM`.
     pub fn try_zero(n: usize) -> Result<Self, AlgebraError> {
-        if n > MAX_DIM {
-            return Err(AlgebraError::DimensionTooLarge {
-                what: "vector",
-                dim: n,
-                max: MAX_DIM,
-            });
-        }
+        AlgebraError::check_dimension("vector", n, MAX_DIM)?;
         Ok(Vector {
             coords: crate::numeric::zeros(n),
         })
@@ -86,13 +80,7 @@ impl Vector {
     /// [`AlgebraError::NonFinite`] for NaN or infinite components,
     /// [`AlgebraError::DimensionTooLarge`] for more than [`MAX_DIM`] components.
     pub fn from_components(components: &[f64]) -> Result<Self, AlgebraError> {
-        if components.len() > MAX_DIM {
-            return Err(AlgebraError::DimensionTooLarge {
-                what: "vector",
-                dim: components.len(),
-                max: MAX_DIM,
-            });
-        }
+        AlgebraError::check_dimension("vector", components.len(), MAX_DIM)?;
         check_finite(components, "vector components")?;
         Ok(Vector {
             coords: SmallVec::from_slice(components),

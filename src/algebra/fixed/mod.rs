@@ -25,6 +25,71 @@
 //! Every operation agrees with the run-time types to a few ulp (`tests/algebra/fixed.rs`);
 //! conversions both ways are `to_rotor`/`from_rotor` and `to_bivector`/`from_bivector`.
 
+/// The operators that the 3D and 4D types share: bivectors add, subtract, negate and scale
+/// component by component; rotors compose by `*`, rotate vectors by `*`, and default to the
+/// identity.
+macro_rules! fixed_size_operators {
+    ($bivector:ident, $rotor:ident, $vector:ident) => {
+        impl<T: Real> std::ops::Add for $bivector<T> {
+            type Output = Self;
+            #[inline]
+            fn add(self, o: Self) -> Self {
+                let (a, b) = (self.to_array(), o.to_array());
+                Self::from_array(std::array::from_fn(|i| a[i] + b[i]))
+            }
+        }
+
+        impl<T: Real> std::ops::Sub for $bivector<T> {
+            type Output = Self;
+            #[inline]
+            fn sub(self, o: Self) -> Self {
+                let (a, b) = (self.to_array(), o.to_array());
+                Self::from_array(std::array::from_fn(|i| a[i] - b[i]))
+            }
+        }
+
+        impl<T: Real> std::ops::Neg for $bivector<T> {
+            type Output = Self;
+            #[inline]
+            fn neg(self) -> Self {
+                Self::from_array(self.to_array().map(|c| -c))
+            }
+        }
+
+        impl<T: Real> std::ops::Mul<T> for $bivector<T> {
+            type Output = Self;
+            #[inline]
+            fn mul(self, s: T) -> Self {
+                Self::from_array(self.to_array().map(|c| c * s))
+            }
+        }
+
+        impl<T: Real> Default for $rotor<T> {
+            fn default() -> Self {
+                Self::identity()
+            }
+        }
+
+        impl<T: Real> std::ops::Mul for $rotor<T> {
+            type Output = Self;
+            /// The geometric product, `compose`.
+            #[inline]
+            fn mul(self, other: Self) -> Self {
+                self.compose(other)
+            }
+        }
+
+        impl<T: Real> std::ops::Mul<$vector<T>> for $rotor<T> {
+            type Output = $vector<T>;
+            /// `rotate_vector`.
+            #[inline]
+            fn mul(self, x: $vector<T>) -> $vector<T> {
+                self.rotate_vector(x)
+            }
+        }
+    };
+}
+
 mod batch;
 mod d3;
 mod d4;

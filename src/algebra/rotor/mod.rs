@@ -159,13 +159,7 @@ impl Rotor {
     /// # Errors
     /// [`AlgebraError::DimensionTooLarge`] if `n > MULTIVECTOR_MAX_DIM`.
     pub fn try_identity(n: usize) -> Result<Self, AlgebraError> {
-        if n > MULTIVECTOR_MAX_DIM {
-            return Err(AlgebraError::DimensionTooLarge {
-                what: "rotor",
-                dim: n,
-                max: MULTIVECTOR_MAX_DIM,
-            });
-        }
+        AlgebraError::check_dimension("rotor", n, MULTIVECTOR_MAX_DIM)?;
         let mut coeffs = crate::numeric::zeros(even_len(n));
         coeffs[0] = 1.0;
         Ok(Rotor { dim: n, coeffs })
@@ -183,13 +177,7 @@ impl Rotor {
         j: usize,
         angle: f64,
     ) -> Result<Self, AlgebraError> {
-        if n > MULTIVECTOR_MAX_DIM {
-            return Err(AlgebraError::DimensionTooLarge {
-                what: "rotor",
-                dim: n,
-                max: MULTIVECTOR_MAX_DIM,
-            });
-        }
+        AlgebraError::check_dimension("rotor", n, MULTIVECTOR_MAX_DIM)?;
         let b = Bivector::from_plane(n, i, j, angle)?;
         Ok(Rotor::from_rotation_bivector(&b))
     }

@@ -1,7 +1,7 @@
 //! Adaptive Dormand–Prince 8(5,3) on the group, with dense output of order 7.
 
 use super::dop853_tableau::{A, ALL_STAGES, B, BHH, C, D, E5, STAGES};
-use super::{DEXP_INVERSE_8, DynamicsError, Integrator, dexp_inverse_packed, momentum_rate_into};
+use super::{DEXP_INVERSE_8, DynamicsError, dexp_inverse_packed, momentum_rate_into};
 use crate::algebra::Bivector;
 use crate::dynamics::Attitude;
 use crate::dynamics::{RigidBody, Torque};
@@ -73,7 +73,7 @@ fn ensure_stages(stages: &mut Stages, n: usize) {
 /// heuristic. Twelve right-hand sides per accepted step, eleven per rejected one (the first
 /// stage is f at the previous solution and is reused).
 ///
-/// As an [`Integrator`], one call advances exactly by the requested h with as many internal
+/// As an [`Integrator`](super::Integrator), one call advances exactly by the requested h with as many internal
 /// steps as the tolerance needs; [`Dop853::dense_output`] evaluates the state inside the last
 /// internal step (order 7) and [`Dop853::dense_samples`] samples a whole run from it.
 /// [`Dop853::fixed_step`] is the same method without step-size control.
@@ -152,7 +152,7 @@ impl Dop853 {
         })
     }
 
-    /// Returns the method without step-size control: every [`Integrator::step`] is one
+    /// Returns the method without step-size control: every [`Integrator::step`](super::Integrator::step) is one
     /// Runge–Kutta step of the requested size (order 8), for fixed-step comparisons.
     pub fn fixed_step() -> Self {
         let mut d = Dop853::new(1.0, 1.0).expect("valid tolerances");
@@ -662,33 +662,22 @@ fn check_state(body: &RigidBody, t: f64) -> Result<(), DynamicsError> {
     }
 }
 
-impl Integrator for Dop853 {
-    fn order(&self) -> u32 {
-        8
-    }
-
-    fn name(&self) -> &'static str {
-        "dop853"
-    }
-
-    /// Advances exactly by h: one step without step-size control
-    /// ([`Dop853::fixed_step`]), otherwise internal adaptive steps (the last one shortened).
-    fn step(
-        &mut self,
-        body: &mut RigidBody,
-        t: f64,
-        h: f64,
-        torque: &dyn Torque,
-    ) -> Result<(), DynamicsError> {
+impl_integrator!(
+    Dop853,
+    order = |_| 8,
+    name = |_| "dop853",
+    // Advances exactly by h: one step without step-size control
+    // ([`Dop853::fixed_step`]), otherwise internal adaptive steps (the last one shortened).
+    step = |this, body, t, h, torque| {
         if !h.is_finite() || !t.is_finite() {
             return Err(DynamicsError::InvalidSampling {
                 reason: "the time and the step must be finite",
             });
         }
         check_state(body, t)?;
-        self.first = None;
-        if !self.adaptive {
-            let (attitude, momentum) = self
+        this.first = None;
+        if !this.adaptive {
+            let (attitude, momentum) = this
                 .try_step(body, t, h, torque)?
                 .expect("a step without control is always accepted");
             body.replace_state(attitude, momentum);
@@ -700,27 +689,27 @@ impl Integrator for Dop853 {
         let sign = h.signum();
         while (t_end - time) * sign > 1e-14 * t_end.abs().max(1.0) {
             count += 1;
-            if count > self.max_steps {
+            if count > this.max_steps {
                 return Err(DynamicsError::TooManySteps { time, steps: count });
             }
             let remaining = t_end - time;
-            let mut try_h = self.next_h(body, time, sign, torque).abs() * sign;
+            let mut try_h = this.next_h(body, time, sign, torque).abs() * sign;
             if try_h.abs() >= remaining.abs() {
                 try_h = remaining;
             }
-            let saved = self.h_next;
-            if let Some((attitude, momentum)) = self.try_step(body, time, try_h, torque)? {
+            let saved = this.h_next;
+            if let Some((attitude, momentum)) = this.try_step(body, time, try_h, torque)? {
                 body.replace_state(attitude, momentum);
                 time += try_h;
                 if try_h == remaining {
                     // Do not let the shortened last step shrink the next call's first step.
-                    self.h_next = saved.map(|s| s.max(self.h_next.unwrap_or(s)));
+                    this.h_next = saved.map(|s| s.max(this.h_next.unwrap_or(s)));
                 }
             }
         }
         Ok(())
     }
-}
+);
 
 #[cfg(test)]
 mod tests {

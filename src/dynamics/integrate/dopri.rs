@@ -1,8 +1,6 @@
 //! Adaptive Dormand–Prince 5(4) on the group, with dense output.
 
-use super::{
-    DEXP_INVERSE_5, DynamicsError, Integrator, axpy, dexp_inverse_packed, momentum_rate_into,
-};
+use super::{DEXP_INVERSE_5, DynamicsError, axpy, dexp_inverse_packed, momentum_rate_into};
 use crate::algebra::Bivector;
 use crate::dynamics::Attitude;
 use crate::dynamics::{RigidBody, Torque};
@@ -70,7 +68,7 @@ const D: [f64; 7] = [
 /// Order 5 (local extrapolation); step-size control on the embedded error of (L, A) with
 /// the usual mixed tolerance atol + rtol·|y|; a step that fails is retried smaller. Dense
 /// output of order 4 between accepted steps serves [`Dopri5::dense_samples`]. As an
-/// [`Integrator`], one call advances exactly by the requested h with as many internal steps
+/// [`Integrator`](super::Integrator), one call advances exactly by the requested h with as many internal steps
 /// as the tolerance needs ([`Dopri5::accepted_steps`], [`Dopri5::rejected_steps`] report
 /// them).
 #[derive(Clone, Copy, Debug)]
@@ -375,47 +373,36 @@ impl StepResult {
     }
 }
 
-impl Integrator for Dopri5 {
-    fn order(&self) -> u32 {
-        5
-    }
-
-    fn name(&self) -> &'static str {
-        "dopri5"
-    }
-
-    /// Advances exactly by h, with internal adaptive steps (the last one shortened).
-    fn step(
-        &mut self,
-        body: &mut RigidBody,
-        t: f64,
-        h: f64,
-        torque: &dyn Torque,
-    ) -> Result<(), DynamicsError> {
+impl_integrator!(
+    Dopri5,
+    order = |_| 5,
+    name = |_| "dopri5",
+    // Advances exactly by h, with internal adaptive steps (the last one shortened).
+    step = |this, body, t, h, torque| {
         let t_end = t + h;
         let mut time = t;
         let mut count = 0;
         let sign = h.signum();
         while (t_end - time) * sign > 1e-14 * t_end.abs().max(1.0) {
             count += 1;
-            if count > self.max_steps {
+            if count > this.max_steps {
                 return Err(DynamicsError::TooManySteps { time, steps: count });
             }
             let remaining = t_end - time;
-            let mut try_h = self.initial_h(body, time, torque) * sign;
+            let mut try_h = this.initial_h(body, time, torque) * sign;
             if try_h.abs() >= remaining.abs() {
                 try_h = remaining;
             }
-            let saved = self.h_next;
-            if let Some(step) = self.try_step(body, time, try_h, torque)? {
+            let saved = this.h_next;
+            if let Some(step) = this.try_step(body, time, try_h, torque)? {
                 body.replace_state(step.attitude, step.momentum);
                 time += try_h;
                 if try_h == remaining {
                     // Do not let the shortened last step shrink the next call's first step.
-                    self.h_next = saved.map(|s| s.max(self.h_next.unwrap_or(s)));
+                    this.h_next = saved.map(|s| s.max(this.h_next.unwrap_or(s)));
                 }
             }
         }
         Ok(())
     }
-}
+);

@@ -1,8 +1,7 @@
 //! The implicit midpoint rule: energy-conserving, second order.
 
-use super::{DynamicsError, Integrator, axpy, momentum_rate_into};
+use super::{DynamicsError, axpy, momentum_rate_into};
 use crate::algebra::Bivector;
-use crate::dynamics::{RigidBody, Torque};
 
 /// The implicit midpoint rule on the momentum, L₁ = L₀ + h f((L₀ + L₁)/2) with
 /// f(L) = I⁻¹(L) × L + τ, and the attitude advanced on the group, R₁ = R₀ exp(−½ h ω_mid).
@@ -76,22 +75,11 @@ impl Midpoint {
     }
 }
 
-impl Integrator for Midpoint {
-    fn order(&self) -> u32 {
-        2
-    }
-
-    fn name(&self) -> &'static str {
-        "midpoint"
-    }
-
-    fn step(
-        &mut self,
-        body: &mut RigidBody,
-        t: f64,
-        h: f64,
-        torque: &dyn Torque,
-    ) -> Result<(), DynamicsError> {
+impl_integrator!(
+    Midpoint,
+    order = |_| 2,
+    name = |_| "midpoint",
+    step = |this, body, t, h, torque| {
         let n = body.dim();
         let l0 = body.momentum().clone();
         let r0 = body.principal_frame_attitude().clone();
@@ -114,7 +102,7 @@ impl Integrator for Midpoint {
         axpy(l1.as_mut_slice(), h, f.as_slice());
         let mut iterations = 0;
         let mut residual = f64::INFINITY;
-        while iterations < self.max_iterations {
+        while iterations < this.max_iterations {
             iterations += 1;
             for ((m, a), b) in mid
                 .as_mut_slice()
@@ -139,14 +127,14 @@ impl Integrator for Midpoint {
                 *x = next;
             }
             residual = change / scale;
-            if residual <= self.tolerance {
+            if residual <= this.tolerance {
                 break;
             }
         }
-        self.last_iterations = iterations;
-        self.total_iterations += iterations;
-        self.steps += 1;
-        if !residual.is_finite() || residual > self.tolerance {
+        this.last_iterations = iterations;
+        this.total_iterations += iterations;
+        this.steps += 1;
+        if !residual.is_finite() || residual > this.tolerance {
             return Err(DynamicsError::SolverDidNotConverge {
                 time: t,
                 iterations,
@@ -163,4 +151,4 @@ impl Integrator for Midpoint {
         body.replace_state(r1, l1);
         Ok(())
     }
-}
+);

@@ -35,6 +35,42 @@
 //! # Ok::<(), rotorflow::dynamics::DynamicsError>(())
 //! ```
 
+/// Implements [`Integrator`] for an integrator type, so that the trait's signatures are
+/// written once. The order and the name are closures of the integrator, the step a closure
+/// of the integrator and the trait's arguments (body, t, h, torque), as in
+/// `impl_integrator!(Rkmk4, order = |_| 4, name = |_| "rk4", step = |this, body, t, h, torque| { … })`.
+macro_rules! impl_integrator {
+    (
+        $ty:ty,
+        order = |$order_of:pat_param| $order:expr,
+        name = |$name_of:pat_param| $name:expr,
+        step = |$this:pat_param, $body:ident, $t:ident, $h:ident, $torque:ident| $step:block $(,)?
+    ) => {
+        impl $crate::dynamics::integrate::Integrator for $ty {
+            fn order(&self) -> u32 {
+                let $order_of = self;
+                $order
+            }
+
+            fn name(&self) -> &'static str {
+                let $name_of = self;
+                $name
+            }
+
+            fn step(
+                &mut self,
+                $body: &mut $crate::dynamics::RigidBody,
+                $t: f64,
+                $h: f64,
+                $torque: &dyn $crate::dynamics::Torque,
+            ) -> Result<(), $crate::dynamics::DynamicsError> {
+                let $this = self;
+                $step
+            }
+        }
+    };
+}
+
 mod dop853;
 pub(crate) use dop853::first_step_estimate;
 pub(crate) mod dop853_tableau;
