@@ -295,19 +295,6 @@ impl<T: Real> Rotor3<T> {
         Bivector3::new(-self.q()[3], self.q()[2], -self.q()[1])
     }
 
-    /// The rotor exp(−Θ/2) of the rotation bivector Θ: the rotation by |Θ| in the plane Θ̂,
-    /// as [`Rotor::from_rotation_bivector`].
-    #[inline]
-    pub fn from_rotation_bivector(theta: Bivector3<T>) -> Self {
-        (theta * T::lit(-0.5)).exp()
-    }
-
-    /// Θ = −2 log R, the inverse of [`Rotor3::from_rotation_bivector`].
-    #[inline]
-    pub fn rotation_bivector(self) -> Bivector3<T> {
-        self.log() * T::lit(-2.0)
-    }
-
     /// The principal logarithm (half-angle in \[0, π\]), as [`Rotor::log`]: R = −1 gives π e₁₂.
     #[inline]
     pub fn log(self) -> Bivector3<T> {

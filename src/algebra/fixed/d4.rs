@@ -337,18 +337,6 @@ impl<T: Real> Rotor4<T> {
         Bivector4::from_halves([p[1], p[2], p[3]], [m[1], m[2], m[3]])
     }
 
-    /// The rotor exp(−Θ/2) of the rotation bivector Θ, as [`Rotor::from_rotation_bivector`].
-    #[inline]
-    pub fn from_rotation_bivector(theta: Bivector4<T>) -> Self {
-        (theta * T::lit(-0.5)).exp()
-    }
-
-    /// Θ = −2 log R, the inverse of [`Rotor4::from_rotation_bivector`].
-    #[inline]
-    pub fn rotation_bivector(self) -> Bivector4<T> {
-        self.log() * T::lit(-2.0)
-    }
-
     /// The principal logarithm, as [`Rotor::log`] in 4D: the principal quaternion
     /// logarithm of each half (each half-angle in \[0, π\]).
     #[inline]

@@ -25,9 +25,11 @@
 //! Every operation agrees with the run-time types to a few ulp (`tests/algebra/fixed.rs`);
 //! conversions both ways are `to_rotor`/`from_rotor` and `to_bivector`/`from_bivector`.
 
-/// The operators that the 3D and 4D types share: bivectors add, subtract, negate and scale
-/// component by component; rotors compose by `*`, rotate vectors by `*`, and default to the
-/// identity.
+/// What the 3D and 4D types share: bivectors add, subtract, negate and scale component by
+/// component; rotors compose by `*`, rotate vectors by `*`, act as [`Versor`]s on vectors,
+/// bivectors and rotors, convert to and from rotation bivectors, and default to the identity.
+///
+/// [`Versor`]: crate::algebra::Versor
 macro_rules! fixed_size_operators {
     ($bivector:ident, $rotor:ident, $vector:ident) => {
         impl<T: Real> std::ops::Add for $bivector<T> {
@@ -85,6 +87,48 @@ macro_rules! fixed_size_operators {
             #[inline]
             fn mul(self, x: $vector<T>) -> $vector<T> {
                 self.rotate_vector(x)
+            }
+        }
+
+        impl<T: Real> $crate::algebra::Versor<$vector<T>> for $rotor<T> {
+            type Output = $vector<T>;
+            /// `rotate_vector`.
+            #[inline]
+            fn apply(&self, x: &$vector<T>) -> $vector<T> {
+                self.rotate_vector(*x)
+            }
+        }
+
+        impl<T: Real> $crate::algebra::Versor<$bivector<T>> for $rotor<T> {
+            type Output = $bivector<T>;
+            /// `rotate_bivector`.
+            #[inline]
+            fn apply(&self, b: &$bivector<T>) -> $bivector<T> {
+                self.rotate_bivector(*b)
+            }
+        }
+
+        impl<T: Real> $crate::algebra::Versor<$rotor<T>> for $rotor<T> {
+            type Output = $rotor<T>;
+            /// R S R̃: the rotation S carried by R (the same rotation in the turned frame).
+            #[inline]
+            fn apply(&self, s: &$rotor<T>) -> $rotor<T> {
+                *self * *s * self.reverse()
+            }
+        }
+
+        impl<T: Real> $rotor<T> {
+            /// The rotor exp(−Θ/2) of the rotation bivector Θ: the rotation by |Θ| in the
+            /// plane Θ̂, as [`Rotor::from_rotation_bivector`](crate::algebra::Rotor::from_rotation_bivector).
+            #[inline]
+            pub fn from_rotation_bivector(theta: $bivector<T>) -> Self {
+                (theta * T::lit(-0.5)).exp()
+            }
+
+            /// Θ = −2 log R, the inverse of `from_rotation_bivector`.
+            #[inline]
+            pub fn rotation_bivector(self) -> $bivector<T> {
+                self.log() * T::lit(-2.0)
             }
         }
     };

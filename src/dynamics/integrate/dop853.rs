@@ -52,6 +52,27 @@ pub(crate) fn first_step_estimate(h0: f64, d1: f64, d2: f64) -> f64 {
     (100.0 * h0).min(h1)
 }
 
+/// The state at stage s of a step of size h from momentum `l0`: L = L₀ + h Σⱼ aₛⱼ kl_j into
+/// `l_stage` and A = h Σⱼ aₛⱼ ka_j into `a_stage`, from the earlier stages.
+fn stage_state(
+    s: usize,
+    h: f64,
+    l0: &Bivector,
+    kl: &Stages,
+    ka: &Stages,
+    l_stage: &mut Bivector,
+    a_stage: &mut Bivector,
+) {
+    a_stage.as_mut_slice().fill(0.0);
+    l_stage.as_mut_slice().copy_from_slice(l0.as_slice());
+    for j in 0..s {
+        if A[s][j] != 0.0 {
+            axpy(a_stage, h * A[s][j], &ka[j]);
+            axpy(l_stage, h * A[s][j], &kl[j]);
+        }
+    }
+}
+
 /// Makes `stages` hold sixteen bivectors of dimension n, keeping them when they already do.
 fn ensure_stages(stages: &mut Stages, n: usize) {
     if stages.len() != ALL_STAGES || stages[0].dim() != n {
@@ -437,14 +458,7 @@ impl Dop853 {
         let mut l_stage = l0.clone();
         let mut omega = Bivector::zero(n);
         for s in 1..STAGES {
-            a_stage.as_mut_slice().fill(0.0);
-            l_stage.as_mut_slice().copy_from_slice(l0.as_slice());
-            for j in 0..s {
-                if A[s][j] != 0.0 {
-                    axpy(&mut a_stage, h * A[s][j], &ka[j]);
-                    axpy(&mut l_stage, h * A[s][j], &kl[j]);
-                }
-            }
+            stage_state(s, h, l0, &kl, &ka, &mut l_stage, &mut a_stage);
             let (dl_s, ka_s) = (&mut kl[s], &mut ka[s]);
             self.rate(
                 body,
@@ -579,14 +593,7 @@ impl Dop853 {
         let mut omega_end = Bivector::zero(n);
         for s in STAGES..ALL_STAGES {
             if s > STAGES {
-                a_stage.as_mut_slice().fill(0.0);
-                l_stage.clone_from(&self.last.l0);
-                for j in 0..s {
-                    if A[s][j] != 0.0 {
-                        axpy(&mut a_stage, h * A[s][j], &ka[j]);
-                        axpy(&mut l_stage, h * A[s][j], &kl[j]);
-                    }
-                }
+                stage_state(s, h, &self.last.l0, kl, ka, &mut l_stage, &mut a_stage);
             }
             let (dl_s, ka_s) = (&mut kl[s], &mut ka[s]);
             self.rate(

@@ -1,6 +1,6 @@
 //! The implicit midpoint rule: energy-conserving, second order.
 
-use super::{DynamicsError, axpy, momentum_rate_into};
+use super::{DynamicsError, Iterations, axpy, momentum_rate_into};
 use crate::algebra::Bivector;
 
 /// The implicit midpoint rule on the momentum, L₁ = L₀ + h f((L₀ + L₁)/2) with
@@ -18,10 +18,7 @@ use crate::algebra::Bivector;
 #[derive(Clone, Copy, Debug)]
 pub struct Midpoint {
     tolerance: f64,
-    max_iterations: usize,
-    last_iterations: usize,
-    total_iterations: usize,
-    steps: usize,
+    iterations: Iterations,
 }
 
 impl Default for Midpoint {
@@ -29,10 +26,7 @@ impl Default for Midpoint {
     fn default() -> Self {
         Midpoint {
             tolerance: 4.0 * f64::EPSILON,
-            max_iterations: 100,
-            last_iterations: 0,
-            total_iterations: 0,
-            steps: 0,
+            iterations: Iterations::new(100),
         }
     }
 }
@@ -49,31 +43,13 @@ impl Midpoint {
     pub fn with_tolerance(tolerance: f64, max_iterations: usize) -> Self {
         Midpoint {
             tolerance,
-            max_iterations: max_iterations.max(1),
+            iterations: Iterations::new(max_iterations),
             ..Self::default()
         }
     }
-
-    /// Returns the iteration bound per step.
-    pub fn max_iterations(&self) -> usize {
-        self.max_iterations
-    }
-
-    /// Returns the iterations the last step took.
-    pub fn last_iterations(&self) -> usize {
-        self.last_iterations
-    }
-
-    /// Returns the iterations of all steps so far.
-    pub fn total_iterations(&self) -> usize {
-        self.total_iterations
-    }
-
-    /// Returns the mean iterations per step so far.
-    pub fn mean_iterations(&self) -> f64 {
-        self.total_iterations as f64 / self.steps.max(1) as f64
-    }
 }
+
+iteration_counters!(Midpoint, "fixed-point iterations");
 
 impl_integrator!(
     Midpoint,
@@ -102,7 +78,7 @@ impl_integrator!(
         axpy(l1.as_mut_slice(), h, f.as_slice());
         let mut iterations = 0;
         let mut residual = f64::INFINITY;
-        while iterations < this.max_iterations {
+        while iterations < this.iterations.max {
             iterations += 1;
             for ((m, a), b) in mid
                 .as_mut_slice()
@@ -131,9 +107,7 @@ impl_integrator!(
                 break;
             }
         }
-        this.last_iterations = iterations;
-        this.total_iterations += iterations;
-        this.steps += 1;
+        this.iterations.record(iterations);
         if !residual.is_finite() || residual > this.tolerance {
             return Err(DynamicsError::SolverDidNotConverge {
                 time: t,

@@ -71,6 +71,34 @@ macro_rules! impl_integrator {
     };
 }
 
+/// The public counters of an implicit integrator's solve, read from its `iterations` field
+/// (an [`Iterations`]); `$what` names what is counted in the docs.
+macro_rules! iteration_counters {
+    ($ty:ty, $what:literal) => {
+        impl $ty {
+            #[doc = concat!("Returns the bound on the ", $what, " per step.")]
+            pub fn max_iterations(&self) -> usize {
+                self.iterations.max
+            }
+
+            #[doc = concat!("Returns the ", $what, " of the last step (of all its substeps for a composition).")]
+            pub fn last_iterations(&self) -> usize {
+                self.iterations.last
+            }
+
+            #[doc = concat!("Returns the ", $what, " of all steps so far.")]
+            pub fn total_iterations(&self) -> usize {
+                self.iterations.total
+            }
+
+            #[doc = concat!("Returns the mean ", $what, " per step so far.")]
+            pub fn mean_iterations(&self) -> f64 {
+                self.iterations.total as f64 / self.iterations.steps.max(1) as f64
+            }
+        }
+    };
+}
+
 mod dop853;
 pub(crate) use dop853::first_step_estimate;
 pub(crate) mod dop853_tableau;
@@ -207,6 +235,35 @@ pub(crate) fn momentum_rate_into(
             momentum: l,
             omega,
         });
+    }
+}
+
+/// The iterations of an implicit integrator's solve: the bound per step, the last step's
+/// count, and the totals over all steps.
+#[derive(Clone, Copy, Debug)]
+struct Iterations {
+    max: usize,
+    last: usize,
+    total: usize,
+    steps: usize,
+}
+
+impl Iterations {
+    /// No step taken yet, at most `max` iterations per step (at least one).
+    const fn new(max: usize) -> Self {
+        Iterations {
+            max: if max == 0 { 1 } else { max },
+            last: 0,
+            total: 0,
+            steps: 0,
+        }
+    }
+
+    /// Counts one step that took `iterations`.
+    fn record(&mut self, iterations: usize) {
+        self.last = iterations;
+        self.total += iterations;
+        self.steps += 1;
     }
 }
 

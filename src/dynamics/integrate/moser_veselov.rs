@@ -1,7 +1,7 @@
 //! The discrete Moser–Veselov top: an integrable discretisation of the free body in any N.
 
 use super::splitting::kick;
-use super::{DynamicsError, SplittingOrder};
+use super::{DynamicsError, Iterations, SplittingOrder};
 use crate::algebra::pairs;
 use crate::dynamics::{RigidBody, Torque};
 use crate::numeric::{lu_apply, lu_factor, lu_solve};
@@ -88,10 +88,7 @@ pub struct MoserVeselov {
     composition: SplittingOrder,
     /// The order of the preprocessed step (modified moments of inertia, 3D): 2 for none.
     preprocessed: u32,
-    max_iterations: usize,
-    last_iterations: usize,
-    total_iterations: usize,
-    steps: usize,
+    iterations: Iterations,
 }
 
 impl Default for MoserVeselov {
@@ -100,10 +97,7 @@ impl Default for MoserVeselov {
         MoserVeselov {
             composition: SplittingOrder::Strang,
             preprocessed: 2,
-            max_iterations: 30,
-            last_iterations: 0,
-            total_iterations: 0,
-            steps: 0,
+            iterations: Iterations::new(30),
         }
     }
 }
@@ -172,29 +166,9 @@ impl MoserVeselov {
     /// Returns the integrator with a bound on the Newton iterations per step.
     pub fn with_max_iterations(self, max_iterations: usize) -> Self {
         MoserVeselov {
-            max_iterations: max_iterations.max(1),
+            iterations: Iterations::new(max_iterations),
             ..self
         }
-    }
-
-    /// Returns the bound on the Newton iterations per step.
-    pub fn max_iterations(&self) -> usize {
-        self.max_iterations
-    }
-
-    /// Returns the Newton iterations of the last step (summed over its substeps).
-    pub fn last_iterations(&self) -> usize {
-        self.last_iterations
-    }
-
-    /// Returns the Newton iterations of all steps so far.
-    pub fn total_iterations(&self) -> usize {
-        self.total_iterations
-    }
-
-    /// Returns the mean Newton iterations per step so far.
-    pub fn mean_iterations(&self) -> f64 {
-        self.total_iterations as f64 / self.steps.max(1) as f64
     }
 
     /// One kick–MV–kick step of size `h`; returns the Newton iterations.
@@ -207,11 +181,13 @@ impl MoserVeselov {
         h: f64,
     ) -> Result<usize, DynamicsError> {
         kick(body, torque, t, 0.5 * h);
-        let iterations = free_step(body, moments, t, h, self.max_iterations)?;
+        let iterations = free_step(body, moments, t, h, self.iterations.max)?;
         kick(body, torque, t + 0.5 * h, 0.5 * h);
         Ok(iterations)
     }
 }
+
+iteration_counters!(MoserVeselov, "Newton iterations");
 
 impl_integrator!(
     MoserVeselov,
@@ -285,9 +261,7 @@ impl_integrator!(
         });
         match outcome {
             Ok(iterations) => {
-                this.last_iterations = iterations;
-                this.total_iterations += iterations;
-                this.steps += 1;
+                this.iterations.record(iterations);
                 Ok(())
             }
             Err(e) => {
