@@ -602,23 +602,9 @@ impl Point {
     pub fn coordinates(&self) -> Result<Vec<f64>, AlgebraError> {
         down(&self.0)
     }
-
-    /// The underlying null vector.
-    pub fn as_multivector(&self) -> &Multivector {
-        &self.0
-    }
-
-    /// The underlying null vector, by value.
-    pub fn into_multivector(self) -> Multivector {
-        self.0
-    }
 }
 
-impl AsRef<Multivector> for Point {
-    fn as_ref(&self) -> &Multivector {
-        &self.0
-    }
-}
+multivector_newtype!(Point, "null vector");
 
 /// The centre and radius of a round: the direct blade X of a circle (grade 3) or a
 /// sphere (grade N + 1) spanned by points. X n∞ X is a multiple of the centre (n∞ reflected

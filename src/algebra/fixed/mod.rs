@@ -160,25 +160,32 @@ pub(crate) mod sealed {
         fn quat_product(a: Self::Quat, b: Self::Quat) -> Self::Quat;
     }
 
-    impl Sealed for f64 {
-        type Quat = [f64; 4];
-        #[inline(always)]
-        fn quat_lanes(q: [f64; 4]) -> [f64; 4] {
-            q
-        }
-        #[inline(always)]
-        fn quat_array(q: [f64; 4]) -> [f64; 4] {
-            q
-        }
-        #[inline(always)]
-        fn quat_mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
-            super::quat_mul_scalar(a, b)
-        }
-        #[inline(always)]
-        fn quat_product(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
-            super::quat_mul_scalar(a, b)
-        }
+    /// Quaternions kept as arrays and multiplied by the scalar formula.
+    macro_rules! array_quaternions {
+        ($t:ty) => {
+            impl Sealed for $t {
+                type Quat = [$t; 4];
+                #[inline(always)]
+                fn quat_lanes(q: [$t; 4]) -> [$t; 4] {
+                    q
+                }
+                #[inline(always)]
+                fn quat_array(q: [$t; 4]) -> [$t; 4] {
+                    q
+                }
+                #[inline(always)]
+                fn quat_mul(a: [$t; 4], b: [$t; 4]) -> [$t; 4] {
+                    super::quat_mul_scalar(a, b)
+                }
+                #[inline(always)]
+                fn quat_product(a: [$t; 4], b: [$t; 4]) -> [$t; 4] {
+                    super::quat_mul_scalar(a, b)
+                }
+            }
+        };
     }
+
+    array_quaternions!(f64);
 
     #[cfg(all(
         any(target_arch = "x86", target_arch = "x86_64"),
@@ -210,25 +217,7 @@ pub(crate) mod sealed {
         any(target_arch = "x86", target_arch = "x86_64"),
         target_feature = "sse"
     )))]
-    impl Sealed for f32 {
-        type Quat = [f32; 4];
-        #[inline(always)]
-        fn quat_lanes(q: [f32; 4]) -> [f32; 4] {
-            q
-        }
-        #[inline(always)]
-        fn quat_array(q: [f32; 4]) -> [f32; 4] {
-            q
-        }
-        #[inline(always)]
-        fn quat_mul(a: [f32; 4], b: [f32; 4]) -> [f32; 4] {
-            super::quat_mul_scalar(a, b)
-        }
-        #[inline(always)]
-        fn quat_product(a: [f32; 4], b: [f32; 4]) -> [f32; 4] {
-            super::quat_mul_scalar(a, b)
-        }
-    }
+    array_quaternions!(f32);
 }
 
 /// An f32 quaternion in the four lanes of an SSE register.

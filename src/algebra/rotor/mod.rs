@@ -986,12 +986,7 @@ mod tests {
     #[test]
     fn fixed_size_routes_equal_the_blade_routes() {
         let mut s = 0x9e37_79b9_7f4a_7c15u64;
-        let mut r = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        };
+        let mut r = move || crate::numeric::tests::random(&mut s);
         let mut cases = 0;
         let mut worst = [0.0f64; 4];
         for n in [3usize, 4] {

@@ -1,7 +1,10 @@
 //! Adaptive Dormand–Prince 8(5,3) on the group, with dense output of order 7.
 
 use super::dop853_tableau::{A, ALL_STAGES, B, BHH, C, D, E5, STAGES};
-use super::{DEXP_INVERSE_8, DynamicsError, dexp_inverse_packed, momentum_rate_into};
+use super::{
+    DEXP_INVERSE_8, DynamicsError, check_sample_times, count_step, dexp_inverse_packed,
+    momentum_rate_into, samples_at_zero,
+};
 use crate::algebra::Bivector;
 use crate::dynamics::Attitude;
 use crate::dynamics::{RigidBody, Torque};
@@ -181,22 +184,6 @@ impl Dop853 {
         d
     }
 
-    /// Sets the bound on internal steps per call.
-    pub fn with_max_steps(mut self, max_steps: usize) -> Self {
-        self.max_steps = max_steps.max(1);
-        self
-    }
-
-    /// Returns the number of accepted internal steps so far.
-    pub fn accepted_steps(&self) -> usize {
-        self.accepted
-    }
-
-    /// Returns the number of rejected internal steps so far.
-    pub fn rejected_steps(&self) -> usize {
-        self.rejected
-    }
-
     /// Returns the number of right-hand-side evaluations (dL/dt and ω at one state) so far,
     /// the starting-step heuristic and the dense output included.
     pub fn rhs_evaluations(&self) -> usize {
@@ -273,33 +260,16 @@ impl Dop853 {
                 reason: "dense samples need the adaptive integrator (Dop853::new)",
             });
         }
-        if times.iter().any(|t| !t.is_finite() || *t < 0.0)
-            || times.windows(2).any(|w| w[1] <= w[0])
-        {
-            return Err(DynamicsError::InvalidSampling {
-                reason: "sample times must be finite, non-negative and strictly increasing",
-            });
-        }
+        check_sample_times(times)?;
         check_state(body, 0.0)?;
         self.first = None;
-        let mut out = Vec::with_capacity(times.len());
+        let (mut out, mut next) = samples_at_zero(body, times);
         let mut b = body.clone();
         let mut t = 0.0;
-        let mut next = 0;
-        while next < times.len() && times[next] == 0.0 {
-            out.push((b.principal_frame_attitude().clone(), b.momentum().clone()));
-            next += 1;
-        }
         let t_end = times.last().copied().unwrap_or(0.0);
         let mut count = 0;
         while next < times.len() {
-            count += 1;
-            if count > self.max_steps {
-                return Err(DynamicsError::TooManySteps {
-                    time: t,
-                    steps: count,
-                });
-            }
+            count_step(&mut count, self.max_steps, t)?;
             let h = self.next_h(&b, t, 1.0, torque).min(t_end - t);
             let Some((attitude, momentum)) = self.try_step(&b, t, h, torque)? else {
                 continue;
@@ -669,6 +639,8 @@ fn check_state(body: &RigidBody, t: f64) -> Result<(), DynamicsError> {
     }
 }
 
+step_counters!(Dop853);
+
 impl_integrator!(
     Dop853,
     order = |_| 8,
@@ -695,10 +667,7 @@ impl_integrator!(
         let mut count = 0;
         let sign = h.signum();
         while (t_end - time) * sign > 1e-14 * t_end.abs().max(1.0) {
-            count += 1;
-            if count > this.max_steps {
-                return Err(DynamicsError::TooManySteps { time, steps: count });
-            }
+            count_step(&mut count, this.max_steps, time)?;
             let remaining = t_end - time;
             let mut try_h = this.next_h(body, time, sign, torque).abs() * sign;
             if try_h.abs() >= remaining.abs() {

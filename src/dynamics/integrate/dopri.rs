@@ -1,6 +1,9 @@
 //! Adaptive Dormand–Prince 5(4) on the group, with dense output.
 
-use super::{DEXP_INVERSE_5, DynamicsError, axpy, dexp_inverse_packed, momentum_rate_into};
+use super::{
+    DEXP_INVERSE_5, DynamicsError, axpy, check_sample_times, count_step, dexp_inverse_packed,
+    momentum_rate_into, samples_at_zero,
+};
 use crate::algebra::Bivector;
 use crate::dynamics::Attitude;
 use crate::dynamics::{RigidBody, Torque};
@@ -95,22 +98,6 @@ impl Dopri5 {
         }
     }
 
-    /// Sets the bound on internal steps per call.
-    pub fn with_max_steps(mut self, max_steps: usize) -> Self {
-        self.max_steps = max_steps.max(1);
-        self
-    }
-
-    /// Returns the number of accepted internal steps so far.
-    pub fn accepted_steps(&self) -> usize {
-        self.accepted
-    }
-
-    /// Returns the number of rejected internal steps so far.
-    pub fn rejected_steps(&self) -> usize {
-        self.rejected
-    }
-
     /// Returns the number of right-hand sides evaluated so far: seven per attempted step
     /// (the seventh stage is the rate at the new solution; a step does not reuse the last
     /// one, so the count compares directly with [`Dop853::rhs_evaluations`]).
@@ -152,31 +139,14 @@ impl Dopri5 {
         torque: &dyn Torque,
         times: &[f64],
     ) -> Result<Vec<(Attitude, Bivector)>, DynamicsError> {
-        if times.iter().any(|t| !t.is_finite() || *t < 0.0)
-            || times.windows(2).any(|w| w[1] <= w[0])
-        {
-            return Err(DynamicsError::InvalidSampling {
-                reason: "sample times must be finite, non-negative and strictly increasing",
-            });
-        }
-        let mut out = Vec::with_capacity(times.len());
+        check_sample_times(times)?;
+        let (mut out, mut next) = samples_at_zero(body, times);
         let mut b = body.clone();
         let mut t = 0.0;
-        let mut next = 0;
-        while next < times.len() && times[next] == 0.0 {
-            out.push((b.principal_frame_attitude().clone(), b.momentum().clone()));
-            next += 1;
-        }
         let t_end = times.last().copied().unwrap_or(0.0);
         let mut count = 0;
         while next < times.len() {
-            count += 1;
-            if count > self.max_steps {
-                return Err(DynamicsError::TooManySteps {
-                    time: t,
-                    steps: count,
-                });
-            }
+            count_step(&mut count, self.max_steps, t)?;
             let h = self
                 .initial_h(&b, t, torque)
                 .min(t_end - t)
@@ -373,6 +343,8 @@ impl StepResult {
     }
 }
 
+step_counters!(Dopri5);
+
 impl_integrator!(
     Dopri5,
     order = |_| 5,
@@ -384,10 +356,7 @@ impl_integrator!(
         let mut count = 0;
         let sign = h.signum();
         while (t_end - time) * sign > 1e-14 * t_end.abs().max(1.0) {
-            count += 1;
-            if count > this.max_steps {
-                return Err(DynamicsError::TooManySteps { time, steps: count });
-            }
+            count_step(&mut count, this.max_steps, time)?;
             let remaining = t_end - time;
             let mut try_h = this.initial_h(body, time, torque) * sign;
             if try_h.abs() >= remaining.abs() {

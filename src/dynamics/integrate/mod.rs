@@ -99,6 +99,30 @@ macro_rules! iteration_counters {
     };
 }
 
+/// The step-count accessors of an adaptive integrator with fields `max_steps`, `accepted`
+/// and `rejected`.
+macro_rules! step_counters {
+    ($ty:ty) => {
+        impl $ty {
+            /// Sets the bound on internal steps per call.
+            pub fn with_max_steps(mut self, max_steps: usize) -> Self {
+                self.max_steps = max_steps.max(1);
+                self
+            }
+
+            /// Returns the number of accepted internal steps so far.
+            pub fn accepted_steps(&self) -> usize {
+                self.accepted
+            }
+
+            /// Returns the number of rejected internal steps so far.
+            pub fn rejected_steps(&self) -> usize {
+                self.rejected
+            }
+        }
+    };
+}
+
 mod dop853;
 pub(crate) use dop853::first_step_estimate;
 pub(crate) mod dop853_tableau;
@@ -265,6 +289,38 @@ impl Iterations {
         self.total += iterations;
         self.steps += 1;
     }
+}
+
+/// Checks the times of a dense-output run: finite, non-negative and strictly increasing.
+fn check_sample_times(times: &[f64]) -> Result<(), DynamicsError> {
+    if times.iter().any(|t| !t.is_finite() || *t < 0.0) || times.windows(2).any(|w| w[1] <= w[0]) {
+        return Err(DynamicsError::InvalidSampling {
+            reason: "sample times must be finite, non-negative and strictly increasing",
+        });
+    }
+    Ok(())
+}
+
+/// The samples at t = 0 of a dense-output run (the body's state, once per such time) and
+/// the index of the first later time.
+fn samples_at_zero(body: &RigidBody, times: &[f64]) -> (Vec<(Attitude, Bivector)>, usize) {
+    let zeros = times.iter().take_while(|&&t| t == 0.0).count();
+    let mut out = Vec::with_capacity(times.len());
+    let state = (body.principal_frame_attitude(), body.momentum());
+    out.extend((0..zeros).map(|_| (state.0.clone(), state.1.clone())));
+    (out, zeros)
+}
+
+/// Counts one more internal step of a call at `time`, refusing more than `max_steps`.
+fn count_step(count: &mut usize, max_steps: usize, time: f64) -> Result<(), DynamicsError> {
+    *count += 1;
+    if *count > max_steps {
+        return Err(DynamicsError::TooManySteps {
+            time,
+            steps: *count,
+        });
+    }
+    Ok(())
 }
 
 /// An integrator of the rigid-body equations: advances a [`RigidBody`] by one step.
