@@ -188,10 +188,7 @@ impl Bivector {
     #[track_caller]
     pub fn set(&mut self, i: usize, j: usize, value: f64) {
         let n = self.dim;
-        assert!(
-            i < n && j < n && i != j,
-            "rotorflow: invalid plane ({i}, {j}) in dimension {n}"
-        );
+        super::error::assert_plane(i, j, n);
         if i < j {
             self.coeffs[pair_index(n, i, j)] = value;
         } else {
@@ -344,10 +341,7 @@ impl Bivector {
     #[track_caller]
     pub fn rotate_in_plane_mut(&mut self, i: usize, j: usize, angle: f64) {
         let n = self.dim;
-        assert!(
-            i < n && j < n && i != j,
-            "rotorflow: invalid plane ({i}, {j}) in dimension {n}"
-        );
+        super::error::assert_plane(i, j, n);
         let (s, m) = crate::numeric::sin_cos_minus_one(angle);
         self.rotate_in_plane_sin_cm1(i, j, s, m);
     }

@@ -437,6 +437,17 @@ impl AlgebraError {
     }
 }
 
+/// Panics with a clear message unless (i, j) is a plane of dimension n: both indices in
+/// range and different.
+#[track_caller]
+#[inline]
+pub(crate) fn assert_plane(i: usize, j: usize, n: usize) {
+    assert!(
+        i < n && j < n && i != j,
+        "rotorflow: invalid plane ({i}, {j}) in dimension {n}"
+    );
+}
+
 /// Panics with a clear message when two dimensions differ; used by the operators.
 #[track_caller]
 #[inline]

@@ -8,6 +8,11 @@ use std::ops::{
     Add, AddAssign, BitAnd, BitOr, BitXor, Div, Mul, MulAssign, Neg, Shl, Shr, Sub, SubAssign,
 };
 
+/// Applies `f` to each coefficient of `a` and the one of `b` at the same place.
+fn zip_apply(a: &mut [f64], b: &[f64], f: impl Fn(&mut f64, f64)) {
+    a.iter_mut().zip(b).for_each(|(x, &y)| f(x, y));
+}
+
 /// Implements the linear-space operators (+, −, neg, scaling) for a type with
 /// `dim()`/`as_slice()`/`as_mut_slice()`-like storage accessed through two closures.
 macro_rules! linear_ops {
@@ -16,20 +21,14 @@ macro_rules! linear_ops {
             #[track_caller]
             fn add_assign(&mut self, rhs: &$t) {
                 check_pair(self, rhs);
-                self.$slice_mut()
-                    .iter_mut()
-                    .zip(rhs.$slice())
-                    .for_each(|(a, b)| *a += b);
+                zip_apply(self.$slice_mut(), rhs.$slice(), |a, b| *a += b);
             }
         }
         impl SubAssign<&$t> for $t {
             #[track_caller]
             fn sub_assign(&mut self, rhs: &$t) {
                 check_pair(self, rhs);
-                self.$slice_mut()
-                    .iter_mut()
-                    .zip(rhs.$slice())
-                    .for_each(|(a, b)| *a -= b);
+                zip_apply(self.$slice_mut(), rhs.$slice(), |a, b| *a -= b);
             }
         }
         impl AddAssign<$t> for $t {

@@ -1014,38 +1014,23 @@ impl super::Versor<Multivector> for Motor {
     }
 }
 
-impl super::Versor<Point> for Motor {
-    type Output = Result<Point, AlgebraError>;
-    /// [`Motor::apply_point`].
-    ///
-    /// # Errors
-    /// [`AlgebraError::SignatureMismatch`].
-    fn apply(&self, p: &Point) -> Self::Output {
-        self.apply_point(p)
-    }
+/// `Versor<X> for Motor` by the motor's own method for X.
+macro_rules! motor_moves {
+    ($($t:ident => $method:ident),*) => {$(
+        impl super::Versor<$t> for Motor {
+            type Output = Result<$t, AlgebraError>;
+            #[doc = concat!("[`Motor::", stringify!($method), "`].")]
+            ///
+            /// # Errors
+            /// [`AlgebraError::SignatureMismatch`].
+            fn apply(&self, x: &$t) -> Self::Output {
+                self.$method(x)
+            }
+        }
+    )*};
 }
 
-impl super::Versor<Line> for Motor {
-    type Output = Result<Line, AlgebraError>;
-    /// [`Motor::apply_line`].
-    ///
-    /// # Errors
-    /// [`AlgebraError::SignatureMismatch`].
-    fn apply(&self, l: &Line) -> Self::Output {
-        self.apply_line(l)
-    }
-}
-
-impl super::Versor<Plane> for Motor {
-    type Output = Result<Plane, AlgebraError>;
-    /// [`Motor::apply_plane`].
-    ///
-    /// # Errors
-    /// [`AlgebraError::SignatureMismatch`].
-    fn apply(&self, p: &Plane) -> Self::Output {
-        self.apply_plane(p)
-    }
-}
+motor_moves!(Point => apply_point, Line => apply_line, Plane => apply_plane);
 
 impl super::Versor<Motor> for Motor {
     type Output = Result<Motor, AlgebraError>;

@@ -197,6 +197,25 @@ impl DynamicsError {
             reasons: vec![reason],
         }
     }
+
+    /// `Err(NoClosedForm(WrongDimension))` unless the dimension `found` is the `expected` one
+    /// of the closed form `form`.
+    pub(crate) fn check_closed_form_dim(
+        form: &'static str,
+        expected: usize,
+        found: usize,
+    ) -> Result<(), Self> {
+        if found == expected {
+            return Ok(());
+        }
+        Err(DynamicsError::no_closed_form(
+            NoClosedFormReason::WrongDimension {
+                form,
+                expected,
+                found,
+            },
+        ))
+    }
 }
 
 fn join_reasons(reasons: &[NoClosedFormReason]) -> String {

@@ -2,8 +2,8 @@
 
 use super::dop853_tableau::{A, ALL_STAGES, B, BHH, C, D, E5, STAGES};
 use super::{
-    DEXP_INVERSE_8, DynamicsError, check_sample_times, count_step, dexp_inverse_packed,
-    momentum_rate_into, samples_at_zero,
+    DEXP_INVERSE_8, DynamicsError, check_sample_times, check_state, count_step,
+    dexp_inverse_packed, momentum_rate_into, samples_at_zero,
 };
 use crate::algebra::Bivector;
 use crate::dynamics::Attitude;
@@ -625,17 +625,6 @@ impl LastStep {
         let a = interp(&zero, &self.a1, &self.ka);
         let r0 = self.r0.as_ref().expect("an accepted step has its attitude");
         (r0.times_exp(&a), l)
-    }
-}
-
-/// Fails with [`DynamicsError::NonFinite`] unless the body's state is finite.
-fn check_state(body: &RigidBody, t: f64) -> Result<(), DynamicsError> {
-    if body.momentum().as_slice().iter().all(|x| x.is_finite())
-        && body.principal_frame_attitude().is_finite()
-    {
-        Ok(())
-    } else {
-        Err(DynamicsError::NonFinite { time: t })
     }
 }
 

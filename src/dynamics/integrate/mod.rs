@@ -311,6 +311,17 @@ fn samples_at_zero(body: &RigidBody, times: &[f64]) -> (Vec<(Attitude, Bivector)
     (out, zeros)
 }
 
+/// Fails with [`DynamicsError::NonFinite`] unless the body's state is finite.
+fn check_state(body: &RigidBody, t: f64) -> Result<(), DynamicsError> {
+    if body.momentum().as_slice().iter().all(|x| x.is_finite())
+        && body.principal_frame_attitude().is_finite()
+    {
+        Ok(())
+    } else {
+        Err(DynamicsError::NonFinite { time: t })
+    }
+}
+
 /// Counts one more internal step of a call at `time`, refusing more than `max_steps`.
 fn count_step(count: &mut usize, max_steps: usize, time: f64) -> Result<(), DynamicsError> {
     *count += 1;

@@ -1,6 +1,6 @@
 //! Runge–Kutta–Munthe-Kaas of order 4: classical RK4 on L, the attitude on the group.
 
-use super::{DynamicsError, momentum_rate as rates};
+use super::{DynamicsError, check_state, momentum_rate as rates};
 use crate::algebra::{Bivector, commutator_packed, pairs};
 use crate::dynamics::torques::Free;
 use crate::dynamics::{Attitude, RigidBody};
@@ -42,7 +42,7 @@ impl_integrator!(
     step = |_, body, t, h, torque| {
         // The packed free step assumes ω = I⁻¹(L); a gyrostat takes the general stages.
         if torque.is_zero() && body.gyrostatic_momentum().is_none() && free_step_packed(body, h) {
-            return finish(body, t);
+            return check_state(body, t);
         }
         let r0 = body.principal_frame_attitude().clone();
         let l0 = body.momentum().clone();
@@ -170,7 +170,7 @@ impl_integrator!(
             && body.gyrostatic_momentum().is_none()
             && coadjoint_free_step_packed(body, h)
         {
-            return finish(body, t);
+            return check_state(body, t);
         }
         if torque.is_zero() {
             return lie_poisson_free_step(body, t, h);
@@ -260,17 +260,6 @@ fn lie_poisson_free_step(body: &mut RigidBody, t: f64, h: f64) -> Result<(), Dyn
     }
     body.replace_state(r, l);
     Ok(())
-}
-
-/// Fails with [`DynamicsError::NonFinite`] if the state is no longer finite.
-fn finish(body: &RigidBody, t: f64) -> Result<(), DynamicsError> {
-    if body.momentum().as_slice().iter().all(|x| x.is_finite())
-        && body.principal_frame_attitude().is_finite()
-    {
-        Ok(())
-    } else {
-        Err(DynamicsError::NonFinite { time: t })
-    }
 }
 
 /// The free-motion step for an inertia diagonal on the basis planes: on stack arrays for
