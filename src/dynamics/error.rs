@@ -205,16 +205,16 @@ impl DynamicsError {
         expected: usize,
         found: usize,
     ) -> Result<(), Self> {
+        let reason = NoClosedFormReason::WrongDimension {
+            form,
+            expected,
+            found,
+        };
         if found == expected {
-            return Ok(());
+            Ok(())
+        } else {
+            Err(DynamicsError::no_closed_form(reason))
         }
-        Err(DynamicsError::no_closed_form(
-            NoClosedFormReason::WrongDimension {
-                form,
-                expected,
-                found,
-            },
-        ))
     }
 }
 
