@@ -44,7 +44,6 @@ impl Midpoint {
         Midpoint {
             tolerance,
             iterations: Iterations::new(max_iterations),
-            ..Self::default()
         }
     }
 }
