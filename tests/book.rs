@@ -41,6 +41,9 @@ mod book_integrators;
 #[path = "../examples/book_literature.rs"]
 mod book_literature;
 #[allow(dead_code)]
+#[path = "../examples/book_long_runs.rs"]
+mod book_long_runs;
+#[allow(dead_code)]
 #[path = "../examples/book_moving_bodies.rs"]
 mod book_moving_bodies;
 #[allow(dead_code)]
@@ -102,6 +105,9 @@ const GENERATED: &[&str] = &[
     "literature_hlw.svg",
     "literature_p4.svg",
     "literature_simo_wong.svg",
+    "long_runs_cost.md",
+    "long_runs_drift.md",
+    "long_runs_rhs.md",
     "moving_bodies.md",
     "peer_versors.md",
     "step_ratio.md",
@@ -265,6 +271,24 @@ fn generated_bench_table_is_rendered_from_its_data() {
     );
     for key in ["# date: ", "# commit: ", "# machine: ", "# compiler: "] {
         assert!(data.contains(key), "bench_data.tsv lacks `{key}`");
+    }
+}
+
+/// The long runs of the dynamics chapter: its three tables are the rendering of the
+/// recorded data, which says where and when it was computed.
+#[test]
+fn generated_long_runs_are_rendered_from_their_data() {
+    let data = read(&root().join("book/src/generated/long_runs.tsv"));
+    let tables = book_long_runs::render(&data).expect("render");
+    for (file, table) in book_long_runs::FILES.iter().zip(&tables) {
+        assert_current(
+            file,
+            table,
+            "cargo run --release --example book_long_runs -- --write",
+        );
+    }
+    for key in ["# date: ", "# commit: ", "# machine: ", "# compiler: "] {
+        assert!(data.contains(key), "long_runs.tsv lacks `{key}`");
     }
 }
 
