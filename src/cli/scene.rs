@@ -24,7 +24,7 @@ pub struct SceneArgs {
     #[arg(long, value_name = "t1,t2,...", allow_hyphen_values = true)]
     pub times: Option<String>,
     /// Write the samples as JSON to FILE.json (keys dim, times, bodies, energy,
-    /// kinetic_energy, potential_energy, momentum, angular_momentum, planes).
+    /// kinetic_energy, potential_energy, momentum, angular_momentum, planes, contacts).
     #[arg(long, value_name = "FILE.json")]
     pub output: Option<PathBuf>,
     /// Write one CSV per body (DIR/<name>.csv) and DIR/system.csv into the folder DIR,
