@@ -92,7 +92,9 @@ pub struct SystemTrajectory {
     /// The angular momentum about the origin per sample (planes 12, 13, …).
     pub angular_momentum: Vec<Vec<f64>>,
     /// The contacts of the step that ended at each sample (none at a sample no step ends
-    /// at, such as t = 0).
+    /// at, such as t = 0): one per point of a body touching a half-space, the entries of
+    /// the step's velocity solves at that point summed ([`System::contacts`] lists them
+    /// one by one).
     pub contacts: Vec<Vec<SampleContact>>,
     /// The system's half-spaces.
     pub planes: Vec<RecordedPlane>,
@@ -411,6 +413,8 @@ impl SystemTrajectory {
     #[cfg(feature = "serde")]
     pub fn to_json(&self) -> Result<String, DynamicsError> {
         self.check_finite()?;
+        // serde_json fails only on maps with non-string keys, which a trajectory has none
+        // of, and writes non-finite numbers as null, which the check above refuses.
         let mut text =
             serde_json::to_string(self).map_err(|_| DynamicsError::NonFinite { time: f64::NAN })?;
         text.push('\n');
