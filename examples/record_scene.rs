@@ -68,11 +68,22 @@ pub fn record(out: &Path) -> Result<String, Box<dyn Error>> {
         .iter()
         .map(|e| (e - e0).abs())
         .fold(0.0, f64::max);
+    // A ball launched without spin ends rolling at v₀ (N+2)/(N+4) (the moving-bodies
+    // chapter), whatever the friction.
+    let speed = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let ball = &run.bodies[0].velocity;
+    let (v0, v_end) = (speed(&ball[0]), speed(&ball[ball.len() - 1]));
+    let rolling = v0 * 6.0 / 8.0;
+    if (v_end - rolling).abs() > 1e-6 * rolling {
+        return Err(format!("the ball ends at {v_end}, not rolling at {rolling}").into());
+    }
     let summary = format!(
         "{} samples, {} steps; the ball touches the floor at {touching} samples; \
-         largest energy change {drift:.3e} (friction takes what rolling does not keep)",
+         largest energy change {drift:.3e} (friction takes what rolling does not keep); \
+         the ball's final speed {v_end:.6}, rolling predicts v₀ (N+2)/(N+4) = {:.6}",
         run.times.len(),
-        run.steps
+        run.steps,
+        rolling
     );
 
     std::fs::write(out.join("run.json"), run.to_json()?)?;
