@@ -43,6 +43,7 @@ pub mod format;
 pub mod output;
 pub mod run;
 
+#[doc(inline)]
 pub use format::{
     FileReader, IntegratorKind, MAX_STEP_PER_PERIOD, MAX_STEPS, Scene, SceneAnchor, SceneBody,
     SceneJoint, ScenePlane, SceneSpring,
