@@ -62,6 +62,10 @@ mod mesh_body;
 mod other_signatures;
 #[path = "../examples/reaction_wheels_4d.rs"]
 mod reaction_wheels_4d;
+#[allow(dead_code)]
+#[cfg(all(feature = "viz", feature = "serde"))]
+#[path = "../examples/record_scene.rs"]
+mod record_scene;
 #[path = "../examples/rolling_ball.rs"]
 mod rolling_ball;
 #[allow(dead_code)]
@@ -83,6 +87,7 @@ const RUN_EXAMPLES: &[&str] = &[
     "mesh_body",
     "other_signatures",
     "reaction_wheels_4d",
+    "record_scene",
     "rolling_ball",
     "torque_closure",
 ];
@@ -209,6 +214,25 @@ fn included_examples_run() {
     rolling_ball::main().expect("rolling_ball");
     reaction_wheels_4d::main().expect("reaction_wheels_4d");
     book_inertia_tables::render().expect("book_inertia_tables");
+    #[cfg(all(feature = "viz", feature = "serde"))]
+    {
+        let dir = std::env::temp_dir().join(format!("rotorflow-book-{}", std::process::id()));
+        let said = record_scene::record(&dir).expect("record_scene");
+        for file in [
+            "run.json",
+            "ball.csv",
+            "tesseract.csv",
+            "system.csv",
+            "run.html",
+            "run.svg",
+        ] {
+            assert!(
+                dir.join(file).is_file(),
+                "record_scene wrote no {file}: {said}"
+            );
+        }
+        std::fs::remove_dir_all(&dir).expect("remove the example's files");
+    }
 }
 
 fn assert_current(file: &str, generated: &str, command: &str) {
