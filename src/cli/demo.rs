@@ -7,9 +7,10 @@
 //! - `tesseract_frames.svg`: a strip of frames of the tumbling tesseract;
 //! - `sweep.svg` and `sweep.csv`: an observed 3D frequency against the hypothetical 4D
 //!   parameter κ (section 7.2), with the paper's eq. (119) frequency beside it;
-//! - `<scene>.html` and `energy_<scene>.svg`: three scene files of `scenes/` (a tesseract on
-//!   a spring, a 4D ball sliding into rolling, a 5-cell bouncing down a slope), each animated
-//!   and its energy and momenta plotted over time;
+//! - `<scene>.html` and `energy_<scene>.svg`: five scene files of `scenes/` (a tesseract on
+//!   a spring, a 4D ball sliding into rolling, a 5-cell bouncing down a slope, Newton's cradle
+//!   in 4D, three stacked 4D hypercubes), each animated and its energy and momenta plotted
+//!   over time;
 //! - `summary.md`: a table of the cases (numeric vs exact, drifts, timings), of the
 //!   integrators on the tesseract, and of the scenes with their measured figures.
 
@@ -591,7 +592,7 @@ struct DemoScene {
     figures: fn(&Scene, &Record) -> String,
 }
 
-const SCENES: [DemoScene; 3] = [
+const SCENES: [DemoScene; 5] = [
     DemoScene {
         name: "tesseract_spring",
         title: "4D tesseract hanging by a corner from a spring",
@@ -615,6 +616,22 @@ const SCENES: [DemoScene; 3] = [
         text: include_str!("../../scenes/five-cell-slope.toml"),
         samples: 251,
         figures: slope_figures,
+    },
+    DemoScene {
+        name: "newtons_cradle",
+        title: "Newton's cradle in 4D",
+        file: "scenes/newtons-cradle-4d.toml",
+        text: include_str!("../../scenes/newtons-cradle-4d.toml"),
+        samples: 301,
+        figures: cradle_figures,
+    },
+    DemoScene {
+        name: "stacked_hypercubes",
+        title: "three 4D hypercubes stacked",
+        file: "scenes/stacked-hypercubes-4d.toml",
+        text: include_str!("../../scenes/stacked-hypercubes-4d.toml"),
+        samples: 101,
+        figures: stack_figures,
     },
 ];
 
@@ -795,6 +812,45 @@ fn rolling_figures(scene: &Scene, record: &Record) -> String {
 }
 
 /// The 5-cell bouncing down a slope: the energy lost and the deepest point.
+/// The cradle: at the first sample after the row of impacts, the last ball's speed and the
+/// largest speed of the others (the first ball came in at 1 m/s), and the energy kept.
+fn cradle_figures(_: &Scene, record: &Record) -> String {
+    let balls = record.bodies.len();
+    let speed = |b: usize, k: usize| norm(&record.bodies[b].velocity[k]);
+    let after = (0..record.times.len()).find(|&k| speed(balls - 1, k) > 0.5);
+    let Some(k) = after else {
+        return "the last ball never left".to_string();
+    };
+    let others = (0..balls - 1).map(|b| speed(b, k)).fold(0.0, f64::max);
+    format!(
+        "at t = {:.3} the last ball leaves at {:.6} m/s (the first came in at 1 m/s and climbs \
+         from the bottom), the other balls move at {others:.1e} m/s at most; energy kept to \
+         {:.1e} over the run",
+        record.times[k],
+        speed(balls - 1, k),
+        energy_error(record),
+    )
+}
+
+/// The stack: where the top hypercube ends against where it rests (its centre at x₁ = 0.1,
+/// x₄ = 2.5), and the largest speed at the end.
+fn stack_figures(_: &Scene, record: &Record) -> String {
+    let last = record.times.len() - 1;
+    let top = &record.bodies[record.bodies.len() - 1].position[last];
+    let n = top.len();
+    let sink = 2.5 - top[n - 1];
+    let slide = norm(&[top[0] - 0.1, top[1], top[2]]);
+    let fastest = record
+        .bodies
+        .iter()
+        .map(|b| norm(&b.velocity[last]))
+        .fold(0.0, f64::max);
+    format!(
+        "the top hypercube ends {sink:.1e} below and {slide:.1e} aside of its resting place; \
+         the fastest body moves at {fastest:.1e} m/s at the end"
+    )
+}
+
 fn slope_figures(scene: &Scene, record: &Record) -> String {
     let last = record.times.len() - 1;
     let (e0, e1) = (record.energy[0], record.energy[last]);

@@ -9,7 +9,7 @@ use serde_json::{Value, json};
 /// Returns the JSON of a run: the keys of [`SystemTrajectory`] (`dim`, `times`, `bodies`
 /// (each with `name`, `mass`, `position`, `velocity`, `attitude` as N rows per sample,
 /// `omega`), `energy`, `kinetic_energy`, `potential_energy`, `momentum`,
-/// `angular_momentum`, `contacts`, `steps`) and the scene's: `integrator`, `dt`, `t_end`,
+/// `angular_momentum`, `contacts`, `body_contacts`, `steps`) and the scene's: `integrator`, `dt`, `t_end`,
 /// `gravity`, `plane_names` (the bivector components), `planes` (the half-spaces as the
 /// file gives them) and each body's `shape` (its SPEC).
 ///

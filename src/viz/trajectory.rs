@@ -86,10 +86,18 @@ pub fn animation_html(run: &SystemTrajectory, drawing: &Drawing) -> String {
         .iter()
         .map(|p| (p.normal.clone(), p.offset))
         .collect();
+    // Contacts with planes and between bodies alike.
     let contacts: Vec<Vec<Vec<f64>>> = run
         .contacts
         .iter()
-        .map(|c| c.iter().map(|c| c.point.clone()).collect())
+        .enumerate()
+        .map(|(k, c)| {
+            let between = run.body_contacts.get(k).into_iter().flatten();
+            c.iter()
+                .map(|c| c.point.clone())
+                .chain(between.map(|c| c.point.clone()))
+                .collect()
+        })
         .collect();
     scene_html(&SceneAnimation {
         title: &drawing.title,

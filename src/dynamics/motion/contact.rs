@@ -292,28 +292,96 @@ pub struct Contact {
     pub slip: Vector,
 }
 
+/// One contact between two bodies in a velocity solve of the last step: where body `a`
+/// touched body `b` (a < b) and the impulse of that solve there (see
+/// [`System::body_contacts`](super::System::body_contacts)).
+#[derive(Clone, Debug, PartialEq)]
+pub struct BodyContact {
+    /// The first body, by index.
+    pub a: usize,
+    /// The second body, by index (greater than `a`).
+    pub b: usize,
+    /// The contact point in space.
+    pub point: Vector,
+    /// The unit normal in space, from `a` towards `b`.
+    pub normal: Vector,
+    /// The normal impulse (≥ 0) body `b` received (body `a` the opposite).
+    pub normal_impulse: f64,
+    /// The friction impulse body `b` received (space frame; body `a` the opposite).
+    pub friction_impulse: Vector,
+}
+
 /// The contacts of the last step. Entries past the length stay allocated, so that the
 /// contacts of the next step are written over them instead of being built and moved.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct ContactLog {
     entries: Vec<Contact>,
     len: usize,
+    pairs: Vec<BodyContact>,
+    pairs_len: usize,
 }
 
+/// How many contacts of each kind a [`ContactLog`] holds, to come back to.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ContactMark(usize, usize);
+
 impl ContactLog {
-    /// The contacts recorded.
+    /// The contacts with half-spaces recorded.
     pub(crate) fn as_slice(&self) -> &[Contact] {
         &self.entries[..self.len]
+    }
+
+    /// The contacts between bodies recorded.
+    pub(crate) fn pairs(&self) -> &[BodyContact] {
+        &self.pairs[..self.pairs_len]
     }
 
     /// Forgets every contact.
     pub(crate) fn clear(&mut self) {
         self.len = 0;
+        self.pairs_len = 0;
     }
 
-    /// Keeps the first `len` contacts.
-    pub(crate) fn truncate(&mut self, len: usize) {
-        self.len = self.len.min(len);
+    /// How many contacts of each kind are recorded now.
+    pub(crate) fn mark(&self) -> ContactMark {
+        ContactMark(self.len, self.pairs_len)
+    }
+
+    /// Keeps the contacts recorded up to `mark`.
+    pub(crate) fn truncate(&mut self, mark: ContactMark) {
+        self.len = self.len.min(mark.0);
+        self.pairs_len = self.pairs_len.min(mark.1);
+    }
+
+    /// Records a contact between bodies `a` and `b` at `point` (space) with unit normal
+    /// `normal` (from `a` to `b`) and the impulses body `b` received.
+    pub(crate) fn record_pair(
+        &mut self,
+        (a, b): (usize, usize),
+        point: &Vector,
+        normal: &Vector,
+        normal_impulse: f64,
+        friction_impulse: &Vector,
+    ) {
+        if self.pairs_len == self.pairs.len() {
+            self.pairs.push(BodyContact {
+                a,
+                b,
+                point: point.clone(),
+                normal: normal.clone(),
+                normal_impulse,
+                friction_impulse: friction_impulse.clone(),
+            });
+        } else {
+            let c = &mut self.pairs[self.pairs_len];
+            c.a = a;
+            c.b = b;
+            c.point.clone_from(point);
+            c.normal.clone_from(normal);
+            c.normal_impulse = normal_impulse;
+            c.friction_impulse.clone_from(friction_impulse);
+        }
+        self.pairs_len += 1;
     }
 
     /// Records a contact: the point of body `body` (own axes) touching half-space

@@ -82,11 +82,13 @@ mod solve;
 mod system;
 
 pub use body::MovingBody;
-pub use contact::{Contact, ContactShape, HalfSpace};
+pub use contact::{BodyContact, Contact, ContactShape, HalfSpace};
 pub use error::MotionError;
 pub use forque::{Forque, ForqueInput, Wrench, forques};
 pub use integrate::{MotionIntegrator, MotionRk4, MotionSplitting};
 pub use joint::BallJoint;
-pub use record::{BodyTrack, RecordedPlane, SampleContact, SystemTrajectory, csv_number};
+pub use record::{
+    BodyTrack, RecordedPlane, SampleBodyContact, SampleContact, SystemTrajectory, csv_number,
+};
 pub use solve::SolverReport;
 pub use system::System;

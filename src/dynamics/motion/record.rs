@@ -34,6 +34,26 @@ impl BodyTrack {
     }
 }
 
+/// A contact between two bodies at a sample: bodies `a` and `b` touching at a point during
+/// the step that ended at the sample, with the impulses body `b` received there over that
+/// step (body `a` received the opposite).
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct SampleBodyContact {
+    /// The first body, by index.
+    pub a: usize,
+    /// The second body, by index (greater than `a`).
+    pub b: usize,
+    /// The contact point in space, at the sample.
+    pub point: Vec<f64>,
+    /// The unit normal from `a` towards `b`.
+    pub normal: Vec<f64>,
+    /// The normal impulse (≥ 0) over the step, summed over its velocity solves.
+    pub normal_impulse: f64,
+    /// The friction impulse over the step (space frame).
+    pub friction_impulse: Vec<f64>,
+}
+
 /// A contact at a sample: a body touching a half-space during the step that ended at the
 /// sample, with the impulses the half-space gave it there over that step.
 #[derive(Clone, Debug, PartialEq)]
@@ -96,6 +116,11 @@ pub struct SystemTrajectory {
     /// the step's velocity solves at that point summed ([`System::contacts`] lists them
     /// one by one).
     pub contacts: Vec<Vec<SampleContact>>,
+    /// The contacts between bodies of the step that ended at each sample, one per point
+    /// (the entries of the step's velocity solves at the same point summed;
+    /// [`System::body_contacts`] lists them one by one).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub body_contacts: Vec<Vec<SampleBodyContact>>,
     /// The system's half-spaces.
     pub planes: Vec<RecordedPlane>,
     /// The number of steps taken.
@@ -214,6 +239,7 @@ impl System {
             momentum: Vec::with_capacity(count),
             angular_momentum: Vec::with_capacity(count),
             contacts: Vec::with_capacity(count),
+            body_contacts: Vec::with_capacity(count),
             planes: self
                 .half_spaces()
                 .iter()
@@ -255,6 +281,7 @@ impl System {
         run.momentum.push(momentum.as_slice().to_vec());
         run.angular_momentum.push(angular.as_slice().to_vec());
         run.contacts.push(self.sample_contacts());
+        run.body_contacts.push(self.sample_body_contacts());
         Ok(())
     }
 
@@ -301,6 +328,47 @@ impl System {
         }
         out.into_iter().map(|(_, s)| s).collect()
     }
+
+    /// The contacts between bodies of the last step, one per touching point: the entries
+    /// of the velocity solves at the same point of the same pair are summed.
+    fn sample_body_contacts(&self) -> Vec<SampleBodyContact> {
+        let mut out: Vec<SampleBodyContact> = Vec::new();
+        for c in self.body_contacts() {
+            // A point is the same within round-off of the bodies' size.
+            let size = self.shapes()[c.a].radius().max(self.shapes()[c.b].radius());
+            let same = out.iter_mut().find(|s| {
+                s.a == c.a
+                    && s.b == c.b
+                    && s.point
+                        .iter()
+                        .zip(c.point.as_slice())
+                        .map(|(x, y)| (x - y) * (x - y))
+                        .sum::<f64>()
+                        .sqrt()
+                        <= 1e-9 * size
+            });
+            if let Some(s) = same {
+                s.normal_impulse += c.normal_impulse;
+                for (f, g) in s
+                    .friction_impulse
+                    .iter_mut()
+                    .zip(c.friction_impulse.as_slice())
+                {
+                    *f += g;
+                }
+                continue;
+            }
+            out.push(SampleBodyContact {
+                a: c.a,
+                b: c.b,
+                point: c.point.as_slice().to_vec(),
+                normal: c.normal.as_slice().to_vec(),
+                normal_impulse: c.normal_impulse,
+                friction_impulse: c.friction_impulse.as_slice().to_vec(),
+            });
+        }
+        out
+    }
 }
 
 /// Refuses a step or sample times [`System::record_with`] cannot take.
@@ -339,6 +407,13 @@ impl SystemTrajectory {
                             .iter()
                             .any(|s| s.get(k).is_some_and(|v| bad(v)))
                             || b.attitude.get(k).is_some_and(|m| m.iter().any(|r| bad(r)))
+                    })
+                    || self.body_contacts.get(k).is_some_and(|cs| {
+                        cs.iter().any(|c| {
+                            !c.normal_impulse.is_finite()
+                                || bad(&c.point)
+                                || bad(&c.friction_impulse)
+                        })
                     })
                     || self.contacts.get(k).is_some_and(|cs| {
                         cs.iter().any(|c| {

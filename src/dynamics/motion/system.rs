@@ -1,7 +1,7 @@
 //! [`System`]: moving bodies and the forques between them.
 
 use super::MotionError;
-use super::contact::ContactLog;
+use super::contact::{BodyContact, ContactLog, ContactMark};
 use super::detect::bodies::convex_of;
 use super::detect::{EpaWorkspace, PlacedShape, penetration_with};
 use super::forques::Anchor;
@@ -373,6 +373,14 @@ impl System {
         self.contacts.as_slice()
     }
 
+    /// Returns the contacts between bodies of the last step, with their impulses: one entry
+    /// per touching point per velocity solve (the points of a face resting on a face are
+    /// the corners of their contact region), as [`System::contacts`] lists the contacts with
+    /// half-spaces.
+    pub fn body_contacts(&self) -> &[BodyContact] {
+        self.contacts.pairs()
+    }
+
     /// Returns the dimension N.
     pub fn dim(&self) -> usize {
         self.bodies[0].dim()
@@ -448,8 +456,13 @@ impl System {
         self.contacts.clear();
     }
 
-    pub(crate) fn truncate_contacts(&mut self, len: usize) {
-        self.contacts.truncate(len);
+    /// How many contacts of each kind the last step has recorded so far.
+    pub(crate) fn contact_mark(&self) -> ContactMark {
+        self.contacts.mark()
+    }
+
+    pub(crate) fn truncate_contacts(&mut self, mark: ContactMark) {
+        self.contacts.truncate(mark);
     }
 
     /// Returns the wrench on every body at time `t`.

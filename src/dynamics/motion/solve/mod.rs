@@ -386,6 +386,19 @@ impl Solver {
             }
             start = end;
         }
+        if let Some(log) = record {
+            for pair in self.pairs.iter().filter(|p| p.gap <= p.reach) {
+                let mut point = pair.ra.clone();
+                point += bodies[pair.a].position();
+                log.record_pair(
+                    (pair.a, pair.b),
+                    &point,
+                    &pair.normal,
+                    pair.normal_impulse,
+                    &pair.friction_impulse,
+                );
+            }
+        }
         // Kept for its room: the next `find_contacts` clears it.
         self.warm = last;
         self.store(bodies);
