@@ -1,0 +1,22 @@
+"""rotorflow: geometric algebra for rotating bodies in any number of dimensions.
+
+The arithmetic is the Rust crate's (the extension module ``rotorflow._rotorflow``); this
+package names it for Python. Bad input raises ``ValueError`` with the crate's one-line
+message (``FileNotFoundError`` for a missing file).
+"""
+
+from ._rotorflow import (
+    Algebra,
+    Multivector,
+    Rotor3,
+    Rotor4,
+    __version__,
+)
+
+__all__ = [
+    "Algebra",
+    "Multivector",
+    "Rotor3",
+    "Rotor4",
+    "__version__",
+]
