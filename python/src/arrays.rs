@@ -12,7 +12,8 @@ pub fn value_error(message: impl Display) -> PyErr {
 }
 
 /// Reads `obj` as a C-contiguous float64 array: numpy arrays of that kind as they are,
-/// anything else (lists, tuples, other dtypes, strided views) through `numpy.ascontiguousarray`.
+/// anything else (lists, tuples, numbers, other dtypes, strided views) through
+/// `numpy.asarray(obj, dtype="float64", order="C")`, which keeps a number zero-dimensional.
 ///
 /// # Errors
 /// `ValueError` naming `what` when numpy cannot make an array of floats of it.
@@ -28,8 +29,11 @@ pub fn f64_array<'py>(
             .map_err(|e| value_error(format!("{what}: {e}")));
     }
     let np = obj.py().import("numpy")?;
+    let kwargs = pyo3::types::PyDict::new(obj.py());
+    kwargs.set_item("dtype", "float64")?;
+    kwargs.set_item("order", "C")?;
     let converted = np
-        .call_method1("ascontiguousarray", (obj, "float64"))
+        .call_method("asarray", (obj,), Some(&kwargs))
         .map_err(|e| value_error(format!("{what}: not an array of numbers ({e})")))?;
     let a = converted
         .cast_into::<PyArrayDyn<f64>>()

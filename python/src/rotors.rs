@@ -74,7 +74,7 @@ impl Fixed for Rotor3 {
         Rotor3::slerp(self, other, t)
     }
     fn magnitude(self) -> f64 {
-        self.rotation_bivector().norm()
+        canonical(self).rotation_bivector().norm()
     }
     fn unit_error(self) -> f64 {
         Rotor3::unit_error(self)
@@ -357,6 +357,17 @@ impl<R: Fixed> Batch<R> {
     }
 }
 
+/// R or −R, whichever has the scalar part ≥ 0: the same rotation, with the rotation angle
+/// in [0, π] (scipy's rotation vectors and magnitudes are those of this sign).
+fn canonical(r: Rotor3) -> Rotor3 {
+    let [w, x, y, z] = r.to_quaternion();
+    if w < 0.0 {
+        Rotor3::from_quaternion(-w, -x, -y, -z)
+    } else {
+        r
+    }
+}
+
 /// Checks a quaternion (w, x, y, z) for length and returns it normalised, as scipy does.
 fn unit_quaternion(q: [f64; 4]) -> Result<Rotor3, String> {
     let r = Rotor3::from_quaternion(q[0], q[1], q[2], q[3]);
@@ -413,11 +424,10 @@ impl PyRotor3 {
         canonical: bool,
     ) -> Bound<'py, PyArrayDyn<f64>> {
         self.batch.write(py, &[4], |r, out| {
-            let [w, x, y, z] = r.to_quaternion();
-            let q = if canonical && w < 0.0 {
-                [w, x, y, z].map(|c| -c)
+            let q = if canonical {
+                self::canonical(r).to_quaternion()
             } else {
-                [w, x, y, z]
+                r.to_quaternion()
             };
             if scalar_first {
                 out.copy_from_slice(&q);
@@ -450,10 +460,10 @@ impl PyRotor3 {
         Ok(Self { batch })
     }
 
-    /// The rotation vectors θ â.
+    /// The rotation vectors θ â, with θ in [0, π] (of R or −R, the same rotation).
     fn as_rotvec<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
         self.batch.write(py, &[3], |r, out| {
-            let [b12, b13, b23] = r.rotation_bivector().to_array();
+            let [b12, b13, b23] = canonical(r).rotation_bivector().to_array();
             out.copy_from_slice(&[b23, -b13, b12]);
         })
     }
@@ -511,7 +521,7 @@ impl PyRotor3 {
         })
     }
 
-    /// The rotation angles |Θ| (a float for a single rotor).
+    /// The rotation angles in [0, π] (a float for a single rotor).
     fn magnitude<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
         self.batch.magnitude(py)
     }
