@@ -7,16 +7,22 @@ message (``FileNotFoundError`` for a missing file).
 
 from ._rotorflow import (
     Algebra,
+    Body,
     Multivector,
     Rotor3,
     Rotor4,
     __version__,
+    exact,
+    simulate,
 )
 
 __all__ = [
     "Algebra",
+    "Body",
     "Multivector",
     "Rotor3",
     "Rotor4",
     "__version__",
+    "exact",
+    "simulate",
 ]

@@ -115,16 +115,19 @@ impl PyAlgebra {
         Self::checked(sta::spacetime())
     }
 
+    /// The number of basis vectors that square to +1.
     #[getter]
     fn p(&self) -> usize {
         self.sig.p()
     }
 
+    /// The number of basis vectors that square to −1.
     #[getter]
     fn q(&self) -> usize {
         self.sig.q()
     }
 
+    /// The number of basis vectors that square to 0.
     #[getter]
     fn r(&self) -> usize {
         self.sig.r()
