@@ -8,8 +8,44 @@ use pyo3::exceptions::{PyTypeError, PyZeroDivisionError};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 use rotorflow::algebra::{
-    AlgebraError, MULTIVECTOR_MAX_DIM, Multivector, Product, Signature, Versor, cga, sta,
+    AlgebraError, MULTIVECTOR_MAX_DIM, Multivector, PRODUCT_TABLE_MAX_DIM, Product, ProductTable,
+    Signature, Versor, cga, sta,
 };
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, PoisonError};
+
+/// The product tables made so far, by signature and product (`None`: the inner product).
+type TableKey = (usize, usize, usize, Option<Product>);
+static TABLES: Mutex<Option<HashMap<TableKey, Arc<ProductTable>>>> = Mutex::new(None);
+
+/// The table of `kind` in `sig` (made once), or `None` above [`PRODUCT_TABLE_MAX_DIM`].
+fn table(sig: Signature, kind: Option<Product>) -> Option<Arc<ProductTable>> {
+    if sig.dim() > PRODUCT_TABLE_MAX_DIM {
+        return None;
+    }
+    let key = (sig.p(), sig.q(), sig.r(), kind);
+    let mut tables = TABLES.lock().unwrap_or_else(PoisonError::into_inner);
+    let tables = tables.get_or_insert_with(HashMap::new);
+    if let Some(t) = tables.get(&key) {
+        return Some(t.clone());
+    }
+    let t = Arc::new(match kind {
+        Some(kind) => ProductTable::new(sig, kind).ok()?,
+        None => ProductTable::inner(sig).ok()?,
+    });
+    tables.insert(key, t.clone());
+    Some(t)
+}
+
+/// The rows of a batch of `m` elements of `k` coefficients: the data itself, or a single
+/// element repeated.
+fn expand(data: &[f64], m: usize, k: usize) -> std::borrow::Cow<'_, [f64]> {
+    if data.len() == m * k {
+        std::borrow::Cow::Borrowed(data)
+    } else {
+        std::borrow::Cow::Owned(std::iter::repeat_n(data, m).flatten().copied().collect())
+    }
+}
 
 /// A Clifford algebra Cl(p, q, r): p basis vectors square to +1, then q to −1, then r to 0.
 #[pyclass(name = "Algebra", module = "rotorflow", frozen, eq, hash)]
@@ -265,7 +301,26 @@ impl PyAlgebra {
         let (m, single) = broadcast((rv.count, rv.single), (rx.count, rx.single), "sandwich")?;
         let sig = self.sig;
         let (dv, dx) = (rv.data(), rx.data());
-        let data = py.detach(|| map_pairs(sig, dv, dx, m, |v, x| v.apply(x)))?;
+        let data = match table(sig, Some(Product::Geometric)) {
+            // V X Ṽ as the multivector's sandwich computes it: (V X) Ṽ.
+            Some(t) => py.detach(|| -> PyResult<Vec<f64>> {
+                let v = expand(dv, m, k);
+                let mut reversed = vec![0.0; m * k];
+                let mut element = Multivector::zero(sig);
+                for (row, dest) in v.chunks_exact(k).zip(reversed.chunks_exact_mut(k)) {
+                    element.as_mut_slice().copy_from_slice(row);
+                    dest.copy_from_slice(element.reverse().as_slice());
+                }
+                let mut vx = vec![0.0; m * k];
+                t.apply_batch(&v, &expand(dx, m, k), &mut vx)
+                    .map_err(value_error)?;
+                let mut out = vec![0.0; m * k];
+                t.apply_batch(&vx, &reversed, &mut out)
+                    .map_err(value_error)?;
+                Ok(out)
+            })?,
+            None => py.detach(|| map_pairs(sig, dv, dx, m, |v, x| v.apply(x)))?,
+        };
         Ok(output(py, data, m, single, &[k]))
     }
 

@@ -78,12 +78,14 @@ impl<'py> Rows<'py> {
             single,
         };
         let width: usize = tail.iter().product();
-        if width > 0
-            && let Some(bad) = rows
+        // One pass that the compiler vectorises; the element is looked for only on failure.
+        let finite = rows.data().iter().fold(true, |ok, x| ok & x.is_finite());
+        if !finite && width > 0 {
+            let bad = rows
                 .data()
                 .chunks_exact(width)
                 .position(|row| row.iter().any(|x| !x.is_finite()))
-        {
+                .unwrap_or(0);
             return Err(value_error(if single {
                 format!("{what}: NaN or infinite entry")
             } else {
