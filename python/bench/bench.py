@@ -77,6 +77,7 @@ def main():
     parser.add_argument("--quick", action="store_true")
     args = parser.parse_args()
     repeat = 3 if args.quick else 7
+    load = os.getloadavg()[0]
     kingdon = optional("kingdon")
     clifford = optional("clifford")
     rng = np.random.default_rng(20261129)
@@ -187,7 +188,8 @@ def main():
         f"(Python {platform.python_version()}, numpy {np.__version__}, scipy {scipy.__version__}, "
         f"kingdon {getattr(kingdon, '__version__', 'installed') if kingdon else 'not installed'}, "
         f"clifford {clifford.__version__ if clifford else 'not installed'}; {os.cpu_count()} cores, "
-        f"{platform.machine()}). Best of {repeat} runs; ratio = other's time / rotorflow's.",
+        f"{platform.machine()}, load average {load:.1f} at the start). Best of {repeat} "
+        "runs; ratio = other's time / rotorflow's.",
         "",
         "| operation | rotorflow | other | other's time | ratio |",
         "|---|---:|---|---:|---:|",

@@ -15,6 +15,7 @@ from ._rotorflow import (
     exact,
     simulate,
 )
+from . import cga, pga, sta
 
 __all__ = [
     "Algebra",
@@ -23,6 +24,9 @@ __all__ = [
     "Rotor3",
     "Rotor4",
     "__version__",
+    "cga",
     "exact",
+    "pga",
     "simulate",
+    "sta",
 ]

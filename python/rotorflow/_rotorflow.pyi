@@ -296,3 +296,38 @@ def exact(
     axial: bool = False,
 ) -> dict[str, Any]:
     """The closed-form motion, with the keys of ``rotorflow exact --json``."""
+
+# Projective GA (rotorflow.pga): elements of Algebra.pga(n).
+def pga_point(x: ArrayLike) -> Multivector:
+    """The point at Euclidean coordinates x."""
+def pga_ideal_point(d: ArrayLike) -> Multivector:
+    """The point at infinity in direction d."""
+def pga_coordinates(point: Multivector) -> Array:
+    """The Euclidean coordinates of a finite point."""
+def pga_plane(normal: ArrayLike, d: float) -> Multivector:
+    """The hyperplane n . x = d."""
+def pga_line(p: ArrayLike, q: ArrayLike) -> Multivector:
+    """The line through the points at p and q."""
+def pga_translator(t: ArrayLike) -> Multivector:
+    """The motor of the translation by t."""
+def pga_rotor(n: int, i: int, j: int, angle: float) -> Multivector:
+    """The motor of the rotation by angle in the plane of axes i, j (0-based) of R^n."""
+def pga_motor_matrix(motor: Multivector) -> Array:
+    """The homogeneous (N + 1) x (N + 1) matrix of a motor."""
+def pga_motor_from_matrix(matrix: ArrayLike) -> Multivector:
+    """The motor of a homogeneous rigid-motion matrix."""
+
+# Conformal GA (rotorflow.cga): elements of Algebra.cga(n).
+def cga_up(x: ArrayLike) -> Multivector:
+    """The conformal point n0 + x + x^2/2 ninf."""
+def cga_down(point: Multivector) -> Array:
+    """The Euclidean coordinates of a conformal point."""
+def cga_sphere(center: ArrayLike, radius: float) -> Multivector: ...
+def cga_plane(normal: ArrayLike, d: float) -> Multivector: ...
+def cga_translator(t: ArrayLike) -> Multivector: ...
+def cga_dilator(n: int, scale: float) -> Multivector: ...
+def cga_transversor(b: ArrayLike) -> Multivector: ...
+
+# Spacetime algebra (rotorflow.sta): elements of Algebra.spacetime().
+def sta_boost(rapidity: float, direction: ArrayLike) -> Multivector:
+    """The boost of rapidity phi along a spatial direction (e2, e3, e4)."""

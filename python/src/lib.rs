@@ -10,6 +10,7 @@ use pyo3::prelude::*;
 mod algebra;
 mod arrays;
 mod bodies;
+mod geometry;
 mod rotors;
 
 /// The module: the algebra, the fixed-size rotors and the bodies.
@@ -20,6 +21,7 @@ fn _rotorflow(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<rotors::PyRotor3>()?;
     m.add_class::<rotors::PyRotor4>()?;
     bodies::register(m)?;
+    geometry::register(m)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }
