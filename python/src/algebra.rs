@@ -2,8 +2,8 @@
 //! operators, and the batched products, sandwiches, exponentials and logarithms on arrays of
 //! coefficients.
 
-use crate::arrays::{Rows, broadcast, output, value_error};
-use numpy::PyArrayDyn;
+use crate::arrays::{Rows, broadcast, fill, output, value_error, zeros};
+use numpy::{PyArrayDyn, PyArrayMethods};
 use pyo3::exceptions::{PyTypeError, PyZeroDivisionError};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
@@ -284,8 +284,17 @@ impl PyAlgebra {
         let (m, single) = broadcast((ra.count, ra.single), (rb.count, rb.single), "product")?;
         let sig = self.sig;
         let (da, db) = (ra.data(), rb.data());
-        let data = py.detach(|| map_pairs(sig, da, db, m, |x, y| Ok(apply_product(x, y, kind))))?;
-        Ok(output(py, data, m, single, &[k]))
+        let out = zeros(py, m, single, &[k]);
+        match table(sig, kind) {
+            Some(t) => fill(py, &out, |dest| {
+                t.apply_batch(&expand(da, m, k), &expand(db, m, k), dest)
+                    .map_err(value_error)
+            })??,
+            None => fill(py, &out, |dest| {
+                map_pairs(sig, da, db, m, dest, |x, y| Ok(apply_product(x, y, kind)))
+            })??,
+        }
+        Ok(out)
     }
 
     /// The sandwiches V X Ṽ of a batch of even versors V with a batch of elements X.
@@ -301,27 +310,35 @@ impl PyAlgebra {
         let (m, single) = broadcast((rv.count, rv.single), (rx.count, rx.single), "sandwich")?;
         let sig = self.sig;
         let (dv, dx) = (rv.data(), rx.data());
-        let data = match table(sig, Some(Product::Geometric)) {
+        let out = zeros(py, m, single, &[k]);
+        match table(sig, Some(Product::Geometric)) {
             // V X Ṽ as the multivector's sandwich computes it: (V X) Ṽ.
-            Some(t) => py.detach(|| -> PyResult<Vec<f64>> {
+            Some(t) => {
+                let reversed = zeros(py, m, false, &[k]);
+                let vx = zeros(py, m, false, &[k]);
                 let v = expand(dv, m, k);
-                let mut reversed = vec![0.0; m * k];
-                let mut element = Multivector::zero(sig);
-                for (row, dest) in v.chunks_exact(k).zip(reversed.chunks_exact_mut(k)) {
-                    element.as_mut_slice().copy_from_slice(row);
-                    dest.copy_from_slice(element.reverse().as_slice());
-                }
-                let mut vx = vec![0.0; m * k];
-                t.apply_batch(&v, &expand(dx, m, k), &mut vx)
+                fill(py, &reversed, |rev| {
+                    let mut element = Multivector::zero(sig);
+                    for (row, dest) in v.chunks_exact(k).zip(rev.chunks_exact_mut(k)) {
+                        element.as_mut_slice().copy_from_slice(row);
+                        dest.copy_from_slice(element.reverse().as_slice());
+                    }
+                })?;
+                fill(py, &vx, |vx| t.apply_batch(&v, &expand(dx, m, k), vx))?
                     .map_err(value_error)?;
-                let mut out = vec![0.0; m * k];
-                t.apply_batch(&vx, &reversed, &mut out)
-                    .map_err(value_error)?;
-                Ok(out)
-            })?,
-            None => py.detach(|| map_pairs(sig, dv, dx, m, |v, x| v.apply(x)))?,
-        };
-        Ok(output(py, data, m, single, &[k]))
+                let vx = vx.try_readonly().map_err(value_error)?;
+                let rev = reversed.try_readonly().map_err(value_error)?;
+                let (vx, rev) = (
+                    vx.as_slice().map_err(value_error)?,
+                    rev.as_slice().map_err(value_error)?,
+                );
+                fill(py, &out, |dest| t.apply_batch(vx, rev, dest))?.map_err(value_error)?;
+            }
+            None => fill(py, &out, |dest| {
+                map_pairs(sig, dv, dx, m, dest, |v, x| v.apply(x))
+            })??,
+        }
+        Ok(out)
     }
 
     /// exp(B) of every bivector of a batch (shape (M, 2^N)), in closed form.
@@ -369,28 +386,23 @@ impl PyAlgebra {
         let sig = self.sig;
         let input = rows.data();
         let count = rows.count;
-        let data = py.detach(|| -> Result<Vec<f64>, String> {
-            let mut data = vec![0.0; count * k];
+        let out = zeros(py, count, rows.single, &[k]);
+        fill(py, &out, |data| -> Result<(), String> {
             let mut element = Multivector::zero(sig);
-            let mut out = Multivector::zero(sig);
+            let mut result = Multivector::zero(sig);
             for (i, (row, dest)) in input
                 .chunks_exact(k)
                 .zip(data.chunks_exact_mut(k))
                 .enumerate()
             {
                 element.as_mut_slice().copy_from_slice(row);
-                f(&element, &mut out).map_err(|e| element_error(i, count, e))?;
-                dest.copy_from_slice(out.as_slice());
+                f(&element, &mut result).map_err(|e| element_error(i, count, e))?;
+                dest.copy_from_slice(result.as_slice());
             }
-            Ok(data)
-        });
-        Ok(output(
-            py,
-            data.map_err(value_error)?,
-            count,
-            rows.single,
-            &[k],
-        ))
+            Ok(())
+        })?
+        .map_err(value_error)?;
+        Ok(out)
     }
 }
 
@@ -403,20 +415,20 @@ fn element_error(i: usize, count: usize, e: AlgebraError) -> String {
     }
 }
 
-/// `f` of the pairs of a batch of `m` (rows of a single-element side repeat).
+/// `f` of the pairs of a batch of `m` (rows of a single-element side repeat), into `out`.
 fn map_pairs(
     sig: Signature,
     a: &[f64],
     b: &[f64],
     m: usize,
+    out: &mut [f64],
     f: impl Fn(&Multivector, &Multivector) -> Result<Multivector, AlgebraError>,
-) -> PyResult<Vec<f64>> {
+) -> PyResult<()> {
     let k = 1usize << sig.dim();
-    let mut data = vec![0.0; m * k];
     let mut x = Multivector::zero(sig);
     let mut y = Multivector::zero(sig);
     let (step_a, step_b) = (usize::from(a.len() > k), usize::from(b.len() > k));
-    for (i, dest) in data.chunks_exact_mut(k).enumerate() {
+    for (i, dest) in out.chunks_exact_mut(k).enumerate() {
         x.as_mut_slice()
             .copy_from_slice(&a[i * step_a * k..(i * step_a + 1) * k]);
         y.as_mut_slice()
@@ -424,7 +436,7 @@ fn map_pairs(
         let z = f(&x, &y).map_err(|e| value_error(element_error(i, m, e)))?;
         dest.copy_from_slice(z.as_slice());
     }
-    Ok(data)
+    Ok(())
 }
 
 /// An element of a Clifford algebra: 2^N coefficients indexed by blade bit mask.

@@ -119,6 +119,34 @@ pub fn broadcast(a: (usize, bool), b: (usize, bool), what: &str) -> PyResult<(us
     }
 }
 
+/// A new numpy array of zeros of shape `tail` (when `single`) or `(M, *tail)`, to be filled
+/// in place: numpy's allocator serves large arrays from huge pages where the system offers
+/// them, so that filling a fresh array of millions of entries does not fault page by page.
+pub fn zeros<'py>(
+    py: Python<'py>,
+    count: usize,
+    single: bool,
+    tail: &[usize],
+) -> Bound<'py, PyArrayDyn<f64>> {
+    let mut shape = Vec::with_capacity(tail.len() + 1);
+    if !single {
+        shape.push(count);
+    }
+    shape.extend_from_slice(tail);
+    PyArrayDyn::zeros(py, IxDyn(&shape), false)
+}
+
+/// Runs `f` without the GIL on the entries of `array`, a fresh C-contiguous array.
+pub fn fill<T: Send>(
+    py: Python<'_>,
+    array: &Bound<'_, PyArrayDyn<f64>>,
+    f: impl FnOnce(&mut [f64]) -> T + Send,
+) -> PyResult<T> {
+    let mut view = array.try_readwrite().map_err(value_error)?;
+    let slice = view.as_slice_mut().map_err(value_error)?;
+    Ok(py.detach(|| f(slice)))
+}
+
 /// The array of shape `tail` (when `single`) or `(M, *tail)` holding `data`.
 pub fn output<'py>(
     py: Python<'py>,

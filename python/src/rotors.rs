@@ -3,7 +3,7 @@
 //! `inv`, `*`, `magnitude`, …) on numpy arrays.
 
 use crate::algebra::PyMultivector;
-use crate::arrays::{Rows, broadcast, output, value_error};
+use crate::arrays::{Rows, broadcast, fill, output, value_error, zeros};
 use numpy::PyArrayDyn;
 use pyo3::prelude::*;
 use pyo3::types::{PySlice, PySliceMethods};
@@ -246,28 +246,26 @@ impl<R: Fixed> Batch<R> {
         let (m, single) = broadcast(self.shape(), (rows.count, rows.single), "apply")?;
         let input = rows.data();
         let rotors = &self.rotors;
-        let data = py.detach(|| {
+        let out = zeros(py, m, single, &[n]);
+        fill(py, &out, |data| {
             let turn = |r: R| if inverse { r.inverse() } else { r };
             if rotors.len() == 1 {
                 // One rotor for every vector: the crate's batch kernel (through the matrix).
-                let mut data = Vec::with_capacity(m * n);
                 if input.len() == n {
-                    data.extend(std::iter::repeat_n(input, m).flatten());
+                    data.chunks_exact_mut(n)
+                        .for_each(|v| v.copy_from_slice(input));
                 } else {
-                    data.extend_from_slice(input);
+                    data.copy_from_slice(input);
                 }
-                turn(rotors[0]).rotate_all(&mut data);
-                data
+                turn(rotors[0]).rotate_all(data);
             } else {
-                let mut data = vec![0.0; m * n];
                 let step = usize::from(input.len() > n);
                 for (i, (r, out)) in rotors.iter().zip(data.chunks_exact_mut(n)).enumerate() {
                     turn(*r).rotate(&input[i * step * n..(i * step + 1) * n], out);
                 }
-                data
             }
-        });
-        Ok(output(py, data, m, single, &[n]))
+        })?;
+        Ok(out)
     }
 
     fn slerp(&self, other: &Self, t: &Bound<'_, PyAny>) -> PyResult<Self> {
