@@ -255,14 +255,20 @@ impl PyAlgebra {
         Ok(self.wrap(Multivector::try_basis_blade(self.sig, mask).map_err(algebra_error)?))
     }
 
-    /// Blades as attributes: `alg.e12` is `alg.blade("e12")`.
+    /// Blades as attributes: `alg.e12` is `alg.blade("e12")`; any other name is an
+    /// `AttributeError` (so that `hasattr` and tools that probe attributes keep working).
     fn __getattr__(&self, name: &str) -> PyResult<PyMultivector> {
-        if name.starts_with('e') && name.len() > 1 {
-            return self.blade(name, 1.0);
+        let missing = |why: String| {
+            pyo3::exceptions::PyAttributeError::new_err(format!(
+                "'Algebra' object has no attribute '{name}'{why}"
+            ))
+        };
+        if !name.starts_with('e') || name.len() < 2 {
+            return Err(missing(String::new()));
         }
-        Err(pyo3::exceptions::PyAttributeError::new_err(format!(
-            "'Algebra' object has no attribute '{name}'"
-        )))
+        Multivector::blade_by_name(self.sig, name, 1.0)
+            .map(|mv| self.wrap(mv))
+            .map_err(|e| missing(format!(" ({e})")))
     }
 
     // ---- batches: arrays of shape (M, 2^N) -------------------------------------------------

@@ -97,6 +97,15 @@ def test_wrong_types_are_type_errors_not_crashes():
         rf.Rotor3.identity(3)[3]
 
 
+def test_unknown_attributes_are_attribute_errors():
+    assert not hasattr(A3, "e4")
+    assert not hasattr(A3, "expand")
+    with pytest.raises(AttributeError, match="e14"):
+        A3.e14
+    with pytest.raises(TypeError):
+        hash(A3.e1)
+
+
 def test_division_by_zero_is_zero_division_error():
     with pytest.raises(ZeroDivisionError):
         A3.e1 / 0.0
