@@ -14,9 +14,6 @@
 #[allow(dead_code)]
 #[path = "../src/cli/mod.rs"]
 mod cli;
-#[allow(dead_code)]
-#[path = "../src/viz/mod.rs"]
-mod viz;
 
 use cli::{command, demo::promised_files, spec::GRAMMAR};
 use rotorflow::inertia::spec::parse_body;
@@ -157,7 +154,8 @@ fn check_example(line: &str) -> Res<()> {
     }
     if argv[1] == "scene" {
         let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(argv[2]);
-        cli::scene::format::load(&file).map_err(|e| format!("`rotorflow {line}`: {e}"))?;
+        rotorflow::scene::Scene::from_path(&file)
+            .map_err(|e| format!("`rotorflow {line}`: {e}"))?;
     }
     Ok(())
 }

@@ -14,6 +14,11 @@
 //!   of N-dimensional bodies (point clouds, the paper's tesseract and 5-cell, cuboids,
 //!   ellipsoids, balls, shells, simplices, simplicial meshes, composites), with the paper's
 //!   rank-4 and Levi-Civita-contracted tensors as views;
+//! - [`dynamics`]: rigid bodies turning and moving, their integrators, closed forms,
+//!   contact and joints, and recorded runs;
+//! - `viz` and `scene` (features of the same names): pictures of what `dynamics` records,
+//!   and scene files, used by the `rotorflow` command and open to any program
+//!   (algebra ← inertia ← dynamics ← viz ← scene ← cli);
 //! - [`special`]: Carlson's symmetric elliptic integrals, the Legendre integrals of the
 //!   first, second and third kinds, and the Jacobi elliptic functions, accurate to a few ulp
 //!   (the building blocks of the exact free 3D rigid body).
@@ -88,12 +93,19 @@
 //! formulation, the command-line reference and the references.
 //!
 //! # Crate features
-//! - `cli` (default): the `rotorflow` command (`cargo run --release -- demo`) and the
-//!   pictures it draws (SVG plots with plotters, HTML animations). Turning it off
-//!   (`default-features = false`) drops clap, plotters, serde_json, indicatif, rayon and
-//!   tempfile; the library is the same.
-//! - `serde`: `Serialize`/`Deserialize` for every algebra type; deserialisation validates
-//!   (lengths, finiteness, and that a rotor is on Spin(N)). Off by default.
+//! - `cli` (default): the `rotorflow` command (`cargo run --release -- demo`), a user of
+//!   `viz` and `scene`, which it turns on. Turning it off (`default-features = false`)
+//!   drops clap, plotters, serde_json, toml, indicatif, rayon and tempfile (and `viz` and
+//!   `scene` unless asked for); the rest of the library is the same.
+//! - `viz`: `rotorflow::viz`, the pictures (plotters, serde_json): HTML animations of a
+//!   turning body or of a recorded run of moving bodies
+//!   ([`SystemTrajectory`](crate::dynamics::motion::SystemTrajectory)), contacts marked,
+//!   SVG plots and projections.
+//! - `scene`: `rotorflow::scene`, scene files (serde, toml): read, run and written as JSON
+//!   and CSV as `rotorflow scene` does, with its one-line errors.
+//! - `serde`: `Serialize`/`Deserialize` for every algebra type (deserialisation validates
+//!   lengths, finiteness, and that a rotor is on Spin(N)) and for recorded runs, with their
+//!   JSON text. Off by default.
 //!
 //! # Performance
 //! Vectors and bivectors up to N = 8 and rotors up to N = 5 live on the stack. The bivector
@@ -114,7 +126,11 @@ pub use nalgebra;
 pub mod dynamics;
 pub mod inertia;
 mod numeric;
+#[cfg(feature = "scene")]
+pub mod scene;
 pub mod special;
+#[cfg(feature = "viz")]
+pub mod viz;
 
 /// The types most programs need: `use rotorflow::prelude::*;`.
 ///

@@ -2,7 +2,6 @@
 //! binary; the library (`rotorflow::…`) is all a program needs.
 
 mod cli;
-mod viz;
 
 fn main() -> std::process::ExitCode {
     cli::run()

@@ -41,6 +41,9 @@ mod book_integrators;
 #[path = "../examples/book_literature.rs"]
 mod book_literature;
 #[allow(dead_code)]
+#[path = "../examples/book_long_runs.rs"]
+mod book_long_runs;
+#[allow(dead_code)]
 #[path = "../examples/book_moving_bodies.rs"]
 mod book_moving_bodies;
 #[allow(dead_code)]
@@ -59,6 +62,10 @@ mod mesh_body;
 mod other_signatures;
 #[path = "../examples/reaction_wheels_4d.rs"]
 mod reaction_wheels_4d;
+#[allow(dead_code)]
+#[cfg(all(feature = "viz", feature = "serde"))]
+#[path = "../examples/record_scene.rs"]
+mod record_scene;
 #[path = "../examples/rolling_ball.rs"]
 mod rolling_ball;
 #[allow(dead_code)]
@@ -80,6 +87,7 @@ const RUN_EXAMPLES: &[&str] = &[
     "mesh_body",
     "other_signatures",
     "reaction_wheels_4d",
+    "record_scene",
     "rolling_ball",
     "torque_closure",
 ];
@@ -102,6 +110,9 @@ const GENERATED: &[&str] = &[
     "literature_hlw.svg",
     "literature_p4.svg",
     "literature_simo_wong.svg",
+    "long_runs_cost.md",
+    "long_runs_drift.md",
+    "long_runs_rhs.md",
     "moving_bodies.md",
     "peer_versors.md",
     "python_bench.md",
@@ -222,6 +233,25 @@ fn included_examples_run() {
     rolling_ball::main().expect("rolling_ball");
     reaction_wheels_4d::main().expect("reaction_wheels_4d");
     book_inertia_tables::render().expect("book_inertia_tables");
+    #[cfg(all(feature = "viz", feature = "serde"))]
+    {
+        let dir = std::env::temp_dir().join(format!("rotorflow-book-{}", std::process::id()));
+        let said = record_scene::record(&dir).expect("record_scene");
+        for file in [
+            "run.json",
+            "ball.csv",
+            "tesseract.csv",
+            "system.csv",
+            "run.html",
+            "run.svg",
+        ] {
+            assert!(
+                dir.join(file).is_file(),
+                "record_scene wrote no {file}: {said}"
+            );
+        }
+        std::fs::remove_dir_all(&dir).expect("remove the example's files");
+    }
 }
 
 fn assert_current(file: &str, generated: &str, command: &str) {
@@ -299,6 +329,24 @@ fn generated_python_bench_says_where_it_was_measured() {
         "| N | rotorflow | max error |",
     ] {
         assert!(text.contains(key), "python_bench.md lacks `{key}`");
+    }
+}
+
+/// The long runs of the dynamics chapter: its three tables are the rendering of the
+/// recorded data, which says where and when it was computed.
+#[test]
+fn generated_long_runs_are_rendered_from_their_data() {
+    let data = read(&root().join("book/src/generated/long_runs.tsv"));
+    let tables = book_long_runs::render(&data).expect("render");
+    for (file, table) in book_long_runs::FILES.iter().zip(&tables) {
+        assert_current(
+            file,
+            table,
+            "cargo run --release --example book_long_runs -- --write",
+        );
+    }
+    for key in ["# date: ", "# commit: ", "# machine: ", "# compiler: "] {
+        assert!(data.contains(key), "long_runs.tsv lacks `{key}`");
     }
 }
 

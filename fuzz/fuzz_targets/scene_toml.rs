@@ -1,50 +1,20 @@
 //! Scene files: any bytes read as the TOML scene of `rotorflow scene FILE`, through the
-//! command's own reader (`src/cli/scene/format.rs`, the file the binary compiles).
+//! library's scene reader (`rotorflow::scene`, the code the command runs).
 //!
 //! Input: the file's bytes. Bytes that are not UTF-8 are refused before the reader, as
 //! `rotorflow scene` does when it reads the file. `points:` and `mesh:` shapes find no file
 //! (the reader is given one that always fails), so nothing outside the input is read.
 //!
-//! Asserts: no panic; every error is bad input (exit code 2) in one non-empty line; an
-//! accepted scene has 2 ≤ N ≤ 64, 0 < dt < t_end (both finite, at most 10⁸ steps), at least
-//! one body, every vector of N components and every number finite, masses > 0, springs and
-//! joints that name bodies of the scene, and steps within a tenth of each spring's period.
+//! Asserts: no panic; every error is bad input (`SceneError::Invalid`, exit code 2 in the
+//! command) in one non-empty line; an accepted scene has 2 ≤ N ≤ 64, 0 < dt < t_end (both
+//! finite, at most 10⁸ steps), at least one body, every vector of N components and every
+//! number finite, masses > 0, springs and joints that name bodies of the scene, and steps
+//! within a tenth of each spring's period.
 #![no_main]
 
-// The command's scene reader and error type, compiled from the binary's source files; its
-// SPEC parser is the library's, as in the binary, with a file reader that finds no files.
-// (A path on an inline module names the folder of the modules inside it.)
-#[allow(dead_code)]
-#[path = "../../src/cli"]
-mod cli {
-    #[path = "error.rs"]
-    pub mod error;
-
-    pub mod spec {
-        use super::error::{CliError, CliResult};
-        pub use rotorflow::inertia::spec::ParsedBody;
-
-        pub fn parse_body(text: &str) -> CliResult<ParsedBody> {
-            let no_files = |path: &std::path::Path| {
-                Err(format!(
-                    "cannot read `{}`: no files while fuzzing",
-                    path.display()
-                ))
-            };
-            rotorflow::inertia::spec::parse_body_with(text, &no_files)
-                .map_err(|err| CliError::input(err.to_string()))
-        }
-    }
-
-    #[path = "scene"]
-    pub mod scene {
-        #[path = "format.rs"]
-        pub mod format;
-    }
-}
-
-use cli::scene::format::{MAX_STEP_PER_PERIOD, MAX_STEPS, SceneAnchor, parse};
 use libfuzzer_sys::fuzz_target;
+use rotorflow::scene::format::parse;
+use rotorflow::scene::{MAX_STEP_PER_PERIOD, MAX_STEPS, SceneAnchor, SceneError};
 
 fn finite(x: &[f64]) -> bool {
     x.iter().all(|v| v.is_finite())
@@ -54,11 +24,17 @@ fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else {
         return;
     };
-    let scene = match parse(text, "scene.toml") {
+    let no_files = |path: &std::path::Path| {
+        Err(format!(
+            "cannot read `{}`: no files while fuzzing",
+            path.display()
+        ))
+    };
+    let scene = match parse(text, "scene.toml", Some(&no_files)) {
         Ok(scene) => scene,
         Err(err) => {
             let message = err.to_string();
-            assert_eq!(err.exit_code(), 2, "{message}");
+            assert!(matches!(err, SceneError::Invalid(_)), "{message}");
             assert!(!message.trim().is_empty());
             assert!(!message.contains(['\n', '\r']), "not one line: {message:?}");
             return;

@@ -4,21 +4,33 @@
 use super::{Bivector, Multivector, Rotor, Vector};
 use approx::{AbsDiffEq, RelativeEq, UlpsEq};
 
+/// Whether `a` and `b` are alike (`same`: of one dimension or signature) and every pair of
+/// their coefficients is `close`.
+fn all_close<T>(
+    a: &T,
+    b: &T,
+    same: fn(&T, &T) -> bool,
+    coefficients: fn(&T) -> &[f64],
+    close: impl Fn(&f64, &f64) -> bool,
+) -> bool {
+    same(a, b)
+        && coefficients(a)
+            .iter()
+            .zip(coefficients(b))
+            .all(|(x, y)| close(x, y))
+}
+
 macro_rules! approx_impls {
-    ($t:ty, $slice:ident, $same:expr) => {
+    ($t:ty, $same:expr) => {
         impl AbsDiffEq for $t {
             type Epsilon = f64;
             fn default_epsilon() -> f64 {
                 f64::EPSILON
             }
             fn abs_diff_eq(&self, other: &Self, epsilon: f64) -> bool {
-                let same: fn(&$t, &$t) -> bool = $same;
-                same(self, other)
-                    && self
-                        .$slice()
-                        .iter()
-                        .zip(other.$slice())
-                        .all(|(a, b)| a.abs_diff_eq(b, epsilon))
+                all_close::<$t>(self, other, $same, <$t>::as_slice, |a, b| {
+                    a.abs_diff_eq(b, epsilon)
+                })
             }
         }
         impl RelativeEq for $t {
@@ -26,13 +38,9 @@ macro_rules! approx_impls {
                 f64::EPSILON
             }
             fn relative_eq(&self, other: &Self, epsilon: f64, max_relative: f64) -> bool {
-                let same: fn(&$t, &$t) -> bool = $same;
-                same(self, other)
-                    && self
-                        .$slice()
-                        .iter()
-                        .zip(other.$slice())
-                        .all(|(a, b)| a.relative_eq(b, epsilon, max_relative))
+                all_close::<$t>(self, other, $same, <$t>::as_slice, |a, b| {
+                    a.relative_eq(b, epsilon, max_relative)
+                })
             }
         }
         impl UlpsEq for $t {
@@ -40,19 +48,15 @@ macro_rules! approx_impls {
                 4
             }
             fn ulps_eq(&self, other: &Self, epsilon: f64, max_ulps: u32) -> bool {
-                let same: fn(&$t, &$t) -> bool = $same;
-                same(self, other)
-                    && self
-                        .$slice()
-                        .iter()
-                        .zip(other.$slice())
-                        .all(|(a, b)| a.ulps_eq(b, epsilon, max_ulps))
+                all_close::<$t>(self, other, $same, <$t>::as_slice, |a, b| {
+                    a.ulps_eq(b, epsilon, max_ulps)
+                })
             }
         }
     };
 }
 
-approx_impls!(Vector, as_slice, |a, b| a.dim() == b.dim());
-approx_impls!(Bivector, as_slice, |a, b| a.dim() == b.dim());
-approx_impls!(Rotor, as_slice, |a, b| a.dim() == b.dim());
-approx_impls!(Multivector, as_slice, |a, b| a.signature() == b.signature());
+approx_impls!(Vector, |a, b| a.dim() == b.dim());
+approx_impls!(Bivector, |a, b| a.dim() == b.dim());
+approx_impls!(Rotor, |a, b| a.dim() == b.dim());
+approx_impls!(Multivector, |a, b| a.signature() == b.signature());

@@ -94,13 +94,7 @@ impl Bivector {
     /// # Errors
     /// [`AlgebraError::DimensionTooLarge`] if `n > MAX_DIM`.
     pub fn try_zero(n: usize) -> Result<Self, AlgebraError> {
-        if n > MAX_DIM {
-            return Err(AlgebraError::DimensionTooLarge {
-                what: "bivector",
-                dim: n,
-                max: MAX_DIM,
-            });
-        }
+        AlgebraError::check_dimension("bivector", n, MAX_DIM)?;
         Ok(Bivector {
             dim: n,
             coeffs: crate::numeric::zeros(bivector_len(n)),
@@ -114,13 +108,7 @@ impl Bivector {
     /// [`AlgebraError::WrongComponentCount`], [`AlgebraError::NonFinite`],
     /// [`AlgebraError::DimensionTooLarge`].
     pub fn from_components(n: usize, components: &[f64]) -> Result<Self, AlgebraError> {
-        if n > MAX_DIM {
-            return Err(AlgebraError::DimensionTooLarge {
-                what: "bivector",
-                dim: n,
-                max: MAX_DIM,
-            });
-        }
+        AlgebraError::check_dimension("bivector", n, MAX_DIM)?;
         if components.len() != bivector_len(n) {
             return Err(AlgebraError::WrongComponentCount {
                 what: "bivector",
@@ -200,10 +188,7 @@ impl Bivector {
     #[track_caller]
     pub fn set(&mut self, i: usize, j: usize, value: f64) {
         let n = self.dim;
-        assert!(
-            i < n && j < n && i != j,
-            "rotorflow: invalid plane ({i}, {j}) in dimension {n}"
-        );
+        super::error::assert_plane(i, j, n);
         if i < j {
             self.coeffs[pair_index(n, i, j)] = value;
         } else {
@@ -252,13 +237,7 @@ impl Bivector {
             return Err(AlgebraError::NotSquare { rows, cols });
         }
         let n = rows;
-        if n > MAX_DIM {
-            return Err(AlgebraError::DimensionTooLarge {
-                what: "bivector",
-                dim: n,
-                max: MAX_DIM,
-            });
-        }
+        AlgebraError::check_dimension("bivector", n, MAX_DIM)?;
         let mut scale = 0.0f64;
         let mut deviation = 0.0f64;
         for i in 0..n {
@@ -362,10 +341,7 @@ impl Bivector {
     #[track_caller]
     pub fn rotate_in_plane_mut(&mut self, i: usize, j: usize, angle: f64) {
         let n = self.dim;
-        assert!(
-            i < n && j < n && i != j,
-            "rotorflow: invalid plane ({i}, {j}) in dimension {n}"
-        );
+        super::error::assert_plane(i, j, n);
         let (s, m) = crate::numeric::sin_cos_minus_one(angle);
         self.rotate_in_plane_sin_cm1(i, j, s, m);
     }

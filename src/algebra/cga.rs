@@ -102,13 +102,7 @@ pub const POINT_TOLERANCE: f64 = 1e-8;
 /// [`AlgebraError::WrongSignature`] for n < 2; [`AlgebraError::DimensionTooLarge`] for
 /// n > 14.
 pub fn conformal(n: usize) -> Result<Signature, AlgebraError> {
-    if n + 2 > MULTIVECTOR_MAX_DIM {
-        return Err(AlgebraError::DimensionTooLarge {
-            what: "conformal algebra",
-            dim: n + 2,
-            max: MULTIVECTOR_MAX_DIM,
-        });
-    }
+    AlgebraError::check_dimension("conformal algebra", n + 2, MULTIVECTOR_MAX_DIM)?;
     if n < 2 {
         return Err(AlgebraError::WrongSignature {
             operation: "conformal geometry",
@@ -608,23 +602,9 @@ impl Point {
     pub fn coordinates(&self) -> Result<Vec<f64>, AlgebraError> {
         down(&self.0)
     }
-
-    /// The underlying null vector.
-    pub fn as_multivector(&self) -> &Multivector {
-        &self.0
-    }
-
-    /// The underlying null vector, by value.
-    pub fn into_multivector(self) -> Multivector {
-        self.0
-    }
 }
 
-impl AsRef<Multivector> for Point {
-    fn as_ref(&self) -> &Multivector {
-        &self.0
-    }
-}
+multivector_newtype!(Point, "null vector");
 
 /// The centre and radius of a round: the direct blade X of a circle (grade 3) or a
 /// sphere (grade N + 1) spanned by points. X n∞ X is a multiple of the centre (n∞ reflected
@@ -704,6 +684,41 @@ fn common_dim(points: &[&Point]) -> Result<usize, AlgebraError> {
         check_same_dim(n, p.dim())?;
     }
     Ok(n)
+}
+
+/// The accessors that a sphere and a circle share: the dimension, the centre and the radius
+/// they store, and the multivector in field `$field` (described by `$doc`), also as
+/// `AsRef<Multivector>`.
+macro_rules! round_accessors {
+    ($t:ident, $field:ident, $doc:literal) => {
+        impl $t {
+            /// The Euclidean dimension N.
+            pub fn dim(&self) -> usize {
+                self.centre.len()
+            }
+
+            /// The centre.
+            pub fn centre(&self) -> &[f64] {
+                &self.centre
+            }
+
+            /// The radius.
+            pub fn radius(&self) -> f64 {
+                self.radius
+            }
+
+            #[doc = $doc]
+            pub fn as_multivector(&self) -> &Multivector {
+                &self.$field
+            }
+        }
+
+        impl AsRef<Multivector> for $t {
+            fn as_ref(&self) -> &Multivector {
+                &self.$field
+            }
+        }
+    };
 }
 
 /// A hypersphere of ℝᴺ (a circle in 2D, a sphere in 3D) with its centre and radius, held as
@@ -786,21 +801,6 @@ impl Sphere {
         }
     }
 
-    /// The Euclidean dimension N.
-    pub fn dim(&self) -> usize {
-        self.centre.len()
-    }
-
-    /// The centre.
-    pub fn centre(&self) -> &[f64] {
-        &self.centre
-    }
-
-    /// The radius.
-    pub fn radius(&self) -> f64 {
-        self.radius
-    }
-
     /// The signed distance |x − c| − r of the point `x` (negative inside), [`signed_distance`].
     ///
     /// # Errors
@@ -808,18 +808,9 @@ impl Sphere {
     pub fn signed_distance(&self, x: &[f64]) -> Result<f64, AlgebraError> {
         signed_distance(&self.vector, x)
     }
-
-    /// The dual vector σ = up(c) − ½ r² n∞.
-    pub fn as_multivector(&self) -> &Multivector {
-        &self.vector
-    }
 }
 
-impl AsRef<Multivector> for Sphere {
-    fn as_ref(&self) -> &Multivector {
-        &self.vector
-    }
-}
+round_accessors!(Sphere, vector, "The dual vector σ = up(c) − ½ r² n∞.");
 
 /// A circle of ℝᴺ (N ≥ 2) held as the direct 3-blade P₁ ∧ P₂ ∧ P₃ of three of its points,
 /// with its centre and radius.
@@ -871,34 +862,13 @@ impl Circle {
             radius,
         })
     }
-
-    /// The Euclidean dimension N.
-    pub fn dim(&self) -> usize {
-        self.centre.len()
-    }
-
-    /// The centre.
-    pub fn centre(&self) -> &[f64] {
-        &self.centre
-    }
-
-    /// The radius.
-    pub fn radius(&self) -> f64 {
-        self.radius
-    }
-
-    /// The direct 3-blade P₁ ∧ P₂ ∧ P₃ (a point X lies on the circle exactly when
-    /// X ∧ C = 0).
-    pub fn as_multivector(&self) -> &Multivector {
-        &self.blade
-    }
 }
 
-impl AsRef<Multivector> for Circle {
-    fn as_ref(&self) -> &Multivector {
-        &self.blade
-    }
-}
+round_accessors!(
+    Circle,
+    blade,
+    "The direct 3-blade P₁ ∧ P₂ ∧ P₃ (a point X lies on the circle exactly when X ∧ C = 0)."
+);
 
 impl super::Versor<Point> for Multivector {
     type Output = Result<Point, AlgebraError>;

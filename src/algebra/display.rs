@@ -248,24 +248,25 @@ impl fmt::Display for cga::Point {
     }
 }
 
+/// Writes `name(centre (…), radius r)`.
+fn write_round(f: &mut fmt::Formatter<'_>, name: &str, centre: &[f64], radius: f64) -> fmt::Result {
+    write!(f, "{name}(centre ")?;
+    write_tuple(f, centre)?;
+    f.write_str(", radius ")?;
+    write_number(f, radius)?;
+    f.write_str(")")
+}
+
 impl fmt::Display for cga::Sphere {
     /// Formats as `sphere(centre (1, 2, 3), radius 2)`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str("sphere(centre ")?;
-        write_tuple(f, self.centre())?;
-        f.write_str(", radius ")?;
-        write_number(f, self.radius())?;
-        f.write_str(")")
+        write_round(f, "sphere", self.centre(), self.radius())
     }
 }
 
 impl fmt::Display for cga::Circle {
     /// Formats as `circle(centre (0, 0, 5), radius 2)`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str("circle(centre ")?;
-        write_tuple(f, self.centre())?;
-        f.write_str(", radius ")?;
-        write_number(f, self.radius())?;
-        f.write_str(")")
+        write_round(f, "circle", self.centre(), self.radius())
     }
 }

@@ -422,6 +422,32 @@ pub(crate) fn check_finite(values: &[f64], what: &'static str) -> Result<(), Alg
     }
 }
 
+impl AlgebraError {
+    /// Returns `Err(DimensionTooLarge)` for a `what` of dimension `dim` above `max`.
+    pub(crate) fn check_dimension(
+        what: &'static str,
+        dim: usize,
+        max: usize,
+    ) -> Result<(), AlgebraError> {
+        if dim > max {
+            Err(AlgebraError::DimensionTooLarge { what, dim, max })
+        } else {
+            Ok(())
+        }
+    }
+}
+
+/// Panics with a clear message unless (i, j) is a plane of dimension n: both indices in
+/// range and different.
+#[track_caller]
+#[inline]
+pub(crate) fn assert_plane(i: usize, j: usize, n: usize) {
+    assert!(
+        i < n && j < n && i != j,
+        "rotorflow: invalid plane ({i}, {j}) in dimension {n}"
+    );
+}
+
 /// Panics with a clear message when two dimensions differ; used by the operators.
 #[track_caller]
 #[inline]

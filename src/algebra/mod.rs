@@ -76,6 +76,31 @@
 //! # Ok::<(), rotorflow::algebra::AlgebraError>(())
 //! ```
 
+/// The accessors of a newtype around a [`Multivector`] (a point, plane, line or motor):
+/// `as_multivector`, `into_multivector` and `AsRef<Multivector>`; `$what` names the element
+/// in the docs.
+macro_rules! multivector_newtype {
+    ($t:ident, $what:literal) => {
+        impl $t {
+            #[doc = concat!("The underlying ", $what, ".")]
+            pub fn as_multivector(&self) -> &Multivector {
+                &self.0
+            }
+
+            #[doc = concat!("The underlying ", $what, ", by value.")]
+            pub fn into_multivector(self) -> Multivector {
+                self.0
+            }
+        }
+
+        impl AsRef<Multivector> for $t {
+            fn as_ref(&self) -> &Multivector {
+                &self.0
+            }
+        }
+    };
+}
+
 mod approx_impls;
 mod bivector;
 pub(crate) mod blade;

@@ -111,13 +111,7 @@ impl Multivector {
     /// [`AlgebraError::DimensionTooLarge`] when `sig.dim() > MULTIVECTOR_MAX_DIM`.
     pub fn try_zero(sig: Signature) -> Result<Self, AlgebraError> {
         let n = sig.dim();
-        if n > MULTIVECTOR_MAX_DIM {
-            return Err(AlgebraError::DimensionTooLarge {
-                what: "multivector",
-                dim: n,
-                max: MULTIVECTOR_MAX_DIM,
-            });
-        }
+        AlgebraError::check_dimension("multivector", n, MULTIVECTOR_MAX_DIM)?;
         Ok(Multivector {
             sig,
             coeffs: crate::numeric::zeros(1 << n),

@@ -3,13 +3,15 @@
 //! one meaning of each operator across the crate); the checked versions are the methods.
 
 use super::error::{assert_same_dim, check_same_dim};
-use super::{
-    AlgebraError, Bivector, Bivector3, Bivector4, Multivector, Real, Rotor, Rotor3, Rotor4, Vector,
-    Vector3, Vector4, cga, pga,
-};
+use super::{AlgebraError, Bivector, Multivector, Rotor, Vector, cga, pga};
 use std::ops::{
     Add, AddAssign, BitAnd, BitOr, BitXor, Div, Mul, MulAssign, Neg, Shl, Shr, Sub, SubAssign,
 };
+
+/// Applies `f` to each coefficient of `a` and the one of `b` at the same place.
+fn zip_apply(a: &mut [f64], b: &[f64], f: impl Fn(&mut f64, f64)) {
+    a.iter_mut().zip(b).for_each(|(x, &y)| f(x, y));
+}
 
 /// Implements the linear-space operators (+, −, neg, scaling) for a type with
 /// `dim()`/`as_slice()`/`as_mut_slice()`-like storage accessed through two closures.
@@ -19,20 +21,14 @@ macro_rules! linear_ops {
             #[track_caller]
             fn add_assign(&mut self, rhs: &$t) {
                 check_pair(self, rhs);
-                self.$slice_mut()
-                    .iter_mut()
-                    .zip(rhs.$slice())
-                    .for_each(|(a, b)| *a += b);
+                zip_apply(self.$slice_mut(), rhs.$slice(), |a, b| *a += b);
             }
         }
         impl SubAssign<&$t> for $t {
             #[track_caller]
             fn sub_assign(&mut self, rhs: &$t) {
                 check_pair(self, rhs);
-                self.$slice_mut()
-                    .iter_mut()
-                    .zip(rhs.$slice())
-                    .for_each(|(a, b)| *a -= b);
+                zip_apply(self.$slice_mut(), rhs.$slice(), |a, b| *a -= b);
             }
         }
         impl AddAssign<$t> for $t {
@@ -348,60 +344,6 @@ pub trait Versor<X: ?Sized> {
     type Output;
     /// The sandwich V X Ṽ.
     fn apply(&self, x: &X) -> Self::Output;
-}
-
-impl<T: Real> Versor<Vector3<T>> for Rotor3<T> {
-    type Output = Vector3<T>;
-    /// [`Rotor3::rotate_vector`].
-    #[inline]
-    fn apply(&self, x: &Vector3<T>) -> Vector3<T> {
-        self.rotate_vector(*x)
-    }
-}
-
-impl<T: Real> Versor<Bivector3<T>> for Rotor3<T> {
-    type Output = Bivector3<T>;
-    /// [`Rotor3::rotate_bivector`].
-    #[inline]
-    fn apply(&self, b: &Bivector3<T>) -> Bivector3<T> {
-        self.rotate_bivector(*b)
-    }
-}
-
-impl<T: Real> Versor<Rotor3<T>> for Rotor3<T> {
-    type Output = Rotor3<T>;
-    /// R S R̃: the rotation S carried by R (the same rotation in the turned frame).
-    #[inline]
-    fn apply(&self, s: &Rotor3<T>) -> Rotor3<T> {
-        *self * *s * self.reverse()
-    }
-}
-
-impl<T: Real> Versor<Vector4<T>> for Rotor4<T> {
-    type Output = Vector4<T>;
-    /// [`Rotor4::rotate_vector`].
-    #[inline]
-    fn apply(&self, x: &Vector4<T>) -> Vector4<T> {
-        self.rotate_vector(*x)
-    }
-}
-
-impl<T: Real> Versor<Bivector4<T>> for Rotor4<T> {
-    type Output = Bivector4<T>;
-    /// [`Rotor4::rotate_bivector`].
-    #[inline]
-    fn apply(&self, b: &Bivector4<T>) -> Bivector4<T> {
-        self.rotate_bivector(*b)
-    }
-}
-
-impl<T: Real> Versor<Rotor4<T>> for Rotor4<T> {
-    type Output = Rotor4<T>;
-    /// R S R̃.
-    #[inline]
-    fn apply(&self, s: &Rotor4<T>) -> Rotor4<T> {
-        *self * *s * self.reverse()
-    }
 }
 
 impl Versor<Vector> for Rotor {

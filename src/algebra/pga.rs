@@ -63,21 +63,14 @@
 
 use super::check_grade;
 use super::error::{check_finite, negligible, within};
-use super::{
-    AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Multivector, Rotor, Signature, VERSOR_TOLERANCE,
-};
+use super::versor_sqrt::check_unit_even_versor;
+use super::{AlgebraError, Bivector, MULTIVECTOR_MAX_DIM, Multivector, Rotor, Signature};
 use crate::numeric::scaled_norm;
 use nalgebra::DMatrix;
 
 /// The projective algebra Cl(n, 0, 1) of Euclidean ℝⁿ, for 2 ≤ n < [`MULTIVECTOR_MAX_DIM`].
 fn pga(n: usize) -> Result<Signature, AlgebraError> {
-    if n >= MULTIVECTOR_MAX_DIM {
-        return Err(AlgebraError::DimensionTooLarge {
-            what: "projective algebra",
-            dim: n + 1,
-            max: MULTIVECTOR_MAX_DIM,
-        });
-    }
+    AlgebraError::check_dimension("projective algebra", n + 1, MULTIVECTOR_MAX_DIM)?;
     if n < 2 {
         return Err(AlgebraError::WrongSignature {
             operation: "projective geometry",
@@ -305,23 +298,9 @@ impl Point {
             })
             .collect()
     }
-
-    /// The underlying N-vector.
-    pub fn as_multivector(&self) -> &Multivector {
-        &self.0
-    }
-
-    /// The underlying N-vector, by value.
-    pub fn into_multivector(self) -> Multivector {
-        self.0
-    }
 }
 
-impl AsRef<Multivector> for Point {
-    fn as_ref(&self) -> &Multivector {
-        &self.0
-    }
-}
+multivector_newtype!(Point, "N-vector");
 
 /// A hyperplane a·x = d of ℝᴺ (a plane in 3D, a line in 2D) as a vector of Cl(N, 0, 1):
 /// Σᵢ aᵢ eᵢ + d e₀ (ganja.js's and klein's `plane`, 2D PGA's `line`).
@@ -409,23 +388,9 @@ impl Plane {
         let a = (0..n).map(|i| self.0.coefficient(1 << i)).collect();
         (a, self.0.coefficient(1 << n))
     }
-
-    /// The underlying vector.
-    pub fn as_multivector(&self) -> &Multivector {
-        &self.0
-    }
-
-    /// The underlying vector, by value.
-    pub fn into_multivector(self) -> Multivector {
-        self.0
-    }
 }
 
-impl AsRef<Multivector> for Plane {
-    fn as_ref(&self) -> &Multivector {
-        &self.0
-    }
-}
+multivector_newtype!(Plane, "vector");
 
 /// A line of ℝᴺ as an (N − 1)-vector of Cl(N, 0, 1): the join P ∨ Q of two of its points,
 /// or the meet of N − 1 hyperplanes through it (klein's and ganja.js's `line`; in 3D a
@@ -677,23 +642,9 @@ impl Line {
         }
         Ok(Plane(y))
     }
-
-    /// The underlying (N − 1)-vector.
-    pub fn as_multivector(&self) -> &Multivector {
-        &self.0
-    }
-
-    /// The underlying (N − 1)-vector, by value.
-    pub fn into_multivector(self) -> Multivector {
-        self.0
-    }
 }
 
-impl AsRef<Multivector> for Line {
-    fn as_ref(&self) -> &Multivector {
-        &self.0
-    }
-}
+multivector_newtype!(Line, "(N − 1)-vector");
 
 /// A rigid motion of ℝᴺ (rotation and translation) as a unit even versor of Cl(N, 0, 1),
 /// M M̃ = 1: klein's and ganja.js's `motor`. It acts on points, planes and every other
@@ -717,29 +668,11 @@ impl Motor {
     /// # Errors
     /// [`AlgebraError::WrongSignature`]; [`AlgebraError::NonFinite`];
     /// [`AlgebraError::NotAVersor`] for odd grades or max |M M̃ − 1| above
-    /// [`VERSOR_TOLERANCE`] · max(1, max |Mᵢ|²) (normalise drift with
+    /// [`VERSOR_TOLERANCE`](super::VERSOR_TOLERANCE) · max(1, max |Mᵢ|²) (normalise drift with
     /// [`Multivector::normalize_versor`]).
     pub fn new(m: Multivector) -> Result<Motor, AlgebraError> {
         euclidean_dim(m.signature(), "a motor")?;
-        check_finite(m.as_slice(), "motor")?;
-        let odd = m.odd().max_abs();
-        if odd != 0.0 {
-            return Err(AlgebraError::NotAVersor {
-                reason: "it has odd grades",
-                deviation: odd,
-            });
-        }
-        let mut mm = m.geometric(&m.reverse());
-        mm.as_mut_slice()[0] -= 1.0;
-        let deviation = mm.max_abs();
-        if !deviation.is_finite()
-            || !within(deviation, VERSOR_TOLERANCE * m.max_abs().powi(2).max(1.0))
-        {
-            return Err(AlgebraError::NotAVersor {
-                reason: "M M̃ is not 1",
-                deviation,
-            });
-        }
+        check_unit_even_versor(&m, "motor", "M M̃ is not 1")?;
         Ok(Motor(m))
     }
 
@@ -1058,23 +991,9 @@ impl Motor {
     pub fn sqrt(&self) -> Result<Motor, AlgebraError> {
         Ok(Motor(self.0.sqrt()?))
     }
-
-    /// The underlying even multivector.
-    pub fn as_multivector(&self) -> &Multivector {
-        &self.0
-    }
-
-    /// The underlying even multivector, by value.
-    pub fn into_multivector(self) -> Multivector {
-        self.0
-    }
 }
 
-impl AsRef<Multivector> for Motor {
-    fn as_ref(&self) -> &Multivector {
-        &self.0
-    }
-}
+multivector_newtype!(Motor, "even multivector");
 
 impl AsRef<Multivector> for Multivector {
     /// Lets [`join`] and [`meet`] take plain multivectors (lines, results of other joins)
@@ -1095,38 +1014,23 @@ impl super::Versor<Multivector> for Motor {
     }
 }
 
-impl super::Versor<Point> for Motor {
-    type Output = Result<Point, AlgebraError>;
-    /// [`Motor::apply_point`].
-    ///
-    /// # Errors
-    /// [`AlgebraError::SignatureMismatch`].
-    fn apply(&self, p: &Point) -> Self::Output {
-        self.apply_point(p)
-    }
+/// `Versor<X> for Motor` by the motor's own method for X.
+macro_rules! motor_moves {
+    ($($t:ident => $method:ident),*) => {$(
+        impl super::Versor<$t> for Motor {
+            type Output = Result<$t, AlgebraError>;
+            #[doc = concat!("[`Motor::", stringify!($method), "`].")]
+            ///
+            /// # Errors
+            /// [`AlgebraError::SignatureMismatch`].
+            fn apply(&self, x: &$t) -> Self::Output {
+                self.$method(x)
+            }
+        }
+    )*};
 }
 
-impl super::Versor<Line> for Motor {
-    type Output = Result<Line, AlgebraError>;
-    /// [`Motor::apply_line`].
-    ///
-    /// # Errors
-    /// [`AlgebraError::SignatureMismatch`].
-    fn apply(&self, l: &Line) -> Self::Output {
-        self.apply_line(l)
-    }
-}
-
-impl super::Versor<Plane> for Motor {
-    type Output = Result<Plane, AlgebraError>;
-    /// [`Motor::apply_plane`].
-    ///
-    /// # Errors
-    /// [`AlgebraError::SignatureMismatch`].
-    fn apply(&self, p: &Plane) -> Self::Output {
-        self.apply_plane(p)
-    }
-}
+motor_moves!(Point => apply_point, Line => apply_line, Plane => apply_plane);
 
 impl super::Versor<Motor> for Motor {
     type Output = Result<Motor, AlgebraError>;

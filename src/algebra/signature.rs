@@ -33,13 +33,7 @@ impl Signature {
     /// [`AlgebraError::DimensionTooLarge`] if p + q + r exceeds [`MAX_DIM`].
     pub fn new(p: usize, q: usize, r: usize) -> Result<Self, AlgebraError> {
         let dim = p + q + r;
-        if dim > MAX_DIM {
-            return Err(AlgebraError::DimensionTooLarge {
-                what: "signature",
-                dim,
-                max: MAX_DIM,
-            });
-        }
+        AlgebraError::check_dimension("signature", dim, MAX_DIM)?;
         Ok(Signature {
             p: p as u8,
             q: q as u8,

@@ -337,12 +337,7 @@ mod tests {
     #[test]
     fn products_match_the_multivector_kernel_in_every_signature_up_to_six_dimensions() {
         let mut seed = 3u64;
-        let mut r = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        };
+        let mut r = move || crate::numeric::tests::random(&mut seed);
         let mut checked = 0;
         for n in 1..=4 {
             checked += check::<16>(n, &mut r);

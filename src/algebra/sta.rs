@@ -18,8 +18,9 @@
 //! # Ok::<(), rotorflow::algebra::AlgebraError>(())
 //! ```
 
-use super::error::{check_finite, within};
-use super::{AlgebraError, Multivector, Signature, VERSOR_TOLERANCE};
+use super::error::check_finite;
+use super::versor_sqrt::check_unit_even_versor;
+use super::{AlgebraError, Multivector, Signature};
 use nalgebra::DMatrix;
 
 /// The spacetime algebra Cl(1, 3) (e₁ time, e₂ e₃ e₄ space).
@@ -78,7 +79,7 @@ pub fn boost(rapidity: f64, direction: &[f64]) -> Result<Multivector, AlgebraErr
 /// # Errors
 /// [`AlgebraError::WrongSignature`] outside Cl(1, 3); [`AlgebraError::NonFinite`];
 /// [`AlgebraError::NotAVersor`] for odd grades or max |V Ṽ − 1| above
-/// [`VERSOR_TOLERANCE`] · max(1, max |Vᵢ|²).
+/// [`VERSOR_TOLERANCE`](super::VERSOR_TOLERANCE) · max(1, max |Vᵢ|²).
 pub fn lorentz_matrix(v: &Multivector) -> Result<DMatrix<f64>, AlgebraError> {
     if v.signature() != spacetime() {
         return Err(AlgebraError::WrongSignature {
@@ -87,24 +88,7 @@ pub fn lorentz_matrix(v: &Multivector) -> Result<DMatrix<f64>, AlgebraError> {
             signature: v.signature(),
         });
     }
-    check_finite(v.as_slice(), "versor")?;
-    let odd = v.odd().max_abs();
-    if odd != 0.0 {
-        return Err(AlgebraError::NotAVersor {
-            reason: "it has odd grades",
-            deviation: odd,
-        });
-    }
-    let mut vv = v.geometric(&v.reverse());
-    vv.as_mut_slice()[0] -= 1.0;
-    let deviation = vv.max_abs();
-    if !deviation.is_finite() || !within(deviation, VERSOR_TOLERANCE * v.max_abs().powi(2).max(1.0))
-    {
-        return Err(AlgebraError::NotAVersor {
-            reason: "V Ṽ is not 1",
-            deviation,
-        });
-    }
+    check_unit_even_versor(v, "versor", "V Ṽ is not 1")?;
     let rev = v.reverse();
     let mut l = DMatrix::zeros(4, 4);
     for k in 0..4 {

@@ -39,13 +39,7 @@ impl Vector {
     /// # Errors
     /// [`AlgebraError::DimensionTooLarge`] if `n > MAX_DIM`.
     pub fn try_zero(n: usize) -> Result<Self, AlgebraError> {
-        if n > MAX_DIM {
-            return Err(AlgebraError::DimensionTooLarge {
-                what: "vector",
-                dim: n,
-                max: MAX_DIM,
-            });
-        }
+        AlgebraError::check_dimension("vector", n, MAX_DIM)?;
         Ok(Vector {
             coords: crate::numeric::zeros(n),
         })
@@ -86,13 +80,7 @@ impl Vector {
     /// [`AlgebraError::NonFinite`] for NaN or infinite components,
     /// [`AlgebraError::DimensionTooLarge`] for more than [`MAX_DIM`] components.
     pub fn from_components(components: &[f64]) -> Result<Self, AlgebraError> {
-        if components.len() > MAX_DIM {
-            return Err(AlgebraError::DimensionTooLarge {
-                what: "vector",
-                dim: components.len(),
-                max: MAX_DIM,
-            });
-        }
+        AlgebraError::check_dimension("vector", components.len(), MAX_DIM)?;
         check_finite(components, "vector components")?;
         Ok(Vector {
             coords: SmallVec::from_slice(components),
@@ -180,17 +168,9 @@ impl Vector {
     pub fn wedge(&self, other: &Vector) -> Bivector {
         super::error::assert_same_dim(self.dim(), other.dim());
         let (x, y) = (&self.coords, &other.coords);
-        let n = x.len();
-        let mut b = Bivector::zero(n);
-        let c = b.as_mut_slice();
-        let mut k = 0;
-        for i in 0..n {
-            for j in i + 1..n {
-                c[k] = x[i] * y[j] - x[j] * y[i];
-                k += 1;
-            }
-        }
-        if c.iter().any(|c| c.is_nan()) {
+        // Division by 1 is exact: this is xᵢyⱼ − xⱼyᵢ.
+        let mut b = wedge_scaled(x, y, 1.0, 1.0);
+        if b.as_slice().iter().any(|c| c.is_nan()) {
             // ∞ − ∞ from an overflowing product of finite components:
             // scale both factors into [−1, 1], then scale the (finite) result back.
             let (sx, sy) = (self.max_abs(), other.max_abs());
@@ -252,7 +232,8 @@ impl std::ops::IndexMut<usize> for Vector {
     }
 }
 
-/// (x/sx) ∧ (y/sy), component by component (the overflow path of [`Vector::wedge`]).
+/// (x/sx) ∧ (y/sy), component by component ([`Vector::wedge`] with sx = sy = 1, and its
+/// overflow path).
 fn wedge_scaled(x: &[f64], y: &[f64], sx: f64, sy: f64) -> Bivector {
     let n = x.len();
     let mut b = Bivector::zero(n);

@@ -299,12 +299,7 @@ mod tests {
     /// A deterministic stream in [−1, 1).
     fn stream(seed: u64) -> impl FnMut() -> f64 {
         let mut s = seed;
-        move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        }
+        move || crate::numeric::tests::random(&mut s)
     }
 
     #[test]

@@ -90,6 +90,26 @@ fn check_even(m: &Multivector, what: &'static str) -> Result<(), AlgebraError> {
     Ok(())
 }
 
+/// Checks that `m` is a finite even versor with max |M M̃ − 1| within [`VERSOR_TOLERANCE`] ·
+/// max(1, max |Mᵢ|²); `not_unit` is the error's reason when it is not.
+pub(crate) fn check_unit_even_versor(
+    m: &Multivector,
+    what: &'static str,
+    not_unit: &'static str,
+) -> Result<(), AlgebraError> {
+    check_even(m, what)?;
+    let deviation = unit_distance(m);
+    let scale = m.max_abs().powi(2).max(1.0);
+    // A non-finite V Ṽ (coefficients beyond √f64::MAX) is never accepted.
+    if !deviation.is_finite() || !within(deviation, VERSOR_TOLERANCE * scale) {
+        return Err(AlgebraError::NotAVersor {
+            reason: not_unit,
+            deviation,
+        });
+    }
+    Ok(())
+}
+
 /// max |M M̃ − 1|.
 fn unit_distance(m: &Multivector) -> f64 {
     let mut mm = m.geometric(&m.reverse());
@@ -129,16 +149,7 @@ impl Multivector {
     /// signature neither Euclidean nor projective); [`AlgebraError::Overflow`] if a coefficient of the result
     /// overflows.
     pub fn sqrt(&self) -> Result<Multivector, AlgebraError> {
-        check_even(self, "versor")?;
-        let deviation = unit_distance(self);
-        let scale = self.max_abs().powi(2).max(1.0);
-        // A non-finite V Ṽ (coefficients beyond √f64::MAX) is never accepted.
-        if !deviation.is_finite() || !within(deviation, VERSOR_TOLERANCE * scale) {
-            return Err(AlgebraError::NotAVersor {
-                reason: "V Ṽ is not 1",
-                deviation,
-            });
-        }
+        check_unit_even_versor(self, "versor", "V Ṽ is not 1")?;
         if self.dim() <= CENTRAL_MAX_DIM {
             let (mask, eps) = pseudoscalar(self);
             let a = 2.0 + 2.0 * self.scalar_part();

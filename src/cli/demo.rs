@@ -20,21 +20,20 @@ use super::motion::{
 };
 use super::output::{Progress, number, plane_names, write_atomic};
 use super::render::picture;
-use super::scene;
-use super::scene::format::Scene;
-use super::scene::run::Record;
 use super::simulate::{drift_plot, omega_plot};
 use super::spec::parse_body;
 use super::sweep::observables;
-use super::viz::Projection;
-use super::viz::plot::{PlotSpec, Series, line_plot, subscript};
-use super::viz::scene::up_axis;
 use clap::Args;
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 use rotorflow::dynamics::motion::ContactShape;
+use rotorflow::dynamics::motion::SystemTrajectory as Record;
 use rotorflow::dynamics::torques::Free;
 use rotorflow::dynamics::trajectory::even_times;
+use rotorflow::scene::Scene;
+use rotorflow::viz::Projection;
+use rotorflow::viz::plot::{PlotSpec, Series, line_plot, subscript};
+use rotorflow::viz::scene::up_axis;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -290,7 +289,7 @@ pub fn run(args: &DemoArgs, quiet: bool) -> CliResult<()> {
     );
     let _ = writeln!(md, "|---|---|---|---|---|---|---|");
     for (s, r) in SCENES.iter().zip(&scenes) {
-        let t_end = scene::format::parse(s.text, s.file)
+        let t_end = Scene::from_toml_str(s.text, s.file)
             .map(|sc| number(sc.t_end))
             .unwrap_or_default();
         let _ = writeln!(
@@ -629,16 +628,14 @@ struct SceneResult {
 /// Runs a scene of the demo and writes its animation and its plot of the energy and the
 /// momenta.
 fn run_scene(s: &DemoScene, dir: &Path) -> CliResult<SceneResult> {
-    let scene = scene::format::parse(s.text, s.file)?;
+    let scene = Scene::from_toml_str(s.text, s.file)?;
     let times = even_times(scene.t_end, s.samples);
     let clock = Instant::now();
-    let mut system = scene::run::build_system(&scene, s.file)?;
-    let mut silent = Progress::new(0, true, "");
-    let record = scene::run::run(&scene, &mut system, &times, &mut silent)?;
+    let record = scene.record(&times)?;
     let seconds = clock.elapsed().as_secs_f64();
-    let html = scene::output::html(&scene, &record, s.title);
+    let html = scene.animation_html(&record, s.title);
     write_atomic(&dir.join(format!("{}.html", s.name)), html.as_bytes())?;
-    let svg = scene::output::plot(&scene, &record, &format!("{} ({})", s.title, s.file))?;
+    let svg = scene.plot_svg(&record, &format!("{} ({})", s.title, s.file))?;
     write_atomic(&dir.join(format!("energy_{}.svg", s.name)), svg.as_bytes())?;
     Ok(SceneResult {
         steps: record.steps,
@@ -694,7 +691,8 @@ fn lowest_gap(scene: &Scene, record: &Record) -> f64 {
             let s = norm(&p.normal);
             let n: Vec<f64> = p.normal.iter().map(|x| x / s).collect();
             let d = p.offset / s;
-            for (x, q) in track.position.iter().zip(&track.attitude) {
+            for (k, x) in track.position.iter().enumerate() {
+                let q = track.attitude_matrix(k);
                 let centre: f64 = n.iter().zip(x).map(|(a, b)| a * b).sum::<f64>() - d;
                 // m = Qᵀ n: the normal in own axes.
                 let m: Vec<f64> = (0..n.len())
@@ -776,7 +774,7 @@ fn rolling_figures(scene: &Scene, record: &Record) -> String {
     let floor = &scene.planes[0].normal;
     let s = norm(floor);
     let slip_at = |k: usize| {
-        let w = space_omega(&track.omega[k], &track.attitude[k]);
+        let w = space_omega(&track.omega[k], &track.attitude_matrix(k));
         let r = DVector::from_iterator(floor.len(), floor.iter().map(|x| -radius * x / s));
         let v = DVector::from_column_slice(&track.velocity[k]) + w * r;
         v.norm()

@@ -35,5 +35,17 @@ impl CliError {
     }
 }
 
+impl From<rotorflow::scene::SceneError> for CliError {
+    /// A bad scene is bad input (exit code 2), a failed run a run-time error (exit code 1),
+    /// with the same message.
+    fn from(e: rotorflow::scene::SceneError) -> Self {
+        use rotorflow::scene::SceneError;
+        match e {
+            SceneError::Invalid(message) => CliError::Input(message),
+            SceneError::Failed(message) => CliError::Runtime(message),
+        }
+    }
+}
+
 /// The result type of the command's functions.
 pub type CliResult<T> = Result<T, CliError>;

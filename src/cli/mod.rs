@@ -1,6 +1,7 @@
 //! The `rotorflow` command (feature `cli`, private to the binary): one file per subcommand,
 //! the body grammar's help text in [`spec`] (the parser is the library's
-//! `rotorflow::inertia::spec`), atomic writes, JSON and CSV in [`output`].
+//! `rotorflow::inertia::spec`), atomic writes, JSON and CSV in [`output`]. The pictures are
+//! the library's `rotorflow::viz`, scene files its `rotorflow::scene`.
 //!
 //! | subcommand | what it does |
 //! |---|---|
@@ -33,9 +34,6 @@ pub mod stream;
 pub mod sweep;
 
 use error::CliResult;
-// The pictures live next to the command (`mod viz` beside `mod cli`), reached through the
-// parent so that the book's reference generator can include both modules as well.
-use super::viz;
 
 use clap::{Parser, Subcommand};
 use std::io::Write as _;

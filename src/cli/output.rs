@@ -177,18 +177,8 @@ pub fn to_json_text(value: &Value, pretty: bool) -> CliResult<String> {
     Ok(text)
 }
 
-/// Formats a number for CSV and text output: the shortest digits that read back as exactly
-/// `x`, written plainly for 10⁻⁵ ≤ |x| < 10¹⁶ (and 0) and in exponent form otherwise
-/// (`2.220446049250313e-16`, not 32 decimals; `1e300`, not 301 digits), as `ryu` chooses.
-/// Rust's `{}` and `{:e}` both print the shortest round-trip digits; only the layout differs.
-pub fn number(x: f64) -> String {
-    let a = x.abs();
-    if a == 0.0 || (1e-5..1e16).contains(&a) || !a.is_finite() {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
-}
+/// Formats a number for CSV and text output: the shortest digits that read back exactly.
+pub use rotorflow::dynamics::motion::csv_number as number;
 
 /// Returns the 1-based plane names of dimension `n` in lexicographic order ("12", "13", …).
 pub fn plane_names(n: usize) -> Vec<String> {
@@ -246,57 +236,6 @@ impl Progress {
     pub fn finish(self) {
         if let Some(bar) = self.bar {
             bar.finish_and_clear();
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::number;
-    use proptest::prelude::*;
-
-    #[test]
-    fn numbers_are_short_and_exact() {
-        for (x, text) in [
-            (f64::EPSILON, "2.220446049250313e-16"),
-            (0.1, "0.1"),
-            (-0.5, "-0.5"),
-            (1.0, "1"),
-            (0.0, "0"),
-            (1e-5, "0.00001"),
-            (9.99e-6, "9.99e-6"),
-            (1e16, "1e16"),
-            (123456789.125, "123456789.125"),
-            (f64::MAX, "1.7976931348623157e308"),
-            (f64::MIN_POSITIVE, "2.2250738585072014e-308"),
-            (5e-324, "5e-324"),
-        ] {
-            assert_eq!(number(x), text);
-            assert_eq!(text.parse::<f64>().unwrap().to_bits(), x.to_bits());
-        }
-        assert_eq!(number(f64::NAN), "NaN");
-        assert_eq!(number(f64::INFINITY), "inf");
-    }
-
-    proptest! {
-        /// Every finite f64, whatever its exponent, reads back bit for bit, in at most 17
-        /// significant digits and without runs of padding zeros.
-        #[test]
-        fn every_finite_number_round_trips(bits in any::<u64>()) {
-            let x = f64::from_bits(bits);
-            prop_assume!(x.is_finite());
-            let text = number(x);
-            prop_assert_eq!(text.parse::<f64>().unwrap().to_bits(), x.to_bits(), "{}", text);
-            let digits: String = text
-                .split('e')
-                .next()
-                .unwrap()
-                .chars()
-                .filter(char::is_ascii_digit)
-                .collect();
-            let significant = digits.trim_start_matches('0').len();
-            prop_assert!(significant <= 17, "{}", text);
-            prop_assert!(text.len() <= 24, "{}", text);
         }
     }
 }

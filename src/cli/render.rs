@@ -5,13 +5,13 @@ use super::error::{CliError, CliResult};
 use super::motion::{InitialArgs, Report, SteppingArgs, finite_number, initial_body, integrate};
 use super::output::{Progress, check_extension, write_atomic};
 use super::spec::{ParsedBody, parse_body};
-use super::viz::html::{Animation, animation_html};
-use super::viz::projection::svg_strip;
-use super::viz::{Projection, Shape};
 use clap::{Args, ValueEnum};
 use nalgebra::DMatrix;
 use rotorflow::dynamics::torques::Free;
 use rotorflow::dynamics::trajectory::even_times;
+use rotorflow::viz::html::{Animation, animation_html};
+use rotorflow::viz::projection::svg_strip;
+use rotorflow::viz::{Projection, Shape};
 use std::path::PathBuf;
 
 /// The projection of the left-out axes, on the command line.
@@ -135,7 +135,7 @@ pub fn picture(
     projection: Projection,
     html: bool,
 ) -> String {
-    let (shape, matrices) = embed_3d(super::spec::shape(parsed), &report.attitude);
+    let (shape, matrices) = embed_3d(Shape::of_body(parsed), &report.attitude);
     if html {
         animation_html(&Animation {
             title: &parsed.spec,

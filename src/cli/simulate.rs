@@ -10,9 +10,9 @@ use super::output::{
 };
 use super::spec::parse_body;
 use super::stream::ReportStream;
-use super::viz::plot::{PlotSpec, Series, line_plot, subscript};
 use clap::Args;
 use rotorflow::algebra::Bivector;
+use rotorflow::viz::plot::{PlotSpec, Series, line_plot, subscript};
 use std::path::{Path, PathBuf};
 
 /// Sample times: `--t-end T` with `--samples K`, or `--times t1,t2,…`.

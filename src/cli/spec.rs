@@ -2,9 +2,8 @@
 //! (`rotorflow::inertia::spec`) with its error turned into a one-line bad-input message.
 
 use super::error::{CliError, CliResult};
-use super::viz::Shape;
+use rotorflow::inertia::spec;
 pub use rotorflow::inertia::spec::ParsedBody;
-use rotorflow::inertia::spec::{self, Geometry};
 
 /// The grammar, printed by `rotorflow help bodies` (and nowhere else: the helps that take a
 /// SPEC point to it with [`GRAMMAR_POINTER`]).
@@ -39,31 +38,4 @@ pub const GRAMMAR_POINTER: &str =
 /// [`CliError::Input`] naming the problem and the expected form.
 pub fn parse_body(text: &str) -> CliResult<ParsedBody> {
     spec::parse_body(text).map_err(|err| CliError::input(err.to_string()))
-}
-
-/// Returns what to draw of a parsed body, in its own axes about the centre of mass.
-pub fn shape(parsed: &ParsedBody) -> Shape {
-    let n = parsed.dim;
-    match &parsed.geometry {
-        Geometry::Cuboid { half_lengths, .. } => Shape::cuboid(half_lengths),
-        Geometry::Points(points) if points.len() <= 12 => Shape::complete_graph(points.clone()),
-        Geometry::Points(points) => Shape::cloud(n, points.clone()),
-        Geometry::Ellipsoid { semi_axes, surface } => {
-            Shape::ellipsoid(semi_axes, None, *surface, 1500)
-        }
-        Geometry::Mesh { vertices, edges } => Shape::wireframe(n, vertices.clone(), edges.clone()),
-        Geometry::MassTensor => match &parsed.body {
-            // The uniform ellipsoid with the same mass and mass tensor: Jᵢ = m aᵢ²/(N+2).
-            Some(body) => {
-                let (moments, axes) = body.principal_frame();
-                let semi: Vec<f64> = moments
-                    .iter()
-                    .map(|j| ((n as f64 + 2.0) * j.max(0.0) / body.mass()).sqrt())
-                    .collect();
-                Shape::ellipsoid(&semi, Some(&axes), false, 1500)
-            }
-            None => Shape::cross(n, 1.0),
-        },
-        _ => Shape::cross(n, 1.0),
-    }
 }

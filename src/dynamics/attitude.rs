@@ -107,13 +107,7 @@ impl Attitude {
                 cols: q.ncols(),
             });
         }
-        if n > crate::algebra::MAX_DIM {
-            return Err(AlgebraError::DimensionTooLarge {
-                what: "attitude",
-                dim: n,
-                max: crate::algebra::MAX_DIM,
-            });
-        }
+        AlgebraError::check_dimension("attitude", n, crate::algebra::MAX_DIM)?;
         if q.iter().any(|x| !x.is_finite()) {
             return Err(AlgebraError::NonFinite { what: "matrix" });
         }

@@ -60,13 +60,7 @@ impl RigidBody {
         let attitude = attitude.into();
         let n = inertia.dim();
         for d in [attitude.dim(), momentum.dim()] {
-            if d != n {
-                return Err(InertiaError::DimensionMismatch {
-                    quantity: "attitude or momentum",
-                    expected: n,
-                    found: d,
-                });
-            }
+            check_body_dim("attitude or momentum", n, d)?;
         }
         // Move to the principal frame: R_body = R_P · R_principal-frame.
         let (inertia, principal_frame) = if inertia.is_principal() || !inertia.is_physical() {
@@ -253,13 +247,7 @@ impl RigidBody {
     /// As [`RigidBody::with_gyrostatic_momentum`]; the body is then unchanged.
     pub fn set_gyrostatic_momentum(&mut self, h: &Bivector) -> Result<(), InertiaError> {
         let n = self.dim();
-        if h.dim() != n {
-            return Err(InertiaError::DimensionMismatch {
-                quantity: "gyrostatic momentum",
-                expected: n,
-                found: h.dim(),
-            });
-        }
+        check_body_dim("gyrostatic momentum", n, h.dim())?;
         check_finite("gyrostatic momentum", h)?;
         let h = self.principal_frame.inverse_rotate_bivector(h);
         let before = std::mem::replace(&mut self.gyrostatic, (h.max_abs() > 0.0).then_some(h));
@@ -322,13 +310,7 @@ impl RigidBody {
         let attitude = attitude.into();
         let n = self.dim();
         for d in [attitude.dim(), momentum.dim()] {
-            if d != n {
-                return Err(InertiaError::DimensionMismatch {
-                    quantity: "attitude or momentum",
-                    expected: n,
-                    found: d,
-                });
-            }
+            check_body_dim("attitude or momentum", n, d)?;
         }
         if !attitude.is_finite() {
             return Err(InertiaError::NonFinite {
@@ -350,6 +332,23 @@ impl RigidBody {
 }
 
 /// Refuses a bivector with a non-finite component, naming the first one.
+/// Fails with [`InertiaError::DimensionMismatch`] for a `quantity` of dimension `found` given
+/// to a body of dimension `expected`.
+fn check_body_dim(
+    quantity: &'static str,
+    expected: usize,
+    found: usize,
+) -> Result<(), InertiaError> {
+    if found == expected {
+        return Ok(());
+    }
+    Err(InertiaError::DimensionMismatch {
+        quantity,
+        expected,
+        found,
+    })
+}
+
 fn check_finite(quantity: &'static str, b: &Bivector) -> Result<(), InertiaError> {
     match b.as_slice().iter().position(|x| !x.is_finite()) {
         Some(index) => Err(InertiaError::NonFinite {

@@ -197,6 +197,25 @@ impl DynamicsError {
             reasons: vec![reason],
         }
     }
+
+    /// `Err(NoClosedForm(WrongDimension))` unless the dimension `found` is the `expected` one
+    /// of the closed form `form`.
+    pub(crate) fn check_closed_form_dim(
+        form: &'static str,
+        expected: usize,
+        found: usize,
+    ) -> Result<(), Self> {
+        let reason = NoClosedFormReason::WrongDimension {
+            form,
+            expected,
+            found,
+        };
+        if found == expected {
+            Ok(())
+        } else {
+            Err(DynamicsError::no_closed_form(reason))
+        }
+    }
 }
 
 fn join_reasons(reasons: &[NoClosedFormReason]) -> String {

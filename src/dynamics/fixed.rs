@@ -643,31 +643,19 @@ mod tests {
             commutator_packed(4, &a, &b, &mut generic);
             assert_eq!(fast, generic);
             dexp_inverse_8::<4, 6>(&a, &b, &mut fast);
-            let (mut power, mut next) = ([0.0; 6], [0.0; 6]);
-            dexp_inverse_packed(
-                4,
-                &a,
-                &b,
-                -0.5,
-                &DEXP_INVERSE_8,
-                &mut generic,
-                (&mut power, &mut next),
-            );
-            assert_eq!(fast, generic);
+            assert_eq!(fast, generic_dexp_inverse_8(4, &a, &b));
             let (a3, b3) = ([a[0], a[1], a[2]], [b[0], b[1], b[2]]);
-            let (mut fast3, mut generic3) = ([0.0; 3], [0.0; 3]);
+            let mut fast3 = [0.0; 3];
             dexp_inverse_8::<3, 3>(&a3, &b3, &mut fast3);
-            let (mut power, mut next) = ([0.0; 3], [0.0; 3]);
-            dexp_inverse_packed(
-                3,
-                &a3,
-                &b3,
-                -0.5,
-                &DEXP_INVERSE_8,
-                &mut generic3,
-                (&mut power, &mut next),
-            );
-            assert_eq!(fast3, generic3);
+            assert_eq!(fast3, generic_dexp_inverse_8(3, &a3, &b3));
         }
+    }
+
+    /// The generic kernel's dexp⁻¹₋a(−½ b) of order 8 in dimension n, K = n(n−1)/2.
+    fn generic_dexp_inverse_8<const K: usize>(n: usize, a: &[f64; K], b: &[f64; K]) -> [f64; K] {
+        let (mut out, mut power, mut next) = ([0.0; K], [0.0; K], [0.0; K]);
+        let pair = (&mut power[..], &mut next[..]);
+        dexp_inverse_packed(n, a, b, -0.5, &DEXP_INVERSE_8, &mut out, pair);
+        out
     }
 }

@@ -6,7 +6,8 @@ use super::InertiaError;
 use super::tolerance::{ORTHOGONALITY_TOLERANCE, SINGULAR_PLANE_TOLERANCE};
 use super::validate::{
     check_dim, check_finite_matrix, check_moments_nonnegative, check_point, check_points,
-    check_positive, check_symmetric, max_abs, singular_plane, sorted_eigen, symmetrize,
+    check_positive, check_square, check_symmetric, max_abs, singular_plane, sorted_eigen,
+    symmetrize,
 };
 use crate::algebra::{Rotor, Vector};
 use nalgebra::{DMatrix, DVector};
@@ -205,14 +206,7 @@ impl Body {
         if let Some(v) = volume {
             check_positive("volume", None, v)?;
         }
-        if mass_tensor.nrows() != dim || mass_tensor.ncols() != dim {
-            return Err(InertiaError::WrongShape {
-                quantity: "mass_tensor",
-                rows: mass_tensor.nrows(),
-                cols: mass_tensor.ncols(),
-                expected: dim,
-            });
-        }
+        check_square("mass_tensor", &mass_tensor, dim, true)?;
         check_finite_matrix("mass_tensor", &mass_tensor)?;
         check_symmetric("mass_tensor", &mass_tensor)?;
         let j = symmetrize(&mass_tensor);
@@ -553,14 +547,7 @@ impl Body {
 }
 
 fn check_orthogonal(rotation: &DMatrix<f64>, dim: usize) -> Result<(), InertiaError> {
-    if rotation.nrows() != dim || rotation.ncols() != dim {
-        return Err(InertiaError::WrongShape {
-            quantity: "rotation",
-            rows: rotation.nrows(),
-            cols: rotation.ncols(),
-            expected: dim,
-        });
-    }
+    check_square("rotation", rotation, dim, true)?;
     check_finite_matrix("rotation", rotation)?;
     let deviation = max_abs(&(rotation.transpose() * rotation - DMatrix::identity(dim, dim)));
     if deviation > ORTHOGONALITY_TOLERANCE {

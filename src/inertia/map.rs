@@ -2,7 +2,8 @@
 
 use super::tolerance::SINGULAR_PLANE_TOLERANCE;
 use super::validate::{
-    check_finite, check_finite_matrix, check_moments_nonnegative, check_symmetric, singular_plane,
+    check_finite, check_finite_matrix, check_moments_nonnegative, check_square, check_symmetric,
+    singular_plane,
 };
 use super::{Body, InertiaError};
 use crate::algebra::{Bivector, Rotor, bivector_len, pairs};
@@ -105,14 +106,7 @@ impl InertiaMap {
     /// flat in two directions, the map is singular).
     pub fn from_mass_tensor(j: &DMatrix<f64>) -> Result<Self, InertiaError> {
         let n = j.nrows();
-        if j.ncols() != n || n < 2 {
-            return Err(InertiaError::WrongShape {
-                quantity: "mass_tensor",
-                rows: j.nrows(),
-                cols: j.ncols(),
-                expected: n.max(2),
-            });
-        }
+        check_square("mass_tensor", j, n.max(2), true)?;
         check_finite_matrix("mass_tensor", j)?;
         check_symmetric("mass_tensor", j)?;
         let j = (j + j.transpose()) * 0.5;
@@ -292,14 +286,7 @@ impl InertiaMap {
     /// [`InertiaError::NotSymmetric`], [`InertiaError::NotPositiveDefinite`].
     pub fn from_matrix(n: usize, matrix: &DMatrix<f64>) -> Result<Self, InertiaError> {
         let k = bivector_len(n);
-        if n < 2 || matrix.nrows() != k || matrix.ncols() != k {
-            return Err(InertiaError::WrongShape {
-                quantity: "map_on_bivectors",
-                rows: matrix.nrows(),
-                cols: matrix.ncols(),
-                expected: k,
-            });
-        }
+        check_square("map_on_bivectors", matrix, k, n >= 2)?;
         check_finite_matrix("map_on_bivectors", matrix)?;
         check_symmetric("map_on_bivectors", matrix)?;
         let m = (matrix + matrix.transpose()) * 0.5;

@@ -332,14 +332,29 @@ impl MeshAccumulator {
             }
         }
         let volume = determinant_in_place(&mut a[..n * n], n) * self.inverse_factorial;
+        self.add_moments(volume, orientation, w, n);
+    }
+
+    /// Adds the volume and the first and second moments of the simplex with vertex rows
+    /// `rows` (N + 1 of them, N ≤ 16) and determinant volume `volume`: with s the sum of the
+    /// vertices and f the signed volume, ∫x dV = f s/(N + 1) and
+    /// ∫x xᵀ dV = f (s sᵀ + Σ vᵢvᵢᵀ)/((N + 1)(N + 2)) (upper triangle).
+    #[inline(always)]
+    fn add_moments<V: AsRef<[f64]>>(
+        &mut self,
+        volume: f64,
+        orientation: SimplexOrientation,
+        rows: &[V],
+        n: usize,
+    ) {
         let sign = orientation_sign(orientation, volume);
         let f = sign * volume;
         self.volume += f;
         self.unsigned += volume.abs();
         let mut s = [0.0f64; 16];
-        for v in w {
-            for r in 0..n {
-                s[r] += v[r];
+        for v in rows {
+            for (sr, x) in s.iter_mut().zip(&v.as_ref()[..n]) {
+                *sr += x;
             }
         }
         let nf = n as f64;
@@ -349,7 +364,8 @@ impl MeshAccumulator {
             self.first[r] += c1 * s[r];
             for c in r..n {
                 let mut x = s[r] * s[c];
-                for v in w {
+                for v in rows {
+                    let v = v.as_ref();
                     x += v[r] * v[c];
                 }
                 self.second[r * n + c] += c2 * x;
@@ -428,29 +444,7 @@ impl MeshAccumulator {
             }
         }
         let volume = det * self.inverse_factorial;
-        let sign = orientation_sign(orientation, volume);
-        let f = sign * volume;
-        self.volume += f;
-        self.unsigned += volume.abs();
-        let mut s = [0.0f64; N];
-        for row in v.iter().take(N + 1) {
-            for r in 0..N {
-                s[r] += row[r];
-            }
-        }
-        let nf = N as f64;
-        let c1 = f / (nf + 1.0);
-        let c2 = f / ((nf + 1.0) * (nf + 2.0));
-        for r in 0..N {
-            self.first[r] += c1 * s[r];
-            for c in r..N {
-                let mut x = s[r] * s[c];
-                for row in v.iter().take(N + 1) {
-                    x += row[r] * row[c];
-                }
-                self.second[r * N + c] += c2 * x;
-            }
-        }
+        self.add_moments(volume, orientation, &v[..=N], N);
     }
 
     /// Returns (signed volume, unsigned volume, ∫x dV, ∫x xᵀ dV).

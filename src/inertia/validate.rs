@@ -100,6 +100,25 @@ pub(super) use crate::numeric::{
     max_abs_matrix as max_abs, sorted_symmetric_eigen as sorted_eigen,
 };
 
+/// Returns `Err(WrongShape)` unless `m` is `expected` × `expected` and `size_ok` (a
+/// condition on the dimension itself).
+pub(super) fn check_square(
+    quantity: &'static str,
+    m: &DMatrix<f64>,
+    expected: usize,
+    size_ok: bool,
+) -> Result<(), InertiaError> {
+    if size_ok && m.nrows() == expected && m.ncols() == expected {
+        return Ok(());
+    }
+    Err(InertiaError::WrongShape {
+        quantity,
+        rows: m.nrows(),
+        cols: m.ncols(),
+        expected,
+    })
+}
+
 /// Checks that every entry of `m` is finite; the index of a bad entry is row · ncols + col.
 pub(super) fn check_finite_matrix(
     quantity: &'static str,

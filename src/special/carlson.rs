@@ -19,7 +19,7 @@
 //! result is then finite but not accurate (this is the only loss of
 //! accuracy inside the domain).
 
-use crate::special::error::{EllipticError, check_finite, finish};
+use crate::special::error::{EllipticError, check_domain, check_finite, finish};
 
 /// Stop the duplication when 4⁻ⁿ max_i|A₀ − v_i| ≤ `TOL` · A_n.
 /// The neglected series terms are then below ≈ 0.03 `TOL`⁸
@@ -87,6 +87,14 @@ fn rj_series(e2: f64, e3: f64, e4: f64, e5: f64) -> f64 {
         - 9.0 * (e3 * e4 + e2 * e5) / 68.0
 }
 
+/// λ = √x√y + √x√z + √y√z of Carlson's duplication theorem, which moves every argument v
+/// of R_F, R_D and R_J to (v + λ)/4, with (√x, √y, √z).
+#[inline]
+fn duplication(x: f64, y: f64, z: f64) -> (f64, [f64; 3]) {
+    let (sx, sy, sz) = (x.sqrt(), y.sqrt(), z.sqrt());
+    (sx * (sy + sz) + sy * sz, [sx, sy, sz])
+}
+
 /// R_F for finite `x, y, z >= 0` with at most one zero. No checks.
 pub(crate) fn rf(x: f64, y: f64, z: f64) -> f64 {
     let zeros = (x == 0.0) as u8 + (y == 0.0) as u8 + (z == 0.0) as u8;
@@ -109,12 +117,8 @@ fn rf_core(x0: f64, y0: f64, z0: f64) -> f64 {
         if q * f <= a {
             break;
         }
-        let (sx, sy, sz) = (x.sqrt(), y.sqrt(), z.sqrt());
-        let lam = sx * (sy + sz) + sy * sz;
-        x = 0.25 * (x + lam);
-        y = 0.25 * (y + lam);
-        z = 0.25 * (z + lam);
-        a = 0.25 * (a + lam);
+        let (lam, _) = duplication(x, y, z);
+        [x, y, z, a] = [x, y, z, a].map(|v| 0.25 * (v + lam));
         f *= 0.25;
     }
     let t = f / a;
@@ -148,13 +152,9 @@ fn rd_core(x0: f64, y0: f64, z0: f64) -> f64 {
         if q * f <= a {
             break;
         }
-        let (sx, sy, sz) = (x.sqrt(), y.sqrt(), z.sqrt());
-        let lam = sx * (sy + sz) + sy * sz;
+        let (lam, [_, _, sz]) = duplication(x, y, z);
         sum += f / (sz * (z + lam));
-        x = 0.25 * (x + lam);
-        y = 0.25 * (y + lam);
-        z = 0.25 * (z + lam);
-        a = 0.25 * (a + lam);
+        [x, y, z, a] = [x, y, z, a].map(|v| 0.25 * (v + lam));
         f *= 0.25;
     }
     let t = f / a;
@@ -219,8 +219,7 @@ fn rj_core(x0: f64, y0: f64, z0: f64, p0: f64) -> f64 {
         if q * f <= a {
             break;
         }
-        let (sx, sy, sz) = (x.sqrt(), y.sqrt(), z.sqrt());
-        let lam = sx * (sy + sz) + sy * sz;
+        let (lam, [sx, sy, sz]) = duplication(x, y, z);
         // Carlson (1979/1988) form of the R_C terms: alpha and beta are
         // positive, so R_C(alpha, beta) has no cancellation even when p << x
         // (Carlson 1995's R_C(1, 1 + e_m) needs 1 + e_m, which cancels there).
@@ -230,11 +229,7 @@ fn rj_core(x0: f64, y0: f64, z0: f64, p0: f64) -> f64 {
         let alpha = p * (sx + sy + sz) + sx * sy * sz;
         let w = p.sqrt() * (p + lam) / alpha;
         sum += f * rc_one_sq(w) / alpha;
-        x = 0.25 * (x + lam);
-        y = 0.25 * (y + lam);
-        z = 0.25 * (z + lam);
-        p = 0.25 * (p + lam);
-        a = 0.25 * (a + lam);
+        [x, y, z, p, a] = [x, y, z, p, a].map(|v| 0.25 * (v + lam));
         f *= 0.25;
     }
     let t = f / a;
@@ -336,15 +331,7 @@ pub(crate) fn rc(x: f64, y: f64) -> f64 {
 }
 
 fn check_nonnegative(name: &'static str, value: f64) -> Result<(), EllipticError> {
-    check_finite(name, value)?;
-    if value < 0.0 {
-        return Err(EllipticError::OutOfDomain {
-            name,
-            value,
-            domain: "[0, +inf)",
-        });
-    }
-    Ok(())
+    check_domain(name, value, "[0, +inf)", |v| v >= 0.0)
 }
 
 /// Returns Carlson's symmetric integral of the first kind,

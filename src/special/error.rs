@@ -93,6 +93,26 @@ pub(crate) fn finish(function: &'static str, value: f64) -> Result<f64, Elliptic
     }
 }
 
+/// Returns `Err(NonFinite)` unless `value` is finite, then `Err(OutOfDomain)` with the
+/// stated `domain` unless `inside(value)`.
+pub(crate) fn check_domain(
+    name: &'static str,
+    value: f64,
+    domain: &'static str,
+    inside: impl FnOnce(f64) -> bool,
+) -> Result<(), EllipticError> {
+    check_finite(name, value)?;
+    if inside(value) {
+        Ok(())
+    } else {
+        Err(EllipticError::OutOfDomain {
+            name,
+            value,
+            domain,
+        })
+    }
+}
+
 /// Returns `Err(NonFinite)` unless `value` is finite.
 pub(crate) fn check_finite(name: &'static str, value: f64) -> Result<(), EllipticError> {
     if value.is_finite() {

@@ -48,7 +48,7 @@
 //! (10⁻¹¹ ≲ m₁ ≲ 10⁻³); see the measured table in the crate docs.
 
 use crate::special::dd::{self, Dd};
-use crate::special::error::{EllipticError, check_finite};
+use crate::special::error::{EllipticError, check_domain, check_finite};
 
 /// Largest accepted |u|/K (quarter periods) for the general case.
 const U_LIMIT_QUARTERS: f64 = 1_125_899_906_842_624.0; // 2^50
@@ -120,14 +120,7 @@ impl Jacobi {
     /// [`EllipticError::NonFinite`], or [`EllipticError::OutOfDomain`] unless
     /// 0 ≤ m ≤ 1.
     pub fn new(m: f64) -> Result<Self, EllipticError> {
-        check_finite("m", m)?;
-        if !(0.0..=1.0).contains(&m) {
-            return Err(EllipticError::OutOfDomain {
-                name: "m",
-                value: m,
-                domain: "[0, 1]",
-            });
-        }
+        check_domain("m", m, "[0, 1]", |m| (0.0..=1.0).contains(&m))?;
         Ok(Self::build(m, dd::one_minus(m)))
     }
 
@@ -140,14 +133,7 @@ impl Jacobi {
     /// [`EllipticError::NonFinite`], or [`EllipticError::OutOfDomain`] unless
     /// 0 ≤ m₁ ≤ 1.
     pub fn from_complement(m1: f64) -> Result<Self, EllipticError> {
-        check_finite("m1", m1)?;
-        if !(0.0..=1.0).contains(&m1) {
-            return Err(EllipticError::OutOfDomain {
-                name: "m1",
-                value: m1,
-                domain: "[0, 1]",
-            });
-        }
+        check_domain("m1", m1, "[0, 1]", |m1| (0.0..=1.0).contains(&m1))?;
         Ok(Self::build(1.0 - m1, Dd::from_f64(m1)))
     }
 

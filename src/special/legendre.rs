@@ -18,7 +18,7 @@
 
 use crate::special::carlson::{rc, rd, rf, rj};
 use crate::special::dd;
-use crate::special::error::{EllipticError, check_finite, finish};
+use crate::special::error::{EllipticError, check_domain, check_finite, finish};
 
 /// Largest accepted |φ| / π for incomplete integrals.
 const PHI_LIMIT_PERIODS: f64 = 1_125_899_906_842_624.0; // 2^50
@@ -34,27 +34,13 @@ impl Param {
     /// From m ≤ 1; 1 − m is exact for m ≥ 1/2 (Sterbenz) and
     /// correctly rounded otherwise.
     fn from_m(m: f64) -> Result<Self, EllipticError> {
-        check_finite("m", m)?;
-        if m > 1.0 {
-            return Err(EllipticError::OutOfDomain {
-                name: "m",
-                value: m,
-                domain: "(-inf, 1]",
-            });
-        }
+        check_domain("m", m, "(-inf, 1]", |m| m <= 1.0)?;
         Ok(Param { m, m1: 1.0 - m })
     }
 
     /// From m₁ ≥ 0.
     fn from_m1(m1: f64) -> Result<Self, EllipticError> {
-        check_finite("m1", m1)?;
-        if m1 < 0.0 {
-            return Err(EllipticError::OutOfDomain {
-                name: "m1",
-                value: m1,
-                domain: "[0, +inf)",
-            });
-        }
+        check_domain("m1", m1, "[0, +inf)", |m1| m1 >= 0.0)?;
         Ok(Param { m: 1.0 - m1, m1 })
     }
 }

@@ -210,10 +210,12 @@ const PLAYER: &str = r##"  function tick(now) {
     for (let i = 0; i < first.length; i += 4) {
       if (first[i] !== later[i] || first[i + 1] !== later[i + 1] || first[i + 2] !== later[i + 2]) changed++;
     }
+    const report = { frames: count, nonblank_first: nonBlank(first), nonblank_later: nonBlank(later),
+                     changed: changed, later_frame: state.frame, errors: errors, drawn: state.drawn };
+    // A page may add what only it draws (the scene page: its contact markers).
+    if (typeof selftestExtra === "function") Object.assign(report, selftestExtra());
     const pre = document.getElementById("selftest");
-    pre.textContent = JSON.stringify({ frames: count, nonblank_first: nonBlank(first), nonblank_later: nonBlank(later),
-                                       changed: changed, later_frame: state.frame, errors: errors,
-                                       drawn: state.drawn });
+    pre.textContent = JSON.stringify(report);
     pre.style.display = "block";
   } else {
     draw();

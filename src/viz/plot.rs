@@ -3,6 +3,22 @@
 
 use plotters::prelude::*;
 
+/// Why a plot could not be drawn: nothing finite to draw, or plotters failed (the message).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{0}")]
+pub struct PlotError(pub String);
+
+impl From<&str> for PlotError {
+    fn from(message: &str) -> Self {
+        PlotError(message.to_string())
+    }
+}
+
+/// Turns a plotters error into a [`PlotError`].
+fn failed(e: impl std::fmt::Debug) -> PlotError {
+    PlotError(format!("{e:?}"))
+}
+
 /// One named curve.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Series {
@@ -64,14 +80,14 @@ fn padded(lo: f64, hi: f64) -> (f64, f64) {
 /// Returns the SVG text of a line plot of `series`.
 ///
 /// # Errors
-/// A message if plotters fails (it does not for finite input) or nothing is finite.
-pub fn line_plot(spec: &PlotSpec<'_>, series: &[Series]) -> Result<String, String> {
+/// [`PlotError`] if plotters fails (it does not for finite input) or nothing is finite.
+pub fn line_plot(spec: &PlotSpec<'_>, series: &[Series]) -> Result<String, PlotError> {
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (960, 540)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| format!("{e:?}"))?;
+        root.fill(&WHITE).map_err(failed)?;
         chart(&root, spec, series)?;
-        root.present().map_err(|e| format!("{e:?}"))?;
+        root.present().map_err(failed)?;
     }
     Ok(svg)
 }
@@ -81,19 +97,20 @@ pub fn line_plot(spec: &PlotSpec<'_>, series: &[Series]) -> Result<String, Strin
 ///
 /// # Errors
 /// As [`line_plot`], for any panel.
-pub fn stacked_plot(title: &str, panels: &[(PlotSpec<'_>, Vec<Series>)]) -> Result<String, String> {
+pub fn stacked_plot(
+    title: &str,
+    panels: &[(PlotSpec<'_>, Vec<Series>)],
+) -> Result<String, PlotError> {
     let height = 48 + 400 * panels.len().max(1) as u32;
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (960, height)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| format!("{e:?}"))?;
-        let body = root
-            .titled(title, ("sans-serif", 24))
-            .map_err(|e| format!("{e:?}"))?;
+        root.fill(&WHITE).map_err(failed)?;
+        let body = root.titled(title, ("sans-serif", 24)).map_err(failed)?;
         for (area, (spec, series)) in body.split_evenly((panels.len(), 1)).iter().zip(panels) {
             chart(area, spec, series)?;
         }
-        root.present().map_err(|e| format!("{e:?}"))?;
+        root.present().map_err(failed)?;
     }
     Ok(svg)
 }
@@ -103,7 +120,7 @@ fn chart<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     spec: &PlotSpec<'_>,
     series: &[Series],
-) -> Result<(), String> {
+) -> Result<(), PlotError> {
     let all = || series.iter().flat_map(|s| s.points.iter());
     let (x0, x1) = range(all().map(|p| p.0)).ok_or("nothing to plot")?;
     let (x0, x1) = if x1 > x0 { (x0, x1) } else { padded(x0, x1) };
@@ -120,27 +137,25 @@ fn chart<DB: DrawingBackend>(
         let (y0, y1) = (y0 / 3.0, (y1 * 3.0).max(y0 * 10.0));
         let mut chart = builder
             .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
-            .map_err(|e| format!("{e:?}"))?;
+            .map_err(failed)?;
         chart
             .configure_mesh()
             .x_desc(spec.x_label)
             .y_desc(spec.y_label)
             .y_label_formatter(&|y| format!("{y:.0e}"))
             .draw()
-            .map_err(|e| format!("{e:?}"))?;
+            .map_err(failed)?;
         curves(&mut chart, spec, series, |y| y.max(y0))
     } else {
         let (y0, y1) = range(all().map(|p| p.1)).ok_or("nothing to plot")?;
         let (y0, y1) = padded(y0, y1);
-        let mut chart = builder
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(|e| format!("{e:?}"))?;
+        let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1).map_err(failed)?;
         chart
             .configure_mesh()
             .x_desc(spec.x_label)
             .y_desc(spec.y_label)
             .draw()
-            .map_err(|e| format!("{e:?}"))?;
+            .map_err(failed)?;
         curves(&mut chart, spec, series, |y| y)
     }
 }
@@ -151,7 +166,7 @@ fn curves<'a, DB, X, Y>(
     spec: &PlotSpec<'_>,
     series: &[Series],
     clamp: impl Fn(f64) -> f64,
-) -> Result<(), String>
+) -> Result<(), PlotError>
 where
     DB: DrawingBackend + 'a,
     X: Ranged<ValueType = f64>,
@@ -168,11 +183,11 @@ where
         if spec.markers {
             chart
                 .draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.filled())))
-                .map_err(|e| format!("{e:?}"))?;
+                .map_err(failed)?;
         }
         chart
             .draw_series(LineSeries::new(pts, color.stroke_width(2)))
-            .map_err(|e| format!("{e:?}"))?
+            .map_err(failed)?
             .label(s.name.clone())
             .legend(move |(x, y)| {
                 PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
@@ -183,6 +198,6 @@ where
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .draw()
-        .map_err(|e| format!("{e:?}"))?;
+        .map_err(failed)?;
     Ok(())
 }

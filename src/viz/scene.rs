@@ -11,8 +11,11 @@
 //! joints rings at the jointed point, anchors (points of space) small squares; a triad marks
 //! the origin of space. An ellipsoid or a ball is drawn as the meridians and parallels of the
 //! 3D ellipsoid its projection is (from the semi-axes, [`Shape::ellipsoid`]), not as points.
-//! Opened with `#selftest` the page reports pixel statistics as the single-body page does,
-//! and what it drew (`drawn`: the triad's axes, wire frames, springs, joints, anchors).
+//! The contact points of each frame are drawn as orange discs in a ring, and the frames
+//! with contacts flash the frame's border. Opened with `#selftest` the page reports pixel
+//! statistics as the single-body page does, what it drew (`drawn`: the triad's axes, wire
+//! frames, springs, joints, anchors) and, over every frame, the contact markers it drew
+//! (`contact_markers`, `frames_with_contacts`).
 
 use super::Shape;
 use super::html::{page, round};
@@ -65,6 +68,8 @@ pub struct SceneAnimation<'a> {
     /// The vertical axis (0-based), drawn upwards and always among the axes shown first:
     /// the axis of the gravity, if any.
     pub up: Option<usize>,
+    /// The contact points (space, N coordinates) at each frame; empty for none at all.
+    pub contacts: &'a [Vec<Vec<f64>>],
 }
 
 /// Returns the vertical axis of a scene with gravity `g`: the axis of its largest
@@ -226,7 +231,15 @@ pub fn scene_html(a: &SceneAnimation<'_>) -> String {
             })
         })
         .collect();
+    let contacts: Vec<Vec<Vec<f64>>> = (0..a.times.len())
+        .map(|k| {
+            a.contacts
+                .get(k)
+                .map_or(Vec::new(), |c| c.iter().map(|p| pad(p, shown)).collect())
+        })
+        .collect();
     let data = json!({
+        "contacts": contacts,
         "links": links,
         "dim": shown,
         "title": a.title,
@@ -260,7 +273,7 @@ const TEMPLATE: &str = r##"<!DOCTYPE html>
 <canvas id="view" width="720" height="540"></canvas>
 <p style="font-size:13px;color:#555">Drag to turn the 3D view. The vertical axis (that of gravity) is drawn upwards; the triad x<sub>i</sub> is at the origin of space.
 Round bodies are the wire frames of their 3D projections; springs are zigzags, ball joints rings, anchors squares. Planes are the translucent squares: each plane's
-trace in the three shown coordinates, the others held at the scene's centre. The N−3 axes left out are dropped
+trace in the three shown coordinates, the others held at the scene's centre. Contacts are orange discs in a ring; the border flashes orange while a body touches. The N−3 axes left out are dropped
 (orthographic) or removed by a perspective from each of them in turn about the scene's centre.</p>
 <pre id="selftest"></pre>
 <script type="application/json" id="data">{{DATA}}</script>
@@ -429,9 +442,32 @@ trace in the three shown coordinates, the others held at the scene's centre. The
       }
       if (l.other === null) { ctx.fillRect(r[0] - 4, r[1] - 4, 8, 8); drawn.anchors++; }
     }
+    // The contacts of this frame: orange discs in a ring, and a flash of the border.
+    const touching = D.contacts[f] || [];
+    for (const c of touching) {
+      const p = onPage(c.map(function (v, k) { return v - D.centre[k]; }));
+      ctx.fillStyle = "#ff8c00"; ctx.strokeStyle = "#b35900"; ctx.lineWidth = 2;
+      ctx.beginPath(); ctx.arc(p[0], p[1], 5, 0, 2 * Math.PI); ctx.fill();
+      ctx.beginPath(); ctx.arc(p[0], p[1], 9, 0, 2 * Math.PI); ctx.stroke();
+    }
+    if (touching.length > 0) {
+      ctx.strokeStyle = "#ff8c00"; ctx.lineWidth = 6;
+      ctx.strokeRect(3, 3, w - 6, h - 6);
+    }
+    state.contactsDrawn = touching.length;
     state.drawn = drawn;
     slider.value = String(state.frame);
     timeLabel.textContent = "t = " + D.times[state.frame].toFixed(3);
+  }
+  // For the self-test: every frame drawn once, counting the contact markers.
+  function selftestExtra() {
+    let markers = 0, frames = 0;
+    for (let k = 0; k < count; k++) {
+      state.frame = k; draw();
+      markers += state.contactsDrawn;
+      if (state.contactsDrawn > 0) frames++;
+    }
+    return { contact_markers: markers, frames_with_contacts: frames };
   }
 {{PLAYER}}
 })();

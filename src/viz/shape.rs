@@ -1,5 +1,7 @@
 //! What is drawn of a body: points in its own axes about the centre of mass, and edges.
 
+use crate::dynamics::motion::ContactShape;
+use crate::inertia::spec::{Geometry, ParsedBody};
 use nalgebra::DMatrix;
 
 /// Geometry to draw for a body: points in the body's own axes, relative to its centre of mass,
@@ -28,6 +30,66 @@ pub const MAX_POINTS: usize = 4096;
 pub const MAX_EDGES: usize = 20_000;
 
 impl Shape {
+    /// Returns what to draw of a body read from its SPEC, in its own axes about the centre
+    /// of mass: a cuboid's edges, up to 12 point masses joined pairwise (more as points), an
+    /// ellipsoid's or ball's surface, a mesh's edges; a body given by its mass tensor alone
+    /// as the uniform ellipsoid of the same mass tensor.
+    pub fn of_body(parsed: &ParsedBody) -> Shape {
+        let n = parsed.dim;
+        match &parsed.geometry {
+            Geometry::Cuboid { half_lengths, .. } => Shape::cuboid(half_lengths),
+            Geometry::Points(points) if points.len() <= 12 => Shape::complete_graph(points.clone()),
+            Geometry::Points(points) => Shape::cloud(n, points.clone()),
+            Geometry::Ellipsoid { semi_axes, surface } => {
+                Shape::ellipsoid(semi_axes, None, *surface, 1500)
+            }
+            Geometry::Mesh { vertices, edges } => {
+                Shape::wireframe(n, vertices.clone(), edges.clone())
+            }
+            Geometry::MassTensor => match &parsed.body {
+                // The uniform ellipsoid with the same mass and mass tensor: Jᵢ = m aᵢ²/(N+2).
+                Some(body) => {
+                    let (moments, axes) = body.principal_frame();
+                    let semi: Vec<f64> = moments
+                        .iter()
+                        .map(|j| ((n as f64 + 2.0) * j.max(0.0) / body.mass()).sqrt())
+                        .collect();
+                    Shape::ellipsoid(&semi, Some(&axes), false, 1500)
+                }
+                None => Shape::cross(n, 1.0),
+            },
+            _ => Shape::cross(n, 1.0),
+        }
+    }
+
+    /// Returns what to draw of a body of a [`System`](crate::dynamics::motion::System) by
+    /// the shape it touches with (in dimension `dim`): an ellipsoid's surface, the vertices
+    /// of an axis-aligned box with its edges, other vertices joined pairwise (up to 12) or
+    /// as points, and a unit cross for a body without a shape.
+    pub fn of_contact_shape(shape: &ContactShape, dim: usize) -> Shape {
+        match shape {
+            ContactShape::Ellipsoid(a) => Shape::ellipsoid(a, None, false, 1500),
+            ContactShape::Vertices(v) => {
+                let points: Vec<Vec<f64>> = v.iter().map(|p| p.as_slice().to_vec()).collect();
+                let half: Vec<f64> = points
+                    .first()
+                    .map_or(Vec::new(), |p| p.iter().map(|x| x.abs()).collect());
+                let is_box = dim <= 12
+                    && points.len() == 1 << dim
+                    && half.len() == dim
+                    && (0..points.len() as u64).all(|k| points.contains(&cuboid_vertex(&half, k)));
+                if is_box {
+                    Shape::cuboid(&half)
+                } else if points.len() <= 12 {
+                    Shape::complete_graph(points)
+                } else {
+                    Shape::cloud(dim, points)
+                }
+            }
+            ContactShape::None => Shape::cross(dim, 1.0),
+        }
+    }
+
     /// Returns the vertices (±a₁, …, ±a_N) of a hyper-cuboid with its N·2^(N−1) edges (vertices
     /// that differ in one sign), or a thinned vertex cloud when N is too large to draw.
     pub fn cuboid(half_edges: &[f64]) -> Shape {

@@ -10,6 +10,7 @@ mod no_lost_output;
 mod options;
 mod render;
 mod scene;
+mod scene_library;
 mod simulate;
 mod sweep;
 

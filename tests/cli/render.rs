@@ -147,25 +147,7 @@ fn render_html_draws_and_animates_in_headless_chromium() {
     let dir = tempfile::tempdir().unwrap();
     let page = render(dir.path(), "tesseract.html", &[]);
     let url = format!("file://{}", page.display());
-    let out = chromium_command(&browser, &dir.path().join("profile-dom"))
-        .args(["--enable-logging=stderr", "--v=0", "--dump-dom"])
-        .arg(format!("{url}#selftest"))
-        .output()
-        .expect("chromium runs");
-    let dom = String::from_utf8_lossy(&out.stdout);
-    let log = String::from_utf8_lossy(&out.stderr);
-    let start = dom
-        .find("<pre id=\"selftest\"")
-        .unwrap_or_else(|| panic!("no selftest in DOM:\n{dom}\n{log}"));
-    let json_start = start + dom[start..].find('>').unwrap() + 1;
-    let json_end = json_start + dom[json_start..].find("</pre>").unwrap();
-    let report: serde_json::Value = serde_json::from_str(&dom[json_start..json_end])
-        .unwrap_or_else(|e| {
-            panic!(
-                "selftest did not run ({e}):\n{}\n{log}",
-                &dom[start..json_end]
-            )
-        });
+    let (report, log) = selftest(&browser, &page, &dir.path().join("profile-dom"));
     assert_eq!(report["frames"].as_u64(), Some(300));
     assert!(
         report["nonblank_first"].as_u64().unwrap() > 1000,
@@ -211,4 +193,91 @@ fn render_html_draws_and_animates_in_headless_chromium() {
         png.len() > 5000 && png.starts_with(b"\x89PNG"),
         "bad screenshot"
     );
+}
+
+/// The selftest report of the page `page` opened in headless Chromium, and the browser's
+/// log.
+fn selftest(browser: &str, page: &Path, profile: &Path) -> (serde_json::Value, String) {
+    let out = chromium_command(browser, profile)
+        .args(["--enable-logging=stderr", "--v=0", "--dump-dom"])
+        .arg(format!("file://{}#selftest", page.display()))
+        .output()
+        .expect("chromium runs");
+    let dom = String::from_utf8_lossy(&out.stdout);
+    let log = String::from_utf8_lossy(&out.stderr).into_owned();
+    let start = dom
+        .find("<pre id=\"selftest\"")
+        .unwrap_or_else(|| panic!("no selftest in DOM:\n{dom}\n{log}"));
+    let json_start = start + dom[start..].find('>').unwrap() + 1;
+    let json_end = json_start + dom[json_start..].find("</pre>").unwrap();
+    let report = serde_json::from_str(&dom[json_start..json_end]).unwrap_or_else(|e| {
+        panic!(
+            "selftest did not run ({e}):\n{}\n{log}",
+            &dom[start..json_end]
+        )
+    });
+    (report, log)
+}
+
+/// A ball dropped on a floor (`z0` its height) and a box flying past, as a scene file.
+fn dropped_ball(z0: f64) -> String {
+    format!(
+        "dim = 3\ngravity = [0, 0, -9.81]\nt_end = 1.5\ndt = 0.005\n\
+         [[body]]\nname = \"ball\"\nshape = \"ball:3,0.3\"\nposition = [0, 0, {z0}]\n\
+         velocity = [0.5, 0, 0]\n\
+         [[body]]\nname = \"box\"\nshape = \"cuboid:0.2,0.2,0.2\"\nposition = [-2, 0, 30]\n\
+         velocity = [1, 0, 0]\ncollide = false\n\
+         [[plane]]\nnormal = [0, 0, 1]\noffset = 0\nfriction = 0.3\nrestitution = 0.5\n"
+    )
+}
+
+/// The scene page marks every contact the run recorded: the markers the browser drew over
+/// all frames are the contacts of the JSON written by the same run, and a run without
+/// contacts draws none.
+#[test]
+fn scene_html_marks_the_contacts_of_a_colliding_scene_in_headless_chromium() {
+    let Some(browser) = chromium() else { return };
+    let mut checked = 0;
+    for (z0, colliding) in [(1.0, true), (20.0, false)] {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("scene.toml"), dropped_ball(z0)).unwrap();
+        rotorflow()
+            .current_dir(dir.path())
+            .args(["scene", "scene.toml", "--samples", "61"])
+            .args(["--output", "run.json", "--html", "run.html"])
+            .assert()
+            .success();
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.path().join("run.json")).unwrap())
+                .unwrap();
+        let contacts = json["contacts"].as_array().expect("a contacts key");
+        assert_eq!(contacts.len(), 61);
+        let total: usize = contacts.iter().map(|c| c.as_array().unwrap().len()).sum();
+        let frames = contacts
+            .iter()
+            .filter(|c| !c.as_array().unwrap().is_empty())
+            .count();
+        // The ball lands at t = √(2 · 0.7 / 9.81) ≈ 0.38 and settles on the floor.
+        assert_eq!(frames > 10, colliding, "{frames} frames with contacts");
+        let (report, log) = selftest(
+            &browser,
+            &dir.path().join("run.html"),
+            &dir.path().join("profile"),
+        );
+        assert_eq!(report["errors"], serde_json::json!([]), "{report}");
+        assert!(!log.contains("Uncaught"), "script error: {log}");
+        assert_eq!(report["frames"].as_u64(), Some(61), "{report}");
+        assert_eq!(
+            report["contact_markers"].as_u64(),
+            Some(total as u64),
+            "{report}"
+        );
+        assert_eq!(
+            report["frames_with_contacts"].as_u64(),
+            Some(frames as u64),
+            "{report}"
+        );
+        checked += 1;
+    }
+    assert_eq!(checked, 2);
 }

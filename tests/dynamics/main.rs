@@ -22,6 +22,7 @@ mod names;
 mod narrow_phase;
 mod orders;
 mod paper_errata;
+mod stacks;
 mod torqued;
 
 #[path = "../support/mod.rs"]

@@ -7,7 +7,6 @@ use super::{
 };
 use crate::algebra::{AlgebraError, Bivector, Rotor};
 use nalgebra::{Matrix3, Vector3};
-use std::ops::{Add, Mul, Neg, Sub};
 
 /// A bivector of 3D space, b₁₂e₁₂ + b₁₃e₁₃ + b₂₃e₂₃ (the lexicographic order of
 /// [`Bivector`]): a plane with a magnitude, an angular velocity or momentum, the generator
@@ -131,38 +130,6 @@ impl Bivector3<f64> {
     }
 }
 
-impl<T: Real> Add for Bivector3<T> {
-    type Output = Self;
-    #[inline]
-    fn add(self, o: Self) -> Self {
-        Self::new(self.b12 + o.b12, self.b13 + o.b13, self.b23 + o.b23)
-    }
-}
-
-impl<T: Real> Sub for Bivector3<T> {
-    type Output = Self;
-    #[inline]
-    fn sub(self, o: Self) -> Self {
-        Self::new(self.b12 - o.b12, self.b13 - o.b13, self.b23 - o.b23)
-    }
-}
-
-impl<T: Real> Neg for Bivector3<T> {
-    type Output = Self;
-    #[inline]
-    fn neg(self) -> Self {
-        Self::new(-self.b12, -self.b13, -self.b23)
-    }
-}
-
-impl<T: Real> Mul<T> for Bivector3<T> {
-    type Output = Self;
-    #[inline]
-    fn mul(self, s: T) -> Self {
-        Self::new(self.b12 * s, self.b13 * s, self.b23 * s)
-    }
-}
-
 /// A rotor of 3D space, s + b₁₂e₁₂ + b₁₃e₁₃ + b₂₃e₂₃ with R R̃ = 1, acting by x ↦ R x R̃;
 /// R = exp(−θB̂/2) turns by θ in the plane B̂ from its first vector toward its second (the
 /// conventions of [`Rotor`]).
@@ -183,12 +150,6 @@ pub struct Rotor3<T: Real = f64> {
     /// The quaternion (w, x, y, z), stored as the scalar type keeps quaternions (four SSE
     /// lanes for f32 on x86, an array otherwise).
     lanes: <T as Sealed>::Quat,
-}
-
-impl<T: Real> Default for Rotor3<T> {
-    fn default() -> Self {
-        Self::identity()
-    }
 }
 
 impl<T: Real> Rotor3<T> {
@@ -332,19 +293,6 @@ impl<T: Real> Rotor3<T> {
     #[inline]
     pub fn bivector_part(self) -> Bivector3<T> {
         Bivector3::new(-self.q()[3], self.q()[2], -self.q()[1])
-    }
-
-    /// The rotor exp(−Θ/2) of the rotation bivector Θ: the rotation by |Θ| in the plane Θ̂,
-    /// as [`Rotor::from_rotation_bivector`].
-    #[inline]
-    pub fn from_rotation_bivector(theta: Bivector3<T>) -> Self {
-        (theta * T::lit(-0.5)).exp()
-    }
-
-    /// Θ = −2 log R, the inverse of [`Rotor3::from_rotation_bivector`].
-    #[inline]
-    pub fn rotation_bivector(self) -> Bivector3<T> {
-        self.log() * T::lit(-2.0)
     }
 
     /// The principal logarithm (half-angle in \[0, π\]), as [`Rotor::log`]: R = −1 gives π e₁₂.
@@ -577,20 +525,4 @@ impl Rotor3<f64> {
     }
 }
 
-impl<T: Real> Mul for Rotor3<T> {
-    type Output = Self;
-    /// The geometric product, [`Rotor3::compose`].
-    #[inline]
-    fn mul(self, other: Self) -> Self {
-        self.compose(other)
-    }
-}
-
-impl<T: Real> Mul<Vector3<T>> for Rotor3<T> {
-    type Output = Vector3<T>;
-    /// [`Rotor3::rotate_vector`].
-    #[inline]
-    fn mul(self, x: Vector3<T>) -> Vector3<T> {
-        self.rotate_vector(x)
-    }
-}
+fixed_size_operators!(Bivector3, Rotor3, Vector3);

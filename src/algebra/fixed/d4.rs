@@ -18,7 +18,6 @@ use super::{
 };
 use crate::algebra::{AlgebraError, Bivector, Rotor};
 use nalgebra::{Matrix4, Vector4};
-use std::ops::{Add, Mul, Neg, Sub};
 
 /// A bivector of 4D space, Σ b_ij e_ij in the lexicographic order of [`Bivector`]:
 /// b₁₂, b₁₃, b₁₄, b₂₃, b₂₄, b₃₄.
@@ -185,40 +184,6 @@ impl Bivector4<f64> {
     }
 }
 
-impl<T: Real> Add for Bivector4<T> {
-    type Output = Self;
-    #[inline]
-    fn add(self, o: Self) -> Self {
-        let (a, b) = (self.to_array(), o.to_array());
-        Self::from_array(std::array::from_fn(|i| a[i] + b[i]))
-    }
-}
-
-impl<T: Real> Sub for Bivector4<T> {
-    type Output = Self;
-    #[inline]
-    fn sub(self, o: Self) -> Self {
-        let (a, b) = (self.to_array(), o.to_array());
-        Self::from_array(std::array::from_fn(|i| a[i] - b[i]))
-    }
-}
-
-impl<T: Real> Neg for Bivector4<T> {
-    type Output = Self;
-    #[inline]
-    fn neg(self) -> Self {
-        Self::from_array(self.to_array().map(|c| -c))
-    }
-}
-
-impl<T: Real> Mul<T> for Bivector4<T> {
-    type Output = Self;
-    #[inline]
-    fn mul(self, s: T) -> Self {
-        Self::from_array(self.to_array().map(|c| c * s))
-    }
-}
-
 /// A rotor of 4D space, s + Σ b_ij e_ij + p e₁₂₃₄ with R R̃ = 1, acting by x ↦ R x R̃, with the
 /// conventions of [`Rotor`]; stored as its pair of unit quaternions (module docs).
 ///
@@ -234,12 +199,6 @@ impl<T: Real> Mul<T> for Bivector4<T> {
 pub struct Rotor4<T = f64> {
     plus: [T; 4],
     minus: [T; 4],
-}
-
-impl<T: Real> Default for Rotor4<T> {
-    fn default() -> Self {
-        Self::identity()
-    }
 }
 
 impl<T: Real> Rotor4<T> {
@@ -376,18 +335,6 @@ impl<T: Real> Rotor4<T> {
     pub fn bivector_part(self) -> Bivector4<T> {
         let (p, m) = (self.plus, self.minus);
         Bivector4::from_halves([p[1], p[2], p[3]], [m[1], m[2], m[3]])
-    }
-
-    /// The rotor exp(−Θ/2) of the rotation bivector Θ, as [`Rotor::from_rotation_bivector`].
-    #[inline]
-    pub fn from_rotation_bivector(theta: Bivector4<T>) -> Self {
-        (theta * T::lit(-0.5)).exp()
-    }
-
-    /// Θ = −2 log R, the inverse of [`Rotor4::from_rotation_bivector`].
-    #[inline]
-    pub fn rotation_bivector(self) -> Bivector4<T> {
-        self.log() * T::lit(-2.0)
     }
 
     /// The principal logarithm, as [`Rotor::log`] in 4D: the principal quaternion
@@ -691,20 +638,4 @@ fn normalized<T: Real>(q: [T; 4]) -> [T; 4] {
     q.map(|c| c * k)
 }
 
-impl<T: Real> Mul for Rotor4<T> {
-    type Output = Self;
-    /// The geometric product, [`Rotor4::compose`].
-    #[inline]
-    fn mul(self, other: Self) -> Self {
-        self.compose(other)
-    }
-}
-
-impl<T: Real> Mul<Vector4<T>> for Rotor4<T> {
-    type Output = Vector4<T>;
-    /// [`Rotor4::rotate_vector`].
-    #[inline]
-    fn mul(self, x: Vector4<T>) -> Vector4<T> {
-        self.rotate_vector(x)
-    }
-}
+fixed_size_operators!(Bivector4, Rotor4, Vector4);

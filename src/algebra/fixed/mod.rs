@@ -25,6 +25,115 @@
 //! Every operation agrees with the run-time types to a few ulp (`tests/algebra/fixed.rs`);
 //! conversions both ways are `to_rotor`/`from_rotor` and `to_bivector`/`from_bivector`.
 
+/// What the 3D and 4D types share: bivectors add, subtract, negate and scale component by
+/// component; rotors compose by `*`, rotate vectors by `*`, act as [`Versor`]s on vectors,
+/// bivectors and rotors, convert to and from rotation bivectors, and default to the identity.
+///
+/// [`Versor`]: crate::algebra::Versor
+macro_rules! fixed_size_operators {
+    ($bivector:ident, $rotor:ident, $vector:ident) => {
+        impl<T: Real> std::ops::Add for $bivector<T> {
+            type Output = Self;
+            #[inline]
+            fn add(self, o: Self) -> Self {
+                let (a, b) = (self.to_array(), o.to_array());
+                Self::from_array(std::array::from_fn(|i| a[i] + b[i]))
+            }
+        }
+
+        impl<T: Real> std::ops::Sub for $bivector<T> {
+            type Output = Self;
+            #[inline]
+            fn sub(self, o: Self) -> Self {
+                let (a, b) = (self.to_array(), o.to_array());
+                Self::from_array(std::array::from_fn(|i| a[i] - b[i]))
+            }
+        }
+
+        impl<T: Real> std::ops::Neg for $bivector<T> {
+            type Output = Self;
+            #[inline]
+            fn neg(self) -> Self {
+                Self::from_array(self.to_array().map(|c| -c))
+            }
+        }
+
+        impl<T: Real> std::ops::Mul<T> for $bivector<T> {
+            type Output = Self;
+            #[inline]
+            fn mul(self, s: T) -> Self {
+                Self::from_array(self.to_array().map(|c| c * s))
+            }
+        }
+
+        impl<T: Real> Default for $rotor<T> {
+            fn default() -> Self {
+                Self::identity()
+            }
+        }
+
+        impl<T: Real> std::ops::Mul for $rotor<T> {
+            type Output = Self;
+            /// The geometric product, `compose`.
+            #[inline]
+            fn mul(self, other: Self) -> Self {
+                self.compose(other)
+            }
+        }
+
+        impl<T: Real> std::ops::Mul<$vector<T>> for $rotor<T> {
+            type Output = $vector<T>;
+            /// `rotate_vector`.
+            #[inline]
+            fn mul(self, x: $vector<T>) -> $vector<T> {
+                self.rotate_vector(x)
+            }
+        }
+
+        impl<T: Real> $crate::algebra::Versor<$vector<T>> for $rotor<T> {
+            type Output = $vector<T>;
+            /// `rotate_vector`.
+            #[inline]
+            fn apply(&self, x: &$vector<T>) -> $vector<T> {
+                self.rotate_vector(*x)
+            }
+        }
+
+        impl<T: Real> $crate::algebra::Versor<$bivector<T>> for $rotor<T> {
+            type Output = $bivector<T>;
+            /// `rotate_bivector`.
+            #[inline]
+            fn apply(&self, b: &$bivector<T>) -> $bivector<T> {
+                self.rotate_bivector(*b)
+            }
+        }
+
+        impl<T: Real> $crate::algebra::Versor<$rotor<T>> for $rotor<T> {
+            type Output = $rotor<T>;
+            /// R S R̃: the rotation S carried by R (the same rotation in the turned frame).
+            #[inline]
+            fn apply(&self, s: &$rotor<T>) -> $rotor<T> {
+                *self * *s * self.reverse()
+            }
+        }
+
+        impl<T: Real> $rotor<T> {
+            /// The rotor exp(−Θ/2) of the rotation bivector Θ: the rotation by |Θ| in the
+            /// plane Θ̂, as [`Rotor::from_rotation_bivector`](crate::algebra::Rotor::from_rotation_bivector).
+            #[inline]
+            pub fn from_rotation_bivector(theta: $bivector<T>) -> Self {
+                (theta * T::lit(-0.5)).exp()
+            }
+
+            /// Θ = −2 log R, the inverse of `from_rotation_bivector`.
+            #[inline]
+            pub fn rotation_bivector(self) -> $bivector<T> {
+                self.log() * T::lit(-2.0)
+            }
+        }
+    };
+}
+
 mod batch;
 mod d3;
 mod d4;
@@ -51,25 +160,32 @@ pub(crate) mod sealed {
         fn quat_product(a: Self::Quat, b: Self::Quat) -> Self::Quat;
     }
 
-    impl Sealed for f64 {
-        type Quat = [f64; 4];
-        #[inline(always)]
-        fn quat_lanes(q: [f64; 4]) -> [f64; 4] {
-            q
-        }
-        #[inline(always)]
-        fn quat_array(q: [f64; 4]) -> [f64; 4] {
-            q
-        }
-        #[inline(always)]
-        fn quat_mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
-            super::quat_mul_scalar(a, b)
-        }
-        #[inline(always)]
-        fn quat_product(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
-            super::quat_mul_scalar(a, b)
-        }
+    /// Quaternions kept as arrays and multiplied by the scalar formula.
+    macro_rules! array_quaternions {
+        ($t:ty) => {
+            impl Sealed for $t {
+                type Quat = [$t; 4];
+                #[inline(always)]
+                fn quat_lanes(q: [$t; 4]) -> [$t; 4] {
+                    q
+                }
+                #[inline(always)]
+                fn quat_array(q: [$t; 4]) -> [$t; 4] {
+                    q
+                }
+                #[inline(always)]
+                fn quat_mul(a: [$t; 4], b: [$t; 4]) -> [$t; 4] {
+                    super::quat_mul_scalar(a, b)
+                }
+                #[inline(always)]
+                fn quat_product(a: [$t; 4], b: [$t; 4]) -> [$t; 4] {
+                    super::quat_mul_scalar(a, b)
+                }
+            }
+        };
     }
+
+    array_quaternions!(f64);
 
     #[cfg(all(
         any(target_arch = "x86", target_arch = "x86_64"),
@@ -101,25 +217,7 @@ pub(crate) mod sealed {
         any(target_arch = "x86", target_arch = "x86_64"),
         target_feature = "sse"
     )))]
-    impl Sealed for f32 {
-        type Quat = [f32; 4];
-        #[inline(always)]
-        fn quat_lanes(q: [f32; 4]) -> [f32; 4] {
-            q
-        }
-        #[inline(always)]
-        fn quat_array(q: [f32; 4]) -> [f32; 4] {
-            q
-        }
-        #[inline(always)]
-        fn quat_mul(a: [f32; 4], b: [f32; 4]) -> [f32; 4] {
-            super::quat_mul_scalar(a, b)
-        }
-        #[inline(always)]
-        fn quat_product(a: [f32; 4], b: [f32; 4]) -> [f32; 4] {
-            super::quat_mul_scalar(a, b)
-        }
-    }
+    array_quaternions!(f32);
 }
 
 /// An f32 quaternion in the four lanes of an SSE register.

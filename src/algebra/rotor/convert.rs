@@ -261,13 +261,7 @@ fn check_matrix_shape(q: &DMatrix<f64>) -> Result<(), AlgebraError> {
             cols: q.ncols(),
         });
     }
-    if q.nrows() > MULTIVECTOR_MAX_DIM {
-        return Err(AlgebraError::DimensionTooLarge {
-            what: "rotor",
-            dim: q.nrows(),
-            max: MULTIVECTOR_MAX_DIM,
-        });
-    }
+    AlgebraError::check_dimension("rotor", q.nrows(), MULTIVECTOR_MAX_DIM)?;
     if q.iter().any(|x| !x.is_finite()) {
         return Err(AlgebraError::NonFinite { what: "matrix" });
     }

@@ -101,13 +101,7 @@ impl Bivector {
     /// [`AlgebraError::AngleTooLarge`] if |B| > `f64::MAX`/2.
     pub fn try_exp(&self) -> Result<Rotor, AlgebraError> {
         let n = self.dim();
-        if n > MULTIVECTOR_MAX_DIM {
-            return Err(AlgebraError::DimensionTooLarge {
-                what: "rotor",
-                dim: n,
-                max: MULTIVECTOR_MAX_DIM,
-            });
-        }
+        AlgebraError::check_dimension("rotor", n, MULTIVECTOR_MAX_DIM)?;
         check_finite(self.as_slice(), "bivector")?;
         let norm = self.norm();
         if !within(norm, f64::MAX / 2.0) {
@@ -152,13 +146,7 @@ fn even_identity(n: usize) -> EvenBuf {
 pub(crate) fn exp_even(b: &Bivector) -> Result<EvenBuf, AlgebraError> {
     let n = b.dim();
     debug_assert!(n >= 5, "the closed forms of N ≤ 4 are Bivector::exp's");
-    if n > MULTIVECTOR_MAX_DIM {
-        return Err(AlgebraError::DimensionTooLarge {
-            what: "rotor",
-            dim: n,
-            max: MULTIVECTOR_MAX_DIM,
-        });
-    }
+    AlgebraError::check_dimension("rotor", n, MULTIVECTOR_MAX_DIM)?;
     check_finite(b.as_slice(), "bivector")?;
     let norm = b.norm();
     if !within(norm, f64::MAX / 2.0) {

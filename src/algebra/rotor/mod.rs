@@ -159,13 +159,7 @@ impl Rotor {
     /// # Errors
     /// [`AlgebraError::DimensionTooLarge`] if `n > MULTIVECTOR_MAX_DIM`.
     pub fn try_identity(n: usize) -> Result<Self, AlgebraError> {
-        if n > MULTIVECTOR_MAX_DIM {
-            return Err(AlgebraError::DimensionTooLarge {
-                what: "rotor",
-                dim: n,
-                max: MULTIVECTOR_MAX_DIM,
-            });
-        }
+        AlgebraError::check_dimension("rotor", n, MULTIVECTOR_MAX_DIM)?;
         let mut coeffs = crate::numeric::zeros(even_len(n));
         coeffs[0] = 1.0;
         Ok(Rotor { dim: n, coeffs })
@@ -183,13 +177,7 @@ impl Rotor {
         j: usize,
         angle: f64,
     ) -> Result<Self, AlgebraError> {
-        if n > MULTIVECTOR_MAX_DIM {
-            return Err(AlgebraError::DimensionTooLarge {
-                what: "rotor",
-                dim: n,
-                max: MULTIVECTOR_MAX_DIM,
-            });
-        }
+        AlgebraError::check_dimension("rotor", n, MULTIVECTOR_MAX_DIM)?;
         let b = Bivector::from_plane(n, i, j, angle)?;
         Ok(Rotor::from_rotation_bivector(&b))
     }
@@ -477,19 +465,8 @@ impl Rotor {
         }
         // t = R x (odd), stored at the odd index of each blade. The sign of e_a eᵢ is bit i
         // of suffix_parity(a).
-        let len = even_len(n);
         let mask = (1u64 << (n - 1)) - 1;
-        let mut t: SmallVec<[f64; 32]> = SmallVec::from_elem(0.0, len);
-        for (&ra, &a) in self.coeffs.iter().zip(even_blades(n)) {
-            if ra == 0.0 {
-                continue;
-            }
-            let sp = blade::suffix_parity(a);
-            for (i, &xi) in x.iter().enumerate() {
-                let sign = if sp >> i & 1 == 0 { ra } else { -ra };
-                t[((a ^ (1 << i)) & mask) as usize] += sign * xi;
-            }
-        }
+        let t = even_times_vector(n, &self.coeffs, x);
         // out_k = Σ_c t_c · R̃_d · sign(e_c e_d), d = c ^ e_k. With p = suffix_parity(c), the
         // reorder parity of (c, c ^ e_k) is parity(p & c) ^ bit k of p; the reverse sign of d
         // depends on whether e_k removes or adds a vector.
@@ -560,10 +537,7 @@ impl Rotor {
     #[track_caller]
     pub fn rotate_in_plane_mut(&mut self, i: usize, j: usize, angle: f64) {
         let n = self.dim;
-        assert!(
-            i < n && j < n && i != j,
-            "rotorflow: invalid plane ({i}, {j}) in dimension {n}"
-        );
+        crate::algebra::error::assert_plane(i, j, n);
         let (lo, hi, sign) = if i < j { (i, j, 1.0) } else { (j, i, -1.0) };
         let (s, c) = (0.5 * angle * sign).sin_cos();
         rotate_even_in_plane(n, &mut self.coeffs, lo, hi, c, s);
@@ -623,6 +597,25 @@ pub(crate) fn multiply_by_simple(r: &mut Rotor, c: f64, s: f64, u: &[f64], v: &[
     multiply_even_by_simple(r.dim, &mut r.coeffs, c, s, u, v);
 }
 
+/// The odd product R x of the even element with coefficients `r` (dimension n ≥ 1) and the
+/// vector x, stored at the low bits of each odd blade. The sign of e_a eᵢ is bit i of
+/// suffix_parity(a).
+fn even_times_vector(n: usize, r: &[f64], x: &[f64]) -> SmallVec<[f64; 32]> {
+    let mask = (1u64 << (n - 1)) - 1;
+    let mut t: SmallVec<[f64; 32]> = SmallVec::from_elem(0.0, even_len(n));
+    for (&ra, &a) in r.iter().zip(even_blades(n)) {
+        if ra == 0.0 {
+            continue;
+        }
+        let sp = blade::suffix_parity(a);
+        for (i, &xi) in x.iter().enumerate() {
+            let sign = if sp >> i & 1 == 0 { ra } else { -ra };
+            t[((a ^ (1 << i)) & mask) as usize] += sign * xi;
+        }
+    }
+    t
+}
+
 /// [`multiply_by_simple`] on the 2^(N−1) even coefficients of dimension `n`.
 pub(crate) fn multiply_even_by_simple(
     n: usize,
@@ -632,20 +625,9 @@ pub(crate) fn multiply_even_by_simple(
     u: &[f64],
     v: &[f64],
 ) {
-    let len = even_len(n);
     let mask = (1u64 << (n - 1)) - 1;
     // t = R u (odd, indexed by low bits).
-    let mut t: SmallVec<[f64; 32]> = SmallVec::from_elem(0.0, len);
-    for (&ra, &a) in r.iter().zip(even_blades(n)) {
-        if ra == 0.0 {
-            continue;
-        }
-        let sp = blade::suffix_parity(a);
-        for (i, &ui) in u.iter().enumerate() {
-            let sign = if sp >> i & 1 == 0 { ra } else { -ra };
-            t[((a ^ (1 << i)) & mask) as usize] += sign * ui;
-        }
-    }
+    let t = even_times_vector(n, r, u);
     // R ← c R + s (t v).
     r.iter_mut().for_each(|x| *x *= c);
     for (&tb, &b) in t.iter().zip(odd_blades(n)) {
@@ -998,12 +980,7 @@ mod tests {
     #[test]
     fn fixed_size_routes_equal_the_blade_routes() {
         let mut s = 0x9e37_79b9_7f4a_7c15u64;
-        let mut r = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        };
+        let mut r = move || crate::numeric::tests::random(&mut s);
         let mut cases = 0;
         let mut worst = [0.0f64; 4];
         for n in [3usize, 4] {

@@ -3,9 +3,9 @@
 
 use super::super::error::{CliError, CliResult};
 use super::super::output::number;
-use super::super::viz::plot::{PlotSpec, Series, line_plot, subscript};
 use rotorflow::algebra::plane_name;
 use rotorflow::dynamics::trajectory::{ProjectedObservables, projection_planes};
+use rotorflow::viz::plot::{PlotSpec, Series, line_plot, subscript};
 
 /// One row of the sweep table.
 pub(super) struct Row {

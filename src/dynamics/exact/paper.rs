@@ -68,15 +68,7 @@ fn check_kappa(kappa: f64) -> Result<f64, DynamicsError> {
 }
 
 fn check_omega(omega: &Bivector) -> Result<[f64; 6], DynamicsError> {
-    if omega.dim() != 4 {
-        return Err(DynamicsError::no_closed_form(
-            NoClosedFormReason::WrongDimension {
-                form: "the paper's §7",
-                expected: 4,
-                found: omega.dim(),
-            },
-        ));
-    }
+    DynamicsError::check_closed_form_dim("the paper's §7", 4, omega.dim())?;
     let mut c = [0.0; 6];
     for (out, &x) in c.iter_mut().zip(omega.as_slice()) {
         *out = finite("omega", x)?;

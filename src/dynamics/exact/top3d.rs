@@ -259,15 +259,7 @@ impl AsymmetricTop {
     /// if an elliptic function fails (not expected for valid input).
     pub fn new(body: &RigidBody) -> Result<Self, DynamicsError> {
         body.refuse_gyrostat("the closed-form 3D top")?;
-        if body.dim() != 3 {
-            return Err(DynamicsError::no_closed_form(
-                NoClosedFormReason::WrongDimension {
-                    form: "the asymmetric top",
-                    expected: 3,
-                    found: body.dim(),
-                },
-            ));
-        }
+        DynamicsError::check_closed_form_dim("the asymmetric top", 3, body.dim())?;
         let moments = plane_moments_3d(body)?;
         let l0 = body.momentum();
         for &v in l0.as_slice() {

@@ -1,7 +1,10 @@
 //! Adaptive Dormand–Prince 8(5,3) on the group, with dense output of order 7.
 
 use super::dop853_tableau::{A, ALL_STAGES, B, BHH, C, D, E5, STAGES};
-use super::{DEXP_INVERSE_8, DynamicsError, Integrator, dexp_inverse_packed, momentum_rate_into};
+use super::{
+    DEXP_INVERSE_8, DynamicsError, check_sample_times, check_state, count_step,
+    dexp_inverse_packed, momentum_rate_into, samples_at_zero,
+};
 use crate::algebra::Bivector;
 use crate::dynamics::Attitude;
 use crate::dynamics::{RigidBody, Torque};
@@ -52,6 +55,27 @@ pub(crate) fn first_step_estimate(h0: f64, d1: f64, d2: f64) -> f64 {
     (100.0 * h0).min(h1)
 }
 
+/// The state at stage s of a step of size h from momentum `l0`: L = L₀ + h Σⱼ aₛⱼ kl_j into
+/// `l_stage` and A = h Σⱼ aₛⱼ ka_j into `a_stage`, from the earlier stages.
+fn stage_state(
+    s: usize,
+    h: f64,
+    l0: &Bivector,
+    kl: &Stages,
+    ka: &Stages,
+    l_stage: &mut Bivector,
+    a_stage: &mut Bivector,
+) {
+    a_stage.as_mut_slice().fill(0.0);
+    l_stage.as_mut_slice().copy_from_slice(l0.as_slice());
+    for j in 0..s {
+        if A[s][j] != 0.0 {
+            axpy(a_stage, h * A[s][j], &ka[j]);
+            axpy(l_stage, h * A[s][j], &kl[j]);
+        }
+    }
+}
+
 /// Makes `stages` hold sixteen bivectors of dimension n, keeping them when they already do.
 fn ensure_stages(stages: &mut Stages, n: usize) {
     if stages.len() != ALL_STAGES || stages[0].dim() != n {
@@ -73,7 +97,7 @@ fn ensure_stages(stages: &mut Stages, n: usize) {
 /// heuristic. Twelve right-hand sides per accepted step, eleven per rejected one (the first
 /// stage is f at the previous solution and is reused).
 ///
-/// As an [`Integrator`], one call advances exactly by the requested h with as many internal
+/// As an [`Integrator`](super::Integrator), one call advances exactly by the requested h with as many internal
 /// steps as the tolerance needs; [`Dop853::dense_output`] evaluates the state inside the last
 /// internal step (order 7) and [`Dop853::dense_samples`] samples a whole run from it.
 /// [`Dop853::fixed_step`] is the same method without step-size control.
@@ -152,28 +176,12 @@ impl Dop853 {
         })
     }
 
-    /// Returns the method without step-size control: every [`Integrator::step`] is one
+    /// Returns the method without step-size control: every [`Integrator::step`](super::Integrator::step) is one
     /// Runge–Kutta step of the requested size (order 8), for fixed-step comparisons.
     pub fn fixed_step() -> Self {
         let mut d = Dop853::new(1.0, 1.0).expect("valid tolerances");
         d.adaptive = false;
         d
-    }
-
-    /// Sets the bound on internal steps per call.
-    pub fn with_max_steps(mut self, max_steps: usize) -> Self {
-        self.max_steps = max_steps.max(1);
-        self
-    }
-
-    /// Returns the number of accepted internal steps so far.
-    pub fn accepted_steps(&self) -> usize {
-        self.accepted
-    }
-
-    /// Returns the number of rejected internal steps so far.
-    pub fn rejected_steps(&self) -> usize {
-        self.rejected
     }
 
     /// Returns the number of right-hand-side evaluations (dL/dt and ω at one state) so far,
@@ -252,33 +260,16 @@ impl Dop853 {
                 reason: "dense samples need the adaptive integrator (Dop853::new)",
             });
         }
-        if times.iter().any(|t| !t.is_finite() || *t < 0.0)
-            || times.windows(2).any(|w| w[1] <= w[0])
-        {
-            return Err(DynamicsError::InvalidSampling {
-                reason: "sample times must be finite, non-negative and strictly increasing",
-            });
-        }
+        check_sample_times(times)?;
         check_state(body, 0.0)?;
         self.first = None;
-        let mut out = Vec::with_capacity(times.len());
+        let (mut out, mut next) = samples_at_zero(body, times);
         let mut b = body.clone();
         let mut t = 0.0;
-        let mut next = 0;
-        while next < times.len() && times[next] == 0.0 {
-            out.push((b.principal_frame_attitude().clone(), b.momentum().clone()));
-            next += 1;
-        }
         let t_end = times.last().copied().unwrap_or(0.0);
         let mut count = 0;
         while next < times.len() {
-            count += 1;
-            if count > self.max_steps {
-                return Err(DynamicsError::TooManySteps {
-                    time: t,
-                    steps: count,
-                });
-            }
+            count_step(&mut count, self.max_steps, t)?;
             let h = self.next_h(&b, t, 1.0, torque).min(t_end - t);
             let Some((attitude, momentum)) = self.try_step(&b, t, h, torque)? else {
                 continue;
@@ -437,14 +428,7 @@ impl Dop853 {
         let mut l_stage = l0.clone();
         let mut omega = Bivector::zero(n);
         for s in 1..STAGES {
-            a_stage.as_mut_slice().fill(0.0);
-            l_stage.as_mut_slice().copy_from_slice(l0.as_slice());
-            for j in 0..s {
-                if A[s][j] != 0.0 {
-                    axpy(&mut a_stage, h * A[s][j], &ka[j]);
-                    axpy(&mut l_stage, h * A[s][j], &kl[j]);
-                }
-            }
+            stage_state(s, h, l0, &kl, &ka, &mut l_stage, &mut a_stage);
             let (dl_s, ka_s) = (&mut kl[s], &mut ka[s]);
             self.rate(
                 body,
@@ -579,14 +563,7 @@ impl Dop853 {
         let mut omega_end = Bivector::zero(n);
         for s in STAGES..ALL_STAGES {
             if s > STAGES {
-                a_stage.as_mut_slice().fill(0.0);
-                l_stage.clone_from(&self.last.l0);
-                for j in 0..s {
-                    if A[s][j] != 0.0 {
-                        axpy(&mut a_stage, h * A[s][j], &ka[j]);
-                        axpy(&mut l_stage, h * A[s][j], &kl[j]);
-                    }
-                }
+                stage_state(s, h, &self.last.l0, kl, ka, &mut l_stage, &mut a_stage);
             }
             let (dl_s, ka_s) = (&mut kl[s], &mut ka[s]);
             self.rate(
@@ -651,44 +628,24 @@ impl LastStep {
     }
 }
 
-/// Fails with [`DynamicsError::NonFinite`] unless the body's state is finite.
-fn check_state(body: &RigidBody, t: f64) -> Result<(), DynamicsError> {
-    if body.momentum().as_slice().iter().all(|x| x.is_finite())
-        && body.principal_frame_attitude().is_finite()
-    {
-        Ok(())
-    } else {
-        Err(DynamicsError::NonFinite { time: t })
-    }
-}
+step_counters!(Dop853);
 
-impl Integrator for Dop853 {
-    fn order(&self) -> u32 {
-        8
-    }
-
-    fn name(&self) -> &'static str {
-        "dop853"
-    }
-
-    /// Advances exactly by h: one step without step-size control
-    /// ([`Dop853::fixed_step`]), otherwise internal adaptive steps (the last one shortened).
-    fn step(
-        &mut self,
-        body: &mut RigidBody,
-        t: f64,
-        h: f64,
-        torque: &dyn Torque,
-    ) -> Result<(), DynamicsError> {
+impl_integrator!(
+    Dop853,
+    order = |_| 8,
+    name = |_| "dop853",
+    // Advances exactly by h: one step without step-size control
+    // ([`Dop853::fixed_step`]), otherwise internal adaptive steps (the last one shortened).
+    step = |this, body, t, h, torque| {
         if !h.is_finite() || !t.is_finite() {
             return Err(DynamicsError::InvalidSampling {
                 reason: "the time and the step must be finite",
             });
         }
         check_state(body, t)?;
-        self.first = None;
-        if !self.adaptive {
-            let (attitude, momentum) = self
+        this.first = None;
+        if !this.adaptive {
+            let (attitude, momentum) = this
                 .try_step(body, t, h, torque)?
                 .expect("a step without control is always accepted");
             body.replace_state(attitude, momentum);
@@ -699,28 +656,25 @@ impl Integrator for Dop853 {
         let mut count = 0;
         let sign = h.signum();
         while (t_end - time) * sign > 1e-14 * t_end.abs().max(1.0) {
-            count += 1;
-            if count > self.max_steps {
-                return Err(DynamicsError::TooManySteps { time, steps: count });
-            }
+            count_step(&mut count, this.max_steps, time)?;
             let remaining = t_end - time;
-            let mut try_h = self.next_h(body, time, sign, torque).abs() * sign;
+            let mut try_h = this.next_h(body, time, sign, torque).abs() * sign;
             if try_h.abs() >= remaining.abs() {
                 try_h = remaining;
             }
-            let saved = self.h_next;
-            if let Some((attitude, momentum)) = self.try_step(body, time, try_h, torque)? {
+            let saved = this.h_next;
+            if let Some((attitude, momentum)) = this.try_step(body, time, try_h, torque)? {
                 body.replace_state(attitude, momentum);
                 time += try_h;
                 if try_h == remaining {
                     // Do not let the shortened last step shrink the next call's first step.
-                    self.h_next = saved.map(|s| s.max(self.h_next.unwrap_or(s)));
+                    this.h_next = saved.map(|s| s.max(this.h_next.unwrap_or(s)));
                 }
             }
         }
         Ok(())
     }
-}
+);
 
 #[cfg(test)]
 mod tests {

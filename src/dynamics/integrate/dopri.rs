@@ -1,7 +1,8 @@
 //! Adaptive Dormand–Prince 5(4) on the group, with dense output.
 
 use super::{
-    DEXP_INVERSE_5, DynamicsError, Integrator, axpy, dexp_inverse_packed, momentum_rate_into,
+    DEXP_INVERSE_5, DynamicsError, axpy, check_sample_times, count_step, dexp_inverse_packed,
+    momentum_rate_into, samples_at_zero,
 };
 use crate::algebra::Bivector;
 use crate::dynamics::Attitude;
@@ -70,7 +71,7 @@ const D: [f64; 7] = [
 /// Order 5 (local extrapolation); step-size control on the embedded error of (L, A) with
 /// the usual mixed tolerance atol + rtol·|y|; a step that fails is retried smaller. Dense
 /// output of order 4 between accepted steps serves [`Dopri5::dense_samples`]. As an
-/// [`Integrator`], one call advances exactly by the requested h with as many internal steps
+/// [`Integrator`](super::Integrator), one call advances exactly by the requested h with as many internal steps
 /// as the tolerance needs ([`Dopri5::accepted_steps`], [`Dopri5::rejected_steps`] report
 /// them).
 #[derive(Clone, Copy, Debug)]
@@ -95,22 +96,6 @@ impl Dopri5 {
             accepted: 0,
             rejected: 0,
         }
-    }
-
-    /// Sets the bound on internal steps per call.
-    pub fn with_max_steps(mut self, max_steps: usize) -> Self {
-        self.max_steps = max_steps.max(1);
-        self
-    }
-
-    /// Returns the number of accepted internal steps so far.
-    pub fn accepted_steps(&self) -> usize {
-        self.accepted
-    }
-
-    /// Returns the number of rejected internal steps so far.
-    pub fn rejected_steps(&self) -> usize {
-        self.rejected
     }
 
     /// Returns the number of right-hand sides evaluated so far: seven per attempted step
@@ -154,31 +139,14 @@ impl Dopri5 {
         torque: &dyn Torque,
         times: &[f64],
     ) -> Result<Vec<(Attitude, Bivector)>, DynamicsError> {
-        if times.iter().any(|t| !t.is_finite() || *t < 0.0)
-            || times.windows(2).any(|w| w[1] <= w[0])
-        {
-            return Err(DynamicsError::InvalidSampling {
-                reason: "sample times must be finite, non-negative and strictly increasing",
-            });
-        }
-        let mut out = Vec::with_capacity(times.len());
+        check_sample_times(times)?;
+        let (mut out, mut next) = samples_at_zero(body, times);
         let mut b = body.clone();
         let mut t = 0.0;
-        let mut next = 0;
-        while next < times.len() && times[next] == 0.0 {
-            out.push((b.principal_frame_attitude().clone(), b.momentum().clone()));
-            next += 1;
-        }
         let t_end = times.last().copied().unwrap_or(0.0);
         let mut count = 0;
         while next < times.len() {
-            count += 1;
-            if count > self.max_steps {
-                return Err(DynamicsError::TooManySteps {
-                    time: t,
-                    steps: count,
-                });
-            }
+            count_step(&mut count, self.max_steps, t)?;
             let h = self
                 .initial_h(&b, t, torque)
                 .min(t_end - t)
@@ -375,47 +343,35 @@ impl StepResult {
     }
 }
 
-impl Integrator for Dopri5 {
-    fn order(&self) -> u32 {
-        5
-    }
+step_counters!(Dopri5);
 
-    fn name(&self) -> &'static str {
-        "dopri5"
-    }
-
-    /// Advances exactly by h, with internal adaptive steps (the last one shortened).
-    fn step(
-        &mut self,
-        body: &mut RigidBody,
-        t: f64,
-        h: f64,
-        torque: &dyn Torque,
-    ) -> Result<(), DynamicsError> {
+impl_integrator!(
+    Dopri5,
+    order = |_| 5,
+    name = |_| "dopri5",
+    // Advances exactly by h, with internal adaptive steps (the last one shortened).
+    step = |this, body, t, h, torque| {
         let t_end = t + h;
         let mut time = t;
         let mut count = 0;
         let sign = h.signum();
         while (t_end - time) * sign > 1e-14 * t_end.abs().max(1.0) {
-            count += 1;
-            if count > self.max_steps {
-                return Err(DynamicsError::TooManySteps { time, steps: count });
-            }
+            count_step(&mut count, this.max_steps, time)?;
             let remaining = t_end - time;
-            let mut try_h = self.initial_h(body, time, torque) * sign;
+            let mut try_h = this.initial_h(body, time, torque) * sign;
             if try_h.abs() >= remaining.abs() {
                 try_h = remaining;
             }
-            let saved = self.h_next;
-            if let Some(step) = self.try_step(body, time, try_h, torque)? {
+            let saved = this.h_next;
+            if let Some(step) = this.try_step(body, time, try_h, torque)? {
                 body.replace_state(step.attitude, step.momentum);
                 time += try_h;
                 if try_h == remaining {
                     // Do not let the shortened last step shrink the next call's first step.
-                    self.h_next = saved.map(|s| s.max(self.h_next.unwrap_or(s)));
+                    this.h_next = saved.map(|s| s.max(this.h_next.unwrap_or(s)));
                 }
             }
         }
         Ok(())
     }
-}
+);

@@ -1,8 +1,7 @@
 //! The implicit midpoint rule: energy-conserving, second order.
 
-use super::{DynamicsError, Integrator, axpy, momentum_rate_into};
+use super::{DynamicsError, Iterations, axpy, momentum_rate_into};
 use crate::algebra::Bivector;
-use crate::dynamics::{RigidBody, Torque};
 
 /// The implicit midpoint rule on the momentum, L₁ = L₀ + h f((L₀ + L₁)/2) with
 /// f(L) = I⁻¹(L) × L + τ, and the attitude advanced on the group, R₁ = R₀ exp(−½ h ω_mid).
@@ -19,10 +18,7 @@ use crate::dynamics::{RigidBody, Torque};
 #[derive(Clone, Copy, Debug)]
 pub struct Midpoint {
     tolerance: f64,
-    max_iterations: usize,
-    last_iterations: usize,
-    total_iterations: usize,
-    steps: usize,
+    iterations: Iterations,
 }
 
 impl Default for Midpoint {
@@ -30,10 +26,7 @@ impl Default for Midpoint {
     fn default() -> Self {
         Midpoint {
             tolerance: 4.0 * f64::EPSILON,
-            max_iterations: 100,
-            last_iterations: 0,
-            total_iterations: 0,
-            steps: 0,
+            iterations: Iterations::new(100),
         }
     }
 }
@@ -50,48 +43,18 @@ impl Midpoint {
     pub fn with_tolerance(tolerance: f64, max_iterations: usize) -> Self {
         Midpoint {
             tolerance,
-            max_iterations: max_iterations.max(1),
-            ..Self::default()
+            iterations: Iterations::new(max_iterations),
         }
-    }
-
-    /// Returns the iteration bound per step.
-    pub fn max_iterations(&self) -> usize {
-        self.max_iterations
-    }
-
-    /// Returns the iterations the last step took.
-    pub fn last_iterations(&self) -> usize {
-        self.last_iterations
-    }
-
-    /// Returns the iterations of all steps so far.
-    pub fn total_iterations(&self) -> usize {
-        self.total_iterations
-    }
-
-    /// Returns the mean iterations per step so far.
-    pub fn mean_iterations(&self) -> f64 {
-        self.total_iterations as f64 / self.steps.max(1) as f64
     }
 }
 
-impl Integrator for Midpoint {
-    fn order(&self) -> u32 {
-        2
-    }
+iteration_counters!(Midpoint, "fixed-point iterations");
 
-    fn name(&self) -> &'static str {
-        "midpoint"
-    }
-
-    fn step(
-        &mut self,
-        body: &mut RigidBody,
-        t: f64,
-        h: f64,
-        torque: &dyn Torque,
-    ) -> Result<(), DynamicsError> {
+impl_integrator!(
+    Midpoint,
+    order = |_| 2,
+    name = |_| "midpoint",
+    step = |this, body, t, h, torque| {
         let n = body.dim();
         let l0 = body.momentum().clone();
         let r0 = body.principal_frame_attitude().clone();
@@ -114,7 +77,7 @@ impl Integrator for Midpoint {
         axpy(l1.as_mut_slice(), h, f.as_slice());
         let mut iterations = 0;
         let mut residual = f64::INFINITY;
-        while iterations < self.max_iterations {
+        while iterations < this.iterations.max {
             iterations += 1;
             for ((m, a), b) in mid
                 .as_mut_slice()
@@ -139,14 +102,12 @@ impl Integrator for Midpoint {
                 *x = next;
             }
             residual = change / scale;
-            if residual <= self.tolerance {
+            if residual <= this.tolerance {
                 break;
             }
         }
-        self.last_iterations = iterations;
-        self.total_iterations += iterations;
-        self.steps += 1;
-        if !residual.is_finite() || residual > self.tolerance {
+        this.iterations.record(iterations);
+        if !residual.is_finite() || residual > this.tolerance {
             return Err(DynamicsError::SolverDidNotConverge {
                 time: t,
                 iterations,
@@ -163,4 +124,4 @@ impl Integrator for Midpoint {
         body.replace_state(r1, l1);
         Ok(())
     }
-}
+);

@@ -35,6 +35,94 @@
 //! # Ok::<(), rotorflow::dynamics::DynamicsError>(())
 //! ```
 
+/// Implements [`Integrator`] for an integrator type, so that the trait's signatures are
+/// written once. The order and the name are closures of the integrator, the step a closure
+/// of the integrator and the trait's arguments (body, t, h, torque), as in
+/// `impl_integrator!(Rkmk4, order = |_| 4, name = |_| "rk4", step = |this, body, t, h, torque| { … })`.
+macro_rules! impl_integrator {
+    (
+        $ty:ty,
+        order = |$order_of:pat_param| $order:expr,
+        name = |$name_of:pat_param| $name:expr,
+        step = |$this:pat_param, $body:ident, $t:ident, $h:ident, $torque:ident| $step:block $(,)?
+    ) => {
+        impl $crate::dynamics::integrate::Integrator for $ty {
+            fn order(&self) -> u32 {
+                let $order_of = self;
+                $order
+            }
+
+            fn name(&self) -> &'static str {
+                let $name_of = self;
+                $name
+            }
+
+            fn step(
+                &mut self,
+                $body: &mut $crate::dynamics::RigidBody,
+                $t: f64,
+                $h: f64,
+                $torque: &dyn $crate::dynamics::Torque,
+            ) -> Result<(), $crate::dynamics::DynamicsError> {
+                let $this = self;
+                $step
+            }
+        }
+    };
+}
+
+/// The public counters of an implicit integrator's solve, read from its `iterations` field
+/// (an [`Iterations`]); `$what` names what is counted in the docs.
+macro_rules! iteration_counters {
+    ($ty:ty, $what:literal) => {
+        impl $ty {
+            #[doc = concat!("Returns the bound on the ", $what, " per step.")]
+            pub fn max_iterations(&self) -> usize {
+                self.iterations.max
+            }
+
+            #[doc = concat!("Returns the ", $what, " of the last step (of all its substeps for a composition).")]
+            pub fn last_iterations(&self) -> usize {
+                self.iterations.last
+            }
+
+            #[doc = concat!("Returns the ", $what, " of all steps so far.")]
+            pub fn total_iterations(&self) -> usize {
+                self.iterations.total
+            }
+
+            #[doc = concat!("Returns the mean ", $what, " per step so far.")]
+            pub fn mean_iterations(&self) -> f64 {
+                self.iterations.total as f64 / self.iterations.steps.max(1) as f64
+            }
+        }
+    };
+}
+
+/// The step-count accessors of an adaptive integrator with fields `max_steps`, `accepted`
+/// and `rejected`.
+macro_rules! step_counters {
+    ($ty:ty) => {
+        impl $ty {
+            /// Sets the bound on internal steps per call.
+            pub fn with_max_steps(mut self, max_steps: usize) -> Self {
+                self.max_steps = max_steps.max(1);
+                self
+            }
+
+            /// Returns the number of accepted internal steps so far.
+            pub fn accepted_steps(&self) -> usize {
+                self.accepted
+            }
+
+            /// Returns the number of rejected internal steps so far.
+            pub fn rejected_steps(&self) -> usize {
+                self.rejected
+            }
+        }
+    };
+}
+
 mod dop853;
 pub(crate) use dop853::first_step_estimate;
 pub(crate) mod dop853_tableau;
@@ -172,6 +260,78 @@ pub(crate) fn momentum_rate_into(
             omega,
         });
     }
+}
+
+/// The iterations of an implicit integrator's solve: the bound per step, the last step's
+/// count, and the totals over all steps.
+#[derive(Clone, Copy, Debug)]
+struct Iterations {
+    max: usize,
+    last: usize,
+    total: usize,
+    steps: usize,
+}
+
+impl Iterations {
+    /// No step taken yet, at most `max` iterations per step (at least one).
+    const fn new(max: usize) -> Self {
+        Iterations {
+            max: if max == 0 { 1 } else { max },
+            last: 0,
+            total: 0,
+            steps: 0,
+        }
+    }
+
+    /// Counts one step that took `iterations`.
+    fn record(&mut self, iterations: usize) {
+        self.last = iterations;
+        self.total += iterations;
+        self.steps += 1;
+    }
+}
+
+/// Checks the times of a dense-output run: finite, non-negative and strictly increasing.
+fn check_sample_times(times: &[f64]) -> Result<(), DynamicsError> {
+    if times.iter().any(|t| !t.is_finite() || *t < 0.0) || times.windows(2).any(|w| w[1] <= w[0]) {
+        return Err(DynamicsError::InvalidSampling {
+            reason: "sample times must be finite, non-negative and strictly increasing",
+        });
+    }
+    Ok(())
+}
+
+/// The samples at t = 0 of a dense-output run (the body's state, once per such time) and
+/// the index of the first later time.
+fn samples_at_zero(body: &RigidBody, times: &[f64]) -> (Vec<(Attitude, Bivector)>, usize) {
+    let zeros = times.iter().take_while(|&&t| t == 0.0).count();
+    let mut out = Vec::with_capacity(times.len());
+    let state = (body.principal_frame_attitude(), body.momentum());
+    out.extend((0..zeros).map(|_| (state.0.clone(), state.1.clone())));
+    (out, zeros)
+}
+
+/// Fails with [`DynamicsError::NonFinite`] unless the body's state is finite.
+fn check_state(body: &RigidBody, t: f64) -> Result<(), DynamicsError> {
+    if body.momentum().as_slice().iter().all(|x| x.is_finite())
+        && body.principal_frame_attitude().is_finite()
+    {
+        Ok(())
+    } else {
+        Err(DynamicsError::NonFinite { time: t })
+    }
+}
+
+/// Counts one more internal step of a call at `time`, refusing more than `max_steps`.
+fn count_step(count: &mut usize, max_steps: usize, time: f64) -> Result<(), DynamicsError> {
+    *count += 1;
+    if *count > max_steps {
+        return Err(DynamicsError::TooManySteps {
+            time,
+            steps: *count,
+        });
+    }
+    Ok(())
 }
 
 /// An integrator of the rigid-body equations: advances a [`RigidBody`] by one step.

@@ -1,7 +1,7 @@
 //! The discrete Moser–Veselov top: an integrable discretisation of the free body in any N.
 
 use super::splitting::kick;
-use super::{DynamicsError, Integrator, SplittingOrder};
+use super::{DynamicsError, Iterations, SplittingOrder};
 use crate::algebra::pairs;
 use crate::dynamics::{RigidBody, Torque};
 use crate::numeric::{lu_apply, lu_factor, lu_solve};
@@ -88,10 +88,7 @@ pub struct MoserVeselov {
     composition: SplittingOrder,
     /// The order of the preprocessed step (modified moments of inertia, 3D): 2 for none.
     preprocessed: u32,
-    max_iterations: usize,
-    last_iterations: usize,
-    total_iterations: usize,
-    steps: usize,
+    iterations: Iterations,
 }
 
 impl Default for MoserVeselov {
@@ -100,10 +97,7 @@ impl Default for MoserVeselov {
         MoserVeselov {
             composition: SplittingOrder::Strang,
             preprocessed: 2,
-            max_iterations: 30,
-            last_iterations: 0,
-            total_iterations: 0,
-            steps: 0,
+            iterations: Iterations::new(30),
         }
     }
 }
@@ -172,29 +166,9 @@ impl MoserVeselov {
     /// Returns the integrator with a bound on the Newton iterations per step.
     pub fn with_max_iterations(self, max_iterations: usize) -> Self {
         MoserVeselov {
-            max_iterations: max_iterations.max(1),
+            iterations: Iterations::new(max_iterations),
             ..self
         }
-    }
-
-    /// Returns the bound on the Newton iterations per step.
-    pub fn max_iterations(&self) -> usize {
-        self.max_iterations
-    }
-
-    /// Returns the Newton iterations of the last step (summed over its substeps).
-    pub fn last_iterations(&self) -> usize {
-        self.last_iterations
-    }
-
-    /// Returns the Newton iterations of all steps so far.
-    pub fn total_iterations(&self) -> usize {
-        self.total_iterations
-    }
-
-    /// Returns the mean Newton iterations per step so far.
-    pub fn mean_iterations(&self) -> f64 {
-        self.total_iterations as f64 / self.steps.max(1) as f64
     }
 
     /// One kick–MV–kick step of size `h`; returns the Newton iterations.
@@ -207,39 +181,30 @@ impl MoserVeselov {
         h: f64,
     ) -> Result<usize, DynamicsError> {
         kick(body, torque, t, 0.5 * h);
-        let iterations = free_step(body, moments, t, h, self.max_iterations)?;
+        let iterations = free_step(body, moments, t, h, self.iterations.max)?;
         kick(body, torque, t + 0.5 * h, 0.5 * h);
         Ok(iterations)
     }
 }
 
-impl Integrator for MoserVeselov {
-    fn order(&self) -> u32 {
-        match self.composition {
-            SplittingOrder::Strang => self.preprocessed,
-            other => other.order(),
-        }
-    }
+iteration_counters!(MoserVeselov, "Newton iterations");
 
-    fn name(&self) -> &'static str {
-        match (self.composition, self.preprocessed) {
-            (SplittingOrder::Yoshida4, _) => "mv-yoshida4",
-            (SplittingOrder::Suzuki4, _) => "mv-suzuki4",
-            (SplittingOrder::KahanLi6, _) => "mv-kahan-li6",
-            (SplittingOrder::KahanLi8, _) => "mv-kahan-li8",
-            (SplittingOrder::Strang, 4) => "mv-preprocessed4",
-            (SplittingOrder::Strang, 6) => "mv-preprocessed6",
-            _ => "moser-veselov",
-        }
-    }
-
-    fn step(
-        &mut self,
-        body: &mut RigidBody,
-        t: f64,
-        h: f64,
-        torque: &dyn Torque,
-    ) -> Result<(), DynamicsError> {
+impl_integrator!(
+    MoserVeselov,
+    order = |this| match this.composition {
+        SplittingOrder::Strang => this.preprocessed,
+        other => other.order(),
+    },
+    name = |this| match (this.composition, this.preprocessed) {
+        (SplittingOrder::Yoshida4, _) => "mv-yoshida4",
+        (SplittingOrder::Suzuki4, _) => "mv-suzuki4",
+        (SplittingOrder::KahanLi6, _) => "mv-kahan-li6",
+        (SplittingOrder::KahanLi8, _) => "mv-kahan-li8",
+        (SplittingOrder::Strang, 4) => "mv-preprocessed4",
+        (SplittingOrder::Strang, 6) => "mv-preprocessed6",
+        _ => "moser-veselov",
+    },
+    step = |this, body, t, h, torque| {
         body.refuse_gyrostat("moser-veselov")?;
         let inertia = body.inertia();
         let (Some(moments), Some(_)) = (
@@ -247,14 +212,14 @@ impl Integrator for MoserVeselov {
             inertia.diagonal_plane_moments(),
         ) else {
             return Err(DynamicsError::NonPhysicalInertia {
-                integrator: self.name(),
+                integrator: this.name(),
             });
         };
         let mut moments: SmallVec<[f64; 8]> = moments.iter().copied().collect();
-        if self.preprocessed > 2 {
+        if this.preprocessed > 2 {
             if moments.len() != 3 {
                 return Err(DynamicsError::UnsupportedOption {
-                    integrator: self.name(),
+                    integrator: this.name(),
                     reason: format!(
                         "the modified moments are those of a body in 3D, this one is in {}D; use MoserVeselov::new",
                         moments.len()
@@ -266,7 +231,7 @@ impl Integrator for MoserVeselov {
                 j,
                 body.momentum().as_slice(),
                 h,
-                self.preprocessed,
+                this.preprocessed,
             ));
         }
         // Keep the state (inline for N ≤ 8), so that a failed step leaves the body as it was.
@@ -275,12 +240,12 @@ impl Integrator for MoserVeselov {
             body.momentum().clone(),
         );
         let mut weights = [0.0; 17];
-        let stages = self.composition.weights_into(&mut weights);
+        let stages = this.composition.weights_into(&mut weights);
         let mut time = t;
         let mut outcome = Ok(0);
         for &g in &weights[..stages] {
             outcome = outcome.and_then(|sum| {
-                let iterations = self.kdk(body, &moments, torque, time, g * h)?;
+                let iterations = this.kdk(body, &moments, torque, time, g * h)?;
                 Ok(sum + iterations)
             });
             time += g * h;
@@ -296,9 +261,7 @@ impl Integrator for MoserVeselov {
         });
         match outcome {
             Ok(iterations) => {
-                self.last_iterations = iterations;
-                self.total_iterations += iterations;
-                self.steps += 1;
+                this.iterations.record(iterations);
                 Ok(())
             }
             Err(e) => {
@@ -307,7 +270,7 @@ impl Integrator for MoserVeselov {
             }
         }
     }
-}
+);
 
 /// The second moments J̃ of the modified moments of inertia of
 /// [`MoserVeselov::preprocessed`] for a 3D body with second moments `j`, momentum `l`

@@ -1,9 +1,9 @@
 //! Runge–Kutta–Munthe-Kaas of order 4: classical RK4 on L, the attitude on the group.
 
-use super::{DynamicsError, Integrator, momentum_rate as rates};
+use super::{DynamicsError, check_state, momentum_rate as rates};
 use crate::algebra::{Bivector, commutator_packed, pairs};
 use crate::dynamics::torques::Free;
-use crate::dynamics::{Attitude, RigidBody, Torque};
+use crate::dynamics::{Attitude, RigidBody};
 use nalgebra::{DMatrixView, DMatrixViewMut};
 
 /// Classical RK4 on the momentum with the attitude advanced on Spin(N) by one exponential
@@ -35,25 +35,14 @@ impl Rkmk4 {
     }
 }
 
-impl Integrator for Rkmk4 {
-    fn order(&self) -> u32 {
-        4
-    }
-
-    fn name(&self) -> &'static str {
-        "rk4"
-    }
-
-    fn step(
-        &mut self,
-        body: &mut RigidBody,
-        t: f64,
-        h: f64,
-        torque: &dyn Torque,
-    ) -> Result<(), DynamicsError> {
+impl_integrator!(
+    Rkmk4,
+    order = |_| 4,
+    name = |_| "rk4",
+    step = |_, body, t, h, torque| {
         // The packed free step assumes ω = I⁻¹(L); a gyrostat takes the general stages.
         if torque.is_zero() && body.gyrostatic_momentum().is_none() && free_step_packed(body, h) {
-            return finish(body, t);
+            return check_state(body, t);
         }
         let r0 = body.principal_frame_attitude().clone();
         let l0 = body.momentum().clone();
@@ -108,7 +97,7 @@ impl Integrator for Rkmk4 {
         body.replace_state(r, l);
         Ok(())
     }
-}
+);
 
 /// A Lie–Poisson integrator of order 4 built on RK4: the body momentum moves only by
 /// rotations, L₁ = exp(−Ω) L₀ exp(Ω) with the attitude R₁ = R₀ exp(Ω), so it stays on its
@@ -172,27 +161,16 @@ impl LiePoissonRk4 {
     }
 }
 
-impl Integrator for LiePoissonRk4 {
-    fn order(&self) -> u32 {
-        4
-    }
-
-    fn name(&self) -> &'static str {
-        "lie-poisson-rk4"
-    }
-
-    fn step(
-        &mut self,
-        body: &mut RigidBody,
-        t: f64,
-        h: f64,
-        torque: &dyn Torque,
-    ) -> Result<(), DynamicsError> {
+impl_integrator!(
+    LiePoissonRk4,
+    order = |_| 4,
+    name = |_| "lie-poisson-rk4",
+    step = |_, body, t, h, torque| {
         if torque.is_zero()
             && body.gyrostatic_momentum().is_none()
             && coadjoint_free_step_packed(body, h)
         {
-            return finish(body, t);
+            return check_state(body, t);
         }
         if torque.is_zero() {
             return lie_poisson_free_step(body, t, h);
@@ -247,7 +225,7 @@ impl Integrator for LiePoissonRk4 {
         body.replace_state(r, m);
         Ok(())
     }
-}
+);
 
 /// The free step of [`LiePoissonRk4`] on bivectors (any N, any inertia map, gyrostats): the
 /// formulas of the stack version, `coadjoint_step_fixed`.
@@ -284,17 +262,6 @@ fn lie_poisson_free_step(body: &mut RigidBody, t: f64, h: f64) -> Result<(), Dyn
     Ok(())
 }
 
-/// Fails with [`DynamicsError::NonFinite`] if the state is no longer finite.
-fn finish(body: &RigidBody, t: f64) -> Result<(), DynamicsError> {
-    if body.momentum().as_slice().iter().all(|x| x.is_finite())
-        && body.principal_frame_attitude().is_finite()
-    {
-        Ok(())
-    } else {
-        Err(DynamicsError::NonFinite { time: t })
-    }
-}
-
 /// The free-motion step for an inertia diagonal on the basis planes: on stack arrays for
 /// 3 ≤ N ≤ 8, on dense matrices above; returns false (doing nothing) otherwise.
 fn free_step_packed(body: &mut RigidBody, h: f64) -> bool {
@@ -326,31 +293,14 @@ fn coadjoint_free_step_packed(body: &mut RigidBody, h: f64) -> bool {
 
 /// The free step of [`LiePoissonRk4`] with K = N(N−1)/2 packed components.
 fn coadjoint_step_fixed<const K: usize>(body: &mut RigidBody, h: f64) -> bool {
-    let n = body.dim();
-    let Some(cached) = body.inertia().diagonal_inverse_plane_moments() else {
+    let Some(free) = PackedFree::<K>::of(body) else {
         return false;
     };
-    let mut inverse = [0.0; K];
-    inverse.copy_from_slice(cached);
-    let rate = |l: &[f64; K]| {
-        let mut w = [0.0; K];
-        for k in 0..K {
-            w[k] = l[k] * inverse[k];
-        }
-        let mut dl = [0.0; K];
-        commutator_packed(n, &w, l, &mut dl);
-        dl
-    };
-    let axpy = |x: &[f64; K], y: &[f64; K], s: f64| std::array::from_fn(|k| x[k] + s * y[k]);
-    let mut l0 = [0.0; K];
-    l0.copy_from_slice(body.momentum().as_slice());
-    let dl1 = rate(&l0);
-    let dl2 = rate(&axpy(&l0, &dl1, 0.5 * h));
-    let dl3 = rate(&axpy(&l0, &dl2, 0.5 * h));
-    let dl4 = rate(&axpy(&l0, &dl3, h));
+    let (n, l0, inverse) = (free.n, free.l0, free.inverse);
+    let [(dl1, _), (dl2, _), (dl3, _), (dl4, _)] = free.rk4_stages(h);
     let l1: [f64; K] =
         std::array::from_fn(|k| l0[k] + h / 6.0 * (dl1[k] + 2.0 * dl2[k] + 2.0 * dl3[k] + dl4[k]));
-    let dl_end = rate(&l1);
+    let (dl_end, _) = free.rate(&l1);
     // ω at the two Gauss nodes from the cubic Hermite interpolant of L.
     let [(p0, q0, p1, q1), (r0, s0, r1, s1)] = GAUSS_HERMITE;
     let mut minus = [0.0; K];
@@ -540,31 +490,56 @@ fn skew_part(n: usize, c: &[f64], out: &mut [f64]) {
     }
 }
 
+/// A free body whose inertia is diagonal on the basis planes, as K = N(N−1)/2 packed
+/// components on the stack: the momentum at the step's start and the inverse plane moments.
+struct PackedFree<const K: usize> {
+    n: usize,
+    l0: [f64; K],
+    inverse: [f64; K],
+}
+
+impl<const K: usize> PackedFree<K> {
+    /// None unless the body's inertia is diagonal on the basis planes.
+    fn of(body: &RigidBody) -> Option<Self> {
+        let cached = body.inertia().diagonal_inverse_plane_moments()?;
+        let mut inverse = [0.0; K];
+        inverse.copy_from_slice(cached);
+        let mut l0 = [0.0; K];
+        l0.copy_from_slice(body.momentum().as_slice());
+        Some(PackedFree {
+            n: body.dim(),
+            l0,
+            inverse,
+        })
+    }
+
+    /// (dL/dt, ω) at momentum l.
+    fn rate(&self, l: &[f64; K]) -> ([f64; K], [f64; K]) {
+        let w: [f64; K] = std::array::from_fn(|k| l[k] * self.inverse[k]);
+        let mut dl = [0.0; K];
+        commutator_packed(self.n, &w, l, &mut dl);
+        (dl, w)
+    }
+
+    /// (dL/dt, ω) at the four stages of classical RK4 from `l0` with step h.
+    fn rk4_stages(&self, h: f64) -> [([f64; K], [f64; K]); 4] {
+        let l0 = &self.l0;
+        let axpy = |y: &[f64; K], s: f64| std::array::from_fn(|k| l0[k] + s * y[k]);
+        let first = self.rate(l0);
+        let second = self.rate(&axpy(&first.0, 0.5 * h));
+        let third = self.rate(&axpy(&second.0, 0.5 * h));
+        let fourth = self.rate(&axpy(&third.0, h));
+        [first, second, third, fourth]
+    }
+}
+
 /// The same formulas as [`Rkmk4::step`] with K = N(N−1)/2 packed components.
 fn free_step_fixed<const K: usize>(body: &mut RigidBody, h: f64) -> bool {
-    let n = body.dim();
-    let Some(cached) = body.inertia().diagonal_inverse_plane_moments() else {
+    let Some(free) = PackedFree::<K>::of(body) else {
         return false;
     };
-    let mut inverse = [0.0; K];
-    inverse.copy_from_slice(cached);
-    // (dL/dt, ω) at momentum l.
-    let rate = |l: &[f64; K]| {
-        let mut w = [0.0; K];
-        for k in 0..K {
-            w[k] = l[k] * inverse[k];
-        }
-        let mut dl = [0.0; K];
-        commutator_packed(n, &w, l, &mut dl);
-        (dl, w)
-    };
-    let axpy = |x: &[f64; K], y: &[f64; K], s: f64| std::array::from_fn(|k| x[k] + s * y[k]);
-    let mut l0 = [0.0; K];
-    l0.copy_from_slice(body.momentum().as_slice());
-    let (dl1, w1) = rate(&l0);
-    let (dl2, w2) = rate(&axpy(&l0, &dl1, 0.5 * h));
-    let (dl3, w3) = rate(&axpy(&l0, &dl2, 0.5 * h));
-    let (dl4, w4) = rate(&axpy(&l0, &dl3, h));
+    let (n, l0) = (free.n, free.l0);
+    let [(dl1, w1), (dl2, w2), (dl3, w3), (dl4, w4)] = free.rk4_stages(h);
 
     // aᵢ = −½ωᵢ; Ω = h/6 Σ bᵢaᵢ + h²/6 a₁ × a₄ = −h/12 Σ bᵢωᵢ + h²/24 ω₁ × ω₄.
     let mut correction = [0.0; K];

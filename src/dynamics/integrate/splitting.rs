@@ -609,40 +609,29 @@ impl Moments {
     }
 }
 
-impl Integrator for Splitting {
-    fn order(&self) -> u32 {
-        self.order.order()
-    }
-
-    fn name(&self) -> &'static str {
-        match (self.order, self.symmetric_part) {
-            (SplittingOrder::Strang, false) => "strang",
-            (SplittingOrder::Yoshida4, false) => "yoshida4",
-            (SplittingOrder::Suzuki4, false) => "suzuki4",
-            (SplittingOrder::KahanLi6, false) => "kahan-li6",
-            (SplittingOrder::KahanLi8, false) => "kahan-li8",
-            (SplittingOrder::Strang, true) => "strang-symmetric",
-            (SplittingOrder::Yoshida4, true) => "yoshida4-symmetric",
-            (SplittingOrder::Suzuki4, true) => "suzuki4-symmetric",
-            (SplittingOrder::KahanLi6, true) => "kahan-li6-symmetric",
-            (SplittingOrder::KahanLi8, true) => "kahan-li8-symmetric",
-        }
-    }
-
-    fn step(
-        &mut self,
-        body: &mut RigidBody,
-        t: f64,
-        h: f64,
-        torque: &dyn Torque,
-    ) -> Result<(), DynamicsError> {
-        body.refuse_gyrostat(self.name())?;
+impl_integrator!(
+    Splitting,
+    order = |this| this.order.order(),
+    name = |this| match (this.order, this.symmetric_part) {
+        (SplittingOrder::Strang, false) => "strang",
+        (SplittingOrder::Yoshida4, false) => "yoshida4",
+        (SplittingOrder::Suzuki4, false) => "suzuki4",
+        (SplittingOrder::KahanLi6, false) => "kahan-li6",
+        (SplittingOrder::KahanLi8, false) => "kahan-li8",
+        (SplittingOrder::Strang, true) => "strang-symmetric",
+        (SplittingOrder::Yoshida4, true) => "yoshida4-symmetric",
+        (SplittingOrder::Suzuki4, true) => "suzuki4-symmetric",
+        (SplittingOrder::KahanLi6, true) => "kahan-li6-symmetric",
+        (SplittingOrder::KahanLi8, true) => "kahan-li8-symmetric",
+    },
+    step = |this, body, t, h, torque| {
+        body.refuse_gyrostat(this.name())?;
         let Some(moments) = body.inertia().diagonal_plane_moments() else {
             return Err(DynamicsError::UnsupportedInertia {
-                integrator: self.name(),
+                integrator: this.name(),
             });
         };
-        if self.symmetric_part && torque.is_zero() && matches!(body.dim(), 3 | 4) {
+        if this.symmetric_part && torque.is_zero() && matches!(body.dim(), 3 | 4) {
             // The rates 1/I_p − 1/I_K from the inverse moments, the last exactly 0.
             let k = moments.len();
             let last = 1.0 / moments[k - 1];
@@ -650,11 +639,11 @@ impl Integrator for Splitting {
             for (x, m) in rates.iter_mut().zip(moments) {
                 *x = 1.0 / m - last;
             }
-            self.free_symmetric_part_3d_4d(body, &rates[..k], last, h);
+            this.free_symmetric_part_3d_4d(body, &rates[..k], last, h);
             return finite_or_error(body, t);
         }
         // The moments live in the map; copy them (k ≤ 28 stays on the stack).
-        let mut moments = Moments::new(moments, self.symmetric_part);
+        let mut moments = Moments::new(moments, this.symmetric_part);
         // Without a torque the Casimir piece commutes with every substep, so the step turns
         // the attitude about L once, by the whole step (one exponential per step, as RKMK4's),
         // before the first substep's planes.
@@ -664,7 +653,7 @@ impl Integrator for Splitting {
             moments = Moments::Planes(differences.clone());
         }
         let mut weights = [0.0; 17];
-        let stages = self.order.weights_into(&mut weights);
+        let stages = this.order.weights_into(&mut weights);
         let mut time = t;
         for &g in &weights[..stages] {
             kdk(body, &moments, torque, (time, g * h), turn.take());
@@ -672,7 +661,7 @@ impl Integrator for Splitting {
         }
         finite_or_error(body, t)
     }
-}
+);
 
 impl Splitting {
     /// A torque-free step with the symmetric part split off in 3D and 4D, the arithmetic of

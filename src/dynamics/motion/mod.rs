@@ -35,6 +35,9 @@
 //! - The integrators ([`MotionIntegrator`]): [`MotionSplitting`] (symplectic, order 2: the
 //!   free flight exact and the rotation by the Lie–Poisson splitting; the only one with
 //!   joints and contact) and [`MotionRk4`] (order 4, attitudes on their group, any forques).
+//! - [`System::record`]: a sampled run ([`SystemTrajectory`]: bodies, energies, momenta and
+//!   the contacts of each sample) with every sample time hit exactly, written as JSON
+//!   (feature `serde`) or one CSV per body; the feature `viz` draws it.
 //!
 //! The book's chapter "Bodies that move" derives the equations, the contact model and the
 //! final velocity of a ball that slides into rolling, v₀ (N+2)/(N+4), and tabulates the
@@ -73,6 +76,7 @@ mod forque;
 mod integrate;
 mod joint;
 mod placement;
+mod record;
 pub mod shape;
 mod solve;
 mod system;
@@ -83,5 +87,6 @@ pub use error::MotionError;
 pub use forque::{Forque, ForqueInput, Wrench, forques};
 pub use integrate::{MotionIntegrator, MotionRk4, MotionSplitting};
 pub use joint::BallJoint;
+pub use record::{BodyTrack, RecordedPlane, SampleContact, SystemTrajectory, csv_number};
 pub use solve::SolverReport;
 pub use system::System;

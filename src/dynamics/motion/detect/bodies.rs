@@ -2,9 +2,13 @@
 //! whose bounding balls come within reach (the broad phase), and for each such pair the
 //! signed distance, the contact normal and the contact point (the narrow phase).
 
-use super::{EpaWorkspace, PlacedShape, penetration_with};
+use super::sat::box_box_unchecked;
+use super::{
+    ContactManifold, EpaWorkspace, PlacedBox, PlacedHull, PlacedShape, hull_manifold,
+    penetration_with,
+};
 use crate::dynamics::motion::forques::Anchor;
-use crate::dynamics::motion::shape::ConvexShape;
+use crate::dynamics::motion::shape::{ConvexCore, ConvexShape};
 use crate::dynamics::motion::{BallJoint, ContactShape, MovingBody};
 use smallvec::SmallVec;
 
@@ -29,14 +33,55 @@ pub(crate) fn convex_of(shape: &ContactShape, n: usize) -> Option<ConvexShape> {
     }
 }
 
-/// Where two bodies come closest or overlap most.
+/// How far apart (relative to the sum of the bounding radii) the points of a manifold count
+/// as touching.
+const MANIFOLD_TOUCHING: f64 = 1e-6;
+
+/// The half-lengths of the box whose corners `v` are (each own axis with ±h on it, all 2^N
+/// sign patterns once), or None if they are not a box's corners: boxes are then met by
+/// separating axes and face clipping, which are exact where a general hull's penetration
+/// normal is ill-conditioned (two faces just touching).
+fn box_half_lengths(v: &[crate::algebra::Vector], n: usize) -> Option<Vec<f64>> {
+    if n >= usize::BITS as usize || v.len() != 1usize << n || v.iter().any(|p| p.dim() != n) {
+        return None;
+    }
+    let h: Vec<f64> = (0..n)
+        .map(|i| v.iter().map(|p| p.as_slice()[i].abs()).fold(0.0, f64::max))
+        .collect();
+    let mut seen = vec![false; v.len()];
+    for p in v {
+        let mut pattern = 0usize;
+        for (i, (&x, &hi)) in p.as_slice().iter().zip(&h).enumerate() {
+            if !(hi > 0.0 && (x.abs() - hi).abs() <= 1e-12 * hi) {
+                return None;
+            }
+            if x > 0.0 {
+                pattern |= 1 << i;
+            }
+        }
+        if std::mem::replace(&mut seen[pattern], true) {
+            return None;
+        }
+    }
+    Some(h)
+}
+
+/// A point where two bodies touch: where they come closest or overlap most, or one point of
+/// the contact manifold of two polytopes.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct PairContact {
     /// The two bodies, by index (a < b).
     pub a: usize,
     pub b: usize,
-    /// The signed distance (negative: overlap depth).
+    /// The features of the two shapes that make the point (see
+    /// [`FeatureId`](super::FeatureId); 0 for the single point of curved shapes), so that a
+    /// solve can start from the impulse of the same point in the last solve.
+    pub feature: u64,
+    /// The signed distance at the point (negative: overlap depth).
     pub gap: f64,
+    /// The distance within which the pair counts as touching (the scan's factor times the
+    /// sum of the bounding radii).
+    pub reach: f64,
     /// The unit normal from body `a` to body `b`.
     pub normal: SmallVec<[f64; 8]>,
     /// The contact point in space: midway between the two witness points.
@@ -51,6 +96,9 @@ pub(crate) struct Touching {
     owner: Option<(u64, u64)>,
     convex: Vec<Option<ConvexShape>>,
     radius: Vec<f64>,
+    /// The half-lengths of the bodies whose shapes are boxes (their corners), which find
+    /// their contact normal by separating axes.
+    boxes: Vec<Option<Vec<f64>>>,
     workspace: EpaWorkspace,
     /// The pairs of bodies held together by a joint (a < b), which do not touch each other:
     /// their shapes meet at the joint by design.
@@ -88,6 +136,13 @@ impl Touching {
         }
         self.owner = Some(owner);
         self.convex = shapes.iter().map(|s| convex_of(s, n)).collect();
+        self.boxes = shapes
+            .iter()
+            .map(|s| match s {
+                ContactShape::Vertices(v) => box_half_lengths(v, n),
+                _ => None,
+            })
+            .collect();
         self.radius = self
             .convex
             .iter()
@@ -105,11 +160,17 @@ impl Touching {
     /// The broad phase sweeps the bodies' bounding intervals along the first axis (sorted
     /// in place, so n log n for bodies spread along it), and pairs whose bounding balls are
     /// farther apart are not asked.
+    ///
+    /// With `manifold: Some(slop)`, two polytopes in contact are reported by the points of
+    /// their contact manifold (up to `slop` times the sum of their bounding radii apart:
+    /// points about to close are kept with their positive gap, so that a box tilting onto
+    /// its face is caught by its corner); otherwise, and for curved shapes, by one point.
     pub(crate) fn scan<'q>(
         &mut self,
         bodies: &[MovingBody],
         q: impl Fn(usize) -> &'q [f64],
         factor: f64,
+        manifold: Option<f64>,
     ) {
         self.len = 0;
         // Each body's bounding interval on the first axis, taken out of `self` while the
@@ -130,7 +191,7 @@ impl Touching {
                     break;
                 }
                 let (a, b) = (first.min(second), first.max(second));
-                self.pair(bodies, &q, (a, b), factor);
+                self.pair(bodies, &q, (a, b), factor, manifold);
             }
         }
         self.order = order;
@@ -145,6 +206,7 @@ impl Touching {
         q: &impl Fn(usize) -> &'q [f64],
         (a, b): (usize, usize),
         factor: f64,
+        manifold: Option<f64>,
     ) {
         let (Some(ca), Some(cb)) = (&self.convex[a], &self.convex[b]) else {
             return;
@@ -162,6 +224,52 @@ impl Touching {
         if centres > bound * bound {
             return;
         }
+        if let (Some(ha), Some(hb)) = (&self.boxes[a], &self.boxes[b]) {
+            // Two boxes: the normal and gap by separating axes, exact also where two faces
+            // just touch and the depth along every nearby direction is nearly the same (a
+            // general penetration query's normal is ill-conditioned there).
+            let placed = |half_lengths, position, rotation| PlacedBox {
+                half_lengths,
+                position,
+                rotation,
+            };
+            let axis = box_box_unchecked(&placed(ha, xa, q(a)), &placed(hb, xb, q(b)));
+            if -axis.depth > reach {
+                return;
+            }
+            let points = match (manifold, ca.core(), cb.core()) {
+                (Some(slop), ConvexCore::Hull(va), ConvexCore::Hull(vb)) => {
+                    let hull = |vertices, position, rotation| PlacedHull {
+                        vertices,
+                        position,
+                        rotation,
+                    };
+                    let margin = slop * (self.radius[a] + self.radius[b]);
+                    hull_manifold(
+                        &hull(va, xa, q(a)),
+                        &hull(vb, xb, q(b)),
+                        &axis.normal,
+                        margin,
+                    )
+                    .ok()
+                    .flatten()
+                    .filter(|m| !m.is_empty())
+                }
+                _ => None,
+            };
+            if let Some(m) = points {
+                self.push_manifold((a, b), &m, reach);
+                return;
+            }
+            if manifold.is_none() {
+                // The gap alone is asked for: the point is the midpoint of the centres.
+                let c = self.next((a, b), 0, -axis.depth, &axis.normal);
+                c.reach = reach;
+                c.point
+                    .extend(xa.iter().zip(xb).map(|(x, y)| 0.5 * (x + y)));
+                return;
+            }
+        }
         let (Ok(pa), Ok(pb)) = (
             PlacedShape::new(ca, xa, q(a)),
             PlacedShape::new(cb, xb, q(b)),
@@ -174,16 +282,30 @@ impl Touching {
         if -p.depth > reach {
             return;
         }
-        if self.len == self.found.len() {
-            self.found.push(PairContact::default());
+        if let (Some(slop), ConvexCore::Hull(va), ConvexCore::Hull(vb)) =
+            (manifold, ca.core(), cb.core())
+            && ca.margin() == 0.0
+            && cb.margin() == 0.0
+        {
+            let placed = |vertices, x, q| PlacedHull {
+                vertices,
+                position: x,
+                rotation: q,
+            };
+            let margin = slop * (self.radius[a] + self.radius[b]);
+            if let Ok(Some(m)) = hull_manifold(
+                &placed(va, xa, q(a)),
+                &placed(vb, xb, q(b)),
+                p.normal.as_slice(),
+                margin,
+            ) && !m.is_empty()
+            {
+                self.push_manifold((a, b), &m, reach);
+                return;
+            }
         }
-        let c = &mut self.found[self.len];
-        c.a = a;
-        c.b = b;
-        c.gap = -p.depth;
-        c.normal.clear();
-        c.normal.extend_from_slice(p.normal.as_slice());
-        c.point.clear();
+        let c = self.next((a, b), 0, -p.depth, p.normal.as_slice());
+        c.reach = reach;
         c.point.extend(
             p.witness_a
                 .as_slice()
@@ -191,7 +313,49 @@ impl Touching {
                 .zip(p.witness_b.as_slice())
                 .map(|(x, y)| 0.5 * (x + y)),
         );
+    }
+
+    /// Records the points of the manifold `m` of the pair (a, b).
+    fn push_manifold(&mut self, (a, b): (usize, usize), m: &ContactManifold, reach: f64) {
+        // A face resting on a face touches at all its points, but a tilt of round-off size
+        // lifts some of them by more than the pair's reach: points this close count as
+        // touching, so that they hold (a resting contact) instead of waiting to land.
+        let reach = reach.max(MANIFOLD_TOUCHING * (self.radius[a] + self.radius[b]));
+        for point in m.points() {
+            let c = self.next((a, b), point.id.0, -point.depth, m.normal());
+            c.reach = reach;
+            c.point.extend(
+                point
+                    .point_a
+                    .iter()
+                    .zip(point.point_b)
+                    .map(|(x, y)| 0.5 * (x + y)),
+            );
+        }
+    }
+
+    /// The next entry of the found pairs, set to the pair, feature, gap and normal given and
+    /// an empty point.
+    fn next(
+        &mut self,
+        (a, b): (usize, usize),
+        feature: u64,
+        gap: f64,
+        normal: &[f64],
+    ) -> &mut PairContact {
+        if self.len == self.found.len() {
+            self.found.push(PairContact::default());
+        }
+        let c = &mut self.found[self.len];
         self.len += 1;
+        c.a = a;
+        c.b = b;
+        c.feature = feature;
+        c.gap = gap;
+        c.normal.clear();
+        c.normal.extend_from_slice(normal);
+        c.point.clear();
+        c
     }
 
     /// `factor` times the sum of the bounding radii of bodies `a` and `b`: the distance

@@ -49,6 +49,8 @@ pub struct MotionSplitting {
     active: Vec<bool>,
     gaps: Vec<Vector>,
     distances: Vec<f64>,
+    /// The distances at the contact points between bodies after a trial flight.
+    pair_distances: Vec<f64>,
     sharing: Vec<usize>,
     /// Each joint's position impulse of the last step over its length (a force), to start
     /// the next step's position solve from: the solve then needs fewer passes.
@@ -76,6 +78,11 @@ pub struct MotionSplitting {
 
 /// The contact tolerance, relative to a body's radius.
 const CONTACT_TOLERANCE: f64 = 1e-9;
+
+/// How far apart (relative to the sum of two polytopes' bounding radii) the points of their
+/// contact manifold may be and still be rows of the solve: a corner about to land is held
+/// from the step before it would sink.
+const MANIFOLD_SLOP: f64 = 1e-2;
 
 /// Fixed-point iterations of an implicit closing kick, at most.
 const MAX_KICK_ITERATIONS: usize = 50;
@@ -273,7 +280,12 @@ impl MotionSplitting {
         self.solver.find_joints(bodies, joints);
         if self.touching.any_pairs() {
             let (touching, placements) = (&mut self.touching, &self.placements);
-            touching.scan(bodies, |i| &placements.get(i).q, CONTACT_TOLERANCE);
+            touching.scan(
+                bodies,
+                |i| &placements.get(i).q,
+                CONTACT_TOLERANCE,
+                Some(MANIFOLD_SLOP),
+            );
             self.solver.set_pairs(self.touching.found(), bodies);
         } else {
             self.solver.pairs.clear();
@@ -330,7 +342,7 @@ impl MotionSplitting {
     ) -> Result<(), DynamicsError> {
         let shape_key = system.shape_key();
         let (bodies, shapes, half_spaces, joints, _) = system.parts_mut();
-        if joints.is_empty() && self.solver.contacts.is_empty() {
+        if joints.is_empty() && self.solver.contacts.is_empty() && self.solver.pairs.is_empty() {
             return self.drift(bodies, t, h);
         }
         let size = bodies
@@ -339,6 +351,9 @@ impl MotionSplitting {
             .chain(joints.iter().map(|j| j.point.norm()))
             .fold(1.0, f64::max);
         for row in &mut self.solver.contacts {
+            row.position_impulse = 0.0;
+        }
+        for row in &mut self.solver.pairs {
             row.position_impulse = 0.0;
         }
         let n = bodies[0].dim();
@@ -422,6 +437,15 @@ impl MotionSplitting {
                 contacts_hold &= d >= -tolerance && (row.position_impulse == 0.0 || d <= tolerance);
                 self.distances.push(d);
             }
+            self.pair_distances.clear();
+            for row in &self.solver.pairs {
+                let d = pair_distance(row, bodies);
+                // Points within the pair's touching distance hold: a gap of round-off size
+                // left by the last step is not pushed on again.
+                let tolerance = row.reach;
+                contacts_hold &= d >= -tolerance && (row.position_impulse == 0.0 || d <= tolerance);
+                self.pair_distances.push(d);
+            }
             if worst_gap <= 1e-13 * size && contacts_hold {
                 self.keep_joint_forces(h);
                 return Ok(());
@@ -438,6 +462,33 @@ impl MotionSplitting {
             for (row, d) in self.solver.contacts.iter().zip(&self.distances) {
                 if *d < 0.0 || row.position_impulse > 0.0 {
                     self.sharing[row.body] += 1;
+                }
+            }
+            for (row, d) in self.solver.pairs.iter().zip(&self.pair_distances) {
+                if *d < 0.0 || row.position_impulse > 0.0 {
+                    self.sharing[row.a] += 1;
+                    self.sharing[row.b] += 1;
+                }
+            }
+            for (row, &d) in self.solver.pairs.iter_mut().zip(&self.pair_distances) {
+                if d >= 0.0 && row.position_impulse == 0.0 {
+                    continue;
+                }
+                let sharing = self.sharing[row.a].max(self.sharing[row.b]) as f64;
+                let want = (row.position_impulse - d / (h * row.knn() * sharing)).max(0.0);
+                if !want.is_finite() {
+                    // A flight too short to close anything in (an impact located at its
+                    // start): the gap is left to the next flight.
+                    continue;
+                }
+                let dl = want - row.position_impulse;
+                row.position_impulse = want;
+                let j = &row.normal * dl;
+                if !bodies[row.b].is_fixed() {
+                    push(&mut bodies[row.b], &row.rb, &j);
+                }
+                if !bodies[row.a].is_fixed() {
+                    push(&mut bodies[row.a], &row.ra, &(j * -1.0));
                 }
             }
             for (row, &d) in self.solver.contacts.iter_mut().zip(&self.distances) {
@@ -498,8 +549,12 @@ impl MotionSplitting {
         self.active_pairs.clear();
         if self.touching.any_pairs() {
             let placements = &self.placements;
-            self.touching
-                .scan(system.bodies(), |i| &placements.get(i).q, CONTACT_TOLERANCE);
+            self.touching.scan(
+                system.bodies(),
+                |i| &placements.get(i).q,
+                CONTACT_TOLERANCE,
+                None,
+            );
             self.active_pairs
                 .extend(self.touching.found().iter().map(|c| (c.a, c.b)));
         }
@@ -514,7 +569,7 @@ impl MotionSplitting {
         }
         let placements = &self.placements;
         self.touching
-            .scan(system.bodies(), |i| &placements.get(i).q, 1.0);
+            .scan(system.bodies(), |i| &placements.get(i).q, 1.0, None);
         let mut worst = f64::INFINITY;
         for c in self.touching.found() {
             if !self.active_pairs.contains(&(c.a, c.b)) {
@@ -620,6 +675,13 @@ impl MotionSplitting {
                 s = (a * fb - b * fa) / (fb - fa);
                 if !(s > a && s < b) {
                     s = 0.5 * (a + b);
+                }
+                if s <= 1e-9 * remaining {
+                    // Entering at once (an overlap that the step's own contacts push a body
+                    // into): nothing to locate; the rest of the step is taken whole and the
+                    // new contact is held from the next step on.
+                    s = remaining;
+                    break;
                 }
                 restore(system.bodies_mut(), &saved);
                 let contacts_before = system.contacts().len();
@@ -774,6 +836,22 @@ fn joint_gap(
         Anchor::World(_) => *gap -= other,
         Anchor::Body(k, _) => *gap -= &place(&bodies[*k], other),
     }
+}
+
+/// The signed distance at the contact point of `row` with the bodies where they are now:
+/// its gap when found, plus how far the flight has moved the point of body b away from that
+/// of body a along the normal (both points start at the contact point and move with their
+/// bodies).
+fn pair_distance(row: &crate::dynamics::motion::solve::PairRow, bodies: &[MovingBody]) -> f64 {
+    let end = |i: usize, own: &Vector| {
+        let b = &bodies[i];
+        let mut x = b.rotation().principal_frame_attitude().rotate_vector(own);
+        x += b.position();
+        x
+    };
+    let mut moved = end(row.b, &row.own_b);
+    moved -= &end(row.a, &row.own_a);
+    row.gap + row.normal.dot(&moved)
 }
 
 /// Gives body `b` the impulse `j` (space) at offset `r` (space) from its centre of mass.

@@ -30,6 +30,10 @@ type Dense = SmallVec<[f64; 64]>;
 /// Gauss–Seidel sweeps of the velocity solve, at most.
 const MAX_SWEEPS: usize = 20_000;
 
+/// Where the sweeps of a solve with contacts between bodies stop: a change of every
+/// velocity below this fraction of the contacts' speed.
+const PAIR_TOLERANCE: f64 = 1e-9;
+
 mod body;
 mod contact_row;
 mod friction;
@@ -47,6 +51,8 @@ pub(crate) struct Solver {
     pub contacts: Vec<ContactRow>,
     /// Contacts between two bodies.
     pub pairs: Vec<PairRow>,
+    /// The rows of the solve before, kept for their room.
+    spare_pairs: Vec<PairRow>,
     pub joints: Vec<JointRow>,
     states: Vec<BodyState>,
     work: Dense,
@@ -339,7 +345,7 @@ impl Solver {
         let coupled = !self.joints.is_empty() || !self.pairs.is_empty();
         for pair in &mut self.pairs {
             let resting = resting_speed[pair.a].max(resting_speed[pair.b]);
-            pair.prepare(&self.states, resting);
+            pair.prepare(&self.states, resting, 2.0 * kick);
             pair.normal_impulse *= warm_scale;
             pair.friction_impulse *= warm_scale;
             pair.apply_accumulated(&mut self.states);
@@ -576,7 +582,17 @@ impl Solver {
             .map(|r| r.speed)
             .chain(self.pairs.iter().map(|p| p.speed.max(p.target.abs())))
             .fold(0.0, f64::max);
-        let tolerance = 1e-12 * speed.max(1e-300);
+        // Several points of one face contact hold the same freedom more than once: Gauss–Seidel
+        // then moves impulses among them that leave the velocities as they are, and the
+        // change of each update falls only linearly there. With contacts between bodies the
+        // sweeps stop at 1e-9 of the contacts' speed (over 10 s of a resting stack that is
+        // under 1e-9 of the body's size), else at 1e-12.
+        let relative = if self.pairs.is_empty() {
+            1e-12
+        } else {
+            PAIR_TOLERANCE
+        };
+        let tolerance = relative * speed.max(1e-300);
         self.report.solves += 1;
         let mut sweeps = 0;
         let mut change = 0.0f64;
@@ -696,33 +712,61 @@ impl Solver {
 
     /// Forgets the loaded bodies and the joints' factor (the placement is about to change).
     /// Takes the contacts between bodies that detection found, starting each from the
-    /// impulses of the last solve's contact of the same pair of bodies.
+    /// impulses of the last solve's point of the same pair made by the same features (a
+    /// point of a manifold kept from step to step), or else of the same pair's point nearest
+    /// to it.
     pub(crate) fn set_pairs(&mut self, found: &[PairContact], bodies: &[MovingBody]) {
-        let old = std::mem::take(&mut self.pairs);
-        let mut rows = Vec::with_capacity(found.len());
+        let mut old = std::mem::take(&mut self.pairs);
+        let mut rows = std::mem::take(&mut self.spare_pairs);
+        rows.clear();
         for c in found {
             let (a, b) = (c.a, c.b);
             let mut row = PairRow::new(
-                (a, b),
-                &c.normal,
+                c,
                 (
                     bodies[a].position().as_slice(),
                     bodies[b].position().as_slice(),
                 ),
-                &c.point,
                 contact_material(&bodies[a], &bodies[b]),
             );
-            if let Some(last) = old.iter().find(|r| r.a == a && r.b == b) {
+            let own = |i: usize, r: &crate::algebra::Vector| {
+                bodies[i]
+                    .rotation()
+                    .principal_frame_attitude()
+                    .inverse_rotate_vector(r)
+            };
+            row.own_a = own(a, &row.ra);
+            row.own_b = own(b, &row.rb);
+            let same = old
+                .iter()
+                .position(|r| r.a == a && r.b == b && r.feature == c.feature)
+                .or_else(|| {
+                    // A point of the pair whose features changed (or a curved pair's single
+                    // point): the nearest of the last solve's points of the pair.
+                    old.iter()
+                        .enumerate()
+                        .filter(|(_, r)| r.a == a && r.b == b)
+                        .min_by(|(_, r), (_, s)| {
+                            let far = |x: &PairRow| (&x.ra - &row.ra).norm_squared();
+                            far(r).total_cmp(&far(s))
+                        })
+                        .map(|(k, _)| k)
+                });
+            if let Some(k) = same {
+                let last = &mut old[k];
                 // The normal turns little between solves: keep the impulse along the new one
-                // and the tangent part of the old friction impulse.
-                row.normal_impulse = last.normal_impulse;
+                // and the tangent part of the old friction impulse. A point matched once
+                // gives its impulse to no other.
+                row.normal_impulse = std::mem::take(&mut last.normal_impulse);
                 row.friction_impulse.clone_from(&last.friction_impulse);
+                last.friction_impulse.as_mut_slice().fill(0.0);
                 let along = row.normal.dot(&row.friction_impulse);
                 row.friction_impulse -= &(&row.normal * along);
             }
             rows.push(row);
         }
         self.pairs = rows;
+        self.spare_pairs = old;
     }
 
     pub(crate) fn release(&mut self) {

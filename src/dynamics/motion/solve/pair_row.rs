@@ -7,6 +7,7 @@ use super::body::{BodyState, add_inverse_mass};
 use super::contact_row::tangent_block;
 use super::friction::friction_impulse;
 use crate::algebra::Vector;
+use crate::dynamics::motion::detect::bodies::PairContact;
 use crate::dynamics::motion::placement::{dot, set_vector};
 use crate::numeric::symmetric_eigen_rows as symmetric_eigen;
 
@@ -17,11 +18,24 @@ use crate::numeric::symmetric_eigen_rows as symmetric_eigen;
 pub(crate) struct PairRow {
     pub a: usize,
     pub b: usize,
+    /// The features that make the point ([`PairContact::feature`]).
+    pub feature: u64,
+    /// The signed distance at the point when it was found (negative: overlap).
+    pub gap: f64,
+    /// The gap up to which the point counts as touching; farther points are speculative:
+    /// the bodies may approach there by the gap within the next flight, no more.
+    pub reach: f64,
+    /// The normal impulse of the position step (RATTLE's), which closes the gap by the end
+    /// of the flight.
+    pub position_impulse: f64,
     /// The unit normal, from `a` to `b`, in space.
     pub normal: Vector,
     /// The offsets of the contact point from the two centres of mass, in space.
     pub ra: Vector,
     pub rb: Vector,
+    /// The same offsets in the bodies' principal axes, which the flight carries along.
+    pub own_a: Vector,
+    pub own_b: Vector,
     pub friction: f64,
     pub restitution: f64,
     /// The normal relative velocity wanted after the impulse (0, or −e u⁻ for an impact).
@@ -42,15 +56,14 @@ pub(crate) struct PairRow {
 }
 
 impl PairRow {
-    /// A row for bodies `a` and `b` touching at `point` (space) with unit normal `normal`
-    /// (from `a` to `b`), the bodies at `xa` and `xb`.
+    /// A row for the contact `c` between bodies `a` and `b` (a point in space with a unit
+    /// normal from `a` to `b`), the bodies at `xa` and `xb`.
     pub(crate) fn new(
-        (a, b): (usize, usize),
-        normal: &[f64],
+        c: &PairContact,
         (xa, xb): (&[f64], &[f64]),
-        point: &[f64],
         (friction, restitution): (f64, f64),
     ) -> PairRow {
+        let (a, b, normal, point) = (c.a, c.b, &c.normal[..], &c.point[..]);
         let n = normal.len();
         let offset = |x: &[f64]| {
             let mut r = Vector::zero(n);
@@ -64,9 +77,15 @@ impl PairRow {
         PairRow {
             a,
             b,
+            feature: c.feature,
+            gap: c.gap,
+            reach: c.reach,
+            position_impulse: 0.0,
             normal: nv,
             ra: offset(xa),
             rb: offset(xb),
+            own_a: Vector::zero(n),
+            own_b: Vector::zero(n),
             friction,
             restitution,
             target: 0.0,
@@ -90,9 +109,15 @@ impl PairRow {
         u
     }
 
-    /// Computes K and its parts at the loaded states, and the target: −e u⁻ for a point
-    /// approaching faster than `resting` (an impact), 0 below (resting).
-    pub(crate) fn prepare(&mut self, states: &[BodyState], resting: f64) {
+    /// nᵀ K n, the inverse of the normal impulse's effect on the normal speed.
+    pub(crate) fn knn(&self) -> f64 {
+        self.knn
+    }
+
+    /// Computes K and its parts at the loaded states, and the target: −e u⁻ for a touching
+    /// point approaching faster than `resting` (an impact), 0 below (resting), and for a
+    /// point still `gap` apart the approach that closes it within a flight of `flight`.
+    pub(crate) fn prepare(&mut self, states: &[BodyState], resting: f64, flight: f64) {
         let n = self.normal.dim();
         self.k.clear();
         self.k.resize(n * n, 0.0);
@@ -122,10 +147,24 @@ impl PairRow {
         }
         let un = dot(nv, self.relative_velocity(states).as_slice());
         self.speed = un.abs();
-        self.target = if un < -resting {
-            -self.restitution * un
+        self.target = if self.gap > self.reach {
+            -self.gap / flight
         } else {
-            0.0
+            let target = if un < -resting {
+                -self.restitution * un
+            } else {
+                0.0
+            };
+            if self.gap < -self.reach {
+                // Overlapping by more than the touching distance (a contact that sank while
+                // others held it, or bodies placed so): leave at the speed that closes the
+                // overlap within the flight, so that the position step starts from a
+                // solution of its linearisation, but no faster than one step of the forques
+                // would make it approach (a short flight gets no kick out of proportion).
+                target.max((-self.gap / flight).min(resting))
+            } else {
+                target
+            }
         };
     }
 

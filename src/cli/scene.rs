@@ -1,24 +1,13 @@
 //! `rotorflow scene FILE`: bodies that move and turn together, read from a TOML scene file
-//! (bodies by their SPEC, gravity, springs, planes, ball joints), integrated by the
-//! library's `dynamics::motion`, written as JSON, CSV, an HTML animation and an SVG plot.
-//!
-//! - [`format`]: the file, every key checked, one-line errors naming the key;
-//! - [`run`]: the system, stepped from 0 to t_end with every sample time hit exactly;
-//! - [`output`]: JSON, CSV, the animation and the summary.
-
-pub mod format;
-pub mod output;
-pub mod run;
+//! by the library's `rotorflow::scene` (which builds, runs and writes it), drawn by
+//! `rotorflow::viz`; this file adds the options, the progress bar and atomic writes.
 
 use super::error::{CliError, CliResult};
 use super::lists::sample_times;
 use super::output::{Progress, check_extension, write_atomic};
 use clap::Args;
-use rotorflow::dynamics::trajectory::even_times;
+use rotorflow::scene::{Scene, output, run as scene_run};
 use std::path::{Path, PathBuf};
-
-/// The samples of a scene without `--samples` or `--times`: at most this many.
-pub const DEFAULT_SAMPLES: usize = 201;
 
 /// Arguments of `scene`.
 #[derive(Args, Debug, Clone)]
@@ -35,7 +24,7 @@ pub struct SceneArgs {
     #[arg(long, value_name = "t1,t2,...", allow_hyphen_values = true)]
     pub times: Option<String>,
     /// Write the samples as JSON to FILE.json (keys dim, times, bodies, energy,
-    /// kinetic_energy, potential_energy, momentum, angular_momentum, planes).
+    /// kinetic_energy, potential_energy, momentum, angular_momentum, planes, contacts).
     #[arg(long, value_name = "FILE.json")]
     pub output: Option<PathBuf>,
     /// Write one CSV per body (DIR/<name>.csv) and DIR/system.csv into the folder DIR,
@@ -79,15 +68,9 @@ all.";
 ///
 /// # Errors
 /// [`CliError::Input`] for bad `--samples` or `--times`.
-pub fn times(args: &SceneArgs, scene: &format::Scene) -> CliResult<Vec<f64>> {
+pub fn times(args: &SceneArgs, scene: &Scene) -> CliResult<Vec<f64>> {
     if args.samples.is_none() && args.times.is_none() {
-        let steps = (scene.t_end / scene.dt - 1e-9).ceil().max(1.0);
-        let k = if steps < (DEFAULT_SAMPLES - 1) as f64 {
-            steps as usize + 1
-        } else {
-            DEFAULT_SAMPLES
-        };
-        return Ok(even_times(scene.t_end, k));
+        return Ok(scene.default_times());
     }
     sample_times(Some(scene.t_end), args.samples, args.times.as_deref())
         .map_err(|e| CliError::input(e.replace("--t-end", "t_end")))
@@ -117,24 +100,24 @@ pub fn run(args: &SceneArgs, quiet: bool) -> CliResult<()> {
         )));
     }
     let file = args.file.display().to_string();
-    let scene = format::load(&args.file)?;
+    let scene = Scene::from_path(&args.file)?;
     let times = times(args, &scene)?;
-    let mut system = run::build_system(&scene, &file)?;
+    let mut system = scene.system()?;
     if args.check {
         println!("{}: ok: {}", file, output::contents(&scene));
         return Ok(());
     }
     let mut progress = Progress::new(times.len() as u64, quiet, "scene");
-    let record = run::run(&scene, &mut system, &times, &mut progress)?;
+    let record = scene_run::run(&scene, &mut system, &times, &mut |_| progress.advance(1))?;
     progress.finish();
 
     // Everything is rendered before the first file is written.
     let json = match &args.output {
-        Some(_) => Some(output::json_text(&scene, &record)?),
+        Some(_) => Some(scene.to_json(&record)?),
         None => None,
     };
     let csv = match &args.csv_dir {
-        Some(_) => Some(output::csv_files(&scene, &record)?),
+        Some(_) => Some(output::csv_files(&record)?),
         None => None,
     };
     let title = args
@@ -144,9 +127,9 @@ pub fn run(args: &SceneArgs, quiet: bool) -> CliResult<()> {
     let html = args
         .html
         .as_ref()
-        .map(|_| output::html(&scene, &record, &title));
+        .map(|_| scene.animation_html(&record, &title));
     let plot = match &args.plot {
-        Some(_) => Some(output::plot(&scene, &record, &title)?),
+        Some(_) => Some(scene.plot_svg(&record, &title)?),
         None => None,
     };
     if let (Some(p), Some(text)) = (&args.output, &json) {
@@ -163,7 +146,7 @@ pub fn run(args: &SceneArgs, quiet: bool) -> CliResult<()> {
     }
     if args.output.is_none() && args.csv_dir.is_none() && args.html.is_none() && args.plot.is_none()
     {
-        print!("{}", output::summary(&scene, &record, &file));
+        print!("{}", output::summary(&scene, &record));
     }
     Ok(())
 }

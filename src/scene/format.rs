@@ -1,10 +1,11 @@
 //! The scene file: TOML read into [`Scene`], every key checked, with one-line errors that
 //! name the file, the section (`body "cube"`, `plane 2`, …) and the key.
 
-use super::super::error::{CliError, CliResult};
-use super::super::spec::{ParsedBody, parse_body};
+use super::SceneError;
+use crate::inertia::spec::{ParsedBody, parse_body, parse_body_with};
 use nalgebra::DMatrix;
 use serde::Deserialize;
+use std::path::Path;
 use toml::Value;
 
 /// The integrator of a scene.
@@ -43,8 +44,9 @@ pub struct SceneBody {
     pub omega: Vec<f64>,
     /// The attitude at t = 0 (own axes → space).
     pub attitude: DMatrix<f64>,
-    /// Its friction coefficient and restitution against other bodies (None: the other's).
+    /// Its friction coefficient against other bodies (None: the other's).
     pub friction: Option<f64>,
+    /// Its restitution against other bodies (None: the other's).
     pub restitution: Option<f64>,
     /// True for a body that never moves.
     pub fixed: bool,
@@ -105,6 +107,8 @@ pub struct SceneJoint {
 /// A checked scene.
 #[derive(Clone, Debug)]
 pub struct Scene {
+    /// The file the scene was read from, as messages name it.
+    pub file: String,
     /// The dimension N.
     pub dim: usize,
     /// Uniform gravity g.
@@ -199,16 +203,20 @@ struct Place<'a> {
 }
 
 impl Place<'_> {
-    fn error(&self, message: impl std::fmt::Display) -> CliError {
+    fn error(&self, message: impl std::fmt::Display) -> SceneError {
         if self.section.is_empty() {
-            CliError::input(format!("{}: {message}", self.file))
+            SceneError::invalid(format!("{}: {message}", self.file))
         } else {
-            CliError::input(format!("{}: {}: {message}", self.file, self.section))
+            SceneError::invalid(format!("{}: {}: {message}", self.file, self.section))
         }
     }
 
     /// Reads a table into its raw struct, refusing unknown keys.
-    fn table<T: for<'de> Deserialize<'de>>(&self, value: &Value, what: &str) -> CliResult<T> {
+    fn table<T: for<'de> Deserialize<'de>>(
+        &self,
+        value: &Value,
+        what: &str,
+    ) -> Result<T, SceneError> {
         if !value.is_table() {
             return Err(self.error(format!(
                 "expected a table (`[[{what}]]`), got {}",
@@ -221,12 +229,12 @@ impl Place<'_> {
         })
     }
 
-    fn required<'v>(&self, key: &str, v: &'v Option<Value>) -> CliResult<&'v Value> {
+    fn required<'v>(&self, key: &str, v: &'v Option<Value>) -> Result<&'v Value, SceneError> {
         v.as_ref()
             .ok_or_else(|| self.error(format!("missing key `{key}`")))
     }
 
-    fn number(&self, key: &str, v: &Value) -> CliResult<f64> {
+    fn number(&self, key: &str, v: &Value) -> Result<f64, SceneError> {
         let x = match v {
             Value::Integer(i) => *i as f64,
             Value::Float(x) => *x,
@@ -247,7 +255,7 @@ impl Place<'_> {
         v: &Option<Value>,
         default: Option<f64>,
         range: (&str, fn(f64) -> bool),
-    ) -> CliResult<f64> {
+    ) -> Result<f64, SceneError> {
         let x = match (v, default) {
             (Some(v), _) => self.number(key, v)?,
             (None, Some(d)) => return Ok(d),
@@ -259,7 +267,7 @@ impl Place<'_> {
         Ok(x)
     }
 
-    fn list(&self, key: &str, v: &Value, expected: &str) -> CliResult<Vec<f64>> {
+    fn list(&self, key: &str, v: &Value, expected: &str) -> Result<Vec<f64>, SceneError> {
         let Value::Array(items) = v else {
             return Err(self.error(format!(
                 "{key} must be a list of numbers ({expected}), got {}",
@@ -274,7 +282,7 @@ impl Place<'_> {
     }
 
     /// A vector of `n` numbers (default zero).
-    fn vector(&self, key: &str, v: &Option<Value>, n: usize) -> CliResult<Vec<f64>> {
+    fn vector(&self, key: &str, v: &Option<Value>, n: usize) -> Result<Vec<f64>, SceneError> {
         let Some(v) = v else {
             return Ok(vec![0.0; n]);
         };
@@ -288,14 +296,19 @@ impl Place<'_> {
         Ok(x)
     }
 
-    fn string<'v>(&self, key: &str, v: &'v Value) -> CliResult<&'v str> {
+    fn string<'v>(&self, key: &str, v: &'v Value) -> Result<&'v str, SceneError> {
         v.as_str()
             .ok_or_else(|| self.error(format!("{key} must be a string, got {}", a_type(v))))
     }
 
     /// An array of tables (`[[body]]`), or none. `text` is the file, to find the line of a
     /// single table `[body]` written where `[[body]]` was meant.
-    fn tables<'v>(&self, text: &str, key: &str, v: &'v Option<Value>) -> CliResult<&'v [Value]> {
+    fn tables<'v>(
+        &self,
+        text: &str,
+        key: &str,
+        v: &'v Option<Value>,
+    ) -> Result<&'v [Value], SceneError> {
         match v {
             None => Ok(&[]),
             Some(Value::Array(a)) => Ok(a),
@@ -308,7 +321,7 @@ impl Place<'_> {
                         .is_some_and(|rest| rest.is_empty() || rest.starts_with('#'))
                 });
                 let at = line.map_or(String::new(), |l| format!(":{}", l + 1));
-                Err(CliError::input(format!(
+                Err(SceneError::invalid(format!(
                     "{}{at}: `[{key}]` is a single table; write `[[{key}]]` (double brackets, one \
                      `[[{key}]]` per {key})",
                     self.file
@@ -366,25 +379,30 @@ fn line_column(text: &str, offset: usize) -> (usize, usize) {
     (line, column)
 }
 
-/// Reads and checks the scene file `path`.
+/// Reads the scene file `path`, its `points:` and `mesh:` shapes from the file system.
 ///
 /// # Errors
-/// [`CliError::Input`] naming the file, the section and the key.
-pub fn load(path: &std::path::Path) -> CliResult<Scene> {
+/// [`SceneError::Invalid`] naming the file, the section and the key.
+pub fn load(path: &Path) -> Result<Scene, SceneError> {
     let file = path.display().to_string();
     let text = std::fs::read_to_string(path)
-        .map_err(|e| CliError::input(format!("{file}: cannot read the scene file: {e}")))?;
-    parse(&text, &file)
+        .map_err(|e| SceneError::invalid(format!("{file}: cannot read the scene file: {e}")))?;
+    parse(&text, &file, None)
 }
 
-/// Parses and checks the scene `text` (read from `file`, named in messages).
+/// The reader of the files a body SPEC names (`points:`, `mesh:`): their text, or a
+/// one-line message; `None` reads the file system.
+pub type FileReader<'a> = Option<&'a dyn Fn(&Path) -> Result<String, String>>;
+
+/// Parses and checks the scene `text` (read from `file`, named in messages), reading the
+/// files of `points:` and `mesh:` shapes with `read_file`.
 ///
 /// # Errors
-/// [`CliError::Input`] naming the file, the section and the key, in one line: names and
+/// [`SceneError::Invalid`] naming the file, the section and the key, in one line: names and
 /// strings quoted from the file have their control characters escaped.
-pub fn parse(text: &str, file: &str) -> CliResult<Scene> {
-    read_scene(text, file).map_err(|e| match e {
-        CliError::Input(message) => CliError::Input(printable(&message)),
+pub fn parse(text: &str, file: &str, read_file: FileReader<'_>) -> Result<Scene, SceneError> {
+    read_scene(text, file, read_file).map_err(|e| match e {
+        SceneError::Invalid(message) => SceneError::Invalid(printable(&message)),
         other => other,
     })
 }
@@ -402,7 +420,7 @@ fn printable(text: &str) -> String {
         .collect()
 }
 
-fn read_scene(text: &str, file: &str) -> CliResult<Scene> {
+fn read_scene(text: &str, file: &str, read_file: FileReader<'_>) -> Result<Scene, SceneError> {
     let top = Place {
         file,
         section: String::new(),
@@ -413,17 +431,17 @@ fn read_scene(text: &str, file: &str) -> CliResult<Scene> {
         match at {
             Some((l, c)) => {
                 let line = text.lines().nth(l - 1).unwrap_or("").trim();
-                CliError::input(format!(
+                SceneError::invalid(format!(
                     "{file}:{l}:{c}: {message} (in `{line}`; expected TOML)"
                 ))
             }
-            None => CliError::input(format!("{file}: {message} (expected TOML)")),
+            None => SceneError::invalid(format!("{file}: {message} (expected TOML)")),
         }
     })?;
     let raw: RawScene = top.table(&Value::Table(table), "scene")?;
 
     let dim_value = top.required("dim", &raw.dim)?;
-    let max = rotorflow::algebra::MAX_DIM;
+    let max = crate::algebra::MAX_DIM;
     let dim = match dim_value {
         Value::Integer(d) if (2..=max as i64).contains(d) => *d as usize,
         Value::Integer(d) => {
@@ -464,9 +482,9 @@ fn read_scene(text: &str, file: &str) -> CliResult<Scene> {
     }
     let mut bodies: Vec<SceneBody> = Vec::with_capacity(body_tables.len());
     for (k, t) in body_tables.iter().enumerate() {
-        let body = read_body(file, k, t, dim)?;
+        let body = read_body(file, k, t, dim, read_file)?;
         if bodies.iter().any(|b| b.name == body.name) {
-            return Err(CliError::input(format!(
+            return Err(SceneError::invalid(format!(
                 "{file}: body {}: name \"{}\" is used twice (body names must be unique)",
                 k + 1,
                 body.name
@@ -481,19 +499,19 @@ fn read_scene(text: &str, file: &str) -> CliResult<Scene> {
         .iter()
         .enumerate()
         .map(|(k, t)| read_plane(file, k, t, dim))
-        .collect::<CliResult<Vec<_>>>()?;
+        .collect::<Result<Vec<_>, SceneError>>()?;
     let springs = top
         .tables(text, "spring", &raw.spring)?
         .iter()
         .enumerate()
         .map(|(k, t)| read_spring(file, k, t, dim, &names))
-        .collect::<CliResult<Vec<_>>>()?;
+        .collect::<Result<Vec<_>, SceneError>>()?;
     let joints = top
         .tables(text, "joint", &raw.joint)?
         .iter()
         .enumerate()
         .map(|(k, t)| read_joint(file, k, t, dim, &names))
-        .collect::<CliResult<Vec<_>>>()?;
+        .collect::<Result<Vec<_>, SceneError>>()?;
     check_step(&top, dt, t_end, &bodies, &springs)?;
     if integrator == IntegratorKind::Rk4 && !(planes.is_empty() && joints.is_empty()) {
         return Err(top.error(
@@ -502,6 +520,7 @@ fn read_scene(text: &str, file: &str) -> CliResult<Scene> {
         ));
     }
     Ok(Scene {
+        file: file.to_string(),
         dim,
         gravity,
         t_end,
@@ -530,7 +549,7 @@ fn check_step(
     t_end: f64,
     bodies: &[SceneBody],
     springs: &[SceneSpring],
-) -> CliResult<()> {
+) -> Result<(), SceneError> {
     if dt >= t_end {
         return Err(top.error(format!(
             "dt = {dt} is not less than t_end = {t_end}: the run would be a single step; \
@@ -550,7 +569,7 @@ fn check_step(
         let period = std::f64::consts::TAU * (m_eff / s.stiffness).sqrt();
         let largest = MAX_STEP_PER_PERIOD * period;
         if dt > largest {
-            return Err(CliError::input(format!(
+            return Err(SceneError::invalid(format!(
                 "{}: spring {}: dt = {dt} is more than 1/{} of the spring's period \
                  2π√(m_eff/k) = {period:.6e} (m_eff = {m_eff}, k = {}); take dt ≤ {largest:.3e}",
                 top.file,
@@ -572,7 +591,13 @@ fn spec_has_mass(spec: &str) -> bool {
     })
 }
 
-fn read_body(file: &str, k: usize, t: &Value, dim: usize) -> CliResult<SceneBody> {
+fn read_body(
+    file: &str,
+    k: usize,
+    t: &Value,
+    dim: usize,
+    read_file: FileReader<'_>,
+) -> Result<SceneBody, SceneError> {
     let mut place = Place {
         file,
         section: format!("body {}", k + 1),
@@ -615,7 +640,11 @@ fn read_body(file: &str, k: usize, t: &Value, dim: usize) -> CliResult<SceneBody
         Some(m) => format!("{spec}+mass={m:?}"),
         None => spec.to_string(),
     };
-    let mut parsed = parse_body(&full_spec).map_err(|e| place.error(format!("shape: {e}")))?;
+    let parsed = match read_file {
+        Some(read) => parse_body_with(&full_spec, read),
+        None => parse_body(&full_spec),
+    };
+    let mut parsed = parsed.map_err(|e| place.error(format!("shape: {e}")))?;
     if parsed.dim != dim {
         return Err(place.error(format!(
             "shape `{spec}` is a body in {} dimensions, expected {dim} (dim = {dim})",
@@ -695,7 +724,7 @@ fn read_body(file: &str, k: usize, t: &Value, dim: usize) -> CliResult<SceneBody
 }
 
 /// An attitude: N² numbers row-major or N rows of N; a rotation to 1e-9.
-fn read_attitude(place: &Place<'_>, v: &Value, n: usize) -> CliResult<DMatrix<f64>> {
+fn read_attitude(place: &Place<'_>, v: &Value, n: usize) -> Result<DMatrix<f64>, SceneError> {
     let expected = format!("{} numbers row-major or {n} rows of {n}", n * n);
     let Value::Array(items) = v else {
         return Err(place.error(format!(
@@ -752,7 +781,7 @@ fn read_attitude(place: &Place<'_>, v: &Value, n: usize) -> CliResult<DMatrix<f6
     Ok(q)
 }
 
-fn read_plane(file: &str, k: usize, t: &Value, dim: usize) -> CliResult<ScenePlane> {
+fn read_plane(file: &str, k: usize, t: &Value, dim: usize) -> Result<ScenePlane, SceneError> {
     let place = Place {
         file,
         section: format!("plane {}", k + 1),
@@ -780,7 +809,12 @@ fn read_plane(file: &str, k: usize, t: &Value, dim: usize) -> CliResult<ScenePla
 }
 
 /// The body named by `key`, by index.
-fn body_index(place: &Place<'_>, key: &str, v: &Value, names: &[&str]) -> CliResult<usize> {
+fn body_index(
+    place: &Place<'_>,
+    key: &str,
+    v: &Value,
+    names: &[&str],
+) -> Result<usize, SceneError> {
     let name = place.string(key, v)?;
     names.iter().position(|n| *n == name).ok_or_else(|| {
         place.error(format!(
@@ -803,7 +837,7 @@ fn read_anchor(
     other_point: &Option<Value>,
     dim: usize,
     names: &[&str],
-) -> CliResult<SceneAnchor> {
+) -> Result<SceneAnchor, SceneError> {
     match (anchor, other) {
         (Some(_), Some(_)) => {
             Err(place.error("give anchor (a point of space) or other (a body), not both"))
@@ -839,7 +873,7 @@ fn read_ends(
     [body, point, anchor, other, other_point]: [&Option<Value>; 5],
     dim: usize,
     names: &[&str],
-) -> CliResult<LinkEnds> {
+) -> Result<LinkEnds, SceneError> {
     let body = body_index(place, "body", place.required("body", body)?, names)?;
     let point = place.vector("point", point, dim)?;
     let other = read_anchor(place, body, anchor, other, other_point, dim, names)?;
@@ -888,7 +922,7 @@ fn read_linked<'a, T: for<'de> Deserialize<'de> + Ends>(
     t: &Value,
     dim: usize,
     names: &[&str],
-) -> CliResult<(Place<'a>, T, LinkEnds)> {
+) -> Result<(Place<'a>, T, LinkEnds), SceneError> {
     let place = Place {
         file,
         section: format!("{what} {}", k + 1),
@@ -904,7 +938,7 @@ fn read_spring(
     t: &Value,
     dim: usize,
     names: &[&str],
-) -> CliResult<SceneSpring> {
+) -> Result<SceneSpring, SceneError> {
     let (place, raw, (body, point, anchor)) =
         read_linked::<RawSpring>(file, "spring", k, t, dim, names)?;
     Ok(SceneSpring {
@@ -928,7 +962,7 @@ fn read_joint(
     t: &Value,
     dim: usize,
     names: &[&str],
-) -> CliResult<SceneJoint> {
+) -> Result<SceneJoint, SceneError> {
     let (_, _, (body, point, other)) = read_linked::<RawJoint>(file, "joint", k, t, dim, names)?;
     Ok(SceneJoint { body, point, other })
 }

@@ -1,0 +1,204 @@
+//! Bodies resting on bodies: towers of boxes and hypercubes stand, and a box on a fixed ramp
+//! slides with a = g(sin θ − μ cos θ) or sticks when μ > tan θ.
+
+use rotorflow::dynamics::motion::forques::Gravity;
+use rotorflow::dynamics::motion::{
+    ContactShape, HalfSpace, MotionIntegrator, MotionSplitting, MovingBody, System,
+};
+use rotorflow::inertia::spec::parse_body;
+use rotorflow::prelude::*;
+
+const G: f64 = 9.81;
+
+fn axis(n: usize, i: usize, x: f64) -> Vector {
+    let mut v = Vector::zero(n);
+    v.as_mut_slice()[i] = x;
+    v
+}
+
+/// A cube of half-length `half` and mass 1 in N dimensions at `x`, at rest.
+#[allow(dead_code)]
+fn cube(n: usize, half: f64, x: &[f64], friction: f64) -> MovingBody {
+    turned_cube(n, half, x, friction, Rotor::identity(n))
+}
+
+/// [`cube`] with the attitude `attitude`.
+fn turned_cube(n: usize, half: f64, x: &[f64], friction: f64, attitude: Rotor) -> MovingBody {
+    let lengths = vec![format!("{half}"); n].join(",");
+    let parsed = parse_body(&format!("cuboid:{lengths}+mass=1")).unwrap();
+    MovingBody::from_parsed(
+        &parsed,
+        attitude,
+        &Vector::from_components(x).unwrap(),
+        &Vector::zero(n),
+        &Bivector::zero(n),
+    )
+    .unwrap()
+    .with_friction(friction)
+    .unwrap()
+}
+
+/// What a tower did: how far its top box sank and slid from where it started, and its
+/// speed at the end.
+#[derive(Debug)]
+struct Outcome {
+    sink: f64,
+    slide: f64,
+    speed: f64,
+}
+
+/// `count` cubes of side 1 stacked on a floor in N dimensions, each shifted by `offset`
+/// along the first axis from the one below, turned about the vertical by ±`turn` (radians,
+/// alternating) and dropped from `drop` above the one below, run for `seconds` with step h.
+/// The top box's sink is measured from its resting height, its slide from where it was
+/// dropped.
+fn tower(
+    n: usize,
+    count: usize,
+    (offset, turn, drop): (f64, f64, f64),
+    h: f64,
+    seconds: f64,
+) -> Outcome {
+    let bodies: Vec<MovingBody> = (0..count)
+        .map(|k| {
+            let mut x = vec![0.0; n];
+            x[0] = offset * k as f64;
+            x[n - 1] = 0.5 + k as f64 * (1.0 + drop);
+            let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+            let yaw = Rotor::from_plane_angle(n, 0, 1, sign * turn).unwrap();
+            turned_cube(n, 0.5, &x, 0.5, yaw)
+        })
+        .collect();
+    let mut s = System::new(bodies).unwrap();
+    s.add_forque(Gravity(axis(n, n - 1, -G))).unwrap();
+    s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
+        .unwrap();
+    let mut start = s.bodies()[count - 1].position().clone();
+    start.as_mut_slice()[n - 1] = count as f64 - 0.5;
+    let mut stepper = MotionSplitting::new();
+    let steps = (seconds / h).round() as usize;
+    stepper.advance(&mut s, 0.0, h, steps).unwrap();
+    let top = &s.bodies()[count - 1];
+    let moved = top.position() - &start;
+    let slide = moved.as_slice()[..n - 1]
+        .iter()
+        .map(|x| x * x)
+        .sum::<f64>()
+        .sqrt();
+    let speed = s
+        .bodies()
+        .iter()
+        .map(|b| b.velocity().norm() + b.omega().norm())
+        .fold(0.0, f64::max);
+    Outcome {
+        sink: -moved.as_slice()[n - 1],
+        slide,
+        speed,
+    }
+}
+
+fn assert_stands(what: &str, o: &Outcome) {
+    assert!(
+        o.sink < 5e-3 && o.slide < 1e-2 && o.speed < 1e-3,
+        "{what}: the top box sank {:e}, slid {:e}, ends at speed {:e}",
+        o.sink,
+        o.slide,
+        o.speed
+    );
+}
+
+/// Six unit cubes stacked in 3D, turned alternately by ±3° about the vertical and dropped
+/// from 1 % of their size onto each other, stand for 10 s at h = 1/60 s and at h = 1e-3 s.
+#[test]
+fn a_tower_of_six_cubes_stands() {
+    for h in [1.0 / 60.0, 1e-3] {
+        let o = tower(3, 6, (0.0, 3f64.to_radians(), 0.01), h, 10.0);
+        println!("six cubes, h = {h}: {o:?}");
+        assert_stands(&format!("six cubes, h = {h}"), &o);
+    }
+}
+
+/// Three 4D hypercubes stacked, each offset by 5 % of its size from the one below and
+/// dropped from 1 % onto it, stand for 10 s at h = 1/60 s and at h = 1e-3 s; so do they
+/// turned alternately by ±3° in the plane of the first two axes.
+#[test]
+fn three_offset_hypercubes_stand() {
+    for (h, turn) in [
+        (1.0 / 60.0, 0.0),
+        (1e-3, 0.0),
+        (1.0 / 60.0, 3.0),
+        (1e-3, 3.0),
+    ] {
+        let o = tower(4, 3, (0.05, f64::to_radians(turn), 0.01), h, 10.0);
+        println!("three hypercubes, h = {h}, turned {turn}°: {o:?}");
+        assert_stands(&format!("three hypercubes, h = {h}, turned {turn}°"), &o);
+    }
+}
+
+/// A unit cube on a fixed ramp (a fixed box tilted by θ) slides down with acceleration
+/// a = g(sin θ − μ cos θ) when μ < tan θ and stays put when μ > tan θ (1e-3 relative to g).
+#[test]
+fn a_box_on_a_fixed_ramp_slides_with_the_coulomb_acceleration_or_sticks() {
+    let mut cases = 0;
+    for n in [3, 4] {
+        for (theta_deg, mu) in [(30.0f64, 0.3), (30.0, 0.7), (20.0, 0.1), (40.0, 0.5)] {
+            let theta = theta_deg.to_radians();
+            // The ramp: a fixed slab of half-lengths 20 × 0.5 (and 2 in the other axes), its
+            // top face through the origin, tilted about the plane (x₁, x_N) by θ.
+            let tilt = Rotor::from_plane_angle(n, 0, n - 1, theta).unwrap();
+            let down = tilt.rotate_vector(&axis(n, n - 1, -0.5));
+            let mut halves = vec![2.0; n];
+            halves[0] = 20.0;
+            halves[n - 1] = 0.5;
+            let corners = (0..1usize << n)
+                .map(|bits| {
+                    let c: Vec<f64> = (0..n)
+                        .map(|i| {
+                            if bits >> i & 1 == 1 {
+                                halves[i]
+                            } else {
+                                -halves[i]
+                            }
+                        })
+                        .collect();
+                    Vector::from_components(&c).unwrap()
+                })
+                .collect();
+            let ramp = MovingBody::fixed(ContactShape::Vertices(corners), tilt.clone(), &down)
+                .unwrap()
+                .with_friction(mu)
+                .unwrap();
+            let up = tilt.rotate_vector(&axis(n, n - 1, 0.5));
+            let block = turned_cube(n, 0.5, up.as_slice(), mu, tilt.clone());
+            let mut s = System::new(vec![ramp, block]).unwrap();
+            s.add_forque(Gravity(axis(n, n - 1, -G))).unwrap();
+            let mut stepper = MotionSplitting::new();
+            let (h, steps) = (1e-3, 1000);
+            stepper.advance(&mut s, 0.0, h, steps).unwrap();
+            let t = h * steps as f64;
+            // Along the ramp, downhill.
+            let mut downhill = tilt.rotate_vector(&axis(n, 0, 1.0));
+            if downhill.as_slice()[n - 1] > 0.0 {
+                downhill = &downhill * -1.0;
+            }
+            let moved = s.bodies()[1].position() - &up;
+            let along = moved.dot(&downhill);
+            let expected = (G * (theta.sin() - mu * theta.cos())).max(0.0);
+            let acceleration = 2.0 * along / (t * t);
+            println!("N = {n}, θ = {theta_deg}°, μ = {mu}: a = {acceleration} against {expected}");
+            assert!(
+                (acceleration - expected).abs() <= 1e-3 * G,
+                "N = {n}, θ = {theta_deg}°, μ = {mu}: a = {acceleration} against {expected}"
+            );
+            // It neither sinks into the ramp nor leaves it.
+            let normal = tilt.rotate_vector(&axis(n, n - 1, 1.0));
+            assert!(
+                moved.dot(&normal).abs() < 1e-4,
+                "N = {n}: off the ramp by {}",
+                moved.dot(&normal)
+            );
+            cases += 1;
+        }
+    }
+    assert_eq!(cases, 8);
+}
