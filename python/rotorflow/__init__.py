@@ -11,11 +11,14 @@ from ._rotorflow import (
     Multivector,
     Rotor3,
     Rotor4,
+    Scene,
+    SceneRun,
     __version__,
     exact,
     simulate,
 )
 from . import cga, pga, sta
+from ._scene import scene
 
 __all__ = [
     "Algebra",
@@ -23,10 +26,13 @@ __all__ = [
     "Multivector",
     "Rotor3",
     "Rotor4",
+    "Scene",
+    "SceneRun",
     "__version__",
     "cga",
     "exact",
     "pga",
+    "scene",
     "simulate",
     "sta",
 ]

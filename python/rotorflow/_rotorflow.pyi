@@ -1,5 +1,6 @@
 """Type stubs of the extension module (the arithmetic of the Rust crate rotorflow)."""
 
+import os
 from typing import Any, Literal, Optional, Union
 
 import numpy as np
@@ -331,3 +332,33 @@ def cga_transversor(b: ArrayLike) -> Multivector: ...
 # Spacetime algebra (rotorflow.sta): elements of Algebra.spacetime().
 def sta_boost(rapidity: float, direction: ArrayLike) -> Multivector:
     """The boost of rapidity phi along a spatial direction (e2, e3, e4)."""
+
+class Scene:
+    """Bodies that move and turn together (the book's chapter "Scene files")."""
+
+    def __init__(self, path: Union[str, "os.PathLike[str]"]) -> None: ...
+    @staticmethod
+    def from_toml(text: str, name: str = "scene.toml") -> Scene: ...
+    @staticmethod
+    def from_dict(scene: dict[str, Any], name: str = "scene.toml") -> Scene:
+        """A scene from a dict with the keys of a scene file."""
+    @property
+    def dim(self) -> int: ...
+    @property
+    def t_end(self) -> float: ...
+    def default_times(self) -> Array: ...
+    def run(self, *, samples: Optional[int] = None, times: Optional[ArrayLike] = None) -> SceneRun:
+        """Runs the scene (without the GIL) and records it."""
+
+class SceneRun:
+    """A recorded run of a scene; notebooks show its animation."""
+
+    def json(self) -> str:
+        """The JSON of ``rotorflow scene --output``."""
+    def data(self) -> dict[str, Any]:
+        """The keys of ``rotorflow scene --output``, numbers as arrays."""
+    def html(self, title: Optional[str] = None) -> str:
+        """The self-contained HTML animation."""
+    def _repr_html_(self) -> str: ...
+    @property
+    def times(self) -> Array: ...

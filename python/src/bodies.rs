@@ -508,7 +508,7 @@ fn initial_body(
 }
 
 /// The sample times: `times`, or `samples` evenly spaced from 0 to `t_end`.
-fn sample_times(
+pub fn sample_times(
     times: Option<&Bound<'_, PyAny>>,
     t_end: Option<f64>,
     samples: Option<i64>,

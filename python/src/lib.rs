@@ -12,6 +12,7 @@ mod arrays;
 mod bodies;
 mod geometry;
 mod rotors;
+mod scene;
 
 /// The module: the algebra, the fixed-size rotors and the bodies.
 #[pymodule]
@@ -22,6 +23,7 @@ fn _rotorflow(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<rotors::PyRotor4>()?;
     bodies::register(m)?;
     geometry::register(m)?;
+    scene::register(m)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

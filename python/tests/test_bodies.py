@@ -40,8 +40,21 @@ def same(ours, theirs, path="report"):
         assert ours is None, path
     elif isinstance(theirs, str) or (isinstance(theirs, list) and theirs and isinstance(theirs[0], str)):
         assert ours == theirs, path
+    elif isinstance(theirs, list) and not numeric(theirs):
+        assert isinstance(ours, list) and len(ours) == len(theirs), path
+        for k, (a, b) in enumerate(zip(ours, theirs)):
+            same(a, b, f"{path}[{k}]")
     else:
         np.testing.assert_array_equal(np.asarray(ours, dtype=float), np.asarray(theirs, dtype=float), err_msg=path)
+
+
+def numeric(value):
+    """Whether a parsed JSON list is a rectangular array of numbers."""
+    try:
+        np.asarray(value, dtype=float)
+        return True
+    except (TypeError, ValueError):
+        return False
 
 
 SIMULATIONS = [
