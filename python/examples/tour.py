@@ -69,3 +69,16 @@ gap = np.abs(closed["omega"] - numeric["omega"]).max()
 print("closed form against dop853:", gap)
 assert gap < 1e-9
 # ANCHOR_END: bodies
+
+# --- Scenes: bodies that move as well as turn --------------------------------------------
+# ANCHOR: scene
+drop = rf.Scene.from_dict({
+    "dim": 3, "gravity": [0, 0, -9.81], "t_end": 1.0, "dt": 0.01,
+    "body": [{"name": "ball", "shape": "ball:3,0.5", "position": [0, 0, 2]}],
+})
+run = drop.run(samples=11)  # in a notebook, `run` shows the animation
+data = run.data()  # the keys of `rotorflow scene --output`
+z = data["bodies"][0]["position"][:, 2]
+print("free fall, z(t):", z.round(4))
+assert np.abs(z - (2.0 - 0.5 * 9.81 * data["times"] ** 2)).max() < 1e-12
+# ANCHOR_END: scene
