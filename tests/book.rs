@@ -115,8 +115,12 @@ const GENERATED: &[&str] = &[
     "long_runs_rhs.md",
     "moving_bodies.md",
     "peer_versors.md",
+    "python_bench.md",
     "step_ratio.md",
 ];
+
+/// The Python examples the book may include, each run by the pytest file beside it.
+const PYTHON_EXAMPLES: &[(&str, &str)] = &[("tour.py", "python/tests/test_tour.py")];
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -182,6 +186,21 @@ fn every_include_is_an_example_or_generated_file_that_tests_check() {
                     "{}: includes example {stem}, which tests/book.rs does not run",
                     page.display()
                 );
+            } else if canon.starts_with(root().join("python/examples")) {
+                let runner = PYTHON_EXAMPLES
+                    .iter()
+                    .find(|(example, _)| *example == name)
+                    .unwrap_or_else(|| {
+                        panic!(
+                            "{}: includes python/examples/{name}, which no pytest runs",
+                            page.display()
+                        )
+                    });
+                assert!(
+                    read(&root().join(runner.1)).contains(&name),
+                    "{} does not run {name}",
+                    runner.1
+                );
             } else if canon.starts_with(root().join("book/src/generated")) {
                 assert!(
                     GENERATED.contains(&name.as_str()),
@@ -190,7 +209,7 @@ fn every_include_is_an_example_or_generated_file_that_tests_check() {
                 );
             } else {
                 panic!(
-                    "{}: include of {target}: only examples/ and book/src/generated/ may be \
+                    "{}: include of {target}: only examples/, python/examples/ and book/src/generated/ may be \
                      included (code and numbers come from the code)",
                     page.display()
                 );
@@ -295,6 +314,21 @@ fn generated_bench_table_is_rendered_from_its_data() {
     );
     for key in ["# date: ", "# commit: ", "# machine: ", "# compiler: "] {
         assert!(data.contains(key), "bench_data.tsv lacks `{key}`");
+    }
+}
+
+/// The Python benchmark is a measurement (python/bench/bench.py writes it whole): it must say
+/// where, when and by which command it was measured, and hold both of its tables.
+#[test]
+fn generated_python_bench_says_where_it_was_measured() {
+    let text = read(&root().join("book/src/generated/python_bench.md"));
+    for key in [
+        "Measured at commit `",
+        "by `python3 python/bench/bench.py`",
+        "| operation | rotorflow | other | other's time | ratio |",
+        "| N | rotorflow | max error |",
+    ] {
+        assert!(text.contains(key), "python_bench.md lacks `{key}`");
     }
 }
 

@@ -113,6 +113,7 @@ mod multivector;
 mod nalgebra;
 mod ops;
 pub mod pga;
+mod product_table;
 mod rotor;
 #[cfg(feature = "serde")]
 mod serde_impls;
@@ -138,6 +139,7 @@ pub use fixed::{Bivector3, Bivector4, Real, Rotor3, Rotor4};
 pub use ::nalgebra::{Matrix3, Matrix4, Vector3, Vector4};
 pub use multivector::{INVERSE_TOLERANCE, Multivector, Product};
 pub use ops::Versor;
+pub use product_table::{PRODUCT_TABLE_MAX_DIM, ProductTable};
 pub use rotor::{NORMALIZE_TOLERANCE, ROTATION_TOLERANCE, ROTOR_TOLERANCE, Rotor};
 pub(crate) use rotor::{accumulate_plane_rotor, plane_table_const};
 pub use signature::Signature;

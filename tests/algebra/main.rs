@@ -13,6 +13,7 @@ mod multivector;
 mod nalgebra_interop;
 mod outermorphism;
 mod pga;
+mod product_table;
 mod properties;
 mod rotor;
 mod typed_objects;

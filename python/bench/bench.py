@@ -1,0 +1,220 @@
+"""Times the Python package beside numpy, scipy's Rotation, kingdon and clifford.
+
+One run prints a Markdown table and, with ``--output FILE``, writes it there (the book's
+"From Python" chapter includes ``book/src/generated/python_bench.md``). kingdon and clifford
+are timed where they are installed; the table says which were.
+
+    python3 python/bench/bench.py --output book/src/generated/python_bench.md
+    python3 python/bench/bench.py --quick      # fewer repetitions, same cases
+"""
+
+import argparse
+import datetime
+import importlib
+import os
+import platform
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import scipy
+import scipy.linalg
+from scipy.spatial.transform import Rotation
+
+import rotorflow as rf
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def best(fn, repeat, number):
+    """The best time of `repeat` runs of `number` calls, per call (seconds)."""
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        for _ in range(number):
+            fn()
+        times.append((time.perf_counter() - t0) / number)
+    return min(times)
+
+
+def optional(name):
+    try:
+        return importlib.import_module(name)
+    except ImportError:
+        return None
+
+
+def blade_masks(n, grade):
+    return [m for m in range(1 << n) if bin(m).count("1") == grade]
+
+
+def left_multiplication(alg, b):
+    """2^N x 2^N matrix of x -> b x, built from rotorflow's own products of basis blades; the
+    reference exponential is scipy's expm of it (scaling and squaring)."""
+    size = len(alg)
+    eye = np.eye(size)
+    return alg.product(b, eye).T
+
+
+def clifford_order(layout):
+    """For each of clifford's blades (ordered by grade), its bit mask in rotorflow's order."""
+    return [sum(1 << (i - 1) for i in blade) for blade in layout.bladeTupList]
+
+
+def fmt_time(seconds):
+    if seconds < 1e-6:
+        return f"{seconds * 1e9:.0f} ns"
+    if seconds < 1e-3:
+        return f"{seconds * 1e6:.2f} µs"
+    return f"{seconds * 1e3:.2f} ms"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--output", type=Path)
+    parser.add_argument("--quick", action="store_true")
+    args = parser.parse_args()
+    repeat = 3 if args.quick else 7
+    load = os.getloadavg()[0]
+    kingdon = optional("kingdon")
+    clifford = optional("clifford")
+    rng = np.random.default_rng(20261129)
+    rows = []  # (operation, rotorflow, other, other's time, ratio, note)
+
+    def row(op, ours, other=None, theirs=None, note=""):
+        ratio = f"{theirs / ours:.1f}×" if theirs else ""
+        rows.append((op, fmt_time(ours), other or "", fmt_time(theirs) if theirs else "", ratio, note))
+
+    # --- single calls from Python --------------------------------------------------------
+    a3 = rf.Algebra(3)
+    x, y = (a3.multivector(rng.normal(size=8)) for _ in range(2))
+    t_gp = best(lambda: x * y, repeat, 20000)
+    r = a3.bivector([0.3, -0.2, 0.5]).exp()
+    v = a3.vector([1.0, 2.0, 3.0])
+    t_sw = best(lambda: r.sandwich(v), repeat, 20000)
+    if kingdon:
+        ka = kingdon.Algebra(3)
+        kx = ka.multivector(values=x.coefficients, keys=tuple(range(8)))
+        ky = ka.multivector(values=y.coefficients, keys=tuple(range(8)))
+        row("one geometric product, 3D, full multivectors", t_gp, "kingdon", best(lambda: kx * ky, repeat, 20000))
+        kr = ka.bivector([0.3, -0.2, 0.5]).exp()
+        kv = ka.vector([1.0, 2.0, 3.0])
+        row("one sandwich R v R̃, 3D", t_sw, "kingdon", best(lambda: kr >> kv, repeat, 20000))
+    else:
+        row("one geometric product, 3D, full multivectors", t_gp)
+        row("one sandwich R v R̃, 3D", t_sw)
+    if clifford:
+        layout, blades = clifford.Cl(3)
+        cx = layout.MultiVector(x.coefficients[clifford_order(layout)])
+        cy = layout.MultiVector(y.coefficients[clifford_order(layout)])
+        row("one geometric product, 3D, full multivectors", t_gp, "clifford", best(lambda: cx * cy, repeat, 20000))
+        cr = (0.3 * blades["e12"] - 0.2 * blades["e13"] + 0.5 * blades["e23"]).exp()
+        cv = 1.0 * blades["e1"] + 2.0 * blades["e2"] + 3.0 * blades["e3"]
+        row("one sandwich R v R̃, 3D", t_sw, "clifford", best(lambda: cr * cv * ~cr, repeat, 20000))
+    r3 = rf.Rotor3.from_rotvec([0.1, 0.2, 0.3])
+    s3 = Rotation.from_rotvec([0.1, 0.2, 0.3])
+    p = np.array([1.0, 2.0, 3.0])
+    row("one vector rotation, Rotor3.apply vs Rotation.apply", best(lambda: r3.apply(p), repeat, 20000), "scipy", best(lambda: s3.apply(p), repeat, 20000))
+
+    # --- 10^6 vector rotations ------------------------------------------------------------
+    m = 1_000_000
+    pts = rng.normal(size=(m, 3))
+    t_ours = best(lambda: r3.apply(pts), repeat, 3)
+    row("10⁶ 3D vectors, one rotation", t_ours, "scipy", best(lambda: s3.apply(pts), repeat, 3))
+    mat = s3.as_matrix()
+    row("10⁶ 3D vectors, one rotation", t_ours, "numpy `pts @ Q.T`", best(lambda: pts @ mat.T, repeat, 3))
+    many = rng.normal(size=(m, 3))
+    r_many = rf.Rotor3.from_rotvec(many)
+    s_many = Rotation.from_rotvec(many)
+    row("10⁶ 3D vectors, 10⁶ rotations", best(lambda: r_many.apply(pts), repeat, 3), "scipy", best(lambda: s_many.apply(pts), repeat, 3))
+    row("compose 10⁶ rotations", best(lambda: r_many * r_many, repeat, 3), "scipy", best(lambda: s_many * s_many, repeat, 3))
+
+    # --- batched products -----------------------------------------------------------------
+    m = 100_000
+    aa, bb = rng.normal(size=(m, 8)), rng.normal(size=(m, 8))
+    t_batch = best(lambda: a3.product(aa, bb), repeat, 1) / m
+    if kingdon:
+        ka = kingdon.Algebra(3)
+        kaa = ka.multivector(values=aa.T.copy(), keys=tuple(range(8)))
+        kbb = ka.multivector(values=bb.T.copy(), keys=tuple(range(8)))
+        kaa * kbb  # generate the code once
+        row("10⁵ geometric products, 3D (per element)", t_batch, "kingdon (numpy arrays)", best(lambda: kaa * kbb, repeat, 1) / m)
+    else:
+        row("10⁵ geometric products, 3D (per element)", t_batch)
+    if clifford:
+        layout, _ = clifford.Cl(3)
+        order = clifford_order(layout)
+        k = 10_000
+        cl = [(layout.MultiVector(aa[i][order]), layout.MultiVector(bb[i][order])) for i in range(k)]
+        row("10⁵ geometric products, 3D (per element)", t_batch, "clifford (loop over 10⁴)", best(lambda: [u * w for u, w in cl], repeat, 1) / k)
+
+    # --- batched exp of bivectors, N = 4 ... 8 --------------------------------------------
+    exp_rows = []
+    for n in range(4, 9):
+        alg = rf.Algebra(n)
+        count = 100_000 if not args.quick else 20_000
+        biv = np.zeros((count, 1 << n))
+        masks = blade_masks(n, 2)
+        biv[:, masks] = rng.normal(size=(count, len(masks)))
+        t_ours = best(lambda: alg.exp(biv), max(2, repeat // 2), 1) / count
+        # Accuracy on 20 non-simple bivectors against scipy's expm of the 2^N x 2^N matrix.
+        sample = biv[:20]
+        ref = np.stack([scipy.linalg.expm(left_multiplication(alg, b))[:, 0] for b in sample])
+        err_ours = np.abs(alg.exp(sample) - ref).max()
+        note_k, t_k, err_k = "", None, None
+        if kingdon:
+            ka = kingdon.Algebra(n)
+            kb = ka.multivector(values=sample[0], keys=tuple(range(1 << n)))
+            try:
+                kb.exp()
+                note_k = "accepted"
+            except NotImplementedError:
+                note_k = "refuses non-simple bivectors"
+        t_c, err_c = None, None
+        if clifford:
+            layout, _ = clifford.Cl(n)
+            order = clifford_order(layout)
+            k = 1000 if n <= 6 else 200
+            cl = [layout.MultiVector(biv[i][order]) for i in range(k)]
+            t_c = best(lambda: [c.exp() for c in cl], 1, 1) / k
+            err_c = max(np.abs(layout.MultiVector(b[order]).exp().value - e[order]).max() for b, e in zip(sample, ref))
+        exp_rows.append((n, t_ours, err_ours, t_c, err_c, note_k))
+
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout.strip()
+    lines = [
+        f"Measured at commit `{commit}` on {datetime.date.today().isoformat()} by `python3 python/bench/bench.py`",
+        f"(Python {platform.python_version()}, numpy {np.__version__}, scipy {scipy.__version__}, "
+        f"kingdon {getattr(kingdon, '__version__', 'installed') if kingdon else 'not installed'}, "
+        f"clifford {clifford.__version__ if clifford else 'not installed'}; {os.cpu_count()} cores, "
+        f"{platform.machine()}, load average {load:.1f} at the start). Best of {repeat} "
+        "runs; ratio = other's time / rotorflow's.",
+        "",
+        "| operation | rotorflow | other | other's time | ratio |",
+        "|---|---:|---|---:|---:|",
+    ]
+    for op, ours, other, theirs, ratio, _ in rows:
+        lines.append(f"| {op} | {ours} | {other} | {theirs} | {ratio} |")
+    lines += [
+        "",
+        "Batched exponential of random (non-simple) bivectors, per element, and the largest error",
+        "against scipy's `expm` of the 2ᴺ × 2ᴺ left-multiplication matrix on 20 of them:",
+        "",
+        "| N | rotorflow | max error | clifford (loop) | max error | ratio | kingdon |",
+        "|---:|---:|---:|---:|---:|---:|---|",
+    ]
+    for n, t_ours, e_ours, t_c, e_c, note_k in exp_rows:
+        c_time = fmt_time(t_c) if t_c else "—"
+        c_err = f"{e_c:.1e}" if e_c is not None else "—"
+        ratio = f"{t_c / t_ours:.0f}×" if t_c else "—"
+        lines.append(f"| {n} | {fmt_time(t_ours)} | {e_ours:.1e} | {c_time} | {c_err} | {ratio} | {note_k or '—'} |")
+    text = "\n".join(lines) + "\n"
+    print(text)
+    if args.output:
+        args.output.write_text(text, encoding="utf-8")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
