@@ -732,6 +732,7 @@ impl Solver {
         let mut old = std::mem::take(&mut self.pairs);
         let mut rows = std::mem::take(&mut self.spare_pairs);
         rows.clear();
+        let mut cursor = 0;
         for c in found {
             let (a, b) = (c.a, c.b);
             let mut row = PairRow::new(
@@ -750,9 +751,12 @@ impl Solver {
             };
             row.own_a = own(a, &row.ra);
             row.own_b = own(b, &row.rb);
-            let same = old
-                .iter()
-                .position(|r| r.a == a && r.b == b && r.feature == c.feature)
+            // Detection lists the points in about the order of the last solve: the search
+            // starts where the last match was, so that matching stays linear in the rows.
+            let matches = |r: &PairRow| r.a == a && r.b == b && r.feature == c.feature;
+            let same = (cursor..old.len())
+                .chain(0..cursor.min(old.len()))
+                .find(|&k| matches(&old[k]))
                 .or_else(|| {
                     // A point of the pair whose features changed (or a curved pair's single
                     // point): the nearest of the last solve's points of the pair.
@@ -766,6 +770,7 @@ impl Solver {
                         .map(|(k, _)| k)
                 });
             if let Some(k) = same {
+                cursor = k + 1;
                 let last = &mut old[k];
                 // The normal turns little between solves: keep the impulse along the new one
                 // and the tangent part of the old friction impulse. A point matched once
