@@ -91,6 +91,10 @@ const PAIR_POSITION_LIMIT: f64 = 1e3;
 /// Fixed-point iterations of an implicit closing kick, at most.
 const MAX_KICK_ITERATIONS: usize = 50;
 
+/// How closely (relative to the rest of the step) an impact is located in time when the
+/// least gap jumps (another pair becomes the nearest) instead of crossing zero.
+const LOCATE_WIDTH: f64 = 1e-6;
+
 /// Impacts located within one step, at most (then the rest of the step is resting contact).
 const MAX_EVENTS: usize = 16;
 
@@ -443,7 +447,12 @@ impl MotionSplitting {
             }
             self.pair_distances.clear();
             for row in &self.solver.pairs {
-                let d = pair_distance(row, bodies);
+                // A point that starts the flight overlapping (beyond touching) is let out by
+                // the velocity solve at the resting speed; the position step only keeps it
+                // from going deeper. Closing it here would throw the bodies apart at
+                // depth / h, and h is as short as a located impact makes it.
+                let floor = if row.gap < -row.reach { row.gap } else { 0.0 };
+                let d = pair_distance(row, bodies) - floor;
                 // Points within the pair's touching distance hold: a gap of round-off size
                 // left by the last step is not pushed on again.
                 let tolerance = row.reach;
@@ -685,10 +694,19 @@ impl MotionSplitting {
             let (mut b, mut fb) = (remaining, f_end);
             let mut side = 0i8;
             let mut s = remaining;
-            for _ in 0..100 {
+            for iteration in 0..100 {
+                // Regula falsi (Illinois), every third try a bisection: with several bodies
+                // the least gap jumps where another pair becomes the nearest, and there the
+                // bracket must still shrink.
                 s = (a * fb - b * fa) / (fb - fa);
-                if !(s > a && s < b) {
+                if !(s > a && s < b) || iteration % 3 == 2 {
                     s = 0.5 * (a + b);
+                }
+                if b - a <= LOCATE_WIDTH * remaining {
+                    // The impact is located to within this; the substep ends where the
+                    // bodies have just met.
+                    s = b;
+                    break;
                 }
                 if s <= 1e-9 * remaining {
                     // Entering at once (an overlap that the step's own contacts push a body

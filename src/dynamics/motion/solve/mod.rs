@@ -343,14 +343,17 @@ impl Solver {
         // consecutive), each from setup to record while its rows' matrices are in cache; with
         // joints or contacts between bodies, everything is one problem.
         let coupled = !self.joints.is_empty() || !self.pairs.is_empty();
+        // Every row's target is set from the velocities before any warm start: a target
+        // read after other rows' starting impulses (an impact's −e u⁻ above all) would
+        // return their impulses as energy.
         for pair in &mut self.pairs {
             let resting = resting_speed[pair.a].max(resting_speed[pair.b]);
             pair.prepare(&self.states, resting, 2.0 * kick);
             pair.normal_impulse *= warm_scale;
             pair.friction_impulse *= warm_scale;
-            pair.apply_accumulated(&mut self.states);
         }
         if rows == 0 {
+            self.warm_start_pairs();
             self.sweep_rows::<0>(0..0, true, half_spaces, &layout);
         }
         let last = std::mem::take(&mut self.warm);
@@ -418,6 +421,10 @@ impl Solver {
         let layout = &RowLayout::new(dim::<N>(group.layout.n));
         let (range, half_spaces) = (group.range.clone(), group.half_spaces);
         self.prepare_rows::<N>(range.clone(), half_spaces, resting_speed, layout);
+        if group.coupled {
+            // All rows are one group: the contact rows' targets are set, the pairs' were.
+            self.warm_start_pairs();
+        }
         self.warm_start::<N>(
             range.clone(),
             (last, cursor),
@@ -428,6 +435,14 @@ impl Solver {
         self.sweep_rows::<N>(range.clone(), group.coupled, half_spaces, layout);
         if let Some(record) = record {
             self.record_rows::<N>(range, half_spaces, layout, record);
+        }
+    }
+
+    /// Gives the pairs' starting impulses (set by [`PairRow::prepare`]'s caller) to the
+    /// loaded states.
+    fn warm_start_pairs(&mut self) {
+        for pair in &self.pairs {
+            pair.apply_accumulated(&mut self.states);
         }
     }
 
