@@ -20,7 +20,7 @@ fn example_scenes() -> Vec<std::path::PathBuf> {
 #[test]
 fn the_command_writes_what_the_library_records() {
     let files = example_scenes();
-    assert_eq!(files.len(), 9, "{files:?}");
+    assert_eq!(files.len(), 10, "{files:?}");
     for file in &files {
         let dir = tempfile::tempdir().unwrap();
         rotorflow()

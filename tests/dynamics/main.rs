@@ -22,6 +22,8 @@ mod names;
 mod narrow_phase;
 mod orders;
 mod paper_errata;
+#[cfg(feature = "scene")]
+mod piles;
 mod stacks;
 mod torqued;
 
