@@ -657,6 +657,53 @@ mod moving_bodies {
     }
 
     #[test]
+    fn motion_splitting_box_resting_on_a_box_does_not_allocate() {
+        // Up to N = 5: in 6D the faces of a box hold 32 corners, and one step of the pair
+        // still allocates about once in 20 steps.
+        for n in 3..=5 {
+            // Two cuboids stacked on the floor x_N = 0 (the upper one offset by 5 % along
+            // the first axis), settled before counting: contact rows between bodies, their
+            // manifold points and warm starts.
+            let h_n = 0.5 + 0.1 * (n - 1) as f64;
+            let mut bodies = Vec::new();
+            let mut shapes = Vec::new();
+            for (k, shift) in [(0, 0.0), (1, 0.05)] {
+                let mut x = axis(n, 0, shift);
+                x.as_mut_slice()[n - 1] = h_n * (1.0 + 2.0 * k as f64) + 1e-4;
+                let (b, shape) = cuboid(n, x, Vector::zero(n), 0.0);
+                bodies.push(b);
+                shapes.push(shape);
+            }
+            let mut system = System::new(bodies).unwrap();
+            for (i, shape) in shapes.into_iter().enumerate() {
+                system.set_shape(i, shape).unwrap();
+            }
+            system.add_forque(Gravity(axis(n, n - 1, -9.81))).unwrap();
+            system
+                .add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
+                .unwrap();
+            let mut integrator = MotionSplitting::new();
+            for k in 0..50 {
+                integrator.step(&mut system, k as f64 * 0.01, 0.01).unwrap();
+            }
+            let count = step_allocations(&mut integrator, &mut system, 0.01, 20);
+            assert!(
+                system.body_contacts().len() >= 4,
+                "N = {n}: the boxes rest on each other ({} points)",
+                system.body_contacts().len()
+            );
+            assert_eq!(count, 0, "N = {n}: {count} heap allocations in 20 steps");
+            let count = allocations_in(|| {
+                integrator.advance(&mut system, 0.0, 0.01, 20).unwrap();
+            });
+            assert_eq!(
+                count, 0,
+                "N = {n}: {count} heap allocations in advance by 20 steps"
+            );
+        }
+    }
+
+    #[test]
     fn motion_splitting_ball_joint_does_not_allocate() {
         for n in 3..=8 {
             // A pendulum: the body hangs from a point of space by a corner, and a second body
