@@ -7,10 +7,10 @@ use super::spec::ParsedBody;
 use clap::{Args, ValueEnum};
 use nalgebra::DMatrix;
 use rotorflow::algebra::{Bivector, bivector_len};
-use rotorflow::dynamics::torques::{BodyFrame, Free, LinearDamping, SpaceFrame};
 use rotorflow::dynamics::report::{
     Report as LibraryReport, ReportError, SampleError, Stepper, sample_states,
 };
+use rotorflow::dynamics::torques::{BodyFrame, Free, LinearDamping, SpaceFrame};
 use rotorflow::dynamics::{
     Attitude, Dop853, Dopri5, Drift, LiePoissonRk4, Midpoint, MoserVeselov, RigidBody, Rkmk4,
     Splitting, Torque,
@@ -385,7 +385,6 @@ pub fn integrate(
     })?;
     Ok((states, steps))
 }
-
 
 /// [`integrate`] handing each state to `sink` in time order instead of keeping them, and
 /// returning the number of steps taken.

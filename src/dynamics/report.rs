@@ -13,7 +13,7 @@
 //! use rotorflow::inertia::InertiaMap;
 //! use rotorflow::algebra::Bivector;
 //!
-//! let inertia = InertiaMap::from_principal_moments(&[1.0, 2.0, 3.0])?;
+//! let inertia = InertiaMap::from_principal_second_moments(&[1.0, 2.0, 3.0])?;
 //! let w = Bivector::from_components(3, &[0.1, 1.0, 0.2])?;
 //! let start = RigidBody::from_body_velocity(inertia, Attitude::identity(3), &w)?;
 //! let times = [0.0, 0.5, 1.0];
