@@ -28,7 +28,11 @@ class Motion(dict):
         return f'<iframe srcdoc="{page}" style="width: 100%; height: 520px; border: none"></iframe>'
 
     def __reduce__(self):
-        return (Motion, (dict(self), self.body))
+        # A body given as a SPEC travels with the numbers; a Body object (which does not
+        # pickle) leaves a plain dict of them.
+        if isinstance(self.body, str):
+            return (Motion, (dict(self), self.body))
+        return (dict, (dict(self),))
 
 
 def animation_html(result, body=None, *, title=None):

@@ -4,6 +4,7 @@ motion against conserved quantities and scipy's ODE solver."""
 import json
 import math
 import os
+import pickle
 import subprocess
 from pathlib import Path
 
@@ -220,3 +221,9 @@ def test_simulate_results_show_as_the_animation_of_the_body():
         rf.motion_html(body, exact["times"][:3], exact["attitude"])
     flat = rf.simulate(rf.Body.cuboid([1, 2]), omega=[1.0], t_end=1.0, samples=3)
     assert len(page_data(flat.html())["frames"][0]) == 9
+    # Pickled: with its SPEC, or as the plain dict of numbers when the body is an object.
+    again = pickle.loads(pickle.dumps(exact))
+    assert type(again) is rf.Motion and again.body == "cuboid:1,2,3" and again.html() == exact.html()
+    plain = pickle.loads(pickle.dumps(result))
+    assert type(plain) is dict and set(plain) == KEYS
+    np.testing.assert_array_equal(plain["attitude"], result["attitude"])
