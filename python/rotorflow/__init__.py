@@ -14,23 +14,26 @@ from ._rotorflow import (
     Scene,
     SceneRun,
     __version__,
-    exact,
-    simulate,
+    motion_html,
 )
 from . import cga, pga, sta
+from ._motion import Motion, animation_html, exact, simulate
 from ._scene import scene
 
 __all__ = [
     "Algebra",
     "Body",
+    "Motion",
     "Multivector",
     "Rotor3",
     "Rotor4",
     "Scene",
     "SceneRun",
     "__version__",
+    "animation_html",
     "cga",
     "exact",
+    "motion_html",
     "pga",
     "scene",
     "simulate",

@@ -298,6 +298,16 @@ def exact(
 ) -> dict[str, Any]:
     """The closed-form motion, with the keys of ``rotorflow exact --json``."""
 
+def motion_html(
+    body: Union[Body, str],
+    times: ArrayLike,
+    attitude: ArrayLike,
+    *,
+    title: Optional[str] = None,
+) -> str:
+    """The HTML animation of ``body`` turning through K rotation matrices (K, N, N) at K
+    times (the page of ``rotorflow render --output FILE.html``)."""
+
 # Projective GA (rotorflow.pga): elements of Algebra.pga(n).
 def pga_point(x: ArrayLike) -> Multivector:
     """The point at Euclidean coordinates x."""

@@ -2,9 +2,9 @@
 //! torqued rotation: `simulate` and `exact` return what `rotorflow simulate --json` and
 //! `rotorflow exact --json` print, key for key, with the numbers as numpy arrays.
 //!
-//! The command builds its reports in the binary; the steps below are the same library calls
-//! in the same order (the initial body, the default step, the blocks of samples, the report
-//! in the body's own axes), and a test compares the two outputs number for number.
+//! The blocks of samples and the report in the body's own axes are the crate's
+//! (`rotorflow::dynamics::report`), the code the command runs; a test compares the two
+//! outputs number for number.
 
 use crate::arrays::value_error;
 use numpy::PyUntypedArrayMethods;
@@ -13,17 +13,24 @@ use pyo3::exceptions::{PyFileNotFoundError, PyRuntimeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use rotorflow::algebra::{Bivector, bivector_len, pairs, plane_name};
+use rotorflow::dynamics::report::{
+    Report, ReportError, SampleError, State, Stepper, sample_states,
+};
 use rotorflow::dynamics::torques::{BodyFrame, Free, LinearDamping, SpaceFrame};
 use rotorflow::dynamics::trajectory::even_times;
 use rotorflow::dynamics::{
-    Attitude, Dop853, Dopri5, Drift, DynamicsError, Integrator, Invariants, LiePoissonRk4,
-    Midpoint, MoserVeselov, RigidBody, Rkmk4, Splitting, Torque, simulate as integrate,
+    Attitude, Dop853, Dopri5, DynamicsError, Integrator, LiePoissonRk4, Midpoint, MoserVeselov,
+    RigidBody, Rkmk4, Splitting, Torque,
 };
 use rotorflow::inertia::spec::{Geometry, ParsedBody, SpecError, parse_body_with, parse_number};
 use rotorflow::inertia::tensor::{ContractedInertia, ContractionNormalization, RankFourTensor};
 use rotorflow::inertia::{Body, InertiaMap};
 use rotorflow::nalgebra::{DMatrix, DVector};
+use rotorflow::viz::Projection;
+use rotorflow::viz::Shape;
+use rotorflow::viz::html::{Animation, animation_html};
 use std::cell::Cell;
+use std::convert::Infallible;
 use std::path::Path;
 
 /// Adds the bodies' class and functions to the module.
@@ -31,6 +38,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyBody>()?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(exact, m)?)?;
+    m.add_function(wrap_pyfunction!(motion_html, m)?)?;
     Ok(())
 }
 
@@ -700,13 +708,18 @@ fn torque(text: Option<&str>, body: &RigidBody, axial: bool) -> PyResult<Box<dyn
     }
 }
 
-/// One state: attitude (principal frame → space) and body-frame momentum (principal frame).
-type State = (Attitude, Bivector);
-
 /// A failure of a run: bad input (`ValueError`) or a failure of the integration.
 enum RunError {
     Input(String),
     Runtime(String),
+}
+
+impl std::fmt::Display for RunError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            RunError::Input(m) | RunError::Runtime(m) => f.write_str(m),
+        }
+    }
 }
 
 impl From<RunError> for PyErr {
@@ -716,12 +729,6 @@ impl From<RunError> for PyErr {
             RunError::Runtime(m) => PyRuntimeError::new_err(m),
         }
     }
-}
-
-/// Samples per block: about a hundredth of them, at most 128 (the command's blocks, which
-/// restart the integration from the last state of each).
-fn sample_block_len(samples: usize) -> usize {
-    samples.div_ceil(100).clamp(1, 128)
 }
 
 fn fixed_integrator(kind: &str) -> Box<dyn Integrator> {
@@ -738,149 +745,92 @@ fn fixed_integrator(kind: &str) -> Box<dyn Integrator> {
     }
 }
 
-/// The states of `body` at `times` under `torque`.
-fn integrate_states(
+/// The crate's report of the states at `times` of the motion that starts as `start` (the
+/// command's own code path).
+fn report(
+    start: &RigidBody,
+    times: &[f64],
+    states: impl IntoIterator<Item = Result<State, RunError>>,
+) -> Result<Report, RunError> {
+    Report::from_states(start, times, states).map_err(|e| match e {
+        ReportError::State(e) => e,
+        other => RunError::Runtime(other.to_string()),
+    })
+}
+
+/// The report of `body` integrated under `torque` to every time of `times`, through the
+/// crate's blocks of samples (as the command).
+fn integrate_report(
     body: &RigidBody,
     torque: &dyn Torque,
     stepping: Stepping,
     times: &[f64],
-) -> Result<Vec<State>, RunError> {
+) -> Result<Report, RunError> {
     let fail = |e: DynamicsError| match e {
         DynamicsError::NonPhysicalInertia { .. } | DynamicsError::NoDiscreteSolution { .. } => {
             RunError::Input(format!("integration failed: {e}"))
         }
         _ => RunError::Runtime(format!("integration failed: {e}")),
     };
-    let not_finite =
-        || RunError::Runtime("integration failed: the state is no longer finite; reduce dt".into());
-    let mut fixed = None;
-    let mut dopri5 = None;
-    let mut dop853 = None;
-    match stepping {
-        Stepping::Fixed { kind, .. } => fixed = Some(fixed_integrator(kind)),
-        Stepping::Dopri5 { rtol, atol } => dopri5 = Some(Dopri5::new(rtol, atol)),
+    let mut stepper = match stepping {
+        Stepping::Fixed { kind, dt } => Stepper::Fixed {
+            integrator: fixed_integrator(kind),
+            dt,
+        },
+        Stepping::Dopri5 { rtol, atol } => Stepper::Dopri5(Dopri5::new(rtol, atol)),
         Stepping::Dop853 { rtol, atol } => {
-            dop853 = Some(Box::new(Dop853::new(rtol, atol).map_err(fail)?));
+            Stepper::Dop853(Box::new(Dop853::new(rtol, atol).map_err(fail)?))
         }
-    }
-    let mut states = Vec::with_capacity(times.len());
-    let mut current = body.clone();
-    let mut t0 = 0.0;
-    for block in times.chunks(sample_block_len(times.len())) {
-        let relative: Vec<f64> = block.iter().map(|t| t - t0).collect();
-        let block_states: Vec<State> =
-            if let (Some(integrator), Stepping::Fixed { dt, .. }) = (fixed.as_mut(), stepping) {
-                let traj = integrate(&current, integrator.as_mut(), torque, dt, &relative)
-                    .map_err(fail)?;
-                traj.samples()
-                    .iter()
-                    .map(|s| (s.attitude.clone(), s.momentum.clone()))
-                    .collect()
-            } else if let Some(d) = dopri5.as_mut() {
-                d.dense_samples(&current, torque, &relative).map_err(fail)?
-            } else if let Some(d) = dop853.as_mut() {
-                d.dense_samples(&current, torque, &relative).map_err(fail)?
-            } else {
-                unreachable!("one integrator is set")
-            };
-        if block_states
-            .iter()
-            .any(|(r, l)| l.as_slice().iter().any(|x| !x.is_finite()) || !r.is_finite())
-        {
-            return Err(not_finite());
-        }
-        if let Some((r, l)) = block_states.last() {
-            current
-                .set_state(r.clone(), l.clone())
-                .map_err(|_| not_finite())?;
-            t0 = *block.last().expect("chunks are not empty");
-        }
-        states.extend(block_states);
-    }
-    Ok(states)
-}
-
-/// A trajectory as the command reports it: everything in the body's own axes.
-struct Report {
-    dim: usize,
-    times: Vec<f64>,
-    omega: Vec<f64>,
-    momentum: Vec<f64>,
-    energy: Vec<f64>,
-    casimirs: Vec<f64>,
-    attitude: Vec<f64>,
-    drift: Drift,
-    manakov_drift: Vec<f64>,
-}
-
-fn report(start: &RigidBody, times: &[f64], states: Vec<State>) -> Result<Report, RunError> {
-    let n = start.dim();
-    let reference = Invariants::of(start);
-    let rp = start.principal_frame().clone();
-    let rp_rev = rp.inverse();
-    let mut r = Report {
-        dim: n,
-        times: times.to_vec(),
-        omega: Vec::new(),
-        momentum: Vec::new(),
-        energy: Vec::new(),
-        casimirs: Vec::new(),
-        attitude: Vec::new(),
-        drift: Drift::default(),
-        manakov_drift: vec![0.0; reference.manakov.len()],
     };
-    let mut b = start.clone();
-    for (attitude, l) in states {
-        b.set_state(attitude, l)
-            .map_err(|e| RunError::Runtime(format!("the motion cannot be evaluated: {e}")))?;
-        let inv = Invariants::of(&b);
-        r.drift = r.drift.max(inv.drift_from(&reference));
-        for (worst, m) in r
-            .manakov_drift
-            .iter_mut()
-            .zip(inv.manakov_drifts(&reference))
-        {
-            *worst = worst.max(m);
+    let mut states = Vec::with_capacity(times.len());
+    sample_states(body, torque, &mut stepper, times, &mut |block| {
+        states.extend(block);
+        Ok::<(), Infallible>(())
+    })
+    .map_err(|e| match e {
+        SampleError::Integration(e) => fail(e),
+        SampleError::NotFinite => {
+            RunError::Runtime("integration failed: the state is no longer finite; reduce dt".into())
         }
-        r.omega
-            .extend_from_slice(rp.rotate_bivector(&b.omega()).as_slice());
-        r.momentum
-            .extend_from_slice(rp.rotate_bivector(b.momentum()).as_slice());
-        r.energy.push(inv.energy);
-        r.casimirs.extend_from_slice(&inv.casimirs);
-        let m = b.principal_frame_attitude().compose(&rp_rev).to_matrix();
-        r.attitude.extend_from_slice(m.transpose().as_slice());
-    }
-    if r.energy.len() != times.len() {
-        return Err(RunError::Runtime("fewer states than sample times".into()));
-    }
-    Ok(r)
+        SampleError::Sink(never) => match never {},
+    })?;
+    report(body, times, states.into_iter().map(Ok))
 }
 
-impl Report {
-    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let (n, k) = (self.dim, self.times.len());
-        let b = bivector_len(n);
-        let d = PyDict::new(py);
-        d.set_item("dim", n)?;
-        d.set_item("planes", PyList::new(py, plane_names(n))?)?;
-        d.set_item("times", array(py, self.times.clone(), &[k]))?;
-        d.set_item("omega", array(py, self.omega.clone(), &[k, b]))?;
-        d.set_item("momentum", array(py, self.momentum.clone(), &[k, b]))?;
-        d.set_item("energy", array(py, self.energy.clone(), &[k]))?;
-        d.set_item("casimirs", array(py, self.casimirs.clone(), &[k, n / 2]))?;
-        d.set_item("attitude", array(py, self.attitude.clone(), &[k, n, n]))?;
-        let drift = PyDict::new(py);
-        drift.set_item("energy", self.drift.energy)?;
-        drift.set_item("casimirs", self.drift.casimirs)?;
-        drift.set_item(
-            "manakov",
-            array(py, self.manakov_drift.clone(), &[self.manakov_drift.len()]),
-        )?;
-        drift.set_item("space_momentum", self.drift.space_momentum)?;
-        d.set_item("drift", drift)?;
-        Ok(d)
-    }
+/// The report as a dict with the keys of the command's JSON, the numbers as arrays.
+fn report_dict<'py>(py: Python<'py>, r: &Report) -> PyResult<Bound<'py, PyDict>> {
+    let (n, k) = (r.dim, r.times.len());
+    let b = bivector_len(n);
+    let flat = |v: &[Bivector]| -> Vec<f64> {
+        v.iter()
+            .flat_map(|x| x.as_slice().iter().copied())
+            .collect()
+    };
+    let d = PyDict::new(py);
+    d.set_item("dim", n)?;
+    d.set_item("planes", PyList::new(py, r.planes())?)?;
+    d.set_item("times", array(py, r.times.clone(), &[k]))?;
+    d.set_item("omega", array(py, flat(&r.omega), &[k, b]))?;
+    d.set_item("momentum", array(py, flat(&r.momentum), &[k, b]))?;
+    d.set_item("energy", array(py, r.energy.clone(), &[k]))?;
+    d.set_item("casimirs", array(py, r.casimirs.concat(), &[k, n / 2]))?;
+    // Row-major matrices: the transposes' column-major entries.
+    let attitude: Vec<f64> = r
+        .attitude
+        .iter()
+        .flat_map(|m| m.transpose().as_slice().to_vec())
+        .collect();
+    d.set_item("attitude", array(py, attitude, &[k, n, n]))?;
+    let drift = PyDict::new(py);
+    drift.set_item("energy", r.drift.energy)?;
+    drift.set_item("casimirs", r.drift.casimirs)?;
+    drift.set_item(
+        "manakov",
+        array(py, r.manakov_drift.clone(), &[r.manakov_drift.len()]),
+    )?;
+    drift.set_item("space_momentum", r.drift.space_momentum)?;
+    d.set_item("drift", drift)?;
+    Ok(d)
 }
 
 /// Integrates the rotation of a body and returns the keys of `rotorflow simulate --json`:
@@ -909,11 +859,8 @@ fn simulate<'py>(
     let torque = self::torque(torque, &start, axial)?;
     let end = times.last().copied().unwrap_or(0.0);
     let stepping = stepping(integrator, dt, rtol, atol, &start, end)?;
-    let result = py.detach(|| {
-        let states = integrate_states(&start, torque.as_ref(), stepping, &times)?;
-        report(&start, &times, states)
-    })?;
-    result.to_dict(py)
+    let result = py.detach(|| integrate_report(&start, torque.as_ref(), stepping, &times))?;
+    report_dict(py, &result)
 }
 
 /// The closed-form motion of a body, with the keys of `rotorflow exact --json` (those of
@@ -945,18 +892,73 @@ fn exact<'py>(
         e => value_error(format!("no closed-form solution for this body: {e}")),
     })?;
     let result = py.detach(|| {
-        let states = times
-            .iter()
-            .map(|&t| {
-                let fail =
-                    |e: DynamicsError| RunError::Runtime(format!("closed form at t = {t}: {e}"));
-                Ok((
-                    solution.attitude_at(t).map_err(fail)?,
-                    solution.momentum_at(t).map_err(fail)?,
-                ))
-            })
-            .collect::<Result<Vec<State>, RunError>>()?;
+        let states = times.iter().map(|&t| {
+            let fail = |e: DynamicsError| RunError::Runtime(format!("closed form at t = {t}: {e}"));
+            Ok((
+                solution.attitude_at(t).map_err(fail)?,
+                solution.momentum_at(t).map_err(fail)?,
+            ))
+        });
         report(&start, &times, states)
     })?;
-    result.to_dict(py)
+    report_dict(py, &result)
+}
+
+/// The crate's self-contained HTML animation (`rotorflow::viz::html`, the page of
+/// `rotorflow render --output FILE.html`) of `body` turning through `attitude` (K rotation
+/// matrices, body's own axes → space, row-major as in the reports) at `times`.
+#[pyfunction]
+#[pyo3(signature = (body, times, attitude, *, title = None))]
+fn motion_html(
+    body: BodyArg<'_>,
+    times: &Bound<'_, PyAny>,
+    attitude: &Bound<'_, PyAny>,
+    title: Option<&str>,
+) -> PyResult<String> {
+    let parsed = body.parsed()?;
+    let n = parsed.dim;
+    let times = list(times, "times")?;
+    let rows = crate::arrays::Rows::new(attitude, &[n, n], "attitude")?;
+    if rows.count != times.len() || rows.single {
+        return Err(value_error(format!(
+            "attitude: expected {} matrices of {n} × {n} (one per time), got {}",
+            times.len(),
+            if rows.single { 1 } else { rows.count }
+        )));
+    }
+    let mut shape = Shape::of_body(&parsed);
+    let mut matrices: Vec<DMatrix<f64>> = rows
+        .data()
+        .chunks_exact(n * n)
+        .map(|m| DMatrix::from_row_slice(n, n, m))
+        .collect();
+    if n < 3 {
+        // A body of fewer than three dimensions is drawn in the first axes of 3D space.
+        shape.points = shape
+            .points
+            .iter()
+            .map(|p| {
+                let mut q = p.clone();
+                q.resize(3, 0.0);
+                q
+            })
+            .collect();
+        shape.dim = 3;
+        matrices = matrices
+            .iter()
+            .map(|m| {
+                let mut e = DMatrix::identity(3, 3);
+                e.view_mut((0, 0), (n, n)).copy_from(m);
+                e
+            })
+            .collect();
+    }
+    Ok(animation_html(&Animation {
+        title: title.unwrap_or(&parsed.spec),
+        shape: &shape,
+        times: &times,
+        matrices: &matrices,
+        axes: [0, 1, 2],
+        projection: Projection::Perspective,
+    }))
 }

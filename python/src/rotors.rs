@@ -39,101 +39,70 @@ pub trait Fixed: Copy + Send + Sync + 'static {
     fn multivector(self) -> Multivector;
 }
 
-impl Fixed for Rotor3 {
-    const N: usize = 3;
-    const B: usize = 3;
-    fn identity() -> Self {
-        Rotor3::identity()
-    }
-    fn from_bivector(c: &[f64]) -> Self {
-        Rotor3::from_rotation_bivector(Bivector3::new(c[0], c[1], c[2]))
-    }
-    fn bivector(self, out: &mut [f64]) {
-        out.copy_from_slice(&self.rotation_bivector().to_array());
-    }
-    fn from_matrix(m: &[f64]) -> Result<Self, AlgebraError> {
-        Rotor3::from_matrix(&Matrix3::from_row_slice(m))
-    }
-    fn matrix(self, out: &mut [f64]) {
-        out.copy_from_slice(self.to_matrix().transpose().as_slice());
-    }
-    fn rotate(self, v: &[f64], out: &mut [f64]) {
-        let x = self.rotate_vector(Vector3::new(v[0], v[1], v[2]));
-        out.copy_from_slice(x.as_slice());
-    }
-    fn rotate_all(self, vectors: &mut [f64]) {
-        self.rotate_vectors(bytemuck::cast_slice_mut::<f64, Vector3<f64>>(vectors));
-    }
-    fn compose(self, other: Self) -> Self {
-        Rotor3::compose(self, other)
-    }
-    fn inverse(self) -> Self {
-        Rotor3::inverse(self)
-    }
-    fn slerp(self, other: Self, t: f64) -> Self {
-        Rotor3::slerp(self, other, t)
-    }
-    fn magnitude(self) -> f64 {
-        canonical(self).rotation_bivector().norm()
-    }
-    fn unit_error(self) -> f64 {
-        Rotor3::unit_error(self)
-    }
-    fn text(self) -> String {
-        self.to_string()
-    }
-    fn multivector(self) -> Multivector {
-        Multivector::from(&self.to_rotor())
-    }
+/// `Fixed` for one of the crate's fixed-size rotors: the crate's own methods under the
+/// trait's names; `$magnitude` is |Θ| of a rotor.
+macro_rules! impl_fixed {
+    ($rotor:ident, $vector:ident, $matrix:ident, $bivector:ident, $n:literal, $b:literal, $magnitude:expr) => {
+        impl Fixed for $rotor {
+            const N: usize = $n;
+            const B: usize = $b;
+            fn identity() -> Self {
+                $rotor::identity()
+            }
+            fn from_bivector(c: &[f64]) -> Self {
+                let c: [f64; $b] = c.try_into().expect("B components, checked by the caller");
+                $rotor::from_rotation_bivector($bivector::from_array(c))
+            }
+            fn bivector(self, out: &mut [f64]) {
+                out.copy_from_slice(&self.rotation_bivector().to_array());
+            }
+            fn from_matrix(m: &[f64]) -> Result<Self, AlgebraError> {
+                $rotor::from_matrix(&$matrix::from_row_slice(m))
+            }
+            fn matrix(self, out: &mut [f64]) {
+                out.copy_from_slice(self.to_matrix().transpose().as_slice());
+            }
+            fn rotate(self, v: &[f64], out: &mut [f64]) {
+                let x = self.rotate_vector($vector::from_column_slice(v));
+                out.copy_from_slice(x.as_slice());
+            }
+            fn rotate_all(self, vectors: &mut [f64]) {
+                self.rotate_vectors(bytemuck::cast_slice_mut::<f64, $vector<f64>>(vectors));
+            }
+            fn compose(self, other: Self) -> Self {
+                $rotor::compose(self, other)
+            }
+            fn inverse(self) -> Self {
+                $rotor::inverse(self)
+            }
+            fn slerp(self, other: Self, t: f64) -> Self {
+                $rotor::slerp(self, other, t)
+            }
+            fn magnitude(self) -> f64 {
+                let magnitude: fn(Self) -> f64 = $magnitude;
+                magnitude(self)
+            }
+            fn unit_error(self) -> f64 {
+                $rotor::unit_error(self)
+            }
+            fn text(self) -> String {
+                self.to_string()
+            }
+            fn multivector(self) -> Multivector {
+                Multivector::from(&self.to_rotor())
+            }
+        }
+    };
 }
 
-impl Fixed for Rotor4 {
-    const N: usize = 4;
-    const B: usize = 6;
-    fn identity() -> Self {
-        Rotor4::identity()
-    }
-    fn from_bivector(c: &[f64]) -> Self {
-        Rotor4::from_rotation_bivector(Bivector4::new(c[0], c[1], c[2], c[3], c[4], c[5]))
-    }
-    fn bivector(self, out: &mut [f64]) {
-        out.copy_from_slice(&self.rotation_bivector().to_array());
-    }
-    fn from_matrix(m: &[f64]) -> Result<Self, AlgebraError> {
-        Rotor4::from_matrix(&Matrix4::from_row_slice(m))
-    }
-    fn matrix(self, out: &mut [f64]) {
-        out.copy_from_slice(self.to_matrix().transpose().as_slice());
-    }
-    fn rotate(self, v: &[f64], out: &mut [f64]) {
-        let x = self.rotate_vector(Vector4::new(v[0], v[1], v[2], v[3]));
-        out.copy_from_slice(x.as_slice());
-    }
-    fn rotate_all(self, vectors: &mut [f64]) {
-        self.rotate_vectors(bytemuck::cast_slice_mut::<f64, Vector4<f64>>(vectors));
-    }
-    fn compose(self, other: Self) -> Self {
-        Rotor4::compose(self, other)
-    }
-    fn inverse(self) -> Self {
-        Rotor4::inverse(self)
-    }
-    fn slerp(self, other: Self, t: f64) -> Self {
-        Rotor4::slerp(self, other, t)
-    }
-    fn magnitude(self) -> f64 {
-        self.rotation_bivector().norm()
-    }
-    fn unit_error(self) -> f64 {
-        Rotor4::unit_error(self)
-    }
-    fn text(self) -> String {
-        self.to_string()
-    }
-    fn multivector(self) -> Multivector {
-        Multivector::from(&self.to_rotor())
-    }
-}
+// In 3D the magnitude is the rotation's angle in [0, π], as scipy's (R and −R alike); in
+// 4D the norm of the rotor's own rotation bivector.
+impl_fixed!(Rotor3, Vector3, Matrix3, Bivector3, 3, 3, |r| canonical(r)
+    .rotation_bivector()
+    .norm());
+impl_fixed!(Rotor4, Vector4, Matrix4, Bivector4, 4, 6, |r| r
+    .rotation_bivector()
+    .norm());
 
 /// One rotor (`single`) or a batch of them.
 #[derive(Clone)]
@@ -376,6 +345,131 @@ fn unit_quaternion(q: [f64; 4]) -> Result<Rotor3, String> {
     Ok(unit)
 }
 
+/// The `#[pymethods]` of a rotor class: its own methods (`$own`) and those that the two
+/// classes share through [`Batch`]. PyO3 takes one `#[pymethods]` block per class, hence a
+/// macro rather than a second block. The literals are the docstrings that name the shapes.
+macro_rules! rotor_methods {
+    (
+        $class:ident, $rotor:ident, $name:literal,
+        bivector: $bivector_doc:literal,
+        apply: $apply_doc:literal,
+        magnitude: $magnitude_doc:literal,
+        multivector: $multivector_doc:literal,
+        { $($own:tt)* }
+    ) => {
+        #[pymethods]
+        impl $class {
+            $($own)*
+
+            /// The identity, or `num` identities.
+            #[staticmethod]
+            #[pyo3(signature = (num = None))]
+            fn identity(num: Option<i64>) -> PyResult<Self> {
+                Ok(Self {
+                    batch: Batch::identity(num)?,
+                })
+            }
+
+            #[doc = $bivector_doc]
+            #[staticmethod]
+            fn from_bivector(bivector: &Bound<'_, PyAny>) -> PyResult<Self> {
+                Ok(Self {
+                    batch: Batch::from_bivector(bivector)?,
+                })
+            }
+
+            /// The rotation bivectors Θ = −2 log R.
+            fn as_bivector<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
+                self.batch.write(py, &[<$rotor as Fixed>::B], |r, out| r.bivector(out))
+            }
+
+            /// From rotation matrices (N, N) or (M, N, N), checked to be rotations.
+            #[staticmethod]
+            fn from_matrix(matrix: &Bound<'_, PyAny>) -> PyResult<Self> {
+                Ok(Self {
+                    batch: Batch::from_matrix(matrix)?,
+                })
+            }
+
+            /// The rotation matrices Q (Q x = R x R̃).
+            fn as_matrix<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
+                let n = <$rotor as Fixed>::N;
+                self.batch.write(py, &[n, n], |r, out| r.matrix(out))
+            }
+
+            #[doc = $apply_doc]
+            #[pyo3(signature = (vectors, inverse = false))]
+            fn apply<'py>(
+                &self,
+                py: Python<'py>,
+                vectors: &Bound<'py, PyAny>,
+                inverse: bool,
+            ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+                self.batch.apply(py, vectors, inverse)
+            }
+
+            /// The inverse rotations.
+            fn inv(&self) -> Self {
+                let mut batch = self.batch.clone();
+                batch.rotors.iter_mut().for_each(|r| *r = r.inverse());
+                Self { batch }
+            }
+
+            /// The composition `self * other`: `other` first, then `self`.
+            fn __mul__(&self, other: PyRef<'_, Self>) -> PyResult<Self> {
+                Ok(Self {
+                    batch: self
+                        .batch
+                        .zip_with(&other.batch, "compose", $rotor::compose)?,
+                })
+            }
+
+            #[doc = $magnitude_doc]
+            fn magnitude<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
+                self.batch.magnitude(py)
+            }
+
+            /// The rotations a fraction `t` of the way from `self` to `other` along the
+            /// shorter arc; `t` a number or an array of M, rotors single or M.
+            fn slerp(&self, other: PyRef<'_, Self>, t: &Bound<'_, PyAny>) -> PyResult<Self> {
+                Ok(Self {
+                    batch: self.batch.slerp(&other.batch, t)?,
+                })
+            }
+
+            /// max |R R̃ − 1| of each rotor.
+            fn unit_error<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
+                self.batch.write(py, &[], |r, out| out[0] = r.unit_error())
+            }
+
+            #[doc = $multivector_doc]
+            fn as_multivector(&self) -> PyResult<PyMultivector> {
+                self.batch.multivector()
+            }
+
+            /// Whether this is one rotor (not a batch).
+            #[getter]
+            fn single(&self) -> bool {
+                self.batch.single
+            }
+
+            fn __len__(&self) -> PyResult<usize> {
+                self.batch.len()
+            }
+
+            fn __getitem__(&self, index: &Bound<'_, PyAny>) -> PyResult<Self> {
+                Ok(Self {
+                    batch: self.batch.get(index)?,
+                })
+            }
+
+            fn __repr__(&self) -> String {
+                self.batch.repr($name)
+            }
+        }
+    };
+}
+
 /// One rotation of 3D space or many: the unit quaternion of the crate's `Rotor3`.
 ///
 /// Verbs of `scipy.spatial.transform.Rotation`: `from_quat`/`as_quat` (scalar last unless
@@ -387,181 +481,84 @@ pub struct PyRotor3 {
     pub batch: Batch<Rotor3>,
 }
 
-#[pymethods]
-impl PyRotor3 {
-    /// The identity, or `num` identities.
-    #[staticmethod]
-    #[pyo3(signature = (num = None))]
-    fn identity(num: Option<i64>) -> PyResult<Self> {
-        Ok(Self {
-            batch: Batch::identity(num)?,
-        })
-    }
-
-    /// From quaternions (x, y, z, w), or (w, x, y, z) with `scalar_first=True`; normalised.
-    #[staticmethod]
-    #[pyo3(signature = (quat, scalar_first = false))]
-    fn from_quat(quat: &Bound<'_, PyAny>, scalar_first: bool) -> PyResult<Self> {
-        let batch = Batch::read(quat, &[4], "quaternion", |q| {
-            unit_quaternion(if scalar_first {
-                [q[0], q[1], q[2], q[3]]
-            } else {
-                [q[3], q[0], q[1], q[2]]
-            })
-        })?;
-        Ok(Self { batch })
-    }
-
-    /// The quaternions (x, y, z, w), or (w, x, y, z) with `scalar_first=True`; with
-    /// `canonical=True` the sign with w ≥ 0.
-    #[pyo3(signature = (scalar_first = false, canonical = false))]
-    fn as_quat<'py>(
-        &self,
-        py: Python<'py>,
-        scalar_first: bool,
-        canonical: bool,
-    ) -> Bound<'py, PyArrayDyn<f64>> {
-        self.batch.write(py, &[4], |r, out| {
-            let q = if canonical {
-                self::canonical(r).to_quaternion()
-            } else {
-                r.to_quaternion()
-            };
-            if scalar_first {
-                out.copy_from_slice(&q);
-            } else {
-                out.copy_from_slice(&[q[1], q[2], q[3], q[0]]);
-            }
-        })
-    }
-
-    /// From rotation matrices (3, 3) or (M, 3, 3), checked to be rotations.
-    #[staticmethod]
-    fn from_matrix(matrix: &Bound<'_, PyAny>) -> PyResult<Self> {
-        Ok(Self {
-            batch: Batch::from_matrix(matrix)?,
-        })
-    }
-
-    /// The rotation matrices Q (Q x = R x R̃).
-    fn as_matrix<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
-        self.batch.write(py, &[3, 3], |r, out| r.matrix(out))
-    }
-
-    /// From rotation vectors θ â (right-handed about the axis â).
-    #[staticmethod]
-    fn from_rotvec(rotvec: &Bound<'_, PyAny>) -> PyResult<Self> {
-        // The axial vector (x, y, z) is the bivector x e23 + y e31 + z e12.
-        let batch = Batch::read(rotvec, &[3], "rotation vector", |v| {
-            Ok(Rotor3::from_bivector(&[v[2], -v[1], v[0]]))
-        })?;
-        Ok(Self { batch })
-    }
-
-    /// The rotation vectors θ â, with θ in [0, π] (of R or −R, the same rotation).
-    fn as_rotvec<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
-        self.batch.write(py, &[3], |r, out| {
-            let [b12, b13, b23] = canonical(r).rotation_bivector().to_array();
-            out.copy_from_slice(&[b23, -b13, b12]);
-        })
-    }
-
-    /// From rotation bivectors Θ (components 12, 13, 23): R = exp(−Θ/2).
-    #[staticmethod]
-    fn from_bivector(bivector: &Bound<'_, PyAny>) -> PyResult<Self> {
-        Ok(Self {
-            batch: Batch::from_bivector(bivector)?,
-        })
-    }
-
-    /// The rotation bivectors Θ = −2 log R (components 12, 13, 23).
-    fn as_bivector<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
-        self.batch.write(py, &[3], |r, out| r.bivector(out))
-    }
-
-    /// The rotation by `angle` about `axis` (right-handed; the axis is normalised).
-    #[staticmethod]
-    fn from_axis_angle(axis: &Bound<'_, PyAny>, angle: f64) -> PyResult<Self> {
-        if !angle.is_finite() {
-            return Err(value_error("angle: NaN or infinite value"));
+rotor_methods!(
+    PyRotor3,
+    Rotor3,
+    "Rotor3",
+    bivector: "From rotation bivectors Θ (components 12, 13, 23): R = exp(−Θ/2).",
+    apply: "The rotated vectors R v R̃ (or R̃ v R with `inverse=True`) of shape (3,) or (M, 3).",
+    magnitude: "The rotation angles in [0, π] (a float for a single rotor).",
+    multivector: "The rotor as an element of `Algebra(3)`.",
+    {
+        /// From quaternions (x, y, z, w), or (w, x, y, z) with `scalar_first=True`; normalised.
+        #[staticmethod]
+        #[pyo3(signature = (quat, scalar_first = false))]
+        fn from_quat(quat: &Bound<'_, PyAny>, scalar_first: bool) -> PyResult<Self> {
+            let batch = Batch::read(quat, &[4], "quaternion", |q| {
+                unit_quaternion(if scalar_first {
+                    [q[0], q[1], q[2], q[3]]
+                } else {
+                    [q[3], q[0], q[1], q[2]]
+                })
+            })?;
+            Ok(Self { batch })
         }
-        let batch = Batch::read(axis, &[3], "axis", |a| {
-            Rotor3::from_axis_angle(Vector3::new(a[0], a[1], a[2]), angle)
-                .map_err(|e| e.to_string())
-        })?;
-        Ok(Self { batch })
-    }
 
-    /// The rotated vectors R v R̃ (or R̃ v R with `inverse=True`) of shape (3,) or (M, 3).
-    #[pyo3(signature = (vectors, inverse = false))]
-    fn apply<'py>(
-        &self,
-        py: Python<'py>,
-        vectors: &Bound<'py, PyAny>,
-        inverse: bool,
-    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        self.batch.apply(py, vectors, inverse)
-    }
+        /// The quaternions (x, y, z, w), or (w, x, y, z) with `scalar_first=True`; with
+        /// `canonical=True` the sign with w ≥ 0.
+        #[pyo3(signature = (scalar_first = false, canonical = false))]
+        fn as_quat<'py>(
+            &self,
+            py: Python<'py>,
+            scalar_first: bool,
+            canonical: bool,
+        ) -> Bound<'py, PyArrayDyn<f64>> {
+            self.batch.write(py, &[4], |r, out| {
+                let q = if canonical {
+                    self::canonical(r).to_quaternion()
+                } else {
+                    r.to_quaternion()
+                };
+                if scalar_first {
+                    out.copy_from_slice(&q);
+                } else {
+                    out.copy_from_slice(&[q[1], q[2], q[3], q[0]]);
+                }
+            })
+        }
 
-    /// The inverse rotations.
-    fn inv(&self) -> Self {
-        let mut batch = self.batch.clone();
-        batch.rotors.iter_mut().for_each(|r| *r = r.inverse());
-        Self { batch }
-    }
+        /// From rotation vectors θ â (right-handed about the axis â).
+        #[staticmethod]
+        fn from_rotvec(rotvec: &Bound<'_, PyAny>) -> PyResult<Self> {
+            // The axial vector (x, y, z) is the bivector x e23 + y e31 + z e12.
+            let batch = Batch::read(rotvec, &[3], "rotation vector", |v| {
+                Ok(Rotor3::from_bivector(&[v[2], -v[1], v[0]]))
+            })?;
+            Ok(Self { batch })
+        }
 
-    /// The composition `self * other`: `other` first, then `self`.
-    fn __mul__(&self, other: PyRef<'_, Self>) -> PyResult<Self> {
-        Ok(Self {
-            batch: self
-                .batch
-                .zip_with(&other.batch, "compose", Rotor3::compose)?,
-        })
-    }
+        /// The rotation vectors θ â, with θ in [0, π] (of R or −R, the same rotation).
+        fn as_rotvec<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
+            self.batch.write(py, &[3], |r, out| {
+                let [b12, b13, b23] = canonical(r).rotation_bivector().to_array();
+                out.copy_from_slice(&[b23, -b13, b12]);
+            })
+        }
 
-    /// The rotation angles in [0, π] (a float for a single rotor).
-    fn magnitude<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
-        self.batch.magnitude(py)
+        /// The rotation by `angle` about `axis` (right-handed; the axis is normalised).
+        #[staticmethod]
+        fn from_axis_angle(axis: &Bound<'_, PyAny>, angle: f64) -> PyResult<Self> {
+            if !angle.is_finite() {
+                return Err(value_error("angle: NaN or infinite value"));
+            }
+            let batch = Batch::read(axis, &[3], "axis", |a| {
+                Rotor3::from_axis_angle(Vector3::new(a[0], a[1], a[2]), angle)
+                    .map_err(|e| e.to_string())
+            })?;
+            Ok(Self { batch })
+        }
     }
-
-    /// The rotations a fraction `t` of the way from `self` to `other` along the shorter arc;
-    /// `t` a number or an array of M, rotors single or M.
-    fn slerp(&self, other: PyRef<'_, Self>, t: &Bound<'_, PyAny>) -> PyResult<Self> {
-        Ok(Self {
-            batch: self.batch.slerp(&other.batch, t)?,
-        })
-    }
-
-    /// max |R R̃ − 1| of each rotor.
-    fn unit_error<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
-        self.batch.write(py, &[], |r, out| out[0] = r.unit_error())
-    }
-
-    /// The rotor as an element of `Algebra(3)`.
-    fn as_multivector(&self) -> PyResult<PyMultivector> {
-        self.batch.multivector()
-    }
-
-    /// Whether this is one rotor (not a batch).
-    #[getter]
-    fn single(&self) -> bool {
-        self.batch.single
-    }
-
-    fn __len__(&self) -> PyResult<usize> {
-        self.batch.len()
-    }
-
-    fn __getitem__(&self, index: &Bound<'_, PyAny>) -> PyResult<Self> {
-        Ok(Self {
-            batch: self.batch.get(index)?,
-        })
-    }
-
-    fn __repr__(&self) -> String {
-        self.batch.repr("Rotor3")
-    }
-}
+);
 
 /// One rotation of 4D space or many: the quaternion pair of the crate's `Rotor4`.
 #[pyclass(name = "Rotor4", module = "rotorflow", frozen)]
@@ -582,166 +579,70 @@ fn unit_pair(plus: &[f64], minus: &[f64]) -> Result<Rotor4, String> {
     Ok(r)
 }
 
-#[pymethods]
-impl PyRotor4 {
-    /// The identity, or `num` identities.
-    #[staticmethod]
-    #[pyo3(signature = (num = None))]
-    fn identity(num: Option<i64>) -> PyResult<Self> {
-        Ok(Self {
-            batch: Batch::identity(num)?,
-        })
-    }
-
-    /// From rotation bivectors Θ (components 12, 13, 14, 23, 24, 34): R = exp(−Θ/2).
-    #[staticmethod]
-    fn from_bivector(bivector: &Bound<'_, PyAny>) -> PyResult<Self> {
-        Ok(Self {
-            batch: Batch::from_bivector(bivector)?,
-        })
-    }
-
-    /// The rotation bivectors Θ = −2 log R.
-    fn as_bivector<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
-        self.batch.write(py, &[6], |r, out| r.bivector(out))
-    }
-
-    /// From rotation matrices (4, 4) or (M, 4, 4), checked to be rotations.
-    #[staticmethod]
-    fn from_matrix(matrix: &Bound<'_, PyAny>) -> PyResult<Self> {
-        Ok(Self {
-            batch: Batch::from_matrix(matrix)?,
-        })
-    }
-
-    /// The rotation matrices Q (Q x = R x R̃).
-    fn as_matrix<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
-        self.batch.write(py, &[4, 4], |r, out| r.matrix(out))
-    }
-
-    /// From the quaternion pairs (Q₊, Q₋), each (w, x, y, z); each half normalised.
-    #[staticmethod]
-    fn from_quaternion_pair(plus: &Bound<'_, PyAny>, minus: &Bound<'_, PyAny>) -> PyResult<Self> {
-        let p = Rows::new(plus, &[4], "plus")?;
-        let m = Rows::new(minus, &[4], "minus")?;
-        if (p.count, p.single) != (m.count, m.single) {
-            return Err(value_error(
-                "plus and minus: expected arrays of the same shape",
-            ));
-        }
-        let rotors = p
-            .data()
-            .chunks_exact(4)
-            .zip(m.data().chunks_exact(4))
-            .enumerate()
-            .map(|(i, (a, b))| {
-                unit_pair(a, b).map_err(|e| value_error(format!("quaternion pair {i}: {e}")))
+rotor_methods!(
+    PyRotor4,
+    Rotor4,
+    "Rotor4",
+    bivector: "From rotation bivectors Θ (components 12, 13, 14, 23, 24, 34): R = exp(−Θ/2).",
+    apply: "The rotated vectors R v R̃ (or R̃ v R with `inverse=True`) of shape (4,) or (M, 4).",
+    magnitude: "The norms |Θ| of the rotation bivectors (a float for a single rotor).",
+    multivector: "The rotor as an element of `Algebra(4)`.",
+    {
+        /// From the quaternion pairs (Q₊, Q₋), each (w, x, y, z); each half normalised.
+        #[staticmethod]
+        fn from_quaternion_pair(plus: &Bound<'_, PyAny>, minus: &Bound<'_, PyAny>) -> PyResult<Self> {
+            let p = Rows::new(plus, &[4], "plus")?;
+            let m = Rows::new(minus, &[4], "minus")?;
+            if (p.count, p.single) != (m.count, m.single) {
+                return Err(value_error(
+                    "plus and minus: expected arrays of the same shape",
+                ));
+            }
+            let rotors = p
+                .data()
+                .chunks_exact(4)
+                .zip(m.data().chunks_exact(4))
+                .enumerate()
+                .map(|(i, (a, b))| {
+                    unit_pair(a, b).map_err(|e| value_error(format!("quaternion pair {i}: {e}")))
+                })
+                .collect::<PyResult<Vec<_>>>()?;
+            Ok(Self {
+                batch: Batch {
+                    rotors,
+                    single: p.single,
+                },
             })
-            .collect::<PyResult<Vec<_>>>()?;
-        Ok(Self {
-            batch: Batch {
-                rotors,
-                single: p.single,
-            },
-        })
-    }
-
-    /// The quaternion pairs (Q₊, Q₋), two arrays of shape (4,) or (M, 4).
-    fn as_quaternion_pair<'py>(
-        &self,
-        py: Python<'py>,
-    ) -> (Bound<'py, PyArrayDyn<f64>>, Bound<'py, PyArrayDyn<f64>>) {
-        (
-            self.batch.write(py, &[4], |r, out| {
-                out.copy_from_slice(&r.to_quaternion_pair().0)
-            }),
-            self.batch.write(py, &[4], |r, out| {
-                out.copy_from_slice(&r.to_quaternion_pair().1)
-            }),
-        )
-    }
-
-    /// The rotation by `angle` in the plane of axes i and j (0-based), turning eᵢ toward eⱼ.
-    #[staticmethod]
-    fn from_plane_angle(i: i64, j: i64, angle: f64) -> PyResult<Self> {
-        if !angle.is_finite() {
-            return Err(value_error("angle: NaN or infinite value"));
         }
-        let index = |k: i64| {
-            usize::try_from(k).map_err(|_| value_error(format!("axis index must be >= 0, got {k}")))
-        };
-        let r = Rotor4::from_plane_angle(index(i)?, index(j)?, angle).map_err(value_error)?;
-        Ok(Self {
-            batch: Batch::one(r),
-        })
-    }
 
-    /// The rotated vectors R v R̃ (or R̃ v R with `inverse=True`) of shape (4,) or (M, 4).
-    #[pyo3(signature = (vectors, inverse = false))]
-    fn apply<'py>(
-        &self,
-        py: Python<'py>,
-        vectors: &Bound<'py, PyAny>,
-        inverse: bool,
-    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        self.batch.apply(py, vectors, inverse)
-    }
+        /// The quaternion pairs (Q₊, Q₋), two arrays of shape (4,) or (M, 4).
+        fn as_quaternion_pair<'py>(
+            &self,
+            py: Python<'py>,
+        ) -> (Bound<'py, PyArrayDyn<f64>>, Bound<'py, PyArrayDyn<f64>>) {
+            (
+                self.batch.write(py, &[4], |r, out| {
+                    out.copy_from_slice(&r.to_quaternion_pair().0)
+                }),
+                self.batch.write(py, &[4], |r, out| {
+                    out.copy_from_slice(&r.to_quaternion_pair().1)
+                }),
+            )
+        }
 
-    /// The inverse rotations.
-    fn inv(&self) -> Self {
-        let mut batch = self.batch.clone();
-        batch.rotors.iter_mut().for_each(|r| *r = r.inverse());
-        Self { batch }
+        /// The rotation by `angle` in the plane of axes i and j (0-based), turning eᵢ toward eⱼ.
+        #[staticmethod]
+        fn from_plane_angle(i: i64, j: i64, angle: f64) -> PyResult<Self> {
+            if !angle.is_finite() {
+                return Err(value_error("angle: NaN or infinite value"));
+            }
+            let index = |k: i64| {
+                usize::try_from(k).map_err(|_| value_error(format!("axis index must be >= 0, got {k}")))
+            };
+            let r = Rotor4::from_plane_angle(index(i)?, index(j)?, angle).map_err(value_error)?;
+            Ok(Self {
+                batch: Batch::one(r),
+            })
+        }
     }
-
-    /// The composition `self * other`: `other` first, then `self`.
-    fn __mul__(&self, other: PyRef<'_, Self>) -> PyResult<Self> {
-        Ok(Self {
-            batch: self
-                .batch
-                .zip_with(&other.batch, "compose", Rotor4::compose)?,
-        })
-    }
-
-    /// The norms |Θ| of the rotation bivectors (a float for a single rotor).
-    fn magnitude<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
-        self.batch.magnitude(py)
-    }
-
-    /// The rotations a fraction `t` of the way from `self` to `other` along the shorter arc.
-    fn slerp(&self, other: PyRef<'_, Self>, t: &Bound<'_, PyAny>) -> PyResult<Self> {
-        Ok(Self {
-            batch: self.batch.slerp(&other.batch, t)?,
-        })
-    }
-
-    /// max |R R̃ − 1| of each rotor.
-    fn unit_error<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
-        self.batch.write(py, &[], |r, out| out[0] = r.unit_error())
-    }
-
-    /// The rotor as an element of `Algebra(4)`.
-    fn as_multivector(&self) -> PyResult<PyMultivector> {
-        self.batch.multivector()
-    }
-
-    /// Whether this is one rotor (not a batch).
-    #[getter]
-    fn single(&self) -> bool {
-        self.batch.single
-    }
-
-    fn __len__(&self) -> PyResult<usize> {
-        self.batch.len()
-    }
-
-    fn __getitem__(&self, index: &Bound<'_, PyAny>) -> PyResult<Self> {
-        Ok(Self {
-            batch: self.batch.get(index)?,
-        })
-    }
-
-    fn __repr__(&self) -> String {
-        self.batch.repr("Rotor4")
-    }
-}
+);

@@ -4,6 +4,7 @@ motion against conserved quantities and scipy's ODE solver."""
 import json
 import math
 import os
+import pickle
 import subprocess
 from pathlib import Path
 
@@ -184,3 +185,45 @@ def test_bad_bodies_and_runs(call, kind, words):
     with pytest.raises(kind) as info:
         call()
     assert words in str(info.value), str(info.value)
+
+
+KEYS = {"dim", "planes", "times", "omega", "momentum", "energy", "casimirs", "attitude", "drift"}
+
+
+def page_data(page):
+    """The JSON the animation page draws from."""
+    start = page.index('<script type="application/json" id="data">') + len('<script type="application/json" id="data">')
+    return json.loads(page[start : page.index("</script>", start)])
+
+
+def test_simulate_results_show_as_the_animation_of_the_body():
+    body = rf.Body.cuboid([1, 2, 3])
+    result = rf.simulate(body, omega=[0.1, 1.0, 0.2], t_end=2.0, samples=5)
+    assert isinstance(result, dict) and set(result) == KEYS
+    page = result.html()
+    assert page.lstrip().lower().startswith("<!doctype html")
+    assert '<canvas id="view"' in page
+    data = page_data(page)
+    # The cuboid's 8 corners and 12 edges, one frame per sample: the reported attitudes.
+    assert (len(data["points"]), len(data["edges"]), data["dim"]) == (8, 12, 3)
+    assert data["times"] == result["times"].tolist()
+    np.testing.assert_allclose(np.reshape(data["frames"], (5, 3, 3)), result["attitude"], atol=1e-9)
+    inline = result._repr_html_()
+    assert inline.startswith('<iframe srcdoc="') and "&lt;canvas id=&quot;view&quot;" in inline
+    assert '"' not in inline[len('<iframe srcdoc="') : inline.index('" style=')]
+    # A closed form from a SPEC; a plain dict with the body given; a 2D body drawn in 3D.
+    exact = rf.exact("cuboid:1,2,3", omega=[0.1, 1.0, 0.2], t_end=2.0, samples=5)
+    assert set(exact) == KEYS
+    assert rf.animation_html(dict(exact), "cuboid:1,2,3", title="t") == exact.html(title="t")
+    with pytest.raises(ValueError, match="give the body"):
+        rf.animation_html(dict(exact))
+    with pytest.raises(ValueError, match="attitude"):
+        rf.motion_html(body, exact["times"][:3], exact["attitude"])
+    flat = rf.simulate(rf.Body.cuboid([1, 2]), omega=[1.0], t_end=1.0, samples=3)
+    assert len(page_data(flat.html())["frames"][0]) == 9
+    # Pickled: with its SPEC, or as the plain dict of numbers when the body is an object.
+    again = pickle.loads(pickle.dumps(exact))
+    assert type(again) is rf.Motion and again.body == "cuboid:1,2,3" and again.html() == exact.html()
+    plain = pickle.loads(pickle.dumps(result))
+    assert type(plain) is dict and set(plain) == KEYS
+    np.testing.assert_array_equal(plain["attitude"], result["attitude"])

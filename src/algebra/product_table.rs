@@ -1,7 +1,7 @@
 //! One bilinear product of an algebra as a table of its basis products, applied to many pairs
 //! of dense coefficient arrays at once.
 
-use super::{AlgebraError, Multivector, Product, Signature};
+use super::{AlgebraError, Multivector, Product, Signature, blade};
 
 /// The largest dimension of a [`ProductTable`]: 4⁸ = 65 536 basis products.
 pub const PRODUCT_TABLE_MAX_DIM: usize = 8;
@@ -9,6 +9,10 @@ pub const PRODUCT_TABLE_MAX_DIM: usize = 8;
 /// Elements per block of [`ProductTable::apply_batch`]: each block is turned into one array
 /// per blade, so that every entry of the table runs over contiguous lanes.
 const BLOCK: usize = 64;
+
+/// The largest dimension whose products also come as a dense sign matrix, applied by a kernel
+/// whose sizes are known at compile time (2ᴺ ≤ 16 coefficients).
+const DENSE_MAX_DIM: usize = 4;
 
 /// A bilinear product of Cl(p, q, r) as the list of its non-zero basis products
 /// e_a ∘ e_b = f e_k (f = ±1), made once from the product itself and then applied to dense
@@ -20,7 +24,10 @@ const BLOCK: usize = 64;
 /// which the multivector sums in another order (through complements, or as three products)
 /// and the table agrees with to round-off. [`ProductTable::apply_batch`] runs through many pairs at once,
 /// in blocks whose coefficients sit one array per blade, so that the compiler vectorises each
-/// entry across the block.
+/// entry across the block. Up to N = 4 the same basis products are also kept as a dense
+/// 2ᴺ × 2ᴺ matrix of signs (every product of blades tabulated here sends e_a, e_b to the
+/// blade a ⊕ b ⊕ c for one mask c), applied by kernels whose sizes are known at compile time;
+/// they add the same terms in the same order.
 ///
 /// ```
 /// use rotorflow::algebra::{Multivector, Product, ProductTable, Signature};
@@ -39,6 +46,38 @@ pub struct ProductTable {
     sig: Signature,
     /// (a, b, k, f): e_a ∘ e_b = f e_k, ordered by a, then b.
     entries: Vec<(u32, u32, u32, f64)>,
+    /// The same products as dense signs, up to [`DENSE_MAX_DIM`].
+    dense: Option<Dense>,
+}
+
+/// A product whose basis products all send (e_a, e_b) to the blade k = a ⊕ b ⊕ `offset`:
+/// e_i ∘ e_(i ⊕ k ⊕ offset) = `signs[i · 2ᴺ + k]` e_k, zero where the product vanishes.
+#[derive(Clone, Debug, PartialEq)]
+struct Dense {
+    offset: usize,
+    signs: Vec<f64>,
+}
+
+impl Dense {
+    /// The dense form of `entries`, when the algebra is small enough and every entry has the
+    /// same offset.
+    fn new(dim: usize, entries: &[(u32, u32, u32, f64)]) -> Option<Self> {
+        if dim > DENSE_MAX_DIM {
+            return None;
+        }
+        let size = 1usize << dim;
+        let offset = entries
+            .first()
+            .map_or(0, |&(a, b, k, _)| (a ^ b ^ k) as usize);
+        let mut signs = vec![0.0; size * size];
+        for &(a, b, k, f) in entries {
+            if (a ^ b ^ k) as usize != offset {
+                return None;
+            }
+            signs[a as usize * size + k as usize] = f;
+        }
+        Some(Dense { offset, signs })
+    }
 }
 
 impl ProductTable {
@@ -82,7 +121,12 @@ impl ProductTable {
                 }
             }
         }
-        Ok(ProductTable { sig, entries })
+        let dense = Dense::new(n, &entries);
+        Ok(ProductTable {
+            sig,
+            entries,
+            dense,
+        })
     }
 
     /// The algebra of the table.
@@ -130,13 +174,74 @@ impl ProductTable {
     /// `out[m]` = `a[m]` ∘ `b[m]` for M pairs stored one after the other (M · 2ᴺ coefficients
     /// in each slice), equal to M calls of [`ProductTable::apply`].
     ///
+    /// Inlined, so that a caller compiled for wider vector instructions (a function with
+    /// `#[target_feature]`) gets the kernels compiled for them too.
+    ///
     /// # Errors
     /// [`AlgebraError::WrongComponentCount`] unless the three slices hold the same whole
     /// number of elements.
+    #[inline]
     pub fn apply_batch(&self, a: &[f64], b: &[f64], out: &mut [f64]) -> Result<(), AlgebraError> {
         let size = 1usize << self.sig.dim();
         let elements = a.len() / size;
         self.check([a.len(), b.len(), out.len()], elements)?;
+        match &self.dense {
+            Some(d) => match size {
+                1 => dense_batch::<1, 1>(d, a, b, out),
+                2 => dense_batch::<2, 2>(d, a, b, out),
+                4 => dense_batch::<4, 4>(d, a, b, out),
+                8 => dense_batch::<8, 8>(d, a, b, out),
+                _ => dense_batch::<16, 4>(d, a, b, out),
+            },
+            None => self.table_batch(a, b, out),
+        }
+        Ok(())
+    }
+
+    /// `out[m]` = (`a[m]` ∘ `x[m]`) ∘ ã`[m]`, ã the reverse of a: with the geometric product's
+    /// table, the sandwiches V X Ṽ of M versors V with M elements X, summed as
+    /// [`Multivector`]'s `Versor::apply` sums them (V X first).
+    ///
+    /// # Errors
+    /// As [`ProductTable::apply_batch`].
+    #[inline]
+    pub fn sandwich_batch(
+        &self,
+        a: &[f64],
+        x: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), AlgebraError> {
+        let size = 1usize << self.sig.dim();
+        let elements = a.len() / size;
+        self.check([a.len(), x.len(), out.len()], elements)?;
+        match &self.dense {
+            Some(d) => match size {
+                1 => dense_sandwich::<1, 1>(d, a, x, out),
+                2 => dense_sandwich::<2, 2>(d, a, x, out),
+                4 => dense_sandwich::<4, 4>(d, a, x, out),
+                8 => dense_sandwich::<8, 8>(d, a, x, out),
+                _ => dense_sandwich::<16, 4>(d, a, x, out),
+            },
+            None => {
+                let step = BLOCK * size;
+                let mut ax = vec![0.0; step];
+                let mut reversed = vec![0.0; step];
+                for ((ca, cx), co) in a.chunks(step).zip(x.chunks(step)).zip(out.chunks_mut(step)) {
+                    let n = ca.len();
+                    self.table_batch(ca, cx, &mut ax[..n]);
+                    for (r, (blade, c)) in reversed[..n].iter_mut().zip(ca.iter().enumerate()) {
+                        *r = c * blade::reverse_sign(blade::grade((blade % size) as u64));
+                    }
+                    self.table_batch(&ax[..n], &reversed[..n], co);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The batch through the list of entries, in blocks of [`BLOCK`] elements.
+    fn table_batch(&self, a: &[f64], b: &[f64], out: &mut [f64]) {
+        let size = 1usize << self.sig.dim();
         // One array of BLOCK lanes per blade for each operand and the result.
         let mut sa = vec![[0.0f64; BLOCK]; size];
         let mut sb = vec![[0.0f64; BLOCK]; size];
@@ -165,6 +270,97 @@ impl ProductTable {
                 }
             }
         }
-        Ok(())
+    }
+}
+
+/// `out[k]` = Σᵢ `signs[i][k]` · `x[i]` · `y[i ⊕ k]` for one element, i in increasing order
+/// (the order of the table's entries for this k), `y` already read with the table's offset.
+/// The K × K terms go by tiles of T × T, whose loops the compiler unrolls, so that the
+/// coefficients stay in registers and each row of signs is one vector.
+#[inline(always)]
+fn dense_element<const K: usize, const T: usize>(
+    signs: &[[f64; K]; K],
+    x: &[f64; K],
+    y: &[f64; K],
+    out: &mut [f64; K],
+) {
+    let tile = |v: &[f64; K], h: usize| -> [f64; T] {
+        v[h * T..h * T + T].try_into().expect("T divides K")
+    };
+    for kh in 0..K / T {
+        let mut acc = [0.0; T];
+        for ih in 0..K / T {
+            // i ⊕ k = (ih ⊕ kh) T + (il ⊕ kl): the tile of y that this tile of x meets.
+            let (xh, yh) = (tile(x, ih), tile(y, ih ^ kh));
+            for (il, &xi) in xh.iter().enumerate() {
+                let s = tile(&signs[ih * T + il], kh);
+                for kl in 0..T {
+                    acc[kl] += s[kl] * xi * yh[il ^ kl];
+                }
+            }
+        }
+        out[kh * T..kh * T + T].copy_from_slice(&acc);
+    }
+}
+
+/// The signs of a dense table of 2ᴺ = K coefficients as a K × K array.
+#[inline(always)]
+fn dense_signs<const K: usize>(d: &Dense) -> &[[f64; K]; K] {
+    d.signs
+        .as_chunks::<K>()
+        .0
+        .try_into()
+        .expect("a dense table holds 2ᴺ × 2ᴺ signs")
+}
+
+/// One element of K coefficients of a batch, read with a blade offset.
+#[inline(always)]
+fn element<const K: usize>(row: &[f64], offset: usize) -> [f64; K] {
+    let row: &[f64; K] = row.try_into().expect("rows of K coefficients");
+    if offset == 0 {
+        *row
+    } else {
+        std::array::from_fn(|j| row[j ^ offset])
+    }
+}
+
+#[inline(always)]
+fn dense_batch<const K: usize, const T: usize>(d: &Dense, a: &[f64], b: &[f64], out: &mut [f64]) {
+    let signs = dense_signs::<K>(d);
+    for ((ra, rb), ro) in a
+        .chunks_exact(K)
+        .zip(b.chunks_exact(K))
+        .zip(out.chunks_exact_mut(K))
+    {
+        let o: &mut [f64; K] = ro.try_into().expect("rows of K coefficients");
+        dense_element::<K, T>(signs, &element(ra, 0), &element(rb, d.offset), o);
+    }
+}
+
+#[inline(always)]
+fn dense_sandwich<const K: usize, const T: usize>(
+    d: &Dense,
+    a: &[f64],
+    x: &[f64],
+    out: &mut [f64],
+) {
+    let signs = dense_signs::<K>(d);
+    // The reverse's sign of each blade, in the order in which the right operand is read.
+    let reverse: [f64; K] =
+        std::array::from_fn(|j| blade::reverse_sign(blade::grade((j ^ d.offset) as u64)));
+    let mut ax = [0.0; K];
+    for ((ra, rx), ro) in a
+        .chunks_exact(K)
+        .zip(x.chunks_exact(K))
+        .zip(out.chunks_exact_mut(K))
+    {
+        let o: &mut [f64; K] = ro.try_into().expect("rows of K coefficients");
+        let va = element::<K>(ra, 0);
+        dense_element::<K, T>(signs, &va, &element(rx, d.offset), &mut ax);
+        let mut reversed = element::<K>(ra, d.offset);
+        for (c, r) in reversed.iter_mut().zip(reverse) {
+            *c *= r;
+        }
+        dense_element::<K, T>(signs, &ax, &reversed, o);
     }
 }

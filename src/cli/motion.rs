@@ -2,18 +2,21 @@
 //! integrators, torques, and the trajectory report (JSON, CSV, text) built from states.
 
 use super::error::{CliError, CliResult};
-use super::output::{Progress, matrix_json, number, plane_names};
+use super::output::{Progress, number, plane_names};
 use super::spec::ParsedBody;
 use clap::{Args, ValueEnum};
 use nalgebra::DMatrix;
 use rotorflow::algebra::{Bivector, bivector_len};
+use rotorflow::dynamics::report::{
+    Report as LibraryReport, ReportError, SampleError, Stepper, sample_states,
+};
 use rotorflow::dynamics::torques::{BodyFrame, Free, LinearDamping, SpaceFrame};
 use rotorflow::dynamics::{
-    Attitude, Dop853, Dopri5, Drift, Integrator, Invariants, LiePoissonRk4, Midpoint, MoserVeselov,
-    RigidBody, Rkmk4, Splitting, Torque, simulate,
+    Attitude, Dop853, Dopri5, Drift, LiePoissonRk4, Midpoint, MoserVeselov, RigidBody, Rkmk4,
+    Splitting, Torque,
 };
 use rotorflow::inertia::spec::{parse_list, parse_number};
-use serde_json::{Value, json};
+use serde_json::Value;
 
 /// Parses a finite number for clap (rejects NaN and infinities).
 pub fn finite_number(text: &str) -> Result<f64, String> {
@@ -361,8 +364,7 @@ pub fn parse_torque(
     }
 }
 
-/// One state: attitude (principal frame → space) and body-frame momentum (principal frame).
-pub type State = (Attitude, Bivector);
+pub use rotorflow::dynamics::report::{State, sample_block_len};
 
 /// Integrates `body` under `torque` and returns the state at every time in `times`, with the
 /// number of steps taken.
@@ -382,16 +384,6 @@ pub fn integrate(
         Ok(())
     })?;
     Ok((states, steps))
-}
-
-/// The most samples integrated as one block: the blocks' states are the only ones held at a
-/// time, so memory stays flat however many samples a run asks for.
-const BLOCK_MAX: usize = 128;
-
-/// Samples per block of [`integrate_each`] for a run of `samples`: about a hundredth of
-/// them, so that the progress bar moves, and at most [`BLOCK_MAX`].
-pub fn sample_block_len(samples: usize) -> usize {
-    samples.div_ceil(100).clamp(1, BLOCK_MAX)
 }
 
 /// [`integrate`] handing each state to `sink` in time order instead of keeping them, and
@@ -419,19 +411,9 @@ pub fn integrate_each(
             _ => CliError::runtime(format!("integration failed: {e}")),
         }
     };
-    let not_finite =
-        || CliError::runtime("integration failed: the state is no longer finite; reduce --dt");
-    let mut steps = 0;
-    // Blocks of samples, so that the progress bar moves; each block restarts from the last
-    // state with times relative to it (the torques offered here do not depend on time).
-    let chunk = sample_block_len(times.len());
-    let mut current = body.clone();
-    let mut t0 = 0.0;
-    let mut fixed: Option<Box<dyn Integrator>> = None;
-    let mut adaptive: Option<Adaptive> = None;
-    match stepping {
-        Stepping::Fixed { kind, .. } => {
-            fixed = Some(match kind {
+    let mut stepper = match stepping {
+        Stepping::Fixed { kind, dt } => Stepper::Fixed {
+            integrator: match kind {
                 IntegratorKind::Rk4 => Box::new(Rkmk4),
                 IntegratorKind::LiePoissonRk4 => Box::new(LiePoissonRk4),
                 IntegratorKind::Strang => Box::new(Splitting::strang()),
@@ -444,86 +426,29 @@ pub fn integrate_each(
                 IntegratorKind::Dopri5 | IntegratorKind::Dop853 => {
                     unreachable!("dopri5 and dop853 are adaptive")
                 }
-            });
-        }
-        Stepping::Adaptive { rtol, atol } => {
-            adaptive = Some(Adaptive::Dopri5(Dopri5::new(rtol, atol)));
-        }
+            },
+            dt,
+        },
+        Stepping::Adaptive { rtol, atol } => Stepper::Dopri5(Dopri5::new(rtol, atol)),
         Stepping::Adaptive8 { rtol, atol } => {
-            adaptive = Some(Adaptive::Dop853(Box::new(
-                Dop853::new(rtol, atol).map_err(fail)?,
-            )));
+            Stepper::Dop853(Box::new(Dop853::new(rtol, atol).map_err(fail)?))
         }
-    }
-    for block in times.chunks(chunk) {
-        let relative: Vec<f64> = block.iter().map(|t| t - t0).collect();
-        let block_states: Vec<State> = match (&mut fixed, &mut adaptive, stepping) {
-            (Some(integrator), _, Stepping::Fixed { dt, .. }) => {
-                let traj =
-                    simulate(&current, integrator.as_mut(), torque, dt, &relative).map_err(fail)?;
-                steps += traj.steps();
-                traj.samples()
-                    .iter()
-                    .map(|s| (s.attitude.clone(), s.momentum.clone()))
-                    .collect()
-            }
-            (_, Some(adaptive), _) => {
-                let before = adaptive.steps();
-                let out = adaptive
-                    .dense_samples(&current, torque, &relative)
-                    .map_err(fail)?;
-                steps += adaptive.steps() - before;
-                out
-            }
-            _ => unreachable!("one integrator is set"),
-        };
-        if block_states
-            .iter()
-            .any(|(r, l)| l.as_slice().iter().any(|x| !x.is_finite()) || !r.is_finite())
-        {
-            return Err(not_finite());
-        }
-        if let Some((r, l)) = block_states.last() {
-            current
-                .set_state(r.clone(), l.clone())
-                .map_err(|_| not_finite())?;
-            t0 = *block.last().expect("chunks are not empty");
-        }
-        for s in block_states {
+    };
+    let mut each_block = |states: Vec<State>| -> CliResult<()> {
+        let count = states.len() as u64;
+        for s in states {
             sink(s)?;
         }
-        progress.advance(block.len() as u64);
-    }
-    Ok(steps)
-}
-
-/// The adaptive integrators, sampled from their dense output (Dop853 keeps its sixteen
-/// stages inline, hence the box).
-enum Adaptive {
-    Dopri5(Dopri5),
-    Dop853(Box<Dop853>),
-}
-
-impl Adaptive {
-    /// The internal steps taken so far, rejected ones included.
-    fn steps(&self) -> usize {
-        match self {
-            Adaptive::Dopri5(d) => d.accepted_steps() + d.rejected_steps(),
-            Adaptive::Dop853(d) => d.accepted_steps() + d.rejected_steps(),
+        progress.advance(count);
+        Ok(())
+    };
+    sample_states(body, torque, &mut stepper, times, &mut each_block).map_err(|e| match e {
+        SampleError::Integration(e) => fail(e),
+        SampleError::NotFinite => {
+            CliError::runtime("integration failed: the state is no longer finite; reduce --dt")
         }
-    }
-
-    fn dense_samples(
-        &mut self,
-        body: &RigidBody,
-        torque: &dyn Torque,
-        times: &[f64],
-    ) -> Result<Vec<State>, rotorflow::dynamics::DynamicsError> {
-        match self {
-            Adaptive::Dopri5(d) => d.dense_samples(body, torque, times),
-            Adaptive::Dop853(d) => d.dense_samples(body, torque, times),
-        }
-    }
+        SampleError::Sink(e) => e,
+    })
 }
 
 /// The CSV report's header line (with its newline): t, ω_ij, L_ij, energy, the Casimirs and
@@ -561,7 +486,8 @@ pub fn drift_line(d: &Drift) -> String {
     )
 }
 
-/// A trajectory as reported: everything in the body's own axes.
+/// A trajectory as reported: everything in the body's own axes (the library's
+/// [`rotorflow::dynamics::report::Report`], with the command's CSV and text).
 #[derive(Clone, Debug)]
 pub struct Report {
     /// The dimension N.
@@ -589,86 +515,67 @@ pub struct Report {
     pub manakov_drift: Vec<f64>,
 }
 
+impl From<LibraryReport> for Report {
+    fn from(r: LibraryReport) -> Self {
+        Report {
+            dim: r.dim,
+            times: r.times,
+            omega: r.omega,
+            momentum: r.momentum,
+            energy: r.energy,
+            casimirs: r.casimirs,
+            attitude: r.attitude,
+            energy_drift: r.energy_drift,
+            casimir_drift: r.casimir_drift,
+            drift: r.drift,
+            manakov_drift: r.manakov_drift,
+        }
+    }
+}
+
+impl From<Report> for LibraryReport {
+    fn from(r: Report) -> Self {
+        LibraryReport {
+            dim: r.dim,
+            times: r.times,
+            omega: r.omega,
+            momentum: r.momentum,
+            energy: r.energy,
+            casimirs: r.casimirs,
+            attitude: r.attitude,
+            energy_drift: r.energy_drift,
+            casimir_drift: r.casimir_drift,
+            drift: r.drift,
+            manakov_drift: r.manakov_drift,
+        }
+    }
+}
+
 impl Report {
     /// Builds the report from the states (principal frame) at `times` of the motion that
-    /// starts as `start`; `states` may fail (an exact solution that cannot be evaluated).
+    /// starts as `start` ([`LibraryReport::from_states`]); `states` may fail (an exact
+    /// solution that cannot be evaluated).
     ///
     /// # Errors
-    /// The first error of `states`.
+    /// The first error of `states`; [`CliError::Runtime`] when the report cannot be built.
     pub fn from_states(
         start: &RigidBody,
         times: &[f64],
         states: impl IntoIterator<Item = CliResult<State>>,
     ) -> CliResult<Report> {
-        let n = start.dim();
-        let reference = Invariants::of(start);
-        let rp = start.principal_frame().clone();
-        let rp_rev = rp.inverse();
-        let mut report = Report {
-            dim: n,
-            times: times.to_vec(),
-            omega: Vec::with_capacity(times.len()),
-            momentum: Vec::with_capacity(times.len()),
-            energy: Vec::with_capacity(times.len()),
-            casimirs: Vec::with_capacity(times.len()),
-            attitude: Vec::with_capacity(times.len()),
-            energy_drift: Vec::with_capacity(times.len()),
-            casimir_drift: Vec::with_capacity(times.len()),
-            drift: Drift::default(),
-            manakov_drift: vec![0.0; reference.manakov.len()],
-        };
-        let mut b = start.clone();
-        for state in states {
-            let (r, l) = state?;
-            b.set_state(r, l)
-                .map_err(|e| CliError::runtime(format!("the motion cannot be evaluated: {e}")))?;
-            let inv = Invariants::of(&b);
-            let d = inv.drift_from(&reference);
-            report.drift = report.drift.max(d);
-            for (worst, m) in report
-                .manakov_drift
-                .iter_mut()
-                .zip(inv.manakov_drifts(&reference))
-            {
-                *worst = worst.max(m);
-            }
-            report.energy_drift.push(d.energy);
-            report.casimir_drift.push(d.casimirs);
-            report.omega.push(rp.rotate_bivector(&b.omega()));
-            report.momentum.push(rp.rotate_bivector(b.momentum()));
-            report.energy.push(inv.energy);
-            report.casimirs.push(inv.casimirs);
-            report
-                .attitude
-                .push(b.principal_frame_attitude().compose(&rp_rev).to_matrix());
-        }
-        if report.omega.len() != times.len() {
-            return Err(CliError::runtime("fewer states than sample times"));
-        }
-        Ok(report)
+        LibraryReport::from_states(start, times, states)
+            .map(Report::from)
+            .map_err(|e| match e {
+                ReportError::State(e) => e,
+                other => CliError::runtime(other.to_string()),
+            })
     }
 
     /// Returns the JSON object with keys `dim`, `times`, `omega`, `momentum`, `energy`,
-    /// `casimirs`, `attitude`, `drift` (plus `planes`, the component names).
+    /// `casimirs`, `attitude`, `drift` (plus `planes`, the component names):
+    /// [`LibraryReport::to_json`].
     pub fn to_json(&self) -> Value {
-        let bv =
-            |v: &[Bivector]| -> Vec<Vec<f64>> { v.iter().map(|b| b.as_slice().to_vec()).collect() };
-        json!({
-            "dim": self.dim,
-            "planes": plane_names(self.dim),
-            "times": self.times,
-            "omega": bv(&self.omega),
-            "momentum": bv(&self.momentum),
-            "energy": self.energy,
-            "casimirs": self.casimirs,
-            "attitude": self.attitude.iter().map(matrix_json).collect::<Vec<_>>(),
-            "drift": {
-                "energy": self.drift.energy,
-                "casimirs": self.drift.casimirs,
-                "manakov": self.manakov_drift,
-                "space_momentum": self.drift.space_momentum,
-            },
-        })
+        LibraryReport::from(self.clone()).to_json()
     }
 
     /// Returns the CSV: one row per time with t, ω_ij, L_ij, energy, the Casimirs and the

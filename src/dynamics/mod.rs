@@ -19,6 +19,8 @@
 //! - [`invariants`]: energy, Casimirs, space-frame momentum, the attitude's drift from its
 //!   group.
 //! - [`trajectory`]: sampled runs ([`simulate`]) with a drift summary.
+//! - [`report`]: a run's states reported in the body's own axes, as `rotorflow simulate`
+//!   prints them.
 //! - [`kinematics`]: point velocities, Coriolis and centrifugal accelerations (eqs. 18–21).
 //! - [`stability`]: growth rates of perturbed steady rotations.
 //! - [`motion`]: bodies that move as well as turn (centre of mass, forces and torques,
@@ -40,6 +42,7 @@ pub mod invariants;
 pub mod kinematics;
 mod lagrange_top;
 pub mod motion;
+pub mod report;
 pub mod stability;
 mod torque;
 pub mod trajectory;

@@ -1,8 +1,10 @@
 //! `ProductTable` against the products it tabulates: the same coefficients bit for bit (up
-//! to the sign of a zero), one pair at a time and in batches of every length around a block.
+//! to the sign of a zero), one pair at a time and in batches of every length around a block
+//! (up to N = 4 through the dense kernels, above through the list of entries), and batched
+//! sandwiches against the multivector's own V X Ṽ.
 
 use rotorflow::algebra::{
-    AlgebraError, Multivector, PRODUCT_TABLE_MAX_DIM, Product, ProductTable, Signature,
+    AlgebraError, Multivector, PRODUCT_TABLE_MAX_DIM, Product, ProductTable, Signature, Versor,
 };
 
 fn coefficients(seed: u64, len: usize) -> Vec<f64> {
@@ -110,6 +112,85 @@ fn batches_equal_single_pairs_at_every_length_around_a_block() {
             assert_eq!(&out[r], one.as_slice(), "element {e} of {m}");
         }
     }
+}
+
+/// Every signature of dimension 0 to 4 (and two of 5, past the dense kernels).
+fn small_signatures() -> Vec<Signature> {
+    let mut sigs = Vec::new();
+    for n in 0..=4 {
+        for p in 0..=n {
+            for q in 0..=n - p {
+                sigs.push(Signature::new(p, q, n - p - q).unwrap());
+            }
+        }
+    }
+    sigs.push(Signature::new(4, 1, 0).unwrap());
+    sigs.push(Signature::new(3, 0, 2).unwrap());
+    sigs
+}
+
+#[test]
+fn batches_equal_single_pairs_for_every_kind_and_small_signature() {
+    let mut checked = 0;
+    for sig in small_signatures() {
+        let size = 1 << sig.dim();
+        let mut tables: Vec<ProductTable> = KINDS
+            .iter()
+            .map(|&kind| ProductTable::new(sig, kind).unwrap())
+            .collect();
+        tables.push(ProductTable::inner(sig).unwrap());
+        for (t, table) in tables.iter().enumerate() {
+            // Lengths around the dense kernel's block of 8 and the table's block of 64.
+            for m in [1, 7, 8, 9, 17, 65] {
+                let a = coefficients((m * 13 + t) as u64, m * size);
+                let b = coefficients((m * 7 + t) as u64 + 500, m * size);
+                let mut out = vec![7.0; m * size];
+                table.apply_batch(&a, &b, &mut out).unwrap();
+                let mut one = vec![0.0; size];
+                for e in 0..m {
+                    let r = e * size..(e + 1) * size;
+                    table.apply(&a[r.clone()], &b[r.clone()], &mut one).unwrap();
+                    assert_eq!(
+                        &out[r],
+                        one.as_slice(),
+                        "{sig} table {t} element {e} of {m}"
+                    );
+                    checked += 1;
+                }
+            }
+        }
+    }
+    // 35 signatures up to N = 4 and two of N = 5; 9 tables each; 107 elements per table.
+    assert_eq!(checked, 37 * 9 * 107);
+}
+
+#[test]
+fn batched_sandwiches_equal_the_multivector_sandwich() {
+    let mut checked = 0;
+    for sig in small_signatures() {
+        let size = 1 << sig.dim();
+        let table = ProductTable::new(sig, Product::Geometric).unwrap();
+        for m in [1, 8, 11, 70] {
+            let v = coefficients(m as u64 + 40, m * size);
+            let x = coefficients(m as u64 + 80, m * size);
+            let mut out = vec![7.0; m * size];
+            table.sandwich_batch(&v, &x, &mut out).unwrap();
+            for e in 0..m {
+                let r = e * size..(e + 1) * size;
+                let mv = Multivector::from_coefficients(sig, &v[r.clone()]).unwrap();
+                let mx = Multivector::from_coefficients(sig, &x[r.clone()]).unwrap();
+                let expected = mv.apply(&mx).unwrap();
+                assert_eq!(&out[r], expected.as_slice(), "{sig} element {e} of {m}");
+                checked += 1;
+            }
+        }
+    }
+    assert_eq!(checked, 37 * 90);
+    let table = ProductTable::new(Signature::euclidean(3), Product::Geometric).unwrap();
+    assert!(matches!(
+        table.sandwich_batch(&[0.0; 16], &[0.0; 8], &mut [0.0; 16]),
+        Err(AlgebraError::WrongComponentCount { .. })
+    ));
 }
 
 #[test]
