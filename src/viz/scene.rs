@@ -275,12 +275,7 @@ const TEMPLATE: &str = r##"<!DOCTYPE html>
 Round bodies are the wire frames of their 3D projections; springs are zigzags, ball joints rings, anchors squares. Planes are the translucent squares: each plane's
 trace in the three shown coordinates, the others held at the scene's centre. Contacts are orange discs in a ring; the border flashes orange while a body touches. The N−3 axes left out are dropped
 (orthographic) or removed by a perspective from each of them in turn about the scene's centre.</p>
-<pre id="selftest"></pre>
-<script type="application/json" id="data">{{DATA}}</script>
-<script>
-"use strict";
-(function () {
-{{SETUP}}
+{{SCRIPT}}
   const colours = ["#1f4e9c", "#c0392b", "#27864a", "#8e44ad", "#d35400", "#16a085", "#7f8c8d", "#b7950b"];
   const legend = document.getElementById("legend");
   D.bodies.forEach(function (b, i) {
