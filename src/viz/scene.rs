@@ -85,7 +85,7 @@ pub fn up_axis(g: &[f64]) -> Option<usize> {
 /// any) and the axes of the widest `extent` (the size of the box the bodies' centres sweep
 /// along each axis) after it, ties to the lower axis; the vertical axis last (drawn
 /// upwards), the others in increasing order. With N ≤ 3: 0, 1, 2, with `up` last.
-pub fn default_axes(extent: &[f64], up: Option<usize>) -> [usize; 3] {
+pub(crate) fn default_axes(extent: &[f64], up: Option<usize>) -> [usize; 3] {
     let n = extent.len().max(3);
     let up = up.filter(|&u| u < n);
     let mut others: Vec<usize> = (0..n).filter(|&k| Some(k) != up).collect();
