@@ -225,7 +225,8 @@ fn bench_tight_tolerance(c: &mut Criterion) {
 
 /// RK4 and the Lie–Poisson RK4 on the 4D cuboid (as above) to t = 100, each with the fewest
 /// equal steps (to 1%) that give |Δω| ≤ 1e-8 at t = 100 against Dop853 at rtol 1e-15: the
-/// counts `p4_cost_at_1e_8_survey` in tests/dynamics/lie_poisson.rs finds.
+/// counts of the book's cost table (`examples/book_long_runs.rs`), which
+/// `the_book_step_counts_for_1e_8_on_p4_hold` in tests/dynamics/lie_poisson.rs checks.
 fn bench_casimir_preserving(c: &mut Criterion) {
     let parsed = rotorflow::inertia::spec::parse_body("cuboid:1,1.3,1.7,2.2+mass=1").unwrap();
     let omega = Bivector::from_components(4, &[0.3, -0.2, 0.5, 0.1, 0.4, -0.6]).unwrap();

@@ -1,27 +1,41 @@
 //! # rotorflow
 //!
-//! Geometric algebra for rotating bodies in any number of dimensions.
+//! Geometric algebra for rigid bodies in any number of dimensions: the algebra, the
+//! inertia, the rotation and the motion, with contact.
 //!
-//! rotorflow says the physics of rigid rotation in ℝᴺ with the objects geometric algebra
-//! gives it: angular velocity and momentum are bivectors, attitude is a rotor, and inertia is
-//! a linear map on bivectors. The dimension is chosen at run time.
+//! rotorflow says the physics of rigid bodies in ℝᴺ with the objects geometric algebra gives
+//! it: angular velocity and momentum are bivectors, attitude is a rotor, inertia is a linear
+//! map on bivectors, and a placement is a motor of projective GA. The dimension is chosen at
+//! run time; the algebra itself is there in every signature.
 //!
 //! The layers, each building on the one before:
-//! - [`algebra`]: vectors, bivectors, rotors and multivectors, every product, and a
-//!   closed-form exponential and logarithm that stay exact where other libraries fail
-//!   (non-simple and isoclinic bivectors, angles near π, N above 4);
+//! - [`algebra`]: vectors, bivectors, rotors and multivectors of any signature Cl(p, q, r),
+//!   every product, and closed-form exponentials and logarithms that stay exact where other
+//!   libraries fail (non-simple and isoclinic bivectors, angles near π, N above 4); typed
+//!   objects of projective GA ([`algebra::pga`]: points, lines, planes, motors), conformal GA
+//!   ([`algebra::cga`]) and the spacetime algebra ([`algebra::sta`]); and the fixed-size 3D
+//!   and 4D types [`Rotor3`](algebra::Rotor3), [`Rotor4`](algebra::Rotor4),
+//!   [`Bivector3`](algebra::Bivector3), [`Bivector4`](algebra::Bivector4) in f32 and f64
+//!   (`Copy`, on the stack; glam conversions with the feature `glam`);
 //! - [`inertia`]: the inertia map as a linear operator on bivectors, built from a catalogue
 //!   of N-dimensional bodies (point clouds, the paper's tesseract and 5-cell, cuboids,
 //!   ellipsoids, balls, shells, simplices, simplicial meshes, composites), with the paper's
 //!   rank-4 and Levi-Civita-contracted tensors as views;
-//! - [`dynamics`]: rigid bodies turning and moving, their integrators, closed forms,
-//!   contact and joints, and recorded runs;
+//! - [`dynamics`]: rigid bodies turning, with eight integrators, drift monitors and the free
+//!   top as the integrable system it is (closed forms, Jacobi elliptic functions in 3D, and
+//!   the discrete Moser–Veselov top that keeps every Manakov integral); and bodies that move
+//!   ([`dynamics::motion`]): systems with forces, springs and joints, contact with half-spaces
+//!   and between bodies (contact manifolds held at the corners of each contact region, so
+//!   that towers of boxes and 4D hypercubes stand), and recorded runs;
 //! - `viz` and `scene` (features of the same names): pictures of what `dynamics` records,
 //!   and scene files, used by the `rotorflow` command and open to any program
 //!   (algebra ← inertia ← dynamics ← viz ← scene ← cli);
 //! - [`special`]: Carlson's symmetric elliptic integrals, the Legendre integrals of the
 //!   first, second and third kinds, and the Jacobi elliptic functions, accurate to a few ulp
 //!   (the building blocks of the exact free 3D rigid body).
+//!
+//! The same crate is a Python package (`pip install ./python` from the repository, PyO3 and
+//! numpy; the book's chapter "From Python").
 //!
 //! # Conventions
 //! The Conventions chapter of the rotorflow book states them in full; in short:
@@ -86,11 +100,13 @@
 //! # The book
 //! The rotorflow book (`book/` in the repository; `scripts/book.sh` builds it with these API
 //! docs beside it) explains the crate chapter by chapter: getting started, the conventions,
-//! geometric algebra in N dimensions ([`algebra`]), the mapping of every equation of the
-//! paper onto the crate, the inertia of N-dimensional bodies ([`inertia`]), the integrators
-//! and what each conserves ([`dynamics`]), closed-form motion, the paper's errata with the
-//! test behind each one, extending the crate, performance beside nalgebra's matrix
-//! formulation, the command-line reference and the references.
+//! geometric algebra in N dimensions ([`algebra`]) and in other signatures (motors, boosts,
+//! versors), the mapping of every equation of the paper onto the crate, the inertia of
+//! N-dimensional bodies ([`inertia`]), the integrators and what each conserves
+//! ([`dynamics`]), closed-form motion, bodies that move and touch
+//! ([`dynamics::motion`]), the paper's errata with the test behind each one, extending the
+//! crate, performance beside nalgebra and glam, the Python package, the command-line
+//! reference, scene files and the references.
 //!
 //! # Crate features
 //! - `cli` (default): the `rotorflow` command (`cargo run --release -- demo`), a user of
@@ -110,11 +126,14 @@
 //! # Performance
 //! Vectors and bivectors up to N = 8 and rotors up to N = 5 live on the stack. The bivector
 //! commutator costs O(N³) without forming a multivector; exp and log are closed forms. The
-//! benches in `benches/algebra.rs` compare each kernel with nalgebra's matrix formulation.
+//! benches in `benches/algebra.rs` compare each kernel with nalgebra's matrix formulation,
+//! those in `benches/fixed.rs` the fixed-size types with glam and nalgebra.
 //!
 //! # When not to use rotorflow
-//! For fixed 3D graphics work with f32, glam or nalgebra's quaternions are smaller and faster.
-//! rotorflow is f64 and dimension-generic.
+//! For 3D graphics alone, glam or nalgebra's quaternions are smaller dependencies; rotorflow's
+//! fixed-size [`Rotor3`](algebra::Rotor3) is their equal in f32 and f64 (compare them with
+//! `cargo bench --bench fixed`), but the crate around it is built for any dimension and any
+//! signature.
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 

@@ -176,6 +176,12 @@ fn write_tuple(f: &mut fmt::Formatter<'_>, x: &[f64]) -> fmt::Result {
     f.write_str(")")
 }
 
+/// Writes `name(x₁, x₂, …)`.
+fn write_named_tuple(f: &mut fmt::Formatter<'_>, name: &str, x: &[f64]) -> fmt::Result {
+    f.write_str(name)?;
+    write_tuple(f, x)
+}
+
 fn write_number(f: &mut fmt::Formatter<'_>, c: f64) -> fmt::Result {
     match f.precision() {
         Some(p) => write!(f, "{c:.p$}"),
@@ -187,14 +193,8 @@ impl fmt::Display for pga::Point {
     /// Formats as `point(1, 2, 3)`, or `direction(0, 0, 1)` for an ideal point.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self.coordinates() {
-            Ok(x) => {
-                f.write_str("point")?;
-                write_tuple(f, &x)
-            }
-            Err(_) => {
-                f.write_str("direction")?;
-                write_tuple(f, &self.direction())
-            }
+            Ok(x) => write_named_tuple(f, "point", &x),
+            Err(_) => write_named_tuple(f, "direction", &self.direction()),
         }
     }
 }
@@ -239,10 +239,7 @@ impl fmt::Display for cga::Point {
     /// Formats as `point(1, 2, 3)`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self.coordinates() {
-            Ok(x) => {
-                f.write_str("point")?;
-                write_tuple(f, &x)
-            }
+            Ok(x) => write_named_tuple(f, "point", &x),
             Err(_) => f.write_str("point at infinity"),
         }
     }

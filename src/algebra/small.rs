@@ -252,25 +252,28 @@ impl<const L: usize> Small<L> {
     }
 }
 
+impl<const L: usize> Small<L> {
+    /// `self` with `f(x, y)` applied to each coefficient x and the matching one y of `o`.
+    fn zip_with(&self, o: &Small<L>, f: impl Fn(&mut f64, f64)) -> Small<L> {
+        let mut out = *self;
+        for (x, y) in out.c.iter_mut().zip(&o.c) {
+            f(x, *y);
+        }
+        out
+    }
+}
+
 impl<const L: usize> Add<&Small<L>> for &Small<L> {
     type Output = Small<L>;
     fn add(self, o: &Small<L>) -> Small<L> {
-        let mut out = *self;
-        for (x, y) in out.c.iter_mut().zip(&o.c) {
-            *x += y;
-        }
-        out
+        self.zip_with(o, |x, y| *x += y)
     }
 }
 
 impl<const L: usize> Sub<&Small<L>> for &Small<L> {
     type Output = Small<L>;
     fn sub(self, o: &Small<L>) -> Small<L> {
-        let mut out = *self;
-        for (x, y) in out.c.iter_mut().zip(&o.c) {
-            *x -= y;
-        }
-        out
+        self.zip_with(o, |x, y| *x -= y)
     }
 }
 

@@ -28,7 +28,7 @@
 
 use super::integrate::dop853_tableau::{A, B, BHH, E5, STAGES};
 use super::integrate::first_step_estimate;
-use super::integrate::{DEXP_INVERSE_8, strang_drift_3, strang_drift_4};
+use super::integrate::{DEXP_INVERSE_8, strang_drift_fixed};
 use super::motion::MotionError;
 use super::{DynamicsError, RigidBody};
 use crate::algebra::{Bivector3, Bivector4, Rotor3, Rotor4, commutator_packed};
@@ -350,13 +350,13 @@ macro_rules! free_body {
                 attitude: $rotor,
                 momentum: $biv,
             ) -> Result<Self, DynamicsError> {
-                if let Some(&m) = moments.iter().find(|m| !(m.is_finite() && **m > 0.0)) {
-                    return Err(MotionError::OutOfRange {
-                        what: "plane moment",
-                        value: m,
-                        expected: "a finite positive number",
-                    }
-                    .into());
+                for &m in &moments {
+                    MotionError::require(
+                        m.is_finite() && m > 0.0,
+                        "plane moment",
+                        m,
+                        "a finite positive number",
+                    )?;
                 }
                 let momentum = momentum.to_array();
                 if let Some(&x) = momentum.iter().find(|x| !x.is_finite()) {
@@ -613,7 +613,7 @@ free_body!(
     3,
     Bivector3,
     Rotor3,
-    strang_drift_3,
+    strang_drift_fixed,
     "A free rigid body of 3D space on the fixed-size types (quaternion attitude)."
 );
 free_body!(
@@ -622,7 +622,7 @@ free_body!(
     6,
     Bivector4,
     Rotor4,
-    strang_drift_4,
+    strang_drift_fixed,
     "A free rigid body of 4D space on the fixed-size types (quaternion-pair attitude)."
 );
 

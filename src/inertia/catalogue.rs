@@ -158,13 +158,10 @@ impl Body {
         circumradius: f64,
         vertex_mass: f64,
     ) -> Result<Body, InertiaError> {
-        check_dim(dim, 1)?;
-        check_positive("circumradius", None, circumradius)?;
-        check_positive("vertex_mass", None, vertex_mass)?;
-        let n = dim as f64;
-        let mass = (n + 1.0) * vertex_mass;
-        let j = DMatrix::identity(dim, dim) * (mass * circumradius * circumradius / n);
-        Body::new_checked(mass, DVector::zeros(dim), j, None)
+        isotropic_vertices(dim, ("circumradius", circumradius), vertex_mass, |n| {
+            let mass = (n + 1.0) * vertex_mass;
+            (mass, mass * circumradius * circumradius / n)
+        })
     }
 
     /// Returns the paper's 5-cell (pentachoron): unit point masses at the five points of its
@@ -201,12 +198,9 @@ impl Body {
         radius: f64,
         vertex_mass: f64,
     ) -> Result<Body, InertiaError> {
-        check_dim(dim, 1)?;
-        check_positive("radius", None, radius)?;
-        check_positive("vertex_mass", None, vertex_mass)?;
-        let mass = 2.0 * dim as f64 * vertex_mass;
-        let j = DMatrix::identity(dim, dim) * (2.0 * vertex_mass * radius * radius);
-        Body::new_checked(mass, DVector::zeros(dim), j, None)
+        isotropic_vertices(dim, ("radius", radius), vertex_mass, |n| {
+            (2.0 * n * vertex_mass, 2.0 * vertex_mass * radius * radius)
+        })
     }
 
     /// Returns the solid hyper-cuboid [−a₁, a₁] × … × [−a_N, a_N] of uniform `density`.
@@ -334,4 +328,25 @@ impl Body {
         j *= mass / ((nf + 1.0) * (nf + 2.0));
         Body::new_checked(mass, center, j, Some(volume))
     }
+}
+
+/// The body of equal point masses `vertex_mass` on a sphere of the radius `radius` (named
+/// for messages) about the origin, placed so that J is isotropic: `mass_and_j(N)` gives the
+/// mass and the common diagonal entry of J.
+fn isotropic_vertices(
+    dim: usize,
+    (radius_name, radius): (&'static str, f64),
+    vertex_mass: f64,
+    mass_and_j: impl FnOnce(f64) -> (f64, f64),
+) -> Result<Body, InertiaError> {
+    check_dim(dim, 1)?;
+    check_positive(radius_name, None, radius)?;
+    check_positive("vertex_mass", None, vertex_mass)?;
+    let (mass, j) = mass_and_j(dim as f64);
+    Body::new_checked(
+        mass,
+        DVector::zeros(dim),
+        DMatrix::identity(dim, dim) * j,
+        None,
+    )
 }

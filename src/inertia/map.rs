@@ -397,11 +397,10 @@ impl InertiaMap {
     pub(crate) fn diagonal_inverse_plane_moments(&self) -> Option<&[f64]> {
         match &self.kind {
             Kind::Physical {
-                diagonal: true,
+                diagonal,
                 inverse_plane_moments,
                 ..
-            } => Some(inverse_plane_moments),
-            Kind::Physical { .. } => None,
+            } => diagonal.then_some(inverse_plane_moments.as_slice()),
             Kind::General {
                 inverse_diagonal, ..
             } => inverse_diagonal.as_deref(),
@@ -474,10 +473,7 @@ impl InertiaMap {
     /// If ω's dimension differs from the map's (see [`InertiaMap::try_apply`]).
     #[track_caller]
     pub fn apply(&self, omega: &Bivector) -> Bivector {
-        assert_dims(self.dim, omega.dim());
-        let mut out = Bivector::zero(self.dim);
-        self.apply_into(omega.as_slice(), out.as_mut_slice());
-        out
+        self.map_bivector(omega, Self::apply_into)
     }
 
     /// Checked version of [`InertiaMap::apply`].
@@ -485,8 +481,7 @@ impl InertiaMap {
     /// # Errors
     /// [`InertiaError::DimensionMismatch`].
     pub fn try_apply(&self, omega: &Bivector) -> Result<Bivector, InertiaError> {
-        check_dims(self.dim, omega.dim())?;
-        Ok(self.apply(omega))
+        check_dims(self.dim, omega.dim()).map(|()| self.apply(omega))
     }
 
     /// Returns the angular velocity ω = I⁻¹(L).
@@ -495,10 +490,7 @@ impl InertiaMap {
     /// If L's dimension differs from the map's (see [`InertiaMap::try_apply_inverse`]).
     #[track_caller]
     pub fn apply_inverse(&self, momentum: &Bivector) -> Bivector {
-        assert_dims(self.dim, momentum.dim());
-        let mut out = Bivector::zero(self.dim);
-        self.apply_inverse_into(momentum.as_slice(), out.as_mut_slice());
-        out
+        self.map_bivector(momentum, Self::apply_inverse_into)
     }
 
     /// Checked version of [`InertiaMap::apply_inverse`].
@@ -506,80 +498,62 @@ impl InertiaMap {
     /// # Errors
     /// [`InertiaError::DimensionMismatch`].
     pub fn try_apply_inverse(&self, momentum: &Bivector) -> Result<Bivector, InertiaError> {
-        check_dims(self.dim, momentum.dim())?;
-        Ok(self.apply_inverse(momentum))
+        check_dims(self.dim, momentum.dim()).map(|()| self.apply_inverse(momentum))
+    }
+
+    /// `kernel` (one of the `_into` maps) on a bivector of the map's dimension.
+    #[track_caller]
+    fn map_bivector(&self, b: &Bivector, kernel: fn(&Self, &[f64], &mut [f64])) -> Bivector {
+        assert_dims(self.dim, b.dim());
+        let mut out = Bivector::zero(self.dim);
+        kernel(self, b.as_slice(), out.as_mut_slice());
+        out
     }
 
     /// Writes I(ω) into `out` (packed lexicographic components); no allocation when the map
     /// is principal or N ≤ 16.
     pub fn apply_into(&self, omega: &[f64], out: &mut [f64]) {
+        if let Some(moments) = self.diagonal_plane_moments() {
+            zip_into(out, omega, moments, |w, m| w * m);
+            return;
+        }
         match &self.kind {
-            Kind::Physical {
-                mass_tensor,
-                diagonal,
-                plane_moments,
-                ..
-            } => {
-                if *diagonal {
-                    for ((o, w), m) in out.iter_mut().zip(omega).zip(plane_moments) {
-                        *o = w * m;
-                    }
-                } else {
-                    jw_plus_wj(self.dim, mass_tensor, omega, out);
-                }
-            }
-            Kind::General {
-                matrix, diagonal, ..
-            } => match diagonal {
-                Some(d) => {
-                    for ((o, w), m) in out.iter_mut().zip(omega).zip(d) {
-                        *o = w * m;
-                    }
-                }
-                None => mat_vec(matrix, omega, out),
-            },
+            Kind::Physical { mass_tensor, .. } => jw_plus_wj(self.dim, mass_tensor, omega, out),
+            Kind::General { matrix, .. } => mat_vec(matrix, omega, out),
         }
     }
 
     /// Writes I⁻¹(L) into `out` (packed lexicographic components).
     pub fn apply_inverse_into(&self, momentum: &[f64], out: &mut [f64]) {
         match &self.kind {
+            Kind::General {
+                diagonal: Some(d), ..
+            } => zip_into(out, momentum, d, |l, m| l / m),
+            Kind::General { inverse, .. } => mat_vec(inverse, momentum, out),
+            Kind::Physical {
+                diagonal: true,
+                inverse_plane_moments,
+                ..
+            } => zip_into(out, momentum, inverse_plane_moments, |l, m| l * m),
             Kind::Physical {
                 axes,
-                diagonal,
                 inverse_plane_moments,
                 ..
             } => {
-                if *diagonal {
-                    for ((o, l), m) in out.iter_mut().zip(momentum).zip(inverse_plane_moments) {
-                        *o = l * m;
-                    }
-                } else {
-                    // Pᵀ[L]P, divide by Jᵢ + Jⱼ, rotate back: the Lyapunov solution.
-                    let l = packed_to_dense(self.dim, momentum);
-                    let lp = axes.transpose() * l * axes;
-                    let mut w = DMatrix::<f64>::zeros(self.dim, self.dim);
-                    for ((i, j), inv) in pairs(self.dim).zip(inverse_plane_moments) {
-                        let x = lp[(i, j)] * inv;
-                        w[(i, j)] = x;
-                        w[(j, i)] = -x;
-                    }
-                    let back = axes * w * axes.transpose();
-                    for ((i, j), o) in pairs(self.dim).zip(out.iter_mut()) {
-                        *o = 0.5 * (back[(i, j)] - back[(j, i)]);
-                    }
+                // Pᵀ[L]P, divide by Jᵢ + Jⱼ, rotate back: the Lyapunov solution.
+                let l = packed_to_dense(self.dim, momentum);
+                let lp = axes.transpose() * l * axes;
+                let mut w = DMatrix::<f64>::zeros(self.dim, self.dim);
+                for ((i, j), inv) in pairs(self.dim).zip(inverse_plane_moments) {
+                    let x = lp[(i, j)] * inv;
+                    w[(i, j)] = x;
+                    w[(j, i)] = -x;
+                }
+                let back = axes * w * axes.transpose();
+                for ((i, j), o) in pairs(self.dim).zip(out.iter_mut()) {
+                    *o = 0.5 * (back[(i, j)] - back[(j, i)]);
                 }
             }
-            Kind::General {
-                inverse, diagonal, ..
-            } => match diagonal {
-                Some(d) => {
-                    for ((o, l), m) in out.iter_mut().zip(momentum).zip(d) {
-                        *o = l / m;
-                    }
-                }
-                None => mat_vec(inverse, momentum, out),
-            },
         }
     }
 
@@ -640,6 +614,14 @@ impl InertiaMap {
 }
 
 #[track_caller]
+/// `out[k] = f(x[k], y[k])` for every component.
+#[inline]
+fn zip_into(out: &mut [f64], x: &[f64], y: &[f64], f: impl Fn(f64, f64) -> f64) {
+    for ((o, a), b) in out.iter_mut().zip(x).zip(y) {
+        *o = f(*a, *b);
+    }
+}
+
 fn assert_dims(map: usize, argument: usize) {
     assert!(
         map == argument,

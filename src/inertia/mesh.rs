@@ -198,23 +198,22 @@ fn check_indices(
     expected: usize,
     vertex_count: usize,
 ) -> Result<(), InertiaError> {
-    if indices.len() != expected {
+    let found = indices.len();
+    if found != expected {
         return Err(InertiaError::WrongSimplexSize {
             simplex,
             expected,
-            found: indices.len(),
+            found,
         });
     }
-    for &k in indices {
-        if k >= vertex_count {
-            return Err(InertiaError::VertexIndexOutOfRange {
-                simplex,
-                vertex: k,
-                vertex_count,
-            });
-        }
+    match indices.iter().find(|&&k| k >= vertex_count) {
+        Some(&vertex) => Err(InertiaError::VertexIndexOutOfRange {
+            simplex,
+            vertex,
+            vertex_count,
+        }),
+        None => Ok(()),
     }
-    Ok(())
 }
 
 /// Sums simplex contributions (vertices relative to `reference`) into a body.

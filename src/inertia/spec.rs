@@ -48,7 +48,7 @@
 
 use super::SimplexOrientation;
 use super::bodies;
-use super::{Body, InertiaMap};
+use super::{Body, InertiaError, InertiaMap};
 use crate::algebra::MULTIVECTOR_MAX_DIM;
 use nalgebra::{DMatrix, DVector};
 use std::path::Path;
@@ -509,27 +509,34 @@ fn simplex(args: &str, options: &Options) -> Built {
 }
 
 fn cuboid(args: &str, options: &Options) -> Built {
-    let a = positive_list(args, "half-lengths")?;
-    let body = Body::solid_cuboid(&a, options.density()).map_err(|err| err.to_string())?;
-    Ok((
-        body,
+    solid_of_axes(args, "half-lengths", options, Body::solid_cuboid, |a| {
         Geometry::Cuboid {
             half_lengths: a,
             solid: true,
-        },
-    ))
+        }
+    })
 }
 
 fn ellipsoid(args: &str, options: &Options) -> Built {
-    let a = positive_list(args, "semi-axes")?;
-    let body = Body::solid_ellipsoid(&a, options.density()).map_err(|err| err.to_string())?;
-    Ok((
-        body,
+    solid_of_axes(args, "semi-axes", options, Body::solid_ellipsoid, |a| {
         Geometry::Ellipsoid {
             semi_axes: a,
             surface: false,
-        },
-    ))
+        }
+    })
+}
+
+/// A solid of uniform density given by a positive length per axis (`what` in messages).
+fn solid_of_axes(
+    args: &str,
+    what: &str,
+    options: &Options,
+    body: fn(&[f64], f64) -> Result<Body, InertiaError>,
+    geometry: fn(Vec<f64>) -> Geometry,
+) -> Built {
+    let a = positive_list(args, what)?;
+    let body = body(&a, options.density()).map_err(|err| err.to_string())?;
+    Ok((body, geometry(a)))
 }
 
 fn ball_or_sphere(args: &str, options: &Options, surface: bool) -> Built {

@@ -69,33 +69,33 @@ pub fn build_system(scene: &Scene) -> Result<System, SceneError> {
             .add_forque(Gravity(vector(&scene.gravity)?))
             .map_err(|e| fail("gravity".into(), &e))?;
     }
+    // The error of the k-th (0-based) part of a kind, numbered from 1 as the scene's reader
+    // counts.
+    let numbered = |what: &str, k: usize| {
+        let what = format!("{what} {}", k + 1);
+        move |e: DynamicsError| fail(what, &e)
+    };
     for (k, s) in scene.springs.iter().enumerate() {
-        system
-            .add_forque(Spring {
-                body: s.body,
-                point: vector(&s.point)?,
-                anchor: anchor(&s.anchor)?,
-                stiffness: s.stiffness,
-                rest_length: s.rest_length,
-                damping: s.damping,
-            })
-            .map_err(|e| fail(format!("spring {}", k + 1), &e))?;
+        let (body, point, anchor) = (s.body, vector(&s.point)?, anchor(&s.anchor)?);
+        let spring = Spring {
+            body,
+            point,
+            anchor,
+            stiffness: s.stiffness,
+            rest_length: s.rest_length,
+            damping: s.damping,
+        };
+        system.add_forque(spring).map_err(numbered("spring", k))?;
     }
     for (k, p) in scene.planes.iter().enumerate() {
         let h = HalfSpace::new(&vector(&p.normal)?, p.offset, p.friction, p.restitution)
-            .map_err(|e| fail(format!("plane {}", k + 1), &e))?;
-        system
-            .add_half_space(h)
-            .map_err(|e| fail(format!("plane {}", k + 1), &e))?;
+            .map_err(numbered("plane", k))?;
+        system.add_half_space(h).map_err(numbered("plane", k))?;
     }
     for (k, j) in scene.joints.iter().enumerate() {
-        system
-            .add_ball_joint(BallJoint {
-                body: j.body,
-                point: vector(&j.point)?,
-                other: anchor(&j.other)?,
-            })
-            .map_err(|e| fail(format!("joint {}", k + 1), &e))?;
+        let (body, point, other) = (j.body, vector(&j.point)?, anchor(&j.other)?);
+        let joint = BallJoint { body, point, other };
+        system.add_ball_joint(joint).map_err(numbered("joint", k))?;
     }
     system
         .check_contacts()

@@ -71,11 +71,12 @@ pub(super) fn round(x: f64) -> f64 {
 /// Returns the page of `template` with `title`, `data` and the parts every animation page
 /// shares: the style, the controls and the player's script (set-up, N-D → 3D → page, playing,
 /// dragging and the `#selftest` report). The page's own script defines `draw` between
-/// `{{SETUP}}`, `{{VIEW}}` (`project` and `view`) and `{{PLAYER}}`.
+/// `{{SCRIPT}}`, `{{VIEW}}` (`project` and `view`) and `{{PLAYER}}`.
 pub(super) fn page(template: &str, title: &str, data: &serde_json::Value) -> String {
     // `</` must not appear inside a <script> element; `<\/` is the same JSON string.
     let data = data.to_string().replace("</", "<\\/");
     template
+        .replace("{{SCRIPT}}", SCRIPT)
         .replace("{{STYLE}}", STYLE)
         .replace("{{CONTROLS}}", CONTROLS)
         .replace("{{SETUP}}", SETUP)
@@ -84,6 +85,15 @@ pub(super) fn page(template: &str, title: &str, data: &serde_json::Value) -> Str
         .replace("{{TITLE}}", &escape(title))
         .replace("{{DATA}}", &data)
 }
+
+/// The end of every page's body up to its own script: the self-test report, the data and
+/// the opening of the script with the shared set-up.
+const SCRIPT: &str = r##"<pre id="selftest"></pre>
+<script type="application/json" id="data">{{DATA}}</script>
+<script>
+"use strict";
+(function () {
+{{SETUP}}"##;
 
 const STYLE: &str = r##"  body { font-family: sans-serif; margin: 12px; background: #f4f5f7; color: #222; }
   #controls { display: flex; flex-wrap: wrap; gap: 10px; align-items: center; margin: 8px 0; }
@@ -238,12 +248,7 @@ const TEMPLATE: &str = r##"<!DOCTYPE html>
 <canvas id="view" width="720" height="540"></canvas>
 <p style="font-size:13px;color:#555">Drag to turn the 3D view. Edges are coloured by depth; the N−3 axes left out are
 removed by a perspective from each of them in turn (the paper's figures 1–3) or dropped (orthographic).</p>
-<pre id="selftest"></pre>
-<script type="application/json" id="data">{{DATA}}</script>
-<script>
-"use strict";
-(function () {
-{{SETUP}}
+{{SCRIPT}}
   // The body point p (own axes) turned by q into space.
   function turned(q, p) {
     const x = new Array(n).fill(0);

@@ -49,7 +49,7 @@ const VIEW: (f64, f64) = (0.6, 0.35);
 
 /// Returns the page position (x right, y down) and depth of a 3D point under the view
 /// (yaw, pitch), with a mild perspective at 4 body radii.
-pub fn view_to_2d(v: [f64; 3], yaw: f64, pitch: f64, radius: f64) -> (f64, f64, f64) {
+pub(crate) fn view_to_2d(v: [f64; 3], yaw: f64, pitch: f64, radius: f64) -> (f64, f64, f64) {
     let (sy, cy) = yaw.sin_cos();
     let (sp, cp) = pitch.sin_cos();
     let x1 = cy * v[0] + sy * v[1];
@@ -142,7 +142,7 @@ pub fn svg_strip(
 }
 
 /// Escapes text for XML and HTML.
-pub fn escape(text: &str) -> String {
+pub(crate) fn escape(text: &str) -> String {
     text.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")

@@ -85,7 +85,7 @@ pub fn up_axis(g: &[f64]) -> Option<usize> {
 /// any) and the axes of the widest `extent` (the size of the box the bodies' centres sweep
 /// along each axis) after it, ties to the lower axis; the vertical axis last (drawn
 /// upwards), the others in increasing order. With N ≤ 3: 0, 1, 2, with `up` last.
-pub fn default_axes(extent: &[f64], up: Option<usize>) -> [usize; 3] {
+pub(crate) fn default_axes(extent: &[f64], up: Option<usize>) -> [usize; 3] {
     let n = extent.len().max(3);
     let up = up.filter(|&u| u < n);
     let mut others: Vec<usize> = (0..n).filter(|&k| Some(k) != up).collect();
@@ -275,12 +275,7 @@ const TEMPLATE: &str = r##"<!DOCTYPE html>
 Round bodies are the wire frames of their 3D projections; springs are zigzags, ball joints rings, anchors squares. Planes are the translucent squares: each plane's
 trace in the three shown coordinates, the others held at the scene's centre. Contacts are orange discs in a ring; the border flashes orange while a body touches. The N−3 axes left out are dropped
 (orthographic) or removed by a perspective from each of them in turn about the scene's centre.</p>
-<pre id="selftest"></pre>
-<script type="application/json" id="data">{{DATA}}</script>
-<script>
-"use strict";
-(function () {
-{{SETUP}}
+{{SCRIPT}}
   const colours = ["#1f4e9c", "#c0392b", "#27864a", "#8e44ad", "#d35400", "#16a085", "#7f8c8d", "#b7950b"];
   const legend = document.getElementById("legend");
   D.bodies.forEach(function (b, i) {

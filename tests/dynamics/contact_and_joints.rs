@@ -757,10 +757,12 @@ fn advancing_by_many_steps_matches_single_steps() {
                 1.0,
             )
         };
+        // Bounds at most about ten times the worst measured over N = 3, 4: 2.2e-8, 3.8e-14,
+        // 5.4e-13.
         let cases_n: [(&str, &dyn Fn() -> System, usize, f64); 3] = [
             ("dropped box", &dropped, 8000, 1e-7),
-            ("sliding ball", &sliding, 1500, 1e-12),
-            ("elastic ball", &elastic, 8000, 1e-11),
+            ("sliding ball", &sliding, 1500, 4e-13),
+            ("elastic ball", &elastic, 8000, 5e-12),
         ];
         for (name, make, steps, bound) in cases_n {
             let (worst, single, joined) = single_and_joined(make, 1e-3, steps, 100);
@@ -775,6 +777,12 @@ fn advancing_by_many_steps_matches_single_steps() {
             // face is not unique, the total is).
             let (a, b) = (single.contacts(), joined.contacts());
             assert_eq!(a.len(), b.len(), "{name}, N = {n}: contacts");
+            // The box and the sliding ball rest on the floor at the end: the comparison has
+            // points to compare (the elastic ball may be in flight).
+            assert!(
+                name == "elastic ball" || !a.is_empty(),
+                "{name}, N = {n}: no contact to compare"
+            );
             for (x, y) in a.iter().zip(b) {
                 assert_eq!((x.body, x.half_space), (y.body, y.half_space));
                 assert!((&x.point - &y.point).max_abs() <= 1e-9, "{name}, N = {n}");
@@ -794,7 +802,8 @@ fn advancing_by_many_steps_matches_single_steps() {
     // Ball joints: the double pendulum of the energy test.
     let (worst, _, _) = single_and_joined(double_pendulum, 1e-3, 5000, 100);
     eprintln!("double pendulum: joined against single steps {worst:.1e}");
-    assert!(worst <= 1e-8, "double pendulum: {worst:e}");
+    // Measured 1.6e-10.
+    assert!(worst <= 2e-9, "double pendulum: {worst:e}");
     cases += 1;
     assert_eq!(cases, 7);
 }

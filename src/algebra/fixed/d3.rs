@@ -2,8 +2,8 @@
 
 use super::sealed::Sealed;
 use super::{
-    Real, norm, plane_slot, quat_conj, quat_exp_minus_one, quat_exp_with_norm, quat_inverse,
-    quat_log, quat_mul, quat_unit_error,
+    Real, norm, plain_norm_range, plane_slot, quat_conj, quat_exp_minus_one, quat_exp_with_norm,
+    quat_inverse, quat_log, quat_mul, quat_unit_error,
 };
 use crate::algebra::{AlgebraError, Bivector, Rotor};
 use nalgebra::{Matrix3, Vector3};
@@ -196,24 +196,18 @@ impl<T: Real> Rotor3<T> {
     /// # Errors
     /// [`AlgebraError::NonFinite`] for a NaN or infinite axis or angle;
     /// [`AlgebraError::ZeroLength`] for a zero axis.
+    #[inline]
     pub fn from_axis_angle(axis: Vector3<T>, angle: T) -> Result<Self, AlgebraError> {
         let a = [axis.x, axis.y, axis.z];
-        if !a.iter().all(|c| c.is_finite()) {
-            return Err(AlgebraError::NonFinite {
-                what: "rotation axis",
-            });
-        }
-        if !angle.is_finite() {
-            return Err(AlgebraError::NonFinite {
-                what: "rotation angle",
-            });
-        }
-        let len = norm(a);
-        if len == T::zero() {
-            return Err(AlgebraError::ZeroLength {
-                what: "rotation axis",
-            });
-        }
+        // One test covers the common input: |a|² well inside the range (so every component is
+        // finite and non-zero as a whole, and |a| is the plain root, as `norm` takes it) and a
+        // finite angle. The checks that name the problem, and the scaled norm, stand apart.
+        let squares = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+        let len = if plain_norm_range(squares) && angle.is_finite() {
+            squares.sqrt()
+        } else {
+            checked_axis_length(a, angle)?
+        };
         let (s, c) = (angle * T::lit(0.5)).sin_cos();
         let k = s / len;
         Ok(Self::from_q([c, k * a[0], k * a[1], k * a[2]]))
@@ -526,3 +520,27 @@ impl Rotor3<f64> {
 }
 
 fixed_size_operators!(Bivector3, Rotor3, Vector3);
+
+/// |a| for [`Rotor3::from_axis_angle`] outside its common case: the errors for a non-finite
+/// axis or angle and a zero axis, in that order, and the scaled norm of a tiny or huge axis.
+#[cold]
+#[inline(never)]
+fn checked_axis_length<T: Real>(a: [T; 3], angle: T) -> Result<T, AlgebraError> {
+    if !a.iter().all(|c| c.is_finite()) {
+        return Err(AlgebraError::NonFinite {
+            what: "rotation axis",
+        });
+    }
+    if !angle.is_finite() {
+        return Err(AlgebraError::NonFinite {
+            what: "rotation angle",
+        });
+    }
+    let len = norm(a);
+    if len == T::zero() {
+        return Err(AlgebraError::ZeroLength {
+            what: "rotation axis",
+        });
+    }
+    Ok(len)
+}

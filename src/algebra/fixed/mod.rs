@@ -332,6 +332,14 @@ impl Real for f32 {
     }
 }
 
+/// True for a sum of squares Σ xᵢ² well inside the range, where √(Σ xᵢ²) is the norm: the
+/// squares neither overflowed nor lost bits to underflow (false for NaN and ∞).
+#[inline(always)]
+fn plain_norm_range<T: Real>(s: T) -> bool {
+    let (lo, hi) = (T::min_positive().sqrt(), T::max_value().unwrap().sqrt());
+    s > lo && s < hi
+}
+
 /// √(Σ xᵢ²) without overflow or underflow: the plain sum where it is a normal number well
 /// inside the range (the run-time types' `scaled_norm` rule), else scaled by the largest.
 #[inline(always)]
@@ -340,9 +348,7 @@ fn norm<T: Real, const K: usize>(x: [T; K]) -> T {
     for c in x {
         s += c * c;
     }
-    // Well inside the range: the squares neither overflow nor lose bits to underflow.
-    let (lo, hi) = (T::min_positive().sqrt(), T::max_value().unwrap().sqrt());
-    if s > lo && s < hi {
+    if plain_norm_range(s) {
         return s.sqrt();
     }
     let m = x.iter().fold(T::zero(), |m, c| m.max(c.abs()));

@@ -477,69 +477,48 @@ impl<const K: usize, const LP: usize, const RP: usize> RotorDrift<K, LP, RP> {
             // and the chain is two planes shorter.
             match K {
                 3 => chain!((0, r[0]), (1, 2.0 * r[1]), (0, r[0])),
-                6 => chain!(
-                    (0, r[0]),
-                    (1, r[1]),
-                    (2, r[2]),
-                    (3, r[3]),
+                6 => chain! {
+                    (0, r[0]), (1, r[1]), (2, r[2]), (3, r[3]),
                     (4, 2.0 * r[4]),
-                    (3, r[3]),
-                    (2, r[2]),
-                    (1, r[1]),
-                    (0, r[0])
-                ),
+                    (3, r[3]), (2, r[2]), (1, r[1]), (0, r[0])
+                },
                 _ => unreachable!("the unrolled drift is built for N = 3 and 4"),
             }
             return;
         }
         match K {
             3 => chain!((0, r[0]), (1, r[1]), (2, 2.0 * r[2]), (1, r[1]), (0, r[0])),
-            6 => chain!(
-                (0, r[0]),
-                (1, r[1]),
-                (2, r[2]),
-                (3, r[3]),
-                (4, r[4]),
+            6 => chain! {
+                (0, r[0]), (1, r[1]), (2, r[2]), (3, r[3]), (4, r[4]),
                 (5, 2.0 * r[5]),
-                (4, r[4]),
-                (3, r[3]),
-                (2, r[2]),
-                (1, r[1]),
-                (0, r[0])
-            ),
+                (4, r[4]), (3, r[3]), (2, r[2]), (1, r[1]), (0, r[0])
+            },
             _ => unreachable!("the unrolled drift is built for N = 3 and 4"),
         }
     }
 }
 
-/// The 3D Strang drift of the fixed-size free body with inverse plane moments `inverse`
-/// (1/I_p): `l` updated, the attitude increment D (rotor storage order) returned, the same
-/// updates as [`Splitting::strang`]'s. D starts from `start` (the increment of an update
-/// applied before the planes, 0 for none): 1 + D is then (1 + start) times the planes'
-/// rotations. A last inverse moment of 0 is the symmetric part split off
-/// ([`Splitting::with_symmetric_part`]: that plane's flow is the identity).
+/// The Strang drift of the fixed-size free body of 3D (K = 3 planes, D = 4 rotor
+/// coefficients) or 4D (K = 6, D = 8) with inverse plane moments `inverse` (1/I_p): `l`
+/// updated, the attitude increment D (rotor storage order) returned, the same updates as
+/// [`Splitting::strang`]'s. D starts from `start` (the increment of an update applied before
+/// the planes, 0 for none): 1 + D is then (1 + start) times the planes' rotations. A last
+/// inverse moment of 0 is the symmetric part split off ([`Splitting::with_symmetric_part`]:
+/// that plane's flow is the identity).
 #[inline]
-pub(crate) fn strang_drift_3(
-    l: &mut [f64; 3],
-    inverse: &[f64; 3],
+pub(crate) fn strang_drift_fixed<const K: usize, const D: usize>(
+    l: &mut [f64; K],
+    inverse: &[f64; K],
     h: f64,
-    start: [f64; 4],
-) -> [f64; 4] {
+    start: [f64; D],
+) -> [f64; D] {
+    const { assert!(K == 3 && D == 4 || K == 6 && D == 8) };
     let mut d = start;
-    rotor_drift_3().drift_slices(l, &mut d, inverse, h);
-    d
-}
-
-/// [`strang_drift_3`] in 4D.
-#[inline]
-pub(crate) fn strang_drift_4(
-    l: &mut [f64; 6],
-    inverse: &[f64; 6],
-    h: f64,
-    start: [f64; 8],
-) -> [f64; 8] {
-    let mut d = start;
-    rotor_drift_4().drift_slices(l, &mut d, inverse, h);
+    if K == 3 {
+        rotor_drift_3().drift_slices(l, &mut d, inverse, h);
+    } else {
+        rotor_drift_4().drift_slices(l, &mut d, inverse, h);
+    }
     d
 }
 

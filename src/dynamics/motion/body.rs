@@ -94,14 +94,12 @@ impl MovingBody {
         velocity: &Vector,
     ) -> Result<Self, DynamicsError> {
         rotation.refuse_gyrostat("a moving body")?;
-        if !(mass.is_finite() && mass > 0.0) {
-            return Err(MotionError::OutOfRange {
-                what: "mass",
-                value: mass,
-                expected: "a finite positive number",
-            }
-            .into());
-        }
+        MotionError::require(
+            mass.is_finite() && mass > 0.0,
+            "mass",
+            mass,
+            "a finite positive number",
+        )?;
         let n = rotation.dim();
         for (what, v) in [("position", position), ("velocity", velocity)] {
             check_vector(what, v, n)?;
@@ -241,14 +239,12 @@ impl MovingBody {
     /// # Errors
     /// [`MotionError::OutOfRange`] for a negative or non-finite coefficient.
     pub fn with_friction(mut self, friction: f64) -> Result<Self, DynamicsError> {
-        if !(friction.is_finite() && friction >= 0.0) {
-            return Err(MotionError::OutOfRange {
-                what: "friction",
-                value: friction,
-                expected: "a finite number ≥ 0",
-            }
-            .into());
-        }
+        MotionError::require(
+            friction.is_finite() && friction >= 0.0,
+            "friction",
+            friction,
+            "a finite number ≥ 0",
+        )?;
         self.friction = Some(friction);
         Ok(self)
     }
@@ -261,14 +257,12 @@ impl MovingBody {
     /// # Errors
     /// [`MotionError::OutOfRange`] for a restitution outside [0, 1].
     pub fn with_restitution(mut self, restitution: f64) -> Result<Self, DynamicsError> {
-        if !(0.0..=1.0).contains(&restitution) {
-            return Err(MotionError::OutOfRange {
-                what: "restitution",
-                value: restitution,
-                expected: "in [0, 1]",
-            }
-            .into());
-        }
+        MotionError::require(
+            (0.0..=1.0).contains(&restitution),
+            "restitution",
+            restitution,
+            "in [0, 1]",
+        )?;
         self.restitution = Some(restitution);
         Ok(self)
     }

@@ -172,3 +172,21 @@ pub enum MotionError {
         time: f64,
     },
 }
+
+impl MotionError {
+    /// `Ok` when `in_range` holds, otherwise [`MotionError::OutOfRange`] for `what` = `value`
+    /// with the range `expected` in words.
+    pub(crate) fn require(
+        in_range: bool,
+        what: &'static str,
+        value: f64,
+        expected: &'static str,
+    ) -> Result<(), MotionError> {
+        let out_of_range = MotionError::OutOfRange {
+            what,
+            value,
+            expected,
+        };
+        in_range.then_some(()).ok_or(out_of_range)
+    }
+}
