@@ -8,7 +8,11 @@
 //! answers (no NaN); unit normals; bounded iterations (GJK ≤ 128, GJK + EPA ≤ 384);
 //! distance ≥ 0 and `intersecting` exactly when it is 0; penetration depth ≤ 0 is minus
 //! the distance; the swapped pair has the same distance, and for polytopes the same depth
-//! (to 1e-8 of the pair's size).
+//! (to 1e-8 of the pair's size) when the smaller shape's bounding radius is at least 10⁻⁶
+//! of the larger's. Below that ratio the smaller shape's features are within a few orders
+//! of magnitude of the 10⁻¹² relative tolerances of GJK and EPA, the facets they span are
+//! slivers whose normals carry errors of about ε / ratio, and the two orders can end on
+//! different facets, far apart.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -150,7 +154,9 @@ fuzz_target!(|data: &[u8]| {
             );
         }
     }
-    if polytope(&sa) && polytope(&sb) {
+    let ratio = sa.bounding_radius().min(sb.bounding_radius())
+        / sa.bounding_radius().max(sb.bounding_radius());
+    if polytope(&sa) && polytope(&sb) && ratio >= 1e-6 {
         assert!(
             (p1.depth - p2.depth).abs() <= tolerance,
             "depth {} swapped {}",

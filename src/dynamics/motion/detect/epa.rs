@@ -169,6 +169,37 @@ fn facet_plane(
     Some(offset / n as f64)
 }
 
+/// Writes the horizon of the facets in `ws.visible` into `ws.ridges` (N − 1 vertex indices
+/// each, ascending) with how many seen facets hold each ridge in `ws.ridge_counts`: the
+/// ridges held once bound the seen region.
+fn horizon(ws: &mut EpaWorkspace, n: usize) {
+    ws.ridges.clear();
+    ws.ridge_counts.clear();
+    for vi in 0..ws.visible.len() {
+        let g = ws.visible[vi];
+        for skip in 0..n {
+            let start = ws.ridges.len();
+            for k in 0..n {
+                if k != skip {
+                    let x = ws.facets[g * n + k];
+                    ws.ridges.push(x);
+                }
+            }
+            let ridge_count = start / (n - 1);
+            let found = (0..ridge_count).find(|&r| {
+                ws.ridges[r * (n - 1)..(r + 1) * (n - 1)] == ws.ridges[start..start + n - 1]
+            });
+            match found {
+                Some(r) => {
+                    ws.ridges.truncate(start);
+                    ws.ridge_counts[r] += 1;
+                }
+                None => ws.ridge_counts.push(1),
+            }
+        }
+    }
+}
+
 /// What EPA found on the cores: the depth of the origin inside K, the outward normal of K
 /// there (the contact normal is its opposite), and the core witnesses.
 struct CoreContact {
@@ -380,51 +411,52 @@ fn epa_cores(
         if !ws.visible.contains(&f) {
             break;
         }
-        ws.ridges.clear();
-        ws.ridge_counts.clear();
-        for vi in 0..ws.visible.len() {
-            let g = ws.visible[vi];
-            for skip in 0..n {
-                let start = ws.ridges.len();
-                for k in 0..n {
-                    if k != skip {
-                        let x = ws.facets[g * n + k];
-                        ws.ridges.push(x);
-                    }
-                }
-                let ridge_count = start / (n - 1);
-                let found = (0..ridge_count).find(|&r| {
-                    ws.ridges[r * (n - 1)..(r + 1) * (n - 1)] == ws.ridges[start..start + n - 1]
-                });
-                match found {
-                    Some(r) => {
-                        ws.ridges.truncate(start);
-                        ws.ridge_counts[r] += 1;
-                    }
-                    None => ws.ridge_counts.push(1),
-                }
-            }
-        }
-        // The cone from w over the horizon; a degenerate facet ends the expansion.
+        // The cone from w over the horizon. A cone facet that would be degenerate (w in
+        // the affine hull of its horizon ridge, to round-off) means that w lies in the
+        // plane of the facet beyond that ridge as well, which a thin facet's round-off
+        // kept from counting as seen: that facet is taken as seen (coplanar facets merge)
+        // and the horizon is found again. Each retry adds a facet to the seen ones, so the
+        // retries end; a degenerate facet with no such neighbour ends the expansion.
         let new_index = (ws.w.len() / n) as u32;
-        ws.new_facets.clear();
-        ws.new_normals.clear();
-        ws.new_offsets.clear();
         ws.w.extend_from_slice(&w);
         let mut degenerate = false;
-        for r in 0..ws.ridge_counts.len() {
-            if ws.ridge_counts[r] != 1 {
-                continue;
-            }
-            vertices.clear();
-            vertices.extend_from_slice(&ws.ridges[r * (n - 1)..(r + 1) * (n - 1)]);
-            vertices.push(new_index);
-            match facet_plane(&ws.w, n, &vertices, &inside, scale, &mut normal) {
-                Some(o) => {
-                    ws.new_facets.extend_from_slice(&vertices);
-                    ws.new_normals.extend_from_slice(&normal);
-                    ws.new_offsets.push(o);
+        loop {
+            horizon(ws, n);
+            ws.new_facets.clear();
+            ws.new_normals.clear();
+            ws.new_offsets.clear();
+            let mut flat_ridge = None;
+            for r in 0..ws.ridge_counts.len() {
+                if ws.ridge_counts[r] != 1 {
+                    continue;
                 }
+                vertices.clear();
+                vertices.extend_from_slice(&ws.ridges[r * (n - 1)..(r + 1) * (n - 1)]);
+                vertices.push(new_index);
+                match facet_plane(&ws.w, n, &vertices, &inside, scale, &mut normal) {
+                    Some(o) => {
+                        ws.new_facets.extend_from_slice(&vertices);
+                        ws.new_normals.extend_from_slice(&normal);
+                        ws.new_offsets.push(o);
+                    }
+                    None => {
+                        flat_ridge = Some(r);
+                        break;
+                    }
+                }
+            }
+            let Some(r) = flat_ridge else {
+                break;
+            };
+            let ridge = &ws.ridges[r * (n - 1)..(r + 1) * (n - 1)];
+            let beyond = (0..ws.offsets.len()).find(|g| {
+                !ws.visible.contains(g)
+                    && ridge
+                        .iter()
+                        .all(|x| ws.facets[g * n..(g + 1) * n].contains(x))
+            });
+            match beyond {
+                Some(g) => ws.visible.push(g),
                 None => {
                     degenerate = true;
                     break;
