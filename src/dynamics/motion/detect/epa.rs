@@ -30,6 +30,34 @@ use super::gjk::{
 use crate::algebra::Vector;
 use crate::dynamics::motion::shape::{ConvexCore, Coords, ShapeError};
 use smallvec::SmallVec;
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
+
+/// A multiplicative hasher for packed ridges (small vertex indices, not adversarial).
+#[derive(Default)]
+struct RidgeHasher(u64);
+
+impl Hasher for RidgeHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(b as u64);
+        }
+    }
+    fn write_u128(&mut self, x: u128) {
+        self.write_u64(x as u64);
+        self.write_u64((x >> 64) as u64);
+    }
+    fn write_u64(&mut self, x: u64) {
+        // splitmix64's finaliser.
+        let mut z = (self.0 ^ x).wrapping_add(0x9e37_79b9_7f4a_7c15);
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        self.0 = z ^ (z >> 31);
+    }
+}
 
 /// EPA iterations at most (each adds one support point).
 pub(crate) const MAX_EPA_ITERATIONS: usize = 256;
@@ -80,6 +108,8 @@ pub struct EpaWorkspace {
     visible: Vec<usize>,
     ridges: Vec<u32>,
     ridge_counts: Vec<u32>,
+    /// Each ridge's position in `ridge_counts`, by its vertex indices packed 16 bits each.
+    ridge_index: HashMap<u128, u32, BuildHasherDefault<RidgeHasher>>,
     new_facets: Vec<u32>,
     new_normals: Vec<f64>,
     new_offsets: Vec<f64>,
@@ -171,10 +201,14 @@ fn facet_plane(
 
 /// Writes the horizon of the facets in `ws.visible` into `ws.ridges` (N − 1 vertex indices
 /// each, ascending) with how many seen facets hold each ridge in `ws.ridge_counts`: the
-/// ridges held once bound the seen region.
+/// ridges held once bound the seen region. Ridges are matched through a hash of their
+/// packed indices (N − 1 ≤ 8 indices below 2¹⁶, always the case within the iteration
+/// bound for N ≤ 9), else by a linear search.
 fn horizon(ws: &mut EpaWorkspace, n: usize) {
     ws.ridges.clear();
     ws.ridge_counts.clear();
+    ws.ridge_index.clear();
+    let packed = n - 1 <= 8 && ws.w.len() / n < 1 << 16;
     for vi in 0..ws.visible.len() {
         let g = ws.visible[vi];
         for skip in 0..n {
@@ -186,9 +220,22 @@ fn horizon(ws: &mut EpaWorkspace, n: usize) {
                 }
             }
             let ridge_count = start / (n - 1);
-            let found = (0..ridge_count).find(|&r| {
-                ws.ridges[r * (n - 1)..(r + 1) * (n - 1)] == ws.ridges[start..start + n - 1]
-            });
+            let found = if packed {
+                let key = ws.ridges[start..]
+                    .iter()
+                    .fold(0u128, |k, &x| k << 16 | x as u128);
+                match ws.ridge_index.entry(key) {
+                    std::collections::hash_map::Entry::Occupied(e) => Some(*e.get() as usize),
+                    std::collections::hash_map::Entry::Vacant(e) => {
+                        e.insert(ridge_count as u32);
+                        None
+                    }
+                }
+            } else {
+                (0..ridge_count).find(|&r| {
+                    ws.ridges[r * (n - 1)..(r + 1) * (n - 1)] == ws.ridges[start..start + n - 1]
+                })
+            };
             match found {
                 Some(r) => {
                     ws.ridges.truncate(start);
