@@ -901,3 +901,50 @@ fn fuzz_epa_depth_is_symmetric_for_a_box_deep_in_a_large_cross_polytope() {
         .sum();
     assert!((opposite + 1.0).abs() < 1e-12, "{opposite}");
 }
+
+/// convex_pairs (input `/gIVACAAuAzMDMwAICDMDMwM/34C`): a 6D box (half-lengths about 0.5 … 1.1)
+/// at the centre of a cross-polytope of circumradius 7808, unturned. With the merges of the
+/// finding above, one order went on until round-off had bent the polytope so that a
+/// facet's plane left the origin outside, and returned depth 0. The expansion now stops
+/// before such a facet. In 6D EPA may stop early with a lower bound: both orders must give
+/// a depth within 1e-3 below the least translation over the cross-polytope's 64 facet
+/// normals (an upper bound of the depth) and not above it.
+#[test]
+fn fuzz_epa_depth_in_6d_is_never_zero_for_a_deep_box() {
+    use rotorflow::dynamics::motion::detect::{EpaWorkspace, PlacedShape, penetration_with};
+    use rotorflow::dynamics::motion::shape::ConvexShape;
+    let n = 6;
+    let half = [0.5, 1.125, 0.811767578125, 0.811767578125, 0.5, 0.810546875];
+    let radius = 7808.0;
+    let boxed = ConvexShape::cuboid(&half).unwrap();
+    let cross = ConvexShape::cross_polytope(n, radius).unwrap();
+    let pa = [4.656612873077393e-10, 0.0, 0.0, 0.0, 0.0, 0.0];
+    let pb = [0.0; 6];
+    let identity: Vec<f64> = (0..36)
+        .map(|k| if k % 7 == 0 { 1.0 } else { 0.0 })
+        .collect();
+    // Along a facet normal s/√6 (s of signs) of the cross-polytope, B moves out by its
+    // facet distance, A's reach and the centres' offset.
+    let mut least = f64::INFINITY;
+    for mask in 0..64u32 {
+        let s: Vec<f64> = (0..n)
+            .map(|i| if mask >> i & 1 == 1 { 1.0 } else { -1.0 })
+            .collect();
+        let root = (n as f64).sqrt();
+        let reach_a: f64 = (0..n).map(|i| (s[i] * pa[i] + half[i]) / root).sum();
+        let reach_b = radius / root - (0..n).map(|i| s[i] * pb[i] / root).sum::<f64>();
+        least = least.min(reach_a + reach_b);
+    }
+    let a = PlacedShape::new(&boxed, &pa, &identity).unwrap();
+    let b = PlacedShape::new(&cross, &pb, &identity).unwrap();
+    let mut workspace = EpaWorkspace::new();
+    for depth in [
+        penetration_with(&mut workspace, &a, &b).unwrap().depth,
+        penetration_with(&mut workspace, &b, &a).unwrap().depth,
+    ] {
+        assert!(
+            depth <= least + 1e-9 * radius && depth >= least * (1.0 - 1e-3),
+            "depth {depth} against at most {least}"
+        );
+    }
+}

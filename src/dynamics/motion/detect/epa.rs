@@ -73,6 +73,10 @@ const CONVERGED: f64 = 1e-12;
 const VISIBLE: f64 = 1e-13;
 /// A facet whose normal is this ill-determined (relative to its size) is degenerate.
 const FLAT_FACET: f64 = 1e-12;
+/// A new point within this fraction of the size below a facet's plane lies on it, for
+/// merging: the heights of thin facets (one edge of the size of the smaller shape, the
+/// others of the larger) carry errors of about ε · size² / edge.
+const COPLANAR: f64 = 1e-9;
 
 /// The contact of two placed shapes, from [`penetration`].
 #[derive(Clone, Debug, PartialEq)]
@@ -461,9 +465,10 @@ fn epa_cores(
         // The cone from w over the horizon. A cone facet that would be degenerate (w in
         // the affine hull of its horizon ridge, to round-off) means that w lies in the
         // plane of the facet beyond that ridge as well, which a thin facet's round-off
-        // kept from counting as seen: that facet is taken as seen (coplanar facets merge)
-        // and the horizon is found again. Each retry adds a facet to the seen ones, so the
-        // retries end; a degenerate facet with no such neighbour ends the expansion.
+        // kept from counting as seen: that facet, if w lies on its plane to [`COPLANAR`],
+        // is taken as seen (coplanar facets merge) and the horizon is found again. Each
+        // retry adds a facet to the seen ones, so the retries end; a degenerate facet with
+        // no such neighbour ends the expansion.
         let new_index = (ws.w.len() / n) as u32;
         ws.w.extend_from_slice(&w);
         let mut degenerate = false;
@@ -502,6 +507,13 @@ fn epa_cores(
                         .iter()
                         .all(|x| ws.facets[g * n..(g + 1) * n].contains(x))
             });
+            // Only a facet that w lies on, to round-off, merges: removing one that w lies
+            // below would dent the polytope.
+            let beyond = beyond.filter(|&g| {
+                let ng = &ws.normals[g * n..(g + 1) * n];
+                let height = ng.iter().zip(&w).map(|(p, q)| p * q).sum::<f64>() - ws.offsets[g];
+                height >= -COPLANAR * scale
+            });
             match beyond {
                 Some(g) => ws.visible.push(g),
                 None => {
@@ -510,8 +522,12 @@ fn epa_cores(
                 }
             }
         }
+        // The polytope holds the origin (GJK found it inside K), so every facet's plane
+        // passes beyond it: a new facet with the origin outside shows that round-off has
+        // bent the polytope (thin facets seen wrongly), and the expansion stops before it.
+        let bent = ws.new_offsets.iter().any(|o| *o < -COPLANAR * scale);
         let facets_after = ws.offsets.len() - ws.visible.len() + ws.new_offsets.len();
-        if degenerate || ws.new_offsets.is_empty() || facets_after > MAX_EPA_FACETS {
+        if degenerate || bent || ws.new_offsets.is_empty() || facets_after > MAX_EPA_FACETS {
             ws.w.truncate(new_index as usize * n);
             break;
         }
