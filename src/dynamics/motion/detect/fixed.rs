@@ -3,7 +3,8 @@
 //! a `[f64; N]` and the simplex at most five of them, so that the compiler unrolls the
 //! loops over coordinates and nothing is sized at run time. [`gjk`](super::gjk::gjk)
 //! calls it when N matches; its answers equal the general path's to round-off (the order
-//! of some sums differs), which `tests/reliability/narrow_phase.rs` checks over random poses.
+//! of some sums differs), which `tests/reliability/narrow_phase.rs` checks over random
+//! poses.
 
 use super::gjk::{
     DEGENERATE, GjkResult, MAX_GJK_ITERATIONS, PlacedShape, RELATIVE_GAP, Simplex, TOUCHING,
