@@ -2,7 +2,10 @@
 //! `BENCH_QUICK=1` shortens the run.
 //!
 //! - `gjk_distance`: [`distance`] between two separated, turned shapes: 3D boxes, 4D
-//!   boxes, 4D tesseracts given as hulls of their 16 corners, 4D balls.
+//!   boxes, 4D tesseracts given as hulls of their 16 corners, 4D balls. For N = 3 and 4
+//!   [`distance`] runs GJK on stack arrays; `general_*` is the same query by the
+//!   dimension-generic implementation ([`distance_general`]), and after the group the bench
+//!   prints the ratios general / fixed from Criterion's medians.
 //! - `box_overlap`: two overlapping turned boxes in 3D and 4D. `epa_penetration` is
 //!   [`penetration_with`] (GJK, then EPA, with a kept workspace); `sat_depth` is the
 //!   baseline, the penetration depth by the separating-axis test over the generalised
@@ -11,7 +14,7 @@
 
 use criterion::{Criterion, black_box, criterion_group, criterion_main};
 use rotorflow::dynamics::motion::detect::{
-    EpaWorkspace, PlacedShape, distance, intersects, penetration_with,
+    EpaWorkspace, PlacedShape, distance, distance_general, intersects, penetration_with,
 };
 use rotorflow::dynamics::motion::shape::ConvexShape;
 
@@ -160,8 +163,12 @@ fn bench_distance(c: &mut Criterion) {
         let b = PlacedShape::new(&boxes, &pb, &qb).unwrap();
         let s = distance(&a, &b).unwrap();
         assert!(!s.intersecting);
+        assert_eq!(distance_general(&a, &b).unwrap().iterations, s.iterations);
         group.bench_function(format!("boxes/N={n}"), |bench| {
             bench.iter(|| distance(black_box(&a), black_box(&b)).unwrap())
+        });
+        group.bench_function(format!("general_boxes/N={n}"), |bench| {
+            bench.iter(|| distance_general(black_box(&a), black_box(&b)).unwrap())
         });
     }
     let n = 4;
@@ -174,13 +181,42 @@ fn bench_distance(c: &mut Criterion) {
     group.bench_function("tesseract_hulls/N=4", |bench| {
         bench.iter(|| distance(black_box(&a), black_box(&b)).unwrap())
     });
+    group.bench_function("general_tesseract_hulls/N=4", |bench| {
+        bench.iter(|| distance_general(black_box(&a), black_box(&b)).unwrap())
+    });
     let ball = ConvexShape::ball(4, 0.5).unwrap();
     let a = PlacedShape::new(&ball, &pa, &qa).unwrap();
     let b = PlacedShape::new(&ball, &pb, &qb).unwrap();
     group.bench_function("balls/N=4", |bench| {
         bench.iter(|| distance(black_box(&a), black_box(&b)).unwrap())
     });
+    group.bench_function("general_balls/N=4", |bench| {
+        bench.iter(|| distance_general(black_box(&a), black_box(&b)).unwrap())
+    });
     group.finish();
+    for name in ["boxes/N=3", "boxes/N=4", "tesseract_hulls/N=4", "balls/N=4"] {
+        let general = format!("general_{name}");
+        if let (Some(fixed), Some(general)) = (
+            median_ns("gjk_distance", name),
+            median_ns("gjk_distance", &general),
+        ) {
+            println!(
+                "gjk_distance/{name}: {fixed:.1} ns on stack arrays, {general:.1} ns general, general / fixed = {:.2}",
+                general / fixed
+            );
+        }
+    }
+}
+
+/// Criterion's median for a bench (`name` as given to it, `/` for its folder), in ns, if it
+/// has run.
+fn median_ns(group: &str, name: &str) -> Option<f64> {
+    let root = std::env::var("CARGO_TARGET_DIR").unwrap_or_else(|_| "target".into());
+    let folder = name.replace('/', "_");
+    let path = format!("{root}/criterion/{group}/{folder}/new/estimates.json");
+    let text = std::fs::read_to_string(path).ok()?;
+    let json: serde_json::Value = serde_json::from_str(&text).ok()?;
+    json["median"]["point_estimate"].as_f64()
 }
 
 fn bench_overlap(c: &mut Criterion) {

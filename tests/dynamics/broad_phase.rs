@@ -135,3 +135,52 @@ fn broad_phase_leaves_out_excluded_pairs_and_restarts_on_new_body_counts() {
     assert!(broad.update(&nan, &upper).is_err());
     assert!(BroadPhase::new(0).is_err());
 }
+
+/// The broad phase's query work at 10³, 10⁴ and 10⁵ 4D bodies at a fixed density (about
+/// two overlapping neighbours per body): box tests per body queried grow like log n, so
+/// the least-squares exponent of the total over n must be near 1 (n log n gives about 1.1
+/// here), far from the 2 of testing all pairs. Both a build (every body queried) and an
+/// update after every body left its fat box are measured; the counts are deterministic.
+#[test]
+fn broad_phase_work_grows_like_n_log_n() {
+    let n = 4;
+    let mut r = super::rng(11);
+    let sizes = [1_000usize, 10_000, 100_000];
+    let mut points = Vec::new();
+    for &bodies in &sizes {
+        let side = 1.2 * (bodies as f64).powf(0.25);
+        let (lower, upper) = scene(&mut r, n, bodies, side, 0.5);
+        let mut broad = BroadPhase::new(n).unwrap();
+        let pairs = broad.update(&lower, &upper).unwrap().len();
+        let build = broad.last_box_tests();
+        assert_eq!(broad.last_moved(), bodies);
+        // Every body moves by a full box width: all leave their fat boxes.
+        let shifted_lower: Vec<f64> = lower.iter().map(|x| x + 1.0).collect();
+        let shifted_upper: Vec<f64> = upper.iter().map(|x| x + 1.0).collect();
+        broad.update(&shifted_lower, &shifted_upper).unwrap();
+        let update = broad.last_box_tests();
+        println!(
+            "{bodies} bodies: {pairs} pairs, {build} box tests to build ({:.1} per body), {update} after all moved ({} moved)",
+            build as f64 / bodies as f64,
+            broad.last_moved()
+        );
+        points.push((
+            (bodies as f64).ln(),
+            (build as f64).ln(),
+            (update as f64).ln(),
+        ));
+    }
+    let slope = |f: fn(&(f64, f64, f64)) -> f64| {
+        let k = points.len() as f64;
+        let mx = points.iter().map(|p| p.0).sum::<f64>() / k;
+        let my = points.iter().map(f).sum::<f64>() / k;
+        let num: f64 = points.iter().map(|p| (p.0 - mx) * (f(p) - my)).sum();
+        let den: f64 = points.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
+        num / den
+    };
+    let (build, update) = (slope(|p| p.1), slope(|p| p.2));
+    println!("growth exponent of the box tests: build {build:.3}, update {update:.3}");
+    for e in [build, update] {
+        assert!((0.95..1.25).contains(&e), "exponent {e}");
+    }
+}

@@ -764,3 +764,238 @@ fn fuzz_log_is_checked_with_the_exponential_users_get() {
     }
     assert_eq!(checked, 2);
 }
+
+/// convex_pairs (input `AgIVACAAIAzMDMwMzAzMDMwM////zAAAfiAAIAI=`): a 4D box of size 1 inside
+/// a cross-polytope of circumradius 425600, both unturned. EPA gave depth 212801.3102 one way
+/// and 212801.0618 the other: its expansion stopped before converging when a cone facet came
+/// out degenerate. The new support point lay, to round-off, in the affine hull of a horizon
+/// ridge, so in the plane of the thin facet beyond that ridge, which round-off had kept
+/// from counting as seen. That facet is now taken as seen (coplanar facets merge) and the
+/// expansion goes on. Both orders are checked against the least translation over every
+/// candidate facet normal of the Minkowski difference (complements of three edge
+/// directions), computed from the vertices.
+#[test]
+fn fuzz_epa_depth_is_symmetric_for_a_box_deep_in_a_large_cross_polytope() {
+    use rotorflow::dynamics::motion::detect::{EpaWorkspace, PlacedShape, penetration_with};
+    use rotorflow::dynamics::motion::shape::ConvexShape;
+    let n = 4;
+    let half = [0.5, 0.5, 0.811767578125, 0.811767578125];
+    let radius = 425600.0;
+    let boxed = ConvexShape::cuboid(&half).unwrap();
+    let cross = ConvexShape::cross_polytope(n, radius).unwrap();
+    let pa = [
+        0.0003905296325683594,
+        -1.1920928955078125e-7,
+        -0.0015565156936645508,
+        0.0,
+    ];
+    let pb = [
+        0.0009915828704833984,
+        0.0009765625,
+        2.384185791015625e-7,
+        0.0,
+    ];
+    let identity: Vec<f64> = (0..16)
+        .map(|k| if k % 5 == 0 { 1.0 } else { 0.0 })
+        .collect();
+    // Vertices in space, and the edge directions of both polytopes.
+    let box_vertices: Vec<[f64; 4]> = (0..16)
+        .map(|m| std::array::from_fn(|i| pa[i] + if m >> i & 1 == 1 { half[i] } else { -half[i] }))
+        .collect();
+    let cross_vertices: Vec<[f64; 4]> = (0..8)
+        .map(|k| {
+            std::array::from_fn(|i| {
+                pb[i]
+                    + if i == k / 2 {
+                        if k % 2 == 0 { radius } else { -radius }
+                    } else {
+                        0.0
+                    }
+            })
+        })
+        .collect();
+    let mut edges: Vec<[f64; 4]> = (0..4)
+        .map(|i| std::array::from_fn(|j| if i == j { 1.0 } else { 0.0 }))
+        .collect();
+    for i in 0..4 {
+        for j in i + 1..4 {
+            for s in [1.0, -1.0] {
+                edges.push(std::array::from_fn(|k| {
+                    if k == i {
+                        1.0
+                    } else if k == j {
+                        s
+                    } else {
+                        0.0
+                    }
+                }));
+            }
+        }
+    }
+    assert_eq!(edges.len(), 16);
+    // The translation of the cross-polytope along u that separates it from the box.
+    let reach = |points: &[[f64; 4]], u: &[f64; 4]| {
+        points
+            .iter()
+            .map(|p| p.iter().zip(u).map(|(x, y)| x * y).sum::<f64>())
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    let mut least = f64::INFINITY;
+    let mut candidates = 0;
+    for i in 0..16 {
+        for j in i + 1..16 {
+            for k in j + 1..16 {
+                // The complement of three vectors in 4D by cofactors.
+                let rows = [edges[i], edges[j], edges[k]];
+                let mut u = [0.0; 4];
+                for (col, x) in u.iter_mut().enumerate() {
+                    let m: Vec<[f64; 3]> = rows
+                        .iter()
+                        .map(|r| {
+                            let v: Vec<f64> = (0..4).filter(|c| *c != col).map(|c| r[c]).collect();
+                            [v[0], v[1], v[2]]
+                        })
+                        .collect();
+                    let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+                        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+                        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+                    *x = if col % 2 == 0 { det } else { -det };
+                }
+                let length = u.iter().map(|x| x * x).sum::<f64>().sqrt();
+                if length < 1e-9 {
+                    continue;
+                }
+                for sign in [1.0, -1.0] {
+                    let u: [f64; 4] = std::array::from_fn(|c| sign * u[c] / length);
+                    let minus: [f64; 4] = std::array::from_fn(|c| -u[c]);
+                    least = least.min(reach(&box_vertices, &u) + reach(&cross_vertices, &minus));
+                    candidates += 1;
+                }
+            }
+        }
+    }
+    assert!(candidates > 500, "{candidates} candidate normals");
+    let a = PlacedShape::new(&boxed, &pa, &identity).unwrap();
+    let b = PlacedShape::new(&cross, &pb, &identity).unwrap();
+    let mut workspace = EpaWorkspace::new();
+    let forward = penetration_with(&mut workspace, &a, &b).unwrap();
+    let backward = penetration_with(&mut workspace, &b, &a).unwrap();
+    let size = radius;
+    for (what, depth) in [
+        ("box, cross", forward.depth),
+        ("cross, box", backward.depth),
+    ] {
+        assert!(
+            (depth - least).abs() <= 1e-12 * size,
+            "{what}: depth {depth} against {least} over {candidates} normals"
+        );
+    }
+    assert!((forward.depth - 212801.3102).abs() < 1e-4);
+    // The normals are opposite.
+    let opposite: f64 = forward
+        .normal
+        .as_slice()
+        .iter()
+        .zip(backward.normal.as_slice())
+        .map(|(x, y)| x * y)
+        .sum();
+    assert!((opposite + 1.0).abs() < 1e-12, "{opposite}");
+}
+
+/// convex_pairs (input `/gIVACAAuAzMDMwAICDMDMwM/34C`): a 6D box (half-lengths about 0.5 … 1.1)
+/// at the centre of a cross-polytope of circumradius 7808, unturned. With the merges of the
+/// finding above, one order went on until round-off had bent the polytope so that a
+/// facet's plane left the origin outside, and returned depth 0. The expansion now stops
+/// before such a facet. In 6D EPA may stop early with a lower bound: both orders must give
+/// a depth within 1e-3 below the least translation over the cross-polytope's 64 facet
+/// normals (an upper bound of the depth) and not above it.
+#[test]
+fn fuzz_epa_depth_in_6d_is_never_zero_for_a_deep_box() {
+    use rotorflow::dynamics::motion::detect::{EpaWorkspace, PlacedShape, penetration_with};
+    use rotorflow::dynamics::motion::shape::ConvexShape;
+    let n = 6;
+    let half = [0.5, 1.125, 0.811767578125, 0.811767578125, 0.5, 0.810546875];
+    let radius = 7808.0;
+    let boxed = ConvexShape::cuboid(&half).unwrap();
+    let cross = ConvexShape::cross_polytope(n, radius).unwrap();
+    let pa = [4.656612873077393e-10, 0.0, 0.0, 0.0, 0.0, 0.0];
+    let pb = [0.0; 6];
+    let identity: Vec<f64> = (0..36)
+        .map(|k| if k % 7 == 0 { 1.0 } else { 0.0 })
+        .collect();
+    // Along a facet normal s/√6 (s of signs) of the cross-polytope, B moves out by its
+    // facet distance, A's reach and the centres' offset.
+    let mut least = f64::INFINITY;
+    for mask in 0..64u32 {
+        let s: Vec<f64> = (0..n)
+            .map(|i| if mask >> i & 1 == 1 { 1.0 } else { -1.0 })
+            .collect();
+        let root = (n as f64).sqrt();
+        let reach_a: f64 = (0..n).map(|i| (s[i] * pa[i] + half[i]) / root).sum();
+        let reach_b = radius / root - (0..n).map(|i| s[i] * pb[i] / root).sum::<f64>();
+        least = least.min(reach_a + reach_b);
+    }
+    let a = PlacedShape::new(&boxed, &pa, &identity).unwrap();
+    let b = PlacedShape::new(&cross, &pb, &identity).unwrap();
+    let mut workspace = EpaWorkspace::new();
+    for depth in [
+        penetration_with(&mut workspace, &a, &b).unwrap().depth,
+        penetration_with(&mut workspace, &b, &a).unwrap().depth,
+    ] {
+        assert!(
+            depth <= least + 1e-9 * radius && depth >= least * (1.0 - 1e-3),
+            "depth {depth} against at most {least}"
+        );
+    }
+}
+
+/// convex_pairs (input `AgIVACAAIAzMDMwMzAzMDMwM////zAAAfoYAIAI=`): the pair of
+/// `fuzz_epa_depth_is_symmetric_for_a_box_deep_in_a_large_cross_polytope` with the
+/// cross-polytope moved by 0.005, a size ratio of 3e-6. Not fixed: one order stops at once on
+/// a degenerate sliver facet (depth 0.81), the other near the depth. What holds, and is
+/// pinned here: both answers are finite, with unit normals, and lower bounds of the depth
+/// (at most the least translation over the cross-polytope's 16 facet normals).
+#[test]
+fn fuzz_epa_depth_at_a_size_ratio_of_3e_6_is_a_lower_bound() {
+    use rotorflow::dynamics::motion::detect::{EpaWorkspace, PlacedShape, penetration_with};
+    use rotorflow::dynamics::motion::shape::ConvexShape;
+    let n = 4;
+    let half = [0.5, 0.5, 0.811767578125, 0.811767578125];
+    let radius = 425600.0;
+    let boxed = ConvexShape::cuboid(&half).unwrap();
+    let cross = ConvexShape::cross_polytope(n, radius).unwrap();
+    let pa = [
+        0.0003905296325683594,
+        -1.1920928955078125e-7,
+        -0.0015565156936645508,
+        0.0,
+    ];
+    let pb = [
+        -0.0037081241607666016,
+        0.0009765625,
+        2.384185791015625e-7,
+        0.0,
+    ];
+    let identity: Vec<f64> = (0..16)
+        .map(|k| if k % 5 == 0 { 1.0 } else { 0.0 })
+        .collect();
+    let mut least = f64::INFINITY;
+    for mask in 0..16u32 {
+        let s: Vec<f64> = (0..n)
+            .map(|i| if mask >> i & 1 == 1 { 0.5 } else { -0.5 })
+            .collect();
+        let reach_a: f64 = (0..n).map(|i| s[i] * pa[i] + half[i] / 2.0).sum();
+        let reach_b = radius / 2.0 - (0..n).map(|i| s[i] * pb[i]).sum::<f64>();
+        least = least.min(reach_a + reach_b);
+    }
+    let a = PlacedShape::new(&boxed, &pa, &identity).unwrap();
+    let b = PlacedShape::new(&cross, &pb, &identity).unwrap();
+    let mut workspace = EpaWorkspace::new();
+    for p in [
+        penetration_with(&mut workspace, &a, &b).unwrap(),
+        penetration_with(&mut workspace, &b, &a).unwrap(),
+    ] {
+        assert!(p.depth.is_finite() && p.depth > 0.0 && p.depth <= least + 1e-9 * radius);
+        assert!((p.normal.norm() - 1.0).abs() < 1e-12);
+    }
+}

@@ -97,6 +97,8 @@ pub struct BroadPhase {
     moved: Vec<u32>,
     /// Fat boxes renewed since the hierarchy was built.
     renewed: usize,
+    /// Box tests of the last update's queries.
+    box_tests: usize,
     /// The pairs whose fat boxes overlap.
     pairs: PairSet,
     excluded: PairSet,
@@ -108,12 +110,11 @@ impl BroadPhase {
     /// Returns an empty broad phase for boxes in `dim` dimensions.
     ///
     /// # Errors
-    /// [`ShapeError::InvalidQuery`] if `dim` is 0.
+    /// [`ShapeError::ZeroDimension`] if `dim` is 0.
     pub fn new(dim: usize) -> Result<BroadPhase, DynamicsError> {
         if dim == 0 {
-            return Err(ShapeError::InvalidQuery {
-                what: "broad phase dimension",
-                reason: "0: boxes need at least one axis".into(),
+            return Err(ShapeError::ZeroDimension {
+                what: "the broad phase",
             }
             .into());
         }
@@ -130,6 +131,7 @@ impl BroadPhase {
             stack: Vec::new(),
             moved: Vec::new(),
             renewed: 0,
+            box_tests: 0,
             pairs: PairSet::default(),
             excluded: PairSet::default(),
             out: Vec::new(),
@@ -146,7 +148,7 @@ impl BroadPhase {
     /// bodies held by a joint).
     ///
     /// # Errors
-    /// [`ShapeError::InvalidQuery`] if i = j or an index does not fit in 31 bits.
+    /// [`ShapeError::InvalidBodyPair`] if i = j or an index does not fit in 31 bits.
     pub fn exclude_pair(&mut self, i: usize, j: usize) -> Result<(), DynamicsError> {
         self.excluded.insert(checked_key(i, j)?);
         Ok(())
@@ -167,6 +169,13 @@ impl BroadPhase {
         self.moved.len()
     }
 
+    /// The box–box overlap tests the last update's hierarchy queries made (node boxes and
+    /// bodies' fat boxes): the query work, which grows as (bodies moved) × log n at a
+    /// fixed density, against n² for all pairs.
+    pub fn last_box_tests(&self) -> usize {
+        self.box_tests
+    }
+
     /// Takes the boxes of all bodies, `lower` and `upper` (n × N numbers each, body after
     /// body), and returns the pairs (i, j), i < j, whose boxes overlap (touching counts), in
     /// increasing order, less the excluded pairs. After the first call, a body that moved
@@ -174,47 +183,58 @@ impl BroadPhase {
     /// passed each time for that (another number starts afresh).
     ///
     /// # Errors
-    /// [`ShapeError::InvalidQuery`] if the lengths are not equal multiples of N, a
-    /// bound is not finite, a lower bound exceeds its upper bound, or there are 2³¹ bodies
-    /// or more.
+    /// [`ShapeError::DimensionMismatch`] if the lengths differ,
+    /// [`ShapeError::NotAMultiple`] if they are not multiples of N,
+    /// [`ShapeError::TooManyBodies`] for 2³¹ bodies or more, [`ShapeError::NonFinite`]
+    /// for a bound that is not finite and [`ShapeError::InvertedBounds`] for a lower bound
+    /// above its upper bound.
     pub fn update(
         &mut self,
         lower: &[f64],
         upper: &[f64],
     ) -> Result<&[(usize, usize)], DynamicsError> {
         let n = self.dim;
-        let bad = |what: &'static str, reason: String| {
-            Err(ShapeError::InvalidQuery { what, reason }.into())
-        };
-        if lower.len() != upper.len() || !lower.len().is_multiple_of(n) {
-            return bad(
-                "bounding boxes",
-                format!(
-                    "{} lower and {} upper numbers for boxes in {n} dimensions",
-                    lower.len(),
-                    upper.len()
-                ),
-            );
+        if lower.len() != upper.len() {
+            return Err(ShapeError::DimensionMismatch {
+                what: "upper bounds",
+                expected: lower.len(),
+                found: upper.len(),
+            }
+            .into());
+        }
+        if !lower.len().is_multiple_of(n) {
+            return Err(ShapeError::NotAMultiple {
+                what: "bounding boxes",
+                numbers: lower.len(),
+                dim: n,
+            }
+            .into());
         }
         let bodies = lower.len() / n;
         if bodies >= 1 << 31 {
-            return bad(
-                "bounding boxes",
-                format!("{bodies} bodies: at most 2³¹ − 1"),
-            );
+            return Err(ShapeError::TooManyBodies {
+                bodies,
+                max: (1 << 31) - 1,
+            }
+            .into());
         }
-        for (k, (lo, hi)) in lower.iter().zip(upper).enumerate() {
-            if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
-                return bad(
-                    "bounding box",
-                    format!(
-                        "body {}, axis {}: [{lo}, {hi}] is not a finite interval",
-                        k / n,
-                        k % n
-                    ),
-                );
+        for (k, (&lo, &hi)) in lower.iter().zip(upper).enumerate() {
+            for (what, value) in [("lower bound", lo), ("upper bound", hi)] {
+                if !value.is_finite() {
+                    return Err(ShapeError::NonFinite { what, value }.into());
+                }
+            }
+            if lo > hi {
+                return Err(ShapeError::InvertedBounds {
+                    body: k / n,
+                    axis: k % n,
+                    lower: lo,
+                    upper: hi,
+                }
+                .into());
             }
         }
+        self.box_tests = 0;
         self.lower.clear();
         self.lower.extend_from_slice(lower);
         self.upper.clear();
@@ -297,7 +317,7 @@ impl BroadPhase {
         let pairs = &mut self.pairs;
         for &b in &self.moved {
             let b = b as usize;
-            self.tree.query(
+            self.box_tests += self.tree.query(
                 n,
                 &self.fat_lower,
                 &self.fat_upper,
@@ -320,11 +340,7 @@ fn overlap(n: usize, lower: &[f64], upper: &[f64], i: usize, j: usize) -> bool {
 
 fn checked_key(i: usize, j: usize) -> Result<u64, DynamicsError> {
     if i == j || i >= 1 << 31 || j >= 1 << 31 {
-        return Err(ShapeError::InvalidQuery {
-            what: "body pair",
-            reason: format!("({i}, {j}): two distinct body indices below 2³¹ are needed"),
-        }
-        .into());
+        return Err(ShapeError::InvalidBodyPair { i, j }.into());
     }
     Ok(key(i, j))
 }
@@ -425,7 +441,8 @@ impl Hierarchy {
         }
     }
 
-    /// Calls `visit(j)` for every body j ≠ b whose box overlaps body b's.
+    /// Calls `visit(j)` for every body j ≠ b whose box overlaps body b's; returns the box tests
+    /// made (nodes and bodies).
     #[allow(clippy::too_many_arguments)]
     fn query(
         &self,
@@ -436,21 +453,24 @@ impl Hierarchy {
         b: usize,
         stack: &mut Vec<u32>,
         mut visit: impl FnMut(usize),
-    ) {
+    ) -> usize {
         if self.nodes.is_empty() {
-            return;
+            return 0;
         }
+        let mut tests = 0;
         let (lo, hi) = (&lower[b * n..(b + 1) * n], &upper[b * n..(b + 1) * n]);
         stack.clear();
         stack.push(0);
         while let Some(k) = stack.pop() {
             let k = k as usize;
+            tests += 1;
             let bounds = &self.bounds[2 * n * k..2 * n * (k + 1)];
             if (0..n).any(|a| bounds[a] > hi[a] || lo[a] > bounds[n + a]) {
                 continue;
             }
             let (start, end, l, r) = self.nodes[k];
             if l == 0 {
+                tests += (end - start) as usize;
                 for &j in &order[start as usize..end as usize] {
                     let j = j as usize;
                     if j != b
@@ -464,5 +484,6 @@ impl Hierarchy {
                 stack.push(r);
             }
         }
+        tests
     }
 }

@@ -30,6 +30,34 @@ use super::gjk::{
 use crate::algebra::Vector;
 use crate::dynamics::motion::shape::{ConvexCore, Coords, ShapeError};
 use smallvec::SmallVec;
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
+
+/// A multiplicative hasher for packed ridges (small vertex indices, not adversarial).
+#[derive(Default)]
+struct RidgeHasher(u64);
+
+impl Hasher for RidgeHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(b as u64);
+        }
+    }
+    fn write_u128(&mut self, x: u128) {
+        self.write_u64(x as u64);
+        self.write_u64((x >> 64) as u64);
+    }
+    fn write_u64(&mut self, x: u64) {
+        // splitmix64's finaliser.
+        let mut z = (self.0 ^ x).wrapping_add(0x9e37_79b9_7f4a_7c15);
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        self.0 = z ^ (z >> 31);
+    }
+}
 
 /// EPA iterations at most (each adds one support point).
 pub(crate) const MAX_EPA_ITERATIONS: usize = 256;
@@ -45,6 +73,10 @@ const CONVERGED: f64 = 1e-12;
 const VISIBLE: f64 = 1e-13;
 /// A facet whose normal is this ill-determined (relative to its size) is degenerate.
 const FLAT_FACET: f64 = 1e-12;
+/// A new point within this fraction of the size below a facet's plane lies on it, for
+/// merging: the heights of thin facets (one edge of the size of the smaller shape, the
+/// others of the larger) carry errors of about ε · size² / edge.
+const COPLANAR: f64 = 1e-9;
 
 /// The contact of two placed shapes, from [`penetration`].
 #[derive(Clone, Debug, PartialEq)]
@@ -80,6 +112,8 @@ pub struct EpaWorkspace {
     visible: Vec<usize>,
     ridges: Vec<u32>,
     ridge_counts: Vec<u32>,
+    /// Each ridge's position in `ridge_counts`, by its vertex indices packed 16 bits each.
+    ridge_index: HashMap<u128, u32, BuildHasherDefault<RidgeHasher>>,
     new_facets: Vec<u32>,
     new_normals: Vec<f64>,
     new_offsets: Vec<f64>,
@@ -167,6 +201,54 @@ fn facet_plane(
         offset += normal.iter().zip(point(k)).map(|(p, q)| p * q).sum::<f64>();
     }
     Some(offset / n as f64)
+}
+
+/// Writes the horizon of the facets in `ws.visible` into `ws.ridges` (N − 1 vertex indices
+/// each, ascending) with how many seen facets hold each ridge in `ws.ridge_counts`: the
+/// ridges held once bound the seen region. Ridges are matched through a hash of their
+/// packed indices (N − 1 ≤ 8 indices below 2¹⁶, always the case within the iteration
+/// bound for N ≤ 9), else by a linear search.
+fn horizon(ws: &mut EpaWorkspace, n: usize) {
+    ws.ridges.clear();
+    ws.ridge_counts.clear();
+    ws.ridge_index.clear();
+    let packed = n - 1 <= 8 && ws.w.len() / n < 1 << 16;
+    for vi in 0..ws.visible.len() {
+        let g = ws.visible[vi];
+        for skip in 0..n {
+            let start = ws.ridges.len();
+            for k in 0..n {
+                if k != skip {
+                    let x = ws.facets[g * n + k];
+                    ws.ridges.push(x);
+                }
+            }
+            let ridge_count = start / (n - 1);
+            let found = if packed {
+                let key = ws.ridges[start..]
+                    .iter()
+                    .fold(0u128, |k, &x| k << 16 | x as u128);
+                match ws.ridge_index.entry(key) {
+                    std::collections::hash_map::Entry::Occupied(e) => Some(*e.get() as usize),
+                    std::collections::hash_map::Entry::Vacant(e) => {
+                        e.insert(ridge_count as u32);
+                        None
+                    }
+                }
+            } else {
+                (0..ridge_count).find(|&r| {
+                    ws.ridges[r * (n - 1)..(r + 1) * (n - 1)] == ws.ridges[start..start + n - 1]
+                })
+            };
+            match found {
+                Some(r) => {
+                    ws.ridges.truncate(start);
+                    ws.ridge_counts[r] += 1;
+                }
+                None => ws.ridge_counts.push(1),
+            }
+        }
+    }
 }
 
 /// What EPA found on the cores: the depth of the origin inside K, the outward normal of K
@@ -380,59 +462,72 @@ fn epa_cores(
         if !ws.visible.contains(&f) {
             break;
         }
-        ws.ridges.clear();
-        ws.ridge_counts.clear();
-        for vi in 0..ws.visible.len() {
-            let g = ws.visible[vi];
-            for skip in 0..n {
-                let start = ws.ridges.len();
-                for k in 0..n {
-                    if k != skip {
-                        let x = ws.facets[g * n + k];
-                        ws.ridges.push(x);
-                    }
-                }
-                let ridge_count = start / (n - 1);
-                let found = (0..ridge_count).find(|&r| {
-                    ws.ridges[r * (n - 1)..(r + 1) * (n - 1)] == ws.ridges[start..start + n - 1]
-                });
-                match found {
-                    Some(r) => {
-                        ws.ridges.truncate(start);
-                        ws.ridge_counts[r] += 1;
-                    }
-                    None => ws.ridge_counts.push(1),
-                }
-            }
-        }
-        // The cone from w over the horizon; a degenerate facet ends the expansion.
+        // The cone from w over the horizon. A cone facet that would be degenerate (w in
+        // the affine hull of its horizon ridge, to round-off) means that w lies in the
+        // plane of the facet beyond that ridge as well, which a thin facet's round-off
+        // kept from counting as seen: that facet, if w lies on its plane to [`COPLANAR`],
+        // is taken as seen (coplanar facets merge) and the horizon is found again. Each
+        // retry adds a facet to the seen ones, so the retries end; a degenerate facet with
+        // no such neighbour ends the expansion.
         let new_index = (ws.w.len() / n) as u32;
-        ws.new_facets.clear();
-        ws.new_normals.clear();
-        ws.new_offsets.clear();
         ws.w.extend_from_slice(&w);
         let mut degenerate = false;
-        for r in 0..ws.ridge_counts.len() {
-            if ws.ridge_counts[r] != 1 {
-                continue;
-            }
-            vertices.clear();
-            vertices.extend_from_slice(&ws.ridges[r * (n - 1)..(r + 1) * (n - 1)]);
-            vertices.push(new_index);
-            match facet_plane(&ws.w, n, &vertices, &inside, scale, &mut normal) {
-                Some(o) => {
-                    ws.new_facets.extend_from_slice(&vertices);
-                    ws.new_normals.extend_from_slice(&normal);
-                    ws.new_offsets.push(o);
+        loop {
+            horizon(ws, n);
+            ws.new_facets.clear();
+            ws.new_normals.clear();
+            ws.new_offsets.clear();
+            let mut flat_ridge = None;
+            for r in 0..ws.ridge_counts.len() {
+                if ws.ridge_counts[r] != 1 {
+                    continue;
                 }
+                vertices.clear();
+                vertices.extend_from_slice(&ws.ridges[r * (n - 1)..(r + 1) * (n - 1)]);
+                vertices.push(new_index);
+                match facet_plane(&ws.w, n, &vertices, &inside, scale, &mut normal) {
+                    Some(o) => {
+                        ws.new_facets.extend_from_slice(&vertices);
+                        ws.new_normals.extend_from_slice(&normal);
+                        ws.new_offsets.push(o);
+                    }
+                    None => {
+                        flat_ridge = Some(r);
+                        break;
+                    }
+                }
+            }
+            let Some(r) = flat_ridge else {
+                break;
+            };
+            let ridge = &ws.ridges[r * (n - 1)..(r + 1) * (n - 1)];
+            let beyond = (0..ws.offsets.len()).find(|g| {
+                !ws.visible.contains(g)
+                    && ridge
+                        .iter()
+                        .all(|x| ws.facets[g * n..(g + 1) * n].contains(x))
+            });
+            // Only a facet that w lies on, to round-off, merges: removing one that w lies
+            // below would dent the polytope.
+            let beyond = beyond.filter(|&g| {
+                let ng = &ws.normals[g * n..(g + 1) * n];
+                let height = ng.iter().zip(&w).map(|(p, q)| p * q).sum::<f64>() - ws.offsets[g];
+                height >= -COPLANAR * scale
+            });
+            match beyond {
+                Some(g) => ws.visible.push(g),
                 None => {
                     degenerate = true;
                     break;
                 }
             }
         }
+        // The polytope holds the origin (GJK found it inside K), so every facet's plane
+        // passes beyond it: a new facet with the origin outside shows that round-off has
+        // bent the polytope (thin facets seen wrongly), and the expansion stops before it.
+        let bent = ws.new_offsets.iter().any(|o| *o < -COPLANAR * scale);
         let facets_after = ws.offsets.len() - ws.visible.len() + ws.new_offsets.len();
-        if degenerate || ws.new_offsets.is_empty() || facets_after > MAX_EPA_FACETS {
+        if degenerate || bent || ws.new_offsets.is_empty() || facets_after > MAX_EPA_FACETS {
             ws.w.truncate(new_index as usize * n);
             break;
         }
@@ -652,8 +747,12 @@ pub fn penetration(a: &PlacedShape, b: &PlacedShape) -> Result<Penetration, Shap
 /// distance), the contact normal from A to B and the witness points: closed forms for
 /// ball–ball and ball–cuboid, GJK for separated cores, EPA on the cores for overlapping
 /// ones, the margins added. Bounded (at most 128 GJK and 256 EPA iterations, 4096 facets),
-/// never NaN. EPA is exact for polytopes; on smooth cores (ellipsoids) it stops at those
-/// bounds with a lower bound of the depth, within a few per cent of the size above N = 4.
+/// never NaN. EPA is exact for polytopes up to N = 4; above, the facet cap can stop it
+/// with a lower bound of the depth. On smooth cores (ellipsoids) it stops at those bounds
+/// with a lower bound of the depth whose normal is inexact: on random overlapping pairs
+/// (`tests/reliability/narrow_phase.rs` prints the figures) the translation along the
+/// normal that separates the shapes exceeded the depth by up to about 1e-6 of the pair's
+/// size in 2D, 1e-2 in 3D, 0.1 in 4D and half of it in 5 and 6 dimensions.
 ///
 /// ```
 /// use rotorflow::dynamics::motion::detect::{EpaWorkspace, PlacedShape, penetration_with};

@@ -35,12 +35,12 @@ pub(crate) type Weights = SmallVec<[f64; 9]>;
 
 /// The gap |v|² − v·w below which GJK stops, relative to |v|²: the distance is then known
 /// to this relative precision (|v| is an upper bound and v·w/|v| a lower bound).
-const RELATIVE_GAP: f64 = 1e-12;
+pub(crate) const RELATIVE_GAP: f64 = 1e-12;
 /// Distances of the cores below this fraction of the problem's size count as contact.
-const TOUCHING: f64 = 1e-12;
+pub(crate) const TOUCHING: f64 = 1e-12;
 /// A face whose new edge keeps less than this fraction of its length off the span of the
 /// others is degenerate and is replaced by its facets.
-const DEGENERATE: f64 = 1e-12;
+pub(crate) const DEGENERATE: f64 = 1e-12;
 /// GJK iterations at most. Polytopes finish in a few (exactly, when the support point
 /// repeats); smooth cores converge linearly and stop at the relative gap well before.
 pub(crate) const MAX_GJK_ITERATIONS: usize = 128;
@@ -148,7 +148,7 @@ pub(crate) struct Simplex {
 }
 
 impl Simplex {
-    fn new(n: usize) -> Self {
+    pub(crate) fn new(n: usize) -> Self {
         Simplex {
             n,
             count: 0,
@@ -159,7 +159,7 @@ impl Simplex {
         }
     }
 
-    fn push(&mut self, w: &[f64], a: &[f64], b: &[f64]) {
+    pub(crate) fn push(&mut self, w: &[f64], a: &[f64], b: &[f64]) {
         let (n, k) = (self.n, self.count);
         self.w[k * n..(k + 1) * n].copy_from_slice(w);
         self.a[k * n..(k + 1) * n].copy_from_slice(a);
@@ -377,8 +377,18 @@ pub(crate) fn support_difference(
     }
 }
 
-/// GJK on the cores of `a` and `b` (same dimension).
+/// GJK on the cores of `a` and `b` (same dimension): on stack arrays for N = 3 and 4
+/// (`fixed.rs`, the same algorithm), else [`gjk_general`].
 pub(crate) fn gjk(a: &PlacedShape, b: &PlacedShape) -> GjkResult {
+    match a.shape.dim() {
+        3 => super::fixed::gjk_fixed::<3>(a, b),
+        4 => super::fixed::gjk_fixed::<4>(a, b),
+        _ => gjk_general(a, b),
+    }
+}
+
+/// GJK on the cores of `a` and `b` (same dimension), for any N.
+pub(crate) fn gjk_general(a: &PlacedShape, b: &PlacedShape) -> GjkResult {
     let n = a.shape.dim();
     let mut d = Coords::from_elem(0.0, n);
     for ((x, p), q) in d.iter_mut().zip(b.position).zip(a.position) {
@@ -510,23 +520,40 @@ pub(crate) fn centre_direction(a: &PlacedShape, b: &PlacedShape) -> Vector {
 /// # Errors
 /// [`ShapeError::DimensionMismatch`] if the shapes differ in dimension.
 pub fn distance(a: &PlacedShape, b: &PlacedShape) -> Result<Separation, ShapeError> {
-    let n = check_pair(a, b)?;
+    check_pair(a, b)?;
+    Ok(separation(a, b, gjk(a, b)))
+}
+
+/// [`distance`] by the dimension-generic GJK alone. For N = 3 and 4, [`distance`] runs
+/// the same algorithm on stack arrays of N numbers; this entry point keeps the general
+/// implementation reachable, so that the two can be compared in tests and benchmarks.
+/// The answers agree to round-off.
+///
+/// # Errors
+/// [`ShapeError::DimensionMismatch`] if the shapes differ in dimension.
+pub fn distance_general(a: &PlacedShape, b: &PlacedShape) -> Result<Separation, ShapeError> {
+    check_pair(a, b)?;
+    Ok(separation(a, b, gjk_general(a, b)))
+}
+
+/// The separation from GJK's final state on the cores, the margins subtracted.
+fn separation(a: &PlacedShape, b: &PlacedShape, result: GjkResult) -> Separation {
+    let n = a.shape.dim();
     let (ra, rb) = (a.shape.margin(), b.shape.margin());
-    let result = gjk(a, b);
     let mut witness_a = Vector::zero(n);
     let mut witness_b = Vector::zero(n);
     result
         .simplex
         .witnesses(witness_a.as_mut_slice(), witness_b.as_mut_slice());
     if result.intersecting {
-        return Ok(Separation {
+        return Separation {
             distance: 0.0,
             normal: centre_direction(a, b),
             witness_b: witness_a.clone(),
             witness_a,
             intersecting: true,
             iterations: result.iterations,
-        });
+        };
     }
     let core = result.vv.sqrt();
     let mut normal = Vector::zero(n);
@@ -543,14 +570,14 @@ pub fn distance(a: &PlacedShape, b: &PlacedShape) -> Result<Separation, ShapeErr
         *q -= rb * m;
     }
     let distance = (core - ra - rb).max(0.0);
-    Ok(Separation {
+    Separation {
         distance,
         normal,
         witness_a,
         witness_b,
         intersecting: distance == 0.0,
         iterations: result.iterations,
-    })
+    }
 }
 
 /// Returns true if the placed shapes touch or overlap.

@@ -188,18 +188,27 @@ fn check_pair(a: &PlacedBox<'_>, b: &PlacedBox<'_>, margin: f64) -> Result<(), D
     a.check()?;
     b.check()?;
     if a.dim() != b.dim() {
-        return Err(ShapeError::InvalidQuery {
-            what: "box pair",
-            reason: format!("boxes in {} and {} dimensions", a.dim(), b.dim()),
+        return Err(ShapeError::DimensionMismatch {
+            what: "box B",
+            expected: a.dim(),
+            found: b.dim(),
         }
         .into());
     }
-    if !(margin.is_finite() && margin >= 0.0) {
-        return Err(ShapeError::InvalidQuery {
+    check_margin(margin)
+}
+
+/// Checks a contact margin: finite and ≥ 0.
+fn check_margin(margin: f64) -> Result<(), DynamicsError> {
+    if !margin.is_finite() {
+        return Err(ShapeError::NonFinite {
             what: "contact margin",
-            reason: format!("{margin} is not a finite number ≥ 0"),
+            value: margin,
         }
         .into());
+    }
+    if margin < 0.0 {
+        return Err(ShapeError::NegativeMargin { margin }.into());
     }
     Ok(())
 }
@@ -209,8 +218,9 @@ fn check_pair(a: &PlacedBox<'_>, b: &PlacedBox<'_>, margin: f64) -> Result<(), D
 /// can treat contacts about to close).
 ///
 /// # Errors
-/// [`ShapeError::InvalidQuery`] if a box is malformed ([`PlacedBox::check`]), the
-/// dimensions differ, or the margin is negative or not finite.
+/// As [`PlacedBox::check`] for either box; [`ShapeError::DimensionMismatch`] if the
+/// dimensions differ; [`ShapeError::NonFinite`] or [`ShapeError::NegativeMargin`] for the
+/// margin.
 pub fn box_manifold(
     a: &PlacedBox<'_>,
     b: &PlacedBox<'_>,
@@ -770,27 +780,33 @@ impl PlacedHull<'_> {
     /// Checks lengths, finiteness and orthogonality.
     ///
     /// # Errors
-    /// [`ShapeError::InvalidQuery`] naming the bad part.
+    /// [`ShapeError::TooFewDimensions`] below N = 2, [`ShapeError::EmptyHull`],
+    /// [`ShapeError::NotAMultiple`] for vertices that are not N numbers each,
+    /// [`ShapeError::DimensionMismatch`] or [`ShapeError::NonFinite`] for the placement or a
+    /// vertex, [`ShapeError::NotOrthogonal`] for the rotation.
     pub fn check(&self) -> Result<(), DynamicsError> {
         let n = self.dim();
-        let bad = |what: &'static str, reason: String| {
-            Err(ShapeError::InvalidQuery { what, reason }.into())
-        };
         if n < 2 {
-            return bad("hull position", format!("{n} numbers: hulls have N ≥ 2"));
+            return Err(ShapeError::TooFewDimensions { dim: n }.into());
         }
-        if self.vertices.is_empty() || !self.vertices.len().is_multiple_of(n) {
-            return bad(
-                "hull vertices",
-                format!(
-                    "{} numbers, not a positive multiple of N = {n}",
-                    self.vertices.len()
-                ),
-            );
+        if self.vertices.is_empty() {
+            return Err(ShapeError::EmptyHull.into());
+        }
+        if !self.vertices.len().is_multiple_of(n) {
+            return Err(ShapeError::NotAMultiple {
+                what: "hull vertices",
+                numbers: self.vertices.len(),
+                dim: n,
+            }
+            .into());
         }
         check_placement(n, self.position, self.rotation)?;
-        if let Some(x) = self.vertices.iter().find(|x| !x.is_finite()) {
-            return bad("hull vertices", format!("{x} is not finite"));
+        if let Some(&value) = self.vertices.iter().find(|x| !x.is_finite()) {
+            return Err(ShapeError::NonFinite {
+                what: "hull vertex",
+                value,
+            }
+            .into());
         }
         super::sat::check_rotation(n, self.rotation)
     }
@@ -911,8 +927,9 @@ fn plane_coordinates(normal: &[f64], p: &[f64], out: &mut Small) {
 /// when their supports along it are apart by more than `margin`.
 ///
 /// # Errors
-/// [`ShapeError::InvalidQuery`] if a hull is malformed ([`PlacedHull::check`]), the
-/// dimensions differ, the normal is zero or not finite, or the margin is negative.
+/// As [`PlacedHull::check`] for either hull; [`ShapeError::DimensionMismatch`] if the
+/// dimensions differ; [`ShapeError::NonFinite`] or [`ShapeError::ZeroVector`] for the
+/// normal; [`ShapeError::NonFinite`] or [`ShapeError::NegativeMargin`] for the margin.
 pub fn hull_manifold(
     a: &PlacedHull<'_>,
     b: &PlacedHull<'_>,
@@ -960,32 +977,38 @@ fn hull_vertices(
     a.check()?;
     b.check()?;
     let n = a.dim();
-    let bad =
-        |what: &'static str, reason: String| Err(ShapeError::InvalidQuery { what, reason }.into());
-    if b.dim() != n || normal.len() != n {
-        return bad(
-            "hull pair",
-            format!(
-                "dimensions {}, {} and normal of {}",
-                n,
-                b.dim(),
-                normal.len()
-            ),
-        );
+    for (what, found) in [("hull B", b.dim()), ("contact normal", normal.len())] {
+        if found != n {
+            return Err(ShapeError::DimensionMismatch {
+                what,
+                expected: n,
+                found,
+            }
+            .into());
+        }
+    }
+    if let Some(&value) = normal.iter().find(|x| !x.is_finite()) {
+        return Err(ShapeError::NonFinite {
+            what: "contact normal",
+            value,
+        }
+        .into());
     }
     let length = dot(normal, normal).sqrt();
-    if !(length.is_finite() && length > 0.0) {
-        return bad(
-            "contact normal",
-            format!("{normal:?} is not a finite non-zero vector"),
-        );
+    if length == 0.0 {
+        return Err(ShapeError::ZeroVector {
+            what: "contact normal",
+        }
+        .into());
     }
-    if !(margin.is_finite() && margin >= 0.0) {
-        return bad(
-            "contact margin",
-            format!("{margin} is not a finite number ≥ 0"),
-        );
+    if !length.is_finite() {
+        return Err(ShapeError::NonFinite {
+            what: "contact normal's length",
+            value: length,
+        }
+        .into());
     }
+    check_margin(margin)?;
     let unit: Small = normal.iter().map(|x| x / length).collect();
     let (sa, top_a) = SupportSet::new(a, &unit, 1.0, SUPPORT_TOLERANCE * a.radius());
     let (sb, bottom_b) = SupportSet::new(b, &unit, -1.0, SUPPORT_TOLERANCE * b.radius());

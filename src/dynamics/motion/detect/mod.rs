@@ -2,7 +2,7 @@
 //! how deep two shapes overlap (the narrow phase), and where they touch (contact manifolds).
 //!
 //! - Narrow phase: [`distance`] and [`intersects`] (GJK with an exact simplex
-//!   sub-algorithm, `gjk.rs`), [`penetration`] (EPA in N dimensions and closed forms,
+//!   sub-algorithm, `gjk.rs`; on stack arrays for N = 3 and 4, `fixed.rs`), [`penetration`] (EPA in N dimensions and closed forms,
 //!   `epa.rs`), on [`PlacedShape`]s of [`super::shape`]; boxes by separating axes
 //!   ([`box_box`], `sat.rs`).
 //! - Contact manifolds of several points ([`box_manifold`], [`hull_manifold`],
@@ -16,13 +16,14 @@
 pub(crate) mod bodies;
 pub mod broad;
 mod epa;
+mod fixed;
 mod gjk;
 pub mod manifold;
 pub mod sat;
 
 pub use broad::BroadPhase;
 pub use epa::{EpaWorkspace, Penetration, penetration, penetration_with};
-pub use gjk::{PlacedShape, Separation, distance, intersects};
+pub use gjk::{PlacedShape, Separation, distance, distance_general, intersects};
 pub use manifold::{
     ContactManifold, ContactPoint, FeatureId, PlacedHull, RegionVertex, box_contact_vertices,
     box_manifold, hull_contact_vertices, hull_manifold,

@@ -73,26 +73,41 @@ impl PlacedBox<'_> {
     /// Checks lengths, finiteness, signs and orthogonality.
     ///
     /// # Errors
-    /// [`ShapeError::InvalidQuery`] naming the bad part.
+    /// [`ShapeError::TooFewDimensions`] or [`ShapeError::TooManyDimensions`] outside 2 …
+    /// [`MAX_BOX_DIM`]; [`ShapeError::DimensionMismatch`] or [`ShapeError::NonFinite`] for
+    /// the placement; [`ShapeError::NonFinite`] or [`ShapeError::NegativeLength`] for a
+    /// half-length; [`ShapeError::NotOrthogonal`] for the rotation.
     pub fn check(&self) -> Result<(), DynamicsError> {
         let n = self.dim();
-        let bad = |what: &'static str, reason: String| {
-            Err(ShapeError::InvalidQuery { what, reason }.into())
-        };
-        if !(2..=MAX_BOX_DIM).contains(&n) {
-            return bad(
-                "box",
-                format!("{n} half-lengths: boxes have 2 to {MAX_BOX_DIM} dimensions"),
-            );
+        if n < 2 {
+            return Err(ShapeError::TooFewDimensions { dim: n }.into());
+        }
+        if n > MAX_BOX_DIM {
+            return Err(ShapeError::TooManyDimensions {
+                what: "box",
+                dim: n,
+                max: MAX_BOX_DIM,
+            }
+            .into());
         }
         // The placement as every detection query checks it (lengths, finite numbers).
         check_placement(n, self.position, self.rotation)?;
-        if let Some(h) = self
-            .half_lengths
-            .iter()
-            .find(|h| !(h.is_finite() && **h >= 0.0))
-        {
-            return bad("box half-length", format!("{h} is not a finite number ≥ 0"));
+        for (index, &value) in self.half_lengths.iter().enumerate() {
+            if !value.is_finite() {
+                return Err(ShapeError::NonFinite {
+                    what: "box half-length",
+                    value,
+                }
+                .into());
+            }
+            if value < 0.0 {
+                return Err(ShapeError::NegativeLength {
+                    what: "box half-length",
+                    index,
+                    value,
+                }
+                .into());
+            }
         }
         check_rotation(n, self.rotation)?;
         Ok(())
@@ -117,9 +132,10 @@ pub(crate) fn check_rotation(n: usize, rotation: &[f64]) -> Result<(), DynamicsE
         }
     }
     if worst.is_nan() || worst > ROTATION_TOLERANCE {
-        return Err(ShapeError::InvalidQuery {
+        return Err(ShapeError::NotOrthogonal {
             what: "rotation",
-            reason: format!("not orthogonal: |QᵀQ − I| = {worst:e} > {ROTATION_TOLERANCE:e}"),
+            error: worst,
+            tolerance: ROTATION_TOLERANCE,
         }
         .into());
     }
@@ -362,15 +378,16 @@ pub(crate) fn for_each_axis(
 /// give depth 0 (to round-off).
 ///
 /// # Errors
-/// [`ShapeError::InvalidQuery`] if a box is malformed ([`PlacedBox::check`]) or the
+/// As [`PlacedBox::check`] for either box, and [`ShapeError::DimensionMismatch`] if the
 /// dimensions differ.
 pub fn box_box(a: &PlacedBox<'_>, b: &PlacedBox<'_>) -> Result<BoxPairAxis, DynamicsError> {
     a.check()?;
     b.check()?;
     if a.dim() != b.dim() {
-        return Err(ShapeError::InvalidQuery {
-            what: "box pair",
-            reason: format!("boxes in {} and {} dimensions", a.dim(), b.dim()),
+        return Err(ShapeError::DimensionMismatch {
+            what: "box B",
+            expected: a.dim(),
+            found: b.dim(),
         }
         .into());
     }

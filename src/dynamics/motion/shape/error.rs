@@ -92,14 +92,112 @@ pub enum ShapeError {
     /// How to fix: give at least one piece.
     #[error("a compound shape needs at least one piece")]
     EmptyCompound,
-    /// A detection query on plain data (placed boxes and hulls, bounding boxes, a contact
-    /// margin or normal, body pairs of the broad phase) was given data it cannot use; the
-    /// message names the part and what is wrong with it.
-    #[error("invalid {what}: {reason}")]
-    InvalidQuery {
-        /// The part of the query.
+    /// A query has more dimensions than it supports (boxes: [`MAX_BOX_DIM`]).
+    ///
+    /// How to fix: use N ≤ `max`, or a support-function query (GJK) above it.
+    ///
+    /// [`MAX_BOX_DIM`]: crate::dynamics::motion::detect::sat::MAX_BOX_DIM
+    #[error("{what} has {dim} dimensions, at most {max} are supported")]
+    TooManyDimensions {
+        /// What was given.
         what: &'static str,
-        /// What is wrong with it.
-        reason: String,
+        /// Its dimension.
+        dim: usize,
+        /// The largest dimension supported.
+        max: usize,
+    },
+    /// A query needs at least one dimension.
+    ///
+    /// How to fix: give N ≥ 1.
+    #[error("{what} needs at least one dimension, got 0")]
+    ZeroDimension {
+        /// What was given.
+        what: &'static str,
+    },
+    /// A length that must be ≥ 0 is negative (a box half-length; zero is a flat box).
+    ///
+    /// How to fix: give lengths ≥ 0.
+    #[error("{what} {value} at index {index} is negative")]
+    NegativeLength {
+        /// What was given.
+        what: &'static str,
+        /// Its position in the input.
+        index: usize,
+        /// The number.
+        value: f64,
+    },
+    /// A matrix that must be a rotation is not orthogonal to the tolerance.
+    ///
+    /// How to fix: give the rotation row-major, own axes → space (for example from
+    /// `Attitude::write_matrix`), orthonormal to `tolerance`.
+    #[error("{what} is not orthogonal: |QᵀQ − I| = {error:e} > {tolerance:e}")]
+    NotOrthogonal {
+        /// What was given.
+        what: &'static str,
+        /// The largest entry of |QᵀQ − I| (NaN for a matrix with NaN).
+        error: f64,
+        /// The largest entry allowed.
+        tolerance: f64,
+    },
+    /// A flat list of points or bounds does not hold a whole number of N-vectors.
+    ///
+    /// How to fix: give N numbers per point (body after body for bounding boxes).
+    #[error("{what} has {numbers} numbers, not a multiple of N = {dim}")]
+    NotAMultiple {
+        /// What was given.
+        what: &'static str,
+        /// The numbers given.
+        numbers: usize,
+        /// The dimension N.
+        dim: usize,
+    },
+    /// A placed hull has no vertex.
+    ///
+    /// How to fix: give at least one vertex (N numbers).
+    #[error("a placed hull needs at least one vertex")]
+    EmptyHull,
+    /// A bounding box whose lower bound exceeds its upper bound on an axis.
+    ///
+    /// How to fix: give lower ≤ upper on every axis.
+    #[error(
+        "bounding box of body {body}, axis {axis}: lower bound {lower} exceeds upper bound {upper}"
+    )]
+    InvertedBounds {
+        /// The body.
+        body: usize,
+        /// The axis.
+        axis: usize,
+        /// The lower bound.
+        lower: f64,
+        /// The upper bound.
+        upper: f64,
+    },
+    /// More bodies than the broad phase indexes.
+    ///
+    /// How to fix: split the system; at most `max` bodies.
+    #[error("{bodies} bodies, at most {max} are supported")]
+    TooManyBodies {
+        /// The bodies given.
+        bodies: usize,
+        /// The most supported.
+        max: usize,
+    },
+    /// A body pair that is not two distinct indices below 2³¹.
+    ///
+    /// How to fix: give two different body indices.
+    #[error("body pair ({i}, {j}): two distinct body indices below 2³¹ are needed")]
+    InvalidBodyPair {
+        /// The first index.
+        i: usize,
+        /// The second index.
+        j: usize,
+    },
+    /// A direction that must be non-zero is zero (a contact normal).
+    ///
+    /// How to fix: give a non-zero direction.
+    #[error("{what} is the zero vector")]
+    ZeroVector {
+        /// What was given.
+        what: &'static str,
     },
 }
