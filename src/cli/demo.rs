@@ -18,6 +18,7 @@ use super::error::{CliError, CliResult};
 use super::exact::exact_report;
 use super::motion::{
     InitialArgs, InitialValue, IntegratorKind, Report, Stepping, initial_body, integrate,
+    report_from_states,
 };
 use super::output::{Progress, number, plane_names, write_atomic};
 use super::render::picture;
@@ -347,7 +348,7 @@ fn run_case(case: &Case, dir: &Path) -> CliResult<CaseResult> {
     let mut silent = Progress::new(0, true, "");
     let (states, steps) = integrate(&start, &Free, stepping, &times, &mut silent)?;
     let seconds = clock.elapsed().as_secs_f64();
-    let report = Report::from_states(&start, &times, states.into_iter().map(Ok))?;
+    let report = report_from_states(&start, &times, states.into_iter().map(Ok))?;
     let title = format!("{} — {}", case.title, case.spec);
     write_atomic(
         &dir.join(format!("omega_{}.svg", case.name)),
@@ -459,7 +460,7 @@ fn integrator_table() -> CliResult<String> {
             let mut silent = Progress::new(0, true, "");
             let (states, steps) = integrate(&start, &Free, *stepping, &times, &mut silent)?;
             let seconds = clock.elapsed().as_secs_f64();
-            let report = Report::from_states(&start, &times, states.into_iter().map(Ok))?;
+            let report = report_from_states(&start, &times, states.into_iter().map(Ok))?;
             Ok(format!(
                 "| {name} | {steps} | {:.2e} | {:.2e} | {:.2e} | {:.2e} | {:.4} |",
                 report.drift.energy,
@@ -516,7 +517,7 @@ fn sweep(dir: &Path) -> CliResult<String> {
                 dt: 0.01,
             };
             let (states, _) = integrate(&start, &Free, stepping, &times, &mut silent)?;
-            let report = Report::from_states(&start, &times, states.into_iter().map(Ok))?;
+            let report = report_from_states(&start, &times, states.into_iter().map(Ok))?;
             let obs = observables(&report, axes)?;
             let c = (omega[0] * omega[0] + omega[1] * omega[1] + omega[3] * omega[3]).sqrt();
             let paper = (kappa * kappa - 1.0) / (kappa * kappa + 1.0) * c;

@@ -1,10 +1,10 @@
 //! `rotorflow exact`: the closed-form solution, in the same shape as `simulate`.
 //!
 //! The closed forms live in the dynamics layer; this file only parses the command line and
-//! formats the result through [`Report::from_states`], exactly as `simulate` does.
+//! formats the result through [`report_from_states`], exactly as `simulate` does.
 
 use super::error::{CliError, CliResult};
-use super::motion::{InitialArgs, Report, State, initial_body};
+use super::motion::{InitialArgs, Report, State, initial_body, report_from_states};
 use super::simulate::{ReportArgs, TimeArgs};
 use super::spec::parse_body;
 use clap::Args;
@@ -47,7 +47,7 @@ pub fn run(args: &ExactArgs) -> CliResult<()> {
 ///
 /// The closed form ([`RigidBody::exact_solution`]) is a map t ↦ (R(t), L(t)) (attitude
 /// principal frame → space, body-frame momentum in the principal frame);
-/// [`Report::from_states`] turns it into the same output as `simulate`.
+/// [`report_from_states`] turns it into the same output as `simulate`.
 ///
 /// # Errors
 /// [`CliError::Input`] when the body has no closed form (the message says why);
@@ -72,5 +72,5 @@ pub fn exact_report(start: &RigidBody, times: &[f64]) -> CliResult<Report> {
             solution.momentum_at(t).map_err(fail)?,
         ))
     };
-    Report::from_states(start, times, times.iter().map(|&t| state(t)))
+    report_from_states(start, times, times.iter().map(|&t| state(t)))
 }

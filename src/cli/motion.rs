@@ -5,18 +5,14 @@ use super::error::{CliError, CliResult};
 use super::output::{Progress, number, plane_names};
 use super::spec::ParsedBody;
 use clap::{Args, ValueEnum};
-use nalgebra::DMatrix;
 use rotorflow::algebra::{Bivector, bivector_len};
-use rotorflow::dynamics::report::{
-    Report as LibraryReport, ReportError, SampleError, Stepper, sample_states,
-};
+use rotorflow::dynamics::report::{ReportError, SampleError, Stepper, sample_states};
 use rotorflow::dynamics::torques::{BodyFrame, Free, LinearDamping, SpaceFrame};
 use rotorflow::dynamics::{
     Attitude, Dop853, Dopri5, Drift, LiePoissonRk4, Midpoint, MoserVeselov, RigidBody, Rkmk4,
     Splitting, Torque,
 };
 use rotorflow::inertia::spec::{parse_list, parse_number};
-use serde_json::Value;
 
 /// Parses a finite number for clap (rejects NaN and infinities).
 pub fn finite_number(text: &str) -> Result<f64, String> {
@@ -486,101 +482,38 @@ pub fn drift_line(d: &Drift) -> String {
     )
 }
 
-/// A trajectory as reported: everything in the body's own axes (the library's
-/// [`rotorflow::dynamics::report::Report`], with the command's CSV and text).
-#[derive(Clone, Debug)]
-pub struct Report {
-    /// The dimension N.
-    pub dim: usize,
-    /// Sample times.
-    pub times: Vec<f64>,
-    /// Body-frame angular velocity in the body's own axes.
-    pub omega: Vec<Bivector>,
-    /// Body-frame angular momentum in the body's own axes.
-    pub momentum: Vec<Bivector>,
-    /// Kinetic energy.
-    pub energy: Vec<f64>,
-    /// Casimirs c₁ … c_⌊N/2⌋ (coefficients of det(λ − \[L\])).
-    pub casimirs: Vec<Vec<f64>>,
-    /// Rotation matrix of the body's own axes → space.
-    pub attitude: Vec<DMatrix<f64>>,
-    /// Relative drift of the energy from t = 0, per sample.
-    pub energy_drift: Vec<f64>,
-    /// Relative drift of the Casimirs from t = 0 (largest), per sample.
-    pub casimir_drift: Vec<f64>,
-    /// Largest drifts over all samples.
-    pub drift: Drift,
-    /// Largest relative drift of each Manakov integral over all samples (empty for a general
-    /// inertia map or N above [`rotorflow::dynamics::MANAKOV_MAX_DIM`]).
-    pub manakov_drift: Vec<f64>,
+/// A trajectory as reported: everything in the body's own axes.
+pub use rotorflow::dynamics::report::Report;
+
+/// Builds the report from the states (principal frame) at `times` of the motion that starts
+/// as `start` ([`Report::from_states`]); `states` may fail (an exact solution that cannot be
+/// evaluated).
+///
+/// # Errors
+/// The first error of `states`; [`CliError::Runtime`] when the report cannot be built.
+pub fn report_from_states(
+    start: &RigidBody,
+    times: &[f64],
+    states: impl IntoIterator<Item = CliResult<State>>,
+) -> CliResult<Report> {
+    Report::from_states(start, times, states).map_err(|e| match e {
+        ReportError::State(e) => e,
+        other => CliError::runtime(other.to_string()),
+    })
 }
 
-impl From<LibraryReport> for Report {
-    fn from(r: LibraryReport) -> Self {
-        Report {
-            dim: r.dim,
-            times: r.times,
-            omega: r.omega,
-            momentum: r.momentum,
-            energy: r.energy,
-            casimirs: r.casimirs,
-            attitude: r.attitude,
-            energy_drift: r.energy_drift,
-            casimir_drift: r.casimir_drift,
-            drift: r.drift,
-            manakov_drift: r.manakov_drift,
-        }
-    }
-}
-
-impl From<Report> for LibraryReport {
-    fn from(r: Report) -> Self {
-        LibraryReport {
-            dim: r.dim,
-            times: r.times,
-            omega: r.omega,
-            momentum: r.momentum,
-            energy: r.energy,
-            casimirs: r.casimirs,
-            attitude: r.attitude,
-            energy_drift: r.energy_drift,
-            casimir_drift: r.casimir_drift,
-            drift: r.drift,
-            manakov_drift: r.manakov_drift,
-        }
-    }
-}
-
-impl Report {
-    /// Builds the report from the states (principal frame) at `times` of the motion that
-    /// starts as `start` ([`LibraryReport::from_states`]); `states` may fail (an exact
-    /// solution that cannot be evaluated).
-    ///
-    /// # Errors
-    /// The first error of `states`; [`CliError::Runtime`] when the report cannot be built.
-    pub fn from_states(
-        start: &RigidBody,
-        times: &[f64],
-        states: impl IntoIterator<Item = CliResult<State>>,
-    ) -> CliResult<Report> {
-        LibraryReport::from_states(start, times, states)
-            .map(Report::from)
-            .map_err(|e| match e {
-                ReportError::State(e) => e,
-                other => CliError::runtime(other.to_string()),
-            })
-    }
-
-    /// Returns the JSON object with keys `dim`, `times`, `omega`, `momentum`, `energy`,
-    /// `casimirs`, `attitude`, `drift` (plus `planes`, the component names):
-    /// [`LibraryReport::to_json`].
-    pub fn to_json(&self) -> Value {
-        LibraryReport::from(self.clone()).to_json()
-    }
-
+/// The command's text forms of a [`Report`] (its JSON is [`Report::to_json`]).
+pub trait ReportText {
     /// Returns the CSV: one row per time with t, ω_ij, L_ij, energy, the Casimirs and the
     /// attitude matrix row-major (R_r_c).
-    pub fn to_csv(&self) -> String {
+    fn to_csv(&self) -> String;
+
+    /// Returns a readable table of t, ω and energy, and a drift line.
+    fn to_text(&self) -> String;
+}
+
+impl ReportText for Report {
+    fn to_csv(&self) -> String {
         let n = self.dim;
         let mut out = csv_header(n);
         for k in 0..self.times.len() {
@@ -599,8 +532,7 @@ impl Report {
         out
     }
 
-    /// Returns a readable table of t, ω and energy, and a drift line.
-    pub fn to_text(&self) -> String {
+    fn to_text(&self) -> String {
         let mut out = text_header(self.dim);
         for k in 0..self.times.len() {
             out.push_str(&format!("{:>12.6}", self.times[k]));

@@ -2,7 +2,9 @@
 //! SVG strip of frames.
 
 use super::error::{CliError, CliResult};
-use super::motion::{InitialArgs, Report, SteppingArgs, finite_number, initial_body, integrate};
+use super::motion::{
+    InitialArgs, Report, SteppingArgs, finite_number, initial_body, integrate, report_from_states,
+};
 use super::output::{Progress, check_extension, write_atomic};
 use super::spec::{ParsedBody, parse_body};
 use clap::{Args, ValueEnum};
@@ -122,7 +124,7 @@ pub fn run(args: &RenderArgs, quiet: bool) -> CliResult<()> {
     let mut progress = Progress::new(times.len() as u64, quiet, "render");
     let (states, _) = integrate(&start, &Free, stepping, &times, &mut progress)?;
     progress.finish();
-    let report = Report::from_states(&start, &times, states.into_iter().map(Ok))?;
+    let report = report_from_states(&start, &times, states.into_iter().map(Ok))?;
     let text = picture(&parsed, &report, axes, args.projection.into(), html);
     write_atomic(&args.output, text.as_bytes())
 }

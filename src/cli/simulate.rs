@@ -3,7 +3,8 @@
 use super::error::{CliError, CliResult};
 use super::lists::sample_times;
 use super::motion::{
-    InitialArgs, Report, SteppingArgs, finite_number, initial_body, integrate_each, parse_torque,
+    InitialArgs, Report, ReportText, SteppingArgs, finite_number, initial_body, integrate_each,
+    parse_torque,
 };
 use super::output::{
     Format, Progress, check_extension, emit, plane_names, report_format, to_json_text, write_atomic,

@@ -331,7 +331,7 @@ pub(crate) fn stream_text(
 
 #[cfg(test)]
 mod tests {
-    use super::super::motion::Report;
+    use super::super::motion::{ReportText, report_from_states};
     use super::super::output::to_json_text;
     use super::*;
     use rotorflow::prelude::*;
@@ -363,7 +363,7 @@ mod tests {
                 .map(|s| (s.attitude.clone(), s.momentum.clone()))
                 .collect();
             let report =
-                Report::from_states(&start, &times, states.iter().cloned().map(Ok)).unwrap();
+                report_from_states(&start, &times, states.iter().cloned().map(Ok)).unwrap();
             assert_eq!(
                 stream_text(&start, &times, &states, Format::Json),
                 to_json_text(&report.to_json(), false).unwrap()

@@ -6,7 +6,9 @@
 //! path, which every other run takes.
 
 use super::super::error::{CliError, CliResult};
-use super::super::motion::{IntegratorKind, Report, State, Stepping, sample_block_len};
+use super::super::motion::{
+    IntegratorKind, Report, State, Stepping, report_from_states, sample_block_len,
+};
 use super::GridRun;
 use rotorflow::algebra::{Bivector3, Bivector4, Rotor3, Rotor4};
 use rotorflow::dynamics::{Attitude, FreeBody3, FreeBody4, equal_steps};
@@ -110,7 +112,7 @@ impl Samples {
         start: &rotorflow::dynamics::RigidBody,
         times: &[f64],
     ) -> CliResult<Report> {
-        Report::from_states(start, times, self.states())
+        report_from_states(start, times, self.states())
     }
 
     fn states(self) -> Box<dyn Iterator<Item = CliResult<State>>> {
@@ -241,7 +243,7 @@ mod tests {
                     )
                     .unwrap();
                     let slow =
-                        Report::from_states(&run.2, &times, states.into_iter().map(Ok)).unwrap();
+                        report_from_states(&run.2, &times, states.into_iter().map(Ok)).unwrap();
                     assert_eq!(fast.omega, slow.omega, "N = {n}, {kind:?}, run {}", run.0);
                     assert_eq!(fast.drift.energy, slow.drift.energy);
                     assert_eq!(fast.drift.casimirs, slow.drift.casimirs);

@@ -10,6 +10,7 @@ use super::error::{CliError, CliResult};
 use super::lists::{Param, parse_param, shard_range};
 use super::motion::{
     InitialArgs, InitialValue, Report, Stepping, SteppingArgs, initial_body, integrate,
+    report_from_states,
 };
 use super::output::{Progress, check_extension, emit, number, write_atomic};
 use super::render::parse_axes;
@@ -294,7 +295,7 @@ pub fn run(args: &SweepArgs, quiet: bool) -> CliResult<()> {
                 .map_err(|e| CliError::runtime(format!("run {}: {e}", run.0)))?;
             finish(
                 run,
-                Report::from_states(&run.2, &times, states.into_iter().map(Ok))?,
+                report_from_states(&run.2, &times, states.into_iter().map(Ok))?,
             )
         })
         .collect::<CliResult<_>>()?;
