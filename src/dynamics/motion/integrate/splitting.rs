@@ -72,8 +72,10 @@ pub struct MotionSplitting {
     kick_start: Vec<SavedBody>,
     /// The bodies' convex shapes and the pairs of bodies found touching.
     touching: Touching,
-    /// The pairs of bodies in contact at the start of the substep.
+    /// The pairs of bodies in contact at the start of the substep, sorted.
     active_pairs: Vec<(usize, usize)>,
+    /// True while an impact is being located.
+    locating: bool,
 }
 
 /// The contact tolerance, relative to a body's radius.
@@ -580,6 +582,8 @@ impl MotionSplitting {
             );
             self.active_pairs
                 .extend(self.touching.found().iter().map(|c| (c.a, c.b)));
+            self.active_pairs.sort_unstable();
+            self.active_pairs.dedup();
         }
     }
 
@@ -590,12 +594,20 @@ impl MotionSplitting {
         if !self.touching.any_pairs() {
             return f64::INFINITY;
         }
+        // Pairs within their radii of each other are asked while an impact is located (its
+        // regula falsi needs the gaps on the near side too); otherwise only touching and
+        // overlapping pairs, which the broad phase's bounds settle for most pairs unasked.
+        let factor = if self.locating {
+            1.0
+        } else {
+            CONTACT_TOLERANCE
+        };
         let placements = &self.placements;
         self.touching
-            .scan(system.bodies(), |i| &placements.get(i).q, 1.0, None);
+            .scan(system.bodies(), |i| &placements.get(i).q, factor, None);
         let mut worst = f64::INFINITY;
         for c in self.touching.found() {
-            if !self.active_pairs.contains(&(c.a, c.b)) {
+            if self.active_pairs.binary_search(&(c.a, c.b)).is_err() {
                 let reach = self.touching.reach((c.a, c.b), CONTACT_TOLERANCE);
                 worst = worst.min(c.gap / reach);
             }
@@ -672,6 +684,7 @@ impl MotionSplitting {
         leave_open: bool,
     ) -> Result<Option<f64>, DynamicsError> {
         system.clear_contacts();
+        self.locating = false;
         let (mut t, mut remaining) = (t, h);
         for events in 0..=MAX_EVENTS {
             self.mark_active(system);
@@ -687,6 +700,7 @@ impl MotionSplitting {
                 return Ok(None);
             }
             // An impact inside the step: find where the fresh candidates reach the plane.
+            self.locating = true;
             let (mut a, mut fa) = (0.0, {
                 restore(system.bodies_mut(), &saved);
                 self.new_penetration(system)
@@ -736,6 +750,7 @@ impl MotionSplitting {
                     side = -1;
                 }
             }
+            self.locating = false;
             // Take the located substep for real, recording its contacts.
             restore(system.bodies_mut(), &saved);
             self.substep(system, t, s, true)?;
