@@ -237,6 +237,7 @@ const STABILITY: &[StabilityScene] = &[
         measures: &[
             "deepest penetration after any step (m)",
             "fastest body at the end (m/s)",
+            "slowest step (s)",
         ],
         run: piled,
     },
@@ -303,6 +304,7 @@ fn run() -> Result<(), Error> {
 
     let mut speed = String::new();
     let mut missing = Vec::new();
+    let mut ratios = Vec::new();
     for (group, description) in SCENES {
         let mut times = Vec::new();
         for (function, _) in ENGINES {
@@ -311,6 +313,11 @@ fn run() -> Result<(), Error> {
                 missing.push(format!("{group}/{function}"));
             }
             times.push(t);
+        }
+        for rapier in &times[1..] {
+            if let (Some(a), Some(b)) = (times[0], rapier) {
+                ratios.push(a / b);
+            }
         }
         let _ = writeln!(
             speed,
@@ -383,6 +390,16 @@ fn run() -> Result<(), Error> {
          rest of the run (its slowest step on the pile of 100 is in the stability table)."
     );
     missing.retain(|m| m != "pile_1000/rotorflow");
+    if !ratios.is_empty() {
+        let low = ratios.iter().copied().fold(f64::INFINITY, f64::min);
+        let high = ratios.iter().copied().fold(0.0, f64::max);
+        let _ = writeln!(
+            text,
+            "\nrotorflow's time per step is {} to {} Rapier's on these scenes.",
+            ratio(Some(low), Some(1.0)),
+            ratio(Some(high), Some(1.0)),
+        );
+    }
     if !missing.is_empty() {
         let _ = writeln!(text, "\nNot measured in this run: {}.", missing.join(", "));
     }
