@@ -5,9 +5,9 @@
 //! rotorflow takes its steps with one `advance`; Rapier with `PhysicsWorld::step`.
 //!
 //! Criterion's options apply (`-- --warm-up-time 1 --measurement-time 3`), and a name
-//! filter selects scenes: scenes it leaves out are not even set up. The run's arguments and
-//! the load average at its start are written to `criterion/rapier_run.json` beside
-//! criterion's own results, for `table`.
+//! filter selects scenes: scenes it leaves out are not even set up. The run's arguments, the
+//! commit and the load average at its start are written to `criterion/rapier_run.json`
+//! beside criterion's own results, for `table`.
 
 use criterion::{Criterion, SamplingMode, Throughput, black_box};
 use rotorflow_rapier_bench::{
@@ -123,7 +123,18 @@ fn main() {
     let dir = criterion_dir();
     std::fs::create_dir_all(&dir).expect("the criterion folder");
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
+    let git = |args: &[&str]| {
+        std::process::Command::new("git")
+            .args(args)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .ok()
+            .filter(|o| o.status.success())
+            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+    };
     let record = serde_json::json!({
+        "commit": git(&["rev-parse", "--short", "HEAD"]),
+        "dirty": git(&["status", "--porcelain", "--untracked-files=no"]).map(|s| !s.is_empty()),
         "args": std::env::args().skip(1).collect::<Vec<_>>(),
         "loadavg": load.trim(),
         "cpus": std::thread::available_parallelism().map(|n| n.get()).unwrap_or(0),
