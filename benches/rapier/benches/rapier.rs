@@ -134,7 +134,18 @@ fn main() {
     };
     let record = serde_json::json!({
         "commit": git(&["rev-parse", "--short", "HEAD"]),
-        "dirty": git(&["status", "--porcelain", "--untracked-files=no"]).map(|s| !s.is_empty()),
+        // The code that is measured: the crate and this package (the book's files aside).
+        "dirty": git(&[
+            "status",
+            "--porcelain",
+            "--untracked-files=no",
+            "--",
+            "../../src",
+            "../../Cargo.toml",
+            "../../Cargo.lock",
+            ".",
+        ])
+        .map(|s| !s.is_empty()),
         "args": std::env::args().skip(1).collect::<Vec<_>>(),
         "loadavg": load.trim(),
         "cpus": std::thread::available_parallelism().map(|n| n.get()).unwrap_or(0),

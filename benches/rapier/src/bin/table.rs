@@ -95,6 +95,30 @@ fn command_line(program: &str, args: &[&str]) -> Result<String, Error> {
     Ok(String::from_utf8_lossy(&out.stdout).trim().to_string())
 }
 
+const DIRTY: &str = " (with uncommitted changes)";
+
+/// The commit of HEAD, marked when the crate's or this package's files differ from it.
+fn commit_of() -> Result<String, Error> {
+    let commit = command_line("git", &["rev-parse", "--short", "HEAD"])?;
+    let changes = command_line(
+        "git",
+        &[
+            "status",
+            "--porcelain",
+            "--untracked-files=no",
+            "--",
+            "../../src",
+            "../../Cargo.toml",
+            "../../Cargo.lock",
+            ".",
+        ],
+    )?;
+    Ok(format!(
+        "{commit}{}",
+        if changes.is_empty() { "" } else { DIRTY }
+    ))
+}
+
 fn ms(seconds: Option<f64>) -> String {
     match seconds.map(|s| s * 1e3) {
         Some(t) if t >= 100.0 => format!("{t:.0}"),
@@ -339,9 +363,22 @@ fn run() -> Result<(), Error> {
     let mut stability = String::new();
     stability_rows(&mut stability);
 
-    let commit = command_line("git", &["rev-parse", "--short", "HEAD"])?;
-    let dirty =
-        !command_line("git", &["status", "--porcelain", "--untracked-files=no"])?.is_empty();
+    // The code that is measured: the crate and this package (the book's files aside).
+    let here = commit_of()?;
+    let timed = format!(
+        "{}{}",
+        record["commit"].as_str().unwrap_or("unknown"),
+        if record["dirty"].as_bool().unwrap_or(true) {
+            DIRTY
+        } else {
+            ""
+        }
+    );
+    let measured = if timed == here {
+        format!("Measured at commit `{here}`")
+    } else {
+        format!("Measured at commit `{here}` (the times at commit `{timed}`)")
+    };
     let date = command_line("date", &["-u", "+%Y-%m-%d"])?;
     let rustc = command_line("rustc", &["--version"])?;
     let p = IntegrationParameters::default();
@@ -352,14 +389,9 @@ fn run() -> Result<(), Error> {
     );
     let _ = writeln!(
         text,
-        "Measured at commit `{commit}`{} on {date} by `cargo bench --manifest-path benches/rapier/Cargo.toml -- {}` \
+        "{measured} on {date} by `cargo bench --manifest-path benches/rapier/Cargo.toml -- {}` \
          ({rustc}; {cpus} cores, load average {load} at the start). rotorflow {} (f64) against rapier3d {} \
          (f32, default features) with criterion {}: sample size 10, flat sampling, the median time per step.\n",
-        if dirty {
-            " (with uncommitted changes)"
-        } else {
-            ""
-        },
         bench_args.join(" "),
         locked_version("rotorflow")?,
         locked_version("rapier3d")?,
