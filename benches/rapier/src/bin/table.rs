@@ -216,7 +216,7 @@ fn piled(run: &mut dyn Run, items: &[Item]) -> Figures {
         deepest = deepest.max(max_penetration(items, &run.poses()));
     }
     let fastest = largest(run.velocities().iter().map(speed));
-    vec![sci(deepest), sci(fastest), format!("{slowest:.2}")]
+    vec![sci(deepest), sci(fastest), sci(slowest)]
 }
 
 struct StabilityScene {
@@ -267,13 +267,25 @@ const STABILITY: &[StabilityScene] = &[
     },
 ];
 
-fn stability_rows(out: &mut String) {
+/// The stability table's rows, and a line per scene of what rotorflow's contact solves did
+/// in its run.
+fn stability_rows(out: &mut String, solves: &mut String) {
     for scene in STABILITY {
         let items = (scene.items)();
         let description = SCENES.iter().find(|s| s.0 == scene.group).unwrap().1;
         eprintln!("stability: {description}");
         let mut columns: Vec<Figures> = Vec::new();
-        columns.push((scene.run)(&mut RotorflowRun::new(&items), &items));
+        let mut ours = RotorflowRun::new(&items);
+        columns.push((scene.run)(&mut ours, &items));
+        let report = ours.integrator.solver_report();
+        let _ = writeln!(
+            solves,
+            "| {description} | {} | {} | {} | {} |",
+            report.solves,
+            report.unconverged,
+            report.max_sweeps,
+            sci(report.worst_residual),
+        );
         for floor in [Floor::HalfSpace, Floor::Cuboid] {
             columns.push((scene.run)(&mut RapierRun::new(&items, floor), &items));
         }
@@ -361,7 +373,8 @@ fn run() -> Result<(), Error> {
     }
 
     let mut stability = String::new();
-    stability_rows(&mut stability);
+    let mut solves = String::new();
+    stability_rows(&mut stability, &mut solves);
 
     // The code that is measured: the crate and this package (the book's files aside).
     let here = commit_of()?;
@@ -447,6 +460,17 @@ fn run() -> Result<(), Error> {
     );
     let _ = writeln!(text, "|---|---|---:|---:|---:|");
     text.push_str(&stability);
+    let _ = writeln!(
+        text,
+        "\nrotorflow's contact solves in those runs (`MotionSplitting::solver_report`): the solves, those that \
+         stopped at the sweep limit unconverged, the most sweeps one took and the worst residual left.\n"
+    );
+    let _ = writeln!(
+        text,
+        "| scene | solves | unconverged | most sweeps | worst residual |"
+    );
+    let _ = writeln!(text, "|---|---:|---:|---:|---:|");
+    text.push_str(&solves);
     std::fs::write(&output, text).map_err(|e| format!("cannot write {}: {e}", output.display()))?;
     eprintln!("wrote {}", output.display());
     Ok(())
