@@ -116,6 +116,7 @@ const GENERATED: &[&str] = &[
     "moving_bodies.md",
     "peer_versors.md",
     "python_bench.md",
+    "rapier_bench.md",
     "step_ratio.md",
 ];
 
@@ -329,6 +330,24 @@ fn generated_python_bench_says_where_it_was_measured() {
         "| N | rotorflow | max error |",
     ] {
         assert!(text.contains(key), "python_bench.md lacks `{key}`");
+    }
+}
+
+/// The Rapier comparison is a measurement (benches/rapier's `table` writes it whole, from
+/// its bench run and its own stability runs): it must say where, when and by which command it
+/// was measured, with which versions, and hold its three tables.
+#[test]
+fn generated_rapier_bench_says_where_it_was_measured() {
+    let text = read(&root().join("book/src/generated/rapier_bench.md"));
+    for key in [
+        "Measured at commit `",
+        "by `cargo bench --manifest-path benches/rapier/Cargo.toml",
+        "against rapier3d ",
+        "| scene | rotorflow (ms/step) | Rapier, half-space floor (ms/step) | ratio | Rapier, cuboid floor (ms/step) | ratio |",
+        "| scene | measure | rotorflow | Rapier, half-space floor | Rapier, cuboid floor |",
+        "| scene | solves | unconverged | most sweeps | worst residual |",
+    ] {
+        assert!(text.contains(key), "rapier_bench.md lacks `{key}`");
     }
 }
 

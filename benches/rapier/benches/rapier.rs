@@ -1,0 +1,182 @@
+//! rotorflow against Rapier on the same 3D scenes (see the crate's documentation), in one
+//! criterion run. Each bench function steps a scene that has already been stepped for a
+//! while (outside the timing) by a fixed number of steps per iteration, given as
+//! criterion's throughput in elements (steps), so that `table` reports time per step.
+//! rotorflow takes its steps with one `advance`; Rapier with `PhysicsWorld::step`.
+//!
+//! Criterion's options apply (`-- --warm-up-time 1 --measurement-time 3`), and a name
+//! filter selects scenes: scenes it leaves out are not even set up. The run's arguments, the
+//! commit and the load average at its start are written to `criterion/rapier_run.json`
+//! beside criterion's own results, for `table`.
+
+use criterion::{Criterion, SamplingMode, Throughput, black_box};
+use rotorflow_rapier_bench::{
+    Floor, Item, RapierRun, RotorflowRun, Run, pile, pyramid, resting_boxes, rolling_balls,
+};
+use std::path::PathBuf;
+
+/// One scene of the comparison: its criterion group, its bodies, the steps taken before
+/// the timing, the steps per timed iteration and whether rotorflow is timed on it.
+struct Scene {
+    group: &'static str,
+    items: fn() -> Vec<Item>,
+    settle: usize,
+    steps: usize,
+    rotorflow: bool,
+}
+
+const SCENES: &[Scene] = &[
+    Scene {
+        group: "resting_boxes_1000",
+        items: resting_boxes,
+        settle: 20,
+        steps: 10,
+        rotorflow: true,
+    },
+    Scene {
+        group: "rolling_balls_1000",
+        items: rolling_balls,
+        settle: 20,
+        steps: 10,
+        rotorflow: true,
+    },
+    Scene {
+        group: "pyramid_55",
+        items: || pyramid(10),
+        settle: 10,
+        steps: 10,
+        rotorflow: true,
+    },
+    Scene {
+        group: "pile_100",
+        items: || pile(100),
+        settle: 120,
+        steps: 1,
+        rotorflow: true,
+    },
+    Scene {
+        group: "pile_1000",
+        // rotorflow takes seconds per step on the pile of 100 while it lands, and far
+        // longer on this one: only Rapier is timed.
+        items: || pile(1000),
+        settle: 120,
+        steps: 1,
+        rotorflow: false,
+    },
+];
+
+/// The name filters among the command-line arguments (criterion's own options aside).
+fn filters() -> Vec<String> {
+    let mut out = Vec::new();
+    let mut args = std::env::args().skip(1);
+    while let Some(a) = args.next() {
+        if a.starts_with("--") {
+            // Options of criterion that take a value.
+            if matches!(
+                a.as_str(),
+                "--warm-up-time"
+                    | "--measurement-time"
+                    | "--sample-size"
+                    | "--save-baseline"
+                    | "--baseline"
+                    | "--load-baseline"
+                    | "--nresamples"
+                    | "--noise-threshold"
+                    | "--confidence-level"
+                    | "--significance-level"
+                    | "--plotting-backend"
+                    | "--output-format"
+                    | "--profile-time"
+                    | "--color"
+            ) {
+                args.next();
+            }
+        } else {
+            out.push(a);
+        }
+    }
+    out
+}
+
+fn bench_run(
+    g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    name: &str,
+    run: &mut dyn Run,
+    steps: usize,
+) {
+    g.bench_function(name, |b| b.iter(|| run.advance(black_box(steps))));
+}
+
+fn criterion_dir() -> PathBuf {
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target"));
+    target.join("criterion")
+}
+
+fn main() {
+    let filters = filters();
+    // `cargo test --benches` runs this with `--bench` absent: nothing to time then.
+    if !std::env::args().any(|a| a == "--bench") {
+        return;
+    }
+    let dir = criterion_dir();
+    std::fs::create_dir_all(&dir).expect("the criterion folder");
+    let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
+    let git = |args: &[&str]| {
+        std::process::Command::new("git")
+            .args(args)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .ok()
+            .filter(|o| o.status.success())
+            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+    };
+    let record = serde_json::json!({
+        "commit": git(&["rev-parse", "--short", "HEAD"]),
+        // The code that is measured: the crate and this package (the book's files aside).
+        "dirty": git(&[
+            "status",
+            "--porcelain",
+            "--untracked-files=no",
+            "--",
+            "../../src",
+            "../../Cargo.toml",
+            "../../Cargo.lock",
+            ".",
+        ])
+        .map(|s| !s.is_empty()),
+        "args": std::env::args().skip(1).collect::<Vec<_>>(),
+        "loadavg": load.trim(),
+        "cpus": std::thread::available_parallelism().map(|n| n.get()).unwrap_or(0),
+    });
+    std::fs::write(dir.join("rapier_run.json"), record.to_string()).expect("rapier_run.json");
+
+    let mut c = Criterion::default().sample_size(10).configure_from_args();
+    for scene in SCENES {
+        if !filters.is_empty() && !filters.iter().any(|f| scene.group.contains(f.as_str())) {
+            continue;
+        }
+        let items = (scene.items)();
+        let mut g = c.benchmark_group(scene.group);
+        // Flat sampling: every sample takes the same number of iterations, the fewest
+        // criterion allows, which the slow scenes need.
+        g.sampling_mode(SamplingMode::Flat);
+        g.throughput(Throughput::Elements(scene.steps as u64));
+        if scene.rotorflow {
+            let mut ours = RotorflowRun::new(&items);
+            ours.advance(scene.settle);
+            bench_run(&mut g, "rotorflow", &mut ours, scene.steps);
+        }
+        for (name, floor) in [
+            ("rapier_halfspace_floor", Floor::HalfSpace),
+            ("rapier_cuboid_floor", Floor::Cuboid),
+        ] {
+            let mut theirs = RapierRun::new(&items, floor);
+            theirs.advance(scene.settle);
+            bench_run(&mut g, name, &mut theirs, scene.steps);
+        }
+        g.finish();
+    }
+    c.final_summary();
+}

@@ -1,0 +1,487 @@
+//! Writes `book/src/generated/rapier_bench.md`: the time per step of rotorflow and of Rapier
+//! from criterion's results of the last `cargo bench` of this package, and how well each
+//! engine keeps each scene, from short runs of the same scenes taken here.
+//!
+//! `cargo run --release --manifest-path benches/rapier/Cargo.toml --bin table [-- --output FILE]`
+
+use rapier3d::prelude::IntegrationParameters;
+use rotorflow_rapier_bench::{
+    Floor, H, Item, RESTING_BOX, ROLLING_BALL, RapierRun, RotorflowRun, Run, floor_depth,
+    max_penetration, pile, pyramid, resting_boxes, rolling_balls,
+};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode};
+use std::time::{Instant, SystemTime};
+
+/// The scenes of the bench, in its order: criterion group, description.
+const SCENES: &[(&str, &str)] = &[
+    ("resting_boxes_1000", "1,000 boxes resting on the floor"),
+    ("rolling_balls_1000", "1,000 balls rolling on the floor"),
+    ("pyramid_55", "pyramid of 55 cubes (10 layers)"),
+    ("pile_100", "pile of 100 boxes and balls"),
+    ("pile_1000", "pile of 1,000 boxes and balls"),
+];
+
+/// The engines of the bench: criterion function, column title.
+const ENGINES: &[(&str, &str)] = &[
+    ("rotorflow", "rotorflow"),
+    ("rapier_halfspace_floor", "Rapier, half-space floor"),
+    ("rapier_cuboid_floor", "Rapier, cuboid floor"),
+];
+
+/// The seconds of each stability run (steps of h = 1/60 s).
+const STABILITY_SECONDS: f64 = 2.0;
+
+type Error = String;
+
+fn read(path: &Path) -> Result<String, Error> {
+    std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))
+}
+
+fn json(path: &Path) -> Result<serde_json::Value, Error> {
+    serde_json::from_str(&read(path)?).map_err(|e| format!("{} is not JSON: {e}", path.display()))
+}
+
+fn modified(path: &Path) -> Result<SystemTime, Error> {
+    std::fs::metadata(path)
+        .and_then(|m| m.modified())
+        .map_err(|e| format!("cannot stat {}: {e}", path.display()))
+}
+
+/// The median time per step (seconds) of one bench function of the last run, or `None` when
+/// that run did not measure it (results older than the run are not taken).
+fn time_per_step(
+    dir: &Path,
+    group: &str,
+    function: &str,
+    run_start: SystemTime,
+) -> Result<Option<f64>, Error> {
+    let new = dir.join(group).join(function).join("new");
+    let estimates = new.join("estimates.json");
+    if !estimates.is_file() || modified(&estimates)? < run_start {
+        return Ok(None);
+    }
+    let median = json(&estimates)?["median"]["point_estimate"]
+        .as_f64()
+        .ok_or_else(|| format!("{}: no median", estimates.display()))?;
+    let benchmark = new.join("benchmark.json");
+    let steps = json(&benchmark)?["throughput"]["Elements"]
+        .as_f64()
+        .ok_or_else(|| format!("{}: no throughput in elements", benchmark.display()))?;
+    Ok(Some(median * 1e-9 / steps))
+}
+
+/// The version of a package in this package's Cargo.lock.
+fn locked_version(name: &str) -> Result<String, Error> {
+    let lock = read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("Cargo.lock"))?;
+    let needle = format!("name = \"{name}\"\nversion = \"");
+    let start = lock
+        .find(&needle)
+        .ok_or_else(|| format!("Cargo.lock has no package {name}"))?
+        + needle.len();
+    Ok(lock[start..].split('"').next().unwrap_or("").to_string())
+}
+
+fn command_line(program: &str, args: &[&str]) -> Result<String, Error> {
+    let out = Command::new(program)
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .map_err(|e| format!("cannot run {program}: {e}"))?;
+    if !out.status.success() {
+        return Err(format!("{program} {} failed", args.join(" ")));
+    }
+    Ok(String::from_utf8_lossy(&out.stdout).trim().to_string())
+}
+
+const DIRTY: &str = " (with uncommitted changes)";
+
+/// The commit of HEAD, marked when the crate's or this package's files differ from it.
+fn commit_of() -> Result<String, Error> {
+    let commit = command_line("git", &["rev-parse", "--short", "HEAD"])?;
+    let changes = command_line(
+        "git",
+        &[
+            "status",
+            "--porcelain",
+            "--untracked-files=no",
+            "--",
+            "../../src",
+            "../../Cargo.toml",
+            "../../Cargo.lock",
+            ".",
+        ],
+    )?;
+    Ok(format!(
+        "{commit}{}",
+        if changes.is_empty() { "" } else { DIRTY }
+    ))
+}
+
+fn ms(seconds: Option<f64>) -> String {
+    match seconds.map(|s| s * 1e3) {
+        Some(t) if t >= 100.0 => format!("{t:.0}"),
+        Some(t) if t >= 10.0 => format!("{t:.1}"),
+        Some(t) if t >= 1.0 => format!("{t:.2}"),
+        Some(t) => format!("{t:.3}"),
+        None => "—".to_string(),
+    }
+}
+
+fn ratio(a: Option<f64>, b: Option<f64>) -> String {
+    match (a, b) {
+        (Some(a), Some(b)) => {
+            let r = a / b;
+            if r >= 10.0 {
+                format!("{r:.0}×")
+            } else {
+                format!("{r:.2}×")
+            }
+        }
+        _ => "—".to_string(),
+    }
+}
+
+fn sci(x: f64) -> String {
+    format!("{x:.1e}")
+}
+
+/// One engine's stability figures for one scene, as table cells.
+type Figures = Vec<String>;
+
+fn largest(values: impl Iterator<Item = f64>) -> f64 {
+    values.fold(f64::NEG_INFINITY, f64::max)
+}
+
+fn speed(v: &[f64; 3]) -> f64 {
+    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+}
+
+fn steps(seconds: f64) -> usize {
+    (seconds / H).round() as usize
+}
+
+/// Resting boxes: how far the deepest sinks below its resting height, and the fastest.
+fn resting(run: &mut dyn Run, items: &[Item]) -> Figures {
+    run.advance(steps(STABILITY_SECONDS));
+    let poses = run.poses();
+    let sink = largest(poses.iter().map(|p| RESTING_BOX[2] - p.position[2]));
+    let fastest = largest(run.velocities().iter().map(speed));
+    let _ = items;
+    vec![sci(sink), sci(fastest)]
+}
+
+/// Rolling balls: the largest error of the speed against 5/7 of the launch speed
+/// (relative), and the deepest reach into the floor.
+fn rolling(run: &mut dyn Run, items: &[Item]) -> Figures {
+    run.advance(steps(STABILITY_SECONDS));
+    let v = ROLLING_BALL.1 * 5.0 / 7.0;
+    let error = largest(run.velocities().iter().map(|u| (speed(u) - v).abs() / v));
+    let poses = run.poses();
+    let floor = largest(
+        items
+            .iter()
+            .zip(&poses)
+            .map(|(i, p)| floor_depth(&i.shape, p)),
+    );
+    vec![sci(error), sci(floor)]
+}
+
+/// The pyramid: the top cube's sink and slide from where it started, and the deepest
+/// penetration at the end.
+fn standing(run: &mut dyn Run, items: &[Item]) -> Figures {
+    let top = items.last().expect("a pyramid").position;
+    run.advance(steps(STABILITY_SECONDS));
+    let poses = run.poses();
+    let end = poses.last().expect("a pyramid").position;
+    let slide = ((end[0] - top[0]).powi(2) + (end[1] - top[1]).powi(2)).sqrt();
+    vec![
+        sci(top[2] - end[2]),
+        sci(slide),
+        sci(max_penetration(items, &poses)),
+    ]
+}
+
+/// The pile: the deepest penetration seen after any step, the fastest body at the end, and
+/// the longest time one step took (wall clock, a single run: how uneven the cost is while
+/// the pile lands).
+fn piled(run: &mut dyn Run, items: &[Item]) -> Figures {
+    let mut deepest = f64::NEG_INFINITY;
+    let mut slowest = 0.0f64;
+    for _ in 0..steps(STABILITY_SECONDS) {
+        let start = Instant::now();
+        run.advance(1);
+        slowest = slowest.max(start.elapsed().as_secs_f64());
+        deepest = deepest.max(max_penetration(items, &run.poses()));
+    }
+    let fastest = largest(run.velocities().iter().map(speed));
+    vec![sci(deepest), sci(fastest), sci(slowest)]
+}
+
+struct StabilityScene {
+    group: &'static str,
+    items: fn() -> Vec<Item>,
+    measures: &'static [&'static str],
+    run: fn(&mut dyn Run, &[Item]) -> Figures,
+}
+
+const STABILITY: &[StabilityScene] = &[
+    StabilityScene {
+        group: "resting_boxes_1000",
+        items: resting_boxes,
+        measures: &[
+            "deepest sink below resting height (m)",
+            "fastest body at the end (m/s)",
+        ],
+        run: resting,
+    },
+    StabilityScene {
+        group: "rolling_balls_1000",
+        items: rolling_balls,
+        measures: &[
+            "largest speed error against 5/7 v₀ (relative)",
+            "deepest reach into the floor (m)",
+        ],
+        run: rolling,
+    },
+    StabilityScene {
+        group: "pyramid_55",
+        items: || pyramid(10),
+        measures: &[
+            "top cube's sink (m)",
+            "top cube's slide (m)",
+            "deepest penetration at the end (m)",
+        ],
+        run: standing,
+    },
+    StabilityScene {
+        group: "pile_100",
+        items: || pile(100),
+        measures: &[
+            "deepest penetration after any step (m)",
+            "fastest body at the end (m/s)",
+            "slowest step (s)",
+        ],
+        run: piled,
+    },
+];
+
+/// The stability table's rows, and a line per scene of what rotorflow's contact solves did
+/// in its run.
+fn stability_rows(out: &mut String, solves: &mut String) {
+    for scene in STABILITY {
+        let items = (scene.items)();
+        let description = SCENES.iter().find(|s| s.0 == scene.group).unwrap().1;
+        eprintln!("stability: {description}");
+        let mut columns: Vec<Figures> = Vec::new();
+        let mut ours = RotorflowRun::new(&items);
+        columns.push((scene.run)(&mut ours, &items));
+        let report = ours.integrator.solver_report();
+        let _ = writeln!(
+            solves,
+            "| {description} | {} | {} | {} | {} |",
+            report.solves,
+            report.unconverged,
+            report.max_sweeps,
+            sci(report.worst_residual),
+        );
+        for floor in [Floor::HalfSpace, Floor::Cuboid] {
+            columns.push((scene.run)(&mut RapierRun::new(&items, floor), &items));
+        }
+        for (k, measure) in scene.measures.iter().enumerate() {
+            let _ = writeln!(
+                out,
+                "| {description} | {measure} | {} | {} | {} |",
+                columns[0][k], columns[1][k], columns[2][k]
+            );
+        }
+    }
+}
+
+fn run() -> Result<(), Error> {
+    let manifest = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let mut output = manifest.join("../../book/src/generated/rapier_bench.md");
+    let mut args = std::env::args().skip(1);
+    while let Some(a) = args.next() {
+        match a.as_str() {
+            "--output" => {
+                output = PathBuf::from(args.next().ok_or("--output needs a file name")?);
+            }
+            other => return Err(format!("unknown argument `{other}` (only --output FILE)")),
+        }
+    }
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| manifest.join("target"));
+    let dir = target.join("criterion");
+    let record_path = dir.join("rapier_run.json");
+    let record = json(&record_path)
+        .map_err(|e| format!("{e} (run `cargo bench` in benches/rapier first)"))?;
+    let run_start = modified(&record_path)?;
+    let bench_args: Vec<String> = record["args"]
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .filter_map(|s| s.as_str())
+                .filter(|s| *s != "--bench")
+                .map(String::from)
+                .collect()
+        })
+        .unwrap_or_default();
+    let load = record["loadavg"]
+        .as_str()
+        .unwrap_or("")
+        .split_whitespace()
+        .next()
+        .unwrap_or("?")
+        .to_string();
+    let cpus = record["cpus"].as_u64().unwrap_or(0);
+
+    let mut speed = String::new();
+    let mut missing = Vec::new();
+    let mut ratios = Vec::new();
+    for (group, description) in SCENES {
+        let mut times = Vec::new();
+        for (function, _) in ENGINES {
+            let t = time_per_step(&dir, group, function, run_start)?;
+            if t.is_none() {
+                missing.push(format!("{group}/{function}"));
+            }
+            times.push(t);
+        }
+        for rapier in &times[1..] {
+            if let (Some(a), Some(b)) = (times[0], rapier) {
+                ratios.push(a / b);
+            }
+        }
+        let _ = writeln!(
+            speed,
+            "| {description} | {} | {} | {} | {} | {} |",
+            ms(times[0]),
+            ms(times[1]),
+            ratio(times[0], times[1]),
+            ms(times[2]),
+            ratio(times[0], times[2]),
+        );
+    }
+    if missing.len() == SCENES.len() * ENGINES.len() {
+        return Err(format!(
+            "no results of the last bench run under {}",
+            dir.display()
+        ));
+    }
+
+    let mut stability = String::new();
+    let mut solves = String::new();
+    stability_rows(&mut stability, &mut solves);
+
+    // The code that is measured: the crate and this package (the book's files aside).
+    let here = commit_of()?;
+    let timed = format!(
+        "{}{}",
+        record["commit"].as_str().unwrap_or("unknown"),
+        if record["dirty"].as_bool().unwrap_or(true) {
+            DIRTY
+        } else {
+            ""
+        }
+    );
+    let measured = if timed == here {
+        format!("Measured at commit `{here}`")
+    } else {
+        format!("Measured at commit `{here}` (the times at commit `{timed}`)")
+    };
+    let date = command_line("date", &["-u", "+%Y-%m-%d"])?;
+    let rustc = command_line("rustc", &["--version"])?;
+    let p = IntegrationParameters::default();
+    let mut text = String::new();
+    let _ = writeln!(
+        text,
+        "<!-- Generated by `cargo run --release --manifest-path benches/rapier/Cargo.toml --bin table` after `cargo bench` in benches/rapier; do not edit. -->\n"
+    );
+    let _ = writeln!(
+        text,
+        "{measured} on {date} by `cargo bench --manifest-path benches/rapier/Cargo.toml -- {}` \
+         ({rustc}; {cpus} cores, load average {load} at the start). rotorflow {} (f64) against rapier3d {} \
+         (f32, default features) with criterion {}: sample size 10, flat sampling, the median time per step.\n",
+        bench_args.join(" "),
+        locked_version("rotorflow")?,
+        locked_version("rapier3d")?,
+        locked_version("criterion")?,
+    );
+    let _ = writeln!(
+        text,
+        "Both engines take steps of h = {:.6} s (1/60). rotorflow: `MotionSplitting`, with `advance` (one velocity \
+         solve per step), its contacts solved by Gauss–Seidel to its tolerance. Rapier: `PhysicsWorld::step` with its \
+         default integration parameters (soft TGS: {} substeps, each of {} velocity and {} stabilization iteration, \
+         warm start {}), sleeping off, continuous collision detection off. Each scene is stepped for a while before the \
+         timing (the piles for 2 s, so that they have landed). Ratio = rotorflow's time / Rapier's.\n",
+        H,
+        p.num_solver_iterations,
+        p.num_internal_pgs_iterations,
+        p.num_internal_stabilization_iterations,
+        p.warmstart_coefficient,
+    );
+    let _ = writeln!(
+        text,
+        "| scene | rotorflow (ms/step) | Rapier, half-space floor (ms/step) | ratio | Rapier, cuboid floor (ms/step) | ratio |"
+    );
+    let _ = writeln!(text, "|---|---:|---:|---:|---:|---:|");
+    text.push_str(&speed);
+    let _ = writeln!(
+        text,
+        "\nrotorflow is not timed on the pile of 1,000, which would take it far longer than the minutes of the \
+         rest of the run (its slowest step on the pile of 100 is in the stability table)."
+    );
+    missing.retain(|m| m != "pile_1000/rotorflow");
+    if !ratios.is_empty() {
+        let low = ratios.iter().copied().fold(f64::INFINITY, f64::min);
+        let high = ratios.iter().copied().fold(0.0, f64::max);
+        let _ = writeln!(
+            text,
+            "\nrotorflow's time per step is {} to {} Rapier's on these scenes.",
+            ratio(Some(low), Some(1.0)),
+            ratio(Some(high), Some(1.0)),
+        );
+    }
+    if !missing.is_empty() {
+        let _ = writeln!(text, "\nNot measured in this run: {}.", missing.join(", "));
+    }
+    let _ = writeln!(
+        text,
+        "\nStability, from runs of {STABILITY_SECONDS} s from the start of each scene (outside the timing). \
+         Penetrations are measured on the placements each engine reports, in closed form (balls by their centres, \
+         boxes by their 15 separating axes), the same way for both.\n"
+    );
+    let _ = writeln!(
+        text,
+        "| scene | measure | rotorflow | Rapier, half-space floor | Rapier, cuboid floor |"
+    );
+    let _ = writeln!(text, "|---|---|---:|---:|---:|");
+    text.push_str(&stability);
+    let _ = writeln!(
+        text,
+        "\nrotorflow's contact solves in those runs (`MotionSplitting::solver_report`): the solves, those that \
+         stopped at the sweep limit unconverged, the most sweeps one took and the worst residual left.\n"
+    );
+    let _ = writeln!(
+        text,
+        "| scene | solves | unconverged | most sweeps | worst residual |"
+    );
+    let _ = writeln!(text, "|---|---:|---:|---:|---:|");
+    text.push_str(&solves);
+    std::fs::write(&output, text).map_err(|e| format!("cannot write {}: {e}", output.display()))?;
+    eprintln!("wrote {}", output.display());
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
