@@ -48,6 +48,9 @@ pub struct ProductTable {
     entries: Vec<(u32, u32, u32, f64)>,
     /// The same products as dense signs, up to [`DENSE_MAX_DIM`].
     dense: Option<Dense>,
+    /// Whether the product is the geometric product, whose sandwiches of an even element
+    /// with a vector are vectors (see [`ProductTable::sandwich_batch`]).
+    geometric: bool,
 }
 
 /// A product whose basis products all send (e_a, e_b) to the blade k = a ⊕ b ⊕ `offset`:
@@ -86,7 +89,9 @@ impl ProductTable {
     /// # Errors
     /// [`AlgebraError::DimensionTooLarge`] above [`PRODUCT_TABLE_MAX_DIM`].
     pub fn new(sig: Signature, kind: Product) -> Result<Self, AlgebraError> {
-        Self::from_basis_products(sig, |a, b| a.try_product(b, kind))
+        let mut table = Self::from_basis_products(sig, |a, b| a.try_product(b, kind))?;
+        table.geometric = kind == Product::Geometric;
+        Ok(table)
     }
 
     /// The table of the inner product [`Multivector::inner`] (the operator `|`).
@@ -126,6 +131,7 @@ impl ProductTable {
             sig,
             entries,
             dense,
+            geometric: false,
         })
     }
 
@@ -202,6 +208,15 @@ impl ProductTable {
     /// table, the sandwiches V X Ṽ of M versors V with M elements X, summed as
     /// [`Multivector`]'s `Versor::apply` sums them (V X first).
     ///
+    /// In 3D and 4D, the geometric product's table runs each block of 64 elements whose
+    /// versors are even (every odd coefficient exactly zero) and whose operands are vectors
+    /// (every coefficient outside grade 1 exactly zero) through a kernel that reads and adds
+    /// only the non-zero terms: a rotor on a vector. V X Ṽ is then odd and equal to its own
+    /// reverse, so a vector (its grade-3 part vanishes exactly and is written as zero, where
+    /// the dense sums leave round-off). With finite coefficients its vector part is the dense
+    /// sums' to the last bit (up to the sign of a zero): the same non-zero terms, added in
+    /// the same order. Other blocks keep the dense kernels.
+    ///
     /// # Errors
     /// As [`ProductTable::apply_batch`].
     #[inline]
@@ -216,6 +231,12 @@ impl ProductTable {
         self.check([a.len(), x.len(), out.len()], elements)?;
         match &self.dense {
             Some(d) => match size {
+                8 if self.geometric => {
+                    even_on_vector_batch::<8, 8, VEC3_TERMS, VEC3_TERMS>(d, a, x, out)
+                }
+                16 if self.geometric => {
+                    even_on_vector_batch::<16, 4, VEC4_TERMS, VEC4_TERMS>(d, a, x, out)
+                }
                 1 => dense_sandwich::<1, 1>(d, a, x, out),
                 2 => dense_sandwich::<2, 2>(d, a, x, out),
                 4 => dense_sandwich::<4, 4>(d, a, x, out),
@@ -362,5 +383,126 @@ fn dense_sandwich<const K: usize, const T: usize>(
             *c *= r;
         }
         dense_element::<K, T>(signs, &ax, &reversed, o);
+    }
+}
+
+/// `$body` once for each `$t` = 0, 1, …, 31 (a constant in each copy): the terms of a
+/// sandwich are indices known at compile time, and written out one by one they keep every
+/// coefficient in a register, which a loop of 32 terms (more than the compiler unrolls by
+/// itself) would not.
+macro_rules! unrolled {
+    ($t:ident $body:block) => {
+        unrolled!(@ $t $body [0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15
+            16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31])
+    };
+    (@ $t:ident $body:block [$($n:literal)*]) => {
+        $({
+            let $t: usize = $n;
+            $body
+        })*
+    };
+}
+
+/// The terms of V X and of (V X) Ṽ for V even and X a vector in 3D (4 even blades times 3
+/// vectors; 3 vectors out, 4 odd blades each) and in 4D (8 × 4; 4 × 8).
+const VEC3_TERMS: usize = 12;
+const VEC4_TERMS: usize = 32;
+
+/// The basis products (i, j, k), e_i e_j ∝ e_k = e_(i ⊕ j), of a sandwich of an even element
+/// with a vector in 2ᴺ = K coefficients, ordered by k, then i (the order of the dense sums):
+/// with `first`, those of V X (i even, j of grade 1); otherwise those of (V X) Ṽ that land
+/// on a vector (i odd, j even, k of grade 1).
+const fn even_on_vector_terms<const K: usize, const L: usize>(
+    first: bool,
+) -> [(usize, usize, usize); L] {
+    let mut terms = [(0, 0, 0); L];
+    let mut n = 0;
+    let mut k = 0;
+    while k < K {
+        let mut i = 0;
+        while i < K {
+            let j = i ^ k;
+            let (gi, gj, gk) = (i.count_ones(), j.count_ones(), k.count_ones());
+            let wanted = if first {
+                gi % 2 == 0 && gj == 1
+            } else {
+                gi % 2 == 1 && gj % 2 == 0 && gk == 1
+            };
+            if wanted {
+                terms[n] = (i, j, k);
+                n += 1;
+            }
+            i += 1;
+        }
+        k += 1;
+    }
+    assert!(n == L, "the count of terms of the sandwich");
+    terms
+}
+
+/// Whether every element of a block is an even versor and a vector (exact zeros elsewhere).
+#[inline(always)]
+fn even_and_vector<const K: usize>(a: &[f64], x: &[f64]) -> bool {
+    a.chunks_exact(K).zip(x.chunks_exact(K)).all(|(ra, rx)| {
+        (0..K).all(|j| {
+            let g = j.count_ones();
+            (g % 2 == 0 || ra[j] == 0.0) && (g == 1 || rx[j] == 0.0)
+        })
+    })
+}
+
+/// [`ProductTable::sandwich_batch`] of the geometric product with K = 2ᴺ coefficients, in
+/// blocks of [`BLOCK`] elements: through the terms of a rotor on a vector where a block is
+/// one, through [`dense_sandwich`] otherwise.
+#[inline(always)]
+fn even_on_vector_batch<const K: usize, const T: usize, const L1: usize, const L2: usize>(
+    d: &Dense,
+    a: &[f64],
+    x: &[f64],
+    out: &mut [f64],
+) {
+    const { assert!(L1 <= 32 && L2 <= 32, "unrolled! writes out 32 terms") };
+    let first: [(usize, usize, usize); L1] = const { even_on_vector_terms::<K, L1>(true) };
+    let second: [(usize, usize, usize); L2] = const { even_on_vector_terms::<K, L2>(false) };
+    let signs = dense_signs::<K>(d);
+    // The geometric product has offset 0: e_i e_j = signs[i][k] e_k with k = i ⊕ j. The
+    // reverse's sign of Ṽ's blade j goes into the sign of each term of the second product.
+    let s1: [f64; L1] = std::array::from_fn(|t| {
+        let (i, _, k) = first[t];
+        signs[i][k]
+    });
+    let s2: [f64; L2] = std::array::from_fn(|t| {
+        let (i, j, k) = second[t];
+        signs[i][k] * blade::reverse_sign(blade::grade(j as u64))
+    });
+    let step = BLOCK * K;
+    for ((ca, cx), co) in a.chunks(step).zip(x.chunks(step)).zip(out.chunks_mut(step)) {
+        if !even_and_vector::<K>(ca, cx) {
+            dense_sandwich::<K, T>(d, ca, cx, co);
+            continue;
+        }
+        for ((ra, rx), ro) in ca
+            .chunks_exact(K)
+            .zip(cx.chunks_exact(K))
+            .zip(co.chunks_exact_mut(K))
+        {
+            let va: &[f64; K] = ra.try_into().expect("rows of K coefficients");
+            let vx: &[f64; K] = rx.try_into().expect("rows of K coefficients");
+            let mut ax = [0.0; K];
+            unrolled!(t {
+                if t < L1 {
+                    let (i, j, k) = first[t];
+                    ax[k] += s1[t] * va[i] * vx[j];
+                }
+            });
+            let mut o = [0.0; K];
+            unrolled!(t {
+                if t < L2 {
+                    let (i, j, k) = second[t];
+                    o[k] += s2[t] * ax[i] * va[j];
+                }
+            });
+            ro.copy_from_slice(&o);
+        }
     }
 }

@@ -220,3 +220,108 @@ fn table_sizes_and_errors() {
         Err(AlgebraError::DimensionTooLarge { .. })
     ));
 }
+
+/// Even elements (`vector` false) or vectors: the batch's coefficients with every other blade
+/// set to exactly zero.
+fn with_grades(mut c: Vec<f64>, size: usize, vector: bool) -> Vec<f64> {
+    for (n, v) in c.iter_mut().enumerate() {
+        let g = (n % size).count_ones();
+        let keep = if vector { g == 1 } else { g.is_multiple_of(2) };
+        if !keep {
+            *v = 0.0;
+        }
+    }
+    c
+}
+
+fn norm(c: &[f64]) -> f64 {
+    c.iter().map(|v| v * v).sum::<f64>().sqrt()
+}
+
+#[test]
+fn sandwiches_of_even_elements_on_vectors_equal_the_dense_sums() {
+    // Every signature of dimension 3 and 4: 10 + 15.
+    let sigs: Vec<Signature> = small_signatures()
+        .into_iter()
+        .filter(|s| matches!(s.dim(), 3 | 4))
+        .collect();
+    assert_eq!(sigs.len(), 25);
+    let lengths = [1, 63, 64, 65, 200];
+    let (mut checked, mut dense_round_off) = (0, 0);
+    for sig in sigs {
+        let size = 1usize << sig.dim();
+        let table = ProductTable::new(sig, Product::Geometric).unwrap();
+        // A full element: a batch that holds one runs its block through the dense sums.
+        let spoiler = coefficients(7, size);
+        for m in lengths {
+            let v = with_grades(coefficients(m as u64 + 300, m * size), size, false);
+            let x = with_grades(coefficients(m as u64 + 600, m * size), size, true);
+            let mut out = vec![7.0; m * size];
+            table.sandwich_batch(&v, &x, &mut out).unwrap();
+            for e in 0..m {
+                let r = e * size..(e + 1) * size;
+                // The dense sums of the same element, in a batch with the spoiler.
+                let pair = |c: &[f64]| [c, spoiler.as_slice()].concat();
+                let mut dense = vec![7.0; 2 * size];
+                table
+                    .sandwich_batch(&pair(&v[r.clone()]), &pair(&x[r.clone()]), &mut dense)
+                    .unwrap();
+                let dense = &dense[..size];
+                let expected = Multivector::from_coefficients(sig, &v[r.clone()])
+                    .unwrap()
+                    .apply(&Multivector::from_coefficients(sig, &x[r.clone()]).unwrap())
+                    .unwrap();
+                assert_eq!(dense, expected.as_slice(), "{sig} dense element {e} of {m}");
+                let scale = norm(&v[r.clone()]).powi(2) * norm(&x[r.clone()]);
+                for (blade, (&fast, &slow)) in out[r.clone()].iter().zip(dense).enumerate() {
+                    if blade.count_ones() == 1 {
+                        assert_eq!(fast, slow, "{sig} blade {blade} element {e} of {m}");
+                    } else {
+                        // Zero exactly, where the dense sums keep round-off.
+                        assert_eq!(fast, 0.0, "{sig} blade {blade} element {e} of {m}");
+                        assert!(slow.abs() <= 1e-15 * scale, "{sig} {slow} vs {scale}");
+                        dense_round_off += usize::from(slow != 0.0);
+                    }
+                }
+                checked += 1;
+            }
+        }
+    }
+    assert_eq!(checked, 25 * lengths.iter().sum::<usize>());
+    // The two paths differ where the dense sums leave round-off: both were run.
+    assert!(dense_round_off > 100, "{dense_round_off}");
+}
+
+#[test]
+fn a_block_that_is_not_a_rotor_on_a_vector_keeps_the_dense_sums() {
+    // 200 elements in four blocks of 64; one full element in the second block sends that
+    // block alone through the dense sums.
+    let mut checked = 0;
+    for n in [3, 4] {
+        let sig = Signature::euclidean(n);
+        let size = 1usize << n;
+        let table = ProductTable::new(sig, Product::Geometric).unwrap();
+        let m = 200;
+        let mut v = with_grades(coefficients(11, m * size), size, false);
+        let x = with_grades(coefficients(12, m * size), size, true);
+        v[100 * size + 1] = 0.5;
+        let mut out = vec![7.0; m * size];
+        table.sandwich_batch(&v, &x, &mut out).unwrap();
+        for e in 0..m {
+            let r = e * size..(e + 1) * size;
+            let expected = Multivector::from_coefficients(sig, &v[r.clone()])
+                .unwrap()
+                .apply(&Multivector::from_coefficients(sig, &x[r.clone()]).unwrap())
+                .unwrap();
+            for (blade, (&got, &want)) in out[r].iter().zip(expected.as_slice()).enumerate() {
+                if (64..128).contains(&e) || blade.count_ones() == 1 {
+                    assert_eq!(got, want, "{n}D blade {blade} element {e}");
+                } else {
+                    assert_eq!(got, 0.0, "{n}D blade {blade} element {e}");
+                }
+            }
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 2 * 200);
+}
