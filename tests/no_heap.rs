@@ -561,6 +561,20 @@ mod moving_bodies {
         s
     }
 
+    /// The bodies with their contact shapes under gravity along −x_N, on the floor x_N = 0
+    /// with friction 0.5.
+    fn on_floor(n: usize, bodies: Vec<MovingBody>, shapes: Vec<ContactShape>) -> System {
+        let mut system = System::new(bodies).unwrap();
+        for (i, shape) in shapes.into_iter().enumerate() {
+            system.set_shape(i, shape).unwrap();
+        }
+        system.add_forque(Gravity(axis(n, n - 1, -9.81))).unwrap();
+        system
+            .add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
+            .unwrap();
+        system
+    }
+
     /// Heap allocations of `steps` steps of `integrator` on `system`, after one warm-up step
     /// (which sizes the integrator's buffers).
     fn step_allocations(
@@ -644,14 +658,7 @@ mod moving_bodies {
                 bodies.push(b);
                 shapes.push(shape);
             }
-            let mut system = System::new(bodies).unwrap();
-            for (i, shape) in shapes.into_iter().enumerate() {
-                system.set_shape(i, shape).unwrap();
-            }
-            system.add_forque(Gravity(axis(n, n - 1, -9.81))).unwrap();
-            system
-                .add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
-                .unwrap();
+            let mut system = on_floor(n, bodies, shapes);
             let mut integrator = MotionSplitting::new();
             for k in 0..50 {
                 integrator.step(&mut system, k as f64 * 0.01, 0.01).unwrap();
@@ -692,14 +699,7 @@ mod moving_bodies {
                 bodies.push(b);
                 shapes.push(shape);
             }
-            let mut system = System::new(bodies).unwrap();
-            for (i, shape) in shapes.into_iter().enumerate() {
-                system.set_shape(i, shape).unwrap();
-            }
-            system.add_forque(Gravity(axis(n, n - 1, -9.81))).unwrap();
-            system
-                .add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
-                .unwrap();
+            let mut system = on_floor(n, bodies, shapes);
             let mut integrator = MotionSplitting::new();
             for k in 0..50 {
                 integrator.step(&mut system, k as f64 * 0.01, 0.01).unwrap();
