@@ -169,6 +169,35 @@ fn apply_product(a: &Multivector, b: &Multivector, kind: Option<Product>) -> Mul
     }
 }
 
+impl PyAlgebra {
+    /// One operation on two batches of elements (arrays of shape (M, 2^N) or (2^N,); a single
+    /// element is used with every element of the other): through the product table of
+    /// `table_kind` where there is one (`op`), else element by element with `each`.
+    fn pairwise<'py>(
+        &self,
+        py: Python<'py>,
+        (a, name_a): (&Bound<'py, PyAny>, &str),
+        (b, name_b): (&Bound<'py, PyAny>, &str),
+        (what, table_kind, op): (&str, Option<Product>, Batch),
+        each: impl Fn(&Multivector, &Multivector) -> Result<Multivector, AlgebraError> + Send + Sync,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let k = self.size();
+        let ra = Rows::new(a, &[k], name_a)?;
+        let rb = Rows::new(b, &[k], name_b)?;
+        let (m, single) = broadcast((ra.count, ra.single), (rb.count, rb.single), what)?;
+        let sig = self.sig;
+        let (da, db) = (ra.data(), rb.data());
+        let out = zeros(py, m, single, &[k]);
+        match table(sig, table_kind) {
+            Some(t) => fill(py, &out, |dest| {
+                batch(&t, &expand(da, m, k), &expand(db, m, k), dest, op).map_err(value_error)
+            })??,
+            None => fill(py, &out, |dest| map_pairs(sig, da, db, m, dest, each))??,
+        }
+        Ok(out)
+    }
+}
+
 #[pymethods]
 impl PyAlgebra {
     /// Cl(p, q, r).
@@ -337,29 +366,13 @@ impl PyAlgebra {
         kind: &str,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         let kind = product_kind(kind)?;
-        let k = self.size();
-        let ra = Rows::new(a, &[k], "a")?;
-        let rb = Rows::new(b, &[k], "b")?;
-        let (m, single) = broadcast((ra.count, ra.single), (rb.count, rb.single), "product")?;
-        let sig = self.sig;
-        let (da, db) = (ra.data(), rb.data());
-        let out = zeros(py, m, single, &[k]);
-        match table(sig, kind) {
-            Some(t) => fill(py, &out, |dest| {
-                batch(
-                    &t,
-                    &expand(da, m, k),
-                    &expand(db, m, k),
-                    dest,
-                    Batch::Product,
-                )
-                .map_err(value_error)
-            })??,
-            None => fill(py, &out, |dest| {
-                map_pairs(sig, da, db, m, dest, |x, y| Ok(apply_product(x, y, kind)))
-            })??,
-        }
-        Ok(out)
+        self.pairwise(
+            py,
+            (a, "a"),
+            (b, "b"),
+            ("product", kind, Batch::Product),
+            |x, y| Ok(apply_product(x, y, kind)),
+        )
     }
 
     /// The sandwiches V X Ṽ of a batch of even versors V with a batch of elements X.
@@ -369,30 +382,14 @@ impl PyAlgebra {
         versors: &Bound<'py, PyAny>,
         x: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        let k = self.size();
-        let rv = Rows::new(versors, &[k], "versors")?;
-        let rx = Rows::new(x, &[k], "x")?;
-        let (m, single) = broadcast((rv.count, rv.single), (rx.count, rx.single), "sandwich")?;
-        let sig = self.sig;
-        let (dv, dx) = (rv.data(), rx.data());
-        let out = zeros(py, m, single, &[k]);
-        match table(sig, Some(Product::Geometric)) {
-            // V X Ṽ as the multivector's sandwich computes it: (V X) Ṽ.
-            Some(t) => fill(py, &out, |dest| {
-                batch(
-                    &t,
-                    &expand(dv, m, k),
-                    &expand(dx, m, k),
-                    dest,
-                    Batch::Sandwich,
-                )
-                .map_err(value_error)
-            })??,
-            None => fill(py, &out, |dest| {
-                map_pairs(sig, dv, dx, m, dest, |v, x| v.apply(x))
-            })??,
-        }
-        Ok(out)
+        // V X Ṽ as the multivector's sandwich computes it: (V X) Ṽ.
+        self.pairwise(
+            py,
+            (versors, "versors"),
+            (x, "x"),
+            ("sandwich", Some(Product::Geometric), Batch::Sandwich),
+            |v, x| v.apply(x),
+        )
     }
 
     /// exp(B) of every bivector of a batch (shape (M, 2^N)), in closed form.
