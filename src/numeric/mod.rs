@@ -15,7 +15,7 @@
 //! - [`trig`]: sin x and cos x − 1 without cancellation;
 //! - [`householder`]: the complement of two orthonormal vectors by Householder reflections;
 //! - the small helpers below (exact scaling by powers of two, scaled norms, max-abs norms,
-//!   orthogonality error), each the
+//!   orthogonality error, Gram–Schmidt against orthonormal rows), each the
 //!   one copy the crate uses.
 
 pub(crate) mod dense;
@@ -115,6 +115,19 @@ pub(crate) fn orthogonality_error(q: DMatrixView<'_, f64>) -> f64 {
         }
     }
     err
+}
+
+/// Removes from `x` its components along the first `rank` rows of `basis` (orthonormal rows
+/// of length `x.len()`, stored one after another), twice: one pass of classical
+/// Gram–Schmidt leaves components of size ε·cond, the second brings them to round-off.
+pub(crate) fn orthogonalize_twice(x: &mut [f64], basis: &[f64], rank: usize) {
+    let n = x.len();
+    for _ in 0..2 {
+        for row in basis[..rank * n].chunks_exact(n) {
+            let c: f64 = row.iter().zip(x.iter()).map(|(p, q)| p * q).sum();
+            x.iter_mut().zip(row).for_each(|(y, r)| *y -= c * r);
+        }
+    }
 }
 
 #[cfg(test)]

@@ -287,6 +287,32 @@ impl ToF64 for Rotor3<f32> {
     }
 }
 
+/// −R is the rotation R (the same matrix), and slerp takes the shorter arc whichever sign
+/// the target has: `slerp(a, b, t)` and `slerp(a, −b, t)` are the same rotation, ending at b.
+#[test]
+fn negated_rotors_are_the_same_rotation_and_slerp_ignores_the_sign() {
+    let mut rng = ChaCha8Rng::seed_from_u64(46);
+    let mut cases = 0;
+    for _ in 0..200 {
+        let a = Bivector4::from_array(std::array::from_fn(|_| rng.gen_range(-3.0..3.0))).exp();
+        let b = Bivector4::from_array(std::array::from_fn(|_| rng.gen_range(-3.0..3.0))).exp();
+        assert_eq!((-a).to_matrix(), a.to_matrix());
+        let a3 = Bivector3::new(rng.gen_range(-3.0..3.0), 0.2, -1.0).exp();
+        let b3 = Bivector3::new(0.4, rng.gen_range(-3.0..3.0), 1.5).exp();
+        assert_eq!((-a3).to_matrix(), a3.to_matrix());
+        for t in [0.0, 0.3, 1.0] {
+            let (p, q) = (a.slerp(b, t), a.slerp(-b, t));
+            assert!((p.to_matrix() - q.to_matrix()).amax() < 1e-13);
+            let (p3, q3) = (a3.slerp(b3, t), a3.slerp(-b3, t));
+            assert!((p3.to_matrix() - q3.to_matrix()).amax() < 1e-13);
+            cases += 1;
+        }
+        assert!((a.slerp(b, 1.0).to_matrix() - b.to_matrix()).amax() < 1e-13);
+        assert!((a3.slerp(-b3, 1.0).to_matrix() - b3.to_matrix()).amax() < 1e-13);
+    }
+    assert_eq!(cases, 600);
+}
+
 #[test]
 fn rotate_vector_is_the_matrix_and_matrices_compose() {
     let mut rng = ChaCha8Rng::seed_from_u64(45);

@@ -152,6 +152,15 @@ pub struct Rotor3<T: Real = f64> {
     lanes: <T as Sealed>::Quat,
 }
 
+/// −R: the same rotation as R, on the other sheet of the double cover.
+impl<T: Real> std::ops::Neg for Rotor3<T> {
+    type Output = Self;
+    #[inline]
+    fn neg(self) -> Self {
+        Self::from_q(self.q().map(|c| -c))
+    }
+}
+
 impl<T: Real> Rotor3<T> {
     /// The rotor of the quaternion (w, x, y, z).
     #[inline(always)]
@@ -406,23 +415,6 @@ impl<T: Real> Rotor3<T> {
         let sign = if w < T::zero() { -one } else { one };
         let k = sign / (w * w + x * x + y * y + z * z).sqrt();
         Self::from_q([k * w, k * x, k * y, k * z])
-    }
-
-    /// The rotation a fraction `t` of the way from `self` to `other` along the shorter arc,
-    /// as [`Rotor::slerp`].
-    #[inline]
-    pub fn slerp(self, other: Self, t: T) -> Self {
-        let d = self.q()[0] * other.q()[0]
-            + self.q()[1] * other.q()[1]
-            + self.q()[2] * other.q()[2]
-            + self.q()[3] * other.q()[3];
-        let other = if d < T::zero() {
-            Self::from_q(other.q().map(|c| -c))
-        } else {
-            other
-        };
-        let delta = self.reverse().compose(other);
-        self.compose((delta.log() * t).exp())
     }
 
     /// R / |R|: back onto the group after drift.

@@ -201,6 +201,18 @@ pub struct Rotor4<T = f64> {
     minus: [T; 4],
 }
 
+/// −R: the same rotation as R, on the other sheet of the double cover.
+impl<T: Real> std::ops::Neg for Rotor4<T> {
+    type Output = Self;
+    #[inline]
+    fn neg(self) -> Self {
+        Self {
+            plus: self.plus.map(|c| -c),
+            minus: self.minus.map(|c| -c),
+        }
+    }
+}
+
 impl<T: Real> Rotor4<T> {
     /// The identity rotor 1.
     #[inline]
@@ -501,24 +513,6 @@ impl<T: Real> Rotor4<T> {
         } else {
             r
         })
-    }
-
-    /// The rotation a fraction `t` of the way from `self` to `other` along the shorter arc,
-    /// as [`Rotor::slerp`].
-    #[inline]
-    pub fn slerp(self, other: Self, t: T) -> Self {
-        let dot = |a: [T; 4], b: [T; 4]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3];
-        // ⟨R̃₁R₂⟩₀ = ½(Q₊·Q₊′ + Q₋·Q₋′).
-        let other = if dot(self.plus, other.plus) + dot(self.minus, other.minus) < T::zero() {
-            Self {
-                plus: other.plus.map(|c| -c),
-                minus: other.minus.map(|c| -c),
-            }
-        } else {
-            other
-        };
-        let delta = self.reverse().compose(other);
-        self.compose((delta.log() * t).exp())
     }
 
     /// Each half divided by its norm: back onto the group after drift.

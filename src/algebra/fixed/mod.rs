@@ -130,6 +130,20 @@ macro_rules! fixed_size_operators {
             pub fn rotation_bivector(self) -> $bivector<T> {
                 self.log() * T::lit(-2.0)
             }
+
+            /// The rotation a fraction `t` of the way from `self` to `other` along the
+            /// shorter arc, as [`Rotor::slerp`](crate::algebra::Rotor::slerp).
+            #[inline]
+            pub fn slerp(self, other: Self, t: T) -> Self {
+                let delta = self.reverse().compose(other);
+                // R and −R are one rotation: ⟨R̃₁R₂⟩₀ < 0 means the other arc is shorter.
+                let delta = if delta.scalar() < T::zero() {
+                    -delta
+                } else {
+                    delta
+                };
+                self.compose((delta.log() * t).exp())
+            }
         }
     };
 }

@@ -2,8 +2,9 @@
 
 use super::dop853_tableau::{A, ALL_STAGES, B, BHH, C, D, E5, STAGES};
 use super::{
-    DEXP_INVERSE_8, DynamicsError, check_sample_times, check_state, count_step,
-    dexp_inverse_packed, momentum_rate_into, samples_at_zero,
+    Attempt, ControlledPair, DEXP_INVERSE_8, DynamicsError, advance_controlled, check_finite,
+    check_sample_times, check_state, count_step, dexp_inverse_packed, momentum_rate_into,
+    samples_at_zero,
 };
 use crate::algebra::Bivector;
 use crate::dynamics::Attitude;
@@ -12,6 +13,16 @@ use smallvec::SmallVec;
 
 /// The stage values of one step, inline (no heap for N ≤ 8, where bivectors are inline too).
 type Stages = SmallVec<[Bivector; ALL_STAGES]>;
+
+/// Where a step's stages are evaluated: the body, the torque, the start (t, R₀, L₀) and h.
+struct StepStart<'a> {
+    body: &'a RigidBody,
+    torque: &'a dyn Torque,
+    t: f64,
+    h: f64,
+    r0: &'a Attitude,
+    l0: &'a Bivector,
+}
 
 /// y ← y + α x.
 fn axpy(y: &mut Bivector, alpha: f64, x: &Bivector) {
@@ -424,24 +435,16 @@ impl Dop853 {
         for (o, x) in ka[0].as_mut_slice().iter_mut().zip(w.as_slice()) {
             *o = -0.5 * x;
         }
-        let mut a_stage = Bivector::zero(n);
-        let mut l_stage = l0.clone();
-        let mut omega = Bivector::zero(n);
-        for s in 1..STAGES {
-            stage_state(s, h, l0, &kl, &ka, &mut l_stage, &mut a_stage);
-            let (dl_s, ka_s) = (&mut kl[s], &mut ka[s]);
-            self.rate(
-                body,
-                t + C[s] * h,
-                r0,
-                &a_stage,
-                &l_stage,
-                torque,
-                dl_s,
-                &mut omega,
-            );
-            dexp_inverse_8(&a_stage, &omega, -0.5, ka_s, &mut self.scratch);
-        }
+        let start = StepStart {
+            body,
+            torque,
+            t,
+            h,
+            r0,
+            l0,
+        };
+        let mut stage = (Bivector::zero(n), l0.clone());
+        self.stages(&start, 1..STAGES, &mut kl, &mut ka, &mut stage);
         let mut l1 = l0.clone();
         let mut a1 = Bivector::zero(n);
         for s in 0..STAGES {
@@ -486,9 +489,7 @@ impl Dop853 {
         let attitude = r0.times_exp(&a1);
         // A finite error estimate does not make the state finite: an increment A beyond f64
         // scales its own tolerance to ∞ (the estimate then reads 0).
-        if !attitude.is_finite() || !l1.as_slice().iter().all(|x| x.is_finite()) {
-            return Err(DynamicsError::NonFinite { time: t });
-        }
+        check_finite(&attitude, &l1, t)?;
         let last = &mut self.last;
         last.valid = true;
         last.t = t;
@@ -550,38 +551,62 @@ impl Dop853 {
         kl: &mut Stages,
         ka: &mut Stages,
     ) -> Bivector {
-        let n = body.dim();
-        let (t, h) = (self.last.t, self.last.h);
         let r0 = self
             .last
             .r0
             .clone()
             .expect("an accepted step has its attitude");
-        let mut a_stage = self.last.a1.clone();
-        let mut l_stage = self.last.l1.clone();
-        let mut omega = Bivector::zero(n);
-        let mut omega_end = Bivector::zero(n);
-        for s in STAGES..ALL_STAGES {
-            if s > STAGES {
-                stage_state(s, h, &self.last.l0, kl, ka, &mut l_stage, &mut a_stage);
+        let l0 = self.last.l0.clone();
+        let start = StepStart {
+            body,
+            torque,
+            t: self.last.t,
+            h: self.last.h,
+            r0: &r0,
+            l0: &l0,
+        };
+        // Stage 12 is f at the solution (A₁, L₁) itself.
+        let mut stage = (self.last.a1.clone(), self.last.l1.clone());
+        let omega_end = self.stages(&start, STAGES..ALL_STAGES, kl, ka, &mut stage);
+        self.last.extended = true;
+        omega_end.expect("the range holds stage 12")
+    }
+
+    /// Evaluates the stages `range` of the step from `start`: each stage's state (A, L) into
+    /// `stage` from the earlier stages (stage 12, the solution, is taken as `stage` holds
+    /// it), then its rates dL/dt into `kl[s]` and dA/dt = dexp⁻¹ into `ka[s]`. Returns ω at
+    /// stage 12 when the range holds it.
+    fn stages(
+        &mut self,
+        start: &StepStart,
+        range: std::ops::Range<usize>,
+        kl: &mut Stages,
+        ka: &mut Stages,
+        stage: &mut (Bivector, Bivector),
+    ) -> Option<Bivector> {
+        let (a_stage, l_stage) = stage;
+        let mut omega = Bivector::zero(start.l0.dim());
+        let mut omega_end = None;
+        for s in range {
+            if s != STAGES {
+                stage_state(s, start.h, start.l0, kl, ka, l_stage, a_stage);
             }
             let (dl_s, ka_s) = (&mut kl[s], &mut ka[s]);
             self.rate(
-                body,
-                t + C[s] * h,
-                &r0,
-                &a_stage,
-                &l_stage,
-                torque,
+                start.body,
+                start.t + C[s] * start.h,
+                start.r0,
+                a_stage,
+                l_stage,
+                start.torque,
                 dl_s,
                 &mut omega,
             );
-            dexp_inverse_8(&a_stage, &omega, -0.5, ka_s, &mut self.scratch);
+            dexp_inverse_8(a_stage, &omega, -0.5, ka_s, &mut self.scratch);
             if s == STAGES {
-                omega_end.clone_from(&omega);
+                omega_end = Some(omega.clone());
             }
         }
-        self.last.extended = true;
         omega_end
     }
 }
@@ -651,30 +676,23 @@ impl_integrator!(
             body.replace_state(attitude, momentum);
             return Ok(());
         }
-        let t_end = t + h;
-        let mut time = t;
-        let mut count = 0;
-        let sign = h.signum();
-        while (t_end - time) * sign > 1e-14 * t_end.abs().max(1.0) {
-            count_step(&mut count, this.max_steps, time)?;
-            let remaining = t_end - time;
-            let mut try_h = this.next_h(body, time, sign, torque).abs() * sign;
-            if try_h.abs() >= remaining.abs() {
-                try_h = remaining;
-            }
-            let saved = this.h_next;
-            if let Some((attitude, momentum)) = this.try_step(body, time, try_h, torque)? {
-                body.replace_state(attitude, momentum);
-                time += try_h;
-                if try_h == remaining {
-                    // Do not let the shortened last step shrink the next call's first step.
-                    this.h_next = saved.map(|s| s.max(this.h_next.unwrap_or(s)));
-                }
-            }
-        }
-        Ok(())
+        advance_controlled(this, body, t, h, torque)
     }
 );
+
+impl ControlledPair for Dop853 {
+    fn proposed_step(&mut self, body: &RigidBody, t: f64, sign: f64, torque: &dyn Torque) -> f64 {
+        self.next_h(body, t, sign, torque)
+    }
+
+    fn attempt(&mut self, body: &RigidBody, t: f64, h: f64, torque: &dyn Torque) -> Attempt {
+        self.try_step(body, t, h, torque)
+    }
+
+    fn control(&mut self) -> (&mut Option<f64>, usize) {
+        (&mut self.h_next, self.max_steps)
+    }
+}
 
 #[cfg(test)]
 mod tests {

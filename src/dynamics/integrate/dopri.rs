@@ -1,8 +1,8 @@
 //! Adaptive Dormand–Prince 5(4) on the group, with dense output.
 
 use super::{
-    DEXP_INVERSE_5, DynamicsError, axpy, check_sample_times, count_step, dexp_inverse_packed,
-    momentum_rate_into, samples_at_zero,
+    Attempt, ControlledPair, DEXP_INVERSE_5, DynamicsError, advance_controlled, axpy, check_finite,
+    check_sample_times, count_step, dexp_inverse_packed, momentum_rate_into, samples_at_zero,
 };
 use crate::algebra::Bivector;
 use crate::dynamics::Attitude;
@@ -274,9 +274,7 @@ impl Dopri5 {
         let attitude = r0.times_exp(&a1);
         // A finite error estimate does not make the state finite: an increment A beyond f64
         // scales its own tolerance to ∞ (the estimate then reads 0).
-        if !attitude.is_finite() || !l1.as_slice().iter().all(|x| x.is_finite()) {
-            return Err(DynamicsError::NonFinite { time: t });
-        }
+        check_finite(&attitude, &l1, t)?;
         Ok(Some(StepResult {
             h,
             l0: l0.clone(),
@@ -350,28 +348,20 @@ impl_integrator!(
     order = |_| 5,
     name = |_| "dopri5",
     // Advances exactly by h, with internal adaptive steps (the last one shortened).
-    step = |this, body, t, h, torque| {
-        let t_end = t + h;
-        let mut time = t;
-        let mut count = 0;
-        let sign = h.signum();
-        while (t_end - time) * sign > 1e-14 * t_end.abs().max(1.0) {
-            count_step(&mut count, this.max_steps, time)?;
-            let remaining = t_end - time;
-            let mut try_h = this.initial_h(body, time, torque) * sign;
-            if try_h.abs() >= remaining.abs() {
-                try_h = remaining;
-            }
-            let saved = this.h_next;
-            if let Some(step) = this.try_step(body, time, try_h, torque)? {
-                body.replace_state(step.attitude, step.momentum);
-                time += try_h;
-                if try_h == remaining {
-                    // Do not let the shortened last step shrink the next call's first step.
-                    this.h_next = saved.map(|s| s.max(this.h_next.unwrap_or(s)));
-                }
-            }
-        }
-        Ok(())
-    }
+    step = |this, body, t, h, torque| { advance_controlled(this, body, t, h, torque) }
 );
+
+impl ControlledPair for Dopri5 {
+    fn proposed_step(&mut self, body: &RigidBody, t: f64, _sign: f64, torque: &dyn Torque) -> f64 {
+        self.initial_h(body, t, torque)
+    }
+
+    fn attempt(&mut self, body: &RigidBody, t: f64, h: f64, torque: &dyn Torque) -> Attempt {
+        let step = self.try_step(body, t, h, torque)?;
+        Ok(step.map(|s| (s.attitude, s.momentum)))
+    }
+
+    fn control(&mut self) -> (&mut Option<f64>, usize) {
+        (&mut self.h_next, self.max_steps)
+    }
+}

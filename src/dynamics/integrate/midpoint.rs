@@ -1,6 +1,6 @@
 //! The implicit midpoint rule: energy-conserving, second order.
 
-use super::{DynamicsError, Iterations, axpy, momentum_rate_into};
+use super::{DynamicsError, Iterations, accept_state, axpy, momentum_rate_into};
 use crate::algebra::Bivector;
 
 /// The implicit midpoint rule on the momentum, L₁ = L₀ + h f((L₀ + L₁)/2) with
@@ -117,11 +117,7 @@ impl_integrator!(
         let mid = (&l0 + &l1) * 0.5;
         let omega_mid = body.omega_of(&mid);
         let r1 = r0.times_exp(&(omega_mid * (-0.5 * h)));
-        // The residual's max ignores NaN, so check the state itself.
-        if !l1.as_slice().iter().all(|x| x.is_finite()) || !r1.is_finite() {
-            return Err(DynamicsError::NonFinite { time: t });
-        }
-        body.replace_state(r1, l1);
-        Ok(())
+        // The residual's max ignores NaN, so the state itself is checked.
+        accept_state(body, r1, l1, t)
     }
 );

@@ -311,15 +311,34 @@ fn samples_at_zero(body: &RigidBody, times: &[f64]) -> (Vec<(Attitude, Bivector)
     (out, zeros)
 }
 
-/// Fails with [`DynamicsError::NonFinite`] unless the body's state is finite.
-fn check_state(body: &RigidBody, t: f64) -> Result<(), DynamicsError> {
-    if body.momentum().as_slice().iter().all(|x| x.is_finite())
-        && body.principal_frame_attitude().is_finite()
-    {
+/// Fails with [`DynamicsError::NonFinite`] at time `t` unless the attitude and the
+/// momentum are finite. (An angle h L_p / I_p that overflows can leave L finite but not
+/// the attitude, and an error estimate can read 0 for an increment beyond f64: each step
+/// checks the state itself.)
+fn check_finite(attitude: &Attitude, momentum: &Bivector, t: f64) -> Result<(), DynamicsError> {
+    if momentum.as_slice().iter().all(|x| x.is_finite()) && attitude.is_finite() {
         Ok(())
     } else {
         Err(DynamicsError::NonFinite { time: t })
     }
+}
+
+/// Fails with [`DynamicsError::NonFinite`] unless the body's state is finite.
+fn check_state(body: &RigidBody, t: f64) -> Result<(), DynamicsError> {
+    check_finite(body.principal_frame_attitude(), body.momentum(), t)
+}
+
+/// Makes (attitude, momentum) the body's state if both are finite; otherwise leaves the
+/// body as it was and fails with [`DynamicsError::NonFinite`] at time `t`.
+fn accept_state(
+    body: &mut RigidBody,
+    attitude: Attitude,
+    momentum: Bivector,
+    t: f64,
+) -> Result<(), DynamicsError> {
+    check_finite(&attitude, &momentum, t)?;
+    body.replace_state(attitude, momentum);
+    Ok(())
 }
 
 /// Counts one more internal step of a call at `time`, refusing more than `max_steps`.
@@ -330,6 +349,55 @@ fn count_step(count: &mut usize, max_steps: usize, time: f64) -> Result<(), Dyna
             time,
             steps: *count,
         });
+    }
+    Ok(())
+}
+
+/// An embedded Runge–Kutta pair with step-size control, as [`advance_controlled`] drives it.
+trait ControlledPair {
+    /// The size of the next attempt from `t` in the direction `sign` (its magnitude is used).
+    fn proposed_step(&mut self, body: &RigidBody, t: f64, sign: f64, torque: &dyn Torque) -> f64;
+    /// One attempt of size h from (t, body's state).
+    fn attempt(&mut self, body: &RigidBody, t: f64, h: f64, torque: &dyn Torque) -> Attempt;
+    /// The controller's next step (`None` before the first accepted one) and the most
+    /// internal steps one call may take.
+    fn control(&mut self) -> (&mut Option<f64>, usize);
+}
+
+/// An attempted step: the new (attitude, momentum), or `None` if the error test rejected it
+/// (the next proposed step is then smaller).
+type Attempt = Result<Option<(Attitude, Bivector)>, DynamicsError>;
+
+/// Advances `body` from t exactly by h in the pair's adaptive steps, the last one shortened
+/// to land on t + h.
+fn advance_controlled(
+    pair: &mut impl ControlledPair,
+    body: &mut RigidBody,
+    t: f64,
+    h: f64,
+    torque: &dyn Torque,
+) -> Result<(), DynamicsError> {
+    let t_end = t + h;
+    let mut time = t;
+    let mut count = 0;
+    let sign = h.signum();
+    while (t_end - time) * sign > 1e-14 * t_end.abs().max(1.0) {
+        count_step(&mut count, pair.control().1, time)?;
+        let remaining = t_end - time;
+        let mut try_h = pair.proposed_step(body, time, sign, torque).abs() * sign;
+        if try_h.abs() >= remaining.abs() {
+            try_h = remaining;
+        }
+        let saved = *pair.control().0;
+        if let Some((attitude, momentum)) = pair.attempt(body, time, try_h, torque)? {
+            body.replace_state(attitude, momentum);
+            time += try_h;
+            if try_h == remaining {
+                // Do not let the shortened last step shrink the next call's first step.
+                let next = pair.control().0;
+                *next = saved.map(|s| s.max(next.unwrap_or(s)));
+            }
+        }
     }
     Ok(())
 }

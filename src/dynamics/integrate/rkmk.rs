@@ -1,6 +1,6 @@
 //! Runge–Kutta–Munthe-Kaas of order 4: classical RK4 on L, the attitude on the group.
 
-use super::{DynamicsError, check_state, momentum_rate as rates};
+use super::{DynamicsError, accept_state, check_state, momentum_rate as rates};
 use crate::algebra::{Bivector, commutator_packed, pairs};
 use crate::dynamics::torques::Free;
 use crate::dynamics::{Attitude, RigidBody};
@@ -80,24 +80,26 @@ impl_integrator!(
         let (dl4, w4) = rates(body, t + h, &r4, &l4, torque);
         let a4 = w4 * -0.5;
 
-        let correction = a1.commutator(&a4) * (h * h / 6.0);
-        let mut u = a1 + &(a2 * 2.0);
-        u += &(a3 * 2.0);
-        u += &a4;
-        u *= h / 6.0;
-        u += &correction;
+        let u = rkmk4_increment([a1, a2, a3, a4], h);
         let mut dl = dl1 + &(dl2 * 2.0);
         dl += &(dl3 * 2.0);
         dl += &dl4;
         let l = &l0 + &(dl * (h / 6.0));
-        let r = r0.times_exp(&u);
-        if !l.as_slice().iter().all(|x| x.is_finite()) || !r.is_finite() {
-            return Err(DynamicsError::NonFinite { time: t });
-        }
-        body.replace_state(r, l);
-        Ok(())
+        accept_state(body, r0.times_exp(&u), l, t)
     }
 );
+
+/// The RKMK4 increment of the algebra: h/6 (a₁ + 2a₂ + 2a₃ + a₄) + h²/6 [a₁, a₄], from the
+/// four stages' a = −½ω (the commutator is the order-4 correction of dexp⁻¹).
+fn rkmk4_increment([a1, a2, a3, a4]: [Bivector; 4], h: f64) -> Bivector {
+    let correction = a1.commutator(&a4) * (h * h / 6.0);
+    let mut u = a1 + &(a2 * 2.0);
+    u += &(a3 * 2.0);
+    u += &a4;
+    u *= h / 6.0;
+    u += &correction;
+    u
+}
 
 /// A Lie–Poisson integrator of order 4 built on RK4: the body momentum moves only by
 /// rotations, L₁ = exp(−Ω) L₀ exp(Ω) with the attitude R₁ = R₀ exp(Ω), so it stays on its
@@ -205,12 +207,7 @@ impl_integrator!(
         let (_, w4, tau4) = rates_at(t + h, &r4, &l4);
         let a4 = w4 * -0.5;
 
-        let correction = a1.commutator(&a4) * (h * h / 6.0);
-        let mut u = a1 + &(a2 * 2.0);
-        u += &(a3 * 2.0);
-        u += &a4;
-        u *= h / 6.0;
-        u += &correction;
+        let u = rkmk4_increment([a1, a2, a3, a4], h);
         // M₁ = L₀ + h/6 Σ bᵢ gᵢτᵢg̃ᵢ: the torque's impulse in the frame of the step's start.
         let mut impulse = tau1;
         impulse += &(g2.rotate_bivector(&tau2) * 2.0);
@@ -219,11 +216,7 @@ impl_integrator!(
         let mut m = l0 + &(impulse * (h / 6.0));
         let mut r = r0;
         r.times_exp_coadjoint_mut(&u, &mut m);
-        if !m.as_slice().iter().all(|x| x.is_finite()) || !r.is_finite() {
-            return Err(DynamicsError::NonFinite { time: t });
-        }
-        body.replace_state(r, m);
-        Ok(())
+        accept_state(body, r, m, t)
     }
 );
 
@@ -255,11 +248,7 @@ fn lie_poisson_free_step(body: &mut RigidBody, t: f64, h: f64) -> Result<(), Dyn
     let mut r = body.principal_frame_attitude().clone();
     let mut l = l0;
     r.times_exp_coadjoint_mut(&generator, &mut l);
-    if !l.as_slice().iter().all(|x| x.is_finite()) || !r.is_finite() {
-        return Err(DynamicsError::NonFinite { time: t });
-    }
-    body.replace_state(r, l);
-    Ok(())
+    accept_state(body, r, l, t)
 }
 
 /// The free-motion step for an inertia diagonal on the basis planes: on stack arrays for

@@ -1,6 +1,6 @@
 //! Explicit Lie–Poisson splitting: each plane's flow is an exact rotation.
 
-use super::{DynamicsError, Integrator, momentum_rate};
+use super::{DynamicsError, Integrator, check_state, momentum_rate};
 use crate::algebra::{Bivector, pair_index, pairs};
 use crate::dynamics::attitude::PlaneProduct;
 use crate::dynamics::{RigidBody, Torque};
@@ -619,7 +619,7 @@ impl_integrator!(
                 *x = 1.0 / m - last;
             }
             this.free_symmetric_part_3d_4d(body, &rates[..k], last, h);
-            return finite_or_error(body, t);
+            return check_state(body, t);
         }
         // The moments live in the map; copy them (k ≤ 28 stays on the stack).
         let mut moments = Moments::new(moments, this.symmetric_part);
@@ -638,7 +638,7 @@ impl_integrator!(
             kdk(body, &moments, torque, (time, g * h), turn.take());
             time += g * h;
         }
-        finite_or_error(body, t)
+        check_state(body, t)
     }
 );
 
@@ -685,18 +685,7 @@ pub(crate) fn free_strang_step(body: &mut RigidBody, t: f64, h: f64) -> Result<(
     } else {
         rotor_drift_4().drift_inverse(body, &inverse, h, None);
     }
-    finite_or_error(body, t)
-}
-
-/// `Ok` if the step left the body finite, else the error at time `t`.
-fn finite_or_error(body: &RigidBody, t: f64) -> Result<(), DynamicsError> {
-    // An angle h L_p / I_p that overflows leaves L finite (N = 2) but not the attitude.
-    if !body.momentum().as_slice().iter().all(|x| x.is_finite())
-        || !body.principal_frame_attitude().is_finite()
-    {
-        return Err(DynamicsError::NonFinite { time: t });
-    }
-    Ok(())
+    check_state(body, t)
 }
 
 #[cfg(test)]

@@ -22,10 +22,11 @@
 //!
 //! Intervals are closed: boxes that touch overlap.
 
+use super::KeyHasher;
 use crate::dynamics::DynamicsError;
 use crate::dynamics::motion::shape::ShapeError;
 use std::collections::HashSet;
-use std::hash::{BuildHasherDefault, Hasher};
+use std::hash::BuildHasherDefault;
 
 /// The margin of the fat boxes, relative to the bodies' mean half-width at the last
 /// rebuild.
@@ -36,30 +37,7 @@ pub const FAT_MARGIN: f64 = 0.2;
 /// rebuild costs about as much as renewing every body's box once).
 pub const REBUILD_AFTER: usize = 8;
 
-/// A multiplicative hasher for pair keys (two body indices packed in a u64): the keys are
-/// not adversarial, and a fixed hasher keeps runs reproducible.
-#[derive(Default)]
-struct PairHasher(u64);
-
-impl Hasher for PairHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.write_u64(b as u64);
-        }
-    }
-    fn write_u64(&mut self, x: u64) {
-        // splitmix64's finaliser: every bit of the key reaches the high bits the table uses.
-        let mut z = (self.0 ^ x).wrapping_add(0x9e37_79b9_7f4a_7c15);
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        self.0 = z ^ (z >> 31);
-    }
-}
-
-type PairSet = HashSet<u64, BuildHasherDefault<PairHasher>>;
+type PairSet = HashSet<u64, BuildHasherDefault<KeyHasher>>;
 
 #[inline]
 fn key(i: usize, j: usize) -> u64 {

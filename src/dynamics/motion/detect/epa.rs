@@ -23,41 +23,17 @@
 //! for rounded shapes (K's boundary moves out by the sum of the radii). Ball–ball and
 //! ball–cuboid pairs have closed forms.
 
+use super::KeyHasher;
 use super::gjk::{
     GjkResult, PlacedShape, Points, Simplex, centre_direction, check_pair, gjk, nearest_point,
     project_onto_face, support_difference,
 };
 use crate::algebra::Vector;
 use crate::dynamics::motion::shape::{ConvexCore, Coords, ShapeError};
+use crate::numeric::orthogonalize_twice;
 use smallvec::SmallVec;
 use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
-
-/// A multiplicative hasher for packed ridges (small vertex indices, not adversarial).
-#[derive(Default)]
-struct RidgeHasher(u64);
-
-impl Hasher for RidgeHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.write_u64(b as u64);
-        }
-    }
-    fn write_u128(&mut self, x: u128) {
-        self.write_u64(x as u64);
-        self.write_u64((x >> 64) as u64);
-    }
-    fn write_u64(&mut self, x: u64) {
-        // splitmix64's finaliser.
-        let mut z = (self.0 ^ x).wrapping_add(0x9e37_79b9_7f4a_7c15);
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        self.0 = z ^ (z >> 31);
-    }
-}
+use std::hash::BuildHasherDefault;
 
 /// EPA iterations at most (each adds one support point).
 pub(crate) const MAX_EPA_ITERATIONS: usize = 256;
@@ -95,6 +71,37 @@ pub struct Penetration {
     pub iterations: usize,
 }
 
+impl Penetration {
+    /// The contact of two margined shapes from that of their cores: the depth grows by both
+    /// margins and each witness moves out to its shape's surface along the normal (A's with
+    /// it, B's against it), so that witness_a − witness_b = depth · normal still holds.
+    fn from_cores(
+        core_depth: f64,
+        normal: Vector,
+        mut witness_a: Vector,
+        mut witness_b: Vector,
+        (ra, rb): (f64, f64),
+        iterations: usize,
+    ) -> Self {
+        for ((p, q), m) in witness_a
+            .as_mut_slice()
+            .iter_mut()
+            .zip(witness_b.as_mut_slice())
+            .zip(normal.as_slice())
+        {
+            *p += ra * m;
+            *q -= rb * m;
+        }
+        Penetration {
+            depth: core_depth + ra + rb,
+            normal,
+            witness_a,
+            witness_b,
+            iterations,
+        }
+    }
+}
+
 /// Scratch memory of EPA, kept between queries so that they do not allocate once it has
 /// grown to the polytopes met.
 #[derive(Clone, Debug, Default)]
@@ -113,7 +120,7 @@ pub struct EpaWorkspace {
     ridges: Vec<u32>,
     ridge_counts: Vec<u32>,
     /// Each ridge's position in `ridge_counts`, by its vertex indices packed 16 bits each.
-    ridge_index: HashMap<u128, u32, BuildHasherDefault<RidgeHasher>>,
+    ridge_index: HashMap<u128, u32, BuildHasherDefault<KeyHasher>>,
     new_facets: Vec<u32>,
     new_normals: Vec<f64>,
     new_offsets: Vec<f64>,
@@ -164,13 +171,7 @@ fn facet_plane(
             length += *x * *x;
         }
         let length = length.sqrt();
-        for _ in 0..2 {
-            for l in 0..j {
-                let ql = &basis[l * n..(l + 1) * n];
-                let c: f64 = ql.iter().zip(&e).map(|(p, q)| p * q).sum();
-                e.iter_mut().zip(ql).for_each(|(x, y)| *x -= c * y);
-            }
-        }
+        orthogonalize_twice(&mut e, &basis, j);
         let r = e.iter().map(|x| x * x).sum::<f64>().sqrt();
         if r.is_nan() || r <= FLAT_FACET * length || r <= FLAT_FACET * scale {
             return None;
@@ -183,13 +184,7 @@ fn facet_plane(
     for ((x, p), q) in normal.iter_mut().zip(y0).zip(inside) {
         *x = p - q;
     }
-    for _ in 0..2 {
-        for l in 0..n - 1 {
-            let ql = &basis[l * n..(l + 1) * n];
-            let c: f64 = ql.iter().zip(normal.iter()).map(|(p, q)| p * q).sum();
-            normal.iter_mut().zip(ql).for_each(|(x, y)| *x -= c * y);
-        }
-    }
+    orthogonalize_twice(normal, &basis, n - 1);
     let r = normal.iter().map(|x| x * x).sum::<f64>().sqrt();
     if r.is_nan() || r <= FLAT_FACET * scale {
         return None;
@@ -291,13 +286,7 @@ fn initial_simplex(
         for ((x, p), q) in e.iter_mut().zip(w).zip(y0) {
             *x = p - q;
         }
-        for _ in 0..2 {
-            for l in 0..*rank {
-                let ql = &basis[l * n..(l + 1) * n];
-                let c: f64 = ql.iter().zip(&e).map(|(p, q)| p * q).sum();
-                e.iter_mut().zip(ql).for_each(|(x, y)| *x -= c * y);
-            }
-        }
+        orthogonalize_twice(&mut e, basis, *rank);
         let r = e.iter().map(|x| x * x).sum::<f64>().sqrt();
         if r > 1e-10 * scale {
             basis.extend(e.iter().map(|x| x / r));
@@ -339,33 +328,25 @@ fn initial_simplex(
         }
         u.iter_mut().for_each(|x| *x = 0.0);
         u[best.1] = 1.0;
-        for _ in 0..2 {
-            for l in 0..rank {
-                let ql = &basis[l * n..(l + 1) * n];
-                let c: f64 = ql.iter().zip(&u).map(|(p, q)| p * q).sum();
-                u.iter_mut().zip(ql).for_each(|(x, y)| *x -= c * y);
-            }
-        }
+        orthogonalize_twice(&mut u, &basis, rank);
         let r = u.iter().map(|x| x * x).sum::<f64>().sqrt();
         u.iter_mut().for_each(|x| *x /= r);
         let mut added = false;
         // Both ways along u, the farther first.
+        // How far the support point w reaches past the first vertex along u.
+        let reach = |u: &[f64], w: &[f64]| -> f64 {
+            u.iter()
+                .zip(w)
+                .zip(&ws.w[..n])
+                .map(|((p, q), y)| p * (q - y))
+                .sum()
+        };
         support_difference(a, b, &u, &mut w, &mut sa, &mut sb);
-        let reach_up: f64 = u
-            .iter()
-            .zip(&w)
-            .zip(&ws.w[..n])
-            .map(|((p, q), y)| p * (q - y))
-            .sum();
+        let reach_up = reach(&u, &w);
         let (mut w2, mut sa2, mut sb2) = (w.clone(), sa.clone(), sb.clone());
         u.iter_mut().for_each(|x| *x = -*x);
         support_difference(a, b, &u, &mut w2, &mut sa2, &mut sb2);
-        let reach_down: f64 = u
-            .iter()
-            .zip(&w2)
-            .zip(&ws.w[..n])
-            .map(|((p, q), y)| p * (q - y))
-            .sum();
+        let reach_down = reach(&u, &w2);
         let order = if reach_up >= reach_down {
             [(&w, &sa, &sb), (&w2, &sa2, &sb2)]
         } else {
@@ -633,25 +614,14 @@ fn closed_form(a: &PlacedShape, b: &PlacedShape) -> Option<Penetration> {
                 .zip(b.position().iter().zip(a.position()))
                 .map(|(m, (p, q))| m * (p - q))
                 .sum();
-            let depth = ra + rb - gap;
-            let mut witness_a = vector(a.position());
-            let mut witness_b = vector(b.position());
-            for ((p, q), m) in witness_a
-                .as_mut_slice()
-                .iter_mut()
-                .zip(witness_b.as_mut_slice())
-                .zip(normal.as_slice())
-            {
-                *p += ra * m;
-                *q -= rb * m;
-            }
-            Some(Penetration {
-                depth,
+            Some(Penetration::from_cores(
+                -gap,
                 normal,
-                witness_a,
-                witness_b,
-                iterations: 0,
-            })
+                vector(a.position()),
+                vector(b.position()),
+                (ra, rb),
+                0,
+            ))
         }
         (ConvexCore::Cuboid(h), ConvexCore::Point) => Some(box_ball(a, h, b, n)),
         (ConvexCore::Point, ConvexCore::Cuboid(h)) => {
@@ -714,23 +684,8 @@ fn box_ball(a: &PlacedShape, h: &[f64], b: &PlacedShape, n: usize) -> Penetratio
         normal.as_mut_slice()[i] = row.iter().zip(&normal_own).map(|(p, m)| p * m).sum();
         witness_a.as_mut_slice()[i] += row.iter().zip(&nearest).map(|(p, m)| p * m).sum::<f64>();
     }
-    let mut witness_b = vector(b.position());
-    for ((p, q), m) in witness_a
-        .as_mut_slice()
-        .iter_mut()
-        .zip(witness_b.as_mut_slice())
-        .zip(normal.as_slice())
-    {
-        *p += ra * m;
-        *q -= rb * m;
-    }
-    Penetration {
-        depth: core_depth + ra + rb,
-        normal,
-        witness_a,
-        witness_b,
-        iterations: 0,
-    }
+    let witness_b = vector(b.position());
+    Penetration::from_cores(core_depth, normal, witness_a, witness_b, (ra, rb), 0)
 }
 
 /// Returns the signed penetration depth of two placed shapes, the contact normal from A
@@ -802,20 +757,12 @@ pub fn penetration_with(
             .witnesses(witness_a.as_mut_slice(), witness_b.as_mut_slice());
         (-length, result.iterations)
     };
-    for ((p, q), m) in witness_a
-        .as_mut_slice()
-        .iter_mut()
-        .zip(witness_b.as_mut_slice())
-        .zip(normal.as_slice())
-    {
-        *p += ra * m;
-        *q -= rb * m;
-    }
-    Ok(Penetration {
-        depth: core_depth + ra + rb,
+    Ok(Penetration::from_cores(
+        core_depth,
         normal,
         witness_a,
         witness_b,
+        (ra, rb),
         iterations,
-    })
+    ))
 }

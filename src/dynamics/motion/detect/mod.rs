@@ -29,3 +29,31 @@ pub use manifold::{
     box_manifold, hull_contact_vertices, hull_manifold,
 };
 pub use sat::{AxisFeature, BoxPairAxis, PlacedBox, box_box, candidate_axis_count};
+
+/// The hasher of the detection's hash tables, whose keys are packed small indices (body
+/// pairs in the broad phase, ridges in EPA): not adversarial, so a fast fixed hasher
+/// (splitmix64's finaliser, which carries every bit of the key to the high bits the
+/// table uses) serves, and runs stay reproducible.
+#[derive(Default)]
+pub(crate) struct KeyHasher(u64);
+
+impl std::hash::Hasher for KeyHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(b as u64);
+        }
+    }
+    fn write_u128(&mut self, x: u128) {
+        self.write_u64(x as u64);
+        self.write_u64((x >> 64) as u64);
+    }
+    fn write_u64(&mut self, x: u64) {
+        let mut z = (self.0 ^ x).wrapping_add(0x9e37_79b9_7f4a_7c15);
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        self.0 = z ^ (z >> 31);
+    }
+}

@@ -23,6 +23,7 @@
 
 use crate::dynamics::DynamicsError;
 use crate::dynamics::motion::shape::{ShapeError, check_placement};
+use crate::numeric::orthogonalize_twice;
 use smallvec::SmallVec;
 
 /// The largest dimension of the box queries: C(2N, N − 1) axes is 167,960 at N = 10.
@@ -265,14 +266,7 @@ pub(crate) fn cell_axis(rel: &Relative, axes_a: u32, axes_b: u32, u: &mut [f64])
         for (c, &i) in free.iter().enumerate() {
             v[c] = rel.r[i * n + j];
         }
-        for _ in 0..2 {
-            for q in basis.chunks_exact(k) {
-                let p = dot(q, &v);
-                for (x, y) in v.iter_mut().zip(q) {
-                    *x -= p * y;
-                }
-            }
-        }
+        orthogonalize_twice(&mut v, &basis, basis.len() / k);
         let after = norm(&v);
         volume *= after;
         if volume.is_nan() || volume < PARALLEL_TOLERANCE {
@@ -291,14 +285,7 @@ pub(crate) fn cell_axis(rel: &Relative, axes_a: u32, axes_b: u32, u: &mut [f64])
             *x = 0.0;
         }
         v[c] = 1.0;
-        for _ in 0..2 {
-            for q in basis.chunks_exact(k) {
-                let p = dot(q, &v);
-                for (x, y) in v.iter_mut().zip(q) {
-                    *x -= p * y;
-                }
-            }
-        }
+        orthogonalize_twice(&mut v, &basis, basis.len() / k);
         let m = norm(&v);
         if m > best_norm {
             best_norm = m;

@@ -2,6 +2,7 @@
 //! function in its own axes.
 
 use super::ShapeError;
+use crate::numeric::orthogonalize_twice;
 use smallvec::SmallVec;
 
 /// Inline storage of one vector (no heap up to N = 8).
@@ -134,12 +135,7 @@ pub(crate) fn affine_rank(points: &[f64], n: usize) -> usize {
             break;
         }
         let mut r: Vec<f64> = p.iter().zip(p0).map(|(a, b)| (a - b) / extent).collect();
-        for _ in 0..2 {
-            for q in basis.chunks_exact(n) {
-                let c: f64 = r.iter().zip(q).map(|(a, b)| a * b).sum();
-                r.iter_mut().zip(q).for_each(|(a, b)| *a -= c * b);
-            }
-        }
+        orthogonalize_twice(&mut r, &basis, basis.len() / n);
         let norm = r.iter().map(|x| x * x).sum::<f64>().sqrt();
         if norm > tolerance / extent {
             basis.extend(r.iter().map(|x| x / norm));
