@@ -724,3 +724,14 @@ fn hundred_thousand_random_pairs_of_every_kind() {
     let (t, panicked) = every_kind(20, 1000);
     every_kind_report(&t, panicked, 100_000);
 }
+
+/// 10⁶ pairs of every kind, the count the detection is held to; 7 to 15 minutes in release
+/// on two cores, so run by hand:
+/// `cargo test --release --all-features --test reliability million_random_pairs_of_every_kind -- --ignored --nocapture`.
+#[test]
+#[ignore = "10⁶ pairs of every kind: minutes in release, run by hand"]
+fn million_random_pairs_of_every_kind() {
+    // 200 chunks × 5 dimensions × 1000 pairs.
+    let (t, panicked) = every_kind(200, 1000);
+    every_kind_report(&t, panicked, 1_000_000);
+}
