@@ -226,3 +226,29 @@ def test_pickle_and_equality():
     assert pickle.loads(pickle.dumps(alg)) == alg
     assert m != rf.Algebra(3).multivector(np.arange(8.0))
     assert m != 3
+
+
+def test_batched_products_by_chunks_equal_the_single_products():
+    # The batch runs in chunks of 64 elements, checked for finiteness on the way: lengths
+    # around a chunk, a single element broadcast on either side, every element against the
+    # product of that pair alone, and a NaN past the first chunk named by its element.
+    rng = np.random.default_rng(12)
+    checked = 0
+    for n in (2, 3, 4, 5):
+        alg = rf.Algebra(n)
+        k = len(alg)
+        for m in (1, 63, 64, 65, 130):
+            a, b = rng.normal(size=(m, k)), rng.normal(size=(m, k))
+            cases = [(a, b, alg.product(a, b)), (a[0], b, alg.product(a[0], b)), (a, b[0], alg.product(a, b[0]))]
+            for x, y, batch in cases:
+                for i in range(m):
+                    xi, yi = (x if x.ndim == 1 else x[i]), (y if y.ndim == 1 else y[i])
+                    np.testing.assert_array_equal(batch[i], (alg.multivector(xi) * alg.multivector(yi)).coefficients)
+                    checked += 1
+        bad = rng.normal(size=(200, k))
+        bad[150, k - 1] = np.inf
+        with pytest.raises(ValueError, match="b: NaN or infinite entry in element 150"):
+            alg.product(rng.normal(size=(200, k)), bad)
+        with pytest.raises(ValueError, match="versors: NaN or infinite entry"):
+            alg.sandwich(bad[150], bad[:10])
+    assert checked == 4 * 3 * (1 + 63 + 64 + 65 + 130)
