@@ -3,6 +3,7 @@
 //! coefficients.
 
 use crate::arrays::{Rows, all_finite, broadcast, empty, fill, output, value_error, zeros};
+use crate::kernels::{DenseSigns, dense_product};
 use numpy::PyArrayDyn;
 use pyo3::exceptions::{PyTypeError, PyZeroDivisionError};
 use pyo3::prelude::*;
@@ -16,10 +17,34 @@ use std::sync::{Arc, Mutex, PoisonError};
 
 /// The product tables made so far, by signature and product (`None`: the inner product).
 type TableKey = (usize, usize, usize, Option<Product>);
-static TABLES: Mutex<Option<HashMap<TableKey, Arc<ProductTable>>>> = Mutex::new(None);
+static TABLES: Mutex<Option<HashMap<TableKey, Arc<Table>>>> = Mutex::new(None);
+
+/// A product table, and its signs for the products of 8 or 16 coefficients that send each
+/// pair of blades to one blade.
+struct Table {
+    table: ProductTable,
+    signs8: Option<DenseSigns<8>>,
+    signs16: Option<DenseSigns<16>>,
+}
+
+impl Table {
+    fn new(table: ProductTable) -> Self {
+        let product = |a: &[f64], b: &[f64], out: &mut [f64]| {
+            table.apply(a, b, out).expect("blades of the table's size");
+        };
+        let size = 1usize << table.signature().dim();
+        let signs8 = (size == 8).then(|| DenseSigns::new(product)).flatten();
+        let signs16 = (size == 16).then(|| DenseSigns::new(product)).flatten();
+        Table {
+            table,
+            signs8,
+            signs16,
+        }
+    }
+}
 
 /// The table of `kind` in `sig` (made once), or `None` above [`PRODUCT_TABLE_MAX_DIM`].
-fn table(sig: Signature, kind: Option<Product>) -> Option<Arc<ProductTable>> {
+fn table(sig: Signature, kind: Option<Product>) -> Option<Arc<Table>> {
     if sig.dim() > PRODUCT_TABLE_MAX_DIM {
         return None;
     }
@@ -29,10 +54,10 @@ fn table(sig: Signature, kind: Option<Product>) -> Option<Arc<ProductTable>> {
     if let Some(t) = tables.get(&key) {
         return Some(t.clone());
     }
-    let t = Arc::new(match kind {
+    let t = Arc::new(Table::new(match kind {
         Some(kind) => ProductTable::new(sig, kind).ok()?,
         None => ProductTable::inner(sig).ok()?,
-    });
+    }));
     tables.insert(key, t.clone());
     Some(t)
 }
@@ -50,16 +75,19 @@ enum Batch {
 /// first-level cache when the kernel reads them, so that each array is read from memory once.
 const CHUNK: usize = 64;
 
-/// The batch through the crate's kernel of `t`, chunk by chunk, each chunk's operands checked
-/// for finiteness first; `false` (and `out` partly written) at the first chunk with a NaN or
-/// an infinity. `a` and `b` hold M elements of 2ᴺ coefficients, or one element used with
-/// every element of the other.
+/// The batch chunk by chunk, each chunk's operands checked for finiteness first; `false` (and
+/// `out` partly written) at the first chunk with a NaN or an infinity. `a` and `b` hold M
+/// elements of 2ᴺ coefficients, or one element used with every element of the other.
+/// Products of 8 and 16 coefficients that send each pair of blades to one blade run through
+/// [`dense_product`] (and its AVX-512 form), the others and the sandwiches through the
+/// crate's kernels of `t`: the same terms in the same order as the table's list, so the same
+/// results to the last bit (up to the sign of a zero).
 ///
 /// On processors with AVX-512 or AVX2 the same code runs compiled for them: the same
 /// additions and multiplications in the same order (no fused multiply-add), eight or four
 /// lanes at a time instead of two, so the same results bit for bit.
 fn batch(
-    t: &ProductTable,
+    t: &Table,
     a: &[f64],
     b: &[f64],
     out: &mut [f64],
@@ -81,13 +109,13 @@ fn batch(
 
 #[inline(always)]
 fn batch_portable(
-    t: &ProductTable,
+    t: &Table,
     a: &[f64],
     b: &[f64],
     out: &mut [f64],
     op: Batch,
 ) -> Result<bool, AlgebraError> {
-    let k = 1usize << t.signature().dim();
+    let k = 1usize << t.table.signature().dim();
     let step = CHUNK * k;
     // A single element is repeated over one chunk, and checked once.
     let m = out.len() / k;
@@ -108,9 +136,16 @@ fn batch_portable(
         if !checked {
             return Ok(false);
         }
-        match op {
-            Batch::Product => t.apply_batch(ca, cb, co)?,
-            Batch::Sandwich => t.sandwich_batch(ca, cb, co)?,
+        match (op, &t.signs8, &t.signs16) {
+            (Batch::Product, Some(d), _) => dense_product(d, ca, cb, co),
+            #[cfg(target_arch = "x86_64")]
+            (Batch::Product, _, Some(d)) if std::arch::is_x86_feature_detected!("avx512f") => {
+                // SAFETY: the processor supports AVX-512F.
+                unsafe { crate::kernels::dense_product16_avx512(d, ca, cb, co) }
+            }
+            (Batch::Product, _, Some(d)) => dense_product(d, ca, cb, co),
+            (Batch::Product, ..) => t.table.apply_batch(ca, cb, co)?,
+            (Batch::Sandwich, ..) => t.table.sandwich_batch(ca, cb, co)?,
         }
     }
     Ok(true)
@@ -119,7 +154,7 @@ fn batch_portable(
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 fn batch_avx2(
-    t: &ProductTable,
+    t: &Table,
     a: &[f64],
     b: &[f64],
     out: &mut [f64],
@@ -131,7 +166,7 @@ fn batch_avx2(
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
 fn batch_avx512(
-    t: &ProductTable,
+    t: &Table,
     a: &[f64],
     b: &[f64],
     out: &mut [f64],
