@@ -3,7 +3,7 @@
 //! coefficients.
 
 use crate::arrays::{Rows, all_finite, broadcast, empty, fill, output, value_error, zeros};
-use crate::kernels::{DenseSigns, dense_product};
+use crate::kernels::{DenseSigns, product8, product16};
 use numpy::PyArrayDyn;
 use pyo3::exceptions::{PyTypeError, PyZeroDivisionError};
 use pyo3::prelude::*;
@@ -137,13 +137,8 @@ fn batch_portable(
             return Ok(false);
         }
         match (op, &t.signs8, &t.signs16) {
-            (Batch::Product, Some(d), _) => dense_product(d, ca, cb, co),
-            #[cfg(target_arch = "x86_64")]
-            (Batch::Product, _, Some(d)) if std::arch::is_x86_feature_detected!("avx512f") => {
-                // SAFETY: the processor supports AVX-512F.
-                unsafe { crate::kernels::dense_product16_avx512(d, ca, cb, co) }
-            }
-            (Batch::Product, _, Some(d)) => dense_product(d, ca, cb, co),
+            (Batch::Product, Some(d), _) => product8(d, ca, cb, co),
+            (Batch::Product, _, Some(d)) => product16(d, ca, cb, co),
             (Batch::Product, ..) => t.table.apply_batch(ca, cb, co)?,
             (Batch::Sandwich, ..) => t.table.sandwich_batch(ca, cb, co)?,
         }

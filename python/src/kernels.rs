@@ -4,7 +4,7 @@
 //! entry is the sum of the same products in the same order on every processor.
 
 use crate::arrays::all_finite;
-use rotorflow::algebra::Rotor3;
+use rotorflow::algebra::{Rotor3, Rotor4};
 
 /// `out` = Q v for every vector v of `input` (N entries each, as many in `out`); `false` if an
 /// entry of `input` is NaN or infinite.
@@ -166,6 +166,30 @@ impl<const K: usize> DenseSigns<K> {
     }
 }
 
+/// [`dense_product`] of 8 coefficients, through [`dense_product8_avx512`] where the processor
+/// has AVX-512: the same results to the last bit.
+#[inline(always)]
+pub fn product8(d: &DenseSigns<8>, a: &[f64], b: &[f64], out: &mut [f64]) {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx512f") {
+        // SAFETY: the processor supports AVX-512F, the only requirement.
+        return unsafe { dense_product8_avx512(d, a, b, out) };
+    }
+    dense_product(d, a, b, out);
+}
+
+/// [`dense_product`] of 16 coefficients, through [`dense_product16_avx512`] where the
+/// processor has AVX-512: the same results to the last bit.
+#[inline(always)]
+pub fn product16(d: &DenseSigns<16>, a: &[f64], b: &[f64], out: &mut [f64]) {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx512f") {
+        // SAFETY: the processor supports AVX-512F, the only requirement.
+        return unsafe { dense_product16_avx512(d, a, b, out) };
+    }
+    dense_product(d, a, b, out);
+}
+
 /// Elements per block of [`dense_product`]: two AVX-512 registers per coefficient.
 const LANES: usize = 16;
 
@@ -176,7 +200,7 @@ const LANES: usize = 16;
 /// operations of the crate's product table, so its result to the last bit (up to the sign of
 /// a zero).
 #[inline(always)]
-pub fn dense_product<const K: usize>(d: &DenseSigns<K>, a: &[f64], b: &[f64], out: &mut [f64]) {
+fn dense_product<const K: usize>(d: &DenseSigns<K>, a: &[f64], b: &[f64], out: &mut [f64]) {
     const { assert!(K <= 16, "blocks of at most 16 coefficients") };
     let step = LANES * K;
     let mut pad = [[0.0; LANES * 16]; 3];
@@ -233,13 +257,9 @@ fn dense_block<const K: usize>(d: &DenseSigns<K>, a: &[f64], b: &[f64], out: &mu
 /// The processor must support AVX-512F.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
-pub unsafe fn dense_product16_avx512(d: &DenseSigns<16>, a: &[f64], b: &[f64], out: &mut [f64]) {
+unsafe fn dense_product16_avx512(d: &DenseSigns<16>, a: &[f64], b: &[f64], out: &mut [f64]) {
     use std::arch::x86_64::*;
-    // Lane k of permutation c reads lane k ⊕ c.
-    let idx: [__m512i; 8] = std::array::from_fn(|c| {
-        let c = c as i64;
-        _mm512_set_epi64(7 ^ c, 6 ^ c, 5 ^ c, 4 ^ c, 3 ^ c, 2 ^ c, 1 ^ c, c)
-    });
+    let idx = xor_permutations();
     let signs: [[__m512d; 2]; 16] = std::array::from_fn(|i| {
         let row = &d.signs[i];
         // SAFETY: each half of a row holds eight f64.
@@ -285,4 +305,124 @@ pub unsafe fn dense_product16_avx512(d: &DenseSigns<16>, a: &[f64], b: &[f64], o
             _mm512_storeu_pd(ro.as_mut_ptr().add(8), hi);
         }
     }
+}
+
+/// [`dense_product`] for 8 coefficients with AVX-512: each element in one register, the
+/// operand of e_i for every blade k, b_(i ⊕ k ⊕ offset), one permutation of it; the terms of
+/// [`dense_product`] in its order, so the same result to the last bit.
+///
+/// # Safety
+/// The processor must support AVX-512F.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn dense_product8_avx512(d: &DenseSigns<8>, a: &[f64], b: &[f64], out: &mut [f64]) {
+    use std::arch::x86_64::*;
+    let idx = xor_permutations();
+    // SAFETY: each row of signs holds eight f64.
+    let signs: [__m512d; 8] =
+        std::array::from_fn(|i| unsafe { _mm512_loadu_pd(d.signs[i].as_ptr()) });
+    let (a, _) = a.as_chunks::<8>();
+    let (b, _) = b.as_chunks::<8>();
+    let (out, _) = out.as_chunks_mut::<8>();
+    for ((ra, rb), ro) in a.iter().zip(b).zip(out) {
+        // SAFETY: every row holds eight f64.
+        let y = _mm512_permutexvar_pd(idx[d.offset], unsafe { _mm512_loadu_pd(rb.as_ptr()) });
+        let mut acc = _mm512_setzero_pd();
+        for (i, s) in signs.iter().enumerate() {
+            let w = _mm512_permutexvar_pd(idx[i], y);
+            acc = _mm512_add_pd(
+                acc,
+                _mm512_mul_pd(_mm512_mul_pd(*s, _mm512_set1_pd(ra[i])), w),
+            );
+        }
+        // SAFETY: every row holds eight f64.
+        unsafe { _mm512_storeu_pd(ro.as_mut_ptr(), acc) };
+    }
+}
+
+/// The permutations of eight lanes whose lane k reads lane k ⊕ c, c = 0, 1, …, 7.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn xor_permutations() -> [std::arch::x86_64::__m512i; 8] {
+    std::array::from_fn(|c| {
+        let c = c as i64;
+        std::arch::x86_64::_mm512_set_epi64(7 ^ c, 6 ^ c, 5 ^ c, 4 ^ c, 3 ^ c, 2 ^ c, 1 ^ c, c)
+    })
+}
+
+/// `out[i]` = Rᵢ vᵢ R̃ᵢ (R̃ᵢ vᵢ Rᵢ with `inverse`) for 4D rotors, `input` holding as many
+/// vectors or one for all; `false` if an entry of `input` is NaN or infinite.
+pub fn rotate_each4(rotors: &[Rotor4], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the processor supports AVX-512F, the only requirement.
+            return unsafe { rotate_each4_avx512(rotors, input, out, inverse) };
+        }
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor supports AVX2, the only requirement.
+            return unsafe { rotate_each4_avx2(rotors, input, out, inverse) };
+        }
+    }
+    rotate_lanes4::<2>(rotors, input, out, inverse)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn rotate_each4_avx2(rotors: &[Rotor4], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
+    rotate_lanes4::<4>(rotors, input, out, inverse)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn rotate_each4_avx512(rotors: &[Rotor4], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
+    rotate_lanes4::<8>(rotors, input, out, inverse)
+}
+
+/// Hamilton's product of quaternions held lane by lane, the formula of the crate's scalar
+/// quaternion product term for term.
+#[inline(always)]
+fn quat_mul_lanes<const L: usize>(a: &[[f64; L]; 4], b: &[[f64; L]; 4]) -> [[f64; L]; 4] {
+    let [w1, x1, y1, z1] = a;
+    let [w2, x2, y2, z2] = b;
+    let mut o = [[0.0; L]; 4];
+    for l in 0..L {
+        o[0][l] = w1[l] * w2[l] - x1[l] * x2[l] - y1[l] * y2[l] - z1[l] * z2[l];
+        o[1][l] = w1[l] * x2[l] + x1[l] * w2[l] + y1[l] * z2[l] - z1[l] * y2[l];
+        o[2][l] = w1[l] * y2[l] - x1[l] * z2[l] + y1[l] * w2[l] + z1[l] * x2[l];
+        o[3][l] = w1[l] * z2[l] + x1[l] * y2[l] - y1[l] * x2[l] + z1[l] * w2[l];
+    }
+    o
+}
+
+/// [`rotate_each4`] L rotors at a time: `Rotor4::rotate_vector`'s two quaternion products
+/// (a x) b, a = (m₀, −m₁, −m₂, m₃) and b = Q̄₊ of the pair (Q₊, Q₋), term for term.
+#[inline(always)]
+fn rotate_lanes4<const L: usize>(
+    rotors: &[Rotor4],
+    input: &[f64],
+    out: &mut [f64],
+    inverse: bool,
+) -> bool {
+    let step = usize::from(input.len() > 4);
+    let mut ok = true;
+    for (blk, (rb, ob)) in rotors.chunks(L).zip(out.chunks_mut(4 * L)).enumerate() {
+        let (mut a, mut b, mut x) = ([[0.0; L]; 4], [[0.0; L]; 4], [[0.0; L]; 4]);
+        for (l, r) in rb.iter().enumerate() {
+            let r = if inverse { r.inverse() } else { *r };
+            let (p, m) = r.to_quaternion_pair();
+            [a[0][l], a[1][l], a[2][l], a[3][l]] = [m[0], -m[1], -m[2], m[3]];
+            [b[0][l], b[1][l], b[2][l], b[3][l]] = [p[0], -p[1], -p[2], -p[3]];
+            let i = 4 * (blk * L + l) * step;
+            for (c, xc) in x.iter_mut().enumerate() {
+                xc[l] = input[i + c];
+            }
+        }
+        ok &= x.iter().fold(true, |ok, xc| ok & all_finite(xc));
+        let y = quat_mul_lanes(&quat_mul_lanes(&a, &x), &b);
+        for (l, o) in ob.chunks_exact_mut(4).enumerate() {
+            o.copy_from_slice(&[y[0][l], y[1][l], y[2][l], y[3][l]]);
+        }
+    }
+    ok
 }

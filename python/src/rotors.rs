@@ -129,9 +129,18 @@ impl_fixed!(
         crate::kernels::rotate_each3(rotors, input, out, inverse)
     }
 );
-impl_fixed!(Rotor4, Vector4, Matrix4, Bivector4, 4, 6, |r| r
-    .rotation_bivector()
-    .norm());
+impl_fixed!(
+    Rotor4,
+    Vector4,
+    Matrix4,
+    Bivector4,
+    4,
+    6,
+    |r| r.rotation_bivector().norm(),
+    fn rotate_each(rotors: &[Self], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
+        crate::kernels::rotate_each4(rotors, input, out, inverse)
+    }
+);
 
 /// One rotor (`single`) or a batch of them.
 #[derive(Clone)]

@@ -149,8 +149,12 @@ def test_batched_apply_equals_the_single_applies_at_every_length():
             np.testing.assert_allclose(by_one, Rotation.from_rotvec(rv[0]).apply(x, inverse=inverse), atol=1e-14)
             np.testing.assert_allclose(by_many, Rotation.from_rotvec(rv).apply(x, inverse=inverse), atol=1e-14)
         four = rf.Rotor4.from_bivector(rng.normal(size=6))
+        fours = rf.Rotor4.from_bivector(rng.normal(size=(m, 6)))
         y = rng.normal(size=(m, 4))
         np.testing.assert_allclose(four.apply(y), y @ four.as_matrix().T, atol=1e-14)
+        mats = fours.as_matrix()
+        np.testing.assert_allclose(fours.apply(y), np.einsum("mij,mj->mi", mats, y), atol=1e-14)
+        np.testing.assert_allclose(fours.apply(y, inverse=True), np.einsum("mji,mj->mi", mats, y), atol=1e-14)
     assert checked == 2 * (1 + 2 + 3 + 7 + 8 + 9 + 15 + 16 + 17 + 1003)
 
 
