@@ -73,55 +73,43 @@ pub fn rotate_each3(rotors: &[Rotor3], input: &[f64], out: &mut [f64], inverse: 
             return unsafe { rotate_each3_avx2(rotors, input, out, inverse) };
         }
     }
-    rotate_lanes::<2>(rotors, input, out, inverse)
+    rotate_rows(rotors, input, out, inverse)
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 fn rotate_each3_avx2(rotors: &[Rotor3], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
-    rotate_lanes::<4>(rotors, input, out, inverse)
+    rotate_rows(rotors, input, out, inverse)
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
 fn rotate_each3_avx512(rotors: &[Rotor3], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
-    rotate_lanes::<8>(rotors, input, out, inverse)
+    rotate_rows(rotors, input, out, inverse)
 }
 
-/// [`rotate_each3`] L rotors at a time, each quaternion and vector component in an array of L
-/// lanes: the formula of `Rotor3::rotate_vector`, v + 2w (u × v) + 2 u × (u × v), term for
-/// term, so the same result to the last bit.
+/// [`rotate_each3`] rotor by rotor, in a loop that the compiler vectorises across rotors:
+/// the formula of `Rotor3::rotate_vector`, v + 2w (u × v) + 2 u × (u × v), term for term.
 #[inline(always)]
-fn rotate_lanes<const L: usize>(
-    rotors: &[Rotor3],
-    input: &[f64],
-    out: &mut [f64],
-    inverse: bool,
-) -> bool {
-    let step = usize::from(input.len() > 3);
+fn rotate_rows(rotors: &[Rotor3], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
+    let (vectors, _) = input.as_chunks::<3>();
+    let (outs, _) = out.as_chunks_mut::<3>();
+    let one = vectors.len() == 1;
     let mut ok = true;
-    for (b, (rb, ob)) in rotors.chunks(L).zip(out.chunks_mut(3 * L)).enumerate() {
-        let (mut w, mut ux, mut uy, mut uz) = ([0.0; L], [0.0; L], [0.0; L], [0.0; L]);
-        let (mut x, mut y, mut z) = ([0.0; L], [0.0; L], [0.0; L]);
-        for (l, r) in rb.iter().enumerate() {
-            let r = if inverse { r.inverse() } else { *r };
-            [w[l], ux[l], uy[l], uz[l]] = r.to_quaternion();
-            let i = 3 * (b * L + l) * step;
-            [x[l], y[l], z[l]] = [input[i], input[i + 1], input[i + 2]];
-        }
-        ok &= all_finite(&x) & all_finite(&y) & all_finite(&z);
-        let (mut ox, mut oy, mut oz) = ([0.0; L], [0.0; L], [0.0; L]);
-        for l in 0..L {
-            let tx = 2.0 * (uy[l] * z[l] - uz[l] * y[l]);
-            let ty = 2.0 * (uz[l] * x[l] - ux[l] * z[l]);
-            let tz = 2.0 * (ux[l] * y[l] - uy[l] * x[l]);
-            ox[l] = x[l] + w[l] * tx + (uy[l] * tz - uz[l] * ty);
-            oy[l] = y[l] + w[l] * ty + (uz[l] * tx - ux[l] * tz);
-            oz[l] = z[l] + w[l] * tz + (ux[l] * ty - uy[l] * tx);
-        }
-        for (l, o) in ob.chunks_exact_mut(3).enumerate() {
-            o.copy_from_slice(&[ox[l], oy[l], oz[l]]);
-        }
+    for (i, (r, o)) in rotors.iter().zip(outs).enumerate() {
+        let v = &vectors[if one { 0 } else { i }];
+        ok &= v[0].is_finite() & v[1].is_finite() & v[2].is_finite();
+        let r = if inverse { r.inverse() } else { *r };
+        let [w, ux, uy, uz] = r.to_quaternion();
+        let [x, y, z] = *v;
+        let tx = 2.0 * (uy * z - uz * y);
+        let ty = 2.0 * (uz * x - ux * z);
+        let tz = 2.0 * (ux * y - uy * x);
+        *o = [
+            x + w * tx + (uy * tz - uz * ty),
+            y + w * ty + (uz * tx - ux * tz),
+            z + w * tz + (ux * ty - uy * tx),
+        ];
     }
     ok
 }
