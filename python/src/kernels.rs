@@ -3,7 +3,6 @@
 //! time for AVX2 and AVX-512, used where the processor has them. No fused multiply-add: each
 //! entry is the sum of the same products in the same order on every processor.
 
-use crate::arrays::all_finite;
 use rotorflow::algebra::{Rotor3, Rotor4};
 
 /// `out` = Q v for every vector v of `input` (N entries each, as many in `out`); `false` if an
@@ -352,65 +351,51 @@ pub fn rotate_each4(rotors: &[Rotor4], input: &[f64], out: &mut [f64], inverse: 
             return unsafe { rotate_each4_avx2(rotors, input, out, inverse) };
         }
     }
-    rotate_lanes4::<2>(rotors, input, out, inverse)
+    rotate_rows4(rotors, input, out, inverse)
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 fn rotate_each4_avx2(rotors: &[Rotor4], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
-    rotate_lanes4::<4>(rotors, input, out, inverse)
+    rotate_rows4(rotors, input, out, inverse)
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
 fn rotate_each4_avx512(rotors: &[Rotor4], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
-    rotate_lanes4::<8>(rotors, input, out, inverse)
+    rotate_rows4(rotors, input, out, inverse)
 }
 
-/// Hamilton's product of quaternions held lane by lane, the formula of the crate's scalar
-/// quaternion product term for term.
+/// Hamilton's product of two quaternions, the formula of the crate's scalar quaternion
+/// product term for term.
 #[inline(always)]
-fn quat_mul_lanes<const L: usize>(a: &[[f64; L]; 4], b: &[[f64; L]; 4]) -> [[f64; L]; 4] {
+fn quat_mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
     let [w1, x1, y1, z1] = a;
     let [w2, x2, y2, z2] = b;
-    let mut o = [[0.0; L]; 4];
-    for l in 0..L {
-        o[0][l] = w1[l] * w2[l] - x1[l] * x2[l] - y1[l] * y2[l] - z1[l] * z2[l];
-        o[1][l] = w1[l] * x2[l] + x1[l] * w2[l] + y1[l] * z2[l] - z1[l] * y2[l];
-        o[2][l] = w1[l] * y2[l] - x1[l] * z2[l] + y1[l] * w2[l] + z1[l] * x2[l];
-        o[3][l] = w1[l] * z2[l] + x1[l] * y2[l] - y1[l] * x2[l] + z1[l] * w2[l];
-    }
-    o
+    [
+        w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
+        w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+        w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
+        w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
+    ]
 }
 
-/// [`rotate_each4`] L rotors at a time: `Rotor4::rotate_vector`'s two quaternion products
+/// [`rotate_each4`] rotor by rotor: `Rotor4::rotate_vector`'s two quaternion products
 /// (a x) b, a = (m₀, −m₁, −m₂, m₃) and b = Q̄₊ of the pair (Q₊, Q₋), term for term.
 #[inline(always)]
-fn rotate_lanes4<const L: usize>(
-    rotors: &[Rotor4],
-    input: &[f64],
-    out: &mut [f64],
-    inverse: bool,
-) -> bool {
-    let step = usize::from(input.len() > 4);
+fn rotate_rows4(rotors: &[Rotor4], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
+    let (vectors, _) = input.as_chunks::<4>();
+    let (outs, _) = out.as_chunks_mut::<4>();
+    let one = vectors.len() == 1;
     let mut ok = true;
-    for (blk, (rb, ob)) in rotors.chunks(L).zip(out.chunks_mut(4 * L)).enumerate() {
-        let (mut a, mut b, mut x) = ([[0.0; L]; 4], [[0.0; L]; 4], [[0.0; L]; 4]);
-        for (l, r) in rb.iter().enumerate() {
-            let r = if inverse { r.inverse() } else { *r };
-            let (p, m) = r.to_quaternion_pair();
-            [a[0][l], a[1][l], a[2][l], a[3][l]] = [m[0], -m[1], -m[2], m[3]];
-            [b[0][l], b[1][l], b[2][l], b[3][l]] = [p[0], -p[1], -p[2], -p[3]];
-            let i = 4 * (blk * L + l) * step;
-            for (c, xc) in x.iter_mut().enumerate() {
-                xc[l] = input[i + c];
-            }
-        }
-        ok &= x.iter().fold(true, |ok, xc| ok & all_finite(xc));
-        let y = quat_mul_lanes(&quat_mul_lanes(&a, &x), &b);
-        for (l, o) in ob.chunks_exact_mut(4).enumerate() {
-            o.copy_from_slice(&[y[0][l], y[1][l], y[2][l], y[3][l]]);
-        }
+    for (i, (r, o)) in rotors.iter().zip(outs).enumerate() {
+        let v = &vectors[if one { 0 } else { i }];
+        ok &= v.iter().fold(true, |ok, c| ok & c.is_finite());
+        let r = if inverse { r.inverse() } else { *r };
+        let (p, m) = r.to_quaternion_pair();
+        let a = [m[0], -m[1], -m[2], m[3]];
+        let b = [p[0], -p[1], -p[2], -p[3]];
+        *o = quat_mul(quat_mul(a, *v), b);
     }
     ok
 }
