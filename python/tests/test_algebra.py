@@ -284,3 +284,31 @@ def test_batched_products_of_8_and_16_coefficients_in_every_signature():
                     np.testing.assert_allclose(batch[i], one, rtol=0, atol=1e-14, err_msg=f"{sig} {name} {i}")
                 checked += 1
     assert checked == len(sigs) * 8 * 70
+
+
+def test_batched_sandwiches_equal_the_single_sandwiches():
+    # The batched sandwich runs each chunk of 64 as two products: rotors on vectors (whose
+    # vector part and exact zeros elsewhere are those of the sandwich through the non-zero
+    # terms) and general elements, every element against V X Ṽ of that pair alone.
+    rng = np.random.default_rng(14)
+    checked = 0
+    for sig in [(3, 0, 0), (2, 1, 0), (4, 0, 0), (3, 1, 0), (3, 0, 1)]:
+        alg = rf.Algebra(*sig)
+        k, n = len(alg), alg.dim
+        even = [b for b in range(k) if bin(b).count("1") % 2 == 0]
+        vec = [1 << i for i in range(n)]
+        rot, x = np.zeros((100, k)), np.zeros((100, k))
+        rot[:, even] = rng.normal(size=(100, len(even)))
+        x[:, vec] = rng.normal(size=(100, n))
+        general = rng.normal(size=(100, k)), rng.normal(size=(100, k))
+        for a, b in [(rot, x), general]:
+            batch = alg.sandwich(a, b)
+            for i in range(100):
+                one = alg.multivector(a[i]).sandwich(alg.multivector(b[i])).coefficients
+                if a is rot:
+                    np.testing.assert_array_equal(batch[i, vec], one[vec], err_msg=f"{sig} {i}")
+                    assert not np.delete(batch[i], vec).any()
+                else:
+                    np.testing.assert_array_equal(batch[i], one, err_msg=f"{sig} {i}")
+                checked += 1
+    assert checked == 5 * 2 * 100
