@@ -134,8 +134,16 @@ def main():
     # --- batched products and sandwiches ------------------------------------------------
     # Per element over 10^5 elements, on one core (the kernels use one thread). numpy's own
     # `a + b` on the same arrays reads and writes as much memory as a product does: the floor
-    # that memory traffic alone sets.
+    # that memory traffic alone sets. Where a library reads and writes other arrays (kingdon
+    # keeps only the non-zero blades of a rotor and a vector), its floor is the bytes of those
+    # arrays at the rate of that `a + b`.
     m = 100_000
+    rate = None  # seconds per byte read or written by the last `a + b`
+
+    def floor_row(label, ours, what, doubles_in, doubles_out):
+        t = rate * 8 * (doubles_in + doubles_out)
+        row(label, ours, f"memory floor of {what} ({doubles_in} numbers in, {doubles_out} out)", t)
+
     for n in (3, 4):
         k = 1 << n
         alg = rf.Algebra(n)
@@ -160,33 +168,58 @@ def main():
 
     # 10^5 rotors applied to 10^5 vectors, 3D and 4D: R v R̃ (rotorflow runs even versors on
     # vectors through a kernel of their non-zero coefficients, as kingdon's generated code does).
+    compact = {3: rf.Rotor3, 4: rf.Rotor4}
     for n in (3, 4):
         k = 1 << n
         alg = rf.Algebra(n)
         even = [b for b in range(k) if bin(b).count("1") % 2 == 0]
         odd = blade_masks(n, 1)
-        q = rng.normal(size=(m, len(even)))
-        q /= np.linalg.norm(q, axis=1, keepdims=True)
+        # Rotors R = exp(−Θ/2) of random rotation bivectors Θ (components 12, 13, 23 in 3D;
+        # 12, 13, 14, 23, 24, 34 in 4D, the order of `Rotor{n}.from_bivector`).
+        planes = [3, 5, 6] if n == 3 else [3, 5, 9, 6, 10, 12]
+        theta = rng.normal(size=(m, len(planes)))
+        half = np.zeros((m, k))
+        half[:, planes] = -0.5 * theta
+        rot = alg.exp(half)
+        q = rot[:, even]
         vecs = rng.normal(size=(m, n))
-        rot, vec = np.zeros((m, k)), np.zeros((m, k))
-        rot[:, even], vec[:, odd] = q, vecs
+        vec = np.zeros((m, k))
+        vec[:, odd] = vecs
         label = f"10⁵ sandwiches R v R̃, {n}D (per element)"
         t_sw = best(lambda: alg.sandwich(rot, vec), repeat, 1) / m
+        # The same rotors as rotorflow's fixed-size rotors (a quaternion, a quaternion pair),
+        # applied to (M, N) arrays of vectors: the compact layout, beside kingdon's.
+        fixed = compact[n].from_bivector(theta)
+        turned = fixed.apply(vecs)
+        np.testing.assert_allclose(turned, alg.sandwich(rot, vec)[:, odd], atol=1e-12)
+        t_fixed = best(lambda: fixed.apply(vecs), repeat, 1) / m
+        compact_label = f"10⁵ rotations, {n}D, `Rotor{n}.apply` on (M, {n}) (per element)"
         if kingdon:
             ka = kingdon.Algebra(n)
             kr = ka.multivector(values=q.T.copy(), keys=tuple(even))
             kv = ka.multivector(values=vecs.T.copy(), keys=tuple(odd))
-            kr >> kv  # generate the code once
-            row(label, t_sw, "kingdon (numpy arrays)", best(lambda: kr >> kv, repeat, 1) / m)
+            kout = kr >> kv  # generate the code once
+            assert tuple(kout.keys()) == tuple(odd)
+            np.testing.assert_allclose(np.asarray(kout.values()).T, turned, atol=1e-12)
+            t_k = best(lambda: kr >> kv, repeat, 1) / m
+            row(label, t_sw, "kingdon (numpy arrays)", t_k)
+            row(compact_label, t_fixed, "kingdon (numpy arrays)", t_k)
         else:
             row(label, t_sw)
+            row(compact_label, t_fixed)
         if clifford and n == 3:
             layout, _ = clifford.Cl(3)
             order = clifford_order(layout)
             c = 10_000
             cl = [(layout.MultiVector(rot[i][order]), layout.MultiVector(vec[i][order])) for i in range(c)]
             row(label, t_sw, "clifford (loop over 10⁴)", best(lambda: [r * v * ~r for r, v in cl], repeat, 1) / c)
-        row(label, t_sw, "numpy `a + b` (memory floor)", best(lambda: rot + vec, repeat, 1) / m)
+        t_floor = best(lambda: rot + vec, repeat, 1) / m
+        rate = t_floor / (3 * k * 8)
+        row(label, t_sw, "numpy `a + b` (memory floor)", t_floor)
+        # kingdon reads the rotors' even blades and the vectors and writes vectors; a Rotor3
+        # holds 4 numbers and a Rotor4 8, as many as the even blades.
+        floor_row(label, t_sw, "kingdon's arrays", len(even) + n, n)
+        floor_row(compact_label, t_fixed, "kingdon's and `Rotor{n}.apply`'s arrays".format(n=n), len(even) + n, n)
 
     # --- batched exp of bivectors, N = 4 ... 8 --------------------------------------------
     exp_rows = []

@@ -2,7 +2,8 @@
 //! operators, and the batched products, sandwiches, exponentials and logarithms on arrays of
 //! coefficients.
 
-use crate::arrays::{Rows, broadcast, fill, output, value_error, zeros};
+use crate::arrays::{Rows, all_finite, broadcast, empty, fill, output, value_error, zeros};
+use crate::kernels::{DenseSigns, product8, product16};
 use numpy::PyArrayDyn;
 use pyo3::exceptions::{PyTypeError, PyZeroDivisionError};
 use pyo3::prelude::*;
@@ -16,10 +17,34 @@ use std::sync::{Arc, Mutex, PoisonError};
 
 /// The product tables made so far, by signature and product (`None`: the inner product).
 type TableKey = (usize, usize, usize, Option<Product>);
-static TABLES: Mutex<Option<HashMap<TableKey, Arc<ProductTable>>>> = Mutex::new(None);
+static TABLES: Mutex<Option<HashMap<TableKey, Arc<Table>>>> = Mutex::new(None);
+
+/// A product table, and its signs for the products of 8 or 16 coefficients that send each
+/// pair of blades to one blade.
+struct Table {
+    table: ProductTable,
+    signs8: Option<DenseSigns<8>>,
+    signs16: Option<DenseSigns<16>>,
+}
+
+impl Table {
+    fn new(table: ProductTable) -> Self {
+        let product = |a: &[f64], b: &[f64], out: &mut [f64]| {
+            table.apply(a, b, out).expect("blades of the table's size");
+        };
+        let size = 1usize << table.signature().dim();
+        let signs8 = (size == 8).then(|| DenseSigns::new(product)).flatten();
+        let signs16 = (size == 16).then(|| DenseSigns::new(product)).flatten();
+        Table {
+            table,
+            signs8,
+            signs16,
+        }
+    }
+}
 
 /// The table of `kind` in `sig` (made once), or `None` above [`PRODUCT_TABLE_MAX_DIM`].
-fn table(sig: Signature, kind: Option<Product>) -> Option<Arc<ProductTable>> {
+fn table(sig: Signature, kind: Option<Product>) -> Option<Arc<Table>> {
     if sig.dim() > PRODUCT_TABLE_MAX_DIM {
         return None;
     }
@@ -29,10 +54,10 @@ fn table(sig: Signature, kind: Option<Product>) -> Option<Arc<ProductTable>> {
     if let Some(t) = tables.get(&key) {
         return Some(t.clone());
     }
-    let t = Arc::new(match kind {
+    let t = Arc::new(Table::new(match kind {
         Some(kind) => ProductTable::new(sig, kind).ok()?,
         None => ProductTable::inner(sig).ok()?,
-    });
+    }));
     tables.insert(key, t.clone());
     Some(t)
 }
@@ -46,58 +71,103 @@ enum Batch {
     Sandwich,
 }
 
-/// The crate's batch kernel of `t`, compiled a second time with AVX2 enabled and used on
-/// processors that have it: the same additions and multiplications in the same order (no
-/// fused multiply-add), four lanes at a time instead of two, so the same results bit for bit.
+/// Elements per chunk of a batch: a chunk's operands, checked for finiteness, are still in the
+/// first-level cache when the kernel reads them, so that each array is read from memory once.
+const CHUNK: usize = 64;
+
+/// The batch chunk by chunk, each chunk's operands checked for finiteness first; `false` (and
+/// `out` partly written) at the first chunk with a NaN or an infinity. `a` and `b` hold M
+/// elements of 2ᴺ coefficients, or one element used with every element of the other.
+/// Products of 8 and 16 coefficients that send each pair of blades to one blade run through
+/// [`dense_product`] (and its AVX-512 form), the others and the sandwiches through the
+/// crate's kernels of `t`: the same terms in the same order as the table's list, so the same
+/// results to the last bit (up to the sign of a zero).
+///
+/// On processors with AVX-512 or AVX2 the same code runs compiled for them: the same
+/// additions and multiplications in the same order (no fused multiply-add), eight or four
+/// lanes at a time instead of two, so the same results bit for bit.
 fn batch(
-    t: &ProductTable,
+    t: &Table,
     a: &[f64],
     b: &[f64],
     out: &mut [f64],
     op: Batch,
-) -> Result<(), AlgebraError> {
+) -> Result<bool, AlgebraError> {
     #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
-        // SAFETY: the processor supports AVX2, the only requirement of `batch_avx2`.
-        return unsafe { batch_avx2(t, a, b, out, op) };
+    {
+        if std::arch::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the processor supports AVX-512F, the only requirement of `batch_avx512`.
+            return unsafe { batch_avx512(t, a, b, out, op) };
+        }
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor supports AVX2, the only requirement of `batch_avx2`.
+            return unsafe { batch_avx2(t, a, b, out, op) };
+        }
     }
     batch_portable(t, a, b, out, op)
 }
 
 #[inline(always)]
 fn batch_portable(
-    t: &ProductTable,
+    t: &Table,
     a: &[f64],
     b: &[f64],
     out: &mut [f64],
     op: Batch,
-) -> Result<(), AlgebraError> {
-    match op {
-        Batch::Product => t.apply_batch(a, b, out),
-        Batch::Sandwich => t.sandwich_batch(a, b, out),
+) -> Result<bool, AlgebraError> {
+    let k = 1usize << t.table.signature().dim();
+    let step = CHUNK * k;
+    // A single element is repeated over one chunk, and checked once.
+    let m = out.len() / k;
+    let repeat = |d: &[f64]| (d.len() == k).then(|| d.repeat(CHUNK.min(m)));
+    let (rep_a, rep_b) = (repeat(a), repeat(b));
+    if (rep_a.is_some() && !all_finite(a)) || (rep_b.is_some() && !all_finite(b)) {
+        return Ok(false);
     }
+    for (c, co) in out.chunks_mut(step).enumerate() {
+        let n = co.len();
+        let ca = rep_a
+            .as_deref()
+            .map_or_else(|| &a[c * step..c * step + n], |r| &r[..n]);
+        let cb = rep_b
+            .as_deref()
+            .map_or_else(|| &b[c * step..c * step + n], |r| &r[..n]);
+        let checked = (rep_a.is_some() || all_finite(ca)) & (rep_b.is_some() || all_finite(cb));
+        if !checked {
+            return Ok(false);
+        }
+        match (op, &t.signs8, &t.signs16) {
+            (Batch::Product, Some(d), _) => product8(d, ca, cb, co),
+            (Batch::Product, _, Some(d)) => product16(d, ca, cb, co),
+            (Batch::Product, ..) => t.table.apply_batch(ca, cb, co)?,
+            (Batch::Sandwich, ..) => t.table.sandwich_batch(ca, cb, co)?,
+        }
+    }
+    Ok(true)
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 fn batch_avx2(
-    t: &ProductTable,
+    t: &Table,
     a: &[f64],
     b: &[f64],
     out: &mut [f64],
     op: Batch,
-) -> Result<(), AlgebraError> {
+) -> Result<bool, AlgebraError> {
     batch_portable(t, a, b, out, op)
 }
 
-/// The rows of a batch of `m` elements of `k` coefficients: the data itself, or a single
-/// element repeated.
-fn expand(data: &[f64], m: usize, k: usize) -> std::borrow::Cow<'_, [f64]> {
-    if data.len() == m * k {
-        std::borrow::Cow::Borrowed(data)
-    } else {
-        std::borrow::Cow::Owned(std::iter::repeat_n(data, m).flatten().copied().collect())
-    }
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn batch_avx512(
+    t: &Table,
+    a: &[f64],
+    b: &[f64],
+    out: &mut [f64],
+    op: Batch,
+) -> Result<bool, AlgebraError> {
+    batch_portable(t, a, b, out, op)
 }
 
 /// A Clifford algebra Cl(p, q, r): p basis vectors square to +1, then q to −1, then r to 0.
@@ -182,17 +252,26 @@ impl PyAlgebra {
         each: impl Fn(&Multivector, &Multivector) -> Result<Multivector, AlgebraError> + Send + Sync,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         let k = self.size();
-        let ra = Rows::new(a, &[k], name_a)?;
-        let rb = Rows::new(b, &[k], name_b)?;
+        let ra = Rows::unchecked(a, &[k], name_a)?;
+        let rb = Rows::unchecked(b, &[k], name_b)?;
         let (m, single) = broadcast((ra.count, ra.single), (rb.count, rb.single), what)?;
         let sig = self.sig;
         let (da, db) = (ra.data(), rb.data());
-        let out = zeros(py, m, single, &[k]);
+        let out = empty(py, m, single, &[k]);
         match table(sig, table_kind) {
-            Some(t) => fill(py, &out, |dest| {
-                batch(&t, &expand(da, m, k), &expand(db, m, k), dest, op).map_err(value_error)
-            })??,
-            None => fill(py, &out, |dest| map_pairs(sig, da, db, m, dest, each))??,
+            Some(t) => {
+                let finite =
+                    fill(py, &out, |dest| batch(&t, da, db, dest, op))?.map_err(value_error)?;
+                if !finite {
+                    ra.check_finite()?;
+                    rb.check_finite()?;
+                }
+            }
+            None => {
+                ra.check_finite()?;
+                rb.check_finite()?;
+                fill(py, &out, |dest| map_pairs(sig, da, db, m, dest, each))??;
+            }
         }
         Ok(out)
     }

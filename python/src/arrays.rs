@@ -49,6 +49,8 @@ pub struct Rows<'py> {
     pub count: usize,
     /// Whether the array was a single element (shape `tail`).
     pub single: bool,
+    what: String,
+    width: usize,
 }
 
 impl<'py> Rows<'py> {
@@ -58,6 +60,18 @@ impl<'py> Rows<'py> {
     /// `ValueError` naming `what`, the expected shape and the one found, or the first
     /// element with a NaN or infinite entry.
     pub fn new(obj: &Bound<'py, PyAny>, tail: &[usize], what: &str) -> PyResult<Self> {
+        let rows = Self::unchecked(obj, tail, what)?;
+        rows.check_finite()?;
+        Ok(rows)
+    }
+
+    /// Reads `obj` as elements of shape `tail` without looking at the entries: for the
+    /// kernels that check finiteness on the way (see [`all_finite`]), so that large arrays
+    /// are read from memory once; [`Rows::check_finite`] then names the element at fault.
+    ///
+    /// # Errors
+    /// `ValueError` naming `what`, the expected shape and the one found.
+    pub fn unchecked(obj: &Bound<'py, PyAny>, tail: &[usize], what: &str) -> PyResult<Self> {
         let array = f64_array(obj, what)?;
         let shape = array.shape().to_vec();
         let single = shape == tail;
@@ -72,27 +86,32 @@ impl<'py> Rows<'py> {
             )));
         }
         let count = if single { 1 } else { shape[0] };
-        let rows = Rows {
+        Ok(Rows {
             array,
             count,
             single,
-        };
-        let width: usize = tail.iter().product();
-        // One pass that the compiler vectorises; the element is looked for only on failure.
-        let finite = rows.data().iter().fold(true, |ok, x| ok & x.is_finite());
-        if !finite && width > 0 {
-            let bad = rows
-                .data()
-                .chunks_exact(width)
-                .position(|row| row.iter().any(|x| !x.is_finite()))
-                .unwrap_or(0);
-            return Err(value_error(if single {
-                format!("{what}: NaN or infinite entry")
-            } else {
-                format!("{what}: NaN or infinite entry in element {bad}")
-            }));
+            what: what.to_owned(),
+            width: tail.iter().product(),
+        })
+    }
+
+    /// # Errors
+    /// `ValueError` naming the first element with a NaN or infinite entry.
+    pub fn check_finite(&self) -> PyResult<()> {
+        if self.width == 0 || all_finite(self.data()) {
+            return Ok(());
         }
-        Ok(rows)
+        let what = &self.what;
+        let bad = self
+            .data()
+            .chunks_exact(self.width)
+            .position(|row| row.iter().any(|x| !x.is_finite()))
+            .unwrap_or(0);
+        Err(value_error(if self.single {
+            format!("{what}: NaN or infinite entry")
+        } else {
+            format!("{what}: NaN or infinite entry in element {bad}")
+        }))
     }
 
     /// The entries, element after element.
@@ -101,6 +120,12 @@ impl<'py> Rows<'py> {
             .as_slice()
             .expect("f64_array returns C-contiguous arrays")
     }
+}
+
+/// Whether every entry is finite: one pass that the compiler vectorises.
+#[inline(always)]
+pub fn all_finite(x: &[f64]) -> bool {
+    x.iter().fold(true, |ok, x| ok & x.is_finite())
 }
 
 /// The number of elements of two batches taken together: equal counts, or one single
@@ -134,6 +159,25 @@ pub fn zeros<'py>(
     }
     shape.extend_from_slice(tail);
     PyArrayDyn::zeros(py, IxDyn(&shape), false)
+}
+
+/// A new numpy array of shape `tail` (when `single`) or `(M, *tail)` whose entries are left
+/// unset (numpy's `empty`), for kernels that write every entry: zeroing first would write the
+/// whole output once more.
+pub fn empty<'py>(
+    py: Python<'py>,
+    count: usize,
+    single: bool,
+    tail: &[usize],
+) -> Bound<'py, PyArrayDyn<f64>> {
+    let mut shape = Vec::with_capacity(tail.len() + 1);
+    if !single {
+        shape.push(count);
+    }
+    shape.extend_from_slice(tail);
+    // SAFETY: f64 has no invalid bit patterns; every caller writes every entry before the
+    // array is returned to Python, and drops it on an error.
+    unsafe { PyArrayDyn::new(py, IxDyn(&shape), false) }
 }
 
 /// Runs `f` without the GIL on the entries of `array`, a fresh C-contiguous array.

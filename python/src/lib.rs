@@ -11,6 +11,7 @@ mod algebra;
 mod arrays;
 mod bodies;
 mod geometry;
+mod kernels;
 mod rotors;
 mod scene;
 

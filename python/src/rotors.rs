@@ -3,7 +3,7 @@
 //! `inv`, `*`, `magnitude`, …) on numpy arrays.
 
 use crate::algebra::PyMultivector;
-use crate::arrays::{Rows, broadcast, fill, output, value_error, zeros};
+use crate::arrays::{Rows, all_finite, broadcast, empty, fill, output, value_error};
 use numpy::PyArrayDyn;
 use pyo3::prelude::*;
 use pyo3::types::{PySlice, PySliceMethods};
@@ -27,8 +27,24 @@ pub trait Fixed: Copy + Send + Sync + 'static {
     /// The rotation matrix, row-major.
     fn matrix(self, out: &mut [f64]);
     fn rotate(self, v: &[f64], out: &mut [f64]);
-    /// Turns every vector of `vectors` (N entries each) in place.
-    fn rotate_all(self, vectors: &mut [f64]);
+    /// `out` = Q v for every vector v of `input` (N entries each), Q the row-major N × N
+    /// `matrix`; `false` if an entry of `input` is NaN or infinite.
+    fn turn_all(matrix: &[f64], input: &[f64], out: &mut [f64]) -> bool;
+    /// `out[i]` = Rᵢ vᵢ R̃ᵢ (or R̃ᵢ vᵢ Rᵢ with `inverse`) for `rotors` and `input` of the same
+    /// count, or one vector in `input` for every rotor; `false` if an entry of `input` is NaN
+    /// or infinite.
+    fn rotate_each(rotors: &[Self], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
+        let n = Self::N;
+        let step = usize::from(input.len() > n);
+        let mut ok = true;
+        for (i, (r, o)) in rotors.iter().zip(out.chunks_exact_mut(n)).enumerate() {
+            let v = &input[i * step * n..(i * step + 1) * n];
+            ok &= all_finite(v);
+            let r = if inverse { r.inverse() } else { *r };
+            r.rotate(v, o);
+        }
+        ok
+    }
     fn compose(self, other: Self) -> Self;
     fn inverse(self) -> Self;
     fn slerp(self, other: Self, t: f64) -> Self;
@@ -42,8 +58,9 @@ pub trait Fixed: Copy + Send + Sync + 'static {
 /// `Fixed` for one of the crate's fixed-size rotors: the crate's own methods under the
 /// trait's names; `$magnitude` is |Θ| of a rotor.
 macro_rules! impl_fixed {
-    ($rotor:ident, $vector:ident, $matrix:ident, $bivector:ident, $n:literal, $b:literal, $magnitude:expr) => {
+    ($rotor:ident, $vector:ident, $matrix:ident, $bivector:ident, $n:literal, $b:literal, $magnitude:expr $(, $own:item)*) => {
         impl Fixed for $rotor {
+            $($own)*
             const N: usize = $n;
             const B: usize = $b;
             fn identity() -> Self {
@@ -66,8 +83,11 @@ macro_rules! impl_fixed {
                 let x = self.rotate_vector($vector::from_column_slice(v));
                 out.copy_from_slice(x.as_slice());
             }
-            fn rotate_all(self, vectors: &mut [f64]) {
-                self.rotate_vectors(bytemuck::cast_slice_mut::<f64, $vector<f64>>(vectors));
+            fn turn_all(matrix: &[f64], input: &[f64], out: &mut [f64]) -> bool {
+                let q: [[f64; $n]; $n] = std::array::from_fn(|i| {
+                    std::array::from_fn(|j| matrix[i * $n + j])
+                });
+                crate::kernels::turn_all::<$n>(&q, input, out)
             }
             fn compose(self, other: Self) -> Self {
                 $rotor::compose(self, other)
@@ -97,12 +117,30 @@ macro_rules! impl_fixed {
 
 // In 3D the magnitude is the rotation's angle in [0, π], as scipy's (R and −R alike); in
 // 4D the norm of the rotor's own rotation bivector.
-impl_fixed!(Rotor3, Vector3, Matrix3, Bivector3, 3, 3, |r| canonical(r)
-    .rotation_bivector()
-    .norm());
-impl_fixed!(Rotor4, Vector4, Matrix4, Bivector4, 4, 6, |r| r
-    .rotation_bivector()
-    .norm());
+impl_fixed!(
+    Rotor3,
+    Vector3,
+    Matrix3,
+    Bivector3,
+    3,
+    3,
+    |r| canonical(r).rotation_bivector().norm(),
+    fn rotate_each(rotors: &[Self], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
+        crate::kernels::rotate_each3(rotors, input, out, inverse)
+    }
+);
+impl_fixed!(
+    Rotor4,
+    Vector4,
+    Matrix4,
+    Bivector4,
+    4,
+    6,
+    |r| r.rotation_bivector().norm(),
+    fn rotate_each(rotors: &[Self], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
+        crate::kernels::rotate_each4(rotors, input, out, inverse)
+    }
+);
 
 /// One rotor (`single`) or a batch of them.
 #[derive(Clone)]
@@ -211,29 +249,25 @@ impl<R: Fixed> Batch<R> {
         inverse: bool,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         let n = R::N;
-        let rows = Rows::new(vectors, &[n], "vectors")?;
+        let rows = Rows::unchecked(vectors, &[n], "vectors")?;
         let (m, single) = broadcast(self.shape(), (rows.count, rows.single), "apply")?;
         let input = rows.data();
         let rotors = &self.rotors;
-        let out = zeros(py, m, single, &[n]);
-        fill(py, &out, |data| {
+        let out = empty(py, m, single, &[n]);
+        let finite = fill(py, &out, |data| {
             let turn = |r: R| if inverse { r.inverse() } else { r };
             if rotors.len() == 1 {
-                // One rotor for every vector: the crate's batch kernel (through the matrix).
-                if input.len() == n {
-                    data.chunks_exact_mut(n)
-                        .for_each(|v| v.copy_from_slice(input));
-                } else {
-                    data.copy_from_slice(input);
-                }
-                turn(rotors[0]).rotate_all(data);
+                // One rotor for every vector: through its matrix.
+                let mut q = [0.0; 16];
+                turn(rotors[0]).matrix(&mut q[..n * n]);
+                R::turn_all(&q[..n * n], input, data)
             } else {
-                let step = usize::from(input.len() > n);
-                for (i, (r, out)) in rotors.iter().zip(data.chunks_exact_mut(n)).enumerate() {
-                    turn(*r).rotate(&input[i * step * n..(i * step + 1) * n], out);
-                }
+                R::rotate_each(rotors, input, data, inverse)
             }
         })?;
+        if !finite {
+            rows.check_finite()?;
+        }
         Ok(out)
     }
 

@@ -226,3 +226,89 @@ def test_pickle_and_equality():
     assert pickle.loads(pickle.dumps(alg)) == alg
     assert m != rf.Algebra(3).multivector(np.arange(8.0))
     assert m != 3
+
+
+def test_batched_products_by_chunks_equal_the_single_products():
+    # The batch runs in chunks of 64 elements, checked for finiteness on the way: lengths
+    # around a chunk, a single element broadcast on either side, every element against the
+    # product of that pair alone, and a NaN past the first chunk named by its element.
+    rng = np.random.default_rng(12)
+    checked = 0
+    for n in (2, 3, 4, 5):
+        alg = rf.Algebra(n)
+        k = len(alg)
+        for m in (1, 63, 64, 65, 130):
+            a, b = rng.normal(size=(m, k)), rng.normal(size=(m, k))
+            cases = [(a, b, alg.product(a, b)), (a[0], b, alg.product(a[0], b)), (a, b[0], alg.product(a, b[0]))]
+            for x, y, batch in cases:
+                for i in range(m):
+                    xi, yi = (x if x.ndim == 1 else x[i]), (y if y.ndim == 1 else y[i])
+                    np.testing.assert_array_equal(batch[i], (alg.multivector(xi) * alg.multivector(yi)).coefficients)
+                    checked += 1
+        bad = rng.normal(size=(200, k))
+        bad[150, k - 1] = np.inf
+        with pytest.raises(ValueError, match="b: NaN or infinite entry in element 150"):
+            alg.product(rng.normal(size=(200, k)), bad)
+        with pytest.raises(ValueError, match="versors: NaN or infinite entry"):
+            alg.sandwich(bad[150], bad[:10])
+    assert checked == 4 * 3 * (1 + 63 + 64 + 65 + 130)
+
+
+def test_batched_products_of_8_and_16_coefficients_in_every_signature():
+    # Products of 8 and 16 coefficients run through a kernel of their own signs (read off the
+    # table's basis products, with the blade offset of the regressive product): every product
+    # in every signature of that size, against one element at a time through the multivector.
+    rng = np.random.default_rng(13)
+    exact = {
+        "geometric": lambda x, y: x * y,
+        "outer": lambda x, y: x ^ y,
+        "left_contraction": lambda x, y: x.left_contract(y),
+        "right_contraction": lambda x, y: x.right_contract(y),
+        "commutator": lambda x, y: x.commutator(y),
+        "anticommutator": lambda x, y: x.anticommutator(y),
+    }
+    # Summed by the multivector in another order: to round-off.
+    close = {"inner": lambda x, y: x | y, "regressive": lambda x, y: x.regressive(y)}
+    sigs = [(3, 0, 0), (2, 1, 0), (1, 2, 0), (2, 0, 1), (4, 0, 0), (3, 1, 0), (1, 3, 0), (3, 0, 1), (2, 1, 1)]
+    checked = 0
+    for sig in sigs:
+        alg = rf.Algebra(*sig)
+        a, b = rng.normal(size=(70, len(alg))), rng.normal(size=(70, len(alg)))
+        for name, f in {**exact, **close}.items():
+            batch = alg.product(a, b, kind=name)
+            for i in range(len(a)):
+                one = f(alg.multivector(a[i]), alg.multivector(b[i])).coefficients
+                if name in exact:
+                    np.testing.assert_array_equal(batch[i], one, err_msg=f"{sig} {name} {i}")
+                else:
+                    np.testing.assert_allclose(batch[i], one, rtol=0, atol=1e-14, err_msg=f"{sig} {name} {i}")
+                checked += 1
+    assert checked == len(sigs) * 8 * 70
+
+
+def test_batched_sandwiches_equal_the_single_sandwiches():
+    # The batched sandwich runs each chunk of 64 as two products: rotors on vectors (whose
+    # vector part and exact zeros elsewhere are those of the sandwich through the non-zero
+    # terms) and general elements, every element against V X Ṽ of that pair alone.
+    rng = np.random.default_rng(14)
+    checked = 0
+    for sig in [(3, 0, 0), (2, 1, 0), (4, 0, 0), (3, 1, 0), (3, 0, 1)]:
+        alg = rf.Algebra(*sig)
+        k, n = len(alg), alg.dim
+        even = [b for b in range(k) if bin(b).count("1") % 2 == 0]
+        vec = [1 << i for i in range(n)]
+        rot, x = np.zeros((100, k)), np.zeros((100, k))
+        rot[:, even] = rng.normal(size=(100, len(even)))
+        x[:, vec] = rng.normal(size=(100, n))
+        general = rng.normal(size=(100, k)), rng.normal(size=(100, k))
+        for a, b in [(rot, x), general]:
+            batch = alg.sandwich(a, b)
+            for i in range(100):
+                one = alg.multivector(a[i]).sandwich(alg.multivector(b[i])).coefficients
+                if a is rot:
+                    np.testing.assert_array_equal(batch[i, vec], one[vec], err_msg=f"{sig} {i}")
+                    assert not np.delete(batch[i], vec).any()
+                else:
+                    np.testing.assert_array_equal(batch[i], one, err_msg=f"{sig} {i}")
+                checked += 1
+    assert checked == 5 * 2 * 100

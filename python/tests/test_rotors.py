@@ -124,3 +124,47 @@ def test_rotor3_agrees_with_scipy_for_any_rotation_vector(rotvec, x):
     theirs = Rotation.from_rotvec(rotvec)
     np.testing.assert_allclose(ours.apply(x), theirs.apply(x), atol=1e-13)
     assert ours.unit_error() < 1e-15
+
+
+def test_batched_apply_equals_the_single_applies_at_every_length():
+    # The batched loops run 2, 4 or 8 rows at a time: lengths around those widths, every row
+    # against the rotation of that row alone: through the same matrix to the last bit (one
+    # rotor for all), to round-off (a rotor per row, whose loop turns by the quaternion
+    # formula instead), and all of them against scipy.
+    rng = np.random.default_rng(11)
+    checked = 0
+    for m in (1, 2, 3, 7, 8, 9, 15, 16, 17, 1003):
+        x = rng.normal(size=(m, 3))
+        rv = rng.normal(size=(m, 3))
+        one = rf.Rotor3.from_rotvec(rv[0])
+        many = rf.Rotor3.from_rotvec(rv)
+        for inverse in (False, True):
+            by_one = one.apply(x, inverse=inverse)
+            by_many = many.apply(x, inverse=inverse)
+            for i in range(m):
+                np.testing.assert_array_equal(by_one[i], one.apply(x[i], inverse=inverse))
+                alone = many[i].apply(x[i], inverse=inverse)
+                np.testing.assert_allclose(by_many[i], alone, rtol=0, atol=4e-15 * np.abs(x[i]).max())
+                checked += 1
+            np.testing.assert_allclose(by_one, Rotation.from_rotvec(rv[0]).apply(x, inverse=inverse), atol=1e-14)
+            np.testing.assert_allclose(by_many, Rotation.from_rotvec(rv).apply(x, inverse=inverse), atol=1e-14)
+        four = rf.Rotor4.from_bivector(rng.normal(size=6))
+        fours = rf.Rotor4.from_bivector(rng.normal(size=(m, 6)))
+        y = rng.normal(size=(m, 4))
+        np.testing.assert_allclose(four.apply(y), y @ four.as_matrix().T, atol=1e-14)
+        mats = fours.as_matrix()
+        np.testing.assert_allclose(fours.apply(y), np.einsum("mij,mj->mi", mats, y), atol=1e-14)
+        np.testing.assert_allclose(fours.apply(y, inverse=True), np.einsum("mji,mj->mi", mats, y), atol=1e-14)
+    assert checked == 2 * (1 + 2 + 3 + 7 + 8 + 9 + 15 + 16 + 17 + 1003)
+
+
+def test_batched_apply_names_the_first_bad_vector():
+    x = np.ones((1000, 3))
+    x[637, 1] = np.nan
+    x[900, 0] = np.inf
+    for rotors in (rf.Rotor3.identity(), rf.Rotor3.identity(1000)):
+        for inverse in (False, True):
+            with pytest.raises(ValueError, match="vectors: NaN or infinite entry in element 637"):
+                rotors.apply(x, inverse=inverse)
+    with pytest.raises(ValueError, match="element 637"):
+        rf.Rotor4.identity(1000).apply(np.concatenate([x, np.ones((1000, 1))], axis=1))

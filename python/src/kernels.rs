@@ -1,0 +1,401 @@
+//! The loops of the batched rotations on numpy arrays of vectors (M rows of N entries),
+//! written so that the compiler vectorises them across rows, and compiled a second and third
+//! time for AVX2 and AVX-512, used where the processor has them. No fused multiply-add: each
+//! entry is the sum of the same products in the same order on every processor.
+
+use rotorflow::algebra::{Rotor3, Rotor4};
+
+/// `out` = Q v for every vector v of `input` (N entries each, as many in `out`); `false` if an
+/// entry of `input` is NaN or infinite.
+pub fn turn_all<const N: usize>(q: &[[f64; N]; N], input: &[f64], out: &mut [f64]) -> bool {
+    assert_eq!(input.len(), out.len(), "one output per vector");
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the processor supports AVX-512F, the only requirement.
+            return unsafe { turn_all_avx512::<N>(q, input, out) };
+        }
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor supports AVX2, the only requirement.
+            return unsafe { turn_all_avx2::<N>(q, input, out) };
+        }
+    }
+    turn_rows::<N>(q, input, out)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn turn_all_avx2<const N: usize>(q: &[[f64; N]; N], input: &[f64], out: &mut [f64]) -> bool {
+    turn_rows::<N>(q, input, out)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn turn_all_avx512<const N: usize>(q: &[[f64; N]; N], input: &[f64], out: &mut [f64]) -> bool {
+    turn_rows::<N>(q, input, out)
+}
+
+/// [`turn_all`] row by row: each entry the sum of Q[i][j] · x[j] in the order j = 0, 1, …,
+/// N − 1; the compiler vectorises the loop across rows, with the finiteness check in the same
+/// pass, so that the vectors are read from memory once.
+#[inline(always)]
+fn turn_rows<const N: usize>(q: &[[f64; N]; N], input: &[f64], out: &mut [f64]) -> bool {
+    let (rows, _) = input.as_chunks::<N>();
+    let (outs, _) = out.as_chunks_mut::<N>();
+    let mut ok = true;
+    for (o, x) in outs.iter_mut().zip(rows) {
+        for c in x {
+            ok &= c.is_finite();
+        }
+        for i in 0..N {
+            let mut acc = 0.0;
+            for j in 0..N {
+                acc += q[i][j] * x[j];
+            }
+            o[i] = acc;
+        }
+    }
+    ok
+}
+
+/// `out[i]` = Rᵢ vᵢ R̃ᵢ (R̃ᵢ vᵢ Rᵢ with `inverse`) for 3D rotors, `input` holding as many
+/// vectors or one for all; `false` if an entry of `input` is NaN or infinite.
+pub fn rotate_each3(rotors: &[Rotor3], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the processor supports AVX-512F, the only requirement.
+            return unsafe { rotate_each3_avx512(rotors, input, out, inverse) };
+        }
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor supports AVX2, the only requirement.
+            return unsafe { rotate_each3_avx2(rotors, input, out, inverse) };
+        }
+    }
+    rotate_rows(rotors, input, out, inverse)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn rotate_each3_avx2(rotors: &[Rotor3], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
+    rotate_rows(rotors, input, out, inverse)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn rotate_each3_avx512(rotors: &[Rotor3], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
+    rotate_rows(rotors, input, out, inverse)
+}
+
+/// [`rotate_each3`] rotor by rotor, in a loop that the compiler vectorises across rotors:
+/// the formula of `Rotor3::rotate_vector`, v + 2w (u × v) + 2 u × (u × v), term for term.
+#[inline(always)]
+fn rotate_rows(rotors: &[Rotor3], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
+    let (vectors, _) = input.as_chunks::<3>();
+    let (outs, _) = out.as_chunks_mut::<3>();
+    let one = vectors.len() == 1;
+    let mut ok = true;
+    for (i, (r, o)) in rotors.iter().zip(outs).enumerate() {
+        let v = &vectors[if one { 0 } else { i }];
+        ok &= v[0].is_finite() & v[1].is_finite() & v[2].is_finite();
+        let r = if inverse { r.inverse() } else { *r };
+        let [w, ux, uy, uz] = r.to_quaternion();
+        let [x, y, z] = *v;
+        let tx = 2.0 * (uy * z - uz * y);
+        let ty = 2.0 * (uz * x - ux * z);
+        let tz = 2.0 * (ux * y - uy * x);
+        *o = [
+            x + w * tx + (uy * tz - uz * ty),
+            y + w * ty + (uz * tx - ux * tz),
+            z + w * tz + (ux * ty - uy * tx),
+        ];
+    }
+    ok
+}
+
+/// The basis products of a product of 2ᴺ = K coefficients that sends every (e_i, e_j) to
+/// e_(i ⊕ j ⊕ `offset`): e_i ∘ e_(i ⊕ k ⊕ offset) = `signs[i][k]` e_k (0 where it vanishes).
+pub struct DenseSigns<const K: usize> {
+    signs: [[f64; K]; K],
+    offset: usize,
+}
+
+impl<const K: usize> DenseSigns<K> {
+    /// The signs of `product` (a ∘ b into `out` for K coefficients each), read off its basis
+    /// products; `None` unless each lands on one blade with sign ±1 and one offset serves all.
+    pub fn new(product: impl Fn(&[f64], &[f64], &mut [f64])) -> Option<Self> {
+        let mut signs = [[0.0; K]; K];
+        let mut offset = None;
+        let (mut ea, mut eb, mut out) = ([0.0; K], [0.0; K], [0.0; K]);
+        for i in 0..K {
+            for j in 0..K {
+                ea[i] = 1.0;
+                eb[j] = 1.0;
+                product(&ea, &eb, &mut out);
+                ea[i] = 0.0;
+                eb[j] = 0.0;
+                let terms: Vec<usize> = (0..K).filter(|&k| out[k] != 0.0).collect();
+                let k = match terms[..] {
+                    [] => continue,
+                    [k] if out[k].abs() == 1.0 => k,
+                    _ => return None,
+                };
+                if *offset.get_or_insert(i ^ j ^ k) != i ^ j ^ k {
+                    return None;
+                }
+                signs[i][k] = out[k];
+            }
+        }
+        Some(DenseSigns {
+            signs,
+            offset: offset.unwrap_or(0),
+        })
+    }
+}
+
+/// [`dense_product`] of 8 coefficients, through [`dense_product8_avx512`] where the processor
+/// has AVX-512: the same results to the last bit.
+#[inline(always)]
+pub fn product8(d: &DenseSigns<8>, a: &[f64], b: &[f64], out: &mut [f64]) {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx512f") {
+        // SAFETY: the processor supports AVX-512F, the only requirement.
+        return unsafe { dense_product8_avx512(d, a, b, out) };
+    }
+    dense_product(d, a, b, out);
+}
+
+/// [`dense_product`] of 16 coefficients, through [`dense_product16_avx512`] where the
+/// processor has AVX-512: the same results to the last bit.
+#[inline(always)]
+pub fn product16(d: &DenseSigns<16>, a: &[f64], b: &[f64], out: &mut [f64]) {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx512f") {
+        // SAFETY: the processor supports AVX-512F, the only requirement.
+        return unsafe { dense_product16_avx512(d, a, b, out) };
+    }
+    dense_product(d, a, b, out);
+}
+
+/// Elements per block of [`dense_product`]: two AVX-512 registers per coefficient.
+const LANES: usize = 16;
+
+/// `out[m]` = `a[m]` ∘ `b[m]` for M pairs of K coefficients, the product of `d`: each block
+/// of [`LANES`] elements turned into one array of lanes per coefficient, so that every basis
+/// product is a multiplication and an addition of whole registers. Each `out[k]` is the sum
+/// over i = 0, 1, …, K − 1 of (signs[i][k] · a_i) · b_(i ⊕ k ⊕ offset), the order and the
+/// operations of the crate's product table, so its result to the last bit (up to the sign of
+/// a zero).
+#[inline(always)]
+fn dense_product<const K: usize>(d: &DenseSigns<K>, a: &[f64], b: &[f64], out: &mut [f64]) {
+    const { assert!(K <= 16, "blocks of at most 16 coefficients") };
+    let step = LANES * K;
+    let mut pad = [[0.0; LANES * 16]; 3];
+    for ((ca, cb), co) in a.chunks(step).zip(b.chunks(step)).zip(out.chunks_mut(step)) {
+        if co.len() == step {
+            dense_block(d, ca, cb, co);
+        } else {
+            let n = co.len();
+            let [pa, pb, po] = &mut pad;
+            pa[..n].copy_from_slice(ca);
+            pb[..n].copy_from_slice(cb);
+            dense_block(d, &pa[..step], &pb[..step], &mut po[..step]);
+            co.copy_from_slice(&po[..n]);
+        }
+    }
+}
+
+#[inline(always)]
+fn dense_block<const K: usize>(d: &DenseSigns<K>, a: &[f64], b: &[f64], out: &mut [f64]) {
+    let (a, b) = (&a[..LANES * K], &b[..LANES * K]);
+    let out = &mut out[..LANES * K];
+    let mut x = [[0.0; LANES]; K];
+    let mut y = [[0.0; LANES]; K];
+    for l in 0..LANES {
+        for c in 0..K {
+            x[c][l] = a[l * K + c];
+            // b read with the offset: the operand of e_i for e_k is y[i ⊕ k].
+            y[c][l] = b[l * K + (c ^ d.offset)];
+        }
+    }
+    for k in 0..K {
+        let mut acc = [0.0; LANES];
+        for (i, xi) in x.iter().enumerate() {
+            let s = d.signs[i][k];
+            let yi = &y[i ^ k];
+            for l in 0..LANES {
+                acc[l] += s * xi[l] * yi[l];
+            }
+        }
+        for l in 0..LANES {
+            out[l * K + k] = acc[l];
+        }
+    }
+}
+
+/// [`dense_product`] for 16 coefficients with AVX-512: each element in two registers (blades
+/// 0–7 and 8–15), no change of layout. The operand of e_i for the blades k of a half,
+/// b_(i ⊕ k ⊕ offset), is a permutation of one half of b (i ⊕ k keeps the high bit of i
+/// ⊕ k's half), and the same eight permutations of each half serve all sixteen i. Each
+/// `out[k]` adds (signs[i][k] · a_i) · b_(i ⊕ k ⊕ offset) for i = 0, 1, …, 15 in turn, the
+/// terms of [`dense_product`] in its order, so the same result to the last bit.
+///
+/// # Safety
+/// The processor must support AVX-512F.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn dense_product16_avx512(d: &DenseSigns<16>, a: &[f64], b: &[f64], out: &mut [f64]) {
+    use std::arch::x86_64::*;
+    let idx = xor_permutations();
+    let signs: [[__m512d; 2]; 16] = std::array::from_fn(|i| {
+        let row = &d.signs[i];
+        // SAFETY: each half of a row holds eight f64.
+        unsafe {
+            [
+                _mm512_loadu_pd(row.as_ptr()),
+                _mm512_loadu_pd(row.as_ptr().add(8)),
+            ]
+        }
+    });
+    let off = d.offset;
+    let (a, _) = a.as_chunks::<16>();
+    let (b, _) = b.as_chunks::<16>();
+    let (out, _) = out.as_chunks_mut::<16>();
+    for ((ra, rb), ro) in a.iter().zip(b).zip(out) {
+        // SAFETY: every row holds sixteen f64.
+        let (blo, bhi) = unsafe {
+            (
+                _mm512_loadu_pd(rb.as_ptr()),
+                _mm512_loadu_pd(rb.as_ptr().add(8)),
+            )
+        };
+        // y[c] = b[c ⊕ offset]: the halves swapped by the offset's high bit, permuted by the rest.
+        let (ylo, yhi) = if off & 8 == 0 { (blo, bhi) } else { (bhi, blo) };
+        let (ylo, yhi) = (
+            _mm512_permutexvar_pd(idx[off & 7], ylo),
+            _mm512_permutexvar_pd(idx[off & 7], yhi),
+        );
+        let mut lo = _mm512_setzero_pd();
+        let mut hi = _mm512_setzero_pd();
+        for i in 0..16 {
+            let c = i & 7;
+            let (from_lo, from_hi) = if i < 8 { (ylo, yhi) } else { (yhi, ylo) };
+            let w_lo = _mm512_permutexvar_pd(idx[c], from_lo);
+            let w_hi = _mm512_permutexvar_pd(idx[c], from_hi);
+            let x = _mm512_set1_pd(ra[i]);
+            lo = _mm512_add_pd(lo, _mm512_mul_pd(_mm512_mul_pd(signs[i][0], x), w_lo));
+            hi = _mm512_add_pd(hi, _mm512_mul_pd(_mm512_mul_pd(signs[i][1], x), w_hi));
+        }
+        // SAFETY: every row holds sixteen f64.
+        unsafe {
+            _mm512_storeu_pd(ro.as_mut_ptr(), lo);
+            _mm512_storeu_pd(ro.as_mut_ptr().add(8), hi);
+        }
+    }
+}
+
+/// [`dense_product`] for 8 coefficients with AVX-512: each element in one register, the
+/// operand of e_i for every blade k, b_(i ⊕ k ⊕ offset), one permutation of it; the terms of
+/// [`dense_product`] in its order, so the same result to the last bit.
+///
+/// # Safety
+/// The processor must support AVX-512F.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn dense_product8_avx512(d: &DenseSigns<8>, a: &[f64], b: &[f64], out: &mut [f64]) {
+    use std::arch::x86_64::*;
+    let idx = xor_permutations();
+    // SAFETY: each row of signs holds eight f64.
+    let signs: [__m512d; 8] =
+        std::array::from_fn(|i| unsafe { _mm512_loadu_pd(d.signs[i].as_ptr()) });
+    let (a, _) = a.as_chunks::<8>();
+    let (b, _) = b.as_chunks::<8>();
+    let (out, _) = out.as_chunks_mut::<8>();
+    for ((ra, rb), ro) in a.iter().zip(b).zip(out) {
+        // SAFETY: every row holds eight f64.
+        let y = _mm512_permutexvar_pd(idx[d.offset], unsafe { _mm512_loadu_pd(rb.as_ptr()) });
+        let mut acc = _mm512_setzero_pd();
+        for (i, s) in signs.iter().enumerate() {
+            let w = _mm512_permutexvar_pd(idx[i], y);
+            acc = _mm512_add_pd(
+                acc,
+                _mm512_mul_pd(_mm512_mul_pd(*s, _mm512_set1_pd(ra[i])), w),
+            );
+        }
+        // SAFETY: every row holds eight f64.
+        unsafe { _mm512_storeu_pd(ro.as_mut_ptr(), acc) };
+    }
+}
+
+/// The permutations of eight lanes whose lane k reads lane k ⊕ c, c = 0, 1, …, 7.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn xor_permutations() -> [std::arch::x86_64::__m512i; 8] {
+    std::array::from_fn(|c| {
+        let c = c as i64;
+        std::arch::x86_64::_mm512_set_epi64(7 ^ c, 6 ^ c, 5 ^ c, 4 ^ c, 3 ^ c, 2 ^ c, 1 ^ c, c)
+    })
+}
+
+/// `out[i]` = Rᵢ vᵢ R̃ᵢ (R̃ᵢ vᵢ Rᵢ with `inverse`) for 4D rotors, `input` holding as many
+/// vectors or one for all; `false` if an entry of `input` is NaN or infinite.
+pub fn rotate_each4(rotors: &[Rotor4], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the processor supports AVX-512F, the only requirement.
+            return unsafe { rotate_each4_avx512(rotors, input, out, inverse) };
+        }
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor supports AVX2, the only requirement.
+            return unsafe { rotate_each4_avx2(rotors, input, out, inverse) };
+        }
+    }
+    rotate_rows4(rotors, input, out, inverse)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn rotate_each4_avx2(rotors: &[Rotor4], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
+    rotate_rows4(rotors, input, out, inverse)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn rotate_each4_avx512(rotors: &[Rotor4], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
+    rotate_rows4(rotors, input, out, inverse)
+}
+
+/// Hamilton's product of two quaternions, the formula of the crate's scalar quaternion
+/// product term for term.
+#[inline(always)]
+fn quat_mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
+    let [w1, x1, y1, z1] = a;
+    let [w2, x2, y2, z2] = b;
+    [
+        w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
+        w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+        w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
+        w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
+    ]
+}
+
+/// [`rotate_each4`] rotor by rotor: `Rotor4::rotate_vector`'s two quaternion products
+/// (a x) b, a = (m₀, −m₁, −m₂, m₃) and b = Q̄₊ of the pair (Q₊, Q₋), term for term.
+#[inline(always)]
+fn rotate_rows4(rotors: &[Rotor4], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
+    let (vectors, _) = input.as_chunks::<4>();
+    let (outs, _) = out.as_chunks_mut::<4>();
+    let one = vectors.len() == 1;
+    let mut ok = true;
+    for (i, (r, o)) in rotors.iter().zip(outs).enumerate() {
+        let v = &vectors[if one { 0 } else { i }];
+        ok &= v.iter().fold(true, |ok, c| ok & c.is_finite());
+        let r = if inverse { r.inverse() } else { *r };
+        let (p, m) = r.to_quaternion_pair();
+        let a = [m[0], -m[1], -m[2], m[3]];
+        let b = [p[0], -p[1], -p[2], -p[3]];
+        *o = quat_mul(quat_mul(a, *v), b);
+    }
+    ok
+}
