@@ -131,7 +131,8 @@ pub struct Separation {
     pub witness_b: Vector,
     /// True if the shapes touch or overlap (distance 0).
     pub intersecting: bool,
-    /// The GJK iterations taken (0 for the closed forms).
+    /// The GJK iterations taken (0 for the closed forms; for two boxes in 3 or 4
+    /// dimensions, the steps of the bounded least-squares solve that replaces GJK).
     pub iterations: usize,
 }
 
@@ -497,7 +498,9 @@ pub(crate) fn centre_direction(a: &PlacedShape, b: &PlacedShape) -> Vector {
 }
 
 /// Returns the distance between two placed shapes, the nearest points and the direction
-/// from A to B, by GJK on the cores (the margins subtracted).
+/// from A to B, by GJK on the cores (the margins subtracted). Two boxes in 3 or 4
+/// dimensions are solved as a bounded least-squares problem instead (`boxes.rs`), its
+/// answer certified by GJK's own stopping rule, GJK taking over if it cannot be.
 ///
 /// Touching and overlapping shapes have distance 0 and `intersecting` set; the answer is
 /// defined for every input (coincident, nested, flat), never NaN, and GJK stops after at
@@ -521,7 +524,12 @@ pub(crate) fn centre_direction(a: &PlacedShape, b: &PlacedShape) -> Vector {
 /// [`ShapeError::DimensionMismatch`] if the shapes differ in dimension.
 pub fn distance(a: &PlacedShape, b: &PlacedShape) -> Result<Separation, ShapeError> {
     check_pair(a, b)?;
-    Ok(separation(a, b, gjk(a, b)))
+    let boxes = match a.shape.dim() {
+        3 => super::boxes::box_distance::<3>(a, b),
+        4 => super::boxes::box_distance::<4>(a, b),
+        _ => None,
+    };
+    Ok(separation(a, b, boxes.unwrap_or_else(|| gjk(a, b))))
 }
 
 /// [`distance`] by the dimension-generic GJK alone. For N = 3 and 4, [`distance`] runs

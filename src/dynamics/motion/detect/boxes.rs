@@ -1,0 +1,428 @@
+//! The distance between two boxes in 3 and 4 dimensions, solved as the bounded
+//! least-squares problem it is rather than by GJK.
+//!
+//! In the frame of box A (half-lengths a, centred at the origin), box B (half-lengths b)
+//! has centre c = Q_Aᵀ(p_B − p_A) and axes R = Q_Aᵀ Q_B. A point of A is x with |xᵢ| ≤ aᵢ,
+//! a point of B is c + R u with |uⱼ| ≤ bⱼ, and the distance is the least |e| over both,
+//! e = c + R u − x: a least-squares problem in 2N variables, each between two bounds. It is
+//! solved by the active-set method of Lawson and Hanson ("Solving Least Squares Problems",
+//! 1974, ch. 23) with bounds on both sides (Stark and Parker, "Bounded-variable least
+//! squares", Comput. Stat. 10, 1995): start at the two corners facing each other, free the
+//! variable whose gradient most wants it off its bound, solve the least-squares problem in
+//! the free variables, and step back to the first bound met if the solution leaves the
+//! box. A free xᵢ zeroes eᵢ, so only the free u need a solve: a Cholesky factorisation of
+//! at most N × N.
+//!
+//! The answer is then certified the way GJK stops: along v = e (from A to B), the support
+//! points give the lower bound v·w / |v| of the distance, and the answer stands only if it
+//! is within GJK's relative gap of |v|, or if |v| is at GJK's contact tolerance (e joins a
+//! point of A to a point of B). Anything else (a near-singular solve on nearly parallel
+//! features, an active set that cycles in round-off) returns None, and the caller runs GJK:
+//! the fast path never answers less exactly than GJK would.
+
+use super::gjk::{GjkResult, PlacedShape, RELATIVE_GAP, Simplex, TOUCHING};
+use crate::dynamics::motion::shape::{ConvexCore, Coords};
+
+/// A free variable's least-squares pivot below this (the squared sine of the angle between
+/// its column and the others') makes the solve singular: the caller runs GJK instead.
+const PIVOT: f64 = 1e-20;
+
+#[inline(always)]
+fn dot<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
+    let mut s = 0.0;
+    for i in 0..N {
+        s += a[i] * b[i];
+    }
+    s
+}
+
+/// The bounded least-squares problem in A's frame.
+struct Problem<const N: usize> {
+    /// A's half-lengths.
+    a: [f64; N],
+    /// B's half-lengths.
+    b: [f64; N],
+    /// B's centre.
+    c: [f64; N],
+    /// B's axes, `r[i][j]` = (Q_Aᵀ Q_B)ᵢⱼ.
+    r: [[f64; N]; N],
+}
+
+impl<const N: usize> Problem<N> {
+    /// e = c + R u − x: from the point x of A to the point c + R u of B.
+    #[inline(always)]
+    fn gap(&self, x: &[f64; N], u: &[f64; N]) -> [f64; N] {
+        let mut e = [0.0; N];
+        for i in 0..N {
+            let mut s = self.c[i] - x[i];
+            for j in 0..N {
+                s += self.r[i][j] * u[j];
+            }
+            e[i] = s;
+        }
+        e
+    }
+
+    /// Rᵀ e.
+    #[inline(always)]
+    fn turned_back(&self, e: &[f64; N]) -> [f64; N] {
+        let mut g = [0.0; N];
+        for i in 0..N {
+            for j in 0..N {
+                g[j] += self.r[i][j] * e[i];
+            }
+        }
+        g
+    }
+
+    /// The least-squares point with the variables outside `free_x` and `free_u` held at
+    /// their values: the free u by the normal equations over the rows whose x is held,
+    /// then each free xᵢ where it zeroes eᵢ. None if the free columns are (nearly)
+    /// dependent.
+    #[inline(always)]
+    fn solve(
+        &self,
+        x: &[f64; N],
+        u: &[f64; N],
+        free_x: u32,
+        free_u: u32,
+    ) -> Option<([f64; N], [f64; N])> {
+        let mut cols = [0usize; N];
+        let mut k = 0;
+        for j in 0..N {
+            if free_u >> j & 1 == 1 {
+                cols[k] = j;
+                k += 1;
+            }
+        }
+        let mut w = *u;
+        if k > 0 {
+            // t = x − c − R u over the held rows, u's free entries left out.
+            let mut t = [0.0; N];
+            for i in 0..N {
+                if free_x >> i & 1 == 0 {
+                    let mut s = x[i] - self.c[i];
+                    for j in 0..N {
+                        if free_u >> j & 1 == 0 {
+                            s -= self.r[i][j] * u[j];
+                        }
+                    }
+                    t[i] = s;
+                }
+            }
+            let mut m = [[0.0; N]; N];
+            let mut rhs = [0.0; N];
+            for p in 0..k {
+                for q in 0..=p {
+                    let mut s = 0.0;
+                    for i in 0..N {
+                        if free_x >> i & 1 == 0 {
+                            s += self.r[i][cols[p]] * self.r[i][cols[q]];
+                        }
+                    }
+                    m[p][q] = s;
+                }
+                let mut s = 0.0;
+                for i in 0..N {
+                    s += self.r[i][cols[p]] * t[i];
+                }
+                rhs[p] = s;
+            }
+            // Cholesky, M = L Lᵀ in the lower triangle; the columns of R have unit length,
+            // so the pivots are squared sines against the earlier columns.
+            for p in 0..k {
+                for q in 0..p {
+                    let mut s = m[p][q];
+                    for l in 0..q {
+                        s -= m[p][l] * m[q][l];
+                    }
+                    m[p][q] = s / m[q][q];
+                }
+                let mut s = m[p][p];
+                for l in 0..p {
+                    s -= m[p][l] * m[p][l];
+                }
+                if s.is_nan() || s <= PIVOT {
+                    return None;
+                }
+                m[p][p] = s.sqrt();
+            }
+            for p in 0..k {
+                let mut s = rhs[p];
+                for l in 0..p {
+                    s -= m[p][l] * rhs[l];
+                }
+                rhs[p] = s / m[p][p];
+            }
+            for p in (0..k).rev() {
+                let mut s = rhs[p];
+                for l in p + 1..k {
+                    s -= m[l][p] * rhs[l];
+                }
+                rhs[p] = s / m[p][p];
+            }
+            for p in 0..k {
+                w[cols[p]] = rhs[p];
+            }
+        }
+        let mut y = *x;
+        if free_x != 0 {
+            for i in 0..N {
+                if free_x >> i & 1 == 1 {
+                    let mut s = self.c[i];
+                    for j in 0..N {
+                        s += self.r[i][j] * w[j];
+                    }
+                    y[i] = s;
+                }
+            }
+        }
+        Some((y, w))
+    }
+}
+
+/// The fraction of the way from `z` to `trial`, at most `alpha`, that keeps the free
+/// variables within their bounds ±`h`.
+#[inline(always)]
+fn step<const N: usize>(
+    z: &[f64; N],
+    trial: &[f64; N],
+    h: &[f64; N],
+    free: u32,
+    alpha: f64,
+) -> f64 {
+    let mut alpha = alpha;
+    for i in 0..N {
+        if free >> i & 1 == 1 && trial[i].abs() > h[i] {
+            let bound = h[i].copysign(trial[i]);
+            let fraction = (bound - z[i]) / (trial[i] - z[i]);
+            alpha = alpha.min(fraction.max(0.0));
+        }
+    }
+    alpha
+}
+
+/// Moves the free variables of `z` the fraction `alpha` of the way to `trial` and holds
+/// at its bound each one that reaches it.
+#[inline(always)]
+fn apply<const N: usize>(
+    z: &mut [f64; N],
+    trial: &[f64; N],
+    h: &[f64; N],
+    free: &mut u32,
+    alpha: f64,
+) {
+    for i in 0..N {
+        if *free >> i & 1 == 1 {
+            let moved = z[i] + alpha * (trial[i] - z[i]);
+            if alpha < 1.0 && moved.abs() >= h[i] * (1.0 - 1e-15) {
+                z[i] = h[i].copysign(moved);
+                *free &= !(1 << i);
+            } else {
+                z[i] = moved.clamp(-h[i], h[i]);
+            }
+        }
+    }
+}
+
+/// The distance between the cores of two placed cuboids of dimension N by bounded least
+/// squares, as GJK's final state (one simplex point, the nearest points); None if either
+/// core is not a cuboid or the answer cannot be certified (the caller runs GJK).
+pub(crate) fn box_distance<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Option<GjkResult> {
+    let (ConvexCore::Cuboid(ha), ConvexCore::Cuboid(hb)) = (a.shape().core(), b.shape().core())
+    else {
+        return None;
+    };
+    let ha: &[f64; N] = ha.as_slice().try_into().ok()?;
+    let hb: &[f64; N] = hb.as_slice().try_into().ok()?;
+    let pa: &[f64; N] = a.position().try_into().ok()?;
+    let pb: &[f64; N] = b.position().try_into().ok()?;
+    let (qa, qb) = (a.rotation(), b.rotation());
+    let mut d = [0.0; N];
+    for i in 0..N {
+        d[i] = pb[i] - pa[i];
+    }
+    let mut problem = Problem {
+        a: *ha,
+        b: *hb,
+        c: [0.0; N],
+        r: [[0.0; N]; N],
+    };
+    for i in 0..N {
+        for k in 0..N {
+            problem.c[k] += qa[i * N + k] * d[i];
+            for j in 0..N {
+                problem.r[k][j] += qa[i * N + k] * qb[i * N + j];
+            }
+        }
+    }
+    let scale = dot(ha, ha).sqrt() + dot(hb, hb).sqrt() + dot(&d, &d).sqrt();
+    let touching = TOUCHING * scale;
+    // Start at the corners facing each other along the centre line.
+    let back = problem.turned_back(&problem.c);
+    let mut x = [0.0; N];
+    let mut u = [0.0; N];
+    for i in 0..N {
+        x[i] = ha[i].copysign(problem.c[i]);
+        u[i] = -hb[i].copysign(back[i]);
+    }
+    let (mut free_x, mut free_u) = (0u32, 0u32);
+    let mut steps = 0;
+    let mut e = problem.gap(&x, &u);
+    loop {
+        // The held variable whose bound most resists the descent: −∂/∂xᵢ ½|e|² = eᵢ and
+        // −∂/∂uⱼ = −(Rᵀe)ⱼ, wanted towards the inside of the bound.
+        let g = problem.turned_back(&e);
+        let mut best = 1e-15 * scale;
+        let mut pick = None;
+        for i in 0..N {
+            if free_x >> i & 1 == 0 {
+                let want = -e[i] * x[i].signum();
+                if want > best {
+                    (best, pick) = (want, Some(i));
+                }
+            }
+            if free_u >> i & 1 == 0 {
+                let want = g[i] * u[i].signum();
+                if want > best {
+                    (best, pick) = (want, Some(N + i));
+                }
+            }
+        }
+        let Some(pick) = pick else { break };
+        if pick < N {
+            free_x |= 1 << pick;
+        } else {
+            free_u |= 1 << (pick - N);
+        }
+        steps += 1;
+        loop {
+            if steps > 4 * N {
+                return None;
+            }
+            let (tx, tu) = problem.solve(&x, &u, free_x, free_u)?;
+            let alpha = step(&x, &tx, &problem.a, free_x, 1.0);
+            let alpha = step(&u, &tu, &problem.b, free_u, alpha);
+            apply(&mut x, &tx, &problem.a, &mut free_x, alpha);
+            apply(&mut u, &tu, &problem.b, &mut free_u, alpha);
+            if alpha >= 1.0 {
+                break;
+            }
+            steps += 1;
+        }
+        e = problem.gap(&x, &u);
+    }
+    let ee = dot(&e, &e);
+    let intersecting = ee.sqrt() <= touching;
+    if !intersecting {
+        // v·w for w the support point of B − A along −e, as GJK's stopping rule.
+        let g = problem.turned_back(&e);
+        let mut ew = dot(&e, &problem.c);
+        for i in 0..N {
+            ew -= problem.a[i] * e[i].abs() + problem.b[i] * g[i].abs();
+        }
+        if !(ee - ew <= RELATIVE_GAP * ee) {
+            return None;
+        }
+    }
+    // Back to space: the witnesses x of A and c + R u of B, and v = Q_A e.
+    let mut witness_a = [0.0; N];
+    let mut witness_b = [0.0; N];
+    let mut v = [0.0; N];
+    for i in 0..N {
+        let (mut p, mut q, mut s) = (pa[i], pb[i], 0.0);
+        for j in 0..N {
+            p += qa[i * N + j] * x[j];
+            q += qb[i * N + j] * u[j];
+            s += qa[i * N + j] * e[j];
+        }
+        (witness_a[i], witness_b[i], v[i]) = (p, q, s);
+    }
+    let mut simplex = Simplex::new(N);
+    simplex.push(&v, &witness_a, &witness_b);
+    simplex.lambda[0] = 1.0;
+    Some(GjkResult {
+        simplex,
+        v: Coords::from_slice(&v),
+        vv: ee,
+        intersecting,
+        iterations: steps,
+        scale,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::fixed::gjk_fixed;
+    use super::*;
+    use crate::dynamics::motion::shape::ConvexShape;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// A random rotation: plane rotations by random angles in every coordinate plane.
+    fn rotation(r: &mut impl Rng, n: usize) -> Vec<f64> {
+        let mut q: Vec<f64> = (0..n * n)
+            .map(|k| if k % (n + 1) == 0 { 1.0 } else { 0.0 })
+            .collect();
+        for i in 0..n {
+            for j in i + 1..n {
+                let (s, c) = r.gen_range(-3.2..3.2f64).sin_cos();
+                for row in 0..n {
+                    let (x, y) = (q[row * n + i], q[row * n + j]);
+                    q[row * n + i] = c * x - s * y;
+                    q[row * n + j] = s * x + c * y;
+                }
+            }
+        }
+        q
+    }
+
+    /// The least-squares path answers nearly every box pair in general position itself
+    /// (GJK takes over only when it cannot certify), and its answers are GJK's.
+    fn run<const N: usize>(seed: u64, pairs: usize) -> [usize; 3] {
+        let mut r = ChaCha8Rng::seed_from_u64(seed);
+        // Separated, overlapping, left to GJK.
+        let mut counts = [0usize; 3];
+        for _ in 0..pairs {
+            let ha: Vec<f64> = (0..N).map(|_| r.gen_range(0.2..2.0)).collect();
+            let hb: Vec<f64> = (0..N).map(|_| r.gen_range(0.2..2.0)).collect();
+            let (sa, sb) = (
+                ConvexShape::cuboid(&ha).unwrap(),
+                ConvexShape::cuboid(&hb).unwrap(),
+            );
+            let (qa, qb) = (rotation(&mut r, N), rotation(&mut r, N));
+            let pa: Vec<f64> = (0..N).map(|_| r.gen_range(-1.0..1.0)).collect();
+            let pb: Vec<f64> = (0..N).map(|_| r.gen_range(-4.0..4.0)).collect();
+            let a = PlacedShape::new(&sa, &pa, &qa).unwrap();
+            let b = PlacedShape::new(&sb, &pb, &qb).unwrap();
+            let Some(fast) = box_distance::<N>(&a, &b) else {
+                counts[2] += 1;
+                continue;
+            };
+            let gjk = gjk_fixed::<N>(&a, &b);
+            if gjk.intersecting {
+                assert!(fast.intersecting);
+                counts[1] += 1;
+            } else {
+                let (d, e) = (fast.vv.sqrt(), gjk.vv.sqrt());
+                assert!(!fast.intersecting && (d - e).abs() <= 1e-12 * e, "{d} {e}");
+                counts[0] += 1;
+            }
+        }
+        counts
+    }
+
+    #[test]
+    fn least_squares_answers_general_box_pairs_as_gjk_does() {
+        let pairs = 20_000;
+        for (n, counts) in [(3, run::<3>(3, pairs)), (4, run::<4>(4, pairs))] {
+            println!("N = {n}: {counts:?} (separated, overlapping, left to GJK)");
+            assert_eq!(counts.iter().sum::<usize>(), pairs);
+            assert!(
+                counts[0] >= pairs / 4 && counts[1] >= pairs / 20,
+                "{counts:?}"
+            );
+            assert!(counts[2] <= pairs / 1000, "N = {n}: {counts:?}");
+        }
+    }
+}
