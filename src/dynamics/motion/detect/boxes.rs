@@ -14,14 +14,16 @@
 //! at most N × N.
 //!
 //! The answer is then certified the way GJK stops: along v = e (from A to B), the support
-//! points give the lower bound v·w / |v| of the distance, and the answer stands only if it
-//! is within GJK's relative gap of |v|, or if |v| is at GJK's contact tolerance (e joins a
-//! point of A to a point of B). Anything else (a near-singular solve on nearly parallel
+//! points give the lower bound v·w / |v| of the distance, and the answer stands only if
+//! |v|² − v·w is within GJK's relative gap of |v|² (plus the round-off of e, a few units in
+//! the last place of the problem's size, times that size), or if |v| is at GJK's contact
+//! tolerance (e joins a point of A to a point of B). Anything else (a near-singular solve on nearly parallel
 //! features, an active set that cycles in round-off) returns None, and the caller runs GJK:
 //! the fast path never answers less exactly than GJK would.
 
-use super::gjk::{GjkResult, PlacedShape, RELATIVE_GAP, Simplex, TOUCHING};
-use crate::dynamics::motion::shape::{ConvexCore, Coords};
+use super::gjk::{CoreGap, PlacedShape, RELATIVE_GAP, TOUCHING};
+use crate::algebra::Vector;
+use crate::dynamics::motion::shape::ConvexCore;
 
 /// A free variable's least-squares pivot below this (the squared sine of the angle between
 /// its column and the others') makes the solve singular: the caller runs GJK instead.
@@ -225,10 +227,10 @@ fn apply<const N: usize>(
     }
 }
 
-/// The distance between the cores of two placed cuboids of dimension N by bounded least
-/// squares, as GJK's final state (one simplex point, the nearest points); None if either
-/// core is not a cuboid or the answer cannot be certified (the caller runs GJK).
-pub(crate) fn box_distance<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Option<GjkResult> {
+/// The nearest points of the cores of two placed cuboids of dimension N by bounded least
+/// squares; None if either core is not a cuboid or the answer cannot be certified (the
+/// caller runs GJK).
+pub(crate) fn box_distance<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Option<CoreGap> {
     let (ConvexCore::Cuboid(ha), ConvexCore::Cuboid(hb)) = (a.shape().core(), b.shape().core())
     else {
         return None;
@@ -321,14 +323,22 @@ pub(crate) fn box_distance<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> 
         for i in 0..N {
             ew -= problem.a[i] * e[i].abs() + problem.b[i] * g[i].abs();
         }
-        if !(ee - ew <= RELATIVE_GAP * ee) {
+        // e carries round-off of a few units in the last place of the scale, and the gap
+        // e·(e − w) that times the size of B − A: allowed for on top of GJK's relative gap.
+        let rounding = 8.0 * N as f64 * f64::EPSILON * scale * scale;
+        if !(ee - ew <= RELATIVE_GAP * ee + rounding) {
             return None;
         }
     }
     // Back to space: the witnesses x of A and c + R u of B, and v = Q_A e.
-    let mut witness_a = [0.0; N];
-    let mut witness_b = [0.0; N];
-    let mut v = [0.0; N];
+    let mut witness_a = Vector::zero(N);
+    let mut witness_b = Vector::zero(N);
+    let mut v = Vector::zero(N);
+    let (wa, wb, vs) = (
+        witness_a.as_mut_slice(),
+        witness_b.as_mut_slice(),
+        v.as_mut_slice(),
+    );
     for i in 0..N {
         let (mut p, mut q, mut s) = (pa[i], pb[i], 0.0);
         for j in 0..N {
@@ -336,18 +346,15 @@ pub(crate) fn box_distance<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> 
             q += qb[i * N + j] * u[j];
             s += qa[i * N + j] * e[j];
         }
-        (witness_a[i], witness_b[i], v[i]) = (p, q, s);
+        (wa[i], wb[i], vs[i]) = (p, q, s);
     }
-    let mut simplex = Simplex::new(N);
-    simplex.push(&v, &witness_a, &witness_b);
-    simplex.lambda[0] = 1.0;
-    Some(GjkResult {
-        simplex,
-        v: Coords::from_slice(&v),
+    Some(CoreGap {
+        witness_a,
+        witness_b,
+        v,
         vv: ee,
         intersecting,
         iterations: steps,
-        scale,
     })
 }
 
@@ -404,8 +411,17 @@ mod tests {
                 assert!(fast.intersecting);
                 counts[1] += 1;
             } else {
+                // Both answers carry round-off of a few units in the last place of the size.
+                let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+                let centres: Vec<f64> = pb.iter().zip(&pa).map(|(p, q)| p - q).collect();
+                let tolerance =
+                    1e-12 * gjk.vv.sqrt() + 1e-14 * (norm(&ha) + norm(&hb) + norm(&centres));
                 let (d, e) = (fast.vv.sqrt(), gjk.vv.sqrt());
-                assert!(!fast.intersecting && (d - e).abs() <= 1e-12 * e, "{d} {e}");
+                let gap: f64 = (0..N)
+                    .map(|i| (fast.witness_b[i] - fast.witness_a[i] - fast.v[i]).powi(2))
+                    .sum();
+                assert!(gap.sqrt() <= tolerance, "{gap} {e}");
+                assert!(!fast.intersecting && (d - e).abs() <= tolerance, "{d} {e}");
                 counts[0] += 1;
             }
         }

@@ -529,7 +529,10 @@ pub fn distance(a: &PlacedShape, b: &PlacedShape) -> Result<Separation, ShapeErr
         4 => super::boxes::box_distance::<4>(a, b),
         _ => None,
     };
-    Ok(separation(a, b, boxes.unwrap_or_else(|| gjk(a, b))))
+    Ok(match boxes {
+        Some(gap) => core_separation(a, b, gap),
+        None => separation(a, b, gjk(a, b)),
+    })
 }
 
 /// [`distance`] by the dimension-generic GJK alone. For N = 3 and 4, [`distance`] runs
@@ -544,30 +547,65 @@ pub fn distance_general(a: &PlacedShape, b: &PlacedShape) -> Result<Separation, 
     Ok(separation(a, b, gjk_general(a, b)))
 }
 
+/// The nearest points of two cores: the witnesses (space frame), v = witness_b − witness_a
+/// as the query found it, |v|², and whether the cores touch or overlap.
+pub(crate) struct CoreGap {
+    pub witness_a: Vector,
+    pub witness_b: Vector,
+    pub v: Vector,
+    pub vv: f64,
+    pub intersecting: bool,
+    pub iterations: usize,
+}
+
 /// The separation from GJK's final state on the cores, the margins subtracted.
 fn separation(a: &PlacedShape, b: &PlacedShape, result: GjkResult) -> Separation {
     let n = a.shape.dim();
-    let (ra, rb) = (a.shape.margin(), b.shape.margin());
     let mut witness_a = Vector::zero(n);
     let mut witness_b = Vector::zero(n);
     result
         .simplex
         .witnesses(witness_a.as_mut_slice(), witness_b.as_mut_slice());
-    if result.intersecting {
+    let mut v = Vector::zero(n);
+    v.as_mut_slice().copy_from_slice(&result.v);
+    core_separation(
+        a,
+        b,
+        CoreGap {
+            witness_a,
+            witness_b,
+            v,
+            vv: result.vv,
+            intersecting: result.intersecting,
+            iterations: result.iterations,
+        },
+    )
+}
+
+/// The separation of the shapes from the nearest points of their cores, the margins
+/// subtracted.
+pub(crate) fn core_separation(a: &PlacedShape, b: &PlacedShape, gap: CoreGap) -> Separation {
+    let (ra, rb) = (a.shape.margin(), b.shape.margin());
+    let CoreGap {
+        mut witness_a,
+        mut witness_b,
+        v: mut normal,
+        vv,
+        intersecting,
+        iterations,
+    } = gap;
+    if intersecting {
         return Separation {
             distance: 0.0,
             normal: centre_direction(a, b),
             witness_b: witness_a.clone(),
             witness_a,
             intersecting: true,
-            iterations: result.iterations,
+            iterations,
         };
     }
-    let core = result.vv.sqrt();
-    let mut normal = Vector::zero(n);
-    for (x, y) in normal.as_mut_slice().iter_mut().zip(&result.v) {
-        *x = y / core;
-    }
+    let core = vv.sqrt();
+    normal.as_mut_slice().iter_mut().for_each(|x| *x /= core);
     for ((p, q), m) in witness_a
         .as_mut_slice()
         .iter_mut()
@@ -584,7 +622,7 @@ fn separation(a: &PlacedShape, b: &PlacedShape, result: GjkResult) -> Separation
         witness_a,
         witness_b,
         intersecting: distance == 0.0,
-        iterations: result.iterations,
+        iterations,
     }
 }
 
