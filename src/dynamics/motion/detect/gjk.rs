@@ -605,7 +605,8 @@ pub(crate) fn core_separation(a: &PlacedShape, b: &PlacedShape, gap: CoreGap) ->
         };
     }
     let core = vv.sqrt();
-    normal.as_mut_slice().iter_mut().for_each(|x| *x /= core);
+    let inverse = 1.0 / core;
+    normal.as_mut_slice().iter_mut().for_each(|x| *x *= inverse);
     for ((p, q), m) in witness_a
         .as_mut_slice()
         .iter_mut()
