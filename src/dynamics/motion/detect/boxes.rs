@@ -230,7 +230,9 @@ pub(crate) fn box_distance<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> 
     let hb: &[f64; N] = hb.as_slice().try_into().ok()?;
     let pa: &[f64; N] = a.position().try_into().ok()?;
     let pb: &[f64; N] = b.position().try_into().ok()?;
-    let (qa, qb) = (a.rotation(), b.rotation());
+    // The rotations as N rows of N, so that no index is checked at run time.
+    let qa: &[[f64; N]; N] = a.rotation().as_chunks::<N>().0.try_into().ok()?;
+    let qb: &[[f64; N]; N] = b.rotation().as_chunks::<N>().0.try_into().ok()?;
     let mut d = [0.0; N];
     for i in 0..N {
         d[i] = pb[i] - pa[i];
@@ -243,9 +245,9 @@ pub(crate) fn box_distance<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> 
     };
     for i in 0..N {
         for k in 0..N {
-            problem.c[k] += qa[i * N + k] * d[i];
+            problem.c[k] += qa[i][k] * d[i];
             for j in 0..N {
-                problem.r[k][j] += qa[i * N + k] * qb[i * N + j];
+                problem.r[k][j] += qa[i][k] * qb[i][j];
             }
         }
     }
@@ -351,9 +353,9 @@ pub(crate) fn box_distance<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> 
     for i in 0..N {
         let (mut p, mut q, mut s) = (pa[i], pb[i], 0.0);
         for j in 0..N {
-            p += qa[i * N + j] * x[j];
-            q += qb[i * N + j] * u[j];
-            s += qa[i * N + j] * e[j];
+            p += qa[i][j] * x[j];
+            q += qb[i][j] * u[j];
+            s += qa[i][j] * e[j];
         }
         (wa[i], wb[i], vs[i]) = (p, q, s);
     }
