@@ -4,12 +4,9 @@
 //! corners' differences (`narrow_reference.rs`), and, for boxes whose axes are parallel,
 //! the closed form √Σ max(0, |cᵢ| − aᵢ − bᵢ)² in A's axes.
 
-#[path = "narrow_reference.rs"]
-mod reference;
-
+use super::narrow_phase::reference::*;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use reference::*;
 use rotorflow::dynamics::motion::detect::{Separation, distance, distance_general};
 use rotorflow::dynamics::motion::shape::{ConvexCore, ConvexShape};
 
