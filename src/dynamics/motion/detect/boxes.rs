@@ -7,19 +7,19 @@
 //! e = c + R u − x: a least-squares problem in 2N variables, each between two bounds. It is
 //! solved by the active-set method of Lawson and Hanson ("Solving Least Squares Problems",
 //! 1974, ch. 23) with bounds on both sides (Stark and Parker, "Bounded-variable least
-//! squares", Comput. Stat. 10, 1995): start at the two corners facing each other, free the
-//! variable whose gradient most wants it off its bound, solve the least-squares problem in
-//! the free variables, and step back to the first bound met if the solution leaves the
-//! box. A free xᵢ zeroes eᵢ, so only the free u need a solve: a Cholesky factorisation of
-//! at most N × N.
+//! squares", Comput. Stat. 10, 1995): start at a corner of B and the point of A nearest
+//! it, free the variable whose gradient most wants it off its bound, solve the
+//! least-squares problem in the free variables, and step back to the first bound met if the
+//! solution leaves the box. A free xᵢ zeroes eᵢ, so only the free u need a solve: a
+//! Cholesky factorisation of at most N × N.
 //!
 //! The answer is then certified the way GJK stops: along v = e (from A to B), the support
 //! points give the lower bound v·w / |v| of the distance, and the answer stands only if
 //! |v|² − v·w is within GJK's relative gap of |v|² (plus the round-off of e, a few units in
 //! the last place of the problem's size, times that size), or if |v| is at GJK's contact
-//! tolerance (e joins a point of A to a point of B). Anything else (a near-singular solve on nearly parallel
-//! features, an active set that cycles in round-off) returns None, and the caller runs GJK:
-//! the fast path never answers less exactly than GJK would.
+//! tolerance (e joins a point of A to a point of B). Anything else (a near-singular solve
+//! on nearly parallel features, more than 4N steps) returns None, and the caller runs GJK:
+//! the fast path answers only what passes GJK's own stopping rule.
 
 // Loops over 0..N index several arrays at once, as the formulas do; N is a constant, so
 // the compiler unrolls them.
