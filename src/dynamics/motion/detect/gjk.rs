@@ -605,8 +605,7 @@ pub(crate) fn core_separation(a: &PlacedShape, b: &PlacedShape, gap: CoreGap) ->
         };
     }
     let core = vv.sqrt();
-    let inverse = 1.0 / core;
-    normal.as_mut_slice().iter_mut().for_each(|x| *x *= inverse);
+    normal.as_mut_slice().iter_mut().for_each(|x| *x /= core);
     for ((p, q), m) in witness_a
         .as_mut_slice()
         .iter_mut()
