@@ -1,6 +1,7 @@
 //! Tests of the dynamics layer: Euler's equations as rotor/bivector flows.
 
 mod body_contact;
+mod box_distance;
 mod broad_phase;
 mod compositions;
 mod conservation;

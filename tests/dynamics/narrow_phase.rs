@@ -5,7 +5,7 @@
 //! counts and asserts that each promised case ran.
 
 #[path = "narrow_reference.rs"]
-mod reference;
+pub mod reference;
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;

@@ -1,6 +1,7 @@
 //! Collision detection between bodies (`dynamics::motion::detect`) never touches the heap
-//! for N ≤ 8: box–box separating axes, box and hull contact manifolds, and the broad
-//! phase's updates after its first call (counted by the allocator of `tests/no_heap.rs`).
+//! for N ≤ 8: box–box separating axes, box and hull contact manifolds, box–box distances
+//! in 3 and 4 dimensions, and the broad phase's updates after its first call (counted by
+//! the allocator of `tests/no_heap.rs`).
 
 use super::allocations_in;
 use rotorflow::dynamics::motion::detect::{
@@ -137,5 +138,33 @@ fn broad_phase_updates_do_not_allocate_after_the_first() {
         });
         assert_eq!(count, 0, "N = {n}: {count} heap allocations in 3 updates");
         assert!(pairs > 0, "N = {n}: no pairs");
+    }
+}
+
+#[test]
+fn box_distances_do_not_allocate_in_3_and_4_dimensions() {
+    use rotorflow::dynamics::motion::detect::{PlacedShape, distance};
+    use rotorflow::dynamics::motion::shape::ConvexShape;
+    for n in [3, 4] {
+        let ha: Vec<f64> = (0..n).map(|k| 1.0 + 0.1 * k as f64).collect();
+        let hb: Vec<f64> = (0..n).map(|k| 0.5 + 0.05 * k as f64).collect();
+        let (box_a, box_b) = (
+            ConvexShape::cuboid(&ha).unwrap(),
+            ConvexShape::cuboid(&hb).unwrap(),
+        );
+        let (ca, qa, qb) = (vec![0.0; n], turned(n, 0.2), turned(n, 0.9));
+        // Separated, then overlapping.
+        let far: Vec<f64> = (0..n).map(|k| if k == 0 { 3.0 } else { 0.2 }).collect();
+        let near: Vec<f64> = (0..n).map(|k| if k == 0 { 1.2 } else { 0.2 }).collect();
+        let a = PlacedShape::new(&box_a, &ca, &qa).unwrap();
+        let separated = PlacedShape::new(&box_b, &far, &qb).unwrap();
+        let overlapping = PlacedShape::new(&box_b, &near, &qb).unwrap();
+        let mut answers = [false; 2];
+        let count = allocations_in(|| {
+            answers[0] = distance(&a, &separated).unwrap().intersecting;
+            answers[1] = distance(&a, &overlapping).unwrap().intersecting;
+        });
+        assert_eq!(count, 0, "N = {n}: {count} heap allocations");
+        assert_eq!(answers, [false, true], "N = {n}");
     }
 }

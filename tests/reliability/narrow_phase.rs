@@ -127,8 +127,8 @@ const KINDS: [&str; 8] = [
     "rounded polytope",
 ];
 
-/// For N = 3 and 4, `distance` runs GJK on stack arrays: it must give the general
-/// implementation's answer to round-off, on random pairs of every kind in random poses,
+/// For N = 3 and 4, `distance` runs GJK on stack arrays (two boxes: bounded least
+/// squares): it must give the general implementation's answer to round-off, on random pairs of every kind in random poses,
 /// each three ways: as drawn, moved into touching (B brought towards A along the normal by
 /// the distance) and moved into overlap (a further 0.2 of the smaller size).
 #[test]

@@ -131,7 +131,8 @@ pub struct Separation {
     pub witness_b: Vector,
     /// True if the shapes touch or overlap (distance 0).
     pub intersecting: bool,
-    /// The GJK iterations taken (0 for the closed forms).
+    /// The GJK iterations taken (0 for the closed forms; for two boxes in 3 or 4
+    /// dimensions, the steps of the bounded least-squares solve that replaces GJK).
     pub iterations: usize,
 }
 
@@ -497,7 +498,9 @@ pub(crate) fn centre_direction(a: &PlacedShape, b: &PlacedShape) -> Vector {
 }
 
 /// Returns the distance between two placed shapes, the nearest points and the direction
-/// from A to B, by GJK on the cores (the margins subtracted).
+/// from A to B, by GJK on the cores (the margins subtracted). Two boxes in 3 or 4
+/// dimensions are solved as a bounded least-squares problem instead (`boxes.rs`), its
+/// answer certified by GJK's own stopping rule, GJK taking over if it cannot be.
 ///
 /// Touching and overlapping shapes have distance 0 and `intersecting` set; the answer is
 /// defined for every input (coincident, nested, flat), never NaN, and GJK stops after at
@@ -521,7 +524,15 @@ pub(crate) fn centre_direction(a: &PlacedShape, b: &PlacedShape) -> Vector {
 /// [`ShapeError::DimensionMismatch`] if the shapes differ in dimension.
 pub fn distance(a: &PlacedShape, b: &PlacedShape) -> Result<Separation, ShapeError> {
     check_pair(a, b)?;
-    Ok(separation(a, b, gjk(a, b)))
+    let boxes = match a.shape.dim() {
+        3 => super::boxes::box_distance::<3>(a, b),
+        4 => super::boxes::box_distance::<4>(a, b),
+        _ => None,
+    };
+    Ok(match boxes {
+        Some(gap) => core_separation(a, b, gap),
+        None => separation(a, b, gjk(a, b)),
+    })
 }
 
 /// [`distance`] by the dimension-generic GJK alone. For N = 3 and 4, [`distance`] runs
@@ -536,30 +547,65 @@ pub fn distance_general(a: &PlacedShape, b: &PlacedShape) -> Result<Separation, 
     Ok(separation(a, b, gjk_general(a, b)))
 }
 
+/// The nearest points of two cores: the witnesses (space frame), v = witness_b − witness_a
+/// as the query found it, |v|², and whether the cores touch or overlap.
+pub(crate) struct CoreGap {
+    pub witness_a: Vector,
+    pub witness_b: Vector,
+    pub v: Vector,
+    pub vv: f64,
+    pub intersecting: bool,
+    pub iterations: usize,
+}
+
 /// The separation from GJK's final state on the cores, the margins subtracted.
 fn separation(a: &PlacedShape, b: &PlacedShape, result: GjkResult) -> Separation {
     let n = a.shape.dim();
-    let (ra, rb) = (a.shape.margin(), b.shape.margin());
     let mut witness_a = Vector::zero(n);
     let mut witness_b = Vector::zero(n);
     result
         .simplex
         .witnesses(witness_a.as_mut_slice(), witness_b.as_mut_slice());
-    if result.intersecting {
+    let mut v = Vector::zero(n);
+    v.as_mut_slice().copy_from_slice(&result.v);
+    core_separation(
+        a,
+        b,
+        CoreGap {
+            witness_a,
+            witness_b,
+            v,
+            vv: result.vv,
+            intersecting: result.intersecting,
+            iterations: result.iterations,
+        },
+    )
+}
+
+/// The separation of the shapes from the nearest points of their cores, the margins
+/// subtracted.
+pub(crate) fn core_separation(a: &PlacedShape, b: &PlacedShape, gap: CoreGap) -> Separation {
+    let (ra, rb) = (a.shape.margin(), b.shape.margin());
+    let CoreGap {
+        mut witness_a,
+        mut witness_b,
+        v: mut normal,
+        vv,
+        intersecting,
+        iterations,
+    } = gap;
+    if intersecting {
         return Separation {
             distance: 0.0,
             normal: centre_direction(a, b),
             witness_b: witness_a.clone(),
             witness_a,
             intersecting: true,
-            iterations: result.iterations,
+            iterations,
         };
     }
-    let core = result.vv.sqrt();
-    let mut normal = Vector::zero(n);
-    for (x, y) in normal.as_mut_slice().iter_mut().zip(&result.v) {
-        *x = y / core;
-    }
+    let core = vv.sqrt();
+    normal.as_mut_slice().iter_mut().for_each(|x| *x /= core);
     for ((p, q), m) in witness_a
         .as_mut_slice()
         .iter_mut()
@@ -576,7 +622,7 @@ fn separation(a: &PlacedShape, b: &PlacedShape, result: GjkResult) -> Separation
         witness_a,
         witness_b,
         intersecting: distance == 0.0,
-        iterations: result.iterations,
+        iterations,
     }
 }
 

@@ -2,7 +2,8 @@
 //! how deep two shapes overlap (the narrow phase), and where they touch (contact manifolds).
 //!
 //! - Narrow phase: [`distance`] and [`intersects`] (GJK with an exact simplex
-//!   sub-algorithm, `gjk.rs`; on stack arrays for N = 3 and 4, `fixed.rs`), [`penetration`] (EPA in N dimensions and closed forms,
+//!   sub-algorithm, `gjk.rs`; on stack arrays for N = 3 and 4, `fixed.rs`; two boxes in 3
+//!   and 4 dimensions by bounded least squares, `boxes.rs`), [`penetration`] (EPA in N dimensions and closed forms,
 //!   `epa.rs`), on [`PlacedShape`]s of [`super::shape`]; boxes by separating axes
 //!   ([`box_box`], `sat.rs`).
 //! - Contact manifolds of several points ([`box_manifold`], [`hull_manifold`],
@@ -14,6 +15,7 @@
 //! means overlap, and witness points are in space.
 
 pub(crate) mod bodies;
+mod boxes;
 pub mod broad;
 mod epa;
 mod fixed;
