@@ -26,6 +26,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::gjk::{CoreGap, PlacedShape, RELATIVE_GAP, TOUCHING};
+use super::set_bits;
 use crate::algebra::Vector;
 use crate::dynamics::motion::shape::ConvexCore;
 
@@ -95,14 +96,7 @@ impl<const N: usize> Problem<N> {
         free_x: u32,
         free_u: u32,
     ) -> Option<([f64; N], [f64; N])> {
-        let mut cols = [0usize; N];
-        let mut k = 0;
-        for j in 0..N {
-            if free_u >> j & 1 == 1 {
-                cols[k] = j;
-                k += 1;
-            }
-        }
+        let (cols, k) = set_bits::<N>(free_u);
         let mut delta = [0.0; N];
         if k > 0 {
             let mut m = [[0.0; N]; N];
@@ -453,28 +447,26 @@ mod tests {
     /// parallel faces agree too, whichever path answers them.
     #[test]
     fn least_squares_answers_general_box_pairs_as_gjk_does() {
-        let pairs = 20_000;
-        for (n, counts) in [
-            (3, run::<3>(3, pairs, false)),
-            (4, run::<4>(4, pairs, false)),
-        ] {
-            println!("N = {n}: {counts:?} (separated, overlapping, left to GJK)");
-            assert_eq!(counts.iter().sum::<usize>(), pairs);
-            assert!(
-                counts[0] >= pairs / 4 && counts[1] >= pairs / 20,
-                "{counts:?}"
-            );
-            assert!(counts[2] <= pairs / 1000, "N = {n}: {counts:?}");
-        }
-        let pairs = 5_000;
-        for (n, counts) in [(3, run::<3>(5, pairs, true)), (4, run::<4>(6, pairs, true))] {
-            println!("N = {n}, parallel faces: {counts:?} (separated, overlapping, left to GJK)");
-            assert_eq!(counts.iter().sum::<usize>(), pairs);
-            assert!(
-                counts[0] >= pairs / 4 && counts[1] >= pairs / 20,
-                "{counts:?}"
-            );
-            assert!(counts[2] <= pairs / 100, "N = {n}: {counts:?}");
+        // (pairs, parallel faces, the most left to GJK per pair)
+        for (pairs, parallel, left) in [(20_000, false, 1e-3), (5_000, true, 1e-2)] {
+            let seed = if parallel { 5 } else { 3 };
+            for (n, counts) in [
+                (3, run::<3>(seed, pairs, parallel)),
+                (4, run::<4>(seed + 1, pairs, parallel)),
+            ] {
+                println!(
+                    "N = {n}, parallel faces {parallel}: {counts:?} (separated, overlapping, left to GJK)"
+                );
+                assert_eq!(counts.iter().sum::<usize>(), pairs);
+                assert!(
+                    counts[0] >= pairs / 4 && counts[1] >= pairs / 20,
+                    "{counts:?}"
+                );
+                assert!(
+                    counts[2] as f64 <= left * pairs as f64,
+                    "N = {n}: {counts:?}"
+                );
+            }
         }
     }
 }

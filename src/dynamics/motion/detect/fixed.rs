@@ -9,6 +9,7 @@
 use super::gjk::{
     DEGENERATE, GjkResult, MAX_GJK_ITERATIONS, PlacedShape, RELATIVE_GAP, Simplex, TOUCHING,
 };
+use super::set_bits;
 use crate::dynamics::motion::shape::{ConvexCore, Coords};
 
 /// The simplex's points at most: N + 1 for N ≤ 4.
@@ -83,14 +84,7 @@ fn project<const N: usize>(
     points: &[[f64; N]; SLOTS],
     mask: u32,
 ) -> Option<([f64; SLOTS], [f64; N])> {
-    let mut index = [0usize; SLOTS];
-    let mut m = 0;
-    for i in 0..SLOTS {
-        if mask >> i & 1 == 1 {
-            index[m] = i;
-            m += 1;
-        }
-    }
+    let (index, m) = set_bits::<SLOTS>(mask);
     let m1 = m - 1;
     let y0 = &points[index[0]];
     let mut q = [[0.0; N]; SLOTS - 1];

@@ -59,3 +59,18 @@ impl std::hash::Hasher for KeyHasher {
         self.0 = z ^ (z >> 31);
     }
 }
+
+/// The indices of the set bits of `mask` below `K`, in increasing order, and their count:
+/// the members of a simplex or of an active set kept as a bit mask.
+#[inline(always)]
+pub(crate) fn set_bits<const K: usize>(mask: u32) -> ([usize; K], usize) {
+    let mut index = [0usize; K];
+    let mut count = 0;
+    for i in 0..K {
+        if mask >> i & 1 == 1 {
+            index[count] = i;
+            count += 1;
+        }
+    }
+    (index, count)
+}
