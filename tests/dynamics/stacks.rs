@@ -205,3 +205,54 @@ fn a_box_on_a_fixed_ramp_slides_with_the_coulomb_acceleration_or_sticks() {
     }
     assert_eq!(cases, 8);
 }
+
+/// A contact between bodies that enters slowly is held by the step's closing solve instead
+/// of being located in time (a bracketing with two solves per try): a unit cube dropped from
+/// 1e-3 onto another resting on the floor meets it at √(2 g 1e-3) ≈ 0.14 m/s, below the
+/// resting speed 2 h g ≈ 0.33 m/s. Every step takes at most two solves (its opening and its
+/// closing one), and the cube comes to rest at 1.5, on the cube below; dropped from 0.1 it
+/// meets it at 1.4 m/s, and that impact is located (more solves in its step).
+#[test]
+fn a_slow_landing_on_a_body_is_not_located() {
+    let h = 1.0 / 60.0;
+    for (drop, located) in [(1e-3, false), (0.1, true)] {
+        let bodies = vec![
+            cube(3, 0.5, &[0.0, 0.0, 0.5], 0.5),
+            cube(3, 0.5, &[0.0, 0.0, 1.5 + drop], 0.5),
+        ];
+        let mut s = System::new(bodies).unwrap();
+        s.add_forque(Gravity(axis(3, 2, -G))).unwrap();
+        s.add_half_space(HalfSpace::new(&axis(3, 2, 1.0), 0.0, 0.5, 0.0).unwrap())
+            .unwrap();
+        let mut stepper = MotionSplitting::new();
+        let mut most = 0;
+        for k in 0..60 {
+            let before = stepper.solver_report().solves;
+            stepper.step(&mut s, k as f64 * h, h).unwrap();
+            most = most.max(stepper.solver_report().solves - before);
+        }
+        let heights: Vec<f64> = s
+            .bodies()
+            .iter()
+            .map(|b| b.position().as_slice()[2])
+            .collect();
+        let speed = s
+            .bodies()
+            .iter()
+            .map(|b| b.velocity().norm() + b.omega().norm())
+            .fold(0.0, f64::max);
+        println!("drop {drop}: most solves in a step {most}; heights {heights:?}; speed {speed:e}");
+        assert_eq!(most > 2, located, "drop {drop}: a step took {most} solves");
+        assert!(
+            (heights[0] - 0.5).abs() < 1e-9,
+            "lower cube at {}",
+            heights[0]
+        );
+        assert!(
+            (heights[1] - 1.5).abs() < 1e-6,
+            "upper cube at {}",
+            heights[1]
+        );
+        assert!(speed < 1e-6, "still moving at {speed:e}");
+    }
+}

@@ -76,6 +76,21 @@ pub struct MotionSplitting {
     active_pairs: Vec<(usize, usize)>,
     /// True while an impact is being located.
     locating: bool,
+    /// The contacts that were not in contact at the start of the step and ended its last
+    /// flight deeper than their touching distance: pairs of bodies and candidates against
+    /// half-spaces, with their signed distances.
+    entering: Vec<Entering>,
+    /// The state at the end of a flight, while entering contacts are checked from its start.
+    flight_end: Vec<SavedBody>,
+}
+
+/// A contact entering in a flight: a pair of bodies (a < b) with its signed distance and
+/// that distance over its reach, or a candidate against a half-space with that distance
+/// over its reach.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Entering {
+    Pair(usize, usize, f64, f64),
+    Candidate(f64),
 }
 
 /// The contact tolerance, relative to a body's radius.
@@ -610,6 +625,10 @@ impl MotionSplitting {
             if self.active_pairs.binary_search(&(c.a, c.b)).is_err() {
                 let reach = self.touching.reach((c.a, c.b), CONTACT_TOLERANCE);
                 worst = worst.min(c.gap / reach);
+                if c.gap < -reach {
+                    self.entering
+                        .push(Entering::Pair(c.a, c.b, c.gap, c.gap / reach));
+                }
             }
         }
         worst
@@ -625,9 +644,13 @@ impl MotionSplitting {
     /// [`Self::new_penetration`] with the bodies placed already.
     fn placed_penetration(&mut self, system: &System) -> f64 {
         let mut worst = f64::INFINITY;
+        self.entering.clear();
         for_each_candidate(system, &self.placements, |k, d, reach| {
             if !self.active[k] {
                 worst = worst.min(d / reach);
+                if d < -reach {
+                    self.entering.push(Entering::Candidate(d / reach));
+                }
             }
         });
         worst.min(self.pair_penetration(system))
@@ -690,7 +713,21 @@ impl MotionSplitting {
             self.mark_active(system);
             let mut saved = std::mem::take(&mut self.saved);
             save(system.bodies(), &mut saved);
-            let f_end = self.substep(system, t, remaining, false)?;
+            let mut f_end = self.substep(system, t, remaining, false)?;
+            if f_end < -1.0 && events < MAX_EVENTS {
+                // Contacts that close slowly count as in contact from the start, so that only
+                // the others are located; the closing solve holds them (and lets their
+                // overlap out).
+                let mut end = std::mem::take(&mut self.flight_end);
+                save(system.bodies(), &mut end);
+                let fast = self.admit_entering(system, &saved, h);
+                if fast >= -1.0 {
+                    // Nothing to locate: the flight stands.
+                    restore(system.bodies_mut(), &end);
+                }
+                self.flight_end = end;
+                f_end = fast;
+            }
             if f_end >= -1.0 || events == MAX_EVENTS {
                 self.saved = saved;
                 if leave_open {
@@ -762,6 +799,55 @@ impl MotionSplitting {
             }
         }
         Ok(None)
+    }
+
+    /// Marks as in contact the contacts between bodies entering in the flight just taken (a
+    /// substep of a step of length `step`, from the state `saved`) that closed their
+    /// distance no faster on average than the forques make bodies approach in one step (the resting
+    /// speed of a whole step): located, they would be resolved without restitution, as they
+    /// are in the closing solve, and locating each (a bracketing of its own, with two solves
+    /// per try) would cost far more than the step. Returns the least relative distance at
+    /// the end of the flight of the others (+∞ if none), and leaves the bodies at `saved`.
+    fn admit_entering(&mut self, system: &mut System, saved: &[SavedBody], step: f64) -> f64 {
+        let entering = std::mem::take(&mut self.entering);
+        restore(system.bodies_mut(), saved);
+        // The pairs within their radii of each other at the start.
+        self.place(system);
+        if self.touching.any_pairs() {
+            let placements = &self.placements;
+            self.touching
+                .scan(system.bodies(), |i| &placements.get(i).q, 1.0, None);
+        }
+        let mut fast = f64::INFINITY;
+        for e in &entering {
+            let Entering::Pair(a, b, end, relative) = *e else {
+                // A half-space lifts what sinks into it out along its normal, which would
+                // add the lift's potential energy: its impacts are all located.
+                if let Entering::Candidate(relative) = *e {
+                    fast = fast.min(relative);
+                }
+                continue;
+            };
+            let start = self
+                .touching
+                .found()
+                .iter()
+                .find(|c| (c.a, c.b) == (a, b))
+                .map_or(f64::INFINITY, |c| c.gap);
+            // The resting speeds were set for the substep, of length h: over the whole step
+            // they are step / h times as large, and the bound on the average approach over
+            // the substep is that times h.
+            let speed = self.resting_speed[a].max(self.resting_speed[b]);
+            if start - end > speed * step {
+                fast = fast.min(relative);
+                continue;
+            }
+            if let Err(at) = self.active_pairs.binary_search(&(a, b)) {
+                self.active_pairs.insert(at, (a, b));
+            }
+        }
+        self.entering = entering;
+        fast
     }
 
     /// `steps` steps of h from t with contacts or joints under constant forques, in leapfrog
