@@ -7,7 +7,8 @@
 //! poses.
 
 use super::gjk::{
-    DEGENERATE, GjkResult, MAX_GJK_ITERATIONS, PlacedShape, RELATIVE_GAP, Simplex, TOUCHING,
+    BOUNDED_GAP, DEGENERATE, GjkResult, PlacedShape, Simplex, TOUCHING, curved, gap_tolerance,
+    go_on,
 };
 use crate::dynamics::motion::shape::{ConvexCore, Coords};
 
@@ -245,9 +246,17 @@ pub(crate) fn gjk_fixed<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Gjk
     let mut vv = dot(&v, &v);
     let mut iterations = 0;
     let mut intersecting = false;
-    while iterations < MAX_GJK_ITERATIONS {
+    let smooth = curved(a, b);
+    let (mut least, mut checkpoint) = (f64::INFINITY, f64::INFINITY);
+    let mut lower = f64::NEG_INFINITY;
+    let mut certified = true;
+    loop {
         if vv.sqrt() <= touching {
             intersecting = true;
+            break;
+        }
+        if !go_on(smooth, iterations, least, &mut checkpoint) {
+            certified = vv.sqrt() - lower.max(0.0) <= BOUNDED_GAP * scale;
             break;
         }
         iterations += 1;
@@ -256,9 +265,11 @@ pub(crate) fn gjk_fixed<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Gjk
         }
         let (w, sa, sb) = support_difference(&d);
         let vw = dot(&v, &w);
-        if vv - vw <= RELATIVE_GAP * vv {
+        if vv - vw <= gap_tolerance(smooth, vv, scale) {
             break;
         }
+        least = least.min(vv - vw);
+        lower = lower.max(vw / vv.sqrt());
         let repeated = (0..simplex.count)
             .any(|k| (0..N).all(|i| (simplex.w[k][i] - w[i]).abs() <= 1e-15 * scale));
         if repeated {
@@ -315,6 +326,7 @@ pub(crate) fn gjk_fixed<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Gjk
         vv,
         intersecting,
         iterations,
+        certified,
         scale,
     }
 }

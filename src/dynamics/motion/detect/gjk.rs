@@ -41,9 +41,26 @@ pub(crate) const TOUCHING: f64 = 1e-12;
 /// A face whose new edge keeps less than this fraction of its length off the span of the
 /// others is degenerate and is replaced by its facets.
 pub(crate) const DEGENERATE: f64 = 1e-12;
+/// On curved cores the gap |v|² − v·w is also accepted below this fraction of |v| times
+/// the problem's size: near contact |v|² is smaller than the round-off of v·w, and the
+/// distance is then known to this fraction of the size.
+pub(crate) const ABSOLUTE_GAP: f64 = 1e-13;
+/// At its iteration bound GJK's answer still counts as certified if its upper bound |v|
+/// of the distance and its best lower bound (or 0) are within this fraction of the
+/// problem's size.
+pub(crate) const BOUNDED_GAP: f64 = 1e-9;
 /// GJK iterations at most. Polytopes finish in a few (exactly, when the support point
-/// repeats); smooth cores converge linearly and stop at the relative gap well before.
+/// repeats); curved cores converge linearly and mostly stop at the gap well before.
 pub(crate) const MAX_GJK_ITERATIONS: usize = 128;
+/// GJK iterations at most on curved cores, beyond [`MAX_GJK_ITERATIONS`] only while the
+/// gap |v|² − v·w halves every [`PROGRESS_WINDOW`] iterations: touching curved cores (the distance
+/// going to 0 with the nearest point on a curved patch of the Minkowski difference) close
+/// |v| by a constant factor per iteration, one decade in about 20 iterations in six
+/// dimensions, and need up to about 250 to reach the contact tolerance from afar.
+pub(crate) const MAX_CURVED_GJK_ITERATIONS: usize = 512;
+/// The window of iterations over which GJK beyond [`MAX_GJK_ITERATIONS`] must halve the
+/// gap.
+pub(crate) const PROGRESS_WINDOW: usize = 32;
 
 /// A convex shape placed in space: its centre and its rotation (row-major N × N, own axes
 /// → space, x_space = position + Q x_own), borrowed.
@@ -133,6 +150,13 @@ pub struct Separation {
     pub intersecting: bool,
     /// The GJK iterations taken (0 for the closed forms).
     pub iterations: usize,
+    /// True if `distance` is known to 1e-9 of the problem's size (the cores' radii and
+    /// the centres' distance): always when GJK stops on its gap test (its upper bound |v|
+    /// of the cores' distance and lower bound v·w/|v| within 1e-12 relative) or at
+    /// contact, and at its iteration bound when the two bounds (the lower one taken as at
+    /// least 0) are that close. False otherwise: `distance` is then an upper bound only.
+    /// Near contact the normal is known to about 1e-16 of the size over the distance.
+    pub certified: bool,
 }
 
 /// The simplex of GJK: up to N + 1 points w = b − a of K with the support points a, b of
@@ -354,6 +378,9 @@ pub(crate) struct GjkResult {
     pub vv: f64,
     pub intersecting: bool,
     pub iterations: usize,
+    /// False if GJK stopped at its iteration bound with its upper and lower bounds of the
+    /// distance more than [`BOUNDED_GAP`] of the size apart.
+    pub certified: bool,
     /// The size the tolerances are relative to: the cores' radii and the centres' distance.
     pub scale: f64,
 }
@@ -415,18 +442,28 @@ pub(crate) fn gjk_general(a: &PlacedShape, b: &PlacedShape) -> GjkResult {
     let mut iterations = 0;
     let mut intersecting = false;
     let mut previous = simplex.clone();
-    while iterations < MAX_GJK_ITERATIONS {
+    let smooth = curved(a, b);
+    let (mut least, mut checkpoint) = (f64::INFINITY, f64::INFINITY);
+    let mut lower = f64::NEG_INFINITY;
+    let mut certified = true;
+    loop {
         if vv.sqrt() <= touching {
             intersecting = true;
+            break;
+        }
+        if !go_on(smooth, iterations, least, &mut checkpoint) {
+            certified = vv.sqrt() - lower.max(0.0) <= BOUNDED_GAP * scale;
             break;
         }
         iterations += 1;
         d.iter_mut().zip(&v).for_each(|(x, y)| *x = -y);
         support_difference(a, b, &d, &mut w, &mut sa, &mut sb);
         let vw: f64 = v.iter().zip(&w).map(|(p, q)| p * q).sum();
-        if vv - vw <= RELATIVE_GAP * vv {
+        if vv - vw <= gap_tolerance(smooth, vv, scale) {
             break;
         }
+        least = least.min(vv - vw);
+        lower = lower.max(vw / vv.sqrt());
         // A support point already in the simplex: no progress is possible.
         let repeated = (0..simplex.count).any(|k| {
             simplex.w[k * n..(k + 1) * n]
@@ -463,8 +500,53 @@ pub(crate) fn gjk_general(a: &PlacedShape, b: &PlacedShape) -> GjkResult {
         vv,
         intersecting,
         iterations,
+        certified,
         scale,
     }
+}
+
+/// True if either core is curved (an ellipsoid): GJK then converges linearly, slowest as
+/// the distance goes to 0, and stops on [`ABSOLUTE_GAP`] too.
+pub(crate) fn curved(a: &PlacedShape, b: &PlacedShape) -> bool {
+    [a, b]
+        .iter()
+        .any(|p| matches!(p.shape.core(), ConvexCore::Ellipsoid(_)))
+}
+
+/// The gap |v|² − v·w below which GJK stops: [`RELATIVE_GAP`] of |v|², and on curved
+/// cores at least [`ABSOLUTE_GAP`] of |v| times the size, which the round-off of v·w
+/// exceeds the relative gap near contact.
+#[inline]
+pub(crate) fn gap_tolerance(curved: bool, vv: f64, scale: f64) -> f64 {
+    if curved {
+        (RELATIVE_GAP * vv).max(ABSOLUTE_GAP * scale * vv.sqrt())
+    } else {
+        RELATIVE_GAP * vv
+    }
+}
+
+/// True if GJK may take another iteration after `iterations`: below
+/// [`MAX_GJK_ITERATIONS`], and on curved cores up to [`MAX_CURVED_GJK_ITERATIONS`] while
+/// the least gap |v|² − v·w so far (`least`) still halves every [`PROGRESS_WINDOW`]
+/// iterations (`checkpoint` holds it at the last window's start).
+#[inline]
+pub(crate) fn go_on(curved: bool, iterations: usize, least: f64, checkpoint: &mut f64) -> bool {
+    if iterations < MAX_GJK_ITERATIONS {
+        if iterations % PROGRESS_WINDOW == 0 {
+            *checkpoint = least;
+        }
+        return true;
+    }
+    if !curved || iterations >= MAX_CURVED_GJK_ITERATIONS {
+        return false;
+    }
+    if iterations % PROGRESS_WINDOW == 0 {
+        if least > 0.5 * *checkpoint {
+            return false;
+        }
+        *checkpoint = least;
+    }
+    true
 }
 
 /// Checks that two placed shapes share a dimension.
@@ -501,7 +583,8 @@ pub(crate) fn centre_direction(a: &PlacedShape, b: &PlacedShape) -> Vector {
 ///
 /// Touching and overlapping shapes have distance 0 and `intersecting` set; the answer is
 /// defined for every input (coincident, nested, flat), never NaN, and GJK stops after at
-/// most 128 iterations.
+/// most 128 iterations, or on ellipsoid cores at most 512 while still converging (see
+/// [`Separation::certified`]).
 ///
 /// ```
 /// use rotorflow::dynamics::motion::detect::{PlacedShape, distance};
@@ -553,6 +636,7 @@ fn separation(a: &PlacedShape, b: &PlacedShape, result: GjkResult) -> Separation
             witness_a,
             intersecting: true,
             iterations: result.iterations,
+            certified: result.certified,
         };
     }
     let core = result.vv.sqrt();
@@ -577,6 +661,7 @@ fn separation(a: &PlacedShape, b: &PlacedShape, result: GjkResult) -> Separation
         witness_b,
         intersecting: distance == 0.0,
         iterations: result.iterations,
+        certified: result.certified,
     }
 }
 
@@ -586,4 +671,31 @@ fn separation(a: &PlacedShape, b: &PlacedShape, result: GjkResult) -> Separation
 /// [`ShapeError::DimensionMismatch`] if the shapes differ in dimension.
 pub fn intersects(a: &PlacedShape, b: &PlacedShape) -> Result<bool, ShapeError> {
     Ok(distance(a, b)?.intersecting)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Past [`MAX_GJK_ITERATIONS`] only curved cores go on, and only while the least gap
+    /// halves in each window, up to [`MAX_CURVED_GJK_ITERATIONS`].
+    #[test]
+    fn gjk_goes_on_past_its_bound_only_while_the_gap_halves() {
+        let run = |curved: bool, ratio: f64| {
+            let (mut checkpoint, mut least) = (f64::INFINITY, 1.0);
+            let mut iterations = 0;
+            while go_on(curved, iterations, least, &mut checkpoint) {
+                iterations += 1;
+                least *= ratio;
+            }
+            iterations
+        };
+        assert_eq!(run(false, 0.9), MAX_GJK_ITERATIONS);
+        assert_eq!(run(true, 0.9), MAX_CURVED_GJK_ITERATIONS);
+        // 0.99³² ≈ 0.72: not halving, so it stops at the first window past the bound.
+        assert_eq!(run(true, 0.99), MAX_GJK_ITERATIONS);
+        // |v| = 1e-6 of a size 10: the relative gap 1e-24, the absolute floor 1e-18.
+        assert!((gap_tolerance(false, 1e-12, 10.0) - 1e-24).abs() <= 1e-36);
+        assert!((gap_tolerance(true, 1e-12, 10.0) - 1e-18).abs() <= 1e-30);
+    }
 }
