@@ -532,7 +532,7 @@ pub(crate) fn gap_tolerance(curved: bool, vv: f64, scale: f64) -> f64 {
 #[inline]
 pub(crate) fn go_on(curved: bool, iterations: usize, least: f64, checkpoint: &mut f64) -> bool {
     if iterations < MAX_GJK_ITERATIONS {
-        if iterations % PROGRESS_WINDOW == 0 {
+        if iterations.is_multiple_of(PROGRESS_WINDOW) {
             *checkpoint = least;
         }
         return true;
@@ -540,7 +540,7 @@ pub(crate) fn go_on(curved: bool, iterations: usize, least: f64, checkpoint: &mu
     if !curved || iterations >= MAX_CURVED_GJK_ITERATIONS {
         return false;
     }
-    if iterations % PROGRESS_WINDOW == 0 {
+    if iterations.is_multiple_of(PROGRESS_WINDOW) {
         if least > 0.5 * *checkpoint {
             return false;
         }
