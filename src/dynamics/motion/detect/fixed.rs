@@ -7,8 +7,8 @@
 //! poses.
 
 use super::gjk::{
-    BOUNDED_GAP, DEGENERATE, GjkResult, PlacedShape, Simplex, TOUCHING, curved, gap_tolerance,
-    go_on,
+    BOUNDED_GAP, DEGENERATE, GjkResult, PlacedShape, Simplex, TOUCHING, TRACKED_FROM, curved,
+    gap_tolerance, go_on,
 };
 use crate::dynamics::motion::shape::{ConvexCore, Coords};
 
@@ -249,6 +249,7 @@ pub(crate) fn gjk_fixed<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Gjk
     let smooth = curved(a, b);
     let (mut least, mut checkpoint) = (f64::INFINITY, f64::INFINITY);
     let mut lower = f64::NEG_INFINITY;
+    let mut open = false;
     let mut certified = true;
     loop {
         if vv.sqrt() <= touching {
@@ -265,11 +266,14 @@ pub(crate) fn gjk_fixed<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Gjk
         }
         let (w, sa, sb) = support_difference(&d);
         let vw = dot(&v, &w);
+        open = vv - vw > gap_tolerance(smooth, vv, scale);
         if vv - vw <= gap_tolerance(smooth, vv, scale) {
             break;
         }
-        least = least.min(vv - vw);
-        lower = lower.max(vw / vv.sqrt());
+        if iterations > TRACKED_FROM {
+            least = least.min(vv - vw);
+            lower = lower.max(vw / vv.sqrt());
+        }
         let repeated = (0..simplex.count)
             .any(|k| (0..N).all(|i| (simplex.w[k][i] - w[i]).abs() <= 1e-15 * scale));
         if repeated {
@@ -313,6 +317,11 @@ pub(crate) fn gjk_fixed<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Gjk
         }
     }
     if vv.sqrt() <= touching {
+        intersecting = true;
+    }
+    if smooth && open && !intersecting && vv.sqrt() <= BOUNDED_GAP * scale {
+        // Curved cores within BOUNDED_GAP whose gap along v stayed open: contact cannot
+        // be excluded and v's direction says nothing, so this counts as contact.
         intersecting = true;
     }
     let mut general = Simplex::new(N);

@@ -58,6 +58,10 @@ pub(crate) const MAX_GJK_ITERATIONS: usize = 128;
 /// |v| by a constant factor per iteration, one decade in about 20 iterations in six
 /// dimensions, and need up to about 250 to reach the contact tolerance from afar.
 pub(crate) const MAX_CURVED_GJK_ITERATIONS: usize = 512;
+/// GJK tracks its least gap and best lower bound of the distance only after this many
+/// iterations (they matter only at the iteration bound; the bounds of a subset of
+/// iterations are still bounds), so that quick queries do not pay for them.
+pub(crate) const TRACKED_FROM: usize = MAX_GJK_ITERATIONS - 2 * PROGRESS_WINDOW;
 /// The window of iterations over which GJK beyond [`MAX_GJK_ITERATIONS`] must halve the
 /// gap.
 pub(crate) const PROGRESS_WINDOW: usize = 32;
@@ -155,7 +159,9 @@ pub struct Separation {
     /// of the cores' distance and lower bound v·w/|v| within 1e-12 relative) or at
     /// contact, and at its iteration bound when the two bounds (the lower one taken as at
     /// least 0) are that close. False otherwise: `distance` is then an upper bound only.
-    /// Near contact the normal is known to about 1e-16 of the size over the distance.
+    /// Near contact the normal is known to about 1e-16 of the size over the distance;
+    /// curved cores nearer than 1e-9 of the size whose gap along the normal stays open
+    /// count as touching.
     pub certified: bool,
 }
 
@@ -445,6 +451,7 @@ pub(crate) fn gjk_general(a: &PlacedShape, b: &PlacedShape) -> GjkResult {
     let smooth = curved(a, b);
     let (mut least, mut checkpoint) = (f64::INFINITY, f64::INFINITY);
     let mut lower = f64::NEG_INFINITY;
+    let mut open = false;
     let mut certified = true;
     loop {
         if vv.sqrt() <= touching {
@@ -459,11 +466,14 @@ pub(crate) fn gjk_general(a: &PlacedShape, b: &PlacedShape) -> GjkResult {
         d.iter_mut().zip(&v).for_each(|(x, y)| *x = -y);
         support_difference(a, b, &d, &mut w, &mut sa, &mut sb);
         let vw: f64 = v.iter().zip(&w).map(|(p, q)| p * q).sum();
+        open = vv - vw > gap_tolerance(smooth, vv, scale);
         if vv - vw <= gap_tolerance(smooth, vv, scale) {
             break;
         }
-        least = least.min(vv - vw);
-        lower = lower.max(vw / vv.sqrt());
+        if iterations > TRACKED_FROM {
+            least = least.min(vv - vw);
+            lower = lower.max(vw / vv.sqrt());
+        }
         // A support point already in the simplex: no progress is possible.
         let repeated = (0..simplex.count).any(|k| {
             simplex.w[k * n..(k + 1) * n]
@@ -492,6 +502,11 @@ pub(crate) fn gjk_general(a: &PlacedShape, b: &PlacedShape) -> GjkResult {
         }
     }
     if vv.sqrt() <= touching {
+        intersecting = true;
+    }
+    if smooth && open && !intersecting && vv.sqrt() <= BOUNDED_GAP * scale {
+        // Curved cores within BOUNDED_GAP whose gap along v stayed open: contact cannot
+        // be excluded and v's direction says nothing, so this counts as contact.
         intersecting = true;
     }
     GjkResult {
@@ -527,7 +542,7 @@ pub(crate) fn gap_tolerance(curved: bool, vv: f64, scale: f64) -> f64 {
 
 /// True if GJK may take another iteration after `iterations`: below
 /// [`MAX_GJK_ITERATIONS`], and on curved cores up to [`MAX_CURVED_GJK_ITERATIONS`] while
-/// the least gap |v|² − v·w so far (`least`) still halves every [`PROGRESS_WINDOW`]
+/// the least gap |v|² − v·w since [`TRACKED_FROM`] (`least`) still halves every [`PROGRESS_WINDOW`]
 /// iterations (`checkpoint` holds it at the last window's start).
 #[inline]
 pub(crate) fn go_on(curved: bool, iterations: usize, least: f64, checkpoint: &mut f64) -> bool {
