@@ -380,7 +380,8 @@ impl Tally {
 ///   pairs the closed form. Overlapping pairs with an
 ///   ellipsoid core are counted apart: EPA's depth is a lower bound there, and the largest
 ///   gap to the translation along its normal is reported;
-/// - everything finite, GJK ≤ 128 and GJK + EPA ≤ 384 iterations.
+/// - everything finite, GJK ≤ 512 (128 but on ellipsoid cores) and GJK + EPA ≤ 768
+///   iterations.
 fn every_kind_run(seed: u64, n: usize, pairs: usize) -> Tally {
     use rand::{Rng, SeedableRng};
     use rotorflow::dynamics::motion::detect::{EpaWorkspace, distance, penetration_with};
@@ -609,7 +610,7 @@ fn every_kind_run(seed: u64, n: usize, pairs: usize) -> Tally {
             }
         }
         t.worst = t.worst.max(error / size);
-        if error > tol && error <= 10.0 * tol && s.iterations >= 128 {
+        if error > tol && error <= 10.0 * tol && !s.certified {
             t.bounded += 1;
             t.bounded_error = t.bounded_error.max(error / size);
         } else if error > tol {
@@ -687,7 +688,7 @@ fn every_kind_report(t: &Tally, panicked: usize, expected: usize) {
             .join(", ")
     );
     println!(
-        "  pairs whose GJK stopped at its 128 iterations with an error between 1e-9 and 1e-8 of the size: {}, largest {:e}",
+        "  pairs whose GJK stopped uncertified at its iteration bound with an error between 1e-9 and 1e-8 of the size: {}, largest {:e}",
         t.bounded, t.bounded_error
     );
     println!(
@@ -696,7 +697,7 @@ fn every_kind_report(t: &Tally, panicked: usize, expected: usize) {
     );
     assert_eq!(t.pairs + panicked, expected);
     assert_eq!((t.wrong, t.nonfinite, panicked), (0, 0, 0));
-    assert!(t.gjk_iterations <= 128 && t.epa_iterations <= 128 + 256);
+    assert!(t.gjk_iterations <= 512 && t.epa_iterations <= 512 + 256);
     let least = expected / (CONFIGURATIONS.len() * 4);
     assert!(
         t.configurations.iter().all(|c| *c >= least),
@@ -734,4 +735,112 @@ fn million_random_pairs_of_every_kind() {
     // 200 chunks × 5 dimensions × 1000 pairs.
     let (t, panicked) = every_kind(200, 1000);
     every_kind_report(&t, panicked, 1_000_000);
+}
+
+/// The error of a separated answer against the test's closed forms: the gap along the
+/// normal (less what the normal's conditioning allows near contact), the witnesses'
+/// distance and how far each lies outside its shape.
+fn separated_error(
+    pa: &reference::Posed,
+    pb: &reference::Posed,
+    s: &rotorflow::dynamics::motion::detect::Separation,
+    size: f64,
+) -> f64 {
+    let m = s.normal.as_slice();
+    let minus: Vec<f64> = m.iter().map(|x| -x).collect();
+    let gap = -(support_value(pa, m) + support_value(pb, &minus));
+    let between: Vec<f64> = s
+        .witness_a
+        .as_slice()
+        .iter()
+        .zip(s.witness_b.as_slice())
+        .map(|(x, y)| x - y)
+        .collect();
+    let angle = (1e-14 * size / s.distance).min(1.0);
+    ((s.distance - gap).abs() - angle * size)
+        .max((s.distance - reference::norm(&between)).abs())
+        .max(outside(pa, s.witness_a.as_slice()))
+        .max(outside(pb, s.witness_b.as_slice()))
+}
+
+/// Smooth pairs (an ellipsoid and a shape of any kind) in six dimensions moved into
+/// touching, where GJK converges slowest: each pair drawn from its own seed, placed as in
+/// [`every_kind_run`]'s touching configuration (B moved onto A along the normal by the
+/// distance), and its answer checked as there and required to be certified. Returns
+/// (pairs, wrong, touching or overlapping, largest iterations).
+fn touching_smooth_run(seeds: impl Iterator<Item = u64>) -> (usize, usize, usize, usize) {
+    use rand::SeedableRng;
+    use rotorflow::dynamics::motion::detect::distance;
+    use rotorflow::dynamics::motion::shape::ConvexShape;
+    let n = 6;
+    let (mut pairs, mut wrong, mut touching, mut iterations) = (0, 0, 0, 0);
+    for seed in seeds {
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let axes: Vec<f64> = (0..n)
+            .map(|_| rand::Rng::gen_range(&mut r, 0.2..2.0))
+            .collect();
+        let (sb, _) = random_shape(&mut r, n);
+        let (pa, mut pb) =
+            reference::random_pair(&mut r, ConvexShape::ellipsoid(&axes).unwrap(), sb);
+        let s = distance(&reference::placed(&pa), &reference::placed(&pb)).unwrap();
+        for (x, m) in pb.position.iter_mut().zip(s.normal.as_slice()) {
+            *x -= s.distance * m;
+        }
+        let size = pa.shape.bounding_radius()
+            + pb.shape.bounding_radius()
+            + reference::norm(
+                &pa.position
+                    .iter()
+                    .zip(&pb.position)
+                    .map(|(x, y)| x - y)
+                    .collect::<Vec<_>>(),
+            );
+        let s = distance(&reference::placed(&pa), &reference::placed(&pb)).unwrap();
+        pairs += 1;
+        iterations = iterations.max(s.iterations);
+        let error = if s.intersecting {
+            touching += 1;
+            let w = s.witness_a.as_slice();
+            outside(&pa, w).max(outside(&pb, w))
+        } else {
+            separated_error(&pa, &pb, &s, size)
+        };
+        if !(error <= 1e-9 * size && s.certified) {
+            wrong += 1;
+            eprintln!(
+                "seed {seed}: error {:e} of the size, distance {:e}, {} iterations",
+                error / size,
+                s.distance,
+                s.iterations
+            );
+        }
+    }
+    (pairs, wrong, touching, iterations)
+}
+
+/// Touching smooth pairs in six dimensions: the pairs that GJK left uncertified at 128
+/// iterations (errors of 3e-8 to 7e-6 of the size, found among seeds 0 … 20 000) and 1000
+/// more. GJK closes |v| on them by a constant factor per iteration and must go on past
+/// 128 while it does, to a certified distance or contact.
+#[test]
+fn touching_smooth_pairs_in_six_dimensions_are_certified() {
+    const SLOW: [u64; 15] = [
+        731, 6255, 6466, 7614, 8402, 9342, 9571, 11438, 12303, 15568, 16702, 17148, 17374, 18443,
+        19696,
+    ];
+    let (pairs, wrong, touching, iterations) = touching_smooth_run(SLOW.into_iter());
+    println!(
+        "touching smooth pairs, N = 6, slow seeds: {pairs} pairs, {wrong} wrong, {touching} in contact, at most {iterations} GJK iterations"
+    );
+    assert_eq!((pairs, wrong), (15, 0));
+    assert!((129..=512).contains(&iterations), "{iterations}");
+    let (pairs, wrong, touching, iterations) = touching_smooth_run(100_000..101_000);
+    println!(
+        "touching smooth pairs, N = 6: {pairs} pairs, {wrong} wrong, {touching} in contact, at most {iterations} GJK iterations"
+    );
+    assert_eq!((pairs, wrong), (1000, 0));
+    assert!(
+        touching >= 300 && iterations <= 512,
+        "{touching} {iterations}"
+    );
 }

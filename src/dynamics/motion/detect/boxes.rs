@@ -363,6 +363,8 @@ pub(crate) fn box_distance<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> 
         vv: ee,
         intersecting,
         iterations: steps,
+        // Returned only when its stopping rule holds (else GJK answers).
+        certified: true,
     })
 }
 

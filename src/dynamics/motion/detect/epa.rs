@@ -701,7 +701,8 @@ pub fn penetration(a: &PlacedShape, b: &PlacedShape) -> Result<Penetration, Shap
 /// Returns the signed penetration depth of two placed shapes (> 0 overlap, ≤ 0 minus the
 /// distance), the contact normal from A to B and the witness points: closed forms for
 /// ball–ball and ball–cuboid, GJK for separated cores, EPA on the cores for overlapping
-/// ones, the margins added. Bounded (at most 128 GJK and 256 EPA iterations, 4096 facets),
+/// ones, the margins added. Bounded (at most 128 GJK iterations, 512 on ellipsoid cores, and
+/// 256 EPA iterations, 4096 facets),
 /// never NaN. EPA is exact for polytopes up to N = 4; above, the facet cap can stop it
 /// with a lower bound of the depth. On smooth cores (ellipsoids) it stops at those bounds
 /// with a lower bound of the depth whose normal is inexact: on random overlapping pairs

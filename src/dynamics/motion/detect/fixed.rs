@@ -7,7 +7,8 @@
 //! poses.
 
 use super::gjk::{
-    DEGENERATE, GjkResult, MAX_GJK_ITERATIONS, PlacedShape, RELATIVE_GAP, Simplex, TOUCHING,
+    BOUNDED_GAP, DEGENERATE, GjkResult, PlacedShape, Simplex, TOUCHING, TRACKED_FROM, curved,
+    gap_tolerance, go_on,
 };
 use super::set_bits;
 use crate::dynamics::motion::shape::{ConvexCore, Coords};
@@ -239,9 +240,18 @@ pub(crate) fn gjk_fixed<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Gjk
     let mut vv = dot(&v, &v);
     let mut iterations = 0;
     let mut intersecting = false;
-    while iterations < MAX_GJK_ITERATIONS {
+    let smooth = curved(a, b);
+    let (mut least, mut checkpoint) = (f64::INFINITY, f64::INFINITY);
+    let mut lower = f64::NEG_INFINITY;
+    let mut open = false;
+    let mut certified = true;
+    loop {
         if vv.sqrt() <= touching {
             intersecting = true;
+            break;
+        }
+        if !go_on(smooth, iterations, least, &mut checkpoint) {
+            certified = vv.sqrt() - lower.max(0.0) <= BOUNDED_GAP * scale;
             break;
         }
         iterations += 1;
@@ -250,8 +260,13 @@ pub(crate) fn gjk_fixed<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Gjk
         }
         let (w, sa, sb) = support_difference(&d);
         let vw = dot(&v, &w);
-        if vv - vw <= RELATIVE_GAP * vv {
+        open = vv - vw > gap_tolerance(smooth, vv, scale);
+        if vv - vw <= gap_tolerance(smooth, vv, scale) {
             break;
+        }
+        if iterations > TRACKED_FROM {
+            least = least.min(vv - vw);
+            lower = lower.max(vw / vv.sqrt());
         }
         let repeated = (0..simplex.count)
             .any(|k| (0..N).all(|i| (simplex.w[k][i] - w[i]).abs() <= 1e-15 * scale));
@@ -298,6 +313,11 @@ pub(crate) fn gjk_fixed<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Gjk
     if vv.sqrt() <= touching {
         intersecting = true;
     }
+    if smooth && open && !intersecting && vv.sqrt() <= BOUNDED_GAP * scale {
+        // Curved cores within BOUNDED_GAP whose gap along v stayed open: contact cannot
+        // be excluded and v's direction says nothing, so this counts as contact.
+        intersecting = true;
+    }
     let mut general = Simplex::new(N);
     for k in 0..simplex.count {
         general.push(&simplex.w[k], &simplex.a[k], &simplex.b[k]);
@@ -309,6 +329,7 @@ pub(crate) fn gjk_fixed<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Gjk
         vv,
         intersecting,
         iterations,
+        certified,
         scale,
     }
 }
