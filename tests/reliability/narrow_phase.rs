@@ -715,8 +715,8 @@ fn ten_thousand_random_pairs_of_every_kind() {
 }
 
 /// 10⁵ pairs (40 to 90 s in release on two cores): EPA on overlapping pairs in 5 and 6
-/// dimensions (ellipsoids to its iteration bound, thousands of facets) dominates, and 10⁶
-/// would add 7 to 15 minutes to CI; the distances alone run to 10⁶ in
+/// dimensions (ellipsoids to its iteration bound, thousands of facets) dominates. 10⁶ run in
+/// [`million_random_pairs_of_every_kind`], the polytope distances alone in
 /// [`a_million_random_polytope_pairs`].
 #[test]
 #[ignore = "10⁵ pairs of every kind: release, CI runs it"]
@@ -726,11 +726,11 @@ fn hundred_thousand_random_pairs_of_every_kind() {
     every_kind_report(&t, panicked, 100_000);
 }
 
-/// 10⁶ pairs of every kind, the count the detection is held to; 7 to 15 minutes in release
-/// on two cores, so run by hand:
-/// `cargo test --release --all-features --test reliability million_random_pairs_of_every_kind -- --ignored --nocapture`.
+/// 10⁶ pairs of every kind, the count the detection is held to: 7 to 15 minutes in release
+/// on two cores, a step of its own in CI
+/// (`cargo test --release --all-features --test reliability million_random_pairs_of_every_kind -- --ignored --nocapture`).
 #[test]
-#[ignore = "10⁶ pairs of every kind: minutes in release, run by hand"]
+#[ignore = "10⁶ pairs of every kind: minutes in release; CI runs it"]
 fn million_random_pairs_of_every_kind() {
     // 200 chunks × 5 dimensions × 1000 pairs.
     let (t, panicked) = every_kind(200, 1000);
