@@ -6,10 +6,7 @@
 //! of some sums differs), which `tests/reliability/narrow_phase.rs` checks over random
 //! poses.
 
-use super::gjk::{
-    BOUNDED_GAP, DEGENERATE, GjkResult, PlacedShape, Simplex, TOUCHING, TRACKED_FROM, curved,
-    gap_tolerance, go_on,
-};
+use super::gjk::{DEGENERATE, GjkResult, PlacedShape, Simplex, StopRule, TOUCHING, curved};
 use super::set_bits;
 use crate::dynamics::motion::shape::{ConvexCore, Coords};
 
@@ -240,18 +237,15 @@ pub(crate) fn gjk_fixed<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Gjk
     let mut vv = dot(&v, &v);
     let mut iterations = 0;
     let mut intersecting = false;
-    let smooth = curved(a, b);
-    let (mut least, mut checkpoint) = (f64::INFINITY, f64::INFINITY);
-    let mut lower = f64::NEG_INFINITY;
-    let mut open = false;
+    let mut rule = StopRule::new(curved(a, b), scale);
     let mut certified = true;
     loop {
         if vv.sqrt() <= touching {
             intersecting = true;
             break;
         }
-        if !go_on(smooth, iterations, least, &mut checkpoint) {
-            certified = vv.sqrt() - lower.max(0.0) <= BOUNDED_GAP * scale;
+        if !rule.may_continue(iterations) {
+            certified = rule.certified(vv);
             break;
         }
         iterations += 1;
@@ -260,13 +254,8 @@ pub(crate) fn gjk_fixed<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Gjk
         }
         let (w, sa, sb) = support_difference(&d);
         let vw = dot(&v, &w);
-        open = vv - vw > gap_tolerance(smooth, vv, scale);
-        if vv - vw <= gap_tolerance(smooth, vv, scale) {
+        if rule.closed(iterations, vv, vw) {
             break;
-        }
-        if iterations > TRACKED_FROM {
-            least = least.min(vv - vw);
-            lower = lower.max(vw / vv.sqrt());
         }
         let repeated = (0..simplex.count)
             .any(|k| (0..N).all(|i| (simplex.w[k][i] - w[i]).abs() <= 1e-15 * scale));
@@ -313,9 +302,7 @@ pub(crate) fn gjk_fixed<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Gjk
     if vv.sqrt() <= touching {
         intersecting = true;
     }
-    if smooth && open && !intersecting && vv.sqrt() <= BOUNDED_GAP * scale {
-        // Curved cores within BOUNDED_GAP whose gap along v stayed open: contact cannot
-        // be excluded and v's direction says nothing, so this counts as contact.
+    if !intersecting && rule.undecided_contact(vv) {
         intersecting = true;
     }
     let mut general = Simplex::new(N);

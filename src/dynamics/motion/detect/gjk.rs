@@ -460,31 +460,23 @@ pub(crate) fn gjk_general(a: &PlacedShape, b: &PlacedShape) -> GjkResult {
     let mut iterations = 0;
     let mut intersecting = false;
     let mut previous = simplex.clone();
-    let smooth = curved(a, b);
-    let (mut least, mut checkpoint) = (f64::INFINITY, f64::INFINITY);
-    let mut lower = f64::NEG_INFINITY;
-    let mut open = false;
+    let mut rule = StopRule::new(curved(a, b), scale);
     let mut certified = true;
     loop {
         if vv.sqrt() <= touching {
             intersecting = true;
             break;
         }
-        if !go_on(smooth, iterations, least, &mut checkpoint) {
-            certified = vv.sqrt() - lower.max(0.0) <= BOUNDED_GAP * scale;
+        if !rule.may_continue(iterations) {
+            certified = rule.certified(vv);
             break;
         }
         iterations += 1;
         d.iter_mut().zip(&v).for_each(|(x, y)| *x = -y);
         support_difference(a, b, &d, &mut w, &mut sa, &mut sb);
         let vw: f64 = v.iter().zip(&w).map(|(p, q)| p * q).sum();
-        open = vv - vw > gap_tolerance(smooth, vv, scale);
-        if vv - vw <= gap_tolerance(smooth, vv, scale) {
+        if rule.closed(iterations, vv, vw) {
             break;
-        }
-        if iterations > TRACKED_FROM {
-            least = least.min(vv - vw);
-            lower = lower.max(vw / vv.sqrt());
         }
         // A support point already in the simplex: no progress is possible.
         let repeated = (0..simplex.count).any(|k| {
@@ -516,9 +508,7 @@ pub(crate) fn gjk_general(a: &PlacedShape, b: &PlacedShape) -> GjkResult {
     if vv.sqrt() <= touching {
         intersecting = true;
     }
-    if smooth && open && !intersecting && vv.sqrt() <= BOUNDED_GAP * scale {
-        // Curved cores within BOUNDED_GAP whose gap along v stayed open: contact cannot
-        // be excluded and v's direction says nothing, so this counts as contact.
+    if !intersecting && rule.undecided_contact(vv) {
         intersecting = true;
     }
     GjkResult {
@@ -538,6 +528,66 @@ pub(crate) fn curved(a: &PlacedShape, b: &PlacedShape) -> bool {
     [a, b]
         .iter()
         .any(|p| matches!(p.shape.core(), ConvexCore::Ellipsoid(_)))
+}
+
+/// GJK's stopping rule and what it tracks: the gap |v|² − v·w against [`gap_tolerance`],
+/// and from [`TRACKED_FROM`] on the least gap (for [`go_on`]) and the best lower bound
+/// v·w/|v| of the distance (for the certificate at the iteration bound).
+pub(crate) struct StopRule {
+    curved: bool,
+    scale: f64,
+    least: f64,
+    checkpoint: f64,
+    lower: f64,
+    open: bool,
+}
+
+impl StopRule {
+    pub(crate) fn new(curved: bool, scale: f64) -> Self {
+        StopRule {
+            curved,
+            scale,
+            least: f64::INFINITY,
+            checkpoint: f64::INFINITY,
+            lower: f64::NEG_INFINITY,
+            open: false,
+        }
+    }
+
+    /// True if GJK may take another iteration after `iterations` ([`go_on`]).
+    #[inline]
+    pub(crate) fn may_continue(&mut self, iterations: usize) -> bool {
+        go_on(self.curved, iterations, self.least, &mut self.checkpoint)
+    }
+
+    /// At the iteration bound: whether the upper bound |v| and the best lower bound lie
+    /// within [`BOUNDED_GAP`] of the size.
+    #[inline]
+    pub(crate) fn certified(&self, vv: f64) -> bool {
+        vv.sqrt() - self.lower.max(0.0) <= BOUNDED_GAP * self.scale
+    }
+
+    /// Takes the new support point's v·w at iteration `iterations`: true if the gap has
+    /// closed (GJK stops), else records it.
+    #[inline]
+    pub(crate) fn closed(&mut self, iterations: usize, vv: f64, vw: f64) -> bool {
+        self.open = vv - vw > gap_tolerance(self.curved, vv, self.scale);
+        if !self.open {
+            return true;
+        }
+        if iterations > TRACKED_FROM {
+            self.least = self.least.min(vv - vw);
+            self.lower = self.lower.max(vw / vv.sqrt());
+        }
+        false
+    }
+
+    /// Curved cores within [`BOUNDED_GAP`] whose gap along v stayed open: contact cannot
+    /// be excluded and v's direction says nothing, so this counts as contact.
+    #[inline]
+    pub(crate) fn undecided_contact(&self, vv: f64) -> bool {
+        self.curved && self.open && vv.sqrt() <= BOUNDED_GAP * self.scale
+    }
 }
 
 /// The gap |v|² − v·w below which GJK stops: [`RELATIVE_GAP`] of |v|², and on curved
