@@ -144,6 +144,16 @@ pub fn broadcast(a: (usize, bool), b: (usize, bool), what: &str) -> PyResult<(us
     }
 }
 
+/// `tail` (when `single`) or `(count, *tail)`: the shape of a batch's output.
+fn batch_shape(count: usize, single: bool, tail: &[usize]) -> Vec<usize> {
+    let mut shape = Vec::with_capacity(tail.len() + 1);
+    if !single {
+        shape.push(count);
+    }
+    shape.extend_from_slice(tail);
+    shape
+}
+
 /// A new numpy array of zeros of shape `tail` (when `single`) or `(M, *tail)`, to be filled
 /// in place: numpy's allocator serves large arrays from huge pages where the system offers
 /// them, so that filling a fresh array of millions of entries does not fault page by page.
@@ -153,11 +163,7 @@ pub fn zeros<'py>(
     single: bool,
     tail: &[usize],
 ) -> Bound<'py, PyArrayDyn<f64>> {
-    let mut shape = Vec::with_capacity(tail.len() + 1);
-    if !single {
-        shape.push(count);
-    }
-    shape.extend_from_slice(tail);
+    let shape = batch_shape(count, single, tail);
     PyArrayDyn::zeros(py, IxDyn(&shape), false)
 }
 
@@ -170,11 +176,7 @@ pub fn empty<'py>(
     single: bool,
     tail: &[usize],
 ) -> Bound<'py, PyArrayDyn<f64>> {
-    let mut shape = Vec::with_capacity(tail.len() + 1);
-    if !single {
-        shape.push(count);
-    }
-    shape.extend_from_slice(tail);
+    let shape = batch_shape(count, single, tail);
     // SAFETY: f64 has no invalid bit patterns; every caller writes every entry before the
     // array is returned to Python, and drops it on an error.
     unsafe { PyArrayDyn::new(py, IxDyn(&shape), false) }
@@ -199,11 +201,7 @@ pub fn output<'py>(
     single: bool,
     tail: &[usize],
 ) -> Bound<'py, PyArrayDyn<f64>> {
-    let mut shape = Vec::with_capacity(tail.len() + 1);
-    if !single {
-        shape.push(count);
-    }
-    shape.extend_from_slice(tail);
+    let shape = batch_shape(count, single, tail);
     ArrayD::from_shape_vec(IxDyn(&shape), data)
         .expect("the data fills the shape")
         .into_pyarray(py)
