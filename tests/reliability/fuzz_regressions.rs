@@ -765,39 +765,16 @@ fn fuzz_log_is_checked_with_the_exponential_users_get() {
     assert_eq!(checked, 2);
 }
 
-/// convex_pairs (input `AgIVACAAIAzMDMwMzAzMDMwM////zAAAfiAAIAI=`): a 4D box of size 1 inside
-/// a cross-polytope of circumradius 425600, both unturned. EPA gave depth 212801.3102 one way
-/// and 212801.0618 the other: its expansion stopped before converging when a cone facet came
-/// out degenerate. The new support point lay, to round-off, in the affine hull of a horizon
-/// ridge, so in the plane of the thin facet beyond that ridge, which round-off had kept
-/// from counting as seen. That facet is now taken as seen (coplanar facets merge) and the
-/// expansion goes on. Both orders are checked against the least translation over every
-/// candidate facet normal of the Minkowski difference (complements of three edge
-/// directions), computed from the vertices.
-#[test]
-fn fuzz_epa_depth_is_symmetric_for_a_box_deep_in_a_large_cross_polytope() {
-    use rotorflow::dynamics::motion::detect::{EpaWorkspace, PlacedShape, penetration_with};
-    use rotorflow::dynamics::motion::shape::ConvexShape;
-    let n = 4;
-    let half = [0.5, 0.5, 0.811767578125, 0.811767578125];
-    let radius = 425600.0;
-    let boxed = ConvexShape::cuboid(&half).unwrap();
-    let cross = ConvexShape::cross_polytope(n, radius).unwrap();
-    let pa = [
-        0.0003905296325683594,
-        -1.1920928955078125e-7,
-        -0.0015565156936645508,
-        0.0,
-    ];
-    let pb = [
-        0.0009915828704833984,
-        0.0009765625,
-        2.384185791015625e-7,
-        0.0,
-    ];
-    let identity: Vec<f64> = (0..16)
-        .map(|k| if k % 5 == 0 { 1.0 } else { 0.0 })
-        .collect();
+/// The least translation that separates a 4D box (half-lengths `half`, centre `pa`) and a
+/// cross-polytope (circumradius `radius`, centre `pb`), both unturned: the minimum over every
+/// candidate facet normal of their Minkowski difference (complements of three edge
+/// directions), computed from the vertices; and how many normals were tried.
+fn least_translation_box_cross_4d(
+    half: &[f64; 4],
+    radius: f64,
+    pa: &[f64; 4],
+    pb: &[f64; 4],
+) -> (f64, usize) {
     // Vertices in space, and the edge directions of both polytopes.
     let box_vertices: Vec<[f64; 4]> = (0..16)
         .map(|m| std::array::from_fn(|i| pa[i] + if m >> i & 1 == 1 { half[i] } else { -half[i] }))
@@ -874,6 +851,43 @@ fn fuzz_epa_depth_is_symmetric_for_a_box_deep_in_a_large_cross_polytope() {
             }
         }
     }
+    (least, candidates)
+}
+
+/// convex_pairs (input `AgIVACAAIAzMDMwMzAzMDMwM////zAAAfiAAIAI=`): a 4D box of size 1 inside
+/// a cross-polytope of circumradius 425600, both unturned. EPA gave depth 212801.3102 one way
+/// and 212801.0618 the other: its expansion stopped before converging when a cone facet came
+/// out degenerate. The new support point lay, to round-off, in the affine hull of a horizon
+/// ridge, so in the plane of the thin facet beyond that ridge, which round-off had kept
+/// from counting as seen. That facet is now taken as seen (coplanar facets merge) and the
+/// expansion goes on. Both orders are checked against the least translation over every
+/// candidate facet normal of the Minkowski difference (complements of three edge
+/// directions), computed from the vertices.
+#[test]
+fn fuzz_epa_depth_is_symmetric_for_a_box_deep_in_a_large_cross_polytope() {
+    use rotorflow::dynamics::motion::detect::{EpaWorkspace, PlacedShape, penetration_with};
+    use rotorflow::dynamics::motion::shape::ConvexShape;
+    let n = 4;
+    let half = [0.5, 0.5, 0.811767578125, 0.811767578125];
+    let radius = 425600.0;
+    let boxed = ConvexShape::cuboid(&half).unwrap();
+    let cross = ConvexShape::cross_polytope(n, radius).unwrap();
+    let pa = [
+        0.0003905296325683594,
+        -1.1920928955078125e-7,
+        -0.0015565156936645508,
+        0.0,
+    ];
+    let pb = [
+        0.0009915828704833984,
+        0.0009765625,
+        2.384185791015625e-7,
+        0.0,
+    ];
+    let identity: Vec<f64> = (0..16)
+        .map(|k| if k % 5 == 0 { 1.0 } else { 0.0 })
+        .collect();
+    let (least, candidates) = least_translation_box_cross_4d(&half, radius, &pa, &pb);
     assert!(candidates > 500, "{candidates} candidate normals");
     let a = PlacedShape::new(&boxed, &pa, &identity).unwrap();
     let b = PlacedShape::new(&cross, &pb, &identity).unwrap();
@@ -900,6 +914,132 @@ fn fuzz_epa_depth_is_symmetric_for_a_box_deep_in_a_large_cross_polytope() {
         .map(|(x, y)| x * y)
         .sum();
     assert!((opposite + 1.0).abs() < 1e-12, "{opposite}");
+}
+
+/// convex_pairs (input `AgLr/////xPMDMwMzAzMfgzMDAEtAzAAAH4gfiAC`): a 4D slab (half-lengths
+/// 1/32, 1/32, 415.4, 415.6) inside a cross-polytope of circumradius 425600, unturned. The
+/// Minkowski difference has facets 1/16 wide and 10⁵ long, whose heights carry round-off
+/// of about ε · size² / width ≈ 3e-3; misjudged as seen or not, they bent one order's
+/// polytope until its nearest facet fell from 213111 to 7e-6, and EPA, still going, returned
+/// that depth. A fall of the nearest facet's distance by more than 1e-6 of the size now ends
+/// the expansion with the facet before the fall. Both orders must agree to 1e-8 of the size
+/// and lie below the least translation over the candidate normals (EPA gives a lower bound)
+/// by at most 1e-7 of the size.
+#[test]
+fn fuzz_epa_depth_survives_sliver_facets_of_a_thin_slab_in_a_large_cross_polytope() {
+    use rotorflow::dynamics::motion::detect::{EpaWorkspace, PlacedShape, penetration_with};
+    use rotorflow::dynamics::motion::shape::ConvexShape;
+    let half = [0.03125, 0.03125, 415.40625, 415.625];
+    let radius = 425600.0;
+    let pa = [
+        -3.096647560596466e-6,
+        6.239861249923706e-8,
+        1.89291313290596e-7,
+        1.1175870895385742e-8,
+    ];
+    let pb = [
+        7.510185241699219e-6,
+        7.517635822296143e-6,
+        1.2665987014770508e-7,
+        0.0,
+    ];
+    let (least, candidates) = least_translation_box_cross_4d(&half, radius, &pa, &pb);
+    assert!(candidates > 500, "{candidates} candidate normals");
+    let identity: Vec<f64> = (0..16)
+        .map(|k| if k % 5 == 0 { 1.0 } else { 0.0 })
+        .collect();
+    let slab = ConvexShape::cuboid(&half).unwrap();
+    let cross = ConvexShape::cross_polytope(4, radius).unwrap();
+    let a = PlacedShape::new(&slab, &pa, &identity).unwrap();
+    let b = PlacedShape::new(&cross, &pb, &identity).unwrap();
+    let mut workspace = EpaWorkspace::new();
+    let forward = penetration_with(&mut workspace, &a, &b).unwrap();
+    let backward = penetration_with(&mut workspace, &b, &a).unwrap();
+    let size = radius + slab.bounding_radius();
+    assert!(
+        (forward.depth - backward.depth).abs() <= 1e-8 * size,
+        "depths {} and {}",
+        forward.depth,
+        backward.depth
+    );
+    for depth in [forward.depth, backward.depth] {
+        assert!(
+            depth <= least + 1e-12 * size && depth >= least - 1e-7 * size,
+            "depth {depth} against {least}"
+        );
+    }
+}
+
+/// convex_pairs (input `+cz/GBAuAgIVAgACAiAVACD7nJwUEBAQAAAAAQAAAAAAAAIAAMwAAP8ZzAwRCN+cAAIA`):
+/// in 6D a tiny rounded ellipsoid (semi-axes 3e-8 … 8e-5, margin 1.2e-4) at the middle of a
+/// capsule (half-length 1319, radius 1032), unturned. The Minkowski difference of the cores
+/// is a sausage 6e-8 thin across one axis and 2638 long, the origin on its surface. The
+/// first simplex had a vertex within 1e-12 of the size of the plane of the others (it had
+/// joined far from the span of the points before it), and orienting that facet panicked;
+/// such facets are now widened by a support point. The expansion then removed every facet
+/// near the origin and ended on one 1318.7 away, beyond a support query that had reached
+/// only −1.8e-8 along its normal: the depth is now never above the least reach met. The
+/// depth is the sum of the margins plus a core depth of at most the sausage's thickness.
+#[test]
+fn fuzz_epa_depth_of_a_tiny_ellipsoid_in_a_long_capsule_is_the_margins() {
+    use rotorflow::dynamics::motion::detect::{EpaWorkspace, PlacedShape, penetration_with};
+    use rotorflow::dynamics::motion::shape::ConvexShape;
+    let semi_axes = [
+        6.139278411865234e-5,
+        8.314847946166992e-6,
+        8.01384449005127e-5,
+        2.9802322387695313e-8,
+        7.659196853637695e-6,
+        8.058547973632813e-5,
+    ];
+    let tiny = ConvexShape::ellipsoid(&semi_axes)
+        .unwrap()
+        .rounded(0.0001220703125)
+        .unwrap();
+    let capsule = ConvexShape::capsule(6, 1319.0, 1032.0).unwrap();
+    let pa = [
+        7.450580596923828e-9,
+        0.0,
+        0.0,
+        0.0,
+        5.820766091346741e-11,
+        -3.8743019104003906e-7,
+    ];
+    let pb = [
+        0.0,
+        1.936859916895628e-7,
+        9.534414857625961e-8,
+        6.00994098931551e-8,
+        -7.385679055005312e-7,
+        1.4901161193847656e-8,
+    ];
+    let identity: Vec<f64> = (0..36)
+        .map(|k| if k % 7 == 0 { 1.0 } else { 0.0 })
+        .collect();
+    let a = PlacedShape::new(&tiny, &pa, &identity).unwrap();
+    let b = PlacedShape::new(&capsule, &pb, &identity).unwrap();
+    let mut workspace = EpaWorkspace::new();
+    let margins = 1032.0 + 0.0001220703125;
+    let mut checked = 0;
+    for (first, second) in [(&a, &b), (&b, &a)] {
+        let p = penetration_with(&mut workspace, first, second).unwrap();
+        assert!(
+            p.depth >= margins && p.depth <= margins + 2.0 * semi_axes[3] + 1e-9,
+            "depth {} against the margins {margins}",
+            p.depth
+        );
+        for ((wa, wb), m) in p
+            .witness_a
+            .as_slice()
+            .iter()
+            .zip(p.witness_b.as_slice())
+            .zip(p.normal.as_slice())
+        {
+            assert!((wa - wb - p.depth * m).abs() <= 1e-9 * 2351.0);
+        }
+        checked += 1;
+    }
+    assert_eq!(checked, 2);
 }
 
 /// convex_pairs (input `/gIVACAAuAzMDMwAICDMDMwM/34C`): a 6D box (half-lengths about 0.5 … 1.1)
