@@ -1042,6 +1042,61 @@ fn fuzz_epa_depth_of_a_tiny_ellipsoid_in_a_long_capsule_is_the_margins() {
     assert_eq!(checked, 2);
 }
 
+/// convex_pairs (input `AQMVAABAAAAAAAAAAEBKAAAAQAABAAAAmtma/////////////////////////yX/Mv////////////8P////////AAAAAAAAAAA=`):
+/// in 3D a hull of size 1 with a sliver face on x = 0 and a hull of size 2e-4 whose one
+/// vertex at the origin touches that face, the others 1.5e-8 behind it. One order gave
+/// distance 5e-11, the other 1.5e-8, "certified": on the sliver simplex round-off had put
+/// v off the simplex's nearest point, the support point along −v was one the simplex held,
+/// and GJK stopped there with its lower bound v·w/|v| at −6e-9. Such a stop now counts as
+/// certified only when the bounds meet (to 1e-9 of the size). Both orders must give an
+/// upper bound of the true distance 0 within the round-off of the sliver, and no
+/// certified distance beyond 1e-9 of the size.
+#[test]
+fn fuzz_gjk_stopped_on_a_repeated_support_point_is_certified_only_when_its_bounds_meet() {
+    use rotorflow::dynamics::motion::detect::{PlacedShape, distance};
+    use rotorflow::dynamics::motion::shape::ConvexShape;
+    let large: Vec<Vec<f64>> = [
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0045166015625],
+        [0.0, 0.00390625, 6.103515625e-5],
+        [0.0, -0.5999755859375, -0.0062255859375],
+    ]
+    .iter()
+    .map(|p| p.to_vec())
+    .collect();
+    let e = -1.4901161193847656e-8;
+    let small: Vec<Vec<f64>> = [
+        [e, e, e],
+        [e, e, e],
+        [e, 0.00014494359493255615, 0.00019453465938568115],
+        [e, e, e],
+        [e, e, -3.591179847717285e-6],
+        [e, e, 3.7997961044311523e-6],
+        [0.0, 0.0, 0.0],
+    ]
+    .iter()
+    .map(|p| p.to_vec())
+    .collect();
+    let large = ConvexShape::hull(&large).unwrap();
+    let small = ConvexShape::hull(&small).unwrap();
+    let identity = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
+    let a = PlacedShape::new(&large, &[0.0; 3], &identity).unwrap();
+    let b = PlacedShape::new(&small, &[0.0; 3], &identity).unwrap();
+    let size = large.bounding_radius() + small.bounding_radius();
+    let mut checked = 0;
+    for (first, second) in [(&a, &b), (&b, &a)] {
+        let d = distance(first, second).unwrap();
+        assert!(d.distance <= 2e-8 * size, "distance {}", d.distance);
+        assert!(
+            !(d.certified && d.distance > 1e-9 * size),
+            "distance {} certified",
+            d.distance
+        );
+        checked += 1;
+    }
+    assert_eq!(checked, 2);
+}
+
 /// convex_pairs (input `/gIVACAAuAzMDMwAICDMDMwM/34C`): a 6D box (half-lengths about 0.5 … 1.1)
 /// at the centre of a cross-polytope of circumradius 7808, unturned. With the merges of the
 /// finding above, one order went on until round-off had bent the polytope so that a

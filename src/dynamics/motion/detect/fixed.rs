@@ -260,6 +260,7 @@ pub(crate) fn gjk_fixed<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Gjk
         let repeated = (0..simplex.count)
             .any(|k| (0..N).all(|i| (simplex.w[k][i] - w[i]).abs() <= 1e-15 * scale));
         if repeated {
+            certified = rule.certified_when_stuck(vv, vw);
             break;
         }
         let mut next = simplex;

@@ -169,8 +169,10 @@ pub struct Separation {
     /// True if `distance` is known to 1e-9 of the problem's size (the cores' radii and
     /// the centres' distance): always when GJK stops on its gap test (its upper bound |v|
     /// of the cores' distance and lower bound v·w/|v| within 1e-12 relative) or at
-    /// contact, and at its iteration bound when the two bounds (the lower one taken as at
-    /// least 0) are that close. False otherwise: `distance` is then an upper bound only.
+    /// contact, and at its iteration bound, or where a support point repeats one it holds
+    /// (round-off on sliver simplices of nearly touching polytopes), when the two bounds
+    /// (the lower one taken as at least 0) are that close. False otherwise: `distance` is
+    /// then an upper bound only.
     /// Near contact the normal is known to about 1e-16 of the size over the distance;
     /// curved cores nearer than 1e-9 of the size whose gap along the normal stays open
     /// count as touching.
@@ -486,6 +488,7 @@ pub(crate) fn gjk_general(a: &PlacedShape, b: &PlacedShape) -> GjkResult {
                 .all(|(p, q)| (p - q).abs() <= 1e-15 * scale)
         });
         if repeated {
+            certified = rule.certified_when_stuck(vv, vw);
             break;
         }
         previous.clone_from(&simplex);
@@ -565,6 +568,16 @@ impl StopRule {
     #[inline]
     pub(crate) fn certified(&self, vv: f64) -> bool {
         vv.sqrt() - self.lower.max(0.0) <= BOUNDED_GAP * self.scale
+    }
+
+    /// Where GJK meets a support point it holds already with the gap still open (round-off
+    /// on a sliver simplex has put v off its nearest point): whether the upper bound |v|
+    /// and the best lower bound, this support point's v·w/|v| included, lie within
+    /// [`BOUNDED_GAP`] of the size.
+    #[inline]
+    pub(crate) fn certified_when_stuck(&mut self, vv: f64, vw: f64) -> bool {
+        self.lower = self.lower.max(vw / vv.sqrt());
+        self.certified(vv)
     }
 
     /// Takes the new support point's v·w at iteration `iterations`: true if the gap has
