@@ -6,7 +6,7 @@
 
 use rotorflow::dynamics::motion::forques::Gravity;
 use rotorflow::dynamics::motion::{
-    HalfSpace, MotionIntegrator, MotionSplitting, MovingBody, System,
+    HalfSpace, MotionIntegrator, MotionSplitting, MovingBody, SoftStep, System,
 };
 use rotorflow::inertia::spec::parse_body;
 use rotorflow::prelude::*;
@@ -93,15 +93,33 @@ fn main() {
         _ => (pile(100), 0.4),
     };
     let mut s = system(&items, half);
-    let mut integ = MotionSplitting::new();
+    let soft = args.get(4).is_some_and(|a| a == "soft");
+    let mut exact = MotionSplitting::new();
+    let hz: f64 = std::env::var("HZ")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(30.0);
+    let sub: usize = std::env::var("SUB")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(4);
+    let mut soft_step = SoftStep::new()
+        .with_contact_spring(hz, 10.0)
+        .unwrap()
+        .with_substeps(sub)
+        .unwrap();
     let start = Instant::now();
     let mut t = 0.0;
     let mut k = 0;
     while k < steps {
         let t0 = Instant::now();
-        let before = integ.solver_report();
-        integ.advance(&mut s, t, H, per).unwrap();
-        let r = integ.solver_report();
+        let before = exact.solver_report();
+        if soft {
+            soft_step.advance(&mut s, t, H, per).unwrap();
+        } else {
+            exact.advance(&mut s, t, H, per).unwrap();
+        }
+        let r = exact.solver_report();
         t += per as f64 * H;
         k += per;
         let top = s.bodies().last().unwrap().position().as_slice()[2];
@@ -117,6 +135,6 @@ fn main() {
     println!(
         "total {:.2} s, {:?}",
         start.elapsed().as_secs_f64(),
-        integ.solver_report()
+        exact.solver_report()
     );
 }

@@ -25,6 +25,7 @@ mod orders;
 mod paper_errata;
 #[cfg(feature = "scene")]
 mod piles;
+mod soft_step;
 mod stacks;
 mod torqued;
 

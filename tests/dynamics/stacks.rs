@@ -10,7 +10,7 @@ use rotorflow::prelude::*;
 
 const G: f64 = 9.81;
 
-fn axis(n: usize, i: usize, x: f64) -> Vector {
+pub(crate) fn axis(n: usize, i: usize, x: f64) -> Vector {
     let mut v = Vector::zero(n);
     v.as_mut_slice()[i] = x;
     v
@@ -23,7 +23,13 @@ fn cube(n: usize, half: f64, x: &[f64], friction: f64) -> MovingBody {
 }
 
 /// [`cube`] with the attitude `attitude`.
-fn turned_cube(n: usize, half: f64, x: &[f64], friction: f64, attitude: Rotor) -> MovingBody {
+pub(crate) fn turned_cube(
+    n: usize,
+    half: f64,
+    x: &[f64],
+    friction: f64,
+    attitude: Rotor,
+) -> MovingBody {
     let lengths = vec![format!("{half}"); n].join(",");
     let parsed = parse_body(&format!("cuboid:{lengths}+mass=1")).unwrap();
     MovingBody::from_parsed(
@@ -41,10 +47,10 @@ fn turned_cube(n: usize, half: f64, x: &[f64], friction: f64, attitude: Rotor) -
 /// What a tower did: how far its top box sank and slid from where it started, and its
 /// speed at the end.
 #[derive(Debug)]
-struct Outcome {
-    sink: f64,
-    slide: f64,
-    speed: f64,
+pub(crate) struct Outcome {
+    pub sink: f64,
+    pub slide: f64,
+    pub speed: f64,
 }
 
 /// `count` cubes of side 1 stacked on a floor in N dimensions, each shifted by `offset`
@@ -53,6 +59,25 @@ struct Outcome {
 /// The top box's sink is measured from its resting height, its slide from where it was
 /// dropped.
 fn tower(
+    n: usize,
+    count: usize,
+    (offset, turn, drop): (f64, f64, f64),
+    h: f64,
+    seconds: f64,
+) -> Outcome {
+    tower_with(
+        &mut MotionSplitting::new(),
+        n,
+        count,
+        (offset, turn, drop),
+        h,
+        seconds,
+    )
+}
+
+/// [`tower`] stepped by `stepper`.
+pub(crate) fn tower_with(
+    stepper: &mut dyn MotionIntegrator,
     n: usize,
     count: usize,
     (offset, turn, drop): (f64, f64, f64),
@@ -75,7 +100,6 @@ fn tower(
         .unwrap();
     let mut start = s.bodies()[count - 1].position().clone();
     start.as_mut_slice()[n - 1] = count as f64 - 0.5;
-    let mut stepper = MotionSplitting::new();
     let steps = (seconds / h).round() as usize;
     stepper.advance(&mut s, 0.0, h, steps).unwrap();
     let top = &s.bodies()[count - 1];

@@ -85,7 +85,7 @@ pub use body::MovingBody;
 pub use contact::{BodyContact, Contact, ContactShape, HalfSpace};
 pub use error::MotionError;
 pub use forque::{Forque, ForqueInput, Wrench, forques};
-pub use integrate::{MotionIntegrator, MotionRk4, MotionSplitting};
+pub use integrate::{MotionIntegrator, MotionRk4, MotionSplitting, SoftStep};
 pub use joint::BallJoint;
 pub use record::{
     BodyTrack, RecordedPlane, SampleBodyContact, SampleContact, SystemTrajectory, csv_number,

@@ -2,6 +2,7 @@
 //! whose bounding balls come within reach (the broad phase), and for each such pair the
 //! signed distance, the contact normal and the contact point (the narrow phase).
 
+use super::manifold::box_manifold_on_axis;
 use super::sat::box_box_unchecked;
 use super::{
     ContactManifold, EpaWorkspace, PlacedBox, PlacedHull, PlacedShape, hull_manifold,
@@ -111,9 +112,22 @@ pub(crate) struct Touching {
     /// The pairs found by the last [`Touching::scan`]; entries past `len` keep their room.
     found: Vec<PairContact>,
     len: usize,
+    /// True to take two boxes' manifold by clipping the incident face against the
+    /// reference face (the points of [`box_manifold`](super::box_manifold), about twice as
+    /// fast) instead of the hull manifold of their support sets. The splitting keeps the
+    /// hull manifold: its towers stand to 1e-9 on it and slide by 1e-3 on the clipped one.
+    clip_boxes: bool,
 }
 
 impl Touching {
+    /// No shapes yet; two boxes' manifolds by clipping ([`Touching::clip_boxes`]).
+    pub(crate) fn clipping_boxes() -> Touching {
+        Touching {
+            clip_boxes: true,
+            ..Touching::default()
+        }
+    }
+
     /// Takes the convex shapes of `shapes` if they are not those of `owner` already, and
     /// the pairs that `joints` hold together.
     pub(crate) fn update_shapes(
@@ -238,6 +252,11 @@ impl Touching {
                 return;
             }
             let points = match (manifold, ca.core(), cb.core()) {
+                (Some(slop), _, _) if self.clip_boxes => {
+                    let margin = slop * (self.radius[a] + self.radius[b]);
+                    let (pa, pb) = (placed(ha, xa, q(a)), placed(hb, xb, q(b)));
+                    Some(box_manifold_on_axis(&pa, &pb, &axis, margin))
+                }
                 (Some(slop), ConvexCore::Hull(va), ConvexCore::Hull(vb)) => {
                     let hull = |vertices, position, rotation| PlacedHull {
                         vertices,
@@ -253,10 +272,10 @@ impl Touching {
                     )
                     .ok()
                     .flatten()
-                    .filter(|m| !m.is_empty())
                 }
                 _ => None,
             };
+            let points = points.filter(|m| !m.is_empty());
             if let Some(m) = points {
                 self.push_manifold((a, b), &m, reach);
                 return;

@@ -238,6 +238,20 @@ pub fn box_manifold(
     Ok(Some(reducer.finish(scale)))
 }
 
+/// [`box_manifold`] on the separating axis `axis` of the two boxes, found already and
+/// within `margin`; the boxes and margin checked by the caller.
+pub(crate) fn box_manifold_on_axis(
+    a: &PlacedBox<'_>,
+    b: &PlacedBox<'_>,
+    axis: &BoxPairAxis,
+    margin: f64,
+) -> ContactManifold {
+    let mut reducer = Reducer::new(a.dim(), &axis.normal);
+    let scale = a.size().max(b.size()).max(f64::MIN_POSITIVE);
+    region(a, b, axis, margin, &mut |v| reducer.offer(v, scale));
+    reducer.finish(scale)
+}
+
 /// Calls `visit` for every vertex of the contact region of two boxes that lies at depth
 /// ≥ −`margin` (all of them, before any reduction), and returns the axis the region was
 /// built on; nothing is visited when the boxes are apart by more than `margin`.

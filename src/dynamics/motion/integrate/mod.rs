@@ -1,12 +1,15 @@
 //! Integrators for systems of moving bodies.
 //!
 //! - [`splitting`]: [`MotionSplitting`], the symplectic splitting with contacts and joints;
-//! - [`rk4`]: [`MotionRk4`], Runge–Kutta–Munthe-Kaas of order 4 without contacts.
+//! - [`rk4`]: [`MotionRk4`], Runge–Kutta–Munthe-Kaas of order 4 without contacts;
+//! - [`soft`]: [`SoftStep`], substeps with soft contacts and a fixed solver work per step.
 
 mod rk4;
+mod soft;
 mod splitting;
 
 pub use rk4::MotionRk4;
+pub use soft::SoftStep;
 pub use splitting::MotionSplitting;
 
 use crate::dynamics::DynamicsError;

@@ -39,11 +39,13 @@ mod contact_row;
 mod friction;
 mod joint_row;
 mod pair_row;
+mod soft;
 
 use crate::numeric::cholesky_solve;
 pub(crate) use contact_row::ContactRow;
 pub(crate) use joint_row::JointRow;
 pub(crate) use pair_row::PairRow;
+pub(crate) use soft::{FoundPoint, NO_BODY, SoftSolver, Softness};
 
 /// The reusable work space of the solves.
 #[derive(Clone, Debug, Default)]

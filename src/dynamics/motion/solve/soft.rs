@@ -1,0 +1,706 @@
+//! The contact solve of [`SoftStep`](crate::dynamics::motion::SoftStep): soft contacts
+//! solved by a fixed number of Gauss–Seidel passes per substep (the "soft step" of Box2D
+//! v3, Catto 2024, after Macklin et al., "Small Steps in Physics Simulation", SCA 2019).
+//!
+//! Each contact point is a row: a normal n from body a to body b (or from a half-space to
+//! its body), the offsets r_a and r_b of the point from the centres of mass in space at the
+//! start of the step, and their images in the bodies' principal axes, which give the
+//! current separation after each substep's flight without a new detection:
+//! s = s₀ + n · (Δx_b + Q_b r̂_b − r_b − Δx_a − Q_a r̂_a + r_a).
+//!
+//! A point's normal velocity answers an impulse λ n linearly: with c = r ∧ n and
+//! w = I⁻¹ c (space), n · u = n · v + c · ω, and the impulse changes v by λ n / m and ω by
+//! λ w. Each row keeps c and w of both bodies, so that an update costs a few dot products.
+//!
+//! A penetration s < 0 is pushed out by a damped spring (its stiffness ω² and damping 2ζω
+//! per unit of effective mass) solved implicitly over the substep: the bias velocity
+//! ω s / (2ζ + hω), the mass scaled by hω(2ζ + hω)/(1 + hω(2ζ + hω)) and the accumulated
+//! impulse leaking by 1/(1 + hω(2ζ + hω)) (Catto's "soft constraint"). A gap s > 0 may close
+//! within the substep, no more (a speculative contact). Friction keeps the tangential
+//! impulse in the disc |J_t| ≤ μλ by projection onto it, with each tangent direction's own
+//! effective mass.
+
+use super::Dense;
+use super::body::BodyState;
+use crate::algebra::Vector;
+use crate::dynamics::motion::MovingBody;
+use crate::dynamics::motion::placement::dot;
+
+/// No body: the half-space side of a contact with a half-space.
+pub(crate) const NO_BODY: usize = usize::MAX;
+
+/// The soft spring of a contact over one substep.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Softness {
+    pub bias_rate: f64,
+    pub mass_scale: f64,
+    pub impulse_scale: f64,
+}
+
+impl Softness {
+    /// The spring of frequency `hertz` and damping ratio `zeta` over a substep `h`.
+    pub(crate) fn new(hertz: f64, zeta: f64, h: f64) -> Softness {
+        if hertz == 0.0 {
+            return Softness {
+                bias_rate: 0.0,
+                mass_scale: 1.0,
+                impulse_scale: 0.0,
+            };
+        }
+        let omega = 2.0 * std::f64::consts::PI * hertz;
+        let a1 = 2.0 * zeta + h * omega;
+        let a2 = h * omega * a1;
+        let a3 = 1.0 / (1.0 + a2);
+        Softness {
+            bias_rate: omega / a1,
+            mass_scale: a2 * a3,
+            impulse_scale: a3,
+        }
+    }
+}
+
+/// One contact point of the soft solve (its vectors are in [`SoftSolver::data`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SoftRow {
+    /// The two bodies (`a` is [`NO_BODY`] for a half-space).
+    pub a: usize,
+    pub b: usize,
+    /// What makes the point, to find it again in the next step: the features of a pair, or
+    /// the half-space and candidate of a body.
+    pub key: u64,
+    /// The separation at the start of the step (negative: overlap).
+    pub gap: f64,
+    pub friction: f64,
+    pub restitution: f64,
+    /// 1 / (nᵀ K n).
+    normal_mass: f64,
+    /// The normal relative velocity before the first substep (for restitution).
+    approach: f64,
+    /// The accumulated normal impulse of the current substep, and the largest of the step.
+    pub normal_impulse: f64,
+    max_normal_impulse: f64,
+    /// True if the contact is with a fixed body or a half-space (a stiffer spring).
+    fixed: bool,
+}
+
+/// Where a row's vectors lie in [`SoftSolver::data`] (N = n, M = n(n−1)/2, T = n − 1).
+#[derive(Clone, Copy, Debug, Default)]
+struct Layout {
+    n: usize,
+    m: usize,
+    /// n, r_a, r_b, r̂_a, r̂_b (N each), the friction impulse J_t (N).
+    normal: usize,
+    ra: usize,
+    rb: usize,
+    own_a: usize,
+    own_b: usize,
+    tangent_impulse: usize,
+    /// c_a, c_b, w_a, w_b of the normal (M each).
+    arms: usize,
+    /// T tangent directions (N each), their 1/(tᵀ K t) (T), and their c_a, c_b, w_a, w_b
+    /// (4 M each).
+    tangents: usize,
+    tangent_mass: usize,
+    tangent_arms: usize,
+    stride: usize,
+}
+
+impl Layout {
+    fn new(n: usize) -> Layout {
+        let m = n * (n - 1) / 2;
+        let t = n - 1;
+        let normal = 0;
+        let ra = n;
+        let rb = 2 * n;
+        let own_a = 3 * n;
+        let own_b = 4 * n;
+        let tangent_impulse = 5 * n;
+        let arms = 6 * n;
+        let tangents = arms + 4 * m;
+        let tangent_mass = tangents + t * n;
+        let tangent_arms = tangent_mass + t;
+        Layout {
+            n,
+            m,
+            normal,
+            ra,
+            rb,
+            own_a,
+            own_b,
+            tangent_impulse,
+            arms,
+            tangents,
+            tangent_mass,
+            tangent_arms,
+            stride: tangent_arms + 4 * t * m,
+        }
+    }
+}
+
+/// A contact point found by detection, for [`SoftSolver::push`].
+pub(crate) struct FoundPoint<'a> {
+    pub a: usize,
+    pub b: usize,
+    pub key: u64,
+    pub gap: f64,
+    /// The unit normal from a (or the half-space) to b.
+    pub normal: &'a [f64],
+    /// The point in space.
+    pub point: &'a [f64],
+    pub friction: f64,
+    pub restitution: f64,
+}
+
+/// The rows and body states of the soft solve, kept from step to step for their room and
+/// for the impulses to start from.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct SoftSolver {
+    pub rows: Vec<SoftRow>,
+    data: Vec<f64>,
+    /// The last step's rows and vectors, sorted by (a, b, key), to start from.
+    old_rows: Vec<SoftRow>,
+    old_data: Vec<f64>,
+    layout: Layout,
+    pub(crate) states: Vec<BodyState>,
+    work: Dense,
+    /// Each body's position at the start of the step, and its attitude now (Q, N × N).
+    start: Vec<f64>,
+    frames: Vec<f64>,
+    /// Each body's position now.
+    positions: Vec<f64>,
+    order: Vec<usize>,
+}
+
+impl SoftSolver {
+    /// Starts the rows of a step of bodies in `n` dimensions.
+    pub(crate) fn begin(&mut self, bodies: &[MovingBody]) {
+        let n = bodies[0].dim();
+        if self.layout.n != n {
+            *self = SoftSolver {
+                layout: Layout::new(n),
+                ..SoftSolver::default()
+            };
+        }
+        std::mem::swap(&mut self.rows, &mut self.old_rows);
+        std::mem::swap(&mut self.data, &mut self.old_data);
+        self.rows.clear();
+        self.data.clear();
+        self.states
+            .resize_with(bodies.len(), || BodyState::empty(n));
+        self.start.clear();
+        self.frames.clear();
+        self.frames.resize(bodies.len() * n * n, 0.0);
+        for (i, b) in bodies.iter().enumerate() {
+            self.start.extend_from_slice(b.position().as_slice());
+            b.rotation()
+                .principal_frame_attitude()
+                .write_matrix(&mut self.frames[i * n * n..(i + 1) * n * n]);
+        }
+        self.positions.clone_from(&self.start);
+    }
+
+    /// Adds a contact point (the bodies at the start of the step, as [`Self::begin`] saw
+    /// them).
+    pub(crate) fn push(&mut self, p: &FoundPoint<'_>) {
+        let l = self.layout;
+        let n = l.n;
+        let at = self.data.len();
+        self.data.resize(at + l.stride, 0.0);
+        let d = &mut self.data[at..at + l.stride];
+        d[l.normal..l.normal + n].copy_from_slice(&p.normal[..n]);
+        for (body, offset, own) in [(p.a, l.ra, l.own_a), (p.b, l.rb, l.own_b)] {
+            if body == NO_BODY {
+                continue;
+            }
+            let x = &self.start[body * n..(body + 1) * n];
+            for k in 0..n {
+                d[offset + k] = p.point[k] - x[k];
+            }
+            // r̂ = Qᵀ r.
+            let q = &self.frames[body * n * n..(body + 1) * n * n];
+            for k in 0..n {
+                d[own + k] = (0..n).map(|i| q[i * n + k] * d[offset + i]).sum();
+            }
+        }
+        self.rows.push(SoftRow {
+            a: p.a,
+            b: p.b,
+            key: p.key,
+            gap: p.gap,
+            friction: p.friction,
+            restitution: p.restitution,
+            normal_mass: 0.0,
+            approach: 0.0,
+            normal_impulse: 0.0,
+            max_normal_impulse: 0.0,
+            fixed: false,
+        });
+    }
+
+    /// Loads every body a row acts on.
+    fn load(&mut self, bodies: &[MovingBody]) {
+        let mut work = std::mem::take(&mut self.work);
+        for r in &self.rows {
+            for i in [r.a, r.b] {
+                if i != NO_BODY && !self.states[i].used {
+                    self.states[i].load(&bodies[i], &mut work);
+                }
+            }
+        }
+        self.work = work;
+    }
+
+    /// Hands the loaded states' impulses to the bodies.
+    fn store(&mut self, bodies: &mut [MovingBody]) {
+        for (s, b) in self.states.iter_mut().zip(bodies) {
+            if s.used {
+                s.store(b);
+            }
+        }
+    }
+
+    /// Computes each row's arms, effective masses and tangent directions at the start of
+    /// the step and takes the impulses of the same points of the last step.
+    pub(crate) fn prepare(&mut self, bodies: &[MovingBody]) {
+        self.load(bodies);
+        let l = self.layout;
+        let (n, m) = (l.n, l.m);
+        self.old_sort();
+        for (k, row) in self.rows.iter_mut().enumerate() {
+            let d = &mut self.data[k * l.stride..(k + 1) * l.stride];
+            let normal =
+                Vector::from_components(&d[l.normal..l.normal + n]).expect("a finite normal");
+            // Tangent directions: the columns of the Householder reflection that takes the
+            // axis nearest to n onto n, except that one.
+            let j = (0..n)
+                .max_by(|&x, &y| {
+                    normal.as_slice()[x]
+                        .abs()
+                        .total_cmp(&normal.as_slice()[y].abs())
+                })
+                .unwrap_or(0);
+            let sign = if normal.as_slice()[j] < 0.0 {
+                -1.0
+            } else {
+                1.0
+            };
+            let mut u = normal.clone();
+            u.as_mut_slice()[j] -= sign;
+            // n = ±e_j exactly: the other axes.
+            let uu = u.norm_squared();
+            let f = if uu > 0.0 { 2.0 / uu } else { 0.0 };
+            for (t, c) in (0..n).filter(|&c| c != j).enumerate() {
+                let dir = &mut d[l.tangents + t * n..l.tangents + (t + 1) * n];
+                for (i, x) in dir.iter_mut().enumerate() {
+                    let e = if i == c { 1.0 } else { 0.0 };
+                    *x = e - f * u.as_slice()[i] * u.as_slice()[c];
+                }
+            }
+            let fixed_a = row.a == NO_BODY || bodies[row.a].is_fixed();
+            row.fixed = fixed_a || bodies[row.b].is_fixed();
+            let ends = (row.a, row.b);
+            let knn = set_arms(&self.states, bodies, ends, d, &l, l.normal, l.arms);
+            row.normal_mass = if knn > 0.0 { 1.0 / knn } else { 0.0 };
+            for t in 0..n - 1 {
+                let arms = l.tangent_arms + 4 * t * m;
+                let ktt = set_arms(&self.states, bodies, ends, d, &l, l.tangents + t * n, arms);
+                d[l.tangent_mass + t] = if ktt > 0.0 { 1.0 / ktt } else { 0.0 };
+            }
+            // The same point in the last step: its impulses, the friction impulse in the
+            // new tangent space.
+            row.normal_impulse = 0.0;
+            d[l.tangent_impulse..l.tangent_impulse + n].fill(0.0);
+            if let Ok(at) = self
+                .old_rows
+                .binary_search_by(|o| (o.a, o.b, o.key).cmp(&(row.a, row.b, row.key)))
+            {
+                let old = &self.old_rows[at];
+                row.normal_impulse = old.normal_impulse;
+                let oj = &self.old_data[at * l.stride + l.tangent_impulse..][..n];
+                let along = dot(oj, &d[l.normal..l.normal + n]);
+                for i in 0..n {
+                    d[l.tangent_impulse + i] = oj[i] - along * d[l.normal + i];
+                }
+            }
+            row.approach = normal_velocity(&self.states, row, d, &l, l.normal, l.arms);
+            row.max_normal_impulse = 0.0;
+        }
+        // The substeps load the bodies again after their kicks.
+        for s in &mut self.states {
+            s.used = false;
+        }
+    }
+
+    /// Sorts the last step's rows by (a, b, key), their vectors with them.
+    fn old_sort(&mut self) {
+        let stride = self.layout.stride;
+        let sorted = self
+            .old_rows
+            .windows(2)
+            .all(|w| (w[0].a, w[0].b, w[0].key) <= (w[1].a, w[1].b, w[1].key));
+        if sorted {
+            return;
+        }
+        self.order.clear();
+        self.order.extend(0..self.old_rows.len());
+        let rows = &self.old_rows;
+        self.order
+            .sort_unstable_by_key(|&k| (rows[k].a, rows[k].b, rows[k].key));
+        // Permute in place along cycles.
+        for start in 0..self.order.len() {
+            let mut k = start;
+            while self.order[k] != start && self.order[k] != usize::MAX {
+                let next = self.order[k];
+                self.old_rows.swap(k, next);
+                for x in 0..stride {
+                    self.old_data.swap(k * stride + x, next * stride + x);
+                }
+                self.order[k] = usize::MAX;
+                k = next;
+            }
+            self.order[k] = usize::MAX;
+        }
+    }
+
+    /// One substep of length `h`: the loaded bodies take the accumulated impulses (the warm
+    /// start) and `passes` passes of soft updates.
+    pub(crate) fn solve(
+        &mut self,
+        bodies: &[MovingBody],
+        h: f64,
+        soft: (Softness, Softness),
+        push_out: f64,
+        passes: usize,
+    ) {
+        self.load(bodies);
+        let l = self.layout;
+        let n = l.n;
+        for (k, row) in self.rows.iter().enumerate() {
+            let d = &self.data[k * l.stride..(k + 1) * l.stride];
+            apply(
+                &mut self.states,
+                row,
+                d,
+                &l,
+                l.normal,
+                l.arms,
+                row.normal_impulse,
+            );
+            for t in 0..n - 1 {
+                let jt = dot(
+                    &d[l.tangent_impulse..l.tangent_impulse + n],
+                    &d[l.tangents + t * n..l.tangents + (t + 1) * n],
+                );
+                apply(
+                    &mut self.states,
+                    row,
+                    d,
+                    &l,
+                    l.tangents + t * n,
+                    l.tangent_arms + 4 * t * l.m,
+                    jt,
+                );
+            }
+        }
+        for _ in 0..passes {
+            self.pass(h, Some(soft), push_out);
+        }
+    }
+
+    /// The bodies' attitudes and positions after a flight, for the rows' separations.
+    pub(crate) fn moved(&mut self, bodies: &[MovingBody]) {
+        let n = self.layout.n;
+        for (i, b) in bodies.iter().enumerate() {
+            b.rotation()
+                .principal_frame_attitude()
+                .write_matrix(&mut self.frames[i * n * n..(i + 1) * n * n]);
+            self.positions[i * n..(i + 1) * n].copy_from_slice(b.position().as_slice());
+        }
+    }
+
+    /// The relax passes after the flight (no bias but that of speculative gaps), and on
+    /// the last substep the restitution pass; then the impulses go to the bodies.
+    pub(crate) fn relax(
+        &mut self,
+        bodies: &mut [MovingBody],
+        h: f64,
+        (restitution_speed, passes): (f64, usize),
+        last: bool,
+    ) {
+        self.load(bodies);
+        for _ in 0..passes {
+            self.pass(h, None, 0.0);
+        }
+        if last {
+            self.restitution(restitution_speed);
+        }
+        self.store(bodies);
+    }
+
+    /// Hands the biased pass's impulses to the bodies (before their flight).
+    pub(crate) fn finish_pass(&mut self, bodies: &mut [MovingBody]) {
+        self.store(bodies);
+    }
+
+    /// The current separation of row `k` from the bodies' positions and attitudes.
+    fn separation(&self, k: usize) -> f64 {
+        let l = self.layout;
+        let n = l.n;
+        let row = &self.rows[k];
+        let d = &self.data[k * l.stride..(k + 1) * l.stride];
+        let nrm = &d[l.normal..l.normal + n];
+        let mut s = row.gap;
+        for (sign, body, offset, own) in [(-1.0, row.a, l.ra, l.own_a), (1.0, row.b, l.rb, l.own_b)]
+        {
+            if body == NO_BODY {
+                continue;
+            }
+            let q = &self.frames[body * n * n..(body + 1) * n * n];
+            let x0 = &self.start[body * n..(body + 1) * n];
+            let x = &self.positions[body * n..(body + 1) * n];
+            let mut moved = 0.0;
+            for i in 0..n {
+                let r_now: f64 = dot(&q[i * n..(i + 1) * n], &d[own..own + n]);
+                moved += nrm[i] * (x[i] - x0[i] + r_now - d[offset + i]);
+            }
+            s += sign * moved;
+        }
+        s
+    }
+
+    /// One Gauss–Seidel pass over the rows: with `soft` the springs push overlaps out (at
+    /// most at `push_out`), without only speculative gaps bias the velocities.
+    fn pass(&mut self, h: f64, soft: Option<(Softness, Softness)>, push_out: f64) {
+        // The points of one manifold (consecutive rows of one pair) take their normal
+        // impulses first and then their friction, as in Box2D: friction then answers the
+        // normal impulses of the whole face, not of the points before it.
+        let mut start = 0;
+        while start < self.rows.len() {
+            let (a, b) = (self.rows[start].a, self.rows[start].b);
+            let end = start
+                + self.rows[start..]
+                    .iter()
+                    .take_while(|r| r.a == a && r.b == b)
+                    .count();
+            for k in start..end {
+                self.normal_update(k, h, soft, push_out);
+            }
+            for k in start..end {
+                self.friction_update(k);
+            }
+            start = end;
+        }
+    }
+
+    /// The normal update of row `k` (see [`Self::pass`]).
+    fn normal_update(
+        &mut self,
+        k: usize,
+        h: f64,
+        soft: Option<(Softness, Softness)>,
+        push_out: f64,
+    ) {
+        let l = self.layout;
+        let s = self.separation(k);
+        let row = self.rows[k];
+        let d = &self.data[k * l.stride..(k + 1) * l.stride];
+        let (mut bias, mut mass_scale, mut impulse_scale) = (0.0, 1.0, 0.0);
+        if s > 0.0 {
+            bias = s / h;
+        } else if let Some((between, against_fixed)) = soft {
+            let sp = if row.fixed { against_fixed } else { between };
+            bias = (sp.bias_rate * s).max(-push_out);
+            mass_scale = sp.mass_scale;
+            impulse_scale = sp.impulse_scale;
+        }
+        let vn = normal_velocity(&self.states, &row, d, &l, l.normal, l.arms);
+        let impulse =
+            -row.normal_mass * mass_scale * (vn + bias) - impulse_scale * row.normal_impulse;
+        let new = (row.normal_impulse + impulse).max(0.0);
+        apply(
+            &mut self.states,
+            &row,
+            d,
+            &l,
+            l.normal,
+            l.arms,
+            new - row.normal_impulse,
+        );
+        let r = &mut self.rows[k];
+        r.normal_impulse = new;
+        r.max_normal_impulse = r.max_normal_impulse.max(new);
+    }
+
+    /// The friction update of row `k`: each tangent direction's sticking update, then the
+    /// projection onto the disc |J_t| ≤ μλ.
+    fn friction_update(&mut self, k: usize) {
+        let l = self.layout;
+        let n = l.n;
+        let row = self.rows[k];
+        let limit = row.friction * row.normal_impulse;
+        let mut change = [0.0f64; 8];
+        let mut total = [0.0f64; 8];
+        let d = &self.data[k * l.stride..(k + 1) * l.stride];
+        let jt = &d[l.tangent_impulse..l.tangent_impulse + n];
+        for t in 0..n - 1 {
+            let dir = l.tangents + t * n;
+            let vt = normal_velocity(&self.states, &row, d, &l, dir, l.tangent_arms + 4 * t * l.m);
+            total[t] = dot(jt, &d[dir..dir + n]) - d[l.tangent_mass + t] * vt;
+        }
+        let norm = total[..n - 1].iter().map(|x| x * x).sum::<f64>().sqrt();
+        if norm > limit {
+            let scale = if norm > 0.0 { limit / norm } else { 0.0 };
+            total[..n - 1].iter_mut().for_each(|x| *x *= scale);
+        }
+        for t in 0..n - 1 {
+            let dir = l.tangents + t * n;
+            change[t] = total[t] - dot(jt, &d[dir..dir + n]);
+        }
+        let mut new_jt = [0.0f64; 8];
+        for t in 0..n - 1 {
+            let dir = l.tangents + t * n;
+            apply(
+                &mut self.states,
+                &row,
+                d,
+                &l,
+                dir,
+                l.tangent_arms + 4 * t * l.m,
+                change[t],
+            );
+            for i in 0..n {
+                new_jt[i] += total[t] * d[dir + i];
+            }
+        }
+        self.data[k * l.stride + l.tangent_impulse..][..n].copy_from_slice(&new_jt[..n]);
+    }
+
+    /// Restitution: each row that approached faster than `threshold` before the step and
+    /// carried an impulse leaves at e times its approach speed (or faster).
+    fn restitution(&mut self, threshold: f64) {
+        let l = self.layout;
+        for k in 0..self.rows.len() {
+            let row = self.rows[k];
+            if row.restitution == 0.0 || row.approach > -threshold || row.max_normal_impulse == 0.0
+            {
+                continue;
+            }
+            let d = &self.data[k * l.stride..(k + 1) * l.stride];
+            let vn = normal_velocity(&self.states, &row, d, &l, l.normal, l.arms);
+            let impulse = -row.normal_mass * (vn + row.restitution * row.approach);
+            let new = (row.normal_impulse + impulse).max(0.0);
+            apply(
+                &mut self.states,
+                &row,
+                d,
+                &l,
+                l.normal,
+                l.arms,
+                new - row.normal_impulse,
+            );
+            self.rows[k].normal_impulse = new;
+        }
+    }
+}
+
+/// Sets the arms c = r ∧ e and w = I⁻¹ c of both ends of a row for the direction at `dir`
+/// in its vectors `d` (at `arms`: c_a, c_b, w_a, w_b), and returns eᵀ K e.
+fn set_arms(
+    states: &[BodyState],
+    bodies: &[MovingBody],
+    (a, b): (usize, usize),
+    d: &mut [f64],
+    l: &Layout,
+    dir: usize,
+    arms: usize,
+) -> f64 {
+    let (n, m) = (l.n, l.m);
+    let e = Vector::from_components(&d[dir..dir + n]).expect("a finite direction");
+    let mut kk = 0.0;
+    for (side, body, offset) in [(0, a, l.ra), (1, b, l.rb)] {
+        if body == NO_BODY || bodies[body].is_fixed() {
+            continue;
+        }
+        let st = &states[body];
+        let r = Vector::from_components(&d[offset..offset + n]).expect("a finite offset");
+        let c = r.wedge(&e);
+        let w = st.inverse_inertia(&c);
+        d[arms + side * m..arms + (side + 1) * m].copy_from_slice(c.as_slice());
+        d[arms + (2 + side) * m..arms + (3 + side) * m].copy_from_slice(w.as_slice());
+        kk += st.inv_mass + dot(c.as_slice(), w.as_slice());
+    }
+    kk
+}
+
+/// The relative velocity of a row's two points along the direction at `dir` in its vectors
+/// `d`, whose arms start at `arms` (c_a, c_b, w_a, w_b).
+#[inline(always)]
+fn normal_velocity(
+    states: &[BodyState],
+    row: &SoftRow,
+    d: &[f64],
+    l: &Layout,
+    dir: usize,
+    arms: usize,
+) -> f64 {
+    let (n, m) = (l.n, l.m);
+    let e = &d[dir..dir + n];
+    let mut u = 0.0;
+    for (sign, body, side) in [(-1.0, row.a, 0), (1.0, row.b, 1)] {
+        if body == NO_BODY {
+            continue;
+        }
+        let st = &states[body];
+        let c = &d[arms + side * m..arms + (side + 1) * m];
+        u += sign * (dot(e, &st.v.as_slice()[..n]) + dot(c, &st.w.as_slice()[..m]));
+    }
+    u
+}
+
+/// Gives body b the impulse λ e at its point and body a the opposite (e at `dir` in the
+/// row's vectors `d`, its arms at `arms`).
+#[inline(always)]
+fn apply(
+    states: &mut [BodyState],
+    row: &SoftRow,
+    d: &[f64],
+    l: &Layout,
+    dir: usize,
+    arms: usize,
+    lambda: f64,
+) {
+    if lambda == 0.0 {
+        return;
+    }
+    let (n, m) = (l.n, l.m);
+    let e = &d[dir..dir + n];
+    for (sign, body, side) in [(-1.0, row.a, 0), (1.0, row.b, 1)] {
+        if body == NO_BODY {
+            continue;
+        }
+        let st = &mut states[body];
+        if st.inv_mass == 0.0 {
+            continue;
+        }
+        let j = sign * lambda;
+        let c = &d[arms + side * m..arms + (side + 1) * m];
+        let w = &d[arms + (2 + side) * m..arms + (3 + side) * m];
+        for ((v, p), x) in st.v.as_mut_slice()[..n]
+            .iter_mut()
+            .zip(&mut st.dp.as_mut_slice()[..n])
+            .zip(e)
+        {
+            *v += j * x * st.inv_mass;
+            *p += j * x;
+        }
+        for (((o, dl), ci), wi) in st.w.as_mut_slice()[..m]
+            .iter_mut()
+            .zip(&mut st.dl.as_mut_slice()[..m])
+            .zip(c)
+            .zip(w)
+        {
+            *o += j * wi;
+            *dl += j * ci;
+        }
+    }
+}
