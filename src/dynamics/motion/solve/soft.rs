@@ -22,6 +22,7 @@
 
 use super::Dense;
 use super::body::BodyState;
+use super::contact_row::dim;
 use crate::algebra::Vector;
 use crate::dynamics::motion::MovingBody;
 use crate::dynamics::motion::placement::dot;
@@ -88,7 +89,8 @@ pub(crate) struct SoftRow {
 struct Layout {
     n: usize,
     m: usize,
-    /// n, r_a, r_b, r̂_a, r̂_b (N each), the friction impulse J_t (N).
+    /// n, r_a, r_b, r̂_a, r̂_b (N each), the friction impulse's coordinates on the tangent
+    /// directions (T, in a slot of N).
     normal: usize,
     ra: usize,
     rb: usize,
@@ -106,6 +108,7 @@ struct Layout {
 }
 
 impl Layout {
+    #[inline(always)]
     fn new(n: usize) -> Layout {
         let m = n * (n - 1) / 2;
         let t = n - 1;
@@ -135,6 +138,23 @@ impl Layout {
             stride: tangent_arms + 4 * t * m,
         }
     }
+}
+
+/// The loaded bodies' velocities (v, then ω in space) and the impulses they took (p, then
+/// L), S = N + M numbers each, and their inverse masses, in flat arrays while the passes
+/// run: a row update then reads and writes them without going through the states' storage.
+#[derive(Clone, Debug, Default)]
+struct Flat {
+    vel: Vec<f64>,
+    imp: Vec<f64>,
+    inv_mass: Vec<f64>,
+}
+
+/// The layout of `l`'s dimension, built from `N` when it is fixed (as in [`dim`]): its
+/// offsets are then constants, and the kernels' slices need no bounds checks.
+#[inline(always)]
+fn layout<const N: usize>(l: &Layout) -> Layout {
+    if N == 0 { *l } else { Layout::new(N) }
 }
 
 /// A contact point found by detection, for [`SoftSolver::push`].
@@ -168,6 +188,12 @@ pub(crate) struct SoftSolver {
     frames: Vec<f64>,
     /// Each body's position now.
     positions: Vec<f64>,
+    /// The loaded bodies' velocities and impulses during the passes.
+    flat: Flat,
+    /// Room for a row's tangential impulses.
+    scratch: Vec<f64>,
+    /// Each row's separation at the bodies' current placement.
+    separations: Vec<f64>,
     order: Vec<usize>,
 }
 
@@ -197,6 +223,11 @@ impl SoftSolver {
                 .write_matrix(&mut self.frames[i * n * n..(i + 1) * n * n]);
         }
         self.positions.clone_from(&self.start);
+        let stride = n + n * (n - 1) / 2;
+        self.flat.vel.resize(bodies.len() * stride, 0.0);
+        self.flat.imp.resize(bodies.len() * stride, 0.0);
+        self.flat.inv_mass.resize(bodies.len(), 0.0);
+        self.scratch.resize(n, 0.0);
     }
 
     /// Adds a contact point (the bodies at the start of the step, as [`Self::begin`] saw
@@ -248,13 +279,27 @@ impl SoftSolver {
             }
         }
         self.work = work;
+        let (n, m) = (self.layout.n, self.layout.m);
+        let stride = n + m;
+        for (i, st) in self.states.iter().enumerate().filter(|(_, st)| st.used) {
+            let vel = &mut self.flat.vel[i * stride..(i + 1) * stride];
+            vel[..n].copy_from_slice(&st.v.as_slice()[..n]);
+            vel[n..].copy_from_slice(&st.w.as_slice()[..m]);
+            self.flat.imp[i * stride..(i + 1) * stride].fill(0.0);
+            self.flat.inv_mass[i] = st.inv_mass;
+        }
     }
 
     /// Hands the loaded states' impulses to the bodies.
     fn store(&mut self, bodies: &mut [MovingBody]) {
-        for (s, b) in self.states.iter_mut().zip(bodies) {
-            if s.used {
-                s.store(b);
+        let (n, m) = (self.layout.n, self.layout.m);
+        let stride = n + m;
+        for (i, (st, b)) in self.states.iter_mut().zip(bodies).enumerate() {
+            if st.used {
+                let imp = &self.flat.imp[i * stride..(i + 1) * stride];
+                st.dp.as_mut_slice()[..n].copy_from_slice(&imp[..n]);
+                st.dl.as_mut_slice()[..m].copy_from_slice(&imp[n..]);
+                st.store(b);
             }
         }
     }
@@ -316,15 +361,24 @@ impl SoftSolver {
             {
                 let old = &self.old_rows[at];
                 row.normal_impulse = old.normal_impulse;
-                let oj = &self.old_data[at * l.stride + l.tangent_impulse..][..n];
-                let along = dot(oj, &d[l.normal..l.normal + n]);
-                for i in 0..n {
-                    d[l.tangent_impulse + i] = oj[i] - along * d[l.normal + i];
+                let od = &self.old_data[at * l.stride..(at + 1) * l.stride];
+                // J_t = Σ τ_t t_t on the old directions, then its coordinates on the new ones
+                // (which drops its part along the new normal).
+                for t in 0..n - 1 {
+                    let dir = &d[l.tangents + t * n..l.tangents + (t + 1) * n];
+                    d[l.tangent_impulse + t] = (0..n - 1)
+                        .map(|u| {
+                            let old_dir = &od[l.tangents + u * n..l.tangents + (u + 1) * n];
+                            od[l.tangent_impulse + u] * dot(old_dir, dir)
+                        })
+                        .sum();
                 }
             }
-            row.approach = normal_velocity(&self.states, row, d, &l, l.normal, l.arms);
+            row.approach = normal_velocity::<0>(&self.flat, row, d, &l, l.normal, l.arms);
             row.max_normal_impulse = 0.0;
         }
+        self.separations.clear();
+        self.separations.extend(self.rows.iter().map(|r| r.gap));
         // The substeps load the bodies again after their kicks.
         for s in &mut self.states {
             s.used = false;
@@ -373,37 +427,33 @@ impl SoftSolver {
         passes: usize,
     ) {
         self.load(bodies);
-        let l = self.layout;
-        let n = l.n;
+        match self.layout.n {
+            3 => self.solve_n::<3>(h, soft, push_out, passes),
+            4 => self.solve_n::<4>(h, soft, push_out, passes),
+            _ => self.solve_n::<0>(h, soft, push_out, passes),
+        }
+    }
+
+    fn solve_n<const N: usize>(
+        &mut self,
+        h: f64,
+        soft: (Softness, Softness),
+        push_out: f64,
+        passes: usize,
+    ) {
+        let l = layout::<N>(&self.layout);
+        let n = dim::<N>(l.n);
         for (k, row) in self.rows.iter().enumerate() {
             let d = &self.data[k * l.stride..(k + 1) * l.stride];
-            apply(
-                &mut self.states,
-                row,
-                d,
-                &l,
-                l.normal,
-                l.arms,
-                row.normal_impulse,
-            );
+            apply::<N>(&mut self.flat, row, d, &l, l.normal, l.arms, row.normal_impulse);
             for t in 0..n - 1 {
-                let jt = dot(
-                    &d[l.tangent_impulse..l.tangent_impulse + n],
-                    &d[l.tangents + t * n..l.tangents + (t + 1) * n],
-                );
-                apply(
-                    &mut self.states,
-                    row,
-                    d,
-                    &l,
-                    l.tangents + t * n,
-                    l.tangent_arms + 4 * t * l.m,
-                    jt,
-                );
+                let (dir, arms) = (l.tangents + t * n, l.tangent_arms + 4 * t * l.m);
+                let along = d[l.tangent_impulse + t];
+                apply::<N>(&mut self.flat, row, d, &l, dir, arms, along);
             }
         }
         for _ in 0..passes {
-            self.pass(h, Some(soft), push_out);
+            self.pass::<N>(h, Some(soft), push_out);
         }
     }
 
@@ -415,6 +465,13 @@ impl SoftSolver {
                 .principal_frame_attitude()
                 .write_matrix(&mut self.frames[i * n * n..(i + 1) * n * n]);
             self.positions[i * n..(i + 1) * n].copy_from_slice(b.position().as_slice());
+        }
+        for k in 0..self.rows.len() {
+            self.separations[k] = match n {
+                3 => self.separation::<3>(k),
+                4 => self.separation::<4>(k),
+                _ => self.separation::<0>(k),
+            };
         }
     }
 
@@ -428,13 +485,21 @@ impl SoftSolver {
         last: bool,
     ) {
         self.load(bodies);
-        for _ in 0..passes {
-            self.pass(h, None, 0.0);
-        }
-        if last {
-            self.restitution(restitution_speed);
+        match self.layout.n {
+            3 => self.relax_n::<3>(h, (restitution_speed, passes), last),
+            4 => self.relax_n::<4>(h, (restitution_speed, passes), last),
+            _ => self.relax_n::<0>(h, (restitution_speed, passes), last),
         }
         self.store(bodies);
+    }
+
+    fn relax_n<const N: usize>(&mut self, h: f64, (speed, passes): (f64, usize), last: bool) {
+        for _ in 0..passes {
+            self.pass::<N>(h, None, 0.0);
+        }
+        if last {
+            self.restitution::<N>(speed);
+        }
     }
 
     /// Hands the biased pass's impulses to the bodies (before their flight).
@@ -443,9 +508,10 @@ impl SoftSolver {
     }
 
     /// The current separation of row `k` from the bodies' positions and attitudes.
-    fn separation(&self, k: usize) -> f64 {
-        let l = self.layout;
-        let n = l.n;
+    #[inline(always)]
+    fn separation<const N: usize>(&self, k: usize) -> f64 {
+        let l = layout::<N>(&self.layout);
+        let n = dim::<N>(l.n);
         let row = &self.rows[k];
         let d = &self.data[k * l.stride..(k + 1) * l.stride];
         let nrm = &d[l.normal..l.normal + n];
@@ -458,10 +524,11 @@ impl SoftSolver {
             let q = &self.frames[body * n * n..(body + 1) * n * n];
             let x0 = &self.start[body * n..(body + 1) * n];
             let x = &self.positions[body * n..(body + 1) * n];
+            let (own, offset) = (&d[own..own + n], &d[offset..offset + n]);
             let mut moved = 0.0;
             for i in 0..n {
-                let r_now: f64 = dot(&q[i * n..(i + 1) * n], &d[own..own + n]);
-                moved += nrm[i] * (x[i] - x0[i] + r_now - d[offset + i]);
+                let r_now: f64 = dot(&q[i * n..(i + 1) * n], own);
+                moved += nrm[i] * (x[i] - x0[i] + r_now - offset[i]);
             }
             s += sign * moved;
         }
@@ -470,7 +537,7 @@ impl SoftSolver {
 
     /// One Gauss–Seidel pass over the rows: with `soft` the springs push overlaps out (at
     /// most at `push_out`), without only speculative gaps bias the velocities.
-    fn pass(&mut self, h: f64, soft: Option<(Softness, Softness)>, push_out: f64) {
+    fn pass<const N: usize>(&mut self, h: f64, soft: Option<(Softness, Softness)>, push_out: f64) {
         // The points of one manifold (consecutive rows of one pair) take their normal
         // impulses first and then their friction, as in Box2D: friction then answers the
         // normal impulses of the whole face, not of the points before it.
@@ -483,26 +550,27 @@ impl SoftSolver {
                     .take_while(|r| r.a == a && r.b == b)
                     .count();
             for k in start..end {
-                self.normal_update(k, h, soft, push_out);
+                self.normal_update::<N>(k, h, soft, push_out);
             }
             for k in start..end {
-                self.friction_update(k);
+                self.friction_update::<N>(k);
             }
             start = end;
         }
     }
 
     /// The normal update of row `k` (see [`Self::pass`]).
-    fn normal_update(
+    #[inline(always)]
+    fn normal_update<const N: usize>(
         &mut self,
         k: usize,
         h: f64,
         soft: Option<(Softness, Softness)>,
         push_out: f64,
     ) {
-        let l = self.layout;
-        let s = self.separation(k);
-        let row = self.rows[k];
+        let l = layout::<N>(&self.layout);
+        let s = self.separations[k];
+        let row = &mut self.rows[k];
         let d = &self.data[k * l.stride..(k + 1) * l.stride];
         let (mut bias, mut mass_scale, mut impulse_scale) = (0.0, 1.0, 0.0);
         if s > 0.0 {
@@ -513,39 +581,30 @@ impl SoftSolver {
             mass_scale = sp.mass_scale;
             impulse_scale = sp.impulse_scale;
         }
-        let vn = normal_velocity(&self.states, &row, d, &l, l.normal, l.arms);
+        let vn = normal_velocity::<N>(&self.flat, row, d, &l, l.normal, l.arms);
         let impulse =
             -row.normal_mass * mass_scale * (vn + bias) - impulse_scale * row.normal_impulse;
         let new = (row.normal_impulse + impulse).max(0.0);
-        apply(
-            &mut self.states,
-            &row,
-            d,
-            &l,
-            l.normal,
-            l.arms,
-            new - row.normal_impulse,
-        );
-        let r = &mut self.rows[k];
-        r.normal_impulse = new;
-        r.max_normal_impulse = r.max_normal_impulse.max(new);
+        let change = new - row.normal_impulse;
+        row.normal_impulse = new;
+        row.max_normal_impulse = row.max_normal_impulse.max(new);
+        apply::<N>(&mut self.flat, row, d, &l, l.normal, l.arms, change);
     }
 
     /// The friction update of row `k`: each tangent direction's sticking update, then the
     /// projection onto the disc |J_t| ≤ μλ.
-    fn friction_update(&mut self, k: usize) {
-        let l = self.layout;
-        let n = l.n;
-        let row = self.rows[k];
+    #[inline(always)]
+    fn friction_update<const N: usize>(&mut self, k: usize) {
+        let l = layout::<N>(&self.layout);
+        let n = dim::<N>(l.n);
+        let row = &self.rows[k];
         let limit = row.friction * row.normal_impulse;
-        let mut change = [0.0f64; 8];
-        let mut total = [0.0f64; 8];
-        let d = &self.data[k * l.stride..(k + 1) * l.stride];
-        let jt = &d[l.tangent_impulse..l.tangent_impulse + n];
+        let total = &mut self.scratch[..n];
+        let d = &mut self.data[k * l.stride..(k + 1) * l.stride];
         for t in 0..n - 1 {
-            let dir = l.tangents + t * n;
-            let vt = normal_velocity(&self.states, &row, d, &l, dir, l.tangent_arms + 4 * t * l.m);
-            total[t] = dot(jt, &d[dir..dir + n]) - d[l.tangent_mass + t] * vt;
+            let (dir, arms) = (l.tangents + t * n, l.tangent_arms + 4 * t * l.m);
+            let vt = normal_velocity::<N>(&self.flat, row, d, &l, dir, arms);
+            total[t] = d[l.tangent_impulse + t] - d[l.tangent_mass + t] * vt;
         }
         let norm = total[..n - 1].iter().map(|x| x * x).sum::<f64>().sqrt();
         if norm > limit {
@@ -553,52 +612,30 @@ impl SoftSolver {
             total[..n - 1].iter_mut().for_each(|x| *x *= scale);
         }
         for t in 0..n - 1 {
-            let dir = l.tangents + t * n;
-            change[t] = total[t] - dot(jt, &d[dir..dir + n]);
+            let (dir, arms) = (l.tangents + t * n, l.tangent_arms + 4 * t * l.m);
+            let change = total[t] - d[l.tangent_impulse + t];
+            apply::<N>(&mut self.flat, row, d, &l, dir, arms, change);
+            d[l.tangent_impulse + t] = total[t];
         }
-        let mut new_jt = [0.0f64; 8];
-        for t in 0..n - 1 {
-            let dir = l.tangents + t * n;
-            apply(
-                &mut self.states,
-                &row,
-                d,
-                &l,
-                dir,
-                l.tangent_arms + 4 * t * l.m,
-                change[t],
-            );
-            for i in 0..n {
-                new_jt[i] += total[t] * d[dir + i];
-            }
-        }
-        self.data[k * l.stride + l.tangent_impulse..][..n].copy_from_slice(&new_jt[..n]);
     }
 
     /// Restitution: each row that approached faster than `threshold` before the step and
     /// carried an impulse leaves at e times its approach speed (or faster).
-    fn restitution(&mut self, threshold: f64) {
-        let l = self.layout;
+    fn restitution<const N: usize>(&mut self, threshold: f64) {
+        let l = layout::<N>(&self.layout);
         for k in 0..self.rows.len() {
-            let row = self.rows[k];
+            let row = &mut self.rows[k];
             if row.restitution == 0.0 || row.approach > -threshold || row.max_normal_impulse == 0.0
             {
                 continue;
             }
             let d = &self.data[k * l.stride..(k + 1) * l.stride];
-            let vn = normal_velocity(&self.states, &row, d, &l, l.normal, l.arms);
+            let vn = normal_velocity::<N>(&self.flat, row, d, &l, l.normal, l.arms);
             let impulse = -row.normal_mass * (vn + row.restitution * row.approach);
             let new = (row.normal_impulse + impulse).max(0.0);
-            apply(
-                &mut self.states,
-                &row,
-                d,
-                &l,
-                l.normal,
-                l.arms,
-                new - row.normal_impulse,
-            );
-            self.rows[k].normal_impulse = new;
+            let change = new - row.normal_impulse;
+            row.normal_impulse = new;
+            apply::<N>(&mut self.flat, row, d, &l, l.normal, l.arms, change);
         }
     }
 }
@@ -615,53 +652,58 @@ fn set_arms(
     arms: usize,
 ) -> f64 {
     let (n, m) = (l.n, l.m);
-    let e = Vector::from_components(&d[dir..dir + n]).expect("a finite direction");
     let mut kk = 0.0;
     for (side, body, offset) in [(0, a, l.ra), (1, b, l.rb)] {
         if body == NO_BODY || bodies[body].is_fixed() {
             continue;
         }
         let st = &states[body];
-        let r = Vector::from_components(&d[offset..offset + n]).expect("a finite offset");
-        let c = r.wedge(&e);
-        let w = st.inverse_inertia(&c);
-        d[arms + side * m..arms + (side + 1) * m].copy_from_slice(c.as_slice());
-        d[arms + (2 + side) * m..arms + (3 + side) * m].copy_from_slice(w.as_slice());
-        kk += st.inv_mass + dot(c.as_slice(), w.as_slice());
+        let (c, w) = (arms + side * m, arms + (2 + side) * m);
+        // c = r ∧ e, in the order of the planes (i < j), and w = I⁻¹ c.
+        let mut p = c;
+        for i in 0..n {
+            for j in i + 1..n {
+                d[p] = d[offset + i] * d[dir + j] - d[offset + j] * d[dir + i];
+                p += 1;
+            }
+        }
+        for (i, row) in st.inv_inertia.chunks_exact(m).enumerate() {
+            d[w + i] = dot(row, &d[c..c + m]);
+        }
+        kk += st.inv_mass + dot(&d[c..c + m], &d[w..w + m]);
     }
     kk
 }
 
 /// The relative velocity of a row's two points along the direction at `dir` in its vectors
-/// `d`, whose arms start at `arms` (c_a, c_b, w_a, w_b).
+/// `d`, whose arms start at `arms` (c_a, c_b, w_a, w_b); `N` as in [`dim`].
 #[inline(always)]
-fn normal_velocity(
-    states: &[BodyState],
+fn normal_velocity<const N: usize>(
+    flat: &Flat,
     row: &SoftRow,
     d: &[f64],
     l: &Layout,
     dir: usize,
     arms: usize,
 ) -> f64 {
-    let (n, m) = (l.n, l.m);
+    let n = dim::<N>(l.n);
+    let m = n * (n - 1) / 2;
+    let stride = n + m;
     let e = &d[dir..dir + n];
-    let mut u = 0.0;
-    for (sign, body, side) in [(-1.0, row.a, 0), (1.0, row.b, 1)] {
-        if body == NO_BODY {
-            continue;
-        }
-        let st = &states[body];
-        let c = &d[arms + side * m..arms + (side + 1) * m];
-        u += sign * (dot(e, &st.v.as_slice()[..n]) + dot(c, &st.w.as_slice()[..m]));
+    let xb = &flat.vel[row.b * stride..(row.b + 1) * stride];
+    let mut u = dot(e, &xb[..n]) + dot(&d[arms + m..arms + 2 * m], &xb[n..]);
+    if row.a != NO_BODY {
+        let xa = &flat.vel[row.a * stride..(row.a + 1) * stride];
+        u -= dot(e, &xa[..n]) + dot(&d[arms..arms + m], &xa[n..]);
     }
     u
 }
 
 /// Gives body b the impulse λ e at its point and body a the opposite (e at `dir` in the
-/// row's vectors `d`, its arms at `arms`).
+/// row's vectors `d`, its arms at `arms`); `N` as in [`dim`].
 #[inline(always)]
-fn apply(
-    states: &mut [BodyState],
+fn apply<const N: usize>(
+    flat: &mut Flat,
     row: &SoftRow,
     d: &[f64],
     l: &Layout,
@@ -672,35 +714,27 @@ fn apply(
     if lambda == 0.0 {
         return;
     }
-    let (n, m) = (l.n, l.m);
+    let n = dim::<N>(l.n);
+    let m = n * (n - 1) / 2;
+    let stride = n + m;
     let e = &d[dir..dir + n];
     for (sign, body, side) in [(-1.0, row.a, 0), (1.0, row.b, 1)] {
-        if body == NO_BODY {
-            continue;
-        }
-        let st = &mut states[body];
-        if st.inv_mass == 0.0 {
+        if body == NO_BODY || flat.inv_mass[body] == 0.0 {
             continue;
         }
         let j = sign * lambda;
+        let scaled = j * flat.inv_mass[body];
         let c = &d[arms + side * m..arms + (side + 1) * m];
         let w = &d[arms + (2 + side) * m..arms + (3 + side) * m];
-        for ((v, p), x) in st.v.as_mut_slice()[..n]
-            .iter_mut()
-            .zip(&mut st.dp.as_mut_slice()[..n])
-            .zip(e)
-        {
-            *v += j * x * st.inv_mass;
-            *p += j * x;
+        let vel = &mut flat.vel[body * stride..(body + 1) * stride];
+        let imp = &mut flat.imp[body * stride..(body + 1) * stride];
+        for i in 0..n {
+            vel[i] += scaled * e[i];
+            imp[i] += j * e[i];
         }
-        for (((o, dl), ci), wi) in st.w.as_mut_slice()[..m]
-            .iter_mut()
-            .zip(&mut st.dl.as_mut_slice()[..m])
-            .zip(c)
-            .zip(w)
-        {
-            *o += j * wi;
-            *dl += j * ci;
+        for i in 0..m {
+            vel[n + i] += j * w[i];
+            imp[n + i] += j * c[i];
         }
     }
 }
