@@ -487,8 +487,8 @@ fn run() -> Result<(), Error> {
     if !ranges.is_empty() {
         let _ = writeln!(
             text,
-            "\nrotorflow's time per step is {} Rapier's on these scenes.",
-            ranges.join(", and ")
+            "\nrotorflow's time per step, as a multiple of Rapier's on these scenes: {}.",
+            ranges.join(", ")
         );
     }
     if !missing.is_empty() {
