@@ -2,7 +2,8 @@
 //! criterion run. Each bench function steps a scene that has already been stepped for a
 //! while (outside the timing) by a fixed number of steps per iteration, given as
 //! criterion's throughput in elements (steps), so that `table` reports time per step.
-//! rotorflow takes its steps with one `advance`; Rapier with `PhysicsWorld::step`.
+//! rotorflow takes its steps with one `advance`, by `MotionSplitting` (function `rotorflow`)
+//! and by `SoftStep` (`rotorflow_soft`); Rapier with `PhysicsWorld::step`.
 //!
 //! Criterion's options apply (`-- --warm-up-time 1 --measurement-time 3`), and a name
 //! filter selects scenes: scenes it leaves out are not even set up. The run's arguments, the
@@ -16,7 +17,8 @@ use rotorflow_rapier_bench::{
 use std::path::PathBuf;
 
 /// One scene of the comparison: its criterion group, its bodies, the steps taken before
-/// the timing, the steps per timed iteration and whether rotorflow is timed on it.
+/// the timing, the steps per timed iteration and whether rotorflow's `MotionSplitting` is
+/// timed on it (its `SoftStep` is timed on every scene).
 struct Scene {
     group: &'static str,
     items: fn() -> Vec<Item>,
@@ -56,8 +58,8 @@ const SCENES: &[Scene] = &[
     },
     Scene {
         group: "pile_1000",
-        // rotorflow takes seconds per step on the pile of 100 while it lands, and far
-        // longer on this one: only Rapier is timed.
+        // `MotionSplitting` takes seconds per step on the pile of 100 while it lands, and
+        // far longer on this one: it is not timed here.
         items: || pile(1000),
         settle: 120,
         steps: 1,
@@ -168,6 +170,9 @@ fn main() {
             ours.advance(scene.settle);
             bench_run(&mut g, "rotorflow", &mut ours, scene.steps);
         }
+        let mut soft = RotorflowRun::soft(&items);
+        soft.advance(scene.settle);
+        bench_run(&mut g, "rotorflow_soft", &mut soft, scene.steps);
         for (name, floor) in [
             ("rapier_halfspace_floor", Floor::HalfSpace),
             ("rapier_cuboid_floor", Floor::Cuboid),

@@ -1,13 +1,15 @@
-//! Writes `book/src/generated/rapier_bench.md`: the time per step of rotorflow and of Rapier
-//! from criterion's results of the last `cargo bench` of this package, and how well each
-//! engine keeps each scene, from short runs of the same scenes taken here.
+//! Writes `book/src/generated/rapier_bench.md`: the time per step of rotorflow (by
+//! `MotionSplitting` and by `SoftStep`) and of Rapier from criterion's results of the last
+//! `cargo bench` of this package, and how well each engine keeps each scene, from short runs
+//! of the same scenes taken here.
 //!
 //! `cargo run --release --manifest-path benches/rapier/Cargo.toml --bin table [-- --output FILE]`
 
 use rapier3d::prelude::IntegrationParameters;
+use rotorflow::dynamics::motion::SoftStep;
 use rotorflow_rapier_bench::{
-    Floor, H, Item, RESTING_BOX, ROLLING_BALL, RapierRun, RotorflowRun, Run, floor_depth,
-    max_penetration, pile, pyramid, resting_boxes, rolling_balls,
+    Floor, H, Item, RESTING_BOX, ROLLING_BALL, RapierRun, RotorflowIntegrator, RotorflowRun, Run,
+    floor_depth, max_penetration, pile, pyramid, resting_boxes, rolling_balls,
 };
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -23,9 +25,11 @@ const SCENES: &[(&str, &str)] = &[
     ("pile_1000", "pile of 1,000 boxes and balls"),
 ];
 
-/// The engines of the bench: criterion function, column title.
+/// The engines of the bench: criterion function, column title. rotorflow's two
+/// integrators first, `MotionSplitting` then `SoftStep`, then Rapier's two floors.
 const ENGINES: &[(&str, &str)] = &[
     ("rotorflow", "rotorflow"),
+    ("rotorflow_soft", "rotorflow SoftStep"),
     ("rapier_halfspace_floor", "Rapier, half-space floor"),
     ("rapier_cuboid_floor", "Rapier, cuboid floor"),
 ];
@@ -267,8 +271,8 @@ const STABILITY: &[StabilityScene] = &[
     },
 ];
 
-/// The stability table's rows, and a line per scene of what rotorflow's contact solves did
-/// in its run.
+/// The stability table's rows, and a line per scene of what `MotionSplitting`'s contact
+/// solves did in its run.
 fn stability_rows(out: &mut String, solves: &mut String) {
     for scene in STABILITY {
         let items = (scene.items)();
@@ -277,7 +281,10 @@ fn stability_rows(out: &mut String, solves: &mut String) {
         let mut columns: Vec<Figures> = Vec::new();
         let mut ours = RotorflowRun::new(&items);
         columns.push((scene.run)(&mut ours, &items));
-        let report = ours.integrator.solver_report();
+        let RotorflowIntegrator::Splitting(splitting) = &ours.integrator else {
+            unreachable!("RotorflowRun::new runs MotionSplitting")
+        };
+        let report = splitting.solver_report();
         let _ = writeln!(
             solves,
             "| {description} | {} | {} | {} | {} |",
@@ -289,11 +296,12 @@ fn stability_rows(out: &mut String, solves: &mut String) {
         for floor in [Floor::HalfSpace, Floor::Cuboid] {
             columns.push((scene.run)(&mut RapierRun::new(&items, floor), &items));
         }
+        columns.push((scene.run)(&mut RotorflowRun::soft(&items), &items));
         for (k, measure) in scene.measures.iter().enumerate() {
             let _ = writeln!(
                 out,
-                "| {description} | {measure} | {} | {} | {} |",
-                columns[0][k], columns[1][k], columns[2][k]
+                "| {description} | {measure} | {} | {} | {} | {} |",
+                columns[0][k], columns[1][k], columns[2][k], columns[3][k]
             );
         }
     }
@@ -340,7 +348,8 @@ fn run() -> Result<(), Error> {
 
     let mut speed = String::new();
     let mut missing = Vec::new();
-    let mut ratios = Vec::new();
+    // The ratios to Rapier's two floors of `MotionSplitting` and of `SoftStep`.
+    let mut ratios = [Vec::new(), Vec::new()];
     for (group, description) in SCENES {
         let mut times = Vec::new();
         for (function, _) in ENGINES {
@@ -350,19 +359,27 @@ fn run() -> Result<(), Error> {
             }
             times.push(t);
         }
-        for rapier in &times[1..] {
-            if let (Some(a), Some(b)) = (times[0], rapier) {
-                ratios.push(a / b);
+        let [splitting, soft, half_space, cuboid] = times[..] else {
+            unreachable!("four engines")
+        };
+        for (ours, list) in [splitting, soft].into_iter().zip(&mut ratios) {
+            for rapier in [half_space, cuboid] {
+                if let (Some(a), Some(b)) = (ours, rapier) {
+                    list.push(a / b);
+                }
             }
         }
         let _ = writeln!(
             speed,
-            "| {description} | {} | {} | {} | {} | {} |",
-            ms(times[0]),
-            ms(times[1]),
-            ratio(times[0], times[1]),
-            ms(times[2]),
-            ratio(times[0], times[2]),
+            "| {description} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            ms(splitting),
+            ms(half_space),
+            ratio(splitting, half_space),
+            ms(cuboid),
+            ratio(splitting, cuboid),
+            ms(soft),
+            ratio(soft, half_space),
+            ratio(soft, cuboid),
         );
     }
     if missing.len() == SCENES.len() * ENGINES.len() {
@@ -395,6 +412,12 @@ fn run() -> Result<(), Error> {
     let date = command_line("date", &["-u", "+%Y-%m-%d"])?;
     let rustc = command_line("rustc", &["--version"])?;
     let p = IntegrationParameters::default();
+    // SoftStep's contact frequencies follow from its substep rate: a fifth of it, and
+    // against fixed bodies and half-spaces twice that up to a quarter of it.
+    let soft = SoftStep::new();
+    let substep_rate = soft.substeps() as f64 / H;
+    let hertz = substep_rate / 5.0;
+    let fixed_hertz = (2.0 * hertz).min(substep_rate / 4.0);
     let mut text = String::new();
     let _ = writeln!(
         text,
@@ -412,12 +435,23 @@ fn run() -> Result<(), Error> {
     );
     let _ = writeln!(
         text,
-        "Both engines take steps of h = {:.6} s (1/60). rotorflow: `MotionSplitting`, with `advance` (one velocity \
-         solve per step), its contacts solved by Gauss–Seidel to its tolerance. Rapier: `PhysicsWorld::step` with its \
+        "Both engines take steps of h = {:.6} s (1/60), both with `advance` for rotorflow. rotorflow (the first \
+         columns): `MotionSplitting`, one velocity solve per step, its contacts solved by Gauss–Seidel to its \
+         tolerance and its impacts located in time. rotorflow SoftStep (the last columns): `SoftStep` with its \
+         defaults, a fixed solver cost per step: {} substeps, each with 1 Gauss–Seidel pass over soft contacts \
+         (springs) and 1 relax pass without the springs (in 3D), contacts of {:.0} Hz (a fifth of the substep rate) \
+         and {:.0} Hz against fixed bodies and the floor (twice that, up to a quarter of the substep rate), damping \
+         ratio 3, overlaps pushed out at most at 3 m/s, a speculative margin of 5 % of the bodies' bounding radii, \
+         contacts found once per step and restitution applied once per step. Rapier: `PhysicsWorld::step` with its \
          default integration parameters (soft TGS: {} substeps, each of {} velocity and {} stabilization iteration, \
-         warm start {}), sleeping off, continuous collision detection off. Each scene is stepped for a while before the \
-         timing (the piles for 2 s, so that they have landed). Ratio = rotorflow's time / Rapier's.\n",
+         warm start {}), sleeping off, continuous collision detection off; SoftStep and Rapier thus do comparable \
+         solver work per step. Each scene is stepped for a while before the timing (the piles for 2 s, so that they \
+         have landed). Ratio = rotorflow's time / Rapier's, for each of rotorflow's integrators and each of \
+         Rapier's floors.\n",
         H,
+        soft.substeps(),
+        hertz,
+        fixed_hertz,
         p.num_solver_iterations,
         p.num_internal_pgs_iterations,
         p.num_internal_stabilization_iterations,
@@ -425,24 +459,36 @@ fn run() -> Result<(), Error> {
     );
     let _ = writeln!(
         text,
-        "| scene | rotorflow (ms/step) | Rapier, half-space floor (ms/step) | ratio | Rapier, cuboid floor (ms/step) | ratio |"
+        "| scene | rotorflow (ms/step) | Rapier, half-space floor (ms/step) | ratio | Rapier, cuboid floor (ms/step) | ratio \
+         | rotorflow SoftStep (ms/step) | ratio to half-space floor | ratio to cuboid floor |"
     );
-    let _ = writeln!(text, "|---|---:|---:|---:|---:|---:|");
+    let _ = writeln!(text, "|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     text.push_str(&speed);
     let _ = writeln!(
         text,
-        "\nrotorflow is not timed on the pile of 1,000, which would take it far longer than the minutes of the \
-         rest of the run (its slowest step on the pile of 100 is in the stability table)."
+        "\n`MotionSplitting` is not timed on the pile of 1,000, which would take it far longer than the minutes of \
+         the rest of the run (its slowest step on the pile of 100 is in the stability table)."
     );
     missing.retain(|m| m != "pile_1000/rotorflow");
-    if !ratios.is_empty() {
-        let low = ratios.iter().copied().fold(f64::INFINITY, f64::min);
-        let high = ratios.iter().copied().fold(0.0, f64::max);
+    let ranges: Vec<String> = ["`MotionSplitting`", "`SoftStep`"]
+        .iter()
+        .zip(&ratios)
+        .filter(|(_, r)| !r.is_empty())
+        .map(|(name, r)| {
+            let low = r.iter().copied().fold(f64::INFINITY, f64::min);
+            let high = r.iter().copied().fold(0.0, f64::max);
+            format!(
+                "{} to {} with {name}",
+                ratio(Some(low), Some(1.0)),
+                ratio(Some(high), Some(1.0)),
+            )
+        })
+        .collect();
+    if !ranges.is_empty() {
         let _ = writeln!(
             text,
-            "\nrotorflow's time per step is {} to {} Rapier's on these scenes.",
-            ratio(Some(low), Some(1.0)),
-            ratio(Some(high), Some(1.0)),
+            "\nrotorflow's time per step, as a multiple of Rapier's on these scenes: {}.",
+            ranges.join(", ")
         );
     }
     if !missing.is_empty() {
@@ -450,19 +496,20 @@ fn run() -> Result<(), Error> {
     }
     let _ = writeln!(
         text,
-        "\nStability, from runs of {STABILITY_SECONDS} s from the start of each scene (outside the timing). \
-         Penetrations are measured on the placements each engine reports, in closed form (balls by their centres, \
-         boxes by their 15 separating axes), the same way for both.\n"
+        "\nStability, from runs of {STABILITY_SECONDS} s from the start of each scene (outside the timing), \
+         rotorflow by `MotionSplitting` (the column rotorflow) and by `SoftStep`. Penetrations are measured on the \
+         placements each engine reports, in closed form (balls by their centres, boxes by their 15 separating axes), \
+         the same way for all.\n"
     );
     let _ = writeln!(
         text,
-        "| scene | measure | rotorflow | Rapier, half-space floor | Rapier, cuboid floor |"
+        "| scene | measure | rotorflow | Rapier, half-space floor | Rapier, cuboid floor | rotorflow SoftStep |"
     );
-    let _ = writeln!(text, "|---|---|---:|---:|---:|");
+    let _ = writeln!(text, "|---|---|---:|---:|---:|---:|");
     text.push_str(&stability);
     let _ = writeln!(
         text,
-        "\nrotorflow's contact solves in those runs (`MotionSplitting::solver_report`): the solves, those that \
+        "\n`MotionSplitting`'s contact solves in those runs (`MotionSplitting::solver_report`): the solves, those that \
          stopped at the sweep limit unconverged, the most sweeps one took and the worst residual left.\n"
     );
     let _ = writeln!(
