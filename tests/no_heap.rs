@@ -510,7 +510,7 @@ mod moving_bodies {
     use rotorflow::dynamics::motion::forques::{Anchor, Gravity, Spring};
     use rotorflow::dynamics::motion::{
         BallJoint, ContactShape, HalfSpace, MotionIntegrator, MotionRk4, MotionSplitting,
-        MovingBody, System,
+        MovingBody, SoftStep, System,
     };
     use rotorflow::inertia::spec::parse_body;
     use rotorflow::prelude::*;
@@ -723,6 +723,35 @@ mod moving_bodies {
                 "N = {n}: {count} heap allocations in advance by 20 steps"
             );
         }
+    }
+
+    #[test]
+    fn soft_step_box_resting_on_a_box_does_not_allocate() {
+        let mut cases = 0;
+        for n in 3..=8 {
+            // Two cuboids stacked on the floor x_N = 0 (the upper one offset by 5 % along
+            // the first axis), settled before counting: rows against the floor and between
+            // the bodies, their manifold points and the impulses kept from step to step.
+            let h_n = 0.5 + 0.1 * (n - 1) as f64;
+            let mut bodies = Vec::new();
+            let mut shapes = Vec::new();
+            for (k, shift) in [(0, 0.0), (1, 0.05)] {
+                let mut x = axis(n, 0, shift);
+                x.as_mut_slice()[n - 1] = h_n * (1.0 + 2.0 * k as f64) + 1e-4;
+                let (b, shape) = cuboid(n, x, Vector::zero(n), 0.0);
+                bodies.push(b);
+                shapes.push(shape);
+            }
+            let mut system = on_floor(n, bodies, shapes);
+            let mut integrator = SoftStep::new();
+            for k in 0..100 {
+                integrator.step(&mut system, k as f64 * 0.01, 0.01).unwrap();
+            }
+            let count = step_allocations(&mut integrator, &mut system, 0.01, 20);
+            assert_eq!(count, 0, "N = {n}: {count} heap allocations in 20 steps");
+            cases += 1;
+        }
+        assert_eq!(cases, 6);
     }
 
     #[test]
