@@ -445,7 +445,15 @@ impl SoftSolver {
         let n = dim::<N>(l.n);
         for (k, row) in self.rows.iter().enumerate() {
             let d = &self.data[k * l.stride..(k + 1) * l.stride];
-            apply::<N>(&mut self.flat, row, d, &l, l.normal, l.arms, row.normal_impulse);
+            apply::<N>(
+                &mut self.flat,
+                row,
+                d,
+                &l,
+                l.normal,
+                l.arms,
+                row.normal_impulse,
+            );
             for t in 0..n - 1 {
                 let (dir, arms) = (l.tangents + t * n, l.tangent_arms + 4 * t * l.m);
                 let along = d[l.tangent_impulse + t];
