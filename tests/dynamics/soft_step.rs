@@ -21,7 +21,7 @@ const G: f64 = 9.81;
 /// Six cubes in 3D and three 4D hypercubes each offset by 5 %, turned by ±3° or not,
 /// dropped from 1 % of their size onto each other, stand for 10 s at h = 1/60 s and
 /// 1e-3 s: the top box sinks less than 5e-3 (the springs' deflection), ends at rest (below
-/// 1e-3 m/s) and slides less than 2e-2. Measured: the six cubes turned by ±3° slide 1.5e-2
+/// 1e-3 m/s) and slides less than 2e-2. Measured: the six cubes turned by ±3° slide 1.6e-2
 /// at h = 1/60 s while the landing's bounce settles (9e-3 with 8 substeps), above the 1e-2
 /// of a stable stack that [`MotionSplitting`](rotorflow::dynamics::motion::MotionSplitting)
 /// keeps to 1e-9; the other cases slide less than 1e-2. With one pass per substep instead

@@ -186,6 +186,19 @@ impl Touching {
         factor: f64,
         manifold: Option<f64>,
     ) {
+        self.scan_except(bodies, q, factor, manifold, |_| false);
+    }
+
+    /// [`Touching::scan`] without asking the narrow phase for the pairs (a, b) for which
+    /// `skip` is true (pairs whose contact the caller knows already).
+    pub(crate) fn scan_except<'q>(
+        &mut self,
+        bodies: &[MovingBody],
+        q: impl Fn(usize) -> &'q [f64],
+        factor: f64,
+        manifold: Option<f64>,
+        skip: impl Fn((usize, usize)) -> bool,
+    ) {
         self.len = 0;
         // Each body's bounding interval on the first axis, taken out of `self` while the
         // pairs are asked.
@@ -205,7 +218,9 @@ impl Touching {
                     break;
                 }
                 let (a, b) = (first.min(second), first.max(second));
-                self.pair(bodies, &q, (a, b), factor, manifold);
+                if !skip((a, b)) {
+                    self.pair(bodies, &q, (a, b), factor, manifold);
+                }
             }
         }
         self.order = order;

@@ -8,14 +8,18 @@ use crate::dynamics::motion::detect::bodies::Touching;
 use crate::dynamics::motion::placement::Placements;
 use crate::dynamics::motion::solve::{FoundPoint, NO_BODY, SoftSolver, Softness, Solver};
 use crate::dynamics::motion::{MotionError, MovingBody, System, Wrench};
+use smallvec::SmallVec;
 
 /// The soft step: each step of h is cut into substeps, and each substep takes the forques'
 /// kick, a Gauss–Seidel pass of soft contacts (two in N ≥ 4), the free flight of every
-/// body, and as many passes without the contacts' springs (the "relax" passes); restitution is applied once at
-/// the end of the step. Contacts are found once per step, as points of the bodies'
-/// manifolds within a speculative margin, and follow the bodies through the substeps
-/// without a new detection. This is the "soft step" solver of Box2D v3 (Catto, 2024), close
-/// to Rapier's TGS-soft, in N dimensions; the moving-bodies chapter compares it with
+/// body, and as many passes without the contacts' springs (the "relax" passes);
+/// restitution is applied once at the end of the step. Contacts are found once per step,
+/// as points of the bodies' manifolds within a speculative margin, and follow the bodies
+/// through the substeps without a new detection; a pair that moved less than 1e-4 of its
+/// size (and turned less than 1e-4 rad) since its manifold was found keeps that manifold's
+/// points as material points of the two bodies instead of asking the narrow phase again.
+/// This is the "soft step" solver of Box2D v3 (Catto, 2024), close to Rapier's TGS-soft,
+/// in N dimensions; the moving-bodies chapter compares it with
 /// [`MotionSplitting`](super::MotionSplitting) and Rapier.
 ///
 /// It does a fixed amount of work per step — the substeps times two passes over the
@@ -31,7 +35,7 @@ use crate::dynamics::motion::{MotionError, MovingBody, System, Wrench};
 /// Measured (`tests/dynamics/soft_step.rs`): towers of six cubes in 3D and of three 4D
 /// hypercubes offset by 5 % stand for 10 s at h = 1/60 s and 1e-3 s, the top sinking by
 /// the springs' deflection (3.6e-3 for six cubes at h = 1/60 s) and sliding by up to
-/// 1.5e-2.
+/// 1.6e-2.
 ///
 /// The free flight is that of [`MotionSplitting`](super::MotionSplitting): positions
 /// exactly, rotations by the Lie–Poisson splitting, which keeps a free body's |L| and
@@ -52,6 +56,44 @@ pub struct SoftStep {
     placements: Placements,
     wrenches: Vec<Wrench>,
     checked: Option<(u64, u64, usize)>,
+    /// The pairs whose manifold is kept from an earlier step, sorted, with the relative
+    /// placement it was found at; the next step's list is built in `next_kept`.
+    kept: Vec<KeptPair>,
+    next_kept: Vec<KeptPair>,
+    reuse: Vec<(usize, usize)>,
+    /// The shapes `kept` belongs to.
+    kept_shapes: (u64, u64),
+}
+
+/// A pair of bodies (a < b) whose contact manifold was found with body b's centre at
+/// `offset` and its axes at `turn` in body a's axes.
+#[derive(Clone, Debug, Default)]
+struct KeptPair {
+    pair: (usize, usize),
+    offset: SmallVec<[f64; 8]>,
+    turn: SmallVec<[f64; 64]>,
+}
+
+impl KeptPair {
+    /// Sets the relative placement of the pair (a, b) from their own axes (row-major, own
+    /// axes → space) and centres.
+    fn place(
+        &mut self,
+        pair: (usize, usize),
+        (qa, qb): (&[f64], &[f64]),
+        (xa, xb): (&[f64], &[f64]),
+    ) {
+        let n = xa.len();
+        self.pair = pair;
+        self.offset.clear();
+        self.offset
+            .extend((0..n).map(|k| (0..n).map(|i| qa[i * n + k] * (xb[i] - xa[i])).sum::<f64>()));
+        self.turn.clear();
+        self.turn.extend((0..n * n).map(|e| {
+            let (r, c) = (e / n, e % n);
+            (0..n).map(|i| qa[i * n + r] * qb[i * n + c]).sum::<f64>()
+        }));
+    }
 }
 
 impl Default for SoftStep {
@@ -69,6 +111,10 @@ impl Default for SoftStep {
             placements: Placements::default(),
             wrenches: Vec::new(),
             checked: None,
+            kept: Vec::new(),
+            next_kept: Vec::new(),
+            reuse: Vec::new(),
+            kept_shapes: (0, 0),
         }
     }
 }
@@ -76,6 +122,12 @@ impl Default for SoftStep {
 /// How far apart (relative to the sum of two polytopes' bounding radii) the points of a
 /// contact manifold may be and still be rows.
 const MANIFOLD_SLOP: f64 = 5e-2;
+
+/// How far two bodies may move relative to each other (relative to the sum of their
+/// bounding radii, and in the entries of their relative rotation) before their contact
+/// manifold is found anew: within that, its points are kept as material points of the two
+/// bodies (a resting stack asks the narrow phase once, not at every step).
+const KEEP_MANIFOLD: f64 = 1e-4;
 
 impl SoftStep {
     /// The soft step with 4 substeps, contacts of a fifth of the substep rate (48 Hz at
@@ -211,13 +263,37 @@ impl SoftStep {
             }
         }
         if pairs {
+            if self.kept_shapes != shape_key {
+                self.kept.clear();
+                self.kept_shapes = shape_key;
+            }
             let placements = &self.placements;
-            self.touching.scan(
-                bodies,
-                |i| &placements.get(i).q,
-                self.margin,
-                Some(MANIFOLD_SLOP),
-            );
+            let q = |i: usize| &placements.get(i).q[..];
+            let x = |i: usize| bodies[i].position().as_slice();
+            // The pairs that moved little since their manifold was found keep it.
+            self.reuse.clear();
+            self.next_kept.clear();
+            let mut now = KeptPair::default();
+            for k in &self.kept {
+                let (a, b) = k.pair;
+                if b >= bodies.len() {
+                    continue;
+                }
+                now.place((a, b), (q(a), q(b)), (x(a), x(b)));
+                let reach = KEEP_MANIFOLD * (placements.get(a).radius + placements.get(b).radius);
+                let far = |u: &[f64], v: &[f64], limit: f64| {
+                    u.iter().zip(v).any(|(s, t)| (s - t).abs() > limit)
+                };
+                if !far(&now.offset, &k.offset, reach) && !far(&now.turn, &k.turn, KEEP_MANIFOLD) {
+                    self.reuse.push((a, b));
+                }
+            }
+            let reuse = &self.reuse;
+            self.touching
+                .scan_except(bodies, q, self.margin, Some(MANIFOLD_SLOP), |p| {
+                    reuse.binary_search(&p).is_ok()
+                });
+            let mut last = None;
             for c in self.touching.found() {
                 let (friction, restitution) = contact_material(&bodies[c.a], &bodies[c.b]);
                 self.solver.push(&FoundPoint {
@@ -230,7 +306,23 @@ impl SoftStep {
                     friction,
                     restitution,
                 });
+                if last != Some((c.a, c.b)) {
+                    last = Some((c.a, c.b));
+                    now.place((c.a, c.b), (q(c.a), q(c.b)), (x(c.a), x(c.b)));
+                    self.next_kept.push(now.clone());
+                }
             }
+            let mut k = 0;
+            for &p in &self.reuse {
+                if self.solver.push_kept(p) {
+                    while self.kept[k].pair != p {
+                        k += 1;
+                    }
+                    self.next_kept.push(self.kept[k].clone());
+                }
+            }
+            self.next_kept.sort_unstable_by_key(|k| k.pair);
+            std::mem::swap(&mut self.kept, &mut self.next_kept);
         }
         self.solver.prepare(bodies);
     }

@@ -89,13 +89,15 @@ pub(crate) struct SoftRow {
 struct Layout {
     n: usize,
     m: usize,
-    /// n, r_a, r_b, r̂_a, r̂_b (N each), the friction impulse's coordinates on the tangent
-    /// directions (T, in a slot of N).
+    /// n, r_a, r_b, r̂_a, r̂_b, n̂ (N each), the friction impulse's coordinates on the
+    /// tangent directions (T, in a slot of N).
     normal: usize,
     ra: usize,
     rb: usize,
     own_a: usize,
     own_b: usize,
+    /// The normal in the principal axes of body a (for a manifold kept from step to step).
+    own_normal: usize,
     tangent_impulse: usize,
     /// c_a, c_b, w_a, w_b of the normal (M each).
     arms: usize,
@@ -117,8 +119,9 @@ impl Layout {
         let rb = 2 * n;
         let own_a = 3 * n;
         let own_b = 4 * n;
-        let tangent_impulse = 5 * n;
-        let arms = 6 * n;
+        let own_normal = 5 * n;
+        let tangent_impulse = 6 * n;
+        let arms = 7 * n;
         let tangents = arms + 4 * m;
         let tangent_mass = tangents + t * n;
         let tangent_arms = tangent_mass + t;
@@ -130,6 +133,7 @@ impl Layout {
             rb,
             own_a,
             own_b,
+            own_normal,
             tangent_impulse,
             arms,
             tangents,
@@ -192,8 +196,10 @@ pub(crate) struct SoftSolver {
     flat: Flat,
     /// Room for a row's tangential impulses.
     scratch: Vec<f64>,
-    /// Each row's separation at the bodies' current placement.
+    /// Each row's separation at the bodies' current placement, and the last step's rows'
+    /// at its end.
     separations: Vec<f64>,
+    old_separations: Vec<f64>,
     order: Vec<usize>,
 }
 
@@ -209,6 +215,9 @@ impl SoftSolver {
         }
         std::mem::swap(&mut self.rows, &mut self.old_rows);
         std::mem::swap(&mut self.data, &mut self.old_data);
+        std::mem::swap(&mut self.separations, &mut self.old_separations);
+        self.old_separations.resize(self.old_rows.len(), 0.0);
+        self.old_sort();
         self.rows.clear();
         self.data.clear();
         self.states
@@ -239,6 +248,12 @@ impl SoftSolver {
         self.data.resize(at + l.stride, 0.0);
         let d = &mut self.data[at..at + l.stride];
         d[l.normal..l.normal + n].copy_from_slice(&p.normal[..n]);
+        if p.a != NO_BODY {
+            let q = &self.frames[p.a * n * n..(p.a + 1) * n * n];
+            for k in 0..n {
+                d[l.own_normal + k] = (0..n).map(|i| q[i * n + k] * p.normal[i]).sum();
+            }
+        }
         for (body, offset, own) in [(p.a, l.ra, l.own_a), (p.b, l.rb, l.own_b)] {
             if body == NO_BODY {
                 continue;
@@ -266,6 +281,58 @@ impl SoftSolver {
             max_normal_impulse: 0.0,
             fixed: false,
         });
+    }
+
+    /// Adds the last step's rows of the pair (a, b) again, each at the point midway between
+    /// its material points of the two bodies at their placement now, the normal turned with
+    /// body a, the gap the rows' separation at the end of the last step. Returns false if the
+    /// last step had no row of the pair.
+    pub(crate) fn push_kept(&mut self, (a, b): (usize, usize)) -> bool {
+        let l = self.layout;
+        let n = l.n;
+        let first = self.old_rows.partition_point(|r| (r.a, r.b) < (a, b));
+        let count = self.old_rows[first..]
+            .iter()
+            .take_while(|r| (r.a, r.b) == (a, b))
+            .count();
+        for k in first..first + count {
+            let old = self.old_rows[k];
+            let at = self.data.len();
+            self.data
+                .extend_from_slice(&self.old_data[k * l.stride..(k + 1) * l.stride]);
+            let d = &mut self.data[at..at + l.stride];
+            // The point midway between the two material points, as detection gives it: both
+            // bodies take the impulse there, so that it exerts no torque about any origin.
+            let (xa, xb) = (
+                &self.start[a * n..(a + 1) * n],
+                &self.start[b * n..(b + 1) * n],
+            );
+            let (qa, qb) = (
+                &self.frames[a * n * n..(a + 1) * n * n],
+                &self.frames[b * n * n..(b + 1) * n * n],
+            );
+            for i in 0..n {
+                let pa = xa[i] + dot(&qa[i * n..(i + 1) * n], &d[l.own_a..l.own_a + n]);
+                let pb = xb[i] + dot(&qb[i * n..(i + 1) * n], &d[l.own_b..l.own_b + n]);
+                let p = 0.5 * (pa + pb);
+                d[l.ra + i] = p - xa[i];
+                d[l.rb + i] = p - xb[i];
+            }
+            for (q, offset, own) in [(qa, l.ra, l.own_a), (qb, l.rb, l.own_b)] {
+                for k in 0..n {
+                    d[own + k] = (0..n).map(|i| q[i * n + k] * d[offset + i]).sum();
+                }
+            }
+            let q = &self.frames[a * n * n..(a + 1) * n * n];
+            for i in 0..n {
+                d[l.normal + i] = dot(&q[i * n..(i + 1) * n], &d[l.own_normal..l.own_normal + n]);
+            }
+            self.rows.push(SoftRow {
+                gap: self.old_separations[k],
+                ..old
+            });
+        }
+        count > 0
     }
 
     /// Loads every body a row acts on.
@@ -310,7 +377,6 @@ impl SoftSolver {
         self.load(bodies);
         let l = self.layout;
         let (n, m) = (l.n, l.m);
-        self.old_sort();
         for (k, row) in self.rows.iter_mut().enumerate() {
             let d = &mut self.data[k * l.stride..(k + 1) * l.stride];
             let normal =
@@ -406,6 +472,7 @@ impl SoftSolver {
             while self.order[k] != start && self.order[k] != usize::MAX {
                 let next = self.order[k];
                 self.old_rows.swap(k, next);
+                self.old_separations.swap(k, next);
                 for x in 0..stride {
                     self.old_data.swap(k * stride + x, next * stride + x);
                 }
