@@ -346,6 +346,8 @@ fn generated_rapier_bench_says_where_it_was_measured() {
         "| scene | rotorflow (ms/step) | Rapier, half-space floor (ms/step) | ratio | Rapier, cuboid floor (ms/step) | ratio |",
         "| scene | measure | rotorflow | Rapier, half-space floor | Rapier, cuboid floor |",
         "| scene | solves | unconverged | most sweeps | worst residual |",
+        "rotorflow SoftStep (ms/step)",
+        "| rotorflow SoftStep |",
     ] {
         assert!(text.contains(key), "rapier_bench.md lacks `{key}`");
     }
