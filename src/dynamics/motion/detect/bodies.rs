@@ -3,7 +3,7 @@
 //! signed distance, the contact normal and the contact point (the narrow phase).
 
 use super::manifold::box_manifold_on_axis;
-use super::sat::box_box_unchecked;
+use super::sat::{box_box_unchecked, boxes_apart_by_more_than};
 use super::{
     ContactManifold, EpaWorkspace, PlacedBox, PlacedHull, PlacedShape, hull_manifold,
     penetration_with,
@@ -262,7 +262,11 @@ impl Touching {
                 position,
                 rotation,
             };
-            let axis = box_box_unchecked(&placed(ha, xa, q(a)), &placed(hb, xb, q(b)));
+            let (pa, pb) = (placed(ha, xa, q(a)), placed(hb, xb, q(b)));
+            if boxes_apart_by_more_than(&pa, &pb, reach) {
+                return;
+            }
+            let axis = box_box_unchecked(&pa, &pb);
             if -axis.depth > reach {
                 return;
             }
