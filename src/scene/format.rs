@@ -15,6 +15,9 @@ pub enum IntegratorKind {
     Splitting,
     /// Runge–Kutta–Munthe-Kaas of order 4 (forques only).
     Rk4,
+    /// The soft step: substeps of soft contacts, a fixed solver cost per step (planes and
+    /// contact between bodies, no joints).
+    Soft,
 }
 
 impl IntegratorKind {
@@ -23,6 +26,7 @@ impl IntegratorKind {
         match self {
             IntegratorKind::Splitting => "splitting",
             IntegratorKind::Rk4 => "rk4",
+            IntegratorKind::Soft => "soft",
         }
     }
 }
@@ -468,9 +472,10 @@ fn read_scene(text: &str, file: &str, read_file: FileReader<'_>) -> Result<Scene
         Some(v) => match top.string("integrator", v)? {
             "splitting" => IntegratorKind::Splitting,
             "rk4" => IntegratorKind::Rk4,
+            "soft" => IntegratorKind::Soft,
             other => {
                 return Err(top.error(format!(
-                    "integrator `{other}` is unknown (expected \"splitting\" or \"rk4\")"
+                    "integrator `{other}` is unknown (expected \"splitting\", \"rk4\" or \"soft\")"
                 )));
             }
         },
@@ -517,6 +522,11 @@ fn read_scene(text: &str, file: &str, read_file: FileReader<'_>) -> Result<Scene
         return Err(top.error(
             "integrator \"rk4\" integrates forces and springs only; a scene with [[plane]] or \
              [[joint]] needs integrator = \"splitting\"",
+        ));
+    }
+    if integrator == IntegratorKind::Soft && !joints.is_empty() {
+        return Err(top.error(
+            "integrator \"soft\" holds no joints; a scene with [[joint]] needs integrator = \"splitting\"",
         ));
     }
     Ok(Scene {

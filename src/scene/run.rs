@@ -7,7 +7,7 @@ use crate::algebra::{Bivector, Vector};
 use crate::dynamics::motion::forques::{Anchor, Gravity, Spring};
 use crate::dynamics::motion::{
     BallJoint, ContactShape, HalfSpace, MotionIntegrator, MotionRk4, MotionSplitting, MovingBody,
-    System, SystemTrajectory,
+    SoftStep, System, SystemTrajectory,
 };
 use crate::dynamics::{Attitude, DynamicsError};
 
@@ -144,6 +144,7 @@ pub fn run(
     let mut integrator: Box<dyn MotionIntegrator> = match scene.integrator {
         IntegratorKind::Splitting => Box::new(MotionSplitting::new()),
         IntegratorKind::Rk4 => Box::new(MotionRk4::new()),
+        IntegratorKind::Soft => Box::new(SoftStep::new()),
     };
     let mut record = system
         .record_with(integrator.as_mut(), scene.dt, times, scene.t_end, observe)

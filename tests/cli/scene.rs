@@ -146,6 +146,60 @@ fn scene_rk4_free_flight_follows_the_parabola() {
     assert!((positions[2][3] - exact).abs() <= 1e-12 * exact.abs());
 }
 
+/// A 4D cube dropped onto a larger one resting on the floor, stepped by the soft step: both
+/// come to rest (below 1e-6 m/s), each sitting by the springs' deflection (between 0 and
+/// 1e-3) in what holds it, and the output names the integrator.
+#[test]
+fn scene_soft_step_stacks_two_cubes() {
+    let text = r#"
+dim = 4
+gravity = [0.0, 0.0, 0.0, -9.81]
+t_end = 3.0
+dt = 0.01
+integrator = "soft"
+
+[[body]]
+name = "base"
+shape = "cuboid:0.5,0.5,0.5,0.5"
+mass = 16
+position = [0.0, 0.0, 0.0, 0.5]
+friction = 0.5
+
+[[body]]
+name = "top"
+shape = "cuboid:0.25,0.25,0.25,0.25"
+mass = 1
+position = [0.05, 0.0, 0.0, 1.5]
+friction = 0.5
+
+[[plane]]
+normal = [0, 0, 0, 1]
+friction = 0.5
+"#;
+    let (dir, _) = scene_file(text);
+    run_ok(
+        dir.path(),
+        &["scene.toml", "--samples", "4", "--output", "run.json"],
+    );
+    let json = read_json(&dir.path().join("run.json"));
+    assert_eq!(json["integrator"], "soft");
+    let base = matrix(&json["bodies"][0]["position"]);
+    let top = matrix(&json["bodies"][1]["position"]);
+    let base_sink = 0.5 - base[3][3];
+    let top_sink = base[3][3] + 0.5 + 0.25 - top[3][3];
+    for (what, sink) in [("base", base_sink), ("top", top_sink)] {
+        assert!(sink > 0.0 && sink < 1e-3, "the {what} sank {sink:e}");
+    }
+    for body in 0..2 {
+        let v = matrix(&json["bodies"][body]["velocity"]);
+        assert!(
+            v[3].iter().all(|x| x.abs() < 1e-6),
+            "body {body} moves: {:?}",
+            v[3]
+        );
+    }
+}
+
 const TWO_BODIES: &str = r#"
 dim = 3
 t_end = 3.0
@@ -853,6 +907,7 @@ bad_scenes! {
     scene_refuses_small_dim => ("dim = 1\nt_end = 1\ndt = 0.1\n".to_string() + CUBE, ["dim must be an integer from 2"])
     scene_refuses_unknown_integrator => (format!("{HEAD}integrator = \"euler\"\n{CUBE}"), ["integrator `euler` is unknown"])
     scene_refuses_rk4_with_joints => (format!("{HEAD}integrator = \"rk4\"\n{CUBE}[[joint]]\nbody = \"cube\"\nanchor = [0,0,0,0]\n"), ["rk4", "splitting"])
+    scene_refuses_soft_with_joints => (format!("{HEAD}integrator = \"soft\"\n{CUBE}[[joint]]\nbody = \"cube\"\nanchor = [0,0,0,0]\n"), ["integrator \"soft\" holds no joints", "splitting"])
     scene_refuses_wrong_type => (format!("{HEAD}{CUBE}position = \"up\"\n"), ["body \"cube\"", "position must be a list of numbers"])
     scene_refuses_toml_syntax_errors => (format!("{HEAD}{CUBE}position = [1, 2\n"), ["scene.toml:"])
     scene_refuses_a_single_body_table => (format!("{HEAD}[body]\nname = \"cube\"\nshape = \"tesseract:1,1,1,1\"\n"), ["scene.toml:4: `[body]` is a single table; write `[[body]]`"])
