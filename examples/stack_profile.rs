@@ -122,14 +122,16 @@ fn main() {
         let r = exact.solver_report();
         t += per as f64 * H;
         k += per;
-        let top = s.bodies().last().unwrap().position().as_slice()[2];
+        let top_body = s.bodies().last().unwrap().position().as_slice();
+        let (top, slide) = (top_body[2], top_body[0].hypot(top_body[1]));
         println!(
-            "step {k:4} {:9.2} ms  solves {:6} unconv {} maxsweeps {:6} top z {:.9}",
+            "step {k:4} {:9.2} ms  solves {:6} unconv {} maxsweeps {:6} top z {:.9} slide {:.2e}",
             t0.elapsed().as_secs_f64() * 1e3 / per as f64,
             r.solves - before.solves,
             r.unconverged - before.unconverged,
             r.max_sweeps,
-            top
+            top,
+            slide
         );
     }
     println!(
