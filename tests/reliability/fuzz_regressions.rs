@@ -1065,36 +1065,49 @@ fn fuzz_gjk_stopped_on_a_repeated_support_point_is_certified_only_when_its_bound
     .map(|p| p.to_vec())
     .collect();
     let e = -1.4901161193847656e-8;
-    let small: Vec<Vec<f64>> = [
-        [e, e, e],
-        [e, e, e],
-        [e, 0.00014494359493255615, 0.00019453465938568115],
-        [e, e, e],
-        [e, e, -3.591179847717285e-6],
-        [e, e, 3.7997961044311523e-6],
-        [0.0, 0.0, 0.0],
-    ]
-    .iter()
-    .map(|p| p.to_vec())
-    .collect();
+    // The finding, and its neighbour `regression_gjk_flat_hull_width` (the small hull's
+    // points spread over 3e-4, the same 1.5e-8 behind the face).
+    let smalls: [Vec<[f64; 3]>; 2] = [
+        vec![
+            [e, e, e],
+            [e, e, e],
+            [e, 0.00014494359493255615, 0.00019453465938568115],
+            [e, e, e],
+            [e, e, -3.591179847717285e-6],
+            [e, e, 3.7997961044311523e-6],
+            [0.0, 0.0, 0.0],
+        ],
+        vec![
+            [e, 7.614493370056152e-6, -3.337860107421875e-6],
+            [e, e, 0.00028608739376068115],
+            [e, 0.00014494359493255615, 0.00019453465938568115],
+            [e, e, -0.00012208521366119385],
+            [e, e, -3.591179847717285e-6],
+            [e, e, 3.7997961044311523e-6],
+            [0.0, 0.0, 0.0],
+        ],
+    ];
     let large = ConvexShape::hull(&large).unwrap();
-    let small = ConvexShape::hull(&small).unwrap();
     let identity = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
-    let a = PlacedShape::new(&large, &[0.0; 3], &identity).unwrap();
-    let b = PlacedShape::new(&small, &[0.0; 3], &identity).unwrap();
-    let size = large.bounding_radius() + small.bounding_radius();
     let mut checked = 0;
-    for (first, second) in [(&a, &b), (&b, &a)] {
-        let d = distance(first, second).unwrap();
-        assert!(d.distance <= 2e-8 * size, "distance {}", d.distance);
-        assert!(
-            !(d.certified && d.distance > 1e-9 * size),
-            "distance {} certified",
-            d.distance
-        );
-        checked += 1;
+    for small in &smalls {
+        let small: Vec<Vec<f64>> = small.iter().map(|p| p.to_vec()).collect();
+        let small = ConvexShape::hull(&small).unwrap();
+        let a = PlacedShape::new(&large, &[0.0; 3], &identity).unwrap();
+        let b = PlacedShape::new(&small, &[0.0; 3], &identity).unwrap();
+        let size = large.bounding_radius() + small.bounding_radius();
+        for (first, second) in [(&a, &b), (&b, &a)] {
+            let d = distance(first, second).unwrap();
+            assert!(d.distance <= 2e-8 * size, "distance {}", d.distance);
+            assert!(
+                !(d.certified && d.distance > 1e-9 * size),
+                "distance {} certified",
+                d.distance
+            );
+            checked += 1;
+        }
     }
-    assert_eq!(checked, 2);
+    assert_eq!(checked, 4);
 }
 
 /// convex_pairs (input `/gIVACAAuAzMDMwAICDMDMwM/34C`): a 6D box (half-lengths about 0.5 … 1.1)
