@@ -681,25 +681,30 @@ mod moving_bodies {
         }
     }
 
+    /// Two cuboids stacked on the floor x_N = 0, the upper one offset by 5 % along the
+    /// first axis.
+    fn box_on_a_box(n: usize) -> System {
+        let h_n = 0.5 + 0.1 * (n - 1) as f64;
+        let mut bodies = Vec::new();
+        let mut shapes = Vec::new();
+        for (k, shift) in [(0, 0.0), (1, 0.05)] {
+            let mut x = axis(n, 0, shift);
+            x.as_mut_slice()[n - 1] = h_n * (1.0 + 2.0 * k as f64) + 1e-4;
+            let (b, shape) = cuboid(n, x, Vector::zero(n), 0.0);
+            bodies.push(b);
+            shapes.push(shape);
+        }
+        on_floor(n, bodies, shapes)
+    }
+
     #[test]
     fn motion_splitting_box_resting_on_a_box_does_not_allocate() {
         // Up to N = 5: in 6D the faces of a box hold 32 corners, and one step of the pair
         // still allocates about once in 20 steps.
         for n in 3..=5 {
-            // Two cuboids stacked on the floor x_N = 0 (the upper one offset by 5 % along
-            // the first axis), settled before counting: contact rows between bodies, their
-            // manifold points and warm starts.
-            let h_n = 0.5 + 0.1 * (n - 1) as f64;
-            let mut bodies = Vec::new();
-            let mut shapes = Vec::new();
-            for (k, shift) in [(0, 0.0), (1, 0.05)] {
-                let mut x = axis(n, 0, shift);
-                x.as_mut_slice()[n - 1] = h_n * (1.0 + 2.0 * k as f64) + 1e-4;
-                let (b, shape) = cuboid(n, x, Vector::zero(n), 0.0);
-                bodies.push(b);
-                shapes.push(shape);
-            }
-            let mut system = on_floor(n, bodies, shapes);
+            // Settled before counting: contact rows between bodies, their manifold points
+            // and warm starts.
+            let mut system = box_on_a_box(n);
             let mut integrator = MotionSplitting::new();
             // The contact log keeps every contact of a step, one set per solve (the
             // located impacts of a step each solve), and grows to the busiest step met: in
@@ -729,20 +734,9 @@ mod moving_bodies {
     fn soft_step_box_resting_on_a_box_does_not_allocate() {
         let mut cases = 0;
         for n in 3..=8 {
-            // Two cuboids stacked on the floor x_N = 0 (the upper one offset by 5 % along
-            // the first axis), settled before counting: rows against the floor and between
-            // the bodies, their manifold points and the impulses kept from step to step.
-            let h_n = 0.5 + 0.1 * (n - 1) as f64;
-            let mut bodies = Vec::new();
-            let mut shapes = Vec::new();
-            for (k, shift) in [(0, 0.0), (1, 0.05)] {
-                let mut x = axis(n, 0, shift);
-                x.as_mut_slice()[n - 1] = h_n * (1.0 + 2.0 * k as f64) + 1e-4;
-                let (b, shape) = cuboid(n, x, Vector::zero(n), 0.0);
-                bodies.push(b);
-                shapes.push(shape);
-            }
-            let mut system = on_floor(n, bodies, shapes);
+            // Settled before counting: rows against the floor and between the bodies, their
+            // manifold points and the impulses kept from step to step.
+            let mut system = box_on_a_box(n);
             let mut integrator = SoftStep::new();
             for k in 0..100 {
                 integrator.step(&mut system, k as f64 * 0.01, 0.01).unwrap();

@@ -14,7 +14,7 @@ fn vector(c: &[f64]) -> Vector {
     Vector::from_components(c).unwrap()
 }
 
-fn padded(n: usize, c: &[f64]) -> Vector {
+pub(crate) fn padded(n: usize, c: &[f64]) -> Vector {
     let mut v = vec![0.0; n];
     v[..c.len()].copy_from_slice(c);
     vector(&v)
@@ -113,7 +113,13 @@ fn an_oblique_elastic_collision_of_equal_balls_leaves_at_right_angles() {
 }
 
 /// A random convex body of the catalogue in N dimensions.
-fn random_body(r: &mut impl Rng, n: usize, x: Vector, towards: f64, isotropic: bool) -> MovingBody {
+pub(crate) fn random_body(
+    r: &mut impl Rng,
+    n: usize,
+    x: Vector,
+    towards: f64,
+    isotropic: bool,
+) -> MovingBody {
     let mut lengths: Vec<String> = (0..n)
         .map(|_| format!("{:.3}", r.gen_range(0.3..0.7)))
         .collect();

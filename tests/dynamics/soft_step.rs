@@ -5,13 +5,13 @@
 //! momentum to round-off and never gain energy, a free fall converges at order 1, and
 //! systems with joints are refused.
 
-use super::stacks::{axis, tower_with, turned_cube};
+use super::body_contact::{padded, random_body};
+use super::stacks::{axis, ramp_run, tower_with};
 use crate::rng;
-use rand::Rng;
 use rotorflow::dynamics::DynamicsError;
 use rotorflow::dynamics::motion::forques::{Anchor, Gravity};
 use rotorflow::dynamics::motion::{
-    BallJoint, ContactShape, HalfSpace, MotionError, MotionIntegrator, MovingBody, SoftStep, System,
+    BallJoint, HalfSpace, MotionError, MotionIntegrator, MovingBody, SoftStep, System,
 };
 use rotorflow::inertia::spec::parse_body;
 use rotorflow::prelude::*;
@@ -103,43 +103,7 @@ fn a_box_on_a_ramp_slides_with_the_coulomb_acceleration_under_the_soft_step() {
     for n in [3, 4] {
         for (theta_deg, mu) in [(30.0f64, 0.3), (30.0, 0.7), (20.0, 0.1), (40.0, 0.5)] {
             let theta = theta_deg.to_radians();
-            let tilt = Rotor::from_plane_angle(n, 0, n - 1, theta).unwrap();
-            let down = tilt.rotate_vector(&axis(n, n - 1, -0.5));
-            let mut halves = vec![2.0; n];
-            halves[0] = 20.0;
-            halves[n - 1] = 0.5;
-            let corners = (0..1usize << n)
-                .map(|bits| {
-                    let c: Vec<f64> = (0..n)
-                        .map(|i| {
-                            if bits >> i & 1 == 1 {
-                                halves[i]
-                            } else {
-                                -halves[i]
-                            }
-                        })
-                        .collect();
-                    Vector::from_components(&c).unwrap()
-                })
-                .collect();
-            let ramp = MovingBody::fixed(ContactShape::Vertices(corners), tilt.clone(), &down)
-                .unwrap()
-                .with_friction(mu)
-                .unwrap();
-            let up = tilt.rotate_vector(&axis(n, n - 1, 0.5));
-            let block = turned_cube(n, 0.5, up.as_slice(), mu, tilt.clone());
-            let mut s = System::new(vec![ramp, block]).unwrap();
-            s.add_forque(Gravity(axis(n, n - 1, -G))).unwrap();
-            let mut stepper = SoftStep::new();
-            let (h, steps) = (1e-3, 1000);
-            stepper.advance(&mut s, 0.0, h, steps).unwrap();
-            let t = h * steps as f64;
-            let mut downhill = tilt.rotate_vector(&axis(n, 0, 1.0));
-            if downhill.as_slice()[n - 1] > 0.0 {
-                downhill = &downhill * -1.0;
-            }
-            let moved = s.bodies()[1].position() - &up;
-            let acceleration = 2.0 * moved.dot(&downhill) / (t * t);
+            let (acceleration, _) = ramp_run(&mut SoftStep::new(), n, theta, mu);
             let expected = (G * (theta.sin() - mu * theta.cos())).max(0.0);
             println!("N = {n}, θ = {theta_deg}°, μ = {mu}: a = {acceleration} against {expected}");
             assert!(
@@ -150,38 +114,6 @@ fn a_box_on_a_ramp_slides_with_the_coulomb_acceleration_under_the_soft_step() {
         }
     }
     assert_eq!(cases, 8);
-}
-
-/// A random convex body of the catalogue in N dimensions, thrown along the first axis.
-fn random_body(r: &mut impl Rng, n: usize, x: &[f64], towards: f64) -> MovingBody {
-    let lengths: Vec<String> = (0..n)
-        .map(|_| format!("{:.3}", r.gen_range(0.3..0.7)))
-        .collect();
-    let spec = match r.gen_range(0..3) {
-        0 => format!("cuboid:{}", lengths.join(",")),
-        1 => format!("ellipsoid:{}", lengths.join(",")),
-        _ => format!("ball:{n},{}", lengths[0]),
-    };
-    let parsed = parse_body(&format!("{spec}+mass={:.3}", r.gen_range(0.5..2.0))).unwrap();
-    let mut v: Vec<f64> = (0..n).map(|_| r.gen_range(-0.5..0.5)).collect();
-    v[0] += towards;
-    let m = n * (n - 1) / 2;
-    let w: Vec<f64> = (0..m).map(|_| r.gen_range(-2.0..2.0)).collect();
-    let b: Vec<f64> = (0..m).map(|_| r.gen_range(-1.0..1.0)).collect();
-    let mut at = vec![0.0; n];
-    at[..x.len()].copy_from_slice(x);
-    MovingBody::from_parsed(
-        &parsed,
-        Rotor::from_rotation_bivector(&Bivector::from_components(n, &b).unwrap()),
-        &Vector::from_components(&at).unwrap(),
-        &Vector::from_components(&v).unwrap(),
-        &Bivector::from_components(n, &w).unwrap(),
-    )
-    .unwrap()
-    .with_friction(r.gen_range(0.0..1.0))
-    .unwrap()
-    .with_restitution(r.gen_range(0.0..1.0))
-    .unwrap()
 }
 
 /// Pairs of random convex bodies in N = 3 … 6, spinning, thrown at each other with friction
@@ -197,8 +129,8 @@ fn soft_collisions_keep_the_linear_momentum_and_converge_in_angular_momentum() {
     let (mut worst, mut ratio) = (0.0f64, f64::INFINITY);
     for trial in 0..24 {
         let n = 3 + trial % 4;
-        let a = random_body(&mut r, n, &[-1.2], 1.5);
-        let b = random_body(&mut r, n, &[1.2, 0.2], -0.5);
+        let a = random_body(&mut r, n, padded(n, &[-1.2]), 1.5, false);
+        let b = random_body(&mut r, n, padded(n, &[1.2, 0.2]), -0.5, false);
         let mut errors = [0.0f64; 2];
         for (k, h) in [1e-3, 2.5e-4].into_iter().enumerate() {
             let mut s = System::new(vec![a.clone(), b.clone()]).unwrap();

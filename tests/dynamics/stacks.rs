@@ -162,6 +162,57 @@ fn three_offset_hypercubes_stand() {
     }
 }
 
+/// What a unit cube did in 1 s on a fixed ramp (a fixed box tilted by θ, friction μ)
+/// stepped by `stepper` at h = 1e-3 s: its acceleration along the ramp, downhill, and how far
+/// it moved off the ramp's plane.
+pub(crate) fn ramp_run(
+    stepper: &mut dyn MotionIntegrator,
+    n: usize,
+    theta: f64,
+    mu: f64,
+) -> (f64, f64) {
+    // The ramp: a fixed slab of half-lengths 20 × 0.5 (and 2 in the other axes), its top
+    // face through the origin, tilted about the plane (x₁, x_N) by θ.
+    let tilt = Rotor::from_plane_angle(n, 0, n - 1, theta).unwrap();
+    let down = tilt.rotate_vector(&axis(n, n - 1, -0.5));
+    let mut halves = vec![2.0; n];
+    halves[0] = 20.0;
+    halves[n - 1] = 0.5;
+    let corners = (0..1usize << n)
+        .map(|bits| {
+            let c: Vec<f64> = (0..n)
+                .map(|i| {
+                    if bits >> i & 1 == 1 {
+                        halves[i]
+                    } else {
+                        -halves[i]
+                    }
+                })
+                .collect();
+            Vector::from_components(&c).unwrap()
+        })
+        .collect();
+    let ramp = MovingBody::fixed(ContactShape::Vertices(corners), tilt.clone(), &down)
+        .unwrap()
+        .with_friction(mu)
+        .unwrap();
+    let up = tilt.rotate_vector(&axis(n, n - 1, 0.5));
+    let block = turned_cube(n, 0.5, up.as_slice(), mu, tilt.clone());
+    let mut s = System::new(vec![ramp, block]).unwrap();
+    s.add_forque(Gravity(axis(n, n - 1, -G))).unwrap();
+    let (h, steps) = (1e-3, 1000);
+    stepper.advance(&mut s, 0.0, h, steps).unwrap();
+    let t = h * steps as f64;
+    // Along the ramp, downhill.
+    let mut downhill = tilt.rotate_vector(&axis(n, 0, 1.0));
+    if downhill.as_slice()[n - 1] > 0.0 {
+        downhill = &downhill * -1.0;
+    }
+    let moved = s.bodies()[1].position() - &up;
+    let normal = tilt.rotate_vector(&axis(n, n - 1, 1.0));
+    (2.0 * moved.dot(&downhill) / (t * t), moved.dot(&normal))
+}
+
 /// A unit cube on a fixed ramp (a fixed box tilted by θ) slides down with acceleration
 /// a = g(sin θ − μ cos θ) when μ < tan θ and stays put when μ > tan θ (1e-3 relative to g).
 #[test]
@@ -170,60 +221,15 @@ fn a_box_on_a_fixed_ramp_slides_with_the_coulomb_acceleration_or_sticks() {
     for n in [3, 4] {
         for (theta_deg, mu) in [(30.0f64, 0.3), (30.0, 0.7), (20.0, 0.1), (40.0, 0.5)] {
             let theta = theta_deg.to_radians();
-            // The ramp: a fixed slab of half-lengths 20 × 0.5 (and 2 in the other axes), its
-            // top face through the origin, tilted about the plane (x₁, x_N) by θ.
-            let tilt = Rotor::from_plane_angle(n, 0, n - 1, theta).unwrap();
-            let down = tilt.rotate_vector(&axis(n, n - 1, -0.5));
-            let mut halves = vec![2.0; n];
-            halves[0] = 20.0;
-            halves[n - 1] = 0.5;
-            let corners = (0..1usize << n)
-                .map(|bits| {
-                    let c: Vec<f64> = (0..n)
-                        .map(|i| {
-                            if bits >> i & 1 == 1 {
-                                halves[i]
-                            } else {
-                                -halves[i]
-                            }
-                        })
-                        .collect();
-                    Vector::from_components(&c).unwrap()
-                })
-                .collect();
-            let ramp = MovingBody::fixed(ContactShape::Vertices(corners), tilt.clone(), &down)
-                .unwrap()
-                .with_friction(mu)
-                .unwrap();
-            let up = tilt.rotate_vector(&axis(n, n - 1, 0.5));
-            let block = turned_cube(n, 0.5, up.as_slice(), mu, tilt.clone());
-            let mut s = System::new(vec![ramp, block]).unwrap();
-            s.add_forque(Gravity(axis(n, n - 1, -G))).unwrap();
-            let mut stepper = MotionSplitting::new();
-            let (h, steps) = (1e-3, 1000);
-            stepper.advance(&mut s, 0.0, h, steps).unwrap();
-            let t = h * steps as f64;
-            // Along the ramp, downhill.
-            let mut downhill = tilt.rotate_vector(&axis(n, 0, 1.0));
-            if downhill.as_slice()[n - 1] > 0.0 {
-                downhill = &downhill * -1.0;
-            }
-            let moved = s.bodies()[1].position() - &up;
-            let along = moved.dot(&downhill);
+            let (acceleration, off) = ramp_run(&mut MotionSplitting::new(), n, theta, mu);
             let expected = (G * (theta.sin() - mu * theta.cos())).max(0.0);
-            let acceleration = 2.0 * along / (t * t);
             println!("N = {n}, θ = {theta_deg}°, μ = {mu}: a = {acceleration} against {expected}");
             assert!(
                 (acceleration - expected).abs() <= 1e-3 * G,
                 "N = {n}, θ = {theta_deg}°, μ = {mu}: a = {acceleration} against {expected}"
             );
             // It neither sinks into the ramp nor leaves it.
-            let normal = tilt.rotate_vector(&axis(n, n - 1, 1.0));
-            assert!(
-                moved.dot(&normal).abs() < 1e-4,
-                "N = {n}: off the ramp by {}",
-                moved.dot(&normal)
-            );
+            assert!(off.abs() < 1e-4, "N = {n}: off the ramp by {off}");
             cases += 1;
         }
     }

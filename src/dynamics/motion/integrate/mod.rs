@@ -13,7 +13,8 @@ pub use soft::SoftStep;
 pub use splitting::MotionSplitting;
 
 use crate::dynamics::DynamicsError;
-use crate::dynamics::motion::{MovingBody, System};
+use crate::dynamics::integrate::axpy;
+use crate::dynamics::motion::{MovingBody, System, Wrench};
 
 /// An integrator of Newton–Euler for a [`System`]: advances every body by one step.
 pub trait MotionIntegrator {
@@ -58,6 +59,19 @@ fn one_by_one<I: MotionIntegrator + ?Sized>(
         integrator.step(system, t + k as f64 * h, h)?;
     }
     Ok(())
+}
+
+/// Adds h of each wrench to the momenta of the bodies that move.
+fn kick(bodies: &mut [MovingBody], wrenches: &[Wrench], h: f64) {
+    for (b, w) in bodies.iter_mut().zip(wrenches) {
+        if b.is_fixed() {
+            continue;
+        }
+        let (_, p, rotation) = b.state_mut();
+        axpy(p.as_mut_slice(), h, w.force.as_slice());
+        let (_, l) = rotation.state_mut();
+        axpy(l.as_mut_slice(), h, w.torque.as_slice());
+    }
 }
 
 fn check_finite(system: &System, t: f64) -> Result<(), DynamicsError> {

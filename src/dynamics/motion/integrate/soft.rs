@@ -1,13 +1,13 @@
 //! [`SoftStep`]: substeps with soft contacts and a fixed amount of solver work per step.
 
-use super::{MotionIntegrator, check_finite};
+use super::{MotionIntegrator, check_finite, kick};
 use crate::dynamics::DynamicsError;
 use crate::dynamics::integrate::{axpy, free_strang_step};
 use crate::dynamics::motion::body::contact_material;
 use crate::dynamics::motion::detect::bodies::Touching;
 use crate::dynamics::motion::placement::Placements;
 use crate::dynamics::motion::solve::{FoundPoint, NO_BODY, SoftSolver, Softness, Solver};
-use crate::dynamics::motion::{MotionError, MovingBody, System, Wrench};
+use crate::dynamics::motion::{MotionError, System, Wrench};
 use smallvec::SmallVec;
 
 /// The soft step: each step of h is cut into substeps, and each substep takes the forques'
@@ -201,19 +201,6 @@ impl SoftStep {
         self.substeps
     }
 
-    /// Adds h of each wrench to the momenta of the bodies that move.
-    fn kick(bodies: &mut [MovingBody], wrenches: &[Wrench], h: f64) {
-        for (b, w) in bodies.iter_mut().zip(wrenches) {
-            if b.is_fixed() {
-                continue;
-            }
-            let (_, p, rotation) = b.state_mut();
-            axpy(p.as_mut_slice(), h, w.force.as_slice());
-            let (_, l) = rotation.state_mut();
-            axpy(l.as_mut_slice(), h, w.torque.as_slice());
-        }
-    }
-
     /// Finds the contact points of the step (bodies against half-spaces and against each
     /// other, within the speculative margin) and prepares the rows.
     fn detect(&mut self, system: &mut System) {
@@ -330,12 +317,12 @@ impl SoftStep {
     /// The kick of the wrenches at time `t` over `h`.
     fn kick_at(&mut self, system: &mut System, t: f64, h: f64) {
         if let (bodies, Some(constant)) = system.bodies_and_constant_wrenches() {
-            Self::kick(bodies, &constant.wrenches, h);
+            kick(bodies, &constant.wrenches, h);
             return;
         }
         let mut w = std::mem::take(&mut self.wrenches);
         system.wrenches_into(t, &mut w);
-        Self::kick(system.bodies_mut(), &w, h);
+        kick(system.bodies_mut(), &w, h);
         self.wrenches = w;
     }
 

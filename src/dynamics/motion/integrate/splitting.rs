@@ -1,6 +1,6 @@
 //! [`MotionSplitting`]: kicks, free flight, impacts located in time, contacts and joints.
 
-use super::{MotionIntegrator, check_finite, one_by_one};
+use super::{MotionIntegrator, check_finite, kick, one_by_one};
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::integrate::{axpy, free_strang_step};
 use crate::dynamics::motion::detect::bodies::Touching;
@@ -172,19 +172,6 @@ impl MotionSplitting {
         Self::default()
     }
 
-    /// Adds h of each wrench to the momenta.
-    fn kick(bodies: &mut [MovingBody], wrenches: &[Wrench], h: f64) {
-        for (b, w) in bodies.iter_mut().zip(wrenches) {
-            if b.is_fixed() {
-                continue;
-            }
-            let (_, p, rotation) = b.state_mut();
-            axpy(p.as_mut_slice(), h, w.force.as_slice());
-            let (_, l) = rotation.state_mut();
-            axpy(l.as_mut_slice(), h, w.torque.as_slice());
-        }
-    }
-
     /// Free flight of every body for h.
     fn drift(&mut self, bodies: &mut [MovingBody], t: f64, h: f64) -> Result<(), DynamicsError> {
         for b in bodies.iter_mut().filter(|b| !b.is_fixed()) {
@@ -227,14 +214,14 @@ impl MotionSplitting {
             if resting {
                 Self::set_resting_speeds(&mut self.resting_speed, bodies, &constant.wrenches, h);
             }
-            Self::kick(bodies, &constant.wrenches, 0.5 * h);
+            kick(bodies, &constant.wrenches, 0.5 * h);
             return;
         }
         self.wrenches_at(system, t);
         if resting {
             Self::set_resting_speeds(&mut self.resting_speed, system.bodies(), &self.wrenches, h);
         }
-        Self::kick(system.bodies_mut(), &self.wrenches, 0.5 * h);
+        kick(system.bodies_mut(), &self.wrenches, 0.5 * h);
     }
 
     /// The closing half kick (½h) at time `t`. Where a forque reads velocities it is
@@ -251,7 +238,7 @@ impl MotionSplitting {
         }
         save(system.bodies(), &mut self.kick_start);
         self.wrenches_at(system, t);
-        Self::kick(system.bodies_mut(), &self.wrenches, 0.5 * h);
+        kick(system.bodies_mut(), &self.wrenches, 0.5 * h);
         for _ in 0..MAX_KICK_ITERATIONS {
             self.wrenches_at(system, t);
             let (mut change, mut size) = (0.0f64, 0.0f64);
@@ -919,7 +906,7 @@ impl MotionSplitting {
             unreachable!("joined steps run under constant wrenches only")
         };
         Self::set_resting_speeds(&mut self.resting_speed, bodies, &constant.wrenches, h);
-        Self::kick(bodies, &constant.wrenches, 0.5 * (before + h));
+        kick(bodies, &constant.wrenches, 0.5 * (before + h));
     }
 }
 
@@ -1178,7 +1165,7 @@ impl MotionSplitting {
             };
         }
         self.wrenches_at(system, t);
-        Self::kick(system.bodies_mut(), &self.wrenches, 0.5 * h);
+        kick(system.bodies_mut(), &self.wrenches, 0.5 * h);
         self.drift(system.bodies_mut(), t, h)?;
         self.closing_kick(system, t + h, h);
         check_finite(system, t)
