@@ -380,7 +380,7 @@ impl MotionIntegrator for SoftStep {
             self.kick_at(system, at, sub);
             let bodies = system.bodies_mut();
             self.solver.solve(bodies, sub, soft, self.push_out, passes);
-            self.solver.finish_pass(bodies);
+            self.solver.store(bodies);
             for b in bodies.iter_mut().filter(|b| !b.is_fixed()) {
                 let m = b.mass();
                 let (x, p, rotation) = b.state_mut();

@@ -179,13 +179,13 @@ pub(crate) struct FoundPoint<'a> {
 /// for the impulses to start from.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct SoftSolver {
-    pub rows: Vec<SoftRow>,
+    rows: Vec<SoftRow>,
     data: Vec<f64>,
     /// The last step's rows and vectors, sorted by (a, b, key), to start from.
     old_rows: Vec<SoftRow>,
     old_data: Vec<f64>,
     layout: Layout,
-    pub(crate) states: Vec<BodyState>,
+    states: Vec<BodyState>,
     work: Dense,
     /// Each body's position at the start of the step, and its attitude now (Q, N × N).
     start: Vec<f64>,
@@ -357,8 +357,8 @@ impl SoftSolver {
         }
     }
 
-    /// Hands the loaded states' impulses to the bodies.
-    fn store(&mut self, bodies: &mut [MovingBody]) {
+    /// Hands the loaded states' impulses to the bodies (after a pass, before their flight).
+    pub(crate) fn store(&mut self, bodies: &mut [MovingBody]) {
         let (n, m) = (self.layout.n, self.layout.m);
         let stride = n + m;
         for (i, (st, b)) in self.states.iter_mut().zip(bodies).enumerate() {
@@ -575,11 +575,6 @@ impl SoftSolver {
         if last {
             self.restitution::<N>(speed);
         }
-    }
-
-    /// Hands the biased pass's impulses to the bodies (before their flight).
-    pub(crate) fn finish_pass(&mut self, bodies: &mut [MovingBody]) {
-        self.store(bodies);
     }
 
     /// The current separation of row `k` from the bodies' positions and attitudes.
