@@ -148,7 +148,8 @@ fn scene_rk4_free_flight_follows_the_parabola() {
 
 /// A 4D cube dropped onto a larger one resting on the floor, stepped by the soft step: both
 /// come to rest (below 1e-6 m/s), each sitting by the springs' deflection (between 0 and
-/// 1e-3) in what holds it, and the output names the integrator.
+/// 1e-3) in what holds it, the output names the integrator, and the last sample's contacts
+/// carry the step's weights: the floor's (16 + 1) g dt, the base's g dt (1e-6).
 #[test]
 fn scene_soft_step_stacks_two_cubes() {
     let text = r#"
@@ -198,6 +199,25 @@ friction = 0.5
             v[3]
         );
     }
+    let last = |key: &str| -> f64 {
+        let samples = json[key].as_array().expect("a contacts key");
+        samples[samples.len() - 1]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| c["normal_impulse"].as_f64().unwrap())
+            .sum()
+    };
+    let weight = 9.81 * 0.01;
+    let (floor, between) = (last("contacts"), last("body_contacts"));
+    assert!(
+        (floor - 17.0 * weight).abs() <= 1e-6 * 17.0 * weight,
+        "floor {floor:e}"
+    );
+    assert!(
+        (between - weight).abs() <= 1e-6 * weight,
+        "base {between:e}"
+    );
 }
 
 const TWO_BODIES: &str = r#"

@@ -6,7 +6,7 @@
 //! systems with joints are refused.
 
 use super::body_contact::{padded, random_body};
-use super::stacks::{axis, ramp_run, tower_with};
+use super::stacks::{axis, ramp_run, tower_with, turned_cube};
 use crate::rng;
 use rotorflow::dynamics::DynamicsError;
 use rotorflow::dynamics::motion::forques::{Anchor, Gravity};
@@ -262,4 +262,95 @@ fn the_soft_step_refuses_joints() {
     assert!(SoftStep::new().with_passes(0).is_err());
     assert!(SoftStep::new().with_contact_spring(-1.0, 10.0).is_err());
     assert!(SoftStep::new().with_contact_spring(30.0, f64::NAN).is_err());
+}
+
+/// The contacts a step records are what held the bodies: two boxes resting on each other
+/// on a floor (3D to 5D, the upper one offset by 10 % and turned 20° in 3D and 4D, so that
+/// the points and their own axes differ from the principal ones) take per step the floor's
+/// impulse (m₁ + m₂) g h and the lower box's m₂ g h along the vertical (1e-6), with
+/// normals from the lower body to the upper one, total impulses (normal and friction)
+/// with no sideways part, no slip at rest, and points on the contact faces.
+#[test]
+fn the_soft_step_records_the_impulses_that_hold_the_bodies() {
+    let mut cases = 0;
+    for n in 3..=5 {
+        let h = 1.0 / 60.0;
+        let turn = if n <= 4 { 20f64.to_radians() } else { 0.0 };
+        let yaw = Rotor::from_plane_angle(n, 0, 1, turn).unwrap();
+        let mut low = vec![0.0; n];
+        low[n - 1] = 0.5;
+        let mut high = vec![0.0; n];
+        high[0] = 0.1;
+        high[n - 1] = 1.5;
+        let bodies = vec![
+            turned_cube(n, 0.5, &low, 0.5, Rotor::identity(n)),
+            turned_cube(n, 0.5, &high, 0.5, yaw),
+        ];
+        let mut s = System::new(bodies).unwrap();
+        s.add_forque(Gravity(axis(n, n - 1, -G))).unwrap();
+        s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
+            .unwrap();
+        let mut stepper = SoftStep::new();
+        stepper.advance(&mut s, 0.0, h, 240).unwrap();
+        let floor: f64 = s.contacts().iter().map(|c| c.normal_impulse).sum();
+        let between: f64 = s.body_contacts().iter().map(|c| c.normal_impulse).sum();
+        println!(
+            "N = {n}: {} floor points, {} points between the boxes, impulses {floor:e}, {between:e}",
+            s.contacts().len(),
+            s.body_contacts().len()
+        );
+        let weight = G * h;
+        assert!(
+            (floor - 2.0 * weight).abs() <= 2e-6 * weight,
+            "N = {n}: floor {floor:e}"
+        );
+        assert!(
+            (between - weight).abs() <= 1e-6 * weight,
+            "N = {n}: between {between:e}"
+        );
+        assert!(s.contacts().len() >= 1 << (n - 1) && s.body_contacts().len() >= 4);
+        for c in s.contacts() {
+            assert_eq!((c.body, c.half_space), (0, 0));
+            let at = s.bodies()[0].point_position(&c.point);
+            assert!(
+                at.as_slice()[n - 1].abs() < 1e-2,
+                "N = {n}: floor point {at:?}"
+            );
+            assert!(c.slip.norm() < 1e-6, "N = {n}: {c:?}");
+        }
+        for c in s.body_contacts() {
+            assert_eq!((c.a, c.b), (0, 1));
+            assert!(
+                (c.normal.as_slice()[n - 1] - 1.0).abs() < 1e-9,
+                "N = {n}: {c:?}"
+            );
+            assert!(
+                (c.point.as_slice()[n - 1] - 1.0).abs() < 1e-2,
+                "N = {n}: {c:?}"
+            );
+        }
+        // At rest the impulses push no body sideways: the sideways parts of each set
+        // (friction, and the normals tilted as the soft contacts let the boxes tilt) cancel.
+        let mut sums = (Vector::zero(n), Vector::zero(n));
+        for c in s.contacts() {
+            sums.0 += &c.friction_impulse;
+        }
+        for c in s.body_contacts() {
+            sums.1 += &c.friction_impulse;
+            sums.1 += &(&c.normal * c.normal_impulse);
+        }
+        let sideways = |v: &Vector| {
+            v.as_slice()[..n - 1]
+                .iter()
+                .map(|x| x * x)
+                .sum::<f64>()
+                .sqrt()
+        };
+        assert!(
+            sideways(&sums.0) <= 1e-6 * weight && sideways(&sums.1) <= 1e-6 * weight,
+            "N = {n}: impulse sums {sums:?}"
+        );
+        cases += 1;
+    }
+    assert_eq!(cases, 3);
 }

@@ -368,7 +368,8 @@ impl System {
     /// at an impact), and the impulses of a point's entries add up to what the velocity
     /// solves gave it over the step. Impulses that only keep a point from ending the free
     /// flight inside its half-space (the position step of a contact that would sink) are
-    /// not among them.
+    /// not among them. [`SoftStep`](super::SoftStep) lists each point once per step, with
+    /// the impulses of its substeps summed.
     pub fn contacts(&self) -> &[Contact] {
         self.contacts.as_slice()
     }
@@ -376,7 +377,7 @@ impl System {
     /// Returns the contacts between bodies of the last step, with their impulses: one entry
     /// per touching point per velocity solve (the points of a face resting on a face are
     /// the corners of their contact region), as [`System::contacts`] lists the contacts with
-    /// half-spaces.
+    /// half-spaces (once per step under [`SoftStep`](super::SoftStep)).
     pub fn body_contacts(&self) -> &[BodyContact] {
         self.contacts.pairs()
     }

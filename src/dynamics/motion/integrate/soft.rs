@@ -32,6 +32,10 @@ use smallvec::SmallVec;
 /// by O(h) (the lever arms are those of the step's start), and the integrator is of
 /// order 1. Joints are not held ([`MotionError::NeedsSplitting`]).
 ///
+/// Each step records its contacts ([`System::contacts`], [`System::body_contacts`]): one
+/// entry per point that gave an impulse or ends the step overlapping, with the impulses of
+/// the step's substeps summed (what the point gave the bodies over the step).
+///
 /// Measured (`tests/dynamics/soft_step.rs`): towers of six cubes in 3D and of three 4D
 /// hypercubes offset by 5 % stand for 10 s at h = 1/60 s and 1e-3 s, the top sinking by
 /// the springs' deflection (3.6e-3 for six cubes at h = 1/60 s) and sliding by up to
@@ -391,6 +395,8 @@ impl MotionIntegrator for SoftStep {
             self.solver
                 .relax(bodies, sub, (resting, passes), s + 1 == self.substeps);
         }
+        let (_, _, _, _, log) = system.parts_mut();
+        self.solver.record(&self.detect.contacts, log);
         check_finite(system, t)
     }
 }

@@ -22,9 +22,10 @@
 
 use super::Dense;
 use super::body::BodyState;
-use super::contact_row::dim;
+use super::contact_row::{ContactRow, dim};
 use crate::algebra::Vector;
 use crate::dynamics::motion::MovingBody;
+use crate::dynamics::motion::contact::ContactLog;
 use crate::dynamics::motion::placement::dot;
 
 /// No body: the half-space side of a contact with a half-space.
@@ -80,6 +81,8 @@ pub(crate) struct SoftRow {
     /// The accumulated normal impulse of the current substep, and the largest of the step.
     pub normal_impulse: f64,
     max_normal_impulse: f64,
+    /// The normal impulse summed over the step's substeps: what the row gave the bodies.
+    total_normal_impulse: f64,
     /// True if the contact is with a fixed body or a half-space (a stiffer spring).
     fixed: bool,
 }
@@ -106,6 +109,8 @@ struct Layout {
     tangents: usize,
     tangent_mass: usize,
     tangent_arms: usize,
+    /// The friction impulse's coordinates summed over the step's substeps (T).
+    total_tangent: usize,
     stride: usize,
 }
 
@@ -139,7 +144,8 @@ impl Layout {
             tangents,
             tangent_mass,
             tangent_arms,
-            stride: tangent_arms + 4 * t * m,
+            total_tangent: tangent_arms + 4 * t * m,
+            stride: tangent_arms + 4 * t * m + t,
         }
     }
 }
@@ -279,6 +285,7 @@ impl SoftSolver {
             approach: 0.0,
             normal_impulse: 0.0,
             max_normal_impulse: 0.0,
+            total_normal_impulse: 0.0,
             fixed: false,
         });
     }
@@ -442,6 +449,8 @@ impl SoftSolver {
             }
             row.approach = normal_velocity::<0>(&self.flat, row, d, &l, l.normal, l.arms);
             row.max_normal_impulse = 0.0;
+            row.total_normal_impulse = 0.0;
+            d[l.total_tangent..l.total_tangent + n - 1].fill(0.0);
         }
         self.separations.clear();
         self.separations.extend(self.rows.iter().map(|r| r.gap));
@@ -565,7 +574,83 @@ impl SoftSolver {
             4 => self.relax_n::<4>(h, (restitution_speed, passes), last),
             _ => self.relax_n::<0>(h, (restitution_speed, passes), last),
         }
+        // Each substep gives the bodies its rows' accumulated impulses (the warm start and
+        // the passes' changes): the step's impulse of a row is their sum.
+        let l = self.layout;
+        for (k, row) in self.rows.iter_mut().enumerate() {
+            row.total_normal_impulse += row.normal_impulse;
+            let d = &mut self.data[k * l.stride..(k + 1) * l.stride];
+            for t in 0..l.n - 1 {
+                d[l.total_tangent + t] += d[l.tangent_impulse + t];
+            }
+        }
         self.store(bodies);
+    }
+
+    /// Records the step's contacts in `log`: each row that gave an impulse or ends the
+    /// step overlapping, with the impulses summed over the substeps, at the bodies'
+    /// placement at the end of the step (as [`Self::moved`] left it). The rows with
+    /// half-spaces are the first, in the order of `planes` (which has their points in the
+    /// bodies' own axes).
+    pub(crate) fn record(&self, planes: &[ContactRow], log: &mut ContactLog) {
+        let l = self.layout;
+        let n = l.n;
+        let mut point = Vector::zero(n);
+        let mut normal = Vector::zero(n);
+        let mut friction = Vector::zero(n);
+        let mut slip = Vector::zero(n);
+        for (k, row) in self.rows.iter().enumerate() {
+            if row.total_normal_impulse == 0.0 && self.separations[k] > 0.0 {
+                continue;
+            }
+            let d = &self.data[k * l.stride..(k + 1) * l.stride];
+            let f = friction.as_mut_slice();
+            let u = slip.as_mut_slice();
+            f.fill(0.0);
+            u.fill(0.0);
+            for t in 0..n - 1 {
+                let (dir, arms) = (l.tangents + t * n, l.tangent_arms + 4 * t * l.m);
+                let (along, vt) = (
+                    d[l.total_tangent + t],
+                    normal_velocity::<0>(&self.flat, row, d, &l, dir, arms),
+                );
+                for i in 0..n {
+                    f[i] += along * d[dir + i];
+                    u[i] += vt * d[dir + i];
+                }
+            }
+            let nrm = &d[l.normal..l.normal + n];
+            if row.a == NO_BODY {
+                let found = &planes[k];
+                log.record(
+                    (found.body, found.half_space),
+                    &found.point.as_slice()[..n],
+                    row.total_normal_impulse,
+                    f,
+                    u,
+                    nrm,
+                );
+                continue;
+            }
+            // The point midway between the two material points, as detection gives it.
+            let p = point.as_mut_slice();
+            p.fill(0.0);
+            for (body, own) in [(row.a, l.own_a), (row.b, l.own_b)] {
+                let q = &self.frames[body * n * n..(body + 1) * n * n];
+                let x = &self.positions[body * n..(body + 1) * n];
+                for i in 0..n {
+                    p[i] += 0.5 * (x[i] + dot(&q[i * n..(i + 1) * n], &d[own..own + n]));
+                }
+            }
+            normal.as_mut_slice().copy_from_slice(nrm);
+            log.record_pair(
+                (row.a, row.b),
+                &point,
+                &normal,
+                row.total_normal_impulse,
+                &friction,
+            );
+        }
     }
 
     fn relax_n<const N: usize>(&mut self, h: f64, (speed, passes): (f64, usize), last: bool) {
