@@ -7,7 +7,7 @@ use crate::dynamics::motion::body::contact_material;
 use crate::dynamics::motion::detect::bodies::Touching;
 use crate::dynamics::motion::placement::Placements;
 use crate::dynamics::motion::solve::{FoundPoint, NO_BODY, SoftSolver, Softness, Solver};
-use crate::dynamics::motion::{MotionError, System, Wrench};
+use crate::dynamics::motion::{ContactShape, MotionError, System, Wrench};
 use smallvec::SmallVec;
 
 /// The soft step: each step of h is cut into substeps, and each substep takes the forques'
@@ -15,9 +15,10 @@ use smallvec::SmallVec;
 /// body, and as many passes without the contacts' springs (the "relax" passes);
 /// restitution is applied once at the end of the step. Contacts are found once per step,
 /// as points of the bodies' manifolds within a speculative margin, and follow the bodies
-/// through the substeps without a new detection; a pair that moved less than 1e-4 of its
-/// size (and turned less than 1e-4 rad) since its manifold was found keeps that manifold's
-/// points as material points of the two bodies instead of asking the narrow phase again.
+/// through the substeps without a new detection; a pair of polytopes that moved less than
+/// 1e-4 of its size (and turned less than 1e-4 rad) since its manifold was found keeps that
+/// manifold's points as material points of the two bodies instead of asking the narrow
+/// phase again (a curved body's contact point is not a material point: it rolls).
 /// This is the "soft step" solver of Box2D v3 (Catto, 2024), close to Rapier's TGS-soft,
 /// in N dimensions; the moving-bodies chapter compares it with
 /// [`MotionSplitting`](super::MotionSplitting) and Rapier.
@@ -297,7 +298,11 @@ impl SoftStep {
                     friction,
                     restitution,
                 });
-                if last != Some((c.a, c.b)) {
+                // Only polytopes keep their points: a curved body rolls, and the material
+                // point of its last contact then leaves the contact (on a ball it lags
+                // behind the rolling, and its normal impulse spins the ball up).
+                let flat = |i: usize| matches!(shapes[i], ContactShape::Vertices(_));
+                if last != Some((c.a, c.b)) && flat(c.a) && flat(c.b) {
                     last = Some((c.a, c.b));
                     now.place((c.a, c.b), (q(c.a), q(c.b)), (x(c.a), x(c.b)));
                     self.next_kept.push(now.clone());
