@@ -382,46 +382,59 @@ impl SoftSolver {
     /// the step and takes the impulses of the same points of the last step.
     pub(crate) fn prepare(&mut self, bodies: &[MovingBody]) {
         self.load(bodies);
-        let l = self.layout;
-        let (n, m) = (l.n, l.m);
+        match self.layout.n {
+            3 => self.prepare_n::<3>(bodies),
+            4 => self.prepare_n::<4>(bodies),
+            _ => self.prepare_n::<0>(bodies),
+        }
+        self.separations.clear();
+        self.separations.extend(self.rows.iter().map(|r| r.gap));
+        // The substeps load the bodies again after their kicks.
+        for s in &mut self.states {
+            s.used = false;
+        }
+    }
+
+    fn prepare_n<const N: usize>(&mut self, bodies: &[MovingBody]) {
+        let l = layout::<N>(&self.layout);
+        let n = dim::<N>(l.n);
         for (k, row) in self.rows.iter_mut().enumerate() {
             let d = &mut self.data[k * l.stride..(k + 1) * l.stride];
-            let normal =
-                Vector::from_components(&d[l.normal..l.normal + n]).expect("a finite normal");
             // Tangent directions: the columns of the Householder reflection that takes the
             // axis nearest to n onto n, except that one.
+            let normal = &d[l.normal..l.normal + n];
             let j = (0..n)
-                .max_by(|&x, &y| {
-                    normal.as_slice()[x]
-                        .abs()
-                        .total_cmp(&normal.as_slice()[y].abs())
-                })
+                .max_by(|&x, &y| normal[x].abs().total_cmp(&normal[y].abs()))
                 .unwrap_or(0);
-            let sign = if normal.as_slice()[j] < 0.0 {
-                -1.0
+            let sign = if normal[j] < 0.0 { -1.0 } else { 1.0 };
+            let (mut u_fixed, mut u_any) = ([0.0f64; 8], Vec::new());
+            let u: &mut [f64] = if n <= 8 {
+                &mut u_fixed[..n]
             } else {
-                1.0
+                u_any.resize(n, 0.0);
+                &mut u_any[..]
             };
-            let mut u = normal.clone();
-            u.as_mut_slice()[j] -= sign;
+            u.copy_from_slice(normal);
+            u[j] -= sign;
             // n = ±e_j exactly: the other axes.
-            let uu = u.norm_squared();
+            let uu = dot(u, u);
             let f = if uu > 0.0 { 2.0 / uu } else { 0.0 };
             for (t, c) in (0..n).filter(|&c| c != j).enumerate() {
                 let dir = &mut d[l.tangents + t * n..l.tangents + (t + 1) * n];
                 for (i, x) in dir.iter_mut().enumerate() {
                     let e = if i == c { 1.0 } else { 0.0 };
-                    *x = e - f * u.as_slice()[i] * u.as_slice()[c];
+                    *x = e - f * u[i] * u[c];
                 }
             }
             let fixed_a = row.a == NO_BODY || bodies[row.a].is_fixed();
             row.fixed = fixed_a || bodies[row.b].is_fixed();
             let ends = (row.a, row.b);
-            let knn = set_arms(&self.states, bodies, ends, d, &l, l.normal, l.arms);
+            let knn = set_arms::<N>(&self.states, bodies, ends, d, &l, l.normal, l.arms);
             row.normal_mass = if knn > 0.0 { 1.0 / knn } else { 0.0 };
             for t in 0..n - 1 {
-                let arms = l.tangent_arms + 4 * t * m;
-                let ktt = set_arms(&self.states, bodies, ends, d, &l, l.tangents + t * n, arms);
+                let arms = l.tangent_arms + 4 * t * l.m;
+                let dir = l.tangents + t * n;
+                let ktt = set_arms::<N>(&self.states, bodies, ends, d, &l, dir, arms);
                 d[l.tangent_mass + t] = if ktt > 0.0 { 1.0 / ktt } else { 0.0 };
             }
             // The same point in the last step: its impulses, the friction impulse in the
@@ -447,16 +460,10 @@ impl SoftSolver {
                         .sum();
                 }
             }
-            row.approach = normal_velocity::<0>(&self.flat, row, d, &l, l.normal, l.arms);
+            row.approach = normal_velocity::<N>(&self.flat, row, d, &l, l.normal, l.arms);
             row.max_normal_impulse = 0.0;
             row.total_normal_impulse = 0.0;
             d[l.total_tangent..l.total_tangent + n - 1].fill(0.0);
-        }
-        self.separations.clear();
-        self.separations.extend(self.rows.iter().map(|r| r.gap));
-        // The substeps load the bodies again after their kicks.
-        for s in &mut self.states {
-            s.used = false;
         }
     }
 
@@ -797,7 +804,8 @@ impl SoftSolver {
 
 /// Sets the arms c = r ∧ e and w = I⁻¹ c of both ends of a row for the direction at `dir`
 /// in its vectors `d` (at `arms`: c_a, c_b, w_a, w_b), and returns eᵀ K e.
-fn set_arms(
+#[inline(always)]
+fn set_arms<const N: usize>(
     states: &[BodyState],
     bodies: &[MovingBody],
     (a, b): (usize, usize),
@@ -806,7 +814,8 @@ fn set_arms(
     dir: usize,
     arms: usize,
 ) -> f64 {
-    let (n, m) = (l.n, l.m);
+    let n = dim::<N>(l.n);
+    let m = n * (n - 1) / 2;
     let mut kk = 0.0;
     for (side, body, offset) in [(0, a, l.ra), (1, b, l.rb)] {
         if body == NO_BODY || bodies[body].is_fixed() {
@@ -822,7 +831,7 @@ fn set_arms(
                 p += 1;
             }
         }
-        for (i, row) in st.inv_inertia.chunks_exact(m).enumerate() {
+        for (i, row) in st.inv_inertia[..m * m].chunks_exact(m).enumerate() {
             d[w + i] = dot(row, &d[c..c + m]);
         }
         kk += st.inv_mass + dot(&d[c..c + m], &d[w..w + m]);
