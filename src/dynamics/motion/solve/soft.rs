@@ -187,7 +187,7 @@ pub(crate) struct FoundPoint<'a> {
 pub(crate) struct SoftSolver {
     rows: Vec<SoftRow>,
     data: Vec<f64>,
-    /// The last step's rows and vectors, sorted by (a, b, key), to start from.
+    /// The last step's rows and vectors, to start from (listed by (a, b, key) in `order`).
     old_rows: Vec<SoftRow>,
     old_data: Vec<f64>,
     layout: Layout,
@@ -297,12 +297,16 @@ impl SoftSolver {
     pub(crate) fn push_kept(&mut self, (a, b): (usize, usize)) -> bool {
         let l = self.layout;
         let n = l.n;
-        let first = self.old_rows.partition_point(|r| (r.a, r.b) < (a, b));
-        let count = self.old_rows[first..]
+        let rows = &self.old_rows;
+        let first = self
+            .order
+            .partition_point(|&k| (rows[k].a, rows[k].b) < (a, b));
+        let count = self.order[first..]
             .iter()
-            .take_while(|r| (r.a, r.b) == (a, b))
+            .take_while(|&&k| (rows[k].a, rows[k].b) == (a, b))
             .count();
-        for k in first..first + count {
+        for at in first..first + count {
+            let k = self.order[at];
             let old = self.old_rows[k];
             let at = self.data.len();
             self.data
@@ -441,10 +445,12 @@ impl SoftSolver {
             // new tangent space.
             row.normal_impulse = 0.0;
             d[l.tangent_impulse..l.tangent_impulse + n].fill(0.0);
-            if let Ok(at) = self
-                .old_rows
-                .binary_search_by(|o| (o.a, o.b, o.key).cmp(&(row.a, row.b, row.key)))
-            {
+            let old_rows = &self.old_rows;
+            if let Ok(at) = self.order.binary_search_by(|&k| {
+                let o = &old_rows[k];
+                (o.a, o.b, o.key).cmp(&(row.a, row.b, row.key))
+            }) {
+                let at = self.order[at];
                 let old = &self.old_rows[at];
                 row.normal_impulse = old.normal_impulse;
                 let od = &self.old_data[at * l.stride..(at + 1) * l.stride];
@@ -467,35 +473,19 @@ impl SoftSolver {
         }
     }
 
-    /// Sorts the last step's rows by (a, b, key), their vectors with them.
+    /// Lists the last step's rows in the order of (a, b, key) in `order`, for the searches
+    /// of [`Self::push_kept`] and [`Self::prepare`] (the rows and their vectors stay where
+    /// they are: moving them costs more than the searches through the list).
     fn old_sort(&mut self) {
-        let stride = self.layout.stride;
-        let sorted = self
-            .old_rows
-            .windows(2)
-            .all(|w| (w[0].a, w[0].b, w[0].key) <= (w[1].a, w[1].b, w[1].key));
-        if sorted {
-            return;
-        }
         self.order.clear();
         self.order.extend(0..self.old_rows.len());
         let rows = &self.old_rows;
-        self.order
-            .sort_unstable_by_key(|&k| (rows[k].a, rows[k].b, rows[k].key));
-        // Permute in place along cycles.
-        for start in 0..self.order.len() {
-            let mut k = start;
-            while self.order[k] != start && self.order[k] != usize::MAX {
-                let next = self.order[k];
-                self.old_rows.swap(k, next);
-                self.old_separations.swap(k, next);
-                for x in 0..stride {
-                    self.old_data.swap(k * stride + x, next * stride + x);
-                }
-                self.order[k] = usize::MAX;
-                k = next;
-            }
-            self.order[k] = usize::MAX;
+        let sorted = rows
+            .windows(2)
+            .all(|w| (w[0].a, w[0].b, w[0].key) <= (w[1].a, w[1].b, w[1].key));
+        if !sorted {
+            self.order
+                .sort_unstable_by_key(|&k| (rows[k].a, rows[k].b, rows[k].key));
         }
     }
 
@@ -768,8 +758,10 @@ impl SoftSolver {
             let vt = normal_velocity::<N>(&self.flat, row, d, &l, dir, arms);
             total[t] = d[l.tangent_impulse + t] - d[l.tangent_mass + t] * vt;
         }
-        let norm = total[..n - 1].iter().map(|x| x * x).sum::<f64>().sqrt();
-        if norm > limit {
+        // The square root only for a point that slides (a sticking point stays inside).
+        let squared = total[..n - 1].iter().map(|x| x * x).sum::<f64>();
+        if squared > limit * limit {
+            let norm = squared.sqrt();
             let scale = if norm > 0.0 { limit / norm } else { 0.0 };
             total[..n - 1].iter_mut().for_each(|x| *x *= scale);
         }
