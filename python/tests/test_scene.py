@@ -91,3 +91,64 @@ def test_scene_errors():
         rf.Scene.from_dict(DROP).run(samples=1)
     with pytest.raises(ValueError, match="beyond t_end"):
         rf.Scene.from_dict(DROP).run(times=[0.0, 2.0])
+
+
+# A 4D box of mass 1 resting on a bigger one of mass 16 on the floor w = 0, integrated by the
+# soft step (contacts as stiff springs).
+G, DT, M_BASE, M_TOP = 9.81, 0.01, 16.0, 1.0
+STACK = {
+    "dim": 4,
+    "gravity": [0, 0, 0, -G],
+    "t_end": 3.0,
+    "dt": DT,
+    "integrator": "soft",
+    "body": [
+        {"name": "base", "shape": "cuboid:0.5,0.5,0.5,0.5", "mass": M_BASE, "position": [0, 0, 0, 0.5], "friction": 0.5},
+        {"name": "top", "shape": "cuboid:0.25,0.25,0.25,0.25", "mass": M_TOP, "position": [0.05, 0, 0, 1.5], "friction": 0.5},
+    ],
+    "plane": [{"normal": [0, 0, 0, 1], "friction": 0.5}],
+}
+
+
+def test_soft_step_stacks_two_boxes_at_rest():
+    data = rf.Scene.from_dict(STACK).run(samples=4).data()
+    assert data["integrator"] == "soft"
+    base, top = data["bodies"]
+    for body in (base, top):
+        speed = np.linalg.norm(body["velocity"][-1])
+        assert speed < 1e-6, f"{body['name']} moves at {speed:e}"
+    # The springs of the soft contacts give a little: each box sits slightly inside what holds
+    # it (the base's half-height is 0.5, the top's 0.25).
+    base_sink = 0.5 - base["position"][-1][3]
+    top_sink = base["position"][-1][3] + 0.5 + 0.25 - top["position"][-1][3]
+    for name, sink in (("base", base_sink), ("top", top_sink)):
+        assert 0.0 < sink < 1e-3, f"the {name} sank {sink:e}"
+    # At rest, over the step that ended at the last sample, the floor carries the weight of
+    # both boxes and the base that of the top: impulses (m g dt).
+    floor = data["contacts"][-1]
+    between = data["body_contacts"][-1]
+    assert len(floor) > 0 and len(between) > 0
+    assert all(c["body"] == 0 for c in floor), "only the base touches the floor"
+    assert all((c["a"], c["b"]) == (0, 1) for c in between)
+    weight = G * DT
+    floor_impulse = sum(c["normal_impulse"] for c in floor)
+    between_impulse = sum(c["normal_impulse"] for c in between)
+    assert floor_impulse == pytest.approx((M_BASE + M_TOP) * weight, rel=1e-6, abs=0)
+    assert between_impulse == pytest.approx(M_TOP * weight, rel=1e-6, abs=0)
+
+
+def test_soft_step_refuses_joints():
+    jointed = {
+        "dim": 4,
+        "t_end": 1.0,
+        "dt": 0.1,
+        "integrator": "soft",
+        "body": [{"name": "cube", "shape": "tesseract:1,1,1,1"}],
+        "joint": [{"body": "cube", "anchor": [0, 0, 0, 0]}],
+    }
+    with pytest.raises(ValueError, match='integrator "soft" holds no joints') as refused:
+        rf.Scene.from_dict(jointed)
+    assert 'integrator = "splitting"' in str(refused.value)
+    # The same scene without the joint is accepted: the joint is what is refused.
+    del jointed["joint"]
+    assert rf.Scene.from_dict(jointed).dim == 4
