@@ -278,11 +278,11 @@ fn manifolds_are_bounded_and_keep_the_deepest_point() {
 /// projection and the opposite directions of the reduction hold it in every case; when
 /// the upper box overhangs an edge, the region is a clipped polygon (polytope) and the
 /// kept extremes hold the centre of mass in most poses, not all: the count is printed and
-/// bounded below. N = 3 … 5.
+/// bounded below. N = 3 … 7 (from 6D the reduction keeps 16 of a face's 32 or 64 corners).
 #[test]
 fn resting_box_is_held_under_its_centre_of_mass() {
     let mut r = super::rng(13);
-    for n in 3..=5 {
+    for n in 3..=7 {
         let d = n - 1;
         let (mut symmetric, mut overhanging, mut overhanging_held) = (0, 0, 0);
         let mut tries = 0;
@@ -361,8 +361,15 @@ fn resting_box_is_held_under_its_centre_of_mass() {
             "N = {n}: {symmetric} symmetric resting poses held; overhanging: {overhanging_held} of {overhanging} held ({tries} drawn)"
         );
         assert!(symmetric >= 40 && overhanging >= 40);
+        // Measured: every overhanging pose held up to 5D (all corners of a face are
+        // directions), 32 of 40 in 6D and 25 of 40 in 7D (16 of 32 or 64 corners).
+        let least = match n {
+            ..=5 => 8,
+            6 => 7,
+            _ => 5,
+        };
         assert!(
-            overhanging_held * 10 >= overhanging * 8,
+            overhanging_held * 10 >= overhanging * least,
             "N = {n}: {overhanging_held}/{overhanging}"
         );
     }

@@ -2,7 +2,7 @@
 //! whose bounding balls come within reach (the broad phase), and for each such pair the
 //! signed distance, the contact normal and the contact point (the narrow phase).
 
-use super::manifold::box_manifold_on_axis;
+use super::manifold::{box_manifold_on_axis, support_set_capacity};
 use super::sat::{box_box_unchecked, boxes_apart_by_more_than};
 use super::{
     ContactManifold, EpaWorkspace, PlacedBox, PlacedHull, PlacedShape, hull_manifold,
@@ -115,7 +115,8 @@ pub(crate) struct Touching {
     /// True to take two boxes' manifold by clipping the incident face against the
     /// reference face (the points of [`box_manifold`](super::box_manifold), about twice as
     /// fast) instead of the hull manifold of their support sets. The splitting keeps the
-    /// hull manifold: its towers stand to 1e-9 on it and slide by 1e-3 on the clipped one.
+    /// hull manifold up to 4D: its towers stand to 1e-9 on it and slide by 1e-3 on the
+    /// clipped one. From 5D on both clip (the hull manifold sees 8 of a face's 16 corners).
     clip_boxes: bool,
 }
 
@@ -271,7 +272,11 @@ impl Touching {
                 return;
             }
             let points = match (manifold, ca.core(), cb.core()) {
-                (Some(slop), _, _) if self.clip_boxes => {
+                // From 5D on a hull's support set holds fewer vertices than a box face
+                // has corners (8 of 16): the hull manifold would hold half of the face.
+                (Some(slop), _, _)
+                    if self.clip_boxes || support_set_capacity(xa.len()) < 1 << (xa.len() - 1) =>
+                {
                     let margin = slop * (self.radius[a] + self.radius[b]);
                     let (pa, pb) = (placed(ha, xa, q(a)), placed(hb, xb, q(b)));
                     Some(box_manifold_on_axis(&pa, &pb, &axis, margin))

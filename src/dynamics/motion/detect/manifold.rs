@@ -22,11 +22,12 @@
 //!
 //! **Reduction.** The region may have many vertices; a manifold keeps at most
 //! [`manifold_capacity`] of them (4 in 3D, 8 in 4D, 16 from 5D on): the extremes of the
-//! region along fixed directions of the contact plane, the diagonals (±1, …, ±1) scaled to
-//! the reference face up to 4D (the corners of the face), and from 5D the axes and the main
-//! diagonal. The directions come in opposite pairs, so for a centrally symmetric region (an
-//! incident face wholly over the reference face, or the reverse) the kept points hold its
-//! centre, which is where a resting box presses; and the deepest point of the region is
+//! region along fixed directions of the contact plane: the diagonals (±1, …, ±1) scaled to
+//! the reference face, all 2^(N−1) of them up to 5D (the corners of the face), and from 6D
+//! the 16 rows of a Hadamard matrix (16 of the face's corners). The directions sum to zero,
+//! so for a region that is a box face (an incident face wholly over the reference face, or
+//! the reverse) the kept corners have its centre as mean and hold it, which is where a
+//! resting box presses; and the deepest point of the region is
 //! kept too (replacing the extreme nearest to it) when it is markedly deeper than every kept
 //! point, so that a box landing on a corner is pushed back where it penetrates.
 
@@ -639,6 +640,12 @@ fn cell_point(
     });
 }
 
+/// The columns of the Sylvester–Hadamard matrix of order 16 (entry (k, c) = (−1)^|k ∧ c|)
+/// that give the reduction's directions from 5 plane dimensions on: the powers of two
+/// first, so that the 16 rows differ on the first four coordinates; every column but the
+/// first sums to zero, so the 16 corners they pick on a box face have its centre as mean.
+const HADAMARD_COLUMNS: [usize; 15] = [1, 2, 4, 8, 3, 5, 6, 7, 9, 10, 11, 12, 13, 14, 15];
+
 /// One kept candidate of the reduction.
 #[derive(Clone)]
 struct Candidate {
@@ -664,7 +671,11 @@ struct Reducer {
 impl Reducer {
     fn new(n: usize, normal: &[f64]) -> Reducer {
         let d = n - 1;
-        let directions = if d <= 4 { 1usize << d } else { 2 * d + 2 };
+        let directions = if d <= 4 {
+            1usize << d
+        } else {
+            MAX_MANIFOLD_POINTS
+        };
         Reducer {
             n,
             normal: SmallVec::from_slice(normal),
@@ -675,20 +686,27 @@ impl Reducer {
         }
     }
 
-    /// The score of plane coordinates `x` along direction `k`.
+    /// The score of plane coordinates `x` along direction `k`: the diagonal (±1, …, ±1)
+    /// whose signs are the bits of `k` up to 4 plane dimensions (every corner of a box
+    /// face), and from 5 on the k-th row of the Sylvester–Hadamard matrix of order 16 on
+    /// columns 1, 2, 4, 8, 3, 5, … (16 corners, all distinct, whose mean is the centre).
     fn score(&self, k: usize, x: &[f64]) -> f64 {
         let d = self.n - 1;
         if d <= 4 {
             (0..d)
                 .map(|t| if k >> t & 1 == 1 { -x[t] } else { x[t] })
                 .sum()
-        } else if k < 2 * d {
-            let (t, s) = (k / 2, if k % 2 == 1 { -1.0 } else { 1.0 });
-            // The axis, tilted slightly to the diagonal so that a face of ties gives a corner.
-            s * (x[t] + 1e-2 * x.iter().sum::<f64>())
         } else {
-            let s = if k % 2 == 1 { -1.0 } else { 1.0 };
-            s * x.iter().sum::<f64>()
+            (0..d)
+                .map(|t| {
+                    let column = HADAMARD_COLUMNS[t % HADAMARD_COLUMNS.len()];
+                    if (k & column).count_ones() % 2 == 1 {
+                        -x[t]
+                    } else {
+                        x[t]
+                    }
+                })
+                .sum()
         }
     }
 
