@@ -5,7 +5,7 @@
 use super::manifold::{box_manifold_on_axis, support_set_capacity};
 use super::sat::{box_box_unchecked, boxes_apart_by_more_than};
 use super::{
-    ContactManifold, EpaWorkspace, PlacedBox, PlacedHull, PlacedShape, hull_manifold,
+    BroadPhase, ContactManifold, EpaWorkspace, PlacedBox, PlacedHull, PlacedShape, hull_manifold,
     penetration_with,
 };
 use crate::dynamics::motion::forques::Anchor;
@@ -104,11 +104,13 @@ pub(crate) struct Touching {
     /// The pairs of bodies held together by a joint (a < b), which do not touch each other:
     /// their shapes meet at the joint by design.
     joined: Vec<(usize, usize)>,
-    /// The bodies with a shape, sorted by the low end of their bounding interval on the
-    /// first axis (kept for its room).
-    order: Vec<usize>,
-    /// Each body's bounding interval on the first axis (kept for its room).
-    ends: Vec<(f64, f64)>,
+    /// The hierarchy of the bodies' bounding boxes (the boxes of their bounding balls),
+    /// kept from step to step, and the boxes and pairs of the last scan (kept for their
+    /// room).
+    broad: Option<BroadPhase>,
+    lower: Vec<f64>,
+    upper: Vec<f64>,
+    candidates: Vec<(usize, usize)>,
     /// The pairs found by the last [`Touching::scan`]; entries past `len` keep their room.
     found: Vec<PairContact>,
     len: usize,
@@ -172,9 +174,9 @@ impl Touching {
 
     /// Finds the pairs of bodies whose signed distance is at most `factor` times the sum of
     /// their bounding radii, with each body's own axes `q(i)` (row-major, own axes → space).
-    /// The broad phase sweeps the bodies' bounding intervals along the first axis (sorted
-    /// in place, so n log n for bodies spread along it), and pairs whose bounding balls are
-    /// farther apart are not asked.
+    /// The broad phase ([`BroadPhase`]: a hierarchy of the bounding balls' boxes, kept from
+    /// step to step) gives the pairs whose boxes overlap, in increasing order, and pairs
+    /// whose bounding balls are farther apart are not asked.
     ///
     /// With `manifold: Some(slop)`, two polytopes in contact are reported by the points of
     /// their contact manifold (up to `slop` times the sum of their bounding radii apart:
@@ -201,31 +203,38 @@ impl Touching {
         skip: impl Fn((usize, usize)) -> bool,
     ) {
         self.len = 0;
-        // Each body's bounding interval on the first axis, taken out of `self` while the
-        // pairs are asked.
-        let mut ends = std::mem::take(&mut self.ends);
-        ends.clear();
-        ends.extend(bodies.iter().zip(&self.radius).map(|(b, r)| {
-            let (x, e) = (b.position().as_slice()[0], r * (1.0 + factor));
-            (x - e, x + e)
-        }));
-        let mut order = std::mem::take(&mut self.order);
-        order.clear();
-        order.extend((0..bodies.len()).filter(|&i| self.convex[i].is_some()));
-        order.sort_unstable_by(|&i, &j| ends[i].0.total_cmp(&ends[j].0));
-        for (k, &first) in order.iter().enumerate() {
-            for &second in &order[k + 1..] {
-                if ends[second].0 > ends[first].1 {
-                    break;
-                }
-                let (a, b) = (first.min(second), first.max(second));
-                if !skip((a, b)) {
-                    self.pair(bodies, &q, (a, b), factor, manifold);
-                }
+        let Some(first) = bodies.first() else {
+            return;
+        };
+        let n = first.dim();
+        if self.broad.as_ref().is_none_or(|b| b.dim() != n) {
+            self.broad = BroadPhase::new(n).ok();
+        }
+        self.lower.clear();
+        self.upper.clear();
+        for (b, r) in bodies.iter().zip(&self.radius) {
+            let e = r * (1.0 + factor);
+            for &x in b.position().as_slice() {
+                self.lower.push(x - e);
+                self.upper.push(x + e);
             }
         }
-        self.order = order;
-        self.ends = ends;
+        let mut candidates = std::mem::take(&mut self.candidates);
+        candidates.clear();
+        // A position that is not finite has no pairs (the step reports it).
+        if let Some(Ok(pairs)) = self
+            .broad
+            .as_mut()
+            .map(|b| b.update(&self.lower, &self.upper))
+        {
+            candidates.extend_from_slice(pairs);
+        }
+        for &(a, b) in &candidates {
+            if self.convex[a].is_some() && self.convex[b].is_some() && !skip((a, b)) {
+                self.pair(bodies, &q, (a, b), factor, manifold);
+            }
+        }
+        self.candidates = candidates;
     }
 
     /// Asks the narrow phase for the pair (a, b), a < b, and records it if its signed
