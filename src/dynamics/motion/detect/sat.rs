@@ -45,6 +45,13 @@ pub const AXIS_RELATIVE_BIAS: f64 = 0.95;
 /// half-length (so that contacts of depth near zero keep their face too).
 pub const AXIS_ABSOLUTE_BIAS: f64 = 1e-3;
 
+/// Boxes apart: a face axis whose gap falls short of the widest (a cell axis's) by at most
+/// this much, relative to the smaller box's largest half-length, is taken instead (as
+/// [`AXIS_ABSOLUTE_BIAS`] does for overlaps): two faces a hair apart and tilted by round-off
+/// have an edge axis of a slightly wider gap, and the face keeps the contact's several
+/// points. The widest gap stays in [`BoxPairAxis::least_depth`].
+pub const APART_BIAS: f64 = 1e-6;
+
 /// A box placed in space: half-lengths along its own axes, its centre, and its rotation
 /// (N × N, row-major, own axes → space: x_space = position + Q x_own).
 ///
@@ -173,14 +180,16 @@ pub struct BoxPairAxis {
     /// The unit axis in space, pointing from A towards B.
     pub normal: SmallVec<[f64; 8]>,
     /// The overlap of the projections along `normal`: > 0 penetration depth (the least over
-    /// the axes, up to the face preference), < 0 the gap (the largest over the axes; a lower
-    /// bound on the distance between the boxes, equal to it when the closest features are
-    /// a face and anything, or two cells of complementary dimensions).
+    /// the axes, up to the face preference), < 0 the gap (the largest over the axes up to
+    /// the face preference [`APART_BIAS`]; a lower bound on the distance between the boxes,
+    /// equal to it when the closest features are a face and anything, or two cells of
+    /// complementary dimensions).
     pub depth: f64,
     /// Which axis it is.
     pub feature: AxisFeature,
     /// The least overlap over all candidate axes, without the face preference (equal to
-    /// `depth` unless a face axis was preferred to a slightly shallower cell axis).
+    /// `depth` unless a face axis was preferred to a slightly shallower cell axis, or, apart,
+    /// to a cell axis of a slightly wider gap).
     pub least_depth: f64,
 }
 
@@ -406,7 +415,8 @@ pub(crate) fn for_each_axis(
 /// Tests two boxes along all their candidate axes and returns the axis of least overlap
 /// (with face axes preferred within [`AXIS_RELATIVE_BIAS`] and [`AXIS_ABSOLUTE_BIAS`], and
 /// A's faces preferred to B's the same way) when they overlap, or the axis of largest gap
-/// when they are apart.
+/// when they are apart (a face axis preferred to a cell axis whose gap it comes within
+/// [`APART_BIAS`] of).
 ///
 /// The normal points from A to B; coincident centres give the axis as found. Touching boxes
 /// give depth 0 (to round-off).
@@ -488,7 +498,19 @@ pub(crate) fn box_box_unchecked(a: &PlacedBox<'_>, b: &PlacedBox<'_>) -> BoxPair
     let scale = a.size().min(b.size());
     let absolute = AXIS_ABSOLUTE_BIAS * scale;
     let chosen = if let Some(w) = widest {
-        w
+        // Apart: a face axis within APART_BIAS of the widest gap is taken instead of a cell
+        // axis (a face gives the contact its several points).
+        let face = if face_b.overlap < face_a.overlap {
+            face_b
+        } else {
+            face_a
+        };
+        let cell = matches!(w.feature, AxisFeature::Cells { .. });
+        if cell && face.overlap <= w.overlap + APART_BIAS * scale {
+            face
+        } else {
+            w
+        }
     } else {
         let mut best = if face_b.overlap < AXIS_RELATIVE_BIAS * face_a.overlap - absolute {
             face_b
