@@ -22,7 +22,7 @@
 
 use super::Dense;
 use super::body::BodyState;
-use super::contact_row::{ContactRow, dim};
+use super::contact_row::{ContactRow, Small, dim, scratch};
 use crate::algebra::Vector;
 use crate::dynamics::motion::MovingBody;
 use crate::dynamics::motion::contact::ContactLog;
@@ -411,13 +411,8 @@ impl SoftSolver {
                 .max_by(|&x, &y| normal[x].abs().total_cmp(&normal[y].abs()))
                 .unwrap_or(0);
             let sign = if normal[j] < 0.0 { -1.0 } else { 1.0 };
-            let (mut u_fixed, mut u_any) = ([0.0f64; 8], Vec::new());
-            let u: &mut [f64] = if n <= 8 {
-                &mut u_fixed[..n]
-            } else {
-                u_any.resize(n, 0.0);
-                &mut u_any[..]
-            };
+            let (mut u_fixed, mut u_any) = ([0.0; 4], Small::new());
+            let u = scratch::<N>(&mut u_fixed, &mut u_any, n);
             u.copy_from_slice(normal);
             u[j] -= sign;
             // n = ±e_j exactly: the other axes.
