@@ -245,6 +245,32 @@ fn dense_block<const K: usize>(d: &DenseSigns<K>, a: &[f64], b: &[f64], out: &mu
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
 unsafe fn dense_product16_avx512(d: &DenseSigns<16>, a: &[f64], b: &[f64], out: &mut [f64]) {
+    // In Euclidean algebras (and wherever the highest basis vector squares to +1) every row
+    // of signs is the same on both halves: one multiplication serves them.
+    let halves_alike = d.signs.iter().all(|row| row[..8] == row[8..]);
+    // SAFETY: the processor supports AVX-512F, as the caller's.
+    unsafe {
+        if halves_alike {
+            dense_product16_avx512_in::<true>(d, a, b, out)
+        } else {
+            dense_product16_avx512_in::<false>(d, a, b, out)
+        }
+    }
+}
+
+/// [`dense_product16_avx512`], the sign of e_i on the high half taken from the low half's
+/// when `ALIKE`.
+///
+/// # Safety
+/// The processor must support AVX-512F.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn dense_product16_avx512_in<const ALIKE: bool>(
+    d: &DenseSigns<16>,
+    a: &[f64],
+    b: &[f64],
+    out: &mut [f64],
+) {
     use std::arch::x86_64::*;
     let idx = xor_permutations();
     let signs: [[__m512d; 2]; 16] = std::array::from_fn(|i| {
@@ -283,8 +309,14 @@ unsafe fn dense_product16_avx512(d: &DenseSigns<16>, a: &[f64], b: &[f64], out: 
             let w_lo = _mm512_permutexvar_pd(idx[c], from_lo);
             let w_hi = _mm512_permutexvar_pd(idx[c], from_hi);
             let x = _mm512_set1_pd(ra[i]);
-            lo = _mm512_add_pd(lo, _mm512_mul_pd(_mm512_mul_pd(signs[i][0], x), w_lo));
-            hi = _mm512_add_pd(hi, _mm512_mul_pd(_mm512_mul_pd(signs[i][1], x), w_hi));
+            let sx_lo = _mm512_mul_pd(signs[i][0], x);
+            let sx_hi = if ALIKE {
+                sx_lo
+            } else {
+                _mm512_mul_pd(signs[i][1], x)
+            };
+            lo = _mm512_add_pd(lo, _mm512_mul_pd(sx_lo, w_lo));
+            hi = _mm512_add_pd(hi, _mm512_mul_pd(sx_hi, w_hi));
         }
         // SAFETY: every row holds sixteen f64.
         unsafe {
@@ -380,22 +412,201 @@ fn quat_mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
     ]
 }
 
+/// Rows per block of [`rotate_rows4`]: one AVX-512 register of each coordinate.
+const ROWS4: usize = 8;
+
 /// [`rotate_each4`] rotor by rotor: `Rotor4::rotate_vector`'s two quaternion products
-/// (a x) b, a = (m₀, −m₁, −m₂, m₃) and b = Q̄₊ of the pair (Q₊, Q₋), term for term.
+/// (a x) b, a = (m₀, −m₁, −m₂, m₃) and b = Q̄₊ of the pair (Q₊, Q₋), term for term. Blocks of
+/// [`ROWS4`] rows are first laid out one array per coordinate, so that the compiler runs the
+/// products on whole registers (a row of 8 + 4 numbers does not fit the lanes otherwise); each
+/// lane does the scalar formula's operations in its order, so the same results to the last bit.
 #[inline(always)]
 fn rotate_rows4(rotors: &[Rotor4], input: &[f64], out: &mut [f64], inverse: bool) -> bool {
+    // One loop for each case, without a test per row.
+    match (inverse, input.len() == 4) {
+        (false, false) => rotate_rows4_in::<false, false>(rotors, input, out),
+        (false, true) => rotate_rows4_in::<false, true>(rotors, input, out),
+        (true, false) => rotate_rows4_in::<true, false>(rotors, input, out),
+        (true, true) => rotate_rows4_in::<true, true>(rotors, input, out),
+    }
+}
+
+#[inline(always)]
+fn rotate_rows4_in<const INVERSE: bool, const ONE: bool>(
+    rotors: &[Rotor4],
+    input: &[f64],
+    out: &mut [f64],
+) -> bool {
     let (vectors, _) = input.as_chunks::<4>();
     let (outs, _) = out.as_chunks_mut::<4>();
-    let one = vectors.len() == 1;
+    let vector = |i: usize| &vectors[if ONE { 0 } else { i }];
+    let factors = factors4::<INVERSE>;
     let mut ok = true;
-    for (i, (r, o)) in rotors.iter().zip(outs).enumerate() {
-        let v = &vectors[if one { 0 } else { i }];
+    let blocks = rotors.len().min(outs.len()) / ROWS4;
+    #[cfg(target_arch = "x86_64")]
+    if !ONE && !INVERSE && std::arch::is_x86_feature_detected!("avx512f") {
+        for k in 0..blocks {
+            let rows = &rotors[k * ROWS4..(k + 1) * ROWS4];
+            let (xs, os) = (&vectors[k * ROWS4..], &mut outs[k * ROWS4..]);
+            // SAFETY: the processor supports AVX-512F; the block holds 8 rotors, 8 vectors and 8 outputs.
+            ok &= unsafe {
+                rotate_block4_avx512(
+                    rows.try_into().expect("a block of 8 rotors"),
+                    xs[..ROWS4].try_into().expect("8 vectors"),
+                    (&mut os[..ROWS4]).try_into().expect("8 outputs"),
+                )
+            };
+        }
+        return rotate_rest4::<INVERSE, ONE>(rotors, vectors, outs, blocks * ROWS4) & ok;
+    }
+    for k in 0..blocks {
+        let base = k * ROWS4;
+        let mut a = [[0.0; ROWS4]; 4];
+        let mut b = [[0.0; ROWS4]; 4];
+        let mut x = [[0.0; ROWS4]; 4];
+        for l in 0..ROWS4 {
+            let (fa, fb) = factors(&rotors[base + l]);
+            let v = vector(base + l);
+            for c in 0..4 {
+                a[c][l] = fa[c];
+                b[c][l] = fb[c];
+                x[c][l] = v[c];
+                ok &= v[c].is_finite();
+            }
+        }
+        let mut o = [[0.0; ROWS4]; 4];
+        for l in 0..ROWS4 {
+            let ax = quat_mul(
+                [a[0][l], a[1][l], a[2][l], a[3][l]],
+                [x[0][l], x[1][l], x[2][l], x[3][l]],
+            );
+            let r = quat_mul(ax, [b[0][l], b[1][l], b[2][l], b[3][l]]);
+            for c in 0..4 {
+                o[c][l] = r[c];
+            }
+        }
+        for l in 0..ROWS4 {
+            outs[base + l] = [o[0][l], o[1][l], o[2][l], o[3][l]];
+        }
+    }
+    rotate_rest4::<INVERSE, ONE>(rotors, vectors, outs, blocks * ROWS4) & ok
+}
+
+/// The factors (a, b) of `Rotor4::rotate_vector`'s (a x) b for R (R⁻¹ with `INVERSE`).
+#[inline(always)]
+fn factors4<const INVERSE: bool>(r: &Rotor4) -> ([f64; 4], [f64; 4]) {
+    let r = if INVERSE { r.inverse() } else { *r };
+    let (p, m) = r.to_quaternion_pair();
+    ([m[0], -m[1], -m[2], m[3]], [p[0], -p[1], -p[2], -p[3]])
+}
+
+/// The rows of [`rotate_rows4_in`] from `from` on, one at a time.
+#[inline(always)]
+fn rotate_rest4<const INVERSE: bool, const ONE: bool>(
+    rotors: &[Rotor4],
+    vectors: &[[f64; 4]],
+    outs: &mut [[f64; 4]],
+    from: usize,
+) -> bool {
+    let mut ok = true;
+    for (i, (r, o)) in rotors.iter().zip(outs.iter_mut()).enumerate().skip(from) {
+        let v = &vectors[if ONE { 0 } else { i }];
         ok &= v.iter().fold(true, |ok, c| ok & c.is_finite());
-        let r = if inverse { r.inverse() } else { *r };
-        let (p, m) = r.to_quaternion_pair();
-        let a = [m[0], -m[1], -m[2], m[3]];
-        let b = [p[0], -p[1], -p[2], -p[3]];
+        let (a, b) = factors4::<INVERSE>(r);
         *o = quat_mul(quat_mul(a, *v), b);
     }
     ok
+}
+
+/// Eight rows of [`rotate_rows4`] with AVX-512, one register per coordinate: the rotors'
+/// coordinates gathered (a `Rotor4` is Q₊ then Q₋), the vectors and results turned between
+/// rows and coordinates by permutations. Each lane does the operations of [`quat_mul`] in
+/// its order (no fused multiply-add), so the same results to the last bit; `false` if a
+/// vector's entry is NaN or infinite.
+///
+/// # Safety
+/// The processor must support AVX-512F.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn rotate_block4_avx512(
+    rotors: &[Rotor4; ROWS4],
+    vectors: &[[f64; 4]; ROWS4],
+    outs: &mut [[f64; 4]; ROWS4],
+) -> bool {
+    use std::arch::x86_64::*;
+    const _: () = assert!(size_of::<Rotor4>() == 8 * size_of::<f64>());
+    let base = rotors.as_ptr().cast::<f64>();
+    let stride = _mm512_set_epi64(56, 48, 40, 32, 24, 16, 8, 0);
+    // SAFETY: lane l reads coordinate c of rotor l, inside the block of 8 rotors of 8 f64.
+    let g = |c: usize| unsafe { _mm512_i64gather_pd::<8>(stride, base.add(c)) };
+    let neg = _mm512_set1_pd(-1.0);
+    let (p0, p1, p2, p3) = (g(0), g(1), g(2), g(3));
+    let (m0, m1, m2, m3) = (g(4), g(5), g(6), g(7));
+    let a = [m0, _mm512_mul_pd(neg, m1), _mm512_mul_pd(neg, m2), m3];
+    let b = [
+        p0,
+        _mm512_mul_pd(neg, p1),
+        _mm512_mul_pd(neg, p2),
+        _mm512_mul_pd(neg, p3),
+    ];
+    // Rows to coordinates: v01 holds vectors 0 and 1, and so on.
+    let vp = vectors.as_ptr().cast::<f64>();
+    // SAFETY: 8 vectors of 4 f64 are 32 f64.
+    let [v01, v23, v45, v67] = std::array::from_fn(|k| unsafe { _mm512_loadu_pd(vp.add(8 * k)) });
+    let lo = _mm512_set_epi64(13, 9, 5, 1, 12, 8, 4, 0);
+    let hi = _mm512_set_epi64(15, 11, 7, 3, 14, 10, 6, 2);
+    let (s0, s1) = (
+        _mm512_permutex2var_pd(v01, lo, v23),
+        _mm512_permutex2var_pd(v01, hi, v23),
+    );
+    let (s2, s3) = (
+        _mm512_permutex2var_pd(v45, lo, v67),
+        _mm512_permutex2var_pd(v45, hi, v67),
+    );
+    let first = _mm512_set_epi64(11, 10, 9, 8, 3, 2, 1, 0);
+    let second = _mm512_set_epi64(15, 14, 13, 12, 7, 6, 5, 4);
+    let x = [
+        _mm512_permutex2var_pd(s0, first, s2),
+        _mm512_permutex2var_pd(s0, second, s2),
+        _mm512_permutex2var_pd(s1, first, s3),
+        _mm512_permutex2var_pd(s1, second, s3),
+    ];
+    let finite = x.iter().fold(0xff, |ok, c| {
+        ok & _mm512_cmp_pd_mask::<_CMP_EQ_OQ>(_mm512_sub_pd(*c, *c), _mm512_setzero_pd())
+    });
+    let mul = |u: [__m512d; 4], v: [__m512d; 4]| {
+        let [w1, x1, y1, z1] = u;
+        let [w2, x2, y2, z2] = v;
+        let m = _mm512_mul_pd;
+        let (add, sub) = (_mm512_add_pd, _mm512_sub_pd);
+        [
+            sub(sub(sub(m(w1, w2), m(x1, x2)), m(y1, y2)), m(z1, z2)),
+            sub(add(add(m(w1, x2), m(x1, w2)), m(y1, z2)), m(z1, y2)),
+            add(add(sub(m(w1, y2), m(x1, z2)), m(y1, w2)), m(z1, x2)),
+            add(sub(add(m(w1, z2), m(x1, y2)), m(y1, x2)), m(z1, w2)),
+        ]
+    };
+    let [o0, o1, o2, o3] = mul(mul(a, x), b);
+    // Coordinates back to rows: the inverse of the two permutations above.
+    let (t0, t2) = (
+        _mm512_permutex2var_pd(o0, first, o1),
+        _mm512_permutex2var_pd(o0, second, o1),
+    );
+    let (t1, t3) = (
+        _mm512_permutex2var_pd(o2, first, o3),
+        _mm512_permutex2var_pd(o2, second, o3),
+    );
+    // (The same selection as `lo` and `hi`: a transpose undoes itself.)
+    let rows = [
+        _mm512_permutex2var_pd(t0, lo, t1),
+        _mm512_permutex2var_pd(t0, hi, t1),
+        _mm512_permutex2var_pd(t2, lo, t3),
+        _mm512_permutex2var_pd(t2, hi, t3),
+    ];
+    let op = outs.as_mut_ptr().cast::<f64>();
+    for (k, r) in rows.iter().enumerate() {
+        // SAFETY: 8 outputs of 4 f64 are 32 f64.
+        unsafe { _mm512_storeu_pd(op.add(8 * k), *r) };
+    }
+    finite == 0xff
 }

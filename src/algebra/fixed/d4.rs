@@ -195,7 +195,11 @@ impl Bivector4<f64> {
 /// assert!((m - a.to_matrix() * b.to_matrix()).amax() < 1e-15);
 /// assert!((a.rotation_bivector() - Bivector4::new(0.3, -0.2, 0.5, 0.1, 0.4, -0.6)).norm() < 1e-15);
 /// ```
+///
+/// Laid out as Q₊ then Q₋, four `T` each (`#[repr(C)]`), so that a slice of rotors is an
+/// array of 8 `T` per rotor to SIMD kernels.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C)]
 pub struct Rotor4<T = f64> {
     plus: [T; 4],
     minus: [T; 4],
