@@ -744,6 +744,51 @@ mod moving_bodies {
         assert_eq!(cases, 6);
     }
 
+    /// A capsule lying on a box (N even) or a rounded box on a box (N odd) on the floor,
+    /// placed 1e-4 above their resting heights: shapes with a margin, which touch by the
+    /// manifold of their cores (up to 5D: from 6D a capsule meets a box's face of 32
+    /// corners through a hull support set of 8, at one point).
+    #[test]
+    fn rounded_shapes_resting_on_a_box_do_not_allocate() {
+        use rotorflow::dynamics::motion::shape::ConvexShape;
+        let mut cases = 0;
+        for n in 3..=5 {
+            let h_n = 0.5 + 0.1 * (n - 1) as f64;
+            let (rounded, height) = if n % 2 == 0 {
+                (ConvexShape::capsule(n, 0.4, 0.2).unwrap(), 0.2)
+            } else {
+                let c = ConvexShape::cuboid(&vec![0.3; n]).unwrap();
+                (c.rounded(0.1).unwrap(), 0.4)
+            };
+            let integrators: [Box<dyn MotionIntegrator>; 2] =
+                [Box::new(MotionSplitting::new()), Box::new(SoftStep::new())];
+            for mut integrator in integrators {
+                let (base, base_shape) =
+                    cuboid(n, axis(n, n - 1, h_n + 1e-4), Vector::zero(n), 0.0);
+                let (top, _) = cuboid(
+                    n,
+                    axis(n, n - 1, 2.0 * h_n + height + 2e-4),
+                    Vector::zero(n),
+                    0.0,
+                );
+                let shapes = vec![base_shape, ContactShape::Convex(rounded.clone())];
+                let mut system = on_floor(n, vec![base, top], shapes);
+                for k in 0..100 {
+                    integrator.step(&mut system, k as f64 * 0.01, 0.01).unwrap();
+                }
+                let count = step_allocations(integrator.as_mut(), &mut system, 0.01, 20);
+                assert!(
+                    system.body_contacts().len() >= 2,
+                    "N = {n}: it rests on the box ({} points)",
+                    system.body_contacts().len()
+                );
+                assert_eq!(count, 0, "N = {n}: {count} heap allocations in 20 steps");
+                cases += 1;
+            }
+        }
+        assert_eq!(cases, 6);
+    }
+
     #[test]
     fn motion_splitting_ball_joint_does_not_allocate() {
         for n in 3..=8 {

@@ -294,6 +294,39 @@ fn drawings_from_specs_and_contact_shapes_agree() {
     assert_eq!(tesseract.edges.len(), 32);
 }
 
+/// A convex shape with a margin is drawn by its support points: every point of a capsule's
+/// drawing lies on its surface (at the radius from its segment), the drawing reaches its
+/// ends (h + r along ±e₁), and a ball as a point with a margin is drawn as the ball.
+#[cfg(feature = "viz")]
+#[test]
+fn convex_shapes_are_drawn_on_their_surface() {
+    use rotorflow::dynamics::motion::ContactShape;
+    use rotorflow::dynamics::motion::shape::ConvexShape;
+    use rotorflow::viz::Shape;
+    for n in [3, 4, 5] {
+        let (h, r) = (0.4, 0.2);
+        let capsule = ContactShape::Convex(ConvexShape::capsule(n, h, r).unwrap());
+        let drawing = Shape::of_contact_shape(&capsule, n);
+        assert!(drawing.points.len() >= 2 * n, "N = {n}");
+        let mut reach = 0.0f64;
+        for p in &drawing.points {
+            let along = p[0].clamp(-h, h);
+            let d = ((p[0] - along).powi(2) + p[1..].iter().map(|x| x * x).sum::<f64>()).sqrt();
+            assert!(
+                (d - r).abs() < 1e-12,
+                "N = {n}: {p:?} at {d} from the segment"
+            );
+            reach = reach.max(p[0].abs());
+        }
+        assert!((reach - (h + r)).abs() < 1e-12, "N = {n}: reach {reach}");
+        let ball = ContactShape::Convex(ConvexShape::ball(n, 0.5).unwrap());
+        assert_eq!(
+            Shape::of_contact_shape(&ball, n),
+            Shape::of_contact_shape(&ContactShape::Ellipsoid(vec![0.5; n]), n)
+        );
+    }
+}
+
 /// The animation of a run carries the run's contacts frame by frame.
 #[cfg(feature = "viz")]
 #[test]

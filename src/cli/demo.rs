@@ -724,7 +724,15 @@ fn lowest_gap(scene: &Scene, record: &Record) -> f64 {
                     ContactShape::Ellipsoid(a) => {
                         -norm(&a.iter().zip(&m).map(|(a, m)| a * m).collect::<Vec<_>>())
                     }
-                    ContactShape::None => continue,
+                    ContactShape::Convex(c) => {
+                        let minus: Vec<f64> = m.iter().map(|x| -x).collect();
+                        let mut p = vec![0.0; m.len()];
+                        if c.support_own(&minus, &mut p).is_err() {
+                            continue;
+                        }
+                        p.iter().zip(&m).map(|(a, b)| a * b).sum::<f64>()
+                    }
+                    _ => continue,
                 };
                 lowest = lowest.min((centre + depth) / radius);
             }

@@ -1,6 +1,7 @@
 //! What is drawn of a body: points in its own axes about the centre of mass, and edges.
 
 use crate::dynamics::motion::ContactShape;
+use crate::dynamics::motion::shape::{ConvexCore, ConvexShape};
 use crate::inertia::spec::{Geometry, ParsedBody};
 use nalgebra::DMatrix;
 
@@ -71,22 +72,76 @@ impl Shape {
             ContactShape::Ellipsoid(a) => Shape::ellipsoid(a, None, false, 1500),
             ContactShape::Vertices(v) => {
                 let points: Vec<Vec<f64>> = v.iter().map(|p| p.as_slice().to_vec()).collect();
-                let half: Vec<f64> = points
-                    .first()
-                    .map_or(Vec::new(), |p| p.iter().map(|x| x.abs()).collect());
-                let is_box = dim <= 12
-                    && points.len() == 1 << dim
-                    && half.len() == dim
-                    && (0..points.len() as u64).all(|k| points.contains(&cuboid_vertex(&half, k)));
-                if is_box {
-                    Shape::cuboid(&half)
-                } else if points.len() <= 12 {
-                    Shape::complete_graph(points)
-                } else {
-                    Shape::cloud(dim, points)
-                }
+                Shape::of_vertices(points, dim)
             }
-            ContactShape::None => Shape::cross(dim, 1.0),
+            ContactShape::Convex(c) => Shape::of_convex(c),
+            _ => Shape::cross(dim, 1.0),
+        }
+    }
+
+    /// Returns what to draw of a convex shape: a box, an ellipsoid or a ball, or a hull's
+    /// vertices as for [`Shape::of_contact_shape`] when that is the whole shape; for a
+    /// segment or a margin (capsules, rounded shapes), the cloud of its support points
+    /// along directions spread over the sphere (a grid of at most about 1,000 directions
+    /// of [−1, 1]ᴺ and the ± axes).
+    pub fn of_convex(c: &ConvexShape) -> Shape {
+        let n = c.dim();
+        match c.core() {
+            ConvexCore::Cuboid(h) if c.margin() == 0.0 => Shape::cuboid(h),
+            ConvexCore::Ellipsoid(a) if c.margin() == 0.0 => Shape::ellipsoid(a, None, false, 1500),
+            ConvexCore::Point => Shape::ellipsoid(&vec![c.margin(); n], None, false, 1500),
+            ConvexCore::Hull(v) if c.margin() == 0.0 => {
+                Shape::of_vertices(v.chunks_exact(n).map(<[f64]>::to_vec).collect(), n)
+            }
+            _ => {
+                let per_axis = (2..)
+                    .take_while(|k: &u32| k.checked_pow(n as u32).is_some_and(|t| t <= 1000))
+                    .last()
+                    .unwrap_or(2) as usize;
+                let mut points = Vec::new();
+                let mut d = vec![0.0; n];
+                let mut out = vec![0.0; n];
+                let mut support = |d: &[f64], points: &mut Vec<Vec<f64>>| {
+                    if d.iter().any(|x| *x != 0.0) && c.support_own(d, &mut out).is_ok() {
+                        points.push(out.clone());
+                    }
+                };
+                for k in 0..per_axis.pow(n as u32) {
+                    let mut rest = k;
+                    for x in d.iter_mut() {
+                        *x = -1.0 + 2.0 * (rest % per_axis) as f64 / (per_axis - 1) as f64;
+                        rest /= per_axis;
+                    }
+                    support(&d, &mut points);
+                }
+                for i in 0..n {
+                    for sign in [-1.0, 1.0] {
+                        d.iter_mut().for_each(|x| *x = 0.0);
+                        d[i] = sign;
+                        support(&d, &mut points);
+                    }
+                }
+                Shape::cloud(n, points)
+            }
+        }
+    }
+
+    /// The vertices of a polytope: a box's with its edges, up to 12 joined pairwise, more
+    /// as points.
+    fn of_vertices(points: Vec<Vec<f64>>, dim: usize) -> Shape {
+        let half: Vec<f64> = points
+            .first()
+            .map_or(Vec::new(), |p| p.iter().map(|x| x.abs()).collect());
+        let is_box = dim <= 12
+            && points.len() == 1 << dim
+            && half.len() == dim
+            && (0..points.len() as u64).all(|k| points.contains(&cuboid_vertex(&half, k)));
+        if is_box {
+            Shape::cuboid(&half)
+        } else if points.len() <= 12 {
+            Shape::complete_graph(points)
+        } else {
+            Shape::cloud(dim, points)
         }
     }
 

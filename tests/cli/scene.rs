@@ -663,7 +663,7 @@ fn lowest_gap(json: &Value) -> f64 {
                         let r: Vec<f64> = a.iter().zip(&am).map(|(a, x)| -a * x / length).collect();
                         dot(&n, &place(json, b, k, &r)) - d
                     }
-                    ContactShape::None => continue,
+                    _ => continue,
                 };
                 lowest = lowest.min(gap / radius);
             }

@@ -66,7 +66,7 @@ fn clearance(s: &System) -> f64 {
             .map(|p| b.point_position(p).as_slice()[n - 1])
             .fold(f64::INFINITY, f64::min),
         ContactShape::Ellipsoid(a) => b.position().as_slice()[n - 1] - a[0],
-        ContactShape::None => unreachable!(),
+        _ => unreachable!("no shape"),
     }
 }
 

@@ -6,6 +6,7 @@ mod broad_phase;
 mod compositions;
 mod conservation;
 mod contact_and_joints;
+mod convex_bodies;
 mod dop853;
 mod equations;
 mod fixed;

@@ -3,6 +3,7 @@
 
 use super::MotionError;
 use super::placement::set_vector;
+use super::shape::{ConvexCore, ConvexShape};
 use crate::algebra::Vector;
 use crate::dynamics::DynamicsError;
 use crate::inertia::spec::Geometry;
@@ -12,7 +13,12 @@ use crate::inertia::spec::Geometry;
 /// Contact is between a body's shape and a [`HalfSpace`]; the shape answers one question,
 /// "which of my points lie deepest along a direction", so that body–body contact can later
 /// use the same shapes (a support function is what GJK needs).
+///
+/// [`ContactShape::Convex`] takes any shape of [`shape`](super::shape) (capsules, rounded
+/// boxes and hulls, cross-polytopes, simplices); the vertices and the ellipsoid are the
+/// shapes of the SPEC grammar's bodies.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum ContactShape {
     /// No contact: the body passes through planes.
     None,
@@ -22,6 +28,13 @@ pub enum ContactShape {
     /// A solid ellipsoid (a ball when the semi-axes are equal) with these semi-axes along
     /// the own axes.
     Ellipsoid(Vec<f64>),
+    /// A convex shape of [`shape`](super::shape), centred on the centre of mass, its own
+    /// axes the body's. A plane is touched by the points of the core's vertices (box
+    /// corners, a segment's ends, a hull's points) moved by the margin against the plane's
+    /// normal, or by the one deepest point of a point or ellipsoid core; other bodies by
+    /// the narrow phase of the shapes (one point per pair unless both are hulls or boxes
+    /// without margin, which touch by their contact manifold).
+    Convex(ConvexShape),
 }
 
 impl ContactShape {
@@ -58,6 +71,19 @@ impl ContactShape {
         }
     }
 
+    /// True for a polytope: vertices, or a convex shape whose core is a box or a hull and
+    /// that has no margin (a body whose contact points are material points of it, rather
+    /// than points that move over its surface as it rolls).
+    pub fn is_polytope(&self) -> bool {
+        match self {
+            ContactShape::Vertices(_) => true,
+            ContactShape::Convex(c) => {
+                c.margin() == 0.0 && matches!(c.core(), ConvexCore::Cuboid(_) | ConvexCore::Hull(_))
+            }
+            _ => false,
+        }
+    }
+
     /// Returns the radius of the smallest ball about the centre of mass holding the shape
     /// (0 for no shape): the length contact tolerances are relative to.
     pub fn radius(&self) -> f64 {
@@ -65,6 +91,7 @@ impl ContactShape {
             ContactShape::None => 0.0,
             ContactShape::Vertices(v) => v.iter().map(Vector::norm).fold(0.0, f64::max),
             ContactShape::Ellipsoid(a) => a.iter().copied().fold(0.0, f64::max),
+            ContactShape::Convex(c) => c.bounding_radius(),
         }
     }
 
@@ -126,6 +153,13 @@ impl ContactShape {
                     None => Ok(()),
                 }
             }
+            ContactShape::Convex(c) if c.dim() == n => Ok(()),
+            ContactShape::Convex(c) => Err(MotionError::WrongDimension {
+                what: "convex shape",
+                expected: n,
+                found: c.dim(),
+            }
+            .into()),
         }
     }
 
@@ -165,6 +199,46 @@ impl ContactShape {
                 }
                 let r = &r * (1.0 / s.sqrt());
                 visit(&r, &place(&r));
+            }
+            ContactShape::Convex(c) => {
+                // m = Qᵀ n, the normal in own axes; each candidate is a point of the core
+                // moved by the margin along −m, the deepest point of the margin's ball
+                // around it.
+                let m: smallvec::SmallVec<[f64; 8]> = (0..n)
+                    .map(|j| (0..n).map(|i| q[i * n + j] * normal.as_slice()[i]).sum())
+                    .collect();
+                let r = c.margin();
+                let mut visit_core = |p: &[f64]| {
+                    let own =
+                        Vector::from_storage(p.iter().zip(&m).map(|(x, m)| x - r * m).collect());
+                    visit(&own, &place(&own));
+                };
+                match c.core() {
+                    ConvexCore::Cuboid(h) => {
+                        let mut p: smallvec::SmallVec<[f64; 8]> = h.iter().map(|x| -x).collect();
+                        for mask in 0..1usize << n {
+                            for (i, (x, hi)) in p.iter_mut().zip(h.iter()).enumerate() {
+                                *x = if mask >> i & 1 == 1 { *hi } else { -hi };
+                            }
+                            visit_core(&p);
+                        }
+                    }
+                    ConvexCore::Segment(h) => {
+                        let mut p = smallvec::SmallVec::<[f64; 8]>::from_elem(0.0, n);
+                        for end in [-h, *h] {
+                            p[0] = end;
+                            visit_core(&p);
+                        }
+                    }
+                    ConvexCore::Hull(v) => v.chunks_exact(n).for_each(&mut visit_core),
+                    _ => {
+                        // A point or an ellipsoid: its support point along −m.
+                        let minus: smallvec::SmallVec<[f64; 8]> = m.iter().map(|x| -x).collect();
+                        let mut p = smallvec::SmallVec::<[f64; 8]>::from_elem(0.0, n);
+                        c.core_support(&minus, &mut p);
+                        visit_core(&p);
+                    }
+                }
             }
         }
     }

@@ -31,6 +31,47 @@ pub(crate) fn convex_of(shape: &ContactShape, n: usize) -> Option<ConvexShape> {
                 .collect();
             Some(ConvexShape::hull_unchecked(flat, n))
         }
+        ContactShape::Convex(c) => Some(c.clone()),
+    }
+}
+
+/// The vertices of a shape's core when it is a box or a segment (row-major), made once: a
+/// hull's own vertices are used as they are ([`core_hull`]).
+fn core_vertices(c: &ConvexShape) -> Option<Vec<f64>> {
+    let n = c.dim();
+    match c.core() {
+        ConvexCore::Cuboid(h) if n < 16 => Some(
+            (0..1usize << n)
+                .flat_map(|mask| {
+                    h.iter()
+                        .enumerate()
+                        .map(move |(i, hi)| if mask >> i & 1 == 1 { *hi } else { -hi })
+                })
+                .collect(),
+        ),
+        ConvexCore::Segment(h) => {
+            let mut v = vec![0.0; 2 * n];
+            v[0] = -h;
+            v[n] = *h;
+            Some(v)
+        }
+        _ => None,
+    }
+}
+
+/// The half-lengths of a shape's core when it is a box.
+fn core_box(c: &ConvexShape) -> Option<&[f64]> {
+    match c.core() {
+        ConvexCore::Cuboid(h) => Some(h),
+        _ => None,
+    }
+}
+
+/// The vertices of a shape's core when it is a hull.
+fn core_hull(c: &ConvexShape) -> Option<&[f64]> {
+    match c.core() {
+        ConvexCore::Hull(v) => Some(v),
+        _ => None,
     }
 }
 
@@ -100,6 +141,10 @@ pub(crate) struct Touching {
     /// The half-lengths of the bodies whose shapes are boxes (their corners), which find
     /// their contact normal by separating axes.
     boxes: Vec<Option<Vec<f64>>>,
+    /// The vertices of the bodies' cores that are boxes or segments (a capsule's), row-major:
+    /// polytopes with a margin touch by the manifold of their cores moved out by the
+    /// margins.
+    rounded: Vec<Option<Vec<f64>>>,
     workspace: EpaWorkspace,
     /// The pairs of bodies held together by a joint (a < b), which do not touch each other:
     /// their shapes meet at the joint by design.
@@ -157,8 +202,17 @@ impl Touching {
             .iter()
             .map(|s| match s {
                 ContactShape::Vertices(v) => box_half_lengths(v, n),
+                ContactShape::Convex(c) => match c.core() {
+                    ConvexCore::Cuboid(h) if c.margin() == 0.0 => Some(h.to_vec()),
+                    _ => None,
+                },
                 _ => None,
             })
+            .collect();
+        self.rounded = self
+            .convex
+            .iter()
+            .map(|c| c.as_ref().and_then(core_vertices))
             .collect();
         self.radius = self
             .convex
@@ -356,6 +410,53 @@ impl Touching {
                 return;
             }
         }
+        if let Some(slop) = manifold
+            && ca.margin() + cb.margin() > 0.0
+            && let Some(ha) = self.boxes[a].as_deref().or(core_box(ca))
+            && let Some(hb) = self.boxes[b].as_deref().or(core_box(cb))
+        {
+            // Rounded boxes: their cores' manifold by separating axes and face clipping,
+            // which holds every corner of a face up to 5D (a hull's support set holds 8).
+            let placed = |half_lengths, position, rotation| PlacedBox {
+                half_lengths,
+                position,
+                rotation,
+            };
+            let margins = (ca.margin(), cb.margin());
+            let margin = slop * (self.radius[a] + self.radius[b]) + margins.0 + margins.1;
+            let (pa, pb) = (placed(ha, xa, q(a)), placed(hb, xb, q(b)));
+            let axis = box_box_unchecked(&pa, &pb);
+            let m = box_manifold_on_axis(&pa, &pb, &axis, margin);
+            if !m.is_empty() {
+                self.push_manifold_with_margins((a, b), &m, reach, margins);
+                return;
+            }
+        }
+        if let Some(slop) = manifold
+            && ca.margin() + cb.margin() > 0.0
+            && let Some(va) = self.rounded[a].as_deref().or(core_hull(ca))
+            && let Some(vb) = self.rounded[b].as_deref().or(core_hull(cb))
+        {
+            // Polytopes with margins (a capsule lying on a box, rounded boxes face to
+            // face): the manifold of their cores, whose gap is the margins' sum more.
+            let placed = |vertices, x, q| PlacedHull {
+                vertices,
+                position: x,
+                rotation: q,
+            };
+            let margins = (ca.margin(), cb.margin());
+            let margin = slop * (self.radius[a] + self.radius[b]) + margins.0 + margins.1;
+            if let Ok(Some(m)) = hull_manifold(
+                &placed(va, xa, q(a)),
+                &placed(vb, xb, q(b)),
+                p.normal.as_slice(),
+                margin,
+            ) && !m.is_empty()
+            {
+                self.push_manifold_with_margins((a, b), &m, reach, margins);
+                return;
+            }
+        }
         let c = self.next((a, b), 0, -p.depth, p.normal.as_slice());
         c.reach = reach;
         c.point.extend(
@@ -368,20 +469,35 @@ impl Touching {
     }
 
     /// Records the points of the manifold `m` of the pair (a, b).
-    fn push_manifold(&mut self, (a, b): (usize, usize), m: &ContactManifold, reach: f64) {
+    fn push_manifold(&mut self, pair: (usize, usize), m: &ContactManifold, reach: f64) {
+        self.push_manifold_with_margins(pair, m, reach, (0.0, 0.0));
+    }
+
+    /// Records the points of the manifold `m` of the cores of the pair (a, b), whose
+    /// surfaces lie `margins` further out along the normal: each gap is the cores' less
+    /// both margins, each point midway between the surfaces.
+    fn push_manifold_with_margins(
+        &mut self,
+        (a, b): (usize, usize),
+        m: &ContactManifold,
+        reach: f64,
+        (ra, rb): (f64, f64),
+    ) {
         // A face resting on a face touches at all its points, but a tilt of round-off size
         // lifts some of them by more than the pair's reach: points this close count as
         // touching, so that they hold (a resting contact) instead of waiting to land.
         let reach = reach.max(MANIFOLD_TOUCHING * (self.radius[a] + self.radius[b]));
+        let shift = 0.5 * (ra - rb);
         for point in m.points() {
-            let c = self.next((a, b), point.id.0, -point.depth, m.normal());
+            let c = self.next((a, b), point.id.0, -point.depth - ra - rb, m.normal());
             c.reach = reach;
             c.point.extend(
                 point
                     .point_a
                     .iter()
                     .zip(point.point_b)
-                    .map(|(x, y)| 0.5 * (x + y)),
+                    .zip(m.normal())
+                    .map(|((x, y), n)| 0.5 * (x + y) + shift * n),
             );
         }
     }

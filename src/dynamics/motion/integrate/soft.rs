@@ -7,7 +7,7 @@ use crate::dynamics::motion::body::contact_material;
 use crate::dynamics::motion::detect::bodies::Touching;
 use crate::dynamics::motion::placement::Placements;
 use crate::dynamics::motion::solve::{FoundPoint, NO_BODY, SoftSolver, Softness, Solver};
-use crate::dynamics::motion::{ContactShape, MotionError, System, Wrench};
+use crate::dynamics::motion::{MotionError, System, Wrench};
 use smallvec::SmallVec;
 
 /// The soft step: each step of h is cut into substeps, and each substep takes the forques'
@@ -301,7 +301,7 @@ impl SoftStep {
                 // Only polytopes keep their points: a curved body rolls, and the material
                 // point of its last contact then leaves the contact (on a ball it lags
                 // behind the rolling, and its normal impulse spins the ball up).
-                let flat = |i: usize| matches!(shapes[i], ContactShape::Vertices(_));
+                let flat = |i: usize| shapes[i].is_polytope();
                 if last != Some((c.a, c.b)) && flat(c.a) && flat(c.b) {
                     last = Some((c.a, c.b));
                     now.place((c.a, c.b), (q(c.a), q(c.b)), (x(c.a), x(c.b)));
