@@ -789,6 +789,59 @@ mod moving_bodies {
         assert_eq!(cases, 6);
     }
 
+    /// A compound of two boxes side by side (N odd) or a dumbbell of two balls (N even)
+    /// resting on a box on the floor, placed 1e-4 above its resting height: the pieces meet
+    /// the box piece by piece.
+    #[test]
+    fn compound_bodies_resting_on_a_box_do_not_allocate() {
+        use rotorflow::dynamics::motion::shape::{CompoundShape, ConvexShape, Piece};
+        let mut cases = 0;
+        for n in 3..=8 {
+            let h_n = 0.5 + 0.1 * (n - 1) as f64;
+            let at = |x: f64| {
+                let mut v = vec![0.0; n];
+                v[0] = x;
+                v
+            };
+            let (pieces, height) = if n % 2 == 0 {
+                let ball = ConvexShape::ball(n, 0.2).unwrap();
+                let p = |x| Piece::translated(ball.clone(), &at(x)).unwrap();
+                (vec![p(-0.4), p(0.4)], 0.2)
+            } else {
+                let cube = ConvexShape::cuboid(&vec![0.2; n]).unwrap();
+                let p = |x| Piece::translated(cube.clone(), &at(x)).unwrap();
+                (vec![p(-0.2), p(0.2)], 0.2)
+            };
+            let compound = CompoundShape::new(pieces).unwrap();
+            let integrators: [Box<dyn MotionIntegrator>; 2] =
+                [Box::new(MotionSplitting::new()), Box::new(SoftStep::new())];
+            for mut integrator in integrators {
+                let (base, base_shape) =
+                    cuboid(n, axis(n, n - 1, h_n + 1e-4), Vector::zero(n), 0.0);
+                let (top, _) = cuboid(
+                    n,
+                    axis(n, n - 1, 2.0 * h_n + height + 2e-4),
+                    Vector::zero(n),
+                    0.0,
+                );
+                let shapes = vec![base_shape, ContactShape::Compound(compound.clone())];
+                let mut system = on_floor(n, vec![base, top], shapes);
+                for k in 0..100 {
+                    integrator.step(&mut system, k as f64 * 0.01, 0.01).unwrap();
+                }
+                let count = step_allocations(integrator.as_mut(), &mut system, 0.01, 20);
+                assert!(
+                    system.body_contacts().len() >= 2,
+                    "N = {n}: it rests on the box ({} points)",
+                    system.body_contacts().len()
+                );
+                assert_eq!(count, 0, "N = {n}: {count} heap allocations in 20 steps");
+                cases += 1;
+            }
+        }
+        assert_eq!(cases, 12);
+    }
+
     #[test]
     fn motion_splitting_ball_joint_does_not_allocate() {
         for n in 3..=8 {

@@ -296,12 +296,13 @@ fn drawings_from_specs_and_contact_shapes_agree() {
 
 /// A convex shape with a margin is drawn by its support points: every point of a capsule's
 /// drawing lies on its surface (at the radius from its segment), the drawing reaches its
-/// ends (h + r along ±e₁), and a ball as a point with a margin is drawn as the ball.
+/// ends (h + r along ±e₁), a ball as a point with a margin is drawn as the ball, and a
+/// compound as its pieces' drawings moved to their places.
 #[cfg(feature = "viz")]
 #[test]
 fn convex_shapes_are_drawn_on_their_surface() {
     use rotorflow::dynamics::motion::ContactShape;
-    use rotorflow::dynamics::motion::shape::ConvexShape;
+    use rotorflow::dynamics::motion::shape::{CompoundShape, ConvexShape, Piece};
     use rotorflow::viz::Shape;
     for n in [3, 4, 5] {
         let (h, r) = (0.4, 0.2);
@@ -324,6 +325,24 @@ fn convex_shapes_are_drawn_on_their_surface() {
             Shape::of_contact_shape(&ball, n),
             Shape::of_contact_shape(&ContactShape::Ellipsoid(vec![0.5; n]), n)
         );
+        // A compound of the capsule and a box beside it: both drawings, the box's moved.
+        let mut offset = vec![0.0; n];
+        offset[1] = 2.0;
+        let box_piece = ConvexShape::cuboid(&vec![0.5; n]).unwrap();
+        let compound = ContactShape::Compound(
+            CompoundShape::new(vec![
+                Piece::translated(ConvexShape::capsule(n, h, r).unwrap(), &vec![0.0; n]).unwrap(),
+                Piece::translated(box_piece.clone(), &offset).unwrap(),
+            ])
+            .unwrap(),
+        );
+        let both = Shape::of_contact_shape(&compound, n);
+        let cube = Shape::of_convex(&box_piece);
+        assert_eq!(both.points.len(), drawing.points.len() + cube.points.len());
+        assert_eq!(both.edges.len(), cube.edges.len(), "N = {n}");
+        for (p, q) in both.points[drawing.points.len()..].iter().zip(&cube.points) {
+            assert!((p[1] - q[1] - 2.0).abs() < 1e-15 && p[0] == q[0], "N = {n}");
+        }
     }
 }
 

@@ -1,7 +1,7 @@
 //! What is drawn of a body: points in its own axes about the centre of mass, and edges.
 
 use crate::dynamics::motion::ContactShape;
-use crate::dynamics::motion::shape::{ConvexCore, ConvexShape};
+use crate::dynamics::motion::shape::{CompoundShape, ConvexCore, ConvexShape};
 use crate::inertia::spec::{Geometry, ParsedBody};
 use nalgebra::DMatrix;
 
@@ -75,6 +75,7 @@ impl Shape {
                 Shape::of_vertices(points, dim)
             }
             ContactShape::Convex(c) => Shape::of_convex(c),
+            ContactShape::Compound(c) => Shape::of_compound(c),
             _ => Shape::cross(dim, 1.0),
         }
     }
@@ -124,6 +125,33 @@ impl Shape {
                 Shape::cloud(n, points)
             }
         }
+    }
+
+    /// Returns what to draw of a compound shape: each piece's drawing ([`Shape::of_convex`])
+    /// moved to its place in the body's axes, as points and edges of one drawing.
+    pub fn of_compound(c: &CompoundShape) -> Shape {
+        let n = c.dim();
+        let mut all = Shape {
+            dim: n,
+            points: Vec::new(),
+            edges: Vec::new(),
+            cloud: false,
+            ellipsoid: None,
+        };
+        for piece in c.pieces() {
+            let drawing = Shape::of_convex(piece.shape());
+            let (o, r) = (piece.offset(), piece.rotation());
+            let base = all.points.len();
+            all.points.extend(drawing.points.iter().map(|p| {
+                (0..n)
+                    .map(|i| o[i] + (0..n).map(|j| r[i * n + j] * p[j]).sum::<f64>())
+                    .collect()
+            }));
+            all.edges
+                .extend(drawing.edges.iter().map(|[a, b]| [a + base, b + base]));
+            all.cloud |= drawing.cloud;
+        }
+        all
     }
 
     /// The vertices of a polytope: a box's with its edges, up to 12 joined pairwise, more

@@ -3,7 +3,7 @@
 
 use super::MotionError;
 use super::placement::set_vector;
-use super::shape::{ConvexCore, ConvexShape};
+use super::shape::{CompoundShape, ConvexCore, ConvexShape};
 use crate::algebra::Vector;
 use crate::dynamics::DynamicsError;
 use crate::inertia::spec::Geometry;
@@ -35,6 +35,10 @@ pub enum ContactShape {
     /// the narrow phase of the shapes (one point per pair unless both are hulls or boxes
     /// without margin, which touch by their contact manifold).
     Convex(ConvexShape),
+    /// A union of convex pieces ([`CompoundShape`]), each placed in the body's own axes
+    /// about the centre of mass: it touches with each piece as a [`ContactShape::Convex`]
+    /// does.
+    Compound(CompoundShape),
 }
 
 impl ContactShape {
@@ -92,6 +96,7 @@ impl ContactShape {
             ContactShape::Vertices(v) => v.iter().map(Vector::norm).fold(0.0, f64::max),
             ContactShape::Ellipsoid(a) => a.iter().copied().fold(0.0, f64::max),
             ContactShape::Convex(c) => c.bounding_radius(),
+            ContactShape::Compound(c) => c.bounding_radius(),
         }
     }
 
@@ -160,6 +165,13 @@ impl ContactShape {
                 found: c.dim(),
             }
             .into()),
+            ContactShape::Compound(c) if c.dim() == n => Ok(()),
+            ContactShape::Compound(c) => Err(MotionError::WrongDimension {
+                what: "compound shape",
+                expected: n,
+                found: c.dim(),
+            }
+            .into()),
         }
     }
 
@@ -200,46 +212,95 @@ impl ContactShape {
                 let r = &r * (1.0 / s.sqrt());
                 visit(&r, &place(&r));
             }
-            ContactShape::Convex(c) => {
-                // m = Qᵀ n, the normal in own axes; each candidate is a point of the core
-                // moved by the margin along −m, the deepest point of the margin's ball
-                // around it.
-                let m: smallvec::SmallVec<[f64; 8]> = (0..n)
-                    .map(|j| (0..n).map(|i| q[i * n + j] * normal.as_slice()[i]).sum())
-                    .collect();
-                let r = c.margin();
-                let mut visit_core = |p: &[f64]| {
-                    let own =
-                        Vector::from_storage(p.iter().zip(&m).map(|(x, m)| x - r * m).collect());
-                    visit(&own, &place(&own));
-                };
-                match c.core() {
-                    ConvexCore::Cuboid(h) => {
-                        let mut p: smallvec::SmallVec<[f64; 8]> = h.iter().map(|x| -x).collect();
-                        for mask in 0..1usize << n {
-                            for (i, (x, hi)) in p.iter_mut().zip(h.iter()).enumerate() {
-                                *x = if mask >> i & 1 == 1 { *hi } else { -hi };
-                            }
-                            visit_core(&p);
-                        }
+            ContactShape::Convex(c) => convex_candidates(c, q, normal, &mut visit),
+            ContactShape::Compound(compound) => {
+                // Each piece's candidates, with its axes Q R and its centre Q o in space:
+                // r = o + R r_piece in own axes, Q r = Q o + (Q R) r_piece in space.
+                let mut q_piece = smallvec::SmallVec::<[f64; 64]>::from_elem(0.0, n * n);
+                let mut centre = smallvec::SmallVec::<[f64; 8]>::from_elem(0.0, n);
+                let zero = smallvec::SmallVec::<[f64; 8]>::from_elem(0.0, n);
+                for piece in compound.pieces() {
+                    if piece.place(&zero, q, &mut centre, &mut q_piece).is_err() {
+                        continue;
                     }
-                    ConvexCore::Segment(h) => {
-                        let mut p = smallvec::SmallVec::<[f64; 8]>::from_elem(0.0, n);
-                        for end in [-h, *h] {
-                            p[0] = end;
-                            visit_core(&p);
-                        }
-                    }
-                    ConvexCore::Hull(v) => v.chunks_exact(n).for_each(&mut visit_core),
-                    _ => {
-                        // A point or an ellipsoid: its support point along −m.
-                        let minus: smallvec::SmallVec<[f64; 8]> = m.iter().map(|x| -x).collect();
-                        let mut p = smallvec::SmallVec::<[f64; 8]>::from_elem(0.0, n);
-                        c.core_support(&minus, &mut p);
-                        visit_core(&p);
-                    }
+                    let (o, rot) = (piece.offset(), piece.rotation());
+                    convex_candidates(piece.shape(), &q_piece, normal, &mut |r, r_space| {
+                        let own = Vector::from_storage(
+                            (0..n)
+                                .map(|i| {
+                                    o[i] + (0..n)
+                                        .map(|j| rot[i * n + j] * r.as_slice()[j])
+                                        .sum::<f64>()
+                                })
+                                .collect(),
+                        );
+                        let space = Vector::from_storage(
+                            centre
+                                .iter()
+                                .zip(r_space.as_slice())
+                                .map(|(c, x)| c + x)
+                                .collect(),
+                        );
+                        visit(&own, &space);
+                    });
                 }
             }
+        }
+    }
+}
+
+/// [`ContactShape::candidates`] of a convex shape whose axes are `q` (row-major N × N, own
+/// axes → space): the vertices of its core moved by the margin against the normal, or the
+/// one deepest point of a point or ellipsoid core.
+fn convex_candidates(
+    c: &ConvexShape,
+    q: &[f64],
+    normal: &Vector,
+    visit: &mut impl FnMut(&Vector, &Vector),
+) {
+    let n = normal.dim();
+    let place = |r: &Vector| {
+        let mut out = Vector::zero(n);
+        for (i, o) in out.as_mut_slice().iter_mut().enumerate() {
+            *o = (0..n).map(|j| q[i * n + j] * r.as_slice()[j]).sum();
+        }
+        out
+    };
+    // m = Qᵀ n, the normal in own axes; each candidate is a point of the core
+    // moved by the margin along −m, the deepest point of the margin's ball
+    // around it.
+    let m: smallvec::SmallVec<[f64; 8]> = (0..n)
+        .map(|j| (0..n).map(|i| q[i * n + j] * normal.as_slice()[i]).sum())
+        .collect();
+    let r = c.margin();
+    let mut visit_core = |p: &[f64]| {
+        let own = Vector::from_storage(p.iter().zip(&m).map(|(x, m)| x - r * m).collect());
+        visit(&own, &place(&own));
+    };
+    match c.core() {
+        ConvexCore::Cuboid(h) => {
+            let mut p: smallvec::SmallVec<[f64; 8]> = h.iter().map(|x| -x).collect();
+            for mask in 0..1usize << n {
+                for (i, (x, hi)) in p.iter_mut().zip(h.iter()).enumerate() {
+                    *x = if mask >> i & 1 == 1 { *hi } else { -hi };
+                }
+                visit_core(&p);
+            }
+        }
+        ConvexCore::Segment(h) => {
+            let mut p = smallvec::SmallVec::<[f64; 8]>::from_elem(0.0, n);
+            for end in [-h, *h] {
+                p[0] = end;
+                visit_core(&p);
+            }
+        }
+        ConvexCore::Hull(v) => v.chunks_exact(n).for_each(&mut visit_core),
+        _ => {
+            // A point or an ellipsoid: its support point along −m.
+            let minus: smallvec::SmallVec<[f64; 8]> = m.iter().map(|x| -x).collect();
+            let mut p = smallvec::SmallVec::<[f64; 8]>::from_elem(0.0, n);
+            c.core_support(&minus, &mut p);
+            visit_core(&p);
         }
     }
 }

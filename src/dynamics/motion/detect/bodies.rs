@@ -9,7 +9,7 @@ use super::{
     penetration_with,
 };
 use crate::dynamics::motion::forques::Anchor;
-use crate::dynamics::motion::shape::{ConvexCore, ConvexShape};
+use crate::dynamics::motion::shape::{CompoundShape, ConvexCore, ConvexShape};
 use crate::dynamics::motion::{BallJoint, ContactShape, MovingBody};
 use smallvec::SmallVec;
 
@@ -32,6 +32,8 @@ pub(crate) fn convex_of(shape: &ContactShape, n: usize) -> Option<ConvexShape> {
             Some(ConvexShape::hull_unchecked(flat, n))
         }
         ContactShape::Convex(c) => Some(c.clone()),
+        // Pieces meet piece by piece (`Touching::compound`).
+        _ => None,
     }
 }
 
@@ -145,6 +147,9 @@ pub(crate) struct Touching {
     /// polytopes with a margin touch by the manifold of their cores moved out by the
     /// margins.
     rounded: Vec<Option<Vec<f64>>>,
+    /// The compound bodies' pieces, with the vertices of each piece's core when it is a
+    /// box or a segment.
+    compound: Vec<Option<Pieces>>,
     workspace: EpaWorkspace,
     /// The pairs of bodies held together by a joint (a < b), which do not touch each other:
     /// their shapes meet at the joint by design.
@@ -156,9 +161,8 @@ pub(crate) struct Touching {
     lower: Vec<f64>,
     upper: Vec<f64>,
     candidates: Vec<(usize, usize)>,
-    /// The pairs found by the last [`Touching::scan`]; entries past `len` keep their room.
-    found: Vec<PairContact>,
-    len: usize,
+    /// The pairs found by the last [`Touching::scan`].
+    found: Found,
     /// True to take two boxes' manifold by clipping the incident face against the
     /// reference face (the points of [`box_manifold`](super::box_manifold), about twice as
     /// fast) instead of the hull manifold of their support sets. The splitting keeps the
@@ -214,16 +218,31 @@ impl Touching {
             .iter()
             .map(|c| c.as_ref().and_then(core_vertices))
             .collect();
-        self.radius = self
-            .convex
+        self.compound = shapes
             .iter()
-            .map(|c| c.as_ref().map_or(0.0, ConvexShape::bounding_radius))
+            .map(|s| match s {
+                ContactShape::Compound(c) => {
+                    let cores = c
+                        .pieces()
+                        .iter()
+                        .map(|p| core_vertices(p.shape()))
+                        .collect();
+                    Some((c.clone(), cores))
+                }
+                _ => None,
+            })
             .collect();
+        self.radius = shapes.iter().map(ContactShape::radius).collect();
+    }
+
+    /// True if body `i` touches other bodies.
+    fn touches(&self, i: usize) -> bool {
+        self.convex[i].is_some() || self.compound[i].is_some()
     }
 
     /// True if at least two bodies can touch each other.
     pub(crate) fn any_pairs(&self) -> bool {
-        self.convex.iter().filter(|c| c.is_some()).count() >= 2
+        (0..self.convex.len()).filter(|&i| self.touches(i)).count() >= 2
     }
 
     /// Finds the pairs of bodies whose signed distance is at most `factor` times the sum of
@@ -256,7 +275,7 @@ impl Touching {
         manifold: Option<f64>,
         skip: impl Fn((usize, usize)) -> bool,
     ) {
-        self.len = 0;
+        self.found.len = 0;
         let Some(first) = bodies.first() else {
             return;
         };
@@ -284,7 +303,7 @@ impl Touching {
             candidates.extend_from_slice(pairs);
         }
         for &(a, b) in &candidates {
-            if self.convex[a].is_some() && self.convex[b].is_some() && !skip((a, b)) {
+            if self.touches(a) && self.touches(b) && !skip((a, b)) {
                 self.pair(bodies, &q, (a, b), factor, manifold);
             }
         }
@@ -301,9 +320,6 @@ impl Touching {
         factor: f64,
         manifold: Option<f64>,
     ) {
-        let (Some(ca), Some(cb)) = (&self.convex[a], &self.convex[b]) else {
-            return;
-        };
         if bodies[a].is_fixed() && bodies[b].is_fixed() || self.joined.contains(&(a, b)) {
             return;
         }
@@ -317,6 +333,13 @@ impl Touching {
         if centres > bound * bound {
             return;
         }
+        if self.compound[a].is_some() || self.compound[b].is_some() {
+            self.pieces(q, (a, b), (xa, xb), reach, manifold);
+            return;
+        }
+        let (Some(ca), Some(cb)) = (&self.convex[a], &self.convex[b]) else {
+            return;
+        };
         if let (Some(ha), Some(hb)) = (&self.boxes[a], &self.boxes[b]) {
             // Two boxes: the normal and gap by separating axes, exact also where two faces
             // just touch and the depth along every nearby direction is nearly the same (a
@@ -364,146 +387,134 @@ impl Touching {
             };
             let points = points.filter(|m| !m.is_empty());
             if let Some(m) = points {
-                self.push_manifold((a, b), &m, reach);
+                let touching = reach.max(MANIFOLD_TOUCHING * (self.radius[a] + self.radius[b]));
+                self.found
+                    .push_manifold((a, b), &m, touching, (0.0, 0.0), 0);
                 return;
             }
             if manifold.is_none() {
                 // The gap alone is asked for: the point is the midpoint of the centres.
-                let c = self.next((a, b), 0, -axis.depth, &axis.normal);
+                let c = self.found.next((a, b), 0, -axis.depth, &axis.normal);
                 c.reach = reach;
                 c.point
                     .extend(xa.iter().zip(xb).map(|(x, y)| 0.5 * (x + y)));
                 return;
             }
         }
-        let (Ok(pa), Ok(pb)) = (
-            PlacedShape::new(ca, xa, q(a)),
-            PlacedShape::new(cb, xb, q(b)),
-        ) else {
-            return;
-        };
-        let Ok(p) = penetration_with(&mut self.workspace, &pa, &pb) else {
-            return;
-        };
-        if -p.depth > reach {
-            return;
-        }
-        if let (Some(slop), ConvexCore::Hull(va), ConvexCore::Hull(vb)) =
-            (manifold, ca.core(), cb.core())
-            && ca.margin() == 0.0
-            && cb.margin() == 0.0
-        {
-            let placed = |vertices, x, q| PlacedHull {
-                vertices,
-                position: x,
-                rotation: q,
-            };
-            let margin = slop * (self.radius[a] + self.radius[b]);
-            if let Ok(Some(m)) = hull_manifold(
-                &placed(va, xa, q(a)),
-                &placed(vb, xb, q(b)),
-                p.normal.as_slice(),
-                margin,
-            ) && !m.is_empty()
-            {
-                self.push_manifold((a, b), &m, reach);
-                return;
-            }
-        }
-        if let Some(slop) = manifold
-            && ca.margin() + cb.margin() > 0.0
-            && let Some(ha) = self.boxes[a].as_deref().or(core_box(ca))
-            && let Some(hb) = self.boxes[b].as_deref().or(core_box(cb))
-        {
-            // Rounded boxes: their cores' manifold by separating axes and face clipping,
-            // which holds every corner of a face up to 5D (a hull's support set holds 8).
-            let placed = |half_lengths, position, rotation| PlacedBox {
-                half_lengths,
-                position,
-                rotation,
-            };
-            let margins = (ca.margin(), cb.margin());
-            let margin = slop * (self.radius[a] + self.radius[b]) + margins.0 + margins.1;
-            let (pa, pb) = (placed(ha, xa, q(a)), placed(hb, xb, q(b)));
-            let axis = box_box_unchecked(&pa, &pb);
-            let m = box_manifold_on_axis(&pa, &pb, &axis, margin);
-            if !m.is_empty() {
-                self.push_manifold_with_margins((a, b), &m, reach, margins);
-                return;
-            }
-        }
-        if let Some(slop) = manifold
-            && ca.margin() + cb.margin() > 0.0
-            && let Some(va) = self.rounded[a].as_deref().or(core_hull(ca))
-            && let Some(vb) = self.rounded[b].as_deref().or(core_hull(cb))
-        {
-            // Polytopes with margins (a capsule lying on a box, rounded boxes face to
-            // face): the manifold of their cores, whose gap is the margins' sum more.
-            let placed = |vertices, x, q| PlacedHull {
-                vertices,
-                position: x,
-                rotation: q,
-            };
-            let margins = (ca.margin(), cb.margin());
-            let margin = slop * (self.radius[a] + self.radius[b]) + margins.0 + margins.1;
-            if let Ok(Some(m)) = hull_manifold(
-                &placed(va, xa, q(a)),
-                &placed(vb, xb, q(b)),
-                p.normal.as_slice(),
-                margin,
-            ) && !m.is_empty()
-            {
-                self.push_manifold_with_margins((a, b), &m, reach, margins);
-                return;
-            }
-        }
-        let c = self.next((a, b), 0, -p.depth, p.normal.as_slice());
-        c.reach = reach;
-        c.point.extend(
-            p.witness_a
-                .as_slice()
-                .iter()
-                .zip(p.witness_b.as_slice())
-                .map(|(x, y)| 0.5 * (x + y)),
+        convex_pair(
+            (&mut self.workspace, &mut self.found),
+            (a, b),
+            (
+                Solid::new(
+                    ca,
+                    (xa, q(a)),
+                    self.rounded[a].as_deref(),
+                    self.boxes[a].as_deref(),
+                ),
+                Solid::new(
+                    cb,
+                    (xb, q(b)),
+                    self.rounded[b].as_deref(),
+                    self.boxes[b].as_deref(),
+                ),
+            ),
+            (
+                reach,
+                manifold.map(|slop| slop * (self.radius[a] + self.radius[b])),
+            ),
+            0,
         );
     }
 
-    /// Records the points of the manifold `m` of the pair (a, b).
-    fn push_manifold(&mut self, pair: (usize, usize), m: &ContactManifold, reach: f64) {
-        self.push_manifold_with_margins(pair, m, reach, (0.0, 0.0));
-    }
-
-    /// Records the points of the manifold `m` of the cores of the pair (a, b), whose
-    /// surfaces lie `margins` further out along the normal: each gap is the cores' less
-    /// both margins, each point midway between the surfaces.
-    fn push_manifold_with_margins(
+    /// The pair (a, b) of which one or both are compound: each pair of pieces whose
+    /// bounding balls come within `reach` through [`convex_pair`], its features marked by
+    /// the pieces' numbers. A body that is not compound is one piece at its centre.
+    fn pieces<'q>(
         &mut self,
+        q: &impl Fn(usize) -> &'q [f64],
         (a, b): (usize, usize),
-        m: &ContactManifold,
+        (xa, xb): (&[f64], &[f64]),
         reach: f64,
-        (ra, rb): (f64, f64),
+        manifold: Option<f64>,
     ) {
-        // A face resting on a face touches at all its points, but a tilt of round-off size
-        // lifts some of them by more than the pair's reach: points this close count as
-        // touching, so that they hold (a resting contact) instead of waiting to land.
-        let reach = reach.max(MANIFOLD_TOUCHING * (self.radius[a] + self.radius[b]));
-        let shift = 0.5 * (ra - rb);
-        for point in m.points() {
-            let c = self.next((a, b), point.id.0, -point.depth - ra - rb, m.normal());
-            c.reach = reach;
-            c.point.extend(
-                point
-                    .point_a
+        let n = xa.len();
+        let slop_reach = manifold.map(|slop| slop * (self.radius[a] + self.radius[b]));
+        let (ca, cb) = (self.compound[a].take(), self.compound[b].take());
+        let buffers = || {
+            (
+                SmallVec::<[f64; 8]>::from_elem(0.0, n),
+                SmallVec::<[f64; 64]>::from_elem(0.0, n * n),
+            )
+        };
+        let (mut place_a, mut place_b) = (buffers(), buffers());
+        let count =
+            |c: &Option<(CompoundShape, _)>| c.as_ref().map_or(1, |(c, _)| c.pieces().len());
+        for i in 0..count(&ca) {
+            let Some(sa) = piece(
+                &ca,
+                (&self.convex[a], &self.rounded[a], &self.boxes[a]),
+                i,
+                (xa, q(a)),
+                &mut place_a,
+            ) else {
+                continue;
+            };
+            for j in 0..count(&cb) {
+                let Some(sb) = piece(
+                    &cb,
+                    (&self.convex[b], &self.rounded[b], &self.boxes[b]),
+                    j,
+                    (xb, q(b)),
+                    &mut place_b,
+                ) else {
+                    continue;
+                };
+                let centres: f64 = sa
+                    .position
                     .iter()
-                    .zip(point.point_b)
-                    .zip(m.normal())
-                    .map(|((x, y), n)| 0.5 * (x + y) + shift * n),
-            );
+                    .zip(sb.position)
+                    .map(|(p, q)| (p - q) * (p - q))
+                    .sum();
+                let bound = sa.shape.bounding_radius() + sb.shape.bounding_radius() + reach;
+                if centres > bound * bound {
+                    continue;
+                }
+                // Distinct pieces, distinct features (the manifold's ids use the low bits).
+                let tag = ((i as u64) << 56) ^ ((j as u64) << 48) ^ (1 << 47);
+                convex_pair(
+                    (&mut self.workspace, &mut self.found),
+                    (a, b),
+                    (sa, sb),
+                    (reach, slop_reach),
+                    tag,
+                );
+            }
         }
+        self.compound[a] = ca;
+        self.compound[b] = cb;
     }
 
-    /// The next entry of the found pairs, set to the pair, feature, gap and normal given and
-    /// an empty point.
+    /// `factor` times the sum of the bounding radii of bodies `a` and `b`: the distance
+    /// within which [`Touching::scan`] with that factor reports the pair.
+    pub(crate) fn reach(&self, (a, b): (usize, usize), factor: f64) -> f64 {
+        factor * (self.radius[a] + self.radius[b])
+    }
+
+    /// The pairs the last [`Touching::scan`] found.
+    pub(crate) fn found(&self) -> &[PairContact] {
+        &self.found.items[..self.found.len]
+    }
+}
+
+/// The contact points found by a scan; entries past `len` keep their room.
+#[derive(Clone, Debug, Default)]
+struct Found {
+    items: Vec<PairContact>,
+    len: usize,
+}
+
+impl Found {
+    /// The next entry, set to the pair, feature, gap and normal given and an empty point.
     fn next(
         &mut self,
         (a, b): (usize, usize),
@@ -511,10 +522,10 @@ impl Touching {
         gap: f64,
         normal: &[f64],
     ) -> &mut PairContact {
-        if self.len == self.found.len() {
-            self.found.push(PairContact::default());
+        if self.len == self.items.len() {
+            self.items.push(PairContact::default());
         }
-        let c = &mut self.found[self.len];
+        let c = &mut self.items[self.len];
         self.len += 1;
         c.a = a;
         c.b = b;
@@ -526,14 +537,195 @@ impl Touching {
         c
     }
 
-    /// `factor` times the sum of the bounding radii of bodies `a` and `b`: the distance
-    /// within which [`Touching::scan`] with that factor reports the pair.
-    pub(crate) fn reach(&self, (a, b): (usize, usize), factor: f64) -> f64 {
-        factor * (self.radius[a] + self.radius[b])
+    /// Records the points of the manifold `m` of (the cores of) the pair (a, b), whose
+    /// surfaces lie `margins` further out along the normal: each gap is the cores' less
+    /// both margins, each point midway between the surfaces, each feature marked by `tag`
+    /// (the pair of pieces of compound bodies).
+    fn push_manifold(
+        &mut self,
+        pair: (usize, usize),
+        m: &ContactManifold,
+        reach: f64,
+        (ra, rb): (f64, f64),
+        tag: u64,
+    ) {
+        let shift = 0.5 * (ra - rb);
+        for point in m.points() {
+            let c = self.next(pair, point.id.0 ^ tag, -point.depth - ra - rb, m.normal());
+            c.reach = reach;
+            c.point.extend(
+                point
+                    .point_a
+                    .iter()
+                    .zip(point.point_b)
+                    .zip(m.normal())
+                    .map(|((x, y), n)| 0.5 * (x + y) + shift * n),
+            );
+        }
+    }
+}
+
+/// A compound shape with the vertices of each piece's core when it is a box or a segment.
+type Pieces = (CompoundShape, Vec<Option<Vec<f64>>>);
+
+/// Piece `i` of a body placed at `(x, q)`: of its compound (placed into `buffers`), or the
+/// body's own convex shape for `i` = 0.
+fn piece<'s>(
+    compound: &'s Option<Pieces>,
+    (convex, rounded, cuboid): (
+        &'s Option<ConvexShape>,
+        &'s Option<Vec<f64>>,
+        &'s Option<Vec<f64>>,
+    ),
+    i: usize,
+    (x, q): (&'s [f64], &'s [f64]),
+    buffers: &'s mut (SmallVec<[f64; 8]>, SmallVec<[f64; 64]>),
+) -> Option<Solid<'s>> {
+    match compound {
+        Some((c, cores)) => {
+            let p = c.pieces().get(i)?;
+            let (position, rotation) = buffers;
+            p.place(x, q, position, rotation).ok()?;
+            Some(Solid::new(
+                p.shape(),
+                (position, rotation),
+                cores[i].as_deref(),
+                None,
+            ))
+        }
+        None => Some(Solid::new(
+            convex.as_ref()?,
+            (x, q),
+            rounded.as_deref(),
+            cuboid.as_deref(),
+        )),
+    }
+}
+
+/// A convex shape placed in space for the narrow phase, with the vertices of its core when
+/// that is a box or a segment (made once by [`core_vertices`]).
+#[derive(Clone, Copy)]
+struct Solid<'s> {
+    shape: &'s ConvexShape,
+    position: &'s [f64],
+    rotation: &'s [f64],
+    core: Option<&'s [f64]>,
+    /// The half-lengths of the core when it is a box (also a box given by its corners).
+    cuboid: Option<&'s [f64]>,
+}
+
+impl<'s> Solid<'s> {
+    /// `shape` placed at `(position, rotation)`, with the vertices of its core when that is
+    /// a box or a segment, and the half-lengths of a box given by its corners.
+    fn new(
+        shape: &'s ConvexShape,
+        (position, rotation): (&'s [f64], &'s [f64]),
+        core: Option<&'s [f64]>,
+        cuboid: Option<&'s [f64]>,
+    ) -> Self {
+        Solid {
+            shape,
+            position,
+            rotation,
+            core,
+            cuboid: cuboid.or(core_box(shape)),
+        }
     }
 
-    /// The pairs the last [`Touching::scan`] found.
-    pub(crate) fn found(&self) -> &[PairContact] {
-        &self.found[..self.len]
+    /// The hull of `vertices` (own axes) placed as the shape.
+    fn hull(&self, vertices: &'s [f64]) -> PlacedHull<'s> {
+        PlacedHull {
+            vertices,
+            position: self.position,
+            rotation: self.rotation,
+        }
     }
+
+    /// The box of `half_lengths` placed as the shape.
+    fn cuboid(&self, half_lengths: &'s [f64]) -> PlacedBox<'s> {
+        PlacedBox {
+            half_lengths,
+            position: self.position,
+            rotation: self.rotation,
+        }
+    }
+}
+
+/// The narrow phase of two convex shapes that are not both boxes without margin (those
+/// meet by separating axes first): their penetration (GJK, EPA), then with `slop_reach`
+/// (the distance up to which manifold points are kept) the contact manifold of two hulls
+/// without margin, or of the cores of polytopes with a margin, else the one point midway
+/// between the witness points. Records what is within `reach` in `found`, each feature
+/// marked by `tag`.
+fn convex_pair(
+    (workspace, found): (&mut EpaWorkspace, &mut Found),
+    (a, b): (usize, usize),
+    (sa, sb): (Solid<'_>, Solid<'_>),
+    (reach, slop_reach): (f64, Option<f64>),
+    tag: u64,
+) {
+    let (ca, cb) = (sa.shape, sb.shape);
+    let (xa, xb) = (sa.position, sb.position);
+    let (Ok(pa), Ok(pb)) = (
+        PlacedShape::new(ca, xa, sa.rotation),
+        PlacedShape::new(cb, xb, sb.rotation),
+    ) else {
+        return;
+    };
+    let Ok(p) = penetration_with(workspace, &pa, &pb) else {
+        return;
+    };
+    if -p.depth > reach {
+        return;
+    }
+    let radii = ca.bounding_radius() + cb.bounding_radius();
+    // A face resting on a face touches at all its points, but a tilt of round-off size
+    // lifts some of them by more than the pair's reach: points this close count as
+    // touching, so that they hold (a resting contact) instead of waiting to land.
+    let touching = reach.max(MANIFOLD_TOUCHING * radii);
+    if let (Some(margin), ConvexCore::Hull(va), ConvexCore::Hull(vb)) =
+        (slop_reach, ca.core(), cb.core())
+        && ca.margin() == 0.0
+        && cb.margin() == 0.0
+        && let Ok(Some(m)) = hull_manifold(&sa.hull(va), &sb.hull(vb), p.normal.as_slice(), margin)
+        && !m.is_empty()
+    {
+        found.push_manifold((a, b), &m, touching, (0.0, 0.0), tag);
+        return;
+    }
+    let margins = (ca.margin(), cb.margin());
+    if let Some(slop_reach) = slop_reach
+        && (margins.0 + margins.1 > 0.0 || tag != 0)
+    {
+        // Polytopes with margins (a capsule lying on a box, rounded boxes face to face),
+        // and the pieces of compound bodies: the manifold of their cores, whose gap is the
+        // margins' sum more. Boxes by separating axes and face clipping, which holds every
+        // corner of a face up to 5D (a hull's support set holds 8).
+        let margin = slop_reach + margins.0 + margins.1;
+        let m = if let (Some(ha), Some(hb)) = (sa.cuboid, sb.cuboid) {
+            let (pa, pb) = (sa.cuboid(ha), sb.cuboid(hb));
+            let axis = box_box_unchecked(&pa, &pb);
+            Some(box_manifold_on_axis(&pa, &pb, &axis, margin))
+        } else if let (Some(va), Some(vb)) = (sa.core.or(core_hull(ca)), sb.core.or(core_hull(cb)))
+        {
+            hull_manifold(&sa.hull(va), &sb.hull(vb), p.normal.as_slice(), margin)
+                .ok()
+                .flatten()
+        } else {
+            None
+        };
+        if let Some(m) = m.filter(|m| !m.is_empty()) {
+            found.push_manifold((a, b), &m, touching, margins, tag);
+            return;
+        }
+    }
+    let c = found.next((a, b), tag, -p.depth, p.normal.as_slice());
+    c.reach = reach;
+    c.point.extend(
+        p.witness_a
+            .as_slice()
+            .iter()
+            .zip(p.witness_b.as_slice())
+            .map(|(x, y)| 0.5 * (x + y)),
+    );
 }
