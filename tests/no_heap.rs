@@ -744,6 +744,45 @@ mod moving_bodies {
         assert_eq!(cases, 6);
     }
 
+    /// A body touching with `shape` at rest on a box on the floor (both placed 1e-4 above
+    /// their resting heights, `height` the body's above the box's top), settled for 1 s under
+    /// each integrator: asserts that it rests on the box and that 20 more steps allocate
+    /// nothing; returns the number of integrators run.
+    fn resting_on_a_box_allocations(n: usize, shape: ContactShape, height: f64) -> usize {
+        let h_n = 0.5 + 0.1 * (n - 1) as f64;
+        let integrators: [Box<dyn MotionIntegrator>; 2] =
+            [Box::new(MotionSplitting::new()), Box::new(SoftStep::new())];
+        let mut cases = 0;
+        for mut integrator in integrators {
+            let (base, base_shape) = cuboid(n, axis(n, n - 1, h_n + 1e-4), Vector::zero(n), 0.0);
+            let (top, _) = cuboid(
+                n,
+                axis(n, n - 1, 2.0 * h_n + height + 2e-4),
+                Vector::zero(n),
+                0.0,
+            );
+            let mut system = on_floor(n, vec![base, top], vec![base_shape, shape.clone()]);
+            for k in 0..100 {
+                integrator.step(&mut system, k as f64 * 0.01, 0.01).unwrap();
+            }
+            let count = step_allocations(integrator.as_mut(), &mut system, 0.01, 20);
+            assert!(
+                system.body_contacts().len() >= 2,
+                "N = {n}, {}: it rests on the box ({} points)",
+                integrator.name(),
+                system.body_contacts().len()
+            );
+            assert_eq!(
+                count,
+                0,
+                "N = {n}, {}: {count} heap allocations in 20 steps",
+                integrator.name()
+            );
+            cases += 1;
+        }
+        cases
+    }
+
     /// A capsule lying on a box (N even) or a rounded box on a box (N odd) on the floor,
     /// placed 1e-4 above their resting heights: shapes with a margin, which touch by the
     /// manifold of their cores (up to 5D: from 6D a capsule meets a box's face of 32
@@ -753,38 +792,13 @@ mod moving_bodies {
         use rotorflow::dynamics::motion::shape::ConvexShape;
         let mut cases = 0;
         for n in 3..=5 {
-            let h_n = 0.5 + 0.1 * (n - 1) as f64;
             let (rounded, height) = if n % 2 == 0 {
                 (ConvexShape::capsule(n, 0.4, 0.2).unwrap(), 0.2)
             } else {
                 let c = ConvexShape::cuboid(&vec![0.3; n]).unwrap();
                 (c.rounded(0.1).unwrap(), 0.4)
             };
-            let integrators: [Box<dyn MotionIntegrator>; 2] =
-                [Box::new(MotionSplitting::new()), Box::new(SoftStep::new())];
-            for mut integrator in integrators {
-                let (base, base_shape) =
-                    cuboid(n, axis(n, n - 1, h_n + 1e-4), Vector::zero(n), 0.0);
-                let (top, _) = cuboid(
-                    n,
-                    axis(n, n - 1, 2.0 * h_n + height + 2e-4),
-                    Vector::zero(n),
-                    0.0,
-                );
-                let shapes = vec![base_shape, ContactShape::Convex(rounded.clone())];
-                let mut system = on_floor(n, vec![base, top], shapes);
-                for k in 0..100 {
-                    integrator.step(&mut system, k as f64 * 0.01, 0.01).unwrap();
-                }
-                let count = step_allocations(integrator.as_mut(), &mut system, 0.01, 20);
-                assert!(
-                    system.body_contacts().len() >= 2,
-                    "N = {n}: it rests on the box ({} points)",
-                    system.body_contacts().len()
-                );
-                assert_eq!(count, 0, "N = {n}: {count} heap allocations in 20 steps");
-                cases += 1;
-            }
+            cases += resting_on_a_box_allocations(n, ContactShape::Convex(rounded), height);
         }
         assert_eq!(cases, 6);
     }
@@ -797,7 +811,6 @@ mod moving_bodies {
         use rotorflow::dynamics::motion::shape::{CompoundShape, ConvexShape, Piece};
         let mut cases = 0;
         for n in 3..=8 {
-            let h_n = 0.5 + 0.1 * (n - 1) as f64;
             let at = |x: f64| {
                 let mut v = vec![0.0; n];
                 v[0] = x;
@@ -813,31 +826,7 @@ mod moving_bodies {
                 (vec![p(-0.2), p(0.2)], 0.2)
             };
             let compound = CompoundShape::new(pieces).unwrap();
-            let integrators: [Box<dyn MotionIntegrator>; 2] =
-                [Box::new(MotionSplitting::new()), Box::new(SoftStep::new())];
-            for mut integrator in integrators {
-                let (base, base_shape) =
-                    cuboid(n, axis(n, n - 1, h_n + 1e-4), Vector::zero(n), 0.0);
-                let (top, _) = cuboid(
-                    n,
-                    axis(n, n - 1, 2.0 * h_n + height + 2e-4),
-                    Vector::zero(n),
-                    0.0,
-                );
-                let shapes = vec![base_shape, ContactShape::Compound(compound.clone())];
-                let mut system = on_floor(n, vec![base, top], shapes);
-                for k in 0..100 {
-                    integrator.step(&mut system, k as f64 * 0.01, 0.01).unwrap();
-                }
-                let count = step_allocations(integrator.as_mut(), &mut system, 0.01, 20);
-                assert!(
-                    system.body_contacts().len() >= 2,
-                    "N = {n}: it rests on the box ({} points)",
-                    system.body_contacts().len()
-                );
-                assert_eq!(count, 0, "N = {n}: {count} heap allocations in 20 steps");
-                cases += 1;
-            }
+            cases += resting_on_a_box_allocations(n, ContactShape::Compound(compound), height);
         }
         assert_eq!(cases, 12);
     }

@@ -30,6 +30,24 @@ fn body(spec: &str, shape: ConvexShape, x: Vector, v: Vector, attitude: Rotor) -
         .unwrap()
 }
 
+/// `bodies` under gravity on the floor x_N = 0 (friction 0.5) after `steps` steps of `h`
+/// under the soft step or the splitting.
+fn settle(bodies: Vec<MovingBody>, soft: bool, h: f64, steps: usize) -> System {
+    let n = bodies[0].dim();
+    let mut s = System::new(bodies).unwrap();
+    s.add_forque(Gravity(axis(n, n - 1, -G))).unwrap();
+    s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
+        .unwrap();
+    if soft {
+        SoftStep::new().advance(&mut s, 0.0, h, steps).unwrap();
+    } else {
+        MotionSplitting::new()
+            .advance(&mut s, 0.0, h, steps)
+            .unwrap();
+    }
+    s
+}
+
 /// The shapes that rest on a floor, with the height of their centre above it at rest.
 fn resting_shapes(n: usize) -> Vec<(&'static str, ConvexShape, f64)> {
     vec![
@@ -66,16 +84,7 @@ fn convex_shapes_come_to_rest_on_a_floor_at_their_support_height() {
                     Vector::zero(n),
                     Rotor::identity(n),
                 );
-                let mut s = System::new(vec![b.with_friction(0.5).unwrap()]).unwrap();
-                s.add_forque(Gravity(axis(n, n - 1, -G))).unwrap();
-                s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
-                    .unwrap();
-                let h = 0.01;
-                if soft {
-                    SoftStep::new().advance(&mut s, 0.0, h, 200).unwrap();
-                } else {
-                    MotionSplitting::new().advance(&mut s, 0.0, h, 200).unwrap();
-                }
+                let s = settle(vec![b.with_friction(0.5).unwrap()], soft, 0.01, 200);
                 let b = &s.bodies()[0];
                 let z = b.position().as_slice()[n - 1];
                 let speed = b.velocity().norm() + b.omega().norm();
@@ -145,6 +154,69 @@ fn capsules_meeting_cap_on_cap_exchange_velocities() {
     assert_eq!(cases, 3);
 }
 
+/// A body touching with `shape` at `x`, of a ball's inertia (whose free rotation the
+/// splitting follows exactly) and a random mass, thrown along e₁ at `towards` plus a random
+/// velocity, spinning, turned at random when `turned`, with random friction and
+/// restitution.
+fn thrown(
+    r: &mut impl Rng,
+    shape: ContactShape,
+    x: Vector,
+    towards: f64,
+    turned: bool,
+) -> MovingBody {
+    let n = x.dim();
+    let planes = n * (n - 1) / 2;
+    let b: Vec<f64> = (0..planes)
+        .map(|_| if turned { r.gen_range(-1.0..1.0) } else { 0.0 })
+        .collect();
+    let w: Vec<f64> = (0..planes).map(|_| r.gen_range(-2.0..2.0)).collect();
+    let mut v: Vec<f64> = (0..n).map(|_| r.gen_range(-0.3..0.3)).collect();
+    v[0] += towards;
+    let parsed = parse_body(&format!("ball:{n},0.4+mass={:.3}", r.gen_range(0.5..2.0))).unwrap();
+    MovingBody::from_parsed(
+        &parsed,
+        Rotor::from_rotation_bivector(&Bivector::from_components(n, &b).unwrap()),
+        &x,
+        &Vector::from_components(&v).unwrap(),
+        &Bivector::from_components(n, &w).unwrap(),
+    )
+    .unwrap()
+    .with_shape(shape)
+    .unwrap()
+    .with_friction(r.gen_range(0.0..1.0))
+    .unwrap()
+    .with_restitution(r.gen_range(0.0..1.0))
+    .unwrap()
+}
+
+/// Runs `s` for 2 s at h = 2e-3 under the splitting, checks that the linear and angular
+/// momentum are kept to 1e-9 relative and that the energy never grows, and tells whether
+/// the bodies touched.
+fn collide_keeping_the_momenta(mut s: System, what: &str) -> bool {
+    let (p0, l0, e0) = (s.linear_momentum(), s.angular_momentum(), s.energy(0.0));
+    let mut stepper = MotionSplitting::new();
+    let h = 2e-3;
+    let mut emax = e0;
+    for k in 0..1000 {
+        stepper.step(&mut s, k as f64 * h, h).unwrap();
+        emax = emax.max(s.energy(0.0));
+    }
+    let dp = (&s.linear_momentum() - &p0).max_abs();
+    let dl = (&s.angular_momentum() - &l0).max_abs();
+    assert!(dp <= 1e-9 * p0.norm().max(1.0), "{what}: momentum {dp:e}");
+    assert!(
+        dl <= 1e-9 * l0.norm().max(1.0),
+        "{what}: angular momentum {dl:e}"
+    );
+    assert!(
+        emax <= e0 * (1.0 + 1e-9),
+        "{what}: energy grew by {:e}",
+        emax / e0 - 1.0
+    );
+    stepper.solver_report().solves > 0
+}
+
 /// A random shape of those `ContactShape::Convex` adds to the SPEC's: a capsule, a rounded
 /// box, a cross-polytope, a simplex, a rounded simplex.
 fn random_shape(r: &mut impl Rng, n: usize) -> ConvexShape {
@@ -175,57 +247,16 @@ fn collisions_of_convex_shapes_keep_the_momenta_and_never_gain_energy() {
     let trials = 24;
     for trial in 0..trials {
         let n = 3 + trial % 3;
-        let planes = n * (n - 1) / 2;
         let mut make = |x: f64, towards: f64| {
-            let shape = random_shape(&mut r, n);
-            let b: Vec<f64> = (0..planes).map(|_| r.gen_range(-1.0..1.0)).collect();
-            let w: Vec<f64> = (0..planes).map(|_| r.gen_range(-2.0..2.0)).collect();
-            let mut v: Vec<f64> = (0..n).map(|_| r.gen_range(-0.3..0.3)).collect();
-            v[0] += towards;
-            let parsed =
-                parse_body(&format!("ball:{n},0.4+mass={:.3}", r.gen_range(0.5..2.0))).unwrap();
-            MovingBody::from_parsed(
-                &parsed,
-                Rotor::from_rotation_bivector(&Bivector::from_components(n, &b).unwrap()),
-                &padded(n, &[x, 0.1 * towards]),
-                &Vector::from_components(&v).unwrap(),
-                &Bivector::from_components(n, &w).unwrap(),
-            )
-            .unwrap()
-            .with_shape(ContactShape::Convex(shape))
-            .unwrap()
-            .with_friction(r.gen_range(0.0..1.0))
-            .unwrap()
-            .with_restitution(r.gen_range(0.0..1.0))
-            .unwrap()
+            let shape = ContactShape::Convex(random_shape(&mut r, n));
+            thrown(&mut r, shape, padded(n, &[x, 0.1 * towards]), towards, true)
         };
         let a = make(-1.0, 1.5);
         let b = make(1.0, -0.5);
-        let mut s = System::new(vec![a, b]).unwrap();
-        let (p0, l0, e0) = (s.linear_momentum(), s.angular_momentum(), s.energy(0.0));
-        let mut stepper = MotionSplitting::new();
-        let h = 2e-3;
-        let mut emax = e0;
-        for k in 0..1000 {
-            stepper.step(&mut s, k as f64 * h, h).unwrap();
-            emax = emax.max(s.energy(0.0));
-        }
-        let dp = (&s.linear_momentum() - &p0).max_abs();
-        let dl = (&s.angular_momentum() - &l0).max_abs();
-        assert!(
-            dp <= 1e-9 * p0.norm().max(1.0),
-            "trial {trial}, N = {n}: momentum {dp:e}"
-        );
-        assert!(
-            dl <= 1e-9 * l0.norm().max(1.0),
-            "trial {trial}, N = {n}: angular momentum {dl:e}"
-        );
-        assert!(
-            emax <= e0 * (1.0 + 1e-9),
-            "trial {trial}, N = {n}: energy grew by {:e}",
-            emax / e0 - 1.0
-        );
-        if stepper.solver_report().solves > 0 {
+        if collide_keeping_the_momenta(
+            System::new(vec![a, b]).unwrap(),
+            &format!("trial {trial}, N = {n}"),
+        ) {
             collided += 1;
         }
     }
@@ -249,35 +280,24 @@ fn a_shape_of_another_dimension_is_refused() {
         Piece::translated(ConvexShape::ball(4, 0.5).unwrap(), &[0.0; 4]).unwrap(),
     ])
     .unwrap();
-    let err = b
-        .clone()
-        .with_shape(ContactShape::Compound(compound))
-        .unwrap_err();
-    assert!(
-        matches!(
-            err,
-            DynamicsError::Motion(MotionError::WrongDimension {
-                expected: 3,
-                found: 4,
-                ..
-            })
-        ),
-        "{err}"
-    );
-    let err = b
-        .with_shape(ContactShape::Convex(ConvexShape::ball(4, 0.5).unwrap()))
-        .unwrap_err();
-    assert!(
-        matches!(
-            err,
-            DynamicsError::Motion(MotionError::WrongDimension {
-                expected: 3,
-                found: 4,
-                ..
-            })
-        ),
-        "{err}"
-    );
+    let shapes = [
+        ContactShape::Compound(compound),
+        ContactShape::Convex(ConvexShape::ball(4, 0.5).unwrap()),
+    ];
+    for shape in shapes {
+        let err = b.clone().with_shape(shape).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                DynamicsError::Motion(MotionError::WrongDimension {
+                    expected: 3,
+                    found: 4,
+                    ..
+                })
+            ),
+            "{err}"
+        );
+    }
 }
 
 /// A capsule lying on a box and a rounded box on a box (3D and 4D, 10 s at h = 1/60) come to
@@ -322,16 +342,7 @@ fn a_capsule_and_a_rounded_box_rest_on_a_box() {
                     base.with_friction(0.5).unwrap(),
                     top.with_friction(0.5).unwrap(),
                 ];
-                let mut s = System::new(bodies).unwrap();
-                s.add_forque(Gravity(axis(n, n - 1, -G))).unwrap();
-                s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
-                    .unwrap();
-                let h = 1.0 / 60.0;
-                if soft {
-                    SoftStep::new().advance(&mut s, 0.0, h, 600).unwrap();
-                } else {
-                    MotionSplitting::new().advance(&mut s, 0.0, h, 600).unwrap();
-                }
+                let s = settle(bodies, soft, 1.0 / 60.0, 600);
                 let b = &s.bodies()[1];
                 let x = b.position().as_slice();
                 let aside = x[..n - 1].iter().map(|x| x * x).sum::<f64>().sqrt();
@@ -427,16 +438,7 @@ fn compound_bodies_rest_on_a_floor_and_on_a_box() {
                         .unwrap();
                         bodies.push(fixed);
                     }
-                    let mut s = System::new(bodies).unwrap();
-                    s.add_forque(Gravity(axis(n, n - 1, -G))).unwrap();
-                    s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
-                        .unwrap();
-                    let h = 0.01;
-                    if soft {
-                        SoftStep::new().advance(&mut s, 0.0, h, 200).unwrap();
-                    } else {
-                        MotionSplitting::new().advance(&mut s, 0.0, h, 200).unwrap();
-                    }
+                    let s = settle(bodies, soft, 0.01, 200);
                     let b = &s.bodies()[0];
                     let z = b.position().as_slice()[n - 1] - base;
                     let aside = b.position().as_slice()[..n - 1]
@@ -548,53 +550,21 @@ fn collisions_of_compound_bodies_keep_the_momenta_and_never_gain_energy() {
                     Piece::new(shape, &offset, &rows).unwrap()
                 })
                 .collect();
-            let w: Vec<f64> = (0..planes).map(|_| r.gen_range(-2.0..2.0)).collect();
-            let mut v: Vec<f64> = (0..n).map(|_| r.gen_range(-0.3..0.3)).collect();
-            v[0] += towards;
-            let parsed =
-                parse_body(&format!("ball:{n},0.4+mass={:.3}", r.gen_range(0.5..2.0))).unwrap();
-            MovingBody::from_parsed(
-                &parsed,
-                Rotor::identity(n),
-                &padded(n, &[x, 0.1 * towards]),
-                &Vector::from_components(&v).unwrap(),
-                &Bivector::from_components(n, &w).unwrap(),
+            let shape = ContactShape::Compound(CompoundShape::new(pieces).unwrap());
+            thrown(
+                &mut r,
+                shape,
+                padded(n, &[x, 0.1 * towards]),
+                towards,
+                false,
             )
-            .unwrap()
-            .with_shape(ContactShape::Compound(CompoundShape::new(pieces).unwrap()))
-            .unwrap()
-            .with_friction(r.gen_range(0.0..1.0))
-            .unwrap()
-            .with_restitution(r.gen_range(0.0..1.0))
-            .unwrap()
         };
         let a = make(-1.3, 1.5);
         let b = make(1.3, -0.5);
-        let mut s = System::new(vec![a, b]).unwrap();
-        let (p0, l0, e0) = (s.linear_momentum(), s.angular_momentum(), s.energy(0.0));
-        let mut stepper = MotionSplitting::new();
-        let h = 2e-3;
-        let mut emax = e0;
-        for k in 0..1000 {
-            stepper.step(&mut s, k as f64 * h, h).unwrap();
-            emax = emax.max(s.energy(0.0));
-        }
-        let dp = (&s.linear_momentum() - &p0).max_abs();
-        let dl = (&s.angular_momentum() - &l0).max_abs();
-        assert!(
-            dp <= 1e-9 * p0.norm().max(1.0),
-            "trial {trial}, N = {n}: momentum {dp:e}"
-        );
-        assert!(
-            dl <= 1e-9 * l0.norm().max(1.0),
-            "trial {trial}, N = {n}: angular momentum {dl:e}"
-        );
-        assert!(
-            emax <= e0 * (1.0 + 1e-9),
-            "trial {trial}, N = {n}: energy grew by {:e}",
-            emax / e0 - 1.0
-        );
-        if stepper.solver_report().solves > 0 {
+        if collide_keeping_the_momenta(
+            System::new(vec![a, b]).unwrap(),
+            &format!("trial {trial}, N = {n}"),
+        ) {
             collided += 1;
         }
     }
