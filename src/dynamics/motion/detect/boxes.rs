@@ -422,9 +422,8 @@ pub(crate) fn box_distance<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> 
 }
 
 /// The separation of two placed cuboids of dimension N by [`box_distance`], the margins
-/// subtracted; None where GJK must answer. Kept out of line: inlined into `distance`, its
-/// registers and stack would be shared with the GJK path's.
-#[inline(never)]
+/// subtracted; None where GJK must answer.
+#[inline]
 pub(crate) fn box_separation<const N: usize>(
     a: &PlacedShape,
     b: &PlacedShape,
