@@ -275,3 +275,107 @@ fn box_pairs_match_general_gjk_wolfe_and_closed_forms_in_3_and_4_dimensions() {
         assert!(t[0][2] >= pairs / 2 && t[1][2] >= pairs / 5, "{t:?}");
     }
 }
+
+/// Two more kinds of pose for the least-squares path: B nested inside A (contact, distance
+/// 0), and both boxes on the coordinate axes exactly (identity rotations, so that B's axes
+/// in A's frame are exact unit vectors and many gradients vanish exactly), apart, a
+/// hair apart, exactly face on face, or overlapping, against the closed form and the
+/// general GJK.
+#[test]
+fn nested_and_axis_aligned_box_pairs_match_general_gjk_and_closed_forms() {
+    let mut r = ChaCha8Rng::seed_from_u64(20261129);
+    let pairs = 400;
+    // Per dimension: nested, axis-aligned, of them separated, of them exactly face on face.
+    let mut counts = [[0usize; 4]; 2];
+    let mut worst = 0.0f64;
+    for n in [3usize, 4] {
+        let identity: Vec<f64> = (0..n * n)
+            .map(|k| if k % (n + 1) == 0 { 1.0 } else { 0.0 })
+            .collect();
+        for k in 0..pairs {
+            let ha: Vec<f64> = (0..n).map(|_| r.gen_range(0.5..2.0)).collect();
+            let least = ha.iter().copied().fold(f64::INFINITY, f64::min);
+            let hb: Vec<f64> = (0..n).map(|_| r.gen_range(0.05..0.3) * least).collect();
+            let pa = Posed {
+                shape: ConvexShape::cuboid(&ha).unwrap(),
+                rotation: random_rotation(&mut r, n),
+                position: (0..n).map(|_| r.gen_range(-1.0..1.0)).collect(),
+            };
+            // B's centre within 0.3 of A's half-lengths of A's: B inside A whatever its turn.
+            let own: Vec<f64> = ha.iter().map(|h| r.gen_range(-0.3..0.3) * h).collect();
+            let position: Vec<f64> = (0..n)
+                .map(|i| {
+                    pa.position[i] + (0..n).map(|j| pa.rotation[i * n + j] * own[j]).sum::<f64>()
+                })
+                .collect();
+            let pb = Posed {
+                shape: ConvexShape::cuboid(&hb).unwrap(),
+                rotation: random_rotation(&mut r, n),
+                position,
+            };
+            let got = distance(&placed(&pa), &placed(&pb)).unwrap();
+            check(&pa, &pb, &got, 0.0, &format!("N = {n}, nested {k}"));
+            assert!(
+                got.intersecting && got.distance == 0.0,
+                "N = {n}, nested {k}"
+            );
+            counts[n - 3][0] += 1;
+        }
+        for k in 0..pairs {
+            let h: Vec<Vec<f64>> = (0..2)
+                .map(|_| (0..n).map(|_| r.gen_range(0.2..2.0)).collect())
+                .collect();
+            // In turn: exactly face on face along one axis, 1e-9 apart along it, apart
+            // along some axes (faces, edges, corners), overlapping along all.
+            let mode = k % 4;
+            let axis = r.gen_range(0..n);
+            let position: Vec<f64> = (0..n)
+                .map(|i| {
+                    let reach = h[0][i] + h[1][i];
+                    let offset = match mode {
+                        0 | 1 if i == axis => reach + if mode == 0 { 0.0 } else { 1e-9 },
+                        2 if i == axis || r.gen_bool(0.5) => reach + r.gen_range(0.0..0.5),
+                        _ => r.gen_range(-0.9..0.9) * reach,
+                    };
+                    if r.gen_bool(0.5) { -offset } else { offset }
+                })
+                .collect();
+            let expected = (0..n)
+                .map(|i| (position[i].abs() - h[0][i] - h[1][i]).max(0.0).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            let pa = Posed {
+                shape: ConvexShape::cuboid(&h[0]).unwrap(),
+                position: vec![0.0; n],
+                rotation: identity.clone(),
+            };
+            let pb = Posed {
+                shape: ConvexShape::cuboid(&h[1]).unwrap(),
+                position,
+                rotation: identity.clone(),
+            };
+            let got = distance(&placed(&pa), &placed(&pb)).unwrap();
+            let what = format!("N = {n}, axis-aligned {k}");
+            let error = check(&pa, &pb, &got, expected, &what);
+            assert!(error <= 1e-9, "{what}: {} against {expected}", got.distance);
+            worst = worst.max(error);
+            counts[n - 3][1] += 1;
+            counts[n - 3][2] += usize::from(!got.intersecting);
+            if mode == 0 {
+                assert!(got.intersecting, "{what}: face on face");
+                counts[n - 3][3] += 1;
+            }
+        }
+    }
+    println!(
+        "box–box distance, nested and axis-aligned: N = 3 {:?}, N = 4 {:?} (nested, axis-aligned, of them separated, exactly touching); largest difference {worst:e} of the size",
+        counts[0], counts[1]
+    );
+    for t in &counts {
+        assert_eq!(t[0], pairs);
+        assert_eq!(t[1], pairs);
+        // 1e-9 apart and apart: half of them.
+        assert_eq!(t[2], pairs / 2, "{t:?}");
+        assert_eq!(t[3], pairs / 4, "{t:?}");
+    }
+}

@@ -10,8 +10,8 @@
 //! squares", Comput. Stat. 10, 1995): start at a corner of B and the point of A nearest
 //! it, free the variable whose gradient most wants it off its bound, solve the
 //! least-squares problem in the free variables, and step back to the first bound met if the
-//! solution leaves the box. A free xᵢ zeroes eᵢ, so only the free u need a solve: a
-//! Cholesky factorisation of at most N × N.
+//! solution leaves the box. A free xᵢ zeroes eᵢ, so only the free u need a solve: an
+//! L D Lᵀ factorisation of at most N × N, or with one free u (the common case) a division.
 //!
 //! The answer is then certified the way GJK stops: along v = e (from A to B), the support
 //! points give the lower bound v·w / |v| of the distance, and the answer stands only if
@@ -25,22 +25,48 @@
 // the compiler unrolls them.
 #![allow(clippy::needless_range_loop)]
 
-use super::gjk::{CoreGap, PlacedShape, RELATIVE_GAP, TOUCHING};
+use super::gjk::{CoreGap, PlacedShape, RELATIVE_GAP, Separation, TOUCHING, core_separation};
 use super::set_bits;
-use crate::algebra::Vector;
 use crate::dynamics::motion::shape::ConvexCore;
+
+/// The nearest points of two boxes' cores, in space: the witnesses, v = witness_b −
+/// witness_a, |v|², whether they touch or overlap, and the least-squares steps taken.
+pub(crate) struct BoxGap<const N: usize> {
+    pub witness_a: [f64; N],
+    pub witness_b: [f64; N],
+    pub v: [f64; N],
+    pub vv: f64,
+    pub intersecting: bool,
+    pub steps: usize,
+}
 
 /// A free variable's least-squares pivot below this (the squared sine of the angle between
 /// its column and the others') makes the solve singular: the caller runs GJK instead.
 const PIVOT: f64 = 1e-20;
 
+/// Σ tᵢ pairwise, (t₀ + t₁) + (t₂ + t₃): the solve is a chain of such sums, each waiting
+/// for the last, and pairs halve its depth.
+#[inline(always)]
+fn sum<const N: usize>(mut t: [f64; N]) -> f64 {
+    let mut width = 1;
+    while width < N {
+        let mut i = 0;
+        while i + width < N {
+            t[i] += t[i + width];
+            i += 2 * width;
+        }
+        width *= 2;
+    }
+    t[0]
+}
+
 #[inline(always)]
 fn dot<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
-    let mut s = 0.0;
+    let mut t = [0.0; N];
     for i in 0..N {
-        s += a[i] * b[i];
+        t[i] = a[i] * b[i];
     }
-    s
+    sum(t)
 }
 
 /// The bounded least-squares problem in A's frame.
@@ -61,11 +87,7 @@ impl<const N: usize> Problem<N> {
     fn gap(&self, x: &[f64; N], u: &[f64; N]) -> [f64; N] {
         let mut e = [0.0; N];
         for i in 0..N {
-            let mut s = self.c[i] - x[i];
-            for j in 0..N {
-                s += self.r[i][j] * u[j];
-            }
-            e[i] = s;
+            e[i] = self.c[i] - x[i] + dot(&self.r[i], u);
         }
         e
     }
@@ -74,10 +96,12 @@ impl<const N: usize> Problem<N> {
     #[inline(always)]
     fn turned_back(&self, e: &[f64; N]) -> [f64; N] {
         let mut g = [0.0; N];
-        for i in 0..N {
-            for j in 0..N {
-                g[j] += self.r[i][j] * e[i];
+        for j in 0..N {
+            let mut t = [0.0; N];
+            for i in 0..N {
+                t[i] = self.r[i][j] * e[i];
             }
+            g[j] = sum(t);
         }
         g
     }
@@ -98,7 +122,22 @@ impl<const N: usize> Problem<N> {
     ) -> Option<([f64; N], [f64; N])> {
         let (cols, k) = set_bits::<N>(free_u);
         let mut delta = [0.0; N];
-        if k > 0 {
+        if k == 1 {
+            // One free column c, the common case: δ = −Σ rᵢ꜀ eᵢ / Σ rᵢ꜀² over the held rows,
+            // as the factorisation below gives it.
+            let c = cols[0];
+            let (mut m, mut rhs) = (0.0, 0.0);
+            for i in 0..N {
+                if free_x >> i & 1 == 0 {
+                    m += self.r[i][c] * self.r[i][c];
+                    rhs -= self.r[i][c] * e[i];
+                }
+            }
+            if m.is_nan() || m <= PIVOT {
+                return None;
+            }
+            delta[c] = rhs * (1.0 / m);
+        } else if k > 1 {
             let mut m = [[0.0; N]; N];
             let mut rhs = [0.0; N];
             for i in 0..N {
@@ -113,38 +152,42 @@ impl<const N: usize> Problem<N> {
                     }
                 }
             }
-            // Cholesky, M = L Lᵀ in the lower triangle; the columns of R have unit length,
-            // so the pivots are squared sines against the earlier columns.
+            // M = L D Lᵀ, L unit lower triangular below the diagonal of m and D on it: no
+            // square roots, and each pivot inverted once. The columns of R have unit
+            // length, so the pivots D are squared sines against the earlier columns.
+            let mut inv = [0.0; N];
             for p in 0..k {
                 for q in 0..p {
                     let mut s = m[p][q];
                     for l in 0..q {
-                        s -= m[p][l] * m[q][l];
+                        s -= m[p][l] * m[q][l] * m[l][l];
                     }
-                    m[p][q] = s / m[q][q];
+                    m[p][q] = s * inv[q];
                 }
                 let mut s = m[p][p];
                 for l in 0..p {
-                    s -= m[p][l] * m[p][l];
+                    s -= m[p][l] * m[p][l] * m[l][l];
                 }
                 if s.is_nan() || s <= PIVOT {
                     return None;
                 }
-                m[p][p] = s.sqrt();
+                m[p][p] = s;
+                inv[p] = 1.0 / s;
             }
+            // L y = rhs, then Lᵀ δ = D⁻¹ y.
             for p in 0..k {
                 let mut s = rhs[p];
                 for l in 0..p {
                     s -= m[p][l] * rhs[l];
                 }
-                rhs[p] = s / m[p][p];
+                rhs[p] = s;
             }
             for p in (0..k).rev() {
-                let mut s = rhs[p];
+                let mut s = rhs[p] * inv[p];
                 for l in p + 1..k {
                     s -= m[l][p] * rhs[l];
                 }
-                rhs[p] = s / m[p][p];
+                rhs[p] = s;
             }
             for p in 0..k {
                 delta[cols[p]] = rhs[p];
@@ -168,6 +211,19 @@ impl<const N: usize> Problem<N> {
     }
 }
 
+/// `x` clamped to [−h, h] by plain comparisons (f64::clamp and min/max pay for NaN
+/// rules; a NaN here fails the certificate at the end).
+#[inline(always)]
+fn within(x: f64, h: f64) -> f64 {
+    if x > h {
+        h
+    } else if x < -h {
+        -h
+    } else {
+        x
+    }
+}
+
 /// The fraction of the way from `z` to `trial`, at most `alpha`, that keeps the free
 /// variables within their bounds ±`h`.
 #[inline(always)]
@@ -183,7 +239,12 @@ fn step<const N: usize>(
         if free >> i & 1 == 1 && trial[i].abs() > h[i] {
             let bound = h[i].copysign(trial[i]);
             let fraction = (bound - z[i]) / (trial[i] - z[i]);
-            alpha = alpha.min(fraction.max(0.0));
+            // Plain comparisons rather than f64::min and max, whose NaN rules cost a
+            // handful of instructions each: a NaN fraction counts as 0, as before.
+            let fraction = if fraction > 0.0 { fraction } else { 0.0 };
+            if fraction < alpha {
+                alpha = fraction;
+            }
         }
     }
     alpha
@@ -206,7 +267,7 @@ fn apply<const N: usize>(
                 z[i] = h[i].copysign(moved);
                 *free &= !(1 << i);
             } else {
-                z[i] = moved.max(-h[i]).min(h[i]);
+                z[i] = within(moved, h[i]);
             }
         }
     }
@@ -215,7 +276,8 @@ fn apply<const N: usize>(
 /// The nearest points of the cores of two placed cuboids of dimension N by bounded least
 /// squares; None if either core is not a cuboid or the answer cannot be certified (the
 /// caller runs GJK).
-pub(crate) fn box_distance<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Option<CoreGap> {
+#[inline(always)]
+pub(crate) fn box_distance<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Option<BoxGap<N>> {
     let (ConvexCore::Cuboid(ha), ConvexCore::Cuboid(hb)) = (a.shape().core(), b.shape().core())
     else {
         return None;
@@ -255,7 +317,7 @@ pub(crate) fn box_distance<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> 
     // the others held, which is a least-squares point of its free set, as the method needs.
     let mut x = [0.0; N];
     for i in 0..N {
-        x[i] = problem.c[i].max(-ha[i]).min(ha[i]) - problem.c[i];
+        x[i] = within(problem.c[i], ha[i]) - problem.c[i];
     }
     let towards = problem.turned_back(&x);
     let mut u = [0.0; N];
@@ -339,14 +401,7 @@ pub(crate) fn box_distance<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> 
         }
     }
     // Back to space: the witnesses x of A and c + R u of B, and v = Q_A e.
-    let mut witness_a = Vector::zero(N);
-    let mut witness_b = Vector::zero(N);
-    let mut v = Vector::zero(N);
-    let (wa, wb, vs) = (
-        witness_a.as_mut_slice(),
-        witness_b.as_mut_slice(),
-        v.as_mut_slice(),
-    );
+    let (mut witness_a, mut witness_b, mut v) = ([0.0; N], [0.0; N], [0.0; N]);
     for i in 0..N {
         let (mut p, mut q, mut s) = (pa[i], pb[i], 0.0);
         for j in 0..N {
@@ -354,18 +409,40 @@ pub(crate) fn box_distance<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> 
             q += qb[i][j] * u[j];
             s += qa[i][j] * e[j];
         }
-        (wa[i], wb[i], vs[i]) = (p, q, s);
+        (witness_a[i], witness_b[i], v[i]) = (p, q, s);
     }
-    Some(CoreGap {
+    Some(BoxGap {
         witness_a,
         witness_b,
         v,
         vv: ee,
         intersecting,
-        iterations: steps,
-        // Returned only when its stopping rule holds (else GJK answers).
-        certified: true,
+        steps,
     })
+}
+
+/// The separation of two placed cuboids of dimension N by [`box_distance`], the margins
+/// subtracted; None where GJK must answer.
+#[inline]
+pub(crate) fn box_separation<const N: usize>(
+    a: &PlacedShape,
+    b: &PlacedShape,
+) -> Option<Separation> {
+    let gap = box_distance::<N>(a, b)?;
+    Some(core_separation(
+        a,
+        b,
+        CoreGap {
+            witness_a: &gap.witness_a,
+            witness_b: &gap.witness_b,
+            v: &gap.v,
+            vv: gap.vv,
+            intersecting: gap.intersecting,
+            iterations: gap.steps,
+            // Returned only when its stopping rule holds (else GJK answers).
+            certified: true,
+        },
+    ))
 }
 
 #[cfg(test)]

@@ -697,12 +697,12 @@ pub(crate) fn centre_direction(a: &PlacedShape, b: &PlacedShape) -> Vector {
 pub fn distance(a: &PlacedShape, b: &PlacedShape) -> Result<Separation, ShapeError> {
     check_pair(a, b)?;
     let boxes = match a.shape.dim() {
-        3 => super::boxes::box_distance::<3>(a, b),
-        4 => super::boxes::box_distance::<4>(a, b),
+        3 => super::boxes::box_separation::<3>(a, b),
+        4 => super::boxes::box_separation::<4>(a, b),
         _ => None,
     };
     Ok(match boxes {
-        Some(gap) => core_separation(a, b, gap),
+        Some(separation) => separation,
         None => separation(a, b, gjk(a, b)),
     })
 }
@@ -720,11 +720,12 @@ pub fn distance_general(a: &PlacedShape, b: &PlacedShape) -> Result<Separation, 
 }
 
 /// The nearest points of two cores: the witnesses (space frame), v = witness_b − witness_a
-/// as the query found it, |v|², and whether the cores touch or overlap.
-pub(crate) struct CoreGap {
-    pub witness_a: Vector,
-    pub witness_b: Vector,
-    pub v: Vector,
+/// as the query found it, |v|², and whether the cores touch or overlap. Borrowed, so that
+/// the box path hands over its stack arrays and the separation is built once.
+pub(crate) struct CoreGap<'a> {
+    pub witness_a: &'a [f64],
+    pub witness_b: &'a [f64],
+    pub v: &'a [f64],
     pub vv: f64,
     pub intersecting: bool,
     pub iterations: usize,
@@ -735,20 +736,16 @@ pub(crate) struct CoreGap {
 /// The separation from GJK's final state on the cores, the margins subtracted.
 fn separation(a: &PlacedShape, b: &PlacedShape, result: GjkResult) -> Separation {
     let n = a.shape.dim();
-    let mut witness_a = Vector::zero(n);
-    let mut witness_b = Vector::zero(n);
-    result
-        .simplex
-        .witnesses(witness_a.as_mut_slice(), witness_b.as_mut_slice());
-    let mut v = Vector::zero(n);
-    v.as_mut_slice().copy_from_slice(&result.v);
+    let mut witness_a = Coords::from_elem(0.0, n);
+    let mut witness_b = Coords::from_elem(0.0, n);
+    result.simplex.witnesses(&mut witness_a, &mut witness_b);
     core_separation(
         a,
         b,
         CoreGap {
-            witness_a,
-            witness_b,
-            v,
+            witness_a: &witness_a,
+            witness_b: &witness_b,
+            v: &result.v,
             vv: result.vv,
             intersecting: result.intersecting,
             iterations: result.iterations,
@@ -758,50 +755,50 @@ fn separation(a: &PlacedShape, b: &PlacedShape, result: GjkResult) -> Separation
 }
 
 /// The separation of the shapes from the nearest points of their cores, the margins
-/// subtracted.
+/// subtracted. Inlined, so that for the box path's fixed N the loops unroll.
+#[inline(always)]
 pub(crate) fn core_separation(a: &PlacedShape, b: &PlacedShape, gap: CoreGap) -> Separation {
     let (ra, rb) = (a.shape.margin(), b.shape.margin());
-    let CoreGap {
-        mut witness_a,
-        mut witness_b,
-        v: mut normal,
-        vv,
-        intersecting,
-        iterations,
-        certified,
-    } = gap;
-    if intersecting {
+    let n = gap.v.len();
+    if gap.intersecting {
+        let witness_a = vector_of(n, |i| gap.witness_a[i]);
         return Separation {
             distance: 0.0,
             normal: centre_direction(a, b),
             witness_b: witness_a.clone(),
             witness_a,
             intersecting: true,
-            iterations,
-            certified,
+            iterations: gap.iterations,
+            certified: gap.certified,
         };
     }
-    let core = vv.sqrt();
-    normal.as_mut_slice().iter_mut().for_each(|x| *x /= core);
-    for ((p, q), m) in witness_a
-        .as_mut_slice()
-        .iter_mut()
-        .zip(witness_b.as_mut_slice())
-        .zip(normal.as_slice())
-    {
-        *p += ra * m;
-        *q -= rb * m;
-    }
+    let core = gap.vv.sqrt();
+    let normal = |i: usize| gap.v[i] / core;
     let distance = (core - ra - rb).max(0.0);
     Separation {
         distance,
-        normal,
-        witness_a,
-        witness_b,
+        normal: vector_of(n, normal),
+        witness_a: vector_of(n, |i| gap.witness_a[i] + ra * normal(i)),
+        witness_b: vector_of(n, |i| gap.witness_b[i] - rb * normal(i)),
         intersecting: distance == 0.0,
-        iterations,
-        certified,
+        iterations: gap.iterations,
+        certified: gap.certified,
     }
+}
+
+/// The vector (f(0), …, f(n − 1)), for n ≤ 8 filled on the stack and moved in whole:
+/// written in place coordinate by coordinate, its storage would be read back in wider
+/// words than it was written, which stalls the processor's store forwarding.
+#[inline(always)]
+fn vector_of(n: usize, f: impl Fn(usize) -> f64) -> Vector {
+    let mut buffer = [0.0; 8];
+    if n > buffer.len() {
+        return Vector::from_storage((0..n).map(f).collect());
+    }
+    for (i, x) in buffer.iter_mut().enumerate().take(n) {
+        *x = f(i);
+    }
+    Vector::from_storage(Coords::from_buf_and_len(buffer, n))
 }
 
 /// Returns true if the placed shapes touch or overlap.
