@@ -61,6 +61,19 @@ fn core_vertices(c: &ConvexShape) -> Option<Vec<f64>> {
     }
 }
 
+/// The half-lengths (h, 0, …, 0) of a shape's core when it is the segment from −h e₁ to
+/// h e₁, as a box with one side.
+fn segment_box(c: &ConvexShape) -> Option<SmallVec<[f64; 8]>> {
+    match c.core() {
+        ConvexCore::Segment(h) => {
+            let mut half = SmallVec::from_elem(0.0, c.dim());
+            half[0] = *h;
+            Some(half)
+        }
+        _ => None,
+    }
+}
+
 /// The half-lengths of a shape's core when it is a box.
 fn core_box(c: &ConvexShape) -> Option<&[f64]> {
     match c.core() {
@@ -702,7 +715,14 @@ fn convex_pair(
         // margins' sum more. Boxes by separating axes and face clipping, which holds every
         // corner of a face up to 5D (a hull's support set holds 8).
         let margin = slop_reach + margins.0 + margins.1;
-        let m = if let (Some(ha), Some(hb)) = (sa.cuboid, sb.cuboid) {
+        // A segment is a box of one half-length (a capsule on a box: the segment clipped
+        // against the box's face, in every dimension).
+        let (seg_a, seg_b) = (segment_box(ca), segment_box(cb));
+        let (box_a, box_b) = (
+            sa.cuboid.or(seg_a.as_deref()),
+            sb.cuboid.or(seg_b.as_deref()),
+        );
+        let m = if let (Some(ha), Some(hb)) = (box_a, box_b) {
             let (pa, pb) = (sa.cuboid(ha), sb.cuboid(hb));
             let axis = box_box_unchecked(&pa, &pb);
             Some(box_manifold_on_axis(&pa, &pb, &axis, margin))
