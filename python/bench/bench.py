@@ -2,7 +2,8 @@
 
 One run prints a Markdown table and, with ``--output FILE``, writes it there (the book's
 "From Python" chapter includes ``book/src/generated/python_bench.md``). kingdon and clifford
-are timed where they are installed; the table says which were.
+are timed where they are installed; the table says which were (and, with threadpoolctl,
+scipy's one-rotation case again with its BLAS on one thread).
 
     python3 python/bench/bench.py --output book/src/generated/python_bench.md
     python3 python/bench/bench.py --quick      # fewer repetitions, same cases
@@ -124,6 +125,13 @@ def main():
     pts = rng.normal(size=(m, 3))
     t_ours = best(lambda: r3.apply(pts), repeat, 3)
     row("10⁶ 3D vectors, one rotation", t_ours, "scipy", best(lambda: s3.apply(pts), repeat, 3))
+    threadpoolctl = optional("threadpoolctl")
+    if threadpoolctl:
+        # scipy turns many vectors by one matrix through a BLAS product, threaded over the
+        # cores; rotorflow's call runs on one core. Both on one core:
+        with threadpoolctl.threadpool_limits(limits=1, user_api="blas"):
+            t_one = best(lambda: s3.apply(pts), repeat, 3)
+        row("10⁶ 3D vectors, one rotation", t_ours, "scipy, its BLAS on one thread", t_one)
     mat = s3.as_matrix()
     row("10⁶ 3D vectors, one rotation", t_ours, "numpy `pts @ Q.T`", best(lambda: pts @ mat.T, repeat, 3))
     many = rng.normal(size=(m, 3))
