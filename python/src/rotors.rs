@@ -142,6 +142,35 @@ impl_fixed!(
     }
 );
 
+/// Rows per core from which one rotation of many vectors splits them over the cores.
+const ROWS_PER_CORE: usize = 1 << 16;
+
+/// [`Fixed::turn_all`] of `input` into `out`, the rows split over the processor's cores when
+/// there are at least [`ROWS_PER_CORE`] for each: one matrix times many vectors is bound by
+/// memory traffic, which one core does not saturate (scipy's `Rotation.apply` runs it as a
+/// BLAS matrix product threaded over the cores). Each row is the same sum in any split.
+fn turn_all_on_cores<R: Fixed>(q: &[f64], input: &[f64], out: &mut [f64]) -> bool {
+    let n = R::N;
+    let rows = out.len() / n;
+    let cores = std::thread::available_parallelism().map_or(1, usize::from);
+    let parts = cores.min(rows / ROWS_PER_CORE).max(1);
+    if parts == 1 || input.len() != out.len() {
+        return R::turn_all(q, input, out);
+    }
+    let per = rows.div_ceil(parts) * n;
+    std::thread::scope(|scope| {
+        let mut pieces = input.chunks(per).zip(out.chunks_mut(per));
+        let (first_in, first_out) = pieces.next().expect("at least one part");
+        let others: Vec<_> = pieces
+            .map(|(i, o)| scope.spawn(move || R::turn_all(q, i, o)))
+            .collect();
+        let ok = R::turn_all(q, first_in, first_out);
+        others
+            .into_iter()
+            .fold(ok, |ok, h| ok & h.join().unwrap_or(false))
+    })
+}
+
 /// One rotor (`single`) or a batch of them.
 #[derive(Clone)]
 pub struct Batch<R> {
@@ -260,7 +289,7 @@ impl<R: Fixed> Batch<R> {
                 // One rotor for every vector: through its matrix.
                 let mut q = [0.0; 16];
                 turn(rotors[0]).matrix(&mut q[..n * n]);
-                R::turn_all(&q[..n * n], input, data)
+                turn_all_on_cores::<R>(&q[..n * n], input, data)
             } else {
                 R::rotate_each(rotors, input, data, inverse)
             }

@@ -177,6 +177,23 @@ def test_rotor4_batched_apply_is_the_row_formula_to_the_last_bit():
     assert checked == 2 * m
 
 
+def test_one_rotation_of_many_vectors_split_over_the_cores_is_the_same_to_the_last_bit():
+    # One rotation of 2^16 vectors or more per core splits the rows over the cores: the same
+    # numbers as the rows turned in pieces too small to split, and a bad entry in a later
+    # part named by its element.
+    rng = np.random.default_rng(14)
+    m = 300_000
+    for rotor, n in ((rf.Rotor3.from_rotvec(rng.normal(size=3)), 3), (rf.Rotor4.from_bivector(rng.normal(size=6)), 4)):
+        x = rng.normal(size=(m, n))
+        for inverse in (False, True):
+            whole = rotor.apply(x, inverse=inverse)
+            pieces = np.concatenate([rotor.apply(x[k : k + 50_000], inverse=inverse) for k in range(0, m, 50_000)])
+            np.testing.assert_array_equal(whole, pieces)
+        x[250_001, n - 1] = np.nan
+        with pytest.raises(ValueError, match="element 250001"):
+            rotor.apply(x)
+
+
 def test_batched_apply_names_the_first_bad_vector():
     x = np.ones((1000, 3))
     x[637, 1] = np.nan
