@@ -152,3 +152,32 @@ def test_soft_step_refuses_joints():
     # The same scene without the joint is accepted: the joint is what is refused.
     del jointed["joint"]
     assert rf.Scene.from_dict(jointed).dim == 4
+
+
+def test_bodies_touch_with_their_contact_shape():
+    # A body of a ball's inertia touching as a capsule, and a compound of two balls, both of
+    # radius 0.2, come to rest on the floor at that radius; a contact of another dimension
+    # is a ValueError naming the body.
+    scene = {
+        "dim": 3,
+        "gravity": [0.0, 0.0, -9.81],
+        "t_end": 2.0,
+        "dt": 0.01,
+        "body": [
+            {"name": "capsule", "shape": "ball:3,0.3", "contact": "capsule:0.4,0.2", "position": [0.0, 0.0, 0.25]},
+            {
+                "name": "dumbbell",
+                "shape": "ball:3,0.3",
+                "contact": ["ball:0.2@-0.5,0,0", "ball:0.2@0.5,0,0"],
+                "position": [0.0, 3.0, 0.25],
+            },
+        ],
+        "plane": [{"normal": [0, 0, 1]}],
+    }
+    data = rf.Scene.from_dict(scene).run(samples=3).data()
+    for body in data["bodies"]:
+        assert body["position"][-1][2] == pytest.approx(0.2, abs=1e-9), body["name"]
+        assert np.linalg.norm(body["velocity"][-1]) < 1e-9, body["name"]
+    scene["body"][0]["contact"] = "box:0.2,0.2"
+    with pytest.raises(ValueError, match='body "capsule".*a shape in 2 dimensions, expected 3'):
+        rf.Scene.from_dict(scene)

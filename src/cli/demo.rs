@@ -700,7 +700,7 @@ fn space_omega(omega: &[f64], attitude: &DMatrix<f64>) -> DMatrix<f64> {
 fn lowest_gap(scene: &Scene, record: &Record) -> f64 {
     let mut lowest = f64::INFINITY;
     for (b, track) in scene.bodies.iter().zip(&record.bodies) {
-        let shape = ContactShape::from_geometry(&b.parsed.geometry);
+        let shape = b.contact_shape();
         let radius = shape.radius();
         if radius == 0.0 {
             continue;
@@ -796,7 +796,7 @@ fn rolling_figures(scene: &Scene, record: &Record) -> String {
     let predicted = rolling_prediction(scene);
     let measured = norm(&track.velocity[last]);
     // The contact point: R below the centre, along minus the floor's normal.
-    let radius = ContactShape::from_geometry(&scene.bodies[0].parsed.geometry).radius();
+    let radius = scene.bodies[0].contact_shape().radius();
     let floor = &scene.planes[0].normal;
     let s = norm(floor);
     let slip_at = |k: usize| {

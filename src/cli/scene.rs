@@ -52,7 +52,10 @@ Scene file keys (TOML; unknown keys are errors):
   [[body]]   name, shape (body SPEC: rotorflow help bodies), mass, position, velocity,
              omega (own axes, planes 12,13,...), attitude (N*N numbers row-major or N rows;
              a rotation), friction, restitution (against other bodies: mu = sqrt(mu1 mu2),
-             e = max(e1, e2)), fixed (never moves), collide (false: touches nothing)
+             e = max(e1, e2)), fixed (never moves), collide (false: touches nothing),
+             contact (the shape it touches with: capsule:H,R | ball:R | box:h1,...,hN |
+             ellipsoid:a1,...,aN | simplex:R | cross:R [+margin=M][@x1,...,xN], or a list of
+             them: a compound body)
   [[plane]]  normal, offset (the plane normal.x = offset, solid opposite the normal), friction,
              restitution
   [[spring]] body, point (own axes), anchor (a point of space) | other (a body) + other_point,

@@ -2,6 +2,8 @@
 //! name the file, the section (`body "cube"`, `plane 2`, …) and the key.
 
 use super::SceneError;
+use crate::dynamics::motion::ContactShape;
+use crate::dynamics::motion::shape::{CompoundShape, ConvexShape, Piece};
 use crate::inertia::spec::{ParsedBody, parse_body, parse_body_with};
 use nalgebra::DMatrix;
 use serde::Deserialize;
@@ -56,6 +58,19 @@ pub struct SceneBody {
     pub fixed: bool,
     /// False for a body that touches nothing.
     pub collide: bool,
+    /// The shape it touches with, when the scene gives one (`contact`) instead of its
+    /// SPEC's.
+    pub contact: Option<ContactShape>,
+}
+
+impl SceneBody {
+    /// The shape the body touches with: the scene's `contact`, else its SPEC's
+    /// ([`ContactShape::from_geometry`]).
+    pub fn contact_shape(&self) -> ContactShape {
+        self.contact
+            .clone()
+            .unwrap_or_else(|| ContactShape::from_geometry(&self.parsed.geometry))
+    }
 }
 
 /// A plane n·x = d bounding solid world on the side opposite to n.
@@ -166,6 +181,7 @@ struct RawBody {
     restitution: Option<Value>,
     fixed: Option<Value>,
     collide: Option<Value>,
+    contact: Option<Value>,
 }
 
 #[derive(Deserialize)]
@@ -718,7 +734,17 @@ fn read_body(
             ));
         }
     }
+    let contact = match &raw.contact {
+        None => None,
+        Some(v) => Some(read_contact(&place, v, dim)?),
+    };
+    if !collide && contact.is_some() {
+        return Err(place.error(
+            "a body with collide = false touches nothing: remove its contact or `collide = false`",
+        ));
+    }
     Ok(SceneBody {
+        contact,
         name: name.to_string(),
         mass: parsed.mass,
         parsed,
@@ -731,6 +757,130 @@ fn read_body(
         fixed,
         collide,
     })
+}
+
+/// The grammar of `contact`, for the messages.
+const CONTACT_GRAMMAR: &str = "capsule:H,R, ball:R, box:h1,...,hN, ellipsoid:a1,...,aN, \
+     simplex:R or cross:R, each with an optional +margin=M and @x1,...,xN";
+
+/// A `contact`: one convex shape (a string), or a compound of pieces (a list of strings),
+/// each `KIND:NUMBERS[+margin=M][@OFFSET]`.
+fn read_contact(place: &Place<'_>, v: &Value, dim: usize) -> Result<ContactShape, SceneError> {
+    let piece = |text: &str| -> Result<Piece, SceneError> {
+        let fail = |problem: String| place.error(format!("contact `{text}`: {problem}"));
+        let (shape, offset) = match text.split_once('@') {
+            Some((shape, at)) => (shape, Some(at)),
+            None => (text, None),
+        };
+        let mut parts = shape.split('+');
+        let base = parts.next().unwrap_or_default().trim();
+        let (kind, args) = base
+            .split_once(':')
+            .ok_or_else(|| fail(format!("expected KIND:NUMBERS ({CONTACT_GRAMMAR})")))?;
+        let numbers = |what: &str, list: &str| -> Result<Vec<f64>, SceneError> {
+            list.split(',')
+                .map(|x| {
+                    x.trim()
+                        .parse::<f64>()
+                        .map_err(|_| fail(format!("{what}: `{}` is not a number", x.trim())))
+                })
+                .collect()
+        };
+        let args = numbers(kind.trim(), args)?;
+        let one = |name: &str| -> Result<f64, SceneError> {
+            match args[..] {
+                [x] => Ok(x),
+                _ => Err(fail(format!("{name} takes one number, got {}", args.len()))),
+            }
+        };
+        let shape = match kind.trim() {
+            "capsule" => match args[..] {
+                [h, r] => ConvexShape::capsule(dim, h, r),
+                _ => {
+                    return Err(fail(format!(
+                        "capsule takes H,R, got {} numbers",
+                        args.len()
+                    )));
+                }
+            },
+            "ball" => ConvexShape::ball(dim, one("ball")?),
+            "box" => ConvexShape::cuboid(&args),
+            "ellipsoid" => ConvexShape::ellipsoid(&args),
+            "simplex" => ConvexShape::simplex(dim, one("simplex")?),
+            "cross" => ConvexShape::cross_polytope(dim, one("cross")?),
+            other => {
+                return Err(fail(format!(
+                    "unknown shape `{other}` (expected {CONTACT_GRAMMAR})"
+                )));
+            }
+        }
+        .map_err(|e| fail(e.to_string()))?;
+        if shape.dim() != dim {
+            return Err(fail(format!(
+                "a shape in {} dimensions, expected {dim} (dim = {dim})",
+                shape.dim()
+            )));
+        }
+        let mut shape = shape;
+        for option in parts {
+            let margin = option
+                .trim()
+                .strip_prefix("margin")
+                .and_then(|rest| rest.trim_start().strip_prefix('='))
+                .ok_or_else(|| {
+                    fail(format!(
+                        "unknown option `{}` (expected margin=M)",
+                        option.trim()
+                    ))
+                })?;
+            let m = numbers("margin", margin)?;
+            shape = match m[..] {
+                [m] => shape.rounded(m).map_err(|e| fail(e.to_string()))?,
+                _ => return Err(fail("margin takes one number".into())),
+            };
+        }
+        let offset = match offset {
+            Some(at) => numbers("offset", at)?,
+            None => vec![0.0; dim],
+        };
+        if offset.len() != dim {
+            return Err(fail(format!(
+                "offset has {} numbers, expected {dim} (dim = {dim})",
+                offset.len()
+            )));
+        }
+        Piece::translated(shape, &offset).map_err(|e| fail(e.to_string()))
+    };
+    match v {
+        Value::String(text) if !text.contains('@') => {
+            Ok(ContactShape::Convex(piece(text)?.shape().clone()))
+        }
+        Value::String(text) => compound(place, vec![piece(text)?]),
+        Value::Array(items) if !items.is_empty() => {
+            let pieces = items
+                .iter()
+                .map(|item| match item {
+                    Value::String(text) => piece(text),
+                    other => Err(place.error(format!(
+                        "contact: each piece must be a string ({CONTACT_GRAMMAR}), got {}",
+                        a_type(other)
+                    ))),
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            compound(place, pieces)
+        }
+        other => Err(place.error(format!(
+            "contact must be a string or a non-empty list of strings ({CONTACT_GRAMMAR}), got {}",
+            a_type(other)
+        ))),
+    }
+}
+
+/// The compound of `pieces`.
+fn compound(place: &Place<'_>, pieces: Vec<Piece>) -> Result<ContactShape, SceneError> {
+    CompoundShape::new(pieces)
+        .map(ContactShape::Compound)
+        .map_err(|e| place.error(format!("contact: {e}")))
 }
 
 /// An attitude: N² numbers row-major or N rows of N; a rotation to 1e-9.

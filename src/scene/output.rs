@@ -104,7 +104,11 @@ pub fn drawing(scene: &Scene, title: &str) -> crate::viz::trajectory::Drawing {
         shapes: scene
             .bodies
             .iter()
-            .map(|b| crate::viz::Shape::of_body(&b.parsed))
+            .map(|b| match &b.contact {
+                // A body drawn as the shape it touches with when the scene gives one.
+                Some(c) => crate::viz::Shape::of_contact_shape(c, b.parsed.dim),
+                None => crate::viz::Shape::of_body(&b.parsed),
+            })
             .collect(),
         links,
         up: up_axis(&scene.gravity),

@@ -6,8 +6,8 @@ use super::format::{IntegratorKind, Scene, SceneAnchor};
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::motion::forques::{Anchor, Gravity, Spring};
 use crate::dynamics::motion::{
-    BallJoint, ContactShape, HalfSpace, MotionIntegrator, MotionRk4, MotionSplitting, MovingBody,
-    SoftStep, System, SystemTrajectory,
+    BallJoint, HalfSpace, MotionIntegrator, MotionRk4, MotionSplitting, MovingBody, SoftStep,
+    System, SystemTrajectory,
 };
 use crate::dynamics::{Attitude, DynamicsError};
 
@@ -36,7 +36,7 @@ pub fn build_system(scene: &Scene) -> Result<System, SceneError> {
         };
         let attitude = Attitude::from_matrix(&b.attitude).map_err(|e| fail(&e))?;
         let omega = Bivector::from_components(n, &b.omega).map_err(|e| fail(&e))?;
-        let shape = ContactShape::from_geometry(&b.parsed.geometry);
+        let shape = b.contact_shape();
         let mut body = if b.fixed {
             MovingBody::fixed(shape, attitude, &vector(&b.position)?)
         } else {

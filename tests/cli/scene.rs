@@ -950,7 +950,73 @@ bad_scenes! {
     scene_refuses_a_fixed_flag_that_is_not_a_boolean => (format!("{HEAD}{CUBE}fixed = 1\n"), ["body \"cube\"", "fixed must be true or false"])
     scene_refuses_negative_body_friction => (format!("{HEAD}{CUBE}friction = -0.5\n"), ["body \"cube\"", "friction must be ≥ 0"])
     scene_refuses_body_restitution_above_one => (format!("{HEAD}{CUBE}restitution = 2\n"), ["body \"cube\"", "restitution must be in [0, 1]"])
+    scene_refuses_an_unknown_contact_shape => (format!("{HEAD}{CUBE}contact = \"cone:1\"\n"), ["body \"cube\"", "contact `cone:1`: unknown shape `cone`", "capsule:H,R"])
+    scene_refuses_a_contact_of_another_dimension => (format!("{HEAD}{CUBE}contact = \"box:1,1,1\"\n"), ["body \"cube\"", "contact `box:1,1,1`: a shape in 3 dimensions, expected 4"])
+    scene_refuses_a_contact_offset_of_another_dimension => (format!("{HEAD}{CUBE}contact = [\"ball:0.5@1,0\"]\n"), ["body \"cube\"", "contact `ball:0.5@1,0`: offset has 2 numbers, expected 4"])
+    scene_refuses_a_contact_with_a_negative_margin => (format!("{HEAD}{CUBE}contact = \"ball:0.5+margin=-1\"\n"), ["body \"cube\"", "contact `ball:0.5+margin=-1`"])
+    scene_refuses_a_contact_that_is_not_a_shape => (format!("{HEAD}{CUBE}contact = 3\n"), ["body \"cube\"", "contact must be a string or a non-empty list of strings"])
+    scene_refuses_a_contact_number_that_is_not_one => (format!("{HEAD}{CUBE}contact = \"capsule:1,x\"\n"), ["body \"cube\"", "contact `capsule:1,x`: capsule: `x` is not a number"])
+    scene_refuses_a_contact_on_a_body_that_touches_nothing => (format!("{HEAD}{CUBE}collide = false\ncontact = \"ball:1\"\n"), ["body \"cube\"", "a body with collide = false touches nothing"])
     scene_refuses_a_body_jointed_to_itself => (format!("{HEAD}{CUBE}[[joint]]\nbody = \"cube\"\nother = \"cube\"\n"), ["joint 1", "the body itself"])
+}
+
+/// Bodies given a `contact` shape: a capsule (a body of a ball's inertia touching as a
+/// capsule of radius 0.2) and a dumbbell of two balls of radius 0.2 (a compound) dropped on
+/// the floor come to rest on it at the height of their radius, 0.2 (not the 0.3 of their
+/// SPEC's ball), in 4D; the HTML draws them.
+#[test]
+fn scene_bodies_touch_with_their_contact_shape() {
+    let text = r#"
+dim = 4
+gravity = [0.0, 0.0, 0.0, -9.81]
+t_end = 2.0
+dt = 0.01
+
+[[body]]
+name = "capsule"
+shape = "ball:4,0.3"
+contact = "capsule:0.4,0.2"
+position = [0.0, 0.0, 0.0, 0.25]
+friction = 0.5
+
+[[body]]
+name = "dumbbell"
+shape = "ball:4,0.3"
+contact = ["ball:0.2@-0.5,0,0,0", "ball:0.2@0.5,0,0,0"]
+position = [0.0, 3.0, 0.0, 0.25]
+friction = 0.5
+
+[[plane]]
+normal = [0, 0, 0, 1]
+friction = 0.5
+"#;
+    let (dir, _) = scene_file(text);
+    run_ok(
+        dir.path(),
+        &[
+            "scene.toml",
+            "--samples",
+            "3",
+            "--output",
+            "run.json",
+            "--html",
+            "run.html",
+        ],
+    );
+    let json = read_json(&dir.path().join("run.json"));
+    for body in 0..2 {
+        let x = matrix(&json["bodies"][body]["position"]);
+        let v = matrix(&json["bodies"][body]["velocity"]);
+        let z = x[2][3];
+        assert!((z - 0.2).abs() < 1e-9, "body {body} rests at {z}");
+        assert!(
+            v[2].iter().all(|c| c.abs() < 1e-9),
+            "body {body} moves: {:?}",
+            v[2]
+        );
+    }
+    let html = std::fs::read_to_string(dir.path().join("run.html")).unwrap();
+    assert!(html.contains("capsule") && html.contains("dumbbell"));
 }
 
 #[test]
