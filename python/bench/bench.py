@@ -280,11 +280,12 @@ def main():
     if ceilings:
         lines += [
             "",
-            "No code can run faster than the memory traffic of its arrays, so the ratio to kingdon on",
-            "the same arrays can reach at most kingdon's time over their memory floor (the time of",
-            "numpy's `a + b` per byte, times the bytes the operation reads and writes):",
+            "No code runs much faster than the memory traffic of its arrays, so the ratio to kingdon",
+            "on the same arrays can reach about kingdon's time over their memory floor (the time of",
+            "numpy's `a + b` per byte, times the bytes the operation reads and writes; a kernel that",
+            "streams its arrays well can beat that estimate by a little):",
             "",
-            "| operation | rotorflow | kingdon | ratio | largest possible ratio (kingdon / memory floor) |",
+            "| operation | rotorflow | kingdon | ratio | ratio at the memory floor (kingdon / floor) |",
             "|---|---:|---:|---:|---:|",
         ]
         for op, ours, theirs, floor in ceilings:
