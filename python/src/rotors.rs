@@ -152,7 +152,12 @@ const ROWS_PER_CORE: usize = 1 << 16;
 fn turn_all_on_cores<R: Fixed>(q: &[f64], input: &[f64], out: &mut [f64]) -> bool {
     let n = R::N;
     let rows = out.len() / n;
-    let cores = std::thread::available_parallelism().map_or(1, usize::from);
+    if rows < 2 * ROWS_PER_CORE {
+        return R::turn_all(q, input, out);
+    }
+    // Asked once: the answer reads the process's CPU limits, some microseconds.
+    static CORES: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
+    let cores = *CORES.get_or_init(|| std::thread::available_parallelism().map_or(1, usize::from));
     let parts = cores.min(rows / ROWS_PER_CORE).max(1);
     if parts == 1 || input.len() != out.len() {
         return R::turn_all(q, input, out);
