@@ -3,7 +3,7 @@
 //! coefficients.
 
 use crate::arrays::{Rows, all_finite, broadcast, empty, fill, output, value_error, zeros};
-use crate::kernels::{DenseSigns, product8, product16};
+use crate::kernels::{DenseSigns, dense_product, product8, product16};
 use numpy::PyArrayDyn;
 use pyo3::exceptions::{PyTypeError, PyZeroDivisionError};
 use pyo3::prelude::*;
@@ -75,8 +75,9 @@ enum Batch {
 /// first-level cache when the kernel reads them, so that each array is read from memory once.
 const CHUNK: usize = 64;
 
-/// The batch chunk by chunk, each chunk's operands checked for finiteness first; `false` (and
-/// `out` partly written) at the first chunk with a NaN or an infinity. `a` and `b` hold M
+/// The batch chunk by chunk, each chunk's operands checked for finiteness (by the AVX-512
+/// dense kernels as they load them, else before the chunk); `false` (and `out` partly
+/// written) at the first chunk with a NaN or an infinity. `a` and `b` hold M
 /// elements of 2ᴺ coefficients, or one element used with every element of the other.
 /// Products of 8 and 16 coefficients that send each pair of blades to one blade run through
 /// [`dense_product`] (and its AVX-512 form), the others and the sandwiches through the
@@ -132,15 +133,27 @@ fn batch_portable(
         let cb = rep_b
             .as_deref()
             .map_or_else(|| &b[c * step..c * step + n], |r| &r[..n]);
-        let checked = (rep_a.is_some() || all_finite(ca)) & (rep_b.is_some() || all_finite(cb));
+        // The dense kernels check their operands as they load them (with AVX-512), so that
+        // each chunk is read from memory by the kernel alone; the others are checked first.
+        let dense = match (op, &t.signs8, &t.signs16) {
+            (Batch::Product, Some(d), _) => product8(d, ca, cb, co),
+            (Batch::Product, _, Some(d)) => product16(d, ca, cb, co),
+            _ => None,
+        };
+        let checked = match dense {
+            Some(finite) => finite,
+            None => (rep_a.is_some() || all_finite(ca)) & (rep_b.is_some() || all_finite(cb)),
+        };
         if !checked {
             return Ok(false);
         }
-        match (op, &t.signs8, &t.signs16) {
-            (Batch::Product, Some(d), _) => product8(d, ca, cb, co),
-            (Batch::Product, _, Some(d)) => product16(d, ca, cb, co),
-            (Batch::Product, ..) => t.table.apply_batch(ca, cb, co)?,
-            (Batch::Sandwich, ..) => t.table.sandwich_batch(ca, cb, co)?,
+        if dense.is_none() {
+            match (op, &t.signs8, &t.signs16) {
+                (Batch::Product, Some(d), _) => dense_product(d, ca, cb, co),
+                (Batch::Product, _, Some(d)) => dense_product(d, ca, cb, co),
+                (Batch::Product, ..) => t.table.apply_batch(ca, cb, co)?,
+                (Batch::Sandwich, ..) => t.table.sandwich_batch(ca, cb, co)?,
+            }
         }
     }
     Ok(true)

@@ -153,28 +153,31 @@ impl<const K: usize> DenseSigns<K> {
     }
 }
 
-/// [`dense_product`] of 8 coefficients, through [`dense_product8_avx512`] where the processor
-/// has AVX-512: the same results to the last bit.
+/// [`dense_product`] of 8 coefficients through [`dense_product8_avx512`] where the processor
+/// has AVX-512 (the same results to the last bit), which also tells whether every operand
+/// was finite; None (and nothing written) elsewhere, for the caller to check the operands
+/// and run [`dense_product`].
 #[inline(always)]
-pub fn product8(d: &DenseSigns<8>, a: &[f64], b: &[f64], out: &mut [f64]) {
+pub fn product8(d: &DenseSigns<8>, a: &[f64], b: &[f64], out: &mut [f64]) -> Option<bool> {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx512f") {
         // SAFETY: the processor supports AVX-512F, the only requirement.
-        return unsafe { dense_product8_avx512(d, a, b, out) };
+        return Some(unsafe { dense_product8_avx512(d, a, b, out) });
     }
-    dense_product(d, a, b, out);
+    let _ = (d, a, b, out);
+    None
 }
 
-/// [`dense_product`] of 16 coefficients, through [`dense_product16_avx512`] where the
-/// processor has AVX-512: the same results to the last bit.
+/// [`product8`] for 16 coefficients, through [`dense_product16_avx512`].
 #[inline(always)]
-pub fn product16(d: &DenseSigns<16>, a: &[f64], b: &[f64], out: &mut [f64]) {
+pub fn product16(d: &DenseSigns<16>, a: &[f64], b: &[f64], out: &mut [f64]) -> Option<bool> {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx512f") {
         // SAFETY: the processor supports AVX-512F, the only requirement.
-        return unsafe { dense_product16_avx512(d, a, b, out) };
+        return Some(unsafe { dense_product16_avx512(d, a, b, out) });
     }
-    dense_product(d, a, b, out);
+    let _ = (d, a, b, out);
+    None
 }
 
 /// Elements per block of [`dense_product`]: two AVX-512 registers per coefficient.
@@ -187,7 +190,7 @@ const LANES: usize = 16;
 /// operations of the crate's product table, so its result to the last bit (up to the sign of
 /// a zero).
 #[inline(always)]
-fn dense_product<const K: usize>(d: &DenseSigns<K>, a: &[f64], b: &[f64], out: &mut [f64]) {
+pub fn dense_product<const K: usize>(d: &DenseSigns<K>, a: &[f64], b: &[f64], out: &mut [f64]) {
     const { assert!(K <= 16, "blocks of at most 16 coefficients") };
     let step = LANES * K;
     let mut pad = [[0.0; LANES * 16]; 3];
@@ -244,7 +247,12 @@ fn dense_block<const K: usize>(d: &DenseSigns<K>, a: &[f64], b: &[f64], out: &mu
 /// The processor must support AVX-512F.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
-unsafe fn dense_product16_avx512(d: &DenseSigns<16>, a: &[f64], b: &[f64], out: &mut [f64]) {
+unsafe fn dense_product16_avx512(
+    d: &DenseSigns<16>,
+    a: &[f64],
+    b: &[f64],
+    out: &mut [f64],
+) -> bool {
     // In Euclidean algebras (and wherever the highest basis vector squares to +1) every row
     // of signs is the same on both halves: one multiplication serves them.
     let halves_alike = d.signs.iter().all(|row| row[..8] == row[8..]);
@@ -270,7 +278,7 @@ unsafe fn dense_product16_avx512_in<const ALIKE: bool>(
     a: &[f64],
     b: &[f64],
     out: &mut [f64],
-) {
+) -> bool {
     use std::arch::x86_64::*;
     let idx = xor_permutations();
     let signs: [[__m512d; 2]; 16] = std::array::from_fn(|i| {
@@ -287,14 +295,18 @@ unsafe fn dense_product16_avx512_in<const ALIKE: bool>(
     let (a, _) = a.as_chunks::<16>();
     let (b, _) = b.as_chunks::<16>();
     let (out, _) = out.as_chunks_mut::<16>();
+    let mut finite = 0xffu8;
     for ((ra, rb), ro) in a.iter().zip(b).zip(out) {
         // SAFETY: every row holds sixteen f64.
-        let (blo, bhi) = unsafe {
+        let (blo, bhi, alo, ahi) = unsafe {
             (
                 _mm512_loadu_pd(rb.as_ptr()),
                 _mm512_loadu_pd(rb.as_ptr().add(8)),
+                _mm512_loadu_pd(ra.as_ptr()),
+                _mm512_loadu_pd(ra.as_ptr().add(8)),
             )
         };
+        finite &= finite_lanes(blo) & finite_lanes(bhi) & finite_lanes(alo) & finite_lanes(ahi);
         // y[c] = b[c ⊕ offset]: the halves swapped by the offset's high bit, permuted by the rest.
         let (ylo, yhi) = if off & 8 == 0 { (blo, bhi) } else { (bhi, blo) };
         let (ylo, yhi) = (
@@ -324,6 +336,15 @@ unsafe fn dense_product16_avx512_in<const ALIKE: bool>(
             _mm512_storeu_pd(ro.as_mut_ptr().add(8), hi);
         }
     }
+    finite == 0xff
+}
+
+/// The lanes of `x` that hold a finite number (x − x is 0 for them, NaN for ±∞ and NaN).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn finite_lanes(x: std::arch::x86_64::__m512d) -> u8 {
+    use std::arch::x86_64::*;
+    _mm512_cmp_pd_mask::<_CMP_EQ_OQ>(_mm512_sub_pd(x, x), _mm512_setzero_pd())
 }
 
 /// [`dense_product`] for 8 coefficients with AVX-512: each element in one register, the
@@ -334,7 +355,7 @@ unsafe fn dense_product16_avx512_in<const ALIKE: bool>(
 /// The processor must support AVX-512F.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
-unsafe fn dense_product8_avx512(d: &DenseSigns<8>, a: &[f64], b: &[f64], out: &mut [f64]) {
+unsafe fn dense_product8_avx512(d: &DenseSigns<8>, a: &[f64], b: &[f64], out: &mut [f64]) -> bool {
     use std::arch::x86_64::*;
     let idx = xor_permutations();
     // SAFETY: each row of signs holds eight f64.
@@ -343,9 +364,12 @@ unsafe fn dense_product8_avx512(d: &DenseSigns<8>, a: &[f64], b: &[f64], out: &m
     let (a, _) = a.as_chunks::<8>();
     let (b, _) = b.as_chunks::<8>();
     let (out, _) = out.as_chunks_mut::<8>();
+    let mut finite = 0xffu8;
     for ((ra, rb), ro) in a.iter().zip(b).zip(out) {
         // SAFETY: every row holds eight f64.
-        let y = _mm512_permutexvar_pd(idx[d.offset], unsafe { _mm512_loadu_pd(rb.as_ptr()) });
+        let (xa, xb) = unsafe { (_mm512_loadu_pd(ra.as_ptr()), _mm512_loadu_pd(rb.as_ptr())) };
+        finite &= finite_lanes(xa) & finite_lanes(xb);
+        let y = _mm512_permutexvar_pd(idx[d.offset], xb);
         let mut acc = _mm512_setzero_pd();
         for (i, s) in signs.iter().enumerate() {
             let w = _mm512_permutexvar_pd(idx[i], y);
@@ -357,6 +381,7 @@ unsafe fn dense_product8_avx512(d: &DenseSigns<8>, a: &[f64], b: &[f64], out: &m
         // SAFETY: every row holds eight f64.
         unsafe { _mm512_storeu_pd(ro.as_mut_ptr(), acc) };
     }
+    finite == 0xff
 }
 
 /// The permutations of eight lanes whose lane k reads lane k ⊕ c, c = 0, 1, …, 7.

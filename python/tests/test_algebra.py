@@ -312,3 +312,26 @@ def test_batched_sandwiches_equal_the_single_sandwiches():
                     np.testing.assert_array_equal(batch[i], one, err_msg=f"{sig} {i}")
                 checked += 1
     assert checked == 5 * 2 * 100
+
+
+def test_batched_products_of_8_and_16_coefficients_refuse_any_bad_entry():
+    # The kernels of 8 and 16 coefficients check their operands as they load them: a NaN or
+    # an infinity in either operand, at any element of a chunk and any coefficient, is
+    # refused with its element named, and a batch of finite numbers is accepted.
+    rng = np.random.default_rng(15)
+    checked = 0
+    for n in (3, 4):
+        alg = rf.Algebra(n)
+        k = len(alg)
+        a, b = rng.normal(size=(200, k)), rng.normal(size=(200, k))
+        alg.product(a, b)
+        for name in ("a", "b"):
+            for value in (np.nan, np.inf, -np.inf):
+                for element in (0, 63, 64, 130, 199):
+                    for coefficient in (0, k // 2 + 1, k - 1):
+                        x, y = a.copy(), b.copy()
+                        (x if name == "a" else y)[element, coefficient] = value
+                        with pytest.raises(ValueError, match=f"{name}: NaN or infinite entry in element {element}"):
+                            alg.product(x, y)
+                        checked += 1
+    assert checked == 2 * 2 * 3 * 5 * 3
