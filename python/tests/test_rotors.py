@@ -158,23 +158,24 @@ def test_batched_apply_equals_the_single_applies_at_every_length():
     assert checked == 2 * (1 + 2 + 3 + 7 + 8 + 9 + 15 + 16 + 17 + 1003)
 
 
-def test_rotor4_batched_apply_is_the_row_formula_to_the_last_bit():
-    # A batch of 4D rotations runs blocks of 8 rows together (AVX-512 where the processor has
-    # it) and the rows after the last block one at a time: every row of a block equals the
-    # same rotor and vector turned as the last row, alone, to the last bit.
+def test_batched_apply_is_the_row_formula_to_the_last_bit():
+    # A batch of rotations, a rotor per vector, runs blocks of 8 rows together (AVX-512 where
+    # the processor has it) and the rows after the last block one at a time: every row of a
+    # block equals the same rotor and vector turned as the last row, alone, to the last bit.
     rng = np.random.default_rng(12)
     m = 9
-    biv = rng.normal(size=(m, 6))
-    x = rng.normal(size=(m, 4)) * 10.0 ** rng.integers(-3, 4, size=(m, 1))
     checked = 0
-    for inverse in (False, True):
-        by_many = rf.Rotor4.from_bivector(biv).apply(x, inverse=inverse)
-        for i in range(m):
-            order = np.r_[[k for k in range(m) if k != i], i]
-            alone = rf.Rotor4.from_bivector(biv[order]).apply(x[order], inverse=inverse)[-1]
-            np.testing.assert_array_equal(by_many[i], alone)
-            checked += 1
-    assert checked == 2 * m
+    for rotor, planes, n in ((rf.Rotor3, 3, 3), (rf.Rotor4, 6, 4)):
+        biv = rng.normal(size=(m, planes))
+        x = rng.normal(size=(m, n)) * 10.0 ** rng.integers(-3, 4, size=(m, 1))
+        for inverse in (False, True):
+            by_many = rotor.from_bivector(biv).apply(x, inverse=inverse)
+            for i in range(m):
+                order = np.r_[[k for k in range(m) if k != i], i]
+                alone = rotor.from_bivector(biv[order]).apply(x[order], inverse=inverse)[-1]
+                np.testing.assert_array_equal(by_many[i], alone, err_msg=f"N = {n}, row {i}")
+                checked += 1
+    assert checked == 2 * 2 * m
 
 
 def test_one_rotation_of_many_vectors_split_over_the_cores_is_the_same_to_the_last_bit():

@@ -145,7 +145,11 @@ impl Bivector3<f64> {
 /// let m = (a * b).to_matrix();
 /// assert!((m - a.to_matrix() * b.to_matrix()).amax() < 1e-15);
 /// ```
+///
+/// `#[repr(transparent)]`: laid out as the quaternion storage of `T`, for `f64` the array
+/// (w, x, y, z), so that a slice of rotors is 4 numbers per rotor to SIMD kernels.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(transparent)]
 pub struct Rotor3<T: Real = f64> {
     /// The quaternion (w, x, y, z), stored as the scalar type keeps quaternions (four SSE
     /// lanes for f32 on x86, an array otherwise).
