@@ -153,34 +153,14 @@ unsafe fn rotate_block3_avx512(
 ) -> bool {
     use std::arch::x86_64::*;
     const _: () = assert!(size_of::<Rotor3>() == 4 * size_of::<f64>());
-    let rp = rotors.as_ptr().cast::<f64>();
     // SAFETY: 8 rotors of 4 f64 are 32 f64.
-    let [r01, r23, r45, r67] = std::array::from_fn(|k| unsafe { _mm512_loadu_pd(rp.add(8 * k)) });
-    // Rows of 4 to coordinates, as in `rotate_block4_avx512`.
-    let lo = _mm512_set_epi64(13, 9, 5, 1, 12, 8, 4, 0);
-    let hi = _mm512_set_epi64(15, 11, 7, 3, 14, 10, 6, 2);
-    let first = _mm512_set_epi64(11, 10, 9, 8, 3, 2, 1, 0);
-    let second = _mm512_set_epi64(15, 14, 13, 12, 7, 6, 5, 4);
-    let (s0, s1) = (
-        _mm512_permutex2var_pd(r01, lo, r23),
-        _mm512_permutex2var_pd(r01, hi, r23),
-    );
-    let (s2, s3) = (
-        _mm512_permutex2var_pd(r45, lo, r67),
-        _mm512_permutex2var_pd(r45, hi, r67),
-    );
-    let w = _mm512_permutex2var_pd(s0, first, s2);
-    let ux = _mm512_permutex2var_pd(s0, second, s2);
-    let uy = _mm512_permutex2var_pd(s1, first, s3);
-    let uz = _mm512_permutex2var_pd(s1, second, s3);
+    let [w, ux, uy, uz] = unsafe { load_columns4(rotors.as_ptr().cast::<f64>()) };
     let vp = vectors.as_ptr().cast::<f64>();
     let stride = _mm512_set_epi64(21, 18, 15, 12, 9, 6, 3, 0);
     // SAFETY: lane l reads coordinate c of vector l, inside the block of 8 vectors of 3 f64.
     let g = |c: usize| unsafe { _mm512_i64gather_pd::<8>(stride, vp.add(c)) };
     let (x, y, z) = (g(0), g(1), g(2));
-    let finite = [x, y, z].iter().fold(0xffu8, |ok, c| {
-        ok & _mm512_cmp_pd_mask::<_CMP_EQ_OQ>(_mm512_sub_pd(*c, *c), _mm512_setzero_pd())
-    });
+    let finite = finite_lanes(x) & finite_lanes(y) & finite_lanes(z);
     let (m, add, sub) = (_mm512_mul_pd, _mm512_add_pd, _mm512_sub_pd);
     let two = _mm512_set1_pd(2.0);
     let tx = m(two, sub(m(uy, z), m(uz, y)));
@@ -489,6 +469,80 @@ unsafe fn dense_product8_avx512(d: &DenseSigns<8>, a: &[f64], b: &[f64], out: &m
     finite == 0xff
 }
 
+/// The permutations that turn eight rows of four numbers, held two rows to a register,
+/// into four registers of one column each (`ROWS_LO`/`ROWS_HI` pair the rows' entries,
+/// `HALF_LO`/`HALF_HI` join the halves); a transpose undoes itself, so the same four turn
+/// columns back into rows.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn transpose_indices() -> [std::arch::x86_64::__m512i; 4] {
+    use std::arch::x86_64::_mm512_set_epi64;
+    [
+        _mm512_set_epi64(13, 9, 5, 1, 12, 8, 4, 0),
+        _mm512_set_epi64(15, 11, 7, 3, 14, 10, 6, 2),
+        _mm512_set_epi64(11, 10, 9, 8, 3, 2, 1, 0),
+        _mm512_set_epi64(15, 14, 13, 12, 7, 6, 5, 4),
+    ]
+}
+
+/// Eight rows of four numbers (32 f64 from `p`, row-major) as four registers, one column
+/// each: lane l of register c is entry c of row l.
+///
+/// # Safety
+/// The processor must support AVX-512F, and `p` must point to 32 readable f64.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn load_columns4(p: *const f64) -> [std::arch::x86_64::__m512d; 4] {
+    use std::arch::x86_64::*;
+    let [lo, hi, first, second] = transpose_indices();
+    // SAFETY: 32 readable f64, the caller's promise.
+    let [r01, r23, r45, r67] = std::array::from_fn(|k| unsafe { _mm512_loadu_pd(p.add(8 * k)) });
+    let (s0, s1) = (
+        _mm512_permutex2var_pd(r01, lo, r23),
+        _mm512_permutex2var_pd(r01, hi, r23),
+    );
+    let (s2, s3) = (
+        _mm512_permutex2var_pd(r45, lo, r67),
+        _mm512_permutex2var_pd(r45, hi, r67),
+    );
+    [
+        _mm512_permutex2var_pd(s0, first, s2),
+        _mm512_permutex2var_pd(s0, second, s2),
+        _mm512_permutex2var_pd(s1, first, s3),
+        _mm512_permutex2var_pd(s1, second, s3),
+    ]
+}
+
+/// [`load_columns4`] undone: the four column registers stored as eight rows of four at `p`.
+///
+/// # Safety
+/// The processor must support AVX-512F, and `p` must point to 32 writable f64.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn store_columns4(columns: [std::arch::x86_64::__m512d; 4], p: *mut f64) {
+    use std::arch::x86_64::*;
+    let [lo, hi, first, second] = transpose_indices();
+    let [o0, o1, o2, o3] = columns;
+    let (t0, t2) = (
+        _mm512_permutex2var_pd(o0, first, o1),
+        _mm512_permutex2var_pd(o0, second, o1),
+    );
+    let (t1, t3) = (
+        _mm512_permutex2var_pd(o2, first, o3),
+        _mm512_permutex2var_pd(o2, second, o3),
+    );
+    let rows = [
+        _mm512_permutex2var_pd(t0, lo, t1),
+        _mm512_permutex2var_pd(t0, hi, t1),
+        _mm512_permutex2var_pd(t2, lo, t3),
+        _mm512_permutex2var_pd(t2, hi, t3),
+    ];
+    for (k, r) in rows.iter().enumerate() {
+        // SAFETY: 32 writable f64, the caller's promise.
+        unsafe { _mm512_storeu_pd(p.add(8 * k), *r) };
+    }
+}
+
 /// The permutations of eight lanes whose lane k reads lane k ⊕ c, c = 0, 1, …, 7.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
@@ -679,31 +733,9 @@ unsafe fn rotate_block4_avx512(
         _mm512_mul_pd(neg, p2),
         _mm512_mul_pd(neg, p3),
     ];
-    // Rows to coordinates: v01 holds vectors 0 and 1, and so on.
-    let vp = vectors.as_ptr().cast::<f64>();
     // SAFETY: 8 vectors of 4 f64 are 32 f64.
-    let [v01, v23, v45, v67] = std::array::from_fn(|k| unsafe { _mm512_loadu_pd(vp.add(8 * k)) });
-    let lo = _mm512_set_epi64(13, 9, 5, 1, 12, 8, 4, 0);
-    let hi = _mm512_set_epi64(15, 11, 7, 3, 14, 10, 6, 2);
-    let (s0, s1) = (
-        _mm512_permutex2var_pd(v01, lo, v23),
-        _mm512_permutex2var_pd(v01, hi, v23),
-    );
-    let (s2, s3) = (
-        _mm512_permutex2var_pd(v45, lo, v67),
-        _mm512_permutex2var_pd(v45, hi, v67),
-    );
-    let first = _mm512_set_epi64(11, 10, 9, 8, 3, 2, 1, 0);
-    let second = _mm512_set_epi64(15, 14, 13, 12, 7, 6, 5, 4);
-    let x = [
-        _mm512_permutex2var_pd(s0, first, s2),
-        _mm512_permutex2var_pd(s0, second, s2),
-        _mm512_permutex2var_pd(s1, first, s3),
-        _mm512_permutex2var_pd(s1, second, s3),
-    ];
-    let finite = x.iter().fold(0xff, |ok, c| {
-        ok & _mm512_cmp_pd_mask::<_CMP_EQ_OQ>(_mm512_sub_pd(*c, *c), _mm512_setzero_pd())
-    });
+    let x = unsafe { load_columns4(vectors.as_ptr().cast::<f64>()) };
+    let finite = x.iter().fold(0xff, |ok, c| ok & finite_lanes(*c));
     let mul = |u: [__m512d; 4], v: [__m512d; 4]| {
         let [w1, x1, y1, z1] = u;
         let [w2, x2, y2, z2] = v;
@@ -716,27 +748,7 @@ unsafe fn rotate_block4_avx512(
             add(sub(add(m(w1, z2), m(x1, y2)), m(y1, x2)), m(z1, w2)),
         ]
     };
-    let [o0, o1, o2, o3] = mul(mul(a, x), b);
-    // Coordinates back to rows: the inverse of the two permutations above.
-    let (t0, t2) = (
-        _mm512_permutex2var_pd(o0, first, o1),
-        _mm512_permutex2var_pd(o0, second, o1),
-    );
-    let (t1, t3) = (
-        _mm512_permutex2var_pd(o2, first, o3),
-        _mm512_permutex2var_pd(o2, second, o3),
-    );
-    // (The same selection as `lo` and `hi`: a transpose undoes itself.)
-    let rows = [
-        _mm512_permutex2var_pd(t0, lo, t1),
-        _mm512_permutex2var_pd(t0, hi, t1),
-        _mm512_permutex2var_pd(t2, lo, t3),
-        _mm512_permutex2var_pd(t2, hi, t3),
-    ];
-    let op = outs.as_mut_ptr().cast::<f64>();
-    for (k, r) in rows.iter().enumerate() {
-        // SAFETY: 8 outputs of 4 f64 are 32 f64.
-        unsafe { _mm512_storeu_pd(op.add(8 * k), *r) };
-    }
+    // SAFETY: 8 outputs of 4 f64 are 32 f64.
+    unsafe { store_columns4(mul(mul(a, x), b), outs.as_mut_ptr().cast::<f64>()) };
     finite == 0xff
 }
