@@ -159,7 +159,7 @@ pub(crate) struct Touching {
     /// The vertices of the bodies' cores that are boxes or segments (a capsule's), row-major:
     /// polytopes with a margin touch by the manifold of their cores moved out by the
     /// margins.
-    rounded: Vec<Option<Vec<f64>>>,
+    cores: Vec<Option<Vec<f64>>>,
     /// The compound bodies' pieces, with the vertices of each piece's core when it is a
     /// box or a segment.
     compound: Vec<Option<Pieces>>,
@@ -226,7 +226,7 @@ impl Touching {
                 _ => None,
             })
             .collect();
-        self.rounded = self
+        self.cores = self
             .convex
             .iter()
             .map(|c| c.as_ref().and_then(core_vertices))
@@ -234,14 +234,19 @@ impl Touching {
         self.compound = shapes
             .iter()
             .map(|s| match s {
-                ContactShape::Compound(c) => {
-                    let cores = c
+                ContactShape::Compound(c) => Some(Pieces {
+                    shape: c.clone(),
+                    radii: c
+                        .pieces()
+                        .iter()
+                        .map(|p| p.shape().bounding_radius())
+                        .collect(),
+                    cores: c
                         .pieces()
                         .iter()
                         .map(|p| core_vertices(p.shape()))
-                        .collect();
-                    Some((c.clone(), cores))
-                }
+                        .collect(),
+                }),
                 _ => None,
             })
             .collect();
@@ -421,14 +426,14 @@ impl Touching {
                 Solid::new(
                     ca,
                     (xa, q(a)),
-                    self.rounded[a].as_deref(),
-                    self.boxes[a].as_deref(),
+                    (self.cores[a].as_deref(), self.boxes[a].as_deref()),
+                    self.radius[a],
                 ),
                 Solid::new(
                     cb,
                     (xb, q(b)),
-                    self.rounded[b].as_deref(),
-                    self.boxes[b].as_deref(),
+                    (self.cores[b].as_deref(), self.boxes[b].as_deref()),
+                    self.radius[b],
                 ),
             ),
             (
@@ -460,26 +465,20 @@ impl Touching {
             )
         };
         let (mut place_a, mut place_b) = (buffers(), buffers());
-        let count =
-            |c: &Option<(CompoundShape, _)>| c.as_ref().map_or(1, |(c, _)| c.pieces().len());
+        let count = |c: &Option<Pieces>| c.as_ref().map_or(1, |c| c.shape.pieces().len());
+        // A body that is not compound is its own single piece.
+        let whole = |i: usize, x, q| {
+            let c = self.convex[i].as_ref()?;
+            let core = (self.cores[i].as_deref(), self.boxes[i].as_deref());
+            Some(Solid::new(c, (x, q), core, self.radius[i]))
+        };
+        let (whole_a, whole_b) = (whole(a, xa, q(a)), whole(b, xb, q(b)));
         for i in 0..count(&ca) {
-            let Some(sa) = piece(
-                &ca,
-                (&self.convex[a], &self.rounded[a], &self.boxes[a]),
-                i,
-                (xa, q(a)),
-                &mut place_a,
-            ) else {
+            let Some(sa) = piece(&ca, whole_a, i, (xa, q(a)), &mut place_a) else {
                 continue;
             };
             for j in 0..count(&cb) {
-                let Some(sb) = piece(
-                    &cb,
-                    (&self.convex[b], &self.rounded[b], &self.boxes[b]),
-                    j,
-                    (xb, q(b)),
-                    &mut place_b,
-                ) else {
+                let Some(sb) = piece(&cb, whole_b, j, (xb, q(b)), &mut place_b) else {
                     continue;
                 };
                 let centres: f64 = sa
@@ -488,7 +487,7 @@ impl Touching {
                     .zip(sb.position)
                     .map(|(p, q)| (p - q) * (p - q))
                     .sum();
-                let bound = sa.shape.bounding_radius() + sb.shape.bounding_radius() + reach;
+                let bound = sa.radius + sb.radius + reach;
                 if centres > bound * bound {
                     continue;
                 }
@@ -578,41 +577,36 @@ impl Found {
     }
 }
 
-/// A compound shape with the vertices of each piece's core when it is a box or a segment.
-type Pieces = (CompoundShape, Vec<Option<Vec<f64>>>);
+/// A compound shape, with each piece's bounding radius and the vertices of its core when
+/// that is a box or a segment (made once).
+#[derive(Clone, Debug)]
+struct Pieces {
+    shape: CompoundShape,
+    radii: Vec<f64>,
+    cores: Vec<Option<Vec<f64>>>,
+}
 
-/// Piece `i` of a body placed at `(x, q)`: of its compound (placed into `buffers`), or the
-/// body's own convex shape for `i` = 0.
+/// Piece `i` of a body placed at `(x, q)`: of its compound (placed into `buffers`), or
+/// `whole`, the body's own convex shape, for a body that is not compound.
 fn piece<'s>(
     compound: &'s Option<Pieces>,
-    (convex, rounded, cuboid): (
-        &'s Option<ConvexShape>,
-        &'s Option<Vec<f64>>,
-        &'s Option<Vec<f64>>,
-    ),
+    whole: Option<Solid<'s>>,
     i: usize,
     (x, q): (&'s [f64], &'s [f64]),
     buffers: &'s mut (SmallVec<[f64; 8]>, SmallVec<[f64; 64]>),
 ) -> Option<Solid<'s>> {
-    match compound {
-        Some((c, cores)) => {
-            let p = c.pieces().get(i)?;
-            let (position, rotation) = buffers;
-            p.place(x, q, position, rotation).ok()?;
-            Some(Solid::new(
-                p.shape(),
-                (position, rotation),
-                cores[i].as_deref(),
-                None,
-            ))
-        }
-        None => Some(Solid::new(
-            convex.as_ref()?,
-            (x, q),
-            rounded.as_deref(),
-            cuboid.as_deref(),
-        )),
-    }
+    let Some(pieces) = compound else {
+        return whole;
+    };
+    let p = pieces.shape.pieces().get(i)?;
+    let (position, rotation) = buffers;
+    p.place(x, q, position, rotation).ok()?;
+    Some(Solid::new(
+        p.shape(),
+        (position, rotation),
+        (pieces.cores[i].as_deref(), None),
+        pieces.radii[i],
+    ))
 }
 
 /// A convex shape placed in space for the narrow phase, with the vertices of its core when
@@ -625,16 +619,19 @@ struct Solid<'s> {
     core: Option<&'s [f64]>,
     /// The half-lengths of the core when it is a box (also a box given by its corners).
     cuboid: Option<&'s [f64]>,
+    /// The shape's bounding radius (made once).
+    radius: f64,
 }
 
 impl<'s> Solid<'s> {
-    /// `shape` placed at `(position, rotation)`, with the vertices of its core when that is
-    /// a box or a segment, and the half-lengths of a box given by its corners.
+    /// `shape` of bounding radius `radius` placed at `(position, rotation)`, with the
+    /// vertices of its core when that is a box or a segment, and the half-lengths of a box
+    /// given by its corners.
     fn new(
         shape: &'s ConvexShape,
         (position, rotation): (&'s [f64], &'s [f64]),
-        core: Option<&'s [f64]>,
-        cuboid: Option<&'s [f64]>,
+        (core, cuboid): (Option<&'s [f64]>, Option<&'s [f64]>),
+        radius: f64,
     ) -> Self {
         Solid {
             shape,
@@ -642,6 +639,7 @@ impl<'s> Solid<'s> {
             rotation,
             core,
             cuboid: cuboid.or(core_box(shape)),
+            radius,
         }
     }
 
@@ -691,7 +689,7 @@ fn convex_pair(
     if -p.depth > reach {
         return;
     }
-    let radii = ca.bounding_radius() + cb.bounding_radius();
+    let radii = sa.radius + sb.radius;
     // A face resting on a face touches at all its points, but a tilt of round-off size
     // lifts some of them by more than the pair's reach: points this close count as
     // touching, so that they hold (a resting contact) instead of waiting to land.
