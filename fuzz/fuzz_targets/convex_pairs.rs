@@ -9,7 +9,8 @@
 //! an ellipsoid, and EPA ≤ 256 more);
 //! distance ≥ 0 and `intersecting` exactly when it is 0; penetration depth ≤ 0 is minus
 //! the distance; the swapped pair has the same distance (to 1e-8 of the pair's size when
-//! both are certified, plus 64 ε · size² / shortest edge when not), and for polytopes up to N = 4 the
+//! both are certified, plus 64 ε · size² / shortest edge and the resolution of GJK's lower
+//! bound, min(d, 64 ε · size² / d), when not), and for polytopes up to N = 4 the
 //! same depth (to 1e-8 of the pair's size, plus 64 ε · size² / shortest edge for the
 //! round-off of the thin facets a short edge makes) when the smaller shape's bounding radius
 //! is at least 10⁻⁴ of the larger's. In 5 and 6 dimensions EPA can stop at its facet cap (or where
@@ -259,10 +260,23 @@ fuzz_target!(|data: &[u8]| {
         .min(thinnest_sliver(&sa, n))
         .min(thinnest_sliver(&sb, n));
     let conditioning = 64.0 * f64::EPSILON * size * size / feature;
+    // An uncertified distance d is an upper bound whose lower bound v·w/|v| GJK could not
+    // raise to it: v carries round-off of about ε · size from the simplex it is solved on,
+    // v·w that times |w| ≤ size, so the lower bound is resolved only to about
+    // ε · size² / d, and never worse than the interval [0, d] itself.
+    let resolution = |d: &rotorflow::dynamics::motion::detect::Separation| {
+        if d.certified {
+            0.0
+        } else {
+            d.distance
+                .min(64.0 * f64::EPSILON * size * size / d.distance)
+        }
+    };
+    let gjk_resolution = resolution(&d1).max(resolution(&d2));
     let distance_tolerance = if d1.certified && d2.certified {
         tolerance
     } else {
-        tolerance + conditioning
+        tolerance + conditioning + gjk_resolution
     };
     assert!(
         (d1.distance - d2.distance).abs() <= distance_tolerance,
@@ -324,7 +338,8 @@ fuzz_target!(|data: &[u8]| {
         let first = (&sa, &pa[..], &qa[..]);
         let second = (&sb, &pb[..], &qb[..]);
         let certificates = width(&p1, first, second).max(width(&p2, second, first));
-        let tolerance = tolerance + conditioning + certificates.max(0.0);
+        // A separated pair's depth is minus its distance, resolved as the distance is.
+        let tolerance = tolerance + conditioning + gjk_resolution + certificates.max(0.0);
         assert!(
             (p1.depth - p2.depth).abs() <= tolerance,
             "depth {} swapped {}",

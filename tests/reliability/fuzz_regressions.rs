@@ -1055,42 +1055,82 @@ fn fuzz_epa_depth_of_a_tiny_ellipsoid_in_a_long_capsule_is_the_margins() {
 fn fuzz_gjk_stopped_on_a_repeated_support_point_is_certified_only_when_its_bounds_meet() {
     use rotorflow::dynamics::motion::detect::{PlacedShape, distance};
     use rotorflow::dynamics::motion::shape::ConvexShape;
-    let large: Vec<Vec<f64>> = [
-        [1.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0045166015625],
-        [0.0, 0.00390625, 6.103515625e-5],
-        [0.0, -0.5999755859375, -0.0062255859375],
-    ]
-    .iter()
-    .map(|p| p.to_vec())
-    .collect();
+    // The large hull: a corner at (1, x, 0) and a face on the plane x₀ = 0 whose corner
+    // (0, 1, z) varies between the findings.
+    let large = |(x, z): (f64, f64)| -> Vec<Vec<f64>> {
+        [
+            [1.0, x, 0.0],
+            [0.0, 1.0, z],
+            [0.0, 0.00390625, 6.103515625e-5],
+            [0.0, -0.5999755859375, -0.0062255859375],
+        ]
+        .iter()
+        .map(|p| p.to_vec())
+        .collect()
+    };
     let e = -1.4901161193847656e-8;
-    // The finding, and its neighbour `regression_gjk_flat_hull_width` (the small hull's
-    // points spread over 3e-4, the same 1.5e-8 behind the face).
-    let smalls: [Vec<[f64; 3]>; 2] = [
-        vec![
-            [e, e, e],
-            [e, e, e],
-            [e, 0.00014494359493255615, 0.00019453465938568115],
-            [e, e, e],
-            [e, e, -3.591179847717285e-6],
-            [e, e, 3.7997961044311523e-6],
-            [0.0, 0.0, 0.0],
-        ],
-        vec![
-            [e, 7.614493370056152e-6, -3.337860107421875e-6],
-            [e, e, 0.00028608739376068115],
-            [e, 0.00014494359493255615, 0.00019453465938568115],
-            [e, e, -0.00012208521366119385],
-            [e, e, -3.591179847717285e-6],
-            [e, e, 3.7997961044311523e-6],
-            [0.0, 0.0, 0.0],
-        ],
+    let face = 0.0045166015625;
+    // The finding; its neighbour `regression_gjk_flat_hull_width` (the small hull's points
+    // spread over 3e-4, the same 1.5e-8 behind the face);
+    // `regression_gjk_lower_bound_resolution` (a small hull 3e-6 thick, not flat: at a
+    // distance of 1.5e-8 of the size the round-off of v, about ε · size, is as large in
+    // v·w as |v|² itself); and `regression_gjk_no_progress_is_not_certified` (GJK stopped
+    // where its new support point did not bring the simplex nearer, the gap still open,
+    // and that stop was certified).
+    let pairs: [((f64, f64), Vec<[f64; 3]>); 4] = [
+        (
+            (0.0, face),
+            vec![
+                [e, e, e],
+                [e, e, e],
+                [e, 0.00014494359493255615, 0.00019453465938568115],
+                [e, e, e],
+                [e, e, -3.591179847717285e-6],
+                [e, e, 3.7997961044311523e-6],
+                [0.0, 0.0, 0.0],
+            ],
+        ),
+        (
+            (0.0, face),
+            vec![
+                [e, 7.614493370056152e-6, -3.337860107421875e-6],
+                [e, e, 0.00028608739376068115],
+                [e, 0.00014494359493255615, 0.00019453465938568115],
+                [e, e, -0.00012208521366119385],
+                [e, e, -3.591179847717285e-6],
+                [e, e, 3.7997961044311523e-6],
+                [0.0, 0.0, 0.0],
+            ],
+        ),
+        (
+            (0.00390625, face),
+            vec![
+                [e, 0.00027845799922943115, -3.635883331298828e-6],
+                [e, e, 7.614493370056152e-6],
+                [-3.337860107421875e-6, e, 3.7997961044311523e-6],
+                [0.0, 0.0, 0.0],
+            ],
+        ),
+        (
+            (0.0, 0.00250244140625),
+            vec![
+                [e, 0.00024794042110443115, 1.1026859283447266e-6],
+                [0.0, 9.5367431640625e-7, 1.4901161193847656e-8],
+                [0.0, -0.00014647841453552246, -1.519918441772461e-6],
+                [e, e, -3.1441450119018555e-6],
+                [e, e, e],
+                [
+                    -3.2633543014526367e-6,
+                    -3.069639205932617e-6,
+                    7.62939453125e-6,
+                ],
+            ],
+        ),
     ];
-    let large = ConvexShape::hull(&large).unwrap();
     let identity = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
     let mut checked = 0;
-    for small in &smalls {
+    for (corner, small) in &pairs {
+        let large = ConvexShape::hull(&large(*corner)).unwrap();
         let small: Vec<Vec<f64>> = small.iter().map(|p| p.to_vec()).collect();
         let small = ConvexShape::hull(&small).unwrap();
         let a = PlacedShape::new(&large, &[0.0; 3], &identity).unwrap();
@@ -1107,7 +1147,7 @@ fn fuzz_gjk_stopped_on_a_repeated_support_point_is_certified_only_when_its_bound
             checked += 1;
         }
     }
-    assert_eq!(checked, 4);
+    assert_eq!(checked, 8);
 }
 
 /// convex_pairs (input `/gIVACAAuAzMDMwAICDMDMwM/34C`): a 6D box (half-lengths about 0.5 … 1.1)

@@ -170,9 +170,11 @@ pub struct Separation {
     /// the centres' distance): always when GJK stops on its gap test (its upper bound |v|
     /// of the cores' distance and lower bound v·w/|v| within 1e-12 relative) or at
     /// contact, and at its iteration bound, or where a support point repeats one it holds
-    /// (round-off on sliver simplices of nearly touching polytopes), when the two bounds
-    /// (the lower one taken as at least 0) are that close. False otherwise: `distance` is
-    /// then an upper bound only.
+    /// or (unless a core is an ellipsoid) does not bring the simplex nearer (round-off on
+    /// sliver simplices of nearly touching polytopes), when the two bounds (the lower one taken as at least 0) are
+    /// that close. False otherwise: `distance` is then an upper bound only. Nearly
+    /// touching shapes can stop so within about 1.5e-8 (√ε) of the size: there the
+    /// round-off of v, about ε times the size, is as large in v·w as |v|² itself.
     /// Near contact the normal is known to about 1e-16 of the size over the distance;
     /// curved cores nearer than 1e-9 of the size whose gap along the normal stays open
     /// count as touching.
@@ -496,7 +498,11 @@ pub(crate) fn gjk_general(a: &PlacedShape, b: &PlacedShape) -> GjkResult {
         let nearest = nearest_point(&simplex.w[..simplex.count * n], simplex.count, n);
         if nearest.vv >= vv {
             // Round-off: the new point did not bring the simplex nearer; keep the old one.
+            // Between polytopes that is round-off on a sliver simplex, certified as a stop
+            // on a repeated point is. On curved cores it is GJK's convergence near
+            // contact, where |v|² is below the round-off of v·w (see `gap_tolerance`).
             simplex.clone_from(&previous);
+            certified = rule.curved || rule.certified_when_stuck(vv, vw);
             break;
         }
         let full = nearest.mask.count_ones() as usize == n + 1;
@@ -537,7 +543,7 @@ pub(crate) fn curved(a: &PlacedShape, b: &PlacedShape) -> bool {
 /// and from [`TRACKED_FROM`] on the least gap (for [`go_on`]) and the best lower bound
 /// v·w/|v| of the distance (for the certificate at the iteration bound).
 pub(crate) struct StopRule {
-    curved: bool,
+    pub(crate) curved: bool,
     scale: f64,
     least: f64,
     checkpoint: f64,
@@ -570,8 +576,9 @@ impl StopRule {
         vv.sqrt() - self.lower.max(0.0) <= BOUNDED_GAP * self.scale
     }
 
-    /// Where GJK meets a support point it holds already with the gap still open (round-off
-    /// on a sliver simplex has put v off its nearest point): whether the upper bound |v|
+    /// Where GJK meets a support point it holds already, or one that does not bring the
+    /// simplex nearer, with the gap still open (round-off on a sliver simplex has put v off
+    /// its nearest point): whether the upper bound |v|
     /// and the best lower bound, this support point's v·w/|v| included, lie within
     /// [`BOUNDED_GAP`] of the size.
     #[inline]
