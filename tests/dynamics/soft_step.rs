@@ -21,11 +21,12 @@ const G: f64 = 9.81;
 /// Six cubes in 3D and three 4D hypercubes each offset by 5 %, turned by ±3° or not,
 /// dropped from 1 % of their size onto each other, stand for 10 s at h = 1/60 s and
 /// 1e-3 s: the top box sinks less than 5e-3 (the springs' deflection), ends at rest (below
-/// 1e-3 m/s) and slides less than 2e-2. Measured: the six cubes turned by ±3° slide 1.6e-2
-/// at h = 1/60 s while the landing's bounce settles (9e-3 with 8 substeps), above the 1e-2
-/// of a stable stack that [`MotionSplitting`](rotorflow::dynamics::motion::MotionSplitting)
-/// keeps to 1e-9; the other cases slide less than 1e-2. With one pass per substep instead
-/// of the two it takes in 4D, the hypercubes rock at 1e-2 m/s and slide by 6e-2.
+/// 1e-3 m/s) and slides less than 1e-2. Measured: at most 3.3e-3 (six unturned cubes at
+/// h = 1/60 s). A cube landing on a cube tilted by the impact below it must touch along
+/// the face: held at the one corner of the edge axis of a slightly wider gap, the turned
+/// cubes spun at up to 1 rad/s on landing and the top slid 1.6e-2. With one pass per
+/// substep instead of the two it takes in 4D, the hypercubes rock at 1e-2 m/s and slide by
+/// 6e-2.
 #[test]
 fn towers_stand_under_the_soft_step() {
     let mut cases = 0;
@@ -47,7 +48,7 @@ fn towers_stand_under_the_soft_step() {
             );
             println!("N = {n}, {count} cubes, h = {h}, turned {turn}°: {o:?}");
             assert!(
-                o.sink < 5e-3 && o.slide < 2e-2 && o.speed < 1e-3,
+                o.sink < 5e-3 && o.slide < 1e-2 && o.speed < 1e-3,
                 "N = {n}, h = {h}, turned {turn}°: {o:?}"
             );
             cases += 1;

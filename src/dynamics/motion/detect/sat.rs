@@ -39,18 +39,16 @@ pub const ROTATION_TOLERANCE: f64 = 1e-6;
 /// A cell axis replaces the best face axis only if its depth is below this fraction of the
 /// face depth (less [`AXIS_ABSOLUTE_BIAS`] times the box size): resting stacks, whose face
 /// and cell depths are nearly equal, then keep face contacts and their several points.
+/// Boxes apart keep the face axis likewise while its gap is at least this fraction of the
+/// widest (a cell axis's) less the absolute part: a box falling onto another, tilted by
+/// the last impact, has an edge axis of a slightly wider gap than the face it is about to
+/// land on, and the face gives the landing its several points (one point alone would
+/// spin it). The widest gap stays in [`BoxPairAxis::least_depth`].
 pub const AXIS_RELATIVE_BIAS: f64 = 0.95;
 
 /// The absolute part of the face preference, relative to the smaller box's largest
 /// half-length (so that contacts of depth near zero keep their face too).
 pub const AXIS_ABSOLUTE_BIAS: f64 = 1e-3;
-
-/// Boxes apart: a face axis whose gap falls short of the widest (a cell axis's) by at most
-/// this much, relative to the smaller box's largest half-length, is taken instead (as
-/// [`AXIS_ABSOLUTE_BIAS`] does for overlaps): two faces a hair apart and tilted by round-off
-/// have an edge axis of a slightly wider gap, and the face keeps the contact's several
-/// points. The widest gap stays in [`BoxPairAxis::least_depth`].
-pub const APART_BIAS: f64 = 1e-6;
 
 /// A box placed in space: half-lengths along its own axes, its centre, and its rotation
 /// (N × N, row-major, own axes → space: x_space = position + Q x_own).
@@ -181,7 +179,7 @@ pub struct BoxPairAxis {
     pub normal: SmallVec<[f64; 8]>,
     /// The overlap of the projections along `normal`: > 0 penetration depth (the least over
     /// the axes, up to the face preference), < 0 the gap (the largest over the axes up to
-    /// the face preference [`APART_BIAS`]; a lower bound on the distance between the boxes,
+    /// the face preference of [`AXIS_RELATIVE_BIAS`]; a lower bound on the distance between the boxes,
     /// equal to it when the closest features are a face and anything, or two cells of
     /// complementary dimensions).
     pub depth: f64,
@@ -415,8 +413,8 @@ pub(crate) fn for_each_axis(
 /// Tests two boxes along all their candidate axes and returns the axis of least overlap
 /// (with face axes preferred within [`AXIS_RELATIVE_BIAS`] and [`AXIS_ABSOLUTE_BIAS`], and
 /// A's faces preferred to B's the same way) when they overlap, or the axis of largest gap
-/// when they are apart (a face axis preferred to a cell axis whose gap it comes within
-/// [`APART_BIAS`] of).
+/// when they are apart (a face axis preferred to a cell axis while its gap is at least
+/// [`AXIS_RELATIVE_BIAS`] of the cell axis's less [`AXIS_ABSOLUTE_BIAS`] of the size).
 ///
 /// The normal points from A to B; coincident centres give the axis as found. Touching boxes
 /// give depth 0 (to round-off).
@@ -498,15 +496,15 @@ pub(crate) fn box_box_unchecked(a: &PlacedBox<'_>, b: &PlacedBox<'_>) -> BoxPair
     let scale = a.size().min(b.size());
     let absolute = AXIS_ABSOLUTE_BIAS * scale;
     let chosen = if let Some(w) = widest {
-        // Apart: a face axis within APART_BIAS of the widest gap is taken instead of a cell
-        // axis (a face gives the contact its several points).
+        // Apart: a face axis whose gap is within the biases of the widest is taken instead
+        // of a cell axis (a face gives the contact its several points).
         let face = if face_b.overlap < face_a.overlap {
             face_b
         } else {
             face_a
         };
         let cell = matches!(w.feature, AxisFeature::Cells { .. });
-        if cell && face.overlap <= w.overlap + APART_BIAS * scale {
+        if cell && face.overlap <= AXIS_RELATIVE_BIAS * w.overlap + absolute {
             face
         } else {
             w

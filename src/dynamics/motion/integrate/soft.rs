@@ -40,7 +40,7 @@ use smallvec::SmallVec;
 /// Measured (`tests/dynamics/soft_step.rs`): towers of six cubes in 3D and of three 4D
 /// hypercubes offset by 5 % stand for 10 s at h = 1/60 s and 1e-3 s, the top sinking by
 /// the springs' deflection (3.6e-3 for six cubes at h = 1/60 s) and sliding by up to
-/// 1.6e-2.
+/// 3.3e-3.
 ///
 /// The free flight is that of [`MotionSplitting`](super::MotionSplitting): positions
 /// exactly, rotations by the Lie–Poisson splitting, which keeps a free body's |L| and
