@@ -1077,7 +1077,9 @@ fn fuzz_gjk_stopped_on_a_repeated_support_point_is_certified_only_when_its_bound
     // v·w as |v|² itself); and `regression_gjk_no_progress_is_not_certified` (GJK stopped
     // where its new support point did not bring the simplex nearer, the gap still open,
     // and that stop was certified).
-    let pairs: [((f64, f64), Vec<[f64; 3]>); 4] = [
+    // Each pair: the large hull's corner (x, z), the small hull's points.
+    type Pair = ((f64, f64), Vec<[f64; 3]>);
+    let pairs: [Pair; 4] = [
         (
             (0.0, face),
             vec![
