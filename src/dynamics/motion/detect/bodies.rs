@@ -265,8 +265,9 @@ impl Touching {
 
     /// Finds the pairs of bodies whose signed distance is at most `factor` times the sum of
     /// their bounding radii, with each body's own axes `q(i)` (row-major, own axes → space).
-    /// The broad phase ([`BroadPhase`]: a hierarchy of the bounding balls' boxes, kept from
-    /// step to step) gives the pairs whose boxes overlap, in increasing order, and pairs
+    /// The broad phase ([`BroadPhase`]: a hierarchy of the bodies' bounding boxes — a box's
+    /// own, else its bounding ball's — kept from step to step) gives the pairs whose boxes
+    /// overlap, in increasing order, and pairs
     /// whose bounding balls are farther apart are not asked.
     ///
     /// With `manifold: Some(slop)`, two polytopes in contact are reported by the points of
@@ -303,11 +304,31 @@ impl Touching {
         }
         self.lower.clear();
         self.upper.clear();
-        for (b, r) in bodies.iter().zip(&self.radius) {
-            let e = r * (1.0 + factor);
-            for &x in b.position().as_slice() {
-                self.lower.push(x - e);
-                self.upper.push(x + e);
+        for (i, (b, r)) in bodies.iter().zip(&self.radius).enumerate() {
+            // Each body's box is padded by its share of the reach, factor × its radius, so
+            // that two boxes apart have a gap beyond the pair's reach.
+            let pad = r * factor;
+            let x = b.position().as_slice();
+            match &self.boxes[i] {
+                // A box's own bounding box: along space axis k it reaches Σⱼ |Q_kj| hⱼ,
+                // a box side by side with another (unturned, faces parallel) then stays
+                // out of the broad phase's pairs, where its bounding ball's box would not.
+                Some(h) => {
+                    let q = q(i);
+                    for (k, &xk) in x.iter().enumerate() {
+                        let row = &q[k * n..(k + 1) * n];
+                        let e = pad + row.iter().zip(h).map(|(c, h)| c.abs() * h).sum::<f64>();
+                        self.lower.push(xk - e);
+                        self.upper.push(xk + e);
+                    }
+                }
+                None => {
+                    let e = r + pad;
+                    for &xk in x {
+                        self.lower.push(xk - e);
+                        self.upper.push(xk + e);
+                    }
+                }
             }
         }
         let mut candidates = std::mem::take(&mut self.candidates);
