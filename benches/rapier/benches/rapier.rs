@@ -156,7 +156,9 @@ fn main() {
 
     let mut c = Criterion::default().sample_size(10).configure_from_args();
     for scene in SCENES {
-        if !filters.is_empty() && !filters.iter().any(|f| scene.group.contains(f.as_str())) {
+        // A filter names a scene (or part of its name), or one bench of it ("scene/bench").
+        let wanted = |f: &String| scene.group.contains(f.as_str()) || f.starts_with(scene.group);
+        if !filters.is_empty() && !filters.iter().any(wanted) {
             continue;
         }
         let items = (scene.items)();
