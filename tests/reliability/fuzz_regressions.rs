@@ -1042,6 +1042,153 @@ fn fuzz_epa_depth_of_a_tiny_ellipsoid_in_a_long_capsule_is_the_margins() {
     assert_eq!(checked, 2);
 }
 
+/// convex_pairs (input `+cz/GBAuAgIVAgACAiAVACD7nJwUEAAQEAAAAAAgAAAAAPj/////////AAEA/Pz8/Pz8/Pz8/PwAABAAzABgAADMAAIMzAwRCAA=`):
+/// F31's tiny rounded ellipsoid in the long 6D capsule, both turned. Each penetration query
+/// took 1.8 s (34 s under the fuzzer's instrumentation, reported as a slow unit): EPA on
+/// the cores, a sausage 1.6e-4 thick and 2,638 long, cannot close its gap to 1e-12 of the
+/// size on a curved surface and ran its 256 iterations on up to 4,096 facets. On curved
+/// cores it now also stops when its least support reach and its nearest facet are within
+/// 1e-9 of the size. Both orders must give the margins plus at most the sausage's
+/// thinnest semi-axis twice, with witnesses depth · normal apart, in few iterations.
+#[test]
+fn fuzz_epa_on_a_curved_core_stops_when_its_bounds_meet() {
+    use rotorflow::dynamics::motion::detect::{EpaWorkspace, PlacedShape, penetration_with};
+    use rotorflow::dynamics::motion::shape::ConvexShape;
+    let semi_axes = [
+        6.139278411865234e-5,
+        8.314847946166992e-6,
+        8.01384449005127e-5,
+        2.9802322387695313e-8,
+        7.659196853637695e-6,
+        8.058547973632813e-5,
+    ];
+    let tiny = ConvexShape::ellipsoid(&semi_axes)
+        .unwrap()
+        .rounded(0.0001220703125)
+        .unwrap();
+    let capsule = ConvexShape::capsule(6, 1319.0, 1032.0).unwrap();
+    let qa = [
+        0.9761543881082106,
+        -0.062161017593927205,
+        -0.11783874870321308,
+        0.029286617354116723,
+        -0.10799880682624535,
+        -0.12981217023412864,
+        0.09614281557803153,
+        0.9177572066543516,
+        -0.0401966489655051,
+        -0.06376061451929595,
+        -0.07728204860730334,
+        0.3698980495458914,
+        0.0966080095496682,
+        0.0937612329723454,
+        0.27834640783962394,
+        0.6789140559355842,
+        0.6653271974101104,
+        0.028538149285419666,
+        0.09707545439600565,
+        0.003658873698406732,
+        -0.009193670110966437,
+        -0.7017298403422066,
+        0.7056738971841758,
+        -0.008833302505703739,
+        0.09754516100806404,
+        0.003676577423612256,
+        0.9523324064572587,
+        -0.20427386985728482,
+        -0.20427386985728477,
+        -0.008876043079199439,
+        0.0980171403295605,
+        -0.38084070704023004,
+        0.0,
+        -0.0,
+        0.0,
+        0.919430800040282,
+    ];
+    let qb = [
+        0.08053963237976396,
+        -0.8431683411724754,
+        -0.2777851165098011,
+        -0.3580719435284988,
+        -0.08190405389012348,
+        -0.26550358626638576,
+        0.2655035862663857,
+        0.17628388016860583,
+        0.08426519384872729,
+        0.15549657545472936,
+        0.3179511329855522,
+        -0.8752480268090184,
+        0.0,
+        -0.26028186076429155,
+        0.9569403357322088,
+        -0.11763534404611271,
+        -0.05177328111060775,
+        0.0,
+        -0.013630269629906775,
+        -0.39419717683447986,
+        0.0,
+        0.9131085500151271,
+        -0.0929333361679076,
+        0.04493297723851191,
+        -0.08426519384872729,
+        -0.1866897982482185,
+        0.0,
+        0.0,
+        0.9385529955102759,
+        0.2777851165098011,
+        0.9569403357322089,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.29028467725446205,
+    ];
+    let pa = [
+        0.0,
+        2.384185791015625e-07,
+        0.0,
+        0.0,
+        -2.3283064365386963e-10,
+        -2.9103830456733704e-11,
+    ];
+    let pb = [
+        -2.9103830456733704e-11,
+        -2.9103830456733704e-11,
+        7.450580596923828e-09,
+        -2.9802322387695312e-08,
+        -2.246815711259842e-08,
+        -2.246815711259842e-08,
+    ];
+    let a = PlacedShape::new(&tiny, &pa, &qa).unwrap();
+    let b = PlacedShape::new(&capsule, &pb, &qb).unwrap();
+    let mut workspace = EpaWorkspace::new();
+    let margins = 1032.0 + 0.0001220703125;
+    let size = tiny.bounding_radius() + capsule.bounding_radius();
+    let mut checked = 0;
+    for (first, second) in [(&a, &b), (&b, &a)] {
+        let p = penetration_with(&mut workspace, first, second).unwrap();
+        assert!(
+            p.depth >= margins - 1e-9 * size
+                && p.depth <= margins + 2.0 * semi_axes[3] + 1e-9 * size,
+            "depth {} against the margins {margins}",
+            p.depth
+        );
+        // 278 before (GJK's and EPA's together).
+        assert!(p.iterations <= 64, "{} iterations", p.iterations);
+        for ((wa, wb), m) in p
+            .witness_a
+            .as_slice()
+            .iter()
+            .zip(p.witness_b.as_slice())
+            .zip(p.normal.as_slice())
+        {
+            assert!((wa - wb - p.depth * m).abs() <= 1e-9 * size);
+        }
+        checked += 1;
+    }
+    assert_eq!(checked, 2);
+}
+
 /// convex_pairs (input `AQMVAABAAAAAAAAAAEBKAAAAQAABAAAAmtma/////////////////////////yX/Mv////////////8P////////AAAAAAAAAAA=`):
 /// in 3D a hull of size 1 with a sliver face on x = 0 and a hull of size 2e-4 whose one
 /// vertex at the origin touches that face, the others 1.5e-8 behind it. One order gave
