@@ -1189,6 +1189,63 @@ fn fuzz_epa_on_a_curved_core_stops_when_its_bounds_meet() {
     assert_eq!(checked, 2);
 }
 
+/// convex_pairs (input `AQMVAABAQAAAAAAAAEBKugAAQAABAAAAmtma/////////0gM////////ASABAAAK`): F33's
+/// large hull with a face on x₀ = 0 and a small hull one of whose vertices lies 4.3e-6
+/// inside it, through that face. One order found the overlap (depth 4.29e-6); the other
+/// stopped GJK on a support point it held already with |v| = 1.7e-11: v's round-off (1e-16
+/// across) had picked, among the face's three vertices, one whose difference with the
+/// inner vertex the simplex held, and the distance 1.7e-11 counted as a separation, so
+/// `penetration` answered −1.7e-11 without EPA. Polytopes stuck within 1e-9 of the size
+/// with a support point on the origin's side of v now count as touching, as curved cores
+/// did. Both orders must overlap by the same depth.
+#[test]
+fn fuzz_gjk_stuck_next_to_the_origin_counts_as_contact() {
+    use rotorflow::dynamics::motion::detect::{
+        EpaWorkspace, PlacedShape, distance, penetration_with,
+    };
+    use rotorflow::dynamics::motion::shape::ConvexShape;
+    let points = |v: &[[f64; 3]]| v.iter().map(|p| p.to_vec()).collect::<Vec<_>>();
+    let large = ConvexShape::hull(&points(&[
+        [1.0, 0.00390625, 0.0],
+        [0.0, 1.0, -1.0892333984375],
+        [0.0, 0.00390625, 6.103515625e-5],
+        [0.0, -0.5999755859375, -0.0062255859375],
+    ]))
+    .unwrap();
+    let e = -1.4901161193847656e-8;
+    let small = ConvexShape::hull(&points(&[
+        [e, 0.00027845799922943115, -3.635883331298828e-6],
+        [e, e, 7.614493370056152e-6],
+        [4.291534423828125e-6, 0.0, 1.4901161193847656e-7],
+        [0.0, 0.0, 0.0],
+    ]))
+    .unwrap();
+    let identity = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
+    let a = PlacedShape::new(&large, &[0.0; 3], &identity).unwrap();
+    let b = PlacedShape::new(&small, &[0.0; 3], &identity).unwrap();
+    let size = large.bounding_radius() + small.bounding_radius();
+    let mut workspace = EpaWorkspace::new();
+    let mut depths = Vec::new();
+    for (first, second) in [(&a, &b), (&b, &a)] {
+        let d = distance(first, second).unwrap();
+        assert!(d.intersecting, "distance {}", d.distance);
+        depths.push(
+            penetration_with(&mut workspace, first, second)
+                .unwrap()
+                .depth,
+        );
+    }
+    // The inner vertex's depth through the face; no other direction is shallower by more
+    // than the face's tilt against it.
+    for depth in &depths {
+        assert!(
+            (depth - 4.291534423828125e-6).abs() <= 1e-9 * size,
+            "depths {depths:?}"
+        );
+    }
+    assert_eq!(depths.len(), 2);
+}
+
 /// convex_pairs (input `AQMVAABAAAAAAAAAAEBKAAAAQAABAAAAmtma/////////////////////////yX/Mv////////////8P////////AAAAAAAAAAA=`):
 /// in 3D a hull of size 1 with a sliver face on x = 0 and a hull of size 2e-4 whose one
 /// vertex at the origin touches that face, the others 1.5e-8 behind it. One order gave

@@ -177,7 +177,8 @@ pub struct Separation {
     /// round-off of v, about ε times the size, is as large in v·w as |v|² itself.
     /// Near contact the normal is known to about 1e-16 of the size over the distance;
     /// curved cores nearer than 1e-9 of the size whose gap along the normal stays open
-    /// count as touching.
+    /// count as touching, and so do polytopes that near whose GJK stopped with a support
+    /// point on the origin's side of the normal.
     pub certified: bool,
 }
 
@@ -602,11 +603,16 @@ impl StopRule {
         false
     }
 
-    /// Curved cores within [`BOUNDED_GAP`] whose gap along v stayed open: contact cannot
-    /// be excluded and v's direction says nothing, so this counts as contact.
+    /// Cores within [`BOUNDED_GAP`] whose gap along v stayed open — curved ones, or
+    /// polytopes stuck (on a support point held already or one that brings the simplex no
+    /// nearer) with a support point at or beyond the origin's side of v (a lower bound
+    /// ≤ 0): contact cannot be excluded and v's direction says nothing, so this counts as
+    /// contact. A polytope there has v of a few units in the last place of the size, whose
+    /// round-off picks the support point among the vertices of a face, and may have
+    /// stopped on a face of K a hair from the origin while K holds it.
     #[inline]
     pub(crate) fn undecided_contact(&self, vv: f64) -> bool {
-        self.curved && self.open && vv.sqrt() <= BOUNDED_GAP * self.scale
+        self.open && vv.sqrt() <= BOUNDED_GAP * self.scale && (self.curved || self.lower <= 0.0)
     }
 }
 
