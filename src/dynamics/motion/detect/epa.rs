@@ -949,8 +949,15 @@ pub fn penetration_with(
     let mut normal = Vector::zero(n);
     let mut witness_a = Vector::zero(n);
     let mut witness_b = Vector::zero(n);
-    let (core_depth, iterations) = if result.intersecting {
+    // A pair GJK left stuck beside the origin is asked of EPA too; an origin outside K
+    // gives EPA's polytope a facet behind it and depth 0, and the pair is then apart.
+    let overlap = if result.intersecting || result.undecided {
         let core = epa_cores(workspace, a, b, &result);
+        (result.intersecting || core.depth > 0.0).then_some(core)
+    } else {
+        None
+    };
+    let (core_depth, iterations) = if let Some(core) = overlap {
         for (x, y) in normal.as_mut_slice().iter_mut().zip(&core.normal_k) {
             *x = -y;
         }

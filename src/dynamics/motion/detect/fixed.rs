@@ -323,5 +323,6 @@ pub(crate) fn gjk_fixed<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Gjk
         iterations,
         certified,
         scale,
+        undecided: !intersecting && rule.stuck_beside_origin(vv),
     }
 }

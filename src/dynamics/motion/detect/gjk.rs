@@ -177,8 +177,7 @@ pub struct Separation {
     /// round-off of v, about ε times the size, is as large in v·w as |v|² itself.
     /// Near contact the normal is known to about 1e-16 of the size over the distance;
     /// curved cores nearer than 1e-9 of the size whose gap along the normal stays open
-    /// count as touching, and so do polytopes that near whose GJK stopped with a support
-    /// point on the origin's side of the normal.
+    /// count as touching.
     pub certified: bool,
 }
 
@@ -406,6 +405,9 @@ pub(crate) struct GjkResult {
     pub certified: bool,
     /// The size the tolerances are relative to: the cores' radii and the centres' distance.
     pub scale: f64,
+    /// Not intersecting, but stuck beside the origin ([`StopRule::stuck_beside_origin`]):
+    /// the cores may overlap.
+    pub undecided: bool,
 }
 
 /// Writes the support point of K = B − A along `d`: w = s_B(d) − s_A(−d).
@@ -529,6 +531,7 @@ pub(crate) fn gjk_general(a: &PlacedShape, b: &PlacedShape) -> GjkResult {
         iterations,
         certified,
         scale,
+        undecided: !intersecting && rule.stuck_beside_origin(vv),
     }
 }
 
@@ -603,16 +606,23 @@ impl StopRule {
         false
     }
 
-    /// Cores within [`BOUNDED_GAP`] whose gap along v stayed open — curved ones, or
-    /// polytopes stuck (on a support point held already or one that brings the simplex no
-    /// nearer) with a support point at or beyond the origin's side of v (a lower bound
-    /// ≤ 0): contact cannot be excluded and v's direction says nothing, so this counts as
-    /// contact. A polytope there has v of a few units in the last place of the size, whose
-    /// round-off picks the support point among the vertices of a face, and may have
-    /// stopped on a face of K a hair from the origin while K holds it.
+    /// Curved cores within [`BOUNDED_GAP`] whose gap along v stayed open: contact cannot
+    /// be excluded and v's direction says nothing, so this counts as contact.
     #[inline]
     pub(crate) fn undecided_contact(&self, vv: f64) -> bool {
-        self.open && vv.sqrt() <= BOUNDED_GAP * self.scale && (self.curved || self.lower <= 0.0)
+        self.curved && self.open && vv.sqrt() <= BOUNDED_GAP * self.scale
+    }
+
+    /// Polytopes within [`BOUNDED_GAP`] whose GJK stopped stuck (on a support point held
+    /// already, or one that brings the simplex no nearer) with a support point on the
+    /// origin's side of v (a lower bound ≤ 0): v's round-off, a few units in the last
+    /// place of the size, picks the support point among the vertices of a face, and the
+    /// simplex may have stopped on a face of K a hair from the origin while K holds it.
+    /// The distance |v| stands (within 1e-9 of the size of the truth either way), but a
+    /// penetration query must ask EPA.
+    #[inline]
+    pub(crate) fn stuck_beside_origin(&self, vv: f64) -> bool {
+        !self.curved && self.open && vv.sqrt() <= BOUNDED_GAP * self.scale && self.lower <= 0.0
     }
 }
 
