@@ -1247,6 +1247,104 @@ fn fuzz_penetration_asks_epa_where_gjk_stuck_beside_the_origin() {
     assert_eq!(depths.len(), 2);
 }
 
+/// convex_pairs (inputs `BPnMCREQLgICPQIA4ODg4F8yAiAt` and
+/// `CfnM/xgQJy4CABUCAP//AgAC//8AABUAkP//cQAAAAAAAADu7u7u`): in 6D a tiny box or simplex
+/// (1e-6 across) at the centre of a rounded regular simplex 10¹¹ times its size. No
+/// assertion failed, but the queries were slow: 0.4 and 0.8 s per penetration query for
+/// the box (262 iterations), minutes under the fuzzer's instrumentation for the simplex.
+/// Each new point saw thousands of facets, and each retry that merges a coplanar facet
+/// computed the planes of the whole horizon again. EPA now also stops after 32,768 facet
+/// planes in all, with its nearest facet. Both orders must give the margin plus the
+/// simplex's inradius (R/6), to the tiny shape's size, in few iterations.
+#[test]
+fn fuzz_epa_in_six_dimensions_stops_at_its_work_cap() {
+    use rotorflow::dynamics::motion::detect::{EpaWorkspace, PlacedShape, penetration_with};
+    use rotorflow::dynamics::motion::shape::ConvexShape;
+    let n = 6;
+    // The target's rotations: plane rotations by the input's byte angles, in order.
+    let rotation = |angles: &[u8]| {
+        let mut q: Vec<f64> = (0..n * n)
+            .map(|k| if k % (n + 1) == 0 { 1.0 } else { 0.0 })
+            .collect();
+        let mut bytes = angles.iter();
+        for i in 0..n {
+            for j in i + 1..n {
+                let angle = *bytes.next().unwrap_or(&0) as f64 * std::f64::consts::TAU / 256.0;
+                let (s, c) = angle.sin_cos();
+                for row in 0..n {
+                    let (x, y) = (q[row * n + i], q[row * n + j]);
+                    q[row * n + i] = c * x - s * y;
+                    q[row * n + j] = s * x + c * y;
+                }
+            }
+        }
+        q
+    };
+    let cases = [
+        (
+            (139552.0, 377344.0),
+            ConvexShape::cuboid(&[
+                6.670597940683365e-8,
+                9.5367431640625e-7,
+                9.275972843170166e-7,
+                2.857297658920288e-6,
+                6.542541086673737e-8,
+                1.344829797744751e-6,
+            ])
+            .unwrap(),
+            ([0.0; 6], [0.0; 6]),
+            &[][..],
+        ),
+        (
+            (204768.0, 320000.0),
+            ConvexShape::simplex(n, 6.258487701416016e-7).unwrap(),
+            (
+                [
+                    -2.9802322387695312e-8,
+                    8.9290551841259e-8,
+                    5.960464477539063e-8,
+                    -1.1641532182693481e-10,
+                    0.0,
+                    2.444721758365631e-9,
+                ],
+                [
+                    -1.30385160446167e-8,
+                    3.3973483368754387e-6,
+                    0.0,
+                    0.0,
+                    0.0,
+                    -5.364418029785156e-7,
+                ],
+            ),
+            &[238, 238, 238][..],
+        ),
+    ];
+    let mut workspace = EpaWorkspace::new();
+    let mut checked = 0;
+    for ((radius, margin), tiny, (pa, pb), angles) in &cases {
+        let large = ConvexShape::simplex(n, *radius)
+            .unwrap()
+            .rounded(*margin)
+            .unwrap();
+        let (qa, qb) = (rotation(angles), rotation(&angles[angles.len().min(15)..]));
+        let a = PlacedShape::new(&large, pa, &qa).unwrap();
+        let b = PlacedShape::new(tiny, pb, &qb).unwrap();
+        let expected = margin + radius / n as f64;
+        for (first, second) in [(&a, &b), (&b, &a)] {
+            let p = penetration_with(&mut workspace, first, second).unwrap();
+            assert!(
+                (p.depth - expected).abs() <= 2.0 * tiny.bounding_radius() + 1e-9 * expected,
+                "depth {} against {expected}",
+                p.depth
+            );
+            // 262 before (GJK's and EPA's together).
+            assert!(p.iterations <= 64, "{} iterations", p.iterations);
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 4);
+}
+
 /// convex_pairs (input `AQMVAABAAAAAAAAAAEBKAAAAQAABAAAAmtma/////////////////////////yX/Mv////////////8P////////AAAAAAAAAAA=`):
 /// in 3D a hull of size 1 with a sliver face on x = 0 and a hull of size 2e-4 whose one
 /// vertex at the origin touches that face, the others 1.5e-8 behind it. One order gave
