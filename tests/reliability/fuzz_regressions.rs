@@ -970,19 +970,29 @@ fn fuzz_epa_depth_survives_sliver_facets_of_a_thin_slab_in_a_large_cross_polytop
     }
 }
 
-/// convex_pairs (input `+cz/GBAuAgIVAgACAiAVACD7nJwUEBAQAAAAAQAAAAAAAAIAAMwAAP8ZzAwRCN+cAAIA`):
-/// in 6D a tiny rounded ellipsoid (semi-axes 3e-8 … 8e-5, margin 1.2e-4) at the middle of a
-/// capsule (half-length 1319, radius 1032), unturned. The Minkowski difference of the cores
-/// is a sausage 6e-8 thin across one axis and 2638 long, the origin on its surface. The
-/// first simplex had a vertex within 1e-12 of the size of the plane of the others (it had
-/// joined far from the span of the points before it), and orienting that facet panicked;
-/// such facets are now widened by a support point. The expansion then removed every facet
-/// near the origin and ended on one 1318.7 away, beyond a support query that had reached
-/// only −1.8e-8 along its normal: the depth is now never above the least reach met. The
-/// depth is the sum of the margins plus a core depth of at most the sausage's thickness.
-#[test]
-fn fuzz_epa_depth_of_a_tiny_ellipsoid_in_a_long_capsule_is_the_margins() {
-    use rotorflow::dynamics::motion::detect::{EpaWorkspace, PlacedShape, penetration_with};
+/// Asserts that a penetration's witnesses lie depth · normal apart, to `tolerance`.
+fn assert_witnesses_depth_apart(
+    p: &rotorflow::dynamics::motion::detect::Penetration,
+    tolerance: f64,
+) {
+    for ((wa, wb), m) in p
+        .witness_a
+        .as_slice()
+        .iter()
+        .zip(p.witness_b.as_slice())
+        .zip(p.normal.as_slice())
+    {
+        assert!((wa - wb - p.depth * m).abs() <= tolerance);
+    }
+}
+
+/// The shapes of F31 and F40: a tiny rounded 6D ellipsoid (its semi-axes) and a capsule
+/// of half-length 1319 and radius 1032.
+fn tiny_ellipsoid_and_long_capsule() -> (
+    [f64; 6],
+    rotorflow::dynamics::motion::shape::ConvexShape,
+    rotorflow::dynamics::motion::shape::ConvexShape,
+) {
     use rotorflow::dynamics::motion::shape::ConvexShape;
     let semi_axes = [
         6.139278411865234e-5,
@@ -997,6 +1007,23 @@ fn fuzz_epa_depth_of_a_tiny_ellipsoid_in_a_long_capsule_is_the_margins() {
         .rounded(0.0001220703125)
         .unwrap();
     let capsule = ConvexShape::capsule(6, 1319.0, 1032.0).unwrap();
+    (semi_axes, tiny, capsule)
+}
+
+/// convex_pairs (input `+cz/GBAuAgIVAgACAiAVACD7nJwUEBAQAAAAAQAAAAAAAAIAAMwAAP8ZzAwRCN+cAAIA`):
+/// in 6D a tiny rounded ellipsoid (semi-axes 3e-8 … 8e-5, margin 1.2e-4) at the middle of a
+/// capsule (half-length 1319, radius 1032), unturned. The Minkowski difference of the cores
+/// is a sausage 6e-8 thin across one axis and 2638 long, the origin on its surface. The
+/// first simplex had a vertex within 1e-12 of the size of the plane of the others (it had
+/// joined far from the span of the points before it), and orienting that facet panicked;
+/// such facets are now widened by a support point. The expansion then removed every facet
+/// near the origin and ended on one 1318.7 away, beyond a support query that had reached
+/// only −1.8e-8 along its normal: the depth is now never above the least reach met. The
+/// depth is the sum of the margins plus a core depth of at most the sausage's thickness.
+#[test]
+fn fuzz_epa_depth_of_a_tiny_ellipsoid_in_a_long_capsule_is_the_margins() {
+    use rotorflow::dynamics::motion::detect::{EpaWorkspace, PlacedShape, penetration_with};
+    let (semi_axes, tiny, capsule) = tiny_ellipsoid_and_long_capsule();
     let pa = [
         7.450580596923828e-9,
         0.0,
@@ -1028,15 +1055,7 @@ fn fuzz_epa_depth_of_a_tiny_ellipsoid_in_a_long_capsule_is_the_margins() {
             "depth {} against the margins {margins}",
             p.depth
         );
-        for ((wa, wb), m) in p
-            .witness_a
-            .as_slice()
-            .iter()
-            .zip(p.witness_b.as_slice())
-            .zip(p.normal.as_slice())
-        {
-            assert!((wa - wb - p.depth * m).abs() <= 1e-9 * 2351.0);
-        }
+        assert_witnesses_depth_apart(&p, 1e-9 * 2351.0);
         checked += 1;
     }
     assert_eq!(checked, 2);
@@ -1053,20 +1072,7 @@ fn fuzz_epa_depth_of_a_tiny_ellipsoid_in_a_long_capsule_is_the_margins() {
 #[test]
 fn fuzz_epa_on_a_curved_core_stops_when_its_bounds_meet() {
     use rotorflow::dynamics::motion::detect::{EpaWorkspace, PlacedShape, penetration_with};
-    use rotorflow::dynamics::motion::shape::ConvexShape;
-    let semi_axes = [
-        6.139278411865234e-5,
-        8.314847946166992e-6,
-        8.01384449005127e-5,
-        2.9802322387695313e-8,
-        7.659196853637695e-6,
-        8.058547973632813e-5,
-    ];
-    let tiny = ConvexShape::ellipsoid(&semi_axes)
-        .unwrap()
-        .rounded(0.0001220703125)
-        .unwrap();
-    let capsule = ConvexShape::capsule(6, 1319.0, 1032.0).unwrap();
+    let (semi_axes, tiny, capsule) = tiny_ellipsoid_and_long_capsule();
     let qa = [
         0.9761543881082106,
         -0.062161017593927205,
@@ -1175,15 +1181,7 @@ fn fuzz_epa_on_a_curved_core_stops_when_its_bounds_meet() {
         );
         // 278 before (GJK's and EPA's together).
         assert!(p.iterations <= 64, "{} iterations", p.iterations);
-        for ((wa, wb), m) in p
-            .witness_a
-            .as_slice()
-            .iter()
-            .zip(p.witness_b.as_slice())
-            .zip(p.normal.as_slice())
-        {
-            assert!((wa - wb - p.depth * m).abs() <= 1e-9 * size);
-        }
+        assert_witnesses_depth_apart(&p, 1e-9 * size);
         checked += 1;
     }
     assert_eq!(checked, 2);
