@@ -309,26 +309,21 @@ impl Touching {
             // that two boxes apart have a gap beyond the pair's reach.
             let pad = r * factor;
             let x = b.position().as_slice();
-            match &self.boxes[i] {
-                // A box's own bounding box: along space axis k it reaches Σⱼ |Q_kj| hⱼ,
-                // a box side by side with another (unturned, faces parallel) then stays
-                // out of the broad phase's pairs, where its bounding ball's box would not.
-                Some(h) => {
-                    let q = q(i);
-                    for (k, &xk) in x.iter().enumerate() {
-                        let row = &q[k * n..(k + 1) * n];
-                        let e = pad + row.iter().zip(h).map(|(c, h)| c.abs() * h).sum::<f64>();
-                        self.lower.push(xk - e);
-                        self.upper.push(xk + e);
-                    }
-                }
-                None => {
-                    let e = r + pad;
-                    for &xk in x {
-                        self.lower.push(xk - e);
-                        self.upper.push(xk + e);
-                    }
-                }
+            // A box's own bounding box: along space axis k it reaches Σⱼ |Q_kj| hⱼ, so a
+            // box side by side with another (unturned, faces parallel) stays out of the
+            // broad phase's pairs, where its bounding ball's box would not.
+            let q = self.boxes[i].as_ref().map(|h| (h, q(i)));
+            for (k, &xk) in x.iter().enumerate() {
+                let reach = match q {
+                    Some((h, q)) => q[k * n..(k + 1) * n]
+                        .iter()
+                        .zip(h)
+                        .map(|(c, h)| c.abs() * h)
+                        .sum::<f64>(),
+                    None => *r,
+                };
+                self.lower.push(xk - reach - pad);
+                self.upper.push(xk + reach + pad);
             }
         }
         let mut candidates = std::mem::take(&mut self.candidates);

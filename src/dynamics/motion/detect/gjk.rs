@@ -610,7 +610,13 @@ impl StopRule {
     /// be excluded and v's direction says nothing, so this counts as contact.
     #[inline]
     pub(crate) fn undecided_contact(&self, vv: f64) -> bool {
-        self.curved && self.open && vv.sqrt() <= BOUNDED_GAP * self.scale
+        self.curved && self.open_near_contact(vv)
+    }
+
+    /// The gap along v still open with |v| within [`BOUNDED_GAP`] of the size.
+    #[inline]
+    fn open_near_contact(&self, vv: f64) -> bool {
+        self.open && vv.sqrt() <= BOUNDED_GAP * self.scale
     }
 
     /// Polytopes within [`BOUNDED_GAP`] whose GJK stopped stuck (on a support point held
@@ -622,7 +628,7 @@ impl StopRule {
     /// penetration query must ask EPA.
     #[inline]
     pub(crate) fn stuck_beside_origin(&self, vv: f64) -> bool {
-        !self.curved && self.open && vv.sqrt() <= BOUNDED_GAP * self.scale && self.lower <= 0.0
+        !self.curved && self.open_near_contact(vv) && self.lower <= 0.0
     }
 }
 
