@@ -345,7 +345,7 @@ fn generated_rapier_bench_says_where_it_was_measured() {
         "against rapier3d ",
         "| scene | rotorflow (ms/step) | Rapier, half-space floor (ms/step) | ratio | Rapier, cuboid floor (ms/step) | ratio |",
         "| scene | measure | rotorflow | Rapier, half-space floor | Rapier, cuboid floor |",
-        "| scene | solves | unconverged | most sweeps | worst residual |",
+        "| scene | solves | unconverged | mean sweeps | most sweeps | worst residual |",
         "rotorflow SoftStep (ms/step)",
         "| rotorflow SoftStep |",
     ] {

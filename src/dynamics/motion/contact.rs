@@ -210,7 +210,13 @@ impl ContactShape {
                     *x = -a[j] * a[j] * m;
                 }
                 let r = &r * (1.0 / s.sqrt());
-                visit(&r, &place(&r));
+                if a.iter().all(|x| *x == a[0]) {
+                    // A ball: its point in space is −a n exactly, the same at every attitude
+                    // (the solver keeps a row's matrices while its offset stays the same).
+                    visit(&r, &(normal * -a[0]));
+                } else {
+                    visit(&r, &place(&r));
+                }
             }
             ContactShape::Convex(c) => convex_candidates(c, q, normal, &mut visit),
             ContactShape::Compound(compound) => {

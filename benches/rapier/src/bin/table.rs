@@ -287,9 +287,10 @@ fn stability_rows(out: &mut String, solves: &mut String) {
         let report = splitting.solver_report();
         let _ = writeln!(
             solves,
-            "| {description} | {} | {} | {} | {} |",
+            "| {description} | {} | {} | {:.2} | {} | {} |",
             report.solves,
             report.unconverged,
+            report.sweeps as f64 / report.solves.max(1) as f64,
             report.max_sweeps,
             sci(report.worst_residual),
         );
@@ -510,13 +511,14 @@ fn run() -> Result<(), Error> {
     let _ = writeln!(
         text,
         "\n`MotionSplitting`'s contact solves in those runs (`MotionSplitting::solver_report`): the solves, those that \
-         stopped at the sweep limit unconverged, the most sweeps one took and the worst residual left.\n"
+         stopped at the sweep limit unconverged, the mean and the most sweeps one took and the worst residual \
+         left.\n"
     );
     let _ = writeln!(
         text,
-        "| scene | solves | unconverged | most sweeps | worst residual |"
+        "| scene | solves | unconverged | mean sweeps | most sweeps | worst residual |"
     );
-    let _ = writeln!(text, "|---|---:|---:|---:|---:|");
+    let _ = writeln!(text, "|---|---:|---:|---:|---:|---:|");
     text.push_str(&solves);
     std::fs::write(&output, text).map_err(|e| format!("cannot write {}: {e}", output.display()))?;
     eprintln!("wrote {}", output.display());

@@ -51,23 +51,33 @@ impl BodyState {
     }
 
     /// Loads body `b`: the rotation of the planes by its principal frame P, I⁻¹ in space
-    /// (P I⁻¹ Pᵀ on bivectors), its velocities, no impulse yet. Returns true if the frame
-    /// and the inverse inertia were computed anew (false: the body has not turned since
-    /// they were).
+    /// (P I⁻¹ Pᵀ on bivectors), its velocities, no impulse yet. Returns true if the inverse
+    /// inertia was computed anew (false: it is the last solve's, as the body has not turned
+    /// since, or its inertia is the same in every frame, as a ball's or a cube's).
     pub(super) fn load(&mut self, b: &MovingBody, work: &mut Dense) -> bool {
         let n = b.dim();
         let m = n * (n - 1) / 2;
         let attitude = b.rotation().principal_frame_attitude();
         let inertia = b.rotation().inertia();
         let diagonal = inertia.diagonal_inverse_plane_moments();
-        let same = match (&self.key, diagonal) {
-            (Some((a, mass)), Some(inv)) => {
-                attitudes_close(a, attitude) && *mass == b.mass() && self.key_moments[..] == inv[..]
-            }
+        let same_inertia = match (&self.key, diagonal) {
+            (Some((_, mass)), Some(inv)) => *mass == b.mass() && self.key_moments[..] == inv[..],
             _ => false,
         };
-        if !same {
-            self.place(b, work);
+        // Equal plane moments: I⁻¹ is the same multiple of the identity in every frame. Such
+        // a body's frame is taken anew at every load, which costs about what comparing its
+        // attitude with the last one would.
+        let isotropic = diagonal.is_some_and(|inv| inv.iter().all(|x| *x == inv[0]));
+        let turned = match &self.key {
+            Some((a, _)) if same_inertia && !isotropic => !attitudes_close(a, attitude),
+            _ => true,
+        };
+        let anew = !same_inertia || (turned && !isotropic);
+        if turned {
+            self.place_frame(b, work);
+        }
+        if anew {
+            self.place_inverse_inertia(b);
             if b.is_fixed() {
                 // Infinite inertia: no impulse turns it.
                 self.inv_inertia.iter_mut().for_each(|x| *x = 0.0);
@@ -99,11 +109,11 @@ impl BodyState {
         self.dp.as_mut_slice().fill(0.0);
         self.dl.as_mut_slice().fill(0.0);
         self.used = true;
-        !same
+        anew
     }
 
-    /// Computes the rotation of the planes by the principal frame and I⁻¹ in space.
-    pub(super) fn place(&mut self, b: &MovingBody, work: &mut Dense) {
+    /// Computes the rotation of the planes by the principal frame.
+    fn place_frame(&mut self, b: &MovingBody, work: &mut Dense) {
         let n = b.dim();
         let m = n * (n - 1) / 2;
         work.clear();
@@ -118,6 +128,12 @@ impl BodyState {
                     p[c * n + a] * p[d * n + bb] - p[d * n + a] * p[c * n + bb];
             }
         }
+    }
+
+    /// Computes I⁻¹ in space from the rotation of the planes.
+    fn place_inverse_inertia(&mut self, b: &MovingBody) {
+        let n = b.dim();
+        let m = n * (n - 1) / 2;
         let inertia = b.rotation().inertia();
         self.inv_inertia.clear();
         self.inv_inertia.resize(m * m, 0.0);
@@ -178,18 +194,74 @@ impl BodyState {
 
     /// The velocity of the point at offset `r`.
     pub(super) fn velocity_at(&self, r: &Vector) -> Vector {
-        let mut u = self.v.clone();
-        u += &r.left_contract(&self.w);
+        let mut u = Vector::zero(r.dim());
+        self.velocity_at_into::<0>(r.as_slice(), u.as_mut_slice());
         u
+    }
+
+    /// The velocity v + r ⌋ ω of the point at offset `r`, written to `u` (`N` as in
+    /// [`dim`]).
+    #[inline(always)]
+    pub(super) fn velocity_at_into<const N: usize>(&self, r: &[f64], u: &mut [f64]) {
+        let n = dim::<N>(r.len());
+        let (r, w) = (&r[..n], self.w.as_slice());
+        u[..n].copy_from_slice(&self.v.as_slice()[..n]);
+        // r ⌋ (eₐ ∧ e_b) = rₐ e_b − r_b eₐ.
+        let mut p = 0;
+        for a in 0..n {
+            for b in a + 1..n {
+                u[b] += r[a] * w[p];
+                u[a] -= r[b] * w[p];
+                p += 1;
+            }
+        }
     }
 
     /// Takes an impulse `j` at offset `r`.
     pub(super) fn apply(&mut self, r: &Vector, j: &Vector) {
-        let dl = r.wedge(j);
-        self.v += &(j * self.inv_mass);
-        self.w += &self.inverse_inertia(&dl);
-        self.dp += j;
-        self.dl += &dl;
+        self.apply_scaled::<0>(r.as_slice(), j.as_slice(), 1.0);
+    }
+
+    /// Takes the impulse s j at offset `r`: v += s j / m, ω += I⁻¹ (r ∧ s j) (`N` as in
+    /// [`dim`]).
+    #[inline(always)]
+    pub(super) fn apply_scaled<const N: usize>(&mut self, r: &[f64], j: &[f64], s: f64) {
+        let n = dim::<N>(r.len());
+        let m = n * (n - 1) / 2;
+        let (r, j) = (&r[..n], &j[..n]);
+        // On the stack up to N = 8 (a SmallVec would be moved out of its constructor).
+        let (mut fixed, mut any) = ([0.0f64; 28], Vec::new());
+        let dl: &mut [f64] = if m <= 28 {
+            &mut fixed[..m]
+        } else {
+            any.resize(m, 0.0);
+            &mut any
+        };
+        let mut p = 0;
+        for a in 0..n {
+            for b in a + 1..n {
+                dl[p] = s * (r[a] * j[b] - r[b] * j[a]);
+                p += 1;
+            }
+        }
+        let (v, dp) = (
+            &mut self.v.as_mut_slice()[..n],
+            &mut self.dp.as_mut_slice()[..n],
+        );
+        for ((v, dp), x) in v.iter_mut().zip(dp.iter_mut()).zip(j) {
+            *v += s * x * self.inv_mass;
+            *dp += s * x;
+        }
+        let inv = &self.inv_inertia[..m * m];
+        for (w, row) in self.w.as_mut_slice()[..m]
+            .iter_mut()
+            .zip(inv.chunks_exact(m))
+        {
+            *w += dot(row, dl);
+        }
+        for (d, x) in self.dl.as_mut_slice()[..m].iter_mut().zip(dl.iter()) {
+            *d += x;
+        }
     }
 
     /// Its velocities and impulses as slices of length N and M (`N` as in [`dim`]): taken
@@ -384,5 +456,121 @@ pub(super) fn add_inverse_mass(b: &BodyState, r: &Vector, k: &mut [f64]) {
         for (row, x) in col.as_slice().iter().enumerate() {
             k[row * n + c] += x;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebra::Rotor;
+    use crate::inertia::spec::parse_body;
+
+    /// A body loaded at one attitude, then turned and loaded again: a ball or a cube (equal
+    /// plane moments) keeps its inverse inertia, a box recomputes it, and both give the
+    /// angular velocity in space and the inverse inertia of a state loaded afresh.
+    #[test]
+    fn a_turned_body_keeps_its_inverse_inertia_only_when_it_is_the_same_in_every_frame() {
+        let mut cases = 0;
+        for (spec, kept) in [
+            ("ball:3,0.5+mass=1", true),
+            ("cuboid:0.5,0.5,0.5+mass=2", true),
+            ("ball:4,0.5+mass=1", true),
+            ("cuboid:0.5,1,1.5+mass=1", false),
+            ("cuboid:0.5,1,1.5,2+mass=1", false),
+        ] {
+            let parsed = parse_body(spec).unwrap();
+            let n = parsed.dim;
+            let omega = Bivector::from_components(n, &vec![0.3; n * (n - 1) / 2]).unwrap();
+            let at = |angle: f64| {
+                MovingBody::new(
+                    parsed.mass,
+                    parsed.inertia.clone(),
+                    Rotor::from_plane_angle(n, 0, 1, angle).unwrap(),
+                    &Vector::zero(n),
+                    &Vector::zero(n),
+                    &omega,
+                )
+                .unwrap()
+            };
+            let (before, after) = (at(0.2), at(1.1));
+            let mut work = Dense::new();
+            let mut st = BodyState::empty(n);
+            assert!(st.load(&before, &mut work), "{spec}: first load");
+            st.used = false;
+            assert_eq!(st.load(&after, &mut work), !kept, "{spec}: turned");
+            let mut fresh = BodyState::empty(n);
+            assert!(fresh.load(&after, &mut work));
+            let w = after.space_omega();
+            for (x, y) in st.w.as_slice().iter().zip(w.as_slice()) {
+                assert!(
+                    (x - y).abs() <= 1e-14 * y.abs().max(1.0),
+                    "{spec}: ω {x} against {y}"
+                );
+            }
+            for (x, y) in st.inv_inertia.iter().zip(&fresh.inv_inertia) {
+                assert!(
+                    (x - y).abs() <= 1e-14 * y.abs().max(1.0),
+                    "{spec}: I⁻¹ {x} against {y}"
+                );
+            }
+            cases += 1;
+        }
+        assert_eq!(cases, 5);
+    }
+
+    /// The allocation-free kernels against the algebra's products: the point velocity
+    /// v + r ⌋ ω and an impulse's v += j/m, ω += I⁻¹ (r ∧ j), for N = 2 … 8 with a full
+    /// symmetric I⁻¹ and pseudo-random data.
+    #[test]
+    fn point_velocity_and_impulse_kernels_agree_with_the_algebra() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let mut cases = 0;
+        for n in 2..=8 {
+            let m = n * (n - 1) / 2;
+            let mut st = BodyState::empty(n);
+            st.inv_mass = 0.7;
+            st.inv_inertia = vec![0.0; m * m];
+            for i in 0..m {
+                for k in 0..=i {
+                    let x = next();
+                    st.inv_inertia[i * m + k] = x;
+                    st.inv_inertia[k * m + i] = x;
+                }
+            }
+            let vector = |f: &mut dyn FnMut() -> f64| {
+                Vector::from_components(&(0..n).map(|_| f()).collect::<Vec<_>>()).unwrap()
+            };
+            st.v = vector(&mut next);
+            st.w =
+                Bivector::from_components(n, &(0..m).map(|_| next()).collect::<Vec<_>>()).unwrap();
+            let (r, j) = (vector(&mut next), vector(&mut next));
+            let mut want = st.v.clone();
+            want += &r.left_contract(&st.w);
+            let got = st.velocity_at(&r);
+            for (x, y) in got.as_slice().iter().zip(want.as_slice()) {
+                assert!((x - y).abs() <= 1e-15, "N = {n}: u {x} against {y}");
+            }
+            let (v0, w0) = (st.v.clone(), st.w.clone());
+            st.apply_scaled::<0>(r.as_slice(), j.as_slice(), -2.0);
+            let j2 = &j * -2.0;
+            let dl = r.wedge(&j2);
+            let mut want_v = v0;
+            want_v += &(&j2 * st.inv_mass);
+            let mut want_w = w0;
+            want_w += &st.inverse_inertia(&dl);
+            let close = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| (x - y).abs() <= 1e-14);
+            assert!(close(st.v.as_slice(), want_v.as_slice()), "N = {n}: v");
+            assert!(close(st.w.as_slice(), want_w.as_slice()), "N = {n}: ω");
+            assert!(close(st.dl.as_slice(), dl.as_slice()), "N = {n}: ΔL");
+            assert!(close(st.dp.as_slice(), j2.as_slice()), "N = {n}: Δp");
+            cases += 1;
+        }
+        assert_eq!(cases, 7);
     }
 }

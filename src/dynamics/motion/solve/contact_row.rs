@@ -97,19 +97,32 @@ impl RowLayout {
     }
 }
 
-/// What a contact row's matrices were computed for: the row's point (body, half-space,
-/// candidate), the generation of the placement its offset was taken from, and the generation
-/// of its body's inverse inertia. A placement's generation changes whenever the body's
-/// offsets in space change and when the placements are redone for another system, so that
-/// with the half-space's number (a system's half-spaces do not change) it fixes the offset
-/// and the normal.
+/// What a contact row's matrices were computed for: the generation of its body's inverse
+/// inertia (which also fixes the mass), the point's offset from the centre of mass and the
+/// normal. The matrices are functions of these alone, so that a row keeps them wherever
+/// the same offset comes back, as under a ball rolling on a plane.
 #[derive(Clone, Debug, Default)]
 pub(super) struct RowKey {
-    pub(super) body: usize,
-    pub(super) half_space: usize,
-    pub(super) index: usize,
-    pub(super) placed: u64,
     pub(super) generation: u64,
+    pub(super) r: Small,
+    pub(super) normal: Small,
+}
+
+impl RowKey {
+    /// True if the matrices of the key are those of `generation`, `r` and `normal`.
+    #[inline(always)]
+    pub(super) fn is(&self, generation: u64, r: &[f64], normal: &[f64]) -> bool {
+        self.generation == generation && self.r[..] == *r && self.normal[..] == *normal
+    }
+
+    /// Makes the key that of `generation`, `r` and `normal`.
+    pub(super) fn set(&mut self, generation: u64, r: &[f64], normal: &[f64]) {
+        self.generation = generation;
+        self.r.clear();
+        self.r.extend_from_slice(r);
+        self.normal.clear();
+        self.normal.extend_from_slice(normal);
+    }
 }
 
 /// The dimension of a kernel: `N` when it is fixed at compile time (3 and 4: loops of known
@@ -248,7 +261,7 @@ pub(super) fn sweep_contact<const N: usize>(
     if limit <= 0.0 {
         new.fill(0.0);
     } else if dot(new, new) > limit * limit {
-        friction_impulse(
+        friction_impulse::<N>(
             &data[l.values..l.values + n],
             &data[l.vectors..l.vectors + n * n],
             &data[l.kt..l.kt + n * n],

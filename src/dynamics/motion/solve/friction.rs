@@ -1,8 +1,7 @@
 //! Coulomb's law at one contact: the friction impulse of maximal dissipation.
 
-use super::contact_row::Small;
+use super::contact_row::{Small, dim, scratch};
 use crate::dynamics::motion::placement::dot;
-use smallvec::SmallVec;
 
 /// The friction impulse of maximal dissipation: with slip `ut` under the impulse `old`,
 /// the sticking impulse old − K_t⁻¹ ut when |·| ≤ `limit`, else the J on the rim |J| = limit
@@ -10,7 +9,10 @@ use smallvec::SmallVec;
 /// K_t (J − old) + ut = −σ J, is exactly opposite to J. K_t = V diag(d) Vᵀ is given by its
 /// eigen-decomposition; σ comes from Newton's method on 1/|J(σ)| − 1/limit, which is
 /// nearly linear in σ and converges from σ = 0 without overshooting (Moré–Sorensen).
-pub(super) fn friction_impulse(
+///
+/// `N` as in [`dim`]: 3 or 4 for kernels of a fixed dimension, 0 for any.
+#[inline(always)]
+pub(super) fn friction_impulse<const N: usize>(
     d: &[f64],
     v: &[f64],
     kt: &[f64],
@@ -19,14 +21,17 @@ pub(super) fn friction_impulse(
     limit: f64,
     out: &mut [f64],
 ) {
-    let n = d.len();
+    let n = dim::<N>(d.len());
+    let (d, v, kt) = (&d[..n], &v[..n * n], &kt[..n * n]);
     // c = Vᵀ b, b = K_t old − ut.
-    let mut b: Small = SmallVec::from_elem(0.0, n);
+    let (mut b_fixed, mut b_any) = ([0.0; 4], Small::new());
+    let b = scratch::<N>(&mut b_fixed, &mut b_any, n);
     for (i, x) in b.iter_mut().enumerate() {
-        *x = dot(&kt[i * n..(i + 1) * n], old) - ut[i];
+        *x = dot(&kt[i * n..(i + 1) * n], &old[..n]) - ut[i];
     }
-    let mut c: Small = SmallVec::from_elem(0.0, n);
-    for (row, bi) in v.chunks_exact(n).zip(&b) {
+    let (mut c_fixed, mut c_any) = ([0.0; 4], Small::new());
+    let c = scratch::<N>(&mut c_fixed, &mut c_any, n);
+    for (row, bi) in v.chunks_exact(n).zip(b.iter()) {
         for (x, vik) in c.iter_mut().zip(row) {
             *x += vik * bi;
         }
@@ -45,14 +50,18 @@ pub(super) fn friction_impulse(
         0.0
     } else {
         let mut sigma = 0.0f64;
+        let mut last = f64::INFINITY;
         for _ in 0..60 {
             let (norm, s3) = size(sigma);
             let psi = 1.0 / norm - 1.0 / limit;
             let step = psi * norm * norm * norm / s3;
             sigma -= step;
-            if step.abs() <= 1e-15 * sigma.abs() {
+            // Converged, or at round-off: Newton's steps shrink until then, and a step no
+            // smaller than the last one is noise (waiting for 1e-15 there took all 60).
+            if step.abs() <= 1e-15 * sigma.abs() || step.abs() >= last {
                 break;
             }
+            last = step.abs();
         }
         sigma.max(0.0)
     };
@@ -61,8 +70,8 @@ pub(super) fn friction_impulse(
     for (k, x) in c.iter_mut().enumerate() {
         *x /= d[k] + sigma;
     }
-    for (i, x) in out.iter_mut().enumerate() {
-        *x = scale * dot(&v[i * n..(i + 1) * n], &c);
+    for (i, x) in out[..n].iter_mut().enumerate() {
+        *x = scale * dot(&v[i * n..(i + 1) * n], c);
     }
 }
 
@@ -97,7 +106,7 @@ mod tests {
         let mut checked = 0;
         for limit in [1e-6, 0.05, 0.4] {
             let mut j = [0.0; 4];
-            friction_impulse(&d, &v, &kt, &old, &ut, limit, &mut j);
+            friction_impulse::<0>(&d, &v, &kt, &old, &ut, limit, &mut j);
             let norm = dot(&j, &j).sqrt();
             assert!(
                 (norm - limit).abs() <= 1e-13 * limit,

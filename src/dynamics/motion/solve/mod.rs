@@ -109,6 +109,8 @@ pub struct SolverReport {
     pub unconverged: u64,
     /// The most sweeps one solve took.
     pub max_sweeps: usize,
+    /// The sweeps of all solves (over `solves`: the mean work of a solve).
+    pub sweeps: u64,
     /// The largest velocity change of the last sweep of an unconverged solve, relative to
     /// the speed of its contacts (0 while every solve converged).
     pub worst_residual: f64,
@@ -266,7 +268,13 @@ impl Solver {
             )
             .chain(self.pairs.iter().flat_map(|p| [p.a, p.b]));
         let mut placed = false;
+        let mut last = usize::MAX;
         for i in touched {
+            // A body's contact rows are consecutive: it is looked at once for them.
+            if i == last {
+                continue;
+            }
+            last = i;
             if !self.states[i].used && self.states[i].load(&bodies[i], &mut work) {
                 placed = true;
                 self.generations += 1;
@@ -473,20 +481,10 @@ impl Solver {
             }
             let data = &mut self.row_data[k * layout.stride..(k + 1) * layout.stride];
             let key = &mut self.row_keys[k];
-            let same = key.body == row.body
-                && key.half_space == row.half_space
-                && key.index == row.index
-                && key.placed == row.placed
-                && key.generation == st.generation;
-            if !same {
+            let (r, nv) = (&row.r.as_slice()[..n], &nrm.as_slice()[..n]);
+            if !key.is(st.generation, r, nv) {
                 row_matrices(st, &row.r, nrm, layout, data);
-                *key = RowKey {
-                    body: row.body,
-                    half_space: row.half_space,
-                    index: row.index,
-                    placed: row.placed,
-                    generation: st.generation,
-                };
+                key.set(st.generation, r, nv);
             }
             row.knn = data[layout.knn];
             let r = &row.r.as_slice()[..n];
@@ -685,6 +683,7 @@ impl Solver {
             }
         }
         self.report.max_sweeps = self.report.max_sweeps.max(sweeps);
+        self.report.sweeps += sweeps as u64;
         if change > tolerance {
             self.report.unconverged += 1;
             let residual = change / speed.max(1e-300);

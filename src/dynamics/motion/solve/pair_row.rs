@@ -4,7 +4,7 @@
 
 use super::Dense;
 use super::body::{BodyState, add_inverse_mass};
-use super::contact_row::tangent_block;
+use super::contact_row::{Small, dim, scratch, tangent_block};
 use super::friction::friction_impulse;
 use crate::algebra::Vector;
 use crate::dynamics::motion::detect::bodies::PairContact;
@@ -104,9 +104,22 @@ impl PairRow {
 
     /// The relative velocity u_b − u_a of the two points.
     pub(crate) fn relative_velocity(&self, states: &[BodyState]) -> Vector {
-        let mut u = states[self.b].velocity_at(&self.rb);
-        u -= &states[self.a].velocity_at(&self.ra);
+        let mut u = Vector::zero(self.normal.dim());
+        self.relative_velocity_into::<0>(states, u.as_mut_slice());
         u
+    }
+
+    /// [`PairRow::relative_velocity`] written to `u` (`N` as in [`dim`]).
+    #[inline(always)]
+    fn relative_velocity_into<const N: usize>(&self, states: &[BodyState], u: &mut [f64]) {
+        let n = dim::<N>(u.len());
+        let (mut fixed, mut any) = ([0.0; 4], Small::new());
+        let ua = scratch::<N>(&mut fixed, &mut any, n);
+        states[self.b].velocity_at_into::<N>(self.rb.as_slice(), u);
+        states[self.a].velocity_at_into::<N>(self.ra.as_slice(), ua);
+        for (x, y) in u[..n].iter_mut().zip(ua.iter()) {
+            *x -= y;
+        }
     }
 
     /// nᵀ K n, the inverse of the normal impulse's effect on the normal speed.
@@ -168,10 +181,12 @@ impl PairRow {
         };
     }
 
-    /// Gives body `b` the impulse `j` at its point and body `a` the opposite.
-    fn apply(&self, states: &mut [BodyState], j: &Vector) {
-        states[self.b].apply(&self.rb, j);
-        states[self.a].apply(&self.ra, &(j * -1.0));
+    /// Gives body `b` the impulse `j` at its point and body `a` the opposite (`N` as in
+    /// [`dim`]).
+    #[inline(always)]
+    fn apply<const N: usize>(&self, states: &mut [BodyState], j: &[f64]) {
+        states[self.b].apply_scaled::<N>(self.rb.as_slice(), j, 1.0);
+        states[self.a].apply_scaled::<N>(self.ra.as_slice(), j, -1.0);
     }
 
     /// Gives the accumulated impulses to the loaded states (a warm start).
@@ -179,7 +194,7 @@ impl PairRow {
         let mut j = &self.normal * self.normal_impulse;
         j += &self.friction_impulse;
         if j.max_abs() > 0.0 {
-            self.apply(states, &j);
+            self.apply::<0>(states, j.as_slice());
         }
     }
 
@@ -187,51 +202,63 @@ impl PairRow {
     /// reaches the target), then the friction impulse of maximal dissipation in the disc
     /// |J_t| ≤ μλ. Returns the largest velocity change it made.
     pub(crate) fn sweep(&mut self, states: &mut [BodyState]) -> f64 {
-        let n = self.normal.dim();
+        match self.normal.dim() {
+            3 => self.sweep_n::<3>(states),
+            4 => self.sweep_n::<4>(states),
+            _ => self.sweep_n::<0>(states),
+        }
+    }
+
+    /// [`PairRow::sweep`] (`N` as in [`dim`]).
+    #[inline(always)]
+    fn sweep_n<const N: usize>(&mut self, states: &mut [BodyState]) -> f64 {
+        let n = dim::<N>(self.normal.dim());
+        let nv = &self.normal.as_slice()[..n];
         let mut change = 0.0f64;
-        let un = dot(
-            self.normal.as_slice(),
-            self.relative_velocity(states).as_slice(),
-        );
+        let (mut u_fixed, mut u_any) = ([0.0; 4], Small::new());
+        let u = scratch::<N>(&mut u_fixed, &mut u_any, n);
+        self.relative_velocity_into::<N>(states, u);
+        let un = dot(nv, u);
         let lambda = (self.normal_impulse + (self.target - un) * self.inv_knn).max(0.0);
         let dl = lambda - self.normal_impulse;
         if dl != 0.0 {
-            self.apply(states, &(&self.normal * dl));
+            let (mut j_fixed, mut j_any) = ([0.0; 4], Small::new());
+            let j = scratch::<N>(&mut j_fixed, &mut j_any, n);
+            for (x, y) in j.iter_mut().zip(nv) {
+                *x = y * dl;
+            }
+            self.apply::<N>(states, j);
             self.normal_impulse = lambda;
         }
         change = change.max((dl * self.knn).abs());
         let limit = self.friction * self.normal_impulse;
-        let mut ut = self.relative_velocity(states);
-        let along = dot(self.normal.as_slice(), ut.as_slice());
-        ut -= &(&self.normal * along);
-        let old = self.friction_impulse.clone();
-        let mut new = Vector::zero(n);
-        for ((x, o), k) in new
-            .as_mut_slice()
-            .iter_mut()
-            .zip(old.as_slice())
-            .zip(self.kinv.chunks_exact(n))
-        {
-            *x = o - dot(k, ut.as_slice());
+        // The slip: the relative velocity's tangent part.
+        self.relative_velocity_into::<N>(states, u);
+        let along = dot(nv, u);
+        for (x, y) in u.iter_mut().zip(nv) {
+            *x -= along * y;
+        }
+        let old = &self.friction_impulse.as_slice()[..n];
+        let (mut new_fixed, mut new_any) = ([0.0; 4], Small::new());
+        let new = scratch::<N>(&mut new_fixed, &mut new_any, n);
+        for ((x, o), k) in new.iter_mut().zip(old).zip(self.kinv.chunks_exact(n)) {
+            *x = o - dot(k, u);
         }
         if limit <= 0.0 {
-            new.as_mut_slice().fill(0.0);
-        } else if new.norm_squared() > limit * limit {
-            friction_impulse(
-                &self.values,
-                &self.vectors,
-                &self.kt,
-                old.as_slice(),
-                ut.as_slice(),
-                limit,
-                new.as_mut_slice(),
-            );
+            new.fill(0.0);
+        } else if dot(new, new) > limit * limit {
+            friction_impulse::<N>(&self.values, &self.vectors, &self.kt, old, u, limit, new);
         }
-        let dj = &new - &old;
-        let largest = dj.max_abs();
+        let (mut dj_fixed, mut dj_any) = ([0.0; 4], Small::new());
+        let dj = scratch::<N>(&mut dj_fixed, &mut dj_any, n);
+        let mut largest = 0.0f64;
+        for ((d, x), y) in dj.iter_mut().zip(new.iter()).zip(old) {
+            *d = x - y;
+            largest = largest.max(d.abs());
+        }
         if largest > 0.0 {
-            self.apply(states, &dj);
-            self.friction_impulse = new;
+            self.apply::<N>(states, dj);
+            self.friction_impulse.as_mut_slice().copy_from_slice(new);
             change = change.max(largest * self.knn);
         }
         change
