@@ -3,7 +3,7 @@
 use super::Dense;
 use super::body::{BodyState, BodyView};
 use super::friction::friction_impulse;
-use crate::algebra::{Bivector, Vector};
+use crate::algebra::Vector;
 use crate::dynamics::motion::HalfSpace;
 use crate::dynamics::motion::placement::dot;
 use crate::numeric::symmetric_eigen_rows as symmetric_eigen;
@@ -39,7 +39,9 @@ pub(crate) struct ContactRow {
 /// C (n × M: the velocity at the point per angular velocity, u = v + C w), W (M × n: the
 /// angular velocity per impulse, I⁻¹ (r ∧ ·)), R (M × n: the angular impulse, r ∧ ·), their
 /// products with the normal (Cᵀn, W n, R n), the tangent block K_t of K with its
-/// eigen-decomposition, nᵀ K n and its inverse, and K_t⁻¹ (for the sticking impulse).
+/// eigen-decomposition, nᵀ K n and its inverse, and K_t⁻¹ (for the sticking impulse). The
+/// kernels of 3D and 4D read C and R through the offset: their rows leave them out, which
+/// makes a 3D row a quarter shorter.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct RowLayout {
     pub(super) n: usize,
@@ -60,9 +62,11 @@ pub(super) struct RowLayout {
 }
 
 impl RowLayout {
+    /// The layout of a row in dimension `n`, with C and R if `with_cr`.
     #[inline(always)]
-    pub(super) fn new(n: usize) -> RowLayout {
+    pub(super) fn new(n: usize, with_cr: bool) -> RowLayout {
         let m = n * (n - 1) / 2;
+        let cr = if with_cr { n * m } else { 0 };
         // What every sweep reads first and together (in 3D and 4D C and R are read through
         // the offset instead), what only sliding contacts read last.
         let w = 0;
@@ -73,8 +77,8 @@ impl RowLayout {
         let inv_knn = knn + 1;
         let kinv = inv_knn + 1;
         let c = kinv + n * n;
-        let r = c + n * m;
-        let kt = r + m * n;
+        let r = c + cr;
+        let kt = r + cr;
         let values = kt + n * n;
         let vectors = values + n;
         RowLayout {
@@ -315,41 +319,55 @@ pub(super) fn row_matrices(
     data: &mut [f64],
 ) {
     let (n, m) = (l.n, l.m);
-    // C: column p is r ⌋ e_p (the velocity at r of a unit angular velocity in plane p).
-    let mut e = Bivector::zero(n);
-    for p in 0..m {
-        e.as_mut_slice().fill(0.0);
-        e.as_mut_slice()[p] = 1.0;
-        for (i, x) in r.left_contract(&e).as_slice().iter().enumerate() {
-            data[l.c + i * m + p] = *x;
+    let (r, nv) = (&r.as_slice()[..n], &nrm.as_slice()[..n]);
+    // Plane p = (a, b) holds −r_b at a and r_a at b in row p of R (column j: r ∧ e_j) and
+    // in column p of C (column p: r ⌋ e_p); nothing else.
+    let with_cr = l.r > l.c;
+    if with_cr {
+        data[l.c..l.c + n * m].fill(0.0);
+        data[l.r..l.r + m * n].fill(0.0);
+    }
+    // W = I⁻¹ R, column q of I⁻¹ times row q of R.
+    let inv = &st.inv_inertia[..m * m];
+    data[l.w..l.w + m * n].fill(0.0);
+    let mut q = 0;
+    for a in 0..n {
+        for b in a + 1..n {
+            if with_cr {
+                data[l.c + a * m + q] = -r[b];
+                data[l.c + b * m + q] = r[a];
+                data[l.r + q * n + a] = -r[b];
+                data[l.r + q * n + b] = r[a];
+            }
+            // Cᵀn = R n = r ∧ n.
+            let rn = r[a] * nv[b] - r[b] * nv[a];
+            data[l.cn + q] = rn;
+            data[l.rn + q] = rn;
+            for p in 0..m {
+                let x = inv[p * m + q];
+                data[l.w + p * n + a] -= x * r[b];
+                data[l.w + p * n + b] += x * r[a];
+            }
+            q += 1;
         }
     }
-    // R: column j is r ∧ e_j; W = I⁻¹ R.
-    for j in 0..n {
-        let rj = r.wedge(&Vector::basis(n, j));
-        let wj = st.inverse_inertia(&rj);
-        for p in 0..m {
-            data[l.r + p * n + j] = rj.as_slice()[p];
-            data[l.w + p * n + j] = wj.as_slice()[p];
-        }
-    }
-    let nv = nrm.as_slice();
     for p in 0..m {
-        data[l.cn + p] = (0..n).map(|i| data[l.c + i * m + p] * nv[i]).sum();
         data[l.wn + p] = dot(&data[l.w + p * n..l.w + (p + 1) * n], nv);
-        data[l.rn + p] = dot(&data[l.r + p * n..l.r + (p + 1) * n], nv);
     }
-    // K = 1/m + C W.
+    // K = 1/m + C W: row a of K takes −r_b times row p of W, row b takes r_a times it.
     let mut k: Dense = SmallVec::from_elem(0.0, n * n);
     for i in 0..n {
-        for j in 0..n {
-            let mut x: f64 = (0..m)
-                .map(|p| data[l.c + i * m + p] * data[l.w + p * n + j])
-                .sum();
-            if i == j {
-                x += st.inv_mass;
+        k[i * n + i] = st.inv_mass;
+    }
+    let mut p = 0;
+    for a in 0..n {
+        for b in a + 1..n {
+            for j in 0..n {
+                let x = data[l.w + p * n + j];
+                k[a * n + j] -= r[b] * x;
+                k[b * n + j] += r[a] * x;
             }
-            k[i * n + j] = x;
+            p += 1;
         }
     }
     data[l.knn] = (0..n)

@@ -341,7 +341,8 @@ impl Solver {
                 add_inverse_mass(&self.states[*j], q, &mut row.k);
             }
         }
-        let layout = RowLayout::new(n);
+        // The longest row (with C and R), for the room.
+        let layout = RowLayout::new(n, true);
         let rows = self.contacts.len();
         if self.row_data.len() < rows * layout.stride {
             self.row_data.resize(rows * layout.stride, 0.0);
@@ -428,7 +429,7 @@ impl Solver {
         record: Option<&mut ContactLog>,
     ) {
         // The layout anew, so that in 3D and 4D its offsets are constants of the kernels.
-        let layout = &RowLayout::new(dim::<N>(group.layout.n));
+        let layout = &RowLayout::new(dim::<N>(group.layout.n), N == 0);
         let (range, half_spaces) = (group.range.clone(), group.half_spaces);
         self.prepare_rows::<N>(range.clone(), half_spaces, resting_speed, layout);
         if group.coupled {
