@@ -363,9 +363,12 @@ impl BodyView<'_> {
             }
             return;
         }
-        let r = &data[l.r..l.r + m * n];
-        for (d, row) in self.dl[..m].iter_mut().zip(r.chunks_exact(n)) {
-            *d += dot(row, j);
+        let mut p = 0;
+        for a in 0..n {
+            for b in a + 1..n {
+                self.dl[p] += offset[b] * -j[a] + offset[a] * j[b];
+                p += 1;
+            }
         }
     }
 
@@ -388,7 +391,8 @@ impl BodyView<'_> {
         for (w, x) in self.w[..m].iter_mut().zip(&data[l.wn..l.wn + m]) {
             *w += lambda * x;
         }
-        for (d, x) in self.dl[..m].iter_mut().zip(&data[l.rn..l.rn + m]) {
+        // R n = Cᵀn = r ∧ n.
+        for (d, x) in self.dl[..m].iter_mut().zip(&data[l.cn..l.cn + m]) {
             *d += lambda * x;
         }
     }

@@ -36,22 +36,19 @@ pub(crate) struct ContactRow {
 }
 
 /// Where the matrices of one contact row lie in the solver's `row_data` (N = n, M planes):
-/// C (n × M: the velocity at the point per angular velocity, u = v + C w), W (M × n: the
-/// angular velocity per impulse, I⁻¹ (r ∧ ·)), R (M × n: the angular impulse, r ∧ ·), their
-/// products with the normal (Cᵀn, W n, R n), the tangent block K_t of K with its
-/// eigen-decomposition, nᵀ K n and its inverse, and K_t⁻¹ (for the sticking impulse). The
-/// kernels of 3D and 4D read C and R through the offset: their rows leave them out, which
-/// makes a 3D row a quarter shorter.
+/// W (M × n: the angular velocity per impulse, I⁻¹ (r ∧ ·)), the products with the normal
+/// of C (n × M: the velocity at the point per angular velocity, u = v + C w) and W — Cᵀn,
+/// which is also R n = r ∧ n for R (M × n: the angular impulse, r ∧ ·), and W n —, the
+/// tangent block K_t of K with its eigen-decomposition, nᵀ K n and its inverse, and K_t⁻¹
+/// (for the sticking impulse). C and R themselves are not kept: their only entries are
+/// ±rⱼ, read through the offset.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct RowLayout {
     pub(super) n: usize,
     pub(super) m: usize,
-    pub(super) c: usize,
     pub(super) w: usize,
-    pub(super) r: usize,
     pub(super) cn: usize,
     pub(super) wn: usize,
-    pub(super) rn: usize,
     pub(super) kt: usize,
     pub(super) values: usize,
     pub(super) vectors: usize,
@@ -62,34 +59,25 @@ pub(super) struct RowLayout {
 }
 
 impl RowLayout {
-    /// The layout of a row in dimension `n`, with C and R if `with_cr`.
     #[inline(always)]
-    pub(super) fn new(n: usize, with_cr: bool) -> RowLayout {
+    pub(super) fn new(n: usize) -> RowLayout {
         let m = n * (n - 1) / 2;
-        let cr = if with_cr { n * m } else { 0 };
-        // What every sweep reads first and together (in 3D and 4D C and R are read through
-        // the offset instead), what only sliding contacts read last.
+        // What every sweep reads first and together, what only sliding contacts read last.
         let w = 0;
         let cn = w + m * n;
         let wn = cn + m;
-        let rn = wn + m;
-        let knn = rn + m;
+        let knn = wn + m;
         let inv_knn = knn + 1;
         let kinv = inv_knn + 1;
-        let c = kinv + n * n;
-        let r = c + cr;
-        let kt = r + cr;
+        let kt = kinv + n * n;
         let values = kt + n * n;
         let vectors = values + n;
         RowLayout {
             n,
             m,
-            c,
             w,
-            r,
             cn,
             wn,
-            rn,
             kt,
             values,
             vectors,
@@ -171,12 +159,10 @@ pub(super) fn axes_of<const N: usize>() -> Option<&'static [[usize; 2]]> {
     }
 }
 
-/// u = v + C w at a row's point, at `offset` from the centre of mass (`N` as in [`dim`];
-/// in 3D and 4D C is read through the offset, as its entries that can be non-zero are
-/// ±rⱼ).
+/// u = v + C w at a row's point, at `offset` from the centre of mass, C read through the
+/// offset (`N` as in [`dim`]).
 #[inline(always)]
 pub(super) fn point_velocity<const N: usize>(
-    d: &[f64],
     l: &RowLayout,
     offset: &[f64],
     v: &[f64],
@@ -197,9 +183,19 @@ pub(super) fn point_velocity<const N: usize>(
         }
         return;
     }
-    let c = &d[l.c..l.c + n * m];
-    for ((ui, vi), row) in u[..n].iter_mut().zip(&v[..n]).zip(c.chunks_exact(m)) {
-        *ui = vi + dot(row, w);
+    // Column p = (a, b) of C holds −r_b at a and r_a at b. C w is summed before v is
+    // added, in the order of the fixed-size kernels, which then give the same velocities.
+    u[..n].fill(0.0);
+    let mut p = 0;
+    for a in 0..n {
+        for b in a + 1..n {
+            u[b] += offset[a] * w[p];
+            u[a] -= offset[b] * w[p];
+            p += 1;
+        }
+    }
+    for (ui, vi) in u[..n].iter_mut().zip(&v[..n]) {
+        *ui += vi;
     }
 }
 
@@ -248,7 +244,7 @@ pub(super) fn sweep_contact<const N: usize>(
     let (mut ut_fixed, mut ut_any) = ([0.0; 4], Small::new());
     let ut = scratch::<N>(&mut ut_fixed, &mut ut_any, n);
     let offset = &row.r.as_slice()[..n];
-    point_velocity::<N>(data, l, offset, &st.v[..n], &st.w[..m], ut);
+    point_velocity::<N>(l, offset, &st.v[..n], &st.w[..m], ut);
     let normal_part = dot(nv, ut);
     for (u, x) in ut.iter_mut().zip(nv) {
         *u -= normal_part * x;
@@ -322,27 +318,14 @@ pub(super) fn row_matrices(
     let (r, nv) = (&r.as_slice()[..n], &nrm.as_slice()[..n]);
     // Plane p = (a, b) holds −r_b at a and r_a at b in row p of R (column j: r ∧ e_j) and
     // in column p of C (column p: r ⌋ e_p); nothing else.
-    let with_cr = l.r > l.c;
-    if with_cr {
-        data[l.c..l.c + n * m].fill(0.0);
-        data[l.r..l.r + m * n].fill(0.0);
-    }
     // W = I⁻¹ R, column q of I⁻¹ times row q of R.
     let inv = &st.inv_inertia[..m * m];
     data[l.w..l.w + m * n].fill(0.0);
     let mut q = 0;
     for a in 0..n {
         for b in a + 1..n {
-            if with_cr {
-                data[l.c + a * m + q] = -r[b];
-                data[l.c + b * m + q] = r[a];
-                data[l.r + q * n + a] = -r[b];
-                data[l.r + q * n + b] = r[a];
-            }
             // Cᵀn = R n = r ∧ n.
-            let rn = r[a] * nv[b] - r[b] * nv[a];
-            data[l.cn + q] = rn;
-            data[l.rn + q] = rn;
+            data[l.cn + q] = r[a] * nv[b] - r[b] * nv[a];
             for p in 0..m {
                 let x = inv[p * m + q];
                 data[l.w + p * n + a] -= x * r[b];

@@ -341,8 +341,7 @@ impl Solver {
                 add_inverse_mass(&self.states[*j], q, &mut row.k);
             }
         }
-        // The longest row (with C and R), for the room.
-        let layout = RowLayout::new(n, true);
+        let layout = RowLayout::new(n);
         let rows = self.contacts.len();
         if self.row_data.len() < rows * layout.stride {
             self.row_data.resize(rows * layout.stride, 0.0);
@@ -429,7 +428,7 @@ impl Solver {
         record: Option<&mut ContactLog>,
     ) {
         // The layout anew, so that in 3D and 4D its offsets are constants of the kernels.
-        let layout = &RowLayout::new(dim::<N>(group.layout.n), N == 0);
+        let layout = &RowLayout::new(dim::<N>(group.layout.n));
         let (range, half_spaces) = (group.range.clone(), group.half_spaces);
         self.prepare_rows::<N>(range.clone(), half_spaces, resting_speed, layout);
         if group.coupled {
@@ -488,9 +487,8 @@ impl Solver {
                 key.set(st.generation, r, nv);
             }
             row.knn = data[layout.knn];
-            let r = &row.r.as_slice()[..n];
-            point_velocity::<N>(data, layout, r, v, w, u);
-            let un = dot(&nrm.as_slice()[..n], u);
+            point_velocity::<N>(layout, r, v, w, u);
+            let un = dot(nv, u);
             row.target = if un < -resting_speed[row.body] {
                 -plane.restitution() * un
             } else {
@@ -714,8 +712,7 @@ impl Solver {
                 let st = &self.states[row.body];
                 (body, v, w) = (row.body, &st.v.as_slice()[..n], &st.w.as_slice()[..m]);
             }
-            let data = &self.row_data[k * layout.stride..(k + 1) * layout.stride];
-            point_velocity::<N>(data, layout, &row.r.as_slice()[..n], v, w, u);
+            point_velocity::<N>(layout, &row.r.as_slice()[..n], v, w, u);
             record.record(
                 (row.body, row.half_space),
                 &row.point.as_slice()[..n],
