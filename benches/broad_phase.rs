@@ -18,12 +18,15 @@
 //! - `box_manifold_4d`: [`box_manifold`] of two 4D boxes face to face, the upper turned
 //!   about the normal and shifted (a 3D contact region clipped from two 3D cubes, reduced
 //!   to 8 points); `region_only` enumerates the region's vertices without reducing them.
+//! - `hull_manifold`: [`hull_manifold`] of two unit cubes given as hulls of their corners,
+//!   the upper resting face to face on the lower and shifted by half its side (a cube of a
+//!   pyramid on one below), in 3D (`N=3`, 4 + 4 support points) and 4D (`N=4`, 8 + 8).
 
 use criterion::{BenchmarkId, Criterion, black_box, criterion_group, criterion_main};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rotorflow::dynamics::motion::detect::{
-    BroadPhase, PlacedBox, box_box, box_contact_vertices, box_manifold,
+    BroadPhase, PlacedBox, PlacedHull, box_box, box_contact_vertices, box_manifold, hull_manifold,
 };
 
 #[path = "common/configure.rs"]
@@ -360,9 +363,49 @@ fn bench_manifold(c: &mut Criterion) {
     g.finish();
 }
 
+fn bench_hull_manifold(c: &mut Criterion) {
+    let mut g = c.benchmark_group("hull_manifold");
+    for n in [3usize, 4] {
+        let corners: Vec<f64> = (0..1usize << n)
+            .flat_map(|m| (0..n).map(move |i| if m >> i & 1 == 1 { 0.5 } else { -0.5 }))
+            .collect();
+        let identity: Vec<f64> = (0..n * n)
+            .map(|k| if k / n == k % n { 1.0 } else { 0.0 })
+            .collect();
+        let lower = vec![0.0; n];
+        let mut upper = vec![0.0; n];
+        upper[0] = 0.5;
+        upper[n - 1] = 1.0;
+        let a = PlacedHull {
+            vertices: &corners,
+            position: &lower,
+            rotation: &identity,
+        };
+        let b = PlacedHull {
+            vertices: &corners,
+            position: &upper,
+            rotation: &identity,
+        };
+        let mut normal = vec![0.0; n];
+        normal[n - 1] = 1.0;
+        let m = hull_manifold(&a, &b, &normal, 1e-3).unwrap().unwrap();
+        assert_eq!(m.len(), 1 << (n - 1));
+        g.bench_function(format!("N={n}"), |bench| {
+            bench.iter(|| {
+                black_box(
+                    hull_manifold(black_box(&a), black_box(&b), &normal, 1e-3)
+                        .unwrap()
+                        .map(|m| m.len()),
+                )
+            })
+        });
+    }
+    g.finish();
+}
+
 criterion_group! {
     name = benches;
     config = configure();
-    targets = bench_broad_phase, bench_sat, bench_manifold
+    targets = bench_broad_phase, bench_sat, bench_manifold, bench_hull_manifold
 }
 criterion_main!(benches);

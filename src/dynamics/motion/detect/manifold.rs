@@ -1052,7 +1052,17 @@ fn hull_vertices(
     Ok(Some(unit))
 }
 
-/// The crossings of simplices of `sa` with simplices of `sb` in the contact plane.
+/// The crossings of simplices of `sa` with simplices of `sb` in the contact plane, in
+/// the order of the subsets' bit masks (A's outer, B's inner).
+///
+/// The brute force stays (it is what finds every vertex of the region in every dimension,
+/// degenerate contacts included), but two things that cannot change its answer prune it:
+/// a subset of A whose own columns are dependent fails every solve with it, so it is
+/// solved once and skipped; and a crossing lies within both subsets' bounding boxes in the
+/// plane, up to the solve's tolerances, so pairs whose boxes are apart by more than that
+/// are not solved. A's columns are orthogonalised once per subset and B's are added to
+/// them, the arithmetic of [`least_squares`] in the same order, so that every accepted
+/// crossing is the same to the bit.
 fn hull_region(
     sa: &SupportSet,
     sb: &SupportSet,
@@ -1076,40 +1086,90 @@ fn hull_region(
     }
     let tol = 1e-9 * scale;
     let bary_tol = 1e-9;
-    let mut columns: SmallVec<[f64; 64]> = SmallVec::new();
-    let mut rhs: Small = SmallVec::new();
-    let mut z: Small = SmallVec::new();
+    // An accepted crossing is within tol of the point of A that barycentric coordinates
+    // of at least −1e-9 (at most d + 1 of them) give: within (d + 1)·1e-9 of the subset's
+    // extent (at most its diameter, 2 scale) of its box; and the coordinates carry
+    // round-off of their size.
+    let size = xa.iter().chain(&xb).fold(0.0f64, |m, x| m.max(x.abs()));
+    let slack = 2.0 * tol + 4.0 * (d + 1) as f64 * bary_tol * scale + 1e-12 * size;
     let (mut pa, mut pb): (Small, Small) =
         (SmallVec::from_elem(0.0, n), SmallVec::from_elem(0.0, n));
     let mut x: Small = SmallVec::from_elem(0.0, d);
+    let mut qr = ColumnQr::default();
     for mask_a in 1u32..(1 << sa.len()) {
         let ka = mask_a.count_ones() as usize;
         if ka > d + 1 {
             continue;
         }
+        let ia: SmallVec<[usize; 8]> = (0..sa.len()).filter(|i| mask_a >> i & 1 == 1).collect();
+        let a0 = &xa[ia[0] * d..(ia[0] + 1) * d];
+        let (mut lo_a, mut hi_a) = ([f64::INFINITY; 8], [f64::NEG_INFINITY; 8]);
+        for &i in &ia {
+            for t in 0..d {
+                lo_a[t] = lo_a[t].min(xa[i * d + t]);
+                hi_a[t] = hi_a[t].max(xa[i * d + t]);
+            }
+        }
+        // Columns a_i − a_0 (i ≥ 1), orthogonalised once for every subset of B.
+        qr.clear(d, tol);
+        let mut column = [0.0; 8];
+        let independent = ia[1..].iter().all(|&i| {
+            for t in 0..d {
+                column[t] = xa[i * d + t] - a0[t];
+            }
+            qr.push(&column[..d])
+        });
+        if !independent {
+            continue;
+        }
+        let base = qr.columns;
         for mask_b in 1u32..(1 << sb.len()) {
             let kb = mask_b.count_ones() as usize;
             if ka + kb > d + 2 {
                 continue;
             }
-            let ia: SmallVec<[usize; 8]> = (0..sa.len()).filter(|i| mask_a >> i & 1 == 1).collect();
-            let ib: SmallVec<[usize; 8]> = (0..sb.len()).filter(|i| mask_b >> i & 1 == 1).collect();
-            let a0 = &xa[ia[0] * d..(ia[0] + 1) * d];
-            let b0 = &xb[ib[0] * d..(ib[0] + 1) * d];
-            // Columns: a_i − a_0 (i ≥ 1), −(b_j − b_0) (j ≥ 1); right side b_0 − a_0.
-            columns.clear();
-            for &i in &ia[1..] {
-                columns.extend((0..d).map(|t| xa[i * d + t] - a0[t]));
+            let mut ib = [0usize; 8];
+            let mut count = 0;
+            for j in 0..sb.len() {
+                if mask_b >> j & 1 == 1 {
+                    ib[count] = j;
+                    count += 1;
+                }
             }
-            for &j in &ib[1..] {
-                columns.extend((0..d).map(|t| -(xb[j * d + t] - b0[t])));
-            }
-            rhs.clear();
-            rhs.extend((0..d).map(|t| b0[t] - a0[t]));
-            let m = ka + kb - 2;
-            if !least_squares(&mut columns, d, m, &mut rhs, &mut z, tol) {
+            let ib = &ib[..kb];
+            let apart = (0..d).any(|t| {
+                let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+                for &j in ib {
+                    lo = lo.min(xb[j * d + t]);
+                    hi = hi.max(xb[j * d + t]);
+                }
+                lo > hi_a[t] + slack || hi < lo_a[t] - slack
+            });
+            if apart {
                 continue;
             }
+            let b0 = &xb[ib[0] * d..(ib[0] + 1) * d];
+            // Columns −(b_j − b_0) (j ≥ 1) after A's; right side b_0 − a_0.
+            qr.truncate(base);
+            let independent = ib[1..].iter().all(|&j| {
+                for t in 0..d {
+                    column[t] = -(xb[j * d + t] - b0[t]);
+                }
+                qr.push(&column[..d])
+            });
+            if !independent {
+                continue;
+            }
+            let mut rhs = [0.0; 8];
+            for t in 0..d {
+                rhs[t] = b0[t] - a0[t];
+            }
+            let mut z = [0.0; 8];
+            if !qr.solve(&mut rhs[..d], &mut z, tol) {
+                continue;
+            }
+            let m = ka + kb - 2;
+            let z = &z[..m];
             // Barycentric coordinates within both simplices.
             let sum_a: f64 = z[..ka - 1].iter().sum();
             let sum_b: f64 = z[ka - 1..].iter().sum();
@@ -1168,56 +1228,442 @@ fn hull_region(
     }
 }
 
-/// Solves the d × m least-squares problem (columns flat, column after column) by
-/// Gram–Schmidt QR; false when the columns are dependent (relative to `tol`) or the residual
-/// exceeds `tol` (the flats do not meet).
-fn least_squares(
-    columns: &mut SmallVec<[f64; 64]>,
+/// A QR factorisation of up to 8 columns of dimension d ≤ 8 (the contact plane's), built a
+/// column at a time by modified Gram–Schmidt twice, so that the columns of one simplex can
+/// be kept while another's are added after them.
+#[derive(Default)]
+struct ColumnQr {
     d: usize,
-    m: usize,
-    rhs: &mut Small,
-    z: &mut Small,
     tol: f64,
-) -> bool {
-    // R, upper triangular m × m, from modified Gram–Schmidt twice.
-    let mut r: SmallVec<[f64; 64]> = SmallVec::from_elem(0.0, m * m);
-    for j in 0..m {
-        let original = dot(&columns[j * d..(j + 1) * d], &columns[j * d..(j + 1) * d]).sqrt();
+    /// How many columns are orthogonalised.
+    columns: usize,
+    /// The orthonormal columns, column j at j·8.
+    q: [[f64; 8]; 8],
+    /// R, upper triangular: r[i][j] for i ≤ j.
+    r: [[f64; 8]; 8],
+}
+
+impl ColumnQr {
+    fn clear(&mut self, d: usize, tol: f64) {
+        (self.d, self.tol, self.columns) = (d, tol, 0);
+    }
+
+    /// Drops the columns after the first `columns`.
+    fn truncate(&mut self, columns: usize) {
+        self.columns = columns;
+    }
+
+    /// Adds a column; false when it depends on the others (relative to `tol`).
+    fn push(&mut self, column: &[f64]) -> bool {
+        let (d, j) = (self.d, self.columns);
+        let original = dot(column, column).sqrt();
+        let mut qj = [0.0; 8];
+        qj[..d].copy_from_slice(column);
+        for i in 0..j {
+            self.r[i][j] = 0.0;
+        }
         for _ in 0..2 {
             for i in 0..j {
-                let (qi, qj) = columns.split_at_mut(j * d);
-                let qi = &qi[i * d..(i + 1) * d];
-                let qj = &mut qj[..d];
-                let p = dot(qi, qj);
-                r[i * m + j] += p;
-                qj.iter_mut().zip(qi).for_each(|(x, y)| *x -= p * y);
+                let qi = &self.q[i][..d];
+                let p = dot(qi, &qj[..d]);
+                self.r[i][j] += p;
+                qj[..d].iter_mut().zip(qi).for_each(|(x, y)| *x -= p * y);
             }
         }
-        let qj = &mut columns[j * d..(j + 1) * d];
-        let len = dot(qj, qj).sqrt();
-        if len.is_nan() || len <= 1e-9 * original.max(tol) {
+        let len = dot(&qj[..d], &qj[..d]).sqrt();
+        if len.is_nan() || len <= 1e-9 * original.max(self.tol) {
             return false;
         }
-        qj.iter_mut().for_each(|x| *x /= len);
-        r[j * m + j] = len;
+        qj[..d].iter_mut().for_each(|x| *x /= len);
+        self.q[j] = qj;
+        self.r[j][j] = len;
+        self.columns += 1;
+        true
     }
-    // z = R⁻¹ Qᵀ rhs, residual = rhs − Q Qᵀ rhs.
-    z.clear();
-    for j in 0..m {
-        let q = &columns[j * d..(j + 1) * d];
-        let p = dot(q, rhs);
-        z.push(p);
-        rhs.iter_mut().zip(q).for_each(|(x, y)| *x -= p * y);
-    }
-    let residual = dot(rhs, rhs).sqrt();
-    if residual.is_nan() || residual > tol {
-        return false;
-    }
-    for j in (0..m).rev() {
-        for k in j + 1..m {
-            z[j] -= r[j * m + k] * z[k];
+
+    /// The least-squares solution z = R⁻¹ Qᵀ rhs of the columns; false when the residual
+    /// rhs − Q Qᵀ rhs exceeds `tol` (the flats do not meet). `rhs` is overwritten.
+    fn solve(&self, rhs: &mut [f64], z: &mut [f64; 8], tol: f64) -> bool {
+        let m = self.columns;
+        for (q, zj) in self.q[..m].iter().zip(z.iter_mut()) {
+            let q = &q[..self.d];
+            let p = dot(q, rhs);
+            *zj = p;
+            rhs.iter_mut().zip(q).for_each(|(x, y)| *x -= p * y);
         }
-        z[j] /= r[j * m + j];
+        let residual = dot(rhs, rhs).sqrt();
+        if residual.is_nan() || residual > tol {
+            return false;
+        }
+        for j in (0..m).rev() {
+            for k in j + 1..m {
+                z[j] -= self.r[j][k] * z[k];
+            }
+            z[j] /= self.r[j][j];
+        }
+        true
     }
-    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// A rotation of ℝᴺ (row-major): plane rotations by the given angles, plane after plane.
+    fn rotation(n: usize, mut angle: impl FnMut(usize, usize) -> f64) -> Vec<f64> {
+        let mut q: Vec<f64> = (0..n * n)
+            .map(|k| if k / n == k % n { 1.0 } else { 0.0 })
+            .collect();
+        for i in 0..n {
+            for j in i + 1..n {
+                let (s, c) = angle(i, j).sin_cos();
+                for row in 0..n {
+                    let (x, y) = (q[row * n + i], q[row * n + j]);
+                    q[row * n + i] = c * x - s * y;
+                    q[row * n + j] = s * x + c * y;
+                }
+            }
+        }
+        q
+    }
+
+    type Visit = (Vec<u64>, Vec<u64>, Vec<u64>, u64, u64);
+    type Region = fn(&SupportSet, &SupportSet, &[f64], f64, f64, &mut dyn FnMut(RegionVertex<'_>));
+
+    fn visits(
+        region: Region,
+        (sa, sb): (&SupportSet, &SupportSet),
+        normal: &[f64],
+        scale: f64,
+    ) -> Vec<Visit> {
+        let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        let mut out = Vec::new();
+        region(sa, sb, normal, 1e-3 * scale, scale, &mut |v| {
+            out.push((
+                bits(v.point_a),
+                bits(v.point_b),
+                bits(v.plane),
+                v.depth.to_bits(),
+                v.id.0,
+            ))
+        });
+        out
+    }
+
+    /// The pruned region search visits exactly the crossings of the brute force, in the
+    /// same order and equal to the bit, for N = 2 … 6: boxes face to face (shifted by
+    /// random amounts, by exact halves as in a pyramid, not at all, turned about the
+    /// normal or tilted within the support tolerance), random hulls, flat hulls and
+    /// hulls with repeated points.
+    #[test]
+    fn pruned_region_search_visits_what_the_brute_force_does() {
+        let mut rng = ChaCha8Rng::seed_from_u64(20261130);
+        let (mut cases, mut vertices, mut by_kind) = (0, 0, [0usize; 5]);
+        for n in 2..=6usize {
+            for case in 0..60 {
+                let kind = case % 5;
+                let corners = |h: &[f64]| -> Vec<f64> {
+                    (0..1usize << n)
+                        .flat_map(|m| {
+                            (0..n).map(move |i| if m >> i & 1 == 1 { h[i] } else { -h[i] })
+                        })
+                        .collect()
+                };
+                // Random points, the first n of them on the plane of own last coordinate
+                // `face` (a face across the normal), or all on it (a flat hull).
+                let random_points = |rng: &mut ChaCha8Rng, face: f64, flat: bool| -> Vec<f64> {
+                    let mut v: Vec<f64> = (0..2 * n * n)
+                        .map(|_| rng.gen_range(-1.0..1.0) * 0.9)
+                        .collect();
+                    let on_face = if flat { 2 * n } else { n };
+                    v.iter_mut()
+                        .skip(n - 1)
+                        .step_by(n)
+                        .take(on_face)
+                        .for_each(|x| *x = face);
+                    v
+                };
+                let ha: Vec<f64> = (0..n).map(|_| rng.gen_range(0.3..1.0)).collect();
+                let hb: Vec<f64> = (0..n).map(|_| rng.gen_range(0.3..1.0)).collect();
+                let (va, vb, ha, hb) = match kind {
+                    0..=2 => (corners(&ha), corners(&hb), ha, hb),
+                    3 => (
+                        random_points(&mut rng, 1.0, false),
+                        random_points(&mut rng, -1.0, false),
+                        vec![1.0; n],
+                        vec![1.0; n],
+                    ),
+                    _ => {
+                        // Flat hulls, A with a repeated point.
+                        let mut a = random_points(&mut rng, 0.0, true);
+                        let first: Vec<f64> = a[..n].to_vec();
+                        a.extend_from_slice(&first);
+                        let mut h = vec![0.5; n];
+                        h[n - 1] = 0.0;
+                        (a, random_points(&mut rng, 0.0, true), h.clone(), h)
+                    }
+                };
+                let qa = rotation(n, |_, _| rng.gen_range(-3.2..3.2));
+                // The normal: A's last axis, so that boxes meet face to face.
+                let normal: Vec<f64> = (0..n).map(|i| qa[i * n + n - 1]).collect();
+                let qb = match kind {
+                    // Turned about the normal only (in A's first n − 1 axes), or not at all.
+                    0 | 4 => qa.clone(),
+                    1 | 3 => {
+                        let turn = rotation(n, |_, j| {
+                            if j < n - 1 {
+                                rng.gen_range(-3.2..3.2)
+                            } else {
+                                0.0
+                            }
+                        });
+                        (0..n * n)
+                            .map(|k| {
+                                (0..n)
+                                    .map(|l| qa[k / n * n + l] * turn[l * n + k % n])
+                                    .sum()
+                            })
+                            .collect()
+                    }
+                    // Tilted within the support tolerance.
+                    2 => {
+                        let tilt = rotation(n, |_, j| {
+                            if j == n - 1 {
+                                rng.gen_range(-3e-4..3e-4)
+                            } else {
+                                0.0
+                            }
+                        });
+                        (0..n * n)
+                            .map(|k| {
+                                (0..n)
+                                    .map(|l| qa[k / n * n + l] * tilt[l * n + k % n])
+                                    .sum()
+                            })
+                            .collect()
+                    }
+                    _ => unreachable!(),
+                };
+                let pa: Vec<f64> = (0..n).map(|_| rng.gen_range(-5.0..5.0)).collect();
+                // B over A along the normal, shifted in the plane by random amounts or by
+                // half of A's side.
+                let shift: Vec<f64> = (0..n - 1)
+                    .map(|i| {
+                        if case % 2 == 0 {
+                            ha[i]
+                        } else {
+                            rng.gen_range(-1.0..1.0) * ha[i]
+                        }
+                    })
+                    .collect();
+                let pb: Vec<f64> = (0..n)
+                    .map(|r| {
+                        pa[r]
+                            + (0..n - 1).map(|i| qa[r * n + i] * shift[i]).sum::<f64>()
+                            + normal[r] * (ha[n - 1] + hb[n - 1])
+                    })
+                    .collect();
+                let a = PlacedHull {
+                    vertices: &va,
+                    position: &pa,
+                    rotation: &qa,
+                };
+                let b = PlacedHull {
+                    vertices: &vb,
+                    position: &pb,
+                    rotation: &qb,
+                };
+                let (sa, _) = SupportSet::new(&a, &normal, 1.0, SUPPORT_TOLERANCE * a.radius());
+                let (sb, _) = SupportSet::new(&b, &normal, -1.0, SUPPORT_TOLERANCE * b.radius());
+                let scale = a.radius().max(b.radius());
+                let fast = visits(hull_region, (&sa, &sb), &normal, scale);
+                let brute = visits(reference_region, (&sa, &sb), &normal, scale);
+                assert_eq!(fast, brute, "N = {n}, case {case}");
+                cases += 1;
+                vertices += fast.len();
+                by_kind[kind] += fast.len();
+            }
+        }
+        assert_eq!(cases, 300);
+        // Every kind of case meets its region somewhere (so the comparison is not empty).
+        assert!(by_kind.iter().all(|&k| k > 0), "{by_kind:?}");
+        assert!(vertices > 1000, "{vertices}");
+    }
+
+    /// The unpruned brute force: every pair of subsets solved from scratch.
+    fn reference_region(
+        sa: &SupportSet,
+        sb: &SupportSet,
+        normal: &[f64],
+        margin: f64,
+        scale: f64,
+        visit: &mut dyn FnMut(RegionVertex<'_>),
+    ) {
+        let n = normal.len();
+        let d = n - 1;
+        let mut xa: SmallVec<[f64; 64]> = SmallVec::new();
+        let mut xb: SmallVec<[f64; 64]> = SmallVec::new();
+        let mut c: Small = SmallVec::new();
+        for k in 0..sa.len() {
+            plane_coordinates(normal, sa.point(k), &mut c);
+            xa.extend_from_slice(&c);
+        }
+        for k in 0..sb.len() {
+            plane_coordinates(normal, sb.point(k), &mut c);
+            xb.extend_from_slice(&c);
+        }
+        let tol = 1e-9 * scale;
+        let bary_tol = 1e-9;
+        let mut columns: SmallVec<[f64; 64]> = SmallVec::new();
+        let mut rhs: Small = SmallVec::new();
+        let mut z: Small = SmallVec::new();
+        let (mut pa, mut pb): (Small, Small) =
+            (SmallVec::from_elem(0.0, n), SmallVec::from_elem(0.0, n));
+        let mut x: Small = SmallVec::from_elem(0.0, d);
+        for mask_a in 1u32..(1 << sa.len()) {
+            let ka = mask_a.count_ones() as usize;
+            if ka > d + 1 {
+                continue;
+            }
+            for mask_b in 1u32..(1 << sb.len()) {
+                let kb = mask_b.count_ones() as usize;
+                if ka + kb > d + 2 {
+                    continue;
+                }
+                let ia: SmallVec<[usize; 8]> =
+                    (0..sa.len()).filter(|i| mask_a >> i & 1 == 1).collect();
+                let ib: SmallVec<[usize; 8]> =
+                    (0..sb.len()).filter(|i| mask_b >> i & 1 == 1).collect();
+                let a0 = &xa[ia[0] * d..(ia[0] + 1) * d];
+                let b0 = &xb[ib[0] * d..(ib[0] + 1) * d];
+                // Columns: a_i − a_0 (i ≥ 1), −(b_j − b_0) (j ≥ 1); right side b_0 − a_0.
+                columns.clear();
+                for &i in &ia[1..] {
+                    columns.extend((0..d).map(|t| xa[i * d + t] - a0[t]));
+                }
+                for &j in &ib[1..] {
+                    columns.extend((0..d).map(|t| -(xb[j * d + t] - b0[t])));
+                }
+                rhs.clear();
+                rhs.extend((0..d).map(|t| b0[t] - a0[t]));
+                let m = ka + kb - 2;
+                if !least_squares(&mut columns, d, m, &mut rhs, &mut z, tol) {
+                    continue;
+                }
+                // Barycentric coordinates within both simplices.
+                let sum_a: f64 = z[..ka - 1].iter().sum();
+                let sum_b: f64 = z[ka - 1..].iter().sum();
+                if z.iter().any(|w| *w < -bary_tol)
+                    || sum_a > 1.0 + bary_tol
+                    || sum_b > 1.0 + bary_tol
+                {
+                    continue;
+                }
+                for k in 0..n {
+                    pa[k] = (1.0 - sum_a) * sa.point(ia[0])[k]
+                        + ia[1..]
+                            .iter()
+                            .zip(&z[..ka - 1])
+                            .map(|(&i, w)| w * sa.point(i)[k])
+                            .sum::<f64>();
+                    pb[k] = (1.0 - sum_b) * sb.point(ib[0])[k]
+                        + ib[1..]
+                            .iter()
+                            .zip(&z[ka - 1..])
+                            .map(|(&j, w)| w * sb.point(j)[k])
+                            .sum::<f64>();
+                }
+                let depth = dot(normal, &pa) - dot(normal, &pb);
+                if depth < -margin {
+                    continue;
+                }
+                for t in 0..d {
+                    x[t] = (1.0 - sum_a) * a0[t]
+                        + ia[1..]
+                            .iter()
+                            .zip(&z[..ka - 1])
+                            .map(|(&i, w)| w * xa[i * d + t])
+                            .sum::<f64>();
+                }
+                // A full-dimensional simplex only says "inside": leave it out of the id, so that
+                // the id does not depend on which of the simplices holding the point found it.
+                let mut hash = 0xcbf2_9ce4_8422_2325u64;
+                let mut mix = |v: u64| {
+                    hash ^= v;
+                    hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
+                };
+                if ka <= d {
+                    ia.iter().for_each(|&i| mix(sa.indices[i] as u64 + 1));
+                }
+                mix(u64::MAX);
+                if kb <= d {
+                    ib.iter().for_each(|&j| mix(sb.indices[j] as u64 + 1));
+                }
+                visit(RegionVertex {
+                    point_a: &pa,
+                    point_b: &pb,
+                    plane: &x,
+                    depth,
+                    id: FeatureId(KIND_HULL | hash >> 2),
+                });
+            }
+        }
+    }
+
+    /// Solves the d × m least-squares problem (columns flat, column after column) by
+    /// Gram–Schmidt QR; false when the columns are dependent (relative to `tol`) or the residual
+    /// exceeds `tol` (the flats do not meet).
+    fn least_squares(
+        columns: &mut SmallVec<[f64; 64]>,
+        d: usize,
+        m: usize,
+        rhs: &mut Small,
+        z: &mut Small,
+        tol: f64,
+    ) -> bool {
+        // R, upper triangular m × m, from modified Gram–Schmidt twice.
+        let mut r: SmallVec<[f64; 64]> = SmallVec::from_elem(0.0, m * m);
+        for j in 0..m {
+            let original = dot(&columns[j * d..(j + 1) * d], &columns[j * d..(j + 1) * d]).sqrt();
+            for _ in 0..2 {
+                for i in 0..j {
+                    let (qi, qj) = columns.split_at_mut(j * d);
+                    let qi = &qi[i * d..(i + 1) * d];
+                    let qj = &mut qj[..d];
+                    let p = dot(qi, qj);
+                    r[i * m + j] += p;
+                    qj.iter_mut().zip(qi).for_each(|(x, y)| *x -= p * y);
+                }
+            }
+            let qj = &mut columns[j * d..(j + 1) * d];
+            let len = dot(qj, qj).sqrt();
+            if len.is_nan() || len <= 1e-9 * original.max(tol) {
+                return false;
+            }
+            qj.iter_mut().for_each(|x| *x /= len);
+            r[j * m + j] = len;
+        }
+        // z = R⁻¹ Qᵀ rhs, residual = rhs − Q Qᵀ rhs.
+        z.clear();
+        for j in 0..m {
+            let q = &columns[j * d..(j + 1) * d];
+            let p = dot(q, rhs);
+            z.push(p);
+            rhs.iter_mut().zip(q).for_each(|(x, y)| *x -= p * y);
+        }
+        let residual = dot(rhs, rhs).sqrt();
+        if residual.is_nan() || residual > tol {
+            return false;
+        }
+        for j in (0..m).rev() {
+            for k in j + 1..m {
+                z[j] -= r[j * m + k] * z[k];
+            }
+            z[j] /= r[j * m + j];
+        }
+        true
+    }
 }
