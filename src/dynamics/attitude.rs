@@ -245,17 +245,7 @@ impl Attitude {
     pub(crate) fn write_matrix(&self, out: &mut [f64]) {
         let n = self.dim();
         match &self.repr {
-            Repr::Rotor(r) => {
-                let (mut e, mut col) = ([0.0; 16], [0.0; 16]);
-                for j in 0..n {
-                    e[..n].fill(0.0);
-                    e[j] = 1.0;
-                    r.sandwich_vector_into(&e[..n], &mut col[..n]);
-                    for i in 0..n {
-                        out[i * n + j] = col[i];
-                    }
-                }
-            }
+            Repr::Rotor(r) => r.write_matrix_into(out),
             Repr::Matrix(q) => {
                 for i in 0..n {
                     for j in 0..n {

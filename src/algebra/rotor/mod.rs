@@ -436,6 +436,51 @@ impl Rotor {
         out
     }
 
+    /// Writes the matrix of x ↦ R x R̃ into `out` (row-major N × N, column j the image of
+    /// eⱼ): in 3D and 4D with the fixed-size rotor read once for all N columns, each column
+    /// the same arithmetic as [`Rotor::sandwich_vector_into`] of eⱼ.
+    ///
+    /// # Panics
+    /// If `out` is shorter than N², or N > 16.
+    pub(crate) fn write_matrix_into(&self, out: &mut [f64]) {
+        let n = self.dim;
+        match n {
+            3 => {
+                let c = layout::<4>(&self.coeffs);
+                for j in 0..3 {
+                    let mut e = [0.0; 3];
+                    e[j] = 1.0;
+                    let y = Rotor3::sandwich_even_layout(c, &e);
+                    for i in 0..3 {
+                        out[i * 3 + j] = y[i];
+                    }
+                }
+            }
+            4 => {
+                let r = Rotor4::<f64>::from_even_layout(layout(&self.coeffs));
+                for j in 0..4 {
+                    let mut e = nalgebra::Vector4::zeros();
+                    e[j] = 1.0;
+                    let y = r.rotate_vector(e);
+                    for i in 0..4 {
+                        out[i * 4 + j] = y[i];
+                    }
+                }
+            }
+            _ => {
+                let (mut e, mut col) = ([0.0; 16], [0.0; 16]);
+                for j in 0..n {
+                    e[..n].fill(0.0);
+                    e[j] = 1.0;
+                    self.sandwich_vector_into(&e[..n], &mut col[..n]);
+                    for i in 0..n {
+                        out[i * n + j] = col[i];
+                    }
+                }
+            }
+        }
+    }
+
     /// Writes R x R̃ into `out` (both of length N).
     pub(crate) fn sandwich_vector_into(&self, x: &[f64], out: &mut [f64]) {
         let n = self.dim;
