@@ -1,5 +1,6 @@
-//! Where the bodies' contact points are: each body's own axes as a matrix and the space
-//! offsets of its vertices, kept while the body does not turn.
+//! Where the bodies' contact points are: each body's own axes as a matrix, the space
+//! offsets of its vertices (or an ellipsoid's support point against each half-space),
+//! kept while the body does not turn.
 //!
 //! A step asks for the contact candidates several times (the contacts in reach before the
 //! step, the two velocity solves, the position check of the free flight, the new
@@ -48,11 +49,14 @@ pub(crate) struct Placement {
     pub generation: u64,
     /// The own axes, row-major N × N (column j: the image of eⱼ).
     pub q: SmallVec<[f64; 64]>,
-    /// For a shape of vertices, Q r of each vertex r (N numbers each).
+    /// For a shape of vertices, Q r of each vertex r (N numbers each); for an ellipsoid,
+    /// Q r of its support point r against each half-space in turn.
     offsets: Vec<f64>,
+    /// For an ellipsoid, its support point r in own axes against each half-space.
+    supports: Vec<Vector>,
     /// For a shape of vertices, n · (Q r) of each vertex r for the normal n of each
-    /// half-space in turn: the candidates' heights above their centre of mass, which every
-    /// contact question of a step asks for.
+    /// half-space in turn, and for an ellipsoid that of its support point: the candidates'
+    /// heights above their centre of mass, which every contact question of a step asks for.
     heights: Vec<f64>,
     /// The shape's radius ([`ContactShape::radius`]), which contact tolerances scale with.
     pub radius: f64,
@@ -65,6 +69,7 @@ impl Placement {
     fn heights(&self, shape: &ContactShape, plane: usize) -> Option<&[f64]> {
         match shape {
             ContactShape::Vertices(v) => self.heights.get(plane * v.len()..(plane + 1) * v.len()),
+            ContactShape::Ellipsoid(_) => self.heights.get(plane..plane + 1),
             _ => None,
         }
     }
@@ -97,7 +102,7 @@ impl Placement {
     pub(crate) fn candidates(
         &self,
         shape: &ContactShape,
-        (_, normal): (usize, &Vector),
+        (plane, normal): (usize, &Vector),
         mut visit: impl FnMut(usize, &Vector, &[f64]),
     ) {
         let n = normal.dim();
@@ -106,6 +111,15 @@ impl Placement {
                 for (k, (r, placed)) in v.iter().zip(self.offsets.chunks_exact(n)).enumerate() {
                     visit(k + 1, r, placed);
                 }
+            }
+            ContactShape::Ellipsoid(_)
+                if self.supports.len() > plane && self.offsets.len() == self.supports.len() * n =>
+            {
+                visit(
+                    1,
+                    &self.supports[plane],
+                    &self.offsets[plane * n..(plane + 1) * n],
+                );
             }
             _ => {
                 let mut k = 0;
@@ -157,9 +171,30 @@ impl Placement {
 }
 
 impl Placement {
-    /// Computes the vertices' heights against the normals of `half_spaces`.
-    fn set_heights(&mut self, n: usize, half_spaces: &[HalfSpace]) {
+    /// Computes the vertices' heights against the normals of `half_spaces`, and for an
+    /// ellipsoid its support point against each (as [`ContactShape::candidates`] gives it
+    /// at the placement's axes).
+    fn set_heights(&mut self, shape: &ContactShape, n: usize, half_spaces: &[HalfSpace]) {
         self.heights.clear();
+        if let ContactShape::Ellipsoid(_) = shape {
+            let Placement {
+                q,
+                offsets,
+                supports,
+                heights,
+                ..
+            } = self;
+            offsets.clear();
+            supports.resize_with(half_spaces.len(), || Vector::zero(n));
+            for (plane, support) in half_spaces.iter().zip(supports.iter_mut()) {
+                shape.candidates(q, plane.normal(), |r, placed| {
+                    set_vector(support, r.as_slice());
+                    offsets.extend_from_slice(placed.as_slice());
+                    heights.push(dot(plane.normal().as_slice(), placed.as_slice()));
+                });
+            }
+            return;
+        }
         for plane in half_spaces {
             let normal = plane.normal().as_slice();
             self.heights
@@ -224,11 +259,14 @@ impl Placements {
                 .as_ref()
                 .is_some_and(|a| attitudes_close(a, attitude))
             {
-                if let ContactShape::Vertices(v) = shape
-                    && p.heights.len() != v.len() * half_spaces.len()
-                {
+                let kept = match shape {
+                    ContactShape::Vertices(v) => v.len() * half_spaces.len(),
+                    ContactShape::Ellipsoid(_) => half_spaces.len(),
+                    _ => p.heights.len(),
+                };
+                if p.heights.len() != kept {
                     // A half-space joined since.
-                    p.set_heights(b.dim(), half_spaces);
+                    p.set_heights(shape, b.dim(), half_spaces);
                 }
                 continue;
             }
@@ -245,7 +283,7 @@ impl Placements {
                     }
                 }
             }
-            p.set_heights(n, half_spaces);
+            p.set_heights(shape, n, half_spaces);
             match &mut p.attitude {
                 Some(a) => a.clone_from(attitude),
                 None => p.attitude = Some(attitude.clone()),
@@ -292,5 +330,79 @@ mod tests {
                 "N = {n}"
             );
         }
+    }
+
+    /// An ellipsoid's support points against each half-space are kept with its placement:
+    /// what `candidates` and the heights read is what the shape gives at the placement's
+    /// axes, to the bit, for balls and general ellipsoids in 3D and 4D, also for a
+    /// half-space that joins after the placement.
+    #[test]
+    fn an_ellipsoid_keeps_its_support_points_per_half_space() {
+        use crate::dynamics::motion::{HalfSpace, System};
+        use crate::inertia::spec::parse_body;
+        let mut checked = 0;
+        for (spec, n) in [
+            ("ball:3,0.5", 3),
+            ("ellipsoid:1,2,3", 3),
+            ("ball:4,0.7", 4),
+            ("ellipsoid:1,1.2,1.5,2", 4),
+        ] {
+            let parsed = parse_body(&format!("{spec}+mass=1")).unwrap();
+            let planes = n * (n - 1) / 2;
+            let b: Vec<f64> = (0..planes).map(|k| 0.4 + 0.3 * k as f64).collect();
+            let attitude =
+                Rotor::from_rotation_bivector(&Bivector::from_components(n, &b).unwrap());
+            let body = MovingBody::from_parsed(
+                &parsed,
+                attitude,
+                &Vector::zero(n),
+                &Vector::zero(n),
+                &Bivector::zero(n),
+            )
+            .unwrap();
+            let mut system = System::new(vec![body]).unwrap();
+            let unit = |v: Vec<f64>| {
+                let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+                Vector::from_components(&v.iter().map(|x| x / norm).collect::<Vec<_>>()).unwrap()
+            };
+            let normals = [
+                unit((0..n).map(|i| if i == n - 1 { 1.0 } else { 0.0 }).collect()),
+                unit((0..n).map(|i| 0.3 - 0.2 * i as f64).collect()),
+            ];
+            let mut placements = Placements::default();
+            for normal in &normals {
+                system
+                    .add_half_space(HalfSpace::new(normal, -5.0, 0.5, 0.0).unwrap())
+                    .unwrap();
+                placements.update(
+                    system.bodies(),
+                    system.shapes(),
+                    system.shape_key(),
+                    system.half_spaces(),
+                );
+                let placed = placements.get(0);
+                let shape = &system.shapes()[0];
+                for (plane, half_space) in system.half_spaces().iter().enumerate() {
+                    let normal = half_space.normal();
+                    let mut kept = Vec::new();
+                    placed.candidates(shape, (plane, normal), |index, r, x| {
+                        kept.push((index, r.clone(), x.to_vec()))
+                    });
+                    let mut fresh = Vec::new();
+                    shape.candidates(&placed.q, normal, |r, x| {
+                        fresh.push((fresh.len() + 1, r.clone(), x.as_slice().to_vec()))
+                    });
+                    assert_eq!(kept.len(), 1, "{spec}");
+                    assert_eq!(kept, fresh, "{spec}, plane {plane}");
+                    let height = placed.candidate_height(shape, (plane, normal), 1);
+                    assert_eq!(
+                        height.to_bits(),
+                        dot(normal.as_slice(), &fresh[0].2).to_bits()
+                    );
+                    checked += 1;
+                }
+            }
+        }
+        assert_eq!(checked, 12);
     }
 }
