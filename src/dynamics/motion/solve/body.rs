@@ -1,7 +1,9 @@
 //! A body as the solves see it.
 
 use super::Dense;
-use super::contact_row::{RowLayout, add_mat_vec, axes_of, contraction_entry, dim};
+use super::contact_row::{
+    RowLayout, add_contraction, add_mat_vec, axes_of, contraction_entry, dim,
+};
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::Attitude;
 use crate::dynamics::motion::MovingBody;
@@ -206,15 +208,7 @@ impl BodyState {
         let n = dim::<N>(r.len());
         let (r, w) = (&r[..n], self.w.as_slice());
         u[..n].copy_from_slice(&self.v.as_slice()[..n]);
-        // r ⌋ (eₐ ∧ e_b) = rₐ e_b − r_b eₐ.
-        let mut p = 0;
-        for a in 0..n {
-            for b in a + 1..n {
-                u[b] += r[a] * w[p];
-                u[a] -= r[b] * w[p];
-                p += 1;
-            }
-        }
+        add_contraction(r, w, u);
     }
 
     /// Takes an impulse `j` at offset `r`.

@@ -159,6 +159,22 @@ pub(super) fn axes_of<const N: usize>() -> Option<&'static [[usize; 2]]> {
     }
 }
 
+/// u += r ⌋ w = C w: column p = (a, b) of C holds −r_b at a and r_a at b
+/// (r ⌋ (eₐ ∧ e_b) = rₐ e_b − r_b eₐ), the planes in the order of the bivector's
+/// coefficients.
+#[inline(always)]
+pub(super) fn add_contraction(r: &[f64], w: &[f64], u: &mut [f64]) {
+    let n = r.len();
+    let mut p = 0;
+    for a in 0..n {
+        for b in a + 1..n {
+            u[b] += r[a] * w[p];
+            u[a] -= r[b] * w[p];
+            p += 1;
+        }
+    }
+}
+
 /// u = v + C w at a row's point, at `offset` from the centre of mass, C read through the
 /// offset (`N` as in [`dim`]).
 #[inline(always)]
@@ -183,17 +199,10 @@ pub(super) fn point_velocity<const N: usize>(
         }
         return;
     }
-    // Column p = (a, b) of C holds −r_b at a and r_a at b. C w is summed before v is
-    // added, in the order of the fixed-size kernels, which then give the same velocities.
+    // C w is summed before v is added, in the order of the fixed-size kernels, which then
+    // give the same velocities.
     u[..n].fill(0.0);
-    let mut p = 0;
-    for a in 0..n {
-        for b in a + 1..n {
-            u[b] += offset[a] * w[p];
-            u[a] -= offset[b] * w[p];
-            p += 1;
-        }
-    }
+    add_contraction(&offset[..n], w, u);
     for (ui, vi) in u[..n].iter_mut().zip(&v[..n]) {
         *ui += vi;
     }
