@@ -3,7 +3,7 @@
 //! signed distance, the contact normal and the contact point (the narrow phase).
 
 use super::manifold::{box_manifold_on_axis, support_set_capacity};
-use super::sat::{box_box_unchecked, boxes_apart_by_more_than};
+use super::sat::{box_box_unchecked, box_box_within};
 use super::{
     BroadPhase, ContactManifold, EpaWorkspace, PlacedBox, PlacedHull, PlacedShape, hull_manifold,
     penetration_with,
@@ -384,10 +384,9 @@ impl Touching {
                 rotation,
             };
             let (pa, pb) = (placed(ha, xa, q(a)), placed(hb, xb, q(b)));
-            if boxes_apart_by_more_than(&pa, &pb, reach) {
+            let Some(axis) = box_box_within(&pa, &pb, reach) else {
                 return;
-            }
-            let axis = box_box_unchecked(&pa, &pb);
+            };
             if -axis.depth > reach {
                 return;
             }

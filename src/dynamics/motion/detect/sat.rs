@@ -437,20 +437,19 @@ pub fn box_box(a: &PlacedBox<'_>, b: &PlacedBox<'_>) -> Result<BoxPairAxis, Dyna
 }
 
 /// [`box_box`] on boxes already checked.
-/// True if some candidate axis separates the two boxes by more than `reach`: then
-/// [`box_box_unchecked`]'s gap (the largest over the axes) is larger too. Stops at the first
-/// such axis, most often a face's, instead of testing the cells' axes as well.
-pub(crate) fn boxes_apart_by_more_than(a: &PlacedBox<'_>, b: &PlacedBox<'_>, reach: f64) -> bool {
-    let rel = Relative::new(a, b);
-    let mut apart = false;
-    for_each_axis(a, b, &rel, |_, _, overlap, _| {
-        apart = -overlap > reach;
-        !apart
-    });
-    apart
+pub(crate) fn box_box_unchecked(a: &PlacedBox<'_>, b: &PlacedBox<'_>) -> BoxPairAxis {
+    box_box_within(a, b, f64::INFINITY).expect("no axis separates by more than infinity")
 }
 
-pub(crate) fn box_box_unchecked(a: &PlacedBox<'_>, b: &PlacedBox<'_>) -> BoxPairAxis {
+/// [`box_box_unchecked`], or None as soon as a candidate axis separates the two boxes by
+/// more than `reach` (then the gap [`box_box_unchecked`] gives, the largest over the axes,
+/// is larger too): most pairs that the broad phase passes and that are apart stop at a
+/// face's axis, and the others take one pass over the axes instead of two.
+pub(crate) fn box_box_within(
+    a: &PlacedBox<'_>,
+    b: &PlacedBox<'_>,
+    reach: f64,
+) -> Option<BoxPairAxis> {
     let n = a.dim();
     let rel = Relative::new(a, b);
     // The best face axis of A, of B, and the best cell axis, each with its A-frame axis
@@ -470,7 +469,12 @@ pub(crate) fn box_box_unchecked(a: &PlacedBox<'_>, b: &PlacedBox<'_>) -> BoxPair
     let (mut face_a, mut face_b, mut cells) = (empty(), empty(), empty());
     let mut least = f64::INFINITY;
     let mut widest: Option<Best> = None;
+    let mut apart = false;
     for_each_axis(a, b, &rel, |u, feature, overlap, along| {
+        if -overlap > reach {
+            apart = true;
+            return false;
+        }
         least = least.min(overlap);
         let slot = match feature {
             AxisFeature::FaceOfA { .. } => &mut face_a,
@@ -493,6 +497,9 @@ pub(crate) fn box_box_unchecked(a: &PlacedBox<'_>, b: &PlacedBox<'_>) -> BoxPair
         }
         true
     });
+    if apart {
+        return None;
+    }
     let scale = a.size().min(b.size());
     let absolute = AXIS_ABSOLUTE_BIAS * scale;
     let chosen = if let Some(w) = widest {
@@ -526,10 +533,10 @@ pub(crate) fn box_box_unchecked(a: &PlacedBox<'_>, b: &PlacedBox<'_>) -> BoxPair
     for (k, x) in normal.iter_mut().enumerate() {
         *x = sign * (0..n).map(|i| a.axis(i, k) * chosen.u[i]).sum::<f64>();
     }
-    BoxPairAxis {
+    Some(BoxPairAxis {
         normal,
         depth: chosen.overlap,
         feature: chosen.feature,
         least_depth: least,
-    }
+    })
 }

@@ -8,7 +8,6 @@ use crate::dynamics::motion::detect::bodies::Touching;
 use crate::dynamics::motion::placement::Placements;
 use crate::dynamics::motion::solve::{FoundPoint, NO_BODY, SoftSolver, Softness, Solver};
 use crate::dynamics::motion::{MotionError, System, Wrench};
-use smallvec::SmallVec;
 
 /// The soft step: each step of h is cut into substeps, and each substep takes the forques'
 /// kick, a Gauss–Seidel pass of soft contacts (two in N ≥ 4), the free flight of every
@@ -63,42 +62,55 @@ pub struct SoftStep {
     checked: Option<(u64, u64, usize)>,
     /// The pairs whose manifold is kept from an earlier step, sorted, with the relative
     /// placement it was found at; the next step's list is built in `next_kept`.
-    kept: Vec<KeptPair>,
-    next_kept: Vec<KeptPair>,
+    kept: KeptPairs,
+    next_kept: KeptPairs,
     reuse: Vec<(usize, usize)>,
     /// The shapes `kept` belongs to.
     kept_shapes: (u64, u64),
+    /// Room for a pair's relative placement.
+    placement: Vec<f64>,
 }
 
-/// A pair of bodies (a < b) whose contact manifold was found with body b's centre at
-/// `offset` and its axes at `turn` in body a's axes.
+/// Pairs of bodies (a < b) whose contact manifold was found with body b's centre and axes
+/// where `placement` puts them in body a's axes: b's centre (N numbers), then b's axes
+/// (N × N, row-major), in one array. The pairs are small entries that sort and move
+/// cheaply; their placements stay where they were written.
 #[derive(Clone, Debug, Default)]
-struct KeptPair {
-    pair: (usize, usize),
-    offset: SmallVec<[f64; 8]>,
-    turn: SmallVec<[f64; 64]>,
+struct KeptPairs {
+    /// Each pair and where its placement starts in `data`.
+    pairs: Vec<((usize, usize), usize)>,
+    data: Vec<f64>,
 }
 
-impl KeptPair {
-    /// Sets the relative placement of the pair (a, b) from their own axes (row-major, own
-    /// axes → space) and centres.
-    fn place(
-        &mut self,
-        pair: (usize, usize),
-        (qa, qb): (&[f64], &[f64]),
-        (xa, xb): (&[f64], &[f64]),
-    ) {
-        let n = xa.len();
-        self.pair = pair;
-        self.offset.clear();
-        self.offset
-            .extend((0..n).map(|k| (0..n).map(|i| qa[i * n + k] * (xb[i] - xa[i])).sum::<f64>()));
-        self.turn.clear();
-        self.turn.extend((0..n * n).map(|e| {
-            let (r, c) = (e / n, e % n);
-            (0..n).map(|i| qa[i * n + r] * qb[i * n + c]).sum::<f64>()
-        }));
+impl KeptPairs {
+    fn clear(&mut self) {
+        self.pairs.clear();
+        self.data.clear();
     }
+
+    /// Adds the pair with its relative placement.
+    fn push(&mut self, pair: (usize, usize), placement: &[f64]) {
+        self.pairs.push((pair, self.data.len()));
+        self.data.extend_from_slice(placement);
+    }
+
+    /// The relative placement of the pair at `at` in `pairs`.
+    fn placement(&self, at: usize, n: usize) -> &[f64] {
+        let start = self.pairs[at].1;
+        &self.data[start..start + n + n * n]
+    }
+}
+
+/// Writes into `out` the placement of body b in body a's axes (as [`KeptPairs`] holds it)
+/// from their own axes (row-major, own axes → space) and centres.
+fn relative_placement((qa, qb): (&[f64], &[f64]), (xa, xb): (&[f64], &[f64]), out: &mut Vec<f64>) {
+    let n = xa.len();
+    out.clear();
+    out.extend((0..n).map(|k| (0..n).map(|i| qa[i * n + k] * (xb[i] - xa[i])).sum::<f64>()));
+    out.extend((0..n * n).map(|e| {
+        let (r, c) = (e / n, e % n);
+        (0..n).map(|i| qa[i * n + r] * qb[i * n + c]).sum::<f64>()
+    }));
 }
 
 impl Default for SoftStep {
@@ -116,10 +128,11 @@ impl Default for SoftStep {
             placements: Placements::default(),
             wrenches: Vec::new(),
             checked: None,
-            kept: Vec::new(),
-            next_kept: Vec::new(),
+            kept: KeptPairs::default(),
+            next_kept: KeptPairs::default(),
             reuse: Vec::new(),
             kept_shapes: (0, 0),
+            placement: Vec::new(),
         }
     }
 }
@@ -265,18 +278,20 @@ impl SoftStep {
             // The pairs that moved little since their manifold was found keep it.
             self.reuse.clear();
             self.next_kept.clear();
-            let mut now = KeptPair::default();
-            for k in &self.kept {
-                let (a, b) = k.pair;
+            let n = bodies[0].dim();
+            let mut now = std::mem::take(&mut self.placement);
+            for (k, &((a, b), _)) in self.kept.pairs.iter().enumerate() {
                 if b >= bodies.len() {
                     continue;
                 }
-                now.place((a, b), (q(a), q(b)), (x(a), x(b)));
+                relative_placement((q(a), q(b)), (x(a), x(b)), &mut now);
+                let then = self.kept.placement(k, n);
                 let reach = KEEP_MANIFOLD * (placements.get(a).radius + placements.get(b).radius);
                 let far = |u: &[f64], v: &[f64], limit: f64| {
                     u.iter().zip(v).any(|(s, t)| (s - t).abs() > limit)
                 };
-                if !far(&now.offset, &k.offset, reach) && !far(&now.turn, &k.turn, KEEP_MANIFOLD) {
+                if !far(&now[..n], &then[..n], reach) && !far(&now[n..], &then[n..], KEEP_MANIFOLD)
+                {
                     self.reuse.push((a, b));
                 }
             }
@@ -304,20 +319,21 @@ impl SoftStep {
                 let flat = |i: usize| shapes[i].is_polytope();
                 if last != Some((c.a, c.b)) && flat(c.a) && flat(c.b) {
                     last = Some((c.a, c.b));
-                    now.place((c.a, c.b), (q(c.a), q(c.b)), (x(c.a), x(c.b)));
-                    self.next_kept.push(now.clone());
+                    relative_placement((q(c.a), q(c.b)), (x(c.a), x(c.b)), &mut now);
+                    self.next_kept.push((c.a, c.b), &now);
                 }
             }
+            self.placement = now;
             let mut k = 0;
             for &p in &self.reuse {
                 if self.solver.push_kept(p) {
-                    while self.kept[k].pair != p {
+                    while self.kept.pairs[k].0 != p {
                         k += 1;
                     }
-                    self.next_kept.push(self.kept[k].clone());
+                    self.next_kept.push(p, self.kept.placement(k, n));
                 }
             }
-            self.next_kept.sort_unstable_by_key(|k| k.pair);
+            self.next_kept.pairs.sort_unstable_by_key(|k| k.0);
             std::mem::swap(&mut self.kept, &mut self.next_kept);
         }
         self.solver.prepare(bodies);

@@ -57,6 +57,17 @@ impl BodyState {
     /// inertia was computed anew (false: it is the last solve's, as the body has not turned
     /// since, or its inertia is the same in every frame, as a ball's or a cube's).
     pub(super) fn load(&mut self, b: &MovingBody, work: &mut Dense) -> bool {
+        self.load_placed(b, work, None)
+    }
+
+    /// [`Self::load`], given the attitude matrix of the body's principal frame (row-major,
+    /// own axes → space) when the caller has it.
+    pub(super) fn load_placed(
+        &mut self,
+        b: &MovingBody,
+        work: &mut Dense,
+        matrix: Option<&[f64]>,
+    ) -> bool {
         let n = b.dim();
         let m = n * (n - 1) / 2;
         let attitude = b.rotation().principal_frame_attitude();
@@ -76,7 +87,7 @@ impl BodyState {
         };
         let anew = !same_inertia || (turned && !isotropic);
         if turned {
-            self.place_frame(b, work);
+            self.place_frame(b, work, matrix);
         }
         if anew {
             self.place_inverse_inertia(b);
@@ -114,15 +125,22 @@ impl BodyState {
         anew
     }
 
-    /// Computes the rotation of the planes by the principal frame.
-    fn place_frame(&mut self, b: &MovingBody, work: &mut Dense) {
+    /// Computes the rotation of the planes by the principal frame, from its attitude matrix
+    /// `matrix` if given.
+    fn place_frame(&mut self, b: &MovingBody, work: &mut Dense, matrix: Option<&[f64]>) {
         let n = b.dim();
         let m = n * (n - 1) / 2;
-        work.clear();
-        work.resize(n * n, 0.0);
-        b.rotation().principal_frame_attitude().write_matrix(work);
-        let p = &work[..];
-        self.frame.clear();
+        let p = match matrix {
+            Some(p) => p,
+            None => {
+                // Every entry is written: no need to zero them first.
+                work.resize(n * n, 0.0);
+                b.rotation()
+                    .principal_frame_attitude()
+                    .write_matrix(&mut work[..n * n]);
+                &work[..n * n]
+            }
+        };
         self.frame.resize(m * m, 0.0);
         for (k, (a, bb)) in crate::algebra::pairs(n).enumerate() {
             for (row, (c, d)) in crate::algebra::pairs(n).enumerate() {

@@ -349,23 +349,24 @@ impl SoftSolver {
     /// Loads every body a row acts on.
     fn load(&mut self, bodies: &[MovingBody]) {
         let mut work = std::mem::take(&mut self.work);
+        let (n, m) = (self.layout.n, self.layout.m);
+        let stride = n + m;
         for r in &self.rows {
             for i in [r.a, r.b] {
                 if i != NO_BODY && !self.states[i].used {
-                    self.states[i].load(&bodies[i], &mut work);
+                    // `frames` holds the bodies' attitudes as they are now (see `moved`).
+                    let matrix = &self.frames[i * n * n..(i + 1) * n * n];
+                    let st = &mut self.states[i];
+                    st.load_placed(&bodies[i], &mut work, Some(matrix));
+                    let vel = &mut self.flat.vel[i * stride..(i + 1) * stride];
+                    copy(&mut vel[..n], st.v.as_slice());
+                    copy(&mut vel[n..], st.w.as_slice());
+                    self.flat.imp[i * stride..(i + 1) * stride].fill(0.0);
+                    self.flat.inv_mass[i] = st.inv_mass;
                 }
             }
         }
         self.work = work;
-        let (n, m) = (self.layout.n, self.layout.m);
-        let stride = n + m;
-        for (i, st) in self.states.iter().enumerate().filter(|(_, st)| st.used) {
-            let vel = &mut self.flat.vel[i * stride..(i + 1) * stride];
-            vel[..n].copy_from_slice(&st.v.as_slice()[..n]);
-            vel[n..].copy_from_slice(&st.w.as_slice()[..m]);
-            self.flat.imp[i * stride..(i + 1) * stride].fill(0.0);
-            self.flat.inv_mass[i] = st.inv_mass;
-        }
     }
 
     /// Hands the loaded states' impulses to the bodies (after a pass, before their flight).
@@ -375,8 +376,8 @@ impl SoftSolver {
         for (i, (st, b)) in self.states.iter_mut().zip(bodies).enumerate() {
             if st.used {
                 let imp = &self.flat.imp[i * stride..(i + 1) * stride];
-                st.dp.as_mut_slice()[..n].copy_from_slice(&imp[..n]);
-                st.dl.as_mut_slice()[..m].copy_from_slice(&imp[n..]);
+                copy(st.dp.as_mut_slice(), &imp[..n]);
+                copy(st.dl.as_mut_slice(), &imp[n..]);
                 st.store(b);
             }
         }
@@ -786,6 +787,19 @@ impl SoftSolver {
             row.normal_impulse = new;
             apply::<N>(&mut self.flat, row, d, &l, l.normal, l.arms, change);
         }
+    }
+}
+
+/// Copies `src` into `dst` (of equal lengths), as moves of known size for the lengths of
+/// 3D and 4D (N = 3 or 4, M = 3 or 6): a slice copy of a length known only at run time is a
+/// call into the C library.
+#[inline(always)]
+fn copy(dst: &mut [f64], src: &[f64]) {
+    match dst.len() {
+        3 => dst[..3].copy_from_slice(&src[..3]),
+        4 => dst[..4].copy_from_slice(&src[..4]),
+        6 => dst[..6].copy_from_slice(&src[..6]),
+        k => dst.copy_from_slice(&src[..k]),
     }
 }
 
