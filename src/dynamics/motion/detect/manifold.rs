@@ -646,23 +646,37 @@ fn cell_point(
 /// first sums to zero, so the 16 corners they pick on a box face have its centre as mean.
 const HADAMARD_COLUMNS: [usize; 15] = [1, 2, 4, 8, 3, 5, 6, 7, 9, 10, 11, 12, 13, 14, 15];
 
-/// One kept candidate of the reduction.
+/// A vertex of the region the reduction keeps.
 #[derive(Clone)]
 struct Candidate {
     pa: Small,
     pb: Small,
     depth: f64,
     id: FeatureId,
-    score: f64,
 }
+
+/// The best vertex along one direction so far: its score and where it is in
+/// [`Reducer::kept`].
+#[derive(Clone, Copy)]
+struct Slot {
+    score: f64,
+    at: usize,
+}
+
+/// Room for the vertices the reduction holds: the 16 directions' and the deepest, twice
+/// over, so that dropping those that lost their places leaves room again.
+const KEPT: usize = 34;
 
 /// Keeps the extremes of the region along fixed directions of the contact plane, and its
 /// deepest point, as vertices stream in.
 struct Reducer {
     n: usize,
     normal: Small,
-    slots: SmallVec<[Option<Candidate>; 16]>,
-    deepest: Option<Candidate>,
+    slots: SmallVec<[Option<Slot>; 16]>,
+    deepest: Option<usize>,
+    /// The vertices that led a direction or were the deepest when offered, each stored
+    /// once however many directions it leads (a face's corner leads several).
+    kept: SmallVec<[Candidate; KEPT]>,
     shallowest: f64,
     /// The contact-plane scale of each coordinate (set by the first vertex's frame).
     directions: usize,
@@ -681,6 +695,7 @@ impl Reducer {
             normal: SmallVec::from_slice(normal),
             slots: SmallVec::from_elem(None, directions),
             deepest: None,
+            kept: SmallVec::new(),
             shallowest: f64::INFINITY,
             directions,
         }
@@ -710,28 +725,65 @@ impl Reducer {
         }
     }
 
-    fn offer(&mut self, v: RegionVertex<'_>, scale: f64) {
-        let tie = 1e-12 * scale;
-        let make = |score| Candidate {
+    /// Stores the vertex `v` and returns where; first drops the stored vertices that no
+    /// direction and not the deepest hold any longer if there is no room.
+    fn store(&mut self, v: &RegionVertex<'_>) -> usize {
+        if self.kept.len() == KEPT {
+            let mut held = [false; KEPT];
+            for slot in self.slots.iter().flatten() {
+                held[slot.at] = true;
+            }
+            if let Some(d) = self.deepest {
+                held[d] = true;
+            }
+            let mut to = [0usize; KEPT];
+            let all = std::mem::take(&mut self.kept);
+            for (i, c) in all.into_iter().enumerate() {
+                if held[i] {
+                    to[i] = self.kept.len();
+                    self.kept.push(c);
+                }
+            }
+            for slot in self.slots.iter_mut().flatten() {
+                slot.at = to[slot.at];
+            }
+            self.deepest = self.deepest.map(|d| to[d]);
+        }
+        self.kept.push(Candidate {
             pa: SmallVec::from_slice(v.point_a),
             pb: SmallVec::from_slice(v.point_b),
             depth: v.depth,
             id: v.id,
-            score,
-        };
+        });
+        self.kept.len() - 1
+    }
+
+    fn offer(&mut self, v: RegionVertex<'_>, scale: f64) {
+        let tie = 1e-12 * scale;
         self.shallowest = self.shallowest.min(v.depth);
+        let mut stored = None;
         for k in 0..self.directions {
             let s = self.score(k, v.plane);
-            let better = match &self.slots[k] {
+            let better = match self.slots[k] {
                 None => true,
-                Some(c) => s > c.score + tie || (s >= c.score - tie && v.depth > c.depth),
+                Some(c) => {
+                    s > c.score + tie || (s >= c.score - tie && v.depth > self.kept[c.at].depth)
+                }
             };
             if better {
-                self.slots[k] = Some(make(s));
+                let at = match stored {
+                    Some(at) => at,
+                    None => *stored.insert(self.store(&v)),
+                };
+                self.slots[k] = Some(Slot { score: s, at });
             }
         }
-        if self.deepest.as_ref().is_none_or(|c| v.depth > c.depth) {
-            self.deepest = Some(make(0.0));
+        if self.deepest.is_none_or(|d| v.depth > self.kept[d].depth) {
+            let at = match stored {
+                Some(at) => at,
+                None => self.store(&v),
+            };
+            self.deepest = Some(at);
         }
     }
 
@@ -745,41 +797,47 @@ impl Reducer {
                     .zip(&q.pb)
                     .all(|(x, y)| (x - y).abs() <= 1e-9 * scale)
         };
-        let mut kept: SmallVec<[Candidate; 17]> = SmallVec::new();
-        for c in self.slots.into_iter().flatten() {
-            if !kept.iter().any(|k| same(k, &c)) {
-                kept.push(c);
+        let all = &self.kept;
+        // The manifold's points, as places in `all`.
+        let mut kept: SmallVec<[usize; 17]> = SmallVec::new();
+        for slot in self.slots.iter().flatten() {
+            if !kept.iter().any(|&k| same(&all[k], &all[slot.at])) {
+                kept.push(slot.at);
             }
         }
-        if let Some(deep) = self.deepest {
+        if let Some(d) = self.deepest {
+            let deep = &all[d];
             let kept_depth = kept
                 .iter()
-                .map(|c| c.depth)
+                .map(|&k| all[k].depth)
                 .fold(f64::NEG_INFINITY, f64::max);
             let markedly =
                 deep.depth - kept_depth > 0.25 * (deep.depth - self.shallowest) + 1e-9 * scale;
-            if !kept.iter().any(|k| same(k, &deep)) && markedly {
+            if !kept.iter().any(|&k| same(&all[k], deep)) && markedly {
                 let capacity = manifold_capacity(self.n);
                 if kept.len() >= capacity {
                     // Replace the extreme nearest to the deepest point.
-                    let dist = |c: &Candidate| {
-                        c.pb.iter()
+                    let dist = |k: usize| {
+                        all[k]
+                            .pb
+                            .iter()
                             .zip(&deep.pb)
                             .map(|(x, y)| (x - y) * (x - y))
                             .sum::<f64>()
                     };
                     let nearest = (0..kept.len())
-                        .min_by(|&i, &j| dist(&kept[i]).total_cmp(&dist(&kept[j])))
+                        .min_by(|&i, &j| dist(kept[i]).total_cmp(&dist(kept[j])))
                         .unwrap_or(0);
-                    kept[nearest] = deep;
+                    kept[nearest] = d;
                 } else {
-                    kept.push(deep);
+                    kept.push(d);
                 }
             }
         }
         kept.truncate(manifold_capacity(self.n));
         let mut manifold = ContactManifold::new(&self.normal);
-        for c in &kept {
+        for &k in &kept {
+            let c = &all[k];
             manifold.push(&c.pa, &c.pb, c.depth, c.id);
         }
         manifold
