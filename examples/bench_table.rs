@@ -86,6 +86,7 @@ pub fn render(tsv: &str) -> Res<String> {
     write_step_summary(&mut out, &median)?;
     write_versor_summary(&mut out, &median)?;
     write_floor_summary(&mut out, &median)?;
+    write_contact_summary(&mut out, &median)?;
     writeln!(out, "\n**All measurements**")?;
     writeln!(
         out,
@@ -174,14 +175,108 @@ fn write_step_summary(out: &mut String, median: &dyn Fn(&str, &str) -> Option<f6
         if points.len() < 2 {
             continue;
         }
-        let k = points.len() as f64;
-        let (mx, my) = (
-            points.iter().map(|p| p.0).sum::<f64>() / k,
-            points.iter().map(|p| p.1).sum::<f64>() / k,
-        );
-        let num: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-        let den: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
-        writeln!(out, "| {function} | {:.2} |", num / den)?;
+        writeln!(out, "| {function} | {:.2} |", slope(&points))?;
+    }
+    Ok(())
+}
+
+/// The least-squares slope of the points (x, y).
+fn slope(points: &[(f64, f64)]) -> f64 {
+    let k = points.len() as f64;
+    let (mx, my) = (
+        points.iter().map(|p| p.0).sum::<f64>() / k,
+        points.iter().map(|p| p.1).sum::<f64>() / k,
+    );
+    let num: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    let den: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    num / den
+}
+
+/// Body–body contact (`benches/motion.rs`, `benches/collision.rs`, `benches/broad_phase.rs`):
+/// the 4D pile in body-steps per second, the narrow-phase queries of two boxes, and the
+/// broad phase at 10³, 10⁴ and 10⁵ bodies with the growth exponent of its update.
+fn write_contact_summary(out: &mut String, median: &dyn Fn(&str, &str) -> Option<f64>) -> Res<()> {
+    let pile = median("pile_contact/N=4", "1000_bodies_soft_step");
+    let queries = [
+        (
+            "gjk_distance",
+            "box_box/N=3",
+            "distance of two separated, turned 3D boxes (`distance`)",
+        ),
+        (
+            "gjk_distance",
+            "box_box/N=4",
+            "distance of two separated, turned 4D boxes (`distance`)",
+        ),
+        (
+            "box_box_sat",
+            "rotorflow (N=4)",
+            "separating axes of two overlapping 4D boxes (56 axes, `box_box`)",
+        ),
+        (
+            "box_manifold_4d",
+            "box_manifold",
+            "contact manifold of two 4D boxes face to face (`box_manifold`)",
+        ),
+    ];
+    if pile.is_none() && queries.iter().all(|(g, f, _)| median(g, f).is_none()) {
+        return Ok(());
+    }
+    writeln!(out, "\n**Body–body contact, one core**\n")?;
+    writeln!(out, "| measurement | median time | per second |")?;
+    writeln!(out, "|---|---|---|")?;
+    if let Some(t) = pile {
+        writeln!(
+            out,
+            "| one `SoftStep` step of a pile of 1,000 4D cubes and balls | {} | {:.2e} body-steps |",
+            time(t),
+            1000.0 / (t * 1e-9)
+        )?;
+    }
+    for (group, function, label) in queries {
+        if let Some(t) = median(group, function) {
+            writeln!(
+                out,
+                "| {label} | {} | {:.2e} queries |",
+                time(t),
+                1.0 / (t * 1e-9)
+            )?;
+        }
+    }
+    let sizes = [1_000u64, 10_000, 100_000];
+    let update = |n: u64| median("broad_phase_4d", &format!("incremental_update ({n})"));
+    if update(sizes[0]).is_none() {
+        return Ok(());
+    }
+    writeln!(
+        out,
+        "\n**Broad phase of 4D boxes at constant density** (an update after every body moved; the growth exponent is the least-squares slope of ln(time) against ln(n))\n"
+    )?;
+    writeln!(
+        out,
+        "| bodies | incremental update | full rebuild | all pairs |"
+    )?;
+    writeln!(out, "|---|---|---|---|")?;
+    let cell = |x: Option<f64>| x.map_or("—".to_string(), time);
+    for n in sizes {
+        writeln!(
+            out,
+            "| {n} | {} | {} | {} |",
+            cell(update(n)),
+            cell(median("broad_phase_4d", &format!("full_rebuild ({n})"))),
+            cell(median("broad_phase_4d", &format!("brute_force ({n})")))
+        )?;
+    }
+    let points: Vec<(f64, f64)> = sizes
+        .iter()
+        .filter_map(|&n| update(n).map(|t| ((n as f64).ln(), t.ln())))
+        .collect();
+    if points.len() >= 2 {
+        writeln!(
+            out,
+            "\nGrowth exponent of the incremental update: {:.2} (1 is linear, 2 quadratic).",
+            slope(&points)
+        )?;
     }
     Ok(())
 }

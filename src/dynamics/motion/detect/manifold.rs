@@ -1388,6 +1388,81 @@ mod tests {
         q
     }
 
+    /// The separating axes of 3D and 4D boxes on arrays (`for_each_axis_fixed`, which
+    /// detection uses) are those of the run-time kernel (`for_each_axis`) to the last bit:
+    /// the same axes in the same order with the same overlaps, on random boxes in random
+    /// poses, parallel (coplanar faces, degenerate cell axes skipped) or not, and the early
+    /// stop at the same axis.
+    #[test]
+    fn fixed_size_separating_axes_are_the_run_time_ones() {
+        use super::super::sat::{Relative, for_each_axis, for_each_axis_fixed};
+        fn axes<const N: usize>(r: &mut ChaCha8Rng, parallel: bool) -> usize {
+            let ha: Vec<f64> = (0..N).map(|_| r.gen_range(0.2..2.0)).collect();
+            let hb: Vec<f64> = (0..N).map(|_| r.gen_range(0.2..2.0)).collect();
+            let qa = rotation(N, |_, _| r.gen_range(-3.2..3.2));
+            let qb = if parallel {
+                qa.clone()
+            } else {
+                rotation(N, |_, _| r.gen_range(-3.2..3.2))
+            };
+            let pa: Vec<f64> = (0..N).map(|_| r.gen_range(-1.0..1.0)).collect();
+            let pb: Vec<f64> = (0..N).map(|_| r.gen_range(-3.0..3.0)).collect();
+            let (a, b) = (
+                PlacedBox {
+                    half_lengths: &ha,
+                    position: &pa,
+                    rotation: &qa,
+                },
+                PlacedBox {
+                    half_lengths: &hb,
+                    position: &pb,
+                    rotation: &qb,
+                },
+            );
+            // Each visit as bits: the axis, the feature, the overlap and u · d; the run-time
+            // kernel stops where the fixed one did (at a random visit, or at none).
+            let stop = r.gen_range(0..80usize);
+            let record = |seen: &mut Vec<u64>, u: &[f64], f: AxisFeature, o: f64, along: f64| {
+                seen.extend(u.iter().map(|x| x.to_bits()));
+                seen.push(match f {
+                    AxisFeature::FaceOfA { axis } => axis as u64,
+                    AxisFeature::FaceOfB { axis } => 100 + axis as u64,
+                    AxisFeature::Cells { axes_a, axes_b } => {
+                        1000 + (axes_a as u64) * 64 + axes_b as u64
+                    }
+                });
+                seen.extend([o.to_bits(), along.to_bits()]);
+            };
+            let (mut fixed, mut general) = (Vec::new(), Vec::new());
+            let mut count = 0;
+            for_each_axis_fixed::<N>(&a, &b, |u, f, o, along| {
+                record(&mut fixed, u, f, o, along);
+                count += 1;
+                count != stop
+            });
+            let mut again = 0;
+            for_each_axis(&a, &b, &Relative::new(&a, &b), |u, f, o, along| {
+                record(&mut general, u, f, o, along);
+                again += 1;
+                again != stop
+            });
+            assert_eq!(fixed, general, "N = {N}, parallel {parallel}");
+            count
+        }
+        let mut r = ChaCha8Rng::seed_from_u64(41);
+        let mut visits = [0usize; 2];
+        for case in 0..4_000 {
+            let parallel = case % 4 == 0;
+            visits[0] += axes::<3>(&mut r, parallel);
+            visits[1] += axes::<4>(&mut r, parallel);
+        }
+        // Every pair visits its axes (15 and 56 but the degenerate and the stopped ones).
+        assert!(
+            visits[0] > 4_000 * 8 && visits[1] > 4_000 * 30,
+            "{visits:?}"
+        );
+    }
+
     type Visit = (Vec<u64>, Vec<u64>, Vec<u64>, u64, u64);
     type Region = fn(&SupportSet, &SupportSet, &[f64], f64, f64, &mut dyn FnMut(RegionVertex<'_>));
 

@@ -262,46 +262,10 @@ pub(crate) fn cell_axis(rel: &Relative, axes_a: u32, axes_b: u32, u: &mut [f64])
         }
     }
     let k = free.len();
-    // In two and three free coordinates (every cell of 3D and 4D boxes) the complement of
-    // the projected B axes is their perpendicular or their cross product, and the volume
-    // they span its length: the same axis (up to its sign, which the caller takes from the
-    // centres) and volume as Gram–Schmidt's, at a fraction of its cost.
     let column = |j: usize, c: usize| rel.r[free[c] * n + j];
-    let mut chosen = (0..n).filter(|j| axes_b >> j & 1 == 1);
-    if k == 2 {
-        let j = chosen.next().unwrap_or(0);
-        let (x, y) = (column(j, 0), column(j, 1));
-        // The entries are those of a rotation: no overflow to guard against.
-        let length = (x * x + y * y).sqrt();
-        if length.is_nan() || length < PARALLEL_TOLERANCE {
-            return 0.0;
-        }
-        u.iter_mut().for_each(|x| *x = 0.0);
-        (u[free[0]], u[free[1]]) = (-y / length, x / length);
-        return length;
-    }
-    if k == 3 {
-        let (i, j) = (chosen.next().unwrap_or(0), chosen.next().unwrap_or(0));
-        let p = [column(i, 0), column(i, 1), column(i, 2)];
-        let q = [column(j, 0), column(j, 1), column(j, 2)];
-        let first = norm(&p);
-        if first.is_nan() || first < PARALLEL_TOLERANCE {
-            return 0.0;
-        }
-        let cross = [
-            p[1] * q[2] - p[2] * q[1],
-            p[2] * q[0] - p[0] * q[2],
-            p[0] * q[1] - p[1] * q[0],
-        ];
-        let area = norm(&cross);
-        if area.is_nan() || area < PARALLEL_TOLERANCE {
-            return 0.0;
-        }
-        u.iter_mut().for_each(|x| *x = 0.0);
-        for (c, x) in cross.iter().enumerate() {
-            u[free[c]] = x / area;
-        }
-        return area;
+    let chosen = (0..n).filter(|j| axes_b >> j & 1 == 1);
+    if k == 2 || k == 3 {
+        return low_cell_axis(column, chosen, &free, u);
     }
     // Orthonormal basis of the projected B axes (k − 1 of them), by Gram–Schmidt twice.
     let mut basis: SmallVec<[f64; 64]> = SmallVec::new();
@@ -410,12 +374,61 @@ pub(crate) fn for_each_axis(
     }
 }
 
+/// [`cell_axis`] in two or three free coordinates `free` (every cell of 3D and 4D boxes):
+/// the complement of the projected B axes is then their perpendicular or their cross
+/// product, and the volume they span its length, the same axis (up to its sign, which the
+/// caller takes from the centres) and volume as Gram–Schmidt's at a fraction of its cost.
+/// `column(j, c)` is coordinate `free[c]` of B's axis j, `chosen` lists B's axes along the
+/// cell. Writes the unit axis into `u` (A's frame) and returns the volume, or 0 below
+/// [`PARALLEL_TOLERANCE`].
+#[inline(always)]
+fn low_cell_axis(
+    column: impl Fn(usize, usize) -> f64,
+    mut chosen: impl Iterator<Item = usize>,
+    free: &[usize],
+    u: &mut [f64],
+) -> f64 {
+    if free.len() == 2 {
+        let j = chosen.next().unwrap_or(0);
+        let (x, y) = (column(j, 0), column(j, 1));
+        // The entries are those of a rotation: no overflow to guard against.
+        let length = (x * x + y * y).sqrt();
+        if length.is_nan() || length < PARALLEL_TOLERANCE {
+            return 0.0;
+        }
+        u.iter_mut().for_each(|x| *x = 0.0);
+        (u[free[0]], u[free[1]]) = (-y / length, x / length);
+        return length;
+    }
+    let (i, j) = (chosen.next().unwrap_or(0), chosen.next().unwrap_or(0));
+    let p = [column(i, 0), column(i, 1), column(i, 2)];
+    let q = [column(j, 0), column(j, 1), column(j, 2)];
+    let first = norm(&p);
+    if first.is_nan() || first < PARALLEL_TOLERANCE {
+        return 0.0;
+    }
+    let cross = [
+        p[1] * q[2] - p[2] * q[1],
+        p[2] * q[0] - p[0] * q[2],
+        p[0] * q[1] - p[1] * q[0],
+    ];
+    let area = norm(&cross);
+    if area.is_nan() || area < PARALLEL_TOLERANCE {
+        return 0.0;
+    }
+    u.iter_mut().for_each(|x| *x = 0.0);
+    for (c, x) in cross.iter().enumerate() {
+        u[free[c]] = x / area;
+    }
+    area
+}
+
 /// [`for_each_axis`] for boxes of dimension N = 3 or 4 on arrays of N: the same axes in
 /// the same order, with the same numbers to the last bit (the same sums in the same order),
 /// without the slices' run-time lengths. A pair of 4D boxes has 56 axes, and the pairs of
 /// a pile of 4D boxes spend a good part of their detection here.
 #[inline(always)]
-fn for_each_axis_fixed<const N: usize>(
+pub(crate) fn for_each_axis_fixed<const N: usize>(
     a: &PlacedBox<'_>,
     b: &PlacedBox<'_>,
     mut visit: impl FnMut(&[f64], AxisFeature, f64, f64) -> bool,
@@ -479,7 +492,7 @@ fn for_each_axis_fixed<const N: usize>(
         }
         let mb = N - 1 - ma;
         // The coordinates not along A's chosen axes: two or three of them for N ≤ 4, where
-        // `cell_axis` takes the perpendicular or the cross product.
+        // `low_cell_axis` takes the perpendicular or the cross product.
         let mut free = [0usize; N];
         let mut k = 0;
         for i in 0..N {
@@ -492,38 +505,10 @@ fn for_each_axis_fixed<const N: usize>(
             if axes_b.count_ones() as usize != mb {
                 continue;
             }
-            let mut chosen = (0..N).filter(|j| axes_b >> j & 1 == 1);
+            let chosen = (0..N).filter(|j| axes_b >> j & 1 == 1);
             let column = |j: usize, c: usize| r[free[c]][j];
-            if k == 2 {
-                let j = chosen.next().unwrap_or(0);
-                let (x, y) = (column(j, 0), column(j, 1));
-                let length = (x * x + y * y).sqrt();
-                if length.is_nan() || length < PARALLEL_TOLERANCE {
-                    continue;
-                }
-                u = [0.0; N];
-                (u[free[0]], u[free[1]]) = (-y / length, x / length);
-            } else {
-                let (i, j) = (chosen.next().unwrap_or(0), chosen.next().unwrap_or(0));
-                let p = [column(i, 0), column(i, 1), column(i, 2)];
-                let q = [column(j, 0), column(j, 1), column(j, 2)];
-                let first = norm(&p);
-                if first.is_nan() || first < PARALLEL_TOLERANCE {
-                    continue;
-                }
-                let cross = [
-                    p[1] * q[2] - p[2] * q[1],
-                    p[2] * q[0] - p[0] * q[2],
-                    p[0] * q[1] - p[1] * q[0],
-                ];
-                let area = norm(&cross);
-                if area.is_nan() || area < PARALLEL_TOLERANCE {
-                    continue;
-                }
-                u = [0.0; N];
-                for (c, x) in cross.iter().enumerate() {
-                    u[free[c]] = x / area;
-                }
+            if low_cell_axis(column, chosen, &free[..k], &mut u) < PARALLEL_TOLERANCE {
+                continue;
             }
             let (o, along) = overlap(&u);
             if !visit(&u, AxisFeature::Cells { axes_a, axes_b }, o, along) {
