@@ -384,12 +384,11 @@ impl Touching {
                 rotation,
             };
             let (pa, pb) = (placed(ha, xa, q(a)), placed(hb, xb, q(b)));
+            // None when some axis separates them by more than the reach (the gap, the
+            // largest over the axes, is then larger too).
             let Some(axis) = box_box_within(&pa, &pb, reach) else {
                 return;
             };
-            if -axis.depth > reach {
-                return;
-            }
             let points = match (manifold, ca.core(), cb.core()) {
                 // From 5D on a hull's support set holds fewer vertices than a box face
                 // has corners (8 of 16): the hull manifold would hold half of the face.

@@ -666,6 +666,7 @@ struct Slot {
 /// Room for the vertices the reduction holds: the 16 directions' and the deepest, twice
 /// over, so that dropping those that lost their places leaves room again.
 const KEPT: usize = 34;
+const _: () = assert!(KEPT >= 2 * (MAX_MANIFOLD_POINTS + 1));
 
 /// Keeps the extremes of the region along fixed directions of the contact plane, and its
 /// deepest point, as vertices stream in.
@@ -736,14 +737,18 @@ impl Reducer {
             if let Some(d) = self.deepest {
                 held[d] = true;
             }
+            // In place, each held vertex's new place in `to`.
             let mut to = [0usize; KEPT];
-            let all = std::mem::take(&mut self.kept);
-            for (i, c) in all.into_iter().enumerate() {
-                if held[i] {
-                    to[i] = self.kept.len();
-                    self.kept.push(c);
+            let (mut i, mut next) = (0, 0);
+            self.kept.retain(|_| {
+                let keep = held[i];
+                if keep {
+                    to[i] = next;
+                    next += 1;
                 }
-            }
+                i += 1;
+                keep
+            });
             for slot in self.slots.iter_mut().flatten() {
                 slot.at = to[slot.at];
             }
@@ -1461,6 +1466,53 @@ mod tests {
             visits[0] > 4_000 * 8 && visits[1] > 4_000 * 30,
             "{visits:?}"
         );
+    }
+
+    /// `box_box_within(a, b, r)`, which detection asks, is None exactly when the least
+    /// overlap over all axes is a gap wider than r, and otherwise `box_box_unchecked`'s
+    /// answer, in N = 2 … 5 (the run-time kernel in 2D and 5D, the fixed-size one in 3D and
+    /// 4D).
+    #[test]
+    fn box_pairs_within_a_reach_are_the_unchecked_query_or_none() {
+        use super::super::sat::{box_box_unchecked, box_box_within};
+        let mut r = ChaCha8Rng::seed_from_u64(43);
+        // Pairs answered, and left out as farther than the reach, per dimension.
+        let mut counts = [[0usize; 2]; 4];
+        for case in 0..8_000 {
+            let n = 2 + case % 4;
+            let ha: Vec<f64> = (0..n).map(|_| r.gen_range(0.2..2.0)).collect();
+            let hb: Vec<f64> = (0..n).map(|_| r.gen_range(0.2..2.0)).collect();
+            let qa = rotation(n, |_, _| r.gen_range(-3.2..3.2));
+            let qb = rotation(n, |_, _| r.gen_range(-3.2..3.2));
+            let pa: Vec<f64> = (0..n).map(|_| r.gen_range(-1.0..1.0)).collect();
+            let pb: Vec<f64> = (0..n).map(|_| r.gen_range(-4.0..4.0)).collect();
+            let a = PlacedBox {
+                half_lengths: &ha,
+                position: &pa,
+                rotation: &qa,
+            };
+            let b = PlacedBox {
+                half_lengths: &hb,
+                position: &pb,
+                rotation: &qb,
+            };
+            let reach = r.gen_range(0.0..1.5);
+            let all = box_box_unchecked(&a, &b);
+            match box_box_within(&a, &b, reach) {
+                Some(axis) => {
+                    assert!(-all.least_depth <= reach, "N = {n}");
+                    assert_eq!(axis, all, "N = {n}");
+                    counts[n - 2][0] += 1;
+                }
+                None => {
+                    assert!(-all.least_depth > reach, "N = {n}");
+                    counts[n - 2][1] += 1;
+                }
+            }
+        }
+        for (k, c) in counts.iter().enumerate() {
+            assert!(c[0] >= 200 && c[1] >= 200, "N = {}: {c:?}", k + 2);
+        }
     }
 
     type Visit = (Vec<u64>, Vec<u64>, Vec<u64>, u64, u64);

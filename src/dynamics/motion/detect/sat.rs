@@ -552,7 +552,7 @@ pub(crate) fn box_box_unchecked(a: &PlacedBox<'_>, b: &PlacedBox<'_>) -> BoxPair
 /// [`box_box_unchecked`], or None as soon as a candidate axis separates the two boxes by
 /// more than `reach` (then the gap [`box_box_unchecked`] gives, the largest over the axes,
 /// is larger too): most pairs that the broad phase passes and that are apart stop at a
-/// face's axis, and the others take one pass over the axes instead of two.
+/// face's axis, and the others find their axis in the same pass.
 pub(crate) fn box_box_within(
     a: &PlacedBox<'_>,
     b: &PlacedBox<'_>,

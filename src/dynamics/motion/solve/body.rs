@@ -57,17 +57,12 @@ impl BodyState {
     /// inertia was computed anew (false: it is the last solve's, as the body has not turned
     /// since, or its inertia is the same in every frame, as a ball's or a cube's).
     pub(super) fn load(&mut self, b: &MovingBody, work: &mut Dense) -> bool {
-        self.load_placed(b, work, None)
+        self.load_placed(b, AttitudeMatrix::Into(work))
     }
 
-    /// [`Self::load`], given the attitude matrix of the body's principal frame (row-major,
-    /// own axes → space) when the caller has it.
-    pub(super) fn load_placed(
-        &mut self,
-        b: &MovingBody,
-        work: &mut Dense,
-        matrix: Option<&[f64]>,
-    ) -> bool {
+    /// [`Self::load`], the attitude matrix of the body's principal frame given by the
+    /// caller or computed when it is needed.
+    pub(super) fn load_placed(&mut self, b: &MovingBody, matrix: AttitudeMatrix<'_>) -> bool {
         let n = b.dim();
         let m = n * (n - 1) / 2;
         let attitude = b.rotation().principal_frame_attitude();
@@ -87,7 +82,7 @@ impl BodyState {
         };
         let anew = !same_inertia || (turned && !isotropic);
         if turned {
-            self.place_frame(b, work, matrix);
+            self.place_frame(b, matrix);
         }
         if anew {
             self.place_inverse_inertia(b);
@@ -125,15 +120,14 @@ impl BodyState {
         anew
     }
 
-    /// Computes the rotation of the planes by the principal frame, from its attitude matrix
-    /// `matrix` if given.
-    fn place_frame(&mut self, b: &MovingBody, work: &mut Dense, matrix: Option<&[f64]>) {
+    /// Computes the rotation of the planes by the principal frame from its attitude matrix.
+    fn place_frame(&mut self, b: &MovingBody, matrix: AttitudeMatrix<'_>) {
         let n = b.dim();
         let m = n * (n - 1) / 2;
         let p = match matrix {
-            Some(p) => p,
-            None => {
-                // Every entry is written: no need to zero them first.
+            AttitudeMatrix::Given(p) => p,
+            AttitudeMatrix::Into(work) => {
+                // `write_matrix` writes every entry.
                 work.resize(n * n, 0.0);
                 b.rotation()
                     .principal_frame_attitude()
@@ -311,6 +305,15 @@ impl BodyState {
         }
         self.used = false;
     }
+}
+
+/// Where [`BodyState::load_placed`] takes a body's attitude matrix (of its principal frame,
+/// row-major, own axes → space) from.
+pub(super) enum AttitudeMatrix<'a> {
+    /// The caller has it.
+    Given(&'a [f64]),
+    /// Written here if the load needs it.
+    Into(&'a mut Dense),
 }
 
 /// w = F diag(`inv`) `l` for the rotation F of the planes (M × M row-major; `M` fixed, or 0

@@ -20,8 +20,7 @@
 //! impulse in the disc |J_t| ≤ μλ by projection onto it, with each tangent direction's own
 //! effective mass.
 
-use super::Dense;
-use super::body::BodyState;
+use super::body::{AttitudeMatrix, BodyState};
 use super::contact_row::{ContactRow, Small, dim, scratch};
 use crate::algebra::Vector;
 use crate::dynamics::motion::MovingBody;
@@ -192,7 +191,6 @@ pub(crate) struct SoftSolver {
     old_data: Vec<f64>,
     layout: Layout,
     states: Vec<BodyState>,
-    work: Dense,
     /// Each body's position at the start of the step, and its attitude now (Q, N × N).
     start: Vec<f64>,
     frames: Vec<f64>,
@@ -348,16 +346,16 @@ impl SoftSolver {
 
     /// Loads every body a row acts on.
     fn load(&mut self, bodies: &[MovingBody]) {
-        let mut work = std::mem::take(&mut self.work);
         let (n, m) = (self.layout.n, self.layout.m);
         let stride = n + m;
         for r in &self.rows {
             for i in [r.a, r.b] {
                 if i != NO_BODY && !self.states[i].used {
-                    // `frames` holds the bodies' attitudes as they are now (see `moved`).
+                    // `frames` holds the bodies' attitudes as they are now: written by
+                    // `begin`, then by `moved` after each flight (a kick turns no body).
                     let matrix = &self.frames[i * n * n..(i + 1) * n * n];
                     let st = &mut self.states[i];
-                    st.load_placed(&bodies[i], &mut work, Some(matrix));
+                    st.load_placed(&bodies[i], AttitudeMatrix::Given(matrix));
                     let vel = &mut self.flat.vel[i * stride..(i + 1) * stride];
                     copy(&mut vel[..n], st.v.as_slice());
                     copy(&mut vel[n..], st.w.as_slice());
@@ -366,7 +364,6 @@ impl SoftSolver {
                 }
             }
         }
-        self.work = work;
     }
 
     /// Hands the loaded states' impulses to the bodies (after a pass, before their flight).
