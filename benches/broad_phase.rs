@@ -117,7 +117,11 @@ fn bench_broad_phase(c: &mut Criterion) {
             &bodies,
             |bench, _| {
                 bench.iter(|| {
-                    let way = if updates / SWING % 2 == 0 { 1.0 } else { -1.0 };
+                    let way = if (updates / SWING).is_multiple_of(2) {
+                        1.0
+                    } else {
+                        -1.0
+                    };
                     updates += 1;
                     for ((lo, hi), v) in lower.iter_mut().zip(upper.iter_mut()).zip(&velocity) {
                         *lo += way * v;
