@@ -3,13 +3,14 @@
 //!
 //! Each body is given a fat box: its box grown by a margin on every side. The hierarchy
 //! (median splits along the axis of largest spread of the centres, leaves of a few bodies)
-//! is built over the fat boxes, and the broad phase keeps the set of pairs whose fat boxes
-//! overlap. At an update, a body whose box still lies inside its fat box changes nothing;
+//! is built over the fat boxes, and the broad phase keeps the pairs whose fat boxes overlap,
+//! as a sorted list. At an update, a body whose box still lies inside its fat box changes nothing;
 //! a body that left it gets a new fat box, the hierarchy's boxes are refitted bottom-up, and
 //! only the bodies that moved out are queried for new pairs. Pairs whose fat boxes parted
 //! are dropped, and the pairs returned are those of the set whose actual boxes overlap. A
 //! step thus costs O(nN) for the containment checks and the refit, O(log n + pairs) per body
-//! that left its fat box, O(pairs) for the set and O(k log k) to sort the k pairs returned;
+//! that left its fat box, O(f log f) to sort the f pairs those queries find and O(pairs) to
+//! merge them into the list (which is then the pairs returned, in order, with no sort);
 //! the hierarchy is rebuilt, O(n log n), once [`REBUILD_AFTER`] fat boxes per body have
 //! been renewed since it was built, so that its boxes stay tight (the dynamic trees of
 //! Box2D and Bullet; van den Bergen, "Efficient Collision Detection of Complex Deformable
@@ -77,8 +78,11 @@ pub struct BroadPhase {
     renewed: usize,
     /// Box tests of the last update's queries.
     box_tests: usize,
-    /// The pairs whose fat boxes overlap.
-    pairs: PairSet,
+    /// The pairs whose fat boxes overlap, as keys (i < j, `key`), sorted and distinct; the
+    /// pairs the queries of an update find, and room for the merge of the two.
+    pairs: Vec<u64>,
+    found: Vec<u64>,
+    merged: Vec<u64>,
     excluded: PairSet,
     out: Vec<(usize, usize)>,
     built: bool,
@@ -110,7 +114,9 @@ impl BroadPhase {
             moved: Vec::new(),
             renewed: 0,
             box_tests: 0,
-            pairs: PairSet::default(),
+            pairs: Vec::new(),
+            found: Vec::new(),
+            merged: Vec::new(),
             excluded: PairSet::default(),
             out: Vec::new(),
             built: false,
@@ -224,14 +230,14 @@ impl BroadPhase {
         }
         self.out.clear();
         let (excluded, lower, upper) = (&self.excluded, &self.lower, &self.upper);
+        // The keys are in order, and so are the pairs (i, j) they hold.
         self.out.extend(
             self.pairs
                 .iter()
-                .filter(|k| !excluded.contains(k))
+                .filter(|k| excluded.is_empty() || !excluded.contains(k))
                 .map(|&k| ((k >> 32) as usize, (k & 0xffff_ffff) as usize))
                 .filter(|&(i, j)| overlap(n, lower, upper, i, j)),
         );
-        self.out.sort_unstable();
         Ok(&self.out)
     }
 
@@ -289,10 +295,12 @@ impl BroadPhase {
         self.query_moved();
     }
 
-    /// Adds the pairs of every body in `moved` with every body whose fat box meets its own.
+    /// Adds the pairs of every body in `moved` with every body whose fat box meets its own,
+    /// keeping the list sorted and distinct.
     fn query_moved(&mut self) {
         let n = self.dim;
-        let pairs = &mut self.pairs;
+        let found = &mut self.found;
+        found.clear();
         for &b in &self.moved {
             let b = b as usize;
             self.box_tests += self.tree.query(
@@ -302,11 +310,25 @@ impl BroadPhase {
                 &self.order,
                 b,
                 &mut self.stack,
-                |other| {
-                    pairs.insert(key(b, other));
-                },
+                |other| found.push(key(b, other)),
             );
         }
+        found.sort_unstable();
+        found.dedup();
+        // Merge the two sorted lists, each key once.
+        let (old, new) = (&self.pairs, &self.found);
+        let merged = &mut self.merged;
+        merged.clear();
+        let (mut i, mut j) = (0, 0);
+        while i < old.len() && j < new.len() {
+            let (a, b) = (old[i], new[j]);
+            merged.push(a.min(b));
+            i += usize::from(a <= b);
+            j += usize::from(b <= a);
+        }
+        merged.extend_from_slice(&old[i..]);
+        merged.extend_from_slice(&new[j..]);
+        std::mem::swap(&mut self.pairs, &mut self.merged);
     }
 }
 
