@@ -1393,6 +1393,36 @@ mod tests {
         q
     }
 
+    /// Two boxes: half-lengths, centre and rotation of A, then of B.
+    type BoxPair = [Vec<f64>; 6];
+
+    /// A random pair of boxes in `n` dimensions (B turned as A if `parallel`), B's centre
+    /// within `spread` of the origin on every axis.
+    fn random_box_pair(r: &mut ChaCha8Rng, n: usize, parallel: bool, spread: f64) -> BoxPair {
+        let ha: Vec<f64> = (0..n).map(|_| r.gen_range(0.2..2.0)).collect();
+        let hb: Vec<f64> = (0..n).map(|_| r.gen_range(0.2..2.0)).collect();
+        let qa = rotation(n, |_, _| r.gen_range(-3.2..3.2));
+        let qb = if parallel {
+            qa.clone()
+        } else {
+            rotation(n, |_, _| r.gen_range(-3.2..3.2))
+        };
+        let pa: Vec<f64> = (0..n).map(|_| r.gen_range(-1.0..1.0)).collect();
+        let pb: Vec<f64> = (0..n).map(|_| r.gen_range(-spread..spread)).collect();
+        [ha, pa, qa, hb, pb, qb]
+    }
+
+    /// The two boxes of a [`BoxPair`].
+    fn placed(pair: &BoxPair) -> (PlacedBox<'_>, PlacedBox<'_>) {
+        let [ha, pa, qa, hb, pb, qb] = pair;
+        let placed = |half_lengths, position, rotation| PlacedBox {
+            half_lengths,
+            position,
+            rotation,
+        };
+        (placed(ha, pa, qa), placed(hb, pb, qb))
+    }
+
     /// The separating axes of 3D and 4D boxes on arrays (`for_each_axis_fixed`, which
     /// detection uses) are those of the run-time kernel (`for_each_axis`) to the last bit:
     /// the same axes in the same order with the same overlaps, on random boxes in random
@@ -1402,28 +1432,8 @@ mod tests {
     fn fixed_size_separating_axes_are_the_run_time_ones() {
         use super::super::sat::{Relative, for_each_axis, for_each_axis_fixed};
         fn axes<const N: usize>(r: &mut ChaCha8Rng, parallel: bool) -> usize {
-            let ha: Vec<f64> = (0..N).map(|_| r.gen_range(0.2..2.0)).collect();
-            let hb: Vec<f64> = (0..N).map(|_| r.gen_range(0.2..2.0)).collect();
-            let qa = rotation(N, |_, _| r.gen_range(-3.2..3.2));
-            let qb = if parallel {
-                qa.clone()
-            } else {
-                rotation(N, |_, _| r.gen_range(-3.2..3.2))
-            };
-            let pa: Vec<f64> = (0..N).map(|_| r.gen_range(-1.0..1.0)).collect();
-            let pb: Vec<f64> = (0..N).map(|_| r.gen_range(-3.0..3.0)).collect();
-            let (a, b) = (
-                PlacedBox {
-                    half_lengths: &ha,
-                    position: &pa,
-                    rotation: &qa,
-                },
-                PlacedBox {
-                    half_lengths: &hb,
-                    position: &pb,
-                    rotation: &qb,
-                },
-            );
+            let pair = random_box_pair(r, N, parallel, 3.0);
+            let (a, b) = placed(&pair);
             // Each visit as bits: the axis, the feature, the overlap and u · d; the run-time
             // kernel stops where the fixed one did (at a random visit, or at none).
             let stop = r.gen_range(0..80usize);
@@ -1480,22 +1490,8 @@ mod tests {
         let mut counts = [[0usize; 2]; 4];
         for case in 0..8_000 {
             let n = 2 + case % 4;
-            let ha: Vec<f64> = (0..n).map(|_| r.gen_range(0.2..2.0)).collect();
-            let hb: Vec<f64> = (0..n).map(|_| r.gen_range(0.2..2.0)).collect();
-            let qa = rotation(n, |_, _| r.gen_range(-3.2..3.2));
-            let qb = rotation(n, |_, _| r.gen_range(-3.2..3.2));
-            let pa: Vec<f64> = (0..n).map(|_| r.gen_range(-1.0..1.0)).collect();
-            let pb: Vec<f64> = (0..n).map(|_| r.gen_range(-4.0..4.0)).collect();
-            let a = PlacedBox {
-                half_lengths: &ha,
-                position: &pa,
-                rotation: &qa,
-            };
-            let b = PlacedBox {
-                half_lengths: &hb,
-                position: &pb,
-                rotation: &qb,
-            };
+            let pair = random_box_pair(&mut r, n, false, 4.0);
+            let (a, b) = placed(&pair);
             let reach = r.gen_range(0.0..1.5);
             let all = box_box_unchecked(&a, &b);
             match box_box_within(&a, &b, reach) {
