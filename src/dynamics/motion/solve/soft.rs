@@ -357,8 +357,8 @@ impl SoftSolver {
                     let st = &mut self.states[i];
                     st.load_placed(&bodies[i], AttitudeMatrix::Given(matrix));
                     let vel = &mut self.flat.vel[i * stride..(i + 1) * stride];
-                    copy(&mut vel[..n], st.v.as_slice());
-                    copy(&mut vel[n..], st.w.as_slice());
+                    vel[..n].copy_from_slice(&st.v.as_slice()[..n]);
+                    vel[n..].copy_from_slice(&st.w.as_slice()[..m]);
                     self.flat.imp[i * stride..(i + 1) * stride].fill(0.0);
                     self.flat.inv_mass[i] = st.inv_mass;
                 }
@@ -373,8 +373,8 @@ impl SoftSolver {
         for (i, (st, b)) in self.states.iter_mut().zip(bodies).enumerate() {
             if st.used {
                 let imp = &self.flat.imp[i * stride..(i + 1) * stride];
-                copy(st.dp.as_mut_slice(), &imp[..n]);
-                copy(st.dl.as_mut_slice(), &imp[n..]);
+                st.dp.as_mut_slice()[..n].copy_from_slice(&imp[..n]);
+                st.dl.as_mut_slice()[..m].copy_from_slice(&imp[n..]);
                 st.store(b);
             }
         }
@@ -784,19 +784,6 @@ impl SoftSolver {
             row.normal_impulse = new;
             apply::<N>(&mut self.flat, row, d, &l, l.normal, l.arms, change);
         }
-    }
-}
-
-/// Copies `src` into `dst` (of equal lengths), as moves of known size for the lengths of
-/// 3D and 4D (N = 3 or 4, M = 3 or 6): a slice copy of a length known only at run time is a
-/// call into the C library.
-#[inline(always)]
-fn copy(dst: &mut [f64], src: &[f64]) {
-    match dst.len() {
-        3 => dst[..3].copy_from_slice(&src[..3]),
-        4 => dst[..4].copy_from_slice(&src[..4]),
-        6 => dst[..6].copy_from_slice(&src[..6]),
-        k => dst.copy_from_slice(&src[..k]),
     }
 }
 
