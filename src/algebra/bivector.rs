@@ -517,13 +517,13 @@ pub(crate) fn commutator_into(a: &Bivector, b: &Bivector, out: &mut [f64]) {
     commutator_packed(a.dim, &a.coeffs, &b.coeffs, out);
 }
 
-/// [`commutator_into`] on packed component slices of dimension `n` (the integrators' fixed-size
-/// kernels call it on stack arrays; inlined, so a constant `n` selects its kernel at compile
-/// time).
-#[inline]
+/// [`commutator_into`] on packed component slices of dimension `n`. The integrators'
+/// fixed-size kernels call it on stack arrays with a constant `n`: this dispatch is always
+/// inlined so that the constant selects its kernel at compile time. The large-N branches
+/// live in [`commutator_large`], which keeps the inlined part small.
+#[inline(always)]
 pub(crate) fn commutator_packed(n: usize, a: &[f64], b: &[f64], out: &mut [f64]) {
     match n {
-        0..=2 => out.iter_mut().for_each(|o| *o = 0.0),
         3 => {
             // e12, e13, e23 ↔ cross product of the dual vectors; written out by hand.
             let (a12, a13, a23) = (a[0], a[1], a[2]);
@@ -537,6 +537,14 @@ pub(crate) fn commutator_packed(n: usize, a: &[f64], b: &[f64], out: &mut [f64])
         6 => commutator_fixed::<6>(a, b, out),
         7 => commutator_fixed::<7>(a, b, out),
         8 => commutator_fixed::<8>(a, b, out),
+        _ => commutator_large(n, a, b, out),
+    }
+}
+
+/// [`commutator_packed`] for N ≤ 2 and N > 8.
+fn commutator_large(n: usize, a: &[f64], b: &[f64], out: &mut [f64]) {
+    match n {
+        0..=2 => out.iter_mut().for_each(|o| *o = 0.0),
         // Up to N = 16 the product on the stack, in 16 × 16 arrays padded with zeros so that
         // every row operation has a fixed length the compiler unrolls and vectorises (gemm
         // would allocate its packing buffers on every call).

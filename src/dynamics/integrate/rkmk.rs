@@ -285,11 +285,14 @@ fn coadjoint_step_fixed<const K: usize>(body: &mut RigidBody, h: f64) -> bool {
     let Some(free) = PackedFree::<K>::of(body) else {
         return false;
     };
-    let (n, l0, inverse) = (free.n, free.l0, free.inverse);
-    let [(dl1, _), (dl2, _), (dl3, _), (dl4, _)] = free.rk4_stages(h);
+    let (n, l0, inverse) = (PackedFree::<K>::N, free.l0, free.inverse);
+    let (mut dl, mut w) = ([[0.0; K]; 4], [[0.0; K]; 4]);
+    free.rk4_stages(h, &mut dl, &mut w);
+    let [dl1, dl2, dl3, dl4] = &dl;
     let l1: [f64; K] =
         std::array::from_fn(|k| l0[k] + h / 6.0 * (dl1[k] + 2.0 * dl2[k] + 2.0 * dl3[k] + dl4[k]));
-    let (dl_end, _) = free.rate(&l1);
+    let (mut dl_end, mut w_end) = ([0.0; K], [0.0; K]);
+    free.rate(&l1, &mut dl_end, &mut w_end);
     // ω at the two Gauss nodes from the cubic Hermite interpolant of L.
     let [(p0, q0, p1, q1), (r0, s0, r1, s1)] = GAUSS_HERMITE;
     let mut minus = [0.0; K];
@@ -482,12 +485,15 @@ fn skew_part(n: usize, c: &[f64], out: &mut [f64]) {
 /// A free body whose inertia is diagonal on the basis planes, as K = N(N−1)/2 packed
 /// components on the stack: the momentum at the step's start and the inverse plane moments.
 struct PackedFree<const K: usize> {
-    n: usize,
     l0: [f64; K],
     inverse: [f64; K],
 }
 
 impl<const K: usize> PackedFree<K> {
+    /// The dimension N of space, with K = N(N−1)/2: a constant of each instance, so that the
+    /// commutator's dispatch on N folds away.
+    const N: usize = dimension_of_planes(K);
+
     /// None unless the body's inertia is diagonal on the basis planes.
     fn of(body: &RigidBody) -> Option<Self> {
         let cached = body.inertia().diagonal_inverse_plane_moments()?;
@@ -495,31 +501,41 @@ impl<const K: usize> PackedFree<K> {
         inverse.copy_from_slice(cached);
         let mut l0 = [0.0; K];
         l0.copy_from_slice(body.momentum().as_slice());
-        Some(PackedFree {
-            n: body.dim(),
-            l0,
-            inverse,
-        })
+        Some(PackedFree { l0, inverse })
     }
 
-    /// (dL/dt, ω) at momentum l.
-    fn rate(&self, l: &[f64; K]) -> ([f64; K], [f64; K]) {
-        let w: [f64; K] = std::array::from_fn(|k| l[k] * self.inverse[k]);
-        let mut dl = [0.0; K];
-        commutator_packed(self.n, &w, l, &mut dl);
-        (dl, w)
+    /// dL/dt and ω at momentum l, written into `dl` and `w`: in place, so that the stages,
+    /// the whole state of the step, are never copied.
+    #[inline(always)]
+    fn rate(&self, l: &[f64; K], dl: &mut [f64; K], w: &mut [f64; K]) {
+        for k in 0..K {
+            w[k] = l[k] * self.inverse[k];
+        }
+        commutator_packed(Self::N, w, l, dl);
     }
 
-    /// (dL/dt, ω) at the four stages of classical RK4 from `l0` with step h.
-    fn rk4_stages(&self, h: f64) -> [([f64; K], [f64; K]); 4] {
-        let l0 = &self.l0;
-        let axpy = |y: &[f64; K], s: f64| std::array::from_fn(|k| l0[k] + s * y[k]);
-        let first = self.rate(l0);
-        let second = self.rate(&axpy(&first.0, 0.5 * h));
-        let third = self.rate(&axpy(&second.0, 0.5 * h));
-        let fourth = self.rate(&axpy(&third.0, h));
-        [first, second, third, fourth]
+    /// dL/dt and ω at the four stages of classical RK4 from `l0` with step h.
+    #[inline(always)]
+    fn rk4_stages(&self, h: f64, dl: &mut [[f64; K]; 4], w: &mut [[f64; K]; 4]) {
+        let mut l = self.l0;
+        for (stage, s) in [0.5 * h, 0.5 * h, h].into_iter().enumerate() {
+            self.rate(&l, &mut dl[stage], &mut w[stage]);
+            for k in 0..K {
+                l[k] = self.l0[k] + s * dl[stage][k];
+            }
+        }
+        self.rate(&l, &mut dl[3], &mut w[3]);
     }
+}
+
+/// The N with N(N−1)/2 = K.
+const fn dimension_of_planes(k: usize) -> usize {
+    let mut n = 1;
+    while n * (n - 1) / 2 < k {
+        n += 1;
+    }
+    assert!(n * (n - 1) / 2 == k, "K is not a number of planes");
+    n
 }
 
 /// The same formulas as [`Rkmk4::step`] with K = N(N−1)/2 packed components.
@@ -527,12 +543,14 @@ fn free_step_fixed<const K: usize>(body: &mut RigidBody, h: f64) -> bool {
     let Some(free) = PackedFree::<K>::of(body) else {
         return false;
     };
-    let (n, l0) = (free.n, free.l0);
-    let [(dl1, w1), (dl2, w2), (dl3, w3), (dl4, w4)] = free.rk4_stages(h);
+    let (n, l0) = (PackedFree::<K>::N, free.l0);
+    let (mut dl, mut w) = ([[0.0; K]; 4], [[0.0; K]; 4]);
+    free.rk4_stages(h, &mut dl, &mut w);
+    let ([dl1, dl2, dl3, dl4], [w1, w2, w3, w4]) = (&dl, &w);
 
     // aᵢ = −½ωᵢ; Ω = h/6 Σ bᵢaᵢ + h²/6 a₁ × a₄ = −h/12 Σ bᵢωᵢ + h²/24 ω₁ × ω₄.
     let mut correction = [0.0; K];
-    commutator_packed(n, &w1, &w4, &mut correction);
+    commutator_packed(n, w1, w4, &mut correction);
     let mut u = [0.0; K];
     let mut l = [0.0; K];
     for k in 0..K {
