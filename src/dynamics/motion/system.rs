@@ -3,7 +3,7 @@
 use super::MotionError;
 use super::contact::{BodyContact, ContactLog, ContactMark};
 use super::detect::bodies::convex_of;
-use super::detect::{EpaWorkspace, PlacedShape, penetration_with};
+use super::detect::{BroadPhase, EpaWorkspace, PlacedShape, penetration_with};
 use super::forques::Anchor;
 use super::{BallJoint, Contact, ContactShape, Forque, ForqueInput, HalfSpace, MovingBody, Wrench};
 use crate::algebra::{Bivector, Vector};
@@ -285,44 +285,66 @@ impl System {
                 Anchor::World(_) => false,
             })
         };
+        // Candidate pairs from the broad phase over the boxes of the bounding balls, so that
+        // the check costs about n log n, not n². A body whose position is not finite has no
+        // box, and its contacts are refused elsewhere.
+        let finite = |k: usize| {
+            self.bodies[k]
+                .position()
+                .as_slice()
+                .iter()
+                .all(|x| x.is_finite())
+        };
+        let checked: Vec<usize> = (0..convex.len())
+            .filter(|&k| convex[k].is_some() && finite(k))
+            .collect();
+        let (mut lower, mut upper) = (Vec::with_capacity(checked.len() * n), Vec::new());
+        upper.reserve(checked.len() * n);
+        for &k in &checked {
+            let r = convex[k].as_ref().map_or(0.0, |c| c.bounding_radius());
+            for &x in self.bodies[k].position().as_slice() {
+                lower.push(x - r);
+                upper.push(x + r);
+            }
+        }
+        let mut broad = BroadPhase::new(n)?;
         let mut workspace = EpaWorkspace::new();
-        for a in 0..convex.len() {
-            for b in a + 1..convex.len() {
-                let (Some(ca), Some(cb)) = (&convex[a], &convex[b]) else {
-                    continue;
-                };
-                let (ba, bb) = (&self.bodies[a], &self.bodies[b]);
-                if ba.is_fixed() && bb.is_fixed() || joined(a, b) {
-                    continue;
+        for &(i, j) in broad.update(&lower, &upper)? {
+            let (a, b) = (checked[i], checked[j]);
+            let (Some(ca), Some(cb)) = (&convex[a], &convex[b]) else {
+                continue;
+            };
+            let (ba, bb) = (&self.bodies[a], &self.bodies[b]);
+            if ba.is_fixed() && bb.is_fixed() || joined(a, b) {
+                continue;
+            }
+            let apart = ba
+                .position()
+                .as_slice()
+                .iter()
+                .zip(bb.position().as_slice());
+            let centres = apart.map(|(p, q)| (p - q) * (p - q)).sum::<f64>().sqrt();
+            if centres > ca.bounding_radius() + cb.bounding_radius() {
+                continue;
+            }
+            let (Ok(pa), Ok(pb)) = (
+                PlacedShape::new(ca, ba.position().as_slice(), &rotations[a]),
+                PlacedShape::new(cb, bb.position().as_slice(), &rotations[b]),
+            ) else {
+                continue;
+            };
+            let Ok(p) = penetration_with(&mut workspace, &pa, &pb) else {
+                continue;
+            };
+            let tolerance = Self::TOUCHING * (ca.bounding_radius() + cb.bounding_radius());
+            if p.depth > tolerance {
+                return Err(MotionError::StartsOverlapping {
+                    a,
+                    b,
+                    depth: p.depth,
+                    tolerance,
                 }
-                let apart = ba
-                    .position()
-                    .as_slice()
-                    .iter()
-                    .zip(bb.position().as_slice());
-                let centres = apart.map(|(p, q)| (p - q) * (p - q)).sum::<f64>().sqrt();
-                if centres > ca.bounding_radius() + cb.bounding_radius() {
-                    continue;
-                }
-                let (Ok(pa), Ok(pb)) = (
-                    PlacedShape::new(ca, ba.position().as_slice(), &rotations[a]),
-                    PlacedShape::new(cb, bb.position().as_slice(), &rotations[b]),
-                ) else {
-                    continue;
-                };
-                let Ok(p) = penetration_with(&mut workspace, &pa, &pb) else {
-                    continue;
-                };
-                let tolerance = Self::TOUCHING * (ca.bounding_radius() + cb.bounding_radius());
-                if p.depth > tolerance {
-                    return Err(MotionError::StartsOverlapping {
-                        a,
-                        b,
-                        depth: p.depth,
-                        tolerance,
-                    }
-                    .into());
-                }
+                .into());
             }
         }
         Ok(())
