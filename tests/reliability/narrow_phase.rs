@@ -727,10 +727,11 @@ fn hundred_thousand_random_pairs_of_every_kind() {
 }
 
 /// 10⁶ pairs of every kind, the count the detection is held to: 7 to 15 minutes in release
-/// on two cores, a step of its own in CI
-/// (`cargo test --release --all-features --test reliability million_random_pairs_of_every_kind -- --ignored --nocapture`).
+/// on two cores, run on its own (CI runs the 10⁵ of
+/// [`hundred_thousand_random_pairs_of_every_kind`]):
+/// `cargo test --release --all-features --test reliability million_random_pairs_of_every_kind -- --ignored --nocapture`.
 #[test]
-#[ignore = "10⁶ pairs of every kind: minutes in release; CI runs it"]
+#[ignore = "10⁶ pairs of every kind: minutes in release, run on its own"]
 fn million_random_pairs_of_every_kind() {
     // 200 chunks × 5 dimensions × 1000 pairs.
     let (t, panicked) = every_kind(200, 1000);
