@@ -286,8 +286,8 @@ impl System {
             })
         };
         // Candidate pairs from the broad phase over the boxes of the bounding balls, so that
-        // the check costs about n log n, not n². A body whose position is not finite has no
-        // box, and its contacts are refused elsewhere.
+        // the check costs about n log n, not n². A body's constructors refuse a position that
+        // is not finite; one left so by a failed step has no box and is passed over here.
         let finite = |k: usize| {
             self.bodies[k]
                 .position()
@@ -298,8 +298,8 @@ impl System {
         let checked: Vec<usize> = (0..convex.len())
             .filter(|&k| convex[k].is_some() && finite(k))
             .collect();
-        let (mut lower, mut upper) = (Vec::with_capacity(checked.len() * n), Vec::new());
-        upper.reserve(checked.len() * n);
+        let mut lower = Vec::with_capacity(checked.len() * n);
+        let mut upper = Vec::with_capacity(checked.len() * n);
         for &k in &checked {
             let r = convex[k].as_ref().map_or(0.0, |c| c.bounding_radius());
             for &x in self.bodies[k].position().as_slice() {
