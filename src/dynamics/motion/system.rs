@@ -5,6 +5,7 @@ use super::contact::{BodyContact, ContactLog, ContactMark};
 use super::detect::bodies::convex_of;
 use super::detect::{BroadPhase, EpaWorkspace, PlacedShape, penetration_with};
 use super::forques::Anchor;
+use super::shape::ConvexShape;
 use super::{BallJoint, Contact, ContactShape, Forque, ForqueInput, HalfSpace, MovingBody, Wrench};
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::DynamicsError;
@@ -266,19 +267,25 @@ impl System {
     /// of their shapes' radii (pairs held by a joint, and two fixed bodies, excepted).
     fn check_overlaps(&self) -> Result<(), DynamicsError> {
         let n = self.dim();
-        let convex: Vec<_> = self.shapes.iter().map(|s| convex_of(s, n)).collect();
-        if convex.iter().filter(|c| c.is_some()).count() < 2 {
-            return Ok(());
-        }
-        let rotations: Vec<Vec<f64>> = self
+        // The bodies with a convex shape, each with its shape and attitude matrix. A body's
+        // constructors refuse a position that is not finite; one left so by a failed step
+        // has no bounding box and is passed over here.
+        let checked: Vec<(usize, ConvexShape, Vec<f64>)> = self
             .bodies
             .iter()
-            .map(|b| {
+            .zip(&self.shapes)
+            .enumerate()
+            .filter(|(_, (b, _))| b.position().as_slice().iter().all(|x| x.is_finite()))
+            .filter_map(|(k, (b, s))| {
+                let shape = convex_of(s, n)?;
                 let mut q = vec![0.0; n * n];
                 b.attitude().write_matrix(&mut q);
-                q
+                Some((k, shape, q))
             })
             .collect();
+        if checked.len() < 2 {
+            return Ok(());
+        }
         let joined = |a: usize, b: usize| {
             self.joints.iter().any(|j| match &j.other {
                 Anchor::Body(k, _) => (j.body, *k) == (a, b) || (j.body, *k) == (b, a),
@@ -286,23 +293,12 @@ impl System {
             })
         };
         // Candidate pairs from the broad phase over the boxes of the bounding balls, so that
-        // the check costs about n log n, not n². A body's constructors refuse a position that
-        // is not finite; one left so by a failed step has no box and is passed over here.
-        let finite = |k: usize| {
-            self.bodies[k]
-                .position()
-                .as_slice()
-                .iter()
-                .all(|x| x.is_finite())
-        };
-        let checked: Vec<usize> = (0..convex.len())
-            .filter(|&k| convex[k].is_some() && finite(k))
-            .collect();
+        // the check costs about n log n, not n².
         let mut lower = Vec::with_capacity(checked.len() * n);
         let mut upper = Vec::with_capacity(checked.len() * n);
-        for &k in &checked {
-            let r = convex[k].as_ref().map_or(0.0, |c| c.bounding_radius());
-            for &x in self.bodies[k].position().as_slice() {
+        for (k, shape, _) in &checked {
+            let r = shape.bounding_radius();
+            for &x in self.bodies[*k].position().as_slice() {
                 lower.push(x - r);
                 upper.push(x + r);
             }
@@ -310,10 +306,8 @@ impl System {
         let mut broad = BroadPhase::new(n)?;
         let mut workspace = EpaWorkspace::new();
         for &(i, j) in broad.update(&lower, &upper)? {
-            let (a, b) = (checked[i], checked[j]);
-            let (Some(ca), Some(cb)) = (&convex[a], &convex[b]) else {
-                continue;
-            };
+            let ((a, ca, qa), (b, cb, qb)) = (&checked[i], &checked[j]);
+            let (a, b) = (*a, *b);
             let (ba, bb) = (&self.bodies[a], &self.bodies[b]);
             if ba.is_fixed() && bb.is_fixed() || joined(a, b) {
                 continue;
@@ -328,8 +322,8 @@ impl System {
                 continue;
             }
             let (Ok(pa), Ok(pb)) = (
-                PlacedShape::new(ca, ba.position().as_slice(), &rotations[a]),
-                PlacedShape::new(cb, bb.position().as_slice(), &rotations[b]),
+                PlacedShape::new(ca, ba.position().as_slice(), qa),
+                PlacedShape::new(cb, bb.position().as_slice(), qb),
             ) else {
                 continue;
             };
