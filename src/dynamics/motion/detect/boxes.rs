@@ -25,7 +25,7 @@
 // the compiler unrolls them.
 #![allow(clippy::needless_range_loop)]
 
-use super::gjk::{CoreGap, PlacedShape, RELATIVE_GAP, Separation, TOUCHING, core_separation};
+use super::gjk::{CoreGap, PlacedShape, RELATIVE_GAP, TOUCHING};
 use super::set_bits;
 use crate::dynamics::motion::shape::ConvexCore;
 
@@ -421,28 +421,21 @@ pub(crate) fn box_distance<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> 
     })
 }
 
-/// The separation of two placed cuboids of dimension N by [`box_distance`], the margins
-/// subtracted; None where GJK must answer.
-#[inline]
-pub(crate) fn box_separation<const N: usize>(
-    a: &PlacedShape,
-    b: &PlacedShape,
-) -> Option<Separation> {
-    let gap = box_distance::<N>(a, b)?;
-    Some(core_separation(
-        a,
-        b,
+impl<const N: usize> BoxGap<N> {
+    /// The gap as the separation takes it; returned only when its stopping rule holds
+    /// (else GJK answers).
+    #[inline(always)]
+    pub(crate) fn core_gap(&self) -> CoreGap<'_> {
         CoreGap {
-            witness_a: &gap.witness_a,
-            witness_b: &gap.witness_b,
-            v: &gap.v,
-            vv: gap.vv,
-            intersecting: gap.intersecting,
-            iterations: gap.steps,
-            // Returned only when its stopping rule holds (else GJK answers).
+            witness_a: &self.witness_a,
+            witness_b: &self.witness_b,
+            v: &self.v,
+            vv: self.vv,
+            intersecting: self.intersecting,
+            iterations: self.steps,
             certified: true,
-        },
-    ))
+        }
+    }
 }
 
 #[cfg(test)]

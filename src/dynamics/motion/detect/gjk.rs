@@ -724,16 +724,22 @@ pub(crate) fn centre_direction(a: &PlacedShape, b: &PlacedShape) -> Vector {
 /// # Errors
 /// [`ShapeError::DimensionMismatch`] if the shapes differ in dimension.
 pub fn distance(a: &PlacedShape, b: &PlacedShape) -> Result<Separation, ShapeError> {
-    check_pair(a, b)?;
-    let boxes = match a.shape.dim() {
-        3 => super::boxes::box_separation::<3>(a, b),
-        4 => super::boxes::box_separation::<4>(a, b),
-        _ => None,
-    };
-    Ok(match boxes {
-        Some(separation) => separation,
-        None => separation(a, b, gjk(a, b)),
-    })
+    // Each path returns its separation as it builds it: a `Separation` holds three inline
+    // vectors (240 bytes), and passing it through an `Option` first copied it once more.
+    match check_pair(a, b)? {
+        3 => {
+            if let Some(gap) = super::boxes::box_distance::<3>(a, b) {
+                return Ok(core_separation(a, b, gap.core_gap()));
+            }
+        }
+        4 => {
+            if let Some(gap) = super::boxes::box_distance::<4>(a, b) {
+                return Ok(core_separation(a, b, gap.core_gap()));
+            }
+        }
+        _ => {}
+    }
+    Ok(separation(a, b, gjk(a, b)))
 }
 
 /// [`distance`] by the dimension-generic GJK alone. For N = 3 and 4, [`distance`] runs
