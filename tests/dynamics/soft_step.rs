@@ -406,3 +406,55 @@ fn a_ball_resting_on_a_box_stays_on_it() {
     }
     assert_eq!(cases, 2);
 }
+
+/// `SoftStep::advance` records only the last step's contacts, and must move the bodies
+/// exactly as that many calls of `step` do: two turned cubes falling onto each other and a
+/// floor in 3D and 4D, every state compared to the last bit (their `Debug` text) after each
+/// of several advances, and the contacts of the last step compared too.
+#[test]
+fn the_soft_step_advances_as_its_steps_do() {
+    let mut cases = 0;
+    for n in 3..=4 {
+        let h = 1.0 / 60.0;
+        let yaw = Rotor::from_plane_angle(n, 0, 1, 20f64.to_radians()).unwrap();
+        let mut low = vec![0.0; n];
+        low[n - 1] = 0.51;
+        let mut high = vec![0.0; n];
+        high[0] = 0.1;
+        high[n - 1] = 1.6;
+        let system = || {
+            let bodies = vec![
+                turned_cube(n, 0.5, &low, 0.5, Rotor::identity(n)),
+                turned_cube(n, 0.5, &high, 0.5, yaw.clone()),
+            ];
+            let mut s = System::new(bodies).unwrap();
+            s.add_forque(Gravity(axis(n, n - 1, -G))).unwrap();
+            s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.3).unwrap())
+                .unwrap();
+            s
+        };
+        let (mut by_steps, mut by_advance) = (system(), system());
+        let (mut stepper, mut advancer) = (SoftStep::new(), SoftStep::new());
+        let mut t = 0.0;
+        for steps in [1, 7, 30, 45] {
+            for k in 0..steps {
+                stepper.step(&mut by_steps, t + k as f64 * h, h).unwrap();
+            }
+            advancer.advance(&mut by_advance, t, h, steps).unwrap();
+            t += steps as f64 * h;
+            assert_eq!(
+                format!("{:?}", by_steps.bodies()),
+                format!("{:?}", by_advance.bodies()),
+                "N = {n}, after {steps} more steps"
+            );
+            assert_eq!(
+                format!("{:?} {:?}", by_steps.contacts(), by_steps.body_contacts()),
+                format!("{:?} {:?}", by_advance.contacts(), by_advance.body_contacts()),
+                "N = {n}, after {steps} more steps"
+            );
+        }
+        assert!(!by_advance.contacts().is_empty() && !by_advance.body_contacts().is_empty());
+        cases += 1;
+    }
+    assert_eq!(cases, 2);
+}

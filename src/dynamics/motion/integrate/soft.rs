@@ -378,6 +378,35 @@ impl MotionIntegrator for SoftStep {
     }
 
     fn step(&mut self, system: &mut System, t: f64, h: f64) -> Result<(), DynamicsError> {
+        self.step_recording(system, t, h, true)
+    }
+
+    /// `steps` calls of [`MotionIntegrator::step`], except that only the last step writes
+    /// [`System::contacts`] and [`System::body_contacts`]: the others' would be overwritten
+    /// unread. The motion is that of the calls to the last bit.
+    fn advance(
+        &mut self,
+        system: &mut System,
+        t: f64,
+        h: f64,
+        steps: usize,
+    ) -> Result<(), DynamicsError> {
+        for k in 0..steps {
+            self.step_recording(system, t + k as f64 * h, h, k + 1 == steps)?;
+        }
+        Ok(())
+    }
+}
+
+impl SoftStep {
+    /// [`MotionIntegrator::step`], the contacts recorded only if `record`.
+    fn step_recording(
+        &mut self,
+        system: &mut System,
+        t: f64,
+        h: f64,
+        record: bool,
+    ) -> Result<(), DynamicsError> {
         let key = system.contacts_key();
         if self.checked != Some(key) {
             system.check_contacts()?;
@@ -416,8 +445,10 @@ impl MotionIntegrator for SoftStep {
             self.solver
                 .relax(bodies, sub, (resting, passes), s + 1 == self.substeps);
         }
-        let (_, _, _, _, log) = system.parts_mut();
-        self.solver.record(&self.detect.contacts, log);
+        if record {
+            let (_, _, _, _, log) = system.parts_mut();
+            self.solver.record(&self.detect.contacts, log);
+        }
         check_finite(system, t)
     }
 }
