@@ -449,7 +449,11 @@ fn the_soft_step_advances_as_its_steps_do() {
             );
             assert_eq!(
                 format!("{:?} {:?}", by_steps.contacts(), by_steps.body_contacts()),
-                format!("{:?} {:?}", by_advance.contacts(), by_advance.body_contacts()),
+                format!(
+                    "{:?} {:?}",
+                    by_advance.contacts(),
+                    by_advance.body_contacts()
+                ),
                 "N = {n}, after {steps} more steps"
             );
         }
