@@ -400,6 +400,10 @@ impl SoftSolver {
     fn prepare_n<const N: usize>(&mut self, bodies: &[MovingBody]) {
         let l = layout::<N>(&self.layout);
         let n = dim::<N>(l.n);
+        // The rows of one pair are consecutive: the last step's rows of the pair (a, b)
+        // are found once, as the range `old_pair` of `order`, and each row's point among
+        // them by its key.
+        let mut old_pair = (NO_BODY, NO_BODY, 0, 0);
         for (k, row) in self.rows.iter_mut().enumerate() {
             let d = &mut self.data[k * l.stride..(k + 1) * l.stride];
             // Tangent directions: the columns of the Householder reflection that takes the
@@ -439,11 +443,21 @@ impl SoftSolver {
             row.normal_impulse = 0.0;
             d[l.tangent_impulse..l.tangent_impulse + n].fill(0.0);
             let old_rows = &self.old_rows;
-            if let Ok(at) = self.order.binary_search_by(|&k| {
-                let o = &old_rows[k];
-                (o.a, o.b, o.key).cmp(&(row.a, row.b, row.key))
-            }) {
-                let at = self.order[at];
+            if (old_pair.0, old_pair.1) != (row.a, row.b) {
+                let pair = (row.a, row.b);
+                let first = self
+                    .order
+                    .partition_point(|&k| (old_rows[k].a, old_rows[k].b) < pair);
+                let count = self.order[first..]
+                    .iter()
+                    .take_while(|&&k| (old_rows[k].a, old_rows[k].b) == pair)
+                    .count();
+                old_pair = (row.a, row.b, first, first + count);
+            }
+            if let Some(&at) = self.order[old_pair.2..old_pair.3]
+                .iter()
+                .find(|&&k| old_rows[k].key == row.key)
+            {
                 let old = &self.old_rows[at];
                 row.normal_impulse = old.normal_impulse;
                 let od = &self.old_data[at * l.stride..(at + 1) * l.stride];
