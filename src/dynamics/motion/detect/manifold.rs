@@ -930,7 +930,8 @@ impl PlacedHull<'_> {
 pub const SUPPORT_TOLERANCE: f64 = 1e-3;
 
 /// The most vertices of a support set the hull manifold takes (2^(N−1) up to 4D, then 8):
-/// the crossings are found by brute force over subsets of them.
+/// the crossings are found by brute force over subsets of them. A face with more vertices
+/// is seen through a spread-out subset of them (see [`SupportSet::new`]).
 pub fn support_set_capacity(n: usize) -> usize {
     if n <= 4 { 1usize << (n - 1) } else { 8 }
 }
@@ -944,8 +945,15 @@ struct SupportSet {
 }
 
 impl SupportSet {
-    /// The vertices of `hull` within `tolerance` of its support plane along `sign`·`normal`,
-    /// the nearest ones to it when there are more than fit.
+    /// The vertices of `hull` within `tolerance` of its support plane along `sign`·`normal`.
+    ///
+    /// When more than [`support_set_capacity`] of them are, the set takes a spread-out
+    /// subset, so that the region found from it still holds the face: first the vertex
+    /// farthest from their centroid, then each time the one farthest from those taken
+    /// (farthest-point sampling; the first in the hull's order on ties). Taking the ones
+    /// nearest the plane instead let round-off choose among the vertices of a flat face:
+    /// a hexagonal prism resting on another, whose faces have 6 vertices in 3D and 24 in
+    /// 5D, was held along part of its face only; it rocked in 3D and 4D and fell over in 5D.
     fn new(hull: &PlacedHull<'_>, normal: &[f64], sign: f64, tolerance: f64) -> (SupportSet, f64) {
         let n = hull.dim();
         let mut p: Small = SmallVec::from_elem(0.0, n);
@@ -961,29 +969,58 @@ impl SupportSet {
             heights: SmallVec::new(),
             indices: SmallVec::new(),
         };
+        let mut centroid: Small = SmallVec::from_elem(0.0, n);
+        let mut count = 0usize;
         for k in 0..hull.vertex_count() {
             hull.place(k, &mut p);
-            let below = top - sign * dot(normal, &p);
-            if below > tolerance {
-                continue;
+            if top - sign * dot(normal, &p) <= tolerance {
+                count += 1;
+                centroid.iter_mut().zip(&p).for_each(|(c, x)| *c += x);
             }
-            if set.indices.len() < capacity {
-                set.points.extend_from_slice(&p);
-                set.heights.push(below);
-                set.indices.push(k);
-            } else {
-                let (worst, &h) = set
-                    .heights
-                    .iter()
-                    .enumerate()
-                    .max_by(|x, y| x.1.total_cmp(y.1))
-                    .unwrap_or((0, &0.0));
-                if below < h {
-                    set.points[worst * n..(worst + 1) * n].copy_from_slice(&p);
-                    set.heights[worst] = below;
-                    set.indices[worst] = k;
+        }
+        if count <= capacity {
+            for k in 0..hull.vertex_count() {
+                hull.place(k, &mut p);
+                let below = top - sign * dot(normal, &p);
+                if below <= tolerance {
+                    set.points.extend_from_slice(&p);
+                    set.heights.push(below);
+                    set.indices.push(k);
                 }
             }
+            return (set, sign * top);
+        }
+        centroid.iter_mut().for_each(|c| *c /= count as f64);
+        // Each pass takes the candidate farthest from what the set holds (from the
+        // centroid while it holds nothing).
+        while set.indices.len() < capacity {
+            let mut pick = None;
+            let mut farthest = f64::NEG_INFINITY;
+            for k in 0..hull.vertex_count() {
+                if set.indices.contains(&k) {
+                    continue;
+                }
+                hull.place(k, &mut p);
+                let below = top - sign * dot(normal, &p);
+                if below > tolerance {
+                    continue;
+                }
+                let distance = if set.indices.is_empty() {
+                    distance_squared(&p, &centroid)
+                } else {
+                    (0..set.indices.len())
+                        .map(|j| distance_squared(&p, set.point(j)))
+                        .fold(f64::INFINITY, f64::min)
+                };
+                if distance > farthest {
+                    (farthest, pick) = (distance, Some((k, below)));
+                }
+            }
+            let Some((k, below)) = pick else { break };
+            hull.place(k, &mut p);
+            set.points.extend_from_slice(&p);
+            set.heights.push(below);
+            set.indices.push(k);
         }
         (set, sign * top)
     }
@@ -995,6 +1032,10 @@ impl SupportSet {
     fn len(&self) -> usize {
         self.indices.len()
     }
+}
+
+fn distance_squared(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
 }
 
 /// Coordinates of `p` in the contact plane of unit normal `normal`, through the Householder
