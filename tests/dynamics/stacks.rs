@@ -288,6 +288,31 @@ fn a_slow_landing_on_a_body_is_not_located() {
     }
 }
 
+/// Two bodies (the lower first) under gravity on a floor of friction 0.5, run for `steps`
+/// steps of h = 0.01 s by `SoftStep` (if `soft`) or `MotionSplitting`: the faster body's
+/// speed (|v| + |ω|) at the end, the top one's height above the lower one along the last
+/// axis, and the points between them of the last step.
+fn settle_pair(bodies: Vec<MovingBody>, soft: bool, steps: usize) -> (f64, f64, usize) {
+    let n = bodies[0].dim();
+    let mut s = System::new(bodies).unwrap();
+    s.add_forque(Gravity(axis(n, n - 1, -G))).unwrap();
+    s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
+        .unwrap();
+    let mut stepper: Box<dyn MotionIntegrator> = if soft {
+        Box::new(SoftStep::new())
+    } else {
+        Box::new(MotionSplitting::new())
+    };
+    stepper.advance(&mut s, 0.0, 0.01, steps).unwrap();
+    let (low, top) = (&s.bodies()[0], &s.bodies()[1]);
+    let speed = [low, top]
+        .iter()
+        .map(|b| b.velocity().norm() + b.omega().norm())
+        .fold(0.0, f64::max);
+    let height = top.position().as_slice()[n - 1] - low.position().as_slice()[n - 1];
+    (speed, height, s.body_contacts().len())
+}
+
 /// A box of half-lengths 0.5, 0.6, … dropped by 1e-4 onto an equal box dropped as much onto a floor,
 /// shifted by 0.05 along the first axis, comes to rest in N = 3 … 7 under both contact
 /// integrators and in 8D under the splitting (2 s at h = 0.01; in 8D `SoftStep`'s boxes
@@ -329,23 +354,7 @@ fn a_box_comes_to_rest_on_a_box_in_every_dimension() {
                     .unwrap()
                 })
                 .collect();
-            let mut s = System::new(bodies).unwrap();
-            s.add_forque(Gravity(axis(n, n - 1, -G))).unwrap();
-            s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
-                .unwrap();
-            let mut stepper: Box<dyn MotionIntegrator> = if soft {
-                Box::new(SoftStep::new())
-            } else {
-                Box::new(MotionSplitting::new())
-            };
-            stepper.advance(&mut s, 0.0, 0.01, 200).unwrap();
-            let (low, top) = (&s.bodies()[0], &s.bodies()[1]);
-            let speed = [low, top]
-                .iter()
-                .map(|b| b.velocity().norm() + b.omega().norm())
-                .fold(0.0, f64::max);
-            let height = top.position().as_slice()[n - 1] - low.position().as_slice()[n - 1];
-            let points = s.body_contacts().len();
+            let (speed, height, points) = settle_pair(bodies, soft, 200);
             println!(
                 "N = {n}, soft {soft}: speed {speed:e}, height {height} of {}, {points} points",
                 2.0 * half[n - 1]
@@ -404,26 +413,8 @@ fn a_prism_rests_on_a_prism_whose_faces_hold_more_vertices_than_a_support_set() 
                         .unwrap()
                 })
                 .collect();
-            let mut s = System::new(bodies).unwrap();
-            s.add_forque(Gravity(axis(n, n - 1, -G))).unwrap();
-            s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
-                .unwrap();
-            let mut stepper: Box<dyn MotionIntegrator> = if soft {
-                Box::new(SoftStep::new())
-            } else {
-                Box::new(MotionSplitting::new())
-            };
-            stepper.advance(&mut s, 0.0, 0.01, 300).unwrap();
-            let (low, top) = (&s.bodies()[0], &s.bodies()[1]);
-            let speed = [low, top]
-                .iter()
-                .map(|b| b.velocity().norm() + b.omega().norm())
-                .fold(0.0, f64::max);
-            let height = top.position().as_slice()[n - 1] - low.position().as_slice()[n - 1];
-            println!(
-                "N = {n}, soft {soft}: speed {speed:e}, height {height}, {} points",
-                s.body_contacts().len()
-            );
+            let (speed, height, points) = settle_pair(bodies, soft, 300);
+            println!("N = {n}, soft {soft}: speed {speed:e}, height {height}, {points} points");
             let (still, sink) = if soft { (1e-6, 1e-3) } else { (1e-8, 1e-5) };
             assert!(speed < still, "N = {n}, soft {soft}: speed {speed:e}");
             assert!(

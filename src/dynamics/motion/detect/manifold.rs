@@ -931,7 +931,8 @@ pub const SUPPORT_TOLERANCE: f64 = 1e-3;
 
 /// The most vertices of a support set the hull manifold takes (2^(N−1) up to 4D, then 8):
 /// the crossings are found by brute force over subsets of them. A face with more vertices
-/// is seen through a spread-out subset of them (see [`SupportSet::new`]).
+/// is seen through a spread-out subset of them: first the vertex farthest from their
+/// centroid, then each time the one farthest from those taken.
 pub fn support_set_capacity(n: usize) -> usize {
     if n <= 4 { 1usize << (n - 1) } else { 8 }
 }
