@@ -1035,6 +1035,7 @@ impl SupportSet {
     }
 }
 
+/// |a − b|².
 fn distance_squared(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
 }
