@@ -7,6 +7,10 @@
 //!   by bounded least squares, cold (nothing kept between queries); `general_*` is the
 //!   same query by the dimension-generic GJK ([`distance_general`]), and after the group
 //!   the bench prints the ratios general / fast from Criterion's medians.
+//!   `box_box_mixed/N=3`, `box_box_mixed/N=4` time [`distance`] on 1,024 pairs of random
+//!   boxes taken in turn (random half-lengths and rotations, about two thirds apart), the
+//!   cost a simulation meets: from pair to pair the least-squares steps take other
+//!   branches, which the processor mispredicts, where a single pair lets it learn them.
 //! - `box_overlap`: two overlapping turned boxes in 3D and 4D. `epa_penetration` is
 //!   [`penetration_with`] (GJK, then EPA, with a kept workspace); `sat_depth` is the
 //!   baseline, the penetration depth by the separating-axis test over the generalised
@@ -14,6 +18,8 @@
 //!   `gjk_intersects` is [`intersects`] on the same pair.
 
 use criterion::{Criterion, black_box, criterion_group, criterion_main};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
 use rotorflow::dynamics::motion::detect::{
     EpaWorkspace, Penetration, PlacedShape, Separation, distance, distance_general, intersects,
     penetration_with,
@@ -179,6 +185,63 @@ impl Answer for Penetration {
     }
 }
 
+/// `box_box_mixed/N=n`: [`distance`] on 1,024 random box pairs in turn, each answer
+/// checked against the dimension-generic GJK first.
+fn bench_mixed_boxes(
+    group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>,
+    n: usize,
+) {
+    let mut r = ChaCha8Rng::seed_from_u64(7);
+    let count = 1024;
+    let mut shapes = Vec::with_capacity(2 * count);
+    let mut poses = Vec::with_capacity(count);
+    for _ in 0..count {
+        for _ in 0..2 {
+            let h: Vec<f64> = (0..n).map(|_| r.gen_range(0.2..2.0)).collect();
+            shapes.push(ConvexShape::cuboid(&h).unwrap());
+        }
+        let direction: Vec<f64> = (0..n).map(|_| r.gen_range(-1.0..1.0)).collect();
+        let length = direction.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let reach = r.gen_range(1.5..6.0);
+        let pb: Vec<f64> = direction.iter().map(|x| x * reach / length).collect();
+        let (qa, qb) = (
+            rotation(n, r.gen_range(0.0..10.0)),
+            rotation(n, r.gen_range(0.0..10.0)),
+        );
+        poses.push((vec![0.0; n], qa, pb, qb));
+    }
+    let pairs: Vec<(PlacedShape, PlacedShape)> = poses
+        .iter()
+        .enumerate()
+        .map(|(k, (pa, qa, pb, qb))| {
+            (
+                PlacedShape::new(&shapes[2 * k], pa, qa).unwrap(),
+                PlacedShape::new(&shapes[2 * k + 1], pb, qb).unwrap(),
+            )
+        })
+        .collect();
+    let (mut apart, mut steps) = (0, 0);
+    for (a, b) in &pairs {
+        let (fast, general) = (distance(a, b).unwrap(), distance_general(a, b).unwrap());
+        assert_eq!(fast.intersecting, general.intersecting);
+        assert!((fast.distance - general.distance).abs() <= 1e-9 * (1.0 + general.distance));
+        apart += usize::from(!fast.intersecting);
+        steps += fast.iterations;
+    }
+    println!(
+        "mixed boxes, N = {n}: {apart} of {count} pairs apart, {:.2} least-squares steps on average",
+        steps as f64 / count as f64
+    );
+    let mut k = 0;
+    group.bench_function(format!("box_box_mixed/N={n}"), |bench| {
+        bench.iter(|| {
+            let (a, b) = &pairs[k % count];
+            k += 1;
+            kept(distance(black_box(a), black_box(b)).unwrap())
+        })
+    });
+}
+
 fn bench_distance(c: &mut Criterion) {
     let mut group = c.benchmark_group("gjk_distance");
     for n in [3usize, 4] {
@@ -204,6 +267,7 @@ fn bench_distance(c: &mut Criterion) {
         group.bench_function(format!("general_boxes/N={n}"), |bench| {
             bench.iter(|| kept(distance_general(black_box(&a), black_box(&b)).unwrap()))
         });
+        bench_mixed_boxes(&mut group, n);
     }
     let n = 4;
     let tesseract = ConvexShape::hull(&corners(&[0.5; 4])).unwrap();
