@@ -10,7 +10,7 @@
 //!   `box_box_mixed/N=3`, `box_box_mixed/N=4` time [`distance`] on 1,024 pairs of random
 //!   boxes taken in turn (random half-lengths and rotations, about two thirds apart), the
 //!   cost a simulation meets: from pair to pair the least-squares steps take other
-//!   branches, which the processor mispredicts, where a single pair lets it learn them.
+//!   branches, where a single pair repeats the same ones.
 //! - `box_overlap`: two overlapping turned boxes in 3D and 4D. `epa_penetration` is
 //!   [`penetration_with`] (GJK, then EPA, with a kept workspace); `sat_depth` is the
 //!   baseline, the penetration depth by the separating-axis test over the generalised
