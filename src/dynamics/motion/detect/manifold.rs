@@ -970,27 +970,30 @@ impl SupportSet {
             heights: SmallVec::new(),
             indices: SmallVec::new(),
         };
+        // One pass takes every vertex of the face while they fit, and sums them for their
+        // centroid in case they do not.
         let mut centroid: Small = SmallVec::from_elem(0.0, n);
         let mut count = 0usize;
         for k in 0..hull.vertex_count() {
             hull.place(k, &mut p);
-            if top - sign * dot(normal, &p) <= tolerance {
-                count += 1;
-                centroid.iter_mut().zip(&p).for_each(|(c, x)| *c += x);
+            let below = top - sign * dot(normal, &p);
+            if below > tolerance {
+                continue;
+            }
+            count += 1;
+            centroid.iter_mut().zip(&p).for_each(|(c, x)| *c += x);
+            if count <= capacity {
+                set.points.extend_from_slice(&p);
+                set.heights.push(below);
+                set.indices.push(k);
             }
         }
         if count <= capacity {
-            for k in 0..hull.vertex_count() {
-                hull.place(k, &mut p);
-                let below = top - sign * dot(normal, &p);
-                if below <= tolerance {
-                    set.points.extend_from_slice(&p);
-                    set.heights.push(below);
-                    set.indices.push(k);
-                }
-            }
             return (set, sign * top);
         }
+        set.points.clear();
+        set.heights.clear();
+        set.indices.clear();
         centroid.iter_mut().for_each(|c| *c /= count as f64);
         // Each pass takes the candidate farthest from what the set holds (from the
         // centroid while it holds nothing).
