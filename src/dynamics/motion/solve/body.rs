@@ -120,6 +120,44 @@ impl BodyState {
         anew
     }
 
+    /// Loads body `b`'s velocities for a solve that needs no inverse inertia in space (the
+    /// soft step's substeps, whose rows keep the arms of the step's start): v = p / m and
+    /// ω = P I⁻¹ L in space into `vel` (N, then M numbers), the impulses left to the
+    /// caller. The rotation P of the planes is computed anew from `matrix` (the attitude
+    /// matrix of the principal frame, as in [`Self::load_placed`]) if it is given, and is
+    /// the last load's otherwise (the body has not turned since).
+    pub(super) fn load_velocities(
+        &mut self,
+        b: &MovingBody,
+        matrix: Option<&[f64]>,
+        vel: &mut [f64],
+    ) {
+        let n = b.dim();
+        let m = n * (n - 1) / 2;
+        if let Some(matrix) = matrix {
+            self.place_frame(b, AttitudeMatrix::Given(matrix));
+            // The inverse inertia in space is that of another frame now.
+            self.key = None;
+        }
+        self.inv_mass = 1.0 / b.mass();
+        for (x, p) in vel[..n].iter_mut().zip(b.linear_momentum().as_slice()) {
+            *x = p * self.inv_mass;
+        }
+        let w = &mut vel[n..n + m];
+        match b.rotation().inertia().diagonal_inverse_plane_moments() {
+            Some(inv) => {
+                let l = b.rotation().momentum().as_slice();
+                match m {
+                    3 => frame_diagonal::<3>(&self.frame, inv, l, w),
+                    6 => frame_diagonal::<6>(&self.frame, inv, l, w),
+                    _ => frame_diagonal::<0>(&self.frame, inv, l, w),
+                }
+            }
+            None => w.copy_from_slice(b.space_omega().as_slice()),
+        }
+        self.used = true;
+    }
+
     /// Computes the rotation of the planes by the principal frame from its attitude matrix.
     fn place_frame(&mut self, b: &MovingBody, matrix: AttitudeMatrix<'_>) {
         let n = b.dim();
@@ -136,11 +174,10 @@ impl BodyState {
             }
         };
         self.frame.resize(m * m, 0.0);
-        for (k, (a, bb)) in crate::algebra::pairs(n).enumerate() {
-            for (row, (c, d)) in crate::algebra::pairs(n).enumerate() {
-                self.frame[row * m + k] =
-                    p[c * n + a] * p[d * n + bb] - p[d * n + a] * p[c * n + bb];
-            }
+        match n {
+            3 => plane_rotation::<3>(p, n, &mut self.frame),
+            4 => plane_rotation::<4>(p, n, &mut self.frame),
+            _ => plane_rotation::<0>(p, n, &mut self.frame),
         }
     }
 
@@ -324,6 +361,29 @@ pub(super) fn frame_diagonal<const M: usize>(frame: &[f64], inv: &[f64], l: &[f6
     let (frame, inv, l) = (&frame[..m * m], &inv[..m], &l[..m]);
     for (i, w) in w[..m].iter_mut().enumerate() {
         *w = (0..m).map(|k| frame[i * m + k] * inv[k] * l[k]).sum();
+    }
+}
+
+/// The rotation F of the planes (M × M row-major, column k the image of the k-th plane
+/// eₐ ∧ e_b, a < b in order) by the N × N matrix `p` (row-major; `N` fixed, or 0 for `n`):
+/// F_(cd),(ab) = p_ca p_db − p_da p_cb.
+#[inline(always)]
+fn plane_rotation<const N: usize>(p: &[f64], n: usize, frame: &mut [f64]) {
+    let n = if N == 0 { n } else { N };
+    let m = n * (n - 1) / 2;
+    let (p, frame) = (&p[..n * n], &mut frame[..m * m]);
+    let mut k = 0;
+    for a in 0..n {
+        for b in a + 1..n {
+            let mut row = 0;
+            for c in 0..n {
+                for d in c + 1..n {
+                    frame[row * m + k] = p[c * n + a] * p[d * n + b] - p[d * n + a] * p[c * n + b];
+                    row += 1;
+                }
+            }
+            k += 1;
+        }
     }
 }
 

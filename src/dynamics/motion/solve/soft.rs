@@ -30,6 +30,18 @@ use crate::dynamics::motion::placement::dot;
 /// No body: the half-space side of a contact with a half-space.
 pub(crate) const NO_BODY: usize = usize::MAX;
 
+/// What [`SoftSolver::load`] takes anew: the rows' arms need the bodies' inverse inertia
+/// in space at the start of the step, the substeps only their velocities.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Load {
+    /// Everything, the inverse inertia in space too.
+    Placed,
+    /// The velocities after a kick, which turns no body: the frames are the last load's.
+    Kicked,
+    /// The velocities and the frames after a flight.
+    Flown,
+}
+
 /// The soft spring of a contact over one substep.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Softness {
@@ -344,8 +356,8 @@ impl SoftSolver {
         count > 0
     }
 
-    /// Loads every body a row acts on.
-    fn load(&mut self, bodies: &[MovingBody]) {
+    /// Loads every body a row acts on, as `what` says.
+    fn load(&mut self, bodies: &[MovingBody], what: Load) {
         let (n, m) = (self.layout.n, self.layout.m);
         let stride = n + m;
         for r in &self.rows {
@@ -355,10 +367,16 @@ impl SoftSolver {
                     // `begin`, then by `moved` after each flight (a kick turns no body).
                     let matrix = &self.frames[i * n * n..(i + 1) * n * n];
                     let st = &mut self.states[i];
-                    st.load_placed(&bodies[i], AttitudeMatrix::Given(matrix));
                     let vel = &mut self.flat.vel[i * stride..(i + 1) * stride];
-                    vel[..n].copy_from_slice(&st.v.as_slice()[..n]);
-                    vel[n..].copy_from_slice(&st.w.as_slice()[..m]);
+                    match what {
+                        Load::Placed => {
+                            st.load_placed(&bodies[i], AttitudeMatrix::Given(matrix));
+                            vel[..n].copy_from_slice(&st.v.as_slice()[..n]);
+                            vel[n..].copy_from_slice(&st.w.as_slice()[..m]);
+                        }
+                        Load::Kicked => st.load_velocities(&bodies[i], None, vel),
+                        Load::Flown => st.load_velocities(&bodies[i], Some(matrix), vel),
+                    }
                     self.flat.imp[i * stride..(i + 1) * stride].fill(0.0);
                     self.flat.inv_mass[i] = st.inv_mass;
                 }
@@ -383,7 +401,7 @@ impl SoftSolver {
     /// Computes each row's arms, effective masses and tangent directions at the start of
     /// the step and takes the impulses of the same points of the last step.
     pub(crate) fn prepare(&mut self, bodies: &[MovingBody]) {
-        self.load(bodies);
+        self.load(bodies, Load::Placed);
         match self.layout.n {
             3 => self.prepare_n::<3>(bodies),
             4 => self.prepare_n::<4>(bodies),
@@ -506,7 +524,7 @@ impl SoftSolver {
         push_out: f64,
         passes: usize,
     ) {
-        self.load(bodies);
+        self.load(bodies, Load::Kicked);
         match self.layout.n {
             3 => self.solve_n::<3>(h, soft, push_out, passes),
             4 => self.solve_n::<4>(h, soft, push_out, passes),
@@ -572,7 +590,7 @@ impl SoftSolver {
         (restitution_speed, passes): (f64, usize),
         last: bool,
     ) {
-        self.load(bodies);
+        self.load(bodies, Load::Flown);
         match self.layout.n {
             3 => self.relax_n::<3>(h, (restitution_speed, passes), last),
             4 => self.relax_n::<4>(h, (restitution_speed, passes), last),
