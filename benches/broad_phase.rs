@@ -6,7 +6,8 @@
 //!   [`BroadPhase::update`] after every body moved by its own constant step, up to 0.005
 //!   per axis (1 % of a box's size), 40 updates one way and 40 back, so that bodies leave
 //!   their fat boxes and the hierarchy is refitted and rebuilt as in a simulation while the
-//!   scene keeps its density (the step is timed with the update);
+//!   scene keeps its density (the step is timed with the update; each sample times whole
+//!   swings and reports the mean update, since an update's cost depends on its phase);
 //!   `full_rebuild` is the same update on a fresh broad phase (the hierarchy built and every
 //!   body queried in it), what a non-incremental broad phase pays every step;
 //!   `brute_force` tests all n(n − 1)/2 pairs (10³ and 10⁴ only). After the group the bench
@@ -28,6 +29,7 @@ use rand_chacha::ChaCha8Rng;
 use rotorflow::dynamics::motion::detect::{
     BroadPhase, PlacedBox, PlacedHull, box_box, box_contact_vertices, box_manifold, hull_manifold,
 };
+use std::time::Instant;
 
 #[path = "common/configure.rs"]
 mod configure;
@@ -112,22 +114,37 @@ fn bench_broad_phase(c: &mut Criterion) {
             .collect();
         let (mut lower, mut upper) = states[1].clone();
         let mut updates = 0usize;
+        if bodies >= 100_000 {
+            // A sample of 10⁵ bodies is two seconds of whole swings: Criterion's fewest.
+            g.sample_size(10);
+        }
         g.bench_with_input(
             BenchmarkId::new("incremental_update", bodies),
             &bodies,
             |bench, _| {
-                bench.iter(|| {
-                    let way = if (updates / SWING).is_multiple_of(2) {
-                        1.0
-                    } else {
-                        -1.0
-                    };
-                    updates += 1;
-                    for ((lo, hi), v) in lower.iter_mut().zip(upper.iter_mut()).zip(&velocity) {
-                        *lo += way * v;
-                        *hi += way * v;
+                // The cost of an update depends on where it falls in the swing (how many
+                // bodies leave their fat boxes, whether the hierarchy is rebuilt), so that
+                // every sample takes whole swings there and back, at least `iters` updates,
+                // and reports their mean: a sample of a few updates (10⁵ bodies) would
+                // otherwise time whichever phase it met.
+                bench.iter_custom(|iters| {
+                    let cycle = 2 * SWING;
+                    let count = (iters as usize).div_ceil(cycle) * cycle;
+                    let start = Instant::now();
+                    for _ in 0..count {
+                        let way = if (updates / SWING).is_multiple_of(2) {
+                            1.0
+                        } else {
+                            -1.0
+                        };
+                        updates += 1;
+                        for ((lo, hi), v) in lower.iter_mut().zip(upper.iter_mut()).zip(&velocity) {
+                            *lo += way * v;
+                            *hi += way * v;
+                        }
+                        black_box(broad.update(&lower, &upper).unwrap().len());
                     }
-                    black_box(broad.update(&lower, &upper).unwrap().len())
+                    start.elapsed().mul_f64(iters as f64 / count as f64)
                 })
             },
         );
