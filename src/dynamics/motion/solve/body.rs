@@ -344,6 +344,39 @@ impl BodyState {
     }
 }
 
+impl BodyState {
+    /// Hands body `b` what a solve did to its velocities, `change` (Δv, then Δω in space,
+    /// laid out as [`Self::load_velocities`] writes them): Δp = m Δv, and ΔL = I Pᵀ Δω in
+    /// the principal frame, what the impulses that made the change add up to. The frame P
+    /// is the last load's.
+    pub(super) fn store_velocity_change(&mut self, b: &mut MovingBody, change: &[f64]) {
+        self.used = false;
+        if b.is_fixed() {
+            return;
+        }
+        let n = b.dim();
+        let m = n * (n - 1) / 2;
+        let mut turned = SmallVec::<[f64; 28]>::from_elem(0.0, m);
+        let dw = &change[n..n + m];
+        match m {
+            3 => add_frame_transpose::<3>(&self.frame, dw, &mut turned),
+            6 => add_frame_transpose::<6>(&self.frame, dw, &mut turned),
+            _ => add_frame_transpose::<0>(&self.frame, dw, &mut turned),
+        }
+        let mut dl = SmallVec::<[f64; 28]>::from_elem(0.0, m);
+        b.rotation().inertia().apply_into(&turned, &mut dl);
+        let mass = b.mass();
+        let (_, p, rotation) = b.state_mut();
+        for (x, dv) in p.as_mut_slice().iter_mut().zip(&change[..n]) {
+            *x += mass * dv;
+        }
+        let (_, l) = rotation.state_mut();
+        for (x, d) in l.as_mut_slice().iter_mut().zip(&dl) {
+            *x += d;
+        }
+    }
+}
+
 /// Where [`BodyState::load_placed`] takes a body's attitude matrix (of its principal frame,
 /// row-major, own axes → space) from.
 pub(super) enum AttitudeMatrix<'a> {

@@ -161,13 +161,15 @@ impl Layout {
     }
 }
 
-/// The loaded bodies' velocities (v, then ω in space) and the impulses they took (p, then
-/// L), S = N + M numbers each, and their inverse masses, in flat arrays while the passes
-/// run: a row update then reads and writes them without going through the states' storage.
+/// The loaded bodies' velocities (v, then ω in space) as the passes leave them and as they
+/// were loaded, S = N + M numbers each, and their inverse masses, in flat arrays while the
+/// passes run: a row update then reads and writes them without going through the states'
+/// storage. What the passes gave a body is its change of velocity (times its mass and
+/// inertia), so that an update does not sum the impulses as well.
 #[derive(Clone, Debug, Default)]
 struct Flat {
     vel: Vec<f64>,
-    imp: Vec<f64>,
+    start: Vec<f64>,
     inv_mass: Vec<f64>,
 }
 
@@ -210,8 +212,9 @@ pub(crate) struct SoftSolver {
     positions: Vec<f64>,
     /// The loaded bodies' velocities and impulses during the passes.
     flat: Flat,
-    /// Room for a row's tangential impulses.
+    /// Room for a row's tangential impulses, and for a body's change of velocity.
     scratch: Vec<f64>,
+    change: Vec<f64>,
     /// Each row's separation at the bodies' current placement, and the last step's rows'
     /// at its end.
     separations: Vec<f64>,
@@ -250,7 +253,7 @@ impl SoftSolver {
         self.positions.clone_from(&self.start);
         let stride = n + n * (n - 1) / 2;
         self.flat.vel.resize(bodies.len() * stride, 0.0);
-        self.flat.imp.resize(bodies.len() * stride, 0.0);
+        self.flat.start.resize(bodies.len() * stride, 0.0);
         self.flat.inv_mass.resize(bodies.len(), 0.0);
         self.scratch.resize(n, 0.0);
     }
@@ -377,23 +380,27 @@ impl SoftSolver {
                         Load::Kicked => st.load_velocities(&bodies[i], None, vel),
                         Load::Flown => st.load_velocities(&bodies[i], Some(matrix), vel),
                     }
-                    self.flat.imp[i * stride..(i + 1) * stride].fill(0.0);
+                    let here = i * stride..(i + 1) * stride;
+                    self.flat.start[here.clone()].copy_from_slice(&self.flat.vel[here]);
                     self.flat.inv_mass[i] = st.inv_mass;
                 }
             }
         }
     }
 
-    /// Hands the loaded states' impulses to the bodies (after a pass, before their flight).
+    /// Hands the loaded bodies what the passes did to their velocities (after the passes,
+    /// before their flight).
     pub(crate) fn store(&mut self, bodies: &mut [MovingBody]) {
-        let (n, m) = (self.layout.n, self.layout.m);
-        let stride = n + m;
+        let stride = self.layout.n + self.layout.m;
+        self.change.resize(stride, 0.0);
         for (i, (st, b)) in self.states.iter_mut().zip(bodies).enumerate() {
             if st.used {
-                let imp = &self.flat.imp[i * stride..(i + 1) * stride];
-                st.dp.as_mut_slice()[..n].copy_from_slice(&imp[..n]);
-                st.dl.as_mut_slice()[..m].copy_from_slice(&imp[n..]);
-                st.store(b);
+                let here = i * stride..(i + 1) * stride;
+                let (now, then) = (&self.flat.vel[here.clone()], &self.flat.start[here]);
+                for ((c, x), x0) in self.change.iter_mut().zip(now).zip(then) {
+                    *c = x - x0;
+                }
+                st.store_velocity_change(b, &self.change);
             }
         }
     }
@@ -905,17 +912,13 @@ fn apply<const N: usize>(
         }
         let j = sign * lambda;
         let scaled = j * flat.inv_mass[body];
-        let c = &d[arms + side * m..arms + (side + 1) * m];
         let w = &d[arms + (2 + side) * m..arms + (3 + side) * m];
         let vel = &mut flat.vel[body * stride..(body + 1) * stride];
-        let imp = &mut flat.imp[body * stride..(body + 1) * stride];
         for i in 0..n {
             vel[i] += scaled * e[i];
-            imp[i] += j * e[i];
         }
         for i in 0..m {
             vel[n + i] += j * w[i];
-            imp[n + i] += j * c[i];
         }
     }
 }
