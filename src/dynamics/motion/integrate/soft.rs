@@ -29,8 +29,8 @@ use crate::dynamics::motion::{MotionError, System, Wrench};
 /// g / (2π f)² (f the contact frequency: 5.4e-5 m on a half-space at h = 1/60 s,
 /// where the springs against fixed bodies are 60 Hz), friction is Coulomb's disc by
 /// projection, impacts are not located in time, the angular momentum of a collision moves
-/// by O(h) (the lever arms are those of the step's start), and the integrator is of
-/// order 1. Joints are not held ([`MotionError::NeedsSplitting`]).
+/// by O(h) (the lever arms and inverse inertias are those of the step's start), and the
+/// integrator is of order 1. Joints are not held ([`MotionError::NeedsSplitting`]).
 ///
 /// Each step records its contacts ([`System::contacts`], [`System::body_contacts`]): one
 /// entry per point that gave an impulse or ends the step overlapping, with the impulses of

@@ -122,10 +122,11 @@ impl BodyState {
 
     /// Loads body `b`'s velocities for a solve that needs no inverse inertia in space (the
     /// soft step's substeps, whose rows keep the arms of the step's start): v = p / m and
-    /// ω = P I⁻¹ L in space into `vel` (N, then M numbers), the impulses left to the
-    /// caller. The rotation P of the planes is computed anew from `matrix` (the attitude
-    /// matrix of the principal frame, as in [`Self::load_placed`]) if it is given, and is
-    /// the last load's otherwise (the body has not turned since).
+    /// ω = P I⁻¹ L in space into `vel` (N, then M numbers), for
+    /// [`Self::store_velocity_change`] to hand back what the solve changed. The rotation P
+    /// of the planes is computed anew from `matrix` (the attitude matrix of the principal
+    /// frame, as in [`Self::load_placed`]) if it is given, and is the last load's otherwise
+    /// (the body has not turned since).
     pub(super) fn load_velocities(
         &mut self,
         b: &MovingBody,
@@ -156,6 +157,39 @@ impl BodyState {
             None => w.copy_from_slice(b.space_omega().as_slice()),
         }
         self.used = true;
+    }
+
+    /// Hands body `b` what a solve did to its velocities, `change` (Δv, then Δω in space,
+    /// laid out as [`Self::load_velocities`] writes them): Δp = m Δv, and ΔL = I Pᵀ Δω in
+    /// the principal frame, so that the body then moves with the velocities the solve left
+    /// (the frame P is the last load's). Where the solve's rows used the inverse inertia of
+    /// another frame (the soft step's, of the step's start), ΔL differs from the moment of
+    /// the impulses by as much as the body turned since.
+    pub(super) fn store_velocity_change(&mut self, b: &mut MovingBody, change: &[f64]) {
+        self.used = false;
+        if b.is_fixed() {
+            return;
+        }
+        let n = b.dim();
+        let m = n * (n - 1) / 2;
+        let mut turned = SmallVec::<[f64; 28]>::from_elem(0.0, m);
+        let dw = &change[n..n + m];
+        match m {
+            3 => add_frame_transpose::<3>(&self.frame, dw, &mut turned),
+            6 => add_frame_transpose::<6>(&self.frame, dw, &mut turned),
+            _ => add_frame_transpose::<0>(&self.frame, dw, &mut turned),
+        }
+        let mut dl = SmallVec::<[f64; 28]>::from_elem(0.0, m);
+        b.rotation().inertia().apply_into(&turned, &mut dl);
+        let mass = b.mass();
+        let (_, p, rotation) = b.state_mut();
+        for (x, dv) in p.as_mut_slice().iter_mut().zip(&change[..n]) {
+            *x += mass * dv;
+        }
+        let (_, l) = rotation.state_mut();
+        for (x, d) in l.as_mut_slice().iter_mut().zip(&dl) {
+            *x += d;
+        }
     }
 
     /// Computes the rotation of the planes by the principal frame from its attitude matrix.
@@ -341,39 +375,6 @@ impl BodyState {
             _ => add_frame_transpose::<0>(&self.frame, dl, l),
         }
         self.used = false;
-    }
-}
-
-impl BodyState {
-    /// Hands body `b` what a solve did to its velocities, `change` (Δv, then Δω in space,
-    /// laid out as [`Self::load_velocities`] writes them): Δp = m Δv, and ΔL = I Pᵀ Δω in
-    /// the principal frame, what the impulses that made the change add up to. The frame P
-    /// is the last load's.
-    pub(super) fn store_velocity_change(&mut self, b: &mut MovingBody, change: &[f64]) {
-        self.used = false;
-        if b.is_fixed() {
-            return;
-        }
-        let n = b.dim();
-        let m = n * (n - 1) / 2;
-        let mut turned = SmallVec::<[f64; 28]>::from_elem(0.0, m);
-        let dw = &change[n..n + m];
-        match m {
-            3 => add_frame_transpose::<3>(&self.frame, dw, &mut turned),
-            6 => add_frame_transpose::<6>(&self.frame, dw, &mut turned),
-            _ => add_frame_transpose::<0>(&self.frame, dw, &mut turned),
-        }
-        let mut dl = SmallVec::<[f64; 28]>::from_elem(0.0, m);
-        b.rotation().inertia().apply_into(&turned, &mut dl);
-        let mass = b.mass();
-        let (_, p, rotation) = b.state_mut();
-        for (x, dv) in p.as_mut_slice().iter_mut().zip(&change[..n]) {
-            *x += mass * dv;
-        }
-        let (_, l) = rotation.state_mut();
-        for (x, d) in l.as_mut_slice().iter_mut().zip(&dl) {
-            *x += d;
-        }
     }
 }
 

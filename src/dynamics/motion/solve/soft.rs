@@ -210,7 +210,7 @@ pub(crate) struct SoftSolver {
     frames: Vec<f64>,
     /// Each body's position now.
     positions: Vec<f64>,
-    /// The loaded bodies' velocities and impulses during the passes.
+    /// The loaded bodies' velocities during the passes.
     flat: Flat,
     /// Room for a row's tangential impulses, and for a body's change of velocity.
     scratch: Vec<f64>,
