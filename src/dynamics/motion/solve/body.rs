@@ -164,30 +164,35 @@ impl BodyState {
     /// the principal frame, so that the body then moves with the velocities the solve left
     /// (the frame P is the last load's). Where the solve's rows used the inverse inertia of
     /// another frame (the soft step's, of the step's start), ΔL differs from the moment of
-    /// the impulses by as much as the body turned since.
-    pub(super) fn store_velocity_change(&mut self, b: &mut MovingBody, change: &[f64]) {
+    /// the impulses by as much as the body turned since. `work` is room for 2M numbers.
+    pub(super) fn store_velocity_change(
+        &mut self,
+        b: &mut MovingBody,
+        change: &[f64],
+        work: &mut [f64],
+    ) {
         self.used = false;
         if b.is_fixed() {
             return;
         }
         let n = b.dim();
         let m = n * (n - 1) / 2;
-        let mut turned = SmallVec::<[f64; 28]>::from_elem(0.0, m);
+        let (turned, dl) = work[..2 * m].split_at_mut(m);
+        turned.fill(0.0);
         let dw = &change[n..n + m];
         match m {
-            3 => add_frame_transpose::<3>(&self.frame, dw, &mut turned),
-            6 => add_frame_transpose::<6>(&self.frame, dw, &mut turned),
-            _ => add_frame_transpose::<0>(&self.frame, dw, &mut turned),
+            3 => add_frame_transpose::<3>(&self.frame, dw, turned),
+            6 => add_frame_transpose::<6>(&self.frame, dw, turned),
+            _ => add_frame_transpose::<0>(&self.frame, dw, turned),
         }
-        let mut dl = SmallVec::<[f64; 28]>::from_elem(0.0, m);
-        b.rotation().inertia().apply_into(&turned, &mut dl);
+        b.rotation().inertia().apply_into(turned, dl);
         let mass = b.mass();
         let (_, p, rotation) = b.state_mut();
         for (x, dv) in p.as_mut_slice().iter_mut().zip(&change[..n]) {
             *x += mass * dv;
         }
         let (_, l) = rotation.state_mut();
-        for (x, d) in l.as_mut_slice().iter_mut().zip(&dl) {
+        for (x, d) in l.as_mut_slice().iter_mut().zip(dl.iter()) {
             *x += d;
         }
     }

@@ -212,7 +212,8 @@ pub(crate) struct SoftSolver {
     positions: Vec<f64>,
     /// The loaded bodies' velocities during the passes.
     flat: Flat,
-    /// Room for a row's tangential impulses, and for a body's change of velocity.
+    /// Room for a row's tangential impulses, and for a body's change of velocity (and its
+    /// angular part in the principal frame).
     scratch: Vec<f64>,
     change: Vec<f64>,
     /// Each row's separation at the bodies' current placement, and the last step's rows'
@@ -392,15 +393,16 @@ impl SoftSolver {
     /// before their flight).
     pub(crate) fn store(&mut self, bodies: &mut [MovingBody]) {
         let stride = self.layout.n + self.layout.m;
-        self.change.resize(stride, 0.0);
+        self.change.resize(stride + 2 * self.layout.m, 0.0);
+        let (change, work) = self.change.split_at_mut(stride);
         for (i, (st, b)) in self.states.iter_mut().zip(bodies).enumerate() {
             if st.used {
                 let here = i * stride..(i + 1) * stride;
                 let (now, then) = (&self.flat.vel[here.clone()], &self.flat.start[here]);
-                for ((c, x), x0) in self.change.iter_mut().zip(now).zip(then) {
+                for ((c, x), x0) in change.iter_mut().zip(now).zip(then) {
                     *c = x - x0;
                 }
-                st.store_velocity_change(b, &self.change);
+                st.store_velocity_change(b, change, work);
             }
         }
     }
