@@ -132,7 +132,7 @@ mod moser_veselov;
 mod processed;
 mod rkmk;
 mod splitting;
-pub(crate) use splitting::{free_strang_step, strang_drift_fixed};
+pub(crate) use splitting::{free_flight, strang_drift_fixed};
 
 pub use dop853::Dop853;
 pub use dopri::Dopri5;

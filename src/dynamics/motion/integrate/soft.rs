@@ -2,7 +2,7 @@
 
 use super::{MotionIntegrator, check_finite, kick};
 use crate::dynamics::DynamicsError;
-use crate::dynamics::integrate::{axpy, free_strang_step};
+use crate::dynamics::integrate::{axpy, free_flight};
 use crate::dynamics::motion::body::contact_material;
 use crate::dynamics::motion::detect::bodies::Touching;
 use crate::dynamics::motion::placement::Placements;
@@ -43,7 +43,7 @@ use crate::dynamics::motion::{MotionError, System, Wrench};
 ///
 /// The free flight is that of [`MotionSplitting`](super::MotionSplitting): positions
 /// exactly, rotations by the Lie–Poisson splitting, which keeps a free body's |L| and
-/// Casimirs to round-off.
+/// Casimirs to round-off (an isotropic body, a cube or a ball, turns exactly).
 #[derive(Clone, Debug)]
 pub struct SoftStep {
     substeps: usize,
@@ -439,7 +439,7 @@ impl SoftStep {
                 let m = b.mass();
                 let (x, p, rotation) = b.state_mut();
                 axpy(x.as_mut_slice(), sub / m, p.as_slice());
-                free_strang_step(rotation, at, sub)?;
+                free_flight(rotation, at, sub)?;
             }
             self.solver.moved(bodies);
             self.solver

@@ -2,7 +2,7 @@
 
 use super::{MotionIntegrator, check_finite, kick, one_by_one};
 use crate::algebra::{Bivector, Vector};
-use crate::dynamics::integrate::{axpy, free_strang_step};
+use crate::dynamics::integrate::{axpy, free_flight};
 use crate::dynamics::motion::detect::bodies::Touching;
 use crate::dynamics::motion::forques::Anchor;
 use crate::dynamics::motion::placement::{Placements, set_vector};
@@ -13,7 +13,8 @@ use crate::dynamics::{Attitude, DynamicsError};
 /// The symplectic Strang splitting of H = T + V: half a kick by the forques (p += ½h F,
 /// L += ½h τ at fixed positions and attitudes), free flight for h (x += h p/m exactly, the
 /// rotation by the Lie–Poisson splitting of [`Splitting::strang`], which keeps every
-/// Casimir and |L| to round-off), half a kick. Order 2.
+/// Casimir and |L| to round-off, and exactly for an isotropic body: a cube, a ball, a
+/// tesseract, whose L stays put in its own axes), half a kick. Order 2.
 ///
 /// For conservative forques (gravity, undamped springs) it is a symplectic map, so the
 /// energy error stays bounded over any number of steps instead of drifting; linear and
@@ -178,7 +179,7 @@ impl MotionSplitting {
             let m = b.mass();
             let (x, p, rotation) = b.state_mut();
             axpy(x.as_mut_slice(), h / m, p.as_slice());
-            free_strang_step(rotation, t, h)?;
+            free_flight(rotation, t, h)?;
         }
         Ok(())
     }
