@@ -256,7 +256,8 @@ impl SoftSolver {
         self.flat.vel.resize(bodies.len() * stride, 0.0);
         self.flat.start.resize(bodies.len() * stride, 0.0);
         self.flat.inv_mass.resize(bodies.len(), 0.0);
-        self.scratch.resize(n, 0.0);
+        // A row's tangential impulses (n), then the sum of its impulses (n + 2m).
+        self.scratch.resize(2 * n + n * (n - 1), 0.0);
     }
 
     /// Adds a contact point (the bodies at the start of the step, as [`Self::begin`] saw
@@ -550,21 +551,19 @@ impl SoftSolver {
     ) {
         let l = layout::<N>(&self.layout);
         let n = dim::<N>(l.n);
+        // Each row's impulses summed first, so that its bodies' velocities are read and
+        // written once.
+        let mut fixed = [0.0; 16];
         for (k, row) in self.rows.iter().enumerate() {
             let d = &self.data[k * l.stride..(k + 1) * l.stride];
-            apply::<N>(
-                &mut self.flat,
-                row,
-                d,
-                &l,
-                l.normal,
-                l.arms,
-                row.normal_impulse,
-            );
+            let sum = sum_room::<N>(&mut fixed, &mut self.scratch[n..], &l);
+            let mut any = add_impulse::<N>(sum, d, &l, l.normal, l.arms, row.normal_impulse);
             for t in 0..n - 1 {
                 let (dir, arms) = (l.tangents + t * n, l.tangent_arms + 4 * t * l.m);
-                let along = d[l.tangent_impulse + t];
-                apply::<N>(&mut self.flat, row, d, &l, dir, arms, along);
+                any |= add_impulse::<N>(sum, d, &l, dir, arms, d[l.tangent_impulse + t]);
+            }
+            if any {
+                apply_sum::<N>(&mut self.flat, row, &l, sum);
             }
         }
         for _ in 0..passes {
@@ -785,7 +784,7 @@ impl SoftSolver {
         let n = dim::<N>(l.n);
         let row = &self.rows[k];
         let limit = row.friction * row.normal_impulse;
-        let total = &mut self.scratch[..n];
+        let (total, rest) = self.scratch.split_at_mut(n);
         let d = &mut self.data[k * l.stride..(k + 1) * l.stride];
         for t in 0..n - 1 {
             let (dir, arms) = (l.tangents + t * n, l.tangent_arms + 4 * t * l.m);
@@ -799,11 +798,18 @@ impl SoftSolver {
             let scale = if norm > 0.0 { limit / norm } else { 0.0 };
             total[..n - 1].iter_mut().for_each(|x| *x *= scale);
         }
+        // The changes along the tangents summed, then given to the bodies at once.
+        let mut fixed = [0.0; 16];
+        let sum = sum_room::<N>(&mut fixed, rest, &l);
+        let mut any = false;
         for t in 0..n - 1 {
             let (dir, arms) = (l.tangents + t * n, l.tangent_arms + 4 * t * l.m);
             let change = total[t] - d[l.tangent_impulse + t];
-            apply::<N>(&mut self.flat, row, d, &l, dir, arms, change);
+            any |= add_impulse::<N>(sum, d, &l, dir, arms, change);
             d[l.tangent_impulse + t] = total[t];
+        }
+        if any {
+            apply_sum::<N>(&mut self.flat, row, &l, sum);
         }
     }
 
@@ -887,6 +893,76 @@ fn normal_velocity<const N: usize>(
         u -= dot(e, &xa[..n]) + dot(&d[arms..arms + m], &xa[n..]);
     }
     u
+}
+
+/// Room for the sum of a row's impulses ([`add_impulse`]): the impulse in space (N), then
+/// the changes of the two ends' angular velocities (M each), zeroed. On the stack in 3D and
+/// 4D, else in `any`; `N` as in [`dim`].
+#[inline(always)]
+fn sum_room<'a, const N: usize>(
+    fixed: &'a mut [f64; 16],
+    any: &'a mut [f64],
+    l: &Layout,
+) -> &'a mut [f64] {
+    let n = dim::<N>(l.n);
+    let len = n + n * (n - 1);
+    let room = if N != 0 {
+        &mut fixed[..len]
+    } else {
+        &mut any[..len]
+    };
+    room.fill(0.0);
+    room
+}
+
+/// Adds the impulse λ e (e at `dir` in the row's vectors `d`, its arms at `arms`) to `sum`
+/// ([`sum_room`]): λ e, then λ w_a and λ w_b. Returns whether λ ≠ 0.
+#[inline(always)]
+fn add_impulse<const N: usize>(
+    sum: &mut [f64],
+    d: &[f64],
+    l: &Layout,
+    dir: usize,
+    arms: usize,
+    lambda: f64,
+) -> bool {
+    if lambda == 0.0 {
+        return false;
+    }
+    let n = dim::<N>(l.n);
+    let m = n * (n - 1) / 2;
+    let (linear, angular) = sum[..n + 2 * m].split_at_mut(n);
+    for (s, e) in linear.iter_mut().zip(&d[dir..dir + n]) {
+        *s += lambda * e;
+    }
+    for (s, w) in angular.iter_mut().zip(&d[arms + 2 * m..arms + 4 * m]) {
+        *s += lambda * w;
+    }
+    true
+}
+
+/// Gives body b the summed impulse of [`sum_room`] and body a the opposite; `N` as in
+/// [`dim`].
+#[inline(always)]
+fn apply_sum<const N: usize>(flat: &mut Flat, row: &SoftRow, l: &Layout, sum: &[f64]) {
+    let n = dim::<N>(l.n);
+    let m = n * (n - 1) / 2;
+    let stride = n + m;
+    let linear = &sum[..n];
+    for (sign, body, side) in [(-1.0, row.a, 0), (1.0, row.b, 1)] {
+        if body == NO_BODY || flat.inv_mass[body] == 0.0 {
+            continue;
+        }
+        let scaled = sign * flat.inv_mass[body];
+        let angular = &sum[n + side * m..n + (side + 1) * m];
+        let vel = &mut flat.vel[body * stride..(body + 1) * stride];
+        for i in 0..n {
+            vel[i] += scaled * linear[i];
+        }
+        for i in 0..m {
+            vel[n + i] += sign * angular[i];
+        }
+    }
 }
 
 /// Gives body b the impulse λ e at its point and body a the opposite (e at `dir` in the
