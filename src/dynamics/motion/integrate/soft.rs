@@ -10,7 +10,7 @@ use crate::dynamics::motion::solve::{FoundPoint, NO_BODY, SoftSolver, Softness, 
 use crate::dynamics::motion::{MotionError, System, Wrench};
 
 /// The soft step: each step of h is cut into substeps, and each substep takes the forques'
-/// kick, a Gauss–Seidel pass of soft contacts (two in N ≥ 4), the free flight of every
+/// kick, a Gauss–Seidel pass of soft contacts (two in 4D, four in N ≥ 5), the free flight of every
 /// body, and as many passes without the contacts' springs (the "relax" passes);
 /// restitution is applied once at the end of the step. Contacts are found once per step,
 /// as points of the bodies' manifolds within a speculative margin, and follow the bodies
@@ -22,7 +22,7 @@ use crate::dynamics::motion::{MotionError, System, Wrench};
 /// in N dimensions; the moving-bodies chapter compares it with
 /// [`MotionSplitting`](super::MotionSplitting) and Rapier.
 ///
-/// It does a fixed amount of work per step — the substeps times two passes over the
+/// It does a fixed amount of work per step — the substeps times the passes over the
 /// contacts — whatever the contacts do, where [`MotionSplitting`](super::MotionSplitting)
 /// solves every contact to 10⁻⁹ of its speed and locates every impact in time. The price:
 /// contacts are springs, so a resting body sits inside what it rests on by about
@@ -47,7 +47,7 @@ use crate::dynamics::motion::{MotionError, System, Wrench};
 #[derive(Clone, Debug)]
 pub struct SoftStep {
     substeps: usize,
-    /// Gauss–Seidel passes per substep, with springs and without (None: 1 in 3D, 2 above).
+    /// Gauss–Seidel passes per substep, with springs and without (None: [`default_passes`]).
     passes: Option<usize>,
     /// The contacts' frequency (None: a quarter of the substep rate).
     contact_hertz: Option<f64>,
@@ -113,6 +113,18 @@ fn relative_placement((qa, qb): (&[f64], &[f64]), (xa, xb): (&[f64], &[f64]), ou
     }));
 }
 
+/// The Gauss–Seidel passes per substep in `n` dimensions when none are given: as many as
+/// towers of offset cubes need to stand (see [`SoftStep::with_passes`]). The points of a
+/// face, up to 4, 8 and 16 in 3D, 4D and 5D on, share their bodies, and each pass of
+/// Gauss–Seidel over them carries only part of an impulse from point to point.
+fn default_passes(n: usize) -> usize {
+    match n {
+        ..=3 => 1,
+        4 => 2,
+        _ => 4,
+    }
+}
+
 impl Default for SoftStep {
     fn default() -> Self {
         SoftStep {
@@ -174,8 +186,9 @@ impl SoftStep {
 
     /// Returns this integrator with `passes` Gauss–Seidel passes per substep, with the
     /// contacts' springs and as many without (by default 1 in 2D and 3D, where towers stand
-    /// with one, and 2 in four and more dimensions, where a face holds 8 or more contact
-    /// points and a tower of three hypercubes rocks with one).
+    /// with one; 2 in 4D, where a face holds 8 contact points and a tower of three
+    /// hypercubes rocks with one; 4 in five and more dimensions, where a face holds 16 and
+    /// such a tower rocks with 2 or 3).
     ///
     /// # Errors
     /// [`MotionError::OutOfRange`] for 0.
@@ -428,7 +441,7 @@ impl SoftStep {
             Softness::new(hertz, self.damping_ratio, sub),
             Softness::new((2.0 * hertz).min(rate), self.damping_ratio, sub),
         );
-        let passes = self.passes.unwrap_or(if system.dim() <= 3 { 1 } else { 2 });
+        let passes = self.passes.unwrap_or(default_passes(system.dim()));
         for s in 0..self.substeps {
             let at = t + s as f64 * sub;
             self.kick_at(system, at, sub);
