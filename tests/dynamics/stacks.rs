@@ -163,6 +163,22 @@ fn three_offset_hypercubes_stand() {
     }
 }
 
+/// Three hypercubes of 5 to 8 dimensions, each offset by 5 % from the one below, turned
+/// alternately by ±3° and dropped from 1 % onto it, stand for 10 s at h = 1/60 s under the
+/// splitting, as the 4D ones do. Measured: sink 6.7e-10, slide at most 1.6e-11, speed at
+/// most 8.8e-13 m/s.
+#[test]
+fn offset_towers_stand_in_five_to_eight_dimensions() {
+    let mut cases = 0;
+    for n in 5..=8 {
+        let o = tower(n, 3, (0.05, 3f64.to_radians(), 0.01), 1.0 / 60.0, 10.0);
+        println!("three {n}D cubes: {o:?}");
+        assert_stands(&format!("three {n}D cubes"), &o);
+        cases += 1;
+    }
+    assert_eq!(cases, 4);
+}
+
 /// What a unit cube did in 1 s on a fixed ramp (a fixed box tilted by θ, friction μ)
 /// stepped by `stepper` at h = 1e-3 s: its acceleration along the ramp, downhill, and how far
 /// it moved off the ramp's plane.
@@ -215,11 +231,12 @@ pub(crate) fn ramp_run(
 }
 
 /// A unit cube on a fixed ramp (a fixed box tilted by θ) slides down with acceleration
-/// a = g(sin θ − μ cos θ) when μ < tan θ and stays put when μ > tan θ (1e-3 relative to g).
+/// a = g(sin θ − μ cos θ) when μ < tan θ and stays put when μ > tan θ (1e-3 relative to g),
+/// in 3D to 6D.
 #[test]
 fn a_box_on_a_fixed_ramp_slides_with_the_coulomb_acceleration_or_sticks() {
     let mut cases = 0;
-    for n in [3, 4] {
+    for n in 3..=6 {
         for (theta_deg, mu) in [(30.0f64, 0.3), (30.0, 0.7), (20.0, 0.1), (40.0, 0.5)] {
             let theta = theta_deg.to_radians();
             let (acceleration, off) = ramp_run(&mut MotionSplitting::new(), n, theta, mu);
@@ -234,7 +251,7 @@ fn a_box_on_a_fixed_ramp_slides_with_the_coulomb_acceleration_or_sticks() {
             cases += 1;
         }
     }
-    assert_eq!(cases, 8);
+    assert_eq!(cases, 16);
 }
 
 /// A contact between bodies that enters slowly is held by the step's closing solve instead
