@@ -941,30 +941,6 @@ fn add_impulse<const N: usize>(
     true
 }
 
-/// Gives body b the summed impulse of [`sum_room`] and body a the opposite; `N` as in
-/// [`dim`].
-#[inline(always)]
-fn apply_sum<const N: usize>(flat: &mut Flat, row: &SoftRow, l: &Layout, sum: &[f64]) {
-    let n = dim::<N>(l.n);
-    let m = n * (n - 1) / 2;
-    let stride = n + m;
-    let linear = &sum[..n];
-    for (sign, body, side) in [(-1.0, row.a, 0), (1.0, row.b, 1)] {
-        if body == NO_BODY || flat.inv_mass[body] == 0.0 {
-            continue;
-        }
-        let scaled = sign * flat.inv_mass[body];
-        let angular = &sum[n + side * m..n + (side + 1) * m];
-        let vel = &mut flat.vel[body * stride..(body + 1) * stride];
-        for i in 0..n {
-            vel[i] += scaled * linear[i];
-        }
-        for i in 0..m {
-            vel[n + i] += sign * angular[i];
-        }
-    }
-}
-
 /// Gives body b the impulse λ e at its point and body a the opposite (e at `dir` in the
 /// row's vectors `d`, its arms at `arms`); `N` as in [`dim`].
 #[inline(always)]
@@ -982,15 +958,38 @@ fn apply<const N: usize>(
     }
     let n = dim::<N>(l.n);
     let m = n * (n - 1) / 2;
+    let w = &d[arms + 2 * m..arms + 4 * m];
+    give::<N>(flat, row, l, (&d[dir..dir + n], w), lambda);
+}
+
+/// Gives body b the summed impulse of [`sum_room`] and body a the opposite; `N` as in
+/// [`dim`].
+#[inline(always)]
+fn apply_sum<const N: usize>(flat: &mut Flat, row: &SoftRow, l: &Layout, sum: &[f64]) {
+    let n = dim::<N>(l.n);
+    give::<N>(flat, row, l, (&sum[..n], &sum[n..]), 1.0);
+}
+
+/// Gives body b the impulse λ e and the angular velocities λ w_b, body a the opposite
+/// (`e` and `w` = (w_a, w_b), M each); `N` as in [`dim`].
+#[inline(always)]
+fn give<const N: usize>(
+    flat: &mut Flat,
+    row: &SoftRow,
+    l: &Layout,
+    (e, w): (&[f64], &[f64]),
+    lambda: f64,
+) {
+    let n = dim::<N>(l.n);
+    let m = n * (n - 1) / 2;
     let stride = n + m;
-    let e = &d[dir..dir + n];
     for (sign, body, side) in [(-1.0, row.a, 0), (1.0, row.b, 1)] {
         if body == NO_BODY || flat.inv_mass[body] == 0.0 {
             continue;
         }
         let j = sign * lambda;
         let scaled = j * flat.inv_mass[body];
-        let w = &d[arms + (2 + side) * m..arms + (3 + side) * m];
+        let w = &w[side * m..(side + 1) * m];
         let vel = &mut flat.vel[body * stride..(body + 1) * stride];
         for i in 0..n {
             vel[i] += scaled * e[i];
