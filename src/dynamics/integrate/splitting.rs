@@ -665,8 +665,8 @@ impl Splitting {
 }
 
 /// One torque-free step of `body` for the free flight of moving bodies. An isotropic body
-/// (every plane moment the same I: a cube, a ball, a tesseract) moves
-/// exactly ([`isotropic_flight`]). Any other body takes
+/// in 3D or 4D (every plane moment the same I: a cube, a ball, a tesseract) moves exactly
+/// ([`isotropic_flight`]). Any other body takes
 /// `Splitting::strang().step(body, t, h, &Free)`, the same arithmetic; in 3D and 4D it reads
 /// the inverse plane moments the inertia map keeps instead of copying the moments and
 /// dividing, which matters where every body of a system takes such a step each step.

@@ -10,8 +10,8 @@ use crate::dynamics::motion::solve::{FoundPoint, NO_BODY, SoftSolver, Softness, 
 use crate::dynamics::motion::{MotionError, System, Wrench};
 
 /// The soft step: each step of h is cut into substeps, and each substep takes the forques'
-/// kick, a Gauss–Seidel pass of soft contacts (two in 4D, four in N ≥ 5), the free flight of every
-/// body, and as many passes without the contacts' springs (the "relax" passes);
+/// kick, a Gauss–Seidel pass of soft contacts (two in 4D, four in N ≥ 5), the free flight
+/// of every body, and as many passes without the contacts' springs (the "relax" passes);
 /// restitution is applied once at the end of the step. Contacts are found once per step,
 /// as points of the bodies' manifolds within a speculative margin, and follow the bodies
 /// through the substeps without a new detection; a pair of polytopes that moved less than
