@@ -174,6 +174,11 @@ pub(crate) struct Touching {
     lower: Vec<f64>,
     upper: Vec<f64>,
     candidates: Vec<(usize, usize)>,
+    /// What the last scan's candidates were found from: the factor, and each body's
+    /// position and (for boxes) own axes. A scan that finds them all as they were reuses
+    /// the candidates (a step scans again where it scanned before, with the manifolds).
+    seen_factor: Option<f64>,
+    seen: Vec<f64>,
     /// The pairs found by the last [`Touching::scan`].
     found: Found,
     /// True to take two boxes' manifold by clipping the incident face against the
@@ -251,6 +256,8 @@ impl Touching {
             })
             .collect();
         self.radius = shapes.iter().map(ContactShape::radius).collect();
+        // New shapes, new bounding boxes.
+        self.seen_factor = None;
     }
 
     /// True if body `i` touches other bodies.
@@ -260,7 +267,10 @@ impl Touching {
 
     /// True if at least two bodies can touch each other.
     pub(crate) fn any_pairs(&self) -> bool {
-        (0..self.convex.len()).filter(|&i| self.touches(i)).count() >= 2
+        (0..self.convex.len())
+            .filter(|&i| self.touches(i))
+            .nth(1)
+            .is_some()
     }
 
     /// Finds the pairs of bodies whose signed distance is at most `factor` times the sum of
@@ -301,7 +311,74 @@ impl Touching {
         let n = first.dim();
         if self.broad.as_ref().is_none_or(|b| b.dim() != n) {
             self.broad = BroadPhase::new(n).ok();
+            self.seen_factor = None;
         }
+        if !self.unmoved(bodies, &q, factor) {
+            self.find_candidates(bodies, &q, factor);
+        }
+        let candidates = std::mem::take(&mut self.candidates);
+        for &(a, b) in &candidates {
+            if self.touches(a) && self.touches(b) && !skip((a, b)) {
+                self.pair(bodies, &q, (a, b), factor, manifold);
+            }
+        }
+        self.candidates = candidates;
+    }
+
+    /// True if the last scan was with `factor` and saw every body where it is now (its
+    /// position and, for a box, its axes equal to the bit), so that its candidates stand;
+    /// otherwise records the bodies as they are now for the next scan.
+    fn unmoved<'q>(
+        &mut self,
+        bodies: &[MovingBody],
+        q: &impl Fn(usize) -> &'q [f64],
+        factor: f64,
+    ) -> bool {
+        // Each body's position, then its axes if it is a box.
+        let n = bodies[0].dim();
+        let stride = n + n * n;
+        let mut same = self.seen_factor == Some(factor) && self.seen.len() == bodies.len() * stride;
+        if !same {
+            self.seen.clear();
+            self.seen.resize(bodies.len() * stride, 0.0);
+        }
+        self.seen_factor = Some(factor);
+        // Compared as bits: a NaN is seen again as itself (the step reports it).
+        let mut keep = |seen: &mut [f64], now: &[f64]| {
+            if seen.len() != now.len() {
+                same = false;
+            } else if seen
+                .iter()
+                .zip(now)
+                .any(|(s, x)| s.to_bits() != x.to_bits())
+            {
+                same = false;
+                seen.copy_from_slice(now);
+            }
+        };
+        for (i, (b, seen)) in bodies
+            .iter()
+            .zip(self.seen.chunks_exact_mut(stride))
+            .enumerate()
+        {
+            let (x, axes) = seen.split_at_mut(n);
+            keep(x, b.position().as_slice());
+            if self.boxes[i].is_some() {
+                keep(axes, q(i));
+            }
+        }
+        same
+    }
+
+    /// The pairs of bodies whose bounding boxes, padded by their share of the reach
+    /// `factor` times their radii, overlap, into `candidates`.
+    fn find_candidates<'q>(
+        &mut self,
+        bodies: &[MovingBody],
+        q: &impl Fn(usize) -> &'q [f64],
+        factor: f64,
+    ) {
+        let n = bodies[0].dim();
         self.lower.clear();
         self.upper.clear();
         for (i, (b, r)) in bodies.iter().zip(&self.radius).enumerate() {
@@ -326,22 +403,15 @@ impl Touching {
                 self.upper.push(xk + reach + pad);
             }
         }
-        let mut candidates = std::mem::take(&mut self.candidates);
-        candidates.clear();
+        self.candidates.clear();
         // A position that is not finite has no pairs (the step reports it).
         if let Some(Ok(pairs)) = self
             .broad
             .as_mut()
             .map(|b| b.update(&self.lower, &self.upper))
         {
-            candidates.extend_from_slice(pairs);
+            self.candidates.extend_from_slice(pairs);
         }
-        for &(a, b) in &candidates {
-            if self.touches(a) && self.touches(b) && !skip((a, b)) {
-                self.pair(bodies, &q, (a, b), factor, manifold);
-            }
-        }
-        self.candidates = candidates;
     }
 
     /// Asks the narrow phase for the pair (a, b), a < b, and records it if its signed
@@ -760,4 +830,89 @@ fn convex_pair(
             .zip(p.witness_b.as_slice())
             .map(|(x, y)| 0.5 * (x + y)),
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebra::{Bivector, Rotor, Vector};
+    use crate::inertia::spec::parse_body;
+
+    /// Three unit cubes of half-length 0.5 on the x axis, 1.2 apart (0.2 between faces).
+    fn cubes() -> (Vec<MovingBody>, Vec<ContactShape>) {
+        let parsed = parse_body("cuboid:0.5,0.5,0.5").unwrap();
+        let bodies = (0..3)
+            .map(|k| {
+                let x = Vector::from_components(&[1.2 * k as f64, 0.0, 0.0]).unwrap();
+                let zero = Vector::zero(3);
+                let still = Bivector::zero(3);
+                MovingBody::new(
+                    parsed.mass,
+                    parsed.inertia.clone(),
+                    Rotor::identity(3),
+                    &x,
+                    &zero,
+                    &still,
+                )
+                .unwrap()
+            })
+            .collect();
+        let shapes = vec![ContactShape::from_geometry(&parsed.geometry); 3];
+        (bodies, shapes)
+    }
+
+    /// The pairs a scan finds, with their gaps.
+    fn pairs(touching: &Touching) -> Vec<(usize, usize, f64)> {
+        touching.found().iter().map(|c| (c.a, c.b, c.gap)).collect()
+    }
+
+    /// A scan reuses the last scan's broad-phase candidates only where it sees every body
+    /// as that scan did: after a body moves, or a box turns in place, or with another
+    /// factor, it finds what a fresh scan finds.
+    #[test]
+    fn a_scan_finds_what_a_fresh_scan_finds_after_bodies_move_or_turn() {
+        let (mut bodies, shapes) = cubes();
+        let identity = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
+        // Cube 1 turned by 45° about z: its corners reach 0.707 from its centre along x,
+        // past the 0.7 to cube 0's face.
+        let (c, s) = (0.5f64.sqrt(), 0.5f64.sqrt());
+        let turned = [c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0];
+        let mut kept = Touching::default();
+        kept.update_shapes(&shapes, &[], 3, (1, 1));
+        let mut checked = 0;
+        // (what changes before the scan, factor, the pairs expected)
+        let steps: [(&str, f64, usize); 6] = [
+            ("none", 1e-9, 0),
+            ("none", 1e-9, 0),
+            ("turn cube 1", 1e-9, 2),
+            ("turn cube 1 back", 1e-9, 0),
+            ("move cube 2 onto cube 1", 1e-9, 1),
+            ("none", 0.5, 2),
+        ];
+        let mut axes = [identity; 3];
+        for (change, factor, expected) in steps {
+            match change {
+                "turn cube 1" => axes[1] = turned,
+                "turn cube 1 back" => axes[1] = identity,
+                "move cube 2 onto cube 1" => {
+                    let (x, _, _) = bodies[2].state_mut();
+                    x.as_mut_slice()[0] = 2.1;
+                }
+                _ => {}
+            }
+            kept.scan(&bodies, |i| &axes[i][..], factor, None);
+            let mut fresh = Touching::default();
+            fresh.update_shapes(&shapes, &[], 3, (1, 1));
+            fresh.scan(&bodies, |i| &axes[i][..], factor, None);
+            assert_eq!(pairs(&kept), pairs(&fresh), "after '{change}'");
+            assert_eq!(
+                kept.found().len(),
+                expected,
+                "after '{change}': {:?}",
+                pairs(&kept)
+            );
+            checked += 1;
+        }
+        assert_eq!(checked, 6);
+    }
 }
