@@ -21,7 +21,9 @@
 //!   to 8 points); `region_only` enumerates the region's vertices without reducing them.
 //! - `hull_manifold`: [`hull_manifold`] of two unit cubes given as hulls of their corners,
 //!   the upper resting face to face on the lower and shifted by half its side (a cube of a
-//!   pyramid on one below), in 3D (`N=3`, 4 + 4 support points) and 4D (`N=4`, 8 + 8).
+//!   pyramid on one below), in 3D (`N=3`, 4 + 4 support points) and 4D (`N=4`, 8 + 8); and
+//!   of two 6D hexagonal prisms face to face (`prisms/N=6`, 48 + 48: the region's extremes
+//!   by linear programs).
 
 use criterion::{BenchmarkId, Criterion, black_box, criterion_group, criterion_main};
 use rand::{Rng, SeedableRng};
@@ -433,6 +435,47 @@ fn bench_hull_manifold(c: &mut Criterion) {
             })
         });
     }
+    // Hexagonal prisms (a hexagon of radius 1/2 times a cube of side 1) face to face in 6D,
+    // the upper shifted by 5 % along the hexagon's axis: faces of 48 vertices, held by the
+    // linear programs of the region's extremes.
+    let n = 6;
+    let mut prism = Vec::new();
+    for k in 0..6 {
+        let angle = std::f64::consts::PI / 3.0 * k as f64;
+        for m in 0..1usize << (n - 2) {
+            prism.extend([0.5 * angle.cos(), 0.5 * angle.sin()]);
+            prism.extend((0..n - 2).map(|i| if m >> i & 1 == 1 { 0.5 } else { -0.5 }));
+        }
+    }
+    let identity: Vec<f64> = (0..n * n)
+        .map(|k| if k / n == k % n { 1.0 } else { 0.0 })
+        .collect();
+    let lower = vec![0.0; n];
+    let mut upper = vec![0.0; n];
+    (upper[0], upper[n - 1]) = (0.05, 1.0);
+    let a = PlacedHull {
+        vertices: &prism,
+        position: &lower,
+        rotation: &identity,
+    };
+    let b = PlacedHull {
+        vertices: &prism,
+        position: &upper,
+        rotation: &identity,
+    };
+    let mut normal = vec![0.0; n];
+    normal[n - 1] = 1.0;
+    let m = hull_manifold(&a, &b, &normal, 1e-3).unwrap().unwrap();
+    assert_eq!(m.len(), 16);
+    g.bench_function("prisms/N=6", |bench| {
+        bench.iter(|| {
+            black_box(
+                hull_manifold(black_box(&a), black_box(&b), &normal, 1e-3)
+                    .unwrap()
+                    .map(|m| m.len()),
+            )
+        })
+    });
     g.finish();
 }
 

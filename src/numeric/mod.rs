@@ -14,6 +14,7 @@
 //! - [`expm`]: the matrix exponential of skew matrices (scaling and squaring, Padé, Taylor);
 //! - [`trig`]: sin x and cos x − 1 without cancellation;
 //! - [`householder`]: the complement of two orthonormal vectors by Householder reflections;
+//! - [`simplex`]: a small dense linear program by the two-phase simplex method, inline;
 //! - the small helpers below (exact scaling by powers of two, scaled norms, max-abs norms,
 //!   orthogonality error, Gram–Schmidt against orthonormal rows), each the
 //!   one copy the crate uses.
@@ -22,6 +23,7 @@ pub(crate) mod dense;
 pub(crate) mod eigen;
 pub(crate) mod expm;
 pub(crate) mod householder;
+pub(crate) mod simplex;
 pub(crate) mod solve;
 pub(crate) mod trig;
 

@@ -2,7 +2,7 @@
 //! whose bounding balls come within reach (the broad phase), and for each such pair the
 //! signed distance, the contact normal and the contact point (the narrow phase).
 
-use super::manifold::{box_manifold_on_axis, support_set_capacity};
+use super::manifold::box_manifold_on_axis;
 use super::sat::{box_box_unchecked, box_box_within};
 use super::{
     BroadPhase, ContactManifold, EpaWorkspace, PlacedBox, PlacedHull, PlacedShape, hull_manifold,
@@ -182,10 +182,10 @@ pub(crate) struct Touching {
     /// The pairs found by the last [`Touching::scan`].
     found: Found,
     /// True to take two boxes' manifold by clipping the incident face against the
-    /// reference face (the points of [`box_manifold`](super::box_manifold), about twice as
-    /// fast) instead of the hull manifold of their support sets. The splitting keeps the
-    /// hull manifold up to 4D: its towers stand to 1e-9 on it and slide by 1e-3 on the
-    /// clipped one. From 5D on both clip (the hull manifold sees 8 of a face's 16 corners).
+    /// reference face (the points of [`box_manifold`](super::box_manifold)) instead of the
+    /// hull manifold of their support sets. The splitting keeps the hull manifold up to 4D:
+    /// its towers stand to 1e-9 on it and slide by 1e-3 on the clipped one. From 5D on both
+    /// clip.
     clip_boxes: bool,
 }
 
@@ -460,11 +460,8 @@ impl Touching {
                 return;
             };
             let points = match (manifold, ca.core(), cb.core()) {
-                // From 5D on a hull's support set holds fewer vertices than a box face
-                // has corners (8 of 16): the hull manifold would hold half of the face.
-                (Some(slop), _, _)
-                    if self.clip_boxes || support_set_capacity(xa.len()) < 1 << (xa.len() - 1) =>
-                {
+                // From 5D on boxes are clipped, on which the towers of 5D to 8D stand.
+                (Some(slop), _, _) if self.clip_boxes || xa.len() >= 5 => {
                     let margin = slop * (self.radius[a] + self.radius[b]);
                     let (pa, pb) = (placed(ha, xa, q(a)), placed(hb, xb, q(b)));
                     Some(box_manifold_on_axis(&pa, &pb, &axis, margin))
