@@ -1297,24 +1297,24 @@ fn hull_region_extremes(
         for t in 0..d {
             at[t] = scale * (0..ka).map(|i| alpha[i] * plane[i * d + t]).sum::<f64>();
         }
-        let mut hash = 0xcbf2_9ce4_8422_2325u64;
-        let mut mix = |v: u64| {
-            hash ^= v;
-            hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
-        };
-        for (weights, set) in [(alpha, sa), (beta, sb)] {
-            let held = || (0..weights.len()).filter(|&i| weights[i] > 1e-12);
-            if held().count() <= d {
-                held().for_each(|i| mix(set.indices[i] as u64 + 1));
+        // The vertices of each face that hold the point, unless they span the plane.
+        let held = |weights: &[f64], set: &SupportSet| {
+            let held: SmallVec<[usize; LP_SUPPORT]> = (0..weights.len())
+                .filter(|&i| weights[i] > 1e-12)
+                .map(|i| set.indices[i])
+                .collect();
+            if held.len() <= d {
+                held
+            } else {
+                SmallVec::new()
             }
-            mix(u64::MAX);
-        }
+        };
         visit(RegionVertex {
             point_a: &pa,
             point_b: &pb,
             plane: &at,
             depth: dot(normal, &pa) - dot(normal, &pb),
-            id: FeatureId(KIND_HULL | hash >> 2),
+            id: hull_feature(held(alpha, sa), held(beta, sb)),
         });
     }
 }
@@ -1472,27 +1472,34 @@ fn hull_region(
             }
             // A full-dimensional simplex only says "inside": leave it out of the id, so that
             // the id does not depend on which of the simplices holding the point found it.
-            let mut hash = 0xcbf2_9ce4_8422_2325u64;
-            let mut mix = |v: u64| {
-                hash ^= v;
-                hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
-            };
-            if ka <= d {
-                ia.iter().for_each(|&i| mix(sa.indices[i] as u64 + 1));
-            }
-            mix(u64::MAX);
-            if kb <= d {
-                ib.iter().for_each(|&j| mix(sb.indices[j] as u64 + 1));
-            }
+            let simplex_a = ia.iter().filter(|_| ka <= d).map(|&i| sa.indices[i]);
+            let simplex_b = ib.iter().filter(|_| kb <= d).map(|&j| sb.indices[j]);
             visit(RegionVertex {
                 point_a: &pa,
                 point_b: &pb,
                 plane: &x,
                 depth,
-                id: FeatureId(KIND_HULL | hash >> 2),
+                id: hull_feature(simplex_a, simplex_b),
             });
         }
     }
+}
+
+/// The id of a point where a simplex of A's support set meets one of B's: a hash (FNV-1a)
+/// of their vertices' indices (either list empty for a simplex left out).
+fn hull_feature(
+    a: impl IntoIterator<Item = usize>,
+    b: impl IntoIterator<Item = usize>,
+) -> FeatureId {
+    let mut hash = 0xcbf2_9ce4_8422_2325u64;
+    let mut mix = |v: u64| {
+        hash ^= v;
+        hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
+    };
+    a.into_iter().for_each(|i| mix(i as u64 + 1));
+    mix(u64::MAX);
+    b.into_iter().for_each(|j| mix(j as u64 + 1));
+    FeatureId(KIND_HULL | hash >> 2)
 }
 
 /// A QR factorisation of up to 8 columns of dimension d ≤ 8 (the contact plane's), built a
