@@ -952,8 +952,8 @@ pub fn support_set_capacity(n: usize) -> usize {
 }
 
 /// The most vertices of a support set the hull manifold's linear programs take
-/// ([`hull_region_extremes`]), for faces with more vertices than [`support_set_capacity`]:
-/// every vertex of a 6-cube's face (2^(N−1) up to 7D), spread out over larger faces.
+/// ([`hull_region_extremes`]): every corner of a box's face up to 7D (2^(N−1) of them), a
+/// spread-out subset of a larger face.
 const LP_SUPPORT: usize = 64;
 
 /// A support set: up to [`LP_SUPPORT`] placed vertices with their indices, inline up to 8D.
