@@ -199,18 +199,21 @@ impl EqualityLp {
     /// round-off or by Harris's tolerance is set to zero.
     fn pivot(&mut self, i: usize, j: usize) {
         let width = self.rhs + 1;
-        let p = 1.0 / self.t[i][j];
-        self.t[i][..width].iter_mut().for_each(|x| *x *= p);
-        self.t[i][j] = 1.0;
-        let row = self.t[i];
-        for (k, other) in self.t[..self.rows].iter_mut().enumerate() {
+        // The pivot row borrowed beside the others rather than copied (a row is 1.4 KB).
+        let (before, rest) = self.t[..self.rows].split_at_mut(i);
+        let (row, after) = rest.split_at_mut(1);
+        let row = &mut row[0][..width];
+        let p = 1.0 / row[j];
+        row.iter_mut().for_each(|x| *x *= p);
+        row[j] = 1.0;
+        for other in before.iter_mut().chain(after.iter_mut()) {
             let f = other[j];
-            if k == i || f == 0.0 {
+            if f == 0.0 {
                 continue;
             }
             other[..width]
                 .iter_mut()
-                .zip(&row[..width])
+                .zip(row.iter())
                 .for_each(|(x, r)| *x -= f * r);
             other[j] = 0.0;
         }
