@@ -55,6 +55,10 @@ pub(crate) struct Solver {
     pub pairs: Vec<PairRow>,
     /// The rows of the solve before, kept for their room.
     spare_pairs: Vec<PairRow>,
+    /// Which of the last solve's pair rows gave their impulses to a new row, and each new
+    /// row's source among them.
+    taken: Vec<bool>,
+    sources: Vec<Option<usize>>,
     pub joints: Vec<JointRow>,
     states: Vec<BodyState>,
     work: Dense,
@@ -741,11 +745,17 @@ impl Solver {
     /// Takes the contacts between bodies that detection found, starting each from the
     /// impulses of the last solve's point of the same pair made by the same features (a
     /// point of a manifold kept from step to step), or else of the same pair's point nearest
-    /// to it.
+    /// to it that no other point took: each of the last solve's impulses goes to one point
+    /// at most, so that a manifold whose features changed keeps its total impulse.
     pub(crate) fn set_pairs(&mut self, found: &[PairContact], bodies: &[MovingBody]) {
         let mut old = std::mem::take(&mut self.pairs);
         let mut rows = std::mem::take(&mut self.spare_pairs);
         rows.clear();
+        self.taken.clear();
+        self.taken.resize(old.len(), false);
+        self.sources.clear();
+        // The points made by the same features first, so that a point whose features
+        // changed takes none of their impulses.
         let mut cursor = 0;
         for c in found {
             let (a, b) = (c.a, c.b);
@@ -770,32 +780,40 @@ impl Solver {
             let matches = |r: &PairRow| r.a == a && r.b == b && r.feature == c.feature;
             let same = (cursor..old.len())
                 .chain(0..cursor.min(old.len()))
-                .find(|&k| matches(&old[k]))
-                .or_else(|| {
-                    // A point of the pair whose features changed (or a curved pair's single
-                    // point): the nearest of the last solve's points of the pair.
-                    old.iter()
-                        .enumerate()
-                        .filter(|(_, r)| r.a == a && r.b == b)
-                        .min_by(|(_, r), (_, s)| {
-                            let far = |x: &PairRow| (&x.ra - &row.ra).norm_squared();
-                            far(r).total_cmp(&far(s))
-                        })
-                        .map(|(k, _)| k)
-                });
+                .find(|&k| matches(&old[k]) && !self.taken[k]);
             if let Some(k) = same {
                 cursor = k + 1;
-                let last = &mut old[k];
+                self.taken[k] = true;
+            }
+            self.sources.push(same);
+            rows.push(row);
+        }
+        for (row, source) in rows.iter_mut().zip(&mut self.sources) {
+            if source.is_none() {
+                // A point of the pair whose features changed (or a curved pair's single
+                // point).
+                *source = old
+                    .iter()
+                    .enumerate()
+                    .filter(|(k, r)| r.a == row.a && r.b == row.b && !self.taken[*k])
+                    .min_by(|(_, r), (_, s)| {
+                        let far = |x: &PairRow| (&x.ra - &row.ra).norm_squared();
+                        far(r).total_cmp(&far(s))
+                    })
+                    .map(|(k, _)| k);
+                if let Some(k) = *source {
+                    self.taken[k] = true;
+                }
+            }
+            if let Some(k) = *source {
+                let last = &old[k];
                 // The normal turns little between solves: keep the impulse along the new one
-                // and the tangent part of the old friction impulse. A point matched once
-                // gives its impulse to no other.
-                row.normal_impulse = std::mem::take(&mut last.normal_impulse);
+                // and the tangent part of the old friction impulse.
+                row.normal_impulse = last.normal_impulse;
                 row.friction_impulse.clone_from(&last.friction_impulse);
-                last.friction_impulse.as_mut_slice().fill(0.0);
                 let along = row.normal.dot(&row.friction_impulse);
                 row.friction_impulse -= &(&row.normal * along);
             }
-            rows.push(row);
         }
         self.pairs = rows;
         self.spare_pairs = old;
@@ -806,5 +824,54 @@ impl Solver {
         for s in &mut self.states {
             s.used = false;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebra::{Bivector, Rotor};
+    use crate::inertia::spec::parse_body;
+    use smallvec::smallvec;
+
+    /// Points of a pair whose features all changed start from the last solve's impulses of
+    /// the nearest points, each of those given once: two new points nearest to the same old
+    /// point take its impulse and the other's, so that the pair's total impulse is kept.
+    #[test]
+    fn points_whose_features_changed_share_out_the_last_impulses_once_each() {
+        let parsed = parse_body("cuboid:0.5,0.5,0.5+mass=1").unwrap();
+        let body = |z: f64| {
+            MovingBody::new(
+                parsed.mass,
+                parsed.inertia.clone(),
+                Rotor::identity(3),
+                &Vector::from_components(&[0.0, 0.0, z]).unwrap(),
+                &Vector::zero(3),
+                &Bivector::zero(3),
+            )
+            .unwrap()
+        };
+        let bodies = [body(0.5), body(1.5)];
+        let contact = |feature: u64, x: f64| PairContact {
+            a: 0,
+            b: 1,
+            feature,
+            gap: 0.0,
+            reach: 1e-9,
+            normal: smallvec![0.0, 0.0, 1.0],
+            point: smallvec![x, 0.0, 1.0],
+        };
+        let mut solver = Solver::default();
+        solver.set_pairs(&[contact(1, -0.5), contact(2, 0.5)], &bodies);
+        solver.pairs[0].normal_impulse = 1.0;
+        solver.pairs[1].normal_impulse = 2.0;
+        // Both new points lie nearer to the first old one.
+        solver.set_pairs(&[contact(3, -0.4), contact(4, -0.3)], &bodies);
+        let impulses: Vec<f64> = solver.pairs.iter().map(|p| p.normal_impulse).collect();
+        assert_eq!(impulses, [1.0, 2.0]);
+        // A point of the same features takes its own impulse, the other the one left.
+        solver.set_pairs(&[contact(9, 0.5), contact(4, -0.3)], &bodies);
+        let impulses: Vec<f64> = solver.pairs.iter().map(|p| p.normal_impulse).collect();
+        assert_eq!(impulses, [1.0, 2.0]);
     }
 }
