@@ -748,7 +748,7 @@ impl Solver {
     /// to it that no other point took: each of the last solve's impulses goes to one point
     /// at most, so that a manifold whose features changed keeps its total impulse.
     pub(crate) fn set_pairs(&mut self, found: &[PairContact], bodies: &[MovingBody]) {
-        let mut old = std::mem::take(&mut self.pairs);
+        let old = std::mem::take(&mut self.pairs);
         let mut rows = std::mem::take(&mut self.spare_pairs);
         rows.clear();
         self.taken.clear();
