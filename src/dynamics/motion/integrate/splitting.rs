@@ -859,7 +859,9 @@ impl MotionSplitting {
         for k in 0..steps {
             let (tk, last) = (t + k as f64 * h, k + 1 == steps);
             if let Some(before) = open {
-                if !last && self.joined_step(system, tk, before, h)? {
+                // Bodies that touch each other take their steps singly (see `advance`).
+                let touching = !self.solver.pairs.is_empty();
+                if !last && !touching && self.joined_step(system, tk, before, h)? {
                     check_finite(system, tk)?;
                     open = Some(h);
                     continue;
@@ -1037,8 +1039,20 @@ impl MotionIntegrator for MotionSplitting {
     /// [`MotionIntegrator::step`] to round-off there; through bounces and stick–slip
     /// transitions the two agree to the solver's tolerance. A step with an impact, and the
     /// last step, are taken singly, so the impacts are located and [`System::contacts`]
-    /// lists what it lists after [`MotionIntegrator::step`]. Other systems take their steps
-    /// one by one.
+    /// lists what it lists after [`MotionIntegrator::step`]. So are the steps that start
+    /// with bodies touching each other: then the motion is that of single steps to the bit.
+    /// Other systems take their steps one by one.
+    ///
+    /// Why bodies in contact take single steps: where they rest on each other, the impulses
+    /// that hold them are not unique (a cube on two others, cubes side by side), and each
+    /// solve stops within its tolerance somewhere in that family. Single steps solve twice
+    /// at each placement with the same kick, and the second solve starts where the first
+    /// stopped; joined solves start from impulses scaled by the ratio of two kicks, and
+    /// their small misfits drift through the family into loads the contacts need not carry
+    /// (cubes side by side squeezing each other), which later solves take thousands of
+    /// sweeps to undo. On a pyramid of 55 cubes (3D, h = 1/60 s, 300 steps after 10),
+    /// joined solves took 72 sweeps on average and 182 ms per step, single steps 3.2
+    /// sweeps and 3.5 ms.
     fn advance(
         &mut self,
         system: &mut System,
