@@ -275,7 +275,9 @@ impl BodyState {
         out
     }
 
-    /// The velocity change at offset `q` for an impulse `j` at offset `r`.
+    /// The velocity change at offset `q` for an impulse `j` at offset `r`, by the algebra's
+    /// products (the reference of [`add_inverse_mass`]).
+    #[cfg(test)]
     pub(super) fn response(&self, r: &Vector, j: &Vector, q: &Vector) -> Vector {
         let mut du = j * self.inv_mass;
         du += &q.left_contract(&self.inverse_inertia(&r.wedge(j)));
@@ -566,13 +568,52 @@ impl LocalBody {
     }
 }
 
-/// The effective inverse mass of a body state at offset `r`, added to `k` (n × n, row-major).
+/// The effective inverse mass of a body state at offset `r`, added to `k` (n × n, row-major):
+/// column c is the velocity change at r for a unit impulse e_c there, e_c / m + r ⌋ I⁻¹(r ∧ e_c)
+/// (as [`BodyState::response`] gives it), written without temporaries: a pair's rows set up
+/// two of these per solve.
 pub(super) fn add_inverse_mass(b: &BodyState, r: &Vector, k: &mut [f64]) {
-    let n = r.dim();
+    let r = r.as_slice();
+    let n = r.len();
+    let m = n * (n - 1) / 2;
+    // r ∧ e_c and its image under I⁻¹, on the stack up to N = 8.
+    let (mut fixed, mut any) = ([0.0f64; 56], Vec::new());
+    let room: &mut [f64] = if 2 * m <= fixed.len() {
+        &mut fixed[..2 * m]
+    } else {
+        any.resize(2 * m, 0.0);
+        &mut any
+    };
+    let (wedge, w) = room.split_at_mut(m);
+    let inv = &b.inv_inertia[..m * m];
     for c in 0..n {
-        let col = b.response(r, &Vector::basis(n, c), r);
-        for (row, x) in col.as_slice().iter().enumerate() {
-            k[row * n + c] += x;
+        // The planes (a, b), a < b, in order: r ∧ e_c has r_a in the planes (a, c) and −r_b
+        // in the planes (c, b).
+        let mut p = 0;
+        for a in 0..n {
+            for bb in a + 1..n {
+                wedge[p] = if bb == c {
+                    r[a]
+                } else if a == c {
+                    -r[bb]
+                } else {
+                    0.0
+                };
+                p += 1;
+            }
+        }
+        for (x, row) in w.iter_mut().zip(inv.chunks_exact(m)) {
+            *x = row.iter().zip(wedge.iter()).map(|(i, y)| i * y).sum();
+        }
+        k[c * n + c] += b.inv_mass;
+        // r ⌋ w into column c, as `add_contraction` adds it to a velocity.
+        let mut p = 0;
+        for a in 0..n {
+            for bb in a + 1..n {
+                k[bb * n + c] += r[a] * w[p];
+                k[a * n + c] -= r[bb] * w[p];
+                p += 1;
+            }
         }
     }
 }
@@ -634,6 +675,52 @@ mod tests {
             cases += 1;
         }
         assert_eq!(cases, 5);
+    }
+
+    /// The effective inverse mass written without temporaries against the columns of
+    /// [`BodyState::response`] (the algebra's wedge, inverse inertia and contraction), for
+    /// turned boxes in N = 2 … 8 at random offsets.
+    #[test]
+    fn effective_inverse_mass_is_the_response_to_unit_impulses() {
+        let mut cases = 0;
+        for n in 2..=8usize {
+            let lengths: Vec<String> = (0..n)
+                .map(|i| format!("{}", 0.3 + 0.17 * i as f64))
+                .collect();
+            let parsed = parse_body(&format!("cuboid:{}+mass=1.7", lengths.join(","))).unwrap();
+            let body = MovingBody::new(
+                parsed.mass,
+                parsed.inertia.clone(),
+                Rotor::from_plane_angle(n, 0, n - 1, 0.7).unwrap(),
+                &Vector::zero(n),
+                &Vector::zero(n),
+                &Bivector::zero(n),
+            )
+            .unwrap();
+            let mut work = Dense::new();
+            let mut st = BodyState::empty(n);
+            assert!(st.load(&body, &mut work));
+            let r = Vector::from_components(
+                &(0..n)
+                    .map(|i| (1.3 * i as f64 + 0.4).sin())
+                    .collect::<Vec<_>>(),
+            )
+            .unwrap();
+            let mut k = vec![0.25; n * n];
+            add_inverse_mass(&st, &r, &mut k);
+            for c in 0..n {
+                let col = st.response(&r, &Vector::basis(n, c), &r);
+                for (row, x) in col.as_slice().iter().enumerate() {
+                    let y = k[row * n + c] - 0.25;
+                    assert!(
+                        (x - y).abs() <= 1e-14 * x.abs().max(1.0),
+                        "N = {n}: {x} against {y}"
+                    );
+                }
+            }
+            cases += 1;
+        }
+        assert_eq!(cases, 7);
     }
 
     /// The allocation-free kernels against the algebra's products: the point velocity
