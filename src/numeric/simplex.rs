@@ -15,7 +15,10 @@
 pub(crate) const LP_MAX_ROWS: usize = 12;
 /// Columns (variables) at most, besides one artificial per row.
 pub(crate) const LP_MAX_COLUMNS: usize = 160;
-const WIDTH: usize = LP_MAX_COLUMNS + LP_MAX_ROWS + 1;
+/// The width of a tableau row that holds every program up to [`LP_MAX_COLUMNS`]: the
+/// columns, one artificial per row and the right side. A program of a few columns fits a
+/// narrower tableau (`EqualityLp<W>`), whose set-up and moves cost as much less.
+pub(crate) const LP_WIDTH: usize = LP_MAX_COLUMNS + LP_MAX_ROWS + 1;
 
 /// Entries below this (relative to 1: the caller scales its rows to about unit size) are
 /// zeros to the pivot rules.
@@ -25,14 +28,14 @@ const PIVOT: f64 = 1e-9;
 const FEASIBLE: f64 = 1e-12;
 
 /// max cᵀx subject to A x = b, x ≥ 0, as a tableau kept in canonical form for its basis.
-pub(crate) struct EqualityLp {
+pub(crate) struct EqualityLp<const W: usize> {
     rows: usize,
     columns: usize,
     /// Where the right side is in a row: after the columns and the artificials.
     rhs: usize,
     /// Row i: the entries of the columns, then of the artificials, then the right side
     /// (the rest unused).
-    t: [[f64; WIDTH]; LP_MAX_ROWS],
+    t: [[f64; W]; LP_MAX_ROWS],
     basis: [usize; LP_MAX_ROWS],
     /// Rows that are combinations of the others (their artificial stays basic at zero).
     redundant: [bool; LP_MAX_ROWS],
@@ -49,7 +52,7 @@ pub(crate) enum LpEnd {
     Stopped,
 }
 
-impl EqualityLp {
+impl<const W: usize> EqualityLp<W> {
     /// The program with `rows` constraints over `columns` variables, entry (i, j) of A given
     /// by `entry(i, j)` and b by `rhs`, or None if it exceeds [`LP_MAX_ROWS`] or
     /// [`LP_MAX_COLUMNS`] or an entry is not finite.
@@ -58,15 +61,19 @@ impl EqualityLp {
         columns: usize,
         entry: impl Fn(usize, usize) -> f64,
         rhs: &[f64],
-    ) -> Option<EqualityLp> {
-        if rows > LP_MAX_ROWS || columns > LP_MAX_COLUMNS || rhs.len() != rows {
+    ) -> Option<EqualityLp<W>> {
+        if rows > LP_MAX_ROWS
+            || columns > LP_MAX_COLUMNS
+            || columns + rows + 1 > W
+            || rhs.len() != rows
+        {
             return None;
         }
         let mut lp = EqualityLp {
             rows,
             columns,
             rhs: columns + rows,
-            t: [[0.0; WIDTH]; LP_MAX_ROWS],
+            t: [[0.0; W]; LP_MAX_ROWS],
             basis: [0; LP_MAX_ROWS],
             redundant: [false; LP_MAX_ROWS],
         };
@@ -90,7 +97,7 @@ impl EqualityLp {
     /// solution (the artificials cannot all leave within `tol`) or the pivot bound is met.
     pub(crate) fn find_feasible(&mut self, tol: f64) -> bool {
         let (m, c) = (self.rows, self.columns);
-        let mut cost = [0.0; WIDTH];
+        let mut cost = [0.0; W];
         cost[c..c + m].iter_mut().for_each(|x| *x = -1.0);
         if self.maximize_over(&cost, c + m) != LpEnd::Optimal {
             return false;
@@ -123,7 +130,7 @@ impl EqualityLp {
     /// Phase two: maximises cᵀx (c over the problem's columns) from the current feasible
     /// basis, which [`Self::find_feasible`] must have found.
     pub(crate) fn maximize(&mut self, c: &[f64]) -> LpEnd {
-        let mut cost = [0.0; WIDTH];
+        let mut cost = [0.0; W];
         cost[..self.columns].copy_from_slice(&c[..self.columns]);
         self.maximize_over(&cost, self.columns)
     }
@@ -141,7 +148,7 @@ impl EqualityLp {
 
     /// The simplex iterations for the objective `cost` (over all columns), entering only
     /// columns below `enter_below`.
-    fn maximize_over(&mut self, cost: &[f64; WIDTH], enter_below: usize) -> LpEnd {
+    fn maximize_over(&mut self, cost: &[f64; W], enter_below: usize) -> LpEnd {
         let m = self.rows;
         let scale = cost[..enter_below]
             .iter()
@@ -236,7 +243,7 @@ mod tests {
     #[test]
     fn a_square_has_its_corners_as_optima() {
         let a = [[1.0, 0.0, 1.0, 0.0], [0.0, 1.0, 0.0, 1.0]];
-        let mut lp = EqualityLp::new(2, 4, |i, j| a[i][j], &[1.0, 1.0]).unwrap();
+        let mut lp = EqualityLp::<LP_WIDTH>::new(2, 4, |i, j| a[i][j], &[1.0, 1.0]).unwrap();
         assert!(lp.find_feasible(1e-12));
         let mut x = [0.0; 4];
         assert_eq!(lp.maximize(&[1.0, 1.0, 0.0, 0.0]), LpEnd::Optimal);
@@ -250,13 +257,16 @@ mod tests {
     /// x + y = 1 and x + y = 2 have no common point; x ≥ 0 alone is unbounded above.
     #[test]
     fn inconsistent_and_unbounded_programs_are_told() {
-        let mut lp = EqualityLp::new(2, 2, |_, _| 1.0, &[1.0, 2.0]).unwrap();
+        let mut lp = EqualityLp::<LP_WIDTH>::new(2, 2, |_, _| 1.0, &[1.0, 2.0]).unwrap();
         assert!(!lp.find_feasible(1e-12));
         // x − y = 0: max x grows along x = y.
-        let mut lp = EqualityLp::new(1, 2, |_, j| [1.0, -1.0][j], &[0.0]).unwrap();
+        let mut lp = EqualityLp::<LP_WIDTH>::new(1, 2, |_, j| [1.0, -1.0][j], &[0.0]).unwrap();
         assert!(lp.find_feasible(1e-12));
         assert_eq!(lp.maximize(&[1.0, 0.0]), LpEnd::Unbounded);
-        assert!(EqualityLp::new(LP_MAX_ROWS + 1, 1, |_, _| 1.0, &[1.0; LP_MAX_ROWS + 1]).is_none());
+        assert!(
+            EqualityLp::<LP_WIDTH>::new(LP_MAX_ROWS + 1, 1, |_, _| 1.0, &[1.0; LP_MAX_ROWS + 1])
+                .is_none()
+        );
     }
 
     /// A redundant row (the sum of the others) is set aside, and the optimum stands.
@@ -268,7 +278,7 @@ mod tests {
             [0.0, 1.0, 0.0, 1.0],
             [1.0, 1.0, 1.0, 1.0],
         ];
-        let mut lp = EqualityLp::new(3, 4, |i, j| a[i][j], &[1.0, 1.0, 2.0]).unwrap();
+        let mut lp = EqualityLp::<LP_WIDTH>::new(3, 4, |i, j| a[i][j], &[1.0, 1.0, 2.0]).unwrap();
         assert!(lp.find_feasible(1e-12));
         assert_eq!(lp.maximize(&[2.0, 1.0, 0.0, 0.0]), LpEnd::Optimal);
         let mut x = [0.0; 4];
@@ -277,7 +287,11 @@ mod tests {
     }
 
     /// A x − b at the current solution, the largest entry.
-    fn residual(lp: &EqualityLp, a: &dyn Fn(usize, usize) -> f64, b: &[f64]) -> f64 {
+    fn residual<const W: usize>(
+        lp: &EqualityLp<W>,
+        a: &dyn Fn(usize, usize) -> f64,
+        b: &[f64],
+    ) -> f64 {
         let mut x = [0.0; LP_MAX_COLUMNS];
         lp.solution(&mut x);
         (0..lp.rows)
@@ -313,9 +327,17 @@ mod tests {
             };
             let mut rhs = vec![0.0; d + 2];
             (rhs[d], rhs[d + 1]) = (1.0, 1.0);
-            let mut lp = EqualityLp::new(d + 2, ka + kb, entry, &rhs).unwrap();
+            let mut lp = EqualityLp::<LP_WIDTH>::new(d + 2, ka + kb, entry, &rhs).unwrap();
+            // The same program in a tableau just wide enough, where it fits: the same
+            // arithmetic, so the same optima to the bit.
+            let mut narrow = EqualityLp::<48>::new(d + 2, ka + kb, entry, &rhs);
+            prop_assert_eq!(narrow.is_some(), ka + kb + d + 3 <= 48);
             prop_assert!(lp.find_feasible(1e-9));
+            if let Some(narrow) = &mut narrow {
+                prop_assert!(narrow.find_feasible(1e-9));
+            }
             prop_assert!(residual(&lp, &entry, &rhs) <= 1e-12);
+            let (mut x, mut y) = (vec![0.0; ka + kb], vec![0.0; ka + kb]);
             for o in &objectives {
                 let cost: Vec<f64> = (0..ka + kb)
                     .map(|j| if j < ka { (0..d).map(|i| o[i] as f64 * point(&pa, j, i)).sum() } else { 0.0 })
@@ -323,6 +345,12 @@ mod tests {
                 prop_assert_eq!(lp.maximize(&cost), LpEnd::Optimal);
                 let r = residual(&lp, &entry, &rhs);
                 prop_assert!(r <= 1e-12, "residual {}", r);
+                if let Some(narrow) = &mut narrow {
+                    prop_assert_eq!(narrow.maximize(&cost), LpEnd::Optimal);
+                    lp.solution(&mut x);
+                    narrow.solution(&mut y);
+                    prop_assert_eq!(&x, &y);
+                }
             }
         }
     }
@@ -348,7 +376,7 @@ mod tests {
             };
             let mut rhs = vec![0.0; d + 1];
             rhs[d] = 1.0;
-            let mut lp = EqualityLp::new(d + 1, k + 2 * d, entry, &rhs).unwrap();
+            let mut lp = EqualityLp::<LP_WIDTH>::new(d + 1, k + 2 * d, entry, &rhs).unwrap();
             prop_assert!(lp.find_feasible(1e-9));
             let mut cost = vec![0.0; k + 2 * d];
             for i in 0..d {

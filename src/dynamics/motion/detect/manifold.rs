@@ -41,7 +41,7 @@ use super::sat::{
 };
 use crate::dynamics::DynamicsError;
 use crate::dynamics::motion::shape::{ShapeError, check_placement};
-use crate::numeric::simplex::{EqualityLp, LP_MAX_COLUMNS, LP_MAX_ROWS, LpEnd};
+use crate::numeric::simplex::{EqualityLp, LP_MAX_COLUMNS, LP_MAX_ROWS, LP_WIDTH, LpEnd};
 use smallvec::SmallVec;
 
 /// The most points a manifold holds in any dimension.
@@ -1232,6 +1232,33 @@ fn hull_region_extremes(
             height.push(sign * dot(normal, set.point(k)) / scale);
         }
     }
+    // The tableau just wide enough for the common faces (a box's, a tesseract's), or the
+    // widest: its set-up and copies cost in proportion to its width.
+    let width = ka + kb + 1 + (d + 3) + 1;
+    let faces = (sa, sb, &plane[..], &height[..]);
+    if width <= NARROW_LP {
+        region_programs::<NARROW_LP>(faces, normal, margin, scale, visit);
+    } else {
+        region_programs::<LP_WIDTH>(faces, normal, margin, scale, visit);
+    }
+}
+
+/// The width of the narrow tableau of [`hull_region_extremes`]: programs of up to two faces
+/// of 16 vertices in 5D (the corners of two 5D boxes' faces).
+const NARROW_LP: usize = 48;
+
+/// The linear programs of [`hull_region_extremes`] over the faces' vertices in plane
+/// coordinates and heights (in units of `scale`), in a tableau of width `W`.
+fn region_programs<const W: usize>(
+    (sa, sb, plane, height): (&SupportSet, &SupportSet, &[f64], &[f64]),
+    normal: &[f64],
+    margin: f64,
+    scale: f64,
+    visit: &mut dyn FnMut(RegionVertex<'_>),
+) {
+    let n = normal.len();
+    let d = n - 1;
+    let (ka, kb) = (sa.len(), sb.len());
     // Columns α (ka), β (kb), the depth's slack; rows: the d plane coordinates of
     // Σ α a − Σ β b = 0, Σ α = 1, Σ β = 1, Σ α h − Σ β g − s = −margin.
     let columns = ka + kb + 1;
@@ -1258,7 +1285,7 @@ fn hull_region_extremes(
     };
     let mut rhs = [0.0; LP_MAX_ROWS];
     (rhs[d], rhs[d + 1], rhs[d + 2]) = (1.0, 1.0, -margin / scale);
-    let Some(mut lp) = EqualityLp::new(d + 3, columns, entry, &rhs[..d + 3]) else {
+    let Some(mut lp) = EqualityLp::<W>::new(d + 3, columns, entry, &rhs[..d + 3]) else {
         return;
     };
     if !lp.find_feasible(1e-9) {
@@ -1298,25 +1325,30 @@ fn hull_region_extremes(
             at[t] = scale * (0..ka).map(|i| alpha[i] * plane[i * d + t]).sum::<f64>();
         }
         // The vertices of each face that hold the point, unless they span the plane.
-        let held = |weights: &[f64], set: &SupportSet| {
-            let held: SmallVec<[usize; LP_SUPPORT]> = (0..weights.len())
-                .filter(|&i| weights[i] > 1e-12)
-                .map(|i| set.indices[i])
-                .collect();
-            if held.len() <= d {
-                held
-            } else {
-                SmallVec::new()
-            }
-        };
         visit(RegionVertex {
             point_a: &pa,
             point_b: &pb,
             plane: &at,
             depth: dot(normal, &pa) - dot(normal, &pb),
-            id: hull_feature(held(alpha, sa), held(beta, sb)),
+            id: hull_feature(
+                held_vertices(alpha, &sa.indices, d),
+                held_vertices(beta, &sb.indices, d),
+            ),
         });
     }
+}
+
+/// The vertices (by `indices`) whose `weights` hold a point of a face, or none if they are
+/// more than `d` (they span the contact plane).
+fn held_vertices<'a>(
+    weights: &'a [f64],
+    indices: &'a [usize],
+    d: usize,
+) -> impl Iterator<Item = usize> + 'a {
+    let spans = weights.iter().filter(|&&w| w > 1e-12).count() > d;
+    (0..weights.len())
+        .filter(move |&i| !spans && weights[i] > 1e-12)
+        .map(move |i| indices[i])
 }
 
 /// The crossings of simplices of `sa` with simplices of `sb` in the contact plane, in
