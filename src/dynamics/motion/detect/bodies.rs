@@ -179,8 +179,18 @@ pub(crate) struct Touching {
     /// the candidates (a step scans again where it scanned before, with the manifolds).
     seen_factor: Option<f64>,
     seen: Vec<f64>,
-    /// The pairs found by the last [`Touching::scan`].
+    /// The pairs found by the last [`Touching::scan`], and those of the last scan of the
+    /// other kind (with manifolds or without), each with what it was found from: the
+    /// placement's generation, the factor and the manifold's slop. A step scans several
+    /// times where it scanned before (its closing solve, the next step's checks and opening
+    /// solve), and a full scan of the same kind finds what it found then.
     found: Found,
+    found_key: Option<FoundKey>,
+    other: Found,
+    other_key: Option<FoundKey>,
+    /// The placement the scans see: counted up whenever a body moved or turned since the
+    /// last scan.
+    generation: u64,
     /// True to take two boxes' manifold by clipping the incident face against the
     /// reference face (the points of [`box_manifold`](super::box_manifold)) instead of the
     /// hull manifold of their support sets. The splitting keeps the hull manifold up to 4D:
@@ -208,6 +218,7 @@ impl Touching {
         owner: (u64, u64),
     ) {
         if self.joined.len() != joints.len() || self.owner.is_none() {
+            (self.found_key, self.other_key) = (None, None);
             self.joined.clear();
             self.joined.extend(joints.iter().map(|j| match &j.other {
                 Anchor::Body(k, _) => (j.body.min(*k), j.body.max(*k)),
@@ -256,8 +267,9 @@ impl Touching {
             })
             .collect();
         self.radius = shapes.iter().map(ContactShape::radius).collect();
-        // New shapes, new bounding boxes.
+        // New shapes, new bounding boxes and new pairs.
         self.seen_factor = None;
+        (self.found_key, self.other_key) = (None, None);
     }
 
     /// True if body `i` touches other bodies.
@@ -291,7 +303,13 @@ impl Touching {
         factor: f64,
         manifold: Option<f64>,
     ) {
-        self.scan_except(bodies, q, factor, manifold, |_| false);
+        self.scan_with(
+            bodies,
+            q,
+            factor,
+            manifold,
+            None::<fn((usize, usize)) -> bool>,
+        );
     }
 
     /// [`Touching::scan`] without asking the narrow phase for the pairs (a, b) for which
@@ -304,8 +322,37 @@ impl Touching {
         manifold: Option<f64>,
         skip: impl Fn((usize, usize)) -> bool,
     ) {
-        self.found.len = 0;
+        self.scan_with(bodies, q, factor, manifold, Some(skip));
+    }
+
+    /// [`Touching::scan_except`], or with `skip` None [`Touching::scan`].
+    fn scan_with<'q>(
+        &mut self,
+        bodies: &[MovingBody],
+        q: impl Fn(usize) -> &'q [f64],
+        factor: f64,
+        manifold: Option<f64>,
+        skip: Option<impl Fn((usize, usize)) -> bool>,
+    ) {
+        let key = |generation| FoundKey {
+            generation,
+            factor: factor.to_bits(),
+            slop: manifold.map(f64::to_bits),
+        };
+        // The list of this kind (with manifolds or without) becomes the current one.
+        if self
+            .found_key
+            .is_some_and(|k| k.slop.is_some() != manifold.is_some())
+            || self
+                .other_key
+                .is_some_and(|k| k.slop.is_some() == manifold.is_some())
+        {
+            std::mem::swap(&mut self.found, &mut self.other);
+            std::mem::swap(&mut self.found_key, &mut self.other_key);
+        }
         let Some(first) = bodies.first() else {
+            self.found.len = 0;
+            self.found_key = None;
             return;
         };
         let n = first.dim();
@@ -313,48 +360,64 @@ impl Touching {
             self.broad = BroadPhase::new(n).ok();
             self.seen_factor = None;
         }
-        if !self.unmoved(bodies, &q, factor) {
+        let (candidates_stand, placed_as_before) = self.unmoved(bodies, &q, factor);
+        if !candidates_stand {
             self.find_candidates(bodies, &q, factor);
         }
+        if !placed_as_before {
+            self.generation += 1;
+        }
+        if skip.is_none() && self.found_key == Some(key(self.generation)) {
+            return;
+        }
+        self.found.len = 0;
         let candidates = std::mem::take(&mut self.candidates);
         for &(a, b) in &candidates {
-            if self.touches(a) && self.touches(b) && !skip((a, b)) {
+            if self.touches(a) && self.touches(b) && !skip.as_ref().is_some_and(|s| s((a, b))) {
                 self.pair(bodies, &q, (a, b), factor, manifold);
             }
         }
         self.candidates = candidates;
+        // A scan that skipped pairs found only part of what a full scan finds.
+        self.found_key = skip.is_none().then(|| key(self.generation));
     }
 
-    /// True if the last scan was with `factor` and saw every body where it is now (its
-    /// position and, for a box, its axes equal to the bit), so that its candidates stand;
-    /// otherwise records the bodies as they are now for the next scan.
+    /// Whether the last scan's candidates stand (it was with `factor` and saw every body
+    /// where it is now: its position and, for a box, its axes equal to the bit), and
+    /// whether it saw every body placed as now (its axes too, whatever its shape); records
+    /// the bodies as they are now for the next scan.
     fn unmoved<'q>(
         &mut self,
         bodies: &[MovingBody],
         q: &impl Fn(usize) -> &'q [f64],
         factor: f64,
-    ) -> bool {
+    ) -> (bool, bool) {
         // Each body's position, then its axes if it is a box.
         let n = bodies[0].dim();
         let stride = n + n * n;
-        let mut same = self.seen_factor == Some(factor) && self.seen.len() == bodies.len() * stride;
-        if !same {
+        let recorded = self.seen.len() == bodies.len() * stride;
+        if !recorded {
             self.seen.clear();
             self.seen.resize(bodies.len() * stride, 0.0);
         }
+        let mut same = recorded && self.seen_factor == Some(factor);
+        let mut placed = recorded;
         self.seen_factor = Some(factor);
-        // Compared as bits: a NaN is seen again as itself (the step reports it).
-        let mut keep = |seen: &mut [f64], now: &[f64]| {
-            if seen.len() != now.len() {
-                same = false;
-            } else if seen
-                .iter()
-                .zip(now)
-                .any(|(s, x)| s.to_bits() != x.to_bits())
+        // Compared as bits: a NaN is seen again as itself (the step reports it). Returns
+        // whether `now` is what was seen, and records it.
+        let keep = |seen: &mut [f64], now: &[f64]| {
+            if seen.len() == now.len()
+                && seen
+                    .iter()
+                    .zip(now)
+                    .all(|(s, x)| s.to_bits() == x.to_bits())
             {
-                same = false;
+                return true;
+            }
+            if seen.len() == now.len() {
                 seen.copy_from_slice(now);
             }
+            false
         };
         for (i, (b, seen)) in bodies
             .iter()
@@ -362,12 +425,12 @@ impl Touching {
             .enumerate()
         {
             let (x, axes) = seen.split_at_mut(n);
-            keep(x, b.position().as_slice());
-            if self.boxes[i].is_some() {
-                keep(axes, q(i));
-            }
+            let at = keep(x, b.position().as_slice());
+            let turned = !keep(axes, q(i));
+            same &= at && !(turned && self.boxes[i].is_some());
+            placed &= at && !turned;
         }
-        same
+        (same, placed)
     }
 
     /// The pairs of bodies whose bounding boxes, padded by their share of the reach
@@ -604,6 +667,14 @@ impl Touching {
 struct Found {
     items: Vec<PairContact>,
     len: usize,
+}
+
+/// What a list of found pairs was found from (see [`Touching::found`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct FoundKey {
+    generation: u64,
+    factor: u64,
+    slop: Option<u64>,
 }
 
 impl Found {
@@ -911,5 +982,69 @@ mod tests {
             checked += 1;
         }
         assert_eq!(checked, 6);
+    }
+
+    /// Scans at the same placement find what they found (a step scans there with manifolds
+    /// and without, in turn), and a body that turns in place, whatever its shape, is seen:
+    /// two ellipsoids (0.6 along x, 0.2 across) 1.3 apart along x touch only while the
+    /// second points along x; alternating scans with and without manifolds, each finds
+    /// what a fresh scan finds.
+    #[test]
+    fn scans_at_the_same_placement_agree_with_fresh_ones_until_a_body_turns() {
+        let parsed = parse_body("ellipsoid:0.6,0.2,0.2").unwrap();
+        let mut bodies: Vec<MovingBody> = (0..2)
+            .map(|k| {
+                MovingBody::new(
+                    parsed.mass,
+                    parsed.inertia.clone(),
+                    Rotor::identity(3),
+                    &Vector::from_components(&[1.1 * k as f64, 0.0, 0.0]).unwrap(),
+                    &Vector::zero(3),
+                    &Bivector::zero(3),
+                )
+                .unwrap()
+            })
+            .collect();
+        let shapes = vec![ContactShape::from_geometry(&parsed.geometry); 2];
+        let identity = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
+        // The second ellipsoid turned by 90° about z: its long axis along y, 0.2 from its
+        // centre along x, apart from the first.
+        let across = [0.0, -1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0];
+        let mut kept = Touching::default();
+        kept.update_shapes(&shapes, &[], 3, (1, 1));
+        let mut axes = [identity; 2];
+        let mut checked = 0;
+        for (change, expected) in [
+            ("none", 1),
+            ("none", 1),
+            ("turn the second across", 0),
+            ("none", 0),
+            ("turn it back", 1),
+            ("move it away", 0),
+        ] {
+            match change {
+                "turn the second across" => axes[1] = across,
+                "turn it back" => axes[1] = identity,
+                "move it away" => {
+                    let (x, _, _) = bodies[1].state_mut();
+                    x.as_mut_slice()[0] = 1.5;
+                }
+                _ => {}
+            }
+            for manifold in [Some(1e-2), None, Some(1e-2)] {
+                kept.scan(&bodies, |i| &axes[i][..], 1e-9, manifold);
+                let mut fresh = Touching::default();
+                fresh.update_shapes(&shapes, &[], 3, (1, 1));
+                fresh.scan(&bodies, |i| &axes[i][..], 1e-9, manifold);
+                assert_eq!(
+                    pairs(&kept),
+                    pairs(&fresh),
+                    "after '{change}', {manifold:?}"
+                );
+                assert_eq!(kept.found().len(), expected, "after '{change}'");
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, 18);
     }
 }
