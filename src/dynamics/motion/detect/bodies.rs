@@ -188,6 +188,11 @@ pub(crate) struct Touching {
     found_key: Option<FoundKey>,
     other: Found,
     other_key: Option<FoundKey>,
+    /// Each list's serial number: a new one whenever a scan fills a list anew, so that a
+    /// caller can tell a list it has seen (the last `serial` handed out).
+    found_serial: u64,
+    other_serial: u64,
+    serial: u64,
     /// The placement the scans see: counted up whenever a body moved or turned since the
     /// last scan.
     generation: u64,
@@ -349,10 +354,13 @@ impl Touching {
         {
             std::mem::swap(&mut self.found, &mut self.other);
             std::mem::swap(&mut self.found_key, &mut self.other_key);
+            std::mem::swap(&mut self.found_serial, &mut self.other_serial);
         }
         let Some(first) = bodies.first() else {
             self.found.len = 0;
             self.found_key = None;
+            self.serial += 1;
+            self.found_serial = self.serial;
             return;
         };
         let n = first.dim();
@@ -371,6 +379,8 @@ impl Touching {
             return;
         }
         self.found.len = 0;
+        self.serial += 1;
+        self.found_serial = self.serial;
         let candidates = std::mem::take(&mut self.candidates);
         for &(a, b) in &candidates {
             if self.touches(a) && self.touches(b) && !skip.as_ref().is_some_and(|s| s((a, b))) {
@@ -657,6 +667,12 @@ impl Touching {
     }
 
     /// The pairs the last [`Touching::scan`] found.
+    /// The serial number of the list [`Touching::found`] gives: the same as at an earlier
+    /// call only if no scan has filled the list anew since (its pairs are those of then).
+    pub(crate) fn found_serial(&self) -> u64 {
+        self.found_serial
+    }
+
     pub(crate) fn found(&self) -> &[PairContact] {
         &self.found.items[..self.found.len]
     }

@@ -299,9 +299,10 @@ impl MotionSplitting {
                 CONTACT_TOLERANCE,
                 Some(MANIFOLD_SLOP),
             );
-            self.solver.set_pairs(self.touching.found(), bodies);
+            self.solver
+                .set_pairs(self.touching.found(), self.touching.found_serial(), bodies);
         } else {
-            self.solver.pairs.clear();
+            self.solver.clear_pairs();
         }
         self.solver.solve_velocities(
             bodies,

@@ -59,6 +59,12 @@ pub(crate) struct Solver {
     /// row's source among them.
     taken: Vec<bool>,
     sources: Vec<Option<usize>>,
+    /// The serial number of the list of found pairs the pair rows were made from (see
+    /// [`Touching::found_serial`](crate::dynamics::motion::detect::bodies::Touching)), and
+    /// whether the rows were kept from the solve before (the same points at the same
+    /// placement: their K stands).
+    pairs_found: Option<u64>,
+    pairs_kept: bool,
     pub joints: Vec<JointRow>,
     states: Vec<BodyState>,
     work: Dense,
@@ -362,7 +368,10 @@ impl Solver {
         // return their impulses as energy.
         for pair in &mut self.pairs {
             let resting = resting_speed[pair.a].max(resting_speed[pair.b]);
-            pair.prepare(&self.states, resting, 2.0 * kick);
+            if !self.pairs_kept {
+                pair.prepare_mass(&self.states);
+            }
+            pair.prepare_target(&self.states, resting, 2.0 * kick);
             pair.normal_impulse *= warm_scale;
             pair.friction_impulse *= warm_scale;
         }
@@ -747,7 +756,20 @@ impl Solver {
     /// point of a manifold kept from step to step), or else of the same pair's point nearest
     /// to it that no other point took: each of the last solve's impulses goes to one point
     /// at most, so that a manifold whose features changed keeps its total impulse.
-    pub(crate) fn set_pairs(&mut self, found: &[PairContact], bodies: &[MovingBody]) {
+    ///
+    /// `serial` is the found list's serial number: the same list as the last solve's (a
+    /// solve again at the same placement) keeps the rows, their K and their impulses, as
+    /// matching them point by point would give them.
+    pub(crate) fn set_pairs(&mut self, found: &[PairContact], serial: u64, bodies: &[MovingBody]) {
+        self.pairs_kept = self.pairs_found == Some(serial) && self.pairs.len() == found.len();
+        if self.pairs_kept {
+            for row in &mut self.pairs {
+                let along = row.normal.dot(&row.friction_impulse);
+                row.friction_impulse -= &(&row.normal * along);
+            }
+            return;
+        }
+        self.pairs_found = Some(serial);
         let old = std::mem::take(&mut self.pairs);
         let mut rows = std::mem::take(&mut self.spare_pairs);
         rows.clear();
@@ -819,6 +841,12 @@ impl Solver {
         self.spare_pairs = old;
     }
 
+    /// No contacts between bodies.
+    pub(crate) fn clear_pairs(&mut self) {
+        self.pairs.clear();
+        self.pairs_found = None;
+    }
+
     pub(crate) fn release(&mut self) {
         self.joint_factor = false;
         for s in &mut self.states {
@@ -862,16 +890,71 @@ mod tests {
             point: smallvec![x, 0.0, 1.0],
         };
         let mut solver = Solver::default();
-        solver.set_pairs(&[contact(1, -0.5), contact(2, 0.5)], &bodies);
+        solver.set_pairs(&[contact(1, -0.5), contact(2, 0.5)], 1, &bodies);
         solver.pairs[0].normal_impulse = 1.0;
         solver.pairs[1].normal_impulse = 2.0;
         // Both new points lie nearer to the first old one.
-        solver.set_pairs(&[contact(3, -0.4), contact(4, -0.3)], &bodies);
+        solver.set_pairs(&[contact(3, -0.4), contact(4, -0.3)], 2, &bodies);
         let impulses: Vec<f64> = solver.pairs.iter().map(|p| p.normal_impulse).collect();
         assert_eq!(impulses, [1.0, 2.0]);
         // A point of the same features takes its own impulse, the other the one left.
-        solver.set_pairs(&[contact(9, 0.5), contact(4, -0.3)], &bodies);
+        solver.set_pairs(&[contact(9, 0.5), contact(4, -0.3)], 3, &bodies);
         let impulses: Vec<f64> = solver.pairs.iter().map(|p| p.normal_impulse).collect();
         assert_eq!(impulses, [1.0, 2.0]);
+    }
+
+    /// The same list of found pairs again (a solve at the same placement) keeps the rows as
+    /// they are, which is what making them anew and matching each point by its features
+    /// gives: the same points, impulses and friction impulses to the bit.
+    #[test]
+    fn the_same_found_pairs_keep_their_rows_as_matching_would_make_them() {
+        let parsed = parse_body("cuboid:0.5,0.5,0.5+mass=1").unwrap();
+        let body = |z: f64, angle: f64| {
+            MovingBody::new(
+                parsed.mass,
+                parsed.inertia.clone(),
+                Rotor::from_plane_angle(3, 0, 1, angle).unwrap(),
+                &Vector::from_components(&[0.1, 0.0, z]).unwrap(),
+                &Vector::zero(3),
+                &Bivector::zero(3),
+            )
+            .unwrap()
+        };
+        let bodies = [body(0.5, 0.2), body(1.5, -0.3)];
+        let s = 0.6f64.sqrt();
+        let found: Vec<PairContact> = (0..4u64)
+            .map(|k| PairContact {
+                a: 0,
+                b: 1,
+                feature: 10 + k,
+                gap: -1e-3 * k as f64,
+                reach: 1e-9,
+                normal: smallvec![0.2 * s, -0.1, (1.0 - 0.04 * 0.6 - 0.01f64).sqrt()],
+                point: smallvec![0.3 * k as f64 - 0.4, 0.1 * k as f64, 1.0],
+            })
+            .collect();
+        let mut kept = Solver::default();
+        kept.set_pairs(&found, 7, &bodies);
+        for (k, row) in kept.pairs.iter_mut().enumerate() {
+            row.normal_impulse = 0.3 + k as f64;
+            // Not quite tangent, as a solve leaves it to round-off.
+            row.friction_impulse =
+                Vector::from_components(&[0.01, -0.02 * k as f64, 1e-17]).unwrap();
+        }
+        let mut made = kept.clone();
+        kept.set_pairs(&found, 7, &bodies);
+        made.set_pairs(&found, 8, &bodies);
+        assert!(kept.pairs_kept && !made.pairs_kept);
+        assert_eq!(kept.pairs.len(), 4);
+        for (x, y) in kept.pairs.iter().zip(&made.pairs) {
+            assert_eq!(x.feature, y.feature);
+            assert_eq!(x.normal_impulse.to_bits(), y.normal_impulse.to_bits());
+            assert_eq!(x.friction_impulse.as_slice(), y.friction_impulse.as_slice());
+            assert_eq!(x.ra.as_slice(), y.ra.as_slice());
+            assert_eq!(x.rb.as_slice(), y.rb.as_slice());
+            assert_eq!(x.own_a.as_slice(), y.own_a.as_slice());
+            assert_eq!(x.own_b.as_slice(), y.own_b.as_slice());
+            assert_eq!(x.normal.as_slice(), y.normal.as_slice());
+        }
     }
 }

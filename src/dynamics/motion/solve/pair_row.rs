@@ -127,10 +127,8 @@ impl PairRow {
         self.knn
     }
 
-    /// Computes K and its parts at the loaded states, and the target: −e u⁻ for a touching
-    /// point approaching faster than `resting` (an impact), 0 below (resting), and for a
-    /// point still `gap` apart the approach that closes it within a flight of `flight`.
-    pub(crate) fn prepare(&mut self, states: &[BodyState], resting: f64, flight: f64) {
+    /// Computes K and its parts at the loaded states.
+    pub(crate) fn prepare_mass(&mut self, states: &[BodyState]) {
         let n = self.normal.dim();
         self.k.clear();
         self.k.resize(n * n, 0.0);
@@ -158,6 +156,13 @@ impl PairRow {
                     .sum();
             }
         }
+    }
+
+    /// Computes the target at the loaded states: −e u⁻ for a touching point approaching
+    /// faster than `resting` (an impact), 0 below (resting), and for a point still `gap`
+    /// apart the approach that closes it within a flight of `flight`.
+    pub(crate) fn prepare_target(&mut self, states: &[BodyState], resting: f64, flight: f64) {
+        let nv = self.normal.as_slice();
         let un = dot(nv, self.relative_velocity(states).as_slice());
         self.speed = un.abs();
         self.target = if self.gap > self.reach {
