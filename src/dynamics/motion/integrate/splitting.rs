@@ -1049,10 +1049,10 @@ impl MotionIntegrator for MotionSplitting {
     /// solve stops within its tolerance somewhere in that family. Single steps solve twice
     /// at each placement with the same kick, and the second solve starts where the first
     /// stopped; joined solves start from impulses scaled by the ratio of two kicks, and
-    /// their small misfits drift through the family into loads the contacts need not carry
-    /// (cubes side by side squeezing each other), which later solves take thousands of
-    /// sweeps to undo: on a pyramid of 55 cubes nine times as long as single steps (the
-    /// moving-bodies chapter gives the measurement).
+    /// their small misfits drift through the family (points that single steps leave
+    /// unloaded take up load), which later solves take thousands of sweeps to undo: on a
+    /// pyramid of 55 cubes nine times as long as single steps (the moving-bodies chapter
+    /// gives the measurement).
     fn advance(
         &mut self,
         system: &mut System,
