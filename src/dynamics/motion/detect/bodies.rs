@@ -193,6 +193,8 @@ pub(crate) struct Touching {
     found_serial: u64,
     other_serial: u64,
     serial: u64,
+    /// Whether `found` is the list of scans with manifolds (`other` the one without).
+    found_manifolds: bool,
     /// The placement the scans see: counted up whenever a body moved or turned since the
     /// last scan.
     generation: u64,
@@ -345,13 +347,8 @@ impl Touching {
             slop: manifold.map(f64::to_bits),
         };
         // The list of this kind (with manifolds or without) becomes the current one.
-        if self
-            .found_key
-            .is_some_and(|k| k.slop.is_some() != manifold.is_some())
-            || self
-                .other_key
-                .is_some_and(|k| k.slop.is_some() == manifold.is_some())
-        {
+        if self.found_manifolds != manifold.is_some() {
+            self.found_manifolds = manifold.is_some();
             std::mem::swap(&mut self.found, &mut self.other);
             std::mem::swap(&mut self.found_key, &mut self.other_key);
             std::mem::swap(&mut self.found_serial, &mut self.other_serial);

@@ -761,7 +761,7 @@ impl Solver {
     /// solve again at the same placement) keeps the rows, their K and their impulses, as
     /// matching them point by point would give them.
     pub(crate) fn set_pairs(&mut self, found: &[PairContact], serial: u64, bodies: &[MovingBody]) {
-        self.pairs_kept = self.pairs_found == Some(serial) && self.pairs.len() == found.len();
+        self.pairs_kept = self.pairs_found == Some(serial);
         if self.pairs_kept {
             for row in &mut self.pairs {
                 let along = row.normal.dot(&row.friction_impulse);
