@@ -153,6 +153,15 @@ impl Attitude {
         }
     }
 
+    /// The rotor when the attitude is kept as one, to update in place (the 3D and 4D drift
+    /// kernels multiply it by their plane rotors' product without a [`PlaneProduct`]).
+    pub(crate) fn rotor_mut(&mut self) -> Option<&mut Rotor> {
+        match &mut self.repr {
+            Repr::Rotor(r) => Some(r),
+            Repr::Matrix(_) => None,
+        }
+    }
+
     /// Returns the attitude as a rotor. For N ≤ [`Attitude::ROTOR_MAX_DIM`] this is the rotor
     /// itself, with the sign it has carried continuously through the motion; above, it is
     /// the rotor of the matrix with the sign [`Rotor::from_matrix`] chooses (a rotation
@@ -506,12 +515,6 @@ impl PlaneProduct {
             d: SmallVec::from_elem(0.0, len),
             rotor,
         }
-    }
-
-    /// The even coefficients of D = P − 1 for a rotor attitude (the splitting's unrolled
-    /// kernels for N = 3, 4 update them directly); `None` for a matrix attitude.
-    pub(crate) fn rotor_increment_mut(&mut self) -> Option<&mut [f64]> {
-        self.rotor.then_some(&mut self.d[..])
     }
 
     /// P ← P G with G the turn by θ in the body plane eᵢ∧eⱼ (from eᵢ toward eⱼ): the rotor

@@ -594,7 +594,14 @@ impl Rotor {
     /// coefficient of R is rounded once. No allocation for N ≤ 5.
     pub(crate) fn times_one_plus(&mut self, d: &[f64]) {
         debug_assert_eq!(d.len(), self.coeffs.len());
-        let mut rd: RotorStorage = crate::numeric::zeros(self.coeffs.len());
+        let len = self.coeffs.len();
+        if len <= INLINE_LEN {
+            let mut rd = [0.0; INLINE_LEN];
+            even_product_into(self.dim, &self.coeffs, d, &mut rd[..len]);
+            self.coeffs.iter_mut().zip(&rd).for_each(|(r, x)| *r += x);
+            return;
+        }
+        let mut rd: RotorStorage = crate::numeric::zeros(len);
         even_product_into(self.dim, &self.coeffs, d, &mut rd);
         self.coeffs.iter_mut().zip(&rd).for_each(|(r, x)| *r += x);
     }

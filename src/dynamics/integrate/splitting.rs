@@ -437,15 +437,14 @@ impl<const K: usize, const LP: usize, const RP: usize> RotorDrift<K, LP, RP> {
     /// [`Self::drift`] given the planes' inverse moments (or rates 1/I_p − 1/I_K).
     fn drift_inverse(&self, body: &mut RigidBody, inverse: &[f64], h: f64, start: Option<&[f64]>) {
         let (attitude, momentum) = body.state_mut();
-        let mut turn = PlaneProduct::identity_for(attitude);
-        let d = turn
-            .rotor_increment_mut()
-            .expect("a rotor attitude for N ≤ 4");
+        let rotor = attitude.rotor_mut().expect("a rotor attitude for N ≤ 4");
+        let mut increment = [0.0; 8];
+        let d = &mut increment[..rotor.as_slice().len()];
         if let Some(start) = start {
             d.copy_from_slice(start);
         }
         self.drift_slices(momentum.as_mut_slice(), d, inverse, h);
-        turn.apply_to(attitude);
+        rotor.times_one_plus(d);
     }
 
     /// The drift on the momentum `l` and the rotor increment `d` (the attitude's update is
@@ -707,12 +706,10 @@ fn isotropic_flight(body: &mut RigidBody, inverse: f64, h: f64) {
         *a = -0.5 * h * inverse * x;
     }
     let (seed, len) = exp_seed_3d_4d(&turn[..l.len()]).expect("N = 3 or 4");
-    let mut product = PlaneProduct::identity_for(attitude);
-    product
-        .rotor_increment_mut()
+    attitude
+        .rotor_mut()
         .expect("a rotor attitude for N ≤ 4")
-        .copy_from_slice(&seed[..len]);
-    product.apply_to(attitude);
+        .times_one_plus(&seed[..len]);
 }
 
 #[cfg(test)]
