@@ -26,6 +26,7 @@ use crate::algebra::Vector;
 use crate::dynamics::motion::MovingBody;
 use crate::dynamics::motion::contact::ContactLog;
 use crate::dynamics::motion::placement::dot;
+use smallvec::SmallVec;
 
 /// No body: the half-space side of a contact with a half-space.
 pub(crate) const NO_BODY: usize = usize::MAX;
@@ -501,7 +502,7 @@ impl SoftSolver {
                         .sum();
                 }
             }
-            row.approach = normal_velocity::<N>(&self.flat, row, d, &l, l.normal, l.arms);
+            row.approach = row_velocity::<N>(&self.flat, row, d, &l, (l.normal, l.arms));
             row.max_normal_impulse = 0.0;
             row.total_normal_impulse = 0.0;
             d[l.total_tangent..l.total_tangent + n - 1].fill(0.0);
@@ -563,7 +564,8 @@ impl SoftSolver {
                 any |= add_impulse::<N>(sum, d, &l, dir, arms, d[l.tangent_impulse + t]);
             }
             if any {
-                apply_sum::<N>(&mut self.flat, row, &l, sum);
+                Ends::of(&mut self.flat, (row.a, row.b), n + l.m)
+                    .give::<N>((&sum[..n], &sum[n..]), 1.0);
             }
         }
         for _ in 0..passes {
@@ -642,7 +644,7 @@ impl SoftSolver {
                 let (dir, arms) = (l.tangents + t * n, l.tangent_arms + 4 * t * l.m);
                 let (along, vt) = (
                     d[l.total_tangent + t],
-                    normal_velocity::<0>(&self.flat, row, d, &l, dir, arms),
+                    row_velocity::<0>(&self.flat, row, d, &l, (dir, arms)),
                 );
                 for i in 0..n {
                     f[i] += along * d[dir + i];
@@ -723,93 +725,60 @@ impl SoftSolver {
     /// One Gauss–Seidel pass over the rows: with `soft` the springs push overlaps out (at
     /// most at `push_out`), without only speculative gaps bias the velocities.
     fn pass<const N: usize>(&mut self, h: f64, soft: Option<(Softness, Softness)>, push_out: f64) {
-        // The points of one manifold (consecutive rows of one pair) take their normal
-        // impulses first and then their friction, as in Box2D: friction then answers the
-        // normal impulses of the whole face, not of the points before it.
+        // The points of one manifold (consecutive rows of one pair) update copies of the
+        // pair's two velocities, written back once: each update waits for the last one's,
+        // and in 3D and 4D the copies are arrays the compiler keeps in registers, with no
+        // store and load between two updates.
+        let bias = (h, soft, push_out);
+        match N {
+            3 => self.pass_with::<N, [f64; 6]>(bias, || [0.0; 6]),
+            4 => self.pass_with::<N, [f64; 10]>(bias, || [0.0; 10]),
+            _ => {
+                let stride = self.layout.n + self.layout.m;
+                self.pass_with::<N, SmallVec<[f64; 36]>>(bias, || SmallVec::from_elem(0.0, stride))
+            }
+        }
+    }
+
+    /// [`Self::pass`] with the pair's velocities in copies made by `room` (N + M each).
+    #[inline(always)]
+    fn pass_with<const N: usize, V: AsRef<[f64]> + AsMut<[f64]>>(
+        &mut self,
+        bias: (f64, Option<(Softness, Softness)>, f64),
+        room: impl Fn() -> V,
+    ) {
+        let l = layout::<N>(&self.layout);
+        let stride = dim::<N>(l.n) + l.m;
+        let SoftSolver {
+            rows,
+            data,
+            flat,
+            scratch,
+            separations,
+            ..
+        } = self;
+        // The points of a manifold take their normal impulses first and then their
+        // friction, as in Box2D: friction then answers the normal impulses of the whole
+        // face, not of the points before it.
         let mut start = 0;
-        while start < self.rows.len() {
-            let (a, b) = (self.rows[start].a, self.rows[start].b);
+        while start < rows.len() {
+            let (a, b) = (rows[start].a, rows[start].b);
             let end = start
-                + self.rows[start..]
+                + rows[start..]
                     .iter()
                     .take_while(|r| r.a == a && r.b == b)
                     .count();
+            let mut pair = Ends::copy(flat, (a, b), stride, (room(), room()));
             for k in start..end {
-                self.normal_update::<N>(k, h, soft, push_out);
+                let d = &data[k * l.stride..(k + 1) * l.stride];
+                normal_update::<N, V>(&mut rows[k], d, &l, &mut pair, separations[k], bias);
             }
             for k in start..end {
-                self.friction_update::<N>(k);
+                let d = &mut data[k * l.stride..(k + 1) * l.stride];
+                friction_update::<N, V>(&rows[k], d, &l, &mut pair, scratch);
             }
+            pair.write_back(flat, (a, b));
             start = end;
-        }
-    }
-
-    /// The normal update of row `k` (see [`Self::pass`]).
-    #[inline(always)]
-    fn normal_update<const N: usize>(
-        &mut self,
-        k: usize,
-        h: f64,
-        soft: Option<(Softness, Softness)>,
-        push_out: f64,
-    ) {
-        let l = layout::<N>(&self.layout);
-        let s = self.separations[k];
-        let row = &mut self.rows[k];
-        let d = &self.data[k * l.stride..(k + 1) * l.stride];
-        let (mut bias, mut mass_scale, mut impulse_scale) = (0.0, 1.0, 0.0);
-        if s > 0.0 {
-            bias = s / h;
-        } else if let Some((between, against_fixed)) = soft {
-            let sp = if row.fixed { against_fixed } else { between };
-            bias = (sp.bias_rate * s).max(-push_out);
-            mass_scale = sp.mass_scale;
-            impulse_scale = sp.impulse_scale;
-        }
-        let vn = normal_velocity::<N>(&self.flat, row, d, &l, l.normal, l.arms);
-        let impulse =
-            -row.normal_mass * mass_scale * (vn + bias) - impulse_scale * row.normal_impulse;
-        let new = (row.normal_impulse + impulse).max(0.0);
-        let change = new - row.normal_impulse;
-        row.normal_impulse = new;
-        row.max_normal_impulse = row.max_normal_impulse.max(new);
-        apply::<N>(&mut self.flat, row, d, &l, l.normal, l.arms, change);
-    }
-
-    /// The friction update of row `k`: each tangent direction's sticking update, then the
-    /// projection onto the disc |J_t| ≤ μλ.
-    #[inline(always)]
-    fn friction_update<const N: usize>(&mut self, k: usize) {
-        let l = layout::<N>(&self.layout);
-        let n = dim::<N>(l.n);
-        let row = &self.rows[k];
-        let limit = row.friction * row.normal_impulse;
-        let (total, rest) = self.scratch.split_at_mut(n);
-        let d = &mut self.data[k * l.stride..(k + 1) * l.stride];
-        for t in 0..n - 1 {
-            let (dir, arms) = (l.tangents + t * n, l.tangent_arms + 4 * t * l.m);
-            let vt = normal_velocity::<N>(&self.flat, row, d, &l, dir, arms);
-            total[t] = d[l.tangent_impulse + t] - d[l.tangent_mass + t] * vt;
-        }
-        // The square root only for a point that slides (a sticking point stays inside).
-        let squared = total[..n - 1].iter().map(|x| x * x).sum::<f64>();
-        if squared > limit * limit {
-            let norm = squared.sqrt();
-            let scale = if norm > 0.0 { limit / norm } else { 0.0 };
-            total[..n - 1].iter_mut().for_each(|x| *x *= scale);
-        }
-        // The changes along the tangents summed, then given to the bodies at once.
-        let mut fixed = [0.0; 16];
-        let sum = sum_room::<N>(&mut fixed, rest, &l);
-        let mut any = false;
-        for t in 0..n - 1 {
-            let (dir, arms) = (l.tangents + t * n, l.tangent_arms + 4 * t * l.m);
-            let change = total[t] - d[l.tangent_impulse + t];
-            any |= add_impulse::<N>(sum, d, &l, dir, arms, change);
-            d[l.tangent_impulse + t] = total[t];
-        }
-        if any {
-            apply_sum::<N>(&mut self.flat, row, &l, sum);
         }
     }
 
@@ -824,12 +793,13 @@ impl SoftSolver {
                 continue;
             }
             let d = &self.data[k * l.stride..(k + 1) * l.stride];
-            let vn = normal_velocity::<N>(&self.flat, row, d, &l, l.normal, l.arms);
+            let mut pair = Ends::of(&mut self.flat, (row.a, row.b), l.n + l.m);
+            let vn = pair.velocity::<N>(d, &l, l.normal, l.arms);
             let impulse = -row.normal_mass * (vn + row.restitution * row.approach);
             let new = (row.normal_impulse + impulse).max(0.0);
             let change = new - row.normal_impulse;
             row.normal_impulse = new;
-            apply::<N>(&mut self.flat, row, d, &l, l.normal, l.arms, change);
+            pair.apply::<N>(d, &l, l.normal, l.arms, change);
         }
     }
 }
@@ -871,28 +841,74 @@ fn set_arms<const N: usize>(
     kk
 }
 
-/// The relative velocity of a row's two points along the direction at `dir` in its vectors
-/// `d`, whose arms start at `arms` (c_a, c_b, w_a, w_b); `N` as in [`dim`].
+/// The normal update of a row with vectors `d` and separation `s` (see
+/// [`SoftSolver::pass`]): `(h, soft, push_out)` as there.
 #[inline(always)]
-fn normal_velocity<const N: usize>(
-    flat: &Flat,
-    row: &SoftRow,
+fn normal_update<const N: usize, V: AsRef<[f64]> + AsMut<[f64]>>(
+    row: &mut SoftRow,
     d: &[f64],
     l: &Layout,
-    dir: usize,
-    arms: usize,
-) -> f64 {
-    let n = dim::<N>(l.n);
-    let m = n * (n - 1) / 2;
-    let stride = n + m;
-    let e = &d[dir..dir + n];
-    let xb = &flat.vel[row.b * stride..(row.b + 1) * stride];
-    let mut u = dot(e, &xb[..n]) + dot(&d[arms + m..arms + 2 * m], &xb[n..]);
-    if row.a != NO_BODY {
-        let xa = &flat.vel[row.a * stride..(row.a + 1) * stride];
-        u -= dot(e, &xa[..n]) + dot(&d[arms..arms + m], &xa[n..]);
+    pair: &mut Ends<V>,
+    s: f64,
+    (h, soft, push_out): (f64, Option<(Softness, Softness)>, f64),
+) {
+    let (mut bias, mut mass_scale, mut impulse_scale) = (0.0, 1.0, 0.0);
+    if s > 0.0 {
+        bias = s / h;
+    } else if let Some((between, against_fixed)) = soft {
+        let sp = if row.fixed { against_fixed } else { between };
+        bias = (sp.bias_rate * s).max(-push_out);
+        mass_scale = sp.mass_scale;
+        impulse_scale = sp.impulse_scale;
     }
-    u
+    let vn = pair.velocity::<N>(d, l, l.normal, l.arms);
+    let impulse = -row.normal_mass * mass_scale * (vn + bias) - impulse_scale * row.normal_impulse;
+    let new = (row.normal_impulse + impulse).max(0.0);
+    let change = new - row.normal_impulse;
+    row.normal_impulse = new;
+    row.max_normal_impulse = row.max_normal_impulse.max(new);
+    pair.apply::<N>(d, l, l.normal, l.arms, change);
+}
+
+/// The friction update of a row with vectors `d`: each tangent direction's sticking
+/// update, then the projection onto the disc |J_t| ≤ μλ (`scratch` as
+/// [`SoftSolver::scratch`]).
+#[inline(always)]
+fn friction_update<const N: usize, V: AsRef<[f64]> + AsMut<[f64]>>(
+    row: &SoftRow,
+    d: &mut [f64],
+    l: &Layout,
+    pair: &mut Ends<V>,
+    scratch: &mut [f64],
+) {
+    let n = dim::<N>(l.n);
+    let limit = row.friction * row.normal_impulse;
+    let (total, rest) = scratch.split_at_mut(n);
+    for t in 0..n - 1 {
+        let (dir, arms) = (l.tangents + t * n, l.tangent_arms + 4 * t * l.m);
+        let vt = pair.velocity::<N>(d, l, dir, arms);
+        total[t] = d[l.tangent_impulse + t] - d[l.tangent_mass + t] * vt;
+    }
+    // The square root only for a point that slides (a sticking point stays inside).
+    let squared = total[..n - 1].iter().map(|x| x * x).sum::<f64>();
+    if squared > limit * limit {
+        let norm = squared.sqrt();
+        let scale = if norm > 0.0 { limit / norm } else { 0.0 };
+        total[..n - 1].iter_mut().for_each(|x| *x *= scale);
+    }
+    // The changes along the tangents summed, then given to the bodies at once.
+    let mut fixed = [0.0; 16];
+    let sum = sum_room::<N>(&mut fixed, rest, l);
+    let mut any = false;
+    for t in 0..n - 1 {
+        let (dir, arms) = (l.tangents + t * n, l.tangent_arms + 4 * t * l.m);
+        let change = total[t] - d[l.tangent_impulse + t];
+        any |= add_impulse::<N>(sum, d, l, dir, arms, change);
+        d[l.tangent_impulse + t] = total[t];
+    }
+    if any {
+        pair.give::<N>((&sum[..n], &sum[n..]), 1.0);
+    }
 }
 
 /// Room for the sum of a row's impulses ([`add_impulse`]): the impulse in space (N), then
@@ -941,61 +957,166 @@ fn add_impulse<const N: usize>(
     true
 }
 
-/// Gives body b the impulse λ e at its point and body a the opposite (e at `dir` in the
-/// row's vectors `d`, its arms at `arms`); `N` as in [`dim`].
+/// The relative velocity of a row's two points along the direction at `dir` in its vectors
+/// `d`, whose arms start at `arms` (c_a, c_b, w_a, w_b), given the bodies' velocities (v,
+/// then ω in space; none for a half-space); `N` as in [`dim`].
 #[inline(always)]
-fn apply<const N: usize>(
-    flat: &mut Flat,
+fn point_velocity<const N: usize>(
+    (xa, xb): (Option<&[f64]>, &[f64]),
+    d: &[f64],
+    l: &Layout,
+    (dir, arms): (usize, usize),
+) -> f64 {
+    let n = dim::<N>(l.n);
+    let m = n * (n - 1) / 2;
+    let e = &d[dir..dir + n];
+    let xb = &xb[..n + m];
+    let mut u = dot(e, &xb[..n]) + dot(&d[arms + m..arms + 2 * m], &xb[n..]);
+    if let Some(xa) = xa {
+        let xa = &xa[..n + m];
+        u -= dot(e, &xa[..n]) + dot(&d[arms..arms + m], &xa[n..]);
+    }
+    u
+}
+
+/// [`point_velocity`] of row `row` with the bodies' velocities in `flat`.
+fn row_velocity<const N: usize>(
+    flat: &Flat,
     row: &SoftRow,
     d: &[f64],
     l: &Layout,
-    dir: usize,
-    arms: usize,
-    lambda: f64,
-) {
-    if lambda == 0.0 {
-        return;
+    at: (usize, usize),
+) -> f64 {
+    let stride = l.n + l.m;
+    let body = |i: usize| &flat.vel[i * stride..(i + 1) * stride];
+    let xa = (row.a != NO_BODY).then(|| body(row.a));
+    point_velocity::<N>((xa, body(row.b)), d, l, at)
+}
+
+/// The velocities (v, then ω in space: N + M each) of a row's two bodies, as its updates
+/// read and change them (slices of [`Flat`], or copies of them), and the bodies' inverse
+/// masses (0 for a half-space or a fixed body, which take no impulse).
+struct Ends<V> {
+    a: V,
+    b: V,
+    has_a: bool,
+    inv_mass: (f64, f64),
+}
+
+impl<'a> Ends<&'a mut [f64]> {
+    /// The bodies `(a, b)`'s velocities in `flat` itself (`stride` = N + M).
+    fn of(flat: &'a mut Flat, (a, b): (usize, usize), stride: usize) -> Self {
+        let inv_mass = (
+            if a == NO_BODY { 0.0 } else { flat.inv_mass[a] },
+            flat.inv_mass[b],
+        );
+        let vel = &mut flat.vel[..];
+        let (va, vb): (&mut [f64], &mut [f64]) = if a == NO_BODY {
+            (&mut [], &mut vel[b * stride..(b + 1) * stride])
+        } else if a < b {
+            let (low, high) = vel.split_at_mut(b * stride);
+            (&mut low[a * stride..(a + 1) * stride], &mut high[..stride])
+        } else {
+            let (low, high) = vel.split_at_mut(a * stride);
+            (&mut high[..stride], &mut low[b * stride..(b + 1) * stride])
+        };
+        Ends {
+            a: va,
+            b: vb,
+            has_a: a != NO_BODY,
+            inv_mass,
+        }
     }
-    let n = dim::<N>(l.n);
-    let m = n * (n - 1) / 2;
-    let w = &d[arms + 2 * m..arms + 4 * m];
-    give::<N>(flat, row, l, (&d[dir..dir + n], w), lambda);
 }
 
-/// Gives body b the summed impulse of [`sum_room`] and body a the opposite; `N` as in
-/// [`dim`].
-#[inline(always)]
-fn apply_sum<const N: usize>(flat: &mut Flat, row: &SoftRow, l: &Layout, sum: &[f64]) {
-    let n = dim::<N>(l.n);
-    give::<N>(flat, row, l, (&sum[..n], &sum[n..]), 1.0);
-}
+impl<V: AsRef<[f64]> + AsMut<[f64]>> Ends<V> {
+    /// Copies of the bodies `(a, b)`'s velocities in `room` (`stride` = N + M each), to
+    /// write back with [`Ends::write_back`].
+    #[inline(always)]
+    fn copy(flat: &Flat, (a, b): (usize, usize), stride: usize, mut room: (V, V)) -> Self {
+        if a != NO_BODY {
+            room.0
+                .as_mut()
+                .copy_from_slice(&flat.vel[a * stride..(a + 1) * stride]);
+        }
+        room.1
+            .as_mut()
+            .copy_from_slice(&flat.vel[b * stride..(b + 1) * stride]);
+        Ends {
+            a: room.0,
+            b: room.1,
+            has_a: a != NO_BODY,
+            inv_mass: (
+                if a == NO_BODY { 0.0 } else { flat.inv_mass[a] },
+                flat.inv_mass[b],
+            ),
+        }
+    }
 
-/// Gives body b the impulse λ e and the angular velocities λ w_b, body a the opposite
-/// (`e` and `w` = (w_a, w_b), M each); `N` as in [`dim`].
-#[inline(always)]
-fn give<const N: usize>(
-    flat: &mut Flat,
-    row: &SoftRow,
-    l: &Layout,
-    (e, w): (&[f64], &[f64]),
-    lambda: f64,
-) {
-    let n = dim::<N>(l.n);
-    let m = n * (n - 1) / 2;
-    let stride = n + m;
-    for (sign, body, side) in [(-1.0, row.a, 0), (1.0, row.b, 1)] {
-        if body == NO_BODY || flat.inv_mass[body] == 0.0 {
-            continue;
+    /// Writes the copies of [`Ends::copy`] back to the bodies that can move.
+    #[inline(always)]
+    fn write_back(&self, flat: &mut Flat, (a, b): (usize, usize)) {
+        let stride = self.b.as_ref().len();
+        if self.inv_mass.0 != 0.0 {
+            flat.vel[a * stride..(a + 1) * stride].copy_from_slice(self.a.as_ref());
         }
-        let j = sign * lambda;
-        let scaled = j * flat.inv_mass[body];
-        let w = &w[side * m..(side + 1) * m];
-        let vel = &mut flat.vel[body * stride..(body + 1) * stride];
-        for i in 0..n {
-            vel[i] += scaled * e[i];
+        if self.inv_mass.1 != 0.0 {
+            flat.vel[b * stride..(b + 1) * stride].copy_from_slice(self.b.as_ref());
         }
-        for i in 0..m {
-            vel[n + i] += j * w[i];
+    }
+
+    /// The relative velocity of the row's two points along the direction at `dir` in its
+    /// vectors `d`, whose arms start at `arms` (c_a, c_b, w_a, w_b); `N` as in [`dim`].
+    #[inline(always)]
+    fn velocity<const N: usize>(&self, d: &[f64], l: &Layout, dir: usize, arms: usize) -> f64 {
+        let xa = self.has_a.then_some(self.a.as_ref());
+        point_velocity::<N>((xa, self.b.as_ref()), d, l, (dir, arms))
+    }
+
+    /// Gives body b the impulse λ e at its point and body a the opposite (e at `dir` in
+    /// the row's vectors `d`, its arms at `arms`); `N` as in [`dim`].
+    #[inline(always)]
+    fn apply<const N: usize>(
+        &mut self,
+        d: &[f64],
+        l: &Layout,
+        dir: usize,
+        arms: usize,
+        lambda: f64,
+    ) {
+        if lambda == 0.0 {
+            return;
+        }
+        let n = dim::<N>(l.n);
+        let m = n * (n - 1) / 2;
+        let w = &d[arms + 2 * m..arms + 4 * m];
+        self.give::<N>((&d[dir..dir + n], w), lambda);
+    }
+
+    /// Gives body b the impulse λ e and the angular velocities λ w_b, body a the opposite
+    /// (`e` and `w` = (w_a, w_b), M each); `N` as in [`dim`].
+    #[inline(always)]
+    fn give<const N: usize>(&mut self, (e, w): (&[f64], &[f64]), lambda: f64) {
+        let n = e.len();
+        let n = dim::<N>(n);
+        let m = n * (n - 1) / 2;
+        for (sign, vel, inv_mass, side) in [
+            (-1.0, self.a.as_mut(), self.inv_mass.0, 0),
+            (1.0, self.b.as_mut(), self.inv_mass.1, 1),
+        ] {
+            if inv_mass == 0.0 {
+                continue;
+            }
+            let j = sign * lambda;
+            let scaled = j * inv_mass;
+            let w = &w[side * m..(side + 1) * m];
+            let vel = &mut vel[..n + m];
+            for i in 0..n {
+                vel[i] += scaled * e[i];
+            }
+            for i in 0..m {
+                vel[n + i] += j * w[i];
+            }
         }
     }
 }
