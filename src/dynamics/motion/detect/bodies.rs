@@ -2,6 +2,7 @@
 //! whose bounding balls come within reach (the broad phase), and for each such pair the
 //! signed distance, the contact normal and the contact point (the narrow phase).
 
+use super::epa::box_and_ball;
 use super::manifold::box_manifold_on_axis;
 use super::sat::{box_box_unchecked, box_box_within};
 use super::{
@@ -848,8 +849,14 @@ fn convex_pair(
     ) else {
         return;
     };
-    let Ok(p) = penetration_with(workspace, &pa, &pb) else {
-        return;
+    // A ball against a box given by its corners: the closed form the query keeps for
+    // cuboid cores, instead of GJK on the corners.
+    let p = match box_and_ball(&pa, &pb, (sa.cuboid, sb.cuboid)) {
+        Some(p) => p,
+        None => match penetration_with(workspace, &pa, &pb) {
+            Ok(p) => p,
+            Err(_) => return,
+        },
     };
     if -p.depth > reach {
         return;
