@@ -1034,11 +1034,17 @@ mod tests {
             for _ in 0..300 {
                 let h: Vec<f64> = (0..n).map(|_| r.gen_range(0.2..1.5)).collect();
                 let corners: Vec<Vec<f64>> = (0..1usize << n)
-                    .map(|p| (0..n).map(|i| if p >> i & 1 == 1 { h[i] } else { -h[i] }).collect())
+                    .map(|p| {
+                        (0..n)
+                            .map(|i| if p >> i & 1 == 1 { h[i] } else { -h[i] })
+                            .collect()
+                    })
                     .collect();
                 let hull = ConvexShape::hull(&corners).unwrap();
                 let ball = ConvexShape::ball(n, r.gen_range(0.1..1.0)).unwrap();
-                let turn: Vec<f64> = (0..n * (n - 1) / 2).map(|_| r.gen_range(-3.0..3.0)).collect();
+                let turn: Vec<f64> = (0..n * (n - 1) / 2)
+                    .map(|_| r.gen_range(-3.0..3.0))
+                    .collect();
                 let attitude =
                     Attitude::identity(n).times_exp(&Bivector::from_components(n, &turn).unwrap());
                 let q: Vec<f64> = attitude.to_matrix().transpose().as_slice().to_vec();
@@ -1050,16 +1056,19 @@ mod tests {
                 assert!(general.iterations > 0, "GJK ran on the hull");
                 let fast = box_and_ball(&a, &b, (Some(&h), None)).unwrap();
                 let swapped = box_and_ball(&b, &a, (None, Some(&h))).unwrap();
-                let close = |x: &[f64], y: &[f64], sign: f64| {
-                    x.iter().zip(y).all(|(p, q)| (p - sign * q).abs() < 1e-9)
-                };
                 assert!((fast.depth - general.depth).abs() < 1e-9, "N = {n}");
                 assert_eq!(swapped.depth, fast.depth);
-                assert!(close(fast.normal.as_slice(), general.normal.as_slice(), 1.0));
-                assert!(close(swapped.normal.as_slice(), general.normal.as_slice(), -1.0));
-                assert!(close(fast.witness_a.as_slice(), general.witness_a.as_slice(), 1.0));
-                assert!(close(swapped.witness_b.as_slice(), general.witness_a.as_slice(), 1.0));
-                assert!(close(fast.witness_b.as_slice(), general.witness_b.as_slice(), 1.0));
+                // (closed form, GJK and EPA, sign): the swapped pair's normal is reversed.
+                for (x, y, sign) in [
+                    (&fast.normal, &general.normal, 1.0),
+                    (&swapped.normal, &general.normal, -1.0),
+                    (&fast.witness_a, &general.witness_a, 1.0),
+                    (&swapped.witness_b, &general.witness_a, 1.0),
+                    (&fast.witness_b, &general.witness_b, 1.0),
+                ] {
+                    let mut pairs = x.as_slice().iter().zip(y.as_slice());
+                    assert!(pairs.all(|(p, q)| (p - sign * q).abs() < 1e-9), "N = {n}");
+                }
                 // Where the ball's centre lies inside the box, both go out through its
                 // nearest face.
                 let inside_box = fast.depth > ball.margin();
@@ -1067,6 +1076,9 @@ mod tests {
                 inside += usize::from(inside_box);
             }
         }
-        assert!(apart > 200 && inside > 50, "{apart} apart, {inside} centres inside");
+        assert!(
+            apart > 200 && inside > 50,
+            "{apart} apart, {inside} centres inside"
+        );
     }
 }
