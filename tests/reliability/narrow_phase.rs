@@ -323,6 +323,9 @@ struct Tally {
     smooth_overlaps: usize,
     /// Per dimension N = 2 … 6.
     smooth_gap: [f64; 5],
+    /// Overlapping pairs of an ellipsoid and an ellipsoid or a ball, whose depth is
+    /// exact (Newton's method from EPA's normal) and checked as the polytopes' is.
+    exact_smooth: usize,
     /// Overlapping polytope pairs in N ≥ 5 whose EPA depth fell short of the translation
     /// along its normal (a lower bound: the expansion stopped early, at its facet cap or a
     /// degenerate facet), and the largest shortfall relative to the size.
@@ -350,6 +353,7 @@ impl Tally {
         self.wrong += o.wrong;
         self.nonfinite += o.nonfinite;
         self.smooth_overlaps += o.smooth_overlaps;
+        self.exact_smooth += o.exact_smooth;
         for (a, b) in self.smooth_gap.iter_mut().zip(o.smooth_gap) {
             *a = a.max(b);
         }
@@ -542,9 +546,21 @@ fn every_kind_run(seed: u64, n: usize, pairs: usize) -> Tally {
                 .max(reference::norm(&apart) - ra - rb);
             note("no common point", common.min(margins));
             let m = p.normal.as_slice();
+            // An ellipsoid against a ball or an ellipsoid is refined to the exact depth;
+            // against a polytope or a segment EPA's depth is a lower bound.
+            let round = |x: &reference::Posed| {
+                matches!(x.shape.core(), ConvexCore::Ellipsoid(_) | ConvexCore::Point)
+            };
             let smooth = [&pa, &pb]
                 .iter()
-                .any(|x| matches!(x.shape.core(), ConvexCore::Ellipsoid(_)));
+                .any(|x| matches!(x.shape.core(), ConvexCore::Ellipsoid(_)))
+                && !(round(&pa) && round(&pb));
+            let exact_smooth = round(&pa)
+                && round(&pb)
+                && [&pa, &pb]
+                    .iter()
+                    .any(|x| matches!(x.shape.core(), ConvexCore::Ellipsoid(_)));
+            t.exact_smooth += usize::from(exact_smooth);
             let along = translation(m);
             if smooth {
                 t.smooth_overlaps += 1;
@@ -679,13 +695,17 @@ fn every_kind_report(t: &Tally, panicked: usize, expected: usize) {
             .join(", ")
     );
     println!(
-        "  overlapping pairs with an ellipsoid core (EPA depth a lower bound): {}, largest gap to the translation along the normal, relative to the size, for N = 2 … 6: {}",
+        "  overlapping pairs of an ellipsoid and a polytope or a segment (EPA depth a lower bound): {}, largest gap to the translation along the normal, relative to the size, for N = 2 … 6: {}",
         t.smooth_overlaps,
         t.smooth_gap
             .iter()
             .map(|g| format!("{g:.1e}"))
             .collect::<Vec<_>>()
             .join(", ")
+    );
+    println!(
+        "  overlapping pairs of an ellipsoid and an ellipsoid or a ball (exact depth, checked as the polytopes'): {}",
+        t.exact_smooth
     );
     println!(
         "  pairs whose GJK stopped uncertified at its iteration bound with an error between 1e-9 and 1e-8 of the size: {}, largest {:e}",
@@ -697,6 +717,11 @@ fn every_kind_report(t: &Tally, panicked: usize, expected: usize) {
     );
     assert_eq!(t.pairs + panicked, expected);
     assert_eq!((t.wrong, t.nonfinite, panicked), (0, 0, 0));
+    assert!(
+        t.exact_smooth >= expected / 100,
+        "{} exact smooth pairs",
+        t.exact_smooth
+    );
     assert!(t.gjk_iterations <= 512 && t.epa_iterations <= 512 + 256);
     let least = expected / (CONFIGURATIONS.len() * 4);
     assert!(

@@ -31,6 +31,7 @@ use super::gjk::{
     GjkResult, PlacedShape, Points, Simplex, centre_direction, check_pair, curved, gjk,
     nearest_point, project_onto_face, support_difference,
 };
+use super::smooth::smooth_depth;
 use crate::algebra::Vector;
 use crate::dynamics::motion::shape::{ConvexCore, Coords, ShapeError};
 use crate::numeric::orthogonalize_twice;
@@ -941,12 +942,16 @@ pub fn penetration(a: &PlacedShape, b: &PlacedShape) -> Result<Penetration, Shap
 /// never NaN. EPA is exact for polytopes up to N = 4, to the round-off of the thin facets
 /// of very unequal shapes (a slab 1/16 thick in a polytope of size 4e5 came out 4e-8 of the
 /// size short, `tests/reliability/fuzz_regressions.rs`); above, the facet cap can stop it
-/// with a lower bound of the depth. On smooth cores (ellipsoids) it stops at those bounds,
-/// or where its least support reach and its nearest facet come within 1e-9 of the size,
-/// with a lower bound of the depth whose normal is inexact: on random overlapping pairs
-/// (`tests/reliability/narrow_phase.rs` prints the figures) the translation along the
-/// normal that separates the shapes exceeded the depth by up to about 1e-6 of the pair's
-/// size in 2D, 1e-2 in 3D, 0.1 in 4D and half of it in 5 and 6 dimensions.
+/// with a lower bound of the depth. Where both cores are smooth (an ellipsoid against an
+/// ellipsoid or a ball) EPA's normal starts Newton's method on the sphere of directions,
+/// which gives the exact depth, its normal and witnesses (`smooth.rs`; from more starts
+/// when the minimum lies above EPA's lower bound by more than 1e-9 of the size). An
+/// ellipsoid against a polytope or a segment keeps EPA's answer: it stops at the bounds
+/// above, or where its least support reach and its nearest facet come within 1e-9 of the
+/// size, with a lower bound of the depth whose normal is inexact: on random overlapping
+/// pairs (`tests/reliability/narrow_phase.rs` prints the figures) the translation along the
+/// normal that separates the shapes exceeded the depth by up to about 1e-7 of the pair's
+/// size in 2D and 3D, 2e-5 in 4D, a tenth of it in 5D and a third in 6D.
 ///
 /// ```
 /// use rotorflow::dynamics::motion::detect::{EpaWorkspace, PlacedShape, penetration_with};
@@ -990,9 +995,16 @@ pub fn penetration_with(
         for (x, y) in normal.as_mut_slice().iter_mut().zip(&core.normal_k) {
             *x = -y;
         }
-        witness_a.as_mut_slice().copy_from_slice(&core.witness_a);
-        witness_b.as_mut_slice().copy_from_slice(&core.witness_b);
-        (core.depth, result.iterations + core.iterations)
+        if let Some(exact) = smooth_depth(a, b, normal.as_slice(), core.depth) {
+            normal.as_mut_slice().copy_from_slice(&exact.normal);
+            witness_a.as_mut_slice().copy_from_slice(&exact.witness_a);
+            witness_b.as_mut_slice().copy_from_slice(&exact.witness_b);
+            (exact.depth, result.iterations + core.iterations)
+        } else {
+            witness_a.as_mut_slice().copy_from_slice(&core.witness_a);
+            witness_b.as_mut_slice().copy_from_slice(&core.witness_b);
+            (core.depth, result.iterations + core.iterations)
+        }
     } else {
         let length = result.vv.sqrt();
         for (x, y) in normal.as_mut_slice().iter_mut().zip(&result.v) {

@@ -4,7 +4,8 @@
 //! - Narrow phase: [`distance`] and [`intersects`] (GJK with an exact simplex
 //!   sub-algorithm, `gjk.rs`; on stack arrays for N = 3 and 4, `fixed.rs`; two boxes in 3
 //!   and 4 dimensions by bounded least squares, `boxes.rs`), [`penetration`] (EPA in N dimensions and closed forms,
-//!   `epa.rs`), on [`PlacedShape`]s of [`super::shape`]; boxes by separating axes
+//!   `epa.rs`; the exact depth of ellipsoids by Newton's method on the sphere of
+//!   directions, `smooth.rs`), on [`PlacedShape`]s of [`super::shape`]; boxes by separating axes
 //!   ([`box_box`], `sat.rs`).
 //! - Contact manifolds of several points ([`box_manifold`], [`hull_manifold`],
 //!   `manifold.rs`) and the broad phase ([`BroadPhase`], `broad.rs`).
@@ -22,6 +23,7 @@ mod fixed;
 mod gjk;
 pub mod manifold;
 pub mod sat;
+mod smooth;
 
 pub use broad::BroadPhase;
 pub use epa::{EpaWorkspace, Penetration, penetration, penetration_with};
