@@ -31,7 +31,7 @@ use super::gjk::{
     GjkResult, PlacedShape, Points, Simplex, centre_direction, check_pair, curved, gjk,
     nearest_point, project_onto_face, support_difference,
 };
-use super::smooth::smooth_depth;
+use super::smooth::{FaceScratch, polytope_depth, smooth_depth};
 use crate::algebra::Vector;
 use crate::dynamics::motion::shape::{ConvexCore, Coords, ShapeError};
 use crate::numeric::orthogonalize_twice;
@@ -149,6 +149,8 @@ pub struct EpaWorkspace {
     new_facets: Vec<u32>,
     new_normals: Vec<f64>,
     new_offsets: Vec<f64>,
+    /// Room for the depth of a polytope against an ellipsoid.
+    faces: FaceScratch,
 }
 
 impl EpaWorkspace {
@@ -942,16 +944,16 @@ pub fn penetration(a: &PlacedShape, b: &PlacedShape) -> Result<Penetration, Shap
 /// never NaN. EPA is exact for polytopes up to N = 4, to the round-off of the thin facets
 /// of very unequal shapes (a slab 1/16 thick in a polytope of size 4e5 came out 4e-8 of the
 /// size short, `tests/reliability/fuzz_regressions.rs`); above, the facet cap can stop it
-/// with a lower bound of the depth. Where both cores are smooth (an ellipsoid against an
-/// ellipsoid or a ball) EPA's normal starts Newton's method on the sphere of directions,
-/// which gives the exact depth, its normal and witnesses (`smooth.rs`; from more starts
-/// when the minimum lies above EPA's lower bound by more than 1e-9 of the size). An
-/// ellipsoid against a polytope or a segment keeps EPA's answer: it stops at the bounds
-/// above, or where its least support reach and its nearest facet come within 1e-9 of the
-/// size, with a lower bound of the depth whose normal is inexact: on random overlapping
-/// pairs (`tests/reliability/narrow_phase.rs` prints the figures) the translation along the
-/// normal that separates the shapes exceeded the depth by up to about 1e-7 of the pair's
-/// size in 2D and 3D, 2e-5 in 4D, a tenth of it in 5D and a third in 6D.
+/// with a lower bound of the depth. Where one core is an ellipsoid, EPA approximates it by
+/// facets and its normal is inexact: it starts Newton's method on the sphere of directions
+/// for the least separating translation (`smooth.rs`), which gives the exact depth, normal
+/// and witnesses against an ellipsoid or a ball (from more starts when the minimum lies
+/// above EPA's lower bound by more than 1e-9 of the size). Against a polytope or a segment
+/// the steps run face by face, and the depth is the translation along the normal found,
+/// never below the least: on 10⁵ random pairs of every kind
+/// (`tests/reliability/narrow_phase.rs` prints the figures) it exceeded the least found
+/// among test directions by up to 1.3e-9 of the pair's size in 2D and 3D, 4e-9 in 4D, 1e-2
+/// in 5D and 6e-2 in 6D.
 ///
 /// ```
 /// use rotorflow::dynamics::motion::detect::{EpaWorkspace, PlacedShape, penetration_with};
@@ -995,7 +997,13 @@ pub fn penetration_with(
         for (x, y) in normal.as_mut_slice().iter_mut().zip(&core.normal_k) {
             *x = -y;
         }
-        if let Some(exact) = smooth_depth(a, b, normal.as_slice(), core.depth) {
+        let exact = smooth_depth(a, b, normal.as_slice(), core.depth).or_else(|| {
+            let start = normal.as_slice();
+            polytope_depth(a, b, start, core.depth, &mut workspace.faces)
+        });
+        // EPA's depth is a lower bound and Newton's an upper one: one below the other is
+        // round-off (cores that only touch), where EPA's answer is as good.
+        if let Some(exact) = exact.filter(|e| e.depth >= core.depth) {
             normal.as_mut_slice().copy_from_slice(&exact.normal);
             witness_a.as_mut_slice().copy_from_slice(&exact.witness_a);
             witness_b.as_mut_slice().copy_from_slice(&exact.witness_b);

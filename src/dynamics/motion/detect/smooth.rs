@@ -1,5 +1,6 @@
-//! The exact depth of two overlapping shapes whose cores are smooth: an ellipsoid against
-//! an ellipsoid or a point (a ball, whose margin [`super::Penetration`] adds).
+//! The depth of two overlapping shapes one of whose cores is an ellipsoid: exact against
+//! an ellipsoid or a point (a ball, whose margin [`super::Penetration`] adds), and against
+//! a polytope or a segment the translation along a normal refined from EPA's.
 //!
 //! The depth is the shortest translation that separates the shapes: the least, over unit
 //! directions u from A to B, of f(u) = h_A(u) + h_B(−u), where h is a core's support
@@ -11,12 +12,18 @@
 //! inexact; Newton's method on the sphere of directions, started from it, converges to the
 //! minimum quadratically. At the minimum u* the support points' difference
 //! s_A(u*) − s_B(−u*) is f(u*) u*: the witnesses of the contact.
+//!
+//! A polytope's support function is linear on the normal cone of each face, so against a
+//! polytope the same Newton steps run face by face ([`polytope_depth`]). The faces make
+//! f only piecewise smooth, and the search over them may stop above the least where EPA's
+//! lower bound cannot show it is the least (in 5D and 6D):
+//! `tests/reliability/narrow_phase.rs` prints how far.
 
 use super::gjk::PlacedShape;
 use crate::dynamics::motion::shape::{ConvexCore, Coords};
-use crate::numeric::cholesky_solve;
 use crate::numeric::dense::dot;
 use crate::numeric::eigen::jacobi_eigen;
+use crate::numeric::{cholesky_solve, orthogonalize_twice};
 use smallvec::SmallVec;
 
 /// Newton steps at most (it takes about five from EPA's normal).
@@ -100,8 +107,8 @@ impl<'a> SmoothCore<'a> {
     }
 }
 
-/// The refined contact of two overlapping smooth cores: depth, unit normal from A to B,
-/// and the witnesses s_A(u), s_B(−u).
+/// The refined contact of two overlapping cores: depth, unit normal from A to B, and the
+/// witnesses (s_A(u) and s_B(−u) for smooth cores).
 pub(super) struct SmoothContact {
     pub depth: f64,
     pub normal: Coords,
@@ -154,12 +161,12 @@ pub(super) fn smooth_depth(
         .collect();
     let size = dot(&between, &between).sqrt() + ca.radius() + cb.radius();
     let cores = (&ca, &cb);
-    let mut best = newton(cores, start, size);
+    let mut best = newton(cores, start, size, &[]);
     if best.depth - lower <= CERTIFIED * size {
         return Some(best);
     }
     let mut consider = |u: &[f64]| {
-        let found = newton(cores, u, size);
+        let found = newton(cores, u, size, &[]);
         if found.depth < best.depth {
             best = found;
         }
@@ -181,6 +188,318 @@ pub(super) fn smooth_depth(
     Some(best)
 }
 
+/// Newton's method calls at most for the depth of an ellipsoid and a polytope, from one
+/// start and in all.
+const MAX_FACE_SOLVES: usize = 12;
+const MAX_ALL_FACE_SOLVES: usize = 256;
+/// Cuboid cores up to this dimension take part by their 2^N corners.
+const MAX_CUBOID_DIM: usize = 10;
+
+/// Writes the vertices of a polytope core (a hull, a cuboid up to [`MAX_CUBOID_DIM`], a
+/// segment) in space to `out` (N numbers each); false for other cores.
+fn polytope_vertices(shape: &PlacedShape, out: &mut Vec<f64>) -> bool {
+    let n = shape.position().len();
+    let (c, q) = (shape.position(), shape.rotation());
+    out.clear();
+    let mut push = |own: &[f64]| {
+        for (i, ci) in c.iter().enumerate() {
+            out.push(ci + dot(&q[i * n..(i + 1) * n], own));
+        }
+    };
+    let mut own = Coords::from_elem(0.0, n);
+    match shape.shape().core() {
+        ConvexCore::Hull(v) => v.chunks_exact(n).for_each(push),
+        ConvexCore::Cuboid(h) if n <= MAX_CUBOID_DIM => {
+            for corner in 0..1usize << n {
+                for (i, (x, hi)) in own.iter_mut().zip(h).enumerate() {
+                    *x = if corner >> i & 1 == 1 { *hi } else { -hi };
+                }
+                push(&own);
+            }
+        }
+        ConvexCore::Segment(h) => {
+            for end in [*h, -h] {
+                own[0] = end;
+                push(&own);
+            }
+        }
+        _ => return false,
+    }
+    true
+}
+
+/// An orthonormal basis of the directions v − v₀ of the vertices v of `face` (rows of
+/// `basis`), at most N − 1 of them: false if the face spans N dimensions (it is then no
+/// face, and the basis holds N − 1 of them). `x` is scratch of N numbers.
+fn face_basis(
+    (vertices, face, v0): (&[f64], &[usize], &[f64]),
+    tolerance: f64,
+    basis: &mut SmallVec<[f64; 64]>,
+    x: &mut [f64],
+) -> bool {
+    let n = v0.len();
+    basis.clear();
+    let mut rank = 0;
+    for &k in face {
+        for (xi, (v, w)) in x
+            .iter_mut()
+            .zip(vertices[k * n..(k + 1) * n].iter().zip(v0))
+        {
+            *xi = v - w;
+        }
+        orthogonalize_twice(x, basis, rank);
+        let length = dot(x, x).sqrt();
+        if length > tolerance {
+            if rank + 1 == n {
+                return false;
+            }
+            basis.extend(x.iter().map(|y| y / length));
+            rank += 1;
+        }
+    }
+    true
+}
+
+/// Room for [`polytope_depth`], kept in the EPA workspace so that queries do not allocate
+/// once it has grown: the polytope's vertices in space and three lists of them.
+#[derive(Clone, Debug, Default)]
+pub(super) struct FaceScratch {
+    vertices: Vec<f64>,
+    face: Vec<usize>,
+    next: Vec<usize>,
+    carry: Vec<usize>,
+}
+
+/// The depth of an ellipsoid and an overlapping polytope (a hull, a cuboid, a segment;
+/// either way round), or None for other pairs. f(u) = h_P(±u) + h_E(∓u) is smooth on the
+/// normal cone of each face F of the polytope, where h_P(d) = v₀·d for a vertex v₀ of F:
+/// there Newton's method runs as for a point against the ellipsoid, with u kept orthogonal
+/// to F. From `start` (EPA's normal) the face touched along u is taken (its vertices within
+/// 1e-9 of the size of the highest), Newton finds the least f on its cone's plane, and the
+/// face along the new u is taken again until it stays the same; where the least f lies
+/// on a smaller face, a vertex of the face alone starts the search again. Unless the least
+/// f found lies within 1e-9 of the size of EPA's lower bound `lower`, the search also
+/// starts from the direction between the centres and both ways along the ellipsoid's
+/// axes. The depth is f at the normal found, a translation that separates the shapes, so
+/// never below the true depth.
+pub(super) fn polytope_depth(
+    a: &PlacedShape,
+    b: &PlacedShape,
+    start: &[f64],
+    lower: f64,
+    scratch: &mut FaceScratch,
+) -> Option<SmoothContact> {
+    let FaceScratch {
+        vertices,
+        face,
+        next,
+        carry,
+    } = scratch;
+    // σ: the polytope's support is asked along σ u (A: +1, B: −1).
+    let (ellipsoid, polytope, sigma) = match (SmoothCore::of(a), SmoothCore::of(b)) {
+        (Some(e), None) if e.squared_axes.is_some() => (e, b, -1.0),
+        (None, Some(e)) if e.squared_axes.is_some() => (e, a, 1.0),
+        _ => return None,
+    };
+    if !polytope_vertices(polytope, vertices) {
+        return None;
+    }
+    let n = start.len();
+    let vertices = &vertices[..];
+    let reach = vertices
+        .chunks_exact(n)
+        .map(|v| {
+            v.iter()
+                .zip(polytope.position())
+                .map(|(x, c)| (x - c) * (x - c))
+                .sum::<f64>()
+        })
+        .fold(0.0f64, f64::max)
+        .sqrt();
+    let between: Coords = b
+        .position()
+        .iter()
+        .zip(a.position())
+        .map(|(x, y)| x - y)
+        .collect();
+    let size = dot(&between, &between).sqrt() + ellipsoid.radius() + reach;
+    let tolerance = CERTIFIED * size;
+    let mut support = Coords::from_elem(0.0, n);
+    // The highest vertex along σ u, and f(u).
+    let mut measure = |u: &[f64]| {
+        let (mut top, mut at) = (f64::NEG_INFINITY, 0);
+        for (k, v) in vertices.chunks_exact(n).enumerate() {
+            let x = sigma * dot(v, u);
+            if x > top {
+                (top, at) = (x, k);
+            }
+        }
+        ellipsoid.support(u, -sigma, &mut support, None);
+        (top - sigma * dot(&support, u), at)
+    };
+    let mut best: (f64, Coords) = (measure(start).0, start.iter().copied().collect());
+    let mut solves = 0;
+    let mut basis: SmallVec<[f64; 64]> = SmallVec::new();
+    carry.clear();
+    let mut x = Coords::from_elem(0.0, n);
+    // The vertices within the tolerance of the highest along σ u.
+    let face_of = |u: &[f64], out: &mut Vec<usize>| {
+        let top = vertices
+            .chunks_exact(n)
+            .map(|v| sigma * dot(v, u))
+            .fold(f64::NEG_INFINITY, f64::max);
+        out.clear();
+        out.extend(
+            vertices
+                .chunks_exact(n)
+                .enumerate()
+                .filter(|(_, v)| sigma * dot(v, u) >= top - tolerance)
+                .map(|(k, _)| k),
+        );
+    };
+    // Starts: a direction, a vertex to take alone as the first face, a vertex to join to
+    // the first face.
+    type Seed = (Coords, Option<usize>, Option<usize>);
+    let mut queue: SmallVec<[Seed; 16]> = SmallVec::new();
+    queue.push((start.iter().copied().collect(), None, None));
+    // The more starts, taken one by one once the queue is empty: the direction between
+    // the centres, then both ways along the ellipsoid's axes and the polytope's if it is
+    // a box.
+    let boxed = matches!(polytope.shape().core(), ConvexCore::Cuboid(_));
+    let more = 1 + 2 * n * (1 + usize::from(boxed));
+    let (mut widened, mut alone_starts) = (None::<usize>, 0);
+    loop {
+        if queue.is_empty() {
+            let k = match widened {
+                None if best.0 - lower > tolerance => 0,
+                Some(k) if k < more && best.0 - lower > tolerance => k,
+                _ => break,
+            };
+            widened = Some(k + 1);
+            let direction: Coords = if k == 0 {
+                between.clone()
+            } else {
+                let (axis, sign) = ((k - 1) / 2, if k % 2 == 1 { 1.0 } else { -1.0 });
+                let q = if axis < n {
+                    ellipsoid.rotation
+                } else {
+                    polytope.rotation()
+                };
+                (0..n).map(|i| sign * q[i * n + axis % n]).collect()
+            };
+            queue.push((direction, None, None));
+        }
+        let Some((mut u, mut alone, mut join)) = queue.pop() else {
+            break;
+        };
+        let first = solves;
+        while solves < (first + MAX_FACE_SOLVES).min(MAX_ALL_FACE_SOLVES) {
+            let (_, top) = measure(&u);
+            let merged = match alone.take() {
+                Some(k) => {
+                    face.clear();
+                    face.push(k);
+                    false
+                }
+                None => {
+                    // The face along u, and the last face: a step that left a face for
+                    // another may have crossed the least, where both meet (or, from a
+                    // start that asks, the next vertex below the face).
+                    face_of(&u, face);
+                    carry.extend(join.take());
+                    let before = face.len();
+                    for &k in carry.iter() {
+                        if !face.contains(&k) {
+                            face.push(k);
+                        }
+                    }
+                    face.sort_unstable();
+                    face.len() > before
+                }
+            };
+            carry.clear();
+            let v0 = if face.len() == 1 { face[0] } else { top };
+            let v0 = &vertices[v0 * n..(v0 + 1) * n];
+            // The two faces together span the whole space: they do not meet.
+            if !face_basis((vertices, face, v0), tolerance, &mut basis, &mut x) && merged {
+                face_of(&u, face);
+                face_basis((vertices, face, v0), tolerance, &mut basis, &mut x);
+            }
+            let point = SmoothCore {
+                centre: v0,
+                rotation: polytope.rotation(),
+                squared_axes: None,
+            };
+            let cores = if sigma > 0.0 {
+                (&point, &ellipsoid)
+            } else {
+                (&ellipsoid, &point)
+            };
+            let found = newton(cores, &u, size, &basis);
+            solves += 1;
+            if !found.depth.is_finite() {
+                break;
+            }
+            let (f, _) = measure(&found.normal);
+            if f < best.0 {
+                best = (f, found.normal.clone());
+            }
+            face_of(&found.normal, next);
+            let same = next == face;
+            if !same {
+                carry.clone_from(face);
+            }
+            u = found.normal;
+            if same {
+                // The least on this face's plane: where it lies outside the face, a
+                // smaller face holds a lower one, and a vertex alone leads there.
+                if best.0 - lower > tolerance && alone_starts < 8 {
+                    if face.len() > 1 {
+                        for &k in face.iter().take(4) {
+                            queue.push((u.clone(), Some(k), None));
+                            alone_starts += 1;
+                        }
+                    }
+                    // Or the least lies where the next vertex below meets the face.
+                    let below = vertices
+                        .chunks_exact(n)
+                        .enumerate()
+                        .filter(|(k, _)| !face.contains(k))
+                        .map(|(k, v)| (sigma * dot(v, &u), k))
+                        .max_by(|p, q| p.0.total_cmp(&q.0));
+                    if let Some((_, k)) = below {
+                        queue.push((u.clone(), None, Some(k)));
+                        alone_starts += 1;
+                    }
+                }
+                break;
+            }
+        }
+    }
+    let (depth, u) = best;
+    if !depth.is_finite() {
+        return None;
+    }
+    // The ellipsoid's witness, and the polytope's at depth · u from it.
+    ellipsoid.support(&u, -sigma, &mut support, None);
+    let other: Coords = support
+        .iter()
+        .zip(&u)
+        .map(|(s, m)| s + sigma * depth * m)
+        .collect();
+    let (witness_a, witness_b) = if sigma > 0.0 {
+        (other, support)
+    } else {
+        (support, other)
+    };
+    Some(SmoothContact {
+        depth,
+        normal: u,
+        witness_a,
+        witness_b,
+    })
+}
+
 /// Newton's method on the unit sphere for the least f(u) = h_A(u) + h_B(−u) near `start`.
 /// Each step solves the Riemannian Newton system (P ∇²f P − f P) ξ = −P ∇f on the tangent
 /// plane (P = I − u uᵀ); where that Hessian is not positive definite (near a saddle of f,
@@ -188,45 +507,73 @@ pub(super) fn smooth_depth(
 /// values instead and, at the saddle itself, moves along the direction of negative
 /// curvature. ξ is halved until f decreases: the result separates the shapes by no more
 /// than `start` does, to round-off.
-fn newton(cores: (&SmoothCore, &SmoothCore), start: &[f64], size: f64) -> SmoothContact {
+fn newton(
+    cores: (&SmoothCore, &SmoothCore),
+    start: &[f64],
+    size: f64,
+    fixed: &[f64],
+) -> SmoothContact {
     let n = start.len();
+    let rank = fixed.len() / n;
     let zeros = || Coords::from_elem(0.0, n);
     let (mut sa, mut sb, mut g) = (zeros(), zeros(), zeros());
     let square = || -> SmallVec<[f64; 64]> { SmallVec::from_elem(0.0, n * n) };
     let (mut hessian, mut system, mut vectors) = (square(), square(), square());
+    let (mut projector, mut half) = (square(), square());
     let (mut xi, mut trial, mut hu) = (zeros(), zeros(), zeros());
     let (mut ta, mut tb, mut tg) = (zeros(), zeros(), zeros());
     let mut u: Coords = start.iter().copied().collect();
+    orthogonalize_twice(&mut u, fixed, rank);
     let length = dot(&u, &u).sqrt();
     if length.is_nan() || length <= 0.0 {
-        u.fill(0.0);
-        u[0] = 1.0;
-    } else {
-        u.iter_mut().for_each(|x| *x /= length);
+        return SmoothContact {
+            depth: f64::INFINITY,
+            normal: u,
+            witness_a: sa,
+            witness_b: sb,
+        };
     }
+    u.iter_mut().for_each(|x| *x /= length);
     let mut f = evaluate(cores, &u, (&mut sa, &mut sb, &mut g), Some(&mut hessian));
     let mut steps = 0;
     while steps < MAX_NEWTON_STEPS {
-        // The gradient along the sphere, r = P ∇f = ∇f − f u (u·∇f = f: h is of degree 1).
-        let mut residual = 0.0;
+        // The gradient along the sphere and orthogonal to the fixed directions,
+        // r = P ∇f with P = I − u uᵀ − B Bᵀ (u·∇f = f: h is of degree 1).
         for ((x, gi), ui) in xi.iter_mut().zip(&g).zip(&u) {
             *x = -(gi - f * ui);
-            residual += *x * *x;
         }
-        let residual = residual.sqrt();
-        // P H' P + u uᵀ with H' = ∇²f − f I, which is
-        // H' − u (H'u)ᵀ − (H'u) uᵀ + (uᵀH'u) u uᵀ + u uᵀ: on the tangent plane the
-        // Riemannian Hessian, along u the identity, so that ξ stays orthogonal to u.
-        for (i, x) in hu.iter_mut().enumerate() {
-            *x = dot(&hessian[i * n..(i + 1) * n], &u) - f * u[i];
+        orthogonalize_twice(&mut xi, fixed, rank);
+        let residual = dot(&xi, &xi).sqrt();
+        // P H' P + (I − P) with H' = ∇²f − f I: on the tangent plane the Riemannian
+        // Hessian, elsewhere the identity, so that ξ stays in the tangent plane.
+        for i in 0..n {
+            for (j, x) in projector[i * n..(i + 1) * n].iter_mut().enumerate() {
+                *x = f64::from(u8::from(i == j)) - u[i] * u[j];
+            }
         }
-        let uhu = dot(&u, &hu);
+        for b in fixed.chunks_exact(n) {
+            for i in 0..n {
+                for j in 0..n {
+                    projector[i * n + j] -= b[i] * b[j];
+                }
+            }
+        }
+        for i in 0..n {
+            for j in 0..n {
+                let diagonal = if i == j { f } else { 0.0 };
+                hu[j] = hessian[i * n + j] - diagonal;
+            }
+            // Row i of H' P.
+            for j in 0..n {
+                half[i * n + j] = (0..n).map(|k| hu[k] * projector[k * n + j]).sum();
+            }
+        }
         let fill = |system: &mut [f64]| {
             for i in 0..n {
                 for j in 0..n {
-                    let diagonal = if i == j { f } else { 0.0 };
-                    system[i * n + j] = hessian[i * n + j] - diagonal - u[i] * hu[j] - hu[i] * u[j]
-                        + (uhu + 1.0) * u[i] * u[j];
+                    let p: f64 = (0..n).map(|k| projector[k * n + i] * half[k * n + j]).sum();
+                    let identity = f64::from(u8::from(i == j));
+                    system[i * n + j] = p + identity - projector[i * n + j];
                 }
             }
         };
@@ -369,6 +716,64 @@ mod tests {
             }
         }
         assert_eq!(cases, 2000);
+    }
+
+    /// An ellipsoid whose centre lies inside a box and whose axes are the box's: with
+    /// p_i = u_i², f = Σ (h_i ∓ δ_i) √p_i + √(Σ a_i² p_i) is concave on each orthant's
+    /// simplex of p, so the least translation is along an axis: min_i h_i + a_i − |δ_i|
+    /// (δ the centres' offset in the box's axes). N = 2 … 6, the box as a cuboid and as the
+    /// hull of its corners, either way round.
+    #[test]
+    fn an_ellipsoid_inside_a_box_along_its_axes_leaves_along_an_axis() {
+        let mut r = ChaCha8Rng::seed_from_u64(21);
+        let mut workspace = EpaWorkspace::new();
+        let mut cases = 0;
+        for n in 2..=6usize {
+            for _ in 0..60 {
+                let h: Vec<f64> = (0..n).map(|_| r.gen_range(0.3..2.0)).collect();
+                let axes: Vec<f64> = (0..n).map(|_| r.gen_range(0.1..1.5)).collect();
+                let offset: Vec<f64> = h.iter().map(|x| r.gen_range(-0.9..0.9) * x).collect();
+                let expected = (0..n)
+                    .map(|i| h[i] + axes[i] - offset[i].abs())
+                    .fold(f64::INFINITY, f64::min);
+                let q = rotation(&mut r, n);
+                let centre: Vec<f64> = (0..n).map(|_| r.gen_range(-1.0..1.0)).collect();
+                let inside: Vec<f64> = (0..n)
+                    .map(|i| centre[i] + (0..n).map(|j| q[i * n + j] * offset[j]).sum::<f64>())
+                    .collect();
+                let corners: Vec<Vec<f64>> = (0..1usize << n)
+                    .map(|c| {
+                        (0..n)
+                            .map(|i| if c >> i & 1 == 1 { h[i] } else { -h[i] })
+                            .collect()
+                    })
+                    .collect();
+                let ellipsoid = ConvexShape::ellipsoid(&axes).unwrap();
+                for solid in [
+                    ConvexShape::cuboid(&h).unwrap(),
+                    ConvexShape::hull(&corners).unwrap(),
+                ] {
+                    let a = PlacedShape::new(&solid, &centre, &q).unwrap();
+                    let b = PlacedShape::new(&ellipsoid, &inside, &q).unwrap();
+                    for p in [
+                        penetration_with(&mut workspace, &a, &b).unwrap(),
+                        penetration_with(&mut workspace, &b, &a).unwrap(),
+                    ] {
+                        // The pair's size as the search measures it (the bound it keeps).
+                        let length = |x: &[f64]| x.iter().map(|y| y * y).sum::<f64>().sqrt();
+                        let widest = axes.iter().fold(0.0f64, |m, x| m.max(*x));
+                        let size = length(&offset) + widest + length(&h);
+                        assert!(
+                            (p.depth - expected).abs() < 1e-9 * size,
+                            "N = {n}: {} against {expected}",
+                            p.depth
+                        );
+                        cases += 1;
+                    }
+                }
+            }
+        }
+        assert_eq!(cases, 1200);
     }
 
     /// The translation of B along u that separates two ellipses, h_A(u) + h_B(−u), from
