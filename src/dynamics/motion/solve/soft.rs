@@ -264,8 +264,16 @@ impl SoftSolver {
     /// Adds a contact point (the bodies at the start of the step, as [`Self::begin`] saw
     /// them).
     pub(crate) fn push(&mut self, p: &FoundPoint<'_>) {
-        let l = self.layout;
-        let n = l.n;
+        match self.layout.n {
+            3 => self.push_n::<3>(p),
+            4 => self.push_n::<4>(p),
+            _ => self.push_n::<0>(p),
+        }
+    }
+
+    fn push_n<const N: usize>(&mut self, p: &FoundPoint<'_>) {
+        let l = layout::<N>(&self.layout);
+        let n = dim::<N>(l.n);
         let at = self.data.len();
         self.data.resize(at + l.stride, 0.0);
         let d = &mut self.data[at..at + l.stride];
@@ -310,9 +318,17 @@ impl SoftSolver {
     /// its material points of the two bodies at their placement now, the normal turned with
     /// body a, the gap the rows' separation at the end of the last step. Returns false if the
     /// last step had no row of the pair.
-    pub(crate) fn push_kept(&mut self, (a, b): (usize, usize)) -> bool {
-        let l = self.layout;
-        let n = l.n;
+    pub(crate) fn push_kept(&mut self, pair: (usize, usize)) -> bool {
+        match self.layout.n {
+            3 => self.push_kept_n::<3>(pair),
+            4 => self.push_kept_n::<4>(pair),
+            _ => self.push_kept_n::<0>(pair),
+        }
+    }
+
+    fn push_kept_n<const N: usize>(&mut self, (a, b): (usize, usize)) -> bool {
+        let l = layout::<N>(&self.layout);
+        let n = dim::<N>(l.n);
         let rows = &self.old_rows;
         let first = self
             .order
@@ -364,7 +380,16 @@ impl SoftSolver {
 
     /// Loads every body a row acts on, as `what` says.
     fn load(&mut self, bodies: &[MovingBody], what: Load) {
-        let (n, m) = (self.layout.n, self.layout.m);
+        match self.layout.n {
+            3 => self.load_n::<3>(bodies, what),
+            4 => self.load_n::<4>(bodies, what),
+            _ => self.load_n::<0>(bodies, what),
+        }
+    }
+
+    fn load_n<const N: usize>(&mut self, bodies: &[MovingBody], what: Load) {
+        let n = dim::<N>(self.layout.n);
+        let m = n * (n - 1) / 2;
         let stride = n + m;
         for r in &self.rows {
             for i in [r.a, r.b] {
