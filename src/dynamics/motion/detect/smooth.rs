@@ -16,7 +16,7 @@
 //! A polytope's support function is linear on the normal cone of each face, so against a
 //! polytope the same Newton steps run face by face ([`polytope_depth`]). The faces make
 //! f only piecewise smooth, and the search over them may stop above the least where EPA's
-//! lower bound cannot show it is the least (in 5D and 6D):
+//! lower bound cannot show it is the least (seen in 6D):
 //! `tests/reliability/narrow_phase.rs` prints how far.
 
 use super::gjk::PlacedShape;
@@ -35,24 +35,36 @@ const MAX_HALVINGS: usize = 40;
 const CONVERGED: f64 = 1e-14;
 /// A minimum within this fraction of the pair's size of EPA's lower bound is the least.
 const CERTIFIED: f64 = 1e-9;
+/// Curvatures of f below this fraction of the size count as this in a step near a saddle
+/// (their directions would take steps beyond reach).
+const FLAT_CURVATURE: f64 = 1e-9;
+/// A gradient below this fraction of the size, where f curves down, is at a saddle.
+const AT_SADDLE: f64 = 1e-8;
 
-/// A smooth core, placed: its centre, rotation and squared semi-axes (none for a point).
+/// A smooth core, placed: its centre (relative to an origin near the pair, so that f is
+/// not the difference of large numbers), rotation and squared semi-axes (none for a point).
 struct SmoothCore<'a> {
-    centre: &'a [f64],
+    centre: Coords,
     rotation: &'a [f64],
     squared_axes: Option<Coords>,
 }
 
 impl<'a> SmoothCore<'a> {
-    /// The core of `shape` if it is smooth (a point or an ellipsoid).
-    fn of(shape: &PlacedShape<'a>) -> Option<Self> {
+    /// The core of `shape` if it is smooth (a point or an ellipsoid), its centre taken from
+    /// `origin`.
+    fn of(shape: &PlacedShape<'a>, origin: &[f64]) -> Option<Self> {
         let squared_axes = match shape.shape().core() {
             ConvexCore::Point => None,
             ConvexCore::Ellipsoid(a) => Some(a.iter().map(|x| x * x).collect()),
             _ => return None,
         };
         Some(SmoothCore {
-            centre: shape.position(),
+            centre: shape
+                .position()
+                .iter()
+                .zip(origin)
+                .map(|(x, o)| x - o)
+                .collect(),
             rotation: shape.rotation(),
             squared_axes,
         })
@@ -65,11 +77,11 @@ impl<'a> SmoothCore<'a> {
             .map_or(0.0, |a| a.iter().fold(0.0f64, |m, x| m.max(*x)).sqrt())
     }
 
-    /// h(σ u), with the support point s(σ u) in `support` and σ times the Hessian of h at
-    /// σ u added to `hessian` (n × n, row-major) if given.
+    /// The support point s(σ u) in `support`, and the Hessian of h at σ u added to
+    /// `hessian` (n × n, row-major) if given (the chain rule's two factors σ cancel).
     fn support(&self, u: &[f64], sigma: f64, support: &mut [f64], hessian: Option<&mut [f64]>) {
         let n = u.len();
-        support.copy_from_slice(self.centre);
+        support.copy_from_slice(&self.centre);
         let Some(a2) = &self.squared_axes else {
             return;
         };
@@ -95,7 +107,6 @@ impl<'a> SmoothCore<'a> {
             *p += mi / s;
         }
         if let Some(h) = hessian {
-            // The Hessian of h is even in d, and the chain rule's two factors σ cancel.
             let s3 = s * s2;
             for i in 0..n {
                 for j in 0..n {
@@ -114,6 +125,20 @@ pub(super) struct SmoothContact {
     pub normal: Coords,
     pub witness_a: Coords,
     pub witness_b: Coords,
+}
+
+impl SmoothContact {
+    /// The contact with its witnesses moved from the origin of the cores' centres back to
+    /// space.
+    fn moved_by(mut self, origin: &[f64]) -> Self {
+        for (w, o) in self.witness_a.iter_mut().zip(origin) {
+            *w += o;
+        }
+        for (w, o) in self.witness_b.iter_mut().zip(origin) {
+            *w += o;
+        }
+        self
+    }
 }
 
 /// f(u), its gradient s_A(u) − s_B(−u) in `gradient` and, if asked, its Hessian (the
@@ -148,17 +173,13 @@ pub(super) fn smooth_depth(
     start: &[f64],
     lower: f64,
 ) -> Option<SmoothContact> {
-    let (ca, cb) = (SmoothCore::of(a)?, SmoothCore::of(b)?);
+    let origin = a.position();
+    let (ca, cb) = (SmoothCore::of(a, origin)?, SmoothCore::of(b, origin)?);
     if ca.squared_axes.is_none() && cb.squared_axes.is_none() {
         return None;
     }
     let n = start.len();
-    let between: Coords = cb
-        .centre
-        .iter()
-        .zip(ca.centre)
-        .map(|(x, y)| x - y)
-        .collect();
+    let between = cb.centre.clone();
     let size = dot(&between, &between).sqrt() + ca.radius() + cb.radius();
     let cores = (&ca, &cb);
     let mut best = newton(cores, start, size, &[]);
@@ -166,9 +187,12 @@ pub(super) fn smooth_depth(
         return Some(best);
     }
     let mut consider = |u: &[f64]| {
-        let found = newton(cores, u, size, &[]);
-        if found.depth < best.depth {
-            best = found;
+        // Once a start has reached EPA's lower bound, the rest cannot go lower.
+        if best.depth - lower > CERTIFIED * size {
+            let found = newton(cores, u, size, &[]);
+            if found.depth < best.depth {
+                best = found;
+            }
         }
     };
     consider(&between);
@@ -185,7 +209,7 @@ pub(super) fn smooth_depth(
             }
         }
     }
-    Some(best)
+    Some(best.moved_by(origin))
 }
 
 /// Newton's method calls at most for the depth of an ellipsoid and a polytope, from one
@@ -196,14 +220,14 @@ const MAX_ALL_FACE_SOLVES: usize = 256;
 const MAX_CUBOID_DIM: usize = 10;
 
 /// Writes the vertices of a polytope core (a hull, a cuboid up to [`MAX_CUBOID_DIM`], a
-/// segment) in space to `out` (N numbers each); false for other cores.
-fn polytope_vertices(shape: &PlacedShape, out: &mut Vec<f64>) -> bool {
+/// segment) to `out` (N numbers each, from `origin`); false for other cores.
+fn polytope_vertices(shape: &PlacedShape, origin: &[f64], out: &mut Vec<f64>) -> bool {
     let n = shape.position().len();
     let (c, q) = (shape.position(), shape.rotation());
     out.clear();
     let mut push = |own: &[f64]| {
-        for (i, ci) in c.iter().enumerate() {
-            out.push(ci + dot(&q[i * n..(i + 1) * n], own));
+        for (i, (ci, oi)) in c.iter().zip(origin).enumerate() {
+            out.push(ci - oi + dot(&q[i * n..(i + 1) * n], own));
         }
     };
     let mut own = Coords::from_elem(0.0, n);
@@ -296,12 +320,14 @@ pub(super) fn polytope_depth(
         carry,
     } = scratch;
     // σ: the polytope's support is asked along σ u (A: +1, B: −1).
-    let (ellipsoid, polytope, sigma) = match (SmoothCore::of(a), SmoothCore::of(b)) {
+    let origin = a.position();
+    let (ellipsoid, polytope, sigma) = match (SmoothCore::of(a, origin), SmoothCore::of(b, origin))
+    {
         (Some(e), None) if e.squared_axes.is_some() => (e, b, -1.0),
         (None, Some(e)) if e.squared_axes.is_some() => (e, a, 1.0),
         _ => return None,
     };
-    if !polytope_vertices(polytope, vertices) {
+    if !polytope_vertices(polytope, origin, vertices) {
         return None;
     }
     let n = start.len();
@@ -310,8 +336,8 @@ pub(super) fn polytope_depth(
         .chunks_exact(n)
         .map(|v| {
             v.iter()
-                .zip(polytope.position())
-                .map(|(x, c)| (x - c) * (x - c))
+                .zip(polytope.position().iter().zip(origin))
+                .map(|(x, (c, o))| (x - (c - o)) * (x - (c - o)))
                 .sum::<f64>()
         })
         .fold(0.0f64, f64::max)
@@ -402,9 +428,10 @@ pub(super) fn polytope_depth(
                     false
                 }
                 None => {
-                    // The face along u, and the last face: a step that left a face for
-                    // another may have crossed the least, where both meet (or, from a
-                    // start that asks, the next vertex below the face).
+                    // The face along u, and the face the last step was solved on (itself
+                    // grown so, while the steps keep leaving their faces): a step that
+                    // left a face for another may have crossed the least, where both
+                    // meet (or, from a start that asks, the next vertex below the face).
                     face_of(&u, face);
                     carry.extend(join.take());
                     let before = face.len();
@@ -421,12 +448,17 @@ pub(super) fn polytope_depth(
             let v0 = if face.len() == 1 { face[0] } else { top };
             let v0 = &vertices[v0 * n..(v0 + 1) * n];
             // The two faces together span the whole space: they do not meet.
-            if !face_basis((vertices, face, v0), tolerance, &mut basis, &mut x) && merged {
+            if !face_basis((vertices, face, v0), tolerance, &mut basis, &mut x) {
+                if !merged {
+                    break;
+                }
                 face_of(&u, face);
-                face_basis((vertices, face, v0), tolerance, &mut basis, &mut x);
+                if !face_basis((vertices, face, v0), tolerance, &mut basis, &mut x) {
+                    break;
+                }
             }
             let point = SmoothCore {
-                centre: v0,
+                centre: Coords::from_slice(v0),
                 rotation: polytope.rotation(),
                 squared_axes: None,
             };
@@ -492,12 +524,13 @@ pub(super) fn polytope_depth(
     } else {
         (support, other)
     };
-    Some(SmoothContact {
+    let contact = SmoothContact {
         depth,
         normal: u,
         witness_a,
         witness_b,
-    })
+    };
+    Some(contact.moved_by(origin))
 }
 
 /// Newton's method on the unit sphere for the least f(u) = h_A(u) + h_B(−u) near `start`.
@@ -586,21 +619,22 @@ fn newton(
             let (mut least, mut at) = (f64::INFINITY, 0);
             for k in 0..n {
                 let value = system[k * n + k];
-                let along: f64 = (0..n).map(|i| vectors[i * n + k] * xi[i]).sum();
-                let scale = along / value.abs().max(1e-9 * size);
-                for (t, i) in trial.iter_mut().zip(0..n) {
-                    *t += scale * vectors[i * n + k];
+                // `jacobi_eigen` leaves the eigenvectors by columns: vector k is row k.
+                let vector = &vectors[k * n..(k + 1) * n];
+                let scale = dot(vector, &xi) / value.abs().max(FLAT_CURVATURE * size);
+                for (t, e) in trial.iter_mut().zip(vector) {
+                    *t += scale * e;
                 }
                 if value < least {
                     (least, at) = (value, k);
                 }
             }
-            if least < 0.0 && residual <= 1e-8 * size {
+            if least < 0.0 && residual <= AT_SADDLE * size {
                 // At a saddle: half a radian along the negative curvature, downhill.
-                let along: f64 = (0..n).map(|i| vectors[i * n + at] * xi[i]).sum();
-                let sign = if along < 0.0 { -0.5 } else { 0.5 };
-                for (t, i) in trial.iter_mut().zip(0..n) {
-                    *t = sign * vectors[i * n + at];
+                let vector = &vectors[at * n..(at + 1) * n];
+                let sign = if dot(vector, &xi) < 0.0 { -0.5 } else { 0.5 };
+                for (t, e) in trial.iter_mut().zip(vector) {
+                    *t = sign * e;
                 }
             } else if residual <= CONVERGED * size {
                 break;
@@ -632,6 +666,13 @@ fn newton(
         steps += 1;
         std::mem::swap(&mut u, &mut trial);
         f = evaluate(cores, &u, (&mut sa, &mut sb, &mut g), Some(&mut hessian));
+    }
+    if !f.is_finite() {
+        f = f64::INFINITY;
+    }
+    // witness_a − witness_b = depth · normal, to the last bit of the step's residual.
+    for ((b, a), m) in sb.iter_mut().zip(&sa).zip(&u) {
+        *b = a - f * m;
     }
     SmoothContact {
         depth: f,
@@ -716,6 +757,46 @@ mod tests {
             }
         }
         assert_eq!(cases, 2000);
+    }
+
+    /// Newton's method started exactly at a saddle of f leaves it downhill: a point at the
+    /// centre of an ellipsoid has f(u) = √(uᵀ M u), whose critical points on the sphere are
+    /// the axes; from the middle one (gradient zero, curving down towards the shortest)
+    /// it must reach the shortest axis, in N = 3 … 6 with the axes turned.
+    #[test]
+    fn newton_leaves_a_saddle_for_the_least() {
+        use super::{SmoothCore, newton};
+        use crate::dynamics::motion::shape::Coords;
+        let mut r = ChaCha8Rng::seed_from_u64(3);
+        let mut cases = 0;
+        for n in 3..=6usize {
+            for _ in 0..20 {
+                let q = rotation(&mut r, n);
+                // Semi-axes 0.5, 1, 1.5, …: the shortest is axis 0, a middle one axis 1.
+                let axes: Coords = (0..n).map(|k| 0.5 * (k + 1) as f64).collect();
+                let ellipsoid = SmoothCore {
+                    centre: Coords::from_elem(0.0, n),
+                    rotation: &q,
+                    squared_axes: Some(axes.iter().map(|a| a * a).collect()),
+                };
+                let point = SmoothCore {
+                    centre: Coords::from_elem(0.0, n),
+                    rotation: &q,
+                    squared_axes: None,
+                };
+                let middle: Vec<f64> = (0..n).map(|i| q[i * n + 1]).collect();
+                let found = newton((&ellipsoid, &point), &middle, 4.0, &[]);
+                assert!(
+                    (found.depth - 0.5).abs() < 1e-12,
+                    "N = {n}: {}",
+                    found.depth
+                );
+                let along: f64 = (0..n).map(|i| q[i * n] * found.normal[i]).sum();
+                assert!((along.abs() - 1.0).abs() < 1e-9, "N = {n}: normal");
+                cases += 1;
+            }
+        }
+        assert_eq!(cases, 80);
     }
 
     /// An ellipsoid whose centre lies inside a box and whose axes are the box's: with
