@@ -252,6 +252,18 @@ fn polytope_vertices(shape: &PlacedShape, origin: &[f64], out: &mut Vec<f64>) ->
     true
 }
 
+/// The height σ v·u of the highest of `vertices` (N numbers each) along σ u, and its index.
+fn highest(vertices: &[f64], sigma: f64, u: &[f64]) -> (f64, usize) {
+    let (mut top, mut at) = (f64::NEG_INFINITY, 0);
+    for (k, v) in vertices.chunks_exact(u.len()).enumerate() {
+        let x = sigma * dot(v, u);
+        if x > top {
+            (top, at) = (x, k);
+        }
+    }
+    (top, at)
+}
+
 /// An orthonormal basis of the directions v − v₀ of the vertices v of `face` (rows of
 /// `basis`), at most N − 1 of them: false if the face spans N dimensions (it is then no
 /// face, and the basis holds N − 1 of them). `x` is scratch of N numbers.
@@ -351,29 +363,18 @@ pub(super) fn polytope_depth(
     let size = dot(&between, &between).sqrt() + ellipsoid.radius() + reach;
     let tolerance = CERTIFIED * size;
     let mut support = Coords::from_elem(0.0, n);
-    // The highest vertex along σ u, and f(u).
     let mut measure = |u: &[f64]| {
-        let (mut top, mut at) = (f64::NEG_INFINITY, 0);
-        for (k, v) in vertices.chunks_exact(n).enumerate() {
-            let x = sigma * dot(v, u);
-            if x > top {
-                (top, at) = (x, k);
-            }
-        }
         ellipsoid.support(u, -sigma, &mut support, None);
-        (top - sigma * dot(&support, u), at)
+        highest(vertices, sigma, u).0 - sigma * dot(&support, u)
     };
-    let mut best: (f64, Coords) = (measure(start).0, start.iter().copied().collect());
+    let mut best: (f64, Coords) = (measure(start), start.iter().copied().collect());
     let mut solves = 0;
     let mut basis: SmallVec<[f64; 64]> = SmallVec::new();
     carry.clear();
     let mut x = Coords::from_elem(0.0, n);
     // The vertices within the tolerance of the highest along σ u.
     let face_of = |u: &[f64], out: &mut Vec<usize>| {
-        let top = vertices
-            .chunks_exact(n)
-            .map(|v| sigma * dot(v, u))
-            .fold(f64::NEG_INFINITY, f64::max);
+        let (top, _) = highest(vertices, sigma, u);
         out.clear();
         out.extend(
             vertices
@@ -420,7 +421,7 @@ pub(super) fn polytope_depth(
         };
         let first = solves;
         while solves < (first + MAX_FACE_SOLVES).min(MAX_ALL_FACE_SOLVES) {
-            let (_, top) = measure(&u);
+            let (_, top) = highest(vertices, sigma, &u);
             let merged = match alone.take() {
                 Some(k) => {
                     face.clear();
@@ -472,7 +473,7 @@ pub(super) fn polytope_depth(
             if !found.depth.is_finite() {
                 break;
             }
-            let (f, _) = measure(&found.normal);
+            let f = measure(&found.normal);
             if f < best.0 {
                 best = (f, found.normal.clone());
             }
