@@ -950,9 +950,10 @@ pub fn penetration(a: &PlacedShape, b: &PlacedShape) -> Result<Penetration, Shap
 /// and witnesses against an ellipsoid or a ball (from more starts when the minimum lies
 /// above EPA's lower bound by more than 1e-9 of the size). Against a polytope or a segment
 /// the steps run face by face, and the depth is the translation along the normal found,
-/// never below the least: on 10⁵ random pairs of every kind
+/// never below the least: on 10⁶ random pairs of every kind
 /// (`tests/reliability/narrow_phase.rs` prints the figures) it exceeded the least found
-/// among test directions by up to about 3e-9 of the pair's size up to 5D and 8e-2 in 6D.
+/// among test directions by more than 1e-9 of the pair's size on 403 of 85,901 such pairs,
+/// by up to 5e-10 of the size in 2D, 2e-8 in 3D, 2e-2 in 4D and 5D and 9e-2 in 6D.
 ///
 /// ```
 /// use rotorflow::dynamics::motion::detect::{EpaWorkspace, PlacedShape, penetration_with};

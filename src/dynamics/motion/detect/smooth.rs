@@ -16,7 +16,7 @@
 //! A polytope's support function is linear on the normal cone of each face, so against a
 //! polytope the same Newton steps run face by face ([`polytope_depth`]). The faces make
 //! f only piecewise smooth, and the search over them may stop above the least where EPA's
-//! lower bound cannot show it is the least (seen in 6D):
+//! lower bound cannot show it is the least (seen from 3D on, rarely below 6D):
 //! `tests/reliability/narrow_phase.rs` prints how far.
 
 use super::gjk::PlacedShape;
