@@ -372,18 +372,22 @@ pub(super) fn polytope_depth(
     let mut basis: SmallVec<[f64; 64]> = SmallVec::new();
     carry.clear();
     let mut x = Coords::from_elem(0.0, n);
-    // The vertices within the tolerance of the highest along σ u.
-    let face_of = |u: &[f64], out: &mut Vec<usize>| {
+    // The vertices within `within` of the highest along σ u.
+    let face_of = |u: &[f64], out: &mut Vec<usize>, within: f64| {
         let (top, _) = highest(vertices, sigma, u);
         out.clear();
         out.extend(
             vertices
                 .chunks_exact(n)
                 .enumerate()
-                .filter(|(_, v)| sigma * dot(v, u) >= top - tolerance)
+                .filter(|(_, v)| sigma * dot(v, u) >= top - within)
                 .map(|(k, _)| k),
         );
     };
+    // EPA's normal is off the least by about as much as f there lies above EPA's bound:
+    // the first face takes the vertices within that of the highest, which the least's
+    // face is among.
+    let first_within = (best.0 - lower).max(tolerance);
     // Starts: a direction, a vertex to take alone as the first face, a vertex to join to
     // the first face.
     type Seed = (Coords, Option<usize>, Option<usize>);
@@ -433,7 +437,9 @@ pub(super) fn polytope_depth(
                     // grown so, while the steps keep leaving their faces): a step that
                     // left a face for another may have crossed the least, where both
                     // meet (or, from a start that asks, the next vertex below the face).
-                    face_of(&u, face);
+                    let within = if solves == 0 { first_within } else { tolerance };
+                    face_of(&u, face, within);
+                    let wide = solves == 0 && face.len() > 1;
                     carry.extend(join.take());
                     let before = face.len();
                     for &k in carry.iter() {
@@ -442,18 +448,18 @@ pub(super) fn polytope_depth(
                         }
                     }
                     face.sort_unstable();
-                    face.len() > before
+                    wide || face.len() > before
                 }
             };
             carry.clear();
             let v0 = if face.len() == 1 { face[0] } else { top };
             let v0 = &vertices[v0 * n..(v0 + 1) * n];
-            // The two faces together span the whole space: they do not meet.
+            // The faces together (or the wide first face) span the whole space: no face.
             if !face_basis((vertices, face, v0), tolerance, &mut basis, &mut x) {
                 if !merged {
                     break;
                 }
-                face_of(&u, face);
+                face_of(&u, face, tolerance);
                 if !face_basis((vertices, face, v0), tolerance, &mut basis, &mut x) {
                     break;
                 }
@@ -477,7 +483,7 @@ pub(super) fn polytope_depth(
             if f < best.0 {
                 best = (f, found.normal.clone());
             }
-            face_of(&found.normal, next);
+            face_of(&found.normal, next, tolerance);
             let same = next == face;
             if !same {
                 carry.clone_from(face);
