@@ -184,7 +184,7 @@ pub(super) fn smooth_depth(
     let cores = (&ca, &cb);
     let mut best = newton(cores, start, size, &[]);
     if best.depth - lower <= CERTIFIED * size {
-        return Some(best);
+        return Some(best.moved_by(origin));
     }
     let mut consider = |u: &[f64]| {
         // Once a start has reached EPA's lower bound, the rest cannot go lower.
@@ -755,9 +755,13 @@ mod tests {
                         assert!((m - sign * e).abs() < 1e-7, "N = {n}: normal");
                     }
                     let (wa, wb) = (p.witness_a.as_slice(), p.witness_b.as_slice());
+                    // The ellipsoid's witness is the end of its shortest axis, in space.
+                    let end = if swapped { wb } else { wa };
                     for i in 0..n {
                         let gap = wa[i] - wb[i] - p.depth * p.normal.as_slice()[i];
                         assert!(gap.abs() < 1e-12, "N = {n}: witnesses {gap:e}");
+                        let tip = centre[i] + 0.2 * delta.signum() * axis[i];
+                        assert!((end[i] - tip).abs() < 1e-9, "N = {n}: witness {}", end[i]);
                     }
                     cases += 1;
                 }
@@ -843,10 +847,23 @@ mod tests {
                 ] {
                     let a = PlacedShape::new(&solid, &centre, &q).unwrap();
                     let b = PlacedShape::new(&ellipsoid, &inside, &q).unwrap();
-                    for p in [
-                        penetration_with(&mut workspace, &a, &b).unwrap(),
-                        penetration_with(&mut workspace, &b, &a).unwrap(),
+                    for (swapped, p) in [
+                        (false, penetration_with(&mut workspace, &a, &b).unwrap()),
+                        (true, penetration_with(&mut workspace, &b, &a).unwrap()),
                     ] {
+                        // The ellipsoid's witness lies on its surface, in space.
+                        let w = if swapped { &p.witness_a } else { &p.witness_b };
+                        let radial: f64 = (0..n)
+                            .map(|k| {
+                                let own: f64 =
+                                    (0..n).map(|i| q[i * n + k] * (w[i] - inside[i])).sum();
+                                (own / axes[k]).powi(2)
+                            })
+                            .sum();
+                        assert!(
+                            (radial - 1.0).abs() < 1e-8,
+                            "N = {n}: witness off by {radial}"
+                        );
                         // The pair's size as the search measures it (the bound it keeps).
                         let length = |x: &[f64]| x.iter().map(|y| y * y).sum::<f64>().sqrt();
                         let widest = axes.iter().fold(0.0f64, |m, x| m.max(*x));
