@@ -386,9 +386,11 @@ impl Tally {
 ///   candidate direction may separate them by less (both cuboids' face normals, the centre
 ///   direction, the swapped query's normal, 16 random directions); cuboid pairs must match
 ///   the separating-axis depth (N ≤ 4: 792 axes at N = 6 would dominate the run) and ball
-///   pairs the closed form. Overlapping pairs with an
-///   ellipsoid core are counted apart: EPA's depth is a lower bound there, and the largest
-///   gap to the translation along its normal is reported;
+///   pairs the closed form; an ellipsoid against an ellipsoid or a ball is held to the same
+///   checks, and its witnesses must lie on their shapes, depth · normal apart. An ellipsoid
+///   against a polytope or a segment is counted apart: its depth, the translation along
+///   its normal, may lie above the least, and how far above the shortest candidate is
+///   reported;
 /// - everything finite, GJK ≤ 512 (128 but on ellipsoid cores) and GJK + EPA ≤ 768
 ///   iterations.
 fn every_kind_run(seed: u64, n: usize, pairs: usize) -> Tally {
@@ -565,6 +567,18 @@ fn every_kind_run(seed: u64, n: usize, pairs: usize) -> Tally {
             let exact_smooth = ellipsoid && round(&pa) && round(&pb);
             let smooth = ellipsoid && !exact_smooth;
             t.exact_smooth += usize::from(exact_smooth);
+            if exact_smooth {
+                // Each witness on its shape, and the two depth · normal apart.
+                let (wa, wb) = (p.witness_a.as_slice(), p.witness_b.as_slice());
+                note(
+                    "penetration witness outside its shape",
+                    outside(&pa, wa).max(outside(&pb, wb)),
+                );
+                let apart = (0..n)
+                    .map(|i| (wa[i] - wb[i] - p.depth * m[i]).abs())
+                    .fold(0.0, f64::max);
+                note("penetration witnesses not depth · normal apart", apart);
+            }
             let along = translation(m);
             if n >= 5 && !ellipsoid && along - p.depth > tol {
                 t.capped += 1;
