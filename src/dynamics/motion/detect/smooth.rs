@@ -311,13 +311,15 @@ pub(super) struct FaceScratch {
 /// normal cone of each face F of the polytope, where h_P(d) = v₀·d for a vertex v₀ of F:
 /// there Newton's method runs as for a point against the ellipsoid, with u kept orthogonal
 /// to F. From `start` (EPA's normal) the face touched along u is taken (its vertices within
-/// 1e-9 of the size of the highest), Newton finds the least f on its cone's plane, and the
-/// face along the new u is taken again until it stays the same; where the least f lies
-/// on a smaller face, a vertex of the face alone starts the search again. Unless the least
-/// f found lies within 1e-9 of the size of EPA's lower bound `lower`, the search also
-/// starts from the direction between the centres and both ways along the ellipsoid's
-/// axes. The depth is f at the normal found, a translation that separates the shapes, so
-/// never below the true depth.
+/// f(start) − `lower` of the highest at first, then within 1e-9 of the size), Newton finds
+/// the least f on its cone's plane, and the face along the new u is taken again, joined
+/// with the last where the step crossed from one to the other, until it stays the same.
+/// Unless the least f found lies within 1e-9 of the size of EPA's lower bound `lower`, the
+/// search starts again from a vertex of the face alone (the least may lie on a smaller
+/// face) and from the face joined with the next vertex below it, then from the direction
+/// between the centres and both ways along the ellipsoid's axes and a box's. The depth is
+/// f at the normal found, a translation that separates the shapes, so never below the
+/// true depth.
 pub(super) fn polytope_depth(
     a: &PlacedShape,
     b: &PlacedShape,
