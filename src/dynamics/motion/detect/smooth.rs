@@ -454,6 +454,10 @@ pub(super) fn polytope_depth(
                 }
             };
             carry.clear();
+            // No vertex is highest only along a direction that is not finite.
+            if face.is_empty() {
+                break;
+            }
             let v0 = if face.len() == 1 { face[0] } else { top };
             let v0 = &vertices[v0 * n..(v0 + 1) * n];
             // The faces together (or the wide first face) span the whole space: no face.
