@@ -441,28 +441,11 @@ impl<const N: usize> BoxGap<N> {
 #[cfg(test)]
 mod tests {
     use super::super::fixed::gjk_fixed;
+    use super::super::test_support::random_rotation as rotation;
     use super::*;
     use crate::dynamics::motion::shape::ConvexShape;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
-
-    /// A random rotation: plane rotations by random angles in every coordinate plane.
-    fn rotation(r: &mut impl Rng, n: usize) -> Vec<f64> {
-        let mut q: Vec<f64> = (0..n * n)
-            .map(|k| if k % (n + 1) == 0 { 1.0 } else { 0.0 })
-            .collect();
-        for i in 0..n {
-            for j in i + 1..n {
-                let (s, c) = r.gen_range(-3.2..3.2f64).sin_cos();
-                for row in 0..n {
-                    let (x, y) = (q[row * n + i], q[row * n + j]);
-                    q[row * n + i] = c * x - s * y;
-                    q[row * n + j] = s * x + c * y;
-                }
-            }
-        }
-        q
-    }
 
     /// Runs `pairs` random box pairs (with one rotation for both if `parallel`) through
     /// the least-squares path and GJK on arrays: the answers must agree; returns how many

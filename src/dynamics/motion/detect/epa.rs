@@ -1036,9 +1036,8 @@ pub fn penetration_with(
 
 #[cfg(test)]
 mod tests {
+    use super::super::test_support::{box_corners, random_rotation};
     use super::*;
-    use crate::algebra::Bivector;
-    use crate::dynamics::Attitude;
     use crate::dynamics::motion::shape::ConvexShape;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
@@ -1054,21 +1053,9 @@ mod tests {
         for n in 2..=4usize {
             for _ in 0..300 {
                 let h: Vec<f64> = (0..n).map(|_| r.gen_range(0.2..1.5)).collect();
-                let corners: Vec<Vec<f64>> = (0..1usize << n)
-                    .map(|p| {
-                        (0..n)
-                            .map(|i| if p >> i & 1 == 1 { h[i] } else { -h[i] })
-                            .collect()
-                    })
-                    .collect();
-                let hull = ConvexShape::hull(&corners).unwrap();
+                let hull = ConvexShape::hull(&box_corners(&h)).unwrap();
                 let ball = ConvexShape::ball(n, r.gen_range(0.1..1.0)).unwrap();
-                let turn: Vec<f64> = (0..n * (n - 1) / 2)
-                    .map(|_| r.gen_range(-3.0..3.0))
-                    .collect();
-                let attitude =
-                    Attitude::identity(n).times_exp(&Bivector::from_components(n, &turn).unwrap());
-                let q: Vec<f64> = attitude.to_matrix().transpose().as_slice().to_vec();
+                let q = random_rotation(&mut r, n);
                 let pa: Vec<f64> = (0..n).map(|_| r.gen_range(-0.5..0.5)).collect();
                 let pb: Vec<f64> = pa.iter().map(|x| x + r.gen_range(-2.0..2.0)).collect();
                 let a = PlacedShape::new(&hull, &pa, &q).unwrap();

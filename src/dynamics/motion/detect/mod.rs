@@ -76,3 +76,40 @@ pub(crate) fn set_bits<const K: usize>(mask: u32) -> ([usize; K], usize) {
     }
     (index, count)
 }
+
+/// Set-up shared by the detection modules' tests.
+#[cfg(test)]
+pub(crate) mod test_support {
+    use rand::Rng;
+
+    /// A random rotation (row-major, own axes → space): plane rotations by random angles in
+    /// every coordinate plane.
+    pub(crate) fn random_rotation(r: &mut impl Rng, n: usize) -> Vec<f64> {
+        let mut q: Vec<f64> = (0..n * n)
+            .map(|k| if k % (n + 1) == 0 { 1.0 } else { 0.0 })
+            .collect();
+        for i in 0..n {
+            for j in i + 1..n {
+                let (s, c) = r.gen_range(-3.2..3.2f64).sin_cos();
+                for row in 0..n {
+                    let (x, y) = (q[row * n + i], q[row * n + j]);
+                    q[row * n + i] = c * x - s * y;
+                    q[row * n + j] = s * x + c * y;
+                }
+            }
+        }
+        q
+    }
+
+    /// The 2^N corners of the box of half-lengths `h`.
+    pub(crate) fn box_corners(h: &[f64]) -> Vec<Vec<f64>> {
+        let n = h.len();
+        (0..1usize << n)
+            .map(|c| {
+                (0..n)
+                    .map(|i| if c >> i & 1 == 1 { h[i] } else { -h[i] })
+                    .collect()
+            })
+            .collect()
+    }
+}

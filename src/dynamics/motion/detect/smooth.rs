@@ -697,22 +697,11 @@ fn newton(
 
 #[cfg(test)]
 mod tests {
+    use super::super::test_support::{box_corners, random_rotation as rotation};
     use super::super::{EpaWorkspace, PlacedShape, penetration_with};
-    use crate::algebra::Bivector;
-    use crate::dynamics::Attitude;
     use crate::dynamics::motion::shape::ConvexShape;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
-
-    /// A random rotation (row-major, own axes → space) in `n` dimensions.
-    fn rotation(r: &mut ChaCha8Rng, n: usize) -> Vec<f64> {
-        let turn: Vec<f64> = (0..n * (n - 1) / 2)
-            .map(|_| r.gen_range(-3.0..3.0))
-            .collect();
-        let attitude =
-            Attitude::identity(n).times_exp(&Bivector::from_components(n, &turn).unwrap());
-        attitude.to_matrix().transpose().as_slice().to_vec()
-    }
 
     /// A ball whose centre lies inside an ellipsoid on its shortest axis, at δ from the
     /// centre, leaves through the end of that axis: depth a_min − |δ| + r (the surface's
@@ -839,13 +828,7 @@ mod tests {
                 let inside: Vec<f64> = (0..n)
                     .map(|i| centre[i] + (0..n).map(|j| q[i * n + j] * offset[j]).sum::<f64>())
                     .collect();
-                let corners: Vec<Vec<f64>> = (0..1usize << n)
-                    .map(|c| {
-                        (0..n)
-                            .map(|i| if c >> i & 1 == 1 { h[i] } else { -h[i] })
-                            .collect()
-                    })
-                    .collect();
+                let corners = box_corners(&h);
                 let ellipsoid = ConvexShape::ellipsoid(&axes).unwrap();
                 for solid in [
                     ConvexShape::cuboid(&h).unwrap(),
