@@ -203,6 +203,33 @@ impl PairRow {
         }
     }
 
+    /// The accumulated impulse as one vector, J = λ n + J_t, written to `j`.
+    pub(super) fn total_impulse(&self, j: &mut [f64]) {
+        let nv = self.normal.as_slice();
+        for ((x, y), t) in j.iter_mut().zip(nv).zip(self.friction_impulse.as_slice()) {
+            *x = y * self.normal_impulse + t;
+        }
+    }
+
+    /// Adds the impulse `j` to the accumulated one, split into its normal and tangent
+    /// parts, and gives it to the bodies (`N` as in [`dim`]). Either part may leave its
+    /// cone: the next sweep projects it back.
+    #[inline(always)]
+    pub(super) fn add_impulse<const N: usize>(&mut self, states: &mut [BodyState], j: &[f64]) {
+        let n = dim::<N>(self.normal.dim());
+        let nv = &self.normal.as_slice()[..n];
+        let along = dot(nv, &j[..n]);
+        self.normal_impulse += along;
+        for ((t, x), y) in self.friction_impulse.as_mut_slice()[..n]
+            .iter_mut()
+            .zip(&j[..n])
+            .zip(nv)
+        {
+            *t += x - along * y;
+        }
+        self.apply::<N>(states, &j[..n]);
+    }
+
     /// One Gauss–Seidel update: the normal impulse (the smallest accumulated λ ≥ 0 that
     /// reaches the target), then the friction impulse of maximal dissipation in the disc
     /// |J_t| ≤ μλ. Returns the largest velocity change it made.
