@@ -276,11 +276,8 @@ pub(crate) fn gjk_fixed<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Gjk
         let mut visited = 0u32;
         search(&next.w, (1 << next.count) - 1, &mut best, &mut visited);
         if best.vv >= vv {
-            // Round-off: the new point did not bring the simplex nearer; keep the old one.
-            // Between polytopes that is round-off on a sliver simplex, certified as a stop
-            // on a repeated point is. On curved cores it is GJK's convergence near
-            // contact, where |v|² is below the round-off of v·w (see `gap_tolerance`).
-            certified = rule.curved || rule.certified_when_stuck(vv, vw);
+            // The new point did not bring the simplex nearer; keep the old one.
+            certified = rule.certified_when_no_nearer(vv, vw);
             break;
         }
         let full = best.mask.count_ones() as usize == N + 1;
@@ -324,5 +321,6 @@ pub(crate) fn gjk_fixed<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Gjk
         certified,
         scale,
         undecided: !intersecting && rule.stuck_beside_origin(vv),
+        stalled: !intersecting && rule.stalled_beside_origin(),
     }
 }

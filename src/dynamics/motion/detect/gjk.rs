@@ -408,6 +408,9 @@ pub(crate) struct GjkResult {
     /// Not intersecting, but stuck beside the origin ([`StopRule::stuck_beside_origin`]):
     /// the cores may overlap.
     pub undecided: bool,
+    /// Not intersecting, stuck with a lower bound at or below 0 at any size
+    /// ([`StopRule::stalled_beside_origin`]): [`either_order`] asks the swapped pair.
+    pub stalled: bool,
 }
 
 /// Writes the support point of K = B − A along `d`: w = s_B(d) − s_A(−d).
@@ -430,17 +433,62 @@ pub(crate) fn support_difference(
 }
 
 /// GJK on the cores of `a` and `b` (same dimension): on stack arrays for N = 3 and 4
-/// (`fixed.rs`, the same algorithm), else [`gjk_general`].
+/// (`fixed.rs`, the same algorithm), else the general one; both orders where the first
+/// stalls ([`either_order`]).
 pub(crate) fn gjk(a: &PlacedShape, b: &PlacedShape) -> GjkResult {
+    either_order(a, b, gjk_once)
+}
+
+/// [`gjk`] in this order.
+fn gjk_once(a: &PlacedShape, b: &PlacedShape) -> GjkResult {
     match a.shape.dim() {
         3 => super::fixed::gjk_fixed::<3>(a, b),
         4 => super::fixed::gjk_fixed::<4>(a, b),
-        _ => gjk_general(a, b),
+        _ => gjk_general_once(a, b),
     }
 }
 
-/// GJK on the cores of `a` and `b` (same dimension), for any N.
+/// GJK by `once` on (a, b), and where it stops apart uncertified or stalled beside the
+/// origin, on (b, a) too: the swapped answer, as (a, b)'s, where it overlaps, or where the
+/// first is uncertified and it is certified or nearer. The swapped pair starts from other
+/// support points, and a stall on one order (a simplex with points far apart beside a
+/// feature a hundred millionth of their size, which gains nothing from its next point) is
+/// seldom one on the other.
+fn either_order(
+    a: &PlacedShape,
+    b: &PlacedShape,
+    once: impl Fn(&PlacedShape, &PlacedShape) -> GjkResult,
+) -> GjkResult {
+    let first = once(a, b);
+    if first.intersecting || first.certified && !first.stalled {
+        return first;
+    }
+    let mut swapped = once(b, a);
+    let better =
+        swapped.intersecting || !first.certified && (swapped.certified || swapped.vv < first.vv);
+    if !better {
+        return first;
+    }
+    // K = A − B for the swapped pair: its points and v negated, the shapes' points swapped.
+    let s = &mut swapped.simplex;
+    let used = s.count * s.n;
+    s.w[..used].iter_mut().for_each(|x| *x = -*x);
+    for (p, q) in s.a[..used].iter_mut().zip(&mut s.b[..used]) {
+        std::mem::swap(p, q);
+    }
+    swapped.v.iter_mut().for_each(|x| *x = -*x);
+    swapped.iterations += first.iterations;
+    swapped
+}
+
+/// GJK on the cores of `a` and `b` (same dimension), for any N (both orders where one
+/// stalls, as [`gjk`]).
 pub(crate) fn gjk_general(a: &PlacedShape, b: &PlacedShape) -> GjkResult {
+    either_order(a, b, gjk_general_once)
+}
+
+/// GJK on the cores of `a` and `b` in this order.
+fn gjk_general_once(a: &PlacedShape, b: &PlacedShape) -> GjkResult {
     let n = a.shape.dim();
     let mut d = Coords::from_elem(0.0, n);
     for ((x, p), q) in d.iter_mut().zip(b.position).zip(a.position) {
@@ -500,12 +548,9 @@ pub(crate) fn gjk_general(a: &PlacedShape, b: &PlacedShape) -> GjkResult {
         simplex.push(&w, &sa, &sb);
         let nearest = nearest_point(&simplex.w[..simplex.count * n], simplex.count, n);
         if nearest.vv >= vv {
-            // Round-off: the new point did not bring the simplex nearer; keep the old one.
-            // Between polytopes that is round-off on a sliver simplex, certified as a stop
-            // on a repeated point is. On curved cores it is GJK's convergence near
-            // contact, where |v|² is below the round-off of v·w (see `gap_tolerance`).
+            // The new point did not bring the simplex nearer; keep the old one.
             simplex.clone_from(&previous);
-            certified = rule.curved || rule.certified_when_stuck(vv, vw);
+            certified = rule.certified_when_no_nearer(vv, vw);
             break;
         }
         let full = nearest.mask.count_ones() as usize == n + 1;
@@ -532,6 +577,7 @@ pub(crate) fn gjk_general(a: &PlacedShape, b: &PlacedShape) -> GjkResult {
         certified,
         scale,
         undecided: !intersecting && rule.stuck_beside_origin(vv),
+        stalled: !intersecting && rule.stalled_beside_origin(),
     }
 }
 
@@ -553,6 +599,8 @@ pub(crate) struct StopRule {
     checkpoint: f64,
     lower: f64,
     open: bool,
+    /// True once GJK stopped stuck ([`StopRule::certified_when_stuck`]).
+    stalled: bool,
 }
 
 impl StopRule {
@@ -564,6 +612,7 @@ impl StopRule {
             checkpoint: f64::INFINITY,
             lower: f64::NEG_INFINITY,
             open: false,
+            stalled: false,
         }
     }
 
@@ -587,8 +636,30 @@ impl StopRule {
     /// [`BOUNDED_GAP`] of the size.
     #[inline]
     pub(crate) fn certified_when_stuck(&mut self, vv: f64, vw: f64) -> bool {
+        self.stalled = true;
         self.lower = self.lower.max(vw / vv.sqrt());
         self.certified(vv)
+    }
+
+    /// Where a new support point brings the simplex no nearer: between polytopes that is
+    /// round-off on a sliver simplex, certified as a stop on a repeated point is
+    /// ([`StopRule::certified_when_stuck`]). On curved cores it is also GJK's convergence
+    /// near contact, where |v|² is below the round-off of v·w (v carries about ε times the
+    /// size, v·w that times the size): certified while the gap |v|² − v·w is within 64 ε
+    /// size². A wider gap is a stall, not convergence.
+    #[inline]
+    pub(crate) fn certified_when_no_nearer(&mut self, vv: f64, vw: f64) -> bool {
+        let round_off = 64.0 * f64::EPSILON * self.scale * self.scale;
+        let converged = self.curved && vv - vw <= round_off;
+        self.certified_when_stuck(vv, vw) || converged
+    }
+
+    /// Stopped on a support point held already or one that brought the simplex no nearer,
+    /// with the best lower bound of the distance at or below 0: the cores may overlap
+    /// however near |v| is to the truth within round-off.
+    #[inline]
+    pub(crate) fn stalled_beside_origin(&self) -> bool {
+        self.stalled && self.lower <= 0.0
     }
 
     /// Takes the new support point's v·w at iteration `iterations`: true if the gap has
@@ -847,6 +918,54 @@ pub fn intersects(a: &PlacedShape, b: &PlacedShape) -> Result<bool, ShapeError> 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::dynamics::motion::detect::{EpaWorkspace, distance, penetration_with};
+
+    /// An ellipsoid of 4e-4 centred on a vertex of a 4D simplex 1.3e4 across (found by
+    /// fuzzing): with the simplex first, GJK's simplex came to hold a vertex 1e4 away beside
+    /// the ellipsoid, and from there each support point brought it nearer by less than the
+    /// round-off of its projection. It stopped 2.1e-4 apart (1.2e-8 of the size, within
+    /// the round-off of v·w there) with a negative lower bound. Such a stall now asks the
+    /// swapped order, which meets the overlap in four iterations: both orders overlap, with
+    /// one depth.
+    #[test]
+    fn fuzz_gjk_stall_beside_a_tiny_ellipsoid_asks_the_other_order() {
+        let ellipsoid = ConvexShape::ellipsoid(&[
+            4.597008228302002e-5,
+            0.00038890540599823,
+            0.0003883242607116699,
+            2.682209014892578e-6,
+        ])
+        .unwrap();
+        let mut points = vec![
+            vec![13049.5, 12947.0, -90.0, -0.5],
+            vec![1407.5, 0.0, 8192.0, 126.5],
+            vec![-0.5, -0.5, 20.0, 0.0],
+            vec![0.0, 0.0, 3252.5, 9872.5],
+        ];
+        points.extend(std::iter::repeat_n(vec![0.0; 4], 4));
+        let hull = ConvexShape::hull(&points).unwrap();
+        let identity: Vec<f64> = (0..16)
+            .map(|k| if k % 5 == 0 { 1.0 } else { 0.0 })
+            .collect();
+        let a = PlacedShape::new(&ellipsoid, &[0.0; 4], &identity).unwrap();
+        let b = PlacedShape::new(&hull, &[0.0; 4], &identity).unwrap();
+        // The stall itself, in the order that meets it.
+        let stalled = gjk_once(&b, &a);
+        assert!(
+            !stalled.intersecting && stalled.stalled,
+            "{}",
+            stalled.vv.sqrt()
+        );
+        for (p, q) in [(&a, &b), (&b, &a)] {
+            let d = distance(p, q).unwrap();
+            assert!(d.intersecting && d.certified, "{d:?}");
+            assert!(gjk_general(p, q).intersecting);
+        }
+        let mut workspace = EpaWorkspace::new();
+        let mut depth = |p, q| penetration_with(&mut workspace, p, q).unwrap().depth;
+        let (ab, ba) = (depth(&a, &b), depth(&b, &a));
+        assert!(ab > 0.0 && (ab - ba).abs() <= 1e-12 * ab, "{ab} {ba}");
+    }
 
     /// Past [`MAX_GJK_ITERATIONS`] only curved cores go on, and only while the least gap
     /// halves in each window, up to [`MAX_CURVED_GJK_ITERATIONS`].
