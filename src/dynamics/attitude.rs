@@ -145,6 +145,23 @@ impl Attitude {
         }
     }
 
+    /// The numbers the attitude is kept as: the rotor's coefficients or the matrix's
+    /// entries (their count is fixed by N).
+    pub(crate) fn entries(&self) -> &[f64] {
+        match &self.repr {
+            Repr::Rotor(r) => r.as_slice(),
+            Repr::Matrix(q) => q,
+        }
+    }
+
+    /// [`Attitude::entries`], to set in place.
+    pub(crate) fn entries_mut(&mut self) -> &mut [f64] {
+        match &mut self.repr {
+            Repr::Rotor(r) => r.as_mut_slice(),
+            Repr::Matrix(q) => q,
+        }
+    }
+
     /// Returns the rotor when the attitude is kept as one (N ≤ [`Attitude::ROTOR_MAX_DIM`]).
     pub fn as_rotor(&self) -> Option<&Rotor> {
         match &self.repr {

@@ -617,6 +617,12 @@ impl Rotor {
         &self.coeffs
     }
 
+    /// The coefficients of [`Rotor::as_slice`], to set in place (crate-internal: a saved
+    /// state written back).
+    pub(crate) fn as_mut_slice(&mut self) -> &mut [f64] {
+        &mut self.coeffs
+    }
+
     /// Multiplies by a scalar (crate-internal: used by normalisation and sign flips).
     pub(crate) fn scaled(mut self, s: f64) -> Self {
         self.coeffs.iter_mut().for_each(|c| *c *= s);

@@ -1,14 +1,14 @@
 //! [`MotionSplitting`]: kicks, free flight, impacts located in time, contacts and joints.
 
 use super::{MotionIntegrator, check_finite, kick, one_by_one};
-use crate::algebra::{Bivector, Vector};
+use crate::algebra::Vector;
+use crate::dynamics::DynamicsError;
 use crate::dynamics::integrate::{axpy, free_flight};
 use crate::dynamics::motion::detect::bodies::Touching;
 use crate::dynamics::motion::forques::Anchor;
-use crate::dynamics::motion::placement::{Placements, set_vector};
+use crate::dynamics::motion::placement::Placements;
 use crate::dynamics::motion::solve::{Solver, SolverReport};
 use crate::dynamics::motion::{ContactShape, MotionError, MovingBody, System, Wrench};
-use crate::dynamics::{Attitude, DynamicsError};
 
 /// The symplectic Strang splitting of H = T + V: half a kick by the forques (p += ½h F,
 /// L += ½h τ at fixed positions and attitudes), free flight for h (x += h p/m exactly, the
@@ -43,8 +43,8 @@ use crate::dynamics::{Attitude, DynamicsError};
 #[derive(Clone, Debug, Default)]
 pub struct MotionSplitting {
     solver: Solver,
-    saved: Vec<SavedBody>,
-    pre_drift: Vec<SavedBody>,
+    saved: SavedBodies,
+    pre_drift: SavedBodies,
     wrenches: Vec<Wrench>,
     resting_speed: Vec<f64>,
     active: Vec<bool>,
@@ -70,7 +70,7 @@ pub struct MotionSplitting {
     /// Refuse steps whose solves did not converge.
     strict: bool,
     /// The momenta before an implicit closing kick.
-    kick_start: Vec<SavedBody>,
+    kick_start: SavedBodies,
     /// The bodies' convex shapes and the pairs of bodies found touching.
     touching: Touching,
     /// The pairs of bodies in contact at the start of the substep, sorted.
@@ -82,7 +82,7 @@ pub struct MotionSplitting {
     /// half-spaces, with their signed distances.
     entering: Vec<Entering>,
     /// The state at the end of a flight, while entering contacts are checked from its start.
-    flight_end: Vec<SavedBody>,
+    flight_end: SavedBodies,
 }
 
 /// A contact entering in a flight: a pair of bodies (a < b) with its signed distance and
@@ -116,54 +116,56 @@ const LOCATE_WIDTH: f64 = 1e-6;
 /// Impacts located within one step, at most (then the rest of the step is resting contact).
 const MAX_EVENTS: usize = 16;
 
-/// The state of one body, to come back to.
-#[derive(Clone, Debug)]
-struct SavedBody {
-    x: Vector,
-    p: Vector,
-    attitude: Attitude,
-    l: Bivector,
+/// The states of bodies, to come back to: each body's position, momentum, angular
+/// momentum and attitude (the rotor's coefficients or the matrix's entries), one body after
+/// another in one array. A body's few numbers then lie in one or two cache lines, where
+/// vectors with room for eight dimensions would spread them over a dozen.
+#[derive(Clone, Debug, Default)]
+struct SavedBodies {
+    data: Vec<f64>,
+    /// Where each body's numbers start in `data`.
+    starts: Vec<usize>,
 }
 
-fn save(bodies: &[MovingBody], into: &mut Vec<SavedBody>) {
-    // Over the entries already there: copying a body's state costs less than building it.
-    into.truncate(bodies.len());
-    for (i, b) in bodies.iter().enumerate() {
-        match into.get_mut(i) {
-            Some(s) => {
-                set_vector(&mut s.x, b.position().as_slice());
-                set_vector(&mut s.p, b.linear_momentum().as_slice());
-                s.attitude
-                    .clone_from(b.rotation().principal_frame_attitude());
-                copy_bivector(&mut s.l, b.rotation().momentum());
-            }
-            None => into.push(SavedBody {
-                x: b.position().clone(),
-                p: b.linear_momentum().clone(),
-                attitude: b.rotation().principal_frame_attitude().clone(),
-                l: b.rotation().momentum().clone(),
-            }),
+impl SavedBodies {
+    /// Saves the bodies' states over the last ones' room.
+    fn save(&mut self, bodies: &[MovingBody]) {
+        self.data.clear();
+        self.starts.clear();
+        for b in bodies {
+            self.starts.push(self.data.len());
+            self.data.extend_from_slice(b.position().as_slice());
+            self.data.extend_from_slice(b.linear_momentum().as_slice());
+            self.data
+                .extend_from_slice(b.rotation().momentum().as_slice());
+            self.data
+                .extend_from_slice(b.rotation().principal_frame_attitude().entries());
         }
     }
-}
 
-/// Sets `to` to `from`, in place when the dimensions agree.
-fn copy_bivector(to: &mut Bivector, from: &Bivector) {
-    if to.dim() == from.dim() {
-        to.as_mut_slice().copy_from_slice(from.as_slice());
-    } else {
-        to.clone_from(from);
+    /// Sets the bodies (the ones saved) back to their saved states.
+    fn restore(&self, bodies: &mut [MovingBody]) {
+        for (b, &start) in bodies.iter_mut().zip(&self.starts) {
+            let (x, p, rotation) = b.state_mut();
+            let (attitude, l) = rotation.state_mut();
+            let mut at = start;
+            for part in [
+                x.as_mut_slice(),
+                p.as_mut_slice(),
+                l.as_mut_slice(),
+                attitude.entries_mut(),
+            ] {
+                part.copy_from_slice(&self.data[at..at + part.len()]);
+                at += part.len();
+            }
+        }
     }
-}
 
-fn restore(bodies: &mut [MovingBody], from: &[SavedBody]) {
-    for (b, s) in bodies.iter_mut().zip(from) {
-        let (x, p, rotation) = b.state_mut();
-        set_vector(x, s.x.as_slice());
-        set_vector(p, s.p.as_slice());
-        let (a, l) = rotation.state_mut();
-        a.clone_from(&s.attitude);
-        copy_bivector(l, &s.l);
+    /// Body `k`'s saved momentum and angular momentum (N and M numbers).
+    fn momenta(&self, k: usize, n: usize) -> (&[f64], &[f64]) {
+        let p = self.starts[k] + n;
+        let m = n * (n - 1) / 2;
+        (&self.data[p..p + n], &self.data[p + n..p + n + m])
     }
 }
 
@@ -237,26 +239,27 @@ impl MotionSplitting {
             self.half_kick(system, t, h, false);
             return;
         }
-        save(system.bodies(), &mut self.kick_start);
+        self.kick_start.save(system.bodies());
         self.wrenches_at(system, t);
         kick(system.bodies_mut(), &self.wrenches, 0.5 * h);
         for _ in 0..MAX_KICK_ITERATIONS {
             self.wrenches_at(system, t);
             let (mut change, mut size) = (0.0f64, 0.0f64);
-            for ((b, start), w) in system
+            for (k, (b, w)) in system
                 .bodies_mut()
                 .iter_mut()
-                .zip(&self.kick_start)
                 .zip(&self.wrenches)
+                .enumerate()
             {
                 if b.is_fixed() {
                     continue;
                 }
+                let (p0, l0) = self.kick_start.momenta(k, b.dim());
                 let (_, p, rotation) = b.state_mut();
                 let (_, l) = rotation.state_mut();
                 let parts = [
-                    (p.as_mut_slice(), start.p.as_slice(), w.force.as_slice()),
-                    (l.as_mut_slice(), start.l.as_slice(), w.torque.as_slice()),
+                    (p.as_mut_slice(), p0, w.force.as_slice()),
+                    (l.as_mut_slice(), l0, w.torque.as_slice()),
                 ];
                 for (now, from, rate) in parts {
                     for ((x, x0), f) in now.iter_mut().zip(from).zip(rate) {
@@ -423,7 +426,7 @@ impl MotionSplitting {
                 }
             }
         }
-        save(bodies, &mut self.pre_drift);
+        self.pre_drift.save(bodies);
         let mut worst_gap = 0.0;
         for _ in 0..50 {
             self.drift(bodies, t, h)?;
@@ -479,7 +482,7 @@ impl MotionSplitting {
                 self.keep_joint_forces(h);
                 return Ok(());
             }
-            restore(bodies, &self.pre_drift);
+            self.pre_drift.restore(bodies);
             if !joints.is_empty() {
                 // The start placement again: the rows and K of the velocity solve hold.
                 self.solver
@@ -531,7 +534,7 @@ impl MotionSplitting {
                 let nrm = half_spaces[row.half_space].normal();
                 push(&mut bodies[row.body], &row.r, &(nrm * dl));
             }
-            save(bodies, &mut self.pre_drift);
+            self.pre_drift.save(bodies);
         }
         if worst_gap <= 1e-13 * size {
             // Contacts that did not settle within the iterations are lifted out after.
@@ -701,18 +704,18 @@ impl MotionSplitting {
         for events in 0..=MAX_EVENTS {
             self.mark_active(system);
             let mut saved = std::mem::take(&mut self.saved);
-            save(system.bodies(), &mut saved);
+            saved.save(system.bodies());
             let mut f_end = self.substep(system, t, remaining, false)?;
             if f_end < -1.0 && events < MAX_EVENTS {
                 // Contacts that close slowly count as in contact from the start, so that only
                 // the others are located; the closing solve holds them (and lets their
                 // overlap out).
                 let mut end = std::mem::take(&mut self.flight_end);
-                save(system.bodies(), &mut end);
+                end.save(system.bodies());
                 let fast = self.admit_entering(system, &saved, h);
                 if fast >= -1.0 {
                     // Nothing to locate: the flight stands.
-                    restore(system.bodies_mut(), &end);
+                    end.restore(system.bodies_mut());
                 }
                 self.flight_end = end;
                 f_end = fast;
@@ -728,7 +731,7 @@ impl MotionSplitting {
             // An impact inside the step: find where the fresh candidates reach the plane.
             self.locating = true;
             let (mut a, mut fa) = (0.0, {
-                restore(system.bodies_mut(), &saved);
+                saved.restore(system.bodies_mut());
                 self.new_penetration(system)
             });
             let (mut b, mut fb) = (remaining, f_end);
@@ -755,7 +758,7 @@ impl MotionSplitting {
                     s = remaining;
                     break;
                 }
-                restore(system.bodies_mut(), &saved);
+                saved.restore(system.bodies_mut());
                 let contacts_before = system.contact_mark();
                 let f = self.substep(system, t, s, true)?;
                 system.truncate_contacts(contacts_before);
@@ -778,7 +781,7 @@ impl MotionSplitting {
             }
             self.locating = false;
             // Take the located substep for real, recording its contacts.
-            restore(system.bodies_mut(), &saved);
+            saved.restore(system.bodies_mut());
             self.substep(system, t, s, true)?;
             self.saved = saved;
             t += s;
@@ -797,9 +800,9 @@ impl MotionSplitting {
     /// are in the closing solve, and locating each (a bracketing of its own, with two solves
     /// per try) would cost far more than the step. Returns the least relative distance at
     /// the end of the flight of the others (+∞ if none), and leaves the bodies at `saved`.
-    fn admit_entering(&mut self, system: &mut System, saved: &[SavedBody], step: f64) -> f64 {
+    fn admit_entering(&mut self, system: &mut System, saved: &SavedBodies, step: f64) -> f64 {
         let entering = std::mem::take(&mut self.entering);
-        restore(system.bodies_mut(), saved);
+        saved.restore(system.bodies_mut());
         // The pairs within their radii of each other at the start.
         self.place(system);
         if self.touching.any_pairs() {
@@ -890,14 +893,14 @@ impl MotionSplitting {
         // none of them: the placements hold until this step's flight.
         self.mark_placed_active(system);
         let mut saved = std::mem::take(&mut self.saved);
-        save(system.bodies(), &mut saved);
+        saved.save(system.bodies());
         self.joined_kick(system, before, h);
         // The step's contacts are not recorded: only the last step's are listed, and the
         // last step is a single one.
         self.solve_placed(system, 0.5 * (before + h), false);
         let fresh = self.flight(system, t, h)?;
         if fresh < -1.0 {
-            restore(system.bodies_mut(), &saved);
+            saved.restore(system.bodies_mut());
         }
         self.saved = saved;
         Ok(fresh >= -1.0)
@@ -1190,7 +1193,7 @@ impl MotionSplitting {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::algebra::Rotor;
+    use crate::algebra::{Bivector, Rotor};
     use crate::dynamics::motion::HalfSpace;
     use crate::dynamics::motion::forques::Gravity;
     use crate::inertia::spec::parse_body;
