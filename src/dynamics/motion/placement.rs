@@ -18,33 +18,54 @@ use smallvec::SmallVec;
 /// current attitude by a few units of round-off, and are kept.
 pub(crate) const SAME_ATTITUDE: f64 = 1e-15;
 
-/// True if the two attitudes place a body alike (see [`SAME_ATTITUDE`]).
-pub(crate) fn attitudes_close(a: &Attitude, b: &Attitude) -> bool {
-    if a.dim() != b.dim() {
-        return false;
+/// The entries of two attitudes of one dimension (both rotors or both matrices, as the
+/// dimension decides) within [`SAME_ATTITUDE`] of each other.
+fn entries_close(x: &[f64], y: &[f64]) -> bool {
+    x.len() == y.len() && x.iter().zip(y).all(|(p, q)| (p - q).abs() <= SAME_ATTITUDE)
+}
+
+/// An attitude kept to compare later ones with ([`AttitudeKey::close_to`]), or none: its entries
+/// (a rotor's coefficients or a matrix's) alone, in the room of a rotor's up to 4D. A
+/// body's state keeps one for each thing it placed; a whole attitude, with room for an
+/// 8 × 8 matrix inline, would spread those few numbers over many cache lines. A matrix's
+/// entries go to the heap at the first `set` and reuse that room after.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct AttitudeKey {
+    entries: SmallVec<[f64; 8]>,
+    dim: usize,
+}
+
+impl AttitudeKey {
+    /// Keeps `attitude`.
+    pub(crate) fn set(&mut self, attitude: &Attitude) {
+        self.entries.clear();
+        self.entries.extend_from_slice(attitude.entries());
+        self.dim = attitude.dim();
     }
-    let close = |x: &[f64], y: &[f64]| {
-        x.len() == y.len() && x.iter().zip(y).all(|(p, q)| (p - q).abs() <= SAME_ATTITUDE)
-    };
-    match (a.as_rotor(), b.as_rotor()) {
-        (Some(x), Some(y)) => close(x.as_slice(), y.as_slice()),
-        (None, None) => {
-            let n = a.dim();
-            let mut qa = SmallVec::<[f64; 64]>::from_elem(0.0, n * n);
-            let mut qb = SmallVec::<[f64; 64]>::from_elem(0.0, n * n);
-            a.write_matrix(&mut qa);
-            b.write_matrix(&mut qb);
-            close(&qa, &qb)
-        }
-        _ => false,
+
+    /// Keeps none.
+    pub(crate) fn clear(&mut self) {
+        self.entries.clear();
+        self.dim = 0;
+    }
+
+    /// True if an attitude is kept.
+    pub(crate) fn is_set(&self) -> bool {
+        self.dim != 0
+    }
+
+    /// True if an attitude is kept and places a body as `attitude` does (see
+    /// [`SAME_ATTITUDE`]).
+    pub(crate) fn close_to(&self, attitude: &Attitude) -> bool {
+        self.dim == attitude.dim() && entries_close(&self.entries, attitude.entries())
     }
 }
 
 /// One body's placement: its own axes and its vertices' offsets in space.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Placement {
-    /// The principal-frame attitude it was computed at (None: not placed).
-    attitude: Option<Attitude>,
+    /// The principal-frame attitude it was computed at (none: not placed).
+    attitude: AttitudeKey,
     /// Changes whenever the placement is computed anew.
     pub generation: u64,
     /// The own axes, row-major N × N (column j: the image of eⱼ).
@@ -246,7 +267,7 @@ impl Placements {
             self.owner = Some(owner);
             self.bodies.resize_with(bodies.len(), Placement::default);
             for (p, shape) in self.bodies.iter_mut().zip(shapes) {
-                p.attitude = None;
+                p.attitude.clear();
                 p.radius = shape.radius();
             }
         }
@@ -255,10 +276,7 @@ impl Placements {
                 continue;
             }
             let attitude = b.rotation().principal_frame_attitude();
-            if p.attitude
-                .as_ref()
-                .is_some_and(|a| attitudes_close(a, attitude))
-            {
+            if p.attitude.close_to(attitude) {
                 let kept = match shape {
                     ContactShape::Vertices(v) => v.len() * half_spaces.len(),
                     ContactShape::Ellipsoid(_) => half_spaces.len(),
@@ -284,10 +302,7 @@ impl Placements {
                 }
             }
             p.set_heights(shape, n, half_spaces);
-            match &mut p.attitude {
-                Some(a) => a.clone_from(attitude),
-                None => p.attitude = Some(attitude.clone()),
-            }
+            p.attitude.set(attitude);
             self.next += 1;
             p.generation = self.next;
         }
@@ -322,13 +337,15 @@ mod tests {
                 a.times_exp_mut(&w);
                 a
             };
-            assert!(attitudes_close(&base, &base.clone()), "N = {n}");
-            assert!(attitudes_close(&base, &turned(1e-17)), "N = {n}");
-            assert!(!attitudes_close(&base, &turned(1e-13)), "N = {n}");
-            assert!(
-                !attitudes_close(&base, &Attitude::identity(n + 1)),
-                "N = {n}"
-            );
+            let mut key = AttitudeKey::default();
+            assert!(!key.is_set() && !key.close_to(&base), "N = {n}");
+            key.set(&base);
+            assert!(key.close_to(&base.clone()), "N = {n}");
+            assert!(key.close_to(&turned(1e-17)), "N = {n}");
+            assert!(!key.close_to(&turned(1e-13)), "N = {n}");
+            assert!(!key.close_to(&Attitude::identity(n + 1)), "N = {n}");
+            key.clear();
+            assert!(!key.close_to(&base), "N = {n}");
         }
     }
 

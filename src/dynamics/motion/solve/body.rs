@@ -5,9 +5,8 @@ use super::contact_row::{
     RowLayout, add_contraction, add_mat_vec, axes_of, contraction_entry, dim,
 };
 use crate::algebra::{Bivector, Vector};
-use crate::dynamics::Attitude;
 use crate::dynamics::motion::MovingBody;
-use crate::dynamics::motion::placement::{attitudes_close, dot, set_vector};
+use crate::dynamics::motion::placement::{AttitudeKey, dot, set_vector};
 use smallvec::SmallVec;
 
 /// One body during a solve: its velocity and angular velocity (space) as the impulses so
@@ -29,7 +28,8 @@ pub(crate) struct BodyState {
     /// The attitude of the principal frame, the mass and the inverse plane moments that
     /// `frame` and `inv_inertia` were computed for (None when they must be computed anew):
     /// a body at the same placement as at the last solve reuses them.
-    pub(super) key: Option<(Attitude, f64)>,
+    pub(super) key: AttitudeKey,
+    pub(super) key_mass: f64,
     pub(super) key_moments: SmallVec<[f64; 28]>,
     /// Changes whenever `frame` and `inv_inertia` are computed anew.
     pub(super) generation: u64,
@@ -46,7 +46,8 @@ impl BodyState {
             dp: Vector::zero(n),
             dl: Bivector::zero(n),
             used: false,
-            key: None,
+            key: AttitudeKey::default(),
+            key_mass: 0.0,
             key_moments: SmallVec::new(),
             generation: 0,
         }
@@ -68,18 +69,17 @@ impl BodyState {
         let attitude = b.rotation().principal_frame_attitude();
         let inertia = b.rotation().inertia();
         let diagonal = inertia.diagonal_inverse_plane_moments();
-        let same_inertia = match (&self.key, diagonal) {
-            (Some((_, mass)), Some(inv)) => *mass == b.mass() && self.key_moments[..] == inv[..],
+        let same_inertia = match diagonal {
+            Some(inv) if self.key.is_set() => {
+                self.key_mass == b.mass() && self.key_moments[..] == inv[..]
+            }
             _ => false,
         };
         // Equal plane moments: I⁻¹ is the same multiple of the identity in every frame. Such
         // a body's frame is taken anew at every load, which costs about what comparing its
         // attitude with the last one would.
         let isotropic = diagonal.is_some_and(|inv| inv.iter().all(|x| *x == inv[0]));
-        let turned = match &self.key {
-            Some((a, _)) if same_inertia && !isotropic => !attitudes_close(a, attitude),
-            _ => true,
-        };
+        let turned = !(same_inertia && !isotropic && self.key.close_to(attitude));
         let anew = !same_inertia || (turned && !isotropic);
         if turned {
             self.place_frame(b, matrix);
@@ -92,11 +92,12 @@ impl BodyState {
             }
             match diagonal {
                 Some(inv) => {
-                    self.key = Some((attitude.clone(), b.mass()));
+                    self.key.set(attitude);
+                    self.key_mass = b.mass();
                     self.key_moments.clear();
                     self.key_moments.extend_from_slice(inv);
                 }
-                None => self.key = None,
+                None => self.key.clear(),
             }
         }
         self.inv_mass = 1.0 / b.mass();
@@ -138,7 +139,7 @@ impl BodyState {
         if let Some(matrix) = matrix {
             self.place_frame(b, AttitudeMatrix::Given(matrix));
             // The inverse inertia in space is that of another frame now.
-            self.key = None;
+            self.key.clear();
         }
         self.inv_mass = 1.0 / b.mass();
         for (x, p) in vel[..n].iter_mut().zip(b.linear_momentum().as_slice()) {
