@@ -68,8 +68,9 @@ pub(crate) struct Placement {
     attitude: AttitudeKey,
     /// Changes whenever the placement is computed anew.
     pub generation: u64,
-    /// The own axes, row-major N × N (column j: the image of eⱼ).
-    pub q: SmallVec<[f64; 64]>,
+    /// The own axes, row-major N × N (column j: the image of eⱼ); inline up to 4D, from 5D
+    /// on the heap once (its room kept from placement to placement).
+    pub q: SmallVec<[f64; 16]>,
     /// For a shape of vertices, Q r of each vertex r (N numbers each); for an ellipsoid,
     /// Q r of its support point r against each half-space in turn.
     offsets: Vec<f64>,

@@ -30,7 +30,7 @@ pub(crate) struct BodyState {
     /// a body at the same placement as at the last solve reuses them.
     pub(super) key: AttitudeKey,
     pub(super) key_mass: f64,
-    pub(super) key_moments: SmallVec<[f64; 28]>,
+    pub(super) key_moments: SmallVec<[f64; 6]>,
     /// Changes whenever `frame` and `inv_inertia` are computed anew.
     pub(super) generation: u64,
 }
