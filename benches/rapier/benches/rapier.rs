@@ -12,7 +12,8 @@
 
 use criterion::{Criterion, SamplingMode, Throughput, black_box};
 use rotorflow_rapier_bench::{
-    Floor, Item, RapierRun, RotorflowRun, Run, pile, pyramid, resting_boxes, rolling_balls,
+    Floor, Item, RapierRun, RotorflowRun, Run, pile, pyramid, resting_boxes, resting_boxes_of,
+    rolling_balls,
 };
 use std::path::PathBuf;
 
@@ -33,6 +34,13 @@ const SCENES: &[Scene] = &[
         items: resting_boxes,
         settle: 20,
         steps: 10,
+        rotorflow: true,
+    },
+    Scene {
+        group: "resting_boxes_100",
+        items: || resting_boxes_of(100),
+        settle: 20,
+        steps: 100,
         rotorflow: true,
     },
     Scene {

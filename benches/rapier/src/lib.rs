@@ -55,7 +55,13 @@ pub const ROLLING_BALL: (f64, f64) = (0.5, 1.0);
 
 /// 1,000 boxes on a 40 × 25 grid, 2 apart, resting on their largest face.
 pub fn resting_boxes() -> Vec<Item> {
-    (0..1000)
+    resting_boxes_of(1000)
+}
+
+/// The first `count` boxes of [`resting_boxes`]'s grid (rows of 40): the same scene
+/// smaller, to see how the time per body grows with the number of bodies.
+pub fn resting_boxes_of(count: usize) -> Vec<Item> {
+    (0..count)
         .map(|k| {
             let (i, j) = ((k % 40) as f64, (k / 40) as f64);
             Item::at(
@@ -705,6 +711,7 @@ mod tests {
     #[test]
     fn scenes_have_the_sizes_asked_for_and_start_apart() {
         assert_eq!(resting_boxes().len(), 1000);
+        assert_eq!(resting_boxes_of(100)[..], resting_boxes()[..100]);
         assert_eq!(rolling_balls().len(), 1000);
         assert_eq!(pyramid(10).len(), 55);
         for count in [100, 1000] {

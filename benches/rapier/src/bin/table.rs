@@ -19,6 +19,7 @@ use std::time::{Instant, SystemTime};
 /// The scenes of the bench, in its order: criterion group, description.
 const SCENES: &[(&str, &str)] = &[
     ("resting_boxes_1000", "1,000 boxes resting on the floor"),
+    ("resting_boxes_100", "100 of those boxes"),
     ("rolling_balls_1000", "1,000 balls rolling on the floor"),
     ("pyramid_55", "pyramid of 55 cubes (10 layers)"),
     ("pile_100", "pile of 100 boxes and balls"),
