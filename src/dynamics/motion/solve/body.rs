@@ -6,8 +6,13 @@ use super::contact_row::{
 };
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::motion::MovingBody;
-use crate::dynamics::motion::placement::{AttitudeKey, dot, set_vector};
+use crate::dynamics::motion::placement::{AttitudeKey, dot};
 use smallvec::SmallVec;
+
+/// A body's velocity or momentum in a solve (N numbers), inline up to 4D.
+pub(super) type Linear = SmallVec<[f64; 4]>;
+/// A body's angular velocity or angular momentum in a solve (M numbers), inline up to 4D.
+pub(super) type Angular = SmallVec<[f64; 6]>;
 
 /// One body during a solve: its velocity and angular velocity (space) as the impulses so
 /// far leave them, its inverse mass and inverse inertia in space, and the impulses to hand
@@ -20,10 +25,10 @@ pub(crate) struct BodyState {
     /// The rotation of the principal frame on bivectors, M × M row-major (columns: the
     /// images of the basis planes).
     pub(super) frame: Vec<f64>,
-    pub(super) v: Vector,
-    pub(super) w: Bivector,
-    pub(super) dp: Vector,
-    pub(super) dl: Bivector,
+    pub(super) v: Linear,
+    pub(super) w: Angular,
+    pub(super) dp: Linear,
+    pub(super) dl: Angular,
     pub used: bool,
     /// The attitude of the principal frame, the mass and the inverse plane moments that
     /// `frame` and `inv_inertia` were computed for (None when they must be computed anew):
@@ -41,10 +46,10 @@ impl BodyState {
             inv_mass: 0.0,
             inv_inertia: Vec::new(),
             frame: Vec::new(),
-            v: Vector::zero(n),
-            w: Bivector::zero(n),
-            dp: Vector::zero(n),
-            dl: Bivector::zero(n),
+            v: Linear::from_elem(0.0, n),
+            w: Angular::from_elem(0.0, n * (n - 1) / 2),
+            dp: Linear::from_elem(0.0, n),
+            dl: Angular::from_elem(0.0, n * (n - 1) / 2),
             used: false,
             key: AttitudeKey::default(),
             key_mass: 0.0,
@@ -101,8 +106,10 @@ impl BodyState {
             }
         }
         self.inv_mass = 1.0 / b.mass();
-        set_vector(&mut self.v, b.linear_momentum().as_slice());
-        self.v *= self.inv_mass;
+        self.v.clear();
+        let inv_mass = self.inv_mass;
+        self.v
+            .extend(b.linear_momentum().as_slice().iter().map(|p| p * inv_mass));
         match diagonal {
             // ω in space = P (I⁻¹ L), I⁻¹ diagonal in the principal frame.
             Some(inv) => {
@@ -113,7 +120,10 @@ impl BodyState {
                     _ => frame_diagonal::<0>(&self.frame, inv, l, w),
                 }
             }
-            None => self.w = b.space_omega(),
+            None => {
+                self.w.clear();
+                self.w.extend_from_slice(b.space_omega().as_slice());
+            }
         }
         self.dp.as_mut_slice().fill(0.0);
         self.dl.as_mut_slice().fill(0.0);
@@ -354,7 +364,7 @@ impl BodyState {
     /// storage.
     #[inline(always)]
     pub(super) fn view<const N: usize>(&mut self) -> BodyView<'_> {
-        let n = dim::<N>(self.v.dim());
+        let n = dim::<N>(self.v.len());
         let m = n * (n - 1) / 2;
         BodyView {
             inv_mass: self.inv_mass,
@@ -374,7 +384,9 @@ impl BodyState {
         }
         let m = self.dl.as_slice().len();
         let (_, p, rotation) = b.state_mut();
-        *p += &self.dp;
+        for (x, d) in p.as_mut_slice().iter_mut().zip(&self.dp) {
+            *x += d;
+        }
         let (_, l) = rotation.state_mut();
         let (dl, l) = (self.dl.as_slice(), l.as_mut_slice());
         match m {
@@ -753,17 +765,19 @@ mod tests {
             let vector = |f: &mut dyn FnMut() -> f64| {
                 Vector::from_components(&(0..n).map(|_| f()).collect::<Vec<_>>()).unwrap()
             };
-            st.v = vector(&mut next);
-            st.w =
+            let v = vector(&mut next);
+            let w =
                 Bivector::from_components(n, &(0..m).map(|_| next()).collect::<Vec<_>>()).unwrap();
+            st.v = Linear::from_slice(v.as_slice());
+            st.w = Angular::from_slice(w.as_slice());
             let (r, j) = (vector(&mut next), vector(&mut next));
-            let mut want = st.v.clone();
-            want += &r.left_contract(&st.w);
+            let mut want = v.clone();
+            want += &r.left_contract(&w);
             let got = st.velocity_at(&r);
             for (x, y) in got.as_slice().iter().zip(want.as_slice()) {
                 assert!((x - y).abs() <= 1e-15, "N = {n}: u {x} against {y}");
             }
-            let (v0, w0) = (st.v.clone(), st.w.clone());
+            let (v0, w0) = (v, w);
             // The fixed-size kernels of 3D and 4D take the same steps as the run-time ones.
             let mut fixed = st.clone();
             let mut u = vec![0.0; n];
