@@ -532,7 +532,8 @@ impl MotionSplitting {
                 let dl = want - row.position_impulse;
                 row.position_impulse = want;
                 let nrm = half_spaces[row.half_space].normal();
-                push(&mut bodies[row.body], &row.r, &(nrm * dl));
+                let r = Vector::from_storage(row.r.iter().copied().collect());
+                push(&mut bodies[row.body], &r, &(nrm * dl));
             }
             self.pre_drift.save(bodies);
         }

@@ -9,6 +9,9 @@ use crate::dynamics::motion::placement::dot;
 use crate::numeric::symmetric_eigen_rows as symmetric_eigen;
 use smallvec::SmallVec;
 
+/// A point, offset or impulse of a contact row (N numbers), inline up to 4D.
+pub(crate) type Small4 = SmallVec<[f64; 4]>;
+
 /// One contact point in a solve.
 #[derive(Clone, Debug)]
 pub(crate) struct ContactRow {
@@ -17,12 +20,12 @@ pub(crate) struct ContactRow {
     /// The candidate's number on its body and half-space (from 1).
     pub index: usize,
     /// The point in own axes and its offset from the centre of mass in space.
-    pub point: Vector,
-    pub r: Vector,
+    pub point: Small4,
+    pub r: Small4,
     /// The normal velocity wanted after the impulse (0, or −e u⁻ for an impact).
     pub target: f64,
     pub normal_impulse: f64,
-    pub friction_impulse: Vector,
+    pub friction_impulse: Small4,
     /// The normal impulse added in the free flight to keep the point out (position level).
     pub position_impulse: f64,
     /// nᵀ K n and the point's speed (set when the solve starts; the rest of K is in the
@@ -318,13 +321,13 @@ pub(super) fn scratch<'a, const N: usize>(
 /// of the point and the unit normal `nrm`.
 pub(super) fn row_matrices(
     st: &BodyState,
-    r: &Vector,
+    r: &[f64],
     nrm: &Vector,
     l: &RowLayout,
     data: &mut [f64],
 ) {
     let (n, m) = (l.n, l.m);
-    let (r, nv) = (&r.as_slice()[..n], &nrm.as_slice()[..n]);
+    let (r, nv) = (&r[..n], &nrm.as_slice()[..n]);
     // Plane p = (a, b) holds −r_b at a and r_a at b in row p of R (column j: r ∧ e_j) and
     // in column p of C (column p: r ⌋ e_p); nothing else.
     // W = I⁻¹ R, column q of I⁻¹ times row q of R.

@@ -18,11 +18,11 @@ use crate::algebra::Vector;
 use crate::dynamics::motion::body::contact_material;
 use crate::dynamics::motion::contact::ContactLog;
 use crate::dynamics::motion::detect::bodies::PairContact;
-use crate::dynamics::motion::placement::{Placements, dot, set_vector};
+use crate::dynamics::motion::placement::{Placements, dot};
 use crate::dynamics::motion::{ContactShape, HalfSpace, MovingBody};
 use body::{BodyState, LocalBody, add_inverse_mass};
 use contact_row::{
-    RowKey, RowLayout, Small, dim, point_velocity, row_matrices, scratch, sweep_contact,
+    RowKey, RowLayout, Small, Small4, dim, point_velocity, row_matrices, scratch, sweep_contact,
 };
 use smallvec::SmallVec;
 
@@ -167,7 +167,7 @@ type WarmList<'a> = (&'a [WarmImpulse], &'a mut usize);
 
 /// A contact's impulses kept for the next solve: body, half-space, candidate, normal
 /// impulse, friction impulse.
-type WarmImpulse = (usize, usize, usize, f64, Vector);
+type WarmImpulse = (usize, usize, usize, f64, Small4);
 
 impl Solver {
     /// Finds the contact points of `bodies` within `tolerance` × their radius of a
@@ -228,8 +228,10 @@ impl Solver {
                         row.index = index;
                         // The same point of the same placement is there already.
                         if !(row.warm && row.placed == placed.generation) {
-                            set_vector(&mut row.point, p.as_slice());
-                            set_vector(&mut row.r, r);
+                            row.point.clear();
+                            row.point.extend_from_slice(p.as_slice());
+                            row.r.clear();
+                            row.r.extend_from_slice(r);
                             row.placed = placed.generation;
                         }
                         row.target = target;
@@ -241,11 +243,11 @@ impl Solver {
                             body: i,
                             half_space: k,
                             index,
-                            point: p.clone(),
-                            r: Vector::from_storage(SmallVec::from_slice(r)),
+                            point: Small4::from_slice(p.as_slice()),
+                            r: Small4::from_slice(r),
                             target,
                             normal_impulse: 0.0,
-                            friction_impulse: Vector::zero(n),
+                            friction_impulse: Small4::from_elem(0.0, n),
                             position_impulse: 0.0,
                             knn: 0.0,
                             speed: 0.0,
