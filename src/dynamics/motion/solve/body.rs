@@ -2,17 +2,12 @@
 
 use super::Dense;
 use super::contact_row::{
-    RowLayout, add_contraction, add_mat_vec, axes_of, contraction_entry, dim,
+    Angular, Linear, RowLayout, add_contraction, add_mat_vec, axes_of, contraction_entry, dim,
 };
 use crate::algebra::{Bivector, Vector};
 use crate::dynamics::motion::MovingBody;
 use crate::dynamics::motion::placement::{AttitudeKey, dot};
 use smallvec::SmallVec;
-
-/// A body's velocity or momentum in a solve (N numbers), inline up to 4D.
-pub(super) type Linear = SmallVec<[f64; 4]>;
-/// A body's angular velocity or angular momentum in a solve (M numbers), inline up to 4D.
-pub(super) type Angular = SmallVec<[f64; 6]>;
 
 /// One body during a solve: its velocity and angular velocity (space) as the impulses so
 /// far leave them, its inverse mass and inverse inertia in space, and the impulses to hand

@@ -9,8 +9,11 @@ use crate::dynamics::motion::placement::dot;
 use crate::numeric::symmetric_eigen_rows as symmetric_eigen;
 use smallvec::SmallVec;
 
-/// A point, offset or impulse of a contact row (N numbers), inline up to 4D.
-pub(crate) type Small4 = SmallVec<[f64; 4]>;
+/// N numbers of a solve, inline up to 4D: a body's velocity or momentum, a contact row's
+/// point, offset or friction impulse.
+pub(crate) type Linear = SmallVec<[f64; 4]>;
+/// M numbers of a solve, inline up to 4D: a body's angular velocity or momentum.
+pub(crate) type Angular = SmallVec<[f64; 6]>;
 
 /// One contact point in a solve.
 #[derive(Clone, Debug)]
@@ -20,12 +23,12 @@ pub(crate) struct ContactRow {
     /// The candidate's number on its body and half-space (from 1).
     pub index: usize,
     /// The point in own axes and its offset from the centre of mass in space.
-    pub point: Small4,
-    pub r: Small4,
+    pub point: Linear,
+    pub r: Linear,
     /// The normal velocity wanted after the impulse (0, or −e u⁻ for an impact).
     pub target: f64,
     pub normal_impulse: f64,
-    pub friction_impulse: Small4,
+    pub friction_impulse: Linear,
     /// The normal impulse added in the free flight to keep the point out (position level).
     pub position_impulse: f64,
     /// nᵀ K n and the point's speed (set when the solve starts; the rest of K is in the

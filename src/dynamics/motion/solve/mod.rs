@@ -22,7 +22,7 @@ use crate::dynamics::motion::placement::{Placements, dot};
 use crate::dynamics::motion::{ContactShape, HalfSpace, MovingBody};
 use body::{BodyState, LocalBody, add_inverse_mass};
 use contact_row::{
-    RowKey, RowLayout, Small, Small4, dim, point_velocity, row_matrices, scratch, sweep_contact,
+    Linear, RowKey, RowLayout, Small, dim, point_velocity, row_matrices, scratch, sweep_contact,
 };
 use smallvec::SmallVec;
 
@@ -167,7 +167,7 @@ type WarmList<'a> = (&'a [WarmImpulse], &'a mut usize);
 
 /// A contact's impulses kept for the next solve: body, half-space, candidate, normal
 /// impulse, friction impulse.
-type WarmImpulse = (usize, usize, usize, f64, Small4);
+type WarmImpulse = (usize, usize, usize, f64, Linear);
 
 impl Solver {
     /// Finds the contact points of `bodies` within `tolerance` × their radius of a
@@ -243,11 +243,11 @@ impl Solver {
                             body: i,
                             half_space: k,
                             index,
-                            point: Small4::from_slice(p.as_slice()),
-                            r: Small4::from_slice(r),
+                            point: Linear::from_slice(p.as_slice()),
+                            r: Linear::from_slice(r),
                             target,
                             normal_impulse: 0.0,
-                            friction_impulse: Small4::from_elem(0.0, n),
+                            friction_impulse: Linear::from_elem(0.0, n),
                             position_impulse: 0.0,
                             knn: 0.0,
                             speed: 0.0,
