@@ -119,21 +119,20 @@ const MAX_EVENTS: usize = 16;
 /// The states of bodies, to come back to: each body's position, momentum, angular
 /// momentum and attitude (the rotor's coefficients or the matrix's entries), one body after
 /// another in one array. A body's few numbers then lie in one or two cache lines, where
-/// vectors with room for eight dimensions would spread them over a dozen.
+/// vectors with room for eight dimensions would spread them over a dozen. The bodies of a
+/// system share their dimension, so each takes the same count of numbers.
 #[derive(Clone, Debug, Default)]
 struct SavedBodies {
     data: Vec<f64>,
-    /// Where each body's numbers start in `data`.
-    starts: Vec<usize>,
+    /// The numbers of one body.
+    stride: usize,
 }
 
 impl SavedBodies {
     /// Saves the bodies' states over the last ones' room.
     fn save(&mut self, bodies: &[MovingBody]) {
         self.data.clear();
-        self.starts.clear();
         for b in bodies {
-            self.starts.push(self.data.len());
             self.data.extend_from_slice(b.position().as_slice());
             self.data.extend_from_slice(b.linear_momentum().as_slice());
             self.data
@@ -141,21 +140,25 @@ impl SavedBodies {
             self.data
                 .extend_from_slice(b.rotation().principal_frame_attitude().entries());
         }
+        self.stride = self.data.len() / bodies.len().max(1);
     }
 
     /// Sets the bodies (the ones saved) back to their saved states.
     fn restore(&self, bodies: &mut [MovingBody]) {
-        for (b, &start) in bodies.iter_mut().zip(&self.starts) {
+        for (b, saved) in bodies
+            .iter_mut()
+            .zip(self.data.chunks_exact(self.stride.max(1)))
+        {
             let (x, p, rotation) = b.state_mut();
             let (attitude, l) = rotation.state_mut();
-            let mut at = start;
+            let mut at = 0;
             for part in [
                 x.as_mut_slice(),
                 p.as_mut_slice(),
                 l.as_mut_slice(),
                 attitude.entries_mut(),
             ] {
-                part.copy_from_slice(&self.data[at..at + part.len()]);
+                part.copy_from_slice(&saved[at..at + part.len()]);
                 at += part.len();
             }
         }
@@ -163,7 +166,7 @@ impl SavedBodies {
 
     /// Body `k`'s saved momentum and angular momentum (N and M numbers).
     fn momenta(&self, k: usize, n: usize) -> (&[f64], &[f64]) {
-        let p = self.starts[k] + n;
+        let p = k * self.stride + n;
         let m = n * (n - 1) / 2;
         (&self.data[p..p + n], &self.data[p + n..p + n + m])
     }
