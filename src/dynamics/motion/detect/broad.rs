@@ -16,6 +16,13 @@
 //! Box2D and Bullet; van den Bergen, "Efficient Collision Detection of Complex Deformable
 //! Models using AABB Trees", 1997, for refitting).
 //!
+//! Memory, not arithmetic, sets the cost at 10⁵ bodies: the fat boxes are also kept in the
+//! hierarchy's leaf order, so that a leaf's bodies lie together for refits and queries;
+//! the bodies that left their fat boxes are queried in that order (neighbours walk the
+//! same nodes in turn); a pair is checked again only if one of its bodies left its fat box;
+//! and the box tests have no branch on the boxes' values, so that the processor fetches
+//! the scattered boxes of many pairs at once instead of waiting on each.
+//!
 //! Sweep and prune, the other classic choice, re-sorts the ends of the boxes' intervals on
 //! each axis every step; in N dimensions the ends crowd on an axis (n^(1 − 1/N) of them
 //! within a box's width), so that a fixed motion crosses that many ends per body: about 10⁷
@@ -64,16 +71,23 @@ fn key(i: usize, j: usize) -> u64 {
 pub struct BroadPhase {
     dim: usize,
     bodies: usize,
-    lower: Vec<f64>,
-    upper: Vec<f64>,
     /// The fat boxes.
     fat_lower: Vec<f64>,
     fat_upper: Vec<f64>,
     margin: f64,
     tree: Hierarchy,
+    /// The bodies in the hierarchy's leaf order, and each body's place in it.
     order: Vec<u32>,
+    rank: Vec<u32>,
+    /// The fat boxes in leaf order (N lower bounds, then N upper bounds, per place): a
+    /// leaf's bodies lie together, so that refits and queries read them from a few cache
+    /// lines, where by body index they would be scattered over all the bodies' boxes.
+    leaf_bounds: Vec<f64>,
     stack: Vec<u32>,
+    /// The bodies that left their fat boxes at the last update, in leaf order (queries of
+    /// neighbours then walk the same nodes one after another), and a flag per body.
     moved: Vec<u32>,
+    left: Vec<bool>,
     /// Fat boxes renewed since the hierarchy was built.
     renewed: usize,
     /// Box tests of the last update's queries.
@@ -103,15 +117,16 @@ impl BroadPhase {
         Ok(BroadPhase {
             dim,
             bodies: 0,
-            lower: Vec::new(),
-            upper: Vec::new(),
             fat_lower: Vec::new(),
             fat_upper: Vec::new(),
             margin: 0.0,
             tree: Hierarchy::default(),
             order: Vec::new(),
+            rank: Vec::new(),
+            leaf_bounds: Vec::new(),
             stack: Vec::new(),
             moved: Vec::new(),
+            left: Vec::new(),
             renewed: 0,
             box_tests: 0,
             pairs: Vec::new(),
@@ -219,78 +234,107 @@ impl BroadPhase {
             }
         }
         self.box_tests = 0;
-        self.lower.clear();
-        self.lower.extend_from_slice(lower);
-        self.upper.clear();
-        self.upper.extend_from_slice(upper);
         if !self.built || bodies != self.bodies || self.renewed >= REBUILD_AFTER * bodies.max(1) {
-            self.rebuild(bodies);
+            self.rebuild(bodies, lower, upper);
         } else {
-            self.refresh();
+            self.refresh(lower, upper);
         }
         self.out.clear();
-        let (excluded, lower, upper) = (&self.excluded, &self.lower, &self.upper);
-        // The keys are in order, and so are the pairs (i, j) they hold.
-        self.out.extend(
-            self.pairs
-                .iter()
-                .filter(|k| excluded.is_empty() || !excluded.contains(k))
-                .map(|&k| ((k >> 32) as usize, (k & 0xffff_ffff) as usize))
-                .filter(|&(i, j)| overlap(n, lower, upper, i, j)),
-        );
+        let excluded = &self.excluded;
+        // The keys are in order, and so are the pairs (i, j) they hold. The second bodies'
+        // boxes are scattered over all the boxes: the test has no branch, so that the
+        // processor fetches the boxes of many pairs at once instead of waiting for each.
+        let pairs = &self.pairs;
+        let out = &mut self.out;
+        out.resize(pairs.len(), (0, 0));
+        let mut kept = 0;
+        for &k in pairs {
+            let (i, j) = ((k >> 32) as usize, (k & 0xffff_ffff) as usize);
+            out[kept] = (i, j);
+            let keep = overlap_all_axes(n, lower, upper, i, j)
+                & (excluded.is_empty() || !excluded.contains(&k));
+            kept += usize::from(keep);
+        }
+        out.truncate(kept);
         Ok(&self.out)
     }
 
     /// Fat boxes for all bodies, the hierarchy over them, and all their pairs.
-    fn rebuild(&mut self, bodies: usize) {
+    fn rebuild(&mut self, bodies: usize, lower: &[f64], upper: &[f64]) {
         let n = self.dim;
         self.bodies = bodies;
         self.built = true;
         self.renewed = 0;
-        let widths: f64 = self.lower.iter().zip(&self.upper).map(|(l, u)| u - l).sum();
+        let widths: f64 = lower.iter().zip(upper).map(|(l, u)| u - l).sum();
         self.margin = FAT_MARGIN * 0.5 * widths / (bodies * n).max(1) as f64;
         let m = self.margin;
         self.fat_lower.clear();
         self.fat_upper.clear();
-        self.fat_lower.extend(self.lower.iter().map(|x| x - m));
-        self.fat_upper.extend(self.upper.iter().map(|x| x + m));
+        self.fat_lower.extend(lower.iter().map(|x| x - m));
+        self.fat_upper.extend(upper.iter().map(|x| x + m));
         self.order.clear();
         self.order.extend(0..bodies as u32);
         self.tree
             .build(n, &self.fat_lower, &self.fat_upper, &mut self.order);
+        self.rank.clear();
+        self.rank.resize(bodies, 0);
+        self.leaf_bounds.clear();
+        for (place, &b) in self.order.iter().enumerate() {
+            let b = b as usize;
+            self.rank[b] = place as u32;
+            self.leaf_bounds
+                .extend_from_slice(&self.fat_lower[b * n..(b + 1) * n]);
+            self.leaf_bounds
+                .extend_from_slice(&self.fat_upper[b * n..(b + 1) * n]);
+        }
+        self.left.clear();
+        self.left.resize(bodies, true);
         self.pairs.clear();
         self.moved.clear();
-        self.moved.extend(0..bodies as u32);
+        self.moved.extend_from_slice(&self.order);
         self.query_moved();
     }
 
     /// Renews the fat boxes the bodies left, refits the hierarchy, drops the pairs whose
     /// fat boxes parted and finds the new ones.
-    fn refresh(&mut self) {
+    fn refresh(&mut self, lower: &[f64], upper: &[f64]) {
         let n = self.dim;
         let m = self.margin;
         self.moved.clear();
         for b in 0..self.bodies {
-            let inside = (b * n..(b + 1) * n)
-                .all(|k| self.fat_lower[k] <= self.lower[k] && self.upper[k] <= self.fat_upper[k]);
+            let mut inside = true;
+            for k in b * n..(b + 1) * n {
+                inside &= (self.fat_lower[k] <= lower[k]) & (upper[k] <= self.fat_upper[k]);
+            }
+            self.left[b] = !inside;
             if !inside {
-                for k in b * n..(b + 1) * n {
-                    self.fat_lower[k] = self.lower[k] - m;
-                    self.fat_upper[k] = self.upper[k] + m;
+                let place = self.rank[b] as usize;
+                let leaf = &mut self.leaf_bounds[2 * n * place..2 * n * (place + 1)];
+                for a in 0..n {
+                    let k = b * n + a;
+                    self.fat_lower[k] = lower[k] - m;
+                    self.fat_upper[k] = upper[k] + m;
+                    leaf[a] = self.fat_lower[k];
+                    leaf[n + a] = self.fat_upper[k];
                 }
-                self.moved.push(b as u32);
+                self.moved.push(self.rank[b]);
             }
         }
         if self.moved.is_empty() {
             return;
         }
         self.renewed += self.moved.len();
-        self.tree
-            .refit(n, &self.fat_lower, &self.fat_upper, &self.order);
-        let (fl, fu) = (&self.fat_lower, &self.fat_upper);
+        // Leaf order: each body's queries then find the nodes its neighbours' left cached.
+        self.moved.sort_unstable();
+        for place in &mut self.moved {
+            *place = self.order[*place as usize];
+        }
+        self.tree.refit(n, &self.leaf_bounds);
+        // Only a pair with a body whose fat box was renewed can have parted.
+        let (fl, fu, left) = (&self.fat_lower, &self.fat_upper, &self.left);
         self.pairs.retain(|&k| {
             let (i, j) = ((k >> 32) as usize, (k & 0xffff_ffff) as usize);
-            overlap(n, fl, fu, i, j)
+            !(left[i] || left[j]) || overlap(n, fl, fu, i, j)
         });
         self.query_moved();
     }
@@ -303,14 +347,13 @@ impl BroadPhase {
         found.clear();
         for &b in &self.moved {
             let b = b as usize;
+            let place = self.rank[b] as usize;
             self.box_tests += self.tree.query(
                 n,
-                &self.fat_lower,
-                &self.fat_upper,
-                &self.order,
-                b,
+                (&self.leaf_bounds, &self.order),
+                (b, place),
                 &mut self.stack,
-                |other| found.push(key(b, other)),
+                found,
             );
         }
         found.sort_unstable();
@@ -330,6 +373,18 @@ impl BroadPhase {
         merged.extend_from_slice(&new[j..]);
         std::mem::swap(&mut self.pairs, &mut self.merged);
     }
+}
+
+/// [`overlap`] with every axis tested (no branch on the boxes' values).
+#[inline(always)]
+fn overlap_all_axes(n: usize, lower: &[f64], upper: &[f64], i: usize, j: usize) -> bool {
+    let (lo_i, hi_i) = (&lower[i * n..(i + 1) * n], &upper[i * n..(i + 1) * n]);
+    let (lo_j, hi_j) = (&lower[j * n..(j + 1) * n], &upper[j * n..(j + 1) * n]);
+    let mut all = true;
+    for a in 0..n {
+        all &= (lo_i[a] <= hi_j[a]) & (lo_j[a] <= hi_i[a]);
+    }
+    all
 }
 
 /// True if the boxes of bodies i and j overlap on every axis.
@@ -415,19 +470,20 @@ impl Hierarchy {
         index as u32
     }
 
-    /// Recomputes every node's box from the bodies' boxes, children before parents.
-    fn refit(&mut self, n: usize, lower: &[f64], upper: &[f64], order: &[u32]) {
+    /// Recomputes every node's box from the bodies' boxes (`leaf_bounds`, in leaf order),
+    /// children before parents.
+    fn refit(&mut self, n: usize, leaf_bounds: &[f64]) {
         for k in (0..self.nodes.len()).rev() {
             let (start, end, l, r) = self.nodes[k];
             let tail = &mut self.bounds[2 * n * k..];
             if l == 0 {
                 tail[..n].fill(f64::INFINITY);
                 tail[n..2 * n].fill(f64::NEG_INFINITY);
-                for &b in &order[start as usize..end as usize] {
-                    let b = b as usize;
+                let leaf = &leaf_bounds[2 * n * start as usize..2 * n * end as usize];
+                for body in leaf.chunks_exact(2 * n) {
                     for a in 0..n {
-                        tail[a] = tail[a].min(lower[b * n + a]);
-                        tail[n + a] = tail[n + a].max(upper[b * n + a]);
+                        tail[a] = tail[a].min(body[a]);
+                        tail[n + a] = tail[n + a].max(body[n + a]);
                     }
                 }
             } else {
@@ -441,44 +497,55 @@ impl Hierarchy {
         }
     }
 
-    /// Calls `visit(j)` for every body j ≠ b whose box overlaps body b's; returns the box tests
-    /// made (nodes and bodies).
-    #[allow(clippy::too_many_arguments)]
+    /// Adds to `found` the pair of body b, at `place` in leaf order, with every other body
+    /// whose box overlaps its own (`leaf_bounds` and `order` as in [`BroadPhase`]); returns
+    /// the box tests made (nodes and bodies).
     fn query(
         &self,
         n: usize,
-        lower: &[f64],
-        upper: &[f64],
-        order: &[u32],
-        b: usize,
+        (leaf_bounds, order): (&[f64], &[u32]),
+        (b, place): (usize, usize),
         stack: &mut Vec<u32>,
-        mut visit: impl FnMut(usize),
+        found: &mut Vec<u64>,
     ) -> usize {
         if self.nodes.is_empty() {
             return 0;
         }
         let mut tests = 0;
-        let (lo, hi) = (&lower[b * n..(b + 1) * n], &upper[b * n..(b + 1) * n]);
+        let own = &leaf_bounds[2 * n * place..2 * n * (place + 1)];
+        let (lo, hi) = own.split_at(n);
         stack.clear();
         stack.push(0);
         while let Some(k) = stack.pop() {
             let k = k as usize;
             tests += 1;
             let bounds = &self.bounds[2 * n * k..2 * n * (k + 1)];
-            if (0..n).any(|a| bounds[a] > hi[a] || lo[a] > bounds[n + a]) {
+            // Every axis tested, then one branch (not one per axis).
+            let mut meets = true;
+            for a in 0..n {
+                meets &= (bounds[a] <= hi[a]) & (lo[a] <= bounds[n + a]);
+            }
+            if !meets {
                 continue;
             }
             let (start, end, l, r) = self.nodes[k];
             if l == 0 {
-                tests += (end - start) as usize;
-                for &j in &order[start as usize..end as usize] {
-                    let j = j as usize;
-                    if j != b
-                        && (0..n).all(|a| lower[j * n + a] <= hi[a] && lo[a] <= upper[j * n + a])
-                    {
-                        visit(j);
+                let (start, end) = (start as usize, end as usize);
+                tests += end - start;
+                let leaf = &leaf_bounds[2 * n * start..2 * n * end];
+                // Each body written and kept if it overlaps, with no branch on the boxes'
+                // values (which a processor cannot predict).
+                let mut kept = found.len();
+                found.resize(kept + end - start, 0);
+                for (p, body) in (start..end).zip(leaf.chunks_exact(2 * n)) {
+                    let mut meets = p != place;
+                    for a in 0..n {
+                        meets &= (body[a] <= hi[a]) & (lo[a] <= body[n + a]);
                     }
+                    found[kept] = key(b, order[p] as usize);
+                    kept += usize::from(meets);
                 }
+                found.truncate(kept);
             } else {
                 stack.push(l);
                 stack.push(r);
