@@ -33,7 +33,7 @@ const SCENES: &[Scene] = &[
         group: "resting_boxes_1000",
         items: resting_boxes,
         settle: 20,
-        steps: 10,
+        steps: 100,
         rotorflow: true,
     },
     Scene {
@@ -47,7 +47,7 @@ const SCENES: &[Scene] = &[
         group: "rolling_balls_1000",
         items: rolling_balls,
         settle: 20,
-        steps: 10,
+        steps: 100,
         rotorflow: true,
     },
     Scene {

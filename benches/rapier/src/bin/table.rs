@@ -77,6 +77,20 @@ fn time_per_step(
     Ok(Some(median * 1e-9 / steps))
 }
 
+/// The steps of one timed iteration of the scene `group` (one `advance` call of rotorflow),
+/// from its `SoftStep` bench, which every scene has; None if it has not run.
+fn steps_per_call(dir: &Path, group: &str) -> Result<Option<f64>, Error> {
+    let benchmark = dir
+        .join(group)
+        .join("rotorflow_soft")
+        .join("new")
+        .join("benchmark.json");
+    if !benchmark.is_file() {
+        return Ok(None);
+    }
+    Ok(json(&benchmark)?["throughput"]["Elements"].as_f64())
+}
+
 /// The version of a package in this package's Cargo.lock.
 fn locked_version(name: &str) -> Result<String, Error> {
     let lock = read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("Cargo.lock"))?;
@@ -371,9 +385,10 @@ fn run() -> Result<(), Error> {
                 }
             }
         }
+        let per_call = steps_per_call(&dir, group)?.map_or("—".into(), |k| format!("{k:.0}"));
         let _ = writeln!(
             speed,
-            "| {description} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {description} | {per_call} | {} | {} | {} | {} | {} | {} | {} | {} |",
             ms(splitting),
             ms(half_space),
             ratio(splitting, half_space),
@@ -437,9 +452,11 @@ fn run() -> Result<(), Error> {
     );
     let _ = writeln!(
         text,
-        "Both engines take steps of h = {:.6} s (1/60), both with `advance` for rotorflow. rotorflow (the first \
-         columns): `MotionSplitting`, one velocity solve per step, its contacts solved by Gauss–Seidel to its \
-         tolerance and its impacts located in time. rotorflow SoftStep (the last columns): `SoftStep` with its \
+        "Both engines take steps of h = {:.6} s (1/60), rotorflow those of a timed iteration in one `advance` call \
+         (the steps per call in the table). rotorflow (the first columns): `MotionSplitting`, where no bodies touch \
+         each other one velocity solve per step (the closing solve of a step joined with the opening solve of the \
+         next) and two more per call (its first step's opening solve, and its last step taken whole so that its \
+         contacts are its own), else two per step, its contacts solved by Gauss–Seidel to its tolerance and its impacts located in time. rotorflow SoftStep (the last columns): `SoftStep` with its \
          defaults, a fixed solver cost per step: {} substeps, each with 1 Gauss–Seidel pass over soft contacts \
          (springs) and 1 relax pass without the springs (in 3D), contacts of {:.0} Hz (a fifth of the substep rate) \
          and {:.0} Hz against fixed bodies and the floor (twice that, up to a quarter of the substep rate), damping \
@@ -461,10 +478,10 @@ fn run() -> Result<(), Error> {
     );
     let _ = writeln!(
         text,
-        "| scene | rotorflow (ms/step) | Rapier, half-space floor (ms/step) | ratio | Rapier, cuboid floor (ms/step) | ratio \
+        "| scene | steps per call | rotorflow (ms/step) | Rapier, half-space floor (ms/step) | ratio | Rapier, cuboid floor (ms/step) | ratio \
          | rotorflow SoftStep (ms/step) | ratio to half-space floor | ratio to cuboid floor |"
     );
-    let _ = writeln!(text, "|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let _ = writeln!(text, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     text.push_str(&speed);
     let _ = writeln!(
         text,
