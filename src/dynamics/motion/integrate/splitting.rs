@@ -764,7 +764,10 @@ impl MotionSplitting {
                 }
                 saved.restore(system.bodies_mut());
                 let contacts_before = system.contact_mark();
-                let f = self.substep(system, t, s, true)?;
+                // A try needs the gaps at the end of its flight only: its closing kick and
+                // solve would be thrown away with it, and each next try's opening solve
+                // then starts from impulses of the same instant, not of the try's end.
+                let f = self.substep(system, t, s, false)?;
                 system.truncate_contacts(contacts_before);
                 if f.abs() <= 0.25 {
                     break;
