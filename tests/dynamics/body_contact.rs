@@ -263,3 +263,63 @@ fn a_ball_dropped_on_a_fixed_ball_rebounds_to_e_squared_of_its_drop_height() {
     }
     assert_eq!(cases, 6);
 }
+
+/// An impact is located in a few tries even where the least gap over the step is no
+/// straight line: a ball 0.1 mm above the floor sinks onto it at 6 cm/s (a tenth of the way
+/// into a step of 1/60 s), while another at 5 m/s, 2 cm above it, would end the step 4 cm
+/// (10⁸ touching distances) deep. From the step's ends regula falsi alone crawls from the
+/// start; the tries' bisections at the bracket's geometric mean and the scaling of a kept
+/// end (Anderson–Björck) find the first contact in a handful. Each try is a substep ending
+/// with its flight and taking one solve once a contact holds; the step counts its solves.
+/// The slow ball then rests (e = 0 below the resting speed) and the fast one rebounds at
+/// e = 0.5 of its impact speed (to 1e-6): both impacts were found.
+#[test]
+fn impacts_are_located_in_a_few_tries() {
+    use rotorflow::dynamics::motion::HalfSpace;
+    use rotorflow::dynamics::motion::forques::Gravity;
+    let mut cases = 0;
+    for n in [3, 4] {
+        // Along the first axis and the vertical (the last).
+        let at = |across: f64, height: f64| {
+            let mut x = vec![0.0; n];
+            (x[0], x[n - 1]) = (across, height);
+            x
+        };
+        let slow = ball(n, 1.0, &at(-2.0, 0.5001), &at(0.0, -0.06), 0.5);
+        let fast = ball(n, 1.0, &at(2.0, 0.52), &at(0.0, -5.0), 0.5);
+        // A third ball rests on the floor: every try's opening solve has its contact.
+        let resting = ball(n, 1.0, &at(0.0, 0.5), &at(0.0, 0.0), 0.0);
+        let mut s = System::new(vec![slow, fast, resting]).unwrap();
+        let up = vector(&at(0.0, 1.0));
+        s.add_forque(Gravity(&up * -9.81)).unwrap();
+        s.add_half_space(HalfSpace::new(&up, 0.0, 0.0, 0.5).unwrap())
+            .unwrap();
+        let mut stepper = MotionSplitting::new();
+        let h = 1.0 / 60.0;
+        stepper.step(&mut s, 0.0, h).unwrap();
+        let solves = stepper.solver_report().solves;
+        // The impact speed: 5 m/s plus what gravity adds over the 2 cm.
+        let impact = (25.0 + 2.0 * 9.81 * 0.02f64).sqrt();
+        // Rebound at e · impact, then gravity for the rest of the step.
+        let t_impact = (impact - 5.0) / 9.81;
+        let after = 0.5 * impact - 9.81 * (h - t_impact);
+        let (v_slow, v_fast) = (
+            s.bodies()[0].velocity().as_slice()[n - 1],
+            s.bodies()[1].velocity().as_slice()[n - 1],
+        );
+        println!(
+            "N = {n}: {solves} solves in the step, rebound {v_fast} (expected {after}), resting {v_slow}"
+        );
+        assert!(
+            (v_fast - after).abs() <= 1e-6,
+            "N = {n}: rebound {v_fast}, expected {after}"
+        );
+        assert!(
+            v_slow.abs() <= 1e-9,
+            "N = {n}: the slow ball moves at {v_slow}"
+        );
+        assert!(solves <= 60, "N = {n}: {solves} solves");
+        cases += 1;
+    }
+    assert_eq!(cases, 2);
+}

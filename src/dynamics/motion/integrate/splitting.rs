@@ -32,8 +32,8 @@ use crate::dynamics::motion::{ContactShape, MotionError, MovingBody, System, Wre
 /// [`HalfSpace`](crate::dynamics::motion::HalfSpace)): a point in contact (within 10⁻⁹ of the body's radius)
 /// may not approach the half-space, friction stays in Coulomb's cone and opposes the slip.
 /// A point that was free and would end the step inside a half-space is an impact: the step
-/// is cut at the instant it reaches the plane (located by the Illinois method to a
-/// quarter of that tolerance), the impact is resolved with the plane's restitution e, and
+/// is cut at the instant it reaches the plane (located by the Anderson–Björck variant of
+/// regula falsi to a quarter of that tolerance), the impact is resolved with the plane's restitution e, and
 /// the rest of the step follows. Below the approach speed 2h|F|/m that one step of the
 /// forques gives, a contact is resting (e = 0), so that bouncing dies out instead of
 /// ringing. Resting contacts that sink by the curvature of their path are lifted back onto
@@ -112,6 +112,9 @@ const MAX_KICK_ITERATIONS: usize = 50;
 /// How closely (relative to the rest of the step) an impact is located in time when the
 /// least gap jumps (another pair becomes the nearest) instead of crossing zero.
 const LOCATE_WIDTH: f64 = 1e-6;
+
+/// Tries at most in a bracket narrower than [`LOCATE_WIDTH`].
+const MAX_NARROW_TRIES: usize = 8;
 
 /// Impacts located within one step, at most (then the rest of the step is resting contact).
 const MAX_EVENTS: usize = 16;
@@ -739,21 +742,44 @@ impl MotionSplitting {
                 self.new_penetration(system)
             });
             let (mut b, mut fb) = (remaining, f_end);
+            // The gap at b as found (fb is scaled by the method), and the tries made in a
+            // bracket narrower than LOCATE_WIDTH.
+            let (mut gap_at_b, mut narrow) = (f_end, 0);
             let mut side = 0i8;
             let mut s = remaining;
+            // The bracket's width at the last bisection (or the start).
+            let mut width = remaining;
             for iteration in 0..100 {
-                // Regula falsi (Illinois), every third try a bisection: with several bodies
-                // the least gap jumps where another pair becomes the nearest, and there the
-                // bracket must still shrink.
+                // Regula falsi (Anderson–Björck), every third try a bisection unless the
+                // bracket has halved since the last: with several bodies the least gap jumps
+                // where another pair becomes the nearest, and there the bracket must still
+                // shrink. The gap at the step's end may be millions of
+                // times the touching distance deep and the first tries land next to the
+                // start: where the bracket spans more than a factor 4, it is bisected at
+                // its geometric mean, which crosses its decades in a few tries.
                 s = (a * fb - b * fa) / (fb - fa);
-                if !(s > a && s < b) || iteration % 3 == 2 {
-                    s = 0.5 * (a + b);
+                // The third try bisects unless the two before have halved the bracket.
+                if !(s > a && s < b) || iteration % 3 == 2 && b - a > 0.5 * width {
+                    s = if a > 0.0 && b > 4.0 * a {
+                        (a * b).sqrt()
+                    } else {
+                        0.5 * (a + b)
+                    };
+                }
+                if iteration % 3 == 2 {
+                    width = b - a;
                 }
                 if b - a <= LOCATE_WIDTH * remaining {
                     // The impact is located to within this; the substep ends where the
-                    // bodies have just met.
-                    s = b;
-                    break;
+                    // bodies have just met: at once if they are within their touching
+                    // distance there, else after a few more tries, which close in on a
+                    // steep crossing and stop at a jump (where another pair becomes the
+                    // nearest).
+                    if gap_at_b >= -1.0 || narrow == MAX_NARROW_TRIES {
+                        s = b;
+                        break;
+                    }
+                    narrow += 1;
                 }
                 if s <= 1e-9 * remaining {
                     // Entering at once (an overlap that the step's own contacts push a body
@@ -772,17 +798,23 @@ impl MotionSplitting {
                 if f.abs() <= 0.25 {
                     break;
                 }
+                // An end kept for the second try running has its gap scaled by
+                // 1 − f / f_last, f and f_last the new and the replaced gap at the other end
+                // (Anderson and Björck 1973; by a half where that is not positive): where
+                // the other end barely moves, the next try leaves it.
                 if f > 0.0 {
-                    (a, fa) = (s, f);
                     if side == 1 {
-                        fb *= 0.5;
+                        let m = 1.0 - f / fa;
+                        fb *= if m > 0.0 { m } else { 0.5 };
                     }
+                    (a, fa) = (s, f);
                     side = 1;
                 } else {
-                    (b, fb) = (s, f);
                     if side == -1 {
-                        fa *= 0.5;
+                        let m = 1.0 - f / fb;
+                        fa *= if m > 0.0 { m } else { 0.5 };
                     }
+                    (b, fb, gap_at_b) = (s, f, f);
                     side = -1;
                 }
             }
