@@ -343,7 +343,7 @@ fn generated_rapier_bench_says_where_it_was_measured() {
         "Measured at commit `",
         "by `cargo bench --manifest-path benches/rapier/Cargo.toml",
         "against rapier3d ",
-        "| scene | rotorflow (ms/step) | Rapier, half-space floor (ms/step) | ratio | Rapier, cuboid floor (ms/step) | ratio |",
+        "| scene | steps per call | rotorflow (ms/step) | Rapier, half-space floor (ms/step) | ratio | Rapier, cuboid floor (ms/step) | ratio |",
         "| scene | measure | rotorflow | Rapier, half-space floor | Rapier, cuboid floor |",
         "| scene | solves | unconverged | mean sweeps | most sweeps | worst residual |",
         "rotorflow SoftStep (ms/step)",
