@@ -934,8 +934,9 @@ impl Solver {
         }
         self.pairs_found = Some(serial);
         let old = std::mem::take(&mut self.pairs);
+        // The rows of the solve before last, rewritten in their own room.
         let mut rows = std::mem::take(&mut self.spare_pairs);
-        rows.clear();
+        let mut used = 0;
         self.taken.clear();
         self.taken.resize(old.len(), false);
         self.sources.clear();
@@ -944,14 +945,18 @@ impl Solver {
         let mut cursor = 0;
         for c in found {
             let (a, b) = (c.a, c.b);
-            let mut row = PairRow::new(
-                c,
-                (
-                    bodies[a].position().as_slice(),
-                    bodies[b].position().as_slice(),
-                ),
-                contact_material(&bodies[a], &bodies[b]),
+            let x = (
+                bodies[a].position().as_slice(),
+                bodies[b].position().as_slice(),
             );
+            let material = contact_material(&bodies[a], &bodies[b]);
+            if used < rows.len() {
+                rows[used].set(c, x, material);
+            } else {
+                rows.push(PairRow::new(c, x, material));
+            }
+            let row = &mut rows[used];
+            used += 1;
             let own = |i: usize, r: &crate::algebra::Vector| {
                 bodies[i]
                     .rotation()
@@ -971,8 +976,8 @@ impl Solver {
                 self.taken[k] = true;
             }
             self.sources.push(same);
-            rows.push(row);
         }
+        rows.truncate(used);
         for (row, source) in rows.iter_mut().zip(&mut self.sources) {
             if source.is_none() {
                 // A point of the pair whose features changed (or a curved pair's single

@@ -57,37 +57,24 @@ pub(crate) struct PairRow {
 
 impl PairRow {
     /// A row for the contact `c` between bodies `a` and `b` (a point in space with a unit
-    /// normal from `a` to `b`), the bodies at `xa` and `xb`.
-    pub(crate) fn new(
-        c: &PairContact,
-        (xa, xb): (&[f64], &[f64]),
-        (friction, restitution): (f64, f64),
-    ) -> PairRow {
-        let (a, b, normal, point) = (c.a, c.b, &c.normal[..], &c.point[..]);
-        let n = normal.len();
-        let offset = |x: &[f64]| {
-            let mut r = Vector::zero(n);
-            for ((o, p), c) in r.as_mut_slice().iter_mut().zip(point).zip(x) {
-                *o = p - c;
-            }
-            r
-        };
-        let mut nv = Vector::zero(n);
-        set_vector(&mut nv, normal);
-        PairRow {
-            a,
-            b,
-            feature: c.feature,
-            gap: c.gap,
-            reach: c.reach,
+    /// normal from `a` to `b`), the bodies' centres at `x` and their friction and
+    /// restitution combined in `material`.
+    pub(crate) fn new(c: &PairContact, x: (&[f64], &[f64]), material: (f64, f64)) -> PairRow {
+        let n = c.normal.len();
+        let mut row = PairRow {
+            a: 0,
+            b: 0,
+            feature: 0,
+            gap: 0.0,
+            reach: 0.0,
             position_impulse: 0.0,
-            normal: nv,
-            ra: offset(xa),
-            rb: offset(xb),
+            normal: Vector::zero(n),
+            ra: Vector::zero(n),
+            rb: Vector::zero(n),
             own_a: Vector::zero(n),
             own_b: Vector::zero(n),
-            friction,
-            restitution,
+            friction: 0.0,
+            restitution: 0.0,
             target: 0.0,
             normal_impulse: 0.0,
             friction_impulse: Vector::zero(n),
@@ -99,7 +86,53 @@ impl PairRow {
             knn: 0.0,
             inv_knn: 0.0,
             speed: 0.0,
+        };
+        row.set(c, x, material);
+        row
+    }
+
+    /// Makes this row the one [`PairRow::new`] gives, in its own room: a row is some
+    /// kilobytes (room for 8 × 8 matrices), which a new one would be built in and moved.
+    pub(crate) fn set(
+        &mut self,
+        c: &PairContact,
+        (xa, xb): (&[f64], &[f64]),
+        (friction, restitution): (f64, f64),
+    ) {
+        let (normal, point) = (&c.normal[..], &c.point[..]);
+        let n = normal.len();
+        let offset = |r: &mut Vector, x: &[f64]| {
+            if r.dim() != n {
+                *r = Vector::zero(n);
+            }
+            for ((o, p), c) in r.as_mut_slice().iter_mut().zip(point).zip(x) {
+                *o = p - c;
+            }
+        };
+        (self.a, self.b, self.feature) = (c.a, c.b, c.feature);
+        (self.gap, self.reach, self.position_impulse) = (c.gap, c.reach, 0.0);
+        set_vector(&mut self.normal, normal);
+        offset(&mut self.ra, xa);
+        offset(&mut self.rb, xb);
+        for v in [&mut self.own_a, &mut self.own_b, &mut self.friction_impulse] {
+            if v.dim() == n {
+                v.as_mut_slice().fill(0.0);
+            } else {
+                *v = Vector::zero(n);
+            }
         }
+        (self.friction, self.restitution) = (friction, restitution);
+        (self.target, self.normal_impulse) = (0.0, 0.0);
+        for m in [
+            &mut self.k,
+            &mut self.kt,
+            &mut self.values,
+            &mut self.vectors,
+            &mut self.kinv,
+        ] {
+            m.clear();
+        }
+        (self.knn, self.inv_knn, self.speed) = (0.0, 0.0, 0.0);
     }
 
     /// The relative velocity u_b − u_a of the two points.
