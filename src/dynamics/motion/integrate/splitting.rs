@@ -33,8 +33,8 @@ use crate::dynamics::motion::{ContactShape, MotionError, MovingBody, System, Wre
 /// may not approach the half-space, friction stays in Coulomb's cone and opposes the slip.
 /// A point that was free and would end the step inside a half-space is an impact: the step
 /// is cut at the instant it reaches the plane (located by the Anderson–Björck variant of
-/// regula falsi to a quarter of that tolerance), the impact is resolved with the plane's restitution e, and
-/// the rest of the step follows. Below the approach speed 2h|F|/m that one step of the
+/// regula falsi to a quarter of that tolerance), the impact is resolved with the plane's
+/// restitution e, and the rest of the step follows. Below the approach speed 2h|F|/m that one step of the
 /// forques gives, a contact is resting (e = 0), so that bouncing dies out instead of
 /// ringing. Resting contacts that sink by the curvature of their path are lifted back onto
 /// the plane.
@@ -747,18 +747,17 @@ impl MotionSplitting {
             let (mut gap_at_b, mut narrow) = (f_end, 0);
             let mut side = 0i8;
             let mut s = remaining;
-            // The bracket's width at the last bisection (or the start).
+            // The bracket's width at the last third try (or the start).
             let mut width = remaining;
             for iteration in 0..100 {
-                // Regula falsi (Anderson–Björck), every third try a bisection unless the
-                // bracket has halved since the last: with several bodies the least gap jumps
-                // where another pair becomes the nearest, and there the bracket must still
-                // shrink. The gap at the step's end may be millions of
-                // times the touching distance deep and the first tries land next to the
-                // start: where the bracket spans more than a factor 4, it is bisected at
-                // its geometric mean, which crosses its decades in a few tries.
+                // Regula falsi (Anderson–Björck), and every third try a bisection unless the
+                // two tries before have halved the bracket: with several bodies the least
+                // gap jumps where another pair becomes the nearest, and there the bracket
+                // must still shrink. The gap at the step's end may be millions of times the
+                // touching distance deep, and regula falsi's first tries then land next to
+                // the start: where the bracket spans more than a factor 4, it is bisected
+                // at its geometric mean, which crosses its decades in a few tries.
                 s = (a * fb - b * fa) / (fb - fa);
-                // The third try bisects unless the two before have halved the bracket.
                 if !(s > a && s < b) || iteration % 3 == 2 && b - a > 0.5 * width {
                     s = if a > 0.0 && b > 4.0 * a {
                         (a * b).sqrt()
