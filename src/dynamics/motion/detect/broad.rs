@@ -251,8 +251,8 @@ impl BroadPhase {
         for &k in pairs {
             let (i, j) = ((k >> 32) as usize, (k & 0xffff_ffff) as usize);
             out[kept] = (i, j);
-            let keep = overlap_all_axes(n, lower, upper, i, j)
-                & (excluded.is_empty() || !excluded.contains(&k));
+            let keep =
+                overlap(n, lower, upper, i, j) & (excluded.is_empty() || !excluded.contains(&k));
             kept += usize::from(keep);
         }
         out.truncate(kept);
@@ -375,9 +375,10 @@ impl BroadPhase {
     }
 }
 
-/// [`overlap`] with every axis tested (no branch on the boxes' values).
+/// True if the boxes of bodies i and j overlap on every axis; every axis is tested (no
+/// branch on the boxes' values).
 #[inline(always)]
-fn overlap_all_axes(n: usize, lower: &[f64], upper: &[f64], i: usize, j: usize) -> bool {
+fn overlap(n: usize, lower: &[f64], upper: &[f64], i: usize, j: usize) -> bool {
     let (lo_i, hi_i) = (&lower[i * n..(i + 1) * n], &upper[i * n..(i + 1) * n]);
     let (lo_j, hi_j) = (&lower[j * n..(j + 1) * n], &upper[j * n..(j + 1) * n]);
     let mut all = true;
@@ -385,12 +386,6 @@ fn overlap_all_axes(n: usize, lower: &[f64], upper: &[f64], i: usize, j: usize) 
         all &= (lo_i[a] <= hi_j[a]) & (lo_j[a] <= hi_i[a]);
     }
     all
-}
-
-/// True if the boxes of bodies i and j overlap on every axis.
-#[inline]
-fn overlap(n: usize, lower: &[f64], upper: &[f64], i: usize, j: usize) -> bool {
-    (0..n).all(|a| lower[i * n + a] <= upper[j * n + a] && lower[j * n + a] <= upper[i * n + a])
 }
 
 fn checked_key(i: usize, j: usize) -> Result<u64, DynamicsError> {
