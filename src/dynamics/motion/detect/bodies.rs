@@ -189,6 +189,12 @@ pub(crate) struct Touching {
     found_key: Option<FoundKey>,
     other: Found,
     other_key: Option<FoundKey>,
+    /// The placement each list was found at (as `seen` records it): a scan of one kind at a
+    /// placement that a scan of the other kind left and came back to (an impact's tries
+    /// all start where the step did, and their flights' checks scan elsewhere) finds its
+    /// list there.
+    found_seen: Vec<f64>,
+    other_seen: Vec<f64>,
     /// Each list's serial number: a new one whenever a scan fills a list anew, so that a
     /// caller can tell a list it has seen (the last `serial` handed out).
     found_serial: u64,
@@ -352,6 +358,7 @@ impl Touching {
             self.found_manifolds = manifold.is_some();
             std::mem::swap(&mut self.found, &mut self.other);
             std::mem::swap(&mut self.found_key, &mut self.other_key);
+            std::mem::swap(&mut self.found_seen, &mut self.other_seen);
             std::mem::swap(&mut self.found_serial, &mut self.other_serial);
         }
         let Some(first) = bodies.first() else {
@@ -376,6 +383,15 @@ impl Touching {
         if skip.is_none() && self.found_key == Some(key(self.generation)) {
             return;
         }
+        let found_here = self.found_key.is_some_and(|k| {
+            k.factor == factor.to_bits()
+                && k.slop == manifold.map(f64::to_bits)
+                && same_bits(&self.found_seen, &self.seen)
+        });
+        if skip.is_none() && found_here {
+            self.found_key = Some(key(self.generation));
+            return;
+        }
         self.found.len = 0;
         self.serial += 1;
         self.found_serial = self.serial;
@@ -388,6 +404,7 @@ impl Touching {
         self.candidates = candidates;
         // A scan that skipped pairs found only part of what a full scan finds.
         self.found_key = skip.is_none().then(|| key(self.generation));
+        self.found_seen.clone_from(&self.seen);
     }
 
     /// Whether the last scan's candidates stand (it was with `factor` and saw every body
@@ -681,6 +698,11 @@ impl Touching {
 struct Found {
     items: Vec<PairContact>,
     len: usize,
+}
+
+/// True if `a` and `b` hold the same numbers to the bit (a NaN equal to itself).
+fn same_bits(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
 }
 
 /// What a list of found pairs was found from (see [`Touching::found`]).
@@ -1005,7 +1027,8 @@ mod tests {
     }
 
     /// Scans at the same placement find what they found (a step scans there with manifolds
-    /// and without, in turn), and a body that turns in place, whatever its shape, is seen:
+    /// and without, in turn, and comes back to a placement it left), and a body that turns
+    /// in place, whatever its shape, is seen:
     /// two ellipsoids (0.6 along x, 0.2 across) 1.3 apart along x touch only while the
     /// second points along x; alternating scans with and without manifolds, each finds
     /// what a fresh scan finds.
@@ -1066,5 +1089,24 @@ mod tests {
             }
         }
         assert_eq!(checked, 18);
+        // Back where a scan with manifolds was made, after a scan without them elsewhere
+        // (an impact's try from the step's start, then its flight's check): the list of
+        // that placement is found again, the same list (its serial), as a fresh scan finds.
+        let (x, _, _) = bodies[1].state_mut();
+        x.as_mut_slice()[0] = 1.1;
+        kept.scan(&bodies, |i| &axes[i][..], 1e-9, Some(1e-2));
+        let serial = kept.found_serial();
+        assert_eq!(kept.found().len(), 1);
+        let (x, _, _) = bodies[1].state_mut();
+        x.as_mut_slice()[0] = 1.15;
+        kept.scan(&bodies, |i| &axes[i][..], 1.0, None);
+        let (x, _, _) = bodies[1].state_mut();
+        x.as_mut_slice()[0] = 1.1;
+        kept.scan(&bodies, |i| &axes[i][..], 1e-9, Some(1e-2));
+        assert_eq!(kept.found_serial(), serial, "the list found again");
+        let mut fresh = Touching::default();
+        fresh.update_shapes(&shapes, &[], 3, (1, 1));
+        fresh.scan(&bodies, |i| &axes[i][..], 1e-9, Some(1e-2));
+        assert_eq!(pairs(&kept), pairs(&fresh));
     }
 }
