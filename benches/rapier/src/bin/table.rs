@@ -54,14 +54,15 @@ fn modified(path: &Path) -> Result<SystemTime, Error> {
         .map_err(|e| format!("cannot stat {}: {e}", path.display()))
 }
 
-/// The median time per step (seconds) of one bench function of the last run, or `None` when
-/// that run did not measure it (results older than the run are not taken).
+/// The median time per step (seconds) of one bench function of the last run and the steps
+/// of one timed iteration (one `advance` call of rotorflow), or `None` when that run did not
+/// measure it (results older than the run are not taken).
 fn time_per_step(
     dir: &Path,
     group: &str,
     function: &str,
     run_start: SystemTime,
-) -> Result<Option<f64>, Error> {
+) -> Result<Option<(f64, f64)>, Error> {
     let new = dir.join(group).join(function).join("new");
     let estimates = new.join("estimates.json");
     if !estimates.is_file() || modified(&estimates)? < run_start {
@@ -74,21 +75,7 @@ fn time_per_step(
     let steps = json(&benchmark)?["throughput"]["Elements"]
         .as_f64()
         .ok_or_else(|| format!("{}: no throughput in elements", benchmark.display()))?;
-    Ok(Some(median * 1e-9 / steps))
-}
-
-/// The steps of one timed iteration of the scene `group` (one `advance` call of rotorflow),
-/// from its `SoftStep` bench, which every scene has; None if it has not run.
-fn steps_per_call(dir: &Path, group: &str) -> Result<Option<f64>, Error> {
-    let benchmark = dir
-        .join(group)
-        .join("rotorflow_soft")
-        .join("new")
-        .join("benchmark.json");
-    if !benchmark.is_file() {
-        return Ok(None);
-    }
-    Ok(json(&benchmark)?["throughput"]["Elements"].as_f64())
+    Ok(Some((median * 1e-9 / steps, steps)))
 }
 
 /// The version of a package in this package's Cargo.lock.
@@ -367,13 +354,15 @@ fn run() -> Result<(), Error> {
     // The ratios to Rapier's two floors of `MotionSplitting` and of `SoftStep`.
     let mut ratios = [Vec::new(), Vec::new()];
     for (group, description) in SCENES {
-        let mut times = Vec::new();
+        let (mut times, mut per_call) = (Vec::new(), None);
         for (function, _) in ENGINES {
             let t = time_per_step(&dir, group, function, run_start)?;
             if t.is_none() {
                 missing.push(format!("{group}/{function}"));
             }
-            times.push(t);
+            // Every engine of a scene takes the scene's steps per iteration.
+            per_call = per_call.or(t.map(|(_, steps)| steps));
+            times.push(t.map(|(time, _)| time));
         }
         let [splitting, soft, half_space, cuboid] = times[..] else {
             unreachable!("four engines")
@@ -385,7 +374,7 @@ fn run() -> Result<(), Error> {
                 }
             }
         }
-        let per_call = steps_per_call(&dir, group)?.map_or("—".into(), |k| format!("{k:.0}"));
+        let per_call = per_call.map_or("—".into(), |k| format!("{k:.0}"));
         let _ = writeln!(
             speed,
             "| {description} | {per_call} | {} | {} | {} | {} | {} | {} | {} | {} |",
