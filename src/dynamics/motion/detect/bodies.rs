@@ -154,6 +154,9 @@ pub(crate) struct Touching {
     owner: Option<(u64, u64)>,
     convex: Vec<Option<ConvexShape>>,
     radius: Vec<f64>,
+    /// How far beyond its share of a scan's reach each body reaches ([`Touching::set_sweeps`];
+    /// none: nothing beyond).
+    sweep: Vec<f64>,
     /// The half-lengths of the bodies whose shapes are boxes (their corners), which find
     /// their contact normal by separating axes.
     boxes: Vec<Option<Vec<f64>>>,
@@ -284,6 +287,30 @@ impl Touching {
         // New shapes, new bounding boxes and new pairs.
         self.seen_factor = None;
         (self.found_key, self.other_key) = (None, None);
+    }
+
+    /// Sets how far beyond its share of the reach each body reaches in the scans from now
+    /// on (its sweep: the reach of a pair is the scan's factor times the sum of their
+    /// bounding radii plus both sweeps), as a step's bodies reach by how far they may move
+    /// in it. A change of any sweep finds the pairs anew at the next scan.
+    pub(crate) fn set_sweeps(&mut self, sweeps: &[f64]) {
+        let same = self.sweep.len() == sweeps.len()
+            && self
+                .sweep
+                .iter()
+                .zip(sweeps)
+                .all(|(s, t)| s.to_bits() == t.to_bits());
+        if !same {
+            self.sweep.clear();
+            self.sweep.extend_from_slice(sweeps);
+            self.seen_factor = None;
+            (self.found_key, self.other_key) = (None, None);
+        }
+    }
+
+    /// Body `i`'s sweep ([`Touching::set_sweeps`]).
+    fn sweep(&self, i: usize) -> f64 {
+        self.sweep.get(i).copied().unwrap_or(0.0)
     }
 
     /// True if body `i` touches other bodies.
@@ -470,9 +497,9 @@ impl Touching {
         self.lower.clear();
         self.upper.clear();
         for (i, (b, r)) in bodies.iter().zip(&self.radius).enumerate() {
-            // Each body's box is padded by its share of the reach, factor × its radius, so
-            // that two boxes apart have a gap beyond the pair's reach.
-            let pad = r * factor;
+            // Each body's box is padded by its share of the reach, factor × its radius and
+            // its sweep, so that two boxes apart have a gap beyond the pair's reach.
+            let pad = r * factor + self.sweep.get(i).copied().unwrap_or(0.0);
             let x = b.position().as_slice();
             // A box's own bounding box: along space axis k it reaches Σⱼ |Q_kj| hⱼ, so a
             // box side by side with another (unturned, faces parallel) stays out of the
@@ -675,10 +702,11 @@ impl Touching {
         self.compound[b] = cb;
     }
 
-    /// `factor` times the sum of the bounding radii of bodies `a` and `b`: the distance
-    /// within which [`Touching::scan`] with that factor reports the pair.
+    /// `factor` times the sum of the bounding radii of bodies `a` and `b`, plus their
+    /// sweeps ([`Touching::set_sweeps`]): the distance within which [`Touching::scan`]
+    /// with that factor reports the pair.
     pub(crate) fn reach(&self, (a, b): (usize, usize), factor: f64) -> f64 {
-        factor * (self.radius[a] + self.radius[b])
+        factor * (self.radius[a] + self.radius[b]) + self.sweep(a) + self.sweep(b)
     }
 
     /// The pairs the last [`Touching::scan`] found.

@@ -13,7 +13,10 @@ use crate::dynamics::motion::{MotionError, System, Wrench};
 /// kick, a Gauss–Seidel pass of soft contacts (two in 4D, four in N ≥ 5), the free flight
 /// of every body, and as many passes without the contacts' springs (the "relax" passes);
 /// restitution is applied once at the end of the step. Contacts are found once per step,
-/// as points of the bodies' manifolds within a speculative margin, and follow the bodies
+/// as points of the bodies' manifolds within a speculative margin (each body's share: 0.5 %
+/// of its bounding radius and how far its points may move in the step at its velocities
+/// and under its forces, so that a body falls onto what it meets within the step, and a
+/// resting pile lists only the points that touch), and follow the bodies
 /// through the substeps without a new detection; a pair of polytopes that moved less than
 /// 1e-4 of its size (and turned less than 1e-4 rad) since its manifold was found keeps that
 /// manifold's points as material points of the two bodies instead of asking the narrow
@@ -54,6 +57,8 @@ pub struct SoftStep {
     damping_ratio: f64,
     push_out: f64,
     margin: f64,
+    /// How far each body may move in the step (see [`SoftStep::new`]).
+    sweeps: Vec<f64>,
     solver: SoftSolver,
     detect: Solver,
     touching: Touching,
@@ -133,7 +138,8 @@ impl Default for SoftStep {
             contact_hertz: None,
             damping_ratio: 3.0,
             push_out: 3.0,
-            margin: 0.05,
+            margin: 0.005,
+            sweeps: Vec::new(),
             solver: SoftSolver::default(),
             detect: Solver::default(),
             touching: Touching::clipping_boxes(),
@@ -163,7 +169,9 @@ impl SoftStep {
     /// The soft step with 4 substeps, contacts of a fifth of the substep rate (48 Hz at
     /// h = 1/60 s; a quarter is the stability bound, and springs nearer to it leave tall
     /// towers rocking) with damping ratio 3, overlaps pushed out at most at 3 m/s, and a
-    /// speculative margin of 5 % of the bodies' bounding radii.
+    /// speculative margin of 0.5 % of the bodies' bounding radii plus how far they may
+    /// move in the step: h (|v| + |ω| r) + h² |F| / m for a body of bounding radius r under
+    /// the force F.
     pub fn new() -> Self {
         Self::default()
     }
@@ -247,8 +255,13 @@ impl SoftStep {
         self.placements
             .update(bodies, shapes, shape_key, half_spaces);
         if !half_spaces.is_empty() {
-            self.detect
-                .find_contacts(bodies, shapes, half_spaces, self.margin, &self.placements);
+            self.detect.find_contacts(
+                bodies,
+                shapes,
+                half_spaces,
+                (self.margin, &self.sweeps),
+                &self.placements,
+            );
             let n = bodies[0].dim();
             let mut point = [0.0f64; 8];
             let mut any = Vec::new();
@@ -309,6 +322,7 @@ impl SoftStep {
                 }
             }
             let reuse = &self.reuse;
+            self.touching.set_sweeps(&self.sweeps);
             self.touching
                 .scan_except(bodies, q, self.margin, Some(MANIFOLD_SLOP), |p| {
                     reuse.binary_search(&p).is_ok()
@@ -365,12 +379,29 @@ impl SoftStep {
     }
 
     /// The speed below which a contact does not bounce: what one step of the wrenches
-    /// gives a body.
+    /// gives a body. Sets each body's sweep over the step of h: how far its points may
+    /// move in it, h (|v| + |ω| r) + h² |F| / m (r its bounding radius, |ω| the norm of
+    /// the bivector, at least the largest speed it gives a point at unit distance).
     fn resting_speed(&mut self, system: &System, t: f64, h: f64) -> f64 {
         let mut w = std::mem::take(&mut self.wrenches);
         system.wrenches_into(t, &mut w);
-        let speed = system
-            .bodies()
+        let bodies = system.bodies();
+        self.sweeps.clear();
+        self.sweeps.extend(
+            bodies
+                .iter()
+                .zip(system.shapes())
+                .zip(&w)
+                .map(|((b, shape), w)| {
+                    if b.is_fixed() {
+                        return 0.0;
+                    }
+                    let speed = b.linear_momentum().norm() / b.mass();
+                    let turn = b.rotation().omega().norm() * shape.radius();
+                    h * (speed + turn) + h * h * w.force.norm() / b.mass()
+                }),
+        );
+        let speed = bodies
             .iter()
             .zip(&w)
             .filter(|(b, _)| !b.is_fixed())
@@ -442,11 +473,26 @@ impl SoftStep {
             Softness::new((2.0 * hertz).min(rate), self.damping_ratio, sub),
         );
         let passes = self.passes.unwrap_or(default_passes(system.dim()));
+        // Under constant forces without torques a kick changes the velocities by F h / m
+        // alone: the relax passes' velocities then stay loaded into the next substep's
+        // solve, which saves a store and a load of every body in contact per substep.
+        let carry = system
+            .bodies_and_constant_wrenches()
+            .1
+            .is_some_and(|c| !c.any_torque);
         for s in 0..self.substeps {
             let at = t + s as f64 * sub;
             self.kick_at(system, at, sub);
+            let carried = carry && s > 0;
+            if carried {
+                let (bodies, Some(constant)) = system.bodies_and_constant_wrenches() else {
+                    unreachable!("carried only under constant wrenches")
+                };
+                self.solver.kick_loaded(bodies, &constant.wrenches, sub);
+            }
             let bodies = system.bodies_mut();
-            self.solver.solve(bodies, sub, soft, self.push_out, passes);
+            self.solver
+                .solve(bodies, sub, (soft, self.push_out), passes, carried);
             self.solver.store(bodies);
             for b in bodies.iter_mut().filter(|b| !b.is_fixed()) {
                 let m = b.mass();
@@ -455,8 +501,13 @@ impl SoftStep {
                 free_flight(rotation, at, sub)?;
             }
             self.solver.moved(bodies);
-            self.solver
-                .relax(bodies, sub, (resting, passes), s + 1 == self.substeps);
+            self.solver.relax(
+                bodies,
+                sub,
+                (resting, passes),
+                s + 1 == self.substeps,
+                carry,
+            );
         }
         if record {
             let (_, _, _, _, log) = system.parts_mut();

@@ -296,7 +296,7 @@ impl MotionSplitting {
             bodies,
             shapes,
             half_spaces,
-            CONTACT_TOLERANCE,
+            (CONTACT_TOLERANCE, &[]),
             &self.placements,
         );
         self.solver.find_joints(bodies, joints);

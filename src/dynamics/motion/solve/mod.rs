@@ -171,13 +171,14 @@ type WarmImpulse = (usize, usize, usize, f64, Linear);
 
 impl Solver {
     /// Finds the contact points of `bodies` within `tolerance` × their radius of a
-    /// half-space, the bodies placed by `placements`.
+    /// half-space, plus the body's sweep in `sweeps` where it has one (how far it may move
+    /// in the step), the bodies placed by `placements`.
     pub(crate) fn find_contacts(
         &mut self,
         bodies: &[MovingBody],
         shapes: &[ContactShape],
         half_spaces: &[HalfSpace],
-        tolerance: f64,
+        (tolerance, sweeps): (f64, &[f64]),
         placements: &Placements,
     ) {
         // Rows are overwritten in place (a row is large: moving it costs more than its setup).
@@ -190,7 +191,7 @@ impl Solver {
                 continue;
             }
             let placed = placements.get(i);
-            let reach = tolerance * placed.radius;
+            let reach = tolerance * placed.radius + sweeps.get(i).copied().unwrap_or(0.0);
             for (k, plane) in half_spaces.iter().enumerate() {
                 let nrm = plane.normal();
                 let base = plane.distance(b.position());

@@ -23,9 +23,9 @@
 use super::body::{AttitudeMatrix, BodyState};
 use super::contact_row::{ContactRow, Small, dim, scratch};
 use crate::algebra::Vector;
-use crate::dynamics::motion::MovingBody;
 use crate::dynamics::motion::contact::ContactLog;
 use crate::dynamics::motion::placement::dot;
+use crate::dynamics::motion::{MovingBody, Wrench};
 use smallvec::SmallVec;
 
 /// No body: the half-space side of a contact with a half-space.
@@ -534,33 +534,40 @@ impl SoftSolver {
         }
     }
 
-    /// Lists the last step's rows in the order of (a, b, key) in `order`, for the searches
-    /// of [`Self::push_kept`] and [`Self::prepare`] (the rows and their vectors stay where
-    /// they are: moving them costs more than the searches through the list).
+    /// Lists the last step's rows in the order of their pairs (a, b) in `order`, for the
+    /// searches of [`Self::push_kept`] and [`Self::prepare`] (the rows and their vectors
+    /// stay where they are: moving them costs more than the searches through the list).
+    /// A step lists the rows with half-spaces (a = [`NO_BODY`]) first and then the pairs
+    /// of bodies, each part in the order of its pairs: the list is then the pairs' part
+    /// followed by the half-spaces', with no sort.
     fn old_sort(&mut self) {
-        self.order.clear();
-        self.order.extend(0..self.old_rows.len());
         let rows = &self.old_rows;
-        let sorted = rows
-            .windows(2)
-            .all(|w| (w[0].a, w[0].b, w[0].key) <= (w[1].a, w[1].b, w[1].key));
-        if !sorted {
-            self.order
-                .sort_unstable_by_key(|&k| (rows[k].a, rows[k].b, rows[k].key));
+        let planes = rows.partition_point(|r| r.a == NO_BODY);
+        self.order.clear();
+        self.order.extend(planes..rows.len());
+        self.order.extend(0..planes);
+        let pair = |k: usize| (rows[k].a, rows[k].b);
+        if !self.order.windows(2).all(|w| pair(w[0]) <= pair(w[1])) {
+            // A stable sort: the points of a pair keep their order.
+            self.order.sort_by_key(|&k| pair(k));
         }
     }
 
     /// One substep of length `h`: the loaded bodies take the accumulated impulses (the warm
-    /// start) and `passes` passes of soft updates.
+    /// start) and `passes` passes of soft updates. With `carried`, the bodies' velocities
+    /// are those the last relax passes left loaded (see [`Self::relax`]), with the kick
+    /// since given by [`Self::kick_loaded`]; else they are loaded from the bodies.
     pub(crate) fn solve(
         &mut self,
         bodies: &[MovingBody],
         h: f64,
-        soft: (Softness, Softness),
-        push_out: f64,
+        (soft, push_out): ((Softness, Softness), f64),
         passes: usize,
+        carried: bool,
     ) {
-        self.load(bodies, Load::Kicked);
+        if !carried {
+            self.load(bodies, Load::Kicked);
+        }
         match self.layout.n {
             3 => self.solve_n::<3>(h, soft, push_out, passes),
             4 => self.solve_n::<4>(h, soft, push_out, passes),
@@ -618,12 +625,19 @@ impl SoftSolver {
 
     /// The relax passes after the flight (no bias but that of speculative gaps), and on
     /// the last substep the restitution pass; then the impulses go to the bodies.
+    ///
+    /// With `carry`, the bodies keep the velocities the passes leave loaded instead of
+    /// taking them: the next substep's kick gives them its change of velocity
+    /// ([`Self::kick_loaded`]) and its solve goes on from them, and its store hands the
+    /// bodies both solves' changes at once (the bodies do not turn in between, so that is
+    /// the same change of momenta, to round-off). Not on the last substep.
     pub(crate) fn relax(
         &mut self,
         bodies: &mut [MovingBody],
         h: f64,
         (restitution_speed, passes): (f64, usize),
         last: bool,
+        carry: bool,
     ) {
         self.load(bodies, Load::Flown);
         match self.layout.n {
@@ -641,7 +655,34 @@ impl SoftSolver {
                 d[l.total_tangent + t] += d[l.tangent_impulse + t];
             }
         }
-        self.store(bodies);
+        if last || !carry {
+            self.store(bodies);
+        }
+    }
+
+    /// Gives the loaded bodies that can move the change of velocity F h / m of a kick by
+    /// the forces of `wrenches` (whose torques are zero) over `h`, both in the velocities
+    /// the passes move and in those they started from: what the bodies take at the next
+    /// store is then the passes' change alone, the kick being in their momenta already.
+    pub(crate) fn kick_loaded(&mut self, bodies: &[MovingBody], wrenches: &[Wrench], h: f64) {
+        let n = self.layout.n;
+        let stride = n + self.layout.m;
+        for (i, ((st, b), w)) in self.states.iter().zip(bodies).zip(wrenches).enumerate() {
+            if !st.used || b.is_fixed() {
+                continue;
+            }
+            let here = i * stride..i * stride + n;
+            let f = w.force.as_slice();
+            for (k, (v, v0)) in self.flat.vel[here.clone()]
+                .iter_mut()
+                .zip(&mut self.flat.start[here])
+                .enumerate()
+            {
+                let dv = h * f[k] * st.inv_mass;
+                *v += dv;
+                *v0 += dv;
+            }
+        }
     }
 
     /// Records the step's contacts in `log`: each row that gave an impulse or ends the
