@@ -142,7 +142,7 @@ impl Default for SoftStep {
             sweeps: Vec::new(),
             solver: SoftSolver::default(),
             detect: Solver::default(),
-            touching: Touching::clipping_boxes(),
+            touching: Touching::clipping_tilted_boxes(),
             placements: Placements::default(),
             wrenches: Vec::new(),
             checked: None,
