@@ -10,6 +10,8 @@ use crate::algebra::Vector;
 use crate::dynamics::motion::detect::bodies::PairContact;
 use crate::dynamics::motion::placement::{dot, set_vector};
 use crate::numeric::symmetric_eigen_rows as symmetric_eigen;
+use crate::numeric::{cholesky_factor, cholesky_substitute};
+use smallvec::SmallVec;
 
 /// A contact between bodies `a` and `b`: body `b` takes the impulse J at its point, body `a`
 /// takes −J at its own. The normal n points from `a` to `b`; the relative velocity is
@@ -179,14 +181,29 @@ impl PairRow {
         self.kt.clear();
         self.kt.extend_from_slice(&self.k);
         tangent_block(&mut self.kt, &self.normal);
-        symmetric_eigen(&self.kt, n, &mut self.values, &mut self.vectors);
+        // K_t⁻¹ from the Cholesky factor of K_t (positive definite: K's tangent part, and 1
+        // along the normal). The eigen-decomposition is needed only to project a sliding
+        // point's impulse onto the friction cone, and is taken when one first slides
+        // (`values` empty until then): a resting stack never asks for it.
+        self.values.clear();
+        self.vectors.clear();
         self.kinv.clear();
         self.kinv.resize(n * n, 0.0);
-        for i in 0..n {
-            for j in 0..n {
-                self.kinv[i * n + j] = (0..n)
-                    .map(|k| self.vectors[i * n + k] * self.vectors[j * n + k] / self.values[k])
-                    .sum();
+        let mut factor: Dense = SmallVec::from_slice(&self.kt);
+        if cholesky_factor(&mut factor, n) {
+            // Column j of K_t⁻¹ solves K_t x = e_j; K_t⁻¹ is symmetric, so it is row j too.
+            for (j, row) in self.kinv.chunks_exact_mut(n).enumerate() {
+                row[j] = 1.0;
+                cholesky_substitute(&factor, n, row);
+            }
+        } else {
+            symmetric_eigen(&self.kt, n, &mut self.values, &mut self.vectors);
+            for i in 0..n {
+                for j in 0..n {
+                    self.kinv[i * n + j] = (0..n)
+                        .map(|k| self.vectors[i * n + k] * self.vectors[j * n + k] / self.values[k])
+                        .sum();
+                }
             }
         }
     }
@@ -312,6 +329,9 @@ impl PairRow {
         if limit <= 0.0 {
             new.fill(0.0);
         } else if dot(new, new) > limit * limit {
+            if self.values.is_empty() {
+                symmetric_eigen(&self.kt, n, &mut self.values, &mut self.vectors);
+            }
             friction_impulse::<N>(&self.values, &self.vectors, &self.kt, old, u, limit, new);
         }
         let (mut dj_fixed, mut dj_any) = ([0.0; 4], Small::new());
