@@ -11,7 +11,8 @@ use crate::rng;
 use rotorflow::dynamics::DynamicsError;
 use rotorflow::dynamics::motion::forques::{Anchor, Gravity};
 use rotorflow::dynamics::motion::{
-    BallJoint, HalfSpace, MotionError, MotionIntegrator, MovingBody, SoftStep, System,
+    BallJoint, Forque, ForqueInput, HalfSpace, MotionError, MotionIntegrator, MovingBody, SoftStep,
+    System, Wrench,
 };
 use rotorflow::inertia::spec::parse_body;
 use rotorflow::prelude::*;
@@ -537,4 +538,72 @@ fn a_fast_fall_is_met_within_the_step() {
         }
     }
     assert_eq!(cases, 4);
+}
+
+/// Under constant forces without torques the soft step keeps a substep's relax velocities
+/// loaded into the next substep's solve, the kick added to them as F h / m, and hands the
+/// bodies both solves' changes in one store; under any other forques it stores and loads
+/// around each kick. The two must move the bodies alike: a cube resting on the floor, a
+/// turned cube dropped onto it off centre and a ball thrown at both, in 3D and 4D, under
+/// uniform gravity (constant) and under the same gravity as a closure (not constant), for
+/// 30 steps of 1/60 s with impacts, sliding and rest. Positions and velocities agree to
+/// 1e-9 (measured: at most 1.1e-12, in 4D; round-off grown over the impacts, as the two
+/// sum the same changes in another order). Without the kick on the carried velocities they
+/// part by 0.14.
+#[test]
+fn the_carried_relax_velocities_move_the_bodies_as_stores_and_loads_do() {
+    let h = 1.0 / 60.0;
+    let mut cases = 0;
+    for n in [3, 4] {
+        let run = |constant: bool| {
+            let mut low = vec![0.0; n];
+            low[n - 1] = 0.5;
+            let mut high = vec![0.0; n];
+            (high[0], high[n - 1]) = (0.3, 1.6);
+            let turn = Rotor::from_plane_angle(n, 0, 1, 0.2).unwrap();
+            let parsed = parse_body(&format!("ball:{n},0.25+mass=2")).unwrap();
+            let ball = MovingBody::from_parsed(
+                &parsed,
+                Rotor::identity(n),
+                &(padded(n, &[-1.5, 0.1]) + axis(n, n - 1, 0.6)),
+                &(padded(n, &[4.0]) + axis(n, n - 1, 1.0)),
+                &Bivector::zero(n),
+            )
+            .unwrap()
+            .with_friction(0.5)
+            .unwrap()
+            .with_restitution(0.3)
+            .unwrap();
+            let bodies = vec![
+                turned_cube(n, 0.5, &low, 0.5, Rotor::identity(n)),
+                turned_cube(n, 0.5, &high, 0.5, turn),
+                ball,
+            ];
+            let mut s = System::new(bodies).unwrap();
+            let g = Gravity(axis(n, n - 1, -G));
+            if constant {
+                s.add_forque(g).unwrap();
+            } else {
+                s.add_forque(move |input: &ForqueInput<'_>, w: &mut [Wrench]| g.apply(input, w))
+                    .unwrap();
+            }
+            s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
+                .unwrap();
+            SoftStep::new().advance(&mut s, 0.0, h, 30).unwrap();
+            s
+        };
+        let (carried, stored) = (run(true), run(false));
+        let mut worst = 0.0f64;
+        for (a, b) in carried.bodies().iter().zip(stored.bodies()) {
+            for (x, y) in [(a.position(), b.position()), (&a.velocity(), &b.velocity())] {
+                worst = worst.max((x - y).norm());
+            }
+        }
+        let moved = (carried.bodies()[1].position() - &axis(n, n - 1, 1.6)).norm();
+        println!("N = {n}: largest difference {worst:e}; the dropped cube moved {moved:.3}");
+        assert!(moved > 0.1, "N = {n}: the scene must move ({moved})");
+        assert!(worst <= 1e-9, "N = {n}: {worst:e}");
+        cases += 1;
+    }
+    assert_eq!(cases, 2);
 }
