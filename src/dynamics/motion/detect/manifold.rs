@@ -370,36 +370,51 @@ fn face_region(
         | (ji as u64) << 51;
 
     let full = 1u32 << d;
-    let mut y: Small = SmallVec::from_elem(0.0, d);
-    let mut x: Small = SmallVec::from_elem(0.0, d);
-    let mut lu: Square = SmallVec::new();
+    // The loops below index these many times per candidate vertex: as slices, each access
+    // is a bounds check, not also a test of where the small vector keeps its numbers.
+    let (g, gm, dy, h) = (&g[..], &gm[..], &dy[..], &h[..]);
+    let (mut y_room, mut x_room): (Small, Small) =
+        (SmallVec::from_elem(0.0, d), SmallVec::from_elem(0.0, d));
+    let (y, x) = (&mut y_room[..], &mut x_room[..]);
+    let (mut lu_room, mut rhs_room): (Square, Small) =
+        (SmallVec::from_elem(0.0, d * d), SmallVec::from_elem(0.0, d));
+    let (mut pa_room, mut pb_room): (Small, Small) =
+        (SmallVec::from_elem(0.0, n), SmallVec::from_elem(0.0, n));
+    let (pa, pb) = (&mut pa_room[..], &mut pb_room[..]);
     let mut perm: SmallVec<[usize; 8]> = SmallVec::new();
-    let mut rows: SmallVec<[usize; 8]> = SmallVec::new();
-    let mut cols: SmallVec<[usize; 8]> = SmallVec::new();
-    let mut rhs: Small = SmallVec::new();
-    let mut pa: Small = SmallVec::from_elem(0.0, n);
-    let mut pb: Small = SmallVec::from_elem(0.0, n);
+    let (mut rows_room, mut cols_room) = ([0usize; 32], [0usize; 32]);
     // T: the side planes the vertex lies on; F: the incident coordinates fixed at ±1.
     for t_mask in 0..full {
         let k = t_mask.count_ones() as usize;
-        rows.clear();
-        rows.extend((0..d).filter(|&t| t_mask >> t & 1 == 1));
+        for (slot, t) in rows_room
+            .iter_mut()
+            .zip((0..d).filter(|&t| t_mask >> t & 1 == 1))
+        {
+            *slot = t;
+        }
+        let rows = &rows_room[..k];
         for f_mask in 0..full {
             if f_mask.count_ones() as usize != d - k {
                 continue;
             }
-            cols.clear();
-            cols.extend((0..d).filter(|&u| f_mask >> u & 1 == 0));
+            for (slot, u) in cols_room
+                .iter_mut()
+                .zip((0..d).filter(|&u| f_mask >> u & 1 == 0))
+            {
+                *slot = u;
+            }
+            let cols = &cols_room[..k];
             // The k × k system G[T, free] y_free = rhs, factored once for all sides.
-            lu.clear();
-            for &t in &rows {
-                for &u in &cols {
-                    lu.push(gm[t * d + u]);
+            let lu = &mut lu_room[..k * k];
+            for (r, &t) in rows.iter().enumerate() {
+                for (c, &u) in cols.iter().enumerate() {
+                    lu[r * k + c] = gm[t * d + u];
                 }
             }
-            if !lu_factor(&mut lu, k, &mut perm, pivot_tol) {
+            if !lu_factor(lu, k, &mut perm, pivot_tol) {
                 continue;
             }
+            let lu = &lu[..];
             for t_signs in 0..(1u32 << k) {
                 // A side plane out of reach of the incident face cannot hold a vertex.
                 let reach = rows.iter().enumerate().all(|(c, &t)| {
@@ -413,22 +428,22 @@ fn face_region(
                 for f_signs in 0..(1u32 << (d - k)) {
                     // Fixed coordinates.
                     let mut bit = 0;
-                    for u in 0..d {
+                    for (u, yu) in y.iter_mut().enumerate() {
                         if f_mask >> u & 1 == 1 {
-                            y[u] = if f_signs >> bit & 1 == 1 { -1.0 } else { 1.0 };
+                            *yu = if f_signs >> bit & 1 == 1 { -1.0 } else { 1.0 };
                             bit += 1;
                         }
                     }
-                    rhs.clear();
+                    let rhs = &mut rhs_room[..k];
                     for (c, &t) in rows.iter().enumerate() {
                         let target = if t_signs >> c & 1 == 1 { -h[t] } else { h[t] };
                         let fixed: f64 = (0..d)
                             .filter(|&u| f_mask >> u & 1 == 1)
                             .map(|u| gm[t * d + u] * y[u])
                             .sum();
-                        rhs.push(target - g[t] - fixed);
+                        rhs[c] = target - g[t] - fixed;
                     }
-                    lu_solve(&lu, k, &perm, &mut rhs);
+                    lu_solve(lu, k, &perm, rhs);
                     if rhs.iter().any(|v| v.is_nan() || v.abs() > 1.0 + y_tol) {
                         continue;
                     }
@@ -446,7 +461,7 @@ fn face_region(
                     if !inside {
                         continue;
                     }
-                    let depth = d0 - dot(&dy, &y);
+                    let depth = d0 - dot(dy, y);
                     if depth < -margin {
                         continue;
                     }
@@ -455,9 +470,9 @@ fn face_region(
                     for (c, &t) in rows.iter().enumerate() {
                         id |= (1 + (t_signs >> c & 1) as u64) << (2 * t);
                     }
-                    for u in 0..d {
+                    for (u, yu) in y.iter().enumerate() {
                         if f_mask >> u & 1 == 1 {
-                            id |= (if y[u] < 0.0 { 2 } else { 1 }) << (2 * d + 2 * u);
+                            id |= (if *yu < 0.0 { 2 } else { 1 }) << (2 * d + 2 * u);
                         }
                     }
                     // p on the incident face; its projection on the reference face.
@@ -478,9 +493,9 @@ fn face_region(
                         }
                     }
                     visit(RegionVertex {
-                        point_a: &pa,
-                        point_b: &pb,
-                        plane: &x,
+                        point_a: pa,
+                        point_b: pb,
+                        plane: x,
                         depth,
                         id: FeatureId(id),
                     });
