@@ -505,7 +505,7 @@ impl Touching {
         for (i, (b, r)) in bodies.iter().zip(&self.radius).enumerate() {
             // Each body's box is padded by its share of the reach, factor × its radius and
             // its sweep, so that two boxes apart have a gap beyond the pair's reach.
-            let pad = r * factor + self.sweep.get(i).copied().unwrap_or(0.0);
+            let pad = r * factor + self.sweep(i);
             let x = b.position().as_slice();
             // A box's own bounding box: along space axis k it reaches Σⱼ |Q_kj| hⱼ, so a
             // box side by side with another (unturned, faces parallel) stays out of the
