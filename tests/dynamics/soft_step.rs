@@ -19,6 +19,19 @@ use rotorflow::prelude::*;
 
 const G: f64 = 9.81;
 
+/// The floor x_{N−1} = 0, friction 0.5 and restitution `restitution`.
+fn floor(n: usize, restitution: f64) -> HalfSpace {
+    HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, restitution).unwrap()
+}
+
+/// `bodies` in N dimensions under gravity G along −x_{N−1}, on the [`floor`].
+fn on_floor(n: usize, bodies: Vec<MovingBody>, restitution: f64) -> System {
+    let mut s = System::new(bodies).unwrap();
+    s.add_forque(Gravity(axis(n, n - 1, -G))).unwrap();
+    s.add_half_space(floor(n, restitution)).unwrap();
+    s
+}
+
 /// Six cubes in 3D and three 4D hypercubes each offset by 5 %, turned by ±3° or not,
 /// dropped from 1 % of their size onto each other, stand for 10 s at h = 1/60 s and
 /// 1e-3 s: the top box sinks less than 5e-3 (the springs' deflection), ends at rest (below
@@ -296,10 +309,7 @@ fn the_soft_step_records_the_impulses_that_hold_the_bodies() {
             turned_cube(n, 0.5, &low, 0.5, Rotor::identity(n)),
             turned_cube(n, 0.5, &high, 0.5, yaw),
         ];
-        let mut s = System::new(bodies).unwrap();
-        s.add_forque(Gravity(axis(n, n - 1, -G))).unwrap();
-        s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
-            .unwrap();
+        let mut s = on_floor(n, bodies, 0.0);
         let mut stepper = SoftStep::new();
         stepper.advance(&mut s, 0.0, h, 240).unwrap();
         let floor: f64 = s.contacts().iter().map(|c| c.normal_impulse).sum();
@@ -389,10 +399,7 @@ fn a_ball_resting_on_a_box_stays_on_it() {
         .with_friction(0.5)
         .unwrap();
         let bodies = vec![turned_cube(n, 0.5, &low, 0.5, Rotor::identity(n)), ball];
-        let mut s = System::new(bodies).unwrap();
-        s.add_forque(Gravity(axis(n, n - 1, -G))).unwrap();
-        s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
-            .unwrap();
+        let mut s = on_floor(n, bodies, 0.0);
         SoftStep::new().advance(&mut s, 0.0, h, 600).unwrap();
         let ball = &s.bodies()[1];
         let x = ball.position().as_slice();
@@ -436,11 +443,7 @@ fn the_soft_step_advances_as_its_steps_do() {
                 turned_cube(n, 0.5, &low, 0.5, Rotor::identity(n)),
                 turned_cube(n, 0.5, &high, 0.5, yaw.clone()),
             ];
-            let mut s = System::new(bodies).unwrap();
-            s.add_forque(Gravity(axis(n, n - 1, -G))).unwrap();
-            s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.3).unwrap())
-                .unwrap();
-            s
+            on_floor(n, bodies, 0.3)
         };
         let (mut by_steps, mut by_advance) = (system(), system());
         let (mut stepper, mut advancer) = (SoftStep::new(), SoftStep::new());
@@ -507,10 +510,7 @@ fn a_fast_fall_is_met_within_the_step() {
             if onto_cube {
                 bodies.push(turned_cube(n, 0.5, &low, 0.5, Rotor::identity(n)));
             }
-            let mut s = System::new(bodies).unwrap();
-            s.add_forque(Gravity(axis(n, n - 1, -G))).unwrap();
-            s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
-                .unwrap();
+            let mut s = on_floor(n, bodies, 0.0);
             let mut stepper = SoftStep::new();
             // The falling body's lowest point against the top of what it falls on.
             let bottom = if onto_cube { 0.25 } else { 0.5 };
@@ -587,8 +587,7 @@ fn the_carried_relax_velocities_move_the_bodies_as_stores_and_loads_do() {
                 s.add_forque(move |input: &ForqueInput<'_>, w: &mut [Wrench]| g.apply(input, w))
                     .unwrap();
             }
-            s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())
-                .unwrap();
+            s.add_half_space(floor(n, 0.0)).unwrap();
             SoftStep::new().advance(&mut s, 0.0, h, 30).unwrap();
             s
         };

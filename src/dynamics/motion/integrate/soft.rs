@@ -57,7 +57,8 @@ pub struct SoftStep {
     damping_ratio: f64,
     push_out: f64,
     margin: f64,
-    /// How far each body may move in the step (see [`SoftStep::new`]).
+    /// How far each body may move in the step (see [`SoftStep::new`]), set with the resting
+    /// speed from one evaluation of the wrenches.
     sweeps: Vec<f64>,
     solver: SoftSolver,
     detect: Solver,
@@ -382,7 +383,7 @@ impl SoftStep {
     /// gives a body. Sets each body's sweep over the step of h: how far its points may
     /// move in it, h (|v| + |ω| r) + h² |F| / m (r its bounding radius, |ω| the norm of
     /// the bivector, at least the largest speed it gives a point at unit distance).
-    fn resting_speed(&mut self, system: &System, t: f64, h: f64) -> f64 {
+    fn resting_speed_and_sweeps(&mut self, system: &System, t: f64, h: f64) -> f64 {
         let mut w = std::mem::take(&mut self.wrenches);
         system.wrenches_into(t, &mut w);
         let bodies = system.bodies();
@@ -463,7 +464,7 @@ impl SoftStep {
             .into());
         }
         system.clear_contacts();
-        let resting = self.resting_speed(system, t, h);
+        let resting = self.resting_speed_and_sweeps(system, t, h);
         self.detect(system);
         let sub = h / self.substeps as f64;
         let rate = 0.25 / sub;
