@@ -449,7 +449,7 @@ fn run() -> Result<(), Error> {
          defaults, a fixed solver cost per step: {} substeps, each with 1 Gauss–Seidel pass over soft contacts \
          (springs) and 1 relax pass without the springs (in 3D), contacts of {:.0} Hz (a fifth of the substep rate) \
          and {:.0} Hz against fixed bodies and the floor (twice that, up to a quarter of the substep rate), damping \
-         ratio 3, overlaps pushed out at most at 3 m/s, a speculative margin of 5 % of the bodies' bounding radii, \
+         ratio 3, overlaps pushed out at most at 3 m/s, a speculative margin of 0.5 % of each body's bounding radius and how far its points may move in the step, \
          contacts found once per step and restitution applied once per step. Rapier: `PhysicsWorld::step` with its \
          default integration parameters (soft TGS: {} substeps, each of {} velocity and {} stabilization iteration, \
          warm start {}), sleeping off, continuous collision detection off; SoftStep and Rapier thus do comparable \
