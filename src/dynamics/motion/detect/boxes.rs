@@ -400,16 +400,17 @@ pub(crate) fn box_distance<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> 
             return None;
         }
     }
-    // Back to space: the witnesses x of A and c + R u of B, and v = Q_A e.
+    // Back to space: the witness x of A, v = Q_A e, and B's witness c + R u as x + e, that
+    // is witness_a + v (the same point to round-off of the problem's size, without a
+    // third product by a rotation).
     let (mut witness_a, mut witness_b, mut v) = ([0.0; N], [0.0; N], [0.0; N]);
     for i in 0..N {
-        let (mut p, mut q, mut s) = (pa[i], pb[i], 0.0);
+        let (mut p, mut s) = (pa[i], 0.0);
         for j in 0..N {
             p += qa[i][j] * x[j];
-            q += qb[i][j] * u[j];
             s += qa[i][j] * e[j];
         }
-        (witness_a[i], witness_b[i], v[i]) = (p, q, s);
+        (witness_a[i], witness_b[i], v[i]) = (p, p + s, s);
     }
     Some(BoxGap {
         witness_a,

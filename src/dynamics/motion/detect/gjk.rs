@@ -794,23 +794,33 @@ pub(crate) fn centre_direction(a: &PlacedShape, b: &PlacedShape) -> Vector {
 ///
 /// # Errors
 /// [`ShapeError::DimensionMismatch`] if the shapes differ in dimension.
+#[inline]
 pub fn distance(a: &PlacedShape, b: &PlacedShape) -> Result<Separation, ShapeError> {
+    // Inlined: the check and the `Ok` are the caller's, and the separation (240 bytes) is
+    // returned bare by one call, which the caller's frame holds, rather than inside a
+    // `Result` built in the callee's.
+    let n = check_pair(a, b)?;
+    Ok(checked_distance(a, b, n))
+}
+
+/// [`distance`] of two shapes of dimension `n`.
+fn checked_distance(a: &PlacedShape, b: &PlacedShape, n: usize) -> Separation {
     // Each path returns its separation as it builds it: a `Separation` holds three inline
     // vectors (240 bytes), and passing it through an `Option` first copied it once more.
-    match check_pair(a, b)? {
+    match n {
         3 => {
             if let Some(gap) = super::boxes::box_distance::<3>(a, b) {
-                return Ok(core_separation(a, b, gap.core_gap()));
+                return core_separation(a, b, gap.core_gap());
             }
         }
         4 => {
             if let Some(gap) = super::boxes::box_distance::<4>(a, b) {
-                return Ok(core_separation(a, b, gap.core_gap()));
+                return core_separation(a, b, gap.core_gap());
             }
         }
         _ => {}
     }
-    Ok(separation(a, b, gjk(a, b)))
+    separation(a, b, gjk(a, b))
 }
 
 /// [`distance`] by the dimension-generic GJK alone. For N = 3 and 4, [`distance`] runs
@@ -879,7 +889,9 @@ pub(crate) fn core_separation(a: &PlacedShape, b: &PlacedShape, gap: CoreGap) ->
         };
     }
     let core = gap.vv.sqrt();
-    let normal = |i: usize| gap.v[i] / core;
+    // One division, then products (a division per coordinate waits on the divider).
+    let inverse = 1.0 / core;
+    let normal = |i: usize| gap.v[i] * inverse;
     let distance = (core - ra - rb).max(0.0);
     Separation {
         distance,
