@@ -2,7 +2,7 @@
 //! `cargo run --release --example rolling_ball`.
 //!
 //! A solid ball of radius a is launched at v₀ without spin on a rough floor. Friction slows
-//! it and spins it up until it rolls, at v₀ (N+2)/(N+4) = 2/3 v₀ in 4D; its placement is then
+//! it and spins it up until it rolls, at v₀ (N+2)/(N+4) = 3/4 v₀ in 4D; its placement is then
 //! read as a motor of projective GA.
 
 use rotorflow::dynamics::motion::forques::Gravity;

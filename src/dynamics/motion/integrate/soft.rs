@@ -52,7 +52,7 @@ pub struct SoftStep {
     substeps: usize,
     /// Gauss–Seidel passes per substep, with springs and without (None: [`default_passes`]).
     passes: Option<usize>,
-    /// The contacts' frequency (None: a quarter of the substep rate).
+    /// The contacts' frequency (None: a fifth of the substep rate).
     contact_hertz: Option<f64>,
     damping_ratio: f64,
     push_out: f64,
