@@ -13,9 +13,9 @@
 //! bound, min(d, 64 ε · size² / d), when not), and for polytopes up to N = 4 the
 //! same depth (to 1e-8 of the pair's size, plus 64 ε · size² / shortest edge for the
 //! round-off of the thin facets a short edge makes) when the smaller shape's bounding radius
-//! is at least 10⁻⁴ of the larger's. In 5 and 6 dimensions EPA can stop at its facet cap (or where
-//! round-off bends the polytope) with a lower bound of the depth, which differs between
-//! the two orders. Below that ratio (a unit box inside a cross-polytope of circumradius
+//! is at least 10⁻⁴ of the larger's. In 5 and 6 dimensions EPA can stop at its caps (with
+//! its least support reach, an upper bound of the depth) or where round-off bends the
+//! polytope (with a lower bound), and the two orders can differ. Below that ratio (a unit box inside a cross-polytope of circumradius
 //! 425600, ratio 3e-6, gave depths 0.81 and 212800.9 for the two orders) the smaller shape's features are within a few orders
 //! of magnitude of the 10⁻¹² relative tolerances of GJK and EPA, the facets they span are
 //! slivers whose normals carry errors of about ε / ratio, and the two orders can end on
