@@ -1252,8 +1252,9 @@ fn fuzz_penetration_asks_epa_where_gjk_stuck_beside_the_origin() {
 /// the box (262 iterations), minutes under the fuzzer's instrumentation for the simplex.
 /// Each new point saw thousands of facets, and each retry that merges a coplanar facet
 /// computed the planes of the whole horizon again. EPA now also stops after 32,768 facet
-/// planes in all, with its nearest facet. Both orders must give the margin plus the
-/// simplex's inradius (R/6), to the tiny shape's size, in few iterations.
+/// planes in all, as at its facet cap (above 4D with its least support reach where that
+/// lies more than 1e-9 of the size above its nearest facet). Both orders must give the
+/// margin plus the simplex's inradius (R/6), to the tiny shape's size, in few iterations.
 #[test]
 fn fuzz_epa_in_six_dimensions_stops_at_its_work_cap() {
     use rotorflow::dynamics::motion::detect::{EpaWorkspace, PlacedShape, penetration_with};
