@@ -904,11 +904,11 @@ fn touching_smooth_pairs_in_six_dimensions_are_certified() {
 }
 
 /// A 4D hull moved along the normal of `distance` until it touches an ellipsoid (pair 742 of
-/// seed 2000494 of [`every_kind_run`], met when the normal of `distance` moved by an ulp):
-/// the ellipsoid's Newton refinement gave a translation 3e-16 below EPA's depth 0, and
-/// the answer was EPA's, whose facet normal through the touching point leaned so far that
-/// the shapes overlapped by 2e-6 along it (3.6e-7 of the size). Now the depth is 0 in both
-/// orders and the translation along each normal is within 1e-9 of the size of it.
+/// seed 2000494 of [`every_kind_run`]): the ellipsoid's Newton refinement gave a translation
+/// 3e-16 below EPA's depth 0, and the answer was EPA's, whose facet normal through the
+/// touching point leaned so far that the shapes overlapped by 2e-6 along it (3.6e-7 of the
+/// size). Now the depth is 0 in both orders and the translation along each normal is within
+/// 1e-9 of the size of it.
 #[test]
 fn a_hull_touching_an_ellipsoid_in_4d_takes_the_refined_normal() {
     use rotorflow::dynamics::motion::detect::{EpaWorkspace, penetration_with};
