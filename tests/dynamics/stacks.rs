@@ -133,7 +133,7 @@ fn tower_system(n: usize, count: usize, (offset, turn, drop): (f64, f64, f64)) -
 /// solves of bodies resting on each other drift into loads the contacts need not carry).
 /// Three cubes set on each other offset by 5 % of their size, in 3D and 4D, 120 steps of
 /// h = 1/60 s in calls of 40 against single steps: the same positions, velocities and
-/// contacts.
+/// contacts, with each other and with the floor.
 #[test]
 fn a_tower_advances_as_its_single_steps_to_the_bit() {
     let mut cases = 0;
@@ -160,6 +160,9 @@ fn a_tower_advances_as_its_single_steps_to_the_bit() {
             "N = {n}: the cubes rest on each other"
         );
         assert_eq!(single.body_contacts(), advanced.body_contacts(), "N = {n}");
+        // The floor's too (`advance` records the contacts of its last step only).
+        assert!(!single.contacts().is_empty(), "N = {n}: the tower stands");
+        assert_eq!(single.contacts(), advanced.contacts(), "N = {n}");
         cases += 1;
     }
     assert_eq!(cases, 2);

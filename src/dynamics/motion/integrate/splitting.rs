@@ -77,6 +77,9 @@ pub struct MotionSplitting {
     active_pairs: Vec<(usize, usize)>,
     /// True while an impact is being located.
     locating: bool,
+    /// True while the contacts the solves find go unrecorded: in the steps of an `advance`
+    /// before its last, whose lists the next step clears unread.
+    unrecorded: bool,
     /// The contacts that were not in contact at the start of the step and ended its last
     /// flight deeper than their touching distance: pairs of bodies and candidates against
     /// half-spaces, with their signed distances.
@@ -667,7 +670,9 @@ impl MotionSplitting {
         close: bool,
     ) -> Result<f64, DynamicsError> {
         self.half_kick(system, t, h, true);
-        self.solve_velocities(system, 0.5 * h, true);
+        // A try of an impact's location drops what it recorded: it records nothing.
+        let record = !self.unrecorded && !self.locating;
+        self.solve_velocities(system, 0.5 * h, record);
         let fresh = self.flight(system, t, h)?;
         if close {
             self.close(system, t + h, h);
@@ -692,7 +697,7 @@ impl MotionSplitting {
     /// The closing half kick (at the end `t` of a substep of length h) and velocity solve.
     fn close(&mut self, system: &mut System, t: f64, h: f64) {
         self.closing_kick(system, t, h);
-        self.solve_velocities(system, 0.5 * h, true);
+        self.solve_velocities(system, 0.5 * h, !self.unrecorded);
     }
 
     /// A step with contacts and joints: substeps cut at the impacts. With `leave_open`, the
@@ -900,6 +905,9 @@ impl MotionSplitting {
         let mut open: Option<f64> = None;
         for k in 0..steps {
             let (tk, last) = (t + k as f64 * h, k + 1 == steps);
+            // Each step clears the contacts of the step before: only the last one's are
+            // recorded (the pending close below belongs to the step before).
+            self.unrecorded = !last;
             if let Some(before) = open {
                 // Bodies that touch each other take their steps singly (see `advance`).
                 let touching = !self.solver.pairs.is_empty();
@@ -1181,6 +1189,8 @@ impl MotionSplitting {
 
     /// One step, the system checked.
     fn step_checked(&mut self, system: &mut System, t: f64, h: f64) -> Result<(), DynamicsError> {
+        // A single step lists its contacts (also after an `advance` that stopped early).
+        self.unrecorded = false;
         if self.constrained(system) {
             self.constrained_step(system, t, h, false)?;
             return check_finite(system, t);
