@@ -581,18 +581,35 @@ impl LocalBody {
 /// (as [`BodyState::response`] gives it), written without temporaries: a pair's rows set up
 /// two of these per solve.
 pub(super) fn add_inverse_mass(b: &BodyState, r: &Vector, k: &mut [f64]) {
+    // In 3D and 4D the loops have constant bounds: unrolled, the wedges' zeros and signs
+    // are known where they are written (the same products and sums, in the same order).
     let r = r.as_slice();
-    let n = r.len();
+    match r.len() {
+        3 => add_inverse_mass_n::<3>(b, r, k, &mut [0.0; 6]),
+        4 => add_inverse_mass_n::<4>(b, r, k, &mut [0.0; 12]),
+        n => {
+            let m = n * (n - 1) / 2;
+            // r ∧ e_c and its image under I⁻¹, on the stack up to N = 8.
+            let (mut fixed, mut any) = ([0.0f64; 56], Vec::new());
+            let room: &mut [f64] = if 2 * m <= fixed.len() {
+                &mut fixed[..2 * m]
+            } else {
+                any.resize(2 * m, 0.0);
+                &mut any
+            };
+            add_inverse_mass_n::<0>(b, r, k, room);
+        }
+    }
+}
+
+/// [`add_inverse_mass`] in dimension `N` (0: any), with `room` for 2M numbers.
+#[inline(always)]
+fn add_inverse_mass_n<const N: usize>(b: &BodyState, r: &[f64], k: &mut [f64], room: &mut [f64]) {
+    let n = super::contact_row::dim::<N>(r.len());
     let m = n * (n - 1) / 2;
-    // r ∧ e_c and its image under I⁻¹, on the stack up to N = 8.
-    let (mut fixed, mut any) = ([0.0f64; 56], Vec::new());
-    let room: &mut [f64] = if 2 * m <= fixed.len() {
-        &mut fixed[..2 * m]
-    } else {
-        any.resize(2 * m, 0.0);
-        &mut any
-    };
-    let (wedge, w) = room.split_at_mut(m);
+    let r = &r[..n];
+    let k = &mut k[..n * n];
+    let (wedge, w) = room[..2 * m].split_at_mut(m);
     let inv = &b.inv_inertia[..m * m];
     for c in 0..n {
         // The planes (a, b), a < b, in order: r ∧ e_c has r_a in the planes (a, c) and −r_b
