@@ -246,10 +246,23 @@ impl PairRow {
 
     /// Gives the accumulated impulses to the loaded states (a warm start).
     pub(crate) fn apply_accumulated(&self, states: &mut [BodyState]) {
-        let mut j = &self.normal * self.normal_impulse;
-        j += &self.friction_impulse;
-        if j.max_abs() > 0.0 {
-            self.apply::<0>(states, j.as_slice());
+        // J on the stack up to 8D, and the kernels of fixed size in 3D and 4D.
+        let n = self.normal.dim();
+        let (mut fixed, mut any) = ([0.0; 8], Vec::new());
+        let j: &mut [f64] = if n <= fixed.len() {
+            &mut fixed[..n]
+        } else {
+            any.resize(n, 0.0);
+            &mut any
+        };
+        self.total_impulse(j);
+        if j.iter().fold(0.0f64, |m, c| m.max(c.abs())) == 0.0 {
+            return;
+        }
+        match n {
+            3 => self.apply::<3>(states, j),
+            4 => self.apply::<4>(states, j),
+            _ => self.apply::<0>(states, j),
         }
     }
 
