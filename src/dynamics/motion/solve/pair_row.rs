@@ -10,7 +10,7 @@ use crate::algebra::Vector;
 use crate::dynamics::motion::detect::bodies::PairContact;
 use crate::dynamics::motion::placement::{dot, set_vector};
 use crate::numeric::symmetric_eigen_rows as symmetric_eigen;
-use crate::numeric::{cholesky_factor, cholesky_substitute};
+use crate::numeric::{cholesky_factor, cholesky_substitute, max_abs};
 use smallvec::SmallVec;
 
 /// A contact between bodies `a` and `b`: body `b` takes the impulse J at its point, body `a`
@@ -246,23 +246,22 @@ impl PairRow {
 
     /// Gives the accumulated impulses to the loaded states (a warm start).
     pub(crate) fn apply_accumulated(&self, states: &mut [BodyState]) {
-        // J on the stack up to 8D, and the kernels of fixed size in 3D and 4D.
-        let n = self.normal.dim();
-        let (mut fixed, mut any) = ([0.0; 8], Vec::new());
-        let j: &mut [f64] = if n <= fixed.len() {
-            &mut fixed[..n]
-        } else {
-            any.resize(n, 0.0);
-            &mut any
-        };
-        self.total_impulse(j);
-        if j.iter().fold(0.0f64, |m, c| m.max(c.abs())) == 0.0 {
-            return;
+        match self.normal.dim() {
+            3 => self.apply_accumulated_n::<3>(states),
+            4 => self.apply_accumulated_n::<4>(states),
+            _ => self.apply_accumulated_n::<0>(states),
         }
-        match n {
-            3 => self.apply::<3>(states, j),
-            4 => self.apply::<4>(states, j),
-            _ => self.apply::<0>(states, j),
+    }
+
+    /// [`Self::apply_accumulated`] with the kernels of dimension `N` (as in [`dim`]), J in
+    /// room on the stack.
+    fn apply_accumulated_n<const N: usize>(&self, states: &mut [BodyState]) {
+        let n = dim::<N>(self.normal.dim());
+        let (mut fixed, mut any) = ([0.0; 4], Small::new());
+        let j = scratch::<N>(&mut fixed, &mut any, n);
+        self.total_impulse(j);
+        if max_abs(j) > 0.0 {
+            self.apply::<N>(states, j);
         }
     }
 
