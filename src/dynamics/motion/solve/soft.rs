@@ -950,17 +950,22 @@ fn friction_update<const N: usize, V: AsRef<[f64]> + AsMut<[f64]>>(
     let n = dim::<N>(l.n);
     let limit = row.friction * row.normal_impulse;
     let (total, rest) = scratch.split_at_mut(n);
-    for t in 0..n - 1 {
-        let (dir, arms) = (l.tangents + t * n, l.tangent_arms + 4 * t * l.m);
-        let vt = pair.velocity::<N>(d, l, dir, arms);
-        total[t] = d[l.tangent_impulse + t] - d[l.tangent_mass + t] * vt;
-    }
-    // The square root only for a point that slides (a sticking point stays inside).
-    let squared = total[..n - 1].iter().map(|x| x * x).sum::<f64>();
-    if squared > limit * limit {
-        let norm = squared.sqrt();
-        let scale = if norm > 0.0 { limit / norm } else { 0.0 };
-        total[..n - 1].iter_mut().for_each(|x| *x *= scale);
+    if limit == 0.0 {
+        // A point without normal impulse (a speculative point, or no friction) holds no
+        // friction: its velocities and the disc's square root and division are not needed.
+        total[..n - 1].fill(0.0);
+    } else {
+        for t in 0..n - 1 {
+            let (dir, arms) = (l.tangents + t * n, l.tangent_arms + 4 * t * l.m);
+            let vt = pair.velocity::<N>(d, l, dir, arms);
+            total[t] = d[l.tangent_impulse + t] - d[l.tangent_mass + t] * vt;
+        }
+        // The square root only for a point that slides (a sticking point stays inside).
+        let squared = total[..n - 1].iter().map(|x| x * x).sum::<f64>();
+        if squared > limit * limit {
+            let scale = limit / squared.sqrt();
+            total[..n - 1].iter_mut().for_each(|x| *x *= scale);
+        }
     }
     // The changes along the tangents summed, then given to the bodies at once.
     let mut fixed = [0.0; 16];
