@@ -95,6 +95,108 @@ fn core_hull(c: &ConvexShape) -> Option<&[f64]> {
 /// as touching.
 const MANIFOLD_TOUCHING: f64 = 1e-6;
 
+/// How far two boxes may move relative to each other (relative to the sum of their bounding
+/// radii, and in the entries of their relative rotation) before a scan with manifolds finds
+/// their manifold anew: within that, its points are kept as material points of both boxes,
+/// their gaps moving with them. A hundredth of the splitting's contact tolerance (10⁻⁹ of
+/// the radius): what a kept manifold misses of the one at the new placement (a clipped point
+/// slides along an edge by at most the relative motion) stays that far below what the
+/// tolerance allows. A resting stack then clips its faces once in many steps: the cubes of
+/// a pyramid at rest turn relative to each other by about 10⁻¹² in a few steps, and a
+/// thousandth of the tolerance kept 71 % of its manifolds where this keeps 97 %.
+const KEEP_BOX_MANIFOLD: f64 = 1e-11;
+
+/// Writes into `out` the placement of body b in body a's axes from their own axes
+/// (row-major, own axes → space) and centres: b's centre (N numbers), then b's axes
+/// (N × N, row-major).
+pub(crate) fn relative_placement(
+    (qa, qb): (&[f64], &[f64]),
+    (xa, xb): (&[f64], &[f64]),
+    out: &mut Vec<f64>,
+) {
+    let n = xa.len();
+    out.clear();
+    out.extend((0..n).map(|k| (0..n).map(|i| qa[i * n + k] * (xb[i] - xa[i])).sum::<f64>()));
+    out.extend((0..n * n).map(|e| {
+        let (r, c) = (e / n, e % n);
+        (0..n).map(|i| qa[i * n + r] * qb[i * n + c]).sum::<f64>()
+    }));
+}
+
+/// The manifolds of pairs of boxes found by a scan with manifolds, kept for the next one
+/// ([`KEEP_BOX_MANIFOLD`]). Per pair, in `data`: the relative placement it was found at
+/// ([`relative_placement`]), the normal in a's axes (N), then per point its gap less the
+/// normal's component of the witnesses' offset (1), and its witnesses on a and on b, each in
+/// its body's axes (N each); the points' features in `features`.
+#[derive(Clone, Debug, Default)]
+struct KeptManifolds {
+    /// The scan's factor and slop (as bits) the manifolds were found with.
+    key: Option<(u64, u64)>,
+    /// Each pair (sorted), where its numbers and features start, and its count of points.
+    pairs: Vec<((usize, usize), usize, usize, usize)>,
+    data: Vec<f64>,
+    features: Vec<u64>,
+}
+
+impl KeptManifolds {
+    fn clear(&mut self, key: Option<(u64, u64)>) {
+        self.key = key;
+        self.pairs.clear();
+        self.data.clear();
+        self.features.clear();
+    }
+
+    /// Adds the manifold `m` of the boxes `pair` found at their placement now: centres
+    /// `x`, axes `q`, and b's placement in a's axes `relative`.
+    fn push(
+        &mut self,
+        pair: (usize, usize),
+        m: &ContactManifold,
+        (xa, xb): (&[f64], &[f64]),
+        (qa, qb): (&[f64], &[f64]),
+        relative: &[f64],
+    ) {
+        let n = xa.len();
+        self.pairs
+            .push((pair, self.data.len(), self.features.len(), m.len()));
+        self.data.extend_from_slice(relative);
+        // Qᵀ v: a vector of space in a body's axes.
+        let own = |q: &[f64], v: &[f64], out: &mut Vec<f64>| {
+            out.extend((0..n).map(|k| (0..n).map(|i| q[i * n + k] * v[i]).sum::<f64>()));
+        };
+        let normal = m.normal();
+        own(qa, normal, &mut self.data);
+        for point in m.points() {
+            let (pa, pb) = (point.point_a, point.point_b);
+            let along: f64 = (0..n).map(|i| normal[i] * (pb[i] - pa[i])).sum();
+            self.data.push(-point.depth - along);
+            let from = |p: &[f64], x: &[f64]| -> SmallVec<[f64; 8]> {
+                p.iter().zip(x).map(|(p, x)| p - x).collect()
+            };
+            own(qa, &from(pa, xa), &mut self.data);
+            own(qb, &from(pb, xb), &mut self.data);
+            self.features.push(point.id.0);
+        }
+    }
+
+    /// Where the pair's entry is, if it has one.
+    fn find(&self, pair: (usize, usize)) -> Option<usize> {
+        let at = self.pairs.partition_point(|e| e.0 < pair);
+        (self.pairs.get(at).is_some_and(|e| e.0 == pair)).then_some(at)
+    }
+
+    /// Adds the entry `at` of `from`.
+    fn copy_entry(&mut self, from: &KeptManifolds, at: usize, n: usize) {
+        let (pair, start, first, count) = from.pairs[at];
+        self.pairs
+            .push((pair, self.data.len(), self.features.len(), count));
+        let len = n + n * n + n + count * (1 + 2 * n);
+        self.data.extend_from_slice(&from.data[start..start + len]);
+        self.features
+            .extend_from_slice(&from.features[first..first + count]);
+    }
+}
+
 /// The half-lengths of the box whose corners `v` are (each own axis with ±h on it, all 2^N
 /// sign patterns once), or None if they are not a box's corners: boxes are then met by
 /// separating axes and face clipping, which are exact where a general hull's penetration
@@ -205,6 +307,11 @@ pub(crate) struct Touching {
     serial: u64,
     /// Whether `found` is the list of scans with manifolds (`other` the one without).
     found_manifolds: bool,
+    /// Two boxes' manifolds of the last scan with manifolds, and those the current scan
+    /// finds or keeps ([`KEEP_BOX_MANIFOLD`]); room for a pair's relative placement.
+    kept: KeptManifolds,
+    next_kept: KeptManifolds,
+    relative: Vec<f64>,
     /// The placement the scans see: counted up whenever a body moved or turned since the
     /// last scan.
     generation: u64,
@@ -293,6 +400,7 @@ impl Touching {
         // New shapes, new bounding boxes and new pairs.
         self.seen_factor = None;
         (self.found_key, self.other_key) = (None, None);
+        self.kept.clear(None);
     }
 
     /// Sets how far beyond its share of the reach each body reaches in the scans from now
@@ -311,6 +419,8 @@ impl Touching {
             self.sweep.extend_from_slice(sweeps);
             self.seen_factor = None;
             (self.found_key, self.other_key) = (None, None);
+            // The pairs' reaches change: a kept manifold was within the old one.
+            self.kept.clear(None);
         }
     }
 
@@ -428,6 +538,13 @@ impl Touching {
         self.found.len = 0;
         self.serial += 1;
         self.found_serial = self.serial;
+        let kept_key = manifold.map(|slop| (factor.to_bits(), slop.to_bits()));
+        if kept_key.is_some() {
+            self.next_kept.clear(kept_key);
+            if self.kept.key != kept_key {
+                self.kept.clear(None);
+            }
+        }
         let candidates = std::mem::take(&mut self.candidates);
         for &(a, b) in &candidates {
             if self.touches(a) && self.touches(b) && !skip.as_ref().is_some_and(|s| s((a, b))) {
@@ -435,6 +552,9 @@ impl Touching {
             }
         }
         self.candidates = candidates;
+        if kept_key.is_some() {
+            std::mem::swap(&mut self.kept, &mut self.next_kept);
+        }
         // A scan that skipped pairs found only part of what a full scan finds.
         self.found_key = skip.is_none().then(|| key(self.generation));
         self.found_seen.clone_from(&self.seen);
@@ -562,6 +682,14 @@ impl Touching {
             self.pieces(q, (a, b), (xa, xb), reach, manifold);
             return;
         }
+        let boxes = self.boxes[a].is_some() && self.boxes[b].is_some();
+        if boxes && manifold.is_some() {
+            relative_placement((q(a), q(b)), (xa, xb), &mut self.relative);
+            let touching = reach.max(MANIFOLD_TOUCHING * (self.radius[a] + self.radius[b]));
+            if self.reuse_box_manifold((a, b), (xa, xb), (q(a), q(b)), touching) {
+                return;
+            }
+        }
         let (Some(ca), Some(cb)) = (&self.convex[a], &self.convex[b]) else {
             return;
         };
@@ -615,6 +743,8 @@ impl Touching {
                 let touching = reach.max(MANIFOLD_TOUCHING * (self.radius[a] + self.radius[b]));
                 self.found
                     .push_manifold((a, b), &m, touching, (0.0, 0.0), 0);
+                self.next_kept
+                    .push((a, b), &m, (xa, xb), (q(a), q(b)), &self.relative);
                 return;
             }
             if manifold.is_none() {
@@ -649,6 +779,62 @@ impl Touching {
             ),
             0,
         );
+    }
+
+    /// Records the manifold of the boxes (a, b) kept from the last scan with manifolds at
+    /// their placement now (centres `x`, axes `q`; b's placement in a's axes in
+    /// `relative`), if they moved less than [`KEEP_BOX_MANIFOLD`] relative to each other
+    /// since it was found, and keeps it for the next scan; returns whether it did. Each
+    /// point's witnesses move with their bodies, its gap with their offset along the normal.
+    fn reuse_box_manifold(
+        &mut self,
+        (a, b): (usize, usize),
+        (xa, xb): (&[f64], &[f64]),
+        (qa, qb): (&[f64], &[f64]),
+        touching: f64,
+    ) -> bool {
+        let n = xa.len();
+        let Some(at) = self.kept.find((a, b)) else {
+            return false;
+        };
+        let (_, start, first, count) = self.kept.pairs[at];
+        let data = &self.kept.data[start..start + n + n * n + n + count * (1 + 2 * n)];
+        let (then, rest) = data.split_at(n + n * n);
+        let limit = KEEP_BOX_MANIFOLD * (self.radius[a] + self.radius[b]);
+        // Compared so that a NaN counts as moved.
+        let near = |now: &[f64], then: &[f64], limit: f64| {
+            now.iter().zip(then).all(|(x, y)| (x - y).abs() <= limit)
+        };
+        let now = &self.relative;
+        if !near(&now[..n], &then[..n], limit) || !near(&now[n..], &then[n..], KEEP_BOX_MANIFOLD) {
+            return false;
+        }
+        let in_space = |q: &[f64], own: &[f64], i: usize| -> f64 {
+            q[i * n..(i + 1) * n]
+                .iter()
+                .zip(own)
+                .map(|(x, y)| x * y)
+                .sum()
+        };
+        let (normal_own, points) = rest.split_at(n);
+        let normal: SmallVec<[f64; 8]> = (0..n).map(|i| in_space(qa, normal_own, i)).collect();
+        let (mut pa, mut pb): (SmallVec<[f64; 8]>, SmallVec<[f64; 8]>) =
+            (SmallVec::from_elem(0.0, n), SmallVec::from_elem(0.0, n));
+        for (k, point) in points.chunks_exact(1 + 2 * n).enumerate() {
+            let (own_a, own_b) = point[1..].split_at(n);
+            for i in 0..n {
+                pa[i] = xa[i] + in_space(qa, own_a, i);
+                pb[i] = xb[i] + in_space(qb, own_b, i);
+            }
+            let along: f64 = (0..n).map(|i| normal[i] * (pb[i] - pa[i])).sum();
+            let feature = self.kept.features[first + k];
+            let c = self.found.next((a, b), feature, point[0] + along, &normal);
+            c.reach = touching;
+            c.point
+                .extend(pa.iter().zip(&pb).map(|(x, y)| 0.5 * (x + y)));
+        }
+        self.next_kept.copy_entry(&self.kept, at, n);
+        true
     }
 
     /// The pair (a, b) of which one or both are compound: each pair of pieces whose
@@ -1147,5 +1333,88 @@ mod tests {
         fresh.update_shapes(&shapes, &[], 3, (1, 1));
         fresh.scan(&bodies, |i| &axes[i][..], 1e-9, Some(1e-2));
         assert_eq!(pairs(&kept), pairs(&fresh));
+    }
+
+    /// Two boxes' manifold is kept while they move less than [`KEEP_BOX_MANIFOLD`]
+    /// relative to each other, its gaps moving with the bodies: cube 1 leans on cube 0's
+    /// face (turned by 10⁻³ about z, 5·10⁻⁴ deep), then moves in steps of 6·10⁻¹² (along
+    /// the normal, across it, and turning about z). Each scan gives the features of a fresh
+    /// scan, gaps within 10⁻¹⁴ of the fresh ones (a kept gap that did not move with the
+    /// bodies would be off by the motion, 6·10⁻¹² a step) and points within 10⁻¹¹; the
+    /// manifold is kept (its placement is still the one it was found at) until the motions
+    /// add up past the limits (10⁻¹¹ in the axes, 1.7·10⁻¹¹ for the centre: 10⁻¹¹ of the
+    /// two radii), and then found anew, as a fresh scan finds it.
+    #[test]
+    fn a_box_pair_keeps_its_manifold_while_it_moves_less_than_the_limit() {
+        let (mut bodies, shapes) = cubes();
+        bodies.truncate(2);
+        let shapes = &shapes[..2];
+        let identity = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
+        let about_z = |angle: f64| {
+            let (s, c) = angle.sin_cos();
+            [c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0]
+        };
+        let mut angle = 1e-3;
+        let mut axes = [identity, about_z(angle)];
+        {
+            let (x, _, _) = bodies[1].state_mut();
+            x.as_mut_slice()[0] = 0.9995;
+        }
+        let mut kept = Touching::default();
+        kept.update_shapes(shapes, &[], 3, (1, 1));
+        let first = |t: &Touching| t.kept.data[..12].to_vec();
+        let mut at_first = Vec::new();
+        let (mut reused, mut renewed) = (0, 0);
+        // The motions before each scan: 0 none, 1 along the normal (x), 2 across it (y),
+        // 3 a turn about z.
+        let motions = [0, 1, 2, 3, 1, 3, 1, 1, 1];
+        for (step, motion) in motions.into_iter().enumerate() {
+            let (x, _, _) = bodies[1].state_mut();
+            match motion {
+                1 => x.as_mut_slice()[0] += 6e-12,
+                2 => x.as_mut_slice()[1] += 6e-12,
+                3 => {
+                    angle += 6e-12;
+                    axes[1] = about_z(angle);
+                }
+                _ => {}
+            }
+            kept.scan(&bodies, |i| &axes[i][..], 1e-9, Some(1e-2));
+            let mut fresh = Touching::default();
+            fresh.update_shapes(shapes, &[], 3, (1, 1));
+            fresh.scan(&bodies, |i| &axes[i][..], 1e-9, Some(1e-2));
+            assert!(kept.found().len() >= 2, "step {step}: {:?}", pairs(&kept));
+            assert_eq!(kept.found().len(), fresh.found().len(), "step {step}");
+            for (k, f) in kept.found().iter().zip(fresh.found()) {
+                assert_eq!((k.a, k.b, k.feature), (f.a, f.b, f.feature), "step {step}");
+                assert!(
+                    (k.gap - f.gap).abs() <= 1e-14,
+                    "step {step}: {} {}",
+                    k.gap,
+                    f.gap
+                );
+                let apart = k.point.iter().zip(&f.point).map(|(x, y)| (x - y).abs());
+                assert!(apart.fold(0.0, f64::max) <= 1e-11, "step {step}");
+                assert!(
+                    k.normal
+                        .iter()
+                        .zip(&f.normal)
+                        .all(|(x, y)| (x - y).abs() <= 1e-11)
+                );
+            }
+            if step == 0 {
+                at_first = first(&kept);
+            } else if first(&kept) == at_first {
+                reused += 1;
+            } else {
+                // Found anew: what a fresh scan finds, to the bit.
+                assert_eq!(pairs(&kept), pairs(&fresh), "step {step}");
+                renewed += 1;
+                at_first = first(&kept);
+            }
+        }
+        // The second turn takes the axes 1.2·10⁻¹¹ from the first scan's (step 5), and the
+        // third motion along the normal after it the centre 1.8·10⁻¹¹ from that scan's.
+        assert_eq!((reused, renewed), (6, 2));
     }
 }

@@ -4,7 +4,7 @@ use super::{MotionIntegrator, check_finite, kick};
 use crate::dynamics::DynamicsError;
 use crate::dynamics::integrate::{axpy, free_flight};
 use crate::dynamics::motion::body::contact_material;
-use crate::dynamics::motion::detect::bodies::Touching;
+use crate::dynamics::motion::detect::bodies::{Touching, relative_placement};
 use crate::dynamics::motion::placement::Placements;
 use crate::dynamics::motion::solve::{FoundPoint, NO_BODY, SoftSolver, Softness, Solver};
 use crate::dynamics::motion::{MotionError, System, Wrench};
@@ -105,18 +105,6 @@ impl KeptPairs {
         let start = self.pairs[at].1;
         &self.data[start..start + n + n * n]
     }
-}
-
-/// Writes into `out` the placement of body b in body a's axes (as [`KeptPairs`] holds it)
-/// from their own axes (row-major, own axes → space) and centres.
-fn relative_placement((qa, qb): (&[f64], &[f64]), (xa, xb): (&[f64], &[f64]), out: &mut Vec<f64>) {
-    let n = xa.len();
-    out.clear();
-    out.extend((0..n).map(|k| (0..n).map(|i| qa[i * n + k] * (xb[i] - xa[i])).sum::<f64>()));
-    out.extend((0..n * n).map(|e| {
-        let (r, c) = (e / n, e % n);
-        (0..n).map(|i| qa[i * n + r] * qb[i * n + c]).sum::<f64>()
-    }));
 }
 
 /// The Gauss–Seidel passes per substep in `n` dimensions when none are given: as many as
