@@ -79,6 +79,8 @@ pub(crate) fn lu_solve(m: usize, x: &mut [f64], b: &mut [f64], rhs: usize) -> bo
 /// Overwrites the lower triangle of the symmetric positive definite n × n `a` (row-major:
 /// entry (i, j) at `a[i * n + j]`) by its Cholesky factor L, A = L Lᵀ; the strict upper
 /// triangle is not read. False if `a` is not positive definite (a pivot ≤ 0 or NaN).
+/// Inlined, so that where n is a constant (a 3 × 3 or 4 × 4 block) its loops are unrolled.
+#[inline]
 pub(crate) fn cholesky_factor(a: &mut [f64], n: usize) -> bool {
     for j in 0..n {
         let mut d = a[j * n + j];
@@ -101,7 +103,9 @@ pub(crate) fn cholesky_factor(a: &mut [f64], n: usize) -> bool {
     true
 }
 
-/// Solves L Lᵀ x = b in place, L the factor [`cholesky_factor`] left in `l`.
+/// Solves L Lᵀ x = b in place, L the factor [`cholesky_factor`] left in `l` (inlined as
+/// [`cholesky_factor`] is).
+#[inline]
 pub(crate) fn cholesky_substitute(l: &[f64], n: usize, b: &mut [f64]) {
     for i in 0..n {
         let mut s = b[i];

@@ -392,12 +392,21 @@ pub(super) fn row_matrices(
 /// Turns the inverse mass k into its tangent block P k P + n nᵀ (P = 1 − n nᵀ), which maps
 /// the tangent space to itself and keeps the normal apart.
 pub(super) fn tangent_block(k: &mut [f64], nrm: &Vector) {
-    let n = nrm.dim();
-    let nv = nrm.as_slice();
+    tangent_block_n::<0>(k, nrm.as_slice());
+}
+
+/// [`tangent_block`] of the normal `nv` (`N` as in [`dim`]).
+#[inline(always)]
+pub(super) fn tangent_block_n<const N: usize>(k: &mut [f64], nv: &[f64]) {
+    let n = dim::<N>(nv.len());
+    let nv = &nv[..n];
+    let k = &mut k[..n * n];
     // k n and nᵀ k n.
-    let kn: SmallVec<[f64; 8]> = (0..n)
-        .map(|i| (0..n).map(|j| k[i * n + j] * nv[j]).sum())
-        .collect();
+    let (mut kn_fixed, mut kn_any) = ([0.0; 4], Small::new());
+    let kn = scratch::<N>(&mut kn_fixed, &mut kn_any, n);
+    for (i, x) in kn.iter_mut().enumerate() {
+        *x = (0..n).map(|j| k[i * n + j] * nv[j]).sum();
+    }
     let nkn: f64 = (0..n).map(|i| nv[i] * kn[i]).sum();
     for i in 0..n {
         for j in 0..n {

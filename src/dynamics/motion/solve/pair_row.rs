@@ -4,7 +4,7 @@
 
 use super::Dense;
 use super::body::{BodyState, add_inverse_mass};
-use super::contact_row::{Small, dim, scratch, tangent_block};
+use super::contact_row::{Small, dim, scratch, tangent_block_n};
 use super::friction::friction_impulse;
 use crate::algebra::Vector;
 use crate::dynamics::motion::detect::bodies::PairContact;
@@ -137,14 +137,8 @@ impl PairRow {
         (self.knn, self.inv_knn, self.speed) = (0.0, 0.0, 0.0);
     }
 
-    /// The relative velocity u_b − u_a of the two points.
-    pub(crate) fn relative_velocity(&self, states: &[BodyState]) -> Vector {
-        let mut u = Vector::zero(self.normal.dim());
-        self.relative_velocity_into::<0>(states, u.as_mut_slice());
-        u
-    }
-
-    /// [`PairRow::relative_velocity`] written to `u` (`N` as in [`dim`]).
+    /// The relative velocity u_b − u_a of the two points, written to `u` (`N` as in
+    /// [`dim`]).
     #[inline(always)]
     fn relative_velocity_into<const N: usize>(&self, states: &[BodyState], u: &mut [f64]) {
         let n = dim::<N>(u.len());
@@ -157,6 +151,16 @@ impl PairRow {
         }
     }
 
+    /// The relative velocity's component along the normal (`N` as in [`dim`]).
+    #[inline(always)]
+    fn normal_velocity<const N: usize>(&self, states: &[BodyState]) -> f64 {
+        let n = dim::<N>(self.normal.dim());
+        let (mut fixed, mut any) = ([0.0; 4], Small::new());
+        let u = scratch::<N>(&mut fixed, &mut any, n);
+        self.relative_velocity_into::<N>(states, u);
+        dot(&self.normal.as_slice()[..n], u)
+    }
+
     /// nᵀ K n, the inverse of the normal impulse's effect on the normal speed.
     pub(crate) fn knn(&self) -> f64 {
         self.knn
@@ -164,23 +168,31 @@ impl PairRow {
 
     /// Computes K and its parts at the loaded states.
     pub(crate) fn prepare_mass(&mut self, states: &[BodyState]) {
-        let n = self.normal.dim();
+        match self.normal.dim() {
+            3 => self.prepare_mass_n::<3>(states),
+            4 => self.prepare_mass_n::<4>(states),
+            _ => self.prepare_mass_n::<0>(states),
+        }
+    }
+
+    /// [`PairRow::prepare_mass`] (`N` as in [`dim`]: with N fixed, the loops and the
+    /// Cholesky kernels run with constant bounds).
+    #[inline(always)]
+    fn prepare_mass_n<const N: usize>(&mut self, states: &[BodyState]) {
+        let n = dim::<N>(self.normal.dim());
         self.k.clear();
         self.k.resize(n * n, 0.0);
         add_inverse_mass(&states[self.a], &self.ra, &mut self.k);
         add_inverse_mass(&states[self.b], &self.rb, &mut self.k);
-        let nv = self.normal.as_slice();
+        let nv = &self.normal.as_slice()[..n];
+        let k = &self.k[..n * n];
         self.knn = (0..n)
-            .map(|i| {
-                (0..n)
-                    .map(|j| nv[i] * self.k[i * n + j] * nv[j])
-                    .sum::<f64>()
-            })
+            .map(|i| (0..n).map(|j| nv[i] * k[i * n + j] * nv[j]).sum::<f64>())
             .sum();
         self.inv_knn = 1.0 / self.knn;
         self.kt.clear();
         self.kt.extend_from_slice(&self.k);
-        tangent_block(&mut self.kt, &self.normal);
+        tangent_block_n::<N>(&mut self.kt[..n * n], nv);
         // K_t⁻¹ from the Cholesky factor of K_t (positive definite: K's tangent part, and 1
         // along the normal). The eigen-decomposition is needed only to project a sliding
         // point's impulse onto the friction cone, and is taken when one first slides
@@ -189,12 +201,19 @@ impl PairRow {
         self.vectors.clear();
         self.kinv.clear();
         self.kinv.resize(n * n, 0.0);
-        let mut factor: Dense = SmallVec::from_slice(&self.kt);
-        if cholesky_factor(&mut factor, n) {
+        let (mut fixed, mut any): ([f64; 16], Dense) = ([0.0; 16], SmallVec::new());
+        let factor = if N != 0 {
+            &mut fixed[..n * n]
+        } else {
+            any.extend_from_slice(&self.kt);
+            &mut any[..]
+        };
+        factor.copy_from_slice(&self.kt[..n * n]);
+        if cholesky_factor(factor, n) {
             // Column j of K_t⁻¹ solves K_t x = e_j; K_t⁻¹ is symmetric, so it is row j too.
             for (j, row) in self.kinv.chunks_exact_mut(n).enumerate() {
                 row[j] = 1.0;
-                cholesky_substitute(&factor, n, row);
+                cholesky_substitute(factor, n, row);
             }
         } else {
             symmetric_eigen(&self.kt, n, &mut self.values, &mut self.vectors);
@@ -212,8 +231,11 @@ impl PairRow {
     /// faster than `resting` (an impact), 0 below (resting), and for a point still `gap`
     /// apart the approach that closes it within a flight of `flight`.
     pub(crate) fn prepare_target(&mut self, states: &[BodyState], resting: f64, flight: f64) {
-        let nv = self.normal.as_slice();
-        let un = dot(nv, self.relative_velocity(states).as_slice());
+        let un = match self.normal.dim() {
+            3 => self.normal_velocity::<3>(states),
+            4 => self.normal_velocity::<4>(states),
+            _ => self.normal_velocity::<0>(states),
+        };
         self.speed = un.abs();
         self.target = if self.gap > self.reach {
             -self.gap / flight
