@@ -37,7 +37,8 @@ pub(crate) use expm::{
 };
 pub(crate) use householder::householder_complement;
 pub(crate) use solve::{
-    cholesky_factor, cholesky_solve, cholesky_substitute, lu_apply, lu_factor, lu_solve,
+    cholesky_factor, cholesky_factor_n, cholesky_solve, cholesky_substitute, cholesky_substitute_n,
+    lu_apply, lu_factor, lu_solve,
 };
 pub(crate) use trig::{sin_cos_minus_one, small_angle_factors};
 

@@ -79,9 +79,16 @@ pub(crate) fn lu_solve(m: usize, x: &mut [f64], b: &mut [f64], rhs: usize) -> bo
 /// Overwrites the lower triangle of the symmetric positive definite n × n `a` (row-major:
 /// entry (i, j) at `a[i * n + j]`) by its Cholesky factor L, A = L Lᵀ; the strict upper
 /// triangle is not read. False if `a` is not positive definite (a pivot ≤ 0 or NaN).
-/// Inlined, so that where n is a constant (a 3 × 3 or 4 × 4 block) its loops are unrolled.
-#[inline]
 pub(crate) fn cholesky_factor(a: &mut [f64], n: usize) -> bool {
+    cholesky_factor_n::<0>(a, n)
+}
+
+/// [`cholesky_factor`] with n = `N` when `N` ≠ 0: the loops of a 3 × 3 or 4 × 4 block then
+/// run with constant bounds (the same arithmetic).
+#[inline(always)]
+pub(crate) fn cholesky_factor_n<const N: usize>(a: &mut [f64], n: usize) -> bool {
+    let n = if N == 0 { n } else { N };
+    let a = &mut a[..n * n];
     for j in 0..n {
         let mut d = a[j * n + j];
         for k in 0..j {
@@ -103,10 +110,16 @@ pub(crate) fn cholesky_factor(a: &mut [f64], n: usize) -> bool {
     true
 }
 
-/// Solves L Lᵀ x = b in place, L the factor [`cholesky_factor`] left in `l` (inlined as
-/// [`cholesky_factor`] is).
-#[inline]
+/// Solves L Lᵀ x = b in place, L the factor [`cholesky_factor`] left in `l`.
 pub(crate) fn cholesky_substitute(l: &[f64], n: usize, b: &mut [f64]) {
+    cholesky_substitute_n::<0>(l, n, b);
+}
+
+/// [`cholesky_substitute`] with n = `N` when `N` ≠ 0 (as [`cholesky_factor_n`]).
+#[inline(always)]
+pub(crate) fn cholesky_substitute_n<const N: usize>(l: &[f64], n: usize, b: &mut [f64]) {
+    let n = if N == 0 { n } else { N };
+    let (l, b) = (&l[..n * n], &mut b[..n]);
     for i in 0..n {
         let mut s = b[i];
         for k in 0..i {
@@ -205,5 +218,31 @@ mod tests {
         assert_eq!(checked, 12);
         let mut indefinite = DMatrix::from_row_slice(2, 2, &[1.0, 2.0, 2.0, 1.0]);
         assert!(!cholesky_factor(indefinite.as_mut_slice(), 2));
+    }
+
+    /// The fixed-size kernels (N = 3, 4) give the generic ones' factor and solution to the
+    /// bit on random SPD systems, and refuse what they refuse.
+    #[test]
+    fn fixed_size_cholesky_is_the_generic_one_to_the_bit() {
+        fn check<const N: usize>(seed: &mut u64) {
+            let g = DMatrix::from_fn(N, N, |_, _| random(seed));
+            let a = &g * g.transpose() + DMatrix::<f64>::identity(N, N) * 0.1;
+            let b: Vec<f64> = (0..N).map(|_| random(seed)).collect();
+            let (mut f0, mut f1) = (a.as_slice().to_vec(), a.as_slice().to_vec());
+            assert!(cholesky_factor(&mut f0, N) && cholesky_factor_n::<N>(&mut f1, N));
+            let (mut x0, mut x1) = (b.clone(), b);
+            cholesky_substitute(&f0, N, &mut x0);
+            cholesky_substitute_n::<N>(&f1, N, &mut x1);
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!((bits(&f0), bits(&x0)), (bits(&f1), bits(&x1)));
+            let mut negative = a.as_slice().to_vec();
+            negative[0] = -1.0;
+            assert!(!cholesky_factor_n::<N>(&mut negative, N));
+        }
+        let mut seed = 17u64;
+        for _ in 0..100 {
+            check::<3>(&mut seed);
+            check::<4>(&mut seed);
+        }
     }
 }
