@@ -10,7 +10,7 @@ use crate::algebra::Vector;
 use crate::dynamics::motion::detect::bodies::PairContact;
 use crate::dynamics::motion::placement::{dot, set_vector};
 use crate::numeric::symmetric_eigen_rows as symmetric_eigen;
-use crate::numeric::{cholesky_factor, cholesky_substitute, max_abs};
+use crate::numeric::{cholesky_factor_n, cholesky_substitute_n, max_abs};
 use smallvec::SmallVec;
 
 /// A contact between bodies `a` and `b`: body `b` takes the impulse J at its point, body `a`
@@ -209,11 +209,11 @@ impl PairRow {
             &mut any[..]
         };
         factor.copy_from_slice(&self.kt[..n * n]);
-        if cholesky_factor(factor, n) {
+        if cholesky_factor_n::<N>(factor, n) {
             // Column j of K_t⁻¹ solves K_t x = e_j; K_t⁻¹ is symmetric, so it is row j too.
             for (j, row) in self.kinv.chunks_exact_mut(n).enumerate() {
                 row[j] = 1.0;
-                cholesky_substitute(factor, n, row);
+                cholesky_substitute_n::<N>(factor, n, row);
             }
         } else {
             symmetric_eigen(&self.kt, n, &mut self.values, &mut self.vectors);
