@@ -683,10 +683,13 @@ impl Touching {
             return;
         }
         let boxes = self.boxes[a].is_some() && self.boxes[b].is_some();
-        if boxes && manifold.is_some() {
-            relative_placement((q(a), q(b)), (xa, xb), &mut self.relative);
-            let touching = reach.max(MANIFOLD_TOUCHING * (self.radius[a] + self.radius[b]));
-            if self.reuse_box_manifold((a, b), (xa, xb), (q(a), q(b)), touching) {
+        if boxes {
+            let touching = match manifold {
+                Some(_) => reach.max(MANIFOLD_TOUCHING * (self.radius[a] + self.radius[b])),
+                None => reach,
+            };
+            let with_points = manifold.is_some();
+            if self.reuse_box_manifold((a, b), (xa, xb), (q(a), q(b)), touching, with_points) {
                 return;
             }
         }
@@ -743,6 +746,7 @@ impl Touching {
                 let touching = reach.max(MANIFOLD_TOUCHING * (self.radius[a] + self.radius[b]));
                 self.found
                     .push_manifold((a, b), &m, touching, (0.0, 0.0), 0);
+                relative_placement((q(a), q(b)), (xa, xb), &mut self.relative);
                 self.next_kept
                     .push((a, b), &m, (xa, xb), (q(a), q(b)), &self.relative);
                 return;
@@ -781,22 +785,26 @@ impl Touching {
         );
     }
 
-    /// Records the manifold of the boxes (a, b) kept from the last scan with manifolds at
-    /// their placement now (centres `x`, axes `q`; b's placement in a's axes in
-    /// `relative`), if they moved less than [`KEEP_BOX_MANIFOLD`] relative to each other
-    /// since it was found, and keeps it for the next scan; returns whether it did. Each
-    /// point's witnesses move with their bodies, its gap with their offset along the normal.
+    /// Answers for the boxes (a, b) from their manifold kept from the last scan with
+    /// manifolds, if they moved less than [`KEEP_BOX_MANIFOLD`] relative to each other
+    /// since it was found (centres `x`, axes `q` now): with `points`, its points at the
+    /// placement now (each point's witnesses moved with their bodies, its gap with their
+    /// offset along the normal), kept for the next scan; without, the least of those gaps
+    /// (the deepest point's: separating axes' gap along the manifold's axis) if it is
+    /// within `touching`. Returns whether it answered.
     fn reuse_box_manifold(
         &mut self,
         (a, b): (usize, usize),
         (xa, xb): (&[f64], &[f64]),
         (qa, qb): (&[f64], &[f64]),
         touching: f64,
+        points: bool,
     ) -> bool {
         let n = xa.len();
         let Some(at) = self.kept.find((a, b)) else {
             return false;
         };
+        relative_placement((qa, qb), (xa, xb), &mut self.relative);
         let (_, start, first, count) = self.kept.pairs[at];
         let data = &self.kept.data[start..start + n + n * n + n + count * (1 + 2 * n)];
         let (then, rest) = data.split_at(n + n * n);
@@ -816,24 +824,38 @@ impl Touching {
                 .map(|(x, y)| x * y)
                 .sum()
         };
-        let (normal_own, points) = rest.split_at(n);
+        let (normal_own, kept) = rest.split_at(n);
         let normal: SmallVec<[f64; 8]> = (0..n).map(|i| in_space(qa, normal_own, i)).collect();
         let (mut pa, mut pb): (SmallVec<[f64; 8]>, SmallVec<[f64; 8]>) =
             (SmallVec::from_elem(0.0, n), SmallVec::from_elem(0.0, n));
-        for (k, point) in points.chunks_exact(1 + 2 * n).enumerate() {
+        let mut least = f64::INFINITY;
+        for (k, point) in kept.chunks_exact(1 + 2 * n).enumerate() {
             let (own_a, own_b) = point[1..].split_at(n);
             for i in 0..n {
                 pa[i] = xa[i] + in_space(qa, own_a, i);
                 pb[i] = xb[i] + in_space(qb, own_b, i);
             }
             let along: f64 = (0..n).map(|i| normal[i] * (pb[i] - pa[i])).sum();
+            let gap = point[0] + along;
+            if !points {
+                least = least.min(gap);
+                continue;
+            }
             let feature = self.kept.features[first + k];
-            let c = self.found.next((a, b), feature, point[0] + along, &normal);
+            let c = self.found.next((a, b), feature, gap, &normal);
             c.reach = touching;
             c.point
                 .extend(pa.iter().zip(&pb).map(|(x, y)| 0.5 * (x + y)));
         }
-        self.next_kept.copy_entry(&self.kept, at, n);
+        if points {
+            self.next_kept.copy_entry(&self.kept, at, n);
+        } else if least <= touching {
+            // As separating axes answer the gap alone: at the midpoint of the centres.
+            let c = self.found.next((a, b), 0, least, &normal);
+            c.reach = touching;
+            c.point
+                .extend(xa.iter().zip(xb).map(|(x, y)| 0.5 * (x + y)));
+        }
         true
     }
 
@@ -1343,7 +1365,8 @@ mod tests {
     /// bodies would be off by the motion, 6·10⁻¹² a step) and points within 10⁻¹¹; the
     /// manifold is kept (its placement is still the one it was found at) until the motions
     /// add up past the limits (10⁻¹¹ in the axes, 1.7·10⁻¹¹ for the centre: 10⁻¹¹ of the
-    /// two radii), and then found anew, as a fresh scan finds it.
+    /// two radii), and then found anew, as a fresh scan finds it. A scan for the gap alone
+    /// in between gives separating axes' gap to 10⁻¹² from the kept points.
     #[test]
     fn a_box_pair_keeps_its_manifold_while_it_moves_less_than_the_limit() {
         let (mut bodies, shapes) = cubes();
@@ -1412,6 +1435,28 @@ mod tests {
                 renewed += 1;
                 at_first = first(&kept);
             }
+            // A scan for the gap alone answers from the kept manifold: its deepest point's
+            // gap, which is separating axes' to the clipping's round-off (1e-13 here where
+            // nothing moved; a gap that did not move with the bodies would be off by up to
+            // 1.8e-11).
+            kept.scan(&bodies, |i| &axes[i][..], 1e-9, None);
+            let mut axes_only = Touching::default();
+            axes_only.update_shapes(shapes, &[], 3, (1, 1));
+            axes_only.scan(&bodies, |i| &axes[i][..], 1e-9, None);
+            let (k, f) = (kept.found(), axes_only.found());
+            assert_eq!((k.len(), f.len()), (1, 1), "step {step}");
+            assert!(
+                (k[0].gap - f[0].gap).abs() <= 1e-12,
+                "step {step}: {} {}",
+                k[0].gap,
+                f[0].gap
+            );
+            assert!(
+                k[0].normal
+                    .iter()
+                    .zip(&f[0].normal)
+                    .all(|(x, y)| (x - y).abs() <= 1e-11)
+            );
         }
         // The second turn takes the axes 1.2·10⁻¹¹ from the first scan's (step 5), and the
         // third motion along the normal after it the centre 1.8·10⁻¹¹ from that scan's.
