@@ -185,13 +185,18 @@ impl KeptManifolds {
         (self.pairs.get(at).is_some_and(|e| e.0 == pair)).then_some(at)
     }
 
+    /// The numbers of the entry `at` (placement, normal, points) in `n` dimensions.
+    fn numbers(&self, at: usize, n: usize) -> &[f64] {
+        let (_, start, _, count) = self.pairs[at];
+        &self.data[start..start + n + n * n + n + count * (1 + 2 * n)]
+    }
+
     /// Adds the entry `at` of `from`.
     fn copy_entry(&mut self, from: &KeptManifolds, at: usize, n: usize) {
-        let (pair, start, first, count) = from.pairs[at];
+        let (pair, _, first, count) = from.pairs[at];
         self.pairs
             .push((pair, self.data.len(), self.features.len(), count));
-        let len = n + n * n + n + count * (1 + 2 * n);
-        self.data.extend_from_slice(&from.data[start..start + len]);
+        self.data.extend_from_slice(from.numbers(at, n));
         self.features
             .extend_from_slice(&from.features[first..first + count]);
     }
@@ -805,9 +810,8 @@ impl Touching {
             return false;
         };
         relative_placement((qa, qb), (xa, xb), &mut self.relative);
-        let (_, start, first, count) = self.kept.pairs[at];
-        let data = &self.kept.data[start..start + n + n * n + n + count * (1 + 2 * n)];
-        let (then, rest) = data.split_at(n + n * n);
+        let first = self.kept.pairs[at].2;
+        let (then, rest) = self.kept.numbers(at, n).split_at(n + n * n);
         let limit = KEEP_BOX_MANIFOLD * (self.radius[a] + self.radius[b]);
         // Compared so that a NaN counts as moved.
         let near = |now: &[f64], then: &[f64], limit: f64| {

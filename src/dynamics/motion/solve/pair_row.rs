@@ -205,7 +205,7 @@ impl PairRow {
         let factor = if N != 0 {
             &mut fixed[..n * n]
         } else {
-            any.extend_from_slice(&self.kt);
+            any.resize(n * n, 0.0);
             &mut any[..]
         };
         factor.copy_from_slice(&self.kt[..n * n]);
@@ -332,9 +332,7 @@ impl PairRow {
         let nv = &self.normal.as_slice()[..n];
         let mut change = 0.0f64;
         let (mut u_fixed, mut u_any) = ([0.0; 4], Small::new());
-        let u = scratch::<N>(&mut u_fixed, &mut u_any, n);
-        self.relative_velocity_into::<N>(states, u);
-        let un = dot(nv, u);
+        let un = self.normal_velocity::<N>(states);
         let lambda = (self.normal_impulse + (self.target - un) * self.inv_knn).max(0.0);
         let dl = lambda - self.normal_impulse;
         if dl != 0.0 {
@@ -349,6 +347,7 @@ impl PairRow {
         change = change.max((dl * self.knn).abs());
         let limit = self.friction * self.normal_impulse;
         // The slip: the relative velocity's tangent part.
+        let u = scratch::<N>(&mut u_fixed, &mut u_any, n);
         self.relative_velocity_into::<N>(states, u);
         let along = dot(nv, u);
         for (x, y) in u.iter_mut().zip(nv) {
