@@ -27,6 +27,7 @@
 //! route only saves the general products.
 
 use super::{Multivector, Signature};
+use crate::numeric::all_finite;
 
 /// Blade masks of a Cl(3, 0, 1) bivector: e₁₂, e₁₃, e₂₃, e₁₄, e₂₄, e₃₄.
 const PLANES: [usize; 6] = [0b0011, 0b0101, 0b0110, 0b1001, 0b1010, 0b1100];
@@ -45,19 +46,6 @@ const ODD: [usize; 8] = [1, 2, 4, 7, 8, 11, 13, 14];
 #[inline]
 fn zero(c: &[f64; 16], blades: impl IntoIterator<Item = usize>) -> bool {
     blades.into_iter().fold(0u64, |a, k| a | c[k].to_bits()) << 1 == 0
-}
-
-/// True when the numbers are all finite, by a pairwise sum (NaN or ±∞ as soon as one is):
-/// no branch per number and a short dependency chain. A sum of finite numbers near f64::MAX
-/// may overflow too; the caller then leaves the case to the general route, which is exact
-/// about it.
-#[inline(always)]
-fn all_finite<const K: usize>(x: &[f64; K]) -> bool {
-    let mut lanes = [0.0; 4];
-    for (i, &c) in x.iter().enumerate() {
-        lanes[i % 4] += c;
-    }
-    ((lanes[0] + lanes[1]) + (lanes[2] + lanes[3])).is_finite()
 }
 
 /// True for 3D projective GA, Cl(3, 0, 1).
@@ -166,7 +154,7 @@ fn exp_motor(c: &[f64; 16]) -> Option<[f64; 8]> {
             pi * sin,
         ]
     };
-    all_finite(&motor).then_some(motor)
+    all_finite(&motor[..]).then_some(motor)
 }
 
 /// max |V Ṽ − 1| for an even V of Cl(3, 0, 1): V Ṽ = c² + |b|² + 2(cq − b∧m) e₁₂₃₄ (the
@@ -277,7 +265,7 @@ fn log_planes(x: &[f64; 16], tolerance: f64) -> Option<[f64; 6]> {
         inv_sc * p24 - pi * n13,
         inv_sc * p34 + pi * n12,
     ];
-    all_finite(&planes).then_some(planes)
+    all_finite(&planes[..]).then_some(planes)
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! above.
 
 use crate::algebra::{AlgebraError, Bivector, Rotor, Vector, accumulate_plane_rotor, pairs};
-use crate::numeric::{orthogonality_error, sin_cos_minus_one};
+use crate::numeric::{all_finite, orthogonality_error, sin_cos_minus_one};
 use nalgebra::{DMatrix, DMatrixView, DMatrixViewMut, SMatrix};
 use smallvec::SmallVec;
 
@@ -352,8 +352,8 @@ impl Attitude {
     /// Returns true if every stored number is finite.
     pub fn is_finite(&self) -> bool {
         match &self.repr {
-            Repr::Rotor(r) => r.as_slice().iter().all(|x| x.is_finite()),
-            Repr::Matrix(q) => q.iter().all(|x| x.is_finite()),
+            Repr::Rotor(r) => all_finite(r.as_slice()),
+            Repr::Matrix(q) => all_finite(q),
         }
     }
 

@@ -5,6 +5,7 @@ use super::InertiaError;
 use super::body::Body;
 use super::tolerance::{DEGENERACY_TOLERANCE, MASS_TENSOR_TOLERANCE};
 use super::validate::{check_dim, check_points, check_positive, sorted_eigen, symmetrize};
+use crate::numeric::determinant;
 use nalgebra::{DMatrix, DVector};
 use smallvec::SmallVec;
 
@@ -330,7 +331,7 @@ impl MeshAccumulator {
                 a[r * n + (k - 1)] = w[k][r] - w[0][r];
             }
         }
-        let volume = determinant_in_place(&mut a[..n * n], n) * self.inverse_factorial;
+        let volume = determinant(n, &mut a[..n * n]) * self.inverse_factorial;
         self.add_moments(volume, orientation, w, n);
     }
 
@@ -477,43 +478,6 @@ fn orientation_sign(orientation: SimplexOrientation, volume: f64) -> f64 {
             }
         }
     }
-}
-
-/// Determinant of the row-major n×n matrix `a` by Gaussian elimination with partial
-/// pivoting (destroys `a`).
-fn determinant_in_place(a: &mut [f64], n: usize) -> f64 {
-    let mut det = 1.0;
-    for col in 0..n {
-        let mut pivot = col;
-        let mut best = a[col * n + col].abs();
-        for r in col + 1..n {
-            let v = a[r * n + col].abs();
-            if v > best {
-                best = v;
-                pivot = r;
-            }
-        }
-        if best == 0.0 {
-            return 0.0;
-        }
-        if pivot != col {
-            for c in 0..n {
-                a.swap(col * n + c, pivot * n + c);
-            }
-            det = -det;
-        }
-        let p = a[col * n + col];
-        det *= p;
-        for r in col + 1..n {
-            let factor = a[r * n + col] / p;
-            if factor != 0.0 {
-                for c in col + 1..n {
-                    a[r * n + c] -= factor * a[col * n + c];
-                }
-            }
-        }
-    }
-    det
 }
 
 /// An (N−2)-face of a boundary mesh: its vertex indices, sorted.

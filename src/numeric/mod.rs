@@ -38,7 +38,7 @@ pub(crate) use expm::{
 pub(crate) use householder::householder_complement;
 pub(crate) use solve::{
     cholesky_factor, cholesky_factor_n, cholesky_solve, cholesky_substitute, cholesky_substitute_n,
-    lu_apply, lu_factor, lu_solve,
+    determinant, lu_apply, lu_factor, lu_factor_above, lu_solve,
 };
 pub(crate) use trig::{sin_cos_minus_one, small_angle_factors};
 
@@ -55,6 +55,23 @@ pub(crate) fn zeros<const K: usize>(len: usize) -> SmallVec<[f64; K]> {
     } else {
         SmallVec::from_vec(vec![0.0; len])
     }
+}
+
+/// True when the numbers are all finite: each is multiplied by zero (±0 when finite, NaN
+/// for ±∞ and NaN) and the products summed in four lanes, with no branch per number.
+#[inline(always)]
+pub(crate) fn all_finite(x: &[f64]) -> bool {
+    let mut lanes = [0.0; 4];
+    let (chunks, rest) = x.as_chunks::<4>();
+    for chunk in chunks {
+        for (lane, &c) in lanes.iter_mut().zip(chunk) {
+            *lane += c * 0.0;
+        }
+    }
+    for (lane, &c) in lanes.iter_mut().zip(rest) {
+        *lane += c * 0.0;
+    }
+    (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]) == 0.0
 }
 
 /// Multiplies by 2^e exactly (barring overflow/underflow of the result), also for |e| > 1023.
@@ -143,6 +160,30 @@ pub(crate) mod tests {
         *seed ^= *seed >> 7;
         *seed ^= *seed << 17;
         (*seed >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+
+    /// Against `f64::is_finite` number by number: every length up to 11 (all lanes and
+    /// remainders), a non-finite number at every place, and finite numbers whose sum would
+    /// overflow (which must still count as finite).
+    #[test]
+    fn all_finite_is_is_finite_of_every_number() {
+        let mut cases = 0;
+        for len in 0..12 {
+            let big = vec![f64::MAX; len];
+            assert!(all_finite(&big));
+            let mut x: Vec<f64> = (0..len).map(|i| -(i as f64) * 1e300).collect();
+            assert!(all_finite(&x));
+            for at in 0..len {
+                for bad in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN] {
+                    let keep = x[at];
+                    x[at] = bad;
+                    assert!(!all_finite(&x), "{bad} at {at} of {len}");
+                    x[at] = keep;
+                    cases += 1;
+                }
+            }
+        }
+        assert_eq!(cases, 3 * (0..12).sum::<usize>());
     }
 
     /// Against the plain formula where it cannot overflow, and against the exact value where

@@ -9,11 +9,18 @@ use smallvec::SmallVec;
 /// pivoting; `pivots[c]` is the row swapped with row c; L has a unit diagonal and is stored
 /// below it). False if a pivot is zero or not finite.
 pub(crate) fn lu_factor(m: usize, x: &mut [f64], pivots: &mut [usize]) -> bool {
+    lu_factor_above(m, x, pivots, 0.0)
+}
+
+/// [`lu_factor`], false also where a pivot is at most `least` in magnitude: a caller whose
+/// matrix is singular to within its own tolerance (nearly parallel features) takes that as
+/// no solution rather than a huge one.
+pub(crate) fn lu_factor_above(m: usize, x: &mut [f64], pivots: &mut [usize], least: f64) -> bool {
     for col in 0..m {
         let (pivot_row, pivot) = (col..m)
             .map(|r| (r, x[col * m + r].abs()))
             .fold((col, -1.0), |best, c| if c.1 > best.1 { c } else { best });
-        if pivot <= 0.0 || !pivot.is_finite() {
+        if pivot <= least || !pivot.is_finite() {
             return false;
         }
         pivots[col] = pivot_row;
@@ -39,9 +46,32 @@ pub(crate) fn lu_factor(m: usize, x: &mut [f64], pivots: &mut [usize]) -> bool {
     true
 }
 
+/// The determinant of the m × m X (stored either way: det Xᵀ = det X) by [`lu_factor`],
+/// which overwrites X: 0 for a singular X, NaN if X holds a number that is not finite.
+pub(crate) fn determinant(m: usize, x: &mut [f64]) -> f64 {
+    if x.iter().any(|v| !v.is_finite()) {
+        return f64::NAN;
+    }
+    let mut pivots: SmallVec<[usize; 28]> = SmallVec::from_elem(0, m);
+    if !lu_factor(m, x, &mut pivots) {
+        return 0.0;
+    }
+    let mut det = 1.0;
+    for (col, &p) in pivots.iter().enumerate() {
+        det *= x[col * m + col];
+        if p != col {
+            det = -det;
+        }
+    }
+    det
+}
+
 /// Solves with the factors of [`lu_factor`]: B ← X⁻¹B for the first `rhs` columns of the
-/// column-major B (m rows).
+/// column-major B (m rows). A 0 × 0 system leaves B as it is.
 pub(crate) fn lu_apply(m: usize, x: &[f64], pivots: &[usize], b: &mut [f64], rhs: usize) {
+    if m == 0 {
+        return;
+    }
     for y in b.chunks_exact_mut(m).take(rhs) {
         for (col, &p) in pivots.iter().enumerate().take(m) {
             y.swap(col, p);
@@ -192,6 +222,61 @@ mod tests {
 
     /// Cholesky solves match nalgebra's on random SPD systems of sizes 1 … 12, the factor
     /// rebuilds A, and an indefinite matrix is refused.
+    /// The determinant matches nalgebra's on random matrices of sizes 1 … 10 in either
+    /// storage order (its sign follows the row swaps), is 0 for a matrix with two equal
+    /// rows and NaN for one with a NaN; a pivot at `least` is refused by
+    /// `lu_factor_above`, one just above it is taken.
+    #[test]
+    fn determinant_matches_nalgebra_and_small_pivots_are_refused() {
+        let mut seed = 23u64;
+        let mut checked = 0;
+        for m in 1..=10 {
+            for _ in 0..5 {
+                let x = DMatrix::from_fn(m, m, |_, _| random(&mut seed));
+                let expected = x.determinant();
+                for stored in [x.clone(), x.transpose()] {
+                    let mut data = stored.as_slice().to_vec();
+                    let det = determinant(m, &mut data);
+                    assert!(
+                        (det - expected).abs() <= 1e-12 * (1.0 + expected.abs()),
+                        "m = {m}: {det} vs {expected}"
+                    );
+                    checked += 1;
+                }
+            }
+            if m > 1 {
+                let mut x = DMatrix::from_fn(m, m, |_, _| random(&mut seed));
+                let row = x.row(0).into_owned();
+                x.set_row(m - 1, &row);
+                assert_eq!(determinant(m, &mut x.as_slice().to_vec()), 0.0, "m = {m}");
+            }
+            let mut x = vec![1.0; m * m];
+            x[m * m / 2] = f64::NAN;
+            assert!(determinant(m, &mut x).is_nan());
+        }
+        assert_eq!(checked, 100);
+        // The 0 × 0 system: the empty product, and nothing to solve.
+        assert_eq!(determinant(0, &mut []), 1.0);
+        let mut b = [7.0];
+        lu_apply(0, &[], &[], &mut b, 1);
+        assert_eq!(b, [7.0]);
+        // diag(1, 1e-10): the second pivot is 1e-10.
+        let diagonal = [1.0, 0.0, 0.0, 1e-10];
+        let mut pivots = [0; 2];
+        assert!(!lu_factor_above(
+            2,
+            &mut diagonal.clone(),
+            &mut pivots,
+            1e-10
+        ));
+        assert!(lu_factor_above(
+            2,
+            &mut diagonal.clone(),
+            &mut pivots,
+            0.99e-10
+        ));
+    }
+
     #[test]
     fn cholesky_matches_nalgebra_and_rebuilds_the_matrix() {
         let mut seed = 5u64;

@@ -42,6 +42,7 @@ use super::sat::{
 use crate::dynamics::DynamicsError;
 use crate::dynamics::motion::shape::{ShapeError, check_placement};
 use crate::numeric::simplex::{EqualityLp, LP_MAX_COLUMNS, LP_MAX_ROWS, LP_WIDTH, LpEnd};
+use crate::numeric::{lu_apply, lu_factor_above};
 use smallvec::SmallVec;
 
 /// The most points a manifold holds in any dimension.
@@ -370,6 +371,18 @@ fn face_region(
         | (ji as u64) << 51;
 
     let full = 1u32 << d;
+    // The side planes within reach of the incident face (bit 2t: x_t = +h_t, bit 2t + 1:
+    // x_t = −h_t): a plane out of reach holds no vertex, and a set of planes with one out
+    // of reach on both sides needs no factorisation.
+    let mut reachable = 0u64;
+    for t in 0..d {
+        let spread: f64 = (0..d).map(|u| gm[t * d + u].abs()).sum();
+        for (bit, target) in [(0, h[t]), (1, -h[t])] {
+            if (target - g[t]).abs() <= spread + x_tol {
+                reachable |= 1 << (2 * t + bit);
+            }
+        }
+    }
     // The loops below index these many times per candidate vertex: as slices, each access
     // is a bounds check, not also a test of where the small vector keeps its numbers.
     let (g, gm, dy, h) = (&g[..], &gm[..], &dy[..], &h[..]);
@@ -381,7 +394,7 @@ fn face_region(
     let (mut pa_room, mut pb_room): (Small, Small) =
         (SmallVec::from_elem(0.0, n), SmallVec::from_elem(0.0, n));
     let (pa, pb) = (&mut pa_room[..], &mut pb_room[..]);
-    let mut perm: SmallVec<[usize; 8]> = SmallVec::new();
+    let mut pivots = [0usize; 8];
     let (mut rows_room, mut cols_room) = ([0usize; 32], [0usize; 32]);
     // T: the side planes the vertex lies on; F: the incident coordinates fixed at ±1.
     for t_mask in 0..full {
@@ -393,6 +406,9 @@ fn face_region(
             *slot = t;
         }
         let rows = &rows_room[..k];
+        if rows.iter().any(|&t| reachable >> (2 * t) & 3 == 0) {
+            continue;
+        }
         for f_mask in 0..full {
             if f_mask.count_ones() as usize != d - k {
                 continue;
@@ -404,24 +420,25 @@ fn face_region(
                 *slot = u;
             }
             let cols = &cols_room[..k];
-            // The k × k system G[T, free] y_free = rhs, factored once for all sides.
+            // The k × k system G[T, free] y_free = rhs (column-major), factored once for
+            // all sides.
             let lu = &mut lu_room[..k * k];
             for (r, &t) in rows.iter().enumerate() {
                 for (c, &u) in cols.iter().enumerate() {
-                    lu[r * k + c] = gm[t * d + u];
+                    lu[c * k + r] = gm[t * d + u];
                 }
             }
-            if !lu_factor(lu, k, &mut perm, pivot_tol) {
+            let pivots = &mut pivots[..k];
+            if !lu_factor_above(k, lu, pivots, pivot_tol) {
                 continue;
             }
-            let lu = &lu[..];
+            let (lu, pivots) = (&lu[..], &pivots[..]);
             for t_signs in 0..(1u32 << k) {
                 // A side plane out of reach of the incident face cannot hold a vertex.
-                let reach = rows.iter().enumerate().all(|(c, &t)| {
-                    let target = if t_signs >> c & 1 == 1 { -h[t] } else { h[t] };
-                    let spread: f64 = (0..d).map(|u| gm[t * d + u].abs()).sum();
-                    (target - g[t]).abs() <= spread + x_tol
-                });
+                let reach = rows
+                    .iter()
+                    .enumerate()
+                    .all(|(c, &t)| reachable >> (2 * t + (t_signs >> c & 1) as usize) & 1 == 1);
                 if !reach {
                     continue;
                 }
@@ -443,7 +460,7 @@ fn face_region(
                             .sum();
                         rhs[c] = target - g[t] - fixed;
                     }
-                    lu_solve(lu, k, &perm, rhs);
+                    lu_apply(k, lu, pivots, rhs, 1);
                     if rhs.iter().any(|v| v.is_nan() || v.abs() > 1.0 + y_tol) {
                         continue;
                     }
@@ -505,54 +522,6 @@ fn face_region(
     }
 }
 
-/// LU factorisation with partial pivoting of the k × k row-major `m`; false if a pivot is
-/// below `tol` (the cells are parallel: their vertices come from other pairs).
-fn lu_factor(m: &mut [f64], k: usize, perm: &mut SmallVec<[usize; 8]>, tol: f64) -> bool {
-    perm.clear();
-    for c in 0..k {
-        let mut p = c;
-        for r in c + 1..k {
-            if m[r * k + c].abs() > m[p * k + c].abs() {
-                p = r;
-            }
-        }
-        if m[p * k + c].is_nan() || m[p * k + c].abs() <= tol {
-            return false;
-        }
-        perm.push(p);
-        if p != c {
-            for j in 0..k {
-                m.swap(c * k + j, p * k + j);
-            }
-        }
-        for r in c + 1..k {
-            let f = m[r * k + c] / m[c * k + c];
-            m[r * k + c] = f;
-            for j in c + 1..k {
-                m[r * k + j] -= f * m[c * k + j];
-            }
-        }
-    }
-    true
-}
-
-fn lu_solve(m: &[f64], k: usize, perm: &[usize], b: &mut [f64]) {
-    for (c, &p) in perm.iter().enumerate().take(k) {
-        b.swap(c, p);
-    }
-    for r in 0..k {
-        for j in 0..r {
-            b[r] -= m[r * k + j] * b[j];
-        }
-    }
-    for r in (0..k).rev() {
-        for j in r + 1..k {
-            b[r] -= m[r * k + j] * b[j];
-        }
-        b[r] /= m[r * k + r];
-    }
-}
-
 /// The crossing of A's cell along `axes_a` and B's cell along `axes_b` (the supporting
 /// cells across the cell axis): one point.
 fn cell_point(
@@ -599,13 +568,13 @@ fn cell_point(
             sign_bits |= ((s < 0.0) as u64) << (30 + j);
         }
     }
-    // pa0 + Σ s_i e_i − pb0 − Σ t_j r_j − λ u = 0: N equations in (s, t, λ).
+    // pa0 + Σ s_i e_i − pb0 − Σ t_j r_j − λ u = 0: N equations in (s, t, λ), column-major.
     let mut m: Square = SmallVec::from_elem(0.0, n * n);
     let mut col = 0;
     let mut which: SmallVec<[(bool, usize); 8]> = SmallVec::new();
     for i in 0..n {
         if axes_a >> i & 1 == 1 {
-            m[i * n + col] = 1.0;
+            m[col * n + i] = 1.0;
             which.push((true, i));
             col += 1;
         }
@@ -613,21 +582,21 @@ fn cell_point(
     for j in 0..n {
         if axes_b >> j & 1 == 1 {
             for i in 0..n {
-                m[i * n + col] = -rel.r[i * n + j];
+                m[col * n + i] = -rel.r[i * n + j];
             }
             which.push((false, j));
             col += 1;
         }
     }
     for i in 0..n {
-        m[i * n + col] = -u[i];
+        m[col * n + i] = -u[i];
     }
     let mut rhs: Small = (0..n).map(|i| pb0[i] - pa0[i]).collect();
-    let mut perm = SmallVec::new();
+    let mut pivots: SmallVec<[usize; 8]> = SmallVec::from_elem(0, n);
     let mut pa = pa0.clone();
     let mut pb = pb0.clone();
-    if lu_factor(&mut m, n, &mut perm, 1e-12) {
-        lu_solve(&m, n, &perm, &mut rhs);
+    if lu_factor_above(n, &mut m, &mut pivots, 1e-12) {
+        lu_apply(n, &m, &pivots, &mut rhs, 1);
         for (c, &(on_a, k)) in which.iter().enumerate() {
             if on_a {
                 let s = rhs[c].clamp(-a.half_lengths[k], a.half_lengths[k]);
@@ -1707,13 +1676,13 @@ mod tests {
             };
             let (mut fixed, mut general) = (Vec::new(), Vec::new());
             let mut count = 0;
-            for_each_axis_fixed::<N>(&a, &b, |u, f, o, along| {
+            for_each_axis_fixed::<N>(&a, &b, |u: &[f64], f, o, along| {
                 record(&mut fixed, u, f, o, along);
                 count += 1;
                 count != stop
             });
             let mut again = 0;
-            for_each_axis(&a, &b, &Relative::new(&a, &b), |u, f, o, along| {
+            for_each_axis(&a, &b, &Relative::new(&a, &b), |u: &[f64], f, o, along| {
                 record(&mut general, u, f, o, along);
                 again += 1;
                 again != stop

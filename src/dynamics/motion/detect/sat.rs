@@ -323,13 +323,28 @@ pub(crate) fn norm(a: &[f64]) -> f64 {
     dot(a, a).sqrt()
 }
 
+/// What the axis loops call for each candidate axis: `visit(u, feature, overlap, u·d)`,
+/// `u` in A's frame; returning false stops the loop. Closures are visitors; so is
+/// [`LeastOverlap`], whose `visit` is inlined at each of the loops' three call sites (a
+/// closure as large is called through a function of its own).
+pub(crate) trait AxisVisit {
+    fn visit(&mut self, u: &[f64], feature: AxisFeature, overlap: f64, along: f64) -> bool;
+}
+
+impl<F: FnMut(&[f64], AxisFeature, f64, f64) -> bool> AxisVisit for F {
+    #[inline(always)]
+    fn visit(&mut self, u: &[f64], feature: AxisFeature, overlap: f64, along: f64) -> bool {
+        self(u, feature, overlap, along)
+    }
+}
+
 /// Calls `visit(u, feature, overlap, u·d)` for every non-degenerate candidate axis, `u` in
 /// A's frame, faces first, until `visit` returns false.
 pub(crate) fn for_each_axis(
     a: &PlacedBox<'_>,
     b: &PlacedBox<'_>,
     rel: &Relative,
-    mut visit: impl FnMut(&[f64], AxisFeature, f64, f64) -> bool,
+    mut visit: impl AxisVisit,
 ) {
     let n = rel.n;
     let mut u: SmallVec<[f64; 8]> = SmallVec::from_elem(0.0, n);
@@ -339,7 +354,7 @@ pub(crate) fn for_each_axis(
         }
         u[i] = 1.0;
         let (o, along) = rel.overlap(a, b, &u);
-        if !visit(&u, AxisFeature::FaceOfA { axis: i }, o, along) {
+        if !visit.visit(&u, AxisFeature::FaceOfA { axis: i }, o, along) {
             return;
         }
     }
@@ -348,7 +363,7 @@ pub(crate) fn for_each_axis(
             u[i] = rel.r[i * n + j];
         }
         let (o, along) = rel.overlap(a, b, &u);
-        if !visit(&u, AxisFeature::FaceOfB { axis: j }, o, along) {
+        if !visit.visit(&u, AxisFeature::FaceOfB { axis: j }, o, along) {
             return;
         }
     }
@@ -367,7 +382,7 @@ pub(crate) fn for_each_axis(
                 continue;
             }
             let (o, along) = rel.overlap(a, b, &u);
-            if !visit(&u, AxisFeature::Cells { axes_a, axes_b }, o, along) {
+            if !visit.visit(&u, AxisFeature::Cells { axes_a, axes_b }, o, along) {
                 return;
             }
         }
@@ -397,7 +412,10 @@ fn low_cell_axis(
             return 0.0;
         }
         u.iter_mut().for_each(|x| *x = 0.0);
-        (u[free[0]], u[free[1]]) = (-y / length, x / length);
+        // One division, then products: the axes are many and each division waits on the
+        // divider.
+        let inverse = 1.0 / length;
+        (u[free[0]], u[free[1]]) = (-y * inverse, x * inverse);
         return length;
     }
     let (i, j) = (chosen.next().unwrap_or(0), chosen.next().unwrap_or(0));
@@ -417,8 +435,9 @@ fn low_cell_axis(
         return 0.0;
     }
     u.iter_mut().for_each(|x| *x = 0.0);
+    let inverse = 1.0 / area;
     for (c, x) in cross.iter().enumerate() {
-        u[free[c]] = x / area;
+        u[free[c]] = x * inverse;
     }
     area
 }
@@ -431,7 +450,7 @@ fn low_cell_axis(
 pub(crate) fn for_each_axis_fixed<const N: usize>(
     a: &PlacedBox<'_>,
     b: &PlacedBox<'_>,
-    mut visit: impl FnMut(&[f64], AxisFeature, f64, f64) -> bool,
+    mut visit: impl AxisVisit,
 ) {
     let (Ok(ha), Ok(hb)) = (
         <&[f64; N]>::try_from(a.half_lengths),
@@ -451,27 +470,19 @@ pub(crate) fn for_each_axis_fixed<const N: usize>(
         }
         d[i] = (0..N).map(|k| qa[k][i] * (pb[k] - pa[k])).sum();
     }
-    // As `Relative::overlap`.
-    let overlap = |u: &[f64; N]| {
-        let mut ra = 0.0;
-        let mut along = 0.0;
-        for ((h, x), d) in ha.iter().zip(u).zip(&d) {
-            ra += h * x.abs();
-            along += x * d;
-        }
-        let mut rb = 0.0;
-        for j in 0..N {
-            let w: f64 = (0..N).map(|i| r[i][j] * u[i]).sum();
-            rb += hb[j] * w.abs();
-        }
-        (ra + rb - along.abs(), along)
+    let boxes = FixedPair {
+        ha,
+        hb,
+        r: &r,
+        d: &d,
     };
+    let all: [usize; N] = std::array::from_fn(|i| i);
     let mut u = [0.0; N];
     for i in 0..N {
         u = [0.0; N];
         u[i] = 1.0;
-        let (o, along) = overlap(&u);
-        if !visit(&u, AxisFeature::FaceOfA { axis: i }, o, along) {
+        let (o, along) = boxes.overlap(&u, &[i]);
+        if !visit.visit(&u, AxisFeature::FaceOfA { axis: i }, o, along) {
             return;
         }
     }
@@ -479,14 +490,18 @@ pub(crate) fn for_each_axis_fixed<const N: usize>(
         for (x, row) in u.iter_mut().zip(&r) {
             *x = row[j];
         }
-        let (o, along) = overlap(&u);
-        if !visit(&u, AxisFeature::FaceOfB { axis: j }, o, along) {
+        let (o, along) = boxes.overlap(&u, &all);
+        if !visit.visit(&u, AxisFeature::FaceOfB { axis: j }, o, along) {
             return;
         }
     }
     let full = 1u32 << N;
+    // Bits set in a mask of N ≤ 4 bits, from a table: without the processor's population
+    // count (not in the baseline x86-64 set) `count_ones` is a dozen instructions, and
+    // these loops ask it of 240 masks in 4D.
+    const ONES: [usize; 16] = [0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4];
     for axes_a in 1..full {
-        let ma = axes_a.count_ones() as usize;
+        let ma = ONES[axes_a as usize];
         if ma + 2 > N {
             continue;
         }
@@ -502,7 +517,7 @@ pub(crate) fn for_each_axis_fixed<const N: usize>(
             }
         }
         for axes_b in 1..full {
-            if axes_b.count_ones() as usize != mb {
+            if ONES[axes_b as usize] != mb {
                 continue;
             }
             let chosen = (0..N).filter(|j| axes_b >> j & 1 == 1);
@@ -510,11 +525,125 @@ pub(crate) fn for_each_axis_fixed<const N: usize>(
             if low_cell_axis(column, chosen, &free[..k], &mut u) < PARALLEL_TOLERANCE {
                 continue;
             }
-            let (o, along) = overlap(&u);
-            if !visit(&u, AxisFeature::Cells { axes_a, axes_b }, o, along) {
+            // Two or three free coordinates, as constants: the sums unrolled.
+            let (o, along) = if k == 2 {
+                boxes.overlap(&u, &[free[0], free[1]])
+            } else {
+                boxes.overlap(&u, &[free[0], free[1], free[2]])
+            };
+            if !visit.visit(&u, AxisFeature::Cells { axes_a, axes_b }, o, along) {
                 return;
             }
         }
+    }
+}
+
+/// An axis of a box pair: its overlap, its feature, its A-frame direction and u · d.
+#[derive(Clone, Copy)]
+struct Axis {
+    overlap: f64,
+    feature: AxisFeature,
+    u: [f64; MAX_BOX_DIM],
+    along: f64,
+}
+
+impl Axis {
+    const NONE: Axis = Axis {
+        overlap: f64::INFINITY,
+        feature: AxisFeature::FaceOfA { axis: 0 },
+        u: [0.0; MAX_BOX_DIM],
+        along: 0.0,
+    };
+
+    #[inline(always)]
+    fn set(&mut self, u: &[f64], feature: AxisFeature, overlap: f64, along: f64) {
+        self.overlap = overlap;
+        self.feature = feature;
+        self.u[..u.len()].copy_from_slice(u);
+        self.along = along;
+    }
+}
+
+/// The visitor of [`box_box_within`]: the best face axis of A, of B and the best cell
+/// axis, the widest gap (overlap below 0, else none: +∞), the least overlap over all axes,
+/// and whether an axis separated by more than `reach` (which stops the loop).
+struct LeastOverlap {
+    reach: f64,
+    face_a: Axis,
+    face_b: Axis,
+    cells: Axis,
+    widest: Axis,
+    least: f64,
+    apart: bool,
+}
+
+impl LeastOverlap {
+    fn new(reach: f64) -> LeastOverlap {
+        LeastOverlap {
+            reach,
+            face_a: Axis::NONE,
+            face_b: Axis::NONE,
+            cells: Axis::NONE,
+            widest: Axis::NONE,
+            least: f64::INFINITY,
+            apart: false,
+        }
+    }
+}
+
+impl AxisVisit for &mut LeastOverlap {
+    #[inline(always)]
+    fn visit(&mut self, u: &[f64], feature: AxisFeature, overlap: f64, along: f64) -> bool {
+        if -overlap > self.reach {
+            self.apart = true;
+            return false;
+        }
+        self.least = self.least.min(overlap);
+        let slot = match feature {
+            AxisFeature::FaceOfA { .. } => &mut self.face_a,
+            AxisFeature::FaceOfB { .. } => &mut self.face_b,
+            AxisFeature::Cells { .. } => &mut self.cells,
+        };
+        if overlap < slot.overlap {
+            slot.set(u, feature, overlap, along);
+        }
+        if overlap < 0.0 && overlap < self.widest.overlap {
+            self.widest.set(u, feature, overlap, along);
+        }
+        true
+    }
+}
+
+/// A box pair in the frame of A on arrays of N = 3 or 4: the half-lengths, the relative
+/// rotation R = Q_aᵀ Q_b and offset d = Q_aᵀ (c_b − c_a).
+#[derive(Clone, Copy)]
+struct FixedPair<'a, const N: usize> {
+    ha: &'a [f64; N],
+    hb: &'a [f64; N],
+    r: &'a [[f64; N]; N],
+    d: &'a [f64; N],
+}
+
+impl<const N: usize> FixedPair<'_, N> {
+    /// [`Relative::overlap`] over the coordinates `free` of u alone: the others are 0,
+    /// their terms exact zeros, and leaving them out changes no sum's bits.
+    #[inline(always)]
+    fn overlap<const K: usize>(&self, u: &[f64; N], free: &[usize; K]) -> (f64, f64) {
+        let mut ra = 0.0;
+        let mut along = 0.0;
+        for &i in free {
+            ra += self.ha[i] * u[i].abs();
+            along += u[i] * self.d[i];
+        }
+        let mut rb = 0.0;
+        for j in 0..N {
+            let mut w = 0.0;
+            for &i in free {
+                w += self.r[i][j] * u[i];
+            }
+            rb += self.hb[j] * w.abs();
+        }
+        (ra + rb - along.abs(), along)
     }
 }
 
@@ -559,62 +688,28 @@ pub(crate) fn box_box_within(
     reach: f64,
 ) -> Option<BoxPairAxis> {
     let n = a.dim();
-    // The best face axis of A, of B, and the best cell axis, each with its A-frame axis
-    // and the sign of u·d.
-    struct Best {
-        overlap: f64,
-        feature: AxisFeature,
-        u: SmallVec<[f64; 8]>,
-        along: f64,
-    }
-    let empty = || Best {
-        overlap: f64::INFINITY,
-        feature: AxisFeature::FaceOfA { axis: 0 },
-        u: SmallVec::from_elem(0.0, n),
-        along: 0.0,
-    };
-    let (mut face_a, mut face_b, mut cells) = (empty(), empty(), empty());
-    let mut least = f64::INFINITY;
-    let mut widest: Option<Best> = None;
-    let mut apart = false;
-    let mut visit = |u: &[f64], feature: AxisFeature, overlap: f64, along: f64| {
-        if -overlap > reach {
-            apart = true;
-            return false;
-        }
-        least = least.min(overlap);
-        let slot = match feature {
-            AxisFeature::FaceOfA { .. } => &mut face_a,
-            AxisFeature::FaceOfB { .. } => &mut face_b,
-            AxisFeature::Cells { .. } => &mut cells,
-        };
-        if overlap < slot.overlap {
-            slot.overlap = overlap;
-            slot.feature = feature;
-            slot.u.copy_from_slice(u);
-            slot.along = along;
-        }
-        if overlap < 0.0 && widest.as_ref().is_none_or(|w| overlap < w.overlap) {
-            widest = Some(Best {
-                overlap,
-                feature,
-                u: SmallVec::from_slice(u),
-                along,
-            });
-        }
-        true
-    };
+    let mut least = LeastOverlap::new(reach);
     match n {
-        3 => for_each_axis_fixed::<3>(a, b, &mut visit),
-        4 => for_each_axis_fixed::<4>(a, b, &mut visit),
-        _ => for_each_axis(a, b, &Relative::new(a, b), &mut visit),
+        3 => for_each_axis_fixed::<3>(a, b, &mut least),
+        4 => for_each_axis_fixed::<4>(a, b, &mut least),
+        _ => for_each_axis(a, b, &Relative::new(a, b), &mut least),
     }
+    let LeastOverlap {
+        face_a,
+        face_b,
+        cells,
+        widest,
+        least,
+        apart,
+        ..
+    } = least;
     if apart {
         return None;
     }
     let scale = a.size().min(b.size());
     let absolute = AXIS_ABSOLUTE_BIAS * scale;
-    let chosen = if let Some(w) = widest {
+    let chosen = if widest.overlap < 0.0 {
+        let w = widest;
         // Apart: a face axis whose gap is within the biases of the widest is taken instead
         // of a cell axis (a face gives the contact its several points).
         let face = if face_b.overlap < face_a.overlap {
