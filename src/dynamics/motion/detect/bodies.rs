@@ -106,6 +106,20 @@ const MANIFOLD_TOUCHING: f64 = 1e-6;
 /// thousandth of the tolerance kept 71 % of its manifolds where this keeps 97 %.
 const KEEP_BOX_MANIFOLD: f64 = 1e-11;
 
+/// True if the relative placements `now` and `then` ([`relative_placement`], N = `n`)
+/// differ by at most `offset` in the centre and `turn` in the axes' entries. Compared so
+/// that a NaN counts as moved.
+pub(crate) fn placed_within(
+    now: &[f64],
+    then: &[f64],
+    n: usize,
+    (offset, turn): (f64, f64),
+) -> bool {
+    let within =
+        |x: &[f64], y: &[f64], limit: f64| x.iter().zip(y).all(|(p, q)| (p - q).abs() <= limit);
+    within(&now[..n], &then[..n], offset) && within(&now[n..], &then[n..], turn)
+}
+
 /// Writes into `out` the placement of body b in body a's axes from their own axes
 /// (row-major, own axes → space) and centres: b's centre (N numbers), then b's axes
 /// (N × N, row-major).
@@ -813,12 +827,7 @@ impl Touching {
         let first = self.kept.pairs[at].2;
         let (then, rest) = self.kept.numbers(at, n).split_at(n + n * n);
         let limit = KEEP_BOX_MANIFOLD * (self.radius[a] + self.radius[b]);
-        // Compared so that a NaN counts as moved.
-        let near = |now: &[f64], then: &[f64], limit: f64| {
-            now.iter().zip(then).all(|(x, y)| (x - y).abs() <= limit)
-        };
-        let now = &self.relative;
-        if !near(&now[..n], &then[..n], limit) || !near(&now[n..], &then[n..], KEEP_BOX_MANIFOLD) {
+        if !placed_within(&self.relative, then, n, (limit, KEEP_BOX_MANIFOLD)) {
             return false;
         }
         let in_space = |q: &[f64], own: &[f64], i: usize| -> f64 {

@@ -4,7 +4,7 @@ use super::{MotionIntegrator, check_finite, kick};
 use crate::dynamics::DynamicsError;
 use crate::dynamics::integrate::{axpy, free_flight};
 use crate::dynamics::motion::body::contact_material;
-use crate::dynamics::motion::detect::bodies::{Touching, relative_placement};
+use crate::dynamics::motion::detect::bodies::{Touching, placed_within, relative_placement};
 use crate::dynamics::motion::placement::Placements;
 use crate::dynamics::motion::solve::{FoundPoint, NO_BODY, SoftSolver, Softness, Solver};
 use crate::dynamics::motion::{MotionError, System, Wrench};
@@ -302,11 +302,7 @@ impl SoftStep {
                 relative_placement((q(a), q(b)), (x(a), x(b)), &mut now);
                 let then = self.kept.placement(k, n);
                 let reach = KEEP_MANIFOLD * (placements.get(a).radius + placements.get(b).radius);
-                let far = |u: &[f64], v: &[f64], limit: f64| {
-                    u.iter().zip(v).any(|(s, t)| (s - t).abs() > limit)
-                };
-                if !far(&now[..n], &then[..n], reach) && !far(&now[n..], &then[n..], KEEP_MANIFOLD)
-                {
+                if placed_within(&now, then, n, (reach, KEEP_MANIFOLD)) {
                     self.reuse.push((a, b));
                 }
             }

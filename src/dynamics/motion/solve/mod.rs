@@ -67,6 +67,8 @@ pub(crate) struct Solver {
     /// placement: their K stands).
     pairs_found: Option<u64>,
     pairs_kept: bool,
+    /// The bodies' attitudes as the pair rows' K last saw them (see [`AttitudeAnchors`]).
+    anchors: AttitudeAnchors,
     pub joints: Vec<JointRow>,
     states: Vec<BodyState>,
     work: Dense,
@@ -109,6 +111,61 @@ pub(crate) struct Solver {
     /// row (joints, pairs, contact rows) its impulse before the sweep, then its change over
     /// the sweep, and its direction p, n numbers each.
     momentum: Vec<f64>,
+}
+
+/// Each body's attitude (the numbers of its principal frame's rotor or matrix) as it was
+/// when it last moved by more than [`pair_row::KEEP_MASS`] in any of them, and a
+/// generation that changes with it: a pair row whose K was computed at the generations
+/// its bodies still have was computed at attitudes within twice that of the bodies' now.
+/// And whether each body's inverse inertia is the same in every frame (a ball's, a
+/// cube's): its part of K does not depend on its attitude.
+#[derive(Clone, Debug, Default)]
+struct AttitudeAnchors {
+    numbers: Vec<f64>,
+    generation: Vec<u64>,
+    isotropic: Vec<bool>,
+    last: u64,
+}
+
+impl AttitudeAnchors {
+    /// Moves the anchor of each body that turned past the limit (all of them when the
+    /// bodies changed in count or kind).
+    fn update(&mut self, bodies: &[MovingBody]) {
+        let Some(first) = bodies.first() else {
+            return;
+        };
+        let stride = first.rotation().principal_frame_attitude().entries().len();
+        if self.numbers.len() != bodies.len() * stride {
+            self.numbers.clear();
+            self.numbers.resize(bodies.len() * stride, f64::NAN);
+            self.generation.clear();
+            self.generation.resize(bodies.len(), 0);
+        }
+        self.isotropic.clear();
+        self.isotropic.extend(bodies.iter().map(|b| {
+            b.rotation()
+                .inertia()
+                .diagonal_inverse_plane_moments()
+                .is_some_and(|inv| inv.iter().all(|x| *x == inv[0]))
+        }));
+        for (i, b) in bodies.iter().enumerate() {
+            let now = b.rotation().principal_frame_attitude().entries();
+            let anchor = &mut self.numbers[i * stride..(i + 1) * stride];
+            // Compared so that a NaN (a new anchor) counts as moved.
+            let kept = now.len() == stride
+                && now
+                    .iter()
+                    .zip(anchor.iter())
+                    .all(|(x, y)| (x - y).abs() <= pair_row::KEEP_MASS);
+            if !kept {
+                self.last += 1;
+                self.generation[i] = self.last;
+                if now.len() == stride {
+                    anchor.copy_from_slice(now);
+                }
+            }
+        }
+    }
 }
 
 /// A coupled solve keeps its impulses for the conjugate-gradient steps from this sweep on
@@ -386,7 +443,7 @@ impl Solver {
         // return their impulses as energy.
         for pair in &mut self.pairs {
             let resting = resting_speed[pair.a].max(resting_speed[pair.b]);
-            if !self.pairs_kept {
+            if !self.pairs_kept && !pair.mass_ready {
                 pair.prepare_mass(&self.states);
             }
             pair.prepare_target(&self.states, resting, 2.0 * kick);
@@ -934,6 +991,7 @@ impl Solver {
             return;
         }
         self.pairs_found = Some(serial);
+        self.anchors.update(bodies);
         let old = std::mem::take(&mut self.pairs);
         // The rows of the solve before last, rewritten in their own room.
         let mut rows = std::mem::take(&mut self.spare_pairs);
@@ -958,14 +1016,6 @@ impl Solver {
             }
             let row = &mut rows[used];
             used += 1;
-            let own = |i: usize, r: &crate::algebra::Vector| {
-                bodies[i]
-                    .rotation()
-                    .principal_frame_attitude()
-                    .inverse_rotate_vector(r)
-            };
-            row.own_a = own(a, &row.ra);
-            row.own_b = own(b, &row.rb);
             // Detection lists the points in about the order of the last solve: the search
             // starts where the last match was, so that matching stays linear in the rows.
             let matches = |r: &PairRow| r.a == a && r.b == b && r.feature == c.feature;
@@ -977,6 +1027,20 @@ impl Solver {
                 self.taken[k] = true;
             }
             self.sources.push(same);
+            // A point that barely moved keeps its K and its offsets in the bodies' axes.
+            let at = (self.anchors.generation[a], self.anchors.generation[b]);
+            let isotropic = (self.anchors.isotropic[a], self.anchors.isotropic[b]);
+            if row.take_mass(same.map(|k| &old[k]), at, isotropic) {
+                continue;
+            }
+            let own = |i: usize, r: &crate::algebra::Vector| {
+                bodies[i]
+                    .rotation()
+                    .principal_frame_attitude()
+                    .inverse_rotate_vector(r)
+            };
+            row.own_a = own(a, &row.ra);
+            row.own_b = own(b, &row.rb);
         }
         rows.truncate(used);
         for (row, source) in rows.iter_mut().zip(&mut self.sources) {
@@ -1133,5 +1197,130 @@ mod tests {
             assert_eq!(x.own_b.as_slice(), y.own_b.as_slice());
             assert_eq!(x.normal.as_slice(), y.normal.as_slice());
         }
+    }
+
+    /// A pair row keeps the last step's K and offsets in its bodies' axes while its point
+    /// and normal move less than `KEEP_MASS` of its size since they were computed and
+    /// (unless its inverse inertia is the same in every frame) its bodies turn less; what
+    /// it keeps is then within 1e-9 of what it would compute (K relative to its size, the
+    /// offsets to theirs), and a larger turn or shift makes it compute them anew. Bodies
+    /// of both kinds (a cube, and a box of three different lengths whose K depends on its
+    /// attitude), turning by 4e-12 rad per step, then once by 1e-6 rad.
+    #[test]
+    fn a_pair_row_keeps_its_mass_while_its_point_and_bodies_barely_move() {
+        let flat = parse_body("cuboid:0.5,0.3,0.2+mass=1").unwrap();
+        let cube = parse_body("cuboid:0.5,0.5,0.5+mass=2").unwrap();
+        let placed = |parsed: &crate::inertia::spec::ParsedBody, x: [f64; 3], angle: f64| {
+            MovingBody::new(
+                parsed.mass,
+                parsed.inertia.clone(),
+                Rotor::from_plane_angle(3, 0, 1, angle).unwrap(),
+                &Vector::from_components(&x).unwrap(),
+                &Vector::zero(3),
+                &Bivector::zero(3),
+            )
+            .unwrap()
+        };
+        // The last point is on the axis of the turn: it does not move, but the box's K
+        // there turns with the box.
+        let own_points = [
+            [0.4, 0.25, -0.2],
+            [-0.4, 0.25, -0.2],
+            [0.0, -0.25, -0.2],
+            [0.0, 0.0, -0.2],
+        ];
+        let (mut checked, mut kept) = (0, 0);
+        let mut anew = Vec::new();
+        let mut solver = Solver::default();
+        let turns: Vec<f64> = (0..12)
+            .map(|k| 4e-12 * k as f64)
+            .chain([1e-6, 1e-6 + 4e-12])
+            .collect();
+        for (step, &turn) in turns.iter().enumerate() {
+            // Body 1 (the top of each pair) turns about the normal; bodies 0 and 2 rest.
+            // The third pair's points stay put in space while its top turns (as a rolling
+            // body's do): its K stands, its offsets in the top's axes turn.
+            let bodies = [
+                placed(&flat, [0.0, 0.0, 0.2], 0.3),
+                placed(&flat, [0.05, 0.0, 0.6], 0.1 + turn),
+                placed(&cube, [3.0, 0.0, 0.5], 0.0),
+                placed(&cube, [3.05, 0.0, 1.5], 0.2 + turn),
+                placed(&cube, [6.0, 0.0, 0.5], 0.0),
+                placed(&cube, [6.05, 0.0, 1.5], 0.2 + turn),
+            ];
+            let mut found = Vec::new();
+            for (a, b) in [(0usize, 1usize), (2, 3), (4, 5)] {
+                let top = &bodies[b];
+                for (k, p) in own_points.iter().enumerate() {
+                    let p = Vector::from_components(p).unwrap();
+                    let p = if b == 5 {
+                        p
+                    } else {
+                        top.rotation().principal_frame_attitude().rotate_vector(&p)
+                    };
+                    let point: SmallVec<[f64; 8]> = p
+                        .as_slice()
+                        .iter()
+                        .zip(top.position().as_slice())
+                        .map(|(x, c)| x + c)
+                        .collect();
+                    found.push(PairContact {
+                        a,
+                        b,
+                        feature: k as u64,
+                        gap: 0.0,
+                        reach: 1e-9,
+                        normal: smallvec![0.0, 0.0, 1.0],
+                        point,
+                    });
+                }
+            }
+            solver.set_pairs(&found, step as u64, &bodies);
+            solver.release();
+            solver.load(&bodies);
+            anew.push(0);
+            for row in &mut solver.pairs {
+                if row.mass_ready {
+                    kept += 1;
+                } else {
+                    row.prepare_mass(&solver.states);
+                    anew[step] += 1;
+                }
+            }
+            for row in &solver.pairs {
+                let mut fresh = row.clone();
+                fresh.prepare_mass(&solver.states);
+                let ((k, kinv), (k_fresh, kinv_fresh)) = (row.mass(), fresh.mass());
+                for (got, want) in [(k, k_fresh), (kinv, kinv_fresh)] {
+                    let size = crate::numeric::max_abs(want);
+                    let off = got
+                        .iter()
+                        .zip(want)
+                        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+                    assert!(off <= 1e-9 * size, "step {step}: K off by {off:e}");
+                }
+                for (own, r, body) in [(&row.own_a, &row.ra, row.a), (&row.own_b, &row.rb, row.b)] {
+                    let want = bodies[body]
+                        .rotation()
+                        .principal_frame_attitude()
+                        .inverse_rotate_vector(r);
+                    let off = (own - &want).norm();
+                    assert!(
+                        off <= 1e-9 * r.norm(),
+                        "step {step}: offsets off by {off:e}"
+                    );
+                }
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, turns.len() * 12);
+        // The first step computes every K, the jump those of the first two pairs but the
+        // cube's on the axis of the turn (its point did not move, and a cube's K does not
+        // depend on its attitude), the step after the jump none; the slow turn renews
+        // each of the first two pairs' rows at least once, and most steps keep them.
+        println!("rows whose K was computed anew at each step: {anew:?}");
+        assert_eq!((anew[0], anew[12], anew[13]), (12, 7, 0), "{anew:?}");
+        assert!(anew[1..12].iter().sum::<usize>() >= 6, "{anew:?}");
+        assert!(kept >= checked / 2, "kept {kept} of {checked}");
     }
 }

@@ -55,7 +55,26 @@ pub(crate) struct PairRow {
     inv_knn: f64,
     /// The relative normal speed before the solve, which tolerances scale with.
     pub(super) speed: f64,
+    /// What K and its factors were computed for: the offsets and the normal (r_a, r_b, n,
+    /// N each) and the generations of the two bodies' attitudes ([`AttitudeAnchors`]); and
+    /// the generations `own_a`, `own_b` were computed at. A later step's row of the same
+    /// point takes them while its geometry and its bodies' attitudes stay within
+    /// [`KEEP_MASS`] of these ([`PairRow::take_mass`]).
+    ///
+    /// [`AttitudeAnchors`]: super::AttitudeAnchors
+    mass_geometry: SmallVec<[f64; 24]>,
+    mass_at: (u64, u64),
+    own_at: (u64, u64),
+    /// True when K and its factors were taken from the last step's row of the same point:
+    /// the step's solves need not set them up.
+    pub(super) mass_ready: bool,
 }
+
+/// How far (relative to the offsets' size) a point's offsets from the two centres and its
+/// normal, and (absolutely) the numbers of its bodies' attitudes, may have moved since its
+/// K was computed for the point's row to keep that K: a hundredth of the splitting's
+/// contact tolerance, as for a kept box manifold.
+pub(crate) const KEEP_MASS: f64 = 1e-11;
 
 impl PairRow {
     /// A row for the contact `c` between bodies `a` and `b` (a point in space with a unit
@@ -88,6 +107,10 @@ impl PairRow {
             knn: 0.0,
             inv_knn: 0.0,
             speed: 0.0,
+            mass_geometry: SmallVec::new(),
+            mass_at: (0, 0),
+            own_at: (0, 0),
+            mass_ready: false,
         };
         row.set(c, x, material);
         row
@@ -135,6 +158,61 @@ impl PairRow {
             m.clear();
         }
         (self.knn, self.inv_knn, self.speed) = (0.0, 0.0, 0.0);
+        self.mass_ready = false;
+    }
+
+    /// Takes what it can of `last`, the last step's row of the same point, for the
+    /// bodies' attitude generations `at` now: K and its factors if they were computed for
+    /// offsets and a normal within [`KEEP_MASS`] of this row's (relative to the offsets'
+    /// size) and at the generations `at` or for bodies whose inverse inertia is the same in
+    /// every frame (`isotropic`); the offsets in the bodies' own axes if K's geometry holds
+    /// and they were computed at `at`. Returns whether it took the offsets (else the caller
+    /// computes them); K it marks as ready or to be computed for this row's geometry.
+    pub(crate) fn take_mass(
+        &mut self,
+        last: Option<&PairRow>,
+        at: (u64, u64),
+        isotropic: (bool, bool),
+    ) -> bool {
+        let n = self.normal.dim();
+        let limit = KEEP_MASS * (max_abs(self.ra.as_slice()) + max_abs(self.rb.as_slice()));
+        let geometry = [&self.ra, &self.rb, &self.normal];
+        let near = |then: &[f64]| {
+            then.len() == 3 * n
+                && geometry
+                    .iter()
+                    .flat_map(|v| v.as_slice())
+                    .zip(then)
+                    .all(|(x, y)| (x - y).abs() <= limit)
+        };
+        let last = last.filter(|l| l.knn != 0.0 && near(&l.mass_geometry));
+        let mass = last.filter(|l| {
+            (isotropic.0 || l.mass_at.0 == at.0) && (isotropic.1 || l.mass_at.1 == at.1)
+        });
+        let Some(last) = mass else {
+            self.mass_geometry.clear();
+            for v in geometry {
+                self.mass_geometry.extend_from_slice(v.as_slice());
+            }
+            (self.mass_at, self.own_at) = (at, at);
+            return false;
+        };
+        self.k.clone_from(&last.k);
+        self.kt.clone_from(&last.kt);
+        self.values.clone_from(&last.values);
+        self.vectors.clone_from(&last.vectors);
+        self.kinv.clone_from(&last.kinv);
+        (self.knn, self.inv_knn) = (last.knn, last.inv_knn);
+        self.mass_geometry.clone_from(&last.mass_geometry);
+        self.mass_at = last.mass_at;
+        self.mass_ready = true;
+        self.own_at = at;
+        if last.own_at != at {
+            return false;
+        }
+        self.own_a.clone_from(&last.own_a);
+        self.own_b.clone_from(&last.own_b);
+        true
     }
 
     /// The relative velocity u_b − u_a of the two points, written to `u` (`N` as in
@@ -159,6 +237,12 @@ impl PairRow {
         let u = scratch::<N>(&mut fixed, &mut any, n);
         self.relative_velocity_into::<N>(states, u);
         dot(&self.normal.as_slice()[..n], u)
+    }
+
+    /// K and its inverse on the tangent space, for tests.
+    #[cfg(test)]
+    pub(crate) fn mass(&self) -> (&[f64], &[f64]) {
+        (&self.k, &self.kinv)
     }
 
     /// nᵀ K n, the inverse of the normal impulse's effect on the normal speed.
