@@ -433,6 +433,16 @@ fn face_region(
                 continue;
             }
             let (lu, pivots) = (&lu[..], &pivots[..]);
+            // How far the free coordinates in [−1, 1] move each side coordinate of T.
+            let mut spread_room = [0.0f64; 32];
+            let spread = &mut spread_room[..k];
+            for (c, &t) in rows.iter().enumerate() {
+                spread[c] = (0..d)
+                    .filter(|&u| f_mask >> u & 1 == 0)
+                    .map(|u| gm[t * d + u].abs())
+                    .sum();
+            }
+            let spread = &spread[..];
             for t_signs in 0..(1u32 << k) {
                 // A side plane out of reach of the incident face cannot hold a vertex.
                 let reach = rows
@@ -452,6 +462,7 @@ fn face_region(
                         }
                     }
                     let rhs = &mut rhs_room[..k];
+                    let mut within = true;
                     for (c, &t) in rows.iter().enumerate() {
                         let target = if t_signs >> c & 1 == 1 { -h[t] } else { h[t] };
                         let fixed: f64 = (0..d)
@@ -459,6 +470,12 @@ fn face_region(
                             .map(|u| gm[t * d + u] * y[u])
                             .sum();
                         rhs[c] = target - g[t] - fixed;
+                        // Free coordinates within [−1, 1] (and the solve's tolerance)
+                        // cannot reach the side plane: the solve would leave one outside.
+                        within &= rhs[c].abs() <= spread[c] * (1.0 + y_tol) + x_tol;
+                    }
+                    if !within {
+                        continue;
                     }
                     lu_apply(k, lu, pivots, rhs, 1);
                     if rhs.iter().any(|v| v.is_nan() || v.abs() > 1.0 + y_tol) {
