@@ -46,7 +46,7 @@ mod soft;
 use crate::numeric::cholesky_solve;
 pub(crate) use contact_row::ContactRow;
 pub(crate) use joint_row::JointRow;
-pub(crate) use pair_row::PairRow;
+pub(crate) use pair_row::{MassAt, PairRow};
 pub(crate) use soft::{FoundPoint, NO_BODY, SoftSolver, Softness};
 
 /// The reusable work space of the solves.
@@ -113,57 +113,93 @@ pub(crate) struct Solver {
     momentum: Vec<f64>,
 }
 
-/// Each body's attitude (the numbers of its principal frame's rotor or matrix) as it was
-/// when it last moved by more than [`pair_row::KEEP_MASS`] in any of them, and a
-/// generation that changes with it: a pair row whose K was computed at the generations
-/// its bodies still have was computed at attitudes within twice that of the bodies' now.
-/// And whether each body's inverse inertia is the same in every frame (a ball's, a
-/// cube's): its part of K does not depend on its attitude.
+/// For the bodies of the found pairs: each one's attitude (the numbers of its principal
+/// frame's rotor or matrix) as it was when it last moved by more than
+/// [`pair_row::KEEP_MASS`] in any of them, with its mass, whether it is fixed and its
+/// inverse plane moments, and a generation that changes with any of them: a pair row whose
+/// K was computed at the generations its bodies still have was computed for the same
+/// bodies at attitudes within twice that of theirs now. And whether each body's inverse
+/// inertia is the same in every frame (a ball's, a cube's): its part of K does not depend
+/// on its attitude. A body whose inertia is not diagonal in its principal frame takes a
+/// new generation at every step.
 #[derive(Clone, Debug, Default)]
 struct AttitudeAnchors {
+    /// Per body: the attitude's numbers, then mass, fixed (0 or 1) and the inverse plane
+    /// moments (`stride` in all).
     numbers: Vec<f64>,
+    stride: usize,
     generation: Vec<u64>,
+    /// A generation that changes with the mass, fixedness and moments alone.
+    inertia_generation: Vec<u64>,
     isotropic: Vec<bool>,
+    /// The serial of the last update that looked at each body.
+    seen: Vec<u64>,
+    serial: u64,
     last: u64,
 }
 
 impl AttitudeAnchors {
-    /// Moves the anchor of each body that turned past the limit (all of them when the
-    /// bodies changed in count or kind).
-    fn update(&mut self, bodies: &[MovingBody]) {
-        let Some(first) = bodies.first() else {
+    /// Moves the anchor of each body of the `found` pairs that changed past the limits
+    /// (all of them when the bodies changed in count or dimension).
+    fn update(&mut self, bodies: &[MovingBody], found: &[PairContact]) {
+        let Some(first) = found.first().map(|c| &bodies[c.a]) else {
             return;
         };
-        let stride = first.rotation().principal_frame_attitude().entries().len();
-        if self.numbers.len() != bodies.len() * stride {
+        let n = first.dim();
+        let stride =
+            first.rotation().principal_frame_attitude().entries().len() + 2 + n * (n - 1) / 2;
+        if self.stride != stride || self.generation.len() != bodies.len() {
+            self.stride = stride;
             self.numbers.clear();
             self.numbers.resize(bodies.len() * stride, f64::NAN);
             self.generation.clear();
             self.generation.resize(bodies.len(), 0);
+            self.inertia_generation.clone_from(&self.generation);
+            self.isotropic.clear();
+            self.isotropic.resize(bodies.len(), false);
+            self.seen.clear();
+            self.seen.resize(bodies.len(), 0);
         }
-        self.isotropic.clear();
-        self.isotropic.extend(bodies.iter().map(|b| {
-            b.rotation()
-                .inertia()
-                .diagonal_inverse_plane_moments()
-                .is_some_and(|inv| inv.iter().all(|x| *x == inv[0]))
-        }));
-        for (i, b) in bodies.iter().enumerate() {
-            let now = b.rotation().principal_frame_attitude().entries();
-            let anchor = &mut self.numbers[i * stride..(i + 1) * stride];
-            // Compared so that a NaN (a new anchor) counts as moved.
-            let kept = now.len() == stride
-                && now
-                    .iter()
-                    .zip(anchor.iter())
-                    .all(|(x, y)| (x - y).abs() <= pair_row::KEEP_MASS);
-            if !kept {
-                self.last += 1;
-                self.generation[i] = self.last;
-                if now.len() == stride {
-                    anchor.copy_from_slice(now);
+        self.serial += 1;
+        for c in found {
+            for i in [c.a, c.b] {
+                if self.seen[i] != self.serial {
+                    self.seen[i] = self.serial;
+                    self.update_body(i, &bodies[i]);
                 }
             }
+        }
+    }
+
+    fn update_body(&mut self, i: usize, b: &MovingBody) {
+        let stride = self.stride;
+        let attitude = b.rotation().principal_frame_attitude().entries();
+        let moments = b.rotation().inertia().diagonal_inverse_plane_moments();
+        let anchor = &mut self.numbers[i * stride..(i + 1) * stride];
+        let (turn, rest) = anchor.split_at_mut(stride.min(attitude.len()));
+        // Compared so that a NaN (a new anchor) counts as changed.
+        let same_inertia = moments.is_some_and(|m| attitude.len() + 2 + m.len() == stride)
+            && rest[0] == b.mass()
+            && rest[1] == f64::from(u8::from(b.is_fixed()))
+            && moments.is_some_and(|m| rest[2..] == *m);
+        let turned = !attitude
+            .iter()
+            .zip(turn.iter())
+            .all(|(x, y)| (x - y).abs() <= pair_row::KEEP_MASS);
+        if same_inertia && !turned {
+            return;
+        }
+        self.last += 1;
+        self.generation[i] = self.last;
+        if !same_inertia {
+            self.inertia_generation[i] = self.last;
+        }
+        self.isotropic[i] = moments.is_some_and(|m| m.iter().all(|x| *x == m[0]));
+        if let Some(m) = moments.filter(|m| attitude.len() + 2 + m.len() == stride) {
+            turn.copy_from_slice(attitude);
+            rest[0] = b.mass();
+            rest[1] = f64::from(u8::from(b.is_fixed()));
+            rest[2..].copy_from_slice(m);
         }
     }
 }
@@ -991,7 +1027,7 @@ impl Solver {
             return;
         }
         self.pairs_found = Some(serial);
-        self.anchors.update(bodies);
+        self.anchors.update(bodies, found);
         let old = std::mem::take(&mut self.pairs);
         // The rows of the solve before last, rewritten in their own room.
         let mut rows = std::mem::take(&mut self.spare_pairs);
@@ -1028,9 +1064,13 @@ impl Solver {
             }
             self.sources.push(same);
             // A point that barely moved keeps its K and its offsets in the bodies' axes.
-            let at = (self.anchors.generation[a], self.anchors.generation[b]);
-            let isotropic = (self.anchors.isotropic[a], self.anchors.isotropic[b]);
-            if row.take_mass(same.map(|k| &old[k]), at, isotropic) {
+            let anchors = &self.anchors;
+            let at = |i: usize| MassAt {
+                generation: anchors.generation[i],
+                inertia: anchors.inertia_generation[i],
+                isotropic: anchors.isotropic[i],
+            };
+            if row.take_mass(same.map(|k| &old[k]), (at(a), at(b))) {
                 continue;
             }
             let own = |i: usize, r: &crate::algebra::Vector| {
@@ -1210,6 +1250,7 @@ mod tests {
     fn a_pair_row_keeps_its_mass_while_its_point_and_bodies_barely_move() {
         let flat = parse_body("cuboid:0.5,0.3,0.2+mass=1").unwrap();
         let cube = parse_body("cuboid:0.5,0.5,0.5+mass=2").unwrap();
+        let heavier = parse_body("cuboid:0.5,0.5,0.5+mass=5").unwrap();
         let placed = |parsed: &crate::inertia::spec::ParsedBody, x: [f64; 3], angle: f64| {
             MovingBody::new(
                 parsed.mass,
@@ -1234,7 +1275,7 @@ mod tests {
         let mut solver = Solver::default();
         let turns: Vec<f64> = (0..12)
             .map(|k| 4e-12 * k as f64)
-            .chain([1e-6, 1e-6 + 4e-12])
+            .chain([1e-6, 1e-6 + 4e-12, 1e-6 + 4e-12])
             .collect();
         for (step, &turn) in turns.iter().enumerate() {
             // Body 1 (the top of each pair) turns about the normal; bodies 0 and 2 rest.
@@ -1244,7 +1285,12 @@ mod tests {
                 placed(&flat, [0.0, 0.0, 0.2], 0.3),
                 placed(&flat, [0.05, 0.0, 0.6], 0.1 + turn),
                 placed(&cube, [3.0, 0.0, 0.5], 0.0),
-                placed(&cube, [3.05, 0.0, 1.5], 0.2 + turn),
+                // At the last step another body takes its place (heavier, at rest there).
+                placed(
+                    if step == 14 { &heavier } else { &cube },
+                    [3.05, 0.0, 1.5],
+                    0.2 + turn,
+                ),
                 placed(&cube, [6.0, 0.0, 0.5], 0.0),
                 placed(&cube, [6.05, 0.0, 1.5], 0.2 + turn),
             ];
@@ -1316,10 +1362,15 @@ mod tests {
         assert_eq!(checked, turns.len() * 12);
         // The first step computes every K, the jump those of the first two pairs but the
         // cube's on the axis of the turn (its point did not move, and a cube's K does not
-        // depend on its attitude), the step after the jump none; the slow turn renews
-        // each of the first two pairs' rows at least once, and most steps keep them.
+        // depend on its attitude), the step after the jump none, the heavier body's pair
+        // all four; the slow turn renews each of the first two pairs' rows at least once,
+        // and most steps keep them.
         println!("rows whose K was computed anew at each step: {anew:?}");
-        assert_eq!((anew[0], anew[12], anew[13]), (12, 7, 0), "{anew:?}");
+        assert_eq!(
+            (anew[0], anew[12], anew[13], anew[14]),
+            (12, 7, 0, 4),
+            "{anew:?}"
+        );
         assert!(anew[1..12].iter().sum::<usize>() >= 6, "{anew:?}");
         assert!(kept >= checked / 2, "kept {kept} of {checked}");
     }

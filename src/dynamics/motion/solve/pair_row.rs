@@ -63,11 +63,30 @@ pub(crate) struct PairRow {
     ///
     /// [`AttitudeAnchors`]: super::AttitudeAnchors
     mass_geometry: SmallVec<[f64; 24]>,
-    mass_at: (u64, u64),
+    mass_at: (MassAt, MassAt),
     own_at: (u64, u64),
     /// True when K and its factors were taken from the last step's row of the same point:
     /// the step's solves need not set them up.
     pub(super) mass_ready: bool,
+}
+
+/// A body as a pair row's K was computed for it: the generations of its attitude and of
+/// its inertia (mass, fixedness, moments), and whether its inverse inertia is the same in
+/// every frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct MassAt {
+    pub generation: u64,
+    pub inertia: u64,
+    pub isotropic: bool,
+}
+
+impl MassAt {
+    /// True if a K computed for the body as `self` holds for it as `now`: the same
+    /// attitude generation, or the same inertia of a body whose K does not depend on its
+    /// attitude.
+    fn holds(&self, now: &MassAt) -> bool {
+        self.generation == now.generation || now.isotropic && self.inertia == now.inertia
+    }
 }
 
 /// How far (relative to the offsets' size) a point's offsets from the two centres and its
@@ -108,7 +127,7 @@ impl PairRow {
             inv_knn: 0.0,
             speed: 0.0,
             mass_geometry: SmallVec::new(),
-            mass_at: (0, 0),
+            mass_at: (MassAt::default(), MassAt::default()),
             own_at: (0, 0),
             mass_ready: false,
         };
@@ -161,19 +180,15 @@ impl PairRow {
         self.mass_ready = false;
     }
 
-    /// Takes what it can of `last`, the last step's row of the same point, for the
-    /// bodies' attitude generations `at` now: K and its factors if they were computed for
-    /// offsets and a normal within [`KEEP_MASS`] of this row's (relative to the offsets'
-    /// size) and at the generations `at` or for bodies whose inverse inertia is the same in
-    /// every frame (`isotropic`); the offsets in the bodies' own axes if K's geometry holds
-    /// and they were computed at `at`. Returns whether it took the offsets (else the caller
-    /// computes them); K it marks as ready or to be computed for this row's geometry.
-    pub(crate) fn take_mass(
-        &mut self,
-        last: Option<&PairRow>,
-        at: (u64, u64),
-        isotropic: (bool, bool),
-    ) -> bool {
+    /// Takes what it can of `last`, the last step's row of the same point, for its bodies
+    /// as they are now (`at`): K and its factors if they were computed for offsets and a
+    /// normal within [`KEEP_MASS`] of this row's (relative to the offsets' size) and for
+    /// the same bodies at attitudes of the same generation (any attitude for a body whose
+    /// inverse inertia is the same in every frame); the offsets in the bodies' own axes if
+    /// K's geometry holds and they were computed at the attitudes' generations now.
+    /// Returns whether it took the offsets (else the caller computes them); K it marks as
+    /// ready or to be computed for this row's geometry.
+    pub(crate) fn take_mass(&mut self, last: Option<&PairRow>, at: (MassAt, MassAt)) -> bool {
         let n = self.normal.dim();
         let limit = KEEP_MASS * (max_abs(self.ra.as_slice()) + max_abs(self.rb.as_slice()));
         let geometry = [&self.ra, &self.rb, &self.normal];
@@ -186,15 +201,14 @@ impl PairRow {
                     .all(|(x, y)| (x - y).abs() <= limit)
         };
         let last = last.filter(|l| l.knn != 0.0 && near(&l.mass_geometry));
-        let mass = last.filter(|l| {
-            (isotropic.0 || l.mass_at.0 == at.0) && (isotropic.1 || l.mass_at.1 == at.1)
-        });
+        let mass = last.filter(|l| l.mass_at.0.holds(&at.0) && l.mass_at.1.holds(&at.1));
+        let generations = (at.0.generation, at.1.generation);
         let Some(last) = mass else {
             self.mass_geometry.clear();
             for v in geometry {
                 self.mass_geometry.extend_from_slice(v.as_slice());
             }
-            (self.mass_at, self.own_at) = (at, at);
+            (self.mass_at, self.own_at) = (at, generations);
             return false;
         };
         self.k.clone_from(&last.k);
@@ -206,8 +220,8 @@ impl PairRow {
         self.mass_geometry.clone_from(&last.mass_geometry);
         self.mass_at = last.mass_at;
         self.mass_ready = true;
-        self.own_at = at;
-        if last.own_at != at {
+        self.own_at = generations;
+        if last.own_at != generations {
             return false;
         }
         self.own_a.clone_from(&last.own_a);
