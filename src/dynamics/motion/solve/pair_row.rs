@@ -56,12 +56,10 @@ pub(crate) struct PairRow {
     /// The relative normal speed before the solve, which tolerances scale with.
     pub(super) speed: f64,
     /// What K and its factors were computed for: the offsets and the normal (r_a, r_b, n,
-    /// N each) and the generations of the two bodies' attitudes ([`AttitudeAnchors`]); and
-    /// the generations `own_a`, `own_b` were computed at. A later step's row of the same
-    /// point takes them while its geometry and its bodies' attitudes stay within
-    /// [`KEEP_MASS`] of these ([`PairRow::take_mass`]).
-    ///
-    /// [`AttitudeAnchors`]: super::AttitudeAnchors
+    /// N each) and the two bodies as they were then ([`MassAt`]); and the attitude
+    /// generations `own_a`, `own_b` were computed at. A later step's row of the same point
+    /// takes them while its geometry stays within [`KEEP_MASS`] of these and its bodies
+    /// are the same ([`PairRow::take_mass`]).
     mass_geometry: SmallVec<[f64; 24]>,
     mass_at: (MassAt, MassAt),
     own_at: (u64, u64),
