@@ -702,14 +702,17 @@ impl Touching {
             return;
         }
         let boxes = self.boxes[a].is_some() && self.boxes[b].is_some();
+        // Whether `self.relative` holds the pair's relative placement now.
+        let mut relative_now = false;
         if boxes {
             let touching = match manifold {
                 Some(_) => reach.max(MANIFOLD_TOUCHING * (self.radius[a] + self.radius[b])),
                 None => reach,
             };
             let with_points = manifold.is_some();
-            if self.reuse_box_manifold((a, b), (xa, xb), (q(a), q(b)), touching, with_points) {
-                return;
+            match self.reuse_box_manifold((a, b), (xa, xb), (q(a), q(b)), touching, with_points) {
+                Some(true) => return,
+                answered => relative_now = answered.is_some(),
             }
         }
         let (Some(ca), Some(cb)) = (&self.convex[a], &self.convex[b]) else {
@@ -765,7 +768,9 @@ impl Touching {
                 let touching = reach.max(MANIFOLD_TOUCHING * (self.radius[a] + self.radius[b]));
                 self.found
                     .push_manifold((a, b), &m, touching, (0.0, 0.0), 0);
-                relative_placement((q(a), q(b)), (xa, xb), &mut self.relative);
+                if !relative_now {
+                    relative_placement((q(a), q(b)), (xa, xb), &mut self.relative);
+                }
                 self.next_kept
                     .push((a, b), &m, (xa, xb), (q(a), q(b)), &self.relative);
                 return;
@@ -810,7 +815,8 @@ impl Touching {
     /// placement now (each point's witnesses moved with their bodies, its gap with their
     /// offset along the normal), kept for the next scan; without, the least of those gaps
     /// (the deepest point's: separating axes' gap along the manifold's axis) if it is
-    /// within `touching`. Returns whether it answered.
+    /// within `touching`. Returns whether it answered, or None if the pair kept no
+    /// manifold (else its relative placement now is in `self.relative`).
     fn reuse_box_manifold(
         &mut self,
         (a, b): (usize, usize),
@@ -818,17 +824,15 @@ impl Touching {
         (qa, qb): (&[f64], &[f64]),
         touching: f64,
         points: bool,
-    ) -> bool {
+    ) -> Option<bool> {
         let n = xa.len();
-        let Some(at) = self.kept.find((a, b)) else {
-            return false;
-        };
+        let at = self.kept.find((a, b))?;
         relative_placement((qa, qb), (xa, xb), &mut self.relative);
         let first = self.kept.pairs[at].2;
         let (then, rest) = self.kept.numbers(at, n).split_at(n + n * n);
         let limit = KEEP_BOX_MANIFOLD * (self.radius[a] + self.radius[b]);
         if !placed_within(&self.relative, then, n, (limit, KEEP_BOX_MANIFOLD)) {
-            return false;
+            return Some(false);
         }
         let in_space = |q: &[f64], own: &[f64], i: usize| -> f64 {
             q[i * n..(i + 1) * n]
@@ -869,7 +873,7 @@ impl Touching {
             c.point
                 .extend(xa.iter().zip(xb).map(|(x, y)| 0.5 * (x + y)));
         }
-        true
+        Some(true)
     }
 
     /// The pair (a, b) of which one or both are compound: each pair of pieces whose
