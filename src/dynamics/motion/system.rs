@@ -126,6 +126,11 @@ impl System {
         (&mut self.bodies, self.constant.as_ref())
     }
 
+    /// The wrenches on the bodies if the forques are all constant.
+    pub(crate) fn constant_wrenches(&self) -> Option<&[Wrench]> {
+        self.constant.as_ref().map(|c| &c.wrenches[..])
+    }
+
     /// Adds a forque.
     ///
     /// # Errors

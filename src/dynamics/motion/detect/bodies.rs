@@ -278,6 +278,8 @@ pub(crate) struct Touching {
     /// How far beyond its share of a scan's reach each body reaches ([`Touching::set_sweeps`];
     /// none: nothing beyond).
     sweep: Vec<f64>,
+    /// The bodies whose pairs are found without the sweeps ([`Touching::set_sweeps`]).
+    unswept: Vec<bool>,
     /// The half-lengths of the bodies whose shapes are boxes (their corners), which find
     /// their contact normal by separating axes.
     boxes: Vec<Option<Vec<f64>>>,
@@ -425,17 +427,23 @@ impl Touching {
     /// Sets how far beyond its share of the reach each body reaches in the scans from now
     /// on (its sweep: the reach of a pair is the scan's factor times the sum of their
     /// bounding radii plus both sweeps), as a step's bodies reach by how far they may move
-    /// in it. A change of any sweep finds the pairs anew at the next scan.
-    pub(crate) fn set_sweeps(&mut self, sweeps: &[f64]) {
+    /// in it. A pair of which a body is `unswept` (none if it is empty) is found within the
+    /// factor's reach alone. The contacts found keep the factor's reach as their touching
+    /// distance ([`PairContact::reach`]): a pair that the sweeps bring in is apart. A change
+    /// of any sweep finds the pairs anew at the next scan.
+    pub(crate) fn set_sweeps(&mut self, sweeps: &[f64], unswept: &[bool]) {
         let same = self.sweep.len() == sweeps.len()
             && self
                 .sweep
                 .iter()
                 .zip(sweeps)
-                .all(|(s, t)| s.to_bits() == t.to_bits());
+                .all(|(s, t)| s.to_bits() == t.to_bits())
+            && self.unswept == unswept;
         if !same {
             self.sweep.clear();
             self.sweep.extend_from_slice(sweeps);
+            self.unswept.clear();
+            self.unswept.extend_from_slice(unswept);
             self.seen_factor = None;
             (self.found_key, self.other_key) = (None, None);
             // The pairs' reaches change: a kept manifold was within the old one.
@@ -691,23 +699,27 @@ impl Touching {
             bodies[a].position().as_slice(),
             bodies[b].position().as_slice(),
         );
-        let reach = self.reach((a, b), factor);
+        let (reach, touch) = (
+            self.reach((a, b), factor),
+            self.touching_reach((a, b), factor),
+        );
         let centres: f64 = xa.iter().zip(xb).map(|(p, q)| (p - q) * (p - q)).sum();
         let bound = self.radius[a] + self.radius[b] + reach;
         if centres > bound * bound {
             return;
         }
         if self.compound[a].is_some() || self.compound[b].is_some() {
-            self.pieces(q, (a, b), (xa, xb), reach, manifold);
+            self.pieces(q, (a, b), (xa, xb), (reach, touch), manifold);
             return;
         }
         let boxes = self.boxes[a].is_some() && self.boxes[b].is_some();
         // Whether `self.relative` holds the pair's relative placement now.
         let mut relative_now = false;
         if boxes {
+            let least_touching = MANIFOLD_TOUCHING * (self.radius[a] + self.radius[b]);
             let touching = match manifold {
-                Some(_) => reach.max(MANIFOLD_TOUCHING * (self.radius[a] + self.radius[b])),
-                None => reach,
+                Some(_) => (reach.max(least_touching), touch.max(least_touching)),
+                None => (reach, touch),
             };
             let with_points = manifold.is_some();
             match self.reuse_box_manifold((a, b), (xa, xb), (q(a), q(b)), touching, with_points) {
@@ -765,7 +777,7 @@ impl Touching {
             });
             let points = points.filter(|m| !m.is_empty());
             if let Some(m) = points {
-                let touching = reach.max(MANIFOLD_TOUCHING * (self.radius[a] + self.radius[b]));
+                let touching = touch.max(MANIFOLD_TOUCHING * (self.radius[a] + self.radius[b]));
                 self.found
                     .push_manifold((a, b), &m, touching, (0.0, 0.0), 0);
                 if !relative_now {
@@ -778,7 +790,7 @@ impl Touching {
             if manifold.is_none() {
                 // The gap alone is asked for: the point is the midpoint of the centres.
                 let c = self.found.next((a, b), 0, -axis.depth, &axis.normal);
-                c.reach = reach;
+                c.reach = touch;
                 c.point
                     .extend(xa.iter().zip(xb).map(|(x, y)| 0.5 * (x + y)));
                 return;
@@ -802,7 +814,7 @@ impl Touching {
                 ),
             ),
             (
-                reach,
+                (reach, touch),
                 manifold.map(|slop| slop * (self.radius[a] + self.radius[b])),
             ),
             0,
@@ -815,14 +827,14 @@ impl Touching {
     /// placement now (each point's witnesses moved with their bodies, its gap with their
     /// offset along the normal), kept for the next scan; without, the least of those gaps
     /// (the deepest point's: separating axes' gap along the manifold's axis) if it is
-    /// within `touching`. Returns whether it answered, or None if the pair kept no
+    /// `within`; the points found count as touching within `touching`. Returns whether it answered, or None if the pair kept no
     /// manifold (else its relative placement now is in `self.relative`).
     fn reuse_box_manifold(
         &mut self,
         (a, b): (usize, usize),
         (xa, xb): (&[f64], &[f64]),
         (qa, qb): (&[f64], &[f64]),
-        touching: f64,
+        (within, touching): (f64, f64),
         points: bool,
     ) -> Option<bool> {
         let n = xa.len();
@@ -866,7 +878,7 @@ impl Touching {
         }
         if points {
             self.next_kept.copy_entry(&self.kept, at, n);
-        } else if least <= touching {
+        } else if least <= within {
             // As separating axes answer the gap alone: at the midpoint of the centres.
             let c = self.found.next((a, b), 0, least, &normal);
             c.reach = touching;
@@ -877,14 +889,14 @@ impl Touching {
     }
 
     /// The pair (a, b) of which one or both are compound: each pair of pieces whose
-    /// bounding balls come within `reach` through [`convex_pair`], its features marked by
+    /// bounding balls come within `reach` through [`convex_pair`] (touching within `touch`), its features marked by
     /// the pieces' numbers. A body that is not compound is one piece at its centre.
     fn pieces<'q>(
         &mut self,
         q: &impl Fn(usize) -> &'q [f64],
         (a, b): (usize, usize),
         (xa, xb): (&[f64], &[f64]),
-        reach: f64,
+        (reach, touch): (f64, f64),
         manifold: Option<f64>,
     ) {
         let n = xa.len();
@@ -929,7 +941,7 @@ impl Touching {
                     (&mut self.workspace, &mut self.found),
                     (a, b),
                     (sa, sb),
-                    (reach, slop_reach),
+                    ((reach, touch), slop_reach),
                     tag,
                 );
             }
@@ -939,10 +951,23 @@ impl Touching {
     }
 
     /// `factor` times the sum of the bounding radii of bodies `a` and `b`, plus their
-    /// sweeps ([`Touching::set_sweeps`]): the distance within which [`Touching::scan`]
-    /// with that factor reports the pair.
+    /// sweeps unless one is unswept ([`Touching::set_sweeps`]): the distance within which
+    /// [`Touching::scan`] with that factor reports the pair.
     pub(crate) fn reach(&self, (a, b): (usize, usize), factor: f64) -> f64 {
-        factor * (self.radius[a] + self.radius[b]) + self.sweep(a) + self.sweep(b)
+        let unswept = |i: usize| self.unswept.get(i).copied().unwrap_or(false);
+        let sweeps = if unswept(a) || unswept(b) {
+            0.0
+        } else {
+            self.sweep(a) + self.sweep(b)
+        };
+        self.touching_reach((a, b), factor) + sweeps
+    }
+
+    /// `factor` times the sum of the bounding radii of bodies `a` and `b`: the distance
+    /// within which a pair that [`Touching::scan`] finds with that factor counts as
+    /// touching ([`PairContact::reach`]).
+    pub(crate) fn touching_reach(&self, (a, b): (usize, usize), factor: f64) -> f64 {
+        factor * (self.radius[a] + self.radius[b])
     }
 
     /// The pairs the last [`Touching::scan`] found.
@@ -1118,13 +1143,13 @@ impl<'s> Solid<'s> {
 /// meet by separating axes first): their penetration (GJK, EPA), then with `slop_reach`
 /// (the distance up to which manifold points are kept) the contact manifold of two hulls
 /// without margin, or of the cores of polytopes with a margin, else the one point midway
-/// between the witness points. Records what is within `reach` in `found`, each feature
-/// marked by `tag`.
+/// between the witness points. Records what is within `reach` in `found`, touching within
+/// `touch` ([`PairContact::reach`]), each feature marked by `tag`.
 fn convex_pair(
     (workspace, found): (&mut EpaWorkspace, &mut Found),
     (a, b): (usize, usize),
     (sa, sb): (Solid<'_>, Solid<'_>),
-    (reach, slop_reach): (f64, Option<f64>),
+    ((reach, touch), slop_reach): ((f64, f64), Option<f64>),
     tag: u64,
 ) {
     let (ca, cb) = (sa.shape, sb.shape);
@@ -1151,7 +1176,7 @@ fn convex_pair(
     // A face resting on a face touches at all its points, but a tilt of round-off size
     // lifts some of them by more than the pair's reach: points this close count as
     // touching, so that they hold (a resting contact) instead of waiting to land.
-    let touching = reach.max(MANIFOLD_TOUCHING * radii);
+    let touching = touch.max(MANIFOLD_TOUCHING * radii);
     if let (Some(margin), ConvexCore::Hull(va), ConvexCore::Hull(vb)) =
         (slop_reach, ca.core(), cb.core())
         && ca.margin() == 0.0
@@ -1196,7 +1221,7 @@ fn convex_pair(
         }
     }
     let c = found.next((a, b), tag, -p.depth, p.normal.as_slice());
-    c.reach = reach;
+    c.reach = touch;
     c.point.extend(
         p.witness_a
             .as_slice()

@@ -248,7 +248,7 @@ impl SoftStep {
                 bodies,
                 shapes,
                 half_spaces,
-                (self.margin, &self.sweeps),
+                (self.margin, &self.sweeps, true),
                 &self.placements,
             );
             let n = bodies[0].dim();
@@ -307,7 +307,7 @@ impl SoftStep {
                 }
             }
             let reuse = &self.reuse;
-            self.touching.set_sweeps(&self.sweeps);
+            self.touching.set_sweeps(&self.sweeps, &[]);
             self.touching
                 .scan_except(bodies, q, self.margin, Some(MANIFOLD_SLOP), |p| {
                     reuse.binary_search(&p).is_ok()

@@ -37,7 +37,10 @@ use crate::dynamics::motion::{ContactShape, MotionError, MovingBody, System, Wre
 /// restitution e, and the rest of the step follows. Below the approach speed 2h|F|/m that one step of the
 /// forques gives, a contact is resting (e = 0), so that bouncing dies out instead of
 /// ringing. Resting contacts that sink by the curvature of their path are lifted back onto
-/// the plane.
+/// the plane. An impact of e = 0 is not located but held by a speculative contact: a point
+/// within its body's sweep h (|v| + ½h |F|/m + |ω| r) of a plane of e = 0, or of a body when
+/// both have e = 0, is a row of the step's solves that lets it close its gap within the
+/// flight and no more, which ends the step touching as the located impact would.
 ///
 /// [`Splitting::strang`]: crate::dynamics::Splitting::strang
 #[derive(Clone, Debug, Default)]
@@ -86,6 +89,12 @@ pub struct MotionSplitting {
     entering: Vec<Entering>,
     /// The state at the end of a flight, while entering contacts are checked from its start.
     flight_end: SavedBodies,
+    /// How far each body's points may move in the flight ahead at the velocities it starts
+    /// with ([`Self::set_sweeps`]): contacts of restitution 0 that close within it are
+    /// speculative rows of the solve instead of impacts to locate.
+    sweeps: Vec<f64>,
+    /// The bodies of nonzero restitution: their impacts with other bodies are located.
+    bouncing: Vec<bool>,
 }
 
 /// A contact entering in a flight: a pair of bodies (a < b) with its signed distance and
@@ -121,6 +130,10 @@ const MAX_NARROW_TRIES: usize = 8;
 
 /// Impacts located within one step, at most (then the rest of the step is resting contact).
 const MAX_EVENTS: usize = 16;
+
+/// A sweep shorter than this (relative to the body's radius) is none: bodies at rest keep
+/// theirs, and with them the pairs found and the manifolds kept, from step to step.
+const LEAST_SWEEP: f64 = 1e-6;
 
 /// The states of bodies, to come back to: each body's position, momentum, angular
 /// momentum and attitude (the rotor's coefficients or the matrix's entries), one body after
@@ -286,20 +299,21 @@ impl MotionSplitting {
     }
 
     /// The velocity solve of the contacts and joints at the current placement, after a kick
-    /// of length `kick`; its contacts are recorded in the system's list if `record`.
-    fn solve_velocities(&mut self, system: &mut System, kick: f64, record: bool) {
+    /// of length `kick`, for a flight of length `flight`; its contacts are recorded in the
+    /// system's list if `record`.
+    fn solve_velocities(&mut self, system: &mut System, (kick, flight): (f64, f64), record: bool) {
         self.place(system);
-        self.solve_placed(system, kick, record);
+        self.solve_placed(system, (kick, flight), record);
     }
 
     /// [`Self::solve_velocities`] with the bodies placed already.
-    fn solve_placed(&mut self, system: &mut System, kick: f64, record: bool) {
+    fn solve_placed(&mut self, system: &mut System, (kick, flight): (f64, f64), record: bool) {
         let (bodies, shapes, half_spaces, joints, contacts) = system.parts_mut();
         self.solver.find_contacts(
             bodies,
             shapes,
             half_spaces,
-            (CONTACT_TOLERANCE, &[]),
+            (CONTACT_TOLERANCE, &self.sweeps, false),
             &self.placements,
         );
         self.solver.find_joints(bodies, joints);
@@ -320,7 +334,7 @@ impl MotionSplitting {
             bodies,
             half_spaces,
             &self.resting_speed,
-            kick,
+            (kick, flight),
             record.then_some(contacts),
         );
     }
@@ -547,7 +561,9 @@ impl MotionSplitting {
             self.pre_drift.save(bodies);
         }
         if worst_gap <= 1e-13 * size {
-            // Contacts that did not settle within the iterations are lifted out after.
+            // Contacts that did not settle within the iterations are lifted out after the
+            // flight, taken with the last impulses (the loop left the bodies at its start).
+            self.drift(bodies, t, h)?;
             self.keep_joint_forces(h);
             return Ok(());
         }
@@ -574,19 +590,75 @@ impl MotionSplitting {
         }
     }
 
-    /// Marks the contact candidates within the contact tolerance now.
-    fn mark_active(&mut self, system: &System) {
+    /// Sets each body's sweep for a flight of h: how far its points move in the flight at
+    /// its velocities now after the opening half kick, h (|v| + ½h |F|/m + |ω| r) (r its
+    /// bounding radius, |ω| the norm of the bivector; F the constant force, or the last
+    /// one evaluated), rounded up to a power of two, so that a body whose speed barely
+    /// changes keeps it (and with it the pairs found and the manifolds kept); none below
+    /// [`LEAST_SWEEP`] of its radius or for a fixed body. A body of nonzero restitution
+    /// sweeps against the planes (whose own restitution acts there) but not against other
+    /// bodies: its impacts with them are located, as restitution acts on their speed.
+    fn set_sweeps(&mut self, system: &System, h: f64) {
+        self.sweeps.clear();
+        self.bouncing.clear();
+        let pairs = self.touching.any_pairs();
+        if system.half_spaces().is_empty() && !pairs {
+            // Nothing to touch, and nothing placed.
+            return;
+        }
+        let bodies = system.bodies();
+        let forces = system
+            .constant_wrenches()
+            .or((self.wrenches.len() == bodies.len()).then_some(&self.wrenches[..]));
+        for (i, (b, shape)) in bodies.iter().zip(system.shapes()).enumerate() {
+            self.bouncing.push(b.restitution().is_some_and(|e| e > 0.0));
+            if b.is_fixed() || matches!(shape, ContactShape::None) {
+                self.sweeps.push(0.0);
+                continue;
+            }
+            let r = self.placements.get(i).radius;
+            let fall = forces.map_or(0.0, |w| 0.5 * h * w[i].force.norm());
+            let sweep = h * ((b.linear_momentum().norm() + fall) / b.mass() + omega_norm(b) * r);
+            self.sweeps
+                .push(if sweep.is_finite() && sweep > LEAST_SWEEP * r {
+                    power_of_two_above(sweep)
+                } else {
+                    0.0
+                });
+        }
+        if pairs {
+            self.touching.set_sweeps(&self.sweeps, &self.bouncing);
+        }
+    }
+
+    /// Sets the bodies' sweeps for a flight of h ([`Self::sweeps`]; none without h) and
+    /// marks the contact candidates within the contact tolerance now, or within the sweep
+    /// for those whose impacts are not located.
+    fn mark_active(&mut self, system: &System, h: Option<f64>) {
         self.place(system);
-        self.mark_placed_active(system);
+        self.mark_placed_active(system, h);
     }
 
     /// [`Self::mark_active`] with the bodies placed already.
-    fn mark_placed_active(&mut self, system: &System) {
+    fn mark_placed_active(&mut self, system: &System, h: Option<f64>) {
+        match h {
+            Some(h) => self.set_sweeps(system, h),
+            None => {
+                self.sweeps.clear();
+                self.bouncing.clear();
+                if self.touching.any_pairs() {
+                    self.touching.set_sweeps(&[], &[]);
+                }
+            }
+        }
         self.active.clear();
         let mut active = std::mem::take(&mut self.active);
-        for_each_candidate(system, &self.placements, |_, d, reach| {
-            active.push(d <= reach)
-        });
+        for_each_candidate(
+            system,
+            &self.placements,
+            &self.sweeps,
+            |_, d, reach, sweep| active.push(d <= reach + sweep),
+        );
         self.active = active;
         self.active_pairs.clear();
         if self.touching.any_pairs() {
@@ -625,7 +697,7 @@ impl MotionSplitting {
         let mut worst = f64::INFINITY;
         for c in self.touching.found() {
             if self.active_pairs.binary_search(&(c.a, c.b)).is_err() {
-                let reach = self.touching.reach((c.a, c.b), CONTACT_TOLERANCE);
+                let reach = self.touching.touching_reach((c.a, c.b), CONTACT_TOLERANCE);
                 worst = worst.min(c.gap / reach);
                 if c.gap < -reach {
                     self.entering
@@ -647,7 +719,7 @@ impl MotionSplitting {
     fn placed_penetration(&mut self, system: &System) -> f64 {
         let mut worst = f64::INFINITY;
         self.entering.clear();
-        for_each_candidate(system, &self.placements, |k, d, reach| {
+        for_each_candidate(system, &self.placements, &[], |k, d, reach, _| {
             if !self.active[k] {
                 worst = worst.min(d / reach);
                 if d < -reach {
@@ -672,7 +744,7 @@ impl MotionSplitting {
         self.half_kick(system, t, h, true);
         // A try of an impact's location drops what it recorded: it records nothing.
         let record = !self.unrecorded && !self.locating;
-        self.solve_velocities(system, 0.5 * h, record);
+        self.solve_velocities(system, (0.5 * h, h), record);
         let fresh = self.flight(system, t, h)?;
         if close {
             self.close(system, t + h, h);
@@ -697,7 +769,7 @@ impl MotionSplitting {
     /// The closing half kick (at the end `t` of a substep of length h) and velocity solve.
     fn close(&mut self, system: &mut System, t: f64, h: f64) {
         self.closing_kick(system, t, h);
-        self.solve_velocities(system, 0.5 * h, !self.unrecorded);
+        self.solve_velocities(system, (0.5 * h, h), !self.unrecorded);
     }
 
     /// A step with contacts and joints: substeps cut at the impacts. With `leave_open`, the
@@ -714,7 +786,7 @@ impl MotionSplitting {
         self.locating = false;
         let (mut t, mut remaining) = (t, h);
         for events in 0..=MAX_EVENTS {
-            self.mark_active(system);
+            self.mark_active(system, Some(remaining));
             let mut saved = std::mem::take(&mut self.saved);
             saved.save(system.bodies());
             let mut f_end = self.substep(system, t, remaining, false)?;
@@ -937,13 +1009,16 @@ impl MotionSplitting {
         system.clear_contacts();
         // The step before ended with its flight, which placed the bodies, and the kick turns
         // none of them: the placements hold until this step's flight.
-        self.mark_placed_active(system);
+        // Without sweeps: a step with an impact is taken again by `constrained_step`, which
+        // holds a speculative contact without locating it (bodies at rest, the joined steps'
+        // case, would only pay for their sweeps).
+        self.mark_placed_active(system, None);
         let mut saved = std::mem::take(&mut self.saved);
         saved.save(system.bodies());
         self.joined_kick(system, before, h);
         // The step's contacts are not recorded: only the last step's are listed, and the
         // last step is a single one.
-        self.solve_placed(system, 0.5 * (before + h), false);
+        self.solve_placed(system, (0.5 * (before + h), h), false);
         let fresh = self.flight(system, t, h)?;
         if fresh < -1.0 {
             saved.restore(system.bodies_mut());
@@ -963,12 +1038,15 @@ impl MotionSplitting {
     }
 }
 
-/// Calls `visit(k, distance, reach)` for every contact candidate of every body against
-/// every half-space, k numbering them in a fixed order, the bodies placed by `placements`.
+/// Calls `visit(k, distance, reach, sweep)` for every contact candidate of every body
+/// against every half-space, k numbering them in a fixed order, the bodies placed by
+/// `placements`; the sweep is the body's in `sweeps` (0 if it has none there) against a
+/// half-space of restitution 0, else 0.
 fn for_each_candidate(
     system: &System,
     placements: &Placements,
-    mut visit: impl FnMut(usize, f64, f64),
+    sweeps: &[f64],
+    mut visit: impl FnMut(usize, f64, f64, f64),
 ) {
     if system.half_spaces().is_empty() {
         // Nothing to touch, and nothing placed (placements are kept for contacts).
@@ -981,13 +1059,46 @@ fn for_each_candidate(
         }
         let placed = placements.get(i);
         let reach = CONTACT_TOLERANCE * placed.radius;
+        let body_sweep = sweeps.get(i).copied().unwrap_or(0.0);
         for (j, plane) in system.half_spaces().iter().enumerate() {
             let base = plane.distance(b.position());
+            let sweep = if plane.restitution() == 0.0 {
+                body_sweep
+            } else {
+                0.0
+            };
             placed.candidate_heights(shape, (j, plane.normal()), |_, h| {
-                visit(k, base + h, reach);
+                visit(k, base + h, reach, sweep);
                 k += 1;
             });
         }
+    }
+}
+
+/// The norm of body b's angular velocity, without a bivector of room for eight dimensions
+/// to copy out where it has at most that (a moving body is no gyrostat: ω = I⁻¹(L)).
+fn omega_norm(b: &MovingBody) -> f64 {
+    let rotation = b.rotation();
+    let l = rotation.momentum().as_slice();
+    let mut w = [0.0f64; 28];
+    match w.get_mut(..l.len()) {
+        Some(w) => {
+            rotation.inertia().apply_inverse_into(l, w);
+            w.iter().map(|x| x * x).sum::<f64>().sqrt()
+        }
+        None => rotation.omega().norm(),
+    }
+}
+
+/// The least power of two at or above `x` (positive, finite and normal).
+fn power_of_two_above(x: f64) -> f64 {
+    const FRACTION: u64 = (1 << 52) - 1;
+    let bits = x.to_bits();
+    if bits & FRACTION == 0 {
+        x
+    } else {
+        // The exponent one up, the fraction cleared.
+        f64::from_bits((bits & !FRACTION) + (1 << 52))
     }
 }
 
@@ -1297,6 +1408,18 @@ mod tests {
         system
     }
 
+    #[test]
+    fn power_of_two_above_is_the_least_power_at_or_above() {
+        let mut cases = 0;
+        for x in [1e-6, 0.3, 1.0, 1.5, 2.0, 3.0, 1e3, 1024.0, 1025.0, 7.3e-12] {
+            let p = power_of_two_above(x);
+            assert_eq!(p, 2f64.powi(x.log2().ceil() as i32), "{x}");
+            assert!(p >= x && p < 2.0 * x, "{x}");
+            cases += 1;
+        }
+        assert_eq!(cases, 10);
+    }
+
     /// The fixed-size contact kernels of 3D and 4D take the steps of the run-time ones: the
     /// two agree to round-off over a scene of impacts, sliding and resting contact.
     #[test]
@@ -1314,7 +1437,10 @@ mod tests {
                 touched += fast.contacts().len();
                 assert_eq!(fast.contacts().len(), general.contacts().len(), "N = {n}");
             }
-            assert!(touched > 100, "N = {n}: the bodies touch the floor");
+            assert!(
+                touched > 100,
+                "N = {n}: the bodies touch the floor ({touched})"
+            );
             for (x, y) in fast.bodies().iter().zip(general.bodies()) {
                 let close = |p: &[f64], q: &[f64]| {
                     p.iter()

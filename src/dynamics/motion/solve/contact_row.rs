@@ -25,7 +25,13 @@ pub(crate) struct ContactRow {
     /// The point in own axes and its offset from the centre of mass in space.
     pub point: Linear,
     pub r: Linear,
-    /// The normal velocity wanted after the impulse (0, or −e u⁻ for an impact).
+    /// The signed distance of the point from the plane when found.
+    pub gap: f64,
+    /// The distance up to which the point counts as touching; farther points are
+    /// speculative: the body may approach there by the gap within the next flight, no more.
+    pub reach: f64,
+    /// The normal velocity wanted after the impulse (0, −e u⁻ for an impact, or −gap over
+    /// the flight for a speculative point).
     pub target: f64,
     pub normal_impulse: f64,
     pub friction_impulse: Linear,
