@@ -439,7 +439,8 @@ pub trait Run {
 /// The integrator of a rotorflow run.
 #[derive(Clone, Debug)]
 pub enum RotorflowIntegrator {
-    /// `MotionSplitting`: contacts solved to its tolerance, impacts located in time.
+    /// `MotionSplitting`: contacts solved to its tolerance, impacts without restitution held
+    /// by speculative contacts (those with restitution are located in time).
     Splitting(Box<MotionSplitting>),
     /// `SoftStep` with its defaults: substeps of soft contacts, a fixed solver cost per step.
     Soft(Box<SoftStep>),

@@ -445,7 +445,7 @@ fn run() -> Result<(), Error> {
          (the steps per call in the table). rotorflow (the first columns): `MotionSplitting`, where no bodies touch \
          each other one velocity solve per step (the closing solve of a step joined with the opening solve of the \
          next) and two more per call (its first step's opening solve, and its last step taken whole so that its \
-         contacts are its own), else two per step, its contacts solved by Gauss–Seidel to its tolerance and its impacts located in time. rotorflow SoftStep (the last columns): `SoftStep` with its \
+         contacts are its own), else two per step, its contacts solved by Gauss–Seidel to its tolerance (without restitution, its impacts are speculative contacts, not located in time). rotorflow SoftStep (the last columns): `SoftStep` with its \
          defaults, a fixed solver cost per step: {} substeps, each with 1 Gauss–Seidel pass over soft contacts \
          (springs) and 1 relax pass without the springs (in 3D), contacts of {:.0} Hz (a fifth of the substep rate) \
          and {:.0} Hz against fixed bodies and the floor (twice that, up to a quarter of the substep rate), damping \
