@@ -26,7 +26,8 @@
 //! - [`HalfSpace`] and [`ContactShape`]: contact of a body's vertices or ellipsoid with
 //!   planes of solid world, with restitution and Coulomb friction of maximal dissipation
 //!   (the impulse in the (N−1)-dimensional disc |J_t| ≤ μλ that removes the most energy);
-//!   impacts are located in time within a step, so nothing tunnels. [`Contact`] reports
+//!   impacts with restitution are located in time within a step, the others held by
+//!   speculative contacts, so nothing tunnels. [`Contact`] reports
 //!   the impulses of the last step.
 //! - Bodies touch each other too: [`shape`] (convex shapes with their support functions)
 //!   and [`detect`] (GJK distance and EPA penetration in any N) find the pairs, and the
