@@ -827,8 +827,9 @@ impl Touching {
     /// placement now (each point's witnesses moved with their bodies, its gap with their
     /// offset along the normal), kept for the next scan; without, the least of those gaps
     /// (the deepest point's: separating axes' gap along the manifold's axis) if it is
-    /// `within`; the points found count as touching within `touching`. Returns whether it answered, or None if the pair kept no
-    /// manifold (else its relative placement now is in `self.relative`).
+    /// `within`; the points found count as touching within `touching`. Returns whether it
+    /// answered, or None if the pair kept no manifold (else its relative placement now is in
+    /// `self.relative`).
     fn reuse_box_manifold(
         &mut self,
         (a, b): (usize, usize),
@@ -889,8 +890,9 @@ impl Touching {
     }
 
     /// The pair (a, b) of which one or both are compound: each pair of pieces whose
-    /// bounding balls come within `reach` through [`convex_pair`] (touching within `touch`), its features marked by
-    /// the pieces' numbers. A body that is not compound is one piece at its centre.
+    /// bounding balls come within `reach` through [`convex_pair`] (touching within `touch`),
+    /// its features marked by the pieces' numbers. A body that is not compound is one piece
+    /// at its centre.
     fn pieces<'q>(
         &mut self,
         q: &impl Fn(usize) -> &'q [f64],
