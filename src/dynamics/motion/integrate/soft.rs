@@ -1,6 +1,6 @@
 //! [`SoftStep`]: substeps with soft contacts and a fixed amount of solver work per step.
 
-use super::{MotionIntegrator, check_finite, kick};
+use super::{MotionIntegrator, check_finite, kick, sweep};
 use crate::dynamics::DynamicsError;
 use crate::dynamics::integrate::{axpy, free_flight};
 use crate::dynamics::motion::body::contact_material;
@@ -381,9 +381,7 @@ impl SoftStep {
                     if b.is_fixed() {
                         return 0.0;
                     }
-                    let speed = b.linear_momentum().norm() / b.mass();
-                    let turn = b.rotation().omega().norm() * shape.radius();
-                    h * (speed + turn) + h * h * w.force.norm() / b.mass()
+                    sweep(b, shape.radius(), w.force.norm(), (h, h))
                 }),
         );
         let speed = bodies

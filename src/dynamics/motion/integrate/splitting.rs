@@ -1,6 +1,6 @@
 //! [`MotionSplitting`]: kicks, free flight, impacts located in time, contacts and joints.
 
-use super::{MotionIntegrator, check_finite, kick, one_by_one};
+use super::{MotionIntegrator, check_finite, kick, one_by_one, sweep};
 use crate::algebra::Vector;
 use crate::dynamics::DynamicsError;
 use crate::dynamics::integrate::{axpy, free_flight};
@@ -590,7 +590,7 @@ impl MotionSplitting {
         }
     }
 
-    /// Sets each body's sweep for a flight of h: how far its points move in the flight at
+    /// Sets each body's sweep for a flight of h (none without h): how far its points move in the flight at
     /// its velocities now after the opening half kick, h (|v| + ½h |F|/m + |ω| r) (r its
     /// bounding radius, |ω| the norm of the bivector; F the constant force, or the last
     /// one evaluated), rounded up to a power of two, so that a body whose speed barely
@@ -598,14 +598,17 @@ impl MotionSplitting {
     /// [`LEAST_SWEEP`] of its radius or for a fixed body. A body of nonzero restitution
     /// sweeps against the planes (whose own restitution acts there) but not against other
     /// bodies: its impacts with them are located, as restitution acts on their speed.
-    fn set_sweeps(&mut self, system: &System, h: f64) {
+    fn set_sweeps(&mut self, system: &System, h: Option<f64>) {
         self.sweeps.clear();
         self.bouncing.clear();
         let pairs = self.touching.any_pairs();
-        if system.half_spaces().is_empty() && !pairs {
-            // Nothing to touch, and nothing placed.
+        let Some(h) = h.filter(|_| pairs || !system.half_spaces().is_empty()) else {
+            // No sweeps asked for, or nothing to touch (and nothing placed).
+            if pairs {
+                self.touching.set_sweeps(&[], &[]);
+            }
             return;
-        }
+        };
         let bodies = system.bodies();
         let forces = system
             .constant_wrenches()
@@ -617,8 +620,8 @@ impl MotionSplitting {
                 continue;
             }
             let r = self.placements.get(i).radius;
-            let fall = forces.map_or(0.0, |w| 0.5 * h * w[i].force.norm());
-            let sweep = h * ((b.linear_momentum().norm() + fall) / b.mass() + omega_norm(b) * r);
+            let force = forces.map_or(0.0, |w| w[i].force.norm());
+            let sweep = sweep(b, r, force, (h, 0.5 * h));
             self.sweeps
                 .push(if sweep.is_finite() && sweep > LEAST_SWEEP * r {
                     power_of_two_above(sweep)
@@ -641,16 +644,7 @@ impl MotionSplitting {
 
     /// [`Self::mark_active`] with the bodies placed already.
     fn mark_placed_active(&mut self, system: &System, h: Option<f64>) {
-        match h {
-            Some(h) => self.set_sweeps(system, h),
-            None => {
-                self.sweeps.clear();
-                self.bouncing.clear();
-                if self.touching.any_pairs() {
-                    self.touching.set_sweeps(&[], &[]);
-                }
-            }
-        }
+        self.set_sweeps(system, h);
         self.active.clear();
         let mut active = std::mem::take(&mut self.active);
         for_each_candidate(
@@ -1072,21 +1066,6 @@ fn for_each_candidate(
                 k += 1;
             });
         }
-    }
-}
-
-/// The norm of body b's angular velocity, without a bivector of room for eight dimensions
-/// to copy out where it has at most that (a moving body is no gyrostat: ω = I⁻¹(L)).
-fn omega_norm(b: &MovingBody) -> f64 {
-    let rotation = b.rotation();
-    let l = rotation.momentum().as_slice();
-    let mut w = [0.0f64; 28];
-    match w.get_mut(..l.len()) {
-        Some(w) => {
-            rotation.inertia().apply_inverse_into(l, w);
-            w.iter().map(|x| x * x).sum::<f64>().sqrt()
-        }
-        None => rotation.omega().norm(),
     }
 }
 
