@@ -124,15 +124,15 @@ fn a_free_body_keeps_its_parabola_beside_a_settling_pile() {
     );
 }
 
-/// Gauss–Seidel with friction cycles in some of a settling pile's solves (its largest change
-/// the same from sweep to sweep, within about 1e-8 of the contacts' speed but above the
-/// tolerance): such a solve stops once its change has not fallen by 1 % in 500 sweeps, and
-/// is counted unconverged with its residual, instead of sweeping to the limit of 20,000. The
-/// pile of [`pile_scene`] without restitution, 1.5 s: measured 505 of 4,835 solves stopped
-/// so, after at most 542 sweeps, with residuals up to 2.7e-8 (every unconverged solve would
-/// otherwise take 20,000 sweeps, or converge after more than 2,000).
+/// A settling pile's solves converge: the pile of [`pile_scene`] without restitution, 1.5 s.
+/// Its faces often rest partly within the touching distance (a body tilted by less than
+/// that over its face), and the targets of such a face's points are ones one rigid motion
+/// meets (see `a_face_partly_within_the_touching_distance_is_solved_exactly`). Measured:
+/// every one of 4,835 solves converges, in at most 52 sweeps (29,089 sweeps in all);
+/// with touching points held at 0 beside speculative ones aimed at their gaps, 505 solves
+/// cycled and stopped unconverged after up to 542 sweeps (281,344 sweeps in all).
 #[test]
-fn a_cycling_solve_stops_early_and_is_counted() {
+fn a_settling_pile_converges_in_every_solve() {
     let toml = pile_scene(2, 1.5).replace("restitution = 0.2", "restitution = 0.0");
     let scene = Scene::from_toml_str(&toml, "pile.toml").unwrap();
     let mut system = scene.system().unwrap();
@@ -142,7 +142,6 @@ fn a_cycling_solve_stops_early_and_is_counted() {
     integrator.advance(&mut system, 0.0, h, steps).unwrap();
     let report = integrator.solver_report();
     println!("pile of 8 mixed 4D bodies without restitution, {steps} steps: {report:?}");
-    assert!(report.unconverged > 0, "no solve cycled: {report:?}");
-    assert!(report.max_sweeps < 2_000, "{report:?}");
-    assert!(report.worst_residual < 1e-6, "{report:?}");
+    assert_eq!(report.unconverged, 0, "{report:?}");
+    assert!(report.max_sweeps <= 100, "{report:?}");
 }

@@ -325,8 +325,16 @@ impl PairRow {
 
     /// Computes the target at the loaded states: −e u⁻ for a touching point approaching
     /// faster than `resting` (an impact), 0 below (resting), and for a point still `gap`
-    /// apart the approach that closes it within a flight of `flight`.
-    pub(crate) fn prepare_target(&mut self, states: &[BodyState], resting: f64, flight: f64) {
+    /// apart the approach that closes it within a flight of `flight`. On a `mixed` face
+    /// (see `face_run` in the solve) a touching point that is not an impact closes
+    /// its own gap within the flight as well: −gap / flight.
+    pub(crate) fn prepare_target(
+        &mut self,
+        states: &[BodyState],
+        resting: f64,
+        flight: f64,
+        mixed: bool,
+    ) {
         let un = match self.normal.dim() {
             3 => self.normal_velocity::<3>(states),
             4 => self.normal_velocity::<4>(states),
@@ -338,6 +346,8 @@ impl PairRow {
         } else {
             let target = if un < -resting {
                 -self.restitution * un
+            } else if mixed && self.gap >= -self.reach {
+                -self.gap / flight
             } else {
                 0.0
             };
@@ -421,30 +431,28 @@ impl PairRow {
         }
     }
 
-    /// [`PairRow::sweep`] (`N` as in [`dim`]).
+    /// [`PairRow::sweep`] (`N` as in [`dim`]). The relative velocity is read once: the
+    /// normal impulse's change moves it by K n Δλ, so the slip is known without reading
+    /// the bodies again, and the normal and friction changes reach them as one impulse.
     #[inline(always)]
     fn sweep_n<const N: usize>(&mut self, states: &mut [BodyState]) -> f64 {
         let n = dim::<N>(self.normal.dim());
         let nv = &self.normal.as_slice()[..n];
-        let mut change = 0.0f64;
         let (mut u_fixed, mut u_any) = ([0.0; 4], Small::new());
-        let un = self.normal_velocity::<N>(states);
-        let lambda = (self.normal_impulse + (self.target - un) * self.inv_knn).max(0.0);
-        let dl = lambda - self.normal_impulse;
-        if dl != 0.0 {
-            let (mut j_fixed, mut j_any) = ([0.0; 4], Small::new());
-            let j = scratch::<N>(&mut j_fixed, &mut j_any, n);
-            for (x, y) in j.iter_mut().zip(nv) {
-                *x = y * dl;
-            }
-            self.apply::<N>(states, j);
-            self.normal_impulse = lambda;
-        }
-        change = change.max((dl * self.knn).abs());
-        let limit = self.friction * self.normal_impulse;
-        // The slip: the relative velocity's tangent part.
         let u = scratch::<N>(&mut u_fixed, &mut u_any, n);
         self.relative_velocity_into::<N>(states, u);
+        let un = dot(nv, u);
+        let lambda = (self.normal_impulse + (self.target - un) * self.inv_knn).max(0.0);
+        let dl = lambda - self.normal_impulse;
+        self.normal_impulse = lambda;
+        let mut change = (dl * self.knn).abs();
+        if dl != 0.0 {
+            for (x, k) in u.iter_mut().zip(self.k.chunks_exact(n)) {
+                *x += dl * dot(k, nv);
+            }
+        }
+        let limit = self.friction * self.normal_impulse;
+        // The slip: the relative velocity's tangent part.
         let along = dot(nv, u);
         for (x, y) in u.iter_mut().zip(nv) {
             *x -= along * y;
@@ -463,17 +471,21 @@ impl PairRow {
             }
             friction_impulse::<N>(&self.values, &self.vectors, &self.kt, old, u, limit, new);
         }
+        // The impulse of the update: Δλ n and the friction impulse's change.
         let (mut dj_fixed, mut dj_any) = ([0.0; 4], Small::new());
         let dj = scratch::<N>(&mut dj_fixed, &mut dj_any, n);
         let mut largest = 0.0f64;
-        for ((d, x), y) in dj.iter_mut().zip(new.iter()).zip(old) {
-            *d = x - y;
-            largest = largest.max(d.abs());
+        for (((d, x), y), m) in dj.iter_mut().zip(new.iter()).zip(old).zip(nv) {
+            let t = x - y;
+            largest = largest.max(t.abs());
+            *d = t + dl * m;
         }
         if largest > 0.0 {
-            self.apply::<N>(states, dj);
             self.friction_impulse.as_mut_slice().copy_from_slice(new);
             change = change.max(largest * self.knn);
+        }
+        if largest > 0.0 || dl != 0.0 {
+            self.apply::<N>(states, dj);
         }
         change
     }
