@@ -18,7 +18,7 @@ use crate::algebra::Vector;
 use crate::dynamics::motion::body::contact_material;
 use crate::dynamics::motion::contact::ContactLog;
 use crate::dynamics::motion::detect::bodies::PairContact;
-use crate::dynamics::motion::placement::{Placements, dot};
+use crate::dynamics::motion::placement::{Placements, dot, set_vector};
 use crate::dynamics::motion::{ContactShape, HalfSpace, MovingBody};
 use body::{BodyState, LocalBody, add_inverse_mass};
 use contact_row::{
@@ -1209,7 +1209,7 @@ impl Solver {
                 // The normal turns little between solves: keep the impulse along the new one
                 // and the tangent part of the old friction impulse.
                 row.normal_impulse = last.normal_impulse;
-                row.friction_impulse.clone_from(&last.friction_impulse);
+                set_vector(&mut row.friction_impulse, last.friction_impulse.as_slice());
                 let along = row.normal.dot(&row.friction_impulse);
                 row.friction_impulse -= &(&row.normal * along);
             }

@@ -209,21 +209,28 @@ impl PairRow {
             (self.mass_at, self.own_at) = (at, generations);
             return false;
         };
-        self.k.clone_from(&last.k);
-        self.kt.clone_from(&last.kt);
-        self.values.clone_from(&last.values);
-        self.vectors.clone_from(&last.vectors);
-        self.kinv.clone_from(&last.kinv);
+        // Copied as slices: `clone_from` onto the emptied rooms pushes number by number.
+        for (to, from) in [
+            (&mut self.k, &last.k),
+            (&mut self.kt, &last.kt),
+            (&mut self.values, &last.values),
+            (&mut self.vectors, &last.vectors),
+            (&mut self.kinv, &last.kinv),
+        ] {
+            to.clear();
+            to.extend_from_slice(from);
+        }
         (self.knn, self.inv_knn) = (last.knn, last.inv_knn);
-        self.mass_geometry.clone_from(&last.mass_geometry);
+        self.mass_geometry.clear();
+        self.mass_geometry.extend_from_slice(&last.mass_geometry);
         self.mass_at = last.mass_at;
         self.mass_ready = true;
         self.own_at = generations;
         if last.own_at != generations {
             return false;
         }
-        self.own_a.clone_from(&last.own_a);
-        self.own_b.clone_from(&last.own_b);
+        set_vector(&mut self.own_a, last.own_a.as_slice());
+        set_vector(&mut self.own_b, last.own_b.as_slice());
         true
     }
 
