@@ -935,23 +935,14 @@ fn tilted_face_run(spec: &str, on_slab: bool, friction: f64) -> TiltedFace {
     let ContactShape::Vertices(corners) = &shape else {
         unreachable!("a box has vertices")
     };
-    let mut halves = vec![2.0; n];
-    halves[n - 1] = 0.5;
-    let slab_corners: Vec<Vector> = (0..1usize << n)
-        .map(|bits| {
-            let c: Vec<f64> = (0..n)
-                .map(|i| {
-                    if bits >> i & 1 == 1 {
-                        halves[i]
-                    } else {
-                        -halves[i]
-                    }
-                })
-                .collect();
-            Vector::from_components(&c).unwrap()
-        })
-        .collect();
-    let slab_shape = ContactShape::Vertices(slab_corners);
+    // The slab: half-lengths 2 along the floor, 0.5 across.
+    let mut halves = vec!["2"; n];
+    halves[n - 1] = "0.5";
+    let slab_shape = ContactShape::from_geometry(
+        &parse_body(&format!("cuboid:{}", halves.join(",")))
+            .unwrap()
+            .geometry,
+    );
     let radius = shape.radius();
     let touching = if on_slab {
         1e-6 * (radius + slab_shape.radius())
