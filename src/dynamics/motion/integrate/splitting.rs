@@ -7,7 +7,7 @@ use crate::dynamics::integrate::{axpy, free_flight};
 use crate::dynamics::motion::detect::bodies::Touching;
 use crate::dynamics::motion::forques::Anchor;
 use crate::dynamics::motion::placement::Placements;
-use crate::dynamics::motion::solve::{Solver, SolverReport};
+use crate::dynamics::motion::solve::{Solver, SolverReport, plane_sweep};
 use crate::dynamics::motion::{ContactShape, MotionError, MovingBody, System, Wrench};
 
 /// The symplectic Strang splitting of H = T + V: half a kick by the forques (p += ½h F,
@@ -1056,11 +1056,7 @@ fn for_each_candidate(
         let body_sweep = sweeps.get(i).copied().unwrap_or(0.0);
         for (j, plane) in system.half_spaces().iter().enumerate() {
             let base = plane.distance(b.position());
-            let sweep = if plane.restitution() == 0.0 {
-                body_sweep
-            } else {
-                0.0
-            };
+            let sweep = plane_sweep(plane, body_sweep, false);
             placed.candidate_heights(shape, (j, plane.normal()), |_, h| {
                 visit(k, base + h, reach, sweep);
                 k += 1;

@@ -54,6 +54,18 @@ pub(crate) use joint_row::JointRow;
 pub(crate) use pair_row::{MassAt, PairRow};
 pub(crate) use soft::{FoundPoint, NO_BODY, SoftSolver, Softness};
 
+/// How far beyond its touching distance a body of sweep `sweep` (how far its points may move
+/// in the flight) reaches against `plane`: its sweep against a plane of restitution 0, where
+/// an impact is held by a speculative contact, or against every plane with `every_plane`;
+/// else none (an impact there is located, as restitution acts on its speed).
+pub(crate) fn plane_sweep(plane: &HalfSpace, sweep: f64, every_plane: bool) -> f64 {
+    if every_plane || plane.restitution() == 0.0 {
+        sweep
+    } else {
+        0.0
+    }
+}
+
 /// The rows of one face at the start of `rows` (those whose `key` is the first row's: the
 /// points of one body on one half-space, or of one pair of bodies) and whether the face is
 /// *mixed*: some of its points touch and some are speculative (`speculative`).
@@ -333,11 +345,7 @@ impl Solver {
             for (k, plane) in half_spaces.iter().enumerate() {
                 let nrm = plane.normal();
                 let base = plane.distance(b.position());
-                let reach = if sweep_bouncing || plane.restitution() == 0.0 {
-                    touching + sweep
-                } else {
-                    touching
-                };
+                let reach = touching + plane_sweep(plane, sweep, sweep_bouncing);
                 let mut put = |index: usize, p: &Vector, r: &[f64], gap: f64| {
                     // The target is set when the solve starts, from the loaded velocities.
                     let target = 0.0;
