@@ -73,7 +73,8 @@ impl Softness {
     }
 }
 
-/// One contact point of the soft solve (its vectors are in [`SoftSolver::data`]).
+/// One contact point of the soft solve (its vectors are in [`SoftSolver::data`] and
+/// [`SoftSolver::cold`]).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct SoftRow {
     /// The two bodies (`a` is [`NO_BODY`] for a half-space).
@@ -99,20 +100,17 @@ pub(crate) struct SoftRow {
     fixed: bool,
 }
 
-/// Where a row's vectors lie in [`SoftSolver::data`] (N = n, M = n(n−1)/2, T = n − 1).
+/// Where a row's vectors lie (N = n, M = n(n−1)/2, T = n − 1): what the passes read in
+/// [`SoftSolver::data`] (`stride` numbers a row), the rest in [`SoftSolver::cold`]
+/// (`cold_stride`). The passes then stream only their own numbers: a pile of a thousand
+/// bodies has rows of several megabytes, beyond the processor's nearer caches.
 #[derive(Clone, Copy, Debug, Default)]
 struct Layout {
     n: usize,
     m: usize,
-    /// n, r_a, r_b, r̂_a, r̂_b, n̂ (N each), the friction impulse's coordinates on the
-    /// tangent directions (T, in a slot of N).
+    /// In `data`: n (N), the friction impulse's coordinates on the tangent directions (T,
+    /// in a slot of N).
     normal: usize,
-    ra: usize,
-    rb: usize,
-    own_a: usize,
-    own_b: usize,
-    /// The normal in the principal axes of body a (for a manifold kept from step to step).
-    own_normal: usize,
     tangent_impulse: usize,
     /// c_a, c_b, w_a, w_b of the normal (M each).
     arms: usize,
@@ -121,9 +119,17 @@ struct Layout {
     tangents: usize,
     tangent_mass: usize,
     tangent_arms: usize,
+    stride: usize,
+    /// In `cold`: r_a, r_b, r̂_a, r̂_b (N each).
+    ra: usize,
+    rb: usize,
+    own_a: usize,
+    own_b: usize,
+    /// The normal in the principal axes of body a (for a manifold kept from step to step).
+    own_normal: usize,
     /// The friction impulse's coordinates summed over the step's substeps (T).
     total_tangent: usize,
-    stride: usize,
+    cold_stride: usize,
 }
 
 impl Layout {
@@ -131,33 +137,27 @@ impl Layout {
     fn new(n: usize) -> Layout {
         let m = n * (n - 1) / 2;
         let t = n - 1;
-        let normal = 0;
-        let ra = n;
-        let rb = 2 * n;
-        let own_a = 3 * n;
-        let own_b = 4 * n;
-        let own_normal = 5 * n;
-        let tangent_impulse = 6 * n;
-        let arms = 7 * n;
+        let arms = 2 * n;
         let tangents = arms + 4 * m;
         let tangent_mass = tangents + t * n;
         let tangent_arms = tangent_mass + t;
         Layout {
             n,
             m,
-            normal,
-            ra,
-            rb,
-            own_a,
-            own_b,
-            own_normal,
-            tangent_impulse,
+            normal: 0,
+            tangent_impulse: n,
             arms,
             tangents,
             tangent_mass,
             tangent_arms,
-            total_tangent: tangent_arms + 4 * t * m,
-            stride: tangent_arms + 4 * t * m + t,
+            stride: tangent_arms + 4 * t * m,
+            ra: 0,
+            rb: n,
+            own_a: 2 * n,
+            own_b: 3 * n,
+            own_normal: 4 * n,
+            total_tangent: 5 * n,
+            cold_stride: 5 * n + t,
         }
     }
 }
@@ -201,9 +201,11 @@ pub(crate) struct FoundPoint<'a> {
 pub(crate) struct SoftSolver {
     rows: Vec<SoftRow>,
     data: Vec<f64>,
+    cold: Vec<f64>,
     /// The last step's rows and vectors, to start from (listed by (a, b, key) in `order`).
     old_rows: Vec<SoftRow>,
     old_data: Vec<f64>,
+    old_cold: Vec<f64>,
     layout: Layout,
     states: Vec<BodyState>,
     /// Each body's position at the start of the step, and its attitude now (Q, N × N).
@@ -236,11 +238,13 @@ impl SoftSolver {
         }
         std::mem::swap(&mut self.rows, &mut self.old_rows);
         std::mem::swap(&mut self.data, &mut self.old_data);
+        std::mem::swap(&mut self.cold, &mut self.old_cold);
         std::mem::swap(&mut self.separations, &mut self.old_separations);
         self.old_separations.resize(self.old_rows.len(), 0.0);
         self.old_sort();
         self.rows.clear();
         self.data.clear();
+        self.cold.clear();
         self.states
             .resize_with(bodies.len(), || BodyState::empty(n));
         self.start.clear();
@@ -276,8 +280,10 @@ impl SoftSolver {
         let n = dim::<N>(l.n);
         let at = self.data.len();
         self.data.resize(at + l.stride, 0.0);
-        let d = &mut self.data[at..at + l.stride];
-        d[l.normal..l.normal + n].copy_from_slice(&p.normal[..n]);
+        self.data[at + l.normal..at + l.normal + n].copy_from_slice(&p.normal[..n]);
+        let at = self.cold.len();
+        self.cold.resize(at + l.cold_stride, 0.0);
+        let d = &mut self.cold[at..at + l.cold_stride];
         if p.a != NO_BODY {
             let q = &self.frames[p.a * n * n..(p.a + 1) * n * n];
             for k in 0..n {
@@ -344,6 +350,10 @@ impl SoftSolver {
             self.data
                 .extend_from_slice(&self.old_data[k * l.stride..(k + 1) * l.stride]);
             let d = &mut self.data[at..at + l.stride];
+            let at = self.cold.len();
+            self.cold
+                .extend_from_slice(&self.old_cold[k * l.cold_stride..(k + 1) * l.cold_stride]);
+            let c = &mut self.cold[at..at + l.cold_stride];
             // The point midway between the two material points, as detection gives it: both
             // bodies take the impulse there, so that it exerts no torque about any origin.
             let (xa, xb) = (
@@ -355,20 +365,20 @@ impl SoftSolver {
                 &self.frames[b * n * n..(b + 1) * n * n],
             );
             for i in 0..n {
-                let pa = xa[i] + dot(&qa[i * n..(i + 1) * n], &d[l.own_a..l.own_a + n]);
-                let pb = xb[i] + dot(&qb[i * n..(i + 1) * n], &d[l.own_b..l.own_b + n]);
+                let pa = xa[i] + dot(&qa[i * n..(i + 1) * n], &c[l.own_a..l.own_a + n]);
+                let pb = xb[i] + dot(&qb[i * n..(i + 1) * n], &c[l.own_b..l.own_b + n]);
                 let p = 0.5 * (pa + pb);
-                d[l.ra + i] = p - xa[i];
-                d[l.rb + i] = p - xb[i];
+                c[l.ra + i] = p - xa[i];
+                c[l.rb + i] = p - xb[i];
             }
             for (q, offset, own) in [(qa, l.ra, l.own_a), (qb, l.rb, l.own_b)] {
                 for k in 0..n {
-                    d[own + k] = (0..n).map(|i| q[i * n + k] * d[offset + i]).sum();
+                    c[own + k] = (0..n).map(|i| q[i * n + k] * c[offset + i]).sum();
                 }
             }
             let q = &self.frames[a * n * n..(a + 1) * n * n];
             for i in 0..n {
-                d[l.normal + i] = dot(&q[i * n..(i + 1) * n], &d[l.own_normal..l.own_normal + n]);
+                d[l.normal + i] = dot(&q[i * n..(i + 1) * n], &c[l.own_normal..l.own_normal + n]);
             }
             self.rows.push(SoftRow {
                 gap: self.old_separations[k],
@@ -460,6 +470,7 @@ impl SoftSolver {
         let mut old_pair = (NO_BODY, NO_BODY, 0, 0);
         for (k, row) in self.rows.iter_mut().enumerate() {
             let d = &mut self.data[k * l.stride..(k + 1) * l.stride];
+            let c = &mut self.cold[k * l.cold_stride..(k + 1) * l.cold_stride];
             // Tangent directions: the columns of the Householder reflection that takes the
             // axis nearest to n onto n, except that one.
             let normal = &d[l.normal..l.normal + n];
@@ -484,12 +495,12 @@ impl SoftSolver {
             let fixed_a = row.a == NO_BODY || bodies[row.a].is_fixed();
             row.fixed = fixed_a || bodies[row.b].is_fixed();
             let ends = (row.a, row.b);
-            let knn = set_arms::<N>(&self.states, bodies, ends, d, &l, l.normal, l.arms);
+            let knn = set_arms::<N>(&self.states, bodies, ends, (d, c), &l, l.normal, l.arms);
             row.normal_mass = if knn > 0.0 { 1.0 / knn } else { 0.0 };
             for t in 0..n - 1 {
                 let arms = l.tangent_arms + 4 * t * l.m;
                 let dir = l.tangents + t * n;
-                let ktt = set_arms::<N>(&self.states, bodies, ends, d, &l, dir, arms);
+                let ktt = set_arms::<N>(&self.states, bodies, ends, (d, c), &l, dir, arms);
                 d[l.tangent_mass + t] = if ktt > 0.0 { 1.0 / ktt } else { 0.0 };
             }
             // The same point in the last step: its impulses, the friction impulse in the
@@ -530,7 +541,7 @@ impl SoftSolver {
             row.approach = row_velocity::<N>(&self.flat, row, d, &l, (l.normal, l.arms));
             row.max_normal_impulse = 0.0;
             row.total_normal_impulse = 0.0;
-            d[l.total_tangent..l.total_tangent + n - 1].fill(0.0);
+            c[l.total_tangent..l.total_tangent + n - 1].fill(0.0);
         }
     }
 
@@ -650,9 +661,10 @@ impl SoftSolver {
         let l = self.layout;
         for (k, row) in self.rows.iter_mut().enumerate() {
             row.total_normal_impulse += row.normal_impulse;
-            let d = &mut self.data[k * l.stride..(k + 1) * l.stride];
+            let d = &self.data[k * l.stride..(k + 1) * l.stride];
+            let c = &mut self.cold[k * l.cold_stride..(k + 1) * l.cold_stride];
             for t in 0..l.n - 1 {
-                d[l.total_tangent + t] += d[l.tangent_impulse + t];
+                c[l.total_tangent + t] += d[l.tangent_impulse + t];
             }
         }
         if last || !carry {
@@ -702,6 +714,7 @@ impl SoftSolver {
                 continue;
             }
             let d = &self.data[k * l.stride..(k + 1) * l.stride];
+            let c = &self.cold[k * l.cold_stride..(k + 1) * l.cold_stride];
             let f = friction.as_mut_slice();
             let u = slip.as_mut_slice();
             f.fill(0.0);
@@ -709,7 +722,7 @@ impl SoftSolver {
             for t in 0..n - 1 {
                 let (dir, arms) = (l.tangents + t * n, l.tangent_arms + 4 * t * l.m);
                 let (along, vt) = (
-                    d[l.total_tangent + t],
+                    c[l.total_tangent + t],
                     row_velocity::<0>(&self.flat, row, d, &l, (dir, arms)),
                 );
                 for i in 0..n {
@@ -737,7 +750,7 @@ impl SoftSolver {
                 let q = &self.frames[body * n * n..(body + 1) * n * n];
                 let x = &self.positions[body * n..(body + 1) * n];
                 for i in 0..n {
-                    p[i] += 0.5 * (x[i] + dot(&q[i * n..(i + 1) * n], &d[own..own + n]));
+                    p[i] += 0.5 * (x[i] + dot(&q[i * n..(i + 1) * n], &c[own..own + n]));
                 }
             }
             normal.as_mut_slice().copy_from_slice(nrm);
@@ -766,8 +779,8 @@ impl SoftSolver {
         let l = layout::<N>(&self.layout);
         let n = dim::<N>(l.n);
         let row = &self.rows[k];
-        let d = &self.data[k * l.stride..(k + 1) * l.stride];
-        let nrm = &d[l.normal..l.normal + n];
+        let nrm = &self.data[k * l.stride + l.normal..k * l.stride + l.normal + n];
+        let c = &self.cold[k * l.cold_stride..(k + 1) * l.cold_stride];
         let mut s = row.gap;
         for (sign, body, offset, own) in [(-1.0, row.a, l.ra, l.own_a), (1.0, row.b, l.rb, l.own_b)]
         {
@@ -777,7 +790,7 @@ impl SoftSolver {
             let q = &self.frames[body * n * n..(body + 1) * n * n];
             let x0 = &self.start[body * n..(body + 1) * n];
             let x = &self.positions[body * n..(body + 1) * n];
-            let (own, offset) = (&d[own..own + n], &d[offset..offset + n]);
+            let (own, offset) = (&c[own..own + n], &c[offset..offset + n]);
             let mut moved = 0.0;
             for i in 0..n {
                 let r_now: f64 = dot(&q[i * n..(i + 1) * n], own);
@@ -871,13 +884,14 @@ impl SoftSolver {
 }
 
 /// Sets the arms c = r ∧ e and w = I⁻¹ c of both ends of a row for the direction at `dir`
-/// in its vectors `d` (at `arms`: c_a, c_b, w_a, w_b), and returns eᵀ K e.
+/// in its vectors `d` (at `arms`: c_a, c_b, w_a, w_b), its offsets r in `cold`, and
+/// returns eᵀ K e.
 #[inline(always)]
 fn set_arms<const N: usize>(
     states: &[BodyState],
     bodies: &[MovingBody],
     (a, b): (usize, usize),
-    d: &mut [f64],
+    (d, cold): (&mut [f64], &[f64]),
     l: &Layout,
     dir: usize,
     arms: usize,
@@ -895,7 +909,7 @@ fn set_arms<const N: usize>(
         let mut p = c;
         for i in 0..n {
             for j in i + 1..n {
-                d[p] = d[offset + i] * d[dir + j] - d[offset + j] * d[dir + i];
+                d[p] = cold[offset + i] * d[dir + j] - cold[offset + j] * d[dir + i];
                 p += 1;
             }
         }
