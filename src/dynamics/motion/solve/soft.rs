@@ -98,12 +98,16 @@ pub(crate) struct SoftRow {
     total_normal_impulse: f64,
     /// True if the contact is with a fixed body or a half-space (a stiffer spring).
     fixed: bool,
+    /// Where the row's numbers start in [`SoftSolver::data`] ([`Layout::len`] of them).
+    at: usize,
 }
 
 /// Where a row's vectors lie (N = n, M = n(n−1)/2, T = n − 1): what the passes read in
-/// [`SoftSolver::data`] (`stride` numbers a row), the rest in [`SoftSolver::cold`]
+/// [`SoftSolver::data`] ([`Layout::len`] numbers a row), the rest in [`SoftSolver::cold`]
 /// (`cold_stride`). The passes then stream only their own numbers: a pile of a thousand
-/// bodies has rows of several megabytes, beyond the processor's nearer caches.
+/// bodies has rows of several megabytes, beyond the processor's nearer caches. Body a's
+/// arms come last, so that a row with a half-space, which has no body a, stops before
+/// them.
 #[derive(Clone, Copy, Debug, Default)]
 struct Layout {
     n: usize,
@@ -112,13 +116,14 @@ struct Layout {
     /// in a slot of N).
     normal: usize,
     tangent_impulse: usize,
-    /// c_a, c_b, w_a, w_b of the normal (M each).
-    arms: usize,
-    /// T tangent directions (N each), their 1/(tᵀ K t) (T), and their c_a, c_b, w_a, w_b
-    /// (4 M each).
+    /// T tangent directions (N each) and their 1/(tᵀ K t) (T).
     tangents: usize,
     tangent_mass: usize,
+    /// c_b, w_b of the normal, then of each tangent (2M each); a direction's c_a, w_a lie
+    /// `a_arms` further on, after those of every direction.
+    arms: usize,
     tangent_arms: usize,
+    a_arms: usize,
     stride: usize,
     /// In `cold`: r_a, r_b, r̂_a, r̂_b (N each).
     ra: usize,
@@ -137,20 +142,21 @@ impl Layout {
     fn new(n: usize) -> Layout {
         let m = n * (n - 1) / 2;
         let t = n - 1;
-        let arms = 2 * n;
-        let tangents = arms + 4 * m;
+        let tangents = 2 * n;
         let tangent_mass = tangents + t * n;
-        let tangent_arms = tangent_mass + t;
+        let arms = tangent_mass + t;
+        let a_arms = 2 * m * (1 + t);
         Layout {
             n,
             m,
             normal: 0,
             tangent_impulse: n,
-            arms,
             tangents,
             tangent_mass,
-            tangent_arms,
-            stride: tangent_arms + 4 * t * m,
+            arms,
+            tangent_arms: arms + 2 * m,
+            a_arms,
+            stride: arms + 2 * a_arms,
             ra: 0,
             rb: n,
             own_a: 2 * n,
@@ -160,6 +166,37 @@ impl Layout {
             cold_stride: 5 * n + t,
         }
     }
+
+    /// The numbers of a row in `data`: without body a's arms for a half-space.
+    #[inline(always)]
+    fn len(&self, a: usize) -> usize {
+        if a == NO_BODY {
+            self.stride - self.a_arms
+        } else {
+            self.stride
+        }
+    }
+
+    /// The b arms (c_b, w_b) of the tangent `t`.
+    #[inline(always)]
+    fn tangent(&self, t: usize) -> (usize, usize) {
+        (
+            self.tangents + t * self.n,
+            self.tangent_arms + 2 * t * self.m,
+        )
+    }
+}
+
+/// The numbers of `row` in `data`.
+#[inline(always)]
+fn numbers<'a>(data: &'a [f64], row: &SoftRow, l: &Layout) -> &'a [f64] {
+    &data[row.at..row.at + l.len(row.a)]
+}
+
+/// The numbers of `row` in `data`, to change.
+#[inline(always)]
+fn numbers_mut<'a>(data: &'a mut [f64], row: &SoftRow, l: &Layout) -> &'a mut [f64] {
+    &mut data[row.at..row.at + l.len(row.a)]
 }
 
 /// The loaded bodies' velocities (v, then ω in space) as the passes leave them and as they
@@ -278,9 +315,9 @@ impl SoftSolver {
     fn push_n<const N: usize>(&mut self, p: &FoundPoint<'_>) {
         let l = layout::<N>(&self.layout);
         let n = dim::<N>(l.n);
-        let at = self.data.len();
-        self.data.resize(at + l.stride, 0.0);
-        self.data[at + l.normal..at + l.normal + n].copy_from_slice(&p.normal[..n]);
+        let start = self.data.len();
+        self.data.resize(start + l.len(p.a), 0.0);
+        self.data[start + l.normal..start + l.normal + n].copy_from_slice(&p.normal[..n]);
         let at = self.cold.len();
         self.cold.resize(at + l.cold_stride, 0.0);
         let d = &mut self.cold[at..at + l.cold_stride];
@@ -317,6 +354,7 @@ impl SoftSolver {
             max_normal_impulse: 0.0,
             total_normal_impulse: 0.0,
             fixed: false,
+            at: start,
         });
     }
 
@@ -346,10 +384,10 @@ impl SoftSolver {
         for at in first..first + count {
             let k = self.order[at];
             let old = self.old_rows[k];
-            let at = self.data.len();
+            let start = self.data.len();
             self.data
-                .extend_from_slice(&self.old_data[k * l.stride..(k + 1) * l.stride]);
-            let d = &mut self.data[at..at + l.stride];
+                .extend_from_slice(numbers(&self.old_data, &old, &l));
+            let d = &mut self.data[start..];
             let at = self.cold.len();
             self.cold
                 .extend_from_slice(&self.old_cold[k * l.cold_stride..(k + 1) * l.cold_stride]);
@@ -382,6 +420,7 @@ impl SoftSolver {
             }
             self.rows.push(SoftRow {
                 gap: self.old_separations[k],
+                at: start,
                 ..old
             });
         }
@@ -469,7 +508,7 @@ impl SoftSolver {
         // them by its key.
         let mut old_pair = (NO_BODY, NO_BODY, 0, 0);
         for (k, row) in self.rows.iter_mut().enumerate() {
-            let d = &mut self.data[k * l.stride..(k + 1) * l.stride];
+            let d = numbers_mut(&mut self.data, row, &l);
             let c = &mut self.cold[k * l.cold_stride..(k + 1) * l.cold_stride];
             // Tangent directions: the columns of the Householder reflection that takes the
             // axis nearest to n onto n, except that one.
@@ -498,8 +537,7 @@ impl SoftSolver {
             let knn = set_arms::<N>(&self.states, bodies, ends, (d, c), &l, l.normal, l.arms);
             row.normal_mass = if knn > 0.0 { 1.0 / knn } else { 0.0 };
             for t in 0..n - 1 {
-                let arms = l.tangent_arms + 4 * t * l.m;
-                let dir = l.tangents + t * n;
+                let (dir, arms) = l.tangent(t);
                 let ktt = set_arms::<N>(&self.states, bodies, ends, (d, c), &l, dir, arms);
                 d[l.tangent_mass + t] = if ktt > 0.0 { 1.0 / ktt } else { 0.0 };
             }
@@ -525,7 +563,7 @@ impl SoftSolver {
             {
                 let old = &self.old_rows[at];
                 row.normal_impulse = old.normal_impulse;
-                let od = &self.old_data[at * l.stride..(at + 1) * l.stride];
+                let od = numbers(&self.old_data, old, &l);
                 // J_t = Σ τ_t t_t on the old directions, then its coordinates on the new ones
                 // (which drops its part along the new normal).
                 for t in 0..n - 1 {
@@ -598,17 +636,20 @@ impl SoftSolver {
         // Each row's impulses summed first, so that its bodies' velocities are read and
         // written once.
         let mut fixed = [0.0; 16];
-        for (k, row) in self.rows.iter().enumerate() {
-            let d = &self.data[k * l.stride..(k + 1) * l.stride];
+        for row in &self.rows {
+            let d = numbers(&self.data, row, &l);
             let sum = sum_room::<N>(&mut fixed, &mut self.scratch[n..], &l);
-            let mut any = add_impulse::<N>(sum, d, &l, l.normal, l.arms, row.normal_impulse);
+            let has_a = row.a != NO_BODY;
+            let normal = (l.normal, l.arms);
+            let mut any = add_impulse::<N>(sum, d, &l, normal, has_a, row.normal_impulse);
             for t in 0..n - 1 {
-                let (dir, arms) = (l.tangents + t * n, l.tangent_arms + 4 * t * l.m);
-                any |= add_impulse::<N>(sum, d, &l, dir, arms, d[l.tangent_impulse + t]);
+                let tangent = l.tangent(t);
+                any |= add_impulse::<N>(sum, d, &l, tangent, has_a, d[l.tangent_impulse + t]);
             }
             if any {
+                let (e, w) = sum[..n + 2 * l.m].split_at(n);
                 Ends::of(&mut self.flat, (row.a, row.b), n + l.m)
-                    .give::<N>((&sum[..n], &sum[n..]), 1.0);
+                    .give::<N>((e, w.split_at(l.m)), 1.0);
             }
         }
         for _ in 0..passes {
@@ -661,7 +702,7 @@ impl SoftSolver {
         let l = self.layout;
         for (k, row) in self.rows.iter_mut().enumerate() {
             row.total_normal_impulse += row.normal_impulse;
-            let d = &self.data[k * l.stride..(k + 1) * l.stride];
+            let d = numbers(&self.data, row, &l);
             let c = &mut self.cold[k * l.cold_stride..(k + 1) * l.cold_stride];
             for t in 0..l.n - 1 {
                 c[l.total_tangent + t] += d[l.tangent_impulse + t];
@@ -713,14 +754,14 @@ impl SoftSolver {
             if row.total_normal_impulse == 0.0 && self.separations[k] > 0.0 {
                 continue;
             }
-            let d = &self.data[k * l.stride..(k + 1) * l.stride];
+            let d = numbers(&self.data, row, &l);
             let c = &self.cold[k * l.cold_stride..(k + 1) * l.cold_stride];
             let f = friction.as_mut_slice();
             let u = slip.as_mut_slice();
             f.fill(0.0);
             u.fill(0.0);
             for t in 0..n - 1 {
-                let (dir, arms) = (l.tangents + t * n, l.tangent_arms + 4 * t * l.m);
+                let (dir, arms) = l.tangent(t);
                 let (along, vt) = (
                     c[l.total_tangent + t],
                     row_velocity::<0>(&self.flat, row, d, &l, (dir, arms)),
@@ -779,7 +820,7 @@ impl SoftSolver {
         let l = layout::<N>(&self.layout);
         let n = dim::<N>(l.n);
         let row = &self.rows[k];
-        let nrm = &self.data[k * l.stride + l.normal..k * l.stride + l.normal + n];
+        let nrm = &self.data[row.at + l.normal..row.at + l.normal + n];
         let c = &self.cold[k * l.cold_stride..(k + 1) * l.cold_stride];
         let mut s = row.gap;
         for (sign, body, offset, own) in [(-1.0, row.a, l.ra, l.own_a), (1.0, row.b, l.rb, l.own_b)]
@@ -849,12 +890,12 @@ impl SoftSolver {
                     .count();
             let mut pair = Ends::copy(flat, (a, b), stride, (room(), room()));
             for k in start..end {
-                let d = &data[k * l.stride..(k + 1) * l.stride];
+                let d = numbers(data, &rows[k], &l);
                 normal_update::<N, V>(&mut rows[k], d, &l, &mut pair, separations[k], bias);
             }
-            for k in start..end {
-                let d = &mut data[k * l.stride..(k + 1) * l.stride];
-                friction_update::<N, V>(&rows[k], d, &l, &mut pair, scratch);
+            for row in &rows[start..end] {
+                let d = numbers_mut(data, row, &l);
+                friction_update::<N, V>(row, d, &l, &mut pair, scratch);
             }
             pair.write_back(flat, (a, b));
             start = end;
@@ -871,7 +912,7 @@ impl SoftSolver {
             {
                 continue;
             }
-            let d = &self.data[k * l.stride..(k + 1) * l.stride];
+            let d = numbers(&self.data, row, &l);
             let mut pair = Ends::of(&mut self.flat, (row.a, row.b), l.n + l.m);
             let vn = pair.velocity::<N>(d, &l, l.normal, l.arms);
             let impulse = -row.normal_mass * (vn + row.restitution * row.approach);
@@ -884,8 +925,8 @@ impl SoftSolver {
 }
 
 /// Sets the arms c = r ∧ e and w = I⁻¹ c of both ends of a row for the direction at `dir`
-/// in its vectors `d` (at `arms`: c_a, c_b, w_a, w_b), its offsets r in `cold`, and
-/// returns eᵀ K e.
+/// in its vectors `d` (c_b, w_b at `arms`, c_a, w_a [`Layout::a_arms`] further on), its
+/// offsets r in `cold`, and returns eᵀ K e.
 #[inline(always)]
 fn set_arms<const N: usize>(
     states: &[BodyState],
@@ -904,7 +945,8 @@ fn set_arms<const N: usize>(
             continue;
         }
         let st = &states[body];
-        let (c, w) = (arms + side * m, arms + (2 + side) * m);
+        let c = if side == 0 { arms + l.a_arms } else { arms };
+        let w = c + m;
         // c = r ∧ e, in the order of the planes (i < j), and w = I⁻¹ c.
         let mut p = c;
         for i in 0..n {
@@ -970,7 +1012,7 @@ fn friction_update<const N: usize, V: AsRef<[f64]> + AsMut<[f64]>>(
         total[..n - 1].fill(0.0);
     } else {
         for t in 0..n - 1 {
-            let (dir, arms) = (l.tangents + t * n, l.tangent_arms + 4 * t * l.m);
+            let (dir, arms) = l.tangent(t);
             let vt = pair.velocity::<N>(d, l, dir, arms);
             total[t] = d[l.tangent_impulse + t] - d[l.tangent_mass + t] * vt;
         }
@@ -986,13 +1028,14 @@ fn friction_update<const N: usize, V: AsRef<[f64]> + AsMut<[f64]>>(
     let sum = sum_room::<N>(&mut fixed, rest, l);
     let mut any = false;
     for t in 0..n - 1 {
-        let (dir, arms) = (l.tangents + t * n, l.tangent_arms + 4 * t * l.m);
         let change = total[t] - d[l.tangent_impulse + t];
-        any |= add_impulse::<N>(sum, d, l, dir, arms, change);
+        any |= add_impulse::<N>(sum, d, l, l.tangent(t), pair.has_a, change);
         d[l.tangent_impulse + t] = total[t];
     }
     if any {
-        pair.give::<N>((&sum[..n], &sum[n..]), 1.0);
+        let m = n * (n - 1) / 2;
+        let (e, w) = sum[..n + 2 * m].split_at(n);
+        pair.give::<N>((e, w.split_at(m)), 1.0);
     }
 }
 
@@ -1016,15 +1059,16 @@ fn sum_room<'a, const N: usize>(
     room
 }
 
-/// Adds the impulse λ e (e at `dir` in the row's vectors `d`, its arms at `arms`) to `sum`
-/// ([`sum_room`]): λ e, then λ w_a and λ w_b. Returns whether λ ≠ 0.
+/// Adds the impulse λ e (e at `dir` in the row's vectors `d`, its b arms at `arms`) to
+/// `sum` ([`sum_room`]): λ e, then λ w_a (if the row has a body a) and λ w_b. Returns
+/// whether λ ≠ 0.
 #[inline(always)]
 fn add_impulse<const N: usize>(
     sum: &mut [f64],
     d: &[f64],
     l: &Layout,
-    dir: usize,
-    arms: usize,
+    (dir, arms): (usize, usize),
+    has_a: bool,
     lambda: f64,
 ) -> bool {
     if lambda == 0.0 {
@@ -1036,14 +1080,22 @@ fn add_impulse<const N: usize>(
     for (s, e) in linear.iter_mut().zip(&d[dir..dir + n]) {
         *s += lambda * e;
     }
-    for (s, w) in angular.iter_mut().zip(&d[arms + 2 * m..arms + 4 * m]) {
+    let (to_a, to_b) = angular.split_at_mut(m);
+    for (s, w) in to_b.iter_mut().zip(&d[arms + m..arms + 2 * m]) {
         *s += lambda * w;
+    }
+    if has_a {
+        let wa = arms + l.a_arms + m;
+        for (s, w) in to_a.iter_mut().zip(&d[wa..wa + m]) {
+            *s += lambda * w;
+        }
     }
     true
 }
 
 /// The relative velocity of a row's two points along the direction at `dir` in its vectors
-/// `d`, whose arms start at `arms` (c_a, c_b, w_a, w_b), given the bodies' velocities (v,
+/// `d`, whose b arms start at `arms` (c_b, w_b; c_a, w_a [`Layout::a_arms`] further on),
+/// given the bodies' velocities (v,
 /// then ω in space; none for a half-space); `N` as in [`dim`].
 #[inline(always)]
 fn point_velocity<const N: usize>(
@@ -1056,10 +1108,11 @@ fn point_velocity<const N: usize>(
     let m = n * (n - 1) / 2;
     let e = &d[dir..dir + n];
     let xb = &xb[..n + m];
-    let mut u = dot(e, &xb[..n]) + dot(&d[arms + m..arms + 2 * m], &xb[n..]);
+    let mut u = dot(e, &xb[..n]) + dot(&d[arms..arms + m], &xb[n..]);
     if let Some(xa) = xa {
         let xa = &xa[..n + m];
-        u -= dot(e, &xa[..n]) + dot(&d[arms..arms + m], &xa[n..]);
+        let ca = arms + l.a_arms;
+        u -= dot(e, &xa[..n]) + dot(&d[ca..ca + m], &xa[n..]);
     }
     u
 }
@@ -1151,7 +1204,7 @@ impl<V: AsRef<[f64]> + AsMut<[f64]>> Ends<V> {
     }
 
     /// The relative velocity of the row's two points along the direction at `dir` in its
-    /// vectors `d`, whose arms start at `arms` (c_a, c_b, w_a, w_b); `N` as in [`dim`].
+    /// vectors `d`, whose b arms start at `arms`; `N` as in [`dim`].
     #[inline(always)]
     fn velocity<const N: usize>(&self, d: &[f64], l: &Layout, dir: usize, arms: usize) -> f64 {
         let xa = self.has_a.then_some(self.a.as_ref());
@@ -1159,7 +1212,7 @@ impl<V: AsRef<[f64]> + AsMut<[f64]>> Ends<V> {
     }
 
     /// Gives body b the impulse λ e at its point and body a the opposite (e at `dir` in
-    /// the row's vectors `d`, its arms at `arms`); `N` as in [`dim`].
+    /// the row's vectors `d`, its b arms at `arms`); `N` as in [`dim`].
     #[inline(always)]
     fn apply<const N: usize>(
         &mut self,
@@ -1174,27 +1227,34 @@ impl<V: AsRef<[f64]> + AsMut<[f64]>> Ends<V> {
         }
         let n = dim::<N>(l.n);
         let m = n * (n - 1) / 2;
-        let w = &d[arms + 2 * m..arms + 4 * m];
-        self.give::<N>((&d[dir..dir + n], w), lambda);
+        let wb = &d[arms + m..arms + 2 * m];
+        // A half-space's row has no a arms (and no body a to give them to).
+        let wa = if self.has_a {
+            &d[arms + l.a_arms + m..arms + l.a_arms + 2 * m]
+        } else {
+            &[]
+        };
+        self.give::<N>((&d[dir..dir + n], (wa, wb)), lambda);
     }
 
     /// Gives body b the impulse λ e and the angular velocities λ w_b, body a the opposite
-    /// (`e` and `w` = (w_a, w_b), M each); `N` as in [`dim`].
+    /// (`e` and `w` = (w_a, w_b), M each; w_a is read only if body a moves); `N` as in
+    /// [`dim`].
     #[inline(always)]
-    fn give<const N: usize>(&mut self, (e, w): (&[f64], &[f64]), lambda: f64) {
+    fn give<const N: usize>(&mut self, (e, (wa, wb)): (&[f64], (&[f64], &[f64])), lambda: f64) {
         let n = e.len();
         let n = dim::<N>(n);
         let m = n * (n - 1) / 2;
-        for (sign, vel, inv_mass, side) in [
-            (-1.0, self.a.as_mut(), self.inv_mass.0, 0),
-            (1.0, self.b.as_mut(), self.inv_mass.1, 1),
+        for (sign, vel, inv_mass, w) in [
+            (-1.0, self.a.as_mut(), self.inv_mass.0, wa),
+            (1.0, self.b.as_mut(), self.inv_mass.1, wb),
         ] {
             if inv_mass == 0.0 {
                 continue;
             }
             let j = sign * lambda;
             let scaled = j * inv_mass;
-            let w = &w[side * m..(side + 1) * m];
+            let w = &w[..m];
             let vel = &mut vel[..n + m];
             for i in 0..n {
                 vel[i] += scaled * e[i];
