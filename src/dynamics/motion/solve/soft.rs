@@ -882,13 +882,40 @@ impl SoftSolver {
         // face, not of the points before it.
         let mut start = 0;
         while start < rows.len() {
-            let (a, b) = (rows[start].a, rows[start].b);
-            let end = start
-                + rows[start..]
-                    .iter()
-                    .take_while(|r| r.a == a && r.b == b)
-                    .count();
-            let mut pair = Ends::copy(flat, (a, b), stride, (room(), room()));
+            let end = run_end(rows, start);
+            let first = (rows[start].a, rows[start].b);
+            // Each update waits on the last one's velocities: two manifolds that share no
+            // body (two boxes on the floor, say) are updated in turn, point by point, so
+            // that the processor works on both chains at once. As their bodies differ, the
+            // result is that of one manifold after the other, to the bit.
+            let second = (end < rows.len()).then(|| (rows[end].a, rows[end].b));
+            if let Some(second) = second.filter(|&p| apart(first, p)) {
+                let end2 = run_end(rows, end);
+                let mut one = Ends::copy(flat, first, stride, (room(), room()));
+                let mut two = Ends::copy(flat, second, stride, (room(), room()));
+                let longer = (end - start).max(end2 - end);
+                for i in 0..longer {
+                    for (k, last, pair) in [(start + i, end, &mut one), (end + i, end2, &mut two)] {
+                        if k < last {
+                            let d = numbers(data, &rows[k], &l);
+                            normal_update::<N, V>(&mut rows[k], d, &l, pair, separations[k], bias);
+                        }
+                    }
+                }
+                for i in 0..longer {
+                    for (k, last, pair) in [(start + i, end, &mut one), (end + i, end2, &mut two)] {
+                        if k < last {
+                            let d = numbers_mut(data, &rows[k], &l);
+                            friction_update::<N, V>(&rows[k], d, &l, pair, scratch);
+                        }
+                    }
+                }
+                one.write_back(flat, first);
+                two.write_back(flat, second);
+                start = end2;
+                continue;
+            }
+            let mut pair = Ends::copy(flat, first, stride, (room(), room()));
             for k in start..end {
                 let d = numbers(data, &rows[k], &l);
                 normal_update::<N, V>(&mut rows[k], d, &l, &mut pair, separations[k], bias);
@@ -897,7 +924,7 @@ impl SoftSolver {
                 let d = numbers_mut(data, row, &l);
                 friction_update::<N, V>(row, d, &l, &mut pair, scratch);
             }
-            pair.write_back(flat, (a, b));
+            pair.write_back(flat, first);
             start = end;
         }
     }
@@ -922,6 +949,25 @@ impl SoftSolver {
             pair.apply::<N>(d, &l, l.normal, l.arms, change);
         }
     }
+}
+
+/// The end of the run of rows of the pair of the row `start` (a manifold).
+#[inline(always)]
+fn run_end(rows: &[SoftRow], start: usize) -> usize {
+    let (a, b) = (rows[start].a, rows[start].b);
+    start
+        + rows[start..]
+            .iter()
+            .take_while(|r| r.a == a && r.b == b)
+            .count()
+}
+
+/// True if the rows of the pairs `p` and `q` move no body in common (a half-space,
+/// [`NO_BODY`], is none).
+#[inline(always)]
+fn apart(p: (usize, usize), q: (usize, usize)) -> bool {
+    let shared = |i: usize| i != NO_BODY && (i == q.0 || i == q.1);
+    !shared(p.0) && !shared(p.1)
 }
 
 /// Sets the arms c = r ∧ e and w = I⁻¹ c of both ends of a row for the direction at `dir`
