@@ -135,7 +135,24 @@ impl PairRow {
 
     /// Makes this row the one [`PairRow::new`] gives, in its own room: a row is some
     /// kilobytes (room for 8 × 8 matrices), which a new one would be built in and moved.
-    pub(crate) fn set(
+    pub(crate) fn set(&mut self, c: &PairContact, x: (&[f64], &[f64]), material: (f64, f64)) {
+        let n = c.normal.len();
+        (self.a, self.b, self.feature) = (c.a, c.b, c.feature);
+        self.place(c, x, material);
+        for v in [&mut self.own_a, &mut self.own_b, &mut self.friction_impulse] {
+            if v.dim() == n {
+                v.as_mut_slice().fill(0.0);
+            } else {
+                *v = Vector::zero(n);
+            }
+        }
+        self.normal_impulse = 0.0;
+        self.forget_mass();
+    }
+
+    /// The point's geometry from the contact `c` found with the bodies' centres at
+    /// `(xa, xb)`, its material, and no target, speed or position impulse yet.
+    fn place(
         &mut self,
         c: &PairContact,
         (xa, xb): (&[f64], &[f64]),
@@ -151,20 +168,16 @@ impl PairRow {
                 *o = p - c;
             }
         };
-        (self.a, self.b, self.feature) = (c.a, c.b, c.feature);
         (self.gap, self.reach, self.position_impulse) = (c.gap, c.reach, 0.0);
         set_vector(&mut self.normal, normal);
         offset(&mut self.ra, xa);
         offset(&mut self.rb, xb);
-        for v in [&mut self.own_a, &mut self.own_b, &mut self.friction_impulse] {
-            if v.dim() == n {
-                v.as_mut_slice().fill(0.0);
-            } else {
-                *v = Vector::zero(n);
-            }
-        }
         (self.friction, self.restitution) = (friction, restitution);
-        (self.target, self.normal_impulse) = (0.0, 0.0);
+        (self.target, self.speed) = (0.0, 0.0);
+    }
+
+    /// No K yet: the solve computes it.
+    fn forget_mass(&mut self) {
         for m in [
             &mut self.k,
             &mut self.kt,
@@ -174,8 +187,66 @@ impl PairRow {
         ] {
             m.clear();
         }
-        (self.knn, self.inv_knn, self.speed) = (0.0, 0.0, 0.0);
+        (self.knn, self.inv_knn) = (0.0, 0.0);
         self.mass_ready = false;
+    }
+
+    /// Whether `then`, the offsets and normal a K was computed for, lie within
+    /// [`KEEP_MASS`] of this row's (relative to the offsets' size).
+    fn near(&self, then: &[f64]) -> bool {
+        let n = self.normal.dim();
+        let limit = KEEP_MASS * (max_abs(self.ra.as_slice()) + max_abs(self.rb.as_slice()));
+        then.len() == 3 * n
+            && [&self.ra, &self.rb, &self.normal]
+                .iter()
+                .flat_map(|v| v.as_slice())
+                .zip(then)
+                .all(|(x, y)| (x - y).abs() <= limit)
+    }
+
+    /// The geometry K is to be computed for: this row's offsets and normal, for the
+    /// bodies as they are now (`at`).
+    fn mass_for_here(&mut self, at: (MassAt, MassAt)) {
+        self.mass_geometry.clear();
+        for v in [&self.ra, &self.rb, &self.normal] {
+            self.mass_geometry.extend_from_slice(v.as_slice());
+        }
+        self.mass_at = at;
+    }
+
+    /// [`Self::set`] and then [`Self::take_mass`] of this row as it was, for the same
+    /// point found again (the same bodies and features): the row updated in place, its
+    /// impulses carried, the friction impulse's part along the new normal dropped, as
+    /// the solve's matching does with a row rebuilt from its predecessor. Returns whether it
+    /// kept the offsets in the bodies' own axes (else the caller computes them).
+    pub(crate) fn refresh(
+        &mut self,
+        c: &PairContact,
+        x: (&[f64], &[f64]),
+        material: (f64, f64),
+        at: (MassAt, MassAt),
+    ) -> bool {
+        debug_assert!((self.a, self.b, self.feature) == (c.a, c.b, c.feature));
+        let (last_knn, last_mass_at, last_own_at) = (self.knn, self.mass_at, self.own_at);
+        self.place(c, x, material);
+        let generations = (at.0.generation, at.1.generation);
+        self.own_at = generations;
+        let kept = last_knn != 0.0
+            && self.near(&self.mass_geometry)
+            && last_mass_at.0.holds(&at.0)
+            && last_mass_at.1.holds(&at.1);
+        let own = if kept {
+            // K, its factors and the geometry they were computed for stay.
+            self.mass_ready = true;
+            last_own_at == generations
+        } else {
+            self.forget_mass();
+            self.mass_for_here(at);
+            false
+        };
+        let along = self.normal.dot(&self.friction_impulse);
+        self.friction_impulse -= &(&self.normal * along);
+        own
     }
 
     /// Takes what it can of `last`, the last step's row of the same point, for its bodies
@@ -187,26 +258,12 @@ impl PairRow {
     /// Returns whether it took the offsets (else the caller computes them); K it marks as
     /// ready or to be computed for this row's geometry.
     pub(crate) fn take_mass(&mut self, last: Option<&PairRow>, at: (MassAt, MassAt)) -> bool {
-        let n = self.normal.dim();
-        let limit = KEEP_MASS * (max_abs(self.ra.as_slice()) + max_abs(self.rb.as_slice()));
-        let geometry = [&self.ra, &self.rb, &self.normal];
-        let near = |then: &[f64]| {
-            then.len() == 3 * n
-                && geometry
-                    .iter()
-                    .flat_map(|v| v.as_slice())
-                    .zip(then)
-                    .all(|(x, y)| (x - y).abs() <= limit)
-        };
-        let last = last.filter(|l| l.knn != 0.0 && near(&l.mass_geometry));
+        let last = last.filter(|l| l.knn != 0.0 && self.near(&l.mass_geometry));
         let mass = last.filter(|l| l.mass_at.0.holds(&at.0) && l.mass_at.1.holds(&at.1));
         let generations = (at.0.generation, at.1.generation);
         let Some(last) = mass else {
-            self.mass_geometry.clear();
-            for v in geometry {
-                self.mass_geometry.extend_from_slice(v.as_slice());
-            }
-            (self.mass_at, self.own_at) = (at, generations);
+            self.mass_for_here(at);
+            self.own_at = generations;
             return false;
         };
         // Copied as slices: `clone_from` onto the emptied rooms pushes number by number.
