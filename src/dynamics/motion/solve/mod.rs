@@ -1154,13 +1154,7 @@ impl Solver {
         };
         // Bodies at rest find the same points again, in the same order: each row is then
         // updated in place, as the matching below would rebuild it from itself.
-        let same_points = self.pairs.len() == found.len()
-            && self
-                .pairs
-                .iter()
-                .zip(found)
-                .all(|(r, c)| (r.a, r.b, r.feature) == (c.a, c.b, c.feature));
-        if same_points {
+        if found_again(&self.pairs, found) {
             for (row, c) in self.pairs.iter_mut().zip(found) {
                 let (a, b) = (c.a, c.b);
                 let x = (
@@ -1261,6 +1255,48 @@ impl Solver {
             s.used = false;
         }
     }
+}
+
+/// Whether `found` lists the points of `rows` again in their order: the same pairs with as
+/// many points each, each point made by the same features but at most one of a pair, whose
+/// features are new to the pair (a corner on an edge of the other body's face, made by
+/// one edge or another from step to step). The matching of [`Solver::set_pairs`] then
+/// rebuilds each row from the row at its place: its own, or for the point whose features
+/// changed, the one row of its pair left.
+fn found_again(rows: &[PairRow], found: &[PairContact]) -> bool {
+    if rows.len() != found.len() {
+        return false;
+    }
+    let mut start = 0;
+    while start < rows.len() {
+        let pair = (rows[start].a, rows[start].b);
+        let end = start
+            + rows[start..]
+                .iter()
+                .take_while(|r| (r.a, r.b) == pair)
+                .count();
+        let (old, new) = (&rows[start..end], &found[start..end]);
+        let mut changed = None;
+        for (k, (r, c)) in old.iter().zip(new).enumerate() {
+            if (c.a, c.b) != pair {
+                return false;
+            }
+            if r.feature != c.feature {
+                if changed.is_some() {
+                    return false;
+                }
+                changed = Some(k);
+            }
+        }
+        if let Some(k) = changed {
+            let (was, now) = (old[k].feature, new[k].feature);
+            if old.iter().any(|r| r.feature == now) || new.iter().any(|c| c.feature == was) {
+                return false;
+            }
+        }
+        start = end;
+    }
+    true
 }
 
 /// A contact row's accumulated impulse as one vector, J = λ n + J_t, written to `j`.
@@ -1374,10 +1410,11 @@ mod tests {
         }
     }
 
-    /// The same points found again in the same order (bodies at rest) update their rows in
-    /// place; the rows are those the matching by features builds from the last ones (here
-    /// from the same points listed the other way round): the same impulses, the friction
-    /// impulse's part along the turned normal dropped, the same offsets, to the bit.
+    /// The same points found again in the same order (bodies at rest), one of them made
+    /// by other features, update their rows in place; the rows are those the matching by
+    /// features builds from the last ones (here from the same points listed the other way
+    /// round): the same impulses, the friction impulse's part along the turned normal
+    /// dropped, the same offsets, to the bit.
     #[test]
     fn rows_found_again_in_order_are_updated_as_matching_rebuilds_them() {
         let parsed = parse_body("cuboid:0.5,0.3,0.2+mass=1").unwrap();
@@ -1413,7 +1450,9 @@ mod tests {
             row.friction_impulse =
                 Vector::from_components(&[0.01, -0.02 * k as f64, 1e-3]).unwrap();
         }
-        let moved = points(0.21, 1e-4);
+        let mut moved = points(0.21, 1e-4);
+        // One point made by other features now (a corner on an edge).
+        moved[2].feature = 99;
         let mut in_place = last.clone();
         in_place.set_pairs(&moved, 2, &bodies);
         let mut rebuilt = last.clone();
@@ -1445,6 +1484,19 @@ mod tests {
             compared += 1;
         }
         assert_eq!(compared, 4);
+        // What the matching would not rebuild in place: two points of the pair made by
+        // other features, two points that swapped theirs, a point of another pair, a
+        // point fewer.
+        assert!(found_again(&last.pairs, &moved));
+        let mut two = moved.clone();
+        two[0].feature = 98;
+        let mut swapped = points(0.21, 1e-4);
+        swapped.swap(1, 2);
+        let mut other = points(0.21, 1e-4);
+        other[3].b = 0;
+        for list in [two, swapped, other, moved[..3].to_vec()] {
+            assert!(!found_again(&last.pairs, &list));
+        }
     }
 
     /// A pair row keeps the last step's K and offsets in its bodies' axes while its point

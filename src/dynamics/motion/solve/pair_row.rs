@@ -215,10 +215,11 @@ impl PairRow {
     }
 
     /// [`Self::set`] and then [`Self::take_mass`] of this row as it was, for the same
-    /// point found again (the same bodies and features): the row updated in place, its
-    /// impulses carried, the friction impulse's part along the new normal dropped, as
-    /// the solve's matching does with a row rebuilt from its predecessor. Returns whether it
-    /// kept the offsets in the bodies' own axes (else the caller computes them).
+    /// point found again (the same bodies; if its features changed, K and the offsets in
+    /// the bodies' axes are computed anew): the row updated in place, its impulses
+    /// carried, the friction impulse's part along the new normal dropped, as the solve's
+    /// matching does with a row rebuilt from its predecessor. Returns whether it kept the
+    /// offsets in the bodies' own axes (else the caller computes them).
     pub(crate) fn refresh(
         &mut self,
         c: &PairContact,
@@ -226,12 +227,15 @@ impl PairRow {
         material: (f64, f64),
         at: (MassAt, MassAt),
     ) -> bool {
-        debug_assert!((self.a, self.b, self.feature) == (c.a, c.b, c.feature));
+        debug_assert!((self.a, self.b) == (c.a, c.b));
         let (last_knn, last_mass_at, last_own_at) = (self.knn, self.mass_at, self.own_at);
+        let same = self.feature == c.feature;
+        self.feature = c.feature;
         self.place(c, x, material);
         let generations = (at.0.generation, at.1.generation);
         self.own_at = generations;
-        let kept = last_knn != 0.0
+        let kept = same
+            && last_knn != 0.0
             && self.near(&self.mass_geometry)
             && last_mass_at.0.holds(&at.0)
             && last_mass_at.1.holds(&at.1);
