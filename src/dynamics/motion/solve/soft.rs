@@ -895,19 +895,32 @@ impl SoftSolver {
                 let mut two = Ends::copy(flat, second, stride, (room(), room()));
                 let longer = (end - start).max(end2 - end);
                 for i in 0..longer {
-                    for (k, last, pair) in [(start + i, end, &mut one), (end + i, end2, &mut two)] {
-                        if k < last {
-                            let d = numbers(data, &rows[k], &l);
-                            normal_update::<N, V>(&mut rows[k], d, &l, pair, separations[k], bias);
-                        }
+                    let (k, k2) = (start + i, end + i);
+                    if k < end {
+                        let d = numbers(data, &rows[k], &l);
+                        normal_update::<N, V>(&mut rows[k], d, &l, &mut one, separations[k], bias);
+                    }
+                    if k2 < end2 {
+                        let d = numbers(data, &rows[k2], &l);
+                        normal_update::<N, V>(
+                            &mut rows[k2],
+                            d,
+                            &l,
+                            &mut two,
+                            separations[k2],
+                            bias,
+                        );
                     }
                 }
                 for i in 0..longer {
-                    for (k, last, pair) in [(start + i, end, &mut one), (end + i, end2, &mut two)] {
-                        if k < last {
-                            let d = numbers_mut(data, &rows[k], &l);
-                            friction_update::<N, V>(&rows[k], d, &l, pair, scratch);
-                        }
+                    let (k, k2) = (start + i, end + i);
+                    if k < end {
+                        let d = numbers_mut(data, &rows[k], &l);
+                        friction_update::<N, V>(&rows[k], d, &l, &mut one, scratch);
+                    }
+                    if k2 < end2 {
+                        let d = numbers_mut(data, &rows[k2], &l);
+                        friction_update::<N, V>(&rows[k2], d, &l, &mut two, scratch);
                     }
                 }
                 one.write_back(flat, first);
