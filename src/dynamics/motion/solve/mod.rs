@@ -80,6 +80,16 @@ pub(crate) fn plane_sweep(plane: &HalfSpace, sweep: f64, every_plane: bool) -> f
 /// velocities by the same amount sweep after sweep, until the stall rule stops it
 /// unconverged. On a mixed face every point that is not an impact therefore aims at its own
 /// gap: −gap / flight.
+/// How many rows at the start of `rows` share the first one's `key` (a body's rows, a
+/// pair's).
+pub(crate) fn run_len<T, K: PartialEq>(rows: &[T], key: impl Fn(&T) -> K) -> usize {
+    let Some(first) = rows.first() else {
+        return 0;
+    };
+    let run = key(first);
+    rows.iter().take_while(|r| key(r) == run).count()
+}
+
 fn face_run<T, K: PartialEq>(
     rows: &[T],
     key: impl Fn(&T) -> K,
@@ -567,12 +577,7 @@ impl Solver {
             let end = if coupled {
                 rows
             } else {
-                let body = self.contacts[start].body;
-                start
-                    + self.contacts[start..]
-                        .iter()
-                        .take_while(|r| r.body == body)
-                        .count()
+                start + run_len(&self.contacts[start..], |r| r.body)
             };
             let group = Group {
                 range: start..end,
@@ -1270,11 +1275,7 @@ fn found_again(rows: &[PairRow], found: &[PairContact]) -> bool {
     let mut start = 0;
     while start < rows.len() {
         let pair = (rows[start].a, rows[start].b);
-        let end = start
-            + rows[start..]
-                .iter()
-                .take_while(|r| (r.a, r.b) == pair)
-                .count();
+        let end = start + run_len(&rows[start..], |r| (r.a, r.b));
         let (old, new) = (&rows[start..end], &found[start..end]);
         let mut changed = None;
         for (k, (r, c)) in old.iter().zip(new).enumerate() {

@@ -22,6 +22,7 @@
 
 use super::body::{AttitudeMatrix, BodyState};
 use super::contact_row::{ContactRow, Small, dim, scratch};
+use super::run_len;
 use crate::algebra::Vector;
 use crate::dynamics::motion::contact::ContactLog;
 use crate::dynamics::motion::placement::dot;
@@ -884,61 +885,45 @@ impl SoftSolver {
         while start < rows.len() {
             let end = run_end(rows, start);
             let first = (rows[start].a, rows[start].b);
-            // Each update waits on the last one's velocities: two manifolds that share no
-            // body (two boxes on the floor, say) are updated in turn, point by point, so
-            // that the processor works on both chains at once. As their bodies differ, the
-            // result is that of one manifold after the other, to the bit.
-            let second = (end < rows.len()).then(|| (rows[end].a, rows[end].b));
-            if let Some(second) = second.filter(|&p| apart(first, p)) {
-                let end2 = run_end(rows, end);
-                let mut one = Ends::copy(flat, first, stride, (room(), room()));
-                let mut two = Ends::copy(flat, second, stride, (room(), room()));
-                let longer = (end - start).max(end2 - end);
-                for i in 0..longer {
-                    let (k, k2) = (start + i, end + i);
-                    if k < end {
-                        let d = numbers(data, &rows[k], &l);
-                        normal_update::<N, V>(&mut rows[k], d, &l, &mut one, separations[k], bias);
-                    }
-                    if k2 < end2 {
-                        let d = numbers(data, &rows[k2], &l);
-                        normal_update::<N, V>(
-                            &mut rows[k2],
-                            d,
-                            &l,
-                            &mut two,
-                            separations[k2],
-                            bias,
-                        );
-                    }
+            // Each update waits on the last one's velocities: with the next manifold when
+            // they share no body (two boxes on the floor, say), the two are updated in
+            // turn, point by point, so that the processor works on both chains at once. As
+            // their bodies differ, the result is that of one manifold after the other, to
+            // the bit.
+            let second = (end < rows.len())
+                .then(|| (rows[end].a, rows[end].b))
+                .filter(|&p| apart(first, p));
+            let end2 = second.map_or(end, |_| run_end(rows, end));
+            let mut one = Ends::copy(flat, first, stride, (room(), room()));
+            let mut two = second.map(|p| Ends::copy(flat, p, stride, (room(), room())));
+            let longer = (end - start).max(end2 - end);
+            for i in 0..longer {
+                let (k, k2) = (start + i, end + i);
+                if k < end {
+                    let d = numbers(data, &rows[k], &l);
+                    normal_update::<N, V>(&mut rows[k], d, &l, &mut one, separations[k], bias);
                 }
-                for i in 0..longer {
-                    let (k, k2) = (start + i, end + i);
-                    if k < end {
-                        let d = numbers_mut(data, &rows[k], &l);
-                        friction_update::<N, V>(&rows[k], d, &l, &mut one, scratch);
-                    }
-                    if k2 < end2 {
-                        let d = numbers_mut(data, &rows[k2], &l);
-                        friction_update::<N, V>(&rows[k2], d, &l, &mut two, scratch);
-                    }
+                if let (true, Some(two)) = (k2 < end2, two.as_mut()) {
+                    let d = numbers(data, &rows[k2], &l);
+                    normal_update::<N, V>(&mut rows[k2], d, &l, two, separations[k2], bias);
                 }
-                one.write_back(flat, first);
+            }
+            for i in 0..longer {
+                let (k, k2) = (start + i, end + i);
+                if k < end {
+                    let d = numbers_mut(data, &rows[k], &l);
+                    friction_update::<N, V>(&rows[k], d, &l, &mut one, scratch);
+                }
+                if let (true, Some(two)) = (k2 < end2, two.as_mut()) {
+                    let d = numbers_mut(data, &rows[k2], &l);
+                    friction_update::<N, V>(&rows[k2], d, &l, two, scratch);
+                }
+            }
+            one.write_back(flat, first);
+            if let (Some(two), Some(second)) = (&two, second) {
                 two.write_back(flat, second);
-                start = end2;
-                continue;
             }
-            let mut pair = Ends::copy(flat, first, stride, (room(), room()));
-            for k in start..end {
-                let d = numbers(data, &rows[k], &l);
-                normal_update::<N, V>(&mut rows[k], d, &l, &mut pair, separations[k], bias);
-            }
-            for row in &rows[start..end] {
-                let d = numbers_mut(data, row, &l);
-                friction_update::<N, V>(row, d, &l, &mut pair, scratch);
-            }
-            pair.write_back(flat, first);
-            start = end;
+            start = end2;
         }
     }
 
@@ -967,12 +952,7 @@ impl SoftSolver {
 /// The end of the run of rows of the pair of the row `start` (a manifold).
 #[inline(always)]
 fn run_end(rows: &[SoftRow], start: usize) -> usize {
-    let (a, b) = (rows[start].a, rows[start].b);
-    start
-        + rows[start..]
-            .iter()
-            .take_while(|r| r.a == a && r.b == b)
-            .count()
+    start + run_len(&rows[start..], |r| (r.a, r.b))
 }
 
 /// True if the rows of the pairs `p` and `q` move no body in common (a half-space,
