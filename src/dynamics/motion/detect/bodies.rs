@@ -3,6 +3,7 @@
 //! signed distance, the contact normal and the contact point (the narrow phase).
 
 use super::epa::box_and_ball;
+use super::kept::KeptPairs;
 use super::manifold::{SUPPORT_TOLERANCE, box_manifold_on_axis};
 use super::sat::{box_box_unchecked, box_box_within};
 use super::{
@@ -137,82 +138,38 @@ pub(crate) fn relative_placement(
     }));
 }
 
-/// The manifolds of pairs of boxes found by a scan with manifolds, kept for the next one
-/// ([`KEEP_BOX_MANIFOLD`]). Per pair, in `data`: the relative placement it was found at
-/// ([`relative_placement`]), the normal in a's axes (N), then per point its gap less the
-/// normal's component of the witnesses' offset (1), and its witnesses on a and on b, each in
-/// its body's axes (N each); the points' features in `features`.
-#[derive(Clone, Debug, Default)]
-struct KeptManifolds {
-    /// The scan's factor and slop (as bits) the manifolds were found with.
-    key: Option<(u64, u64)>,
-    /// Each pair (sorted), where its numbers and features start, and its count of points.
-    pairs: Vec<((usize, usize), usize, usize, usize)>,
-    data: Vec<f64>,
-    features: Vec<u64>,
-}
-
-impl KeptManifolds {
-    fn clear(&mut self, key: Option<(u64, u64)>) {
-        self.key = key;
-        self.pairs.clear();
-        self.data.clear();
-        self.features.clear();
-    }
-
-    /// Adds the manifold `m` of the boxes `pair` found at their placement now: centres
-    /// `x`, axes `q`, and b's placement in a's axes `relative`.
-    fn push(
-        &mut self,
-        pair: (usize, usize),
-        m: &ContactManifold,
-        (xa, xb): (&[f64], &[f64]),
-        (qa, qb): (&[f64], &[f64]),
-        relative: &[f64],
-    ) {
-        let n = xa.len();
-        self.pairs
-            .push((pair, self.data.len(), self.features.len(), m.len()));
-        self.data.extend_from_slice(relative);
-        // Qᵀ v: a vector of space in a body's axes.
-        let own = |q: &[f64], v: &[f64], out: &mut Vec<f64>| {
-            out.extend((0..n).map(|k| (0..n).map(|i| q[i * n + k] * v[i]).sum::<f64>()));
+/// Keeps the manifold `m` of the boxes `pair` found at their placement now (centres `x`,
+/// axes `q`, and b's placement in a's axes `relative`) for the next scan with manifolds
+/// ([`KEEP_BOX_MANIFOLD`]). After the placement its numbers are the normal in a's axes (N),
+/// then per point its gap less the normal's component of the witnesses' offset (1), and
+/// its witnesses on a and on b, each in its body's axes (N each); the points' features
+/// are the entry's features.
+fn keep_manifold(
+    kept: &mut KeptPairs,
+    pair: (usize, usize),
+    m: &ContactManifold,
+    (xa, xb): (&[f64], &[f64]),
+    (qa, qb): (&[f64], &[f64]),
+    relative: &[f64],
+) {
+    let n = xa.len();
+    kept.push(pair, relative);
+    // Qᵀ v: a vector of space in a body's axes.
+    let own = |q: &[f64], v: &[f64], kept: &mut KeptPairs| {
+        kept.extend((0..n).map(|k| (0..n).map(|i| q[i * n + k] * v[i]).sum::<f64>()));
+    };
+    let normal = m.normal();
+    own(qa, normal, kept);
+    for point in m.points() {
+        let (pa, pb) = (point.point_a, point.point_b);
+        let along: f64 = (0..n).map(|i| normal[i] * (pb[i] - pa[i])).sum();
+        kept.extend([-point.depth - along]);
+        let from = |p: &[f64], x: &[f64]| -> SmallVec<[f64; 8]> {
+            p.iter().zip(x).map(|(p, x)| p - x).collect()
         };
-        let normal = m.normal();
-        own(qa, normal, &mut self.data);
-        for point in m.points() {
-            let (pa, pb) = (point.point_a, point.point_b);
-            let along: f64 = (0..n).map(|i| normal[i] * (pb[i] - pa[i])).sum();
-            self.data.push(-point.depth - along);
-            let from = |p: &[f64], x: &[f64]| -> SmallVec<[f64; 8]> {
-                p.iter().zip(x).map(|(p, x)| p - x).collect()
-            };
-            own(qa, &from(pa, xa), &mut self.data);
-            own(qb, &from(pb, xb), &mut self.data);
-            self.features.push(point.id.0);
-        }
-    }
-
-    /// Where the pair's entry is, if it has one.
-    fn find(&self, pair: (usize, usize)) -> Option<usize> {
-        let at = self.pairs.partition_point(|e| e.0 < pair);
-        (self.pairs.get(at).is_some_and(|e| e.0 == pair)).then_some(at)
-    }
-
-    /// The numbers of the entry `at` (placement, normal, points) in `n` dimensions.
-    fn numbers(&self, at: usize, n: usize) -> &[f64] {
-        let (_, start, _, count) = self.pairs[at];
-        &self.data[start..start + n + n * n + n + count * (1 + 2 * n)]
-    }
-
-    /// Adds the entry `at` of `from`.
-    fn copy_entry(&mut self, from: &KeptManifolds, at: usize, n: usize) {
-        let (pair, _, first, count) = from.pairs[at];
-        self.pairs
-            .push((pair, self.data.len(), self.features.len(), count));
-        self.data.extend_from_slice(from.numbers(at, n));
-        self.features
-            .extend_from_slice(&from.features[first..first + count]);
+        own(qa, &from(pa, xa), kept);
+        own(qb, &from(pb, xb), kept);
+        kept.push_feature(point.id.0);
     }
 }
 
@@ -330,8 +287,8 @@ pub(crate) struct Touching {
     found_manifolds: bool,
     /// Two boxes' manifolds of the last scan with manifolds, and those the current scan
     /// finds or keeps ([`KEEP_BOX_MANIFOLD`]); room for a pair's relative placement.
-    kept: KeptManifolds,
-    next_kept: KeptManifolds,
+    kept: KeptPairs,
+    next_kept: KeptPairs,
     relative: Vec<f64>,
     /// The placement the scans see: counted up whenever a body moved or turned since the
     /// last scan.
@@ -783,8 +740,14 @@ impl Touching {
                 if !relative_now {
                     relative_placement((q(a), q(b)), (xa, xb), &mut self.relative);
                 }
-                self.next_kept
-                    .push((a, b), &m, (xa, xb), (q(a), q(b)), &self.relative);
+                keep_manifold(
+                    &mut self.next_kept,
+                    (a, b),
+                    &m,
+                    (xa, xb),
+                    (q(a), q(b)),
+                    &self.relative,
+                );
                 return;
             }
             if manifold.is_none() {
@@ -841,8 +804,7 @@ impl Touching {
         let n = xa.len();
         let at = self.kept.find((a, b))?;
         relative_placement((qa, qb), (xa, xb), &mut self.relative);
-        let first = self.kept.pairs[at].2;
-        let (then, rest) = self.kept.numbers(at, n).split_at(n + n * n);
+        let (then, rest) = self.kept.numbers(at).split_at(n + n * n);
         let limit = KEEP_BOX_MANIFOLD * (self.radius[a] + self.radius[b]);
         if !placed_within(&self.relative, then, n, (limit, KEEP_BOX_MANIFOLD)) {
             return Some(false);
@@ -871,14 +833,14 @@ impl Touching {
                 least = least.min(gap);
                 continue;
             }
-            let feature = self.kept.features[first + k];
+            let feature = self.kept.features(at)[k];
             let c = self.found.next((a, b), feature, gap, &normal);
             c.reach = touching;
             c.point
                 .extend(pa.iter().zip(&pb).map(|(x, y)| 0.5 * (x + y)));
         }
         if points {
-            self.next_kept.copy_entry(&self.kept, at, n);
+            self.next_kept.copy_entry(&self.kept, at);
         } else if least <= within {
             // As separating axes answer the gap alone: at the midpoint of the centres.
             let c = self.found.next((a, b), 0, least, &normal);
@@ -1429,7 +1391,7 @@ mod tests {
         }
         let mut kept = Touching::default();
         kept.update_shapes(shapes, &[], 3, (1, 1));
-        let first = |t: &Touching| t.kept.data[..12].to_vec();
+        let first = |t: &Touching| t.kept.placement(0, 3).to_vec();
         let mut at_first = Vec::new();
         let (mut reused, mut renewed) = (0, 0);
         // The motions before each scan: 0 none, 1 along the normal (x), 2 across it (y),

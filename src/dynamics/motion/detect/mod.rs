@@ -9,7 +9,8 @@
 //!   ([`box_box`], `sat.rs`).
 //! - Contact manifolds of several points ([`box_manifold`], [`hull_manifold`],
 //!   `manifold.rs`) and the broad phase ([`BroadPhase`], `broad.rs`).
-//! - Which bodies of a system touch which (`bodies.rs`, used by the integrators).
+//! - Which bodies of a system touch which (`bodies.rs`, used by the integrators), and the
+//!   pairs whose contact is kept from step to step while they barely move (`kept.rs`).
 //!
 //! Shapes are placed by plain data: a centre `position` (N numbers, space) and a `rotation`
 //! (N × N, row-major, own axes → space). Normals point from body A to body B, depth > 0
@@ -21,6 +22,7 @@ pub mod broad;
 mod epa;
 mod fixed;
 mod gjk;
+pub(crate) mod kept;
 pub mod manifold;
 pub mod sat;
 mod smooth;

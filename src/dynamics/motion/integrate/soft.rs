@@ -5,6 +5,7 @@ use crate::dynamics::DynamicsError;
 use crate::dynamics::integrate::{axpy, free_flight};
 use crate::dynamics::motion::body::contact_material;
 use crate::dynamics::motion::detect::bodies::{Touching, placed_within, relative_placement};
+use crate::dynamics::motion::detect::kept::KeptPairs;
 use crate::dynamics::motion::placement::Placements;
 use crate::dynamics::motion::solve::{FoundPoint, NO_BODY, SoftSolver, Softness, Solver};
 use crate::dynamics::motion::{MotionError, System, Wrench};
@@ -67,44 +68,13 @@ pub struct SoftStep {
     wrenches: Vec<Wrench>,
     checked: Option<(u64, u64, usize)>,
     /// The pairs whose manifold is kept from an earlier step, sorted, with the relative
-    /// placement it was found at; the next step's list is built in `next_kept`.
+    /// placement it was found at and the system's shapes as key; the next step's list is
+    /// built in `next_kept`.
     kept: KeptPairs,
     next_kept: KeptPairs,
     reuse: Vec<(usize, usize)>,
-    /// The shapes `kept` belongs to.
-    kept_shapes: (u64, u64),
     /// Room for a pair's relative placement.
     placement: Vec<f64>,
-}
-
-/// Pairs of bodies (a < b) whose contact manifold was found with body b's centre and axes
-/// where `placement` puts them in body a's axes: b's centre (N numbers), then b's axes
-/// (N × N, row-major), in one array. The pairs are small entries that sort and move
-/// cheaply; their placements stay where they were written.
-#[derive(Clone, Debug, Default)]
-struct KeptPairs {
-    /// Each pair and where its placement starts in `data`.
-    pairs: Vec<((usize, usize), usize)>,
-    data: Vec<f64>,
-}
-
-impl KeptPairs {
-    fn clear(&mut self) {
-        self.pairs.clear();
-        self.data.clear();
-    }
-
-    /// Adds the pair with its relative placement.
-    fn push(&mut self, pair: (usize, usize), placement: &[f64]) {
-        self.pairs.push((pair, self.data.len()));
-        self.data.extend_from_slice(placement);
-    }
-
-    /// The relative placement of the pair at `at` in `pairs`.
-    fn placement(&self, at: usize, n: usize) -> &[f64] {
-        let start = self.pairs[at].1;
-        &self.data[start..start + n + n * n]
-    }
 }
 
 /// The Gauss–Seidel passes per substep in `n` dimensions when none are given: as many as
@@ -138,7 +108,6 @@ impl Default for SoftStep {
             kept: KeptPairs::default(),
             next_kept: KeptPairs::default(),
             reuse: Vec::new(),
-            kept_shapes: (0, 0),
             placement: Vec::new(),
         }
     }
@@ -283,19 +252,19 @@ impl SoftStep {
             }
         }
         if pairs {
-            if self.kept_shapes != shape_key {
-                self.kept.clear();
-                self.kept_shapes = shape_key;
+            if self.kept.key != Some(shape_key) {
+                self.kept.clear(Some(shape_key));
             }
             let placements = &self.placements;
             let q = |i: usize| &placements.get(i).q[..];
             let x = |i: usize| bodies[i].position().as_slice();
             // The pairs that moved little since their manifold was found keep it.
             self.reuse.clear();
-            self.next_kept.clear();
+            self.next_kept.clear(Some(shape_key));
             let n = bodies[0].dim();
             let mut now = std::mem::take(&mut self.placement);
-            for (k, &((a, b), _)) in self.kept.pairs.iter().enumerate() {
+            for k in 0..self.kept.len() {
+                let (a, b) = self.kept.pair(k);
                 if b >= bodies.len() {
                     continue;
                 }
@@ -339,13 +308,13 @@ impl SoftStep {
             let mut k = 0;
             for &p in &self.reuse {
                 if self.solver.push_kept(p) {
-                    while self.kept.pairs[k].0 != p {
+                    while self.kept.pair(k) != p {
                         k += 1;
                     }
-                    self.next_kept.push(p, self.kept.placement(k, n));
+                    self.next_kept.copy_entry(&self.kept, k);
                 }
             }
-            self.next_kept.pairs.sort_unstable_by_key(|k| k.0);
+            self.next_kept.sort();
             std::mem::swap(&mut self.kept, &mut self.next_kept);
         }
         self.solver.prepare(bodies);
