@@ -4,7 +4,8 @@
 //! - `gjk_distance`: [`distance`] between two separated, turned shapes: 3D boxes, 4D
 //!   boxes, 4D tesseracts given as hulls of their 16 corners, 4D balls. For N = 3 and 4
 //!   [`distance`] runs GJK on stack arrays, and two boxes (`box_box/N=3`, `box_box/N=4`)
-//!   by bounded least squares, cold (nothing kept between queries); `general_*` is the
+//!   by bounded least squares, cold (nothing kept between queries), two balls by their
+//!   centres (`balls/N=4`); `general_*` is the
 //!   same query by the dimension-generic GJK ([`distance_general`]), and after the group
 //!   the bench prints the ratios general / fast from Criterion's medians.
 //!   `box_box_mixed/N=3`, `box_box_mixed/N=4` time [`distance`] on 1,024 pairs of random

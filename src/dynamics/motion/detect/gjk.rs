@@ -771,7 +771,8 @@ pub(crate) fn centre_direction(a: &PlacedShape, b: &PlacedShape) -> Vector {
 /// Returns the distance between two placed shapes, the nearest points and the direction
 /// from A to B, by GJK on the cores (the margins subtracted). Two boxes in 3 or 4
 /// dimensions are solved as a bounded least-squares problem instead (`boxes.rs`), its
-/// answer certified by GJK's own stopping rule, GJK taking over if it cannot be.
+/// answer certified by GJK's own stopping rule, GJK taking over if it cannot be; two balls
+/// (point cores) by their centres, as GJK answers them.
 ///
 /// Touching and overlapping shapes have distance 0 and `intersecting` set; the answer is
 /// defined for every input (coincident, nested, flat), never NaN, and GJK stops after at
@@ -807,6 +808,9 @@ pub fn distance(a: &PlacedShape, b: &PlacedShape) -> Result<Separation, ShapeErr
 fn checked_distance(a: &PlacedShape, b: &PlacedShape, n: usize) -> Separation {
     // Each path returns its separation as it builds it: a `Separation` holds three inline
     // vectors (240 bytes), and passing it through an `Option` first copied it once more.
+    if let (ConvexCore::Point, ConvexCore::Point) = (a.shape.core(), b.shape.core()) {
+        return point_separation(a, b);
+    }
     match n {
         3 => {
             if let Some(gap) = super::boxes::box_distance::<3>(a, b) {
@@ -821,6 +825,39 @@ fn checked_distance(a: &PlacedShape, b: &PlacedShape, n: usize) -> Separation {
         _ => {}
     }
     separation(a, b, gjk(a, b))
+}
+
+/// The separation of two shapes whose cores are points (balls, spheres): the centres are
+/// the cores' nearest points, which GJK finds with its first support point and certifies
+/// in one iteration. Contact as GJK decides it: |v| within [`TOUCHING`] of the size, which
+/// for two points is the centres' distance itself (so only coincident centres touch).
+fn point_separation(a: &PlacedShape, b: &PlacedShape) -> Separation {
+    // v on the stack up to N = 8, written and read in the same widths (see `vector_of`).
+    let (mut fixed, mut any) = ([0.0; 8], Coords::new());
+    let v: &[f64] = if let Some(v) = fixed.get_mut(..a.position.len()) {
+        for ((x, p), q) in v.iter_mut().zip(a.position).zip(b.position) {
+            *x = q - p;
+        }
+        v
+    } else {
+        any.extend(a.position.iter().zip(b.position).map(|(p, q)| q - p));
+        &any
+    };
+    let vv = v.iter().fold(0.0, |s, x| s + x * x);
+    let centres = vv.sqrt();
+    core_separation(
+        a,
+        b,
+        CoreGap {
+            witness_a: a.position,
+            witness_b: b.position,
+            v,
+            vv,
+            intersecting: centres <= TOUCHING * centres,
+            iterations: 0,
+            certified: true,
+        },
+    )
 }
 
 /// [`distance`] by the dimension-generic GJK alone. For N = 3 and 4, [`distance`] runs
@@ -977,6 +1014,82 @@ mod tests {
         let mut depth = |p, q| penetration_with(&mut workspace, p, q).unwrap().depth;
         let (ab, ba) = (depth(&a, &b), depth(&b, &a));
         assert!(ab > 0.0 && (ab - ba).abs() <= 1e-12 * ab, "{ab} {ba}");
+    }
+
+    /// Two balls are answered by their centres as GJK answers them: apart, touching
+    /// (the margins' sum exactly), overlapping and concentric, in N = 2 … 9, every field of
+    /// the separation equal to GJK's to round-off, and with no GJK iteration.
+    #[test]
+    fn balls_are_answered_by_their_centres_as_gjk_answers_them() {
+        use rand::{Rng, SeedableRng};
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        let mut counts = [0usize; 4];
+        for n in 2..=9 {
+            let identity: Vec<f64> = (0..n * n)
+                .map(|k| if k % (n + 1) == 0 { 1.0 } else { 0.0 })
+                .collect();
+            for case in 0..200 {
+                let (ra, rb) = (r.gen_range(0.1..2.0), r.gen_range(0.1..2.0));
+                let (sa, sb) = (
+                    ConvexShape::ball(n, ra).unwrap(),
+                    ConvexShape::ball(n, rb).unwrap(),
+                );
+                let pa: Vec<f64> = (0..n).map(|_| r.gen_range(-3.0..3.0)).collect();
+                let mut u: Vec<f64> = (0..n).map(|_| r.gen_range(-1.0..1.0)).collect();
+                let norm = u.iter().map(|x| x * x).sum::<f64>().sqrt();
+                u.iter_mut().for_each(|x| *x /= norm);
+                // 0 apart, 1 touching, 2 overlapping, 3 concentric.
+                let kind = case % 4;
+                let gap = match kind {
+                    0 => r.gen_range(0.01..5.0),
+                    1 => 0.0,
+                    2 => -r.gen_range(0.0..ra.min(rb)),
+                    _ => -(ra + rb),
+                };
+                let pb: Vec<f64> = pa
+                    .iter()
+                    .zip(&u)
+                    .map(|(p, x)| p + (ra + rb + gap) * x)
+                    .collect();
+                let a = PlacedShape::new(&sa, &pa, &identity).unwrap();
+                let b = PlacedShape::new(&sb, &pb, &identity).unwrap();
+                let (fast, general) =
+                    (distance(&a, &b).unwrap(), distance_general(&a, &b).unwrap());
+                let size = ra + rb + 3.0;
+                let near = |x: &Vector, y: &Vector| {
+                    x.as_slice()
+                        .iter()
+                        .zip(y.as_slice())
+                        .all(|(p, q)| (p - q).abs() <= 1e-14 * size)
+                };
+                assert_eq!(
+                    fast.intersecting, general.intersecting,
+                    "N = {n}, case {case}"
+                );
+                assert_eq!(fast.certified, general.certified, "N = {n}, case {case}");
+                assert!(
+                    (fast.distance - general.distance).abs() <= 1e-14 * size,
+                    "N = {n}, case {case}"
+                );
+                assert!(near(&fast.normal, &general.normal), "N = {n}, case {case}");
+                assert!(
+                    near(&fast.witness_a, &general.witness_a),
+                    "N = {n}, case {case}"
+                );
+                assert!(
+                    near(&fast.witness_b, &general.witness_b),
+                    "N = {n}, case {case}"
+                );
+                assert_eq!(fast.iterations, 0);
+                if kind == 0 {
+                    assert!(fast.distance > 0.0 && !fast.intersecting);
+                } else {
+                    assert!(fast.distance <= 1e-14 * size);
+                }
+                counts[kind] += 1;
+            }
+        }
+        assert_eq!(counts, [400; 4]);
     }
 
     /// Past [`MAX_GJK_ITERATIONS`] only curved cores go on, and only while the least gap
