@@ -772,7 +772,9 @@ pub(crate) fn centre_direction(a: &PlacedShape, b: &PlacedShape) -> Vector {
 /// from A to B, by GJK on the cores (the margins subtracted). Two boxes in 3 or 4
 /// dimensions are solved as a bounded least-squares problem instead (`boxes.rs`), its
 /// answer certified by GJK's own stopping rule, GJK taking over if it cannot be; two balls
-/// (point cores) by their centres, as GJK answers them.
+/// (point cores) by their centres, as GJK answers them, and a ball against a box or a
+/// capsule (a point core against a cuboid or segment core, up to N = 8) by clamping the
+/// centre to the core.
 ///
 /// Touching and overlapping shapes have distance 0 and `intersecting` set; the answer is
 /// defined for every input (coincident, nested, flat), never NaN, and GJK stops after at
@@ -808,8 +810,18 @@ pub fn distance(a: &PlacedShape, b: &PlacedShape) -> Result<Separation, ShapeErr
 fn checked_distance(a: &PlacedShape, b: &PlacedShape, n: usize) -> Separation {
     // Each path returns its separation as it builds it: a `Separation` holds three inline
     // vectors (240 bytes), and passing it through an `Option` first copied it once more.
-    if let (ConvexCore::Point, ConvexCore::Point) = (a.shape.core(), b.shape.core()) {
-        return point_separation(a, b);
+    let point_box = match (a.shape.core(), b.shape.core()) {
+        (ConvexCore::Point, ConvexCore::Point) => return point_separation(a, b),
+        (ConvexCore::Cuboid(_) | ConvexCore::Segment(_), ConvexCore::Point) => {
+            point_box_separation(a, b, false)
+        }
+        (ConvexCore::Point, ConvexCore::Cuboid(_) | ConvexCore::Segment(_)) => {
+            point_box_separation(b, a, true)
+        }
+        _ => None,
+    };
+    if let Some(separation) = point_box {
+        return separation;
     }
     match n {
         3 => {
@@ -854,6 +866,110 @@ fn point_separation(a: &PlacedShape, b: &PlacedShape) -> Separation {
             v,
             vv,
             intersecting: centres <= TOUCHING * centres,
+            iterations: 0,
+            certified: true,
+        },
+    )
+}
+
+/// The separation of a shape whose core is a box or a segment (`boxed`: a box, rounded or
+/// not, or a capsule) and one whose core is a point (`point`: a ball or sphere), A and B in
+/// the order `point_is_a` says: the core's point nearest the centre is the centre clamped
+/// to it in its own axes, the answer GJK converges to, here exact. A centre inside or on the box touches,
+/// and so does one within GJK's contact distance ([`TOUCHING`] of the size). None above
+/// N = 8 (GJK answers there).
+fn point_box_separation(
+    boxed: &PlacedShape,
+    point: &PlacedShape,
+    point_is_a: bool,
+) -> Option<Separation> {
+    let n = boxed.shape.dim();
+    if n > 8 {
+        return None;
+    }
+    // A segment (a capsule's core) is the box of half-lengths (h, 0, …, 0).
+    let mut segment = [0.0; 8];
+    let h: &[f64] = match boxed.shape.core() {
+        ConvexCore::Cuboid(h) => h,
+        ConvexCore::Segment(length) => {
+            segment[0] = *length;
+            &segment[..n]
+        }
+        _ => return None,
+    };
+    Some(match n {
+        3 => point_box_separation_n::<3>(boxed, h, point, point_is_a),
+        4 => point_box_separation_n::<4>(boxed, h, point, point_is_a),
+        _ => point_box_separation_n::<0>(boxed, h, point, point_is_a),
+    })
+}
+
+/// [`point_box_separation`] in N dimensions (N = 0: any up to 8), on the stack, the box's
+/// core of half-lengths `h`.
+#[inline(always)]
+fn point_box_separation_n<const N: usize>(
+    boxed: &PlacedShape,
+    h: &[f64],
+    point: &PlacedShape,
+    point_is_a: bool,
+) -> Separation {
+    let n = if N == 0 { h.len() } else { N };
+    let (x, c, q) = (
+        &point.position[..n],
+        &boxed.position[..n],
+        &boxed.rotation[..n * n],
+    );
+    let (mut d, mut own) = ([0.0; 8], [0.0; 8]);
+    let mut centres = 0.0;
+    for i in 0..n {
+        d[i] = x[i] - c[i];
+        centres += d[i] * d[i];
+    }
+    for i in 0..n {
+        for k in 0..n {
+            own[k] += q[i * n + k] * d[i];
+        }
+    }
+    // The part of the centre's offset beyond the box, in the box's axes (exactly 0 along
+    // an axis where it lies within), turned to space: v from the box to the point.
+    let mut beyond = [0.0; 8];
+    for k in 0..n {
+        let (o, hk) = (own[k], h[k]);
+        beyond[k] = if o > hk {
+            o - hk
+        } else if o < -hk {
+            o + hk
+        } else {
+            0.0
+        };
+    }
+    let (mut nearest, mut v) = ([0.0; 8], [0.0; 8]);
+    let mut vv = 0.0;
+    for i in 0..n {
+        let (mut p, mut s) = (c[i], 0.0);
+        for k in 0..n {
+            p += q[i * n + k] * (own[k] - beyond[k]);
+            s += q[i * n + k] * beyond[k];
+        }
+        (nearest[i], v[i]) = (p, if point_is_a { -s } else { s });
+        vv += s * s;
+    }
+    let scale = boxed.shape.core_radius() + centres.sqrt();
+    let intersecting = vv.sqrt() <= TOUCHING * scale;
+    let (a, b, witness_a, witness_b): (_, _, &[f64], &[f64]) = if point_is_a {
+        (point, boxed, x, &nearest[..n])
+    } else {
+        (boxed, point, &nearest[..n], x)
+    };
+    core_separation(
+        a,
+        b,
+        CoreGap {
+            witness_a,
+            witness_b,
+            v: &v[..n],
+            vv,
+            intersecting,
             iterations: 0,
             certified: true,
         },
@@ -1090,6 +1206,121 @@ mod tests {
             }
         }
         assert_eq!(counts, [400; 4]);
+    }
+
+    /// A ball against a box (rounded or not) or a capsule is answered by clamping the
+    /// ball's centre to the core, in either order: in N = 2 … 8, with the centre apart
+    /// from the core beyond a face, an edge or a corner (a capsule's side or end), inside
+    /// it, and on its surface, the distance and contact agree with the dimension-generic
+    /// GJK to 1e-9 of the size, the witness on the box lies on its (rounded) surface, the
+    /// other is the centre less the radius along the normal, and no GJK iteration is taken.
+    #[test]
+    fn a_ball_against_a_box_or_capsule_is_answered_by_clamping_its_centre() {
+        use rand::{Rng, SeedableRng};
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(12);
+        let (mut counts, mut capsules) = ([0usize; 3], 0);
+        for n in 2..=8 {
+            for case in 0..300 {
+                let mut h: Vec<f64> = (0..n).map(|_| r.gen_range(0.1..2.0)).collect();
+                // A box, a fifth of them rounded, and every fourth a capsule: its segment
+                // is the box (h₁, 0, …, 0).
+                let capsule = case % 4 == 3;
+                let (boxed, margin) = if capsule {
+                    h[1..].fill(0.0);
+                    (ConvexShape::capsule(n, h[0], 0.3).unwrap(), 0.3)
+                } else if case % 5 == 0 {
+                    (ConvexShape::cuboid(&h).unwrap().rounded(0.2).unwrap(), 0.2)
+                } else {
+                    (ConvexShape::cuboid(&h).unwrap(), 0.0)
+                };
+                capsules += usize::from(capsule);
+                let radius = r.gen_range(0.05..1.5);
+                let ball = ConvexShape::ball(n, radius).unwrap();
+                let q = super::super::test_support::random_rotation(&mut r, n);
+                let c: Vec<f64> = (0..n).map(|_| r.gen_range(-2.0..2.0)).collect();
+                let identity: Vec<f64> = (0..n * n)
+                    .map(|k| if k % (n + 1) == 0 { 1.0 } else { 0.0 })
+                    .collect();
+                // The centre in the box's axes: 0 beyond it, 1 inside, 2 on its surface.
+                let kind = case % 3;
+                let own: Vec<f64> = h
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &hk)| match kind {
+                        0 if k < 1 + case % n => {
+                            [-1.0, 1.0][case % 2] * (hk + r.gen_range(0.01..3.0))
+                        }
+                        _ if k == 0 && kind == 2 => hk,
+                        _ if hk == 0.0 => 0.0,
+                        _ => r.gen_range(-hk..hk),
+                    })
+                    .collect();
+                let x: Vec<f64> = (0..n)
+                    .map(|i| c[i] + (0..n).map(|k| q[i * n + k] * own[k]).sum::<f64>())
+                    .collect();
+                let pb = PlacedShape::new(&boxed, &c, &q).unwrap();
+                let pp = PlacedShape::new(&ball, &x, &identity).unwrap();
+                let size = h.iter().map(|v| v * v).sum::<f64>().sqrt() + radius + margin + 3.0;
+                for point_first in [false, true] {
+                    let (a, b) = if point_first { (pp, pb) } else { (pb, pp) };
+                    let (fast, general) =
+                        (distance(&a, &b).unwrap(), distance_general(&a, &b).unwrap());
+                    let what = format!("N = {n}, case {case}, ball first {point_first}");
+                    assert_eq!(fast.iterations, 0, "{what}");
+                    assert!(fast.certified, "{what}");
+                    assert!(
+                        (fast.distance - general.distance).abs() <= 1e-9 * size,
+                        "{what}: {} {}",
+                        fast.distance,
+                        general.distance
+                    );
+                    assert_eq!(fast.intersecting, general.intersecting, "{what}");
+                    if kind != 0 {
+                        assert!(fast.intersecting, "{what}");
+                        continue;
+                    }
+                    // Beyond the box the cores are apart; the shapes may still overlap
+                    // (distance 0), with the witnesses where the margins put them.
+                    let apart = !fast.intersecting;
+                    let (on_box, on_ball, sign) = if point_first {
+                        (&fast.witness_b, &fast.witness_a, -1.0)
+                    } else {
+                        (&fast.witness_a, &fast.witness_b, 1.0)
+                    };
+                    // The box's witness in the box's axes: on the rounded surface.
+                    let rel: Vec<f64> = (0..n)
+                        .map(|k| {
+                            (0..n)
+                                .map(|i| q[i * n + k] * (on_box.as_slice()[i] - c[i]))
+                                .sum()
+                        })
+                        .collect();
+                    let beyond: f64 = rel
+                        .iter()
+                        .zip(&h)
+                        .map(|(o, hk)| (o.abs() - hk).max(0.0).powi(2))
+                        .sum::<f64>()
+                        .sqrt();
+                    assert!((beyond - margin).abs() <= 1e-12 * size, "{what}: {beyond}");
+                    for (i, xi) in x.iter().enumerate() {
+                        let normal = sign * fast.normal.as_slice()[i];
+                        assert!(
+                            (on_ball.as_slice()[i] - (xi - radius * normal)).abs() <= 1e-12 * size,
+                            "{what}"
+                        );
+                        let gap = on_ball.as_slice()[i] - on_box.as_slice()[i];
+                        if apart {
+                            assert!(
+                                (gap - fast.distance * normal).abs() <= 1e-12 * size,
+                                "{what}"
+                            );
+                        }
+                    }
+                }
+                counts[kind] += 1;
+            }
+        }
+        assert_eq!((counts, capsules), ([700; 3], 525));
     }
 
     /// Past [`MAX_GJK_ITERATIONS`] only curved cores go on, and only while the least gap
