@@ -2,12 +2,14 @@
 //! `BENCH_QUICK=1` shortens the run.
 //!
 //! - `gjk_distance`: [`distance`] between two separated, turned shapes: 3D boxes, 4D
-//!   boxes, 4D tesseracts given as hulls of their 16 corners, 4D balls, a 4D ball and box.
+//!   boxes, 4D tesseracts given as hulls of their 16 corners, 4D balls, a 4D ball and box,
+//!   4D capsules.
 //!   For N = 3 and 4
 //!   [`distance`] runs GJK on stack arrays, and two boxes (`box_box/N=3`, `box_box/N=4`)
 //!   by bounded least squares, cold (nothing kept between queries), two balls by their
 //!   centres (`balls/N=4`), a 4D ball and box by clamping the centre to the box
-//!   (`ball_box/N=4`); `general_*` is the
+//!   (`ball_box/N=4`), two 4D capsules by their segments' nearest points
+//!   (`capsules/N=4`); `general_*` is the
 //!   same query by the dimension-generic GJK ([`distance_general`]), and after the group
 //!   the bench prints the ratios general / fast from Criterion's medians.
 //!   `box_box_mixed/N=3`, `box_box_mixed/N=4` time [`distance`] on 1,024 pairs of random
@@ -310,6 +312,16 @@ fn bench_distance(c: &mut Criterion) {
     group.bench_function("general_ball_box/N=4", |bench| {
         bench.iter(|| kept(distance_general(black_box(&a), black_box(&b))))
     });
+    let capsule = ConvexShape::capsule(4, 0.6, 0.3).unwrap();
+    let a = PlacedShape::new(&capsule, &pa, &qa).unwrap();
+    let b = PlacedShape::new(&capsule, &pb, &qb).unwrap();
+    assert!(!distance(&a, &b).unwrap().intersecting);
+    group.bench_function("capsules/N=4", |bench| {
+        bench.iter(|| kept(distance(black_box(&a), black_box(&b))))
+    });
+    group.bench_function("general_capsules/N=4", |bench| {
+        bench.iter(|| kept(distance_general(black_box(&a), black_box(&b))))
+    });
     group.finish();
     for (name, general) in [
         ("box_box/N=3", "general_boxes/N=3"),
@@ -317,6 +329,7 @@ fn bench_distance(c: &mut Criterion) {
         ("tesseract_hulls/N=4", "general_tesseract_hulls/N=4"),
         ("balls/N=4", "general_balls/N=4"),
         ("ball_box/N=4", "general_ball_box/N=4"),
+        ("capsules/N=4", "general_capsules/N=4"),
     ] {
         if let (Some(fixed), Some(general)) = (
             median_ns("gjk_distance", name),

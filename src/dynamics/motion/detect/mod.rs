@@ -4,7 +4,8 @@
 //! - Narrow phase: [`distance`] and [`intersects`] (GJK with an exact simplex
 //!   sub-algorithm, `gjk.rs`; on stack arrays for N = 3 and 4, `fixed.rs`; two boxes in 3
 //!   and 4 dimensions by bounded least squares, `boxes.rs`; two balls by their centres, a
-//!   ball and a box or a capsule by clamping the centre to the core),
+//!   ball and a box or a capsule by clamping the centre to the core, two capsules by
+//!   their segments' nearest points),
 //!   [`penetration`] (EPA in N dimensions and closed forms,
 //!   `epa.rs`; the exact depth of ellipsoids by Newton's method on the sphere of
 //!   directions, `smooth.rs`), on [`PlacedShape`]s of [`super::shape`]; boxes by separating axes
