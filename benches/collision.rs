@@ -282,46 +282,27 @@ fn bench_distance(c: &mut Criterion) {
     }
     let n = 4;
     let tesseract = ConvexShape::hull(&corners(&[0.5; 4])).unwrap();
+    let ball = ConvexShape::ball(4, 0.5).unwrap();
+    let boxes = ConvexShape::cuboid(&[0.5, 0.6, 0.7, 0.8]).unwrap();
+    let capsule = ConvexShape::capsule(4, 0.6, 0.3).unwrap();
     let (qa, qb) = (rotation(n, 0.3), rotation(n, 0.7));
     let (pa, pb) = (vec![0.0; 4], vec![1.9, 0.4, 0.4, 0.4]);
-    let a = PlacedShape::new(&tesseract, &pa, &qa).unwrap();
-    let b = PlacedShape::new(&tesseract, &pb, &qb).unwrap();
-    assert!(!distance(&a, &b).unwrap().intersecting);
-    group.bench_function("tesseract_hulls/N=4", |bench| {
-        bench.iter(|| kept(distance(black_box(&a), black_box(&b))))
-    });
-    group.bench_function("general_tesseract_hulls/N=4", |bench| {
-        bench.iter(|| kept(distance_general(black_box(&a), black_box(&b))))
-    });
-    let ball = ConvexShape::ball(4, 0.5).unwrap();
-    let a = PlacedShape::new(&ball, &pa, &qa).unwrap();
-    let b = PlacedShape::new(&ball, &pb, &qb).unwrap();
-    group.bench_function("balls/N=4", |bench| {
-        bench.iter(|| kept(distance(black_box(&a), black_box(&b))))
-    });
-    group.bench_function("general_balls/N=4", |bench| {
-        bench.iter(|| kept(distance_general(black_box(&a), black_box(&b))))
-    });
-    let boxes = ConvexShape::cuboid(&[0.5, 0.6, 0.7, 0.8]).unwrap();
-    let a = PlacedShape::new(&boxes, &pa, &qa).unwrap();
-    let b = PlacedShape::new(&ball, &pb, &qb).unwrap();
-    assert!(!distance(&a, &b).unwrap().intersecting);
-    group.bench_function("ball_box/N=4", |bench| {
-        bench.iter(|| kept(distance(black_box(&a), black_box(&b))))
-    });
-    group.bench_function("general_ball_box/N=4", |bench| {
-        bench.iter(|| kept(distance_general(black_box(&a), black_box(&b))))
-    });
-    let capsule = ConvexShape::capsule(4, 0.6, 0.3).unwrap();
-    let a = PlacedShape::new(&capsule, &pa, &qa).unwrap();
-    let b = PlacedShape::new(&capsule, &pb, &qb).unwrap();
-    assert!(!distance(&a, &b).unwrap().intersecting);
-    group.bench_function("capsules/N=4", |bench| {
-        bench.iter(|| kept(distance(black_box(&a), black_box(&b))))
-    });
-    group.bench_function("general_capsules/N=4", |bench| {
-        bench.iter(|| kept(distance_general(black_box(&a), black_box(&b))))
-    });
+    for (name, sa, sb) in [
+        ("tesseract_hulls/N=4", &tesseract, &tesseract),
+        ("balls/N=4", &ball, &ball),
+        ("ball_box/N=4", &boxes, &ball),
+        ("capsules/N=4", &capsule, &capsule),
+    ] {
+        let a = PlacedShape::new(sa, &pa, &qa).unwrap();
+        let b = PlacedShape::new(sb, &pb, &qb).unwrap();
+        assert!(!distance(&a, &b).unwrap().intersecting);
+        group.bench_function(name, |bench| {
+            bench.iter(|| kept(distance(black_box(&a), black_box(&b))))
+        });
+        group.bench_function(format!("general_{name}"), |bench| {
+            bench.iter(|| kept(distance_general(black_box(&a), black_box(&b))))
+        });
+    }
     group.finish();
     for (name, general) in [
         ("box_box/N=3", "general_boxes/N=3"),
