@@ -214,7 +214,7 @@ impl<const N: usize> Problem<N> {
 /// `x` clamped to [−h, h] by plain comparisons (f64::clamp and min/max pay for NaN
 /// rules; a NaN here fails the certificate at the end).
 #[inline(always)]
-fn within(x: f64, h: f64) -> f64 {
+pub(super) fn within(x: f64, h: f64) -> f64 {
     if x > h {
         h
     } else if x < -h {

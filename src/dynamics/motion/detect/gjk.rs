@@ -33,6 +33,7 @@
 //! used: on touching curved pairs in six dimensions it left more queries unconverged
 //! than the plain iteration.
 
+use super::boxes::within;
 use crate::algebra::Vector;
 use crate::dynamics::motion::shape::{
     ConvexCore, ConvexShape, Coords, ShapeError, check_placement,
@@ -811,19 +812,20 @@ pub fn distance(a: &PlacedShape, b: &PlacedShape) -> Result<Separation, ShapeErr
 fn checked_distance(a: &PlacedShape, b: &PlacedShape, n: usize) -> Separation {
     // Each path returns its separation as it builds it: a `Separation` holds three inline
     // vectors (240 bytes), and passing it through an `Option` first copied it once more.
-    let point_box = match (a.shape.core(), b.shape.core()) {
+    // Closed forms: balls in any N; a ball against a box or a capsule, and two capsules,
+    // up to N = 8 (on the stack).
+    match (a.shape.core(), b.shape.core()) {
         (ConvexCore::Point, ConvexCore::Point) => return point_separation(a, b),
-        (ConvexCore::Cuboid(_) | ConvexCore::Segment(_), ConvexCore::Point) => {
-            point_box_separation(a, b, false)
+        (ConvexCore::Cuboid(_) | ConvexCore::Segment(_), ConvexCore::Point) if n <= 8 => {
+            return point_box_separation(a, b, false);
         }
-        (ConvexCore::Point, ConvexCore::Cuboid(_) | ConvexCore::Segment(_)) => {
-            point_box_separation(b, a, true)
+        (ConvexCore::Point, ConvexCore::Cuboid(_) | ConvexCore::Segment(_)) if n <= 8 => {
+            return point_box_separation(b, a, true);
         }
-        (ConvexCore::Segment(_), ConvexCore::Segment(_)) => segment_separation(a, b),
-        _ => None,
-    };
-    if let Some(separation) = point_box {
-        return separation;
+        (ConvexCore::Segment(_), ConvexCore::Segment(_)) if n <= 8 => {
+            return segment_separation(a, b);
+        }
+        _ => {}
     }
     match n {
         3 => {
@@ -878,17 +880,9 @@ fn point_separation(a: &PlacedShape, b: &PlacedShape) -> Separation {
 /// not, or a capsule) and one whose core is a point (`point`: a ball or sphere), A and B in
 /// the order `point_is_a` says: the core's point nearest the centre is the centre clamped
 /// to it in its own axes, the answer GJK converges to, here exact. A centre inside or on the box touches,
-/// and so does one within GJK's contact distance ([`TOUCHING`] of the size). None above
-/// N = 8 (GJK answers there).
-fn point_box_separation(
-    boxed: &PlacedShape,
-    point: &PlacedShape,
-    point_is_a: bool,
-) -> Option<Separation> {
+/// and so does one within GJK's contact distance ([`TOUCHING`] of the size). N ≤ 8.
+fn point_box_separation(boxed: &PlacedShape, point: &PlacedShape, point_is_a: bool) -> Separation {
     let n = boxed.shape.dim();
-    if n > 8 {
-        return None;
-    }
     // A segment (a capsule's core) is the box of half-lengths (h, 0, …, 0).
     let mut segment = [0.0; 8];
     let h: &[f64] = match boxed.shape.core() {
@@ -897,13 +891,13 @@ fn point_box_separation(
             segment[0] = *length;
             &segment[..n]
         }
-        _ => return None,
+        _ => unreachable!("the caller matched a cuboid or segment core"),
     };
-    Some(match n {
+    match n {
         3 => point_box_separation_n::<3>(boxed, h, point, point_is_a),
         4 => point_box_separation_n::<4>(boxed, h, point, point_is_a),
         _ => point_box_separation_n::<0>(boxed, h, point, point_is_a),
-    })
+    }
 }
 
 /// [`point_box_separation`] in N dimensions (N = 0: any up to 8), on the stack, the box's
@@ -936,14 +930,7 @@ fn point_box_separation_n<const N: usize>(
     // an axis where it lies within), turned to space: v from the box to the point.
     let mut beyond = [0.0; 8];
     for k in 0..n {
-        let (o, hk) = (own[k], h[k]);
-        beyond[k] = if o > hk {
-            o - hk
-        } else if o < -hk {
-            o + hk
-        } else {
-            0.0
-        };
+        beyond[k] = own[k] - within(own[k], h[k]);
     }
     let (mut nearest, mut v) = ([0.0; 8], [0.0; 8]);
     let mut vv = 0.0;
@@ -984,13 +971,12 @@ fn point_box_separation_n<const N: usize>(
 /// at the stationary point when that is inside (segments not parallel), or on an edge,
 /// where one parameter is at a bound and the other the clamp of its best value. Every
 /// candidate is computed and the least kept, so that parallel, collinear and crossing
-/// segments need no case of their own. None above N = 8 (GJK answers there).
-fn segment_separation(a: &PlacedShape, b: &PlacedShape) -> Option<Separation> {
+/// segments need no case of their own. N ≤ 8.
+fn segment_separation(a: &PlacedShape, b: &PlacedShape) -> Separation {
     match a.shape.dim() {
-        3 => Some(segment_separation_n::<3>(a, b)),
-        4 => Some(segment_separation_n::<4>(a, b)),
-        n if n <= 8 => Some(segment_separation_n::<0>(a, b)),
-        _ => None,
+        3 => segment_separation_n::<3>(a, b),
+        4 => segment_separation_n::<4>(a, b),
+        _ => segment_separation_n::<0>(a, b),
     }
 }
 
@@ -1014,13 +1000,12 @@ fn segment_separation_n<const N: usize>(a: &PlacedShape, b: &PlacedShape) -> Sep
         db += d[i] * ub[i];
         dd += d[i] * d[i];
     }
-    let clamp = |x: f64, h: f64| x.clamp(-h, h);
     // (s, t) on the edges: t best for s = ±h_a, s best for t = ±h_b.
     let mut candidates = [
-        (ha, clamp(ha * c - db, hb)),
-        (-ha, clamp(-ha * c - db, hb)),
-        (clamp(da + hb * c, ha), hb),
-        (clamp(da - hb * c, ha), -hb),
+        (ha, within(ha * c - db, hb)),
+        (-ha, within(-ha * c - db, hb)),
+        (within(da + hb * c, ha), hb),
+        (within(da - hb * c, ha), -hb),
         (f64::NAN, f64::NAN),
     ];
     // The stationary point, s = (d·u_a − c d·u_b) / (1 − c²) and t = c s − d·u_b, where the

@@ -65,6 +65,7 @@ impl KeptPairs {
 
     /// Adds `numbers` to the last entry.
     pub fn extend(&mut self, numbers: impl IntoIterator<Item = f64>) {
+        debug_assert!(!self.entries.is_empty(), "numbers added before any entry");
         let before = self.data.len();
         self.data.extend(numbers);
         if let Some(last) = self.entries.last_mut() {
@@ -74,6 +75,7 @@ impl KeptPairs {
 
     /// Adds a point's `feature` to the last entry.
     pub fn push_feature(&mut self, feature: u64) {
+        debug_assert!(!self.entries.is_empty(), "a feature added before any entry");
         self.features.push(feature);
         if let Some(last) = self.entries.last_mut() {
             last.count += 1;
