@@ -76,8 +76,9 @@ pub struct MotionSplitting {
     kick_start: SavedBodies,
     /// The bodies' convex shapes and the pairs of bodies found touching.
     touching: Touching,
-    /// The pairs of bodies in contact at the start of the substep, sorted.
-    active_pairs: Vec<(usize, usize)>,
+    /// The pairs of bodies in contact at the start of the substep, sorted, each with its
+    /// least signed distance then (−∞ for a pair admitted during the step).
+    active_pairs: Vec<((usize, usize), f64)>,
     /// True while an impact is being located.
     locating: bool,
     /// True while the contacts the solves find go unrecorded: in the steps of an `advance`
@@ -98,8 +99,8 @@ pub struct MotionSplitting {
 }
 
 /// A contact entering in a flight: a pair of bodies (a < b) with its signed distance and
-/// that distance over its reach, or a candidate against a half-space with that distance
-/// over its reach.
+/// its relative distance ([`MotionSplitting::pair_penetration`]'s: below −1 it entered),
+/// or a candidate against a half-space with its distance over its reach.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Entering {
     Pair(usize, usize, f64, f64),
@@ -117,6 +118,13 @@ const MANIFOLD_SLOP: f64 = 1e-2;
 /// How many times its touching distance a contact point between bodies may end a flight
 /// inside and still be closed by the flight's position step.
 const PAIR_POSITION_LIMIT: f64 = 1e3;
+
+/// How far (relative to the sum of their bounding radii) two bodies in contact may sink
+/// below where they started a flight (or below touching) before the flight counts as an
+/// impact, located as one: a feature their rows did not hold has landed. A thousandth: the
+/// depth the flight's position step still closes for a box pair's rows
+/// ([`PAIR_POSITION_LIMIT`] times their touching distance, 10⁻⁶ of the radii).
+const SINK_LIMIT: f64 = 1e-3;
 
 /// Fixed-point iterations of an implicit closing kick, at most.
 const MAX_KICK_ITERATIONS: usize = 50;
@@ -664,15 +672,19 @@ impl MotionSplitting {
                 None,
             );
             self.active_pairs
-                .extend(self.touching.found().iter().map(|c| (c.a, c.b)));
-            self.active_pairs.sort_unstable();
-            self.active_pairs.dedup();
+                .extend(self.touching.found().iter().map(|c| ((c.a, c.b), c.gap)));
+            // The pieces of compound bodies give a pair several gaps: the least stays.
+            self.active_pairs
+                .sort_unstable_by(|x, y| x.0.cmp(&y.0).then(x.1.total_cmp(&y.1)));
+            self.active_pairs.dedup_by_key(|x| x.0);
         }
     }
 
-    /// The least gap, relative to the pair's reach, of the pairs of bodies that were not in
-    /// contact at the start of the step and come within their radii of each other (+∞ if
-    /// there are none).
+    /// The least relative gap of the pairs of bodies (+∞ if there are none), below −1 where
+    /// one entered: for a pair that was not in contact at the start of the step and comes
+    /// within the bodies' radii, its gap over its reach; for a pair in contact then, 1 plus
+    /// how far it sank below where it started (or below touching) over [`SINK_LIMIT`]'s
+    /// depth, so that the impact located is where it sinks by that depth.
     fn pair_penetration(&mut self, system: &System) -> f64 {
         if !self.touching.any_pairs() {
             return f64::INFINITY;
@@ -690,13 +702,23 @@ impl MotionSplitting {
             .scan(system.bodies(), |i| &placements.get(i).q, factor, None);
         let mut worst = f64::INFINITY;
         for c in self.touching.found() {
-            if self.active_pairs.binary_search(&(c.a, c.b)).is_err() {
-                let reach = self.touching.touching_reach((c.a, c.b), CONTACT_TOLERANCE);
-                worst = worst.min(c.gap / reach);
-                if c.gap < -reach {
-                    self.entering
-                        .push(Entering::Pair(c.a, c.b, c.gap, c.gap / reach));
+            let reach = self.touching.touching_reach((c.a, c.b), CONTACT_TOLERANCE);
+            let relative = match self.active_pairs.binary_search_by_key(&(c.a, c.b), |x| x.0) {
+                Err(_) => c.gap / reach,
+                // A pair in contact sinks where a feature its rows did not hold lands (a
+                // corner of a turning or sliding box beyond the manifold's slop, an edge
+                // sliding along an edge), or where a turning body misses a speculative
+                // row's aim: an impact too, located where it has sunk by SINK_LIMIT's
+                // depth; the next substep's manifold holds the feature from there.
+                Ok(k) => {
+                    let start = self.active_pairs[k].1.min(0.0);
+                    1.0 + (c.gap - start) / self.touching.touching_reach((c.a, c.b), SINK_LIMIT)
                 }
+            };
+            worst = worst.min(relative);
+            if relative < -1.0 {
+                self.entering
+                    .push(Entering::Pair(c.a, c.b, c.gap, relative));
             }
         }
         worst
@@ -907,7 +929,8 @@ impl MotionSplitting {
     /// distance no faster on average than the forques make bodies approach in one step (the resting
     /// speed of a whole step): located, they would be resolved without restitution, as they
     /// are in the closing solve, and locating each (a bracketing of its own, with two solves
-    /// per try) would cost far more than the step. Returns the least relative distance at
+    /// per try) would cost far more than the step. Pairs that were in contact and sank are
+    /// never admitted so. Returns the least relative distance at
     /// the end of the flight of the others (+∞ if none), and leaves the bodies at `saved`.
     fn admit_entering(&mut self, system: &mut System, saved: &SavedBodies, step: f64) -> f64 {
         let entering = std::mem::take(&mut self.entering);
@@ -939,12 +962,15 @@ impl MotionSplitting {
             // they are step / h times as large, and the bound on the average approach over
             // the substep is that times h.
             let speed = self.resting_speed[a].max(self.resting_speed[b]);
-            if start - end > speed * step {
+            // A pair in contact that sank is located however slowly it sank: admitting it
+            // would change nothing, and the feature that sinks would go on unheld.
+            let active = self.active_pairs.binary_search_by_key(&(a, b), |x| x.0);
+            if start - end > speed * step || active.is_ok() {
                 fast = fast.min(relative);
                 continue;
             }
-            if let Err(at) = self.active_pairs.binary_search(&(a, b)) {
-                self.active_pairs.insert(at, (a, b));
+            if let Err(at) = active {
+                self.active_pairs.insert(at, ((a, b), f64::NEG_INFINITY));
             }
         }
         self.entering = entering;
