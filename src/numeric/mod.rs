@@ -57,6 +57,17 @@ pub(crate) fn zeros<const K: usize>(len: usize) -> SmallVec<[f64; K]> {
     }
 }
 
+/// The dimension of a kernel: `N` when it is fixed at compile time (3 and 4: loops of known
+/// length, unrolled), else `n` (`N` = 0).
+#[inline(always)]
+pub(crate) fn dim<const N: usize>(n: usize) -> usize {
+    debug_assert!(
+        N == 0 || N == n,
+        "rotorflow: kernel of dimension {N} for {n}"
+    );
+    if N == 0 { n } else { N }
+}
+
 /// True when the numbers are all finite: each is multiplied by zero (±0 when finite, NaN
 /// for ±∞ and NaN) and the products summed in four lanes, with no branch per number.
 #[inline(always)]

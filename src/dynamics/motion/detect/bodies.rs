@@ -13,6 +13,7 @@ use super::{
 use crate::dynamics::motion::forques::Anchor;
 use crate::dynamics::motion::shape::{CompoundShape, ConvexCore, ConvexShape};
 use crate::dynamics::motion::{BallJoint, ContactShape, MovingBody};
+use crate::numeric::dim;
 use smallvec::SmallVec;
 
 /// The convex shape a body collides with other bodies by: the hull of a shape's vertices,
@@ -124,18 +125,51 @@ pub(crate) fn placed_within(
 /// Writes into `out` the placement of body b in body a's axes from their own axes
 /// (row-major, own axes → space) and centres: b's centre (N numbers), then b's axes
 /// (N × N, row-major).
-pub(crate) fn relative_placement(
+pub(crate) fn relative_placement(q: (&[f64], &[f64]), x: (&[f64], &[f64]), out: &mut Vec<f64>) {
+    match x.0.len() {
+        3 => relative_placement_n::<3>(q, x, out),
+        4 => relative_placement_n::<4>(q, x, out),
+        _ => relative_placement_n::<0>(q, x, out),
+    }
+}
+
+/// [`relative_placement`] with the dimension `N` as in [`dim`].
+#[inline(always)]
+fn relative_placement_n<const N: usize>(
     (qa, qb): (&[f64], &[f64]),
     (xa, xb): (&[f64], &[f64]),
     out: &mut Vec<f64>,
 ) {
-    let n = xa.len();
+    let n = dim::<N>(xa.len());
     out.clear();
     out.extend((0..n).map(|k| (0..n).map(|i| qa[i * n + k] * (xb[i] - xa[i])).sum::<f64>()));
-    out.extend((0..n * n).map(|e| {
-        let (r, c) = (e / n, e % n);
-        (0..n).map(|i| qa[i * n + r] * qb[i * n + c]).sum::<f64>()
-    }));
+    for r in 0..n {
+        out.extend((0..n).map(|c| (0..n).map(|i| qa[i * n + r] * qb[i * n + c]).sum::<f64>()));
+    }
+}
+
+/// Writes `out` = Q v (+ x): a vector `v` of a body's axes (Q row-major, own axes →
+/// space) in space, or with the centre `x` a point.
+fn in_space((q, v): (&[f64], &[f64]), x: Option<&[f64]>, out: &mut [f64]) {
+    match v.len() {
+        3 => in_space_n::<3>((q, v), x, out),
+        4 => in_space_n::<4>((q, v), x, out),
+        _ => in_space_n::<0>((q, v), x, out),
+    }
+}
+
+/// [`in_space`] with the dimension `N` as in [`dim`].
+#[inline(always)]
+fn in_space_n<const N: usize>((q, v): (&[f64], &[f64]), x: Option<&[f64]>, out: &mut [f64]) {
+    let n = dim::<N>(v.len());
+    for (i, o) in out[..n].iter_mut().enumerate() {
+        let turned: f64 = q[i * n..(i + 1) * n]
+            .iter()
+            .zip(&v[..n])
+            .map(|(a, b)| a * b)
+            .sum();
+        *o = x.map_or(turned, |x| x[i] + turned);
+    }
 }
 
 /// Keeps the manifold `m` of the boxes `pair` found at their placement now (centres `x`,
@@ -809,24 +843,16 @@ impl Touching {
         if !placed_within(&self.relative, then, n, (limit, KEEP_BOX_MANIFOLD)) {
             return Some(false);
         }
-        let in_space = |q: &[f64], own: &[f64], i: usize| -> f64 {
-            q[i * n..(i + 1) * n]
-                .iter()
-                .zip(own)
-                .map(|(x, y)| x * y)
-                .sum()
-        };
         let (normal_own, kept) = rest.split_at(n);
-        let normal: SmallVec<[f64; 8]> = (0..n).map(|i| in_space(qa, normal_own, i)).collect();
+        let mut normal: SmallVec<[f64; 8]> = SmallVec::from_elem(0.0, n);
+        in_space((qa, normal_own), None, &mut normal);
         let (mut pa, mut pb): (SmallVec<[f64; 8]>, SmallVec<[f64; 8]>) =
             (SmallVec::from_elem(0.0, n), SmallVec::from_elem(0.0, n));
         let mut least = f64::INFINITY;
         for (k, point) in kept.chunks_exact(1 + 2 * n).enumerate() {
             let (own_a, own_b) = point[1..].split_at(n);
-            for i in 0..n {
-                pa[i] = xa[i] + in_space(qa, own_a, i);
-                pb[i] = xb[i] + in_space(qb, own_b, i);
-            }
+            in_space((qa, own_a), Some(xa), &mut pa);
+            in_space((qb, own_b), Some(xb), &mut pb);
             let along: f64 = (0..n).map(|i| normal[i] * (pb[i] - pa[i])).sum();
             let gap = point[0] + along;
             if !points {

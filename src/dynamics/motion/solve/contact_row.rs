@@ -129,16 +129,7 @@ impl RowKey {
     }
 }
 
-/// The dimension of a kernel: `N` when it is fixed at compile time (3 and 4: loops of known
-/// length, unrolled), else `n` (`N` = 0).
-#[inline(always)]
-pub(super) fn dim<const N: usize>(n: usize) -> usize {
-    debug_assert!(
-        N == 0 || N == n,
-        "rotorflow: kernel of dimension {N} for {n}"
-    );
-    if N == 0 { n } else { N }
-}
+pub(super) use crate::numeric::dim;
 
 /// The planes through each axis in 3D and 4D, in their order: the entries of row i of C
 /// (whose column p is r ⌋ e_p) that can be non-zero.
