@@ -119,11 +119,12 @@ const MANIFOLD_SLOP: f64 = 1e-2;
 /// inside and still be closed by the flight's position step.
 const PAIR_POSITION_LIMIT: f64 = 1e3;
 
-/// How far (relative to the sum of their bounding radii) two bodies in contact may sink
-/// below where they started a flight (or below touching) before the flight counts as an
-/// impact, located as one: a feature their rows did not hold has landed. A thousandth: the
-/// depth the flight's position step still closes for a box pair's rows
-/// ([`PAIR_POSITION_LIMIT`] times their touching distance, 10⁻⁶ of the radii).
+/// How far (relative to the sum of their bounding radii) two bodies in contact sink below
+/// where they started a flight (or below touching) where a landing of a feature their rows
+/// did not hold is located: a flight in which they sink by more than twice this is an
+/// impact, located where they have sunk by about this much. A thousandth: the depth the
+/// flight's position step still closes for a box pair's rows ([`PAIR_POSITION_LIMIT`]
+/// times their touching distance, 10⁻⁶ of the radii).
 const SINK_LIMIT: f64 = 1e-3;
 
 /// Fixed-point iterations of an implicit closing kick, at most.
@@ -684,7 +685,8 @@ impl MotionSplitting {
     /// one entered: for a pair that was not in contact at the start of the step and comes
     /// within the bodies' radii, its gap over its reach; for a pair in contact then, 1 plus
     /// how far it sank below where it started (or below touching) over [`SINK_LIMIT`]'s
-    /// depth, so that the impact located is where it sinks by that depth.
+    /// depth: below −1 once it sank by twice that depth, and the impact located where it
+    /// has sunk by about that depth.
     fn pair_penetration(&mut self, system: &System) -> f64 {
         if !self.touching.any_pairs() {
             return f64::INFINITY;
@@ -708,7 +710,7 @@ impl MotionSplitting {
                 // A pair in contact sinks where a feature its rows did not hold lands (a
                 // corner of a turning or sliding box beyond the manifold's slop, an edge
                 // sliding along an edge), or where a turning body misses a speculative
-                // row's aim: an impact too, located where it has sunk by SINK_LIMIT's
+                // row's aim: an impact too, located where it has sunk by about SINK_LIMIT's
                 // depth; the next substep's manifold holds the feature from there.
                 Ok(k) => {
                     let start = self.active_pairs[k].1.min(0.0);
