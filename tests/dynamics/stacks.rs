@@ -35,14 +35,33 @@ pub(crate) fn turned_cube(
     friction: f64,
     attitude: Rotor,
 ) -> MovingBody {
+    moving_cube(
+        n,
+        half,
+        x,
+        friction,
+        attitude,
+        (&Vector::zero(n), &Bivector::zero(n)),
+    )
+}
+
+/// [`turned_cube`] moving with velocity v and angular velocity ω.
+fn moving_cube(
+    n: usize,
+    half: f64,
+    x: &[f64],
+    friction: f64,
+    attitude: Rotor,
+    (v, omega): (&Vector, &Bivector),
+) -> MovingBody {
     let lengths = vec![format!("{half}"); n].join(",");
     let parsed = parse_body(&format!("cuboid:{lengths}+mass=1")).unwrap();
     MovingBody::from_parsed(
         &parsed,
         attitude,
         &Vector::from_components(x).unwrap(),
-        &Vector::zero(n),
-        &Bivector::zero(n),
+        v,
+        omega,
     )
     .unwrap()
     .with_friction(friction)
@@ -576,20 +595,8 @@ fn tumbling_drops(seed: u64, dims: &[usize], drops: usize) -> Vec<(usize, f64)> 
             for c in omega.as_mut_slice() {
                 *c = rng.gen_range(-3.0..3.0);
             }
-            let upper = MovingBody::from_parsed(
-                &parse_body(&format!(
-                    "cuboid:{}+mass=1",
-                    vec![format!("{half}"); n].join(",")
-                ))
-                .unwrap(),
-                tilt,
-                &Vector::from_components(&top).unwrap(),
-                &axis(n, 0, rng.gen_range(-0.5..0.5)),
-                &omega,
-            )
-            .unwrap()
-            .with_friction(0.5)
-            .unwrap();
+            let drift = axis(n, 0, rng.gen_range(-0.5..0.5));
+            let upper = moving_cube(n, half, &top, 0.5, tilt, (&drift, &omega));
             let mut s = System::new(vec![lower, upper]).unwrap();
             s.add_forque(Gravity(axis(n, n - 1, -G))).unwrap();
             s.add_half_space(HalfSpace::new(&axis(n, n - 1, 1.0), 0.0, 0.5, 0.0).unwrap())

@@ -704,9 +704,8 @@ impl MotionSplitting {
             .scan(system.bodies(), |i| &placements.get(i).q, factor, None);
         let mut worst = f64::INFINITY;
         for c in self.touching.found() {
-            let reach = self.touching.touching_reach((c.a, c.b), CONTACT_TOLERANCE);
             let relative = match self.active_pairs.binary_search_by_key(&(c.a, c.b), |x| x.0) {
-                Err(_) => c.gap / reach,
+                Err(_) => c.gap / self.touching.touching_reach((c.a, c.b), CONTACT_TOLERANCE),
                 // A pair in contact sinks where a feature its rows did not hold lands (a
                 // corner of a turning or sliding box beyond the manifold's slop, an edge
                 // sliding along an edge), or where a turning body misses a speculative
