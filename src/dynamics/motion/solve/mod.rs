@@ -35,7 +35,24 @@ const MAX_SWEEPS: usize = 20_000;
 /// Sweeps after which a solve whose largest change has not fallen by 1 % stops, unconverged:
 /// its rows cycle (Gauss–Seidel with friction; measured on a tilted box landing on a slab,
 /// whose change stays at the same value from the 100th sweep to the 20,000th).
-const STALLED_SWEEPS: usize = 500;
+pub(crate) const STALLED_SWEEPS: usize = 500;
+
+/// Sweeps without a 1 % fall of the largest change after which a solve looks for a cycle:
+/// sweeps that leave the velocities of its bodies where they were.
+const CYCLE_AFTER: usize = 20;
+
+/// A cycle: this many sweeps in a row that move no velocity of the solve's bodies by more
+/// than [`CYCLE_NET`] of its tolerance (an angular velocity times the longest lever arm of
+/// its rows), while their updates still change velocities by more than the tolerance.
+/// Gauss–Seidel with friction meets them on faces: the sweeps hand impulses round a face's
+/// points (along a direction of its normal impulses that moves no body, friction at the rim
+/// of its cone), and in the pile of 100 bodies of the Rapier comparison their velocities
+/// stay to within 1e-15 of the contacts' speed for hundreds of sweeps while each update moves
+/// them by 1e-8 to 1e-6 of it: more sweeps would change only the impulses' share among the
+/// points. The solve stops there, unconverged, with the residual it would have after
+/// [`STALLED_SWEEPS`].
+const CYCLE_SWEEPS: usize = 3;
+const CYCLE_NET: f64 = 1e-3;
 
 /// Where the sweeps of a solve with contacts between bodies stop: a change of every
 /// velocity below this fraction of the contacts' speed.
@@ -173,6 +190,13 @@ pub(crate) struct Solver {
     /// row (joints, pairs, contact rows) its impulse before the sweep, then its change over
     /// the sweep, and its direction p, n numbers each.
     momentum: Vec<f64>,
+    /// True to stop a solve that does not converge only after [`STALLED_SWEEPS`] sweeps
+    /// without progress, never on a cycle (so that tests can compare the two).
+    pub stall_only: bool,
+    /// The bodies of a solve that looks for a cycle, and their velocities (v, then ω) at
+    /// the start of the sweep it checks ([`Solver::cycle_moved`]).
+    cycle_bodies: Vec<usize>,
+    cycle_velocities: Vec<f64>,
 }
 
 /// For the bodies of the found pairs: each one's attitude (the numbers of its principal
@@ -824,7 +848,7 @@ impl Solver {
     /// Gauss–Seidel sweeps over the contact rows `range` (and every joint when `coupled`)
     /// until no impulse changes one of their velocities by more than 1e-12 of their speeds
     /// (1e-9 with pairs), or the largest change has not fallen by 1 % in [`STALLED_SWEEPS`]
-    /// sweeps (unconverged, and reported).
+    /// sweeps or the sweeps cycle ([`CYCLE_SWEEPS`]) (unconverged, and reported).
     fn sweep_rows<const N: usize>(
         &mut self,
         range: std::ops::Range<usize>,
@@ -857,9 +881,22 @@ impl Solver {
         let mut last = f64::INFINITY;
         // The least change so far, and the sweep that brought it 1 % below the one before.
         let (mut least, mut least_at) = (f64::INFINITY, 0);
+        // The lever arm that turns the bodies' angular velocities into speeds of points
+        // (set when a cycle is first looked for), and the sweeps in a row that left the
+        // velocities where they were.
+        let (mut lever, mut still) = (None, 0);
         while sweeps < MAX_SWEEPS {
             sweeps += 1;
             change = 0.0;
+            let check = !self.stall_only && sweeps > least_at + CYCLE_AFTER;
+            if check && lever.is_none() {
+                lever = Some(self.cycle_bodies_of(start..end, coupled));
+            }
+            if check {
+                self.cycle_keep();
+            } else {
+                still = 0;
+            }
             let accelerated = coupled && !self.plain_gauss_seidel && sweeps >= ACCELERATE_FROM;
             if accelerated {
                 self.keep_impulses(start..end, half_spaces, n, sweeps == ACCELERATE_FROM);
@@ -927,6 +964,22 @@ impl Solver {
             if accelerated && sweeps < MAX_SWEEPS {
                 last = self.accelerate::<N>(start..end, half_spaces, layout, last);
             }
+            if let (true, Some(lever)) = (check, lever) {
+                // Rows that hand impulses round a face (a null direction of its points'
+                // normal impulses, friction at the rim of its cone) leave the bodies'
+                // velocities as they were, to round-off, sweep after sweep, while each
+                // update still changes them by the same amount: more sweeps change
+                // nothing but the impulses' share among the points.
+                let moved = self.cycle_moved(lever);
+                still = if moved <= CYCLE_NET * tolerance {
+                    still + 1
+                } else {
+                    0
+                };
+                if still >= CYCLE_SWEEPS {
+                    break;
+                }
+            }
         }
         self.report.max_sweeps = self.report.max_sweeps.max(sweeps);
         self.report.sweeps += sweeps as u64;
@@ -935,6 +988,61 @@ impl Solver {
             let residual = change / speed.max(1e-300);
             self.report.worst_residual = self.report.worst_residual.max(residual);
         }
+    }
+
+    /// Lists the bodies of the contact rows `range` (and of the pairs and joints when
+    /// `coupled`) for [`Self::cycle_keep`], and returns the longest lever arm of their rows.
+    fn cycle_bodies_of(&mut self, range: std::ops::Range<usize>, coupled: bool) -> f64 {
+        let mut lever = 0.0f64;
+        let bodies = &mut self.cycle_bodies;
+        bodies.clear();
+        for row in &self.contacts[range] {
+            bodies.push(row.body);
+            lever = lever.max(row.r.iter().fold(0.0, |s, x| s + x * x).sqrt());
+        }
+        if coupled {
+            for row in &self.pairs {
+                bodies.extend([row.a, row.b]);
+                lever = lever.max(row.ra.norm()).max(row.rb.norm());
+            }
+            for row in &self.joints {
+                bodies.push(row.body);
+                lever = lever.max(row.r.norm());
+                if let Some((other, r)) = &row.other {
+                    bodies.push(*other);
+                    lever = lever.max(r.norm());
+                }
+            }
+        }
+        bodies.sort_unstable();
+        bodies.dedup();
+        lever
+    }
+
+    /// Keeps the velocities of [`Self::cycle_bodies`] as they are now.
+    fn cycle_keep(&mut self) {
+        self.cycle_velocities.clear();
+        for &i in &self.cycle_bodies {
+            let st = &self.states[i];
+            self.cycle_velocities.extend(st.v.iter().chain(st.w.iter()));
+        }
+    }
+
+    /// The largest change of a velocity of [`Self::cycle_bodies`] since
+    /// [`Self::cycle_keep`], an angular one times `lever` (a speed of a point).
+    fn cycle_moved(&self, lever: f64) -> f64 {
+        let mut kept = self.cycle_velocities.iter();
+        let mut moved = 0.0f64;
+        for &i in &self.cycle_bodies {
+            let st = &self.states[i];
+            for (x, y) in st.v.iter().zip(kept.by_ref()) {
+                moved = moved.max((x - y).abs());
+            }
+            for (x, y) in st.w.iter().zip(kept.by_ref()) {
+                moved = moved.max((x - y).abs() * lever);
+            }
+        }
+        moved
     }
 
     /// Keeps each row's accumulated impulse as one vector (joints, pairs, then the contact
