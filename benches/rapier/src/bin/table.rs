@@ -518,7 +518,7 @@ fn run() -> Result<(), Error> {
     let _ = writeln!(
         text,
         "\n`MotionSplitting`'s contact solves in those runs (`MotionSplitting::solver_report`): the solves, those that \
-         stopped unconverged (at the sweep limit, or when their largest change had not fallen by 1 % in 500 sweeps), the mean and the most sweeps one took and the worst residual \
+         stopped unconverged (at the sweep limit, when their largest change had not fallen by 1 % in 500 sweeps, or on a cycle: sweeps that left the velocities where they were), the mean and the most sweeps one took and the worst residual \
          left.\n"
     );
     let _ = writeln!(
