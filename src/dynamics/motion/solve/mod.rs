@@ -998,7 +998,7 @@ impl Solver {
         bodies.clear();
         for row in &self.contacts[range] {
             bodies.push(row.body);
-            lever = lever.max(row.r.iter().fold(0.0, |s, x| s + x * x).sqrt());
+            lever = lever.max(crate::numeric::dense::norm(&row.r));
         }
         if coupled {
             for row in &self.pairs {
