@@ -15,6 +15,8 @@
 //! - [`trig`]: sin x and cos x − 1 without cancellation;
 //! - [`householder`]: the complement of two orthonormal vectors by Householder reflections;
 //! - [`simplex`]: a small dense linear program by the two-phase simplex method, inline;
+//! - [`secular`]: every root of the secular equation of the feet of normals to an
+//!   ellipsoid;
 //! - the small helpers below (exact scaling by powers of two, scaled norms, max-abs norms,
 //!   orthogonality error, Gram–Schmidt against orthonormal rows), each the
 //!   one copy the crate uses.
@@ -23,6 +25,7 @@ pub(crate) mod dense;
 pub(crate) mod eigen;
 pub(crate) mod expm;
 pub(crate) mod householder;
+pub(crate) mod secular;
 pub(crate) mod simplex;
 pub(crate) mod solve;
 pub(crate) mod trig;

@@ -8,7 +8,8 @@
 //!   their segments' nearest points),
 //!   [`penetration`] (EPA in N dimensions and closed forms,
 //!   `epa.rs`; the exact depth of ellipsoids by Newton's method on the sphere of
-//!   directions, `smooth.rs`), on [`PlacedShape`]s of [`super::shape`]; boxes by separating axes
+//!   directions, `smooth.rs`, and against a polytope, where that is not shown the least,
+//!   by the feet of normals on every face's plane, `face_planes.rs`), on [`PlacedShape`]s of [`super::shape`]; boxes by separating axes
 //!   ([`box_box`], `sat.rs`).
 //! - Contact manifolds of several points ([`box_manifold`], [`hull_manifold`],
 //!   `manifold.rs`) and the broad phase ([`BroadPhase`], `broad.rs`).
@@ -23,6 +24,8 @@ pub(crate) mod bodies;
 mod boxes;
 pub mod broad;
 mod epa;
+mod face_pairs;
+mod face_planes;
 mod fixed;
 mod gjk;
 pub(crate) mod kept;
@@ -104,6 +107,54 @@ pub(crate) mod test_support {
             }
         }
         q
+    }
+
+    /// Minima of `f` on the unit sphere of ℝᴺ found without derivatives: the best `keep` of
+    /// `draws` random directions, each polished by a pattern search (steps along the
+    /// coordinate axes, renormalised, halved when none lowers f, down to 1e-11). Upper
+    /// bounds of the least of f, independent of the detection's own searches.
+    pub(crate) fn polished_minima(
+        r: &mut impl Rng,
+        n: usize,
+        (draws, keep): (usize, usize),
+        f: &dyn Fn(&[f64]) -> f64,
+    ) -> Vec<f64> {
+        let unit = |x: Vec<f64>| {
+            let l = x.iter().map(|y| y * y).sum::<f64>().sqrt();
+            x.into_iter().map(|y| y / l).collect::<Vec<f64>>()
+        };
+        let mut starts: Vec<(f64, Vec<f64>)> = (0..draws)
+            .map(|_| {
+                let u = unit((0..n).map(|_| r.gen_range(-1.0..1.0)).collect());
+                (f(&u), u)
+            })
+            .collect();
+        starts.sort_by(|p, q| p.0.total_cmp(&q.0));
+        starts
+            .into_iter()
+            .take(keep)
+            .map(|(mut value, mut u)| {
+                let mut step = 0.1;
+                while step > 1e-11 {
+                    let mut moved = false;
+                    for i in 0..n {
+                        for sign in [1.0, -1.0] {
+                            let mut v = u.clone();
+                            v[i] += sign * step;
+                            let v = unit(v);
+                            let fv = f(&v);
+                            if fv < value {
+                                (value, u, moved) = (fv, v, true);
+                            }
+                        }
+                    }
+                    if !moved {
+                        step *= 0.5;
+                    }
+                }
+                value
+            })
+            .collect()
     }
 
     /// The 2^N corners of the box of half-lengths `h`.

@@ -15,10 +15,11 @@
 //!
 //! A polytope's support function is linear on the normal cone of each face, so against a
 //! polytope the same Newton steps run face by face ([`polytope_depth`]). The faces make
-//! f only piecewise smooth, and the search over them may stop above the least where EPA's
-//! lower bound cannot show it is the least (seen from 3D on, rarely below 6D):
-//! `tests/reliability/narrow_phase.rs` prints how far.
+//! f only piecewise smooth, and the search over them may stop above the least; where EPA's
+//! lower bound cannot show it is the least, the least over the feet of the normals from
+//! the origin on every face's plane (`face_planes.rs`) is taken, which is exact.
 
+use super::face_planes::{Ellipsoid, least_on_face_planes};
 use super::gjk::PlacedShape;
 use crate::dynamics::motion::shape::{ConvexCore, Coords};
 use crate::numeric::dense::dot;
@@ -317,9 +318,10 @@ pub(super) struct FaceScratch {
 /// Unless the least f found lies within 1e-9 of the size of EPA's lower bound `lower`, the
 /// search starts again from a vertex of the face alone (the least may lie on a smaller
 /// face) and from the face joined with the next vertex below it, then from the direction
-/// between the centres and both ways along the ellipsoid's axes and a box's. The depth is
-/// f at the normal found, a translation that separates the shapes, so never below the
-/// true depth.
+/// between the centres and both ways along the ellipsoid's axes and a box's; if it still
+/// lies more than that above, the least over the feet of normals on every face's plane
+/// ([`least_on_face_planes`], exact) is taken where it is lower. The depth is f at the
+/// normal found, a translation that separates the shapes, so never below the true depth.
 pub(super) fn polytope_depth(
     a: &PlacedShape,
     b: &PlacedShape,
@@ -519,6 +521,29 @@ pub(super) fn polytope_depth(
                 }
                 break;
             }
+        }
+    }
+    if best.0 - lower > tolerance {
+        // Not shown to be the least: the least over the feet on every face's plane is.
+        let centre: Coords = polytope
+            .position()
+            .iter()
+            .zip(origin)
+            .map(|(c, o)| c - o)
+            .collect();
+        let core = Ellipsoid {
+            centre: &ellipsoid.centre,
+            rotation: ellipsoid.rotation,
+            squared_axes: ellipsoid.squared_axes.as_deref().unwrap_or(&[]),
+        };
+        let mut u = Coords::from_elem(0.0, n);
+        let mut f = |w: &[f64]| {
+            u.iter_mut().zip(w).for_each(|(x, y)| *x = -sigma * y);
+            measure(&u)
+        };
+        let planes = least_on_face_planes(&core, polytope, (vertices, &centre), tolerance, &mut f);
+        if let Some((value, w)) = planes.filter(|(value, _)| *value < best.0) {
+            best = (value, w.iter().map(|x| -sigma * x).collect());
         }
     }
     let (depth, u) = best;
