@@ -770,7 +770,7 @@ fn hundred_thousand_random_pairs_of_every_kind() {
     every_kind_report(&t, panicked, 100_000);
 }
 
-/// 10⁶ pairs of every kind, the count the detection is held to: about 4 minutes in release
+/// 10⁶ pairs of every kind, the count the detection is held to: about 7 minutes in release
 /// on two cores; CI runs it with the other long runs, and on its own:
 /// `cargo test --release --all-features --test reliability million_random_pairs_of_every_kind -- --ignored --nocapture`.
 #[test]
