@@ -18,6 +18,7 @@
 //! set of at most N of its points: a superset of its faces', whose extra sets only add
 //! candidates). Pairs with more than [`MAX_NORMALS`] sets are not enumerated.
 
+use super::face_planes::complement_of;
 use crate::dynamics::motion::detect::gjk::PlacedShape;
 use crate::dynamics::motion::shape::{ConvexCore, Coords};
 use crate::numeric::dense::dot;
@@ -102,6 +103,7 @@ pub(super) fn least_over_face_pairs(
         basis: SmallVec::new(),
         x: Coords::from_elem(0.0, n),
         normal: Coords::from_elem(0.0, n),
+        complement: SmallVec::new(),
         f,
         best: (f64::INFINITY, Coords::from_elem(0.0, n)),
     };
@@ -116,6 +118,7 @@ struct Walk<'f> {
     basis: SmallVec<[f64; 64]>,
     x: Coords,
     normal: Coords,
+    complement: SmallVec<[f64; 64]>,
     f: &'f mut dyn FnMut(&[f64]) -> f64,
     best: (f64, Coords),
 }
@@ -229,27 +232,14 @@ impl Walk<'_> {
     /// The unit normal of the N − 1 chosen directions, and f along it both ways.
     fn leaf(&mut self) {
         let n = self.n;
-        // The coordinate axis farthest from their span, made orthogonal to it.
-        let mut pick = (-1.0, 0);
-        for axis in 0..n {
-            let residual = 1.0
-                - self
-                    .basis
-                    .chunks_exact(n)
-                    .map(|row| row[axis] * row[axis])
-                    .sum::<f64>();
-            if residual > pick.0 {
-                pick = (residual, axis);
-            }
-        }
-        self.normal.iter_mut().for_each(|x| *x = 0.0);
-        self.normal[pick.1] = 1.0;
-        orthogonalize_twice(&mut self.normal, &self.basis, n - 1);
-        let length = dot(&self.normal, &self.normal).sqrt();
-        if length <= 0.0 || length.is_nan() {
-            return;
-        }
-        self.normal.iter_mut().for_each(|x| *x /= length);
+        complement_of(
+            &self.basis,
+            n - 1,
+            n,
+            &mut self.complement,
+            &mut self.normal,
+        );
+        self.normal.copy_from_slice(&self.complement[..n]);
         for sign in [1.0, -1.0] {
             self.normal.iter_mut().for_each(|x| *x *= sign);
             let value = (self.f)(&self.normal);

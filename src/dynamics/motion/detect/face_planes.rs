@@ -43,10 +43,9 @@ pub(super) struct Ellipsoid<'a> {
 /// The least of `f` over the normals of the feet of normals from the origin to the
 /// ellipsoids Π(E − v₀) of every face plane of `polytope` (whose vertices, relative to the
 /// query's origin, are `vertices`, N numbers each, and centre `centre`): the exact depth
-/// and its direction w
-/// (from the ellipsoid's side, `f(w)` = h_E(w) + h_P(−w)). None if the polytope has more
-/// than [`MAX_PLANES`] face planes or `f` is nowhere finite. `tolerance` is the length below
-/// which a hull's points count as affinely dependent.
+/// and its direction w (from the ellipsoid's side, `f(w)` = h_E(w) + h_P(−w)). None if the
+/// polytope has more than [`MAX_PLANES`] face planes or `f` is nowhere finite. `tolerance`
+/// is the length below which a hull's points count as affinely dependent.
 pub(super) fn least_on_face_planes(
     ellipsoid: &Ellipsoid,
     polytope: &PlacedShape,
@@ -306,8 +305,9 @@ impl HullPlanes<'_> {
 
 /// An orthonormal basis of the complement of the first `rank` rows of `directions`
 /// (orthonormal), N − rank rows into `out`: the coordinate axes orthogonalised against
-/// them, the longest remainder first. `x` is scratch of N numbers.
-fn complement_of(
+/// them, each time the one farthest from the rows so far (its remainder's square is
+/// 1 − Σ rowᵢ², as the rows are orthonormal). `x` is scratch of N numbers.
+pub(super) fn complement_of(
     directions: &[f64],
     rank: usize,
     n: usize,
@@ -317,14 +317,15 @@ fn complement_of(
     let mut all: SmallVec<[f64; 64]> = SmallVec::from_slice(&directions[..rank * n]);
     out.clear();
     for have in rank..n {
-        let mut pick: (f64, usize) = (-1.0, 0);
+        let mut pick: (f64, usize) = (f64::NEG_INFINITY, 0);
         for axis in 0..n {
-            x.iter_mut().for_each(|y| *y = 0.0);
-            x[axis] = 1.0;
-            orthogonalize_twice(x, &all, have);
-            let length = dot(x, x);
-            if length > pick.0 {
-                pick = (length, axis);
+            let remainder = 1.0
+                - all
+                    .chunks_exact(n)
+                    .map(|row| row[axis] * row[axis])
+                    .sum::<f64>();
+            if remainder > pick.0 {
+                pick = (remainder, axis);
             }
         }
         x.iter_mut().for_each(|y| *y = 0.0);
