@@ -27,7 +27,7 @@
 //! ball–cuboid pairs have closed forms.
 
 use super::KeyHasher;
-use super::face_pairs::least_over_face_pairs;
+use super::face_pairs::{face_witnesses, least_over_face_pairs};
 use super::gjk::{
     GjkResult, PlacedShape, Points, Simplex, centre_direction, check_pair, curved, gjk,
     nearest_point, project_onto_face, support_difference,
@@ -743,9 +743,14 @@ fn epa_cores(
         if let Some((depth, u)) =
             least_over_face_pairs(a, b, &mut reach_along).filter(|(depth, _)| *depth < least_reach)
         {
-            support_difference(a, b, &u, &mut w, &mut sa, &mut sb);
-            let (mut witness_a, mut witness_b) = (sa.clone(), sb.clone());
             let depth = depth.max(0.0);
+            // Points of the two faces, else (a face beyond the linear program's size) the
+            // support points.
+            let (mut witness_a, mut witness_b) = face_witnesses(a, b, (depth, &u), scale)
+                .unwrap_or_else(|| {
+                    support_difference(a, b, &u, &mut w, &mut sa, &mut sb);
+                    (sa.clone(), sb.clone())
+                });
             meet(&mut witness_a, &mut witness_b, depth, &u);
             return CoreContact {
                 depth,

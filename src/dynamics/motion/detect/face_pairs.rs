@@ -16,13 +16,16 @@
 //! A cuboid's face directions are sets of its axes, a segment's its axis or none, a point's
 //! none, and a hull's the directions from one of its points to others (every independent
 //! set of at most N of its points: a superset of its faces', whose extra sets only add
-//! candidates). Pairs with more than [`MAX_NORMALS`] sets are not enumerated.
+//! candidates). Pairs with more than [`MAX_NORMALS`] sets are not enumerated. The
+//! witnesses are points of the two faces along the normal found, depth · u apart: convex
+//! weights of the faces' vertices by a linear program ([`face_witnesses`]).
 
 use super::face_planes::complement_of;
 use crate::dynamics::motion::detect::gjk::PlacedShape;
 use crate::dynamics::motion::shape::{ConvexCore, Coords};
 use crate::numeric::dense::dot;
 use crate::numeric::orthogonalize_twice;
+use crate::numeric::simplex::{EqualityLp, LP_WIDTH};
 use smallvec::SmallVec;
 
 /// The sets of directions at most that a query enumerates (each a normal to evaluate both
@@ -251,6 +254,97 @@ impl Walk<'_> {
     }
 }
 
+/// The vertices (in space) of the face of a placed polytope core along `d`: those within
+/// `within` of the highest, appended to `out` (N numbers each). False for a curved core or
+/// a cuboid of more than 2⁷ corners.
+fn face_along(shape: &PlacedShape, d: &[f64], within: f64, out: &mut Vec<f64>) -> bool {
+    let n = d.len();
+    let (c, q) = (shape.position(), shape.rotation());
+    let mut corners: Vec<f64> = Vec::new();
+    let mut push = |own: &[f64]| {
+        corners.extend((0..n).map(|i| c[i] + dot(&q[i * n..(i + 1) * n], own)));
+    };
+    match shape.shape().core() {
+        ConvexCore::Point => push(&vec![0.0; n]),
+        ConvexCore::Segment(h) => {
+            for end in [*h, -h] {
+                push(
+                    &(0..n)
+                        .map(|i| if i == 0 { end } else { 0.0 })
+                        .collect::<Vec<_>>(),
+                );
+            }
+        }
+        ConvexCore::Cuboid(h) if n <= 7 => {
+            for corner in 0..1usize << n {
+                let own: Vec<f64> = (0..n)
+                    .map(|i| if corner >> i & 1 == 1 { h[i] } else { -h[i] })
+                    .collect();
+                push(&own);
+            }
+        }
+        ConvexCore::Hull(points) => points.chunks_exact(n).for_each(push),
+        _ => return false,
+    }
+    let top = corners
+        .chunks_exact(n)
+        .map(|v| dot(v, d))
+        .fold(f64::NEG_INFINITY, f64::max);
+    for v in corners.chunks_exact(n) {
+        if dot(v, d) >= top - within {
+            out.extend_from_slice(v);
+        }
+    }
+    true
+}
+
+/// Witnesses of the depth `depth` along the unit `u` (f(u) = h_B(u) + h_A(−u)): a point
+/// x_a of A's face along −u and x_b of B's face along u with x_b − x_a = depth · u, as
+/// convex combinations of the faces' vertices (a linear program), so that both are points
+/// of their shapes. `scale` is the pair's size. None if the faces have more vertices than
+/// the program takes or it finds no solution.
+pub(super) fn face_witnesses(
+    a: &PlacedShape,
+    b: &PlacedShape,
+    (depth, u): (f64, &[f64]),
+    scale: f64,
+) -> Option<(Coords, Coords)> {
+    let n = u.len();
+    let within = 1e-9 * scale;
+    let minus: Coords = u.iter().map(|x| -x).collect();
+    let (mut fa, mut fb) = (Vec::new(), Vec::new());
+    if !face_along(a, &minus, within, &mut fa) || !face_along(b, u, within, &mut fb) {
+        return None;
+    }
+    let (ka, kb) = (fa.len() / n, fb.len() / n);
+    // Rows: x_b − x_a = depth · u (scaled to the pair's size), Σα = 1, Σβ = 1.
+    let entry = |i: usize, j: usize| match (i < n, j < ka) {
+        (true, true) => -fa[j * n + i] / scale,
+        (true, false) => fb[(j - ka) * n + i] / scale,
+        (false, true) => f64::from(u8::from(i == n)),
+        (false, false) => f64::from(u8::from(i == n + 1)),
+    };
+    let mut rhs: SmallVec<[f64; 12]> = u.iter().map(|x| depth * x / scale).collect();
+    rhs.extend([1.0, 1.0]);
+    let mut lp = EqualityLp::<LP_WIDTH>::new(n + 2, ka + kb, entry, &rhs)?;
+    if !lp.find_feasible(1e-9) {
+        return None;
+    }
+    let mut weights = vec![0.0; ka + kb];
+    lp.solution(&mut weights);
+    let mut xa = Coords::from_elem(0.0, n);
+    let mut xb = Coords::from_elem(0.0, n);
+    for (j, w) in weights.iter().enumerate() {
+        let (x, v) = if j < ka {
+            (&mut xa, &fa[j * n..(j + 1) * n])
+        } else {
+            (&mut xb, &fb[(j - ka) * n..(j - ka + 1) * n])
+        };
+        x.iter_mut().zip(v).for_each(|(p, q)| *p += w * q);
+    }
+    Some((xa, xb))
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::gjk::support_difference;
@@ -317,6 +411,21 @@ mod tests {
                     sat.least_depth
                 );
                 assert!((reach(&a, &b, &u) - depth).abs() <= 1e-15 * size);
+                // The witnesses: in their boxes, depth · u apart.
+                let (xa, xb) = face_witnesses(&a, &b, (depth, &u), size).unwrap();
+                for (x, h, p, q) in [(&xa, &ha, &pa, &qa), (&xb, &hb, &pb, &qb)] {
+                    for k in 0..n {
+                        let own: f64 = (0..n).map(|i| q[i * n + k] * (x[i] - p[i])).sum();
+                        assert!(
+                            own.abs() <= h[k] + 1e-9 * size,
+                            "N = {n}: outside by {}",
+                            own.abs() - h[k]
+                        );
+                    }
+                }
+                for i in 0..n {
+                    assert!((xb[i] - xa[i] - depth * u[i]).abs() <= 1e-9 * size);
+                }
                 checked[n - 2] += 1;
             }
         }
@@ -363,6 +472,17 @@ mod tests {
                     continue;
                 }
                 assert!((f(&u) - depth).abs() <= 1e-14);
+                // The witnesses: on the faces along −u and u, depth · u apart.
+                let (xa, xb) = face_witnesses(&a, &b, (depth, &u), 4.0).unwrap();
+                let minus: Vec<f64> = u.iter().map(|x| -x).collect();
+                let (mut sa, mut sb) = (vec![0.0; n], vec![0.0; n]);
+                a.core_support(&minus, &mut sa);
+                b.core_support(&u, &mut sb);
+                assert!((dot(&xa, &minus) - dot(&sa, &minus)).abs() <= 1e-9);
+                assert!((dot(&xb, &u) - dot(&sb, &u)).abs() <= 1e-9);
+                for i in 0..n {
+                    assert!((xb[i] - xa[i] - depth * u[i]).abs() <= 1e-9);
+                }
                 for value in polished_minima(&mut r, n, (2000, 6), &f) {
                     assert!(depth <= value + 1e-12, "N = {n}: {depth} above {value}");
                 }
