@@ -452,10 +452,20 @@ mod tests {
         let mut r = ChaCha8Rng::seed_from_u64(3);
         let mut checked = 0;
         for n in 2..=6 {
-            for _ in 0..100 {
+            for trial in 0..100 {
                 let h: Vec<f64> = (0..n).map(|_| r.gen_range(0.2..2.0)).collect();
                 let radius = r.gen_range(0.2..2.0);
-                let own: Vec<f64> = h.iter().map(|x| r.gen_range(-1.4..1.4) * x).collect();
+                // The first trials put the centre where the feet come in families: at the
+                // box's centre, on a face, an edge, a corner (the centre on the face
+                // planes, zᵢ = 0); the rest anywhere.
+                let own: Vec<f64> = match trial {
+                    0..4 => h
+                        .iter()
+                        .enumerate()
+                        .map(|(i, x)| if i < trial { *x } else { 0.0 })
+                        .collect(),
+                    _ => h.iter().map(|x| r.gen_range(-1.4..1.4) * x).collect(),
+                };
                 let turn = random_rotation(&mut r, n);
                 let position: Vec<f64> = (0..n).map(|_| r.gen_range(-1.0..1.0)).collect();
                 let centre: Vec<f64> = (0..n)
@@ -496,6 +506,42 @@ mod tests {
             }
         }
         assert!(checked >= 300, "{checked}");
+    }
+
+    /// A sphere centred on the base of a pyramid (a hull: N points on the plane x₀ = 0,
+    /// and an apex), N = 2 … 6: the depth is its radius, along −x₀, which only the base's
+    /// plane gives and there z = 0 (the centre on the plane), the foot at s = λ.
+    #[test]
+    fn a_sphere_on_a_facet_plane_is_pushed_out_through_it() {
+        let mut r = ChaCha8Rng::seed_from_u64(7);
+        for n in 2..=6 {
+            // The base: 1.5 eᵢ (i = 1 … N − 1) and −0.7 (e₁ + … + e_{N−1}), around the origin.
+            let mut points: Vec<Vec<f64>> = (1..n)
+                .map(|k| (0..n).map(|i| if i == k { 1.5 } else { 0.0 }).collect())
+                .collect();
+            points.push((0..n).map(|i| if i == 0 { 0.0 } else { -0.7 }).collect());
+            // The apex off the base's normal through the centre, so that no vertex's plane
+            // gives that normal.
+            points.push([3.0, 0.37, 0.23, 0.11, 0.05, 0.02][..n].to_vec());
+            let hull = ConvexShape::hull(&points).unwrap();
+            let radius = 0.2;
+            let identity: Vec<f64> = (0..n * n)
+                .map(|k| if k % (n + 1) == 0 { 1.0 } else { 0.0 })
+                .collect();
+            let pair = Pair::new(
+                (
+                    vec![0.0; n],
+                    random_rotation(&mut r, n),
+                    vec![radius * radius; n],
+                ),
+                hull,
+                vec![0.0; n],
+                identity,
+            );
+            let (depth, w) = pair.least().unwrap();
+            assert!((depth - radius).abs() <= 1e-14, "N = {n}: {depth}");
+            assert!((w[0] - 1.0).abs() <= 1e-12, "N = {n}: {w:?}");
+        }
     }
 
     /// A random ellipsoid against a random hull, box or segment, N = 2 … 6, overlapping:
