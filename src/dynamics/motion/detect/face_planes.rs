@@ -60,12 +60,12 @@ pub(super) fn least_on_face_planes(
         best: (f64::INFINITY, Coords::from_elem(0.0, n)),
         w: Coords::from_elem(0.0, n),
     };
+    if !enumerable(polytope, vertices.len() / n) {
+        return None;
+    }
     match polytope.shape().core() {
         ConvexCore::Cuboid(half) => {
-            let planes = 3usize.checked_pow(n as u32)?;
-            if planes > MAX_PLANES + 1 {
-                return None;
-            }
+            let planes = 3usize.pow(n as u32);
             let q = polytope.rotation();
             // The corner at the code's fixed axes: digit 0 free, 1 at +h, 2 at −h.
             let mut point = Coords::from_elem(0.0, n);
@@ -106,16 +106,6 @@ pub(super) fn least_on_face_planes(
         }
         ConvexCore::Hull(_) => {
             let count = vertices.len() / n;
-            let mut planes = 0usize;
-            let mut choose = 1usize;
-            for size in 1..=n.min(count) {
-                // C(count, size) from C(count, size − 1).
-                choose = choose * (count + 1 - size) / size;
-                planes = planes.saturating_add(choose);
-            }
-            if planes > MAX_PLANES {
-                return None;
-            }
             let mut sets = HullPlanes {
                 vertices,
                 n,
@@ -136,6 +126,28 @@ pub(super) fn least_on_face_planes(
     }
     let (value, w) = search.best;
     value.is_finite().then_some((value, w))
+}
+
+/// Whether the face planes of `polytope` (a hull of `points` points) are at most
+/// [`MAX_PLANES`], so that [`least_on_face_planes`] takes them.
+pub(super) fn enumerable(polytope: &PlacedShape, points: usize) -> bool {
+    let n = polytope.position().len();
+    match polytope.shape().core() {
+        ConvexCore::Cuboid(_) => 3usize
+            .checked_pow(n as u32)
+            .is_some_and(|planes| planes - 1 <= MAX_PLANES),
+        ConvexCore::Segment(_) => true,
+        ConvexCore::Hull(_) => {
+            let (mut planes, mut choose) = (0usize, 1usize);
+            for size in 1..=n.min(points) {
+                // C(points, size) from C(points, size − 1).
+                choose = choose.saturating_mul(points + 1 - size) / size;
+                planes = planes.saturating_add(choose);
+            }
+            planes <= MAX_PLANES
+        }
+        _ => false,
+    }
 }
 
 /// The state of a search: the least value so far and its direction.

@@ -19,7 +19,7 @@
 //! lower bound cannot show it is the least, the least over the feet of the normals from
 //! the origin on every face's plane (`face_planes.rs`) is taken, which is exact.
 
-use super::face_planes::{Ellipsoid, least_on_face_planes};
+use super::face_planes::{Ellipsoid, enumerable, least_on_face_planes};
 use super::gjk::PlacedShape;
 use crate::dynamics::motion::shape::{ConvexCore, Coords};
 use crate::numeric::dense::dot;
@@ -316,12 +316,13 @@ pub(super) struct FaceScratch {
 /// the least f on its cone's plane, and the face along the new u is taken again, joined
 /// with the last where the step crossed from one to the other, until it stays the same.
 /// Unless the least f found lies within 1e-9 of the size of EPA's lower bound `lower`, the
+/// least over the feet of normals on every face's plane ([`least_on_face_planes`], exact)
+/// is taken where it is lower; for a polytope of more face planes than that takes, the
 /// search starts again from a vertex of the face alone (the least may lie on a smaller
 /// face) and from the face joined with the next vertex below it, then from the direction
-/// between the centres and both ways along the ellipsoid's axes and a box's; if it still
-/// lies more than that above, the least over the feet of normals on every face's plane
-/// ([`least_on_face_planes`], exact) is taken where it is lower. The depth is f at the
-/// normal found, a translation that separates the shapes, so never below the true depth.
+/// between the centres and both ways along the ellipsoid's axes and a box's. The depth is
+/// f at the normal found, a translation that separates the shapes, so never below the
+/// true depth.
 pub(super) fn polytope_depth(
     a: &PlacedShape,
     b: &PlacedShape,
@@ -403,11 +404,14 @@ pub(super) fn polytope_depth(
     let boxed = matches!(polytope.shape().core(), ConvexCore::Cuboid(_));
     let more = 1 + 2 * n * (1 + usize::from(boxed));
     let (mut widened, mut alone_starts) = (None::<usize>, 0);
+    // Where the face planes can be enumerated, they give the least once the search from
+    // EPA's normal has not shown it: no more starts.
+    let exact_after = enumerable(polytope, vertices.len() / n);
     loop {
         if queue.is_empty() {
             let k = match widened {
-                None if best.0 - lower > tolerance => 0,
-                Some(k) if k < more && best.0 - lower > tolerance => k,
+                None if best.0 - lower > tolerance && !exact_after => 0,
+                Some(k) if k < more && best.0 - lower > tolerance && !exact_after => k,
                 _ => break,
             };
             widened = Some(k + 1);
@@ -500,7 +504,7 @@ pub(super) fn polytope_depth(
             if same {
                 // The least on this face's plane: where it lies outside the face, a
                 // smaller face holds a lower one, and a vertex alone leads there.
-                if best.0 - lower > tolerance && alone_starts < 8 {
+                if best.0 - lower > tolerance && alone_starts < 8 && !exact_after {
                     if face.len() > 1 {
                         for &k in face.iter().take(4) {
                             queue.push((u.clone(), Some(k), None));
