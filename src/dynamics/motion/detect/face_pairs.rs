@@ -21,6 +21,7 @@
 //! weights of the faces' vertices by a linear program ([`face_witnesses`]).
 
 use super::face_planes::complement_of;
+use super::smooth::polytope_vertices;
 use crate::dynamics::motion::detect::gjk::PlacedShape;
 use crate::dynamics::motion::shape::{ConvexCore, Coords};
 use crate::numeric::dense::dot;
@@ -256,35 +257,14 @@ impl Walk<'_> {
 
 /// The vertices (in space) of the face of a placed polytope core along `d`: those within
 /// `within` of the highest, appended to `out` (N numbers each). False for a curved core or
-/// a cuboid of more than 2⁷ corners.
+/// a cuboid of more dimensions than [`polytope_vertices`] takes.
 fn face_along(shape: &PlacedShape, d: &[f64], within: f64, out: &mut Vec<f64>) -> bool {
     let n = d.len();
-    let (c, q) = (shape.position(), shape.rotation());
     let mut corners: Vec<f64> = Vec::new();
-    let mut push = |own: &[f64]| {
-        corners.extend((0..n).map(|i| c[i] + dot(&q[i * n..(i + 1) * n], own)));
-    };
-    match shape.shape().core() {
-        ConvexCore::Point => push(&vec![0.0; n]),
-        ConvexCore::Segment(h) => {
-            for end in [*h, -h] {
-                push(
-                    &(0..n)
-                        .map(|i| if i == 0 { end } else { 0.0 })
-                        .collect::<Vec<_>>(),
-                );
-            }
-        }
-        ConvexCore::Cuboid(h) if n <= 7 => {
-            for corner in 0..1usize << n {
-                let own: Vec<f64> = (0..n)
-                    .map(|i| if corner >> i & 1 == 1 { h[i] } else { -h[i] })
-                    .collect();
-                push(&own);
-            }
-        }
-        ConvexCore::Hull(points) => points.chunks_exact(n).for_each(push),
-        _ => return false,
+    if let ConvexCore::Point = shape.shape().core() {
+        corners.extend_from_slice(shape.position());
+    } else if !polytope_vertices(shape, &Coords::from_elem(0.0, n), &mut corners) {
+        return false;
     }
     let top = corners
         .chunks_exact(n)

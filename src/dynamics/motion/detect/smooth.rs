@@ -222,7 +222,7 @@ const MAX_CUBOID_DIM: usize = 10;
 
 /// Writes the vertices of a polytope core (a hull, a cuboid up to [`MAX_CUBOID_DIM`], a
 /// segment) to `out` (N numbers each, from `origin`); false for other cores.
-fn polytope_vertices(shape: &PlacedShape, origin: &[f64], out: &mut Vec<f64>) -> bool {
+pub(super) fn polytope_vertices(shape: &PlacedShape, origin: &[f64], out: &mut Vec<f64>) -> bool {
     let n = shape.position().len();
     let (c, q) = (shape.position(), shape.rotation());
     out.clear();
