@@ -54,12 +54,7 @@ pub(super) fn least_on_face_planes(
     f: &mut dyn FnMut(&[f64]) -> f64,
 ) -> Option<(f64, Coords)> {
     let n = ellipsoid.centre.len();
-    let mut search = Search {
-        ellipsoid,
-        f,
-        best: (f64::INFINITY, Coords::from_elem(0.0, n)),
-        w: Coords::from_elem(0.0, n),
-    };
+    let mut search = Search::new(ellipsoid, f);
     if !enumerable(polytope, vertices.len() / n) {
         return None;
     }
@@ -104,28 +99,176 @@ pub(super) fn least_on_face_planes(
                 .collect();
             search.plane(centre, &complement);
         }
-        ConvexCore::Hull(_) => {
-            let count = vertices.len() / n;
-            let mut sets = HullPlanes {
-                vertices,
-                n,
-                tolerance,
-                chosen: SmallVec::new(),
-                directions: SmallVec::new(),
-                complement: SmallVec::new(),
-                x: Coords::from_elem(0.0, n),
-            };
-            for first in 0..count {
-                sets.chosen.clear();
-                sets.chosen.push(first);
-                sets.directions.clear();
-                sets.grow(&mut search, first);
+        ConvexCore::Hull(_) => point_set_planes(&mut search, vertices, tolerance),
+        _ => return None,
+    }
+    let (value, w) = search.best;
+    value.is_finite().then_some((value, w))
+}
+
+/// The planes at most that [`least_near`] takes through sets of a hull's near vertices (a
+/// simplex's facet of 5D has 31 sets of its 5 vertices, a cuboid's facet of 4D 162 of its 8
+/// corners); beyond, the nested faces of its near vertices by height.
+const MAX_NEAR_PLANES: usize = 256;
+
+/// The least of `f` over the feet on the planes of the faces of `polytope` near its
+/// support along the unit direction `d` (its vertices relative to the query's origin,
+/// `vertices`, and its centre `centre`; near: within `within` of the highest along `d`),
+/// as [`least_on_face_planes`] takes them all: a cuboid's faces on the highest face of the
+/// axes whose edges drop by more than `within` along `d`, each other axis free or fixed
+/// on either side (at most 3⁵ faces), a hull's or a segment's planes through every affinely independent set of at most N
+/// near vertices (at most [`MAX_NEAR_PLANES`]; else through the first 1, 2, … of them by
+/// height, each plane once). None if `f` is nowhere finite there. Given a direction off
+/// the least's by δ, the face the least lies on has its vertices within δ times its size
+/// of the highest: with `within` above that it is among these planes. `near` and `points`
+/// are room for the near vertices.
+pub(super) fn least_near(
+    ellipsoid: &Ellipsoid,
+    polytope: &PlacedShape,
+    (vertices, centre): (&[f64], &[f64]),
+    (d, within): (&[f64], f64),
+    tolerance: f64,
+    f: &mut dyn FnMut(&[f64]) -> f64,
+    (near, points): (&mut Vec<(f64, usize)>, &mut Vec<f64>),
+) -> Option<(f64, Coords)> {
+    let n = ellipsoid.centre.len();
+    let mut search = Search::new(ellipsoid, f);
+    let mut complement: SmallVec<[f64; 64]> = SmallVec::new();
+    match polytope.shape().core() {
+        ConvexCore::Cuboid(half) => {
+            let q = polytope.rotation();
+            // The highest face along d of the axes whose edges drop by more than `within`
+            // (its centre `fixed`), and the other axes: each free, or fixed on either side.
+            let mut fixed: Coords = centre.iter().copied().collect();
+            let mut near: SmallVec<[usize; 8]> = SmallVec::new();
+            for (axis, h) in half.iter().enumerate() {
+                let along: f64 = (0..n).map(|i| q[i * n + axis] * d[i]).sum();
+                if 2.0 * h * along.abs() <= within && near.len() < 5 {
+                    near.push(axis);
+                    continue;
+                }
+                let side = if along < 0.0 { -h } else { *h };
+                for (i, c) in fixed.iter_mut().enumerate() {
+                    *c += side * q[i * n + axis];
+                }
+            }
+            let mut point = fixed.clone();
+            for code in 0..3usize.pow(near.len() as u32) {
+                // Digit 0: the axis free; 1: at +h; 2: at −h.
+                point.copy_from_slice(&fixed);
+                complement.clear();
+                let mut c = code;
+                for axis in 0..n {
+                    let digit = match near.iter().position(|&a| a == axis) {
+                        Some(_) => {
+                            let digit = c % 3;
+                            c /= 3;
+                            digit
+                        }
+                        None => 1,
+                    };
+                    if digit == 0 {
+                        continue;
+                    }
+                    if near.contains(&axis) {
+                        let side = if digit == 1 { half[axis] } else { -half[axis] };
+                        for (i, p) in point.iter_mut().enumerate() {
+                            *p += side * q[i * n + axis];
+                        }
+                    }
+                    complement.extend((0..n).map(|i| q[i * n + axis]));
+                }
+                search.plane(&point, &complement);
+            }
+        }
+        ConvexCore::Hull(_) | ConvexCore::Segment(_) => {
+            near.clear();
+            near.extend(
+                vertices
+                    .chunks_exact(n)
+                    .enumerate()
+                    .map(|(k, v)| (dot(v, d), k)),
+            );
+            let top = near.iter().fold(f64::NEG_INFINITY, |t, x| t.max(x.0));
+            near.retain(|x| x.0 >= top - within);
+            near.sort_unstable_by(|x, y| y.0.total_cmp(&x.0));
+            points.clear();
+            for &(_, k) in near.iter() {
+                points.extend_from_slice(&vertices[k * n..(k + 1) * n]);
+            }
+            if point_sets(n, near.len()) <= MAX_NEAR_PLANES {
+                point_set_planes(&mut search, points, tolerance);
+            } else {
+                nested_face_planes(&mut search, points, tolerance);
             }
         }
         _ => return None,
     }
     let (value, w) = search.best;
     value.is_finite().then_some((value, w))
+}
+
+/// The feet on the planes of the nested faces that the first 1, 2, … of `points` span (N
+/// numbers each), each plane once (a point in the span of those before it adds none).
+fn nested_face_planes(search: &mut Search, points: &[f64], tolerance: f64) {
+    let n = search.w.len();
+    let Some(first) = points.get(..n) else {
+        return;
+    };
+    let (mut directions, mut complement): (SmallVec<[f64; 64]>, SmallVec<[f64; 64]>) =
+        (SmallVec::new(), SmallVec::new());
+    let mut x = Coords::from_elem(0.0, n);
+    complement_of(&directions, 0, n, &mut complement, &mut x);
+    search.plane(first, &complement);
+    for point in points.chunks_exact(n).skip(1) {
+        let rank = directions.len() / n;
+        if rank + 1 == n {
+            break;
+        }
+        for (x, (p, o)) in x.iter_mut().zip(point.iter().zip(first)) {
+            *x = p - o;
+        }
+        orthogonalize_twice(&mut x, &directions, rank);
+        let length = dot(&x, &x).sqrt();
+        if length <= tolerance {
+            continue;
+        }
+        directions.extend(x.iter().map(|y| y / length));
+        complement_of(&directions, rank + 1, n, &mut complement, &mut x);
+        search.plane(first, &complement);
+    }
+}
+
+/// The feet on the planes through every affinely independent set of at most N of
+/// `points` (N numbers each), as for a hull in [`least_on_face_planes`].
+fn point_set_planes(search: &mut Search, points: &[f64], tolerance: f64) {
+    let n = search.w.len();
+    let mut sets = HullPlanes {
+        vertices: points,
+        n,
+        tolerance,
+        chosen: SmallVec::new(),
+        directions: SmallVec::new(),
+        complement: SmallVec::new(),
+        x: Coords::from_elem(0.0, n),
+    };
+    for first in 0..points.len() / n {
+        sets.chosen.clear();
+        sets.chosen.push(first);
+        sets.directions.clear();
+        sets.grow(search, first);
+    }
+}
+
+/// The sets of at most `n` of `points` points: Σ C(points, k) for k = 1 … n (saturating).
+fn point_sets(n: usize, points: usize) -> usize {
+    let (mut planes, mut choose) = (0usize, 1usize);
+    for size in 1..=n.min(points) {
+        // C(points, size) from C(points, size − 1).
+        choose = choose.saturating_mul(points + 1 - size) / size;
+        planes = planes.saturating_add(choose);
+    }
+    planes
 }
 
 /// Whether the face planes of `polytope` (a hull of `points` points) are at most
@@ -137,15 +280,7 @@ pub(super) fn enumerable(polytope: &PlacedShape, points: usize) -> bool {
             .checked_pow(n as u32)
             .is_some_and(|planes| planes - 1 <= MAX_PLANES),
         ConvexCore::Segment(_) => true,
-        ConvexCore::Hull(_) => {
-            let (mut planes, mut choose) = (0usize, 1usize);
-            for size in 1..=n.min(points) {
-                // C(points, size) from C(points, size − 1).
-                choose = choose.saturating_mul(points + 1 - size) / size;
-                planes = planes.saturating_add(choose);
-            }
-            planes <= MAX_PLANES
-        }
+        ConvexCore::Hull(_) => point_sets(n, points) <= MAX_PLANES,
         _ => false,
     }
 }
@@ -158,7 +293,18 @@ struct Search<'a, 'f> {
     w: Coords,
 }
 
-impl Search<'_, '_> {
+impl<'a, 'f> Search<'a, 'f> {
+    /// No foot yet.
+    fn new(ellipsoid: &'a Ellipsoid<'a>, f: &'f mut dyn FnMut(&[f64]) -> f64) -> Self {
+        let n = ellipsoid.centre.len();
+        Search {
+            ellipsoid,
+            f,
+            best: (f64::INFINITY, Coords::from_elem(0.0, n)),
+            w: Coords::from_elem(0.0, n),
+        }
+    }
+
     /// The feet on the plane through `point` whose orthogonal complement has the orthonormal
     /// basis `complement` (m rows of N numbers): each foot's normal w, f(w) kept if least.
     fn plane(&mut self, point: &[f64], complement: &[f64]) {

@@ -19,7 +19,7 @@
 //! lower bound cannot show it is the least, the least over the feet of the normals from
 //! the origin on every face's plane (`face_planes.rs`) is taken, which is exact.
 
-use super::face_planes::{Ellipsoid, enumerable, least_on_face_planes};
+use super::face_planes::{Ellipsoid, enumerable, least_near, least_on_face_planes};
 use super::gjk::PlacedShape;
 use crate::dynamics::motion::shape::{ConvexCore, Coords};
 use crate::numeric::dense::dot;
@@ -305,7 +305,14 @@ pub(super) struct FaceScratch {
     face: Vec<usize>,
     next: Vec<usize>,
     carry: Vec<usize>,
+    /// The vertices near the support along the normal found, for [`least_near`].
+    near: Vec<(f64, usize)>,
+    points: Vec<f64>,
 }
+
+/// How far below the highest along the normal found a vertex still counts as near it, in
+/// units of √(tolerance · size): the normal's error, times the polytope's size, and room.
+const NEAR: f64 = 16.0;
 
 /// The depth of an ellipsoid and an overlapping polytope (a hull, a cuboid, a segment;
 /// either way round), or None for other pairs. f(u) = h_P(±u) + h_E(∓u) is smooth on the
@@ -320,9 +327,15 @@ pub(super) struct FaceScratch {
 /// is taken where it is lower; for a polytope of more face planes than that takes, the
 /// search starts again from a vertex of the face alone (the least may lie on a smaller
 /// face) and from the face joined with the next vertex below it, then from the direction
-/// between the centres and both ways along the ellipsoid's axes and a box's. The depth is
-/// f at the normal found, a translation that separates the shapes, so never below the
-/// true depth.
+/// between the centres and both ways along the ellipsoid's axes and a box's. Where it does
+/// lie within that, f is within 1e-9 of the size of the least in value, but across a face
+/// lower than a facet f is smooth, and the normal may be off the least's by the square
+/// root of that (10⁻⁵) and the witnesses off their shapes by as much (also where the
+/// search ends on a face whose least lies on a smaller face of it): the feet on the planes
+/// of the faces near the polytope's support along it ([`least_near`], the least's face
+/// among them) give the normal to round-off, taken where f is as low. The depth is f at
+/// the normal found, a translation that separates the shapes, so never below the true
+/// depth.
 pub(super) fn polytope_depth(
     a: &PlacedShape,
     b: &PlacedShape,
@@ -335,6 +348,8 @@ pub(super) fn polytope_depth(
         face,
         next,
         carry,
+        near,
+        points,
     } = scratch;
     // σ: the polytope's support is asked along σ u (A: +1, B: −1).
     let origin = a.position();
@@ -527,27 +542,54 @@ pub(super) fn polytope_depth(
             }
         }
     }
+    let centre: Coords = polytope
+        .position()
+        .iter()
+        .zip(origin)
+        .map(|(c, o)| c - o)
+        .collect();
+    let core = Ellipsoid {
+        centre: &ellipsoid.centre,
+        rotation: ellipsoid.rotation,
+        squared_axes: ellipsoid.squared_axes.as_deref().unwrap_or(&[]),
+    };
+    // f along w (from the ellipsoid's side), and the direction u it is along.
+    let along = |w: &[f64]| -> Coords { w.iter().map(|x| -sigma * x).collect() };
+    let mut u = Coords::from_elem(0.0, n);
+    let mut f = |w: &[f64]| {
+        u.iter_mut().zip(w).for_each(|(x, y)| *x = -sigma * y);
+        measure(&u)
+    };
     if best.0 - lower > tolerance {
         // Not shown to be the least: the least over the feet on every face's plane is.
-        let centre: Coords = polytope
-            .position()
-            .iter()
-            .zip(origin)
-            .map(|(c, o)| c - o)
-            .collect();
-        let core = Ellipsoid {
-            centre: &ellipsoid.centre,
-            rotation: ellipsoid.rotation,
-            squared_axes: ellipsoid.squared_axes.as_deref().unwrap_or(&[]),
-        };
-        let mut u = Coords::from_elem(0.0, n);
-        let mut f = |w: &[f64]| {
-            u.iter_mut().zip(w).for_each(|(x, y)| *x = -sigma * y);
-            measure(&u)
-        };
         let planes = least_on_face_planes(&core, polytope, (vertices, &centre), tolerance, &mut f);
         if let Some((value, w)) = planes.filter(|(value, _)| *value < best.0) {
-            best = (value, w.iter().map(|x| -sigma * x).collect());
+            best = (value, along(&w));
+        }
+    } else if best.0.is_finite()
+        && !witness_on_polytope(&ellipsoid, polytope, &centre, &best, sigma, size)
+    {
+        // f is smooth across a face of the polytope lower than a facet (a vertex against
+        // the ellipsoid, say): within `tolerance` of the least in value, the normal may
+        // still be off it by about √(tolerance / curvature), and the witnesses then off
+        // the shapes by that times the curvature radius. The foot on the plane of the face
+        // the least lies on gives the normal to round-off: that face is among the faces
+        // near the support along the normal found.
+        let near_within = NEAR * (tolerance * size).sqrt();
+        let d: Coords = best.1.iter().map(|x| sigma * x).collect();
+        let polished = least_near(
+            &core,
+            polytope,
+            (vertices, &centre),
+            (&d, near_within),
+            tolerance,
+            &mut f,
+            (near, points),
+        );
+        // Taken where it is as low, to round-off of the size: it is the same least.
+        let rounding = 16.0 * f64::EPSILON * size;
+        if let Some((value, w)) = polished.filter(|(value, _)| *value <= best.0 + rounding) {
+            best = (value, along(&w));
         }
     }
     let (depth, u) = best;
@@ -573,6 +615,44 @@ pub(super) fn polytope_depth(
         witness_b,
     };
     Some(contact.moved_by(origin))
+}
+
+/// Whether the polytope's witness of a depth and normal `(depth, u)` (the ellipsoid's
+/// support along ∓u, moved by the depth) lies in the polytope, to round-off of `size`,
+/// where that is a closed form (a cuboid, a segment); false for a hull. There both
+/// witnesses lie on their shapes, touching once the polytope is moved by the depth, with
+/// u the ellipsoid's normal there: the least's condition, so that u is its normal.
+fn witness_on_polytope(
+    ellipsoid: &SmoothCore,
+    polytope: &PlacedShape,
+    centre: &[f64],
+    (depth, u): &(f64, Coords),
+    sigma: f64,
+    size: f64,
+) -> bool {
+    let n = u.len();
+    let mut point = Coords::from_elem(0.0, n);
+    ellipsoid.support(u, -sigma, &mut point, None);
+    let q = polytope.rotation();
+    // The witness in the polytope's own axes.
+    let own = |j: usize| -> f64 {
+        (0..n)
+            .map(|i| q[i * n + j] * (point[i] + sigma * depth * u[i] - centre[i]))
+            .sum()
+    };
+    let slack = 64.0 * f64::EPSILON * size;
+    match polytope.shape().core() {
+        ConvexCore::Cuboid(half) => half
+            .iter()
+            .enumerate()
+            .all(|(j, h)| own(j).abs() <= h + slack),
+        ConvexCore::Segment(h) => {
+            let off: f64 =
+                (1..n).map(|j| own(j) * own(j)).sum::<f64>() + (own(0).abs() - h).max(0.0).powi(2);
+            off.sqrt() <= slack
+        }
+        _ => false,
+    }
 }
 
 /// Newton's method on the unit sphere for the least f(u) = h_A(u) + h_B(−u) near `start`.
@@ -792,6 +872,403 @@ mod tests {
             }
         }
         assert_eq!(cases, 2000);
+    }
+
+    /// A face of any dimension k = 0 … N − 1 (a vertex, an edge, …, a facet) of a hull and
+    /// of a box in the tangent plane of an ellipsoid at a point p, pushed in by d along the
+    /// normal m there (d = 10⁻⁸, 10⁻⁶ or 10⁻⁴), centred at p − d m: the depth is d along m
+    /// (the surface's radii of curvature all exceed d), the ellipsoid's witness p and the
+    /// polytope's p − d m, N = 2 … 6, either way round; in every other trial m lies within
+    /// 10⁻⁶ of the box face's normal cone's boundary (where the search face by face ends
+    /// on the larger face). Across a face lower than a facet f is smooth, and a normal
+    /// within 1e-9 of the size of the least in value could be off m by 10⁻⁵: normal and
+    /// witnesses must be exact to 1e-10.
+    #[test]
+    fn a_face_touching_an_ellipsoid_gives_exact_normal_and_witnesses() {
+        let mut r = ChaCha8Rng::seed_from_u64(17);
+        let mut workspace = EpaWorkspace::new();
+        let mut cases = 0;
+        let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(a, b)| a * b).sum::<f64>();
+        for n in 2..=6usize {
+            let identity: Vec<f64> = (0..n * n)
+                .map(|k| if k % (n + 1) == 0 { 1.0 } else { 0.0 })
+                .collect();
+            for k in 0..n {
+                for trial in 0..30 {
+                    let axes: Vec<f64> = (0..n).map(|_| r.gen_range(0.5..1.5)).collect();
+                    let ellipsoid = ConvexShape::ellipsoid(&axes).unwrap();
+                    let q = rotation(&mut r, n);
+                    let centre: Vec<f64> = (0..n).map(|_| r.gen_range(-0.5..0.5)).collect();
+                    // A surface point (aᵢyᵢ in its own axes for a unit y) and its normal
+                    // (along yᵢ/aᵢ), in space.
+                    let y: Vec<f64> = (0..n).map(|_| r.gen_range(-1.0..1.0)).collect();
+                    let length = dot(&y, &y).sqrt();
+                    let own_p: Vec<f64> = (0..n).map(|i| axes[i] * y[i] / length).collect();
+                    let own_m: Vec<f64> = (0..n).map(|i| y[i] / axes[i]).collect();
+                    let to_space = |v: &[f64]| -> Vec<f64> {
+                        (0..n).map(|i| dot(&q[i * n..(i + 1) * n], v)).collect()
+                    };
+                    let p: Vec<f64> = to_space(&own_p)
+                        .iter()
+                        .zip(&centre)
+                        .map(|(x, c)| x + c)
+                        .collect();
+                    let m = to_space(&own_m);
+                    let m: Vec<f64> = m.iter().map(|x| x / dot(&m, &m).sqrt()).collect();
+                    let d = [1e-8, 1e-6, 1e-4][trial % 3];
+                    let base: Vec<f64> = p.iter().zip(&m).map(|(x, u)| x - d * u).collect();
+                    // The tangent space's orthonormal basis, m first.
+                    let mut basis = vec![m.clone()];
+                    while basis.len() < n {
+                        let mut x: Vec<f64> = (0..n).map(|_| r.gen_range(-1.0..1.0)).collect();
+                        for _ in 0..2 {
+                            for b in &basis {
+                                let along = dot(&x, b);
+                                x.iter_mut().zip(b).for_each(|(x, b)| *x -= along * b);
+                            }
+                        }
+                        let length = dot(&x, &x).sqrt();
+                        basis.push(x.iter().map(|v| v / length).collect());
+                    }
+                    let at = |offsets: &[(usize, f64)]| -> Vec<f64> {
+                        let mut v = base.clone();
+                        for &(j, c) in offsets {
+                            v.iter_mut().zip(&basis[j]).for_each(|(v, b)| *v += c * b);
+                        }
+                        v
+                    };
+                    // The face: base + 0.3 tⱼ (j = 1 … k) and base − 0.3 Σ tⱼ / k, whose
+                    // centroid is base; the other points above the tangent plane.
+                    let mut points = Vec::new();
+                    for j in 1..=k {
+                        points.push(at(&[(j, 0.3)]));
+                    }
+                    let rest: Vec<(usize, f64)> = (1..=k).map(|j| (j, -0.3 / k as f64)).collect();
+                    points.push(at(&rest));
+                    for _ in 0..n - k {
+                        let mut offsets = vec![(0, r.gen_range(0.3..0.8))];
+                        offsets.extend((1..n).map(|j| (j, r.gen_range(-0.5..0.5))));
+                        points.push(at(&offsets));
+                    }
+                    let hull = ConvexShape::hull(&points).unwrap();
+                    // A box whose face of the last k axes is centred at base, its normal
+                    // cone holding m: its other axes qⱼ (j < N − k) with Σ ŵⱼ qⱼ = m for
+                    // positive unit weights ŵ, the columns of the reflection that takes
+                    // (ŵ, 0) to the first axis, in the basis (m, tangents).
+                    let fixed = n - k;
+                    let mut weight: Vec<f64> = (0..n)
+                        .map(|j| {
+                            if j < fixed {
+                                r.gen_range(0.3..1.0)
+                            } else {
+                                0.0
+                            }
+                        })
+                        .collect();
+                    if fixed > 1 && trial % 2 == 1 {
+                        // m within 10⁻⁶ of the normal cone of the face of one more axis.
+                        weight[fixed - 1] = 1e-6;
+                    }
+                    let length = dot(&weight, &weight).sqrt();
+                    weight.iter_mut().for_each(|x| *x /= length);
+                    let mut v = weight.clone();
+                    v[0] -= 1.0;
+                    let vv = dot(&v, &v);
+                    let reflect = |i: usize, j: usize| {
+                        let e = if i == j { 1.0 } else { 0.0 };
+                        if vv > 0.0 {
+                            e - 2.0 * v[i] * v[j] / vv
+                        } else {
+                            e
+                        }
+                    };
+                    let axes_of_box: Vec<Vec<f64>> = (0..n)
+                        .map(|j| {
+                            (0..n)
+                                .map(|c| (0..n).map(|i| reflect(i, j) * basis[i][c]).sum())
+                                .collect()
+                        })
+                        .collect();
+                    let half: Vec<f64> = (0..n).map(|_| r.gen_range(0.2..0.5)).collect();
+                    let cuboid = ConvexShape::cuboid(&half).unwrap();
+                    let box_centre: Vec<f64> = (0..n)
+                        .map(|c| {
+                            base[c] + (0..fixed).map(|j| half[j] * axes_of_box[j][c]).sum::<f64>()
+                        })
+                        .collect();
+                    let box_rotation: Vec<f64> =
+                        (0..n * n).map(|x| axes_of_box[x % n][x / n]).collect();
+                    let a = PlacedShape::new(&ellipsoid, &centre, &q).unwrap();
+                    let zero = vec![0.0; n];
+                    let polytopes = [
+                        ("hull", PlacedShape::new(&hull, &zero, &identity).unwrap()),
+                        (
+                            "box",
+                            PlacedShape::new(&cuboid, &box_centre, &box_rotation).unwrap(),
+                        ),
+                    ];
+                    for ((kind, b), swapped) in
+                        polytopes.iter().flat_map(|b| [(b, false), (b, true)])
+                    {
+                        let pen = if swapped {
+                            penetration_with(&mut workspace, b, &a).unwrap()
+                        } else {
+                            penetration_with(&mut workspace, &a, b).unwrap()
+                        };
+                        let case =
+                            format!("N = {n}, a {kind}'s {k}-face, d = {d}, swapped {swapped}");
+                        assert!((pen.depth - d).abs() < 1e-12, "{case}: depth {}", pen.depth);
+                        let sign = if swapped { -1.0 } else { 1.0 };
+                        let (wa, wb) = (pen.witness_a.as_slice(), pen.witness_b.as_slice());
+                        let (on_e, on_h) = if swapped { (wb, wa) } else { (wa, wb) };
+                        for i in 0..n {
+                            let off = (pen.normal.as_slice()[i] - sign * m[i]).abs();
+                            assert!(off < 1e-10, "{case}: normal off by {off:e}");
+                            let off = (on_e[i] - p[i]).abs().max((on_h[i] - base[i]).abs());
+                            assert!(off < 1e-10, "{case}: witnesses off by {off:e}");
+                        }
+                        cases += 1;
+                    }
+                }
+            }
+        }
+        // 30 trials × a hull and a box × 2 ways for each face dimension k < N, N = 2 … 6.
+        assert_eq!(cases, 120 * (2 + 3 + 4 + 5 + 6));
+    }
+
+    /// Two 4D pairs of the reliability run of an ellipsoid against a simplex where the
+    /// depth lay within 1e-9 of the size of EPA's lower bound, but a witness off its shape:
+    /// touching (depth 9e-10 of the size), the normal off the least's by about 1e-5 and the
+    /// simplex's witness 3.8e-6 of the size outside it; overlapping by 0.64 on a facet
+    /// whose vertices stand at one height, the least on a face of that facet and a witness
+    /// 1.9e-7 of the size outside. Both witnesses must lie on their shapes to 1e-12 of the
+    /// size (the simplex's by its barycentric coordinates), depth · normal apart, and the
+    /// depth must not rise.
+    #[test]
+    fn an_ellipsoid_against_a_simplex_has_its_witnesses_on_both() {
+        let n = 4;
+        // Per pair: the ellipsoid's semi-axes, position and rotation, the simplex's
+        // points, position and rotation, whether the ellipsoid is B, and the depth at most.
+        type Pair = (
+            [f64; 4],
+            [f64; 4],
+            [f64; 16],
+            [f64; 20],
+            [f64; 4],
+            [f64; 16],
+            bool,
+            f64,
+        );
+        let pairs: [Pair; 2] = [
+            (
+                [
+                    0.5163646959682513,
+                    1.3183391139309377,
+                    1.3747989343297644,
+                    0.5511041978839777,
+                ],
+                [
+                    0.5941268539929818,
+                    0.14456314082533295,
+                    0.9377576309509315,
+                    0.22271421948049896,
+                ],
+                [
+                    0.38113063301814454,
+                    -0.5870224032601796,
+                    0.4018495427937006,
+                    -0.5904753031264947,
+                    -0.4371778206424843,
+                    -0.7176790762779818,
+                    0.13690470518128975,
+                    0.5244705886036842,
+                    0.5737524825420672,
+                    -0.331937200358607,
+                    -0.7182495989355528,
+                    0.2115261152288829,
+                    0.5782932495631361,
+                    0.17366386083902435,
+                    0.5512636032649315,
+                    0.5757831368350038,
+                ],
+                [
+                    -0.6035155191426225,
+                    -0.6363012121143428,
+                    0.563092090737086,
+                    -0.15056949353615434,
+                    -0.8911590395279583,
+                    1.235960675226778,
+                    -1.2653547642263923,
+                    -1.0116613647928883,
+                    -0.4867539171894788,
+                    0.7381146770041473,
+                    0.7158123037920152,
+                    0.10671645685993036,
+                    -1.39281217972867,
+                    1.4846984529234262,
+                    -0.07585245020181941,
+                    1.3002249613018408,
+                    -0.036610773551752684,
+                    -0.29525165742199544,
+                    -1.2798047386513716,
+                    -1.1964672719072849,
+                ],
+                [
+                    -0.7850142403325484,
+                    0.4150001456544715,
+                    1.786047992576994,
+                    0.8897647932095325,
+                ],
+                [
+                    -0.04673083944141454,
+                    0.7882519737930344,
+                    0.5551175524851252,
+                    -0.2613801013455528,
+                    0.7755914620922639,
+                    0.364795031184744,
+                    -0.23744959320022094,
+                    0.457165352844631,
+                    0.6268459670852324,
+                    -0.36133461875687195,
+                    0.2659107770347741,
+                    -0.6370187481491958,
+                    -0.05777755726633828,
+                    0.3391470246399552,
+                    -0.7515009329792854,
+                    -0.5629275240077217,
+                ],
+                false,
+                4e-9,
+            ),
+            (
+                [
+                    1.0241946554798262,
+                    0.28228365282953316,
+                    1.2019430939644826,
+                    1.6944709888005092,
+                ],
+                [
+                    1.0123996883112927,
+                    0.6908958945932314,
+                    -0.41967591036513013,
+                    0.5668100655428341,
+                ],
+                [
+                    -0.28521750326454565,
+                    0.16456833144041877,
+                    -0.8352460068098871,
+                    0.44037750649481816,
+                    -0.267356580151601,
+                    -0.9556818023648375,
+                    -0.11717179261063697,
+                    -0.038256015144639915,
+                    -0.2574237735538831,
+                    0.15053113266045237,
+                    -0.35052725738716417,
+                    -0.8878085495971941,
+                    -0.883687974168744,
+                    0.19217162906000018,
+                    0.4071431209699864,
+                    0.12806290774766185,
+                ],
+                [
+                    1.5212951156984,
+                    -0.24395101547759726,
+                    -0.24395101547759726,
+                    -0.24395101547759726,
+                    -0.24395101547759726,
+                    1.5212951156984,
+                    -0.24395101547759726,
+                    -0.24395101547759726,
+                    -0.24395101547759726,
+                    -0.24395101547759726,
+                    1.5212951156984,
+                    -0.24395101547759726,
+                    -0.24395101547759726,
+                    -0.24395101547759726,
+                    -0.24395101547759726,
+                    1.5212951156984,
+                    -0.7894420692656082,
+                    -0.7894420692656082,
+                    -0.7894420692656082,
+                    -0.7894420692656082,
+                ],
+                [
+                    0.7313187968194135,
+                    -0.01091945169535169,
+                    -0.5516342186692667,
+                    -0.025673385960780948,
+                ],
+                [
+                    -0.29642763454224874,
+                    0.7367430483044222,
+                    0.15057574199379273,
+                    0.5887845821502243,
+                    -0.3464855452947804,
+                    -0.5271176167792893,
+                    -0.48169672831461496,
+                    0.6083280750661582,
+                    -0.2371564387291357,
+                    0.3956473437610839,
+                    -0.7848792961386885,
+                    -0.4137444784368126,
+                    -0.8578083981582252,
+                    -0.1510624977644331,
+                    0.35952704814360303,
+                    -0.3347912416290758,
+                ],
+                true,
+                0.6416416557886649,
+            ),
+        ];
+        let mut cases = 0;
+        for (axes, pe, qe, points, ph, qh, swapped, most) in pairs {
+            let ellipsoid = ConvexShape::ellipsoid(&axes).unwrap();
+            let simplex = ConvexShape::hull(&points.chunks_exact(n).collect::<Vec<_>>()).unwrap();
+            let e = PlacedShape::new(&ellipsoid, &pe, &qe).unwrap();
+            let h = PlacedShape::new(&simplex, &ph, &qh).unwrap();
+            let p = if swapped {
+                penetration_with(&mut EpaWorkspace::new(), &h, &e).unwrap()
+            } else {
+                penetration_with(&mut EpaWorkspace::new(), &e, &h).unwrap()
+            };
+            let size = 4.0;
+            assert!(p.depth <= most, "depth {} above {most}", p.depth);
+            let (on_e, on_h) = if swapped {
+                (p.witness_b.as_slice(), p.witness_a.as_slice())
+            } else {
+                (p.witness_a.as_slice(), p.witness_b.as_slice())
+            };
+            let own = |x: &[f64], c: &[f64], q: &[f64]| -> Vec<f64> {
+                (0..n)
+                    .map(|j| (0..n).map(|i| q[i * n + j] * (x[i] - c[i])).sum())
+                    .collect()
+            };
+            // The ellipsoid's witness on its surface.
+            let x = own(on_e, &pe, &qe);
+            let level: f64 = x.iter().zip(&axes).map(|(x, a)| (x / a) * (x / a)).sum();
+            assert!(
+                (level - 1.0).abs() < 1e-12,
+                "ellipsoid witness at level {level}"
+            );
+            // The simplex's: barycentric coordinates t (Σ t = 1) all ≥ 0.
+            let y = own(on_h, &ph, &qh);
+            let v: Vec<&[f64]> = points.chunks_exact(n).collect();
+            let m = nalgebra::DMatrix::from_fn(n, n, |i, j| v[j + 1][i] - v[0][i]);
+            let rhs = nalgebra::DVector::from_fn(n, |i, _| y[i] - v[0][i]);
+            let t = m.lu().solve(&rhs).unwrap();
+            let least = t.iter().fold(1.0 - t.sum(), |l, x| l.min(*x));
+            assert!(
+                least > -1e-12 * size,
+                "simplex witness outside by {least:e}"
+            );
+            for i in 0..n {
+                let gap = p.witness_a[i] - p.witness_b[i] - p.depth * p.normal[i];
+                assert!(gap.abs() < 1e-12 * size, "witnesses {gap:e}");
+            }
+            cases += 1;
+        }
+        assert_eq!(cases, 2);
     }
 
     /// Newton's method started exactly at a saddle of f leaves it downhill: a point at the
