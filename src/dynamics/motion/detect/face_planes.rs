@@ -107,8 +107,8 @@ pub(super) fn least_on_face_planes(
 }
 
 /// The planes at most that [`least_near`] takes through sets of a hull's near vertices (a
-/// simplex's facet of 5D has 31 sets of its 5 vertices, a cuboid's facet of 4D 162 of its 8
-/// corners); beyond, the nested faces of its near vertices by height.
+/// 5D simplex's facet has 31 sets of its 5 vertices, a facet of a hull of a 4D box's
+/// corners 162 of its 8); beyond, the nested faces of its near vertices by height.
 const MAX_NEAR_PLANES: usize = 256;
 
 /// The least of `f` over the feet on the planes of the faces of `polytope` near its
