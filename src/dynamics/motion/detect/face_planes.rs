@@ -114,11 +114,11 @@ const MAX_NEAR_PLANES: usize = 256;
 /// The least of `f` over the feet on the planes of the faces of `polytope` near its
 /// support along the unit direction `d` (its vertices relative to the query's origin,
 /// `vertices`, and its centre `centre`; near: within `within` of the highest along `d`),
-/// as [`least_on_face_planes`] takes them all: a cuboid's faces on the highest face of the
-/// axes whose edges drop by more than `within` along `d`, each other axis free or fixed
-/// on either side (at most 3⁵ faces), a hull's or a segment's planes through every affinely independent set of at most N
-/// near vertices (at most [`MAX_NEAR_PLANES`]; else through the first 1, 2, … of them by
-/// height, each plane once). None if `f` is nowhere finite there. Given a direction off
+/// as [`least_on_face_planes`] takes them all: a cuboid's faces on its highest face of the
+/// axes whose edges drop by more than `within` along `d`, each other axis free or fixed at
+/// either end (at most 3⁵ faces), a hull's or a segment's planes through every affinely
+/// independent set of at most N near vertices (at most [`MAX_NEAR_PLANES`]; else through
+/// the first 1, 2, … of them by height, each plane once). None if `f` is nowhere finite there. Given a direction off
 /// the least's by δ, the face the least lies on has its vertices within δ times its size
 /// of the highest: with `within` above that it is among these planes. `near` and `points`
 /// are room for the near vertices.
@@ -138,13 +138,13 @@ pub(super) fn least_near(
         ConvexCore::Cuboid(half) => {
             let q = polytope.rotation();
             // The highest face along d of the axes whose edges drop by more than `within`
-            // (its centre `fixed`), and the other axes: each free, or fixed on either side.
+            // (its centre `fixed`), and the level axes: each free, or fixed at either end.
             let mut fixed: Coords = centre.iter().copied().collect();
-            let mut near: SmallVec<[usize; 8]> = SmallVec::new();
+            let mut level: SmallVec<[usize; 8]> = SmallVec::new();
             for (axis, h) in half.iter().enumerate() {
                 let along: f64 = (0..n).map(|i| q[i * n + axis] * d[i]).sum();
-                if 2.0 * h * along.abs() <= within && near.len() < 5 {
-                    near.push(axis);
+                if 2.0 * h * along.abs() <= within && level.len() < 5 {
+                    level.push(axis);
                     continue;
                 }
                 let side = if along < 0.0 { -h } else { *h };
@@ -153,25 +153,18 @@ pub(super) fn least_near(
                 }
             }
             let mut point = fixed.clone();
-            for code in 0..3usize.pow(near.len() as u32) {
-                // Digit 0: the axis free; 1: at +h; 2: at −h.
+            for code in 0..3usize.pow(level.len() as u32) {
                 point.copy_from_slice(&fixed);
                 complement.clear();
-                let mut c = code;
                 for axis in 0..n {
-                    let digit = match near.iter().position(|&a| a == axis) {
-                        Some(_) => {
-                            let digit = c % 3;
-                            c /= 3;
-                            digit
-                        }
-                        None => 1,
-                    };
-                    if digit == 0 {
-                        continue;
-                    }
-                    if near.contains(&axis) {
-                        let side = if digit == 1 { half[axis] } else { -half[axis] };
+                    // The k-th level axis takes the k-th ternary digit of the code: 0 free,
+                    // 1 at +h, 2 at −h; the other axes are fixed.
+                    if let Some(k) = level.iter().position(|&a| a == axis) {
+                        let side = match code / 3usize.pow(k as u32) % 3 {
+                            0 => continue,
+                            1 => half[axis],
+                            _ => -half[axis],
+                        };
                         for (i, p) in point.iter_mut().enumerate() {
                             *p += side * q[i * n + axis];
                         }
