@@ -630,25 +630,32 @@ fn witness_on_polytope(
     sigma: f64,
     size: f64,
 ) -> bool {
+    if !matches!(
+        polytope.shape().core(),
+        ConvexCore::Cuboid(_) | ConvexCore::Segment(_)
+    ) {
+        return false;
+    }
     let n = u.len();
     let mut point = Coords::from_elem(0.0, n);
     ellipsoid.support(u, -sigma, &mut point, None);
-    let q = polytope.rotation();
     // The witness in the polytope's own axes.
-    let own = |j: usize| -> f64 {
-        (0..n)
-            .map(|i| q[i * n + j] * (point[i] + sigma * depth * u[i] - centre[i]))
-            .sum()
-    };
+    let q = polytope.rotation();
+    let own: Coords = (0..n)
+        .map(|j| {
+            (0..n)
+                .map(|i| q[i * n + j] * (point[i] + sigma * depth * u[i] - centre[i]))
+                .sum()
+        })
+        .collect();
     let slack = 64.0 * f64::EPSILON * size;
     match polytope.shape().core() {
-        ConvexCore::Cuboid(half) => half
+        ConvexCore::Cuboid(half) => own
             .iter()
-            .enumerate()
-            .all(|(j, h)| own(j).abs() <= h + slack),
+            .zip(half.iter())
+            .all(|(x, h)| x.abs() <= h + slack),
         ConvexCore::Segment(h) => {
-            let off: f64 =
-                (1..n).map(|j| own(j) * own(j)).sum::<f64>() + (own(0).abs() - h).max(0.0).powi(2);
+            let off = dot(&own[1..], &own[1..]) + (own[0].abs() - h).max(0.0).powi(2);
             off.sqrt() <= slack
         }
         _ => false,
