@@ -3,7 +3,11 @@
 //! while (outside the timing) by a fixed number of steps per iteration, given as
 //! criterion's throughput in elements (steps), so that `table` reports time per step.
 //! rotorflow takes its steps with one `advance`, by `MotionSplitting` (function `rotorflow`)
-//! and by `SoftStep` (`rotorflow_soft`); Rapier with `PhysicsWorld::step`.
+//! and by `SoftStep` (`rotorflow_soft`); Rapier with `PhysicsWorld::step`. On the pile of 100,
+//! `MotionSplitting` is also timed with at most 100 sweeps per contact solve
+//! (`rotorflow_sweep_limit_100`, [`MotionSplitting::with_sweep_limit`]).
+//!
+//! [`MotionSplitting::with_sweep_limit`]: rotorflow::dynamics::motion::MotionSplitting::with_sweep_limit
 //!
 //! Criterion's options apply (`-- --warm-up-time 1 --measurement-time 3`), and a name
 //! filter selects scenes: scenes it leaves out are not even set up. The run's arguments, the
@@ -18,14 +22,16 @@ use rotorflow_rapier_bench::{
 use std::path::PathBuf;
 
 /// One scene of the comparison: its criterion group, its bodies, the steps taken before
-/// the timing, the steps per timed iteration and whether rotorflow's `MotionSplitting` is
-/// timed on it (its `SoftStep` is timed on every scene).
+/// the timing, the steps per timed iteration, whether rotorflow's `MotionSplitting` is
+/// timed on it (its `SoftStep` is timed on every scene) and whether it is timed with a limit
+/// of 100 sweeps per solve as well.
 struct Scene {
     group: &'static str,
     items: fn() -> Vec<Item>,
     settle: usize,
     steps: usize,
     rotorflow: bool,
+    limited: bool,
 }
 
 const SCENES: &[Scene] = &[
@@ -35,6 +41,7 @@ const SCENES: &[Scene] = &[
         settle: 20,
         steps: 100,
         rotorflow: true,
+        limited: false,
     },
     Scene {
         group: "resting_boxes_100",
@@ -42,6 +49,7 @@ const SCENES: &[Scene] = &[
         settle: 20,
         steps: 100,
         rotorflow: true,
+        limited: false,
     },
     Scene {
         group: "rolling_balls_1000",
@@ -49,6 +57,7 @@ const SCENES: &[Scene] = &[
         settle: 20,
         steps: 100,
         rotorflow: true,
+        limited: false,
     },
     Scene {
         group: "pyramid_55",
@@ -56,6 +65,7 @@ const SCENES: &[Scene] = &[
         settle: 10,
         steps: 10,
         rotorflow: true,
+        limited: false,
     },
     Scene {
         group: "pile_100",
@@ -63,6 +73,7 @@ const SCENES: &[Scene] = &[
         settle: 120,
         steps: 1,
         rotorflow: true,
+        limited: true,
     },
     Scene {
         group: "pile_1000",
@@ -72,6 +83,7 @@ const SCENES: &[Scene] = &[
         settle: 120,
         steps: 1,
         rotorflow: false,
+        limited: false,
     },
 ];
 
@@ -179,6 +191,16 @@ fn main() {
             let mut ours = RotorflowRun::new(&items);
             ours.advance(scene.settle);
             bench_run(&mut g, "rotorflow", &mut ours, scene.steps);
+        }
+        if scene.limited {
+            let mut limited = RotorflowRun::with_sweep_limit(&items, 100);
+            limited.advance(scene.settle);
+            bench_run(
+                &mut g,
+                "rotorflow_sweep_limit_100",
+                &mut limited,
+                scene.steps,
+            );
         }
         let mut soft = RotorflowRun::soft(&items);
         soft.advance(scene.settle);

@@ -472,6 +472,18 @@ impl RotorflowRun {
         }
     }
 
+    /// The scene run by `MotionSplitting` with at most `sweeps` Gauss–Seidel sweeps per
+    /// contact solve.
+    pub fn with_sweep_limit(items: &[Item], sweeps: usize) -> Self {
+        let splitting = MotionSplitting::new()
+            .with_sweep_limit(sweeps)
+            .expect("a positive sweep limit");
+        RotorflowRun {
+            system: rotorflow_system(items),
+            integrator: RotorflowIntegrator::Splitting(Box::new(splitting)),
+        }
+    }
+
     /// The scene run by `SoftStep` with its default settings.
     pub fn soft(items: &[Item]) -> Self {
         RotorflowRun {

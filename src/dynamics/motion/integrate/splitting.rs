@@ -7,7 +7,7 @@ use crate::dynamics::integrate::{axpy, free_flight};
 use crate::dynamics::motion::detect::bodies::Touching;
 use crate::dynamics::motion::forques::Anchor;
 use crate::dynamics::motion::placement::Placements;
-use crate::dynamics::motion::solve::{Solver, SolverReport, plane_sweep};
+use crate::dynamics::motion::solve::{MAX_SWEEPS, Solver, SolverReport, plane_sweep};
 use crate::dynamics::motion::{ContactShape, MotionError, MovingBody, System, Wrench};
 
 /// The symplectic Strang splitting of H = T + V: half a kick by the forques (p += ½h F,
@@ -1245,6 +1245,35 @@ impl MotionSplitting {
         self
     }
 
+    /// Returns this splitting with at most `sweeps` Gauss–Seidel sweeps per contact solve
+    /// (20,000 by default): a solve that has not converged by then stops with the impulses it
+    /// has and is counted as unconverged in [`MotionSplitting::solver_report`], with its
+    /// residual (an error under [`MotionSplitting::strict`]). A resting stack takes one
+    /// sweep per solve and is not slowed by a limit; a pile whose contacts keep changing
+    /// spends most of its time in the few solves that take thousands of sweeps to reach the
+    /// tolerance, which a limit cuts short. Every impulse acts on both bodies of its pair,
+    /// so momentum is kept whatever the limit.
+    ///
+    /// # Errors
+    /// [`MotionError::OutOfRange`] for 0.
+    pub fn with_sweep_limit(mut self, sweeps: usize) -> Result<Self, MotionError> {
+        if sweeps == 0 {
+            return Err(MotionError::OutOfRange {
+                what: "sweep limit",
+                value: 0.0,
+                expected: "a positive integer",
+            });
+        }
+        self.solver.sweep_limit = Some(sweeps);
+        Ok(self)
+    }
+
+    /// The most Gauss–Seidel sweeps a contact solve takes
+    /// ([`MotionSplitting::with_sweep_limit`]).
+    pub fn sweep_limit(&self) -> usize {
+        self.solver.sweep_limit.unwrap_or(MAX_SWEEPS)
+    }
+
     /// Returns what the velocity and joint solves met since this integrator was made or its
     /// report reset: solves, those that stopped unconverged and their worst residual, the
     /// most sweeps one took, singular joint systems.
@@ -1585,6 +1614,111 @@ mod tests {
             y.rotation().momentum().as_slice(),
             1.0
         ));
+    }
+
+    /// A sweep limit bounds every contact solve: a pyramid started cold (a solve of about
+    /// a thousand sweeps to the tolerance) stops at the limit, counted unconverged, and
+    /// under `strict` the step is refused; zero is no limit.
+    #[test]
+    fn a_sweep_limit_stops_every_solve_there_and_counts_it() {
+        assert_eq!(MotionSplitting::new().sweep_limit(), MAX_SWEEPS);
+        assert!(matches!(
+            MotionSplitting::new().with_sweep_limit(0),
+            Err(MotionError::OutOfRange { .. })
+        ));
+        let mut cases = 0;
+        for (n, layers) in [(3usize, 6usize), (4, 4)] {
+            for limit in [1, 5, 40] {
+                let mut system = pyramid(n, layers);
+                let mut stepper = MotionSplitting::new().with_sweep_limit(limit).unwrap();
+                assert_eq!(stepper.sweep_limit(), limit);
+                stepper.step(&mut system, 0.0, 1.0 / 60.0).unwrap();
+                let report = stepper.solver_report();
+                assert_eq!(report.max_sweeps, limit, "N = {n}: {report:?}");
+                assert!(
+                    report.unconverged > 0 && report.worst_residual > 0.0,
+                    "N = {n}: {report:?}"
+                );
+                let mut strict = MotionSplitting::new()
+                    .with_sweep_limit(limit)
+                    .unwrap()
+                    .strict();
+                let refused = strict.step(&mut pyramid(n, layers), 0.0, 1.0 / 60.0);
+                assert!(
+                    matches!(
+                        refused,
+                        Err(DynamicsError::Motion(MotionError::SolveNotConverged { sweeps, .. }))
+                            if sweeps == limit
+                    ),
+                    "N = {n}: {refused:?}"
+                );
+                cases += 1;
+            }
+        }
+        assert_eq!(cases, 6);
+    }
+
+    /// Solves cut short by a sweep limit still keep momentum: each pair impulse acts on
+    /// both bodies, equal and opposite. Boxes thrown together in free space, turning (no
+    /// forques, no planes), collide for a second with every solve limited to one sweep and
+    /// to five, and unlimited: total momentum and angular momentum stay to 1e-12 of their
+    /// scale, and the limited solves are counted unconverged.
+    #[test]
+    fn a_sweep_limit_keeps_momentum_in_collisions() {
+        let mut cases = 0;
+        for n in [3usize, 4] {
+            for limit in [Some(1), Some(5), None] {
+                let parsed =
+                    parse_body(&format!("cuboid:{}+mass=1", vec!["0.5"; n].join(","))).unwrap();
+                let bodies = (0..4)
+                    .map(|k| {
+                        let mut x = axis(n, 0, 1.2 * k as f64);
+                        x.as_mut_slice()[1] = 0.1 * (k as f64 - 1.5);
+                        let v = axis(n, 0, 1.5 - k as f64);
+                        let w: Vec<f64> = (0..n * (n - 1) / 2)
+                            .map(|p| 0.5 * (0.9 * (p + 2 * k) as f64 + 0.4).sin())
+                            .collect();
+                        MovingBody::from_parsed(
+                            &parsed,
+                            Rotor::identity(n),
+                            &x,
+                            &v,
+                            &Bivector::from_components(n, &w).unwrap(),
+                        )
+                        .unwrap()
+                        .with_friction(0.5)
+                        .unwrap()
+                    })
+                    .collect();
+                let mut system = System::new(bodies).unwrap();
+                let (p0, l0) = (system.linear_momentum(), system.angular_momentum());
+                let scale = system
+                    .bodies()
+                    .iter()
+                    .map(|b| b.linear_momentum().norm() * (1.0 + b.position().norm()))
+                    .sum::<f64>();
+                let mut stepper = match limit {
+                    Some(k) => MotionSplitting::new().with_sweep_limit(k).unwrap(),
+                    None => MotionSplitting::new(),
+                };
+                for k in 0..60 {
+                    stepper
+                        .step(&mut system, k as f64 / 60.0, 1.0 / 60.0)
+                        .unwrap();
+                }
+                let report = stepper.solver_report();
+                let dp = (&system.linear_momentum() - &p0).max_abs();
+                let dl = (&system.angular_momentum() - &l0).max_abs();
+                println!("N = {n}, limit {limit:?}: {report:?}, Δp {dp:.1e}, ΔL {dl:.1e}");
+                if limit.is_some() {
+                    assert!(report.unconverged > 0, "N = {n}: {report:?}");
+                }
+                assert!(report.solves > 0, "N = {n}: the boxes touched");
+                assert!(dp <= 1e-12 * scale && dl <= 1e-12 * scale, "N = {n}");
+                cases += 1;
+            }
+        }
+        assert_eq!(cases, 6);
     }
 
     /// The conjugate-gradient steps of a coupled solve reach the answer of Gauss–Seidel

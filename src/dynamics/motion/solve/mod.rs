@@ -29,8 +29,9 @@ use smallvec::SmallVec;
 /// Up to N = 8 the matrices live on the stack.
 type Dense = SmallVec<[f64; 64]>;
 
-/// Gauss–Seidel sweeps of the velocity solve, at most.
-const MAX_SWEEPS: usize = 20_000;
+/// Gauss–Seidel sweeps of the velocity solve, at most, unless the integrator sets its own
+/// limit ([`Solver::sweep_limit`]).
+pub(crate) const MAX_SWEEPS: usize = 20_000;
 
 /// Sweeps after which a solve whose largest change has not fallen by 1 % stops, unconverged:
 /// its rows cycle (Gauss–Seidel with friction; measured on a tilted box landing on a slab,
@@ -190,6 +191,8 @@ pub(crate) struct Solver {
     /// row (joints, pairs, contact rows) its impulse before the sweep, then its change over
     /// the sweep, and its direction p, n numbers each.
     momentum: Vec<f64>,
+    /// The most sweeps a solve takes (None: [`MAX_SWEEPS`]).
+    pub sweep_limit: Option<usize>,
     /// True to stop a solve that does not converge only after [`STALLED_SWEEPS`] sweeps
     /// without progress, never on a cycle (so that tests can compare the two).
     pub stall_only: bool,
@@ -848,7 +851,8 @@ impl Solver {
     /// Gauss–Seidel sweeps over the contact rows `range` (and every joint when `coupled`)
     /// until no impulse changes one of their velocities by more than 1e-12 of their speeds
     /// (1e-9 with pairs), or the largest change has not fallen by 1 % in [`STALLED_SWEEPS`]
-    /// sweeps or the sweeps cycle ([`CYCLE_SWEEPS`]) (unconverged, and reported).
+    /// sweeps or the sweeps cycle ([`CYCLE_SWEEPS`]) or reach the sweep limit (unconverged,
+    /// and reported).
     fn sweep_rows<const N: usize>(
         &mut self,
         range: std::ops::Range<usize>,
@@ -885,7 +889,8 @@ impl Solver {
         // (set when a cycle is first looked for), and the sweeps in a row that left the
         // velocities where they were.
         let (mut lever, mut still) = (None, 0);
-        while sweeps < MAX_SWEEPS {
+        let limit = self.sweep_limit.unwrap_or(MAX_SWEEPS);
+        while sweeps < limit {
             sweeps += 1;
             change = 0.0;
             let check = !self.stall_only && sweeps > least_at + CYCLE_AFTER;
@@ -961,7 +966,7 @@ impl Solver {
                 // Rows that hand an impulse back and forth: the sweeps repeat a cycle.
                 break;
             }
-            if accelerated && sweeps < MAX_SWEEPS {
+            if accelerated && sweeps < limit {
                 last = self.accelerate::<N>(start..end, half_spaces, layout, last);
             }
             if let (true, Some(lever)) = (check, lever) {
