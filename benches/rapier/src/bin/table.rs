@@ -1,7 +1,7 @@
 //! Writes `book/src/generated/rapier_bench.md`: the time per step of rotorflow (by
 //! `MotionSplitting` and by `SoftStep`) and of Rapier from criterion's results of the last
 //! `cargo bench` of this package, and how well each engine keeps each scene, from short runs
-//! of the same scenes taken here.
+//! of the same scenes taken here; and the pile of 100 by `MotionSplitting` with a sweep limit.
 //!
 //! `cargo run --release --manifest-path benches/rapier/Cargo.toml --bin table [-- --output FILE]`
 
@@ -34,6 +34,9 @@ const ENGINES: &[(&str, &str)] = &[
     ("rapier_halfspace_floor", "Rapier, half-space floor"),
     ("rapier_cuboid_floor", "Rapier, cuboid floor"),
 ];
+
+/// The scene and bench function of `MotionSplitting` with a sweep limit, and the limit.
+const LIMITED: (&str, &str, usize) = ("pile_100", "rotorflow_sweep_limit_100", 100);
 
 /// The seconds of each stability run (steps of h = 1/60 s).
 const STABILITY_SECONDS: f64 = 2.0;
@@ -310,6 +313,64 @@ fn stability_rows(out: &mut String, solves: &mut String) {
     }
 }
 
+/// The pile of 100 by `MotionSplitting` with its default sweep limit and with at most
+/// [`LIMITED`]'s sweeps per solve: the time per step (`limited`, and the default's in
+/// `times` with Rapier's two floors'), and a stability run of each with what its solves did.
+fn sweep_limit_section(limited: Option<f64>, times: [Option<f64>; 3]) -> String {
+    let (group, function, sweeps) = LIMITED;
+    let description = SCENES.iter().find(|s| s.0 == group).unwrap().1;
+    let [default, half_space, cuboid] = times;
+    let mut text = String::new();
+    let _ = writeln!(
+        text,
+        "\n`MotionSplitting` on the {description} with its default sweep limit and with at most \
+         {sweeps} sweeps per contact solve (`MotionSplitting::with_sweep_limit({sweeps})`, bench \
+         function `{function}`), where a solve that reaches the limit stops with the impulses it \
+         has, counted unconverged; stability and solves from runs of {STABILITY_SECONDS} s from \
+         the start, as above.\n"
+    );
+    let _ = writeln!(
+        text,
+        "| sweep limit | ms/step | ratio to half-space floor | ratio to cuboid floor | \
+         deepest penetration after any step (m) | fastest body at the end (m/s) | slowest step (s) | \
+         solves | unconverged | mean sweeps | worst residual |"
+    );
+    let _ = writeln!(
+        text,
+        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    );
+    let items = pile(100);
+    for (limit, time) in [(None, default), (Some(sweeps), limited)] {
+        eprintln!("stability: {description}, sweep limit {limit:?}");
+        let mut run = match limit {
+            Some(k) => RotorflowRun::with_sweep_limit(&items, k),
+            None => RotorflowRun::new(&items),
+        };
+        let figures = piled(&mut run, &items);
+        let RotorflowIntegrator::Splitting(splitting) = &run.integrator else {
+            unreachable!("a RotorflowRun of MotionSplitting")
+        };
+        let report = splitting.solver_report();
+        let _ = writeln!(
+            text,
+            "| {}{} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2} | {} |",
+            splitting.sweep_limit(),
+            if limit.is_none() { " (default)" } else { "" },
+            ms(time),
+            ratio(time, half_space),
+            ratio(time, cuboid),
+            figures[0],
+            figures[1],
+            figures[2],
+            report.solves,
+            report.unconverged,
+            report.sweeps as f64 / report.solves.max(1) as f64,
+            sci(report.worst_residual),
+        );
+    }
+    text
+}
+
 fn run() -> Result<(), Error> {
     let manifest = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let mut output = manifest.join("../../book/src/generated/rapier_bench.md");
@@ -353,6 +414,8 @@ fn run() -> Result<(), Error> {
     let mut missing = Vec::new();
     // The ratios to Rapier's two floors of `MotionSplitting` and of `SoftStep`.
     let mut ratios = [Vec::new(), Vec::new()];
+    // The pile of 100's times (`MotionSplitting`, Rapier's two floors), for the sweep limit.
+    let mut pile_times = [None; 3];
     for (group, description) in SCENES {
         let (mut times, mut per_call) = (Vec::new(), None);
         for (function, _) in ENGINES {
@@ -367,6 +430,9 @@ fn run() -> Result<(), Error> {
         let [splitting, soft, half_space, cuboid] = times[..] else {
             unreachable!("four engines")
         };
+        if *group == LIMITED.0 {
+            pile_times = [splitting, half_space, cuboid];
+        }
         for (ours, list) in [splitting, soft].into_iter().zip(&mut ratios) {
             for rapier in [half_space, cuboid] {
                 if let (Some(a), Some(b)) = (ours, rapier) {
@@ -388,7 +454,11 @@ fn run() -> Result<(), Error> {
             ratio(soft, cuboid),
         );
     }
-    if missing.len() == SCENES.len() * ENGINES.len() {
+    let limited = time_per_step(&dir, LIMITED.0, LIMITED.1, run_start)?.map(|(t, _)| t);
+    if limited.is_none() {
+        missing.push(format!("{}/{}", LIMITED.0, LIMITED.1));
+    }
+    if missing.len() == SCENES.len() * ENGINES.len() + 1 {
         return Err(format!(
             "no results of the last bench run under {}",
             dir.display()
@@ -527,6 +597,7 @@ fn run() -> Result<(), Error> {
     );
     let _ = writeln!(text, "|---|---:|---:|---:|---:|---:|");
     text.push_str(&solves);
+    text.push_str(&sweep_limit_section(limited, pile_times));
     std::fs::write(&output, text).map_err(|e| format!("cannot write {}: {e}", output.display()))?;
     eprintln!("wrote {}", output.display());
     Ok(())
