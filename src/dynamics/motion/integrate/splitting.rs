@@ -1618,7 +1618,7 @@ mod tests {
 
     /// A sweep limit bounds every contact solve: a pyramid started cold (a solve of about
     /// a thousand sweeps to the tolerance) stops at the limit, counted unconverged, and
-    /// under `strict` the step is refused; zero is no limit.
+    /// under `strict` the step is refused; a limit of zero is refused.
     #[test]
     fn a_sweep_limit_stops_every_solve_there_and_counts_it() {
         assert_eq!(MotionSplitting::new().sweep_limit(), MAX_SWEEPS);
