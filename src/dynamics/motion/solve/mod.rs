@@ -302,17 +302,20 @@ const ACCELERATE_FROM: usize = 2;
 /// What the velocity and joint solves of an integrator met since it was made (or since
 /// [`MotionSplitting::reset_solver_report`](crate::dynamics::motion::MotionSplitting::reset_solver_report)).
 ///
-/// The projected Gauss–Seidel solve of the contacts stops after a fixed number of sweeps
-/// whether or not it has converged, and a joint system whose matrix cannot be factored is
-/// skipped; both go on with the best impulses they have, which is what a simulation wants
-/// mid-run, and both are counted here so that they are seen.
+/// The projected Gauss–Seidel solve of the contacts stops unconverged at its sweep limit
+/// ([`MotionSplitting::with_sweep_limit`](crate::dynamics::motion::MotionSplitting::with_sweep_limit)),
+/// when its largest change has not fallen by 1 % in 500 sweeps, or when its sweeps cycle
+/// (they leave the bodies' velocities where they were), and a joint system whose matrix
+/// cannot be factored is skipped; both go on with the best impulses they have, which is
+/// what a simulation wants mid-run, and both are counted here so that they are seen.
 /// [`MotionSplitting::strict`](crate::dynamics::motion::MotionSplitting::strict) turns
 /// them into errors instead.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SolverReport {
     /// Contact solves (each group of contact rows solved together counts once).
     pub solves: u64,
-    /// Those that stopped at the sweep limit before converging.
+    /// Those that stopped before converging: at the sweep limit, without progress, or on
+    /// a cycle.
     pub unconverged: u64,
     /// The most sweeps one solve took.
     pub max_sweeps: usize,
