@@ -14,7 +14,19 @@ pub use splitting::MotionSplitting;
 
 use crate::dynamics::DynamicsError;
 use crate::dynamics::integrate::axpy;
-use crate::dynamics::motion::{MovingBody, System, Wrench};
+use crate::dynamics::motion::{MotionError, MovingBody, System, Wrench};
+
+/// `count` if it is positive: an integrator's setting `what` (substeps, passes, sweeps).
+fn positive_count(what: &'static str, count: usize) -> Result<usize, MotionError> {
+    if count == 0 {
+        return Err(MotionError::OutOfRange {
+            what,
+            value: 0.0,
+            expected: "a positive integer",
+        });
+    }
+    Ok(count)
+}
 
 /// An integrator of Newton–Euler for a [`System`]: advances every body by one step.
 pub trait MotionIntegrator {

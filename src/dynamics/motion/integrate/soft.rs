@@ -1,6 +1,6 @@
 //! [`SoftStep`]: substeps with soft contacts and a fixed amount of solver work per step.
 
-use super::{MotionIntegrator, check_finite, kick, sweep};
+use super::{MotionIntegrator, check_finite, kick, positive_count, sweep};
 use crate::dynamics::DynamicsError;
 use crate::dynamics::integrate::{axpy, free_flight};
 use crate::dynamics::motion::body::contact_material;
@@ -139,14 +139,7 @@ impl SoftStep {
     /// # Errors
     /// [`MotionError::OutOfRange`] for 0.
     pub fn with_substeps(mut self, substeps: usize) -> Result<Self, MotionError> {
-        if substeps == 0 {
-            return Err(MotionError::OutOfRange {
-                what: "substeps",
-                value: 0.0,
-                expected: "a positive integer",
-            });
-        }
-        self.substeps = substeps;
+        self.substeps = positive_count("substeps", substeps)?;
         Ok(self)
     }
 
@@ -159,14 +152,7 @@ impl SoftStep {
     /// # Errors
     /// [`MotionError::OutOfRange`] for 0.
     pub fn with_passes(mut self, passes: usize) -> Result<Self, MotionError> {
-        if passes == 0 {
-            return Err(MotionError::OutOfRange {
-                what: "passes",
-                value: 0.0,
-                expected: "a positive integer",
-            });
-        }
-        self.passes = Some(passes);
+        self.passes = Some(positive_count("passes", passes)?);
         Ok(self)
     }
 

@@ -1,6 +1,6 @@
 //! [`MotionSplitting`]: kicks, free flight, impacts located in time, contacts and joints.
 
-use super::{MotionIntegrator, check_finite, kick, one_by_one, sweep};
+use super::{MotionIntegrator, check_finite, kick, one_by_one, positive_count, sweep};
 use crate::algebra::Vector;
 use crate::dynamics::DynamicsError;
 use crate::dynamics::integrate::{axpy, free_flight};
@@ -1257,14 +1257,7 @@ impl MotionSplitting {
     /// # Errors
     /// [`MotionError::OutOfRange`] for 0.
     pub fn with_sweep_limit(mut self, sweeps: usize) -> Result<Self, MotionError> {
-        if sweeps == 0 {
-            return Err(MotionError::OutOfRange {
-                what: "sweep limit",
-                value: 0.0,
-                expected: "a positive integer",
-            });
-        }
-        self.solver.sweep_limit = Some(sweeps);
+        self.solver.sweep_limit = Some(positive_count("sweep limit", sweeps)?);
         Ok(self)
     }
 
