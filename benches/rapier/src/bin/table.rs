@@ -6,7 +6,7 @@
 //! `cargo run --release --manifest-path benches/rapier/Cargo.toml --bin table [-- --output FILE]`
 
 use rapier3d::prelude::IntegrationParameters;
-use rotorflow::dynamics::motion::SoftStep;
+use rotorflow::dynamics::motion::{SoftStep, SolverReport};
 use rotorflow_rapier_bench::{
     Floor, H, Item, RESTING_BOX, ROLLING_BALL, RapierRun, RotorflowIntegrator, RotorflowRun, Run,
     floor_depth, max_penetration, pile, pyramid, resting_boxes, rolling_balls,
@@ -276,9 +276,21 @@ const STABILITY: &[StabilityScene] = &[
     },
 ];
 
+/// The sweep limit of a run by `MotionSplitting`, and what its contact solves did.
+fn splitting_report(run: &RotorflowRun) -> (usize, SolverReport) {
+    let RotorflowIntegrator::Splitting(splitting) = &run.integrator else {
+        unreachable!("a RotorflowRun of MotionSplitting")
+    };
+    (splitting.sweep_limit(), splitting.solver_report())
+}
+
+/// `MotionSplitting`'s stability figures of a scene, with its sweep limit and solves.
+type SplittingRun = (Figures, usize, SolverReport);
+
 /// The stability table's rows, and a line per scene of what `MotionSplitting`'s contact
-/// solves did in its run.
-fn stability_rows(out: &mut String, solves: &mut String) {
+/// solves did in its run; returns that run of the scene of [`LIMITED`].
+fn stability_rows(out: &mut String, solves: &mut String) -> Option<SplittingRun> {
+    let mut limited_scene = None;
     for scene in STABILITY {
         let items = (scene.items)();
         let description = SCENES.iter().find(|s| s.0 == scene.group).unwrap().1;
@@ -286,10 +298,10 @@ fn stability_rows(out: &mut String, solves: &mut String) {
         let mut columns: Vec<Figures> = Vec::new();
         let mut ours = RotorflowRun::new(&items);
         columns.push((scene.run)(&mut ours, &items));
-        let RotorflowIntegrator::Splitting(splitting) = &ours.integrator else {
-            unreachable!("RotorflowRun::new runs MotionSplitting")
-        };
-        let report = splitting.solver_report();
+        let (limit, report) = splitting_report(&ours);
+        if scene.group == LIMITED.0 {
+            limited_scene = Some((columns[0].clone(), limit, report));
+        }
         let _ = writeln!(
             solves,
             "| {description} | {} | {} | {:.2} | {} | {} |",
@@ -311,15 +323,21 @@ fn stability_rows(out: &mut String, solves: &mut String) {
             );
         }
     }
+    limited_scene
 }
 
-/// The pile of 100 by `MotionSplitting` with its default sweep limit and with at most
-/// [`LIMITED`]'s sweeps per solve: the time per step (`limited`, and the default's in
-/// `times` with Rapier's two floors'), and a stability run of each with what its solves did.
-fn sweep_limit_section(limited: Option<f64>, times: [Option<f64>; 3]) -> String {
+/// The pile of 100 by `MotionSplitting` with its default sweep limit (`default`: its
+/// stability run of the table above, and its time among `times` with Rapier's two floors')
+/// and with at most [`LIMITED`]'s sweeps per solve (its time `limited`, and a stability run
+/// of its own).
+fn sweep_limit_section(
+    limited: Option<f64>,
+    times: [Option<f64>; 3],
+    default: Option<SplittingRun>,
+) -> String {
     let (group, function, sweeps) = LIMITED;
     let description = SCENES.iter().find(|s| s.0 == group).unwrap().1;
-    let [default, half_space, cuboid] = times;
+    let [default_time, half_space, cuboid] = times;
     let mut text = String::new();
     let _ = writeln!(
         text,
@@ -339,23 +357,19 @@ fn sweep_limit_section(limited: Option<f64>, times: [Option<f64>; 3]) -> String 
         text,
         "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
+    eprintln!("stability: {description}, sweep limit {sweeps}");
     let items = pile(100);
-    for (limit, time) in [(None, default), (Some(sweeps), limited)] {
-        eprintln!("stability: {description}, sweep limit {limit:?}");
-        let mut run = match limit {
-            Some(k) => RotorflowRun::with_sweep_limit(&items, k),
-            None => RotorflowRun::new(&items),
-        };
-        let figures = piled(&mut run, &items);
-        let RotorflowIntegrator::Splitting(splitting) = &run.integrator else {
-            unreachable!("a RotorflowRun of MotionSplitting")
-        };
-        let report = splitting.solver_report();
+    let mut run = RotorflowRun::with_sweep_limit(&items, sweeps);
+    let figures = piled(&mut run, &items);
+    let (limit, report) = splitting_report(&run);
+    let rows = default
+        .map(|(figures, limit, report)| (figures, limit, report, default_time, " (default)"))
+        .into_iter()
+        .chain([(figures, limit, report, limited, "")]);
+    for (figures, limit, report, time, note) in rows {
         let _ = writeln!(
             text,
-            "| {}{} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2} | {} |",
-            splitting.sweep_limit(),
-            if limit.is_none() { " (default)" } else { "" },
+            "| {limit}{note} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2} | {} |",
             ms(time),
             ratio(time, half_space),
             ratio(time, cuboid),
@@ -467,7 +481,7 @@ fn run() -> Result<(), Error> {
 
     let mut stability = String::new();
     let mut solves = String::new();
-    stability_rows(&mut stability, &mut solves);
+    let default_pile = stability_rows(&mut stability, &mut solves);
 
     // The code that is measured: the crate and this package (the book's files aside).
     let here = commit_of()?;
@@ -597,7 +611,7 @@ fn run() -> Result<(), Error> {
     );
     let _ = writeln!(text, "|---|---:|---:|---:|---:|---:|");
     text.push_str(&solves);
-    text.push_str(&sweep_limit_section(limited, pile_times));
+    text.push_str(&sweep_limit_section(limited, pile_times, default_pile));
     std::fs::write(&output, text).map_err(|e| format!("cannot write {}: {e}", output.display()))?;
     eprintln!("wrote {}", output.display());
     Ok(())
