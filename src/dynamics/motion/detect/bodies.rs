@@ -141,10 +141,27 @@ fn relative_placement_n<const N: usize>(
     out: &mut Vec<f64>,
 ) {
     let n = dim::<N>(xa.len());
+    let (qa, qb, xa, xb) = (&qa[..n * n], &qb[..n * n], &xa[..n], &xb[..n]);
     out.clear();
-    out.extend((0..n).map(|k| (0..n).map(|i| qa[i * n + k] * (xb[i] - xa[i])).sum::<f64>()));
-    for r in 0..n {
-        out.extend((0..n).map(|c| (0..n).map(|i| qa[i * n + r] * qb[i * n + c]).sum::<f64>()));
+    out.resize(n + n * n, 0.0);
+    let (centre, axes) = out.split_at_mut(n);
+    // Each entry a sum from −0.0 (the neutral element of addition) term by term, written
+    // in place: an iterator extending the vector checks its room at every entry.
+    for (k, c) in centre.iter_mut().enumerate() {
+        let mut s = -0.0;
+        for i in 0..n {
+            s += qa[i * n + k] * (xb[i] - xa[i]);
+        }
+        *c = s;
+    }
+    for (r, row) in axes.chunks_exact_mut(n).enumerate() {
+        for (c, entry) in row.iter_mut().enumerate() {
+            let mut s = -0.0;
+            for i in 0..n {
+                s += qa[i * n + r] * qb[i * n + c];
+            }
+            *entry = s;
+        }
     }
 }
 
@@ -162,12 +179,13 @@ fn in_space((q, v): (&[f64], &[f64]), x: Option<&[f64]>, out: &mut [f64]) {
 #[inline(always)]
 fn in_space_n<const N: usize>((q, v): (&[f64], &[f64]), x: Option<&[f64]>, out: &mut [f64]) {
     let n = dim::<N>(v.len());
+    let (q, v) = (&q[..n * n], &v[..n]);
     for (i, o) in out[..n].iter_mut().enumerate() {
-        let turned: f64 = q[i * n..(i + 1) * n]
-            .iter()
-            .zip(&v[..n])
-            .map(|(a, b)| a * b)
-            .sum();
+        // A sum from −0.0 term by term, as relative_placement_n's.
+        let mut turned = -0.0;
+        for (a, b) in q[i * n..(i + 1) * n].iter().zip(v) {
+            turned += a * b;
+        }
         *o = x.map_or(turned, |x| x[i] + turned);
     }
 }
@@ -844,15 +862,18 @@ impl Touching {
             return Some(false);
         }
         let (normal_own, kept) = rest.split_at(n);
-        let mut normal: SmallVec<[f64; 8]> = SmallVec::from_elem(0.0, n);
-        in_space((qa, normal_own), None, &mut normal);
-        let (mut pa, mut pb): (SmallVec<[f64; 8]>, SmallVec<[f64; 8]>) =
-            (SmallVec::from_elem(0.0, n), SmallVec::from_elem(0.0, n));
+        // The normal and the two material points in space, as slices of one room (read
+        // through a small vector, each access would ask where it keeps its numbers).
+        let mut room: SmallVec<[f64; 24]> = SmallVec::from_elem(0.0, 3 * n);
+        let (normal, ends) = room.split_at_mut(n);
+        let (pa, pb) = ends.split_at_mut(n);
+        in_space((qa, normal_own), None, normal);
+        let normal = &*normal;
         let mut least = f64::INFINITY;
         for (k, point) in kept.chunks_exact(1 + 2 * n).enumerate() {
             let (own_a, own_b) = point[1..].split_at(n);
-            in_space((qa, own_a), Some(xa), &mut pa);
-            in_space((qb, own_b), Some(xb), &mut pb);
+            in_space((qa, own_a), Some(xa), pa);
+            in_space((qb, own_b), Some(xb), pb);
             let along: f64 = (0..n).map(|i| normal[i] * (pb[i] - pa[i])).sum();
             let gap = point[0] + along;
             if !points {
@@ -860,16 +881,16 @@ impl Touching {
                 continue;
             }
             let feature = self.kept.features(at)[k];
-            let c = self.found.next((a, b), feature, gap, &normal);
+            let c = self.found.next((a, b), feature, gap, normal);
             c.reach = touching;
             c.point
-                .extend(pa.iter().zip(&pb).map(|(x, y)| 0.5 * (x + y)));
+                .extend(pa.iter().zip(pb.iter()).map(|(x, y)| 0.5 * (x + y)));
         }
         if points {
             self.next_kept.copy_entry(&self.kept, at);
         } else if least <= within {
             // As separating axes answer the gap alone: at the midpoint of the centres.
-            let c = self.found.next((a, b), 0, least, &normal);
+            let c = self.found.next((a, b), 0, least, normal);
             c.reach = touching;
             c.point
                 .extend(xa.iter().zip(xb).map(|(x, y)| 0.5 * (x + y)));

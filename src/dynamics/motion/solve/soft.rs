@@ -667,13 +667,21 @@ impl SoftSolver {
                 .write_matrix(&mut self.frames[i * n * n..(i + 1) * n * n]);
             self.positions[i * n..(i + 1) * n].copy_from_slice(b.position().as_slice());
         }
-        for k in 0..self.rows.len() {
-            self.separations[k] = match n {
-                3 => self.separation::<3>(k),
-                4 => self.separation::<4>(k),
-                _ => self.separation::<0>(k),
-            };
+        match n {
+            3 => self.separations_n::<3>(),
+            4 => self.separations_n::<4>(),
+            _ => self.separations_n::<0>(),
         }
+    }
+
+    /// Every row's separation ([`Self::separation`]) into `separations`, the dimension
+    /// chosen once for all rows.
+    fn separations_n<const N: usize>(&mut self) {
+        let mut separations = std::mem::take(&mut self.separations);
+        for (k, s) in separations.iter_mut().enumerate().take(self.rows.len()) {
+            *s = self.separation::<N>(k);
+        }
+        self.separations = separations;
     }
 
     /// The relax passes after the flight (no bias but that of speculative gaps), and on
@@ -697,17 +705,6 @@ impl SoftSolver {
             3 => self.relax_n::<3>(h, (restitution_speed, passes), last),
             4 => self.relax_n::<4>(h, (restitution_speed, passes), last),
             _ => self.relax_n::<0>(h, (restitution_speed, passes), last),
-        }
-        // Each substep gives the bodies its rows' accumulated impulses (the warm start and
-        // the passes' changes): the step's impulse of a row is their sum.
-        let l = self.layout;
-        for (k, row) in self.rows.iter_mut().enumerate() {
-            row.total_normal_impulse += row.normal_impulse;
-            let d = numbers(&self.data, row, &l);
-            let c = &mut self.cold[k * l.cold_stride..(k + 1) * l.cold_stride];
-            for t in 0..l.n - 1 {
-                c[l.total_tangent + t] += d[l.tangent_impulse + t];
-            }
         }
         if last || !carry {
             self.store(bodies);
@@ -812,6 +809,21 @@ impl SoftSolver {
         }
         if last {
             self.restitution::<N>(speed);
+        }
+        // Each substep gives the bodies its rows' accumulated impulses (the warm start and
+        // the passes' changes): the step's impulse of a row is their sum.
+        let l = layout::<N>(&self.layout);
+        let t = dim::<N>(l.n) - 1;
+        for (row, c) in self
+            .rows
+            .iter_mut()
+            .zip(self.cold.chunks_exact_mut(l.cold_stride))
+        {
+            row.total_normal_impulse += row.normal_impulse;
+            let d = &self.data[row.at + l.tangent_impulse..row.at + l.tangent_impulse + t];
+            for (total, x) in c[l.total_tangent..l.total_tangent + t].iter_mut().zip(d) {
+                *total += x;
+            }
         }
     }
 
