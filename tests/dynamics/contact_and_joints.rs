@@ -910,8 +910,14 @@ fn a_cycling_solve_stops_early_and_is_counted() {
     println!("a tilted box landing on a fixed slab with friction: {run:?}");
     assert!(report.unconverged > 0, "no solve cycled: {report:?}");
     // Stopped on the cycle (its sweeps leave the velocities where they were), not after
-    // 500 sweeps without progress.
+    // 500 sweeps without progress, and reported so.
     assert!(report.max_sweeps < 100, "{report:?}");
+    assert_eq!(report.cycled, report.unconverged, "{report:?}");
+    assert_eq!(
+        (report.at_sweep_limit, report.stalled),
+        (0, 0),
+        "{report:?}"
+    );
     assert!(report.worst_residual < 1e-6, "{report:?}");
 }
 

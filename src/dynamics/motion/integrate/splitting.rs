@@ -1590,6 +1590,10 @@ mod tests {
             "{stall:?}"
         );
         assert_eq!(cycle.unconverged, stall.unconverged);
+        // Each run names why its solve stopped: the cycle, or the stall rule alone.
+        assert_eq!(cycle.cycled, cycle.unconverged, "{cycle:?}");
+        assert_eq!(stall.stalled, stall.unconverged, "{stall:?}");
+        assert_eq!((cycle.stalled, stall.cycled), (0, 0));
         assert!(cycle.max_sweeps < 100, "{cycle:?}");
         assert!((cycle.worst_residual - stall.worst_residual).abs() <= 1e-3 * stall.worst_residual);
         let (x, y) = (&a.bodies()[0], &b.bodies()[0]);
@@ -1630,6 +1634,18 @@ mod tests {
                 assert_eq!(report.max_sweeps, limit, "N = {n}: {report:?}");
                 assert!(
                     report.unconverged > 0 && report.worst_residual > 0.0,
+                    "N = {n}: {report:?}"
+                );
+                // Every unconverged solve is named by why it stopped: here the limit (a
+                // cold pyramid's sweeps do not cycle, and no limit reaches the 500 of a
+                // stall).
+                assert_eq!(
+                    report.at_sweep_limit, report.unconverged,
+                    "N = {n}: {report:?}"
+                );
+                assert_eq!(
+                    (report.stalled, report.cycled),
+                    (0, 0),
                     "N = {n}: {report:?}"
                 );
                 let mut strict = MotionSplitting::new()

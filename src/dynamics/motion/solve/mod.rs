@@ -299,6 +299,14 @@ impl AttitudeAnchors {
 /// Gauss–Seidel.
 const ACCELERATE_FROM: usize = 2;
 
+/// Why a contact solve's sweeps stopped before its tolerance.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Stop {
+    AtLimit,
+    Stalled,
+    Cycled,
+}
+
 /// What the velocity and joint solves of an integrator met since it was made (or since
 /// [`MotionSplitting::reset_solver_report`](crate::dynamics::motion::MotionSplitting::reset_solver_report)).
 ///
@@ -315,8 +323,20 @@ pub struct SolverReport {
     /// Contact solves (each group of contact rows solved together counts once).
     pub solves: u64,
     /// Those that stopped before converging: at the sweep limit, without progress, or on
-    /// a cycle.
+    /// a cycle (`at_sweep_limit + stalled + cycled`).
     pub unconverged: u64,
+    /// Of the unconverged solves, those stopped at the sweep limit
+    /// ([`MotionSplitting::with_sweep_limit`](crate::dynamics::motion::MotionSplitting::with_sweep_limit)).
+    pub at_sweep_limit: u64,
+    /// Of the unconverged solves, those whose largest change had not fallen by 1 % in 500
+    /// sweeps.
+    pub stalled: u64,
+    /// Of the unconverged solves, those stopped on a cycle: three sweeps in a row that left
+    /// the velocities of their bodies where they were (to 10⁻³ of the tolerance) while each
+    /// update still moved them, the sweeps handing impulses round a face's points. The
+    /// velocities are then those that more sweeps would leave; what is unsettled is how the
+    /// face's impulse is shared among its points.
+    pub cycled: u64,
     /// The most sweeps one solve took.
     pub max_sweeps: usize,
     /// The sweeps of all solves (over `solves`: the mean work of a solve).
@@ -893,6 +913,8 @@ impl Solver {
         // velocities where they were.
         let (mut lever, mut still) = (None, 0);
         let limit = self.sweep_limit.unwrap_or(MAX_SWEEPS);
+        // Why the sweeps stopped, should the solve end unconverged.
+        let mut stop = Stop::AtLimit;
         while sweeps < limit {
             sweeps += 1;
             change = 0.0;
@@ -967,6 +989,7 @@ impl Solver {
                 (least, least_at) = (change, sweeps);
             } else if sweeps - least_at >= STALLED_SWEEPS {
                 // Rows that hand an impulse back and forth: the sweeps repeat a cycle.
+                stop = Stop::Stalled;
                 break;
             }
             if accelerated && sweeps < limit {
@@ -985,6 +1008,7 @@ impl Solver {
                     0
                 };
                 if still >= CYCLE_SWEEPS {
+                    stop = Stop::Cycled;
                     break;
                 }
             }
@@ -993,6 +1017,11 @@ impl Solver {
         self.report.sweeps += sweeps as u64;
         if change > tolerance {
             self.report.unconverged += 1;
+            *match stop {
+                Stop::AtLimit => &mut self.report.at_sweep_limit,
+                Stop::Stalled => &mut self.report.stalled,
+                Stop::Cycled => &mut self.report.cycled,
+            } += 1;
             let residual = change / speed.max(1e-300);
             self.report.worst_residual = self.report.worst_residual.max(residual);
         }
