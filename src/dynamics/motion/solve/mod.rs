@@ -1283,8 +1283,7 @@ impl Solver {
         self.pairs_kept = self.pairs_found == Some(serial);
         if self.pairs_kept {
             for row in &mut self.pairs {
-                let along = row.normal.dot(&row.friction_impulse);
-                row.friction_impulse -= &(&row.normal * along);
+                row.drop_normal_friction();
             }
             return;
         }
@@ -1385,8 +1384,7 @@ impl Solver {
                 // and the tangent part of the old friction impulse.
                 row.normal_impulse = last.normal_impulse;
                 set_vector(&mut row.friction_impulse, last.friction_impulse.as_slice());
-                let along = row.normal.dot(&row.friction_impulse);
-                row.friction_impulse -= &(&row.normal * along);
+                row.drop_normal_friction();
             }
         }
         self.pairs = rows;

@@ -248,9 +248,18 @@ impl PairRow {
             self.mass_for_here(at);
             false
         };
-        let along = self.normal.dot(&self.friction_impulse);
-        self.friction_impulse -= &(&self.normal * along);
+        self.drop_normal_friction();
         own
+    }
+
+    /// Removes from the friction impulse its part along the normal (a normal turned since
+    /// the impulse was found), in place.
+    pub(crate) fn drop_normal_friction(&mut self) {
+        let along = self.normal.dot(&self.friction_impulse);
+        let normal = self.normal.as_slice();
+        for (f, n) in self.friction_impulse.as_mut_slice().iter_mut().zip(normal) {
+            *f -= n * along;
+        }
     }
 
     /// Takes what it can of `last`, the last step's row of the same point, for its bodies
