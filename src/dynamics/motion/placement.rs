@@ -264,14 +264,7 @@ impl Placements {
         owner: (u64, u64),
         half_spaces: &[HalfSpace],
     ) {
-        if self.owner != Some(owner) || self.bodies.len() != bodies.len() {
-            self.owner = Some(owner);
-            self.bodies.resize_with(bodies.len(), Placement::default);
-            for (p, shape) in self.bodies.iter_mut().zip(shapes) {
-                p.attitude.clear();
-                p.radius = shape.radius();
-            }
-        }
+        self.own(shapes, owner);
         for ((p, b), shape) in self.bodies.iter_mut().zip(bodies).zip(shapes) {
             if matches!(shape, ContactShape::None) {
                 continue;
@@ -310,6 +303,20 @@ impl Placements {
     }
 
     /// The placement of body `i` (as of the last [`Placements::update`]).
+    /// Makes these the placements of the shapes `shapes` of the system `owner` (see
+    /// [`Self::update`]): for other shapes than before, every body is to be placed anew,
+    /// with its bounding radius.
+    pub(crate) fn own(&mut self, shapes: &[ContactShape], owner: (u64, u64)) {
+        if self.owner != Some(owner) || self.bodies.len() != shapes.len() {
+            self.owner = Some(owner);
+            self.bodies.resize_with(shapes.len(), Placement::default);
+            for (p, shape) in self.bodies.iter_mut().zip(shapes) {
+                p.attitude.clear();
+                p.radius = shape.radius();
+            }
+        }
+    }
+
     pub(crate) fn get(&self, i: usize) -> &Placement {
         &self.bodies[i]
     }

@@ -8,7 +8,7 @@ use crate::dynamics::motion::detect::bodies::{Touching, placed_within, relative_
 use crate::dynamics::motion::detect::kept::KeptPairs;
 use crate::dynamics::motion::placement::Placements;
 use crate::dynamics::motion::solve::{FoundPoint, NO_BODY, SoftSolver, Softness, Solver};
-use crate::dynamics::motion::{ContactShape, MotionError, System, Wrench};
+use crate::dynamics::motion::{MotionError, System, Wrench};
 
 /// The soft step: each step of h is cut into substeps, and each substep takes the forques'
 /// kick, a Gauss–Seidel pass of soft contacts (two in 4D, four in N ≥ 5), the free flight
@@ -61,9 +61,6 @@ pub struct SoftStep {
     /// How far each body may move in the step (see [`SoftStep::new`]), set with the resting
     /// speed from one evaluation of the wrenches.
     sweeps: Vec<f64>,
-    /// Each body's bounding radius, for the sweeps, and the system's shapes they are of:
-    /// found once for those shapes rather than at every step (a box's takes a square root).
-    radii: (Option<(u64, u64)>, Vec<f64>),
     solver: SoftSolver,
     detect: Solver,
     touching: Touching,
@@ -102,7 +99,6 @@ impl Default for SoftStep {
             push_out: 3.0,
             margin: 0.005,
             sweeps: Vec::new(),
-            radii: (None, Vec::new()),
             solver: SoftSolver::default(),
             detect: Solver::default(),
             touching: Touching::clipping_tilted_boxes(),
@@ -330,26 +326,18 @@ impl SoftStep {
         let mut w = std::mem::take(&mut self.wrenches);
         system.wrenches_into(t, &mut w);
         let bodies = system.bodies();
-        let key = system.shape_key();
-        if self.radii.0 != Some(key) || self.radii.1.len() != bodies.len() {
-            self.radii = (
-                Some(key),
-                system.shapes().iter().map(ContactShape::radius).collect(),
-            );
-        }
+        // The bounding radii the placements keep for the system's shapes (found once for
+        // them, not at every step).
+        self.placements.own(system.shapes(), system.shape_key());
+        let placements = &self.placements;
         self.sweeps.clear();
-        self.sweeps.extend(
-            bodies
-                .iter()
-                .zip(&self.radii.1)
-                .zip(&w)
-                .map(|((b, &r), w)| {
-                    if b.is_fixed() {
-                        return 0.0;
-                    }
-                    sweep(b, r, w.force.norm(), (h, h))
-                }),
-        );
+        self.sweeps
+            .extend(bodies.iter().enumerate().zip(&w).map(|((i, b), w)| {
+                if b.is_fixed() {
+                    return 0.0;
+                }
+                sweep(b, placements.get(i).radius, w.force.norm(), (h, h))
+            }));
         let speed = bodies
             .iter()
             .zip(&w)
